@@ -1,0 +1,1 @@
+"""ballbench validation: scenes, harness, reports and the ``ballbench`` CLI."""
