@@ -1,0 +1,405 @@
+"""Exact Hertz point contact of two elastic bodies.
+
+Theory: Johnson, *Contact Mechanics* (1985), Sec 4.2 (eqs 4.36-4.41) with
+``1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2``.  The gap between the undeformed
+surfaces is ``h = A x^2 + B y^2`` with ``0 < A <= B``; the contact ellipse has
+semi-axes ``a`` (along x) ``>= b`` (along y), ratio ``k = b/a`` and
+eccentricity ``e = sqrt(1 - k^2)``.
+
+Everything is written with Carlson's symmetric integrals, which removes the
+cancellation of ``K(e) - E(e)`` as ``e -> 0`` and the loss of precision of
+``K(e)`` as ``e -> 1`` (DLMF 19.25.1)::
+
+    K(e) = R_F(0, k^2, 1)                 K - E       = e^2/3 R_D(0, k^2, 1)
+    E(e) = 2 R_G(0, k^2, 1)               E - k^2 K   = e^2 k^2/3 R_D(0, 1, k^2)
+
+so the Hertz relations become
+
+    B/A = R_D(0, 1, k^2) / R_D(0, k^2, 1)                 (shape; load independent)
+    a^3 = F R_D(0, k^2, 1) / (2 pi E* A)                  (size)
+    p0  = 3 F / (2 pi a b)
+    delta = p0 b R_F(0, k^2, 1) / E*                      (approach)
+
+``k`` is found once per geometry by bracketed root finding on ``log k``
+(the ratio is monotone in ``k``); loads are then vectorised.  The sphere
+(``k = 1``) reduces exactly to ``a^3 = 3 F R / (4 E*)``, ``delta = a^2 / R``.
+
+The papers' constants: lin2019 eq 15 ``a = Psi R_B^(1/3) F^(1/3)``
+(:func:`psi_constant`) and lin2019 eq 53 ``delta = C F^(2/3)``
+(:func:`hertz_constant`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+from scipy.special import elliprd, elliprf, elliprg
+
+__all__ = [
+    "HertzGeometry",
+    "HertzContact",
+    "contact_modulus",
+    "from_curvatures",
+    "ball_on_flat",
+    "ball_on_ball",
+    "ball_in_groove",
+    "ball_in_screw_groove",
+    "groove_curvatures_helical",
+    "solve_load",
+    "solve_approach",
+    "psi_constant",
+    "hertz_constant",
+]
+
+STEEL_YOUNGS_MODULUS = 2.1e11  # Pa, lin2019 Tables 1 and 4
+STEEL_POISSON_RATIO = 0.28  # lin2019 Tables 1 and 4
+
+
+# --------------------------------------------------------------------------
+# input checks
+# --------------------------------------------------------------------------
+def _positive(name: str, value: float, unit: str) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0.0):
+        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
+    return value
+
+
+def _material(youngs_modulus: float, poisson_ratio: float, suffix: str = "") -> tuple[float, float]:
+    youngs_modulus = _positive(f"youngs_modulus{suffix}", youngs_modulus, "Pa")
+    poisson_ratio = float(poisson_ratio)
+    if not (math.isfinite(poisson_ratio) and -1.0 < poisson_ratio < 0.5):
+        raise ValueError(f"poisson_ratio{suffix} must lie in (-1, 0.5), got {poisson_ratio!r}")
+    return youngs_modulus, poisson_ratio
+
+
+def contact_modulus(youngs_modulus_1: float, poisson_ratio_1: float,
+                    youngs_modulus_2: float | None = None, poisson_ratio_2: float | None = None) -> float:
+    """Contact modulus E* [Pa]: ``1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2`` (Johnson eq 4.22).
+
+    Body 2 defaults to the material of body 1.
+    """
+    e1, n1 = _material(youngs_modulus_1, poisson_ratio_1, "_1")
+    e2, n2 = _material(youngs_modulus_1 if youngs_modulus_2 is None else youngs_modulus_2,
+                       poisson_ratio_1 if poisson_ratio_2 is None else poisson_ratio_2, "_2")
+    return 1.0 / ((1.0 - n1 * n1) / e1 + (1.0 - n2 * n2) / e2)
+
+
+# --------------------------------------------------------------------------
+# geometry
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class HertzGeometry:
+    """Relative curvature and elasticity of a point contact.
+
+    Gap ``h = A x^2 + B y^2`` [m] between the undeformed surfaces.
+
+    Attributes
+    ----------
+    A, B : float
+        Half the principal relative curvatures [1/m], ``0 < A <= B``.  The
+        major semi-axis ``a`` lies along x (the direction of ``A``).
+    contact_modulus : float
+        E* [Pa].
+    major_axis_angle : float
+        Angle [rad] of x (the ``a`` direction) from the first principal axis
+        of body 1, as given to :func:`from_curvatures`.
+    axis_ratio : float
+        ``k = b/a`` in (0, 1], solved from ``B/A`` (load independent).
+    """
+
+    A: float
+    B: float
+    contact_modulus: float
+    major_axis_angle: float = 0.0
+    axis_ratio: float = 1.0
+
+    @property
+    def equivalent_radius(self) -> float:
+        """``R_e = 1 / (2 sqrt(A B))`` [m] (Johnson eq 4.23)."""
+        return 0.5 / math.sqrt(self.A * self.B)
+
+
+def _ratio_of_k(k: float) -> float:
+    # B/A as a function of k = b/a (module docstring)
+    k2 = k * k
+    return float(elliprd(0.0, 1.0, k2) / elliprd(0.0, k2, 1.0))
+
+
+def _axis_ratio(curvature_ratio: float) -> float:
+    """k = b/a for ``B/A = curvature_ratio >= 1``, by brentq on log k."""
+    if curvature_ratio <= 1.0 + 1e-15:
+        return 1.0
+    # B/A ~ k^-3/2 (4 ln(4/k) - ...) grows without bound as k -> 0; bracket in log k
+    lo = -1.0
+    while _ratio_of_k(math.exp(lo)) < curvature_ratio:
+        lo *= 2.0
+        if lo < -700.0:
+            raise ValueError(f"curvature ratio B/A = {curvature_ratio:.3e} is beyond the range of Hertz theory")
+    log_k = brentq(lambda t: math.log(_ratio_of_k(math.exp(t)) / curvature_ratio), lo, 0.0,
+                   xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+    return math.exp(log_k)
+
+
+def from_curvatures(curvatures_1: tuple[float, float], curvatures_2: tuple[float, float], *,
+                    angle: float = 0.0,
+                    youngs_modulus: float = STEEL_YOUNGS_MODULUS, poisson_ratio: float = STEEL_POISSON_RATIO,
+                    youngs_modulus_2: float | None = None, poisson_ratio_2: float | None = None) -> HertzGeometry:
+    """Geometry from the principal curvatures of both bodies (Johnson eq 4.20).
+
+    Parameters
+    ----------
+    curvatures_1, curvatures_2 : (float, float)
+        Principal curvatures [1/m] of each surface at the contact point,
+        positive when convex (a ball: ``(1/R, 1/R)``), negative when concave
+        (a groove across its profile: ``-1/r_groove``), zero when flat.
+    angle : float
+        Angle [rad] between the first principal axes of the two bodies.
+    youngs_modulus, poisson_ratio : float
+        Body 1 [Pa, -]; body 2 defaults to the same unless ``*_2`` is given.
+
+    Raises
+    ------
+    ValueError
+        If a relative curvature is not positive (the bodies conform and Hertz
+        theory does not apply) or an input is not finite.
+    """
+    k1 = np.asarray(curvatures_1, dtype=float)
+    k2 = np.asarray(curvatures_2, dtype=float)
+    if k1.shape != (2,) or k2.shape != (2,):
+        raise ValueError("curvatures_1 and curvatures_2 must each be two principal curvatures [1/m]")
+    if not (np.all(np.isfinite(k1)) and np.all(np.isfinite(k2)) and math.isfinite(angle)):
+        raise ValueError("curvatures and angle must be finite")
+    e_star = contact_modulus(youngs_modulus, poisson_ratio, youngs_modulus_2, poisson_ratio_2)
+    c, s = math.cos(angle), math.sin(angle)
+    rotation = np.array([[c, -s], [s, c]])
+    # half the relative curvature tensor: h = x^T (K1 + K2) x / 2
+    tensor = 0.5 * (np.diag(k1) + rotation @ np.diag(k2) @ rotation.T)
+    eigenvalues, eigenvectors = np.linalg.eigh(tensor)
+    A, B = float(eigenvalues[0]), float(eigenvalues[1])
+    if not A > 0.0:
+        raise ValueError(
+            f"relative curvatures A = {A:.6g} 1/m, B = {B:.6g} 1/m: both must be > 0 for Hertz point contact "
+            "(the surfaces conform or do not touch at a point)")
+    major_axis_angle = float(math.atan2(eigenvectors[1, 0], eigenvectors[0, 0]))
+    return HertzGeometry(A, B, e_star, major_axis_angle, _axis_ratio(B / A))
+
+
+def ball_on_flat(ball_radius: float, *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
+                 poisson_ratio: float = STEEL_POISSON_RATIO, youngs_modulus_2: float | None = None,
+                 poisson_ratio_2: float | None = None) -> HertzGeometry:
+    """A ball of radius ``ball_radius`` [m] on a flat."""
+    radius = _positive("ball_radius", ball_radius, "m")
+    return from_curvatures((1 / radius, 1 / radius), (0.0, 0.0), youngs_modulus=youngs_modulus,
+                           poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
+                           poisson_ratio_2=poisson_ratio_2)
+
+
+def ball_on_ball(ball_radius: float, other_radius: float | None = None, *,
+                 youngs_modulus: float = STEEL_YOUNGS_MODULUS, poisson_ratio: float = STEEL_POISSON_RATIO,
+                 youngs_modulus_2: float | None = None, poisson_ratio_2: float | None = None) -> HertzGeometry:
+    """Two balls in contact (the ball-to-ball, B2B, contact of lin2019); radii [m]."""
+    r1 = _positive("ball_radius", ball_radius, "m")
+    r2 = r1 if other_radius is None else _positive("other_radius", other_radius, "m")
+    return from_curvatures((1 / r1, 1 / r1), (1 / r2, 1 / r2), youngs_modulus=youngs_modulus,
+                           poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
+                           poisson_ratio_2=poisson_ratio_2)
+
+
+def _check_conformity(conformity: float) -> float:
+    conformity = float(conformity)
+    if not (math.isfinite(conformity) and conformity > 0.5):
+        raise ValueError(f"conformity (groove radius / ball diameter) must be > 0.5, got {conformity!r}")
+    return conformity
+
+
+def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
+                   poisson_ratio: float = STEEL_POISSON_RATIO) -> HertzGeometry:
+    """A ball in a straight gothic-arch groove (linear bearing rail; lin2019 Table 1).
+
+    The groove radius is ``conformity * 2 * ball_radius``; the groove is
+    straight along its length.  x (major axis ``a``) lies across the groove in
+    the cross-section, y along the groove (the rolling direction).
+    """
+    radius = _positive("ball_radius", ball_radius, "m")
+    conformity = _check_conformity(conformity)
+    groove_radius = conformity * 2.0 * radius
+    # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0)
+    return from_curvatures((1 / radius, 1 / radius), (-1 / groove_radius, 0.0), youngs_modulus=youngs_modulus,
+                           poisson_ratio=poisson_ratio)
+
+
+def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
+                              lead_angle: float, body: str = "screw") -> tuple[float, float, float]:
+    """Principal curvatures of a helical ball-screw groove at the contact point.
+
+    The groove surface is the screw motion of a circular-arc profile of radius
+    ``conformity * 2 * ball_radius`` defined in the axial plane: the ball centre
+    lies at ``pitch_radius`` [m] from the axis and touches the groove at
+    ``contact_angle`` [rad] from the radial direction; the lead per radian is
+    ``pitch_radius * tan(lead_angle)``.  With the surface
+    ``X(s, phi) = (rho(s) cos phi, rho(s) sin phi, z(s) + p phi)`` the first and
+    second fundamental forms are exact, and the curvatures are the eigenvalues
+    of the shape operator (sign: positive convex, as seen from the ball).
+
+    Returns ``(kappa_1, kappa_2, angle)``: principal curvatures [1/m] with
+    ``kappa_1`` the one closer to the profile (across-groove) direction and
+    ``angle`` [rad] between that principal direction and the profile tangent.
+    At ``lead_angle = 0`` this reduces to the bearing raceway
+    ``(-1/r_groove, +-cos(alpha)/(R_p -+ R_B cos(alpha)))`` (Harris).
+    """
+    radius = _positive("ball_radius", ball_radius, "m")
+    conformity = _check_conformity(conformity)
+    pitch_radius = _positive("pitch_radius", pitch_radius, "m")
+    contact_angle = float(contact_angle)
+    if not (math.isfinite(contact_angle) and 0.0 < contact_angle < math.pi / 2):
+        raise ValueError(f"contact_angle must lie in (0, pi/2) rad, got {contact_angle!r}")
+    lead_angle = float(lead_angle)
+    if not (math.isfinite(lead_angle) and 0.0 <= lead_angle < math.pi / 2):
+        raise ValueError(f"lead_angle must lie in [0, pi/2) rad, got {lead_angle!r}")
+    if body not in ("screw", "nut"):
+        raise ValueError(f"body must be 'screw' or 'nut', got {body!r}")
+    if body == "screw" and pitch_radius <= radius:
+        raise ValueError("pitch_radius must exceed ball_radius for a screw groove")
+    groove_radius = conformity * 2.0 * radius
+    # profile in the (rho, z) half plane; ball centre at (pitch_radius, 0)
+    outward = -1.0 if body == "screw" else 1.0  # contact lies toward the axis on the screw
+    ca, sa = math.cos(contact_angle), math.sin(contact_angle)
+    contact = np.array([pitch_radius + outward * radius * ca, radius * sa])
+    to_ball = -np.array([outward * ca, sa])  # unit vector from contact point to ball centre
+    centre = contact + groove_radius * to_ball  # centre of the groove arc
+    # arc parameterised by psi: P = centre - r_g (cos psi, sin psi) rotated so psi0 -> contact
+    psi0 = math.atan2(-to_ball[1], -to_ball[0])
+    rho, z = contact
+    rho_s, z_s = -groove_radius * math.sin(psi0), groove_radius * math.cos(psi0)
+    rho_ss, z_ss = -groove_radius * math.cos(psi0), -groove_radius * math.sin(psi0)
+    p = pitch_radius * math.tan(lead_angle)  # lead / (2 pi)
+    x_s = np.array([rho_s, 0.0, z_s])
+    x_phi = np.array([0.0, rho, p])
+    x_ss = np.array([rho_ss, 0.0, z_ss])
+    x_sphi = np.array([0.0, rho_s, 0.0])
+    x_phiphi = np.array([-rho, 0.0, 0.0])
+    normal = np.cross(x_s, x_phi)
+    normal /= np.linalg.norm(normal)
+    ball_dir = np.array([to_ball[0], 0.0, to_ball[1]])
+    if normal @ ball_dir < 0.0:
+        normal = -normal  # normal points out of the groove material, toward the ball
+    first = np.array([[x_s @ x_s, x_s @ x_phi], [x_s @ x_phi, x_phi @ x_phi]])
+    second = np.array([[x_ss @ normal, x_sphi @ normal], [x_sphi @ normal, x_phiphi @ normal]])
+    # convex-positive curvature = -(shape operator eigenvalue) with the outward normal
+    shape = -np.linalg.solve(first, second)
+    eigenvalues, eigenvectors = np.linalg.eig(shape)
+    eigenvalues = eigenvalues.real
+    tangents = [eigenvectors[0, i].real * x_s + eigenvectors[1, i].real * x_phi for i in range(2)]
+    profile_dir = x_s / np.linalg.norm(x_s)
+    align = [abs(t @ profile_dir) / np.linalg.norm(t) for t in tangents]
+    i1 = int(np.argmax(align))
+    angle = math.acos(min(1.0, align[i1]))
+    return float(eigenvalues[i1]), float(eigenvalues[1 - i1]), angle
+
+
+def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
+                         lead_angle: float, body: str = "screw", *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
+                         poisson_ratio: float = STEEL_POISSON_RATIO) -> HertzGeometry:
+    """A ball in the helical groove of a ball screw (``body='screw'``) or nut (``'nut'``).
+
+    Inputs in [m] and [rad]; see :func:`groove_curvatures_helical` for the
+    groove definition (lin2019 Table 4: R_B 2.778 mm, conformity 0.56,
+    pitch radius 16.5 mm, contact angle 45 deg, lead 20 mm).  Since the ball is
+    a sphere, the ellipse axes follow the groove's principal directions.
+    """
+    kappa_1, kappa_2, _ = groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
+                                                    lead_angle, body)
+    radius = float(ball_radius)
+    return from_curvatures((1 / radius, 1 / radius), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
+                           poisson_ratio=poisson_ratio)
+
+
+# --------------------------------------------------------------------------
+# solution
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class HertzContact:
+    """Hertz solution; array attributes broadcast with the load given.
+
+    Attributes
+    ----------
+    force : normal load F [N]
+    a, b : semi-axes [m], ``a >= b``, ``a`` along x of the geometry
+    p0 : peak pressure [Pa], ``p = p0 sqrt(1 - x^2/a^2 - y^2/b^2)``
+    delta : approach of distant points of the two bodies [m]
+    stiffness : dF/d(delta) [N/m]
+    eccentricity : ``e = sqrt(1 - (b/a)^2)``
+    ellip_k, ellip_e : complete elliptic integrals K(e), E(e) (modulus e)
+    """
+
+    force: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    p0: np.ndarray
+    delta: np.ndarray
+    stiffness: np.ndarray
+    eccentricity: float
+    ellip_k: float
+    ellip_e: float
+
+
+def _unit_solution(geometry: HertzGeometry) -> tuple[float, float, float]:
+    """(a, delta, C) for F = 1 N: a [m], delta [m], C = delta / F^(2/3) [m N^(-2/3)]."""
+    k = geometry.axis_ratio
+    k2 = k * k
+    a_unit = (float(elliprd(0.0, k2, 1.0)) / (2.0 * math.pi * geometry.contact_modulus * geometry.A)) ** (1.0 / 3.0)
+    b_unit = k * a_unit
+    p0_unit = 3.0 / (2.0 * math.pi * a_unit * b_unit)
+    delta_unit = p0_unit * b_unit * float(elliprf(0.0, k2, 1.0)) / geometry.contact_modulus
+    return a_unit, delta_unit, delta_unit
+
+
+def _as_load(name: str, value, unit: str) -> np.ndarray:
+    array = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite (got NaN or inf)")
+    if np.any(array < 0.0):
+        raise ValueError(f"{name} must be >= 0 {unit}, got min {array.min()!r}")
+    return array
+
+
+def _build(geometry: HertzGeometry, force: np.ndarray) -> HertzContact:
+    k = geometry.axis_ratio
+    k2 = k * k
+    a_unit, delta_unit, _ = _unit_solution(geometry)
+    cube_root = np.cbrt(force)
+    a = a_unit * cube_root
+    b = k * a
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p0 = np.where(force > 0.0, 3.0 * force / (2.0 * math.pi * np.where(a > 0, a * b, 1.0)), 0.0)
+    delta = delta_unit * cube_root**2
+    stiffness = 1.5 * np.sqrt(delta) / delta_unit**1.5  # dF/d(delta) of F = (delta/C)^(3/2)
+    return HertzContact(force, a, b, p0, delta, stiffness, math.sqrt(max(0.0, 1.0 - k2)),
+                        float(elliprf(0.0, k2, 1.0)), float(2.0 * elliprg(0.0, k2, 1.0)))
+
+
+def solve_load(geometry: HertzGeometry, force) -> HertzContact:
+    """Hertz contact under normal load ``force`` [N] (scalar or array, >= 0)."""
+    return _build(geometry, _as_load("force", force, "N"))
+
+
+def solve_approach(geometry: HertzGeometry, delta) -> HertzContact:
+    """Hertz contact for a given approach ``delta`` [m] (scalar or array, >= 0)."""
+    delta = _as_load("delta", delta, "m")
+    force = (delta / hertz_constant(geometry)) ** 1.5  # lin2019 eq 53 inverted
+    return _build(geometry, force)
+
+
+def psi_constant(geometry: HertzGeometry, ball_radius: float) -> float:
+    """Psi of lin2019 eq 15, ``a = Psi R_B^(1/3) F^(1/3)`` [(m^2/N)^(1/3)]."""
+    radius = _positive("ball_radius", ball_radius, "m")
+    a_unit, _, _ = _unit_solution(geometry)
+    return a_unit / radius ** (1.0 / 3.0)
+
+
+def hertz_constant(geometry: HertzGeometry) -> float:
+    """Hertz constant C of lin2019 eq 53, ``delta = C F^(2/3)`` [m N^(-2/3)]."""
+    return _unit_solution(geometry)[2]

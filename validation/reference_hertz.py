@@ -1,0 +1,59 @@
+"""Reference solutions for Hertz contact, kept apart from ``lowmodel.hertz``.
+
+Two independent routes:
+
+* closed forms for a sphere on a flat and sphere on sphere (Johnson 1985,
+  eqs 4.22-4.25): ``a^3 = 3 F R / (4 E*)``, ``delta = a^2 / R``,
+  ``p0 = 3 F / (2 pi a^2)``;
+* direct quadrature of the Boussinesq pressure-displacement relation for an
+  elliptical Hertz pressure ``p = p0 sqrt(1 - x^2/a^2 - y^2/b^2)``:
+  ``u(x0, 0) = 1/(pi E*) * integral p / r dA``.  In polar coordinates about
+  the field point the ``1/r`` singularity cancels, the radial integral is
+  done in closed form and the angular one by adaptive quadrature.  Given
+  trial semi-axes this returns the approach and the curvatures
+  ``A = (delta - u(x0, 0)) / x0^2`` and ``B = (delta - u(0, y0)) / y0^2``
+  that the pressure field produces; it never calls elliptic integrals.
+"""
+from __future__ import annotations
+
+import math
+
+from scipy.integrate import quad
+
+
+def sphere_closed_form(force: float, radius: float, contact_modulus: float) -> dict[str, float]:
+    """Hertz sphere on flat with equivalent radius ``radius`` [m]: a [m], delta [m], p0 [Pa]."""
+    a = (3.0 * force * radius / (4.0 * contact_modulus)) ** (1.0 / 3.0)
+    return {"a": a, "b": a, "delta": a * a / radius, "p0": 3.0 * force / (2.0 * math.pi * a * a)}
+
+
+def _radial_integral(x0: float, y0: float, a: float, b: float, theta: float) -> float:
+    """integral_0^r_edge sqrt(1 - (x0 + r c)^2/a^2 - (y0 + r s)^2/b^2) dr along direction theta."""
+    c, s = math.cos(theta), math.sin(theta)
+    gamma = c * c / (a * a) + s * s / (b * b)
+    beta = x0 * c / (a * a) + y0 * s / (b * b)
+    alpha = 1.0 - x0 * x0 / (a * a) - y0 * y0 / (b * b)
+    # q(r) = alpha - 2 beta r - gamma r^2 = gamma (D - (r + beta/gamma)^2)
+    shift = beta / gamma
+    big_d = alpha / gamma + shift * shift
+    root = math.sqrt(big_d)
+    s0 = shift
+    inner = (big_d / 2.0) * (math.pi / 2.0 - math.asin(max(-1.0, min(1.0, s0 / root)))) \
+        - (s0 / 2.0) * math.sqrt(max(0.0, big_d - s0 * s0))
+    return math.sqrt(gamma) * inner
+
+
+def surface_displacement(x0: float, y0: float, a: float, b: float, p0: float, contact_modulus: float) -> float:
+    """Sum of the normal surface displacements of both bodies [m] at (x0, y0) inside the ellipse."""
+    integral, _ = quad(lambda t: _radial_integral(x0, y0, a, b, t), 0.0, 2.0 * math.pi,
+                       epsabs=0.0, epsrel=1e-12, limit=400)
+    return p0 * integral / (math.pi * contact_modulus)
+
+
+def ellipse_quadrature(a: float, b: float, p0: float, contact_modulus: float) -> dict[str, float]:
+    """Approach and curvatures A, B [1/m] that a Hertz pressure on the ellipse (a, b) produces."""
+    delta = surface_displacement(0.0, 0.0, a, b, p0, contact_modulus)
+    x0, y0 = 0.5 * a, 0.5 * b
+    A = (delta - surface_displacement(x0, 0.0, a, b, p0, contact_modulus)) / (x0 * x0)
+    B = (delta - surface_displacement(0.0, y0, a, b, p0, contact_modulus)) / (y0 * y0)
+    return {"delta": delta, "A": A, "B": B, "force": 2.0 * math.pi * a * b * p0 / 3.0}
