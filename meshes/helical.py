@@ -1,0 +1,583 @@
+"""Helical gothic-arch groove segments of a ball screw (screw shaft and nut) and the
+ball-in-groove contact pair.
+
+Geometry (lin2019 Sec 3.1, eqs 37-42, Fig 13; Table 4 gives the case R_B =
+2.778 mm, conformity 0.56, R_P = 16.5 mm, lead 20 mm, beta_0 = 45 deg):
+
+* the nominal ball-centre path is the right-handed helix
+  ``H(phi) = (R_P cos phi, R_P sin phi, p phi)`` with ``p = lead / (2 pi)``;
+  lead angle ``alpha = atan(p / R_P)`` (lin2019 eq 42);
+* the moving frame CS3 (lin2019 eq 41, ``T = rot_z(phi) rot_x(alpha)``):
+  ``x3`` radial (from the axis to the ball centre), ``y3`` tangent to the helix,
+  ``z3 = x3 x y3``;
+* the groove cross-section is a gothic arch: two circular arcs of radius
+  ``r_g = conformity * 2 R_B`` whose centres are offset from the ball centre by
+  ``r_g - R_B`` so that a ball on the helix touches each arc at the contact
+  angle ``beta`` measured from ``-x3`` (screw) or ``+x3`` (nut) (lin2019 eq 37);
+* the groove surface is the screw motion of that cross-section
+  ``S(theta, phi) = rot_z(phi) [(R_P, 0, 0) + u(theta) e_1 + w(theta) c] + (0, 0, p phi)``
+  with ``(u, w)`` the arc and ``c`` the profile-plane "axial" direction.
+
+Two profile planes are offered (``profile_plane``):
+
+``"normal"`` (default, lin2019): the profile is drawn in the plane x3-z3, normal
+    to the helix, ``c = (0, -sin alpha, cos alpha)``.  A ball centred on the
+    helix then touches the swept surface exactly at the profile contact point
+    and the surface normal there passes through the ball centre (the helix
+    velocity of the contact point is orthogonal to the contact normal).
+``"axial"``: the profile is drawn in the axial plane (``c = (0, 0, 1)``), the
+    convention of :func:`lowmodel.hertz.groove_curvatures_helical`.  The surface
+    normal at the profile contact point is then tilted out of the axial plane
+    (by 8.8 deg for lin2019 Table 4), so a ball tangent there has its centre
+    ``R_B`` along the true normal, slightly off the helix.
+
+All lengths in metres, angles in radians.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = [
+    "HelicalGroove",
+    "ContactFrame",
+    "helical_groove",
+    "contact_frame",
+    "surface_residual",
+    "screw_groove_segment",
+    "ball_in_screw_groove_pair",
+]
+
+_BODIES = ("screw", "nut")
+_FLANKS = ("left", "right")
+_PLANES = ("normal", "axial")
+
+
+# --------------------------------------------------------------------------
+# input checks
+# --------------------------------------------------------------------------
+def _finite(name: str, value, allowed: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number in {allowed}, got {value!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be a real number in {allowed}, got {value!r}")
+    return value
+
+
+def _positive(name: str, value, unit: str) -> float:
+    value = _finite(name, value, f"(0, inf) {unit}")
+    if value <= 0.0:
+        raise ValueError(f"{name} must lie in (0, inf) {unit}, got {value!r}")
+    return value
+
+
+def _conformity(value) -> float:
+    value = _finite("conformity", value, "(0.5, inf)")
+    if value <= 0.5:
+        raise ValueError(f"conformity (groove radius / ball diameter) must lie in (0.5, inf), got {value!r}")
+    return value
+
+
+def _contact_angle(value, name: str = "contact_angle") -> float:
+    value = _finite(name, value, "(0, pi/2) rad")
+    if not 0.0 < value < math.pi / 2:
+        raise ValueError(f"{name} must lie in (0, pi/2) rad (0-90 deg exclusive), got {value!r}")
+    return value
+
+
+def _choice(name: str, value, allowed: tuple[str, ...]) -> str:
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
+    return value
+
+
+# --------------------------------------------------------------------------
+# exact geometry
+# --------------------------------------------------------------------------
+def _rot_z(phi) -> np.ndarray:
+    """Rotation matrices about z, shape (..., 3, 3)."""
+    phi = np.asarray(phi, dtype=float)
+    c, s = np.cos(phi), np.sin(phi)
+    zero, one = np.zeros_like(phi), np.ones_like(phi)
+    return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
+                     np.stack([zero, zero, one], -1)], -2)
+
+
+@dataclass(frozen=True)
+class HelicalGroove:
+    """One flank of a helical gothic-arch groove (build with :func:`helical_groove`).
+
+    Profile coordinates ``(u, w)``: ``u`` along ``e_1 = x3`` (radially outward from
+    the ball centre), ``w`` along ``c`` (``z3`` for the normal profile, the screw
+    axis for the axial profile); origin at the ball centre on the helix.
+    """
+
+    ball_radius: float
+    conformity: float
+    pitch_radius: float
+    lead: float
+    contact_angle: float
+    body: str = "screw"
+    flank: str = "left"
+    profile_plane: str = "normal"
+
+    @property
+    def groove_radius(self) -> float:
+        """``r_g = conformity * 2 R_B`` [m] (lin2019 Sec 2.3.1: conf = R_G / 2 R_B)."""
+        return self.conformity * 2.0 * self.ball_radius
+
+    @property
+    def lead_per_radian(self) -> float:
+        """``p = lead / (2 pi)`` [m/rad]."""
+        return self.lead / (2.0 * math.pi)
+
+    @property
+    def lead_angle(self) -> float:
+        """Nominal lead angle ``atan(lead / (2 pi R_P))`` [rad] (lin2019 eq 42)."""
+        return math.atan2(self.lead, 2.0 * math.pi * self.pitch_radius)
+
+    @property
+    def sign_u(self) -> float:
+        """-1 on the screw (contact toward the axis), +1 on the nut."""
+        return -1.0 if self.body == "screw" else 1.0
+
+    @property
+    def sign_w(self) -> float:
+        """-1 on the left flank (lin2019 eq 37: q_SL has -R_B sin beta along z3), +1 on the right."""
+        return -1.0 if self.flank == "left" else 1.0
+
+    @property
+    def plane_axis(self) -> np.ndarray:
+        """``c`` at phi = 0: the profile-plane direction other than ``e_1`` (unit)."""
+        if self.profile_plane == "axial":
+            return np.array([0.0, 0.0, 1.0])
+        lam = self.lead_angle
+        return np.array([0.0, -math.sin(lam), math.cos(lam)])  # z3 of lin2019 eq 41 at phi = 0
+
+    @property
+    def contact_direction(self) -> np.ndarray:
+        """Unit vector (u, w) from the ball centre to the contact point in the profile plane."""
+        return np.array([self.sign_u * math.cos(self.contact_angle), self.sign_w * math.sin(self.contact_angle)])
+
+    @property
+    def arc_centre(self) -> np.ndarray:
+        """(u, w) of this flank's arc centre: ``-(r_g - R_B)`` along the contact direction."""
+        return -(self.groove_radius - self.ball_radius) * self.contact_direction
+
+    @property
+    def contact_theta(self) -> float:
+        """Arc angle of the contact point, ``(u, w) = centre + r_g (cos theta, sin theta)``."""
+        d = self.contact_direction
+        return math.atan2(d[1], d[0])
+
+    @property
+    def bottom_theta(self) -> float:
+        """Arc angle of the groove bottom (the gothic-arch apex, w = 0, where the flanks meet)."""
+        centre = self.arc_centre
+        r_g = self.groove_radius
+        # the arc point with w = 0 on the side of the contact: u - u_c = sign_u sqrt(r_g^2 - w_c^2)
+        du = self.sign_u * math.sqrt(r_g**2 - centre[1] ** 2)
+        return math.atan2(-centre[1], du)
+
+    def profile(self, theta, radius=None) -> np.ndarray:
+        """Profile points ``(u, w)`` at arc angle ``theta`` [rad], shape (..., 2).
+
+        ``radius`` defaults to ``r_g`` (the groove surface); larger values give the
+        concentric arcs inside the groove body.
+        """
+        theta = np.asarray(theta, dtype=float)
+        r = self.groove_radius if radius is None else np.asarray(radius, dtype=float)
+        centre = self.arc_centre
+        return np.stack([centre[0] + r * np.cos(theta), centre[1] + r * np.sin(theta)], -1)
+
+    def to_world(self, u, w, phi) -> np.ndarray:
+        """World points of profile coordinates ``(u, w)`` in the plane at azimuth ``phi``, shape (..., 3)."""
+        u, w, phi = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (u, w, phi)))
+        local = (self.pitch_radius + u)[..., None] * np.array([1.0, 0.0, 0.0]) + w[..., None] * self.plane_axis
+        world = np.einsum("...ij,...j->...i", _rot_z(phi), local)
+        world[..., 2] += self.lead_per_radian * phi
+        return world
+
+    def surface(self, theta, phi) -> np.ndarray:
+        """Groove surface points ``S(theta, phi)`` [m], shape (..., 3)."""
+        uw = self.profile(theta)
+        return self.to_world(uw[..., 0], uw[..., 1], phi)
+
+    def helix(self, phi) -> np.ndarray:
+        """Ball-centre helix ``H(phi)`` [m], shape (..., 3)."""
+        return self.to_world(0.0, 0.0, phi)
+
+
+def helical_groove(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                   contact_angle: float, body: str = "screw", flank: str = "left",
+                   profile_plane: str = "normal") -> HelicalGroove:
+    """Validated :class:`HelicalGroove`.
+
+    ``ball_radius``, ``pitch_radius`` [m] > 0, ``lead`` [m] >= 0 (0: a bearing
+    raceway), ``conformity`` > 0.5, ``contact_angle`` in (0, pi/2) rad.
+    """
+    ball_radius = _positive("ball_radius", ball_radius, "m")
+    conformity = _conformity(conformity)
+    pitch_radius = _positive("pitch_radius", pitch_radius, "m")
+    lead = _finite("lead", lead, "[0, inf) m")
+    if lead < 0.0:
+        raise ValueError(f"lead must lie in [0, inf) m (right-handed screw), got {lead!r}")
+    contact_angle = _contact_angle(contact_angle)
+    body = _choice("body", body, _BODIES)
+    flank = _choice("flank", flank, _FLANKS)
+    profile_plane = _choice("profile_plane", profile_plane, _PLANES)
+    if body == "screw" and pitch_radius <= 2.0 * conformity * ball_radius:
+        raise ValueError(f"pitch_radius must exceed the groove radius 2 conformity ball_radius "
+                         f"= {2 * conformity * ball_radius!r} m for a screw groove, got {pitch_radius!r}")
+    return HelicalGroove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
+
+
+@dataclass(frozen=True)
+class ContactFrame:
+    """Contact point, normal and principal directions of a groove flank (world frame, [m]).
+
+    ``normal`` points out of the groove material into the ball; ``major`` is the
+    principal direction nearest the profile (across the groove; the major axis
+    ``a`` of the Hertz ellipse of a ball), ``minor`` the one nearest the helix
+    (along the groove, the rolling direction, oriented with increasing azimuth);
+    ``major = minor x normal`` so (major, minor, normal) is right-handed.
+    Curvatures are positive convex as seen from the ball (the concave groove
+    cross-section has ``curvature_major ~ -1/r_g``), as in :mod:`lowmodel.hertz`.
+    """
+
+    point: np.ndarray
+    normal: np.ndarray
+    major: np.ndarray
+    minor: np.ndarray
+    curvature_major: float
+    curvature_minor: float
+    ball_centre: np.ndarray
+    profile_angle: float  # angle [rad] between ``major`` and the profile tangent
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """Rows (major, minor, normal): maps world vectors to contact-frame (x, y, z)."""
+        return np.stack([self.major, self.minor, self.normal])
+
+
+def contact_frame(groove: HelicalGroove) -> ContactFrame:
+    """Exact contact frame at the profile contact point (phi = 0) from the first and
+    second fundamental forms of ``S(theta, phi)``."""
+    theta = groove.contact_theta
+    r_g = groove.groove_radius
+    p = groove.lead_per_radian
+    e1 = np.array([1.0, 0.0, 0.0])
+    c = groove.plane_axis
+    z_hat = np.array([0.0, 0.0, 1.0])
+    u, w = groove.profile(theta)
+    u_t, w_t = -r_g * math.sin(theta), r_g * math.cos(theta)
+    u_tt, w_tt = -r_g * math.cos(theta), -r_g * math.sin(theta)
+    point = (groove.pitch_radius + u) * e1 + w * c
+    s_t = u_t * e1 + w_t * c
+    s_tt = u_tt * e1 + w_tt * c
+    s_p = np.cross(z_hat, point) + p * z_hat  # d/dphi rot_z(phi) v = z x v at phi = 0
+    s_tp = np.cross(z_hat, s_t)
+    s_pp = np.cross(z_hat, np.cross(z_hat, point))
+    normal = np.cross(s_t, s_p)
+    normal /= np.linalg.norm(normal)
+    to_ball = -(groove.contact_direction[0] * e1 + groove.contact_direction[1] * c)
+    if normal @ to_ball < 0.0:
+        normal = -normal
+    first = np.array([[s_t @ s_t, s_t @ s_p], [s_t @ s_p, s_p @ s_p]])
+    second = np.array([[s_tt @ normal, s_tp @ normal], [s_tp @ normal, s_pp @ normal]])
+    # convex-positive curvature (seen from the ball) = -eigenvalues of I^-1 II
+    values, vectors = np.linalg.eig(-np.linalg.solve(first, second))
+    values, vectors = values.real, vectors.real
+    tangents = [vectors[0, i] * s_t + vectors[1, i] * s_p for i in range(2)]
+    tangents = [t / np.linalg.norm(t) for t in tangents]
+    profile_dir = s_t / np.linalg.norm(s_t)
+    i_major = int(np.argmax([abs(t @ profile_dir) for t in tangents]))
+    minor = tangents[1 - i_major]
+    minor = minor - (minor @ normal) * normal
+    minor /= np.linalg.norm(minor)
+    if minor @ s_p < 0.0:
+        minor = -minor
+    major = np.cross(minor, normal)
+    angle = math.acos(min(1.0, abs(major @ profile_dir)))
+    return ContactFrame(point=point, normal=normal, major=major, minor=minor,
+                        curvature_major=float(values[i_major]), curvature_minor=float(values[1 - i_major]),
+                        ball_centre=point + groove.ball_radius * normal, profile_angle=angle)
+
+
+def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:
+    """Azimuth ``phi`` [rad] of the profile plane through each world point and the
+    point's profile coordinates ``(u, w)`` [m] in it; ``points`` shape (n, 3).
+
+    Solves ``(X - H(phi)) . m(phi) = 0`` (m: the profile-plane normal) by Newton.
+    """
+    points = np.atleast_2d(np.asarray(points, dtype=float))
+    e1 = np.array([1.0, 0.0, 0.0])
+    c = groove.plane_axis
+    m0 = np.cross(e1, c)
+    z_hat = np.array([0.0, 0.0, 1.0])
+    phi = np.arctan2(points[:, 1], points[:, 0])
+    for _ in range(iterations):
+        rot = _rot_z(phi)
+        m = rot @ m0
+        offset = points - groove.helix(phi)
+        g = np.einsum("ij,ij->i", offset, m)
+        h_p = np.stack([-groove.pitch_radius * np.sin(phi), groove.pitch_radius * np.cos(phi),
+                        np.full_like(phi, groove.lead_per_radian)], -1)
+        dg = -np.einsum("ij,ij->i", h_p, m) + np.einsum("ij,ij->i", offset, np.cross(z_hat, m))
+        step = g / dg
+        phi = phi - step
+        if np.max(np.abs(step)) < 1e-15:
+            break
+    rot = _rot_z(phi)
+    offset = points - groove.helix(phi)
+    u = np.einsum("ij,ij->i", offset, rot @ e1)
+    w = np.einsum("ij,ij->i", offset, rot @ c)
+    return phi, np.stack([u, w], -1)
+
+
+def surface_residual(groove: HelicalGroove, points, radius: float | None = None) -> np.ndarray:
+    """Signed in-plane distance [m] of world ``points`` (n, 3) from the helical arc
+    surface of radius ``radius`` (default ``r_g``) about this flank's arc centre."""
+    _, uw = profile_coordinates(groove, points)
+    r = groove.groove_radius if radius is None else radius
+    return np.linalg.norm(uw - groove.arc_centre, axis=1) - r
+
+
+# --------------------------------------------------------------------------
+# gmsh construction
+# --------------------------------------------------------------------------
+MESH_FORMAT_VERSION = "helical-1"
+
+
+def _section_loop(occ, groove: HelicalGroove, phi: float, theta_range: tuple[float, float],
+                  depth: float) -> int:
+    """Curve loop of the annular-sector block cross-section at azimuth ``phi``:
+    arc angles ``theta_range`` around the flank's arc centre, radii ``r_g`` .. ``r_g + depth``."""
+    r_g = groove.groove_radius
+    corners = [(theta_range[0], r_g), (theta_range[1], r_g), (theta_range[1], r_g + depth),
+               (theta_range[0], r_g + depth)]
+    tags = []
+    for theta, radius in corners:
+        u, w = groove.profile(theta, radius)
+        tags.append(occ.addPoint(*groove.to_world(u, w, phi)))
+    centre = occ.addPoint(*groove.to_world(groove.arc_centre[0], groove.arc_centre[1], phi))
+    curves = [occ.addCircleArc(tags[0], centre, tags[1]), occ.addLine(tags[1], tags[2]),
+              occ.addCircleArc(tags[2], centre, tags[3]), occ.addLine(tags[3], tags[0])]
+    loop = occ.addCurveLoop(curves)
+    occ.remove([(0, centre)])
+    return loop
+
+
+def _sweep_along_helix(occ, groove: HelicalGroove, face: int, phi_range: tuple[float, float],
+                       path_points: int = 17) -> list[tuple[int, int]]:
+    """Sweep ``face`` (lying in the profile plane at ``phi_range[0]``) along the helix.
+
+    The helix is an interpolating spline through ``path_points`` exact points;
+    the Frenet trihedron of a helix is carried by the screw motion, so the swept
+    surface is the screw motion of the section (OCC approximation ~1e-8 m,
+    removed afterwards by :func:`_snap_to_groove`).
+    """
+    phis = np.linspace(phi_range[0], phi_range[1], path_points)
+    points = [occ.addPoint(*xyz) for xyz in groove.helix(phis)]
+    spline = occ.addSpline(points)
+    wire = occ.addWire([spline])
+    volumes = occ.addPipe([(2, face)], wire, "Frenet")
+    occ.remove([(1, wire)], recursive=True)
+    return volumes
+
+
+def _face_point(gmsh, tag: int) -> np.ndarray:
+    """A point on surface ``tag`` (value at the middle of its parametric box)."""
+    lo, hi = gmsh.model.getParametrizationBounds(2, tag)
+    return np.asarray(gmsh.model.getValue(2, tag, [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2]))
+
+
+def _snap_to_groove(gmsh, groove: HelicalGroove, surface_tags: list[int], to_world: np.ndarray,
+                    origin: np.ndarray) -> float:
+    """Move the mesh nodes of the groove surfaces onto the exact helical surface.
+
+    Nodes are given in the contact frame; ``to_world`` (3x3) and ``origin`` map them
+    back (``X = origin + to_world @ x``).  Each node keeps its azimuth phi and its
+    angle about the arc centre; only its distance from the centre is set to r_g.
+    Returns the largest correction [m].
+    """
+    worst = 0.0
+    for tag in surface_tags:
+        node_tags, coords, _ = gmsh.model.mesh.getNodes(2, tag, includeBoundary=True)
+        local = coords.reshape(-1, 3)
+        world = origin + local @ to_world.T
+        phi, uw = profile_coordinates(groove, world)
+        rel = uw - groove.arc_centre
+        dist = np.linalg.norm(rel, axis=1)
+        snapped = groove.arc_centre + rel * (groove.groove_radius / dist)[:, None]
+        new_world = groove.to_world(snapped[:, 0], snapped[:, 1], phi)
+        new_local = (new_world - origin) @ to_world
+        worst = max(worst, float(np.max(np.linalg.norm(new_local - local, axis=1))))
+        for node, xyz in zip(node_tags, new_local):
+            gmsh.model.mesh.setNode(int(node), xyz.tolist(), [])
+    return worst
+
+
+def _check_refinement(ball_radius: float, h_contact, growth, h_max, fine_radius) -> tuple[float, float, float, float]:
+    h_contact = _positive("h_contact", h_contact, "m")
+    growth = _finite("growth", growth, "[1, 3]")
+    if not 1.0 <= growth <= 3.0:
+        raise ValueError(f"growth (size ratio of neighbouring elements) must lie in [1, 3], got {growth!r}")
+    h_max = ball_radius / 3.0 if h_max is None else _positive("h_max", h_max, "m")
+    if h_contact > ball_radius / 4.0:
+        raise ValueError(f"h_contact must lie in (0, ball_radius/4] = (0, {ball_radius / 4!r}] m, got {h_contact!r}")
+    if h_max < h_contact:
+        raise ValueError(f"h_max must be >= h_contact = {h_contact!r} m, got {h_max!r}")
+    fine_radius = 0.0 if fine_radius is None else _finite("fine_radius", fine_radius, "[0, inf) m")
+    if fine_radius < 0.0:
+        raise ValueError(f"fine_radius must lie in [0, inf) m, got {fine_radius!r}")
+    return h_contact, growth, h_max, fine_radius
+
+
+def _contact_size_field(gmsh, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
+    """Mesh size ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``,
+    ``r`` the distance from the contact point (the origin): neighbouring elements
+    along a ray differ in size by the factor ``growth``."""
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    field.setString(distance, "F", "Sqrt(x*x + y*y + z*z)")
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance)
+    field.setNumber(threshold, "SizeMin", h_contact)
+    field.setNumber(threshold, "SizeMax", h_max)
+    field.setNumber(threshold, "DistMin", fine_radius)
+    slope = max(growth - 1.0, 1e-9)
+    field.setNumber(threshold, "DistMax", fine_radius + (h_max - h_contact) / slope)
+    field.setAsBackgroundMesh(threshold)
+    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
+        gmsh.option.setNumber(option, 0)  # the field alone governs the size (issue 5 notes)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+
+
+def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                              contact_angle: float, body: str = "screw", h_contact: float = 2e-5,
+                              growth: float = 1.3, *, flank: str = "left", profile_plane: str = "normal",
+                              h_max: float | None = None, fine_radius: float | None = None,
+                              block_half_width: float | None = None, block_half_length: float | None = None,
+                              block_depth: float | None = None, cap_height: float | None = None,
+                              element_order: int = 1, cache: bool = True) -> Path:
+    """Contact pair of a ball in a helical screw or nut groove, as a cached gmsh 4.1 ``.msh`` [m].
+
+    Frame (docs/developing.md, contact-pair meshes): the undeformed contact point
+    at the origin, ``+z`` the groove normal pointing into the ball (ball centre at
+    ``(0, 0, R_B)``), ``x`` the principal direction of the groove nearest its
+    cross-section profile (across the groove: the major axis ``a`` of the Hertz
+    ellipse), ``y`` the principal direction nearest the helix (along the groove,
+    towards increasing azimuth).  x and y are the exact principal directions at
+    the contact point (:func:`contact_frame`).
+
+    Bodies: the ball truncated to the cap ``z <= cap_height`` (default ``R_B``: a
+    hemisphere, load on its flat face), the groove truncated to a helical block:
+    the annular sector ``r_g <= r <= r_g + block_depth`` about the flank's arc
+    centre spanning the arc length ``+-block_half_width`` around the contact,
+    swept along the helix for ``+-block_half_length`` of the contact point's path.
+    Defaults ``0.6 R_B`` each, the width limited to 90 % of the way to the groove
+    bottom so the other flank is never meshed.
+
+    Physical groups: volumes ``ball``, ``counter``; surfaces ``ball_contact``
+    (spherical cap), ``ball_load`` (flat face of the cap), ``counter_contact``
+    (groove face; its nodes lie exactly on the helical surface), ``counter_support``
+    (the back face of the block).  Mesh size: :func:`_contact_size_field`.
+
+    ``h_contact`` [m] size at the contact, ``growth`` the size ratio of
+    neighbouring elements away from the fine zone of radius ``fine_radius`` [m]
+    (default 0), ``h_max`` [m] (default ``R_B/3``), ``element_order`` 1 or 2.
+    """
+    groove = helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
+    radius = groove.ball_radius
+    h_contact, growth, h_max, fine_radius = _check_refinement(radius, h_contact, growth, h_max, fine_radius)
+    r_g = groove.groove_radius
+    to_bottom = abs(groove.bottom_theta - groove.contact_theta)
+    half_width = 0.6 * radius if block_half_width is None else _positive("block_half_width", block_half_width, "m")
+    if half_width / r_g > 0.9 * to_bottom:
+        half_width = 0.9 * to_bottom * r_g if block_half_width is None else half_width
+        if block_half_width is not None:
+            raise ValueError(f"block_half_width must lie in (0, {0.9 * to_bottom * r_g!r}] m (90 % of the arc "
+                             f"to the groove bottom), got {block_half_width!r}")
+    half_length = 0.6 * radius if block_half_length is None else _positive("block_half_length", block_half_length, "m")
+    depth = 0.6 * radius if block_depth is None else _positive("block_depth", block_depth, "m")
+    cap = radius if cap_height is None else _positive("cap_height", cap_height, "m")
+    if cap > 2.0 * radius:
+        raise ValueError(f"cap_height must lie in (0, 2 ball_radius] = (0, {2 * radius!r}] m, got {cap!r}")
+    if element_order not in (1, 2):
+        raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
+    if groove.body == "screw" and depth >= groove.pitch_radius - radius:
+        raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
+
+    from lowmodel.cache import cache_dir, parameter_hash
+
+    params = dict(builder="ball_in_screw_groove_pair", groove=[radius, groove.conformity, groove.pitch_radius,
+                  groove.lead, groove.contact_angle, groove.body, groove.flank, groove.profile_plane],
+                  h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius, half_width=half_width,
+                  half_length=half_length, depth=depth, cap=cap, order=element_order)
+    path = cache_dir("meshes") / f"screw-pair-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
+    if cache and path.exists():
+        return path
+
+    frame = contact_frame(groove)
+    import gmsh
+
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("screw_pair")
+        occ = gmsh.model.occ
+        theta_c = groove.contact_theta
+        gamma = half_width / r_g
+        speed = float(np.linalg.norm(np.cross([0.0, 0.0, 1.0], frame.point) + [0.0, 0.0, groove.lead_per_radian]))
+        dphi = half_length / speed  # |dS/dphi| of the contact point
+        loop = _section_loop(occ, groove, -dphi, (theta_c - gamma, theta_c + gamma), depth)
+        face = occ.addPlaneSurface([loop])
+        counter = _sweep_along_helix(occ, groove, face, (-dphi, dphi))
+        occ.synchronize()
+        (counter_dim, counter_tag), = [vt for vt in counter if vt[0] == 3]
+        groove_faces, support_faces = [], []
+        for _, tag in gmsh.model.getBoundary([(3, counter_tag)], oriented=False):
+            xyz = _face_point(gmsh, tag)[None, :]
+            if abs(surface_residual(groove, xyz)[0]) < 0.01 * depth:
+                groove_faces.append(tag)
+            elif abs(surface_residual(groove, xyz, r_g + depth)[0]) < 0.01 * depth:
+                support_faces.append(tag)
+        if len(groove_faces) != 1 or len(support_faces) != 1:
+            raise RuntimeError(f"helical block faces not identified: groove {groove_faces}, support {support_faces}")
+        # world -> contact frame: x = Q (X - P)
+        rotation = frame.rotation
+        shift = -rotation @ frame.point
+        affine = np.hstack([rotation, shift[:, None]]).ravel().tolist() + [0.0, 0.0, 0.0, 1.0]
+        occ.affineTransform([(3, counter_tag)], affine)
+        sphere = occ.addSphere(0.0, 0.0, radius, radius)
+        box = occ.addBox(-2 * radius, -2 * radius, -radius, 4 * radius, 4 * radius, radius + cap)
+        ball, _ = occ.intersect([(3, sphere)], [(3, box)])
+        occ.synchronize()
+        (_, ball_tag), = ball
+        ball_faces = [tag for _, tag in gmsh.model.getBoundary(ball, oriented=False)]
+        ball_contact = [tag for tag in ball_faces if gmsh.model.getType(2, tag) == "Sphere"]
+        ball_load = [tag for tag in ball_faces if gmsh.model.getType(2, tag) == "Plane"]
+        gmsh.model.addPhysicalGroup(3, [ball_tag], name="ball")
+        gmsh.model.addPhysicalGroup(3, [counter_tag], name="counter")
+        gmsh.model.addPhysicalGroup(2, ball_contact, name="ball_contact")
+        gmsh.model.addPhysicalGroup(2, ball_load, name="ball_load")
+        gmsh.model.addPhysicalGroup(2, groove_faces, name="counter_contact")
+        gmsh.model.addPhysicalGroup(2, support_faces, name="counter_support")
+        _contact_size_field(gmsh, h_contact, growth, h_max, fine_radius)
+        gmsh.model.mesh.generate(3)
+        if element_order == 2:
+            gmsh.model.mesh.setOrder(2)
+        _snap_to_groove(gmsh, groove, groove_faces, rotation.T, frame.point)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
+        gmsh.write(str(tmp))
+        tmp.replace(path)
+    finally:
+        gmsh.finalize()
+    return path
