@@ -1,0 +1,322 @@
+"""Geometry checks of the gmsh builders in meshes/helical.py, meshes/rail.py and
+meshes/fourpoint_module.py (coarse meshes; default-run budget 90 s)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+gmsh = pytest.importorskip("gmsh")
+meshio = pytest.importorskip("meshio")
+
+from lowmodel import hertz  # noqa: E402
+from meshes import helical  # noqa: E402
+
+# lin2019 Table 4
+R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0)
+COARSE = dict(h_contact=1.0e-4, growth=1.5)
+
+
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))
+
+
+def _group_nodes(mesh, name: str) -> np.ndarray:
+    blocks = [block.data[ids] for block, ids in zip(mesh.cells, mesh.cell_sets[name]) if len(ids)]
+    assert blocks, f"physical group {name} is empty"
+    return np.unique(np.concatenate([b.ravel() for b in blocks]))
+
+
+def _group_cells(mesh, name: str, kind: str) -> np.ndarray:
+    blocks = [block.data[ids] for block, ids in zip(mesh.cells, mesh.cell_sets[name])
+              if len(ids) and block.type == kind]
+    return np.concatenate(blocks) if blocks else np.empty((0, 4 if kind == "tetra" else 3), int)
+
+
+def _tet_volume(points: np.ndarray, tets: np.ndarray) -> float:
+    a, b, c, d = (points[tets[:, i]] for i in range(4))
+    return float(np.sum(np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a))) / 6.0)
+
+
+def _quadratic_fit(points: np.ndarray, radius: float, degree: int = 3) -> np.ndarray:
+    """Least-squares z = polynomial of ``degree`` in (x, y) on nodes with |(x, y)| < radius
+    (coordinates scaled by ``radius``).  Returns the coefficients of (1, x, y, x^2, xy, y^2) [SI]."""
+    near = points[np.hypot(points[:, 0], points[:, 1]) < radius]
+    x, y, z = near.T / radius
+    basis = np.stack([x**i * y ** (n - i) for n in range(degree + 1) for i in range(n, -1, -1)], 1)
+    assert len(near) > 2 * basis.shape[1]
+    coef, *_ = np.linalg.lstsq(basis, z, rcond=None)
+    return coef[:6] * radius / radius ** np.array([0, 1, 1, 2, 2, 2])
+
+
+# --------------------------------------------------------------------------
+# exact helical geometry
+# --------------------------------------------------------------------------
+@pytest.mark.parametrize("body", ["screw", "nut"])
+@pytest.mark.parametrize("flank", ["left", "right"])
+def test_axial_profile_curvatures_equal_lowmodel_hertz(body, flank):
+    """Two independent implementations of the axial-plane groove agree (lowmodel.hertz
+    works at the +z flank; the left flank is its image under the half-turn about x3)."""
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, "axial")
+    frame = helical.contact_frame(groove)
+    kappa_1, kappa_2, angle = hertz.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body)
+    assert frame.curvature_major == pytest.approx(kappa_1, rel=1e-12)
+    assert frame.curvature_minor == pytest.approx(kappa_2, rel=1e-12)
+    assert frame.profile_angle == pytest.approx(angle, abs=1e-12)
+
+
+@pytest.mark.parametrize("plane", ["normal", "axial"])
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_zero_lead_is_the_bearing_raceway(plane, body):
+    """lead = 0: the torus of a bearing raceway (Harris): (-1/r_g, +-cos b/(R_P -+ R_B cos b))."""
+    groove = helical.helical_groove(R_B, CONF, R_P, 0.0, BETA, body, "left", plane)
+    frame = helical.contact_frame(groove)
+    sign = 1.0 if body == "screw" else -1.0
+    assert frame.curvature_major == pytest.approx(-1.0 / (2 * CONF * R_B), rel=1e-12)
+    assert frame.curvature_minor == pytest.approx(sign * math.cos(BETA) / (R_P - sign * R_B * math.cos(BETA)),
+                                                  rel=1e-12)
+    assert frame.profile_angle == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_normal_profile_contact_normal_passes_through_ball_centre_on_helix(body):
+    """lin2019 eq 37: a ball centred on the helix touches the groove at beta from -+x3
+    in the plane normal to the helix, and the groove normal there passes through its centre."""
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", "normal")
+    frame = helical.contact_frame(groove)
+    assert np.linalg.norm(frame.ball_centre - groove.helix(0.0)) < 1e-12 * R_B
+    radial = np.array([1.0, 0.0, 0.0])
+    toward_ball = radial if body == "screw" else -radial  # the normal points from the groove into the ball
+    assert math.acos(frame.normal @ toward_ball) == pytest.approx(BETA, abs=1e-12)
+    tangent = groove.helix(1e-6) - groove.helix(-1e-6)
+    assert abs(frame.normal @ tangent) < 1e-9 * np.linalg.norm(tangent)  # in the normal plane
+
+
+def test_axial_profile_puts_the_ball_centre_off_the_helix():
+    """With the profile in the axial plane the contact normal tilts out of that plane
+    by atan(p sin b / rho) (8.8 deg for lin2019 Table 4), so the ball centre leaves the helix."""
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", "left", "axial")
+    frame = helical.contact_frame(groove)
+    rho = R_P - R_B * math.cos(BETA)
+    tilt = math.atan(groove.lead_per_radian * math.sin(BETA) / rho)
+    assert math.asin(abs(frame.normal[1])) == pytest.approx(tilt, rel=1e-12)
+    assert np.linalg.norm(frame.ball_centre - groove.helix(0.0)) > 0.1 * R_B
+
+
+@pytest.mark.parametrize("plane", ["normal", "axial"])
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_contact_frame_maps_the_surface_to_its_hertz_quadratic(plane, body):
+    """In the contact frame the exact surface is z = -(k_major x^2 + k_minor y^2)/2 + O(r^3):
+    tangent plane z = 0 and principal axes x, y (no xy term)."""
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", plane)
+    frame = helical.contact_frame(groove)
+    eps = 1e-5
+    theta = groove.contact_theta + eps * np.cos(np.linspace(0, 2 * np.pi, 13))
+    phi = 0.2 * eps * np.sin(np.linspace(0, 2 * np.pi, 13))
+    local = (groove.surface(theta, phi) - frame.point) @ frame.rotation.T
+    x, y, z = local.T
+    quadratic = -(frame.curvature_major * x**2 + frame.curvature_minor * y**2) / 2
+    assert np.abs(z - quadratic).max() < 1e-4 * np.abs(quadratic).max()
+
+
+@pytest.mark.parametrize("plane", ["normal", "axial"])
+def test_profile_coordinates_invert_the_screw_motion(plane):
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut", "right", plane)
+    theta = groove.contact_theta + np.linspace(-0.5, 0.5, 7)
+    phi = np.linspace(-0.4, 0.4, 5)
+    points = groove.surface(theta[:, None], phi[None, :]).reshape(-1, 3)
+    phi_found, uw = helical.profile_coordinates(groove, points)
+    assert np.allclose(phi_found, np.broadcast_to(phi[None, :], (7, 5)).ravel(), atol=1e-13)
+    assert np.allclose(uw, groove.profile(np.repeat(theta, 5)), atol=1e-15)
+    assert np.abs(helical.surface_residual(groove, points)).max() < 1e-15
+    assert helical.surface_residual(groove, groove.helix(0.0)[None, :])[0] == pytest.approx(-R_B, rel=1e-12)
+
+
+def test_left_and_right_flanks_are_congruent():
+    """The half-turn about the radial line through a helix point maps the helix onto itself."""
+    frames = [helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", flank))
+              for flank in ("left", "right")]
+    assert frames[0].curvature_major == pytest.approx(frames[1].curvature_major, rel=1e-12)
+    assert frames[0].curvature_minor == pytest.approx(frames[1].curvature_minor, rel=1e-12)
+
+
+# --------------------------------------------------------------------------
+# the contact-pair mesh
+# --------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def screw_pair(tmp_path_factory):
+    import os
+    old = os.environ.get("BALLBENCH_CACHE")
+    os.environ["BALLBENCH_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+    try:
+        path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=2.5e-5,
+                                                 growth=1.5, h_max=R_B / 6)
+    finally:
+        if old is None:
+            del os.environ["BALLBENCH_CACHE"]
+        else:
+            os.environ["BALLBENCH_CACHE"] = old
+    return path, meshio.read(path)
+
+
+def test_pair_physical_groups_exist_and_are_not_empty(screw_pair):
+    _, mesh = screw_pair
+    for name in ("ball", "counter"):
+        assert len(_group_cells(mesh, name, "tetra")) > 100
+    for name in ("ball_contact", "ball_load", "counter_contact", "counter_support"):
+        assert len(_group_cells(mesh, name, "triangle")) > 10
+    ball = set(_group_nodes(mesh, "ball"))
+    counter = set(_group_nodes(mesh, "counter"))
+    assert not ball & counter  # the two bodies share no nodes
+
+
+def test_pair_contact_point_lies_on_both_surfaces_with_normal_plus_z(screw_pair):
+    _, mesh = screw_pair
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = helical.contact_frame(groove)
+    assert abs(helical.surface_residual(groove, frame.point[None, :])[0]) < 1e-15  # origin on the groove
+    points = mesh.points
+    ball_nodes = points[_group_nodes(mesh, "ball_contact")]
+    # the ball surface passes through the origin with the centre at (0, 0, R_B)
+    assert np.abs(np.linalg.norm(ball_nodes - [0.0, 0.0, R_B], axis=1) - R_B).max() < 1e-12
+    assert ball_nodes[:, 2].min() < 1e-4 * R_B
+    # groove surface nodes: local fit z = c0 + c1 x + c2 y + ... : through the origin, normal +z
+    coef = _quadratic_fit(points[_group_nodes(mesh, "counter_contact")], 0.1 * R_B, degree=4)
+    assert abs(coef[0]) < 1e-11  # [m], against a Hertz approach of some um
+    assert abs(coef[1]) < 1e-7 and abs(coef[2]) < 1e-7  # slope [rad]
+    # and no node of the counter body lies inside the undeformed ball (one point of contact)
+    counter = points[_group_nodes(mesh, "counter")]
+    assert np.linalg.norm(counter - [0.0, 0.0, R_B], axis=1).min() > R_B * (1 - 1e-12)
+
+
+def test_pair_groove_nodes_lie_on_the_helical_arc(screw_pair):
+    """Every counter_contact node lies at r_g = 2 conf R_B from the flank's arc centre
+    in the profile plane of its azimuth (the helix equation of the swept profile)."""
+    _, mesh = screw_pair
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = helical.contact_frame(groove)
+    local = mesh.points[_group_nodes(mesh, "counter_contact")]
+    world = frame.point + local @ frame.rotation
+    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+    # and the ball-centre path is the helix of lin2019 eq 42: z = p phi at rho = R_P
+    phi, uw = helical.profile_coordinates(groove, world)
+    assert np.ptp(phi) > 0.1  # the block spans a real stretch of helix
+
+
+def test_pair_principal_directions_and_curvatures_from_the_mesh(screw_pair):
+    """Independent route: a cubic fit of the meshed groove surface around the origin
+    gives z = -(kappa_major x^2 + kappa_minor y^2)/2 with no xy term."""
+    _, mesh = screw_pair
+    frame = helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw"))
+    coef = _quadratic_fit(mesh.points[_group_nodes(mesh, "counter_contact")], 0.1 * R_B, degree=4)
+    assert coef[3] == pytest.approx(-frame.curvature_major / 2, rel=1e-3)
+    assert coef[5] == pytest.approx(-frame.curvature_minor / 2, rel=1e-3)
+    assert abs(coef[4]) < 1e-3 * abs(coef[3])
+
+
+def test_pair_mesh_size_at_the_contact(screw_pair):
+    _, mesh = screw_pair
+    h_contact = 2.5e-5
+    for name in ("ball_contact", "counter_contact"):
+        tri = _group_cells(mesh, name, "triangle")
+        points = mesh.points
+        centre = points[tri].mean(axis=1)
+        near = np.linalg.norm(centre, axis=1) < 2 * h_contact
+        edges = np.linalg.norm(points[tri[near, 0]] - points[tri[near, 1]], axis=1)
+        assert len(edges) >= 3
+        assert 0.5 * h_contact < np.median(edges) < 2.0 * h_contact
+
+
+def _surface_area_and_longest_edge(mesh, name: str) -> tuple[float, float]:
+    tri = _group_cells(mesh, name, "triangle")
+    a, b, c = (mesh.points[tri[:, i]] for i in range(3))
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+    edges = np.concatenate([np.linalg.norm(b - a, axis=1), np.linalg.norm(c - b, axis=1),
+                            np.linalg.norm(a - c, axis=1)])
+    return float(area), float(edges.max())
+
+
+def test_pair_volumes_against_closed_forms():
+    """Ball cap: pi c^2 (3 R - c) / 3.  Helical block: Pappus for a screw motion,
+    V = 2 dphi A [(R_P + u_c) cos(lambda) + p sin(lambda)] (flux of the screw velocity
+    through the section in the normal plane; u_c the section centroid).  P1 facets cut
+    the curved faces: a triangle of longest edge e inscribed in a surface of radius r
+    departs from it by at most e^2 / (6 r), which bounds the volume error."""
+    cap = 0.8 * R_B
+    half_width = half_length = depth = 0.5 * R_B
+    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", h_contact=1e-4, growth=1.5,
+                                             h_max=R_B / 10, cap_height=cap, block_half_width=half_width,
+                                             block_half_length=half_length, block_depth=depth)
+    mesh = meshio.read(path)
+    ball = _tet_volume(mesh.points, _group_cells(mesh, "ball", "tetra"))
+    exact = math.pi * cap**2 * (3 * R_B - cap) / 3
+    area, edge = _surface_area_and_longest_edge(mesh, "ball_contact")
+    assert exact - area * edge**2 / (6 * R_B) < ball < exact  # inscribed polyhedron
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = helical.contact_frame(groove)
+    speed = np.linalg.norm(np.cross([0, 0, 1.0], frame.point) + [0, 0, groove.lead_per_radian])
+    dphi = half_length / speed
+    r1, r2 = groove.groove_radius, groove.groove_radius + depth
+    gamma = half_width / r1
+    section = gamma * (r2**2 - r1**2)
+    centroid_radius = 2.0 / 3.0 * (r2**3 - r1**3) / (r2**2 - r1**2) * math.sin(gamma) / gamma
+    u_c = groove.arc_centre[0] + centroid_radius * math.cos(groove.contact_theta)
+    lam = groove.lead_angle
+    exact = 2 * dphi * section * ((R_P + u_c) * math.cos(lam) + groove.lead_per_radian * math.sin(lam))
+    counter = _tet_volume(mesh.points, _group_cells(mesh, "counter", "tetra"))
+    bound = 0.0
+    for name in ("counter_contact", "counter_support"):
+        area, edge = _surface_area_and_longest_edge(mesh, name)
+        bound += area * edge**2 / (6 * r1)
+    assert abs(counter - exact) < bound
+    assert bound < 0.02 * exact  # the check is not vacuous (measured error 3e-5)
+
+
+def test_pair_cache_hit_does_not_rebuild(monkeypatch):
+    first = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
+    stamp = first.stat().st_mtime_ns
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("gmsh was started for a cached mesh")
+
+    monkeypatch.setattr(gmsh, "initialize", refuse)
+    second = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
+    assert second == first and second.stat().st_mtime_ns == stamp
+    other = dict(COARSE, growth=1.6)
+    with pytest.raises(AssertionError, match="gmsh was started"):
+        helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **other)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(conformity=0.5), "conformity"),
+    (dict(conformity=0.45), "conformity"),
+    (dict(conformity=float("nan")), "conformity"),
+    (dict(ball_radius=-1e-3), "ball_radius"),
+    (dict(ball_radius=float("nan")), "ball_radius"),
+    (dict(pitch_radius=0.0), "pitch_radius"),
+    (dict(pitch_radius=2e-3), "pitch_radius"),
+    (dict(lead=-1e-3), "lead"),
+    (dict(lead=float("inf")), "lead"),
+    (dict(contact_angle=0.0), "contact_angle"),
+    (dict(contact_angle=math.pi / 2), "contact_angle"),
+    (dict(contact_angle=-0.1), "contact_angle"),
+    (dict(contact_angle=float("nan")), "contact_angle"),
+    (dict(body="bolt"), "body"),
+    (dict(h_contact=0.0), "h_contact"),
+    (dict(h_contact=float("nan")), "h_contact"),
+    (dict(h_contact=2e-3), "h_contact"),
+    (dict(growth=0.9), "growth"),
+    (dict(h_max=1e-6), "h_max"),
+    (dict(block_half_width=3e-3), "block_half_width"),
+    (dict(cap_height=-1.0), "cap_height"),
+    (dict(flank="up"), "flank"),
+    (dict(profile_plane="oblique"), "profile_plane"),
+])
+def test_pair_bad_input_names_the_parameter(kwargs, name):
+    args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA, body="screw",
+                **COARSE)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=name):
+        helical.ball_in_screw_groove_pair(**args)
