@@ -320,3 +320,186 @@ def test_pair_bad_input_names_the_parameter(kwargs, name):
     args.update(kwargs)
     with pytest.raises(ValueError, match=name):
         helical.ball_in_screw_groove_pair(**args)
+
+
+# --------------------------------------------------------------------------
+# straight gothic-arch rail
+# --------------------------------------------------------------------------
+from meshes import fourpoint_module, rail  # noqa: E402
+
+R_RAIL = 5e-3  # lin2019 Table 1
+DEV = math.radians(2.0)
+
+
+def _circle_fit(xy: np.ndarray) -> tuple[np.ndarray, float]:
+    """Algebraic (Kasa) least-squares circle through points (n, 2): centre, radius."""
+    basis = np.column_stack([2 * xy, np.ones(len(xy))])
+    (cx, cy, c), *_ = np.linalg.lstsq(basis, (xy**2).sum(1), rcond=None)
+    return np.array([cx, cy]), math.sqrt(c + cx * cx + cy * cy)
+
+
+@pytest.fixture(scope="module")
+def rail_mesh(tmp_path_factory):
+    path = rail.rail_segment(R_RAIL, CONF, BETA, -DEV, DEV, h_contact=2e-4, growth=1.5, cache=False)
+    return meshio.read(path)
+
+
+def test_rail_groups_exist_and_flanks_are_the_stated_arcs(rail_mesh):
+    """Circle fits of the meshed flanks: radius 2 conf R_B, centre on the line through the
+    ball centre at the contact angle b_0 + db (lin2017 eq 1), r_g - R_B from it."""
+    for name in ("groove_left", "groove_right", "land", "support", "rail_free"):
+        assert len(_group_cells(rail_mesh, name, "triangle")) > 0
+    assert len(_group_cells(rail_mesh, "rail", "tetra")) > 100
+    for name, sign, beta in (("groove_left", -1.0, BETA - DEV), ("groove_right", 1.0, BETA + DEV)):
+        xy = rail_mesh.points[_group_nodes(rail_mesh, name), :2]
+        centre, radius = _circle_fit(xy)
+        assert radius == pytest.approx(2 * CONF * R_RAIL, rel=1e-10)
+        assert np.abs(np.hypot(*(xy - centre).T) - radius).max() < 1e-12
+        assert np.linalg.norm(centre) == pytest.approx(radius - R_RAIL, rel=1e-9)  # internally tangent
+        # the contact normal (arc centre -> contact point) passes through the ball centre
+        contact = -centre / np.linalg.norm(centre) * R_RAIL
+        assert math.atan2(sign * contact[0], -contact[1]) == pytest.approx(beta, abs=1e-9)
+        # and the contact point is a point of the flank: mesh nodes surround it
+        assert np.min(np.hypot(*(xy - contact).T)) < 4e-4
+
+
+def test_rail_volume_against_closed_form(rail_mesh):
+    """Box minus the gothic-arch lens below the land (quadrature of the two circles)."""
+    from scipy.integrate import quad
+    arch = rail.gothic_arch(R_RAIL, CONF, BETA, -DEV, DEV)
+    r_g = arch.groove_radius
+    c_l, c_r = arch.arc_centre("left"), arch.arc_centre("right")
+
+    def void_height(x):
+        lows = [c[1] - math.sqrt(max(r_g**2 - (x - c[0]) ** 2, 0.0)) for c in (c_l, c_r)]
+        return max(arch.land_height - max(lows), 0.0)
+
+    x0, x1 = arch.edge("left")[0], arch.edge("right")[0]
+    lens, _ = quad(void_height, x0, x1, points=[arch.bottom[0]], epsabs=1e-16, epsrel=1e-12)
+    width, depth, length = 2.6 * R_RAIL, 1.6 * R_RAIL, 2.0 * R_RAIL
+    exact = (width * depth - lens) * length
+    mesh_volume = _tet_volume(rail_mesh.points, _group_cells(rail_mesh, "rail", "tetra"))
+    area = edge = 0.0
+    for name in ("groove_left", "groove_right"):
+        a, e = _surface_area_and_longest_edge(rail_mesh, name)
+        area, edge = area + a, max(edge, e)
+    # concave flanks: the chords lie inside the groove void, the mesh is larger
+    assert exact < mesh_volume < exact + area * edge**2 / (6 * r_g)
+
+
+def test_rail_refined_at_both_contacts(rail_mesh):
+    arch = rail.gothic_arch(R_RAIL, CONF, BETA, -DEV, DEV)
+    for name, side in (("groove_left", "left"), ("groove_right", "right")):
+        tri = _group_cells(rail_mesh, name, "triangle")
+        points = rail_mesh.points
+        centre = points[tri].mean(axis=1)
+        contact = np.append(arch.contact_point(side), 0.0)
+        near = np.linalg.norm(centre - contact, axis=1) < 4e-4
+        edges = np.linalg.norm(points[tri[near, 0]] - points[tri[near, 1]], axis=1)
+        assert len(edges) >= 3 and 0.5 * 2e-4 < np.median(edges) < 2.0 * 2e-4
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(conformity=0.5), "conformity"),
+    (dict(conformity=float("nan")), "conformity"),
+    (dict(ball_radius=-5e-3), "ball_radius"),
+    (dict(contact_angle=math.radians(90)), "contact_angle"),
+    (dict(contact_angle=float("nan")), "contact_angle"),
+    (dict(deviation_left=math.radians(20)), "deviation_left"),
+    (dict(deviation_right=float("nan")), "deviation_right"),
+    (dict(contact_angle=math.radians(5), deviation_left=math.radians(-10)), "contact_angle \\+ deviation_left"),
+    (dict(land_height=0.1e-3), "land_height"),
+    (dict(land_height=-0.8 * R_RAIL), "four-point contact"),
+    (dict(contact_angle=math.radians(80)), "four-point contact"),
+])
+def test_rail_bad_input_names_the_parameter(kwargs, match):
+    args = dict(ball_radius=R_RAIL, conformity=CONF, contact_angle=BETA)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        rail.rail_segment(**args, h_contact=5e-4, cache=False)
+
+
+# --------------------------------------------------------------------------
+# four-point module
+# --------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def module_mesh():
+    deviations = (-DEV, DEV, 0.5 * DEV, 0.0)  # lin2019 Fig 7 on the bottom rail, and one on TR
+    path = fourpoint_module.fourpoint_module(R_RAIL, CONF, BETA, deviations, n_balls=2, h_contact=4e-4,
+                                             growth=1.5, cache=False)
+    return deviations, meshio.read(path)
+
+
+def test_module_groups_per_contact_and_body(module_mesh):
+    _, mesh = module_mesh
+    bodies = ("bottom_rail", "top_rail", "ball1", "ball2")
+    for name in bodies:
+        assert len(_group_cells(mesh, name, "tetra")) > 100
+    for name in ("BL", "BR", "TR", "TL", "bottom_support", "top_load", "bottom_land", "top_land"):
+        assert len(_group_cells(mesh, name, "triangle")) > 0
+    nodes = [set(_group_nodes(mesh, name)) for name in bodies]
+    for i in range(4):
+        for j in range(i + 1, 4):
+            assert not nodes[i] & nodes[j], f"{bodies[i]} and {bodies[j]} share nodes"
+
+
+def test_module_every_ball_touches_every_flank_at_its_contact_angle(module_mesh):
+    """For each named rail flank, a circle fit of its nodes gives r_g; each ball centre lies
+    r_g - R_B from the arc centre (internal tangency: four-point contact), on the line of
+    the contact angle b_0 + db measured from -+y (lin2017 eq 1); the ball cap named after
+    the contact is centred on that contact point."""
+    deviations, mesh = module_mesh
+    r_g = 2 * CONF * R_RAIL
+    signs = {"BL": (-1, -1), "BR": (1, -1), "TR": (1, 1), "TL": (-1, 1)}
+    for name, deviation in zip(fourpoint_module.CONTACTS, deviations):
+        xy = mesh.points[_group_nodes(mesh, name), :2]
+        centre, radius = _circle_fit(xy)
+        assert radius == pytest.approx(r_g, rel=1e-10)
+        assert np.linalg.norm(centre) == pytest.approx(r_g - R_RAIL, rel=1e-9)
+        direction = -centre / np.linalg.norm(centre)  # ball centre -> contact point
+        sx, sy = signs[name]
+        assert math.atan2(sx * direction[0], sy * direction[1]) == pytest.approx(BETA + deviation, abs=1e-9)
+        for k, z_centre in ((1, -R_RAIL), (2, R_RAIL)):
+            cap = mesh.points[_group_nodes(mesh, f"ball{k}_{name}")]
+            assert np.abs(np.linalg.norm(cap - [0, 0, z_centre], axis=1) - R_RAIL).max() < 1e-12
+            mean = cap.mean(axis=0) - [0, 0, z_centre]
+            axis = mean / np.linalg.norm(mean)
+            assert math.degrees(math.acos(np.clip(axis @ np.append(direction, 0.0), -1, 1))) < 2.0
+
+
+def test_module_b2b_caps_face_each_other(module_mesh):
+    _, mesh = module_mesh
+    for k, sign in ((1, 1.0), (2, -1.0)):
+        cap = mesh.points[_group_nodes(mesh, f"ball{k}_B2B")]
+        centre = np.array([0.0, 0.0, -sign * R_RAIL])
+        mean = cap.mean(axis=0) - centre
+        assert mean[2] * sign > 0.9 * np.linalg.norm(mean)
+        assert np.abs(cap[:, 2]).min() < 1e-12  # the B2B contact point (origin) is a node of both caps
+
+
+def test_module_ball_volumes(module_mesh):
+    _, mesh = module_mesh
+    exact = 4.0 / 3.0 * math.pi * R_RAIL**3
+    for k in (1, 2):
+        volume = _tet_volume(mesh.points, _group_cells(mesh, f"ball{k}", "tetra"))
+        area = edge = 0.0
+        for part in ("BL", "BR", "TR", "TL", "B2B", "free"):
+            a, e = _surface_area_and_longest_edge(mesh, f"ball{k}_{part}")
+            area, edge = area + a, max(edge, e)
+        assert exact - area * edge**2 / (6 * R_RAIL) < volume < exact
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(deviations=(0.0, 0.0, 0.0)), "deviations"),
+    (dict(deviations=(0.0, 0.0, float("nan"), 0.0)), "deviation_left"),
+    (dict(n_balls=3), "n_balls"),
+    (dict(n_balls=2, spacing=9e-3), "spacing"),
+    (dict(land_height=-0.8 * R_RAIL), "four-point contact"),
+    (dict(conformity=0.49), "conformity"),
+    (dict(cap_angle=1.0), "cap_angle"),
+])
+def test_module_bad_input_names_the_parameter(kwargs, match):
+    args = dict(ball_radius=R_RAIL, conformity=CONF, contact_angle=BETA)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        fourpoint_module.fourpoint_module(**args, cache=False)

@@ -1,0 +1,204 @@
+"""The four-point-contact cross-section module of a linear ball bearing: bottom
+rail, top rail and one or two balls (lin2017 Figs 1-2; lin2019 Figs 2, 7 and 11).
+
+Frame (lin2017 Fig 2): ``z`` along the rails (rolling direction), ``x``-``y``
+the cross-section, the bottom rail below.  Ball ``k`` has its centre at
+``(0, 0, z_k)``: one ball at ``z = 0``; two balls at ``z = -+ spacing/2`` (ball 1
+behind, ball 2 in front; with ``spacing = 2 R_B`` they touch at the origin, the
+ball-to-ball (B2B) contact of lin2019 Sec 2.2).  Contact angles ``b_i = b_0 +
+db_i`` in the order ``(BL, BR, TR, TL)`` (docs/developing.md), measured from
+``-y`` (bottom) or ``+y`` (top) as in lin2017 eq 1: the contact points are
+``R_B (-sin b_BL, -cos b_BL)``, ``R_B (sin b_BR, -cos b_BR)``,
+``R_B (sin b_TR, cos b_TR)``, ``R_B (-sin b_TL, cos b_TL)`` in each ball's
+cross-section.  Each rail is the gothic arch of :mod:`meshes.rail`; the top rail
+is the bottom construction turned by pi about ``z`` (its left flank becomes TR).
+A contact angle deviation turns a flank's arc centre about the ball centre, so
+every ball keeps touching all four flanks (lin2019 Fig 7: ``db_BL = -theta``,
+``db_BR = theta`` on the bottom rail).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from meshes.helical import _check_refinement, _finite, _positive
+from meshes.rail import _add_bottom_rail, _classify_rail_faces, _refine_at_points, gothic_arch
+
+__all__ = ["CONTACTS", "contact_points", "fourpoint_module"]
+
+MESH_FORMAT_VERSION = "fourpoint-1"
+CONTACTS = ("BL", "BR", "TR", "TL")
+
+
+def contact_points(ball_radius: float, contact_angles) -> np.ndarray:
+    """Contact points ``(BL, BR, TR, TL)`` of a ball centred at the origin, shape (4, 2) [m] (lin2017 eq 1)."""
+    b_bl, b_br, b_tr, b_tl = contact_angles
+    return ball_radius * np.array([[-math.sin(b_bl), -math.cos(b_bl)], [math.sin(b_br), -math.cos(b_br)],
+                                   [math.sin(b_tr), math.cos(b_tr)], [-math.sin(b_tl), math.cos(b_tl)]])
+
+
+def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, np.ndarray],
+                cap_angle: float) -> tuple[list[int], dict[str, list[int]]]:
+    """OCC ball cut by planes into a core and one cap of half-angle ``cap_angle``
+    around each named unit direction.  Returns (volume tags, surfaces by name;
+    'free' is the rest of the sphere)."""
+    occ = gmsh.model.occ
+    ball = occ.addSphere(*centre, radius)
+    disks = []
+    for direction in directions.values():
+        middle = centre + radius * math.cos(cap_angle) * direction
+        helper = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+        x_axis = np.cross(direction, helper)
+        size = 1.5 * radius * math.sin(cap_angle)
+        disks.append((2, occ.addDisk(*middle, size, size, zAxis=direction.tolist(), xAxis=x_axis.tolist())))
+    pieces, _ = occ.fragment([(3, ball)], disks)
+    occ.synchronize()
+    volumes = [tag for dim, tag in pieces if dim == 3]
+    leftovers = [(dim, tag) for dim, tag in pieces if dim == 2 and len(gmsh.model.getAdjacencies(2, tag)[0]) == 0]
+    occ.remove(leftovers, recursive=True)
+    occ.synchronize()
+    surfaces: dict[str, list[int]] = {name: [] for name in directions}
+    surfaces["free"] = []
+    cap_area = 2 * math.pi * radius**2 * (1 - math.cos(cap_angle))
+    for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
+        if gmsh.model.getType(2, tag) != "Sphere":
+            continue
+        offset = np.asarray(occ.getCenterOfMass(2, tag)) - centre
+        area = occ.getMass(2, tag)
+        name = "free"
+        if abs(area - cap_area) < 1e-3 * cap_area and np.linalg.norm(offset) > 0:
+            unit = offset / np.linalg.norm(offset)
+            best = max(directions, key=lambda key: unit @ directions[key])
+            if unit @ directions[best] > math.cos(cap_angle / 2):
+                name = best
+        surfaces[name].append(tag)
+    return volumes, surfaces
+
+
+def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0),
+                     n_balls: int = 1, *, spacing: float | None = None, land_height: float | None = None,
+                     width: float | None = None, depth: float | None = None, length: float | None = None,
+                     h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
+                     fine_radius: float | None = None, cap_angle: float = math.radians(30.0),
+                     cache: bool = True) -> Path:
+    """The four-point module as a cached gmsh 4.1 ``.msh`` [m].
+
+    ``deviations`` [rad]: contact angle deviations ``(BL, BR, TR, TL)``;
+    ``n_balls`` 1 or 2; ``spacing`` [m] centre distance of two balls (default
+    ``2 R_B``: touching); rail geometry as :func:`meshes.rail.rail_segment`
+    (defaults ``width 2.6 R_B``, ``depth 1.6 R_B``, ``land_height -0.25 R_B``;
+    ``length`` default ``(n_balls - 1) spacing + 2.4 R_B``).  With ``h_contact`` [m]
+    the mesh is refined around every contact point (four per ball and the B2B
+    point), else uniform ``h_max`` (default ``R_B / 3``).
+
+    Physical groups: volumes ``bottom_rail``, ``top_rail``, ``ball1`` (``ball2``);
+    rail surfaces ``BL``, ``BR`` (bottom flanks), ``TR``, ``TL`` (top flanks),
+    ``bottom_support`` (bottom face of the bottom rail), ``top_load`` (top face of
+    the top rail), ``bottom_land``, ``top_land``, ``rail_free``; ball surfaces
+    ``ball{k}_{BL,BR,TR,TL}`` (spherical caps of half-angle ``cap_angle`` centred on
+    the contacts), ``ball{k}_B2B`` (two balls: cap around the B2B point),
+    ``ball{k}_free``.  Bodies share no nodes.
+    """
+    radius = _positive("ball_radius", ball_radius, "m")
+    try:
+        deviations = [float(d) for d in deviations]
+    except (TypeError, ValueError):
+        raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}") from None
+    if len(deviations) != 4:
+        raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}")
+    bottom = gothic_arch(radius, conformity, contact_angle, deviations[0], deviations[1], land_height)
+    top = gothic_arch(radius, conformity, contact_angle, deviations[2], deviations[3], land_height)
+    if n_balls not in (1, 2):
+        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
+    spacing = 2.0 * radius if spacing is None else _finite("spacing", spacing, "[2 R_B, inf) m")
+    if n_balls == 2 and spacing < 2.0 * radius:
+        raise ValueError(f"spacing must lie in [2 ball_radius, inf) = [{2 * radius!r}, inf) m (balls may not "
+                         f"overlap), got {spacing!r}")
+    cap_angle = _finite("cap_angle", cap_angle, "(0, pi/4] rad")
+    if not 0.0 < cap_angle <= math.pi / 4:
+        raise ValueError(f"cap_angle must lie in (0, pi/4] rad, got {cap_angle!r}")
+    width = 2.6 * radius if width is None else _positive("width", width, "m")
+    depth = 1.6 * radius if depth is None else _positive("depth", depth, "m")
+    length = (n_balls - 1) * spacing + 2.4 * radius if length is None else _positive("length", length, "m")
+    for arch in (bottom, top):
+        if arch.land_height - depth >= arch.bottom[1]:
+            raise ValueError(f"depth must exceed the groove depth {arch.land_height - arch.bottom[1]!r} m, "
+                             f"got {depth!r}")
+        if max(abs(arch.edge("left")[0]), abs(arch.edge("right")[0])) >= width / 2:
+            raise ValueError(f"width must exceed the groove width, got {width!r}")
+    if length < (n_balls - 1) * spacing + 2.0 * radius:
+        raise ValueError(f"length must be at least (n_balls - 1) spacing + 2 ball_radius, got {length!r}")
+    refine = h_contact is not None
+    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
+                                                              growth, h_max, fine_radius)
+    angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,
+              top.contact_angle_right]
+    from lowmodel.cache import cache_dir, parameter_hash
+
+    params = dict(builder="fourpoint_module", radius=radius, conformity=bottom.conformity, angles=angles,
+                  land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
+                  length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
+                  fine_radius=fine_radius, cap_angle=cap_angle)
+    path = cache_dir("meshes") / f"fourpoint-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
+    if cache and path.exists():
+        return path
+
+    in_plane = contact_points(radius, angles)
+    centres = [np.array([0.0, 0.0, 0.0])] if n_balls == 1 else [np.array([0.0, 0.0, -spacing / 2]),
+                                                                 np.array([0.0, 0.0, spacing / 2])]
+    import gmsh
+
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("fourpoint_module")
+        occ = gmsh.model.occ
+        bottom_rail = _add_bottom_rail(occ, bottom, width, depth, length, -length / 2)
+        top_rail = _add_bottom_rail(occ, top, width, depth, length, -length / 2)
+        occ.synchronize()
+        bottom_faces = _classify_rail_faces(gmsh, bottom_rail, bottom, depth)
+        top_faces = _classify_rail_faces(gmsh, top_rail, top, depth)
+        occ.rotate([(3, top_rail)], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, math.pi)  # left flank -> TR
+        ball_groups = []
+        for k, centre in enumerate(centres):
+            directions = {name: np.append(point / radius, 0.0) for name, point in zip(CONTACTS, in_plane)}
+            if n_balls == 2:
+                directions["B2B"] = np.array([0.0, 0.0, 1.0 if k == 0 else -1.0])
+            ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))
+        occ.synchronize()
+        add = gmsh.model.addPhysicalGroup
+        add(3, [bottom_rail], name="bottom_rail")
+        add(3, [top_rail], name="top_rail")
+        add(2, bottom_faces["left"], name="BL")
+        add(2, bottom_faces["right"], name="BR")
+        add(2, top_faces["left"], name="TR")
+        add(2, top_faces["right"], name="TL")
+        add(2, bottom_faces["support"], name="bottom_support")
+        add(2, top_faces["support"], name="top_load")
+        add(2, bottom_faces["land"], name="bottom_land")
+        add(2, top_faces["land"], name="top_land")
+        add(2, bottom_faces["other"] + top_faces["other"], name="rail_free")
+        for k, (volumes, surfaces) in enumerate(ball_groups, start=1):
+            add(3, volumes, name=f"ball{k}")
+            for name, tags in surfaces.items():
+                if not tags:
+                    raise RuntimeError(f"ball {k}: cap {name} not identified")
+                add(2, tags, name=f"ball{k}_{name}")
+        if refine:
+            points = [np.append(p, c[2]) for c in centres for p in in_plane]
+            if n_balls == 2:
+                points.append((centres[0] + centres[1]) / 2 + np.array([0.0, 0.0, 0.0]))
+            _refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)
+        else:
+            gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+            gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+        gmsh.model.mesh.generate(3)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
+        gmsh.write(str(tmp))
+        tmp.replace(path)
+    finally:
+        gmsh.finalize()
+    return path
