@@ -47,6 +47,8 @@ __all__ = [
     "helical_groove",
     "contact_frame",
     "surface_residual",
+    "profile_coordinates",
+    "pair_hertz_geometry",
     "screw_groove_segment",
     "ball_in_screw_groove_pair",
 ]
@@ -307,6 +309,24 @@ def contact_frame(groove: HelicalGroove) -> ContactFrame:
     return ContactFrame(point=point, normal=normal, major=major, minor=minor,
                         curvature_major=float(values[i_major]), curvature_minor=float(values[1 - i_major]),
                         ball_centre=point + groove.ball_radius * normal, profile_angle=angle)
+
+
+def pair_hertz_geometry(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                        contact_angle: float, body: str = "screw", *, flank: str = "left",
+                        profile_plane: str = "normal", youngs_modulus: float = 2.1e11,
+                        poisson_ratio: float = 0.28):
+    """Hertz geometry (:class:`lowmodel.hertz.HertzGeometry`) of the contact meshed by
+    :func:`ball_in_screw_groove_pair` with the same arguments: the ball's curvature
+    ``1/R_B`` and the groove's exact principal curvatures at the contact; ``A``
+    belongs to the contact-frame x axis.  For ``profile_plane="axial"`` it equals
+    :func:`lowmodel.hertz.ball_in_screw_groove` (tested)."""
+    from lowmodel import hertz
+
+    frame = contact_frame(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank,
+                                         profile_plane))
+    curvature = 1.0 / float(ball_radius)
+    return hertz.from_curvatures((curvature, curvature), (frame.curvature_major, frame.curvature_minor),
+                                 youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
 
 
 def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:

@@ -67,6 +67,19 @@ def test_axial_profile_curvatures_equal_lowmodel_hertz(body, flank):
     assert frame.profile_angle == pytest.approx(angle, abs=1e-12)
 
 
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
+    mine = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body, profile_plane="axial")
+    lead_angle = math.atan(LEAD / (2 * math.pi * R_P))
+    reference = hertz.ball_in_screw_groove(R_B, CONF, R_P, BETA, lead_angle, body)
+    assert mine.A == pytest.approx(reference.A, rel=1e-12)
+    assert mine.B == pytest.approx(reference.B, rel=1e-12)
+    # the lin2019 normal-section profile is a different groove: a differs by about 1 %
+    normal = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body)
+    a_axial, a_normal = hertz.solve_load(mine, 100.0).a, hertz.solve_load(normal, 100.0).a
+    assert 1e-3 < abs(a_normal / a_axial - 1) < 0.03
+
+
 @pytest.mark.parametrize("plane", ["normal", "axial"])
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_zero_lead_is_the_bearing_raceway(plane, body):
