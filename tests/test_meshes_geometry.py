@@ -74,10 +74,11 @@ def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
     reference = hertz.ball_in_screw_groove(R_B, CONF, R_P, BETA, lead_angle, body)
     assert mine.A == pytest.approx(reference.A, rel=1e-12)
     assert mine.B == pytest.approx(reference.B, rel=1e-12)
-    # the lin2019 normal-section profile is a different groove: a differs by about 1 %
+    # the lin2019 normal-section profile is a different groove: at 100 N, a differs by
+    # 1.0 % (screw) and 5.0 % (nut), so the FE scene must compare with its own geometry
     normal = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body)
     a_axial, a_normal = hertz.solve_load(mine, 100.0).a, hertz.solve_load(normal, 100.0).a
-    assert 1e-3 < abs(a_normal / a_axial - 1) < 0.03
+    assert 5e-3 < abs(a_normal / a_axial - 1) < 0.1
 
 
 @pytest.mark.parametrize("plane", ["normal", "axial"])
