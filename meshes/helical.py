@@ -601,3 +601,158 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     finally:
         gmsh.finalize()
     return path
+
+
+def _lens_loop(occ, grooves: tuple[HelicalGroove, HelicalGroove], phi: float) -> int:
+    """Curve loop of the gothic-arch lens (inside both flank circles) in the profile plane at ``phi``."""
+    left, right = grooves
+    r_g = left.groove_radius
+    c_l, c_r = left.arc_centre, right.arc_centre
+    mid = (c_l + c_r) / 2
+    half = float(np.linalg.norm(c_r - c_l)) / 2
+    normal = np.array([1.0, 0.0])  # the centres lie on the line u = const (symmetric about w = 0)
+    apexes = [mid + s * math.sqrt(r_g**2 - half**2) * normal for s in (-1.0, 1.0)]
+    tags = [occ.addPoint(*left.to_world(a[0], a[1], phi)) for a in apexes]
+    centres = [occ.addPoint(*left.to_world(c[0], c[1], phi)) for c in (c_l, c_r)]
+    # the arc of the left flank's circle bounds the lens on the side w < 0 ... and vice versa;
+    # each arc is shorter than pi (it subtends 2 asin(sqrt(r_g^2 - half^2) / r_g) < pi)
+    arcs = [occ.addCircleArc(tags[0], centres[1], tags[1]), occ.addCircleArc(tags[1], centres[0], tags[0])]
+    loop = occ.addCurveLoop(arcs)
+    occ.remove([(0, c) for c in centres])
+    return loop
+
+
+def _snap_to_bottom(gmsh, groove: HelicalGroove, left_faces: list[int], right_faces: list[int]) -> None:
+    """Put the nodes shared by both flanks (the groove-bottom edge) on the exact bottom helix."""
+    def node_set(faces):
+        tags = [gmsh.model.mesh.getNodes(2, f, includeBoundary=True)[0] for f in faces]
+        return set(np.concatenate(tags).tolist()) if tags else set()
+
+    shared = sorted(node_set(left_faces) & node_set(right_faces))
+    if not shared:
+        return
+    coords = np.array([gmsh.model.mesh.getNode(int(tag))[0] for tag in shared])
+    phi, _ = profile_coordinates(groove, coords)
+    u_bottom = groove.profile(groove.bottom_theta)[0]
+    exact = groove.to_world(np.full_like(phi, u_bottom), np.zeros_like(phi), phi)
+    for tag, xyz in zip(shared, exact):
+        gmsh.model.mesh.setNode(int(tag), xyz.tolist(), [])
+
+
+def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                         contact_angle: float, body: str = "screw", *, profile_plane: str = "normal",
+                         land_radius: float | None = None, back_radius: float | None = None,
+                         half_angle: float | None = None, axial_half_width: float | None = None,
+                         h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
+                         fine_radius: float | None = None, cache: bool = True) -> Path:
+    """A screw-shaft (``body="screw"``) or nut segment with its helical gothic-arch groove,
+    as a cached gmsh 4.1 ``.msh`` in the screw frame [m] (axis z, ball-centre helix
+    ``H(phi)``, the groove's nominal contacts at phi = 0).
+
+    The body is the annular wedge ``|phi| <= half_angle`` between ``land_radius``
+    (the land: default ``R_P -+ 0.25 R_B``) and ``back_radius`` (core of the screw /
+    outside of the nut, default ``R_P -+ 2 R_B``), within ``|z| <= axial_half_width``
+    (default ``p half_angle + 1.5 R_B``, at most ``lead/2`` so no other turn of the
+    groove enters), minus the gothic-arch lens swept along the helix (both flanks;
+    lin2019 Fig 13).  Default ``half_angle``: ``2 R_B / R_P``.  With ``h_contact``
+    the mesh is refined around the two contact points of a ball at phi = 0.
+
+    Physical groups: volume ``screw`` or ``nut``; surfaces ``flank_left``,
+    ``flank_right`` (nodes on the exact helical surface), ``land``, ``back``,
+    ``segment_free`` (the cut faces).
+    """
+    grooves = tuple(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank,
+                                   profile_plane) for flank in ("left", "right"))
+    left = grooves[0]
+    radius, r_p, p = left.ball_radius, left.pitch_radius, left.lead_per_radian
+    sign = left.sign_u
+    land = r_p + sign * 0.25 * radius if land_radius is None else _positive("land_radius", land_radius, "m")
+    back = r_p + sign * 2.0 * radius if back_radius is None else _positive("back_radius", back_radius, "m")
+    contact_u = sign * radius * math.cos(left.contact_angle)
+    if not sign * (land - r_p) < sign * contact_u - 0.05 * radius:
+        raise ValueError(f"land_radius must leave the contact points (at radius {r_p + contact_u!r} m) in the "
+                         f"groove, got {land!r}")
+    bottom_u = left.profile(left.bottom_theta)[0]
+    if not sign * (back - r_p) > sign * bottom_u + 0.05 * radius:
+        raise ValueError(f"back_radius must lie beyond the groove bottom (radius {r_p + bottom_u!r} m), got {back!r}")
+    half_angle = 2.0 * radius / r_p if half_angle is None else _positive("half_angle", half_angle, "rad")
+    if half_angle > math.pi / 2:
+        raise ValueError(f"half_angle must lie in (0, pi/2] rad, got {half_angle!r}")
+    limit = p * math.pi if p > 0 else math.inf  # lead / 2
+    width = min(p * half_angle + 1.5 * radius, limit) if axial_half_width is None else \
+        _positive("axial_half_width", axial_half_width, "m")
+    if width > limit:
+        raise ValueError(f"axial_half_width must lie in (0, lead/2] = (0, {limit!r}] m, got {width!r}")
+    refine = h_contact is not None
+    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
+                                                              growth, h_max, fine_radius)
+    from lowmodel.cache import cache_dir, parameter_hash
+
+    params = dict(builder="screw_groove_segment", groove=[radius, left.conformity, r_p, left.lead,
+                  left.contact_angle, left.body, left.profile_plane], land=land, back=back, half_angle=half_angle,
+                  width=width, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
+                  fine_radius=fine_radius)
+    path = cache_dir("meshes") / f"{left.body}-segment-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
+    if cache and path.exists():
+        return path
+    import gmsh
+
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("groove_segment")
+        occ = gmsh.model.occ
+        r_in, r_out = min(land, back), max(land, back)
+        outer = occ.addCylinder(0.0, 0.0, -width, 0.0, 0.0, 2 * width, r_out, angle=2 * half_angle)
+        inner = occ.addCylinder(0.0, 0.0, -2 * width, 0.0, 0.0, 4 * width, r_in)
+        wedge, _ = occ.cut([(3, outer)], [(3, inner)])
+        occ.rotate(wedge, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -half_angle)
+        # the cutter runs past the wedge: the groove leaves the band |z| <= width or the wedge's end planes
+        # (a profile plane spans azimuths within ~ 2 R_B sin(lambda) / rho of its own)
+        reach = 1.1 * half_angle + 0.02 + 3 * radius * math.sin(left.lead_angle) / (r_p - 2 * radius * (sign < 0))
+        # loft through exact lens sections (OCC: 1e-7 m from the exact surface, against 1e-6 m
+        # for a pipe along the spline helix over this reach; the flank nodes are snapped anyway)
+        sections = [_lens_loop(occ, grooves, phi) for phi in np.linspace(-reach, reach, 9)]
+        cutter = occ.addThruSections(sections, makeSolid=True, makeRuled=False)
+        result, _ = occ.cut(wedge, [vt for vt in cutter if vt[0] == 3])
+        occ.synchronize()
+        volumes = [tag for dim, tag in result if dim == 3]
+        roles: dict[str, list[int]] = {"flank_left": [], "flank_right": [], "land": [], "back": [],
+                                       "segment_free": []}
+        for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
+            xyz = _face_point(gmsh, tag)
+            rho = math.hypot(xyz[0], xyz[1])
+            residuals = [abs(surface_residual(g, xyz[None, :])[0]) for g in grooves]
+            if gmsh.model.getType(2, tag) == "Cylinder" and abs(rho - land) < 1e-6 * radius:
+                roles["land"].append(tag)
+            elif gmsh.model.getType(2, tag) == "Cylinder" and abs(rho - back) < 1e-6 * radius:
+                roles["back"].append(tag)
+            elif gmsh.model.getType(2, tag) not in ("Plane", "Cylinder") and min(residuals) < 0.01 * radius:
+                roles["flank_left" if residuals[0] < residuals[1] else "flank_right"].append(tag)
+            else:
+                roles["segment_free"].append(tag)
+        if not roles["flank_left"] or not roles["flank_right"]:
+            raise RuntimeError(f"groove flanks not identified: {roles}")
+        gmsh.model.addPhysicalGroup(3, volumes, name=left.body)
+        for name, tags in roles.items():
+            if tags:
+                gmsh.model.addPhysicalGroup(2, tags, name=name)
+        if refine:
+            contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
+            from meshes.rail import _refine_at_points
+
+            _refine_at_points(gmsh, contacts, h_contact, growth, h_max, fine_radius)
+        else:
+            gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+            gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+        gmsh.model.mesh.generate(3)
+        for g, name in zip(grooves, ("flank_left", "flank_right")):
+            _snap_to_groove(gmsh, g, roles[name], np.eye(3), np.zeros(3))
+        _snap_to_bottom(gmsh, left, roles["flank_left"], roles["flank_right"])
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
+        gmsh.write(str(tmp))
+        tmp.replace(path)
+    finally:
+        gmsh.finalize()
+    return path

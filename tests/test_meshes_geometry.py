@@ -337,6 +337,40 @@ def test_pair_bad_input_names_the_parameter(kwargs, name):
 
 
 # --------------------------------------------------------------------------
+# full screw / nut groove segment
+# --------------------------------------------------------------------------
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_groove_segment_flanks_land_and_four_point_contact(body):
+    """Both flanks are the exact helical arcs; the land is the cylinder of its radius; a
+    ball centred anywhere on the helix touches both flanks (distance R_B) and nowhere
+    lies inside them (lin2019 Fig 13: four-point contact with screw and nut)."""
+    h = 1e-4
+    path = helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, body, h_contact=h, growth=1.5)
+    mesh = meshio.read(path)
+    assert len(_group_cells(mesh, body, "tetra")) > 100
+    land = R_P - 0.25 * R_B if body == "screw" else R_P + 0.25 * R_B
+    nodes = mesh.points[_group_nodes(mesh, "land")]
+    # (its edges with the flanks carry flank nodes moved onto the exact helical surface:
+    # OCC's loft/boolean intersection lies within 1e-7 m of it)
+    assert np.abs(np.hypot(nodes[:, 0], nodes[:, 1]) - land).max() < 1e-7
+    for flank in ("left", "right"):
+        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank)
+        nodes = mesh.points[_group_nodes(mesh, f"flank_{flank}")]
+        assert np.abs(helical.surface_residual(groove, nodes)).max() < 1e-12 * R_B
+        for phi in (-0.1, 0.0, 0.1):
+            distance = np.linalg.norm(nodes - groove.helix(phi), axis=1)
+            assert distance.min() > R_B * (1 - 1e-12)
+            if phi == 0.0:  # refined there: chord sagitta h^2 / (8 R_B) bounds the miss
+                assert distance.min() < R_B + h**2 / (8 * R_B)
+    # the flanks meet at the groove bottom: it is a helix of the bottom radius
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
+    shared = np.intersect1d(_group_nodes(mesh, "flank_left"), _group_nodes(mesh, "flank_right"))
+    assert len(shared) > 5
+    phi, uw = helical.profile_coordinates(groove, mesh.points[shared])
+    assert np.abs(uw[:, 1]).max() < 1e-12 and np.ptp(uw[:, 0]) < 1e-12
+
+
+# --------------------------------------------------------------------------
 # straight gothic-arch rail
 # --------------------------------------------------------------------------
 from meshes import fourpoint_module, rail  # noqa: E402
