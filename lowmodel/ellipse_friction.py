@@ -1,0 +1,547 @@
+"""Friction over a Hertz contact ellipse whose slip field rotates about an offset centre.
+
+lin2019 Appendix eqs A4-A7 (and Sec 2.1, eqs 1-3): in the contact plane of
+contact ``i`` (local ``x`` along the major semi-axis ``a``, local ``z`` along the
+rolling direction and the minor semi-axis ``b``) the slip velocity of the ball
+relative to the groove is (eq 3)::
+
+    dv_x = omega z,        dv_z = omega (c - x)
+
+i.e. a rigid rotation with angular velocity ``omega`` about the *velocity
+centre* ``(x, z) = (c, 0)``.  With the Hertz pressure
+``p = p0 sqrt(1 - x^2/a^2 - z^2/b^2)``, ``p0 = 3 F / (2 pi a b)`` (eq A7) and
+Coulomb friction ``mu p`` opposing the slip, the paper's integrals reduce to
+three dimensionless functions of ``kappa = c/a`` and ``beta = b/a``
+(``t = x/a``, ``s = z/b``, ``D = sqrt((t - kappa)^2 + (beta s)^2)``,
+``p_hat = (3/(2 pi)) sqrt(1 - t^2 - s^2)`` on the unit disc)::
+
+    force(kappa)  =  iint p_hat (t - kappa) / D                    f_{i,z}  = sgn(omega) mu F   * force   (eq A4)
+    moment(kappa) =  iint p_hat (t^2 - kappa t + beta^2 s^2) / D   M_{i,O}  = sgn(omega) mu F a * moment  (eq A5)
+    loss(kappa)   =  iint p_hat D                                  P_{f,i}  = |omega|   mu F a * loss    (eq A6)
+
+Sign conventions (those of the paper):
+
+* ``force`` is the friction force *on the ball* along ``+z_i``; it is odd in
+  ``kappa``, ``force -> -sign(kappa)`` as ``|kappa| -> inf`` (pure sliding,
+  lin2019 eq 12: ``f_{i,z} -> -+ sgn(omega) mu F``) and
+  ``force ~ -k_f kappa`` near 0 (lin2019 eq 14).
+* ``moment`` is the friction moment on the ball about the contact centre,
+  measured about ``-y_i`` (lin2019 Sec 2.1, the minus sign of eq 4); it is even,
+  ``moment(0) = (3/8) E(e)`` (lin2019 eq 11, ``e = sqrt(1 - beta^2)``) and
+  ``moment -> 0`` as ``|kappa| -> inf`` (eq 12).
+* ``loss`` is the dissipated power; even; ``loss ~ |kappa|`` as
+  ``|kappa| -> inf`` (so ``P -> mu F |omega c|``, sliding at speed
+  ``|omega c|``).
+
+Exact identities used throughout (differentiate the integrands)::
+
+    d loss / d kappa   = -force
+    moment             = loss + kappa force                  (power balance)
+    d force / d kappa  = -curvature,   curvature = iint p_hat beta^2 s^2 / D^3 > 0
+    d moment / d kappa = -kappa curvature
+
+so ``k_f = curvature(0) = (beta^2/2) R_D(0, 1, beta^2)
+= 3 (E(e) - beta^2 K(e)) / (2 e^2)`` exactly.
+
+Quadrature (:func:`friction_exact`): polar coordinates centred on the
+velocity centre (in the scaled plane ``X = t - kappa``, ``Y = beta s``), where
+the slip direction is the polar angle, so the radial integrals are closed forms
+(integrals of ``rho^n sqrt(quadratic)``) and the integrable singularity of the
+curvature (``1/rho``) and the kink of the slip direction are integrated
+exactly.  The remaining smooth angular integral uses tanh-sinh quadrature
+(inside the ellipse, split where the integrand loses smoothness as
+``|kappa| -> 1``) or Gauss-Legendre over the cone of rays that meet the
+ellipse (outside).
+
+Tabulation (:func:`friction`, :func:`friction_velocity`): the three functions
+are smooth functions of the *slip-direction angle*
+``phi = atan2(omega c, omega a)`` (``phi = arctan(kappa)`` for ``omega > 0``),
+including across ``omega = 0`` (pure sliding, ``kappa = +-inf``).  They are
+tabulated once on a ``(phi, log(b/a))`` grid, cached on disk
+(``lowmodel.cache``, kind ``ellipse_friction``) and interpolated by a bicubic
+spline (C2), whose analytic derivatives are returned for Newton's method.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy.special import elliprd, ellipe, ellipk
+
+__all__ = [
+    "EllipseFriction",
+    "SlipFriction",
+    "friction",
+    "friction_exact",
+    "friction_velocity",
+    "k_f_exact",
+    "k_f_least_squares",
+    "spin_moment",
+    "friction_map",
+    "FrictionMap",
+    "B_OVER_A_RANGE",
+]
+
+B_OVER_A_RANGE = (0.02, 1.0)  # tabulated range of b/a (a >= b by convention)
+_PREFACTOR = 3.0 / (2.0 * math.pi)  # lin2019 eq A7: p0 a b / F
+
+
+# --------------------------------------------------------------------------
+# results
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class EllipseFriction:
+    """Normalised friction of one Hertz ellipse (lin2019 eqs A4-A6 with A7).
+
+    All attributes are arrays broadcast from ``c_over_a`` and ``b_over_a``;
+    dimensionless.  Dimensional values for contact ``i`` with normal load
+    ``F`` [N], semi-major axis ``a`` [m] and spin ``omega`` [rad/s]::
+
+        f_{i,z} = sgn(omega) * mu * F     * force      [N]
+        M_{i,O} = sgn(omega) * mu * F * a * moment     [N m], about -y_i
+        P_{f,i} = |omega|    * mu * F * a * loss       [W]
+
+    ``dforce_dc``, ``dmoment_dc``, ``dloss_dc`` are derivatives with respect
+    to ``c/a`` at fixed ``b/a``.  ``loss`` is ``inf`` at ``c/a = +-inf``
+    (use :func:`friction_velocity` when ``omega -> 0``).
+    """
+
+    force: np.ndarray
+    moment: np.ndarray
+    loss: np.ndarray
+    dforce_dc: np.ndarray
+    dmoment_dc: np.ndarray
+    dloss_dc: np.ndarray
+
+
+@dataclass(frozen=True)
+class SlipFriction:
+    """Friction of one Hertz ellipse in terms of slip velocities (finite as omega -> 0).
+
+    Inputs were ``spin_velocity = omega a`` [m/s] and
+    ``slide_velocity = omega c`` [m/s] (the slip velocity of the ball at the
+    contact centre along ``z_i``: ``(dv)_z`` of lin2019 eq 1 at ``x = 0``).
+    Dimensional values::
+
+        f_{i,z} = mu * F     * force     [N]
+        M_{i,O} = mu * F * a * moment    [N m], about -y_i
+        P_{f,i} = mu * F     * loss      [W]   (loss in m/s)
+
+    ``d<q>_dspin``, ``d<q>_dslide``: partial derivatives with respect to
+    ``spin_velocity`` and ``slide_velocity`` [1/(m/s)] (loss: dimensionless).
+    At ``spin = slide = 0`` force and moment are undefined (returned as the
+    pure-spin value ``force = 0``, ``moment = (3/8) E``, derivatives 0).
+    """
+
+    force: np.ndarray
+    moment: np.ndarray
+    loss: np.ndarray
+    dforce_dspin: np.ndarray
+    dforce_dslide: np.ndarray
+    dmoment_dspin: np.ndarray
+    dmoment_dslide: np.ndarray
+    dloss_dspin: np.ndarray
+    dloss_dslide: np.ndarray
+
+
+# --------------------------------------------------------------------------
+# input checks
+# --------------------------------------------------------------------------
+def _check_ratio(b_over_a, *, lower: float = B_OVER_A_RANGE[0]) -> np.ndarray:
+    beta = np.asarray(b_over_a, dtype=float)
+    if not np.all(np.isfinite(beta)):
+        raise ValueError("b_over_a must be finite (got NaN or inf)")
+    if np.any(beta < lower) or np.any(beta > 1.0):
+        raise ValueError(f"b_over_a must lie in [{lower}, 1] (a is the semi-major axis), "
+                         f"got range [{beta.min()!r}, {beta.max()!r}]")
+    return beta
+
+
+def _check_kappa(c_over_a) -> np.ndarray:
+    kappa = np.asarray(c_over_a, dtype=float)
+    if np.any(np.isnan(kappa)):
+        raise ValueError("c_over_a must not be NaN (+-inf is allowed: pure sliding)")
+    return kappa
+
+
+# --------------------------------------------------------------------------
+# closed forms
+# --------------------------------------------------------------------------
+def spin_moment(b_over_a) -> np.ndarray:
+    """``moment`` at ``c/a = 0``: ``(3/8) E(e)``, ``e = sqrt(1 - (b/a)^2)`` (lin2019 eq 11)."""
+    beta = _check_ratio(b_over_a, lower=0.0)
+    return 0.375 * ellipe(1.0 - beta**2)  # scipy's ellipe takes the parameter m = e^2
+
+
+def k_f_exact(b_over_a) -> np.ndarray:
+    """Exact slope ``k_f = -d force / d(c/a)`` at ``c/a = 0`` (lin2019 eq 14).
+
+    ``k_f = iint p_hat beta^2 s^2/(t^2 + beta^2 s^2)^(3/2) = (beta^2/2) R_D(0, 1, beta^2)
+    = 3 (E(e) - beta^2 K(e)) / (2 e^2)``; ``3 pi/8`` for a circle, ``-> 3/2`` as
+    ``b/a -> 0``.  Dimensionless.
+    """
+    beta = _check_ratio(b_over_a, lower=0.0)
+    beta2 = beta**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        value = 0.5 * beta2 * elliprd(0.0, 1.0, beta2)
+    return np.where(beta2 > 0.0, value, 1.5)
+
+
+# --------------------------------------------------------------------------
+# direct quadrature
+# --------------------------------------------------------------------------
+@lru_cache(maxsize=8)
+def _tanh_sinh(level: int) -> tuple[np.ndarray, np.ndarray]:
+    """Tanh-sinh nodes and weights on [0, 1] (2^level + 1 points per unit of t)."""
+    step = 1.0 / 2**level * 4.0
+    t = np.arange(-4.0, 4.0 + 0.5 * step, step / 4.0)
+    arg = 0.5 * math.pi * np.sinh(t)
+    x = 0.5 * (1.0 + np.tanh(arg))
+    w = 0.5 * (step / 4.0) * 0.5 * math.pi * np.cosh(t) / np.cosh(arg) ** 2
+    keep = (x > 0.0) & (x < 1.0) & (w > 0.0)
+    return x[keep], w[keep]
+
+
+@lru_cache(maxsize=8)
+def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (x + 1.0), 0.5 * w  # on [0, 1]
+
+
+def _radial(kappa, beta, phi, *, full_chord: bool):
+    """Radial integrals ``J_n = int rho^n sqrt(q(rho)) d rho`` (n = 0, 1, 2) along a ray.
+
+    Ray from the velocity centre in the scaled plane: ``t = kappa + rho cos(phi)``,
+    ``s = rho sin(phi)/beta``; ``q = 1 - t^2 - s^2 = A (R^2 - w^2)``, ``w = rho + b0``.
+    """
+    cos, sin = np.cos(phi), np.sin(phi)
+    big_a = cos**2 + (sin / beta) ** 2
+    b0 = kappa * cos / big_a
+    r2 = (big_a - (kappa * sin / beta) ** 2) / big_a**2
+    r2 = np.maximum(r2, 0.0)
+    radius = np.sqrt(r2)
+    root_a = np.sqrt(big_a)
+    if full_chord:  # the whole chord lies at rho > 0 (centre outside the ellipse)
+        k0 = 0.5 * math.pi * r2
+        k1 = np.zeros_like(r2)
+        k2 = 0.125 * math.pi * r2**2
+    else:  # chord from rho = 0 (w = b0) to the far root (w = R); centre inside
+        def anti(w):
+            ratio = np.clip(np.divide(w, radius, out=np.zeros_like(w), where=radius > 0), -1.0, 1.0)
+            root = np.sqrt(np.maximum(r2 - w**2, 0.0))
+            asin = np.arcsin(ratio)
+            return (0.5 * (w * root + r2 * asin), -(root**3) / 3.0,
+                    0.125 * w * (2.0 * w**2 - r2) * root + 0.125 * r2**2 * asin)
+        lo = anti(np.minimum(np.maximum(b0, -radius), radius))
+        k0 = 0.25 * math.pi * r2 - lo[0]
+        k1 = 0.0 - lo[1]
+        k2 = 0.0625 * math.pi * r2**2 - lo[2]
+    j0 = root_a * k0
+    j1 = root_a * (k1 - b0 * k0)
+    j2 = root_a * (k2 - 2.0 * b0 * k1 + b0**2 * k0)
+    return j0, j1, j2
+
+
+def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6, n_gauss: int = 48):
+    """(force, loss, curvature) by the velocity-centre polar quadrature; 1-D arrays of equal length."""
+    force = np.empty(kappa.shape)
+    loss = np.empty(kappa.shape)
+    curvature = np.empty(kappa.shape)
+    inside = np.abs(kappa) < 1.0
+    if np.any(inside):
+        x, w = _tanh_sinh(level)
+        # phi in [0, pi] (integrands are even in phi), split at pi/2 where smoothness is lost as |kappa| -> 1
+        phi = np.concatenate([0.5 * math.pi * x, 0.5 * math.pi * (1.0 + x)])
+        weights = np.concatenate([w, w]) * 0.5 * math.pi * 2.0  # factor 2: phi in [-pi, 0]
+        k = kappa[inside][:, None]
+        b = beta[inside][:, None]
+        j0, j1, j2 = _radial(k, b, phi[None, :], full_chord=False)
+        scale = _PREFACTOR / beta[inside]
+        force[inside] = scale * ((np.cos(phi) * j1) @ weights)
+        loss[inside] = scale * (j2 @ weights)
+        curvature[inside] = scale * ((np.sin(phi) ** 2 * j0) @ weights)
+    outside = ~inside & np.isfinite(kappa)
+    if np.any(outside):
+        x, w = _gauss(n_gauss)
+        k = kappa[outside][:, None]
+        b = beta[outside][:, None]
+        # rays that meet the ellipse: |tan(phi')| < beta / sqrt(kappa^2 - 1) about the direction -sign(kappa)
+        half = np.arctan2(b, np.sqrt(np.maximum(k**2 - 1.0, 0.0)))
+        offset = half * x[None, :]
+        phi = np.where(k > 0.0, math.pi - offset, offset)
+        j0, j1, j2 = _radial(k, b, phi, full_chord=True)
+        weights = 2.0 * half * w[None, :]  # both sides of the axis
+        scale = _PREFACTOR / beta[outside]
+        force[outside] = scale * np.sum(np.cos(phi) * j1 * weights, axis=1)
+        loss[outside] = scale * np.sum(j2 * weights, axis=1)
+        curvature[outside] = scale * np.sum(np.sin(phi) ** 2 * j0 * weights, axis=1)
+    infinite = ~np.isfinite(kappa)
+    force[infinite] = -np.sign(kappa[infinite])
+    loss[infinite] = np.inf
+    curvature[infinite] = 0.0
+    return force, loss, curvature
+
+
+def friction_exact(c_over_a, b_over_a) -> EllipseFriction:
+    """Friction integrals of lin2019 eqs A4-A6 by direct quadrature (no table).
+
+    Parameters
+    ----------
+    c_over_a : array_like, velocity-centre offset ``c/a`` along the major axis
+        (any real, ``+-inf`` for pure sliding).
+    b_over_a : array_like, axis ratio ``b/a`` in ``(0, 1]``; broadcast with ``c_over_a``.
+
+    Returns
+    -------
+    EllipseFriction with arrays of the broadcast shape.  Accuracy about 1e-12
+    (tests compare it with an independent adaptive Cartesian quadrature).
+    Derivatives use the exact identities of the module docstring.
+    """
+    kappa = _check_kappa(c_over_a)
+    beta = _check_ratio(b_over_a, lower=1e-3)
+    kappa, beta = np.broadcast_arrays(kappa, beta)
+    shape = kappa.shape
+    k = kappa.ravel().astype(float)
+    b = beta.ravel().astype(float)
+    force, loss, curvature = _integrals(k, b)
+    with np.errstate(invalid="ignore"):
+        moment = np.where(np.isfinite(k), loss + k * force, 0.0)
+        dmoment = np.where(np.isfinite(k), -k * curvature, 0.0)
+    return EllipseFriction(force.reshape(shape), moment.reshape(shape), loss.reshape(shape),
+                           (-curvature).reshape(shape), dmoment.reshape(shape), (-force).reshape(shape))
+
+
+
+
+def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
+    """Least-squares slope ``k_f`` of ``-force`` against ``c/a`` over ``|c/a| <= c_max``.
+
+    Continuous least squares of a line through the origin (``force`` is odd,
+    so a free intercept is exactly zero): ``k = -int force kappa / int kappa^2``
+    over ``[-c_max, c_max]``, integrated by 24-point Gauss-Legendre on the exact
+    integrals.  For ``c_max <= 1`` ``force`` is the odd cubic
+    ``-k_f kappa + g3 kappa^3`` and this equals ``k_f - (3/5) c_max^2 g3``.
+    The paper reads ``k_f = 1.38`` off its Fig 5 over ``|c/a| < 0.5``
+    (lin2019 Sec 2.3.1 and eq A8).  Dimensionless.
+    """
+    if not (np.isfinite(c_max) and c_max > 0.0):
+        raise ValueError(f"c_max must be finite and > 0, got {c_max!r}")
+    beta = _check_ratio(b_over_a, lower=1e-3)
+    x, w = _gauss(24)
+    kappa = c_max * x  # (0, c_max]; the integrand force*kappa is even
+    shape = beta.shape
+    b = beta.ravel()
+    result = friction_exact(kappa[None, :], b[:, None])
+    numerator = -(result.force * kappa[None, :]) @ w
+    denominator = float((kappa**2) @ w)
+    return (numerator / denominator).reshape(shape)
+
+
+# --------------------------------------------------------------------------
+# table on (phi, log b/a) and its bicubic spline
+# --------------------------------------------------------------------------
+_MAP_VERSION = "1"
+
+
+def _phi_nodes(n_uniform: int, n_cluster: int) -> np.ndarray:
+    """Nodes of lambda = arctan(c/a) in [0, pi/2], clustered at c/a = 1 (lambda = pi/4).
+
+    The integrals lose smoothness where the velocity centre crosses the rim of
+    the ellipse (|c/a| = 1); a node sits exactly there.
+    """
+    quarter = 0.25 * math.pi
+    uniform = np.linspace(0.0, 0.5 * math.pi, n_uniform)
+    offsets = np.geomspace(2e-5, 0.08, n_cluster)
+    nodes = np.concatenate([uniform, quarter - offsets, quarter + offsets, [quarter]])
+    nodes = np.sort(nodes)
+    return nodes[np.concatenate([[True], np.diff(nodes) > 1e-12])]
+
+
+@dataclass(frozen=True)
+class FrictionMap:
+    """Tabulated ``force``, ``moment`` and ``loss/|(1, c/a)|`` on ``(phi, log(b/a))``.
+
+    ``phi`` is the slip-direction angle ``atan2(omega c, omega a)`` covering
+    ``[-pi - margin, pi + margin]`` (by the symmetries of the integrals) so that
+    every query point is interior; ``splines`` are scipy RectBivariateSpline
+    (bicubic, s = 0) of ``force``, ``moment`` and ``loss cos(phi)`` (the last
+    one equals ``loss / sqrt(1 + (c/a)^2)``, bounded).
+    """
+
+    phi: np.ndarray
+    log_b_over_a: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+    loss_direction: np.ndarray
+    build_time_s: float
+    from_cache: bool
+
+    @property
+    def splines(self):
+        return _splines(self)
+
+
+_SPLINE_CACHE: dict[int, tuple] = {}
+
+
+def _splines(table: FrictionMap):
+    key = id(table)
+    if key not in _SPLINE_CACHE:
+        from scipy.interpolate import RectBivariateSpline
+        _SPLINE_CACHE[key] = tuple(
+            RectBivariateSpline(table.phi, table.log_b_over_a, values, kx=3, ky=3, s=0)
+            for values in (table.force, table.moment, table.loss_direction))
+    return _SPLINE_CACHE[key]
+
+
+def _build_table(n_uniform: int, n_cluster: int, n_beta: int):
+    half = _phi_nodes(n_uniform, n_cluster)                    # lambda in [0, pi/2]
+    log_beta = np.linspace(math.log(B_OVER_A_RANGE[0]), 0.0, n_beta)
+    lam, lb = np.meshgrid(half, log_beta, indexing="ij")
+    kappa = np.tan(lam)
+    kappa[np.isclose(lam, 0.5 * math.pi)] = np.inf
+    result = friction_exact(kappa, np.exp(lb))
+    cos = np.cos(lam)
+    with np.errstate(invalid="ignore"):
+        direction = np.where(np.isfinite(kappa), result.loss * cos, 1.0)
+    # extend lambda in [0, pi/2] to phi in [-pi - margin, pi + margin] by the symmetries
+    # force(-k) = -force(k), moment and loss even; (omega -> -omega): force, moment flip, loss same
+    lam_full = np.concatenate([-half[:0:-1], half])             # [-pi/2, pi/2]
+    f_full = np.concatenate([-result.force[:0:-1], result.force])
+    m_full = np.concatenate([result.moment[:0:-1], result.moment])
+    d_full = np.concatenate([direction[:0:-1], direction])
+    margin = 0.3  # rad beyond +-pi, so that every phi = atan2(...) in [-pi, pi] is interior
+    low = lam_full >= -margin        # phi = lambda - pi in [-pi - margin, -pi/2]
+    high = lam_full <= margin        # phi = lambda + pi in [pi/2, pi + margin]
+    phi = np.concatenate([lam_full[low] - math.pi, lam_full, lam_full[high] + math.pi])
+    force = np.concatenate([-f_full[low], f_full, -f_full[high]])
+    moment = np.concatenate([-m_full[low], m_full, -m_full[high]])
+    direction_full = np.concatenate([d_full[low], d_full, d_full[high]])
+    order = np.argsort(phi, kind="stable")
+    phi = phi[order]
+    keep = np.concatenate([[True], np.diff(phi) > 1e-9])  # +-pi/2 appear twice
+    return phi[keep], log_beta, force[order][keep], moment[order][keep], direction_full[order][keep]
+
+
+_GRID = {"n_uniform": 121, "n_cluster": 14, "n_beta": 33}
+
+
+@lru_cache(maxsize=4)
+def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_cluster"],
+                 n_beta: int = _GRID["n_beta"], use_cache: bool = True) -> FrictionMap:
+    """The tabulated friction map (built once, cached on disk and in memory).
+
+    Grid: ``n_uniform`` uniform nodes of ``arctan(c/a)`` on ``[0, pi/2]`` plus
+    ``2 n_cluster`` nodes clustered geometrically at ``|c/a| = 1``, mirrored by
+    symmetry; ``n_beta`` uniform nodes of ``log(b/a)`` on
+    ``[log 0.02, 0]``.  Disk cache: ``lowmodel.cache.cache_dir("ellipse_friction")``.
+    """
+    import time
+    from lowmodel.cache import cache_dir, parameter_hash
+
+    params = {"n_uniform": n_uniform, "n_cluster": n_cluster, "n_beta": n_beta,
+              "b_over_a_range": list(B_OVER_A_RANGE)}
+    path = cache_dir("ellipse_friction") / f"map-{parameter_hash(params, _MAP_VERSION)}.npz"
+    start = time.perf_counter()
+    if use_cache and path.exists():
+        try:
+            with np.load(path) as data:
+                arrays = tuple(np.array(data[name]) for name in ("phi", "log_b_over_a", "force", "moment", "loss_direction"))
+            return FrictionMap(*arrays, build_time_s=time.perf_counter() - start, from_cache=True)
+        except (OSError, KeyError, ValueError):
+            pass  # unreadable entry: rebuild below
+    arrays = _build_table(n_uniform, n_cluster, n_beta)
+    table = FrictionMap(*arrays, build_time_s=time.perf_counter() - start, from_cache=False)
+    if use_cache:
+        tmp = path.with_suffix(".tmp.npz")
+        np.savez(tmp, phi=table.phi, log_b_over_a=table.log_b_over_a, force=table.force,
+                 moment=table.moment, loss_direction=table.loss_direction)
+        tmp.replace(path)
+    return table
+
+
+def _evaluate(phi: np.ndarray, beta: np.ndarray):
+    f_spl, m_spl, d_spl = friction_map().splines
+    log_beta = np.log(beta)
+    out = []
+    for spline in (f_spl, m_spl, d_spl):
+        out.append(spline.ev(phi, log_beta))
+        out.append(spline.ev(phi, log_beta, dx=1))
+    return out
+
+
+def friction(c_over_a, b_over_a) -> EllipseFriction:
+    """Normalised friction force, moment and loss of a Hertz ellipse (lin2019 eqs A4-A7), tabulated.
+
+    Parameters
+    ----------
+    c_over_a : array_like, velocity-centre offset ``c/a`` along the major axis
+        (``c`` of lin2019 eq 2); any real value, ``+-inf`` for pure sliding.
+    b_over_a : array_like in ``[0.02, 1]``, axis ratio; broadcast with ``c_over_a``.
+
+    Returns
+    -------
+    EllipseFriction (normalisation and signs in its docstring and the module
+    docstring): ``force -> -sign(c/a)`` and ``moment -> 0`` as
+    ``|c/a| -> inf``; ``force = 0``, ``moment = (3/8) E(e)`` at ``c/a = 0``.
+    Values and ``d/d(c/a)`` come from one C2 bicubic spline of the table
+    (:func:`friction_map`), so the derivatives are exactly those of the
+    returned values (Newton converges quadratically on them).
+    """
+    kappa = _check_kappa(c_over_a)
+    beta = _check_ratio(b_over_a)
+    kappa, beta = np.broadcast_arrays(kappa, beta)
+    lam = np.arctan(kappa)
+    force, dforce, moment, dmoment, direction, ddirection = _evaluate(lam, beta)
+    cos = np.cos(lam)
+    sin = np.sin(lam)
+    finite = np.isfinite(kappa)
+    cos2 = cos**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        loss = np.where(finite, direction / np.where(finite, cos, 1.0), np.inf)
+        dloss = np.where(finite, ddirection * cos + direction * sin, -force)
+    return EllipseFriction(force, moment, loss, dforce * cos2, dmoment * cos2, dloss)
+
+
+def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
+    """Friction of a Hertz ellipse from its slip velocities; finite as ``omega -> 0``.
+
+    Parameters
+    ----------
+    spin_velocity : array_like [m/s], ``omega_i a_i`` (``omega_i`` of lin2019 eq 2).
+    slide_velocity : array_like [m/s], ``omega_i c_i`` = slip of the ball
+        relative to the groove at the contact centre along ``z_i``
+        (the numerator of ``c_i`` in lin2019 eq 2).
+    b_over_a : array_like in ``[0.02, 1]``.  All three broadcast.
+
+    Returns
+    -------
+    SlipFriction: ``f_{i,z} = mu F force``, ``M_{i,O} = mu F a moment``,
+    ``P_{f,i} = mu F loss`` (see its docstring), with partial derivatives in
+    both velocities.  Same table and spline as :func:`friction`;
+    ``force = sgn(omega) force(c/a)`` etc., continuous through ``omega = 0``
+    where ``force = -sign(slide_velocity)`` (pure sliding, lin2019 eq 12).
+    """
+    spin = np.asarray(spin_velocity, dtype=float)
+    slide = np.asarray(slide_velocity, dtype=float)
+    if not (np.all(np.isfinite(spin)) and np.all(np.isfinite(slide))):
+        raise ValueError("spin_velocity and slide_velocity must be finite (m/s)")
+    beta = _check_ratio(b_over_a)
+    spin, slide, beta = np.broadcast_arrays(spin, slide, beta)
+    speed2 = spin**2 + slide**2
+    phi = np.arctan2(slide, spin)
+    force, dforce, moment, dmoment, direction, ddirection = _evaluate(phi, beta)
+    speed = np.sqrt(speed2)
+    safe2 = np.where(speed2 > 0.0, speed2, 1.0)
+    dphi_dspin = np.where(speed2 > 0.0, -slide / safe2, 0.0)
+    dphi_dslide = np.where(speed2 > 0.0, spin / safe2, 0.0)
+    safe = np.where(speed > 0.0, speed, 1.0)
+    loss = speed * direction
+    dloss_dspin = np.where(speed > 0.0, (spin * direction - slide * ddirection) / safe, 0.0)
+    dloss_dslide = np.where(speed > 0.0, (slide * direction + spin * ddirection) / safe, 0.0)
+    return SlipFriction(force, moment, loss,
+                        dforce * dphi_dspin, dforce * dphi_dslide,
+                        dmoment * dphi_dspin, dmoment * dphi_dslide,
+                        dloss_dspin, dloss_dslide)
