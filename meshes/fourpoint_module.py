@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from meshes.helical import _check_refinement, _finite, _positive
 from meshes.rail import _add_bottom_rail, _classify_rail_faces, _refine_at_points, gothic_arch
 
@@ -135,25 +136,18 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                                                               growth, h_max, fine_radius)
     angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,
               top.contact_angle_right]
-    from lowmodel.cache import cache_dir, parameter_hash
-
     params = dict(builder="fourpoint_module", radius=radius, conformity=bottom.conformity, angles=angles,
                   land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
                   length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
                   fine_radius=fine_radius, cap_angle=cap_angle)
-    path = cache_dir("meshes") / f"fourpoint-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
-    if cache and path.exists():
+    path, build = cached_msh("fourpoint", params, MESH_FORMAT_VERSION, cache=cache)
+    if not build:
         return path
 
     in_plane = contact_points(radius, angles)
     centres = [np.array([0.0, 0.0, 0.0])] if n_balls == 1 else [np.array([0.0, 0.0, -spacing / 2]),
                                                                  np.array([0.0, 0.0, spacing / 2])]
-    import gmsh
-
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("fourpoint_module")
+    with session("fourpoint_module") as gmsh:
         occ = gmsh.model.occ
         bottom_rail = _add_bottom_rail(occ, bottom, width, depth, length, -length / 2)
         top_rail = _add_bottom_rail(occ, top, width, depth, length, -length / 2)
@@ -168,7 +162,10 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                 directions["B2B"] = np.array([0.0, 0.0, 1.0 if k == 0 else -1.0])
             ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))
         occ.synchronize()
-        add = gmsh.model.addPhysicalGroup
+
+        def add(dim, tags, name):
+            physical(gmsh, dim, tags, name)
+
         add(3, [bottom_rail], name="bottom_rail")
         add(3, [top_rail], name="top_rail")
         add(2, bottom_faces["left"], name="BL")
@@ -195,10 +192,5 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
             gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
             gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
         gmsh.model.mesh.generate(3)
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
-        gmsh.write(str(tmp))
-        tmp.replace(path)
-    finally:
-        gmsh.finalize()
+        write_msh(gmsh, path)
     return path

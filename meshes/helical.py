@@ -41,6 +41,8 @@ from pathlib import Path
 
 import numpy as np
 
+from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, write_msh
+
 __all__ = [
     "HelicalGroove",
     "ContactFrame",
@@ -459,26 +461,6 @@ def _check_refinement(ball_radius: float, h_contact, growth, h_max, fine_radius)
     return h_contact, growth, h_max, fine_radius
 
 
-def _contact_size_field(gmsh, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
-    """Mesh size ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``,
-    ``r`` the distance from the contact point (the origin): neighbouring elements
-    along a ray differ in size by the factor ``growth``."""
-    field = gmsh.model.mesh.field
-    distance = field.add("MathEval")
-    field.setString(distance, "F", "Sqrt(x*x + y*y + z*z)")
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    field.setNumber(threshold, "SizeMin", h_contact)
-    field.setNumber(threshold, "SizeMax", h_max)
-    field.setNumber(threshold, "DistMin", fine_radius)
-    slope = max(growth - 1.0, 1e-9)
-    field.setNumber(threshold, "DistMax", fine_radius + (h_max - h_contact) / slope)
-    field.setAsBackgroundMesh(threshold)
-    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
-        gmsh.option.setNumber(option, 0)  # the field alone governs the size (issue 5 notes)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
-
-
 def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
                               contact_angle: float, body: str = "screw", h_contact: float = 2e-5,
                               growth: float = 1.3, *, flank: str = "left", profile_plane: str = "normal",
@@ -507,7 +489,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     Physical groups: volumes ``ball``, ``counter``; surfaces ``ball_contact``
     (spherical cap), ``ball_load`` (flat face of the cap), ``counter_contact``
     (groove face; its nodes lie exactly on the helical surface), ``counter_support``
-    (the back face of the block).  Mesh size: :func:`_contact_size_field`.
+    (the back face of the block).  Mesh size: :func:`meshes.gmsh_tools.contact_refinement`,
+    ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``, ``r`` the
+    distance from the contact point.
 
     ``h_contact`` [m] size at the contact, ``growth`` the size ratio of
     neighbouring elements away from the fine zone of radius ``fine_radius`` [m]
@@ -534,23 +518,16 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     if groove.body == "screw" and depth >= groove.pitch_radius - radius:
         raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
 
-    from lowmodel.cache import cache_dir, parameter_hash
-
     params = dict(builder="ball_in_screw_groove_pair", groove=[radius, groove.conformity, groove.pitch_radius,
                   groove.lead, groove.contact_angle, groove.body, groove.flank, groove.profile_plane],
                   h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius, half_width=half_width,
                   half_length=half_length, depth=depth, cap=cap, order=element_order)
-    path = cache_dir("meshes") / f"screw-pair-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
-    if cache and path.exists():
+    path, build = cached_msh("screw-pair", params, MESH_FORMAT_VERSION, cache=cache)
+    if not build:
         return path
 
     frame = contact_frame(groove)
-    import gmsh
-
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("screw_pair")
+    with session("screw_pair") as gmsh:
         occ = gmsh.model.occ
         theta_c = groove.contact_theta
         gamma = half_width / r_g
@@ -583,23 +560,18 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         ball_faces = [tag for _, tag in gmsh.model.getBoundary(ball, oriented=False)]
         ball_contact = [tag for tag in ball_faces if gmsh.model.getType(2, tag) == "Sphere"]
         ball_load = [tag for tag in ball_faces if gmsh.model.getType(2, tag) == "Plane"]
-        gmsh.model.addPhysicalGroup(3, [ball_tag], name="ball")
-        gmsh.model.addPhysicalGroup(3, [counter_tag], name="counter")
-        gmsh.model.addPhysicalGroup(2, ball_contact, name="ball_contact")
-        gmsh.model.addPhysicalGroup(2, ball_load, name="ball_load")
-        gmsh.model.addPhysicalGroup(2, groove_faces, name="counter_contact")
-        gmsh.model.addPhysicalGroup(2, support_faces, name="counter_support")
-        _contact_size_field(gmsh, h_contact, growth, h_max, fine_radius)
+        physical(gmsh, 3, [ball_tag], "ball")
+        physical(gmsh, 3, [counter_tag], "counter")
+        physical(gmsh, 2, ball_contact, "ball_contact")
+        physical(gmsh, 2, ball_load, "ball_load")
+        physical(gmsh, 2, groove_faces, "counter_contact")
+        physical(gmsh, 2, support_faces, "counter_support")
+        contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
         gmsh.model.mesh.generate(3)
         if element_order == 2:
             gmsh.model.mesh.setOrder(2)
         _snap_to_groove(gmsh, groove, groove_faces, rotation.T, frame.point)
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
-        gmsh.write(str(tmp))
-        tmp.replace(path)
-    finally:
-        gmsh.finalize()
+        write_msh(gmsh, path)
     return path
 
 
@@ -686,21 +658,14 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
     refine = h_contact is not None
     h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                               growth, h_max, fine_radius)
-    from lowmodel.cache import cache_dir, parameter_hash
-
     params = dict(builder="screw_groove_segment", groove=[radius, left.conformity, r_p, left.lead,
                   left.contact_angle, left.body, left.profile_plane], land=land, back=back, half_angle=half_angle,
                   width=width, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
                   fine_radius=fine_radius)
-    path = cache_dir("meshes") / f"{left.body}-segment-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
-    if cache and path.exists():
+    path, build = cached_msh(f"{left.body}-segment", params, MESH_FORMAT_VERSION, cache=cache)
+    if not build:
         return path
-    import gmsh
-
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("groove_segment")
+    with session("groove_segment") as gmsh:
         occ = gmsh.model.occ
         r_in, r_out = min(land, back), max(land, back)
         outer = occ.addCylinder(0.0, 0.0, -width, 0.0, 0.0, 2 * width, r_out, angle=2 * half_angle)
@@ -733,10 +698,10 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
                 roles["segment_free"].append(tag)
         if not roles["flank_left"] or not roles["flank_right"]:
             raise RuntimeError(f"groove flanks not identified: {roles}")
-        gmsh.model.addPhysicalGroup(3, volumes, name=left.body)
+        physical(gmsh, 3, volumes, left.body)
         for name, tags in roles.items():
             if tags:
-                gmsh.model.addPhysicalGroup(2, tags, name=name)
+                physical(gmsh, 2, tags, name)
         if refine:
             contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
             from meshes.rail import _refine_at_points
@@ -749,10 +714,5 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
         for g, name in zip(grooves, ("flank_left", "flank_right")):
             _snap_to_groove(gmsh, g, roles[name], np.eye(3), np.zeros(3))
         _snap_to_bottom(gmsh, left, roles["flank_left"], roles["flank_right"])
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
-        gmsh.write(str(tmp))
-        tmp.replace(path)
-    finally:
-        gmsh.finalize()
+        write_msh(gmsh, path)
     return path

@@ -25,7 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.helical import _check_refinement, _choice, _conformity, _contact_angle, _finite, _positive
+from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, write_msh
+from meshes.helical import _check_refinement, _conformity, _contact_angle, _finite, _positive
 
 __all__ = ["GothicArch", "gothic_arch", "rail_segment"]
 
@@ -158,27 +159,14 @@ def _classify_rail_faces(gmsh, volume: int, arch: GothicArch, depth: float) -> d
 
 
 def _refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
-    """Mesh size ``min_k min(h_max, h_contact + (growth - 1) max(0, |X - X_k| - fine_radius))``
-    around the contact points ``X_k`` (n, 3) [m]; the fields alone govern the size."""
-    field = gmsh.model.mesh.field
-    thresholds = []
-    slope = max(growth - 1.0, 1e-9)
-    for x0, y0, z0 in np.atleast_2d(np.asarray(points, dtype=float)).tolist():
-        distance = field.add("MathEval")
-        field.setString(distance, "F", f"Sqrt((x-({x0!r}))^2 + (y-({y0!r}))^2 + (z-({z0!r}))^2)")
-        threshold = field.add("Threshold")
-        field.setNumber(threshold, "InField", distance)
-        field.setNumber(threshold, "SizeMin", h_contact)
-        field.setNumber(threshold, "SizeMax", h_max)
-        field.setNumber(threshold, "DistMin", fine_radius)
-        field.setNumber(threshold, "DistMax", fine_radius + (h_max - h_contact) / slope)
-        thresholds.append(threshold)
-    minimum = field.add("Min")
-    field.setNumbers(minimum, "FieldsList", thresholds)
-    field.setAsBackgroundMesh(minimum)
-    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
-        gmsh.option.setNumber(option, 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+    """Mesh size ``min_k h_k`` with ``h_k`` the size law of
+    :func:`meshes.gmsh_tools.contact_refinement` about each contact point ``X_k``
+    (points shape (n, 3) [m]); the fields alone govern the size."""
+    fields = [contact_refinement(gmsh, h_contact, growth, h_max, point=point, fine_radius=fine_radius)
+              for point in np.atleast_2d(np.asarray(points, dtype=float)).tolist()]
+    minimum = gmsh.model.mesh.field.add("Min")
+    gmsh.model.mesh.field.setNumbers(minimum, "FieldsList", fields)
+    gmsh.model.mesh.field.setAsBackgroundMesh(minimum)
 
 
 def rail_segment(ball_radius: float, conformity: float, contact_angle: float, deviation_left: float = 0.0,
@@ -212,27 +200,20 @@ def rail_segment(ball_radius: float, conformity: float, contact_angle: float, de
     refine = h_contact is not None
     h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                               growth, h_max, fine_radius)
-    from lowmodel.cache import cache_dir, parameter_hash
-
     params = dict(builder="rail_segment", arch=[radius, arch.conformity, arch.contact_angle_left,
                   arch.contact_angle_right, arch.land_height], width=width, depth=depth, length=length,
                   refine=refine, h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius)
-    path = cache_dir("meshes") / f"rail-{parameter_hash(params, MESH_FORMAT_VERSION)}.msh"
-    if cache and path.exists():
+    path, build = cached_msh("rail", params, MESH_FORMAT_VERSION, cache=cache)
+    if not build:
         return path
-    import gmsh
-
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("rail")
+    with session("rail") as gmsh:
         volume = _add_bottom_rail(gmsh.model.occ, arch, width, depth, length, -length / 2)
         gmsh.model.occ.synchronize()
         roles = _classify_rail_faces(gmsh, volume, arch, depth)
-        gmsh.model.addPhysicalGroup(3, [volume], name="rail")
+        physical(gmsh, 3, [volume], "rail")
         for role, name in (("left", "groove_left"), ("right", "groove_right"), ("land", "land"),
                            ("support", "support"), ("other", "rail_free")):
-            gmsh.model.addPhysicalGroup(2, roles[role], name=name)
+            physical(gmsh, 2, roles[role], name)
         if refine:
             contacts = [np.append(arch.contact_point(side), 0.0) for side in ("left", "right")]
             _refine_at_points(gmsh, contacts, h_contact, growth, h_max, fine_radius)
@@ -240,10 +221,5 @@ def rail_segment(ball_radius: float, conformity: float, contact_angle: float, de
             gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
             gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
         gmsh.model.mesh.generate(3)
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        tmp = path.with_suffix(f".{id(params)}.tmp.msh")
-        gmsh.write(str(tmp))
-        tmp.replace(path)
-    finally:
-        gmsh.finalize()
+        write_msh(gmsh, path)
     return path
