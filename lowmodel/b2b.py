@@ -1,0 +1,285 @@
+"""Ball-to-ball (B2B) contact of 2 to N balls in a four-point-contact linear ball bearing.
+
+lin2019 Sec 2.2, eqs 5-10 (low-order numerical model), built on the single-ball
+equilibrium of :mod:`lowmodel.bearing_ball` (eq 4).
+
+Balls ``j = 0 .. n-1`` are ordered along +z (ball 0 is "ball 1, behind" of
+lin2019 Fig 1).  Pair ``j`` is (ball j, ball j+1); ``gap_j = d_{j,j+1} - 2 R_B``.
+Ball j touches ball j+1 at ``+R_B z`` of ball j and at ``-R_B z`` of ball j+1.
+
+Slip at the B2B contact, measured on ball j relative to ball j+1 (eq 5; the
+z part vanishes while the balls touch and move together)::
+
+    dv = R_B (omega_y,j + omega_y,j+1,  -(omega_x,j + omega_x,j+1))
+
+Friction on ball j (eq 6): ``f = -mu F_B2B dv/|dv|``; on ball j+1: ``-f``.
+Loads on the balls (eq 8 for ball j; "ball 2" of the paper for ball j+1)::
+
+    ball j   : force -F_B2B z,   moment (+R_B z) x f
+    ball j+1 : force +F_B2B z,   moment (-R_B z) x (-f) = (+R_B z) x f
+
+i.e. the B2B friction *moment* has the same sign on both balls (the force and
+the arm both flip); the power balance of :func:`solve` checks this
+(``v sum_top f_i = sum P_i + sum mu F_B2B |dv|``, lin2019 eq 7).
+
+Contact complementarity (eqs 9-10), for a pair that touches (gap <= 0)::
+
+    F_B2B >= 0,   v_B,j+1 - v_B,j >= 0,   F_B2B (v_B,j+1 - v_B,j) = 0
+
+and ``F_B2B = 0`` for an open pair.  Solved as one nonlinear complementarity
+problem by a semismooth Newton method on ``min(F_B2B/(mu F_ref),
+gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (the primal-dual active-set method; no
+enumeration of contact patterns).  Ball-to-groove normal forces are not
+changed by the B2B forces (lin2019 Sec 2.2, "decoupled").
+
+Time evolution (:func:`simulate_gaps`, lin2019 Fig 10): between events the
+quasi-static velocities are constant, so gaps move linearly; events are a
+gap closing (exact time) or a pair separating (read from the complementarity
+solution at each event).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lowmodel.bearing_ball import (
+    BallContacts,
+    BallState,
+    _ball_terms,
+    _initial_guess,
+    _state,
+    newton,
+    solve_ball,
+)
+from lowmodel.errors import ConvergenceError
+
+__all__ = ["solve", "simulate_gaps", "GapHistory", "COMPLEMENTARITY_SCALE"]
+
+COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
+_REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
+
+
+def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
+    if gaps is None:
+        return np.zeros(n_balls - 1)
+    gaps = np.asarray(gaps, dtype=float).reshape(-1)
+    if gaps.shape != (n_balls - 1,):
+        raise ValueError(f"gaps must have shape ({n_balls - 1},) (one per neighbouring pair), got {gaps.shape}")
+    if not np.all(np.isfinite(gaps)):
+        raise ValueError("gaps must be finite (m)")
+    if np.any(gaps < -1e-9 * radius):
+        raise ValueError(f"gaps must be >= 0 m (rigid balls cannot overlap), got min {gaps.min()!r}")
+    return gaps
+
+
+def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
+    """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
+
+    scaled (n, 3) ball unknowns; forces (n-1,) in units of mu F_ref.
+    Returns (load (n, 3) added to the ball residuals, d load/d scaled (n, 3, n, 3),
+    d load/d forces (n, 3, n-1), slip |dv| (n-1,) in units |v|).
+    """
+    n = scaled.shape[0]
+    pairs = n - 1
+    dvx = scaled[:-1, 2] + scaled[1:, 2]  # lin2019 eq 5, units |v|
+    dvy = -(scaled[:-1, 1] + scaled[1:, 1])
+    norm = np.sqrt(dvx**2 + dvy**2 + _REGULARISATION**2)
+    ex, ey = dvx / norm, dvy / norm
+    fx, fy = -mu * forces * ex, -mu * forces * ey  # eq 6 on ball j (units mu F_ref)
+    load = np.zeros((n, 3))
+    # ball j (behind): eq 8
+    load[:-1, 0] -= forces
+    load[:-1, 1] -= fy
+    load[:-1, 2] += fx
+    # ball j+1 (in front): force flips, moment does not (arm flips too)
+    load[1:, 0] += forces
+    load[1:, 1] -= fy
+    load[1:, 2] += fx
+    # derivatives of e = dv/|dv|
+    dex_ddvx = (1.0 - ex**2) / norm
+    dex_ddvy = -ex * ey / norm
+    dey_ddvy = (1.0 - ey**2) / norm
+    # d(fx, fy)/d(x1_j, x2_j) (same for j+1): dvx/dx2 = 1, dvy/dx1 = -1
+    dfx_dx1 = -mu * forces * (-dex_ddvy)
+    dfx_dx2 = -mu * forces * dex_ddvx
+    dfy_dx1 = -mu * forces * (-dey_ddvy)
+    dfy_dx2 = -mu * forces * dex_ddvy
+    d_scaled = np.zeros((n, 3, n, 3))
+    d_forces = np.zeros((n, 3, pairs))
+    idx = np.arange(pairs)
+    for ball in (idx, idx + 1):  # the two balls of each pair receive the same moment
+        for other in (idx, idx + 1):  # dv depends on both balls of the pair
+            d_scaled[ball, 1, other, 1] += -dfy_dx1
+            d_scaled[ball, 1, other, 2] += -dfy_dx2
+            d_scaled[ball, 2, other, 1] += dfx_dx1
+            d_scaled[ball, 2, other, 2] += dfx_dx2
+        d_forces[ball, 1, idx] += mu * ey
+        d_forces[ball, 2, idx] += -mu * ex
+    d_forces[idx, 0, idx] -= 1.0
+    d_forces[idx + 1, 0, idx] += 1.0
+    return load, d_scaled, d_forces, np.sqrt(dvx**2 + dvy**2)
+
+
+def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,
+          gap_tolerance: float | None = None) -> BallState:
+    """Quasi-static motion of ``n >= 1`` balls with ball-to-ball contact (lin2019 eqs 4-10).
+
+    Parameters
+    ----------
+    contacts : BallContacts of the ``n`` balls, ordered along +z (ball 0 behind)
+    gaps : (n-1,) m, ``d_{j,j+1} - 2 R_B`` (default: all touching, 0)
+    tolerance : max residual (eq 4/8 in units of ``mu max F``; complementarity)
+    gap_tolerance : m, a pair with gap <= this touches (default 1e-9 R_B)
+
+    Returns
+    -------
+    BallState with ``b2b_force`` (n-1,) [N], ``b2b_friction_loss`` [W],
+    ``b2b_slip`` [m/s]; ``iterations`` of the coupled semismooth Newton.
+    Raises ConvergenceError with its residual if the solve fails, or if the
+    converged point violates complementarity.
+    """
+    n = contacts.n_balls
+    radius = contacts.ball_radius
+    gaps = _check_gaps(gaps, n, radius)
+    if gap_tolerance is None:
+        gap_tolerance = 1e-9 * radius
+    touching = np.flatnonzero(gaps <= gap_tolerance)
+    if n == 1 or touching.size == 0:
+        return solve_ball(contacts, tolerance=tolerance)
+    free = solve_ball(contacts, tolerance=tolerance)  # initial guess: each ball on its own
+    mu = contacts.friction_coefficient
+    reference_force = float(contacts.normal_forces.max())
+    speed = abs(contacts.groove_velocity)
+    x_free = np.column_stack([free.ball_velocity / speed, free.omega * radius / speed])
+    m = touching.size
+    gamma = COMPLEMENTARITY_SCALE
+
+    def unpack(z):
+        scaled = z[:3 * n].reshape(n, 3)
+        forces = np.zeros(n - 1)
+        forces[touching] = z[3 * n:]
+        return scaled, forces
+
+    def function(z):
+        scaled, forces = unpack(z)
+        terms = _ball_terms(scaled, contacts, reference_force)
+        load, d_scaled, d_forces, _ = _b2b_terms(scaled, forces, mu)
+        jac = np.zeros((3 * n + m, 3 * n + m))
+        blocks = d_scaled.reshape(3 * n, 3 * n)
+        for ball in range(n):
+            blocks[3 * ball:3 * ball + 3, 3 * ball:3 * ball + 3] += terms.jacobian[ball]
+        jac[:3 * n, :3 * n] = blocks
+        jac[:3 * n, 3 * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
+        residual = np.empty(3 * n + m)
+        residual[:3 * n] = (terms.residual + load).reshape(-1)  # lin2019 eq 8 for every ball
+        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
+        lam = z[3 * n:]
+        separation = scaled[touching + 1, 0] - scaled[touching, 0]
+        force_branch = lam <= gamma * separation
+        residual[3 * n:] = np.where(force_branch, lam, gamma * separation)
+        rows = 3 * n + np.arange(m)
+        jac[rows[force_branch], 3 * n + np.flatnonzero(force_branch)] = 1.0
+        vel = ~force_branch
+        jac[rows[vel], 3 * (touching[vel] + 1)] = gamma
+        jac[rows[vel], 3 * touching[vel]] = -gamma
+        return residual, jac
+
+    z0 = np.concatenate([x_free.reshape(-1), np.zeros(m)])
+    z, residual, iterations = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations,
+                                     what=f"{n}-ball B2B contact")
+    scaled, forces = unpack(z)
+    separation = scaled[touching + 1, 0] - scaled[touching, 0]
+    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
+    if violation > 10 * tolerance:
+        raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
+                               iterations=iterations, tolerance=tolerance)
+    forces = np.maximum(forces, 0.0)
+    terms = _ball_terms(scaled, contacts, reference_force)
+    _, _, _, slip = _b2b_terms(scaled, forces, mu)
+    return _state(scaled, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
+                  b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
+
+
+@dataclass(frozen=True)
+class GapHistory:
+    """Piecewise-linear gap history (lin2019 Fig 10).
+
+    times : (k,) s, event times from 0 to ``t_end``
+    gaps : (k, n-1) m, gaps at those times (linear in between)
+    ball_velocity : (k-1, n) m/s, velocities on each interval
+    b2b_force : (k-1, n-1) N, B2B forces on each interval
+    iterations : (k-1,) Newton iterations of each quasi-static solve
+    """
+
+    times: np.ndarray
+    gaps: np.ndarray
+    ball_velocity: np.ndarray
+    b2b_force: np.ndarray
+    iterations: np.ndarray
+
+    def gaps_at(self, time) -> np.ndarray:
+        """Gaps [m] at ``time`` [s] (scalar or (k,)), shape (..., n-1)."""
+        time = np.asarray(time, dtype=float)
+        return np.stack([np.interp(time, self.times, self.gaps[:, j]) for j in range(self.gaps.shape[1])],
+                        axis=-1)
+
+
+def simulate_gaps(contacts: BallContacts, initial_gaps, t_end: float, *, max_events: int = 10000,
+                  tolerance: float = 1e-12) -> GapHistory:
+    """Gaps between neighbouring balls over time from the quasi-static velocities.
+
+    Parameters
+    ----------
+    contacts : BallContacts of ``n >= 2`` balls (ordered along +z)
+    initial_gaps : (n-1,) m (lin2019 Fig 10: 0.1 R_B)
+    t_end : s, end time (> 0)
+
+    Between events every ball moves at its quasi-static velocity (the transient
+    of the contact is ignored, lin2019 Sec 2.2), so gaps are linear in time;
+    a gap that reaches zero closes exactly at its event time, and a touching
+    pair whose complementarity solution separates opens.
+    """
+    n = contacts.n_balls
+    if n < 2:
+        raise ValueError(f"simulate_gaps needs n >= 2 balls, got {n}")
+    t_end = float(t_end)
+    if not math.isfinite(t_end) or t_end <= 0.0:
+        raise ValueError(f"t_end must be finite and > 0 s, got {t_end!r}")
+    gaps = _check_gaps(initial_gaps, n, contacts.ball_radius).copy()
+    gap_tolerance = 1e-9 * contacts.ball_radius
+    time = 0.0
+    times, history, velocities, forces, counts = [0.0], [gaps.copy()], [], [], []
+    for _ in range(max_events):
+        state = solve(contacts, gaps, tolerance=tolerance, gap_tolerance=gap_tolerance)
+        rate = np.diff(state.ball_velocity)  # d gap_j / dt = v_{j+1} - v_j
+        touching = gaps <= gap_tolerance
+        closing = (~touching) & (rate < 0.0)
+        dt = t_end - time
+        hit = -1
+        if np.any(closing):
+            when = np.where(closing, gaps / np.where(closing, -rate, 1.0), np.inf)
+            hit = int(np.argmin(when))
+            if when[hit] < dt:
+                dt = float(when[hit])
+            else:
+                hit = -1
+        gaps = gaps + rate * dt
+        gaps[touching & (rate <= 0.0)] = 0.0  # touching pairs that stay together
+        if hit >= 0:
+            gaps[hit] = 0.0
+        gaps = np.maximum(gaps, 0.0)
+        time += dt
+        times.append(time)
+        history.append(gaps.copy())
+        velocities.append(state.ball_velocity)
+        forces.append(state.b2b_force)
+        counts.append(state.iterations)
+        if time >= t_end:
+            break
+    else:
+        raise ConvergenceError("simulate_gaps: too many contact events", residual=t_end - time,
+                               iterations=max_events, tolerance=0.0)
+    return GapHistory(np.array(times), np.array(history), np.array(velocities), np.array(forces),
+                      np.array(counts))

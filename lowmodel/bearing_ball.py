@@ -1,0 +1,415 @@
+"""Quasi-static motion and friction of one ball in a four-point-contact linear ball bearing.
+
+lin2019 Sec 2.1 (eqs 1-4, Appendix A1-A7), normal forces from lin2017 eq 36.
+
+Frame (lin2019 Fig 2): ``z`` along the raceway (direction of motion of the
+top groove, velocity ``v``), ``y`` up, ``x`` to the right; ball centre at the
+origin.  Contact ``i`` in the order (BL, BR, TR, TL) sits at
+``r_i = R_B n_i`` with the outward unit normal
+
+    n_BL = (-sin b, -cos b),  n_BR = (sin b, -cos b),
+    n_TR = ( sin b,  cos b),  n_TL = (-sin b,  cos b)      (b = beta_i)
+
+(checked against eqs 1, A1-A3: ``(Omega x r_i)_z`` reproduces each bracket).
+Unknowns: ball velocity ``v_B`` and ``Omega = (omega_x, omega_y, 0)``.
+
+Per contact (lin2019 eqs 1-3, A1-A3), with ``V_i`` the groove velocity
+(0 bottom, ``v`` top):
+
+    slide_i = v_B - V_i + (Omega x r_i)_z     slip of the ball at the contact centre [m/s]
+            = omega_i c_i                      (numerator of eq 2)
+    omega_i = -Omega . n_i                     spin about the inward normal y_i (eq 2)
+    spin_i  = omega_i a_i                      [m/s]
+
+Friction comes from :func:`lowmodel.ellipse_friction.friction_velocity`,
+a function of ``(spin_i, slide_i)`` that stays finite when
+``omega_i -> 0`` (``c_i -> inf``, pure sliding): the velocity-centre
+offset ``c_i/a_i = slide/spin`` is never formed, the tabulation is in the
+slip-direction angle ``atan2(slide, spin)``.
+
+    f_i   = mu F_i force_i                 friction force on the ball along +z [N]      (eq A4)
+    M_i   = mu F_i a_i moment_i            spin moment on the ball about -y_i [N m]     (eq A5)
+
+Equilibrium (lin2019 eq 4; ``m_i = -M_i`` is the moment about ``+y_i = -n_i``):
+
+    sum_i f_i                                 = -F_ext,z
+    sum_i (n_i,y f_i + n_i,x M_i / R_B)       = -M_ext,x / R_B
+    sum_i (-n_i,x f_i + n_i,y M_i / R_B)      = -M_ext,y / R_B
+
+(the rows of eq 4: e.g. BL has ``n_y = -cos``, ``-n_x = sin``).  ``F_ext``
+and ``M_ext`` carry the ball-to-ball terms of :mod:`lowmodel.b2b`.
+
+Friction loss of contact ``i`` is the power of its tractions on the slip
+field, ``P_i = -(f_i slide_i + m_i omega_i) = mu F_i (a_i omega_i moment_i
+- slide_i force_i)``; this is the exact identity ``loss = moment - (c/a)
+force`` of eqs A4-A6, evaluated from the same force and moment that enter the
+equilibrium, so the power balance ``v sum_top f_i = sum_i P_i`` holds to the
+Newton tolerance (it checks kinematics, moment arms and signs, not the
+quadrature).  The tabulated loss of eq A6 is reported alongside
+(``friction_loss_table``) and agrees to the accuracy of the friction map.
+
+Newton's method in the scaled unknowns ``(v_B, omega_x R_B, omega_y R_B)/|v|``
+with the analytic Jacobian (chain rule through the map's derivatives);
+residuals in units of ``mu max(F_i)``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lowmodel.errors import ConvergenceError
+
+__all__ = [
+    "BallContacts",
+    "BallState",
+    "ball_contacts",
+    "contacts_from_forces",
+    "solve_ball",
+    "contact_normals",
+    "CONTACT_NAMES",
+]
+
+CONTACT_NAMES = ("BL", "BR", "TR", "TL")  # lin2017 Fig 2 order, shared convention
+_SIGN_X = np.array([-1.0, 1.0, 1.0, -1.0])
+_SIGN_Y = np.array([-1.0, -1.0, 1.0, 1.0])
+_TOP = np.array([0.0, 0.0, 1.0, 1.0])  # contacts on the moving (top) groove
+
+
+# --------------------------------------------------------------------------
+# data
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BallContacts:
+    """Contact data of ``n`` balls (leading shape ``(n,)``; a single ball has ``n = 1``).
+
+    contact_angles : (n, 4) rad, (BL, BR, TR, TL), measured from -+y (lin2019 Fig 2)
+    normal_forces  : (n, 4) N, lin2017 eq 36
+    semi_major     : (n, 4) m, Hertz semi-axis ``a_i`` (in the cross-section)
+    b_over_a       : (n, 4) Hertz axis ratio
+    ball_radius    : m
+    friction_coefficient : mu (Coulomb, ball-to-groove and ball-to-ball)
+    groove_velocity : m/s, velocity ``v`` of the top groove along +z (nonzero)
+    """
+
+    contact_angles: np.ndarray
+    normal_forces: np.ndarray
+    semi_major: np.ndarray
+    b_over_a: np.ndarray
+    ball_radius: float
+    friction_coefficient: float
+    groove_velocity: float
+
+    @property
+    def n_balls(self) -> int:
+        return self.normal_forces.shape[0]
+
+    def ball(self, index: int) -> "BallContacts":
+        """The contacts of ball ``index`` alone (shape (1, 4))."""
+        sl = slice(index, index + 1)
+        return BallContacts(self.contact_angles[sl], self.normal_forces[sl], self.semi_major[sl],
+                            self.b_over_a[sl], self.ball_radius, self.friction_coefficient,
+                            self.groove_velocity)
+
+
+@dataclass(frozen=True)
+class BallState:
+    """Quasi-static solution for ``n`` balls (arrays have leading shape ``(n,)``).
+
+    ball_velocity : (n,) m/s, ``v_B``
+    omega : (n, 2) rad/s, ``(omega_x, omega_y)``
+    velocity_deviation : (n,) ``epsilon = 2 v_B / v - 1`` (lin2019 eq 21)
+    spin : (n, 4) rad/s, ``omega_i`` (eq 2)
+    slide : (n, 4) m/s, ``omega_i c_i`` (slip at the contact centre)
+    c_over_a : (n, 4) velocity-centre offset ``c_i/a_i`` (+-inf at pure sliding)
+    friction_force : (n, 4) N, ``f_{i,z}`` on the ball
+    friction_moment : (n, 4) N m, ``M_{i,O}`` about -y_i (lin2019 sign)
+    friction_loss : (n, 4) W, ``P_{f,i}`` from the power of the tractions
+    friction_loss_table : (n, 4) W, eq A6 from the friction map
+    input_power : W, power put in by the top groove, ``v sum_top f_i``
+    b2b_force : (n - 1,) N, ball-to-ball normal force between balls j and j+1
+    b2b_friction_loss : (n - 1,) W, lin2019 eq 7
+    b2b_slip : (n - 1,) m/s, ``|Delta v_B2B|`` (eq 5)
+    iterations : Newton iterations; residual : final max residual / (mu max F)
+    """
+
+    ball_velocity: np.ndarray
+    omega: np.ndarray
+    velocity_deviation: np.ndarray
+    spin: np.ndarray
+    slide: np.ndarray
+    c_over_a: np.ndarray
+    friction_force: np.ndarray
+    friction_moment: np.ndarray
+    friction_loss: np.ndarray
+    friction_loss_table: np.ndarray
+    input_power: float
+    b2b_force: np.ndarray
+    b2b_friction_loss: np.ndarray
+    b2b_slip: np.ndarray
+    iterations: int
+    residual: float
+
+    @property
+    def total_loss(self) -> float:
+        """Ball-to-groove plus ball-to-ball friction loss [W]."""
+        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
+
+    @property
+    def groove_loss(self) -> float:
+        """Ball-to-groove friction loss [W]."""
+        return float(self.friction_loss.sum())
+
+
+# --------------------------------------------------------------------------
+# input checks and construction
+# --------------------------------------------------------------------------
+def _finite_positive(name: str, value, unit: str) -> float:
+    value = float(value)
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
+    return value
+
+
+def _check_angles(contact_angles) -> np.ndarray:
+    angles = np.asarray(contact_angles, dtype=float)
+    if angles.ndim == 1:
+        angles = angles[None, :]
+    if angles.ndim != 2 or angles.shape[-1] != 4:
+        raise ValueError(f"contact_angles must have shape (4,) or (n, 4), got {angles.shape}")
+    if not np.all(np.isfinite(angles)) or np.any(angles <= 0.0) or np.any(angles >= 0.5 * math.pi):
+        raise ValueError("contact_angles must lie in (0, pi/2) rad, i.e. (0, 90) deg; "
+                         f"got range [{np.nanmin(angles)!r}, {np.nanmax(angles)!r}] rad")
+    return angles
+
+
+def contacts_from_forces(contact_angles, normal_forces, semi_major, b_over_a, *, ball_radius: float,
+                         friction_coefficient: float, groove_velocity: float) -> BallContacts:
+    """Build :class:`BallContacts` from given normal forces and Hertz semi-axes.
+
+    Shapes ``(4,)`` or ``(n, 4)``; forces [N] must be > 0 (four-point contact).
+    """
+    radius = _finite_positive("ball_radius", ball_radius, "m")
+    mu = _finite_positive("friction_coefficient", friction_coefficient, "(mu = 0 leaves the ball motion undetermined)")
+    velocity = float(groove_velocity)
+    if not math.isfinite(velocity) or velocity == 0.0:
+        raise ValueError(f"groove_velocity must be finite and nonzero m/s, got {groove_velocity!r}")
+    angles = _check_angles(contact_angles)
+    forces = np.broadcast_to(np.asarray(normal_forces, dtype=float), angles.shape).copy()
+    if not np.all(np.isfinite(forces)) or np.any(forces <= 0.0):
+        raise ValueError("normal_forces must be finite and > 0 N at all four contacts "
+                         "(loss of four-point contact otherwise, lin2017 eq 37); "
+                         f"got min {np.nanmin(forces)!r}")
+    axes = np.broadcast_to(np.asarray(semi_major, dtype=float), angles.shape).copy()
+    if not np.all(np.isfinite(axes)) or np.any(axes <= 0.0):
+        raise ValueError("semi_major must be finite and > 0 m")
+    ratio = np.broadcast_to(np.asarray(b_over_a, dtype=float), angles.shape).copy()
+    if not np.all(np.isfinite(ratio)) or np.any(ratio <= 0.0) or np.any(ratio > 1.0):
+        raise ValueError("b_over_a must lie in (0, 1]")
+    return BallContacts(angles, forces, axes, ratio, radius, mu, velocity)
+
+
+def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: float, conformity: float,
+                  friction_coefficient: float, groove_velocity: float,
+                  youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28) -> BallContacts:
+    """Contact data from the external load of each ball.
+
+    Parameters
+    ----------
+    contact_angles : (4,) or (n, 4) rad, (BL, BR, TR, TL)
+    side_force, vertical_force : scalar or (n,) N, ``N_x`` and ``N_y`` applied
+        through the top groove (lin2017 eq 35/36, lin2019 Fig 7)
+    ball_radius : m; conformity : groove radius / ball diameter (> 0.5)
+    friction_coefficient : mu; groove_velocity : m/s (top groove)
+    youngs_modulus [Pa], poisson_ratio : ball and groove (same material)
+
+    Normal forces from :func:`lowmodel.fourpoint.normal_forces` (lin2017 eq
+    36; ValueError at loss of four-point contact), semi-axes from
+    :func:`lowmodel.hertz.ball_in_groove` / ``solve_load``.
+    """
+    from lowmodel import fourpoint, hertz
+
+    angles = _check_angles(contact_angles)
+    n = angles.shape[0]
+    side = np.broadcast_to(np.asarray(side_force, dtype=float), (n,))
+    vertical = np.broadcast_to(np.asarray(vertical_force, dtype=float), (n,))
+    forces = np.asarray(fourpoint.normal_forces(side, vertical, angles), dtype=float)  # lin2017 eq 36
+    geometry = hertz.ball_in_groove(ball_radius, conformity, youngs_modulus=youngs_modulus,
+                                    poisson_ratio=poisson_ratio)
+    if not np.all(np.isfinite(forces)) or np.any(forces <= 0.0):
+        raise ValueError("side_force/vertical_force give a normal force <= 0: loss of four-point "
+                         "contact (lin2017 eq 37)")
+    contact = hertz.solve_load(geometry, forces)
+    return contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=ball_radius,
+                                friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)
+
+
+def contact_normals(contact_angles) -> np.ndarray:
+    """Outward unit normals ``(n_x, n_y)`` of the contacts, shape ``(..., 4, 2)`` (module docstring)."""
+    angles = np.asarray(contact_angles, dtype=float)
+    return np.stack([_SIGN_X * np.sin(angles), _SIGN_Y * np.cos(angles)], axis=-1)
+
+
+# --------------------------------------------------------------------------
+# residual of the ball equilibrium (vectorised over balls)
+# --------------------------------------------------------------------------
+def _friction(spin, slide, b_over_a):
+    from lowmodel.ellipse_friction import friction_velocity
+
+    return friction_velocity(spin, slide, b_over_a)
+
+
+@dataclass(frozen=True)
+class _Terms:
+    residual: np.ndarray  # (n, 3) units mu F_ref
+    jacobian: np.ndarray  # (n, 3, 3) d residual / d scaled unknowns
+    slide: np.ndarray  # (n, 4) units |v|
+    spin_velocity: np.ndarray  # (n, 4) omega_i a_i, units |v|
+    force: np.ndarray  # (n, 4) units mu F_ref, on the ball along +z
+    moment: np.ndarray  # (n, 4) M_{i,O}/R_B, units mu F_ref
+    loss_table: np.ndarray  # (n, 4) units mu F_ref |v|
+
+
+def _ball_terms(scaled: np.ndarray, contacts: BallContacts, reference_force: float) -> _Terms:
+    """Residual of lin2019 eq 4 for each ball and its Jacobian.
+
+    ``scaled`` (n, 3) = (v_B, omega_x R_B, omega_y R_B) / |v|.
+    """
+    normals = contact_normals(contacts.contact_angles)  # (n, 4, 2)
+    nx, ny = normals[..., 0], normals[..., 1]
+    direction = math.copysign(1.0, contacts.groove_velocity)
+    arm = contacts.semi_major / contacts.ball_radius  # a_i / R_B
+    load = contacts.normal_forces / reference_force
+    x0, x1, x2 = scaled[:, 0:1], scaled[:, 1:2], scaled[:, 2:3]
+    slide = x0 - direction * _TOP + x1 * ny - x2 * nx  # lin2019 eqs 1, A1-A3 (z slip at the centre)
+    spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2
+    fr = _friction(spin_velocity, slide, contacts.b_over_a)
+    force = load * fr.force  # eq A4
+    moment = load * arm * fr.moment  # eq A5, M_{i,O}/R_B about -y_i
+    # d/d(x0, x1, x2) of slide and spin
+    dslide = np.stack([np.ones_like(nx), ny, -nx], axis=-1)  # (n, 4, 3)
+    dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)
+    dforce = (load * fr.dforce_dslide)[..., None] * dslide + (load * fr.dforce_dspin)[..., None] * dspin
+    dmoment = (load * arm * fr.dmoment_dslide)[..., None] * dslide + (load * arm * fr.dmoment_dspin)[..., None] * dspin
+    residual = np.stack([force.sum(axis=1),  # lin2019 eq 4, row 1
+                         (ny * force + nx * moment).sum(axis=1),  # row 2
+                         (-nx * force + ny * moment).sum(axis=1)], axis=-1)  # row 3
+    jacobian = np.stack([dforce.sum(axis=1),
+                         (ny[..., None] * dforce + nx[..., None] * dmoment).sum(axis=1),
+                         (-nx[..., None] * dforce + ny[..., None] * dmoment).sum(axis=1)], axis=1)
+    return _Terms(residual, jacobian, slide, spin_velocity, force, moment, load * fr.loss)
+
+
+def _initial_guess(contacts: BallContacts) -> np.ndarray:
+    """Rolling about x with v_B = v/2 (the theta = 0 solution), scaled."""
+    direction = math.copysign(1.0, contacts.groove_velocity)
+    cos_mean = np.cos(contacts.contact_angles).mean(axis=1)
+    guess = np.zeros((contacts.n_balls, 3))
+    guess[:, 0] = 0.5 * direction
+    guess[:, 1] = 0.5 * direction / cos_mean
+    return guess
+
+
+def _state(scaled, terms: _Terms, contacts: BallContacts, reference_force: float, *, b2b_force=None,
+           b2b_slip=None, iterations: int, residual: float) -> BallState:
+    speed = abs(contacts.groove_velocity)
+    radius = contacts.ball_radius
+    mu_f = contacts.friction_coefficient * reference_force
+    velocity = scaled[:, 0] * speed
+    omega = scaled[:, 1:3] * speed / radius
+    spin = terms.spin_velocity * speed / contacts.semi_major
+    slide = terms.slide * speed
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c_over_a = np.where(terms.spin_velocity != 0.0, terms.slide / terms.spin_velocity,
+                            np.sign(terms.slide) * np.inf)
+    force = terms.force * mu_f
+    moment = terms.moment * mu_f * radius
+    # power of the tractions on the slip field: P = -(f slide + m omega), m = -M (about +y_i)
+    loss = -(force * slide - moment * spin)
+    input_power = float(contacts.groove_velocity * (force * _TOP).sum())
+    n_pairs = contacts.n_balls - 1
+    if b2b_force is None:
+        b2b_force = np.zeros(n_pairs)
+        b2b_slip = np.zeros(n_pairs)
+    b2b_loss = contacts.friction_coefficient * b2b_force * b2b_slip  # lin2019 eq 7
+    return BallState(velocity, omega, 2.0 * velocity / contacts.groove_velocity - 1.0, spin, slide, c_over_a,
+                     force, moment, loss, terms.loss_table * mu_f * speed, input_power, b2b_force,
+                     b2b_loss, b2b_slip, iterations, residual)
+
+
+# --------------------------------------------------------------------------
+# Newton
+# --------------------------------------------------------------------------
+def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str):
+    """Damped Newton on ``function(x) -> (residual, jacobian)`` (dense).
+
+    Backtracking on ``|r|^2``; stops when ``max|r| <= tolerance``.  Returns
+    ``(x, residual_vector, iterations)``; raises ConvergenceError with the
+    residual otherwise (also on a singular Jacobian).
+    """
+    x = np.array(x0, dtype=float)
+    residual, jacobian = function(x)
+    norm = float(np.max(np.abs(residual))) if residual.size else 0.0
+    iterations = 0
+    while norm > tolerance:
+        if iterations >= max_iterations or not np.isfinite(norm):
+            raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
+                                   tolerance=tolerance)
+        try:
+            step = np.linalg.solve(jacobian, -residual)
+        except np.linalg.LinAlgError:
+            raise ConvergenceError(f"{what}: singular Jacobian", residual=norm, iterations=iterations,
+                                   tolerance=tolerance) from None
+        if not np.all(np.isfinite(step)):
+            raise ConvergenceError(f"{what}: non-finite Newton step", residual=norm, iterations=iterations,
+                                   tolerance=tolerance)
+        merit = float(residual @ residual)
+        length = 1.0
+        for _ in range(30):
+            trial = x + length * step
+            trial_residual, trial_jacobian = function(trial)
+            trial_merit = float(trial_residual @ trial_residual)
+            if np.isfinite(trial_merit) and trial_merit <= (1.0 - 1e-4 * length) * merit:
+                break
+            length *= 0.5
+        else:
+            raise ConvergenceError(f"{what}: line search failed", residual=norm, iterations=iterations,
+                                   tolerance=tolerance)
+        x, residual, jacobian = trial, trial_residual, trial_jacobian
+        norm = float(np.max(np.abs(residual)))
+        iterations += 1
+    return x, residual, iterations
+
+
+def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 50) -> BallState:
+    """Solve lin2019 eq 4 for each ball independently (no ball-to-ball contact).
+
+    Parameters
+    ----------
+    contacts : BallContacts for ``n`` balls (see :func:`ball_contacts`)
+    tolerance : max residual of eq 4 in units of ``mu max(F_i)`` (forces, and moments / R_B)
+    max_iterations : Newton iterations per ball
+
+    Returns
+    -------
+    BallState; ``iterations`` is the largest count over the balls.
+    Raises ConvergenceError (with the residual) if Newton fails.
+    """
+    reference_force = float(contacts.normal_forces.max())
+    scaled = _initial_guess(contacts)
+    worst_iterations, worst_residual = 0, 0.0
+    for index in range(contacts.n_balls):
+        single = contacts.ball(index)
+
+        def function(x, single=single):
+            terms = _ball_terms(x[None, :], single, reference_force)
+            return terms.residual[0], terms.jacobian[0]
+
+        x, residual, iterations = newton(function, scaled[index], tolerance=tolerance,
+                                         max_iterations=max_iterations, what=f"ball {index}")
+        scaled[index] = x
+        worst_iterations = max(worst_iterations, iterations)
+        worst_residual = max(worst_residual, float(np.max(np.abs(residual))))
+    terms = _ball_terms(scaled, contacts, reference_force)
+    return _state(scaled, terms, contacts, reference_force, iterations=worst_iterations, residual=worst_residual)
