@@ -575,26 +575,35 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     return path
 
 
+def _flank_intersections(left: HelicalGroove, right: HelicalGroove) -> tuple[np.ndarray, np.ndarray]:
+    """(u, w) of the two intersections of the flank circles: (groove bottom, top of the lens)."""
+    c_l, c_r = left.arc_centre, right.arc_centre
+    r_g = left.groove_radius
+    mid = (c_l + c_r) / 2
+    half = float(np.linalg.norm(c_r - c_l)) / 2
+    along = (c_r - c_l) / (2 * half)
+    perp = np.array([along[1], -along[0]])
+    points = [mid + s * math.sqrt(r_g**2 - half**2) * perp for s in (-1.0, 1.0)]
+    points.sort(key=lambda uw: -left.sign_u * uw[0])  # the bottom lies deepest in the body
+    return points[0], points[1]
+
+
 def _lens_loop(occ, grooves: tuple[HelicalGroove, HelicalGroove], phi: float) -> int:
     """Curve loop of the gothic-arch lens (inside both flank circles) in the profile plane at ``phi``."""
     left, right = grooves
-    r_g = left.groove_radius
-    c_l, c_r = left.arc_centre, right.arc_centre
-    mid = (c_l + c_r) / 2
-    half = float(np.linalg.norm(c_r - c_l)) / 2
-    normal = np.array([1.0, 0.0])  # the centres lie on the line u = const (symmetric about w = 0)
-    apexes = [mid + s * math.sqrt(r_g**2 - half**2) * normal for s in (-1.0, 1.0)]
+    apexes = _flank_intersections(left, right)
     tags = [occ.addPoint(*left.to_world(a[0], a[1], phi)) for a in apexes]
-    centres = [occ.addPoint(*left.to_world(c[0], c[1], phi)) for c in (c_l, c_r)]
-    # the arc of the left flank's circle bounds the lens on the side w < 0 ... and vice versa;
-    # each arc is shorter than pi (it subtends 2 asin(sqrt(r_g^2 - half^2) / r_g) < pi)
+    centres = [occ.addPoint(*left.to_world(c[0], c[1], phi)) for c in (left.arc_centre, right.arc_centre)]
+    # each flank circle bounds the lens on the side away from its centre; both arcs are
+    # shorter than pi (the centres lie inside the lens), so OCC's arc is the right one
     arcs = [occ.addCircleArc(tags[0], centres[1], tags[1]), occ.addCircleArc(tags[1], centres[0], tags[0])]
     loop = occ.addCurveLoop(arcs)
     occ.remove([(0, c) for c in centres])
     return loop
 
 
-def _snap_to_bottom(gmsh, groove: HelicalGroove, left_faces: list[int], right_faces: list[int]) -> None:
+def _snap_to_bottom(gmsh, grooves: tuple[HelicalGroove, HelicalGroove], left_faces: list[int],
+                    right_faces: list[int]) -> None:
     """Put the nodes shared by both flanks (the groove-bottom edge) on the exact bottom helix."""
     def node_set(faces):
         tags = [gmsh.model.mesh.getNodes(2, f, includeBoundary=True)[0] for f in faces]
@@ -604,16 +613,16 @@ def _snap_to_bottom(gmsh, groove: HelicalGroove, left_faces: list[int], right_fa
     if not shared:
         return
     coords = np.array([gmsh.model.mesh.getNode(int(tag))[0] for tag in shared])
-    phi, _ = profile_coordinates(groove, coords)
-    u_bottom = groove.profile(groove.bottom_theta)[0]
-    exact = groove.to_world(np.full_like(phi, u_bottom), np.zeros_like(phi), phi)
+    phi, _ = profile_coordinates(grooves[0], coords)
+    bottom, _ = _flank_intersections(*grooves)
+    exact = grooves[0].to_world(np.full_like(phi, bottom[0]), np.full_like(phi, bottom[1]), phi)
     for tag, xyz in zip(shared, exact):
         gmsh.model.mesh.setNode(int(tag), xyz.tolist(), [])
 
 
 def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
-                         contact_angle: float, body: str = "screw", *, profile_plane: str = "normal",
-                         land_radius: float | None = None, back_radius: float | None = None,
+                         contact_angle: float, body: str = "screw", *, deviations=(0.0, 0.0),
+                         profile_plane: str = "normal", land_radius: float | None = None, back_radius: float | None = None,
                          half_angle: float | None = None, axial_half_width: float | None = None,
                          h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
                          fine_radius: float | None = None, cache: bool = True) -> Path:
@@ -628,23 +637,33 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
     groove enters), minus the gothic-arch lens swept along the helix (both flanks;
     lin2019 Fig 13).  Default ``half_angle``: ``2 R_B / R_P``.  With ``h_contact``
     the mesh is refined around the two contact points of a ball at phi = 0.
+    ``deviations`` [rad]: contact angle deviations (left, right) of the two flanks
+    (lin2019 Fig 17, eq 17 ``b = b_0 + db``): a flank's arc centre turns about the
+    ball centre so a ball on the helix touches it at ``contact_angle + db``.
 
     Physical groups: volume ``screw`` or ``nut``; surfaces ``flank_left``,
     ``flank_right`` (nodes on the exact helical surface), ``land``, ``back``,
     ``segment_free`` (the cut faces).
     """
-    grooves = tuple(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank,
-                                   profile_plane) for flank in ("left", "right"))
+    try:
+        deviations = [float(d) for d in deviations]
+    except (TypeError, ValueError):
+        raise ValueError(f"deviations must be two angles (left, right) [rad], got {deviations!r}") from None
+    if len(deviations) != 2 or not all(math.isfinite(d) and abs(d) <= math.radians(15) for d in deviations):
+        raise ValueError(f"deviations must be two angles (left, right) in [-15, 15] deg [rad], got {deviations!r}")
+    contact_angle = _contact_angle(contact_angle)
+    grooves = tuple(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle + deviation, body,
+                                   flank, profile_plane) for flank, deviation in zip(("left", "right"), deviations))
     left = grooves[0]
     radius, r_p, p = left.ball_radius, left.pitch_radius, left.lead_per_radian
     sign = left.sign_u
     land = r_p + sign * 0.25 * radius if land_radius is None else _positive("land_radius", land_radius, "m")
     back = r_p + sign * 2.0 * radius if back_radius is None else _positive("back_radius", back_radius, "m")
-    contact_u = sign * radius * math.cos(left.contact_angle)
+    contact_u = sign * radius * min(math.cos(g.contact_angle) for g in grooves)
     if not sign * (land - r_p) < sign * contact_u - 0.05 * radius:
         raise ValueError(f"land_radius must leave the contact points (at radius {r_p + contact_u!r} m) in the "
                          f"groove, got {land!r}")
-    bottom_u = left.profile(left.bottom_theta)[0]
+    bottom_u = _flank_intersections(*grooves)[0][0]
     if not sign * (back - r_p) > sign * bottom_u + 0.05 * radius:
         raise ValueError(f"back_radius must lie beyond the groove bottom (radius {r_p + bottom_u!r} m), got {back!r}")
     half_angle = 2.0 * radius / r_p if half_angle is None else _positive("half_angle", half_angle, "rad")
@@ -659,7 +678,7 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
     h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                               growth, h_max, fine_radius)
     params = dict(builder="screw_groove_segment", groove=[radius, left.conformity, r_p, left.lead,
-                  left.contact_angle, left.body, left.profile_plane], land=land, back=back, half_angle=half_angle,
+                  left.contact_angle, grooves[1].contact_angle, left.body, left.profile_plane], land=land, back=back, half_angle=half_angle,
                   width=width, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
                   fine_radius=fine_radius)
     path, build = cached_msh(f"{left.body}-segment", params, MESH_FORMAT_VERSION, cache=cache)
@@ -713,6 +732,6 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
         gmsh.model.mesh.generate(3)
         for g, name in zip(grooves, ("flank_left", "flank_right")):
             _snap_to_groove(gmsh, g, roles[name], np.eye(3), np.zeros(3))
-        _snap_to_bottom(gmsh, left, roles["flank_left"], roles["flank_right"])
+        _snap_to_bottom(gmsh, grooves, roles["flank_left"], roles["flank_right"])
         write_msh(gmsh, path)
     return path

@@ -339,13 +339,16 @@ def test_pair_bad_input_names_the_parameter(kwargs, name):
 # --------------------------------------------------------------------------
 # full screw / nut groove segment
 # --------------------------------------------------------------------------
-@pytest.mark.parametrize("body", ["screw", "nut"])
-def test_groove_segment_flanks_land_and_four_point_contact(body):
+@pytest.mark.parametrize("body, deviations", [("screw", (0.0, 0.0)), ("nut", (0.0, 0.0)),
+                                               ("screw", (0.0, math.radians(3.0)))])
+def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
     """Both flanks are the exact helical arcs; the land is the cylinder of its radius; a
     ball centred anywhere on the helix touches both flanks (distance R_B) and nowhere
-    lies inside them (lin2019 Fig 13: four-point contact with screw and nut)."""
+    lies inside them (lin2019 Fig 13: four-point contact with screw and nut), also with
+    a contact angle deviation of 3 deg on one flank (lin2019 Fig 17, case b)."""
     h = 1e-4
-    path = helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, body, h_contact=h, growth=1.5)
+    path = helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, body, deviations=deviations, h_contact=h,
+                                        growth=1.5)
     mesh = meshio.read(path)
     assert len(_group_cells(mesh, body, "tetra")) > 100
     land = R_P - 0.25 * R_B if body == "screw" else R_P + 0.25 * R_B
@@ -353,8 +356,8 @@ def test_groove_segment_flanks_land_and_four_point_contact(body):
     # (its edges with the flanks carry flank nodes moved onto the exact helical surface:
     # OCC's loft/boolean intersection lies within 1e-7 m of it)
     assert np.abs(np.hypot(nodes[:, 0], nodes[:, 1]) - land).max() < 1e-7
-    for flank in ("left", "right"):
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank)
+    for flank, deviation in zip(("left", "right"), deviations):
+        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + deviation, body, flank)
         nodes = mesh.points[_group_nodes(mesh, f"flank_{flank}")]
         assert np.abs(helical.surface_residual(groove, nodes)).max() < 1e-12 * R_B
         for phi in (-0.1, 0.0, 0.1):
@@ -362,12 +365,13 @@ def test_groove_segment_flanks_land_and_four_point_contact(body):
             assert distance.min() > R_B * (1 - 1e-12)
             if phi == 0.0:  # refined there: chord sagitta h^2 / (8 R_B) bounds the miss
                 assert distance.min() < R_B + h**2 / (8 * R_B)
-    # the flanks meet at the groove bottom: it is a helix of the bottom radius
+    # the flanks meet at the groove bottom: a helix, fixed in the profile plane
     groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
     shared = np.intersect1d(_group_nodes(mesh, "flank_left"), _group_nodes(mesh, "flank_right"))
     assert len(shared) > 5
     phi, uw = helical.profile_coordinates(groove, mesh.points[shared])
-    assert np.abs(uw[:, 1]).max() < 1e-12 and np.ptp(uw[:, 0]) < 1e-12
+    assert np.ptp(uw[:, 1]) < 1e-12 and np.ptp(uw[:, 0]) < 1e-12
+    assert (abs(uw[0, 1]) < 1e-12) == (deviations[0] == deviations[1])  # symmetric only without deviation
 
 
 # --------------------------------------------------------------------------
@@ -551,3 +555,20 @@ def test_module_bad_input_names_the_parameter(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         fourpoint_module.fourpoint_module(**args, cache=False)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(deviations=(0.0,)), "deviations"),
+    (dict(deviations=(0.0, math.radians(20))), "deviations"),
+    (dict(deviations=(float("nan"), 0.0)), "deviations"),
+    (dict(contact_angle=math.radians(88), deviations=(0.0, math.radians(3))), "contact_angle"),
+    (dict(land_radius=R_P - R_B), "land_radius"),
+    (dict(back_radius=R_P - 0.5 * R_B), "back_radius"),
+    (dict(axial_half_width=15e-3), "axial_half_width"),
+    (dict(half_angle=2.0), "half_angle"),
+])
+def test_groove_segment_bad_input_names_the_parameter(kwargs, match):
+    args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        helical.screw_groove_segment(**args, cache=False)
