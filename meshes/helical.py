@@ -461,10 +461,36 @@ def _check_refinement(ball_radius: float, h_contact, growth, h_max, fine_radius)
     return h_contact, growth, h_max, fine_radius
 
 
+def _patch_refinement(gmsh, h_contact: float, growth: float, h_max: float, half_lengths: tuple[float, float]) -> int:
+    """Background size field ``h = min(h_max, h_contact + (growth - 1) d)`` with ``d`` the
+    distance [m] from the rectangle ``|x| <= half_lengths[0], |y| <= half_lengths[1]`` of
+    the contact plane z = 0 (fits an elongated Hertz ellipse better than a sphere).
+    The same law as :func:`meshes.gmsh_tools.contact_refinement`, whose fine zone is a ball."""
+    a_x, a_y = (float(v) for v in half_lengths)
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    beyond_x = f"((Abs(x) - ({a_x!r}) + Abs(Abs(x) - ({a_x!r}))) / 2)"  # max(0, |x| - a_x)
+    beyond_y = f"((Abs(y) - ({a_y!r}) + Abs(Abs(y) - ({a_y!r}))) / 2)"
+    field.setString(distance, "F", f"Sqrt({beyond_x}^2 + {beyond_y}^2 + z^2)")
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance)
+    field.setNumber(threshold, "SizeMin", h_contact)
+    field.setNumber(threshold, "SizeMax", h_max)
+    field.setNumber(threshold, "DistMin", 0.0)
+    field.setNumber(threshold, "DistMax", (h_max - h_contact) / max(growth - 1.0, 1e-9))
+    field.setAsBackgroundMesh(threshold)
+    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
+        gmsh.option.setNumber(option, 0)  # the field alone governs the size (issue 5 notes)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    return threshold
+
+
 def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
                               contact_angle: float, body: str = "screw", h_contact: float = 2e-5,
                               growth: float = 1.3, *, flank: str = "left", profile_plane: str = "normal",
                               h_max: float | None = None, fine_radius: float | None = None,
+                              fine_patch: tuple[float, float] | None = None,
                               block_half_width: float | None = None, block_half_length: float | None = None,
                               block_depth: float | None = None, cap_height: float | None = None,
                               element_order: int = 1, cache: bool = True) -> Path:
@@ -491,7 +517,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     (groove face; its nodes lie exactly on the helical surface), ``counter_support``
     (the back face of the block).  Mesh size: :func:`meshes.gmsh_tools.contact_refinement`,
     ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``, ``r`` the
-    distance from the contact point.
+    distance from the contact point; or, with ``fine_patch = (l_x, l_y)`` [m], ``r`` the
+    distance from the rectangle ``|x| <= l_x, |y| <= l_y`` of the contact plane
+    (e.g. ``(1.2 a, 1.2 b)`` of the Hertz ellipse).
 
     ``h_contact`` [m] size at the contact, ``growth`` the size ratio of
     neighbouring elements away from the fine zone of radius ``fine_radius`` [m]
@@ -515,13 +543,20 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         raise ValueError(f"cap_height must lie in (0, 2 ball_radius] = (0, {2 * radius!r}] m, got {cap!r}")
     if element_order not in (1, 2):
         raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
+    if fine_patch is not None:
+        try:
+            fine_patch = tuple(_positive("fine_patch", v, "m") for v in fine_patch)
+        except TypeError:
+            raise ValueError(f"fine_patch must be two half-lengths (l_x, l_y) [m], got {fine_patch!r}") from None
+        if len(fine_patch) != 2:
+            raise ValueError(f"fine_patch must be two half-lengths (l_x, l_y) [m], got {fine_patch!r}")
     if groove.body == "screw" and depth >= groove.pitch_radius - radius:
         raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
 
     params = dict(builder="ball_in_screw_groove_pair", groove=[radius, groove.conformity, groove.pitch_radius,
                   groove.lead, groove.contact_angle, groove.body, groove.flank, groove.profile_plane],
                   h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius, half_width=half_width,
-                  half_length=half_length, depth=depth, cap=cap, order=element_order)
+                  half_length=half_length, depth=depth, cap=cap, order=element_order, fine_patch=fine_patch)
     path, build = cached_msh("screw-pair", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -566,7 +601,10 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         physical(gmsh, 2, ball_load, "ball_load")
         physical(gmsh, 2, groove_faces, "counter_contact")
         physical(gmsh, 2, support_faces, "counter_support")
-        contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
+        if fine_patch is None:
+            contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
+        else:
+            _patch_refinement(gmsh, h_contact, growth, h_max, fine_patch)
         gmsh.model.mesh.generate(3)
         if element_order == 2:
             gmsh.model.mesh.setOrder(2)

@@ -252,6 +252,25 @@ def _surface_area_and_longest_edge(mesh, name: str) -> tuple[float, float]:
     return float(area), float(edges.max())
 
 
+def test_pair_fine_patch_refines_the_ellipse_not_a_ball():
+    """fine_patch = (l_x, l_y): h_contact over the rectangle (a Hertz ellipse's box), growing
+    beyond it; at (0.9 l_x, 0) the size is h_contact, at (0, 0.9 l_x) it is several times it."""
+    h, l_x, l_y = 2e-5, 3e-4, 6e-5
+    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
+                                             fine_patch=(l_x, l_y))
+    mesh = meshio.read(path)
+    tri = _group_cells(mesh, "counter_contact", "triangle")
+    centre = mesh.points[tri].mean(axis=1)
+    edges = np.linalg.norm(mesh.points[tri[:, 0]] - mesh.points[tri[:, 1]], axis=1)
+
+    def size_near(x, y):
+        near = np.hypot(centre[:, 0] - x, centre[:, 1] - y) < 2 * h
+        return np.median(edges[near]) if near.any() else np.inf
+
+    assert 0.5 * h < size_near(0.9 * l_x, 0.0) < 2 * h
+    assert size_near(0.0, 0.9 * l_x) > 2.5 * h  # h + 0.3 (0.9 l_x - l_y) = 4.2 h
+
+
 def test_pair_volumes_against_closed_forms():
     """Ball cap: pi c^2 (3 R - c) / 3.  Helical block: Pappus for a screw motion,
     V = 2 dphi A [(R_P + u_c) cos(lambda) + p sin(lambda)] (flux of the screw velocity
@@ -327,6 +346,9 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(cap_height=-1.0), "cap_height"),
     (dict(flank="up"), "flank"),
     (dict(profile_plane="oblique"), "profile_plane"),
+    (dict(fine_patch=(1e-4, -1e-4)), "fine_patch"),
+    (dict(fine_patch=(1e-4,)), "fine_patch"),
+    (dict(fine_patch=1e-4), "fine_patch"),
 ])
 def test_pair_bad_input_names_the_parameter(kwargs, name):
     args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA, body="screw",
