@@ -1,0 +1,309 @@
+"""Ball-screw contact kinematics with the Frenet frame as a virtual cage (wang2022).
+
+Implements wang2022 eqs 1-30: contact-point positions, absolute velocities
+of the nut, screw and ball surfaces, convected velocities of the Frenet
+frame, relative velocities, entrainment velocity (eqs 1-2), sliding velocity
+(eqs 5-6), slide-roll ratio (eq 4), ball orbital and spin speeds (eqs 18-21)
+and centrifugal force (eq 22).  The same inputs also give Wei's measures
+(:func:`absolute_velocity_measures`, entrainment and slide-roll ratio from
+absolute velocities) and the Harris method of a ball bearing
+(:mod:`lowmodel.harris`).
+
+Geometry and frames come from :mod:`lowmodel.helix`: vectors are Frenet
+components ``(t, n, b)`` of the ball at azimuth ``theta = 0`` (wang2022
+Sec 2.3: in CS1 the velocities do not depend on theta).  Contact A is the
+ball-nut contact, B the ball-screw contact; the screw turns at omega about
++k, the nut translates axially (wang2022 eq 16), nothing else moves.
+
+Everything is vectorised: the inputs broadcast together (balls, speeds,
+geometries); scalars give shape ``()`` and vectors ``(..., 3)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lowmodel import helix
+
+__all__ = ["ScrewKinematics", "kinematics", "pitch_angle", "orbital_speed", "ball_spin_speed",
+           "ball_angular_velocity", "centrifugal_force", "absolute_velocity_measures", "entrainment_velocity",
+           "slide_roll_ratio", "wei_ball_centre_kinematics", "WeiKinematics"]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product over the last axis (components written out: faster than np.cross)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def _norm(vector: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.einsum("...i,...i->...", vector, vector))
+
+
+# --------------------------------------------------------------------------
+# ball motion, wang2022 eqs 18-22
+# --------------------------------------------------------------------------
+def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
+    """Ball pitch angle beta [rad] relative to the Frenet frame (wang2022 eq 21).
+
+    ``tan beta = sin alpha_o / (cos alpha_o + r_b cos alpha_o / r_m)``: the
+    spin axis for pure rolling at the nut (outer) contact.
+    """
+    alpha_o = helix.check_contact_angle("contact_angle_nut", contact_angle_nut)
+    gamma = helix.check_positive("ball_radius", ball_radius, "m") / helix.check_positive(
+        "pitch_radius", pitch_radius, "m")
+    return np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + gamma))  # wang2022 eq 21
+
+
+def orbital_speed(screw_speed, ball_radius, pitch_radius, contact_angle_nut, contact_angle_screw,
+                  pitch_angle_rad) -> np.ndarray:
+    """Orbital angular speed omega_m = theta' [rad/s] of the ball (wang2022 eq 18)."""
+    omega = helix.check_finite("screw_speed", screw_speed)
+    gamma = ball_radius / pitch_radius
+    alpha_o, alpha_i, tan_beta = contact_angle_nut, contact_angle_screw, np.tan(pitch_angle_rad)
+    ratio = ((1.0 + gamma * np.cos(alpha_o)) * (np.cos(alpha_i) + tan_beta * np.sin(alpha_i))
+             / ((1.0 - gamma * np.cos(alpha_i)) * (np.cos(alpha_o) + tan_beta * np.sin(alpha_o))))
+    return omega / (1.0 + ratio)  # wang2022 eq 18
+
+
+def ball_spin_speed(orbital_speed_rad_s, ball_radius, pitch_radius, contact_angle_nut, lead_angle,
+                    pitch_angle_rad) -> np.ndarray:
+    """Ball spin speed omega_R [rad/s] about its own axis, relative to the Frenet frame (wang2022 eq 19)."""
+    gamma = ball_radius / pitch_radius
+    alpha_o, beta = contact_angle_nut, pitch_angle_rad
+    return (orbital_speed_rad_s * (1.0 + gamma * np.cos(alpha_o)) * np.cos(lead_angle)
+            / (gamma * (np.cos(beta) * np.cos(alpha_o) + np.sin(beta) * np.sin(alpha_o))))  # wang2022 eq 19
+
+
+def ball_angular_velocity(spin_speed, pitch_angle_rad, yaw_angle=0.0) -> np.ndarray:
+    """Ball angular velocity vector (omega_t, omega_n, omega_b) [rad/s] in CS1 (wang2022 eq 20)."""
+    spin, beta, yaw = np.broadcast_arrays(spin_speed, pitch_angle_rad, yaw_angle)
+    return np.stack([spin * np.cos(beta) * np.sin(yaw), -spin * np.sin(beta),
+                     -spin * np.cos(beta) * np.cos(yaw)], axis=-1)  # wang2022 eq 20
+
+
+def centrifugal_force(ball_mass, pitch_radius, orbital_speed_rad_s) -> np.ndarray:
+    """Centrifugal force F_n = m r_m omega_m^2 [N] on the ball, along -n (wang2022 eq 22)."""
+    mass = helix.check_positive("ball_mass", ball_mass, "kg")
+    radius = helix.check_positive("pitch_radius", pitch_radius, "m")
+    return mass * radius * np.asarray(orbital_speed_rad_s, dtype=float) ** 2  # wang2022 eq 22
+
+
+# --------------------------------------------------------------------------
+# entrainment and slide-roll ratio, wang2022 eqs 1-6
+# --------------------------------------------------------------------------
+def entrainment_velocity(velocity_1, velocity_2) -> np.ndarray:
+    """U = |v_1 + v_2| / 2 [m/s] of two surface velocities ``(..., 3)`` (wang2022 eqs 1-2)."""
+    return 0.5 * _norm(np.asarray(velocity_1) + np.asarray(velocity_2))
+
+
+def slide_roll_ratio(sliding_velocity, entrainment) -> np.ndarray:
+    """S = |V_S| / U (wang2022 eq 4); 0 where both are exactly zero (a contact at rest)."""
+    sliding = _norm(np.asarray(sliding_velocity))
+    entrainment = np.asarray(entrainment, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = sliding / entrainment
+    return np.where((sliding == 0.0) & (entrainment == 0.0), 0.0, ratio)
+
+
+def absolute_velocity_measures(raceway_velocity, ball_velocity, *, raceway_is_driver: bool):
+    """Wei's measures: entrainment U, sliding V_S and slide-roll S from velocities ``(..., 3)`` [m/s].
+
+    Applies wang2022 eqs 1-6 to whatever velocities are passed; Wei's model
+    passes absolute velocities, the present model relative ones.  The sliding
+    velocity is ``ball - raceway`` at the nut (eq 5, ``raceway_is_driver=False``)
+    and ``raceway - ball`` at the screw (eq 6, ``raceway_is_driver=True``).
+    Returns ``(U, V_S, S)``.
+    """
+    raceway = np.asarray(raceway_velocity, dtype=float)
+    ball = np.asarray(ball_velocity, dtype=float)
+    entrainment = entrainment_velocity(raceway, ball)  # wang2022 eqs 1-2
+    sliding = raceway - ball if raceway_is_driver else ball - raceway  # wang2022 eqs 5-6
+    return entrainment, sliding, slide_roll_ratio(sliding, entrainment)  # wang2022 eq 4
+
+
+# --------------------------------------------------------------------------
+# the present model
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ScrewKinematics:
+    """Contact kinematics of a ball in a ball screw (wang2022 eqs 1-30).
+
+    Scalars have the broadcast shape ``S`` of the inputs, vectors ``S + (3,)``
+    in Frenet components ``(t, n, b)`` [m/s].  A = ball-nut contact,
+    B = ball-screw contact; superscripts of the paper: a absolute, e convected,
+    r relative to the Frenet frame.
+
+    Attributes
+    ----------
+    lead_angle : psi [rad]
+    pitch_angle : beta [rad], eq 21
+    orbital_speed : omega_m [rad/s], eq 18
+    spin_speed : omega_R [rad/s], eq 19
+    ball_angular_velocity : (omega_t, omega_n, omega_b) [rad/s] relative to CS1, eq 20
+    nut_velocity : V_An^a, eq 16
+    screw_velocity : V_Bs^a, eq 17
+    ball_velocity_nut, ball_velocity_screw : V_Ab^a, V_Bb^a, eqs 23-24
+    convected_velocity_nut, convected_velocity_screw : V_A^e, V_B^e, eqs 25-26
+    nut_velocity_rel, ball_velocity_nut_rel : V_An^r, V_Ab^r, eqs 27-28
+    screw_velocity_rel, ball_velocity_screw_rel : V_Bs^r, V_Bb^r, eqs 29-30
+    sliding_velocity_nut, sliding_velocity_screw : V_SA, V_SB, eqs 5-6
+    entrainment_nut, entrainment_screw : U_A, U_B [m/s], eqs 1-2
+    slide_roll_nut, slide_roll_screw : S_A, S_B [-], eq 4
+    """
+
+    lead_angle: np.ndarray
+    pitch_angle: np.ndarray
+    orbital_speed: np.ndarray
+    spin_speed: np.ndarray
+    ball_angular_velocity: np.ndarray
+    nut_velocity: np.ndarray
+    screw_velocity: np.ndarray
+    ball_velocity_nut: np.ndarray
+    ball_velocity_screw: np.ndarray
+    convected_velocity_nut: np.ndarray
+    convected_velocity_screw: np.ndarray
+    nut_velocity_rel: np.ndarray
+    screw_velocity_rel: np.ndarray
+    ball_velocity_nut_rel: np.ndarray
+    ball_velocity_screw_rel: np.ndarray
+    sliding_velocity_nut: np.ndarray
+    sliding_velocity_screw: np.ndarray
+    entrainment_nut: np.ndarray
+    entrainment_screw: np.ndarray
+    slide_roll_nut: np.ndarray
+    slide_roll_screw: np.ndarray
+
+    def centrifugal_force(self, ball_mass, pitch_radius) -> np.ndarray:
+        """F_n = m r_m omega_m^2 [N] (wang2022 eq 22); ``ball_mass`` [kg], ``pitch_radius`` [m]."""
+        return centrifugal_force(ball_mass, pitch_radius, self.orbital_speed)
+
+
+def _check_geometry(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw,
+                    lead_angle):
+    r_m = helix.check_positive("pitch_radius", pitch_radius, "m")
+    r_b = helix.check_positive("ball_radius", ball_radius, "m")
+    if np.any(r_b >= r_m):
+        raise ValueError(f"ball_radius must be < pitch_radius (ball inside the pitch circle), "
+                         f"got ball_radius={ball_radius!r}, pitch_radius={pitch_radius!r}")
+    lead_m = helix.check_non_negative("lead", lead, "m")
+    omega = helix.check_finite("screw_speed", screw_speed)
+    alpha_o = helix.check_contact_angle("contact_angle_nut", contact_angle_nut)
+    alpha_i = alpha_o if contact_angle_screw is None else helix.check_contact_angle(
+        "contact_angle_screw", contact_angle_screw)
+    psi = helix.lead_angle(lead_m, r_m) if lead_angle is None else helix.check_lead_angle("lead_angle", lead_angle)
+    return r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi
+
+
+def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw=None, *,
+               lead_angle=None, yaw_angle=0.0) -> ScrewKinematics:
+    """Contact kinematics of the present model (wang2022 eqs 1-30), vectorised.
+
+    Parameters (broadcast together)
+    ----------
+    pitch_radius : r_m [m], nominal (pitch) radius of the ball-centre helix, > ball_radius
+    ball_radius : r_b [m] > 0 (wang2022 calls it a diameter; it is a radius)
+    lead : L [m] >= 0 (0 is a ball bearing)
+    screw_speed : omega [rad/s], screw (inner ring) speed about +k
+    contact_angle_nut, contact_angle_screw : alpha_o, alpha_i [rad] in (0, pi/2);
+        ``contact_angle_screw=None`` takes alpha_i = alpha_o
+    lead_angle : psi [rad]; ``None`` (default) takes ``arctan(L / (2 pi r_m))``,
+        a value overrides it (wang2022 Table A1 prints 8.74 deg)
+    yaw_angle : beta' [rad]; wang2022 sets it to 0
+    """
+    r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi = _check_geometry(
+        pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw, lead_angle)
+    yaw = helix.check_finite("yaw_angle", yaw_angle)
+    h = lead_m / (2.0 * np.pi)
+    r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw = np.broadcast_arrays(
+        r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw)
+    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+    zero = np.zeros(r_m.shape)
+
+    beta = np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + r_b / r_m))  # wang2022 eq 21
+    omega_m = orbital_speed(omega, r_b, r_m, alpha_o, alpha_i, beta)  # wang2022 eq 18
+    omega_spin = ball_spin_speed(omega_m, r_b, r_m, alpha_o, psi, beta)  # wang2022 eq 19
+    omega_ball = ball_angular_velocity(omega_spin, beta, yaw)  # wang2022 eq 20
+
+    axis = np.stack([sin_psi, zero, cos_psi], axis=-1)  # k in CS1 (wang2022 eq 15)
+    offset_a = np.stack([zero, -r_b * np.cos(alpha_o), r_b * np.sin(alpha_o)], axis=-1)  # wang2022 eq 11
+    offset_b = np.stack([zero, r_b * np.cos(alpha_i), -r_b * np.sin(alpha_i)], axis=-1)  # wang2022 eq 12
+    # ball-centre position at theta = 0 in CS1; its axial part drops out of k x R
+    centre_radial = np.stack([zero, -r_m, zero], axis=-1)  # r_m i = -r_m n at theta = 0
+
+    nut = (-omega * h)[..., None] * axis  # wang2022 eq 16
+    screw = omega[..., None] * _cross(axis, centre_radial + offset_b)  # wang2022 eq 17
+    # convected velocity: ball-centre velocity + frame rotation omega_m k x R (wang2022 eqs 25-26)
+    centre_velocity = np.stack([omega_m * r_m * cos_psi + (omega_m - omega) * h * sin_psi, zero,
+                                -omega_m * r_m * sin_psi + (omega_m - omega) * h * cos_psi], axis=-1)
+    frame_rate = omega_m[..., None] * axis
+    convected_a = centre_velocity + _cross(frame_rate, offset_a)  # wang2022 eq 25
+    convected_b = centre_velocity + _cross(frame_rate, offset_b)  # wang2022 eq 26
+    ball_rel_a = _cross(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23
+    ball_rel_b = _cross(omega_ball, offset_b)  # omega_R x R_O'B, wang2022 eq 24
+    ball_a = convected_a + ball_rel_a  # wang2022 eq 23
+    ball_b = convected_b + ball_rel_b  # wang2022 eq 24
+    nut_rel = nut - convected_a  # wang2022 eq 27
+    screw_rel = screw - convected_b  # wang2022 eq 29
+    # eqs 28 and 30 (V_Ab^r = V_Ab^a - V_A^e) are ball_rel_a and ball_rel_b
+    u_a, sliding_a, s_a = absolute_velocity_measures(nut_rel, ball_rel_a, raceway_is_driver=False)
+    u_b, sliding_b, s_b = absolute_velocity_measures(screw_rel, ball_rel_b, raceway_is_driver=True)
+    return ScrewKinematics(psi, beta, omega_m, omega_spin, omega_ball, nut, screw, ball_a, ball_b,
+                           convected_a, convected_b, nut_rel, screw_rel, ball_rel_a, ball_rel_b,
+                           sliding_a, sliding_b, u_a, u_b, s_a, s_b)
+
+
+# --------------------------------------------------------------------------
+# Wei's model (absolute velocities), as far as wang2022 defines it
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class WeiKinematics:
+    """Wei's measures from absolute velocities, with the ball surface taken at its centre velocity.
+
+    wang2022 states Wei's raceway velocities (eqs 16-17) but not his ball
+    surface velocities.  Every Wei vector printed in wang2022 Table 2 has the
+    ball's b-component equal to the ball-centre (= nut) b-velocity, zero
+    n-component and mean t-component of the two contacts equal to the
+    ball-centre t-velocity; the remaining antisymmetric t-term (about
+    -/+0.065 m/s at A/B in Table 2) is not defined by the paper's equations.
+    This reconstruction sets it to zero: ``ball_velocity_nut = ball_velocity_screw
+    = ball-centre velocity``.  See docs/screw_kinematics.md for the gap.
+
+    Vectors ``(..., 3)`` in CS1 [m/s]; U [m/s]; S [-].
+    """
+
+    nut_velocity: np.ndarray
+    screw_velocity: np.ndarray
+    ball_velocity_nut: np.ndarray
+    ball_velocity_screw: np.ndarray
+    sliding_velocity_nut: np.ndarray
+    sliding_velocity_screw: np.ndarray
+    entrainment_nut: np.ndarray
+    entrainment_screw: np.ndarray
+    slide_roll_nut: np.ndarray
+    slide_roll_screw: np.ndarray
+
+
+def wei_ball_centre_kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut,
+                               contact_angle_screw=None, *, lead_angle=None) -> WeiKinematics:
+    """Wei's model (absolute velocities in eqs 1-6) with ball surfaces moving at the ball-centre velocity.
+
+    Same inputs as :func:`kinematics`.  Raceway velocities are wang2022 eqs
+    16-17 (identical in both models, wang2022 Sec 3.2); the ball-centre
+    velocity is the time derivative of eq 10 with omega_m from eq 18.
+    """
+    present = kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw,
+                         lead_angle=lead_angle)
+    r_m = np.broadcast_to(np.asarray(pitch_radius, dtype=float), present.orbital_speed.shape)
+    h = np.broadcast_to(np.asarray(lead, dtype=float) / (2.0 * np.pi), r_m.shape)
+    omega = np.broadcast_to(np.asarray(screw_speed, dtype=float), r_m.shape)
+    psi, omega_m = present.lead_angle, present.orbital_speed
+    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+    centre = np.stack([omega_m * r_m * cos_psi + (omega_m - omega) * h * sin_psi, np.zeros(r_m.shape),
+                       -omega_m * r_m * sin_psi + (omega_m - omega) * h * cos_psi], axis=-1)
+    u_a, sliding_a, s_a = absolute_velocity_measures(present.nut_velocity, centre, raceway_is_driver=False)
+    u_b, sliding_b, s_b = absolute_velocity_measures(present.screw_velocity, centre, raceway_is_driver=True)
+    return WeiKinematics(present.nut_velocity, present.screw_velocity, centre, centre, sliding_a, sliding_b,
+                         u_a, u_b, s_a, s_b)
