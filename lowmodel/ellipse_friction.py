@@ -210,8 +210,8 @@ def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * w  # on [0, 1]
 
 
-def _radial(kappa, beta, phi, *, full_chord: bool):
-    """Radial integrals ``J_n = int rho^n sqrt(q(rho)) d rho`` (n = 0, 1, 2) along a ray.
+def _radial(kappa, beta, phi):
+    """Radial integrals ``J_n = int rho^n sqrt(q(rho)) d rho`` (n = 0, 1, 2) along a ray, centre inside.
 
     Ray from the velocity centre in the scaled plane: ``t = kappa + rho cos(phi)``,
     ``s = rho sin(phi)/beta``; ``q = 1 - t^2 - s^2 = A (R^2 - w^2)``, ``w = rho + b0``.
@@ -219,37 +219,31 @@ def _radial(kappa, beta, phi, *, full_chord: bool):
     cos, sin = np.cos(phi), np.sin(phi)
     big_a = cos**2 + (sin / beta) ** 2
     b0 = kappa * cos / big_a
-    r2 = (big_a - (kappa * sin / beta) ** 2) / big_a**2
-    r2 = np.maximum(r2, 0.0)
+    r2 = (cos**2 + (1.0 - kappa) * (1.0 + kappa) * (sin / beta) ** 2) / big_a**2  # > 0 for |kappa| < 1
     radius = np.sqrt(r2)
     root_a = np.sqrt(big_a)
-    if full_chord:  # the whole chord lies at rho > 0 (centre outside the ellipse)
-        k0 = 0.5 * math.pi * r2
-        k1 = np.zeros_like(r2)
-        k2 = 0.125 * math.pi * r2**2
-    else:  # chord from rho = 0 (w = b0) to the far root (w = R); centre inside
-        def anti(w):
-            ratio = np.clip(np.divide(w, radius, out=np.zeros_like(w), where=radius > 0), -1.0, 1.0)
-            root = np.sqrt(np.maximum(r2 - w**2, 0.0))
-            asin = np.arcsin(ratio)
-            return (0.5 * (w * root + r2 * asin), -(root**3) / 3.0,
-                    0.125 * w * (2.0 * w**2 - r2) * root + 0.125 * r2**2 * asin)
-        lo = anti(np.minimum(np.maximum(b0, -radius), radius))
-        k0 = 0.25 * math.pi * r2 - lo[0]
-        k1 = 0.0 - lo[1]
-        k2 = 0.0625 * math.pi * r2**2 - lo[2]
+    def anti(w):
+        ratio = np.clip(np.divide(w, radius, out=np.zeros_like(w), where=radius > 0), -1.0, 1.0)
+        root = np.sqrt(np.maximum(r2 - w**2, 0.0))
+        asin = np.arcsin(ratio)
+        return (0.5 * (w * root + r2 * asin), -(root**3) / 3.0,
+                0.125 * w * (2.0 * w**2 - r2) * root + 0.125 * r2**2 * asin)
+    lo = anti(np.minimum(np.maximum(b0, -radius), radius))
+    k0 = 0.25 * math.pi * r2 - lo[0]
+    k1 = 0.0 - lo[1]
+    k2 = 0.0625 * math.pi * r2**2 - lo[2]
     j0 = root_a * k0
     j1 = root_a * (k1 - b0 * k0)
     j2 = root_a * (k2 - 2.0 * b0 * k1 + b0**2 * k0)
     return j0, j1, j2
 
 
-def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6, n_gauss: int = 48):
+def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6):
     """(force, loss, curvature) by the velocity-centre polar quadrature; 1-D arrays of equal length."""
     force = np.empty(kappa.shape)
     loss = np.empty(kappa.shape)
     curvature = np.empty(kappa.shape)
-    inside = np.abs(kappa) < 1.0
+    inside = np.abs(kappa) <= 1.0
     if np.any(inside):
         x, w = _tanh_sinh(level)
         # phi in [0, pi] (integrands are even in phi), split at pi/2 where smoothness is lost as |kappa| -> 1
@@ -257,26 +251,37 @@ def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6, n_gauss: int
         weights = np.concatenate([w, w]) * 0.5 * math.pi * 2.0  # factor 2: phi in [-pi, 0]
         k = kappa[inside][:, None]
         b = beta[inside][:, None]
-        j0, j1, j2 = _radial(k, b, phi[None, :], full_chord=False)
+        j0, j1, j2 = _radial(k, b, phi[None, :])
         scale = _PREFACTOR / beta[inside]
         force[inside] = scale * ((np.cos(phi) * j1) @ weights)
         loss[inside] = scale * (j2 @ weights)
         curvature[inside] = scale * ((np.sin(phi) ** 2 * j0) @ weights)
     outside = ~inside & np.isfinite(kappa)
     if np.any(outside):
-        x, w = _gauss(n_gauss)
+        # rays from the centre that meet the ellipse: angle phi' from the direction -sign(kappa) with
+        # tan(phi') = tau beta / sqrt(kappa^2 - 1), |tau| <= 1; along such a ray the whole chord lies at
+        # rho > 0 and R^2 = cos(phi')^2 (1 - tau^2) / A^2 (no cancellation for large |kappa|)
+        x, w = _tanh_sinh(level)
         k = kappa[outside][:, None]
         b = beta[outside][:, None]
-        # rays that meet the ellipse: |tan(phi')| < beta / sqrt(kappa^2 - 1) about the direction -sign(kappa)
-        half = np.arctan2(b, np.sqrt(np.maximum(k**2 - 1.0, 0.0)))
-        offset = half * x[None, :]
-        phi = np.where(k > 0.0, math.pi - offset, offset)
-        j0, j1, j2 = _radial(k, b, phi, full_chord=True)
+        excess = (np.abs(k) - 1.0) * (np.abs(k) + 1.0)       # kappa^2 - 1 > 0
+        half = np.arctan2(b, np.sqrt(excess))                # half-angle of the cone of rays
+        phi_p = half * x[None, :]
+        cos_p, sin_p = np.cos(phi_p), np.sin(phi_p)
+        tau2 = np.minimum((sin_p / cos_p) ** 2 * excess / b**2, 1.0)
+        cos = -np.sign(k) * cos_p               # ray direction (cos(phi), |sin(phi)|)
+        big_a = cos_p**2 + (sin_p / b) ** 2
+        b0 = k * cos / big_a
+        r2 = cos_p**2 * (1.0 - tau2) / big_a**2
+        root_a = np.sqrt(big_a)
+        j0 = root_a * 0.5 * math.pi * r2
+        j1 = -root_a * b0 * 0.5 * math.pi * r2
+        j2 = root_a * (0.125 * math.pi * r2**2 + b0**2 * 0.5 * math.pi * r2)
         weights = 2.0 * half * w[None, :]  # both sides of the axis
         scale = _PREFACTOR / beta[outside]
-        force[outside] = scale * np.sum(np.cos(phi) * j1 * weights, axis=1)
+        force[outside] = scale * np.sum(cos * j1 * weights, axis=1)
         loss[outside] = scale * np.sum(j2 * weights, axis=1)
-        curvature[outside] = scale * np.sum(np.sin(phi) ** 2 * j0 * weights, axis=1)
+        curvature[outside] = scale * np.sum(sin_p**2 * j0 * weights, axis=1)
     infinite = ~np.isfinite(kappa)
     force[infinite] = -np.sign(kappa[infinite])
     loss[infinite] = np.inf
@@ -342,7 +347,7 @@ def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
 # --------------------------------------------------------------------------
 # table on (phi, log b/a) and its bicubic spline
 # --------------------------------------------------------------------------
-_MAP_VERSION = "1"
+_MAP_VERSION = "2"
 
 
 def _phi_nodes(n_uniform: int, n_cluster: int) -> np.ndarray:
@@ -353,7 +358,7 @@ def _phi_nodes(n_uniform: int, n_cluster: int) -> np.ndarray:
     """
     quarter = 0.25 * math.pi
     uniform = np.linspace(0.0, 0.5 * math.pi, n_uniform)
-    offsets = np.geomspace(2e-5, 0.08, n_cluster)
+    offsets = np.geomspace(2e-5, 0.2, n_cluster)
     nodes = np.concatenate([uniform, quarter - offsets, quarter + offsets, [quarter]])
     nodes = np.sort(nodes)
     return nodes[np.concatenate([[True], np.diff(nodes) > 1e-12])]
@@ -380,20 +385,44 @@ class FrictionMap:
 
     @property
     def splines(self):
-        return _splines(self)
+        """scipy RectBivariateSpline of (force, moment, loss_direction) over (phi, log b/a)."""
+        return _patches(self)[0]
 
 
-_SPLINE_CACHE: dict[int, tuple] = {}
+_PATCH_CACHE: dict[int, tuple] = {}
 
 
-def _splines(table: FrictionMap):
+def _patches(table: FrictionMap):
+    """Splines and their bicubic patches, Taylor coefficients about each cell centre.
+
+    ``coefficients[i, j, q, m, n]`` multiplies ``dphi^m dlogb^n`` for quantity ``q``
+    in cell ``(i, j)``; exact for the spline (its knots are a subset of the nodes), so
+    evaluating the patches is evaluating the spline, only without fitpack's
+    per-call overhead.
+    """
     key = id(table)
-    if key not in _SPLINE_CACHE:
+    if key not in _PATCH_CACHE:
         from scipy.interpolate import RectBivariateSpline
-        _SPLINE_CACHE[key] = tuple(
-            RectBivariateSpline(table.phi, table.log_b_over_a, values, kx=3, ky=3, s=0)
-            for values in (table.force, table.moment, table.loss_direction))
-    return _SPLINE_CACHE[key]
+        splines = tuple(RectBivariateSpline(table.phi, table.log_b_over_a, values, kx=3, ky=3, s=0)
+                        for values in (table.force, table.moment, table.loss_direction))
+        mid_x = 0.5 * (table.phi[1:] + table.phi[:-1])
+        mid_y = 0.5 * (table.log_b_over_a[1:] + table.log_b_over_a[:-1])
+        width_x = np.diff(table.phi)
+        width_y = np.diff(table.log_b_over_a)
+        # sample each cell at 4 x 4 interior points and solve the (fixed) Vandermonde system
+        unit = np.array([-0.375, -0.125, 0.125, 0.375])
+        inverse = np.linalg.inv(np.vander(unit, 4, increasing=True))   # samples -> coefficients in unit
+        xs = (mid_x[:, None] + width_x[:, None] * unit).ravel()
+        ys = (mid_y[:, None] + width_y[:, None] * unit).ravel()
+        scale_x = width_x[:, None] ** -np.arange(4.0)                  # (nx-1, 4)
+        scale_y = width_y[:, None] ** -np.arange(4.0)
+        coefficients = np.empty((mid_x.size, mid_y.size, 3, 4, 4))
+        for q, spline in enumerate(splines):
+            samples = spline(xs, ys, grid=True).reshape(mid_x.size, 4, mid_y.size, 4)
+            unit_coefficients = np.einsum("ma,iajb,nb->ijmn", inverse, samples, inverse)
+            coefficients[:, :, q] = unit_coefficients * scale_x[:, None, :, None] * scale_y[None, :, None, :]
+        _PATCH_CACHE[key] = (splines, mid_x, mid_y, coefficients)
+    return _PATCH_CACHE[key]
 
 
 def _build_table(n_uniform: int, n_cluster: int, n_beta: int):
@@ -425,7 +454,7 @@ def _build_table(n_uniform: int, n_cluster: int, n_beta: int):
     return phi[keep], log_beta, force[order][keep], moment[order][keep], direction_full[order][keep]
 
 
-_GRID = {"n_uniform": 121, "n_cluster": 14, "n_beta": 33}
+_GRID = {"n_uniform": 161, "n_cluster": 24, "n_beta": 65}
 
 
 @lru_cache(maxsize=4)
@@ -463,12 +492,27 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
 
 
 def _evaluate(phi: np.ndarray, beta: np.ndarray):
-    f_spl, m_spl, d_spl = friction_map().splines
-    log_beta = np.log(beta)
+    """(force, d force/d phi, moment, d moment/d phi, loss_direction, d loss_direction/d phi)."""
+    table = friction_map()
+    _, mid_x, mid_y, coefficients = _patches(table)
+    phi = np.asarray(phi, dtype=float)
+    shape = phi.shape
+    x = phi.ravel()
+    y = np.log(np.asarray(beta, dtype=float)).ravel()
+    i = np.clip(np.searchsorted(table.phi, x) - 1, 0, mid_x.size - 1)
+    j = np.clip(np.searchsorted(table.log_b_over_a, y) - 1, 0, mid_y.size - 1)
+    dx = x - mid_x[i]
+    dy = y - mid_y[j]
+    c = coefficients[i, j]                                  # (n, 3, 4, 4)
+    powers_y = np.stack([np.ones_like(dy), dy, dy**2, dy**3], axis=-1)
+    along_x = np.einsum("nqmk,nk->nqm", c, powers_y)        # polynomial in dphi
+    value = ((along_x[..., 3] * dx[:, None] + along_x[..., 2]) * dx[:, None] + along_x[..., 1]) * dx[:, None] \
+        + along_x[..., 0]
+    slope = (3.0 * along_x[..., 3] * dx[:, None] + 2.0 * along_x[..., 2]) * dx[:, None] + along_x[..., 1]
     out = []
-    for spline in (f_spl, m_spl, d_spl):
-        out.append(spline.ev(phi, log_beta))
-        out.append(spline.ev(phi, log_beta, dx=1))
+    for q in range(3):
+        out.append(value[:, q].reshape(shape))
+        out.append(slope[:, q].reshape(shape))
     return out
 
 
