@@ -307,6 +307,19 @@ def test_pair_volumes_against_closed_forms():
     assert bound < 0.02 * exact  # the check is not vacuous (measured error 3e-5)
 
 
+def test_pair_quadratic_elements_stay_on_the_helical_surface():
+    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", element_order=2, **COARSE)
+    mesh = meshio.read(path)
+    assert len(_group_cells(mesh, "counter", "tetra10")) > 100
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = helical.contact_frame(groove)
+    tri = np.concatenate([block.data[ids] for block, ids in zip(mesh.cells, mesh.cell_sets["counter_contact"])
+                          if len(ids)])
+    assert tri.shape[1] == 6  # mid-side nodes included
+    world = frame.point + mesh.points[np.unique(tri)] @ frame.rotation
+    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+
+
 def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     first = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
     stamp = first.stat().st_mtime_ns
