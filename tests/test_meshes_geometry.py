@@ -307,6 +307,23 @@ def test_pair_volumes_against_closed_forms():
     assert bound < 0.02 * exact  # the check is not vacuous (measured error 3e-5)
 
 
+@pytest.mark.parametrize("body, plane, flank", [("nut", "normal", "right"), ("screw", "axial", "left"),
+                                                ("nut", "axial", "left")])
+def test_pair_other_grooves_touch_the_ball_at_the_origin_only(body, plane, flank):
+    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, body, flank=flank, profile_plane=plane,
+                                             **COARSE)
+    mesh = meshio.read(path)
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
+    frame = helical.contact_frame(groove)
+    local = mesh.points[_group_nodes(mesh, "counter_contact")]
+    assert np.abs(helical.surface_residual(groove, frame.point + local @ frame.rotation)).max() < 1e-12 * R_B
+    counter = mesh.points[_group_nodes(mesh, "counter")]
+    assert np.linalg.norm(counter - [0.0, 0.0, R_B], axis=1).min() > R_B * (1 - 1e-12)
+    coef = _quadratic_fit(local, 0.3 * R_B, degree=4)
+    assert abs(coef[1]) < 1e-5 and abs(coef[2]) < 1e-5  # coarse mesh: tangent plane z = 0
+    assert coef[3] == pytest.approx(-frame.curvature_major / 2, rel=0.01)
+
+
 def test_pair_quadratic_elements_stay_on_the_helical_surface():
     path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", element_order=2, **COARSE)
     mesh = meshio.read(path)
