@@ -1,0 +1,235 @@
+"""Friction integrals over a Hertz ellipse (lin2019 eqs A4-A7, 11, 12, 14)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate
+from scipy.special import ellipe, ellipk
+
+from lowmodel import ellipse_friction as ef
+
+
+# --------------------------------------------------------------------------
+# independent reference: adaptive Cartesian quadrature of the paper's (t, s) form
+# --------------------------------------------------------------------------
+def _cartesian(kappa: float, beta: float, which: str) -> float:
+    """lin2019 eqs A4 (force) and A6 (loss), second lines, by nested adaptive quad."""
+
+    def integrand(s: float, t: float) -> float:
+        pressure = math.sqrt(max(1.0 - t * t - s * s, 0.0))
+        distance = math.hypot(t - kappa, beta * s)
+        if which == "force":
+            return pressure * (t - kappa) / distance if distance > 0.0 else 0.0
+        return pressure * distance
+
+    def inner(t: float) -> float:
+        half = math.sqrt(max(1.0 - t * t, 0.0))
+        return integrate.quad(integrand, -half, half, args=(t,), points=[0.0], epsabs=1e-12, epsrel=1e-12,
+                              limit=200)[0]
+
+    points = [kappa] if abs(kappa) < 1.0 else None
+    value = integrate.quad(inner, -1.0, 1.0, points=points, epsabs=1e-11, epsrel=1e-11, limit=200)[0]
+    return 1.5 / math.pi * value
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+@pytest.mark.parametrize("kappa, beta", [(0.0, 0.23), (0.3, 0.23), (-0.7, 0.5), (1.0, 0.3), (1.5, 0.1), (6.0, 1.0)])
+def test_exact_quadrature_against_independent_cartesian(kappa, beta):
+    result = ef.friction_exact(kappa, beta)
+    assert abs(float(result.force) - _cartesian(kappa, beta, "force")) < 1e-8
+    assert abs(float(result.loss) - _cartesian(kappa, beta, "loss")) < 1e-8
+
+
+def test_limit_pure_spin_eq11():
+    beta = np.array([0.05, 0.23, 0.6, 1.0])
+    result = ef.friction_exact(0.0, beta)
+    np.testing.assert_allclose(result.force, 0.0, atol=1e-14)
+    expected = 0.375 * ellipe(1.0 - beta**2)  # (3/8) Ellip(sqrt(a^2 - b^2)/a), lin2019 eq 11
+    np.testing.assert_allclose(result.moment, expected, rtol=1e-12)
+    np.testing.assert_allclose(ef.spin_moment(beta), expected, rtol=1e-15)
+    np.testing.assert_allclose(ef.friction(0.0, beta).moment, expected, rtol=1e-6)
+    assert ef.spin_moment(1.0) == pytest.approx(3 * math.pi / 16)  # circle: (3/8)(pi/2)
+
+
+def test_limit_pure_sliding_eq12():
+    beta = 0.23
+    for method in (ef.friction_exact, ef.friction):
+        big = method(np.array([1e8, -1e8, np.inf, -np.inf]), beta)
+        np.testing.assert_allclose(big.force, [-1.0, 1.0, -1.0, 1.0], atol=1e-9)
+        np.testing.assert_allclose(big.moment, 0.0, atol=1e-6)
+        np.testing.assert_allclose(big.dforce_dc, 0.0, atol=1e-9)
+        assert np.all(np.isinf(big.loss[2:]))
+    # loss -> |c/a| (sliding at speed |omega c|): loss - |kappa| -> 0 like 1/kappa
+    far = ef.friction_exact(np.array([1e3, 1e4]), beta)
+    gap = far.loss - np.array([1e3, 1e4])
+    assert 0.0 < gap[1] < gap[0] < 1e-2
+    assert gap[0] / gap[1] == pytest.approx(10.0, rel=1e-3)
+
+
+def test_k_f_exact_closed_forms():
+    beta = np.array([0.02, 0.1, 0.23, 0.5, 0.99])
+    e2 = 1.0 - beta**2
+    legendre = 1.5 * (ellipe(e2) - beta**2 * ellipk(e2)) / e2   # 3 (E - beta^2 K) / (2 e^2)
+    np.testing.assert_allclose(ef.k_f_exact(beta), legendre, rtol=1e-12)
+    assert ef.k_f_exact(1.0) == pytest.approx(3 * math.pi / 8, rel=1e-14)
+    assert ef.k_f_exact(0.0) == 1.5
+    # the slope of the quadrature and the returned derivative at c/a = 0
+    step = 1e-4
+    slope = (ef.friction_exact(-step, beta).force - ef.friction_exact(step, beta).force) / (2 * step)
+    np.testing.assert_allclose(slope, ef.k_f_exact(beta), rtol=1e-7)
+    np.testing.assert_allclose(-ef.friction_exact(0.0, beta).dforce_dc, ef.k_f_exact(beta), rtol=1e-10)
+
+
+def test_force_is_an_odd_cubic_inside_the_ellipse():
+    """For |c/a| <= 1 the loss is an even quartic in c/a (potential of a Hertz density), so
+    force = -k_f kappa + g3 kappa^3 exactly; this also gives the least-squares slope in closed form."""
+    beta = 0.23
+    kappa = np.linspace(-1.0, 1.0, 21)
+    force = ef.friction_exact(kappa, beta).force
+    g3 = (force[15] + ef.k_f_exact(beta) * kappa[15]) / kappa[15] ** 3
+    np.testing.assert_allclose(force, -ef.k_f_exact(beta) * kappa + g3 * kappa**3, atol=2e-13)
+    assert ef.k_f_least_squares(beta, 0.5) == pytest.approx(ef.k_f_exact(beta) - 0.15 * g3, rel=1e-12)
+    assert ef.k_f_least_squares(1.0, 0.5) == pytest.approx(3 * math.pi / 8 - 0.15 * 3 * math.pi / 32, rel=1e-12)
+
+
+def test_identities_power_balance_and_derivatives():
+    rng = np.random.default_rng(3)
+    kappa = np.concatenate([rng.uniform(-3.0, 3.0, 40), [-1.0, 1.0, 0.999, 1.001]])
+    beta = rng.uniform(0.05, 1.0, kappa.size)
+    result = ef.friction_exact(kappa, beta)
+    np.testing.assert_allclose(result.moment, result.loss + kappa * result.force, atol=1e-13)
+    step = 1e-6
+    plus, minus = ef.friction_exact(kappa + step, beta), ef.friction_exact(kappa - step, beta)
+    np.testing.assert_allclose((plus.force - minus.force) / (2 * step), result.dforce_dc, atol=2e-6)
+    np.testing.assert_allclose((plus.moment - minus.moment) / (2 * step), result.dmoment_dc, atol=2e-6)
+    np.testing.assert_allclose((plus.loss - minus.loss) / (2 * step), result.dloss_dc, atol=2e-6)
+    assert np.all(result.dforce_dc < 0.0)  # force decreases monotonically with c/a
+
+
+def test_symmetries():
+    kappa = np.array([0.0, 0.2, 0.9, 1.0, 1.7, 40.0])
+    for method in (ef.friction_exact, ef.friction):
+        plus, minus = method(kappa, 0.3), method(-kappa, 0.3)
+        np.testing.assert_allclose(plus.force, -minus.force, atol=1e-12)
+        np.testing.assert_allclose(plus.moment, minus.moment, atol=1e-12)
+        np.testing.assert_allclose(plus.loss, minus.loss, atol=1e-12)
+
+
+def test_map_against_exact():
+    rng = np.random.default_rng(7)
+    kappa = np.concatenate([np.tan(rng.uniform(-1.5707, 1.5707, 3000)), 1.0 + rng.uniform(-0.05, 0.05, 1000),
+                            [0.0, 1.0, -1.0, 0.5]])
+    beta = np.exp(rng.uniform(math.log(ef.B_OVER_A_RANGE[0]), 0.0, kappa.size))
+    beta[-4:] = [0.02, 1.0, 0.23, 0.23]
+    exact, table = ef.friction_exact(kappa, beta), ef.friction(kappa, beta)
+    assert np.max(np.abs(table.force - exact.force)) < 1e-6
+    assert np.max(np.abs(table.moment - exact.moment)) < 1e-6
+    assert np.max(np.abs(table.loss - exact.loss) / np.hypot(1.0, kappa)) < 1e-6
+    for name in ("dforce_dc", "dmoment_dc", "dloss_dc"):
+        assert np.max(np.abs(getattr(table, name) - getattr(exact, name))) < 1e-4, name
+
+
+def test_map_derivatives_are_those_of_the_map():
+    rng = np.random.default_rng(11)
+    kappa = np.concatenate([rng.uniform(-4.0, 4.0, 200), [0.0, 0.999, 1.001]])
+    beta = rng.uniform(0.1, 1.0, kappa.size)
+    step = 1e-6
+    result = ef.friction(kappa, beta)
+    plus, minus = ef.friction(kappa + step, beta), ef.friction(kappa - step, beta)
+    for name, deriv in (("force", "dforce_dc"), ("moment", "dmoment_dc"), ("loss", "dloss_dc")):
+        difference = (getattr(plus, name) - getattr(minus, name)) / (2 * step)
+        np.testing.assert_allclose(difference, getattr(result, deriv), atol=1e-7, err_msg=name)
+
+
+def test_newton_on_the_map_converges_quadratically():
+    beta = 0.23
+    for target in (-0.5, 0.9, 0.995):
+        kappa, errors = 0.0, []
+        for _ in range(30):
+            result = ef.friction(kappa, beta)
+            residual = float(result.force) - target
+            errors.append(abs(residual))
+            if abs(residual) < 1e-14:
+                break
+            kappa -= residual / float(result.dforce_dc)
+        exact_root = kappa
+        assert errors[-1] < 1e-13
+        assert abs(float(ef.friction_exact(exact_root, beta).force) - target) < 1e-6
+        # order of convergence p = log(e_{n+1}/e_n) / log(e_n/e_{n-1}) over the last steps above round-off
+        tail = [e for e in errors if e > 1e-14]
+        orders = [math.log(c / b) / math.log(b / a) for a, b, c in zip(tail, tail[1:], tail[2:]) if a < 0.05 and c < 1e-6]
+        assert orders and min(orders) > 1.8, (target, errors)
+
+
+def test_velocity_form_is_finite_and_continuous_through_zero_spin():
+    beta = 0.23
+    spin = np.array([1e-3, 1e-12, 0.0, -1e-12, -1e-3])
+    result = ef.friction_velocity(spin, 0.01, beta)
+    np.testing.assert_allclose(result.force[1:4], -1.0, atol=1e-9)  # pure sliding: f = -mu F sign(V)
+    np.testing.assert_allclose(result.moment[1:4], 0.0, atol=1e-9)
+    np.testing.assert_allclose(result.loss[1:4], 0.01, rtol=1e-9)
+    for name in ("dforce_dspin", "dforce_dslide", "dmoment_dspin", "dloss_dslide"):
+        assert np.all(np.isfinite(getattr(result, name)))
+    # same as the c/a form for omega > 0 and with the sgn(omega) factor for omega < 0
+    by_ratio = ef.friction(0.01 / 1e-3, beta)
+    assert result.force[0] == pytest.approx(float(by_ratio.force), abs=1e-12)
+    assert result.loss[0] == pytest.approx(1e-3 * float(by_ratio.loss), rel=1e-12)
+    negative_spin = ef.friction(0.01 / -1e-3, beta)  # c/a = -10, sgn(omega) = -1
+    assert result.force[-1] == pytest.approx(-float(negative_spin.force), abs=1e-12)
+    assert result.moment[-1] == pytest.approx(-float(negative_spin.moment), abs=1e-12)
+    assert result.loss[-1] == pytest.approx(1e-3 * float(negative_spin.loss), rel=1e-12)
+
+
+def test_velocity_form_power_balance_and_derivatives():
+    rng = np.random.default_rng(5)
+    spin = rng.normal(size=50) * 1e-3
+    slide = rng.normal(size=50) * 1e-3
+    beta = rng.uniform(0.05, 1.0, 50)
+    result = ef.friction_velocity(spin, slide, beta)
+    # P = omega M_O - (omega c) f_z: loss = spin * moment - slide * force (to map accuracy)
+    np.testing.assert_allclose(result.loss, spin * result.moment - slide * result.force,
+                               atol=1e-6 * np.hypot(spin, slide).max())
+    step = 1e-10
+    for which, delta in (("spin", (step, 0.0)), ("slide", (0.0, step))):
+        plus = ef.friction_velocity(spin + delta[0], slide + delta[1], beta)
+        minus = ef.friction_velocity(spin - delta[0], slide - delta[1], beta)
+        for name in ("force", "moment", "loss"):
+            difference = (getattr(plus, name) - getattr(minus, name)) / (2 * step)
+            analytic = getattr(result, f"d{name}_d{which}")
+            np.testing.assert_allclose(difference, analytic, rtol=1e-4, atol=1e-3, err_msg=f"{name} {which}")
+
+
+def test_disk_cache_roundtrip(tmp_path, monkeypatch):
+    monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))
+    build = ef.friction_map.__wrapped__
+    first = build(n_uniform=21, n_cluster=4, n_beta=5)
+    assert not first.from_cache
+    assert list((tmp_path / "ellipse_friction").glob("map-*.npz"))
+    second = build(n_uniform=21, n_cluster=4, n_beta=5)
+    assert second.from_cache
+    np.testing.assert_array_equal(first.force, second.force)
+    np.testing.assert_array_equal(first.loss_direction, second.loss_direction)
+
+
+@pytest.mark.parametrize("bad", [0.0, -0.2, 1.2, float("nan"), float("inf")])
+def test_bad_axis_ratio(bad):
+    with pytest.raises(ValueError, match="b_over_a"):
+        ef.friction(0.1, bad)
+    with pytest.raises(ValueError, match="b_over_a"):
+        ef.friction_velocity(1.0, 0.1, bad)
+
+
+def test_below_table_range_and_nan_inputs():
+    with pytest.raises(ValueError, match=r"b_over_a must lie in \[0.02, 1\]"):
+        ef.friction(0.1, 0.01)
+    ef.friction_exact(0.1, 0.01)  # the direct quadrature has no table
+    with pytest.raises(ValueError, match="c_over_a"):
+        ef.friction(float("nan"), 0.3)
+    with pytest.raises(ValueError, match="c_over_a"):
+        ef.friction_exact(float("nan"), 0.3)
+    with pytest.raises(ValueError, match="spin_velocity"):
+        ef.friction_velocity(float("nan"), 0.0, 0.3)
+    with pytest.raises(ValueError, match="c_max"):
+        ef.k_f_least_squares(0.3, c_max=-1.0)
