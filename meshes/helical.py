@@ -658,12 +658,101 @@ def _snap_to_bottom(gmsh, grooves: tuple[HelicalGroove, HelicalGroove], left_fac
         gmsh.model.mesh.setNode(int(tag), xyz.tolist(), [])
 
 
+def _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, body, deviations,
+                     profile_plane) -> tuple[HelicalGroove, HelicalGroove]:
+    """The (left, right) flanks of a groove with contact angle deviations (left, right) [rad]."""
+    try:
+        deviations = [float(d) for d in deviations]
+    except (TypeError, ValueError):
+        raise ValueError(f"deviations must be two angles (left, right) [rad], got {deviations!r}") from None
+    if len(deviations) != 2 or not all(math.isfinite(d) and abs(d) <= math.radians(15) for d in deviations):
+        raise ValueError(f"deviations must be two angles (left, right) in [-15, 15] deg [rad], got {deviations!r}")
+    contact_angle = _contact_angle(contact_angle)
+    return tuple(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle + deviation, body,
+                                flank, profile_plane) for flank, deviation in zip(("left", "right"), deviations))
+
+
+def _segment_dimensions(grooves, land_radius, back_radius, half_angle, axial_half_width,
+                        prefix: str = "") -> tuple[float, float, float, float]:
+    """Validated (land radius, back radius, half angle, axial half width) of a groove segment."""
+    left = grooves[0]
+    radius, r_p, p = left.ball_radius, left.pitch_radius, left.lead_per_radian
+    sign = left.sign_u
+    land = r_p + sign * 0.25 * radius if land_radius is None else _positive(f"{prefix}land_radius", land_radius, "m")
+    back = r_p + sign * 2.0 * radius if back_radius is None else _positive(f"{prefix}back_radius", back_radius, "m")
+    contact_u = sign * radius * min(math.cos(g.contact_angle) for g in grooves)
+    if not sign * (land - r_p) < sign * contact_u - 0.05 * radius:
+        raise ValueError(f"{prefix}land_radius must leave the contact points (at radius {r_p + contact_u!r} m) "
+                         f"in the groove (loss of four-point contact), got {land!r}")
+    bottom_u = _flank_intersections(*grooves)[0][0]
+    if not sign * (back - r_p) > sign * bottom_u + 0.05 * radius:
+        raise ValueError(f"{prefix}back_radius must lie beyond the groove bottom (radius {r_p + bottom_u!r} m), "
+                         f"got {back!r}")
+    half_angle = 2.0 * radius / r_p if half_angle is None else _positive("half_angle", half_angle, "rad")
+    if half_angle > math.pi / 2:
+        raise ValueError(f"half_angle must lie in (0, pi/2] rad, got {half_angle!r}")
+    limit = p * math.pi if p > 0 else math.inf  # lead / 2
+    width = min(p * half_angle + 1.5 * radius, limit) if axial_half_width is None else \
+        _positive("axial_half_width", axial_half_width, "m")
+    if width > limit:
+        raise ValueError(f"axial_half_width must lie in (0, lead/2] = (0, {limit!r}] m, got {width!r}")
+    return land, back, half_angle, width
+
+
+def _add_segment(gmsh, grooves, land: float, back: float, half_angle: float,
+                 width: float) -> tuple[list[int], dict[str, list[int]]]:
+    """OCC groove segment (annular wedge minus the lens lofted along the helix); returns its
+    volume tags and faces by role ('flank_left', 'flank_right', 'land', 'back', 'free')."""
+    occ = gmsh.model.occ
+    left = grooves[0]
+    radius, r_p = left.ball_radius, left.pitch_radius
+    r_in, r_out = min(land, back), max(land, back)
+    outer = occ.addCylinder(0.0, 0.0, -width, 0.0, 0.0, 2 * width, r_out, angle=2 * half_angle)
+    inner = occ.addCylinder(0.0, 0.0, -2 * width, 0.0, 0.0, 4 * width, r_in)
+    wedge, _ = occ.cut([(3, outer)], [(3, inner)])
+    occ.rotate(wedge, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -half_angle)
+    # the cutter runs past the wedge's end planes (a profile plane spans azimuths within
+    # ~ 2 R_B sin(lambda) / rho of its own); loft through exact lens sections (OCC: 1e-7 m
+    # from the exact surface, against 1e-6 m for a pipe over this reach; flank nodes are
+    # snapped afterwards)
+    reach = 1.1 * half_angle + 0.02 + 3 * radius * math.sin(left.lead_angle) / (r_p - 2 * radius * (left.sign_u < 0))
+    sections = [_lens_loop(occ, grooves, phi) for phi in np.linspace(-reach, reach, 9)]
+    cutter = occ.addThruSections(sections, makeSolid=True, makeRuled=False)
+    result, _ = occ.cut(wedge, [vt for vt in cutter if vt[0] == 3])
+    occ.synchronize()
+    volumes = [tag for dim, tag in result if dim == 3]
+    roles: dict[str, list[int]] = {"flank_left": [], "flank_right": [], "land": [], "back": [], "free": []}
+    for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
+        xyz = _face_point(gmsh, tag)
+        rho = math.hypot(xyz[0], xyz[1])
+        kind = gmsh.model.getType(2, tag)
+        residuals = [abs(surface_residual(g, xyz[None, :])[0]) for g in grooves]
+        if kind == "Cylinder" and abs(rho - land) < 1e-6 * radius:
+            roles["land"].append(tag)
+        elif kind == "Cylinder" and abs(rho - back) < 1e-6 * radius:
+            roles["back"].append(tag)
+        elif kind not in ("Plane", "Cylinder") and min(residuals) < 0.01 * radius:
+            roles["flank_left" if residuals[0] < residuals[1] else "flank_right"].append(tag)
+        else:
+            roles["free"].append(tag)
+    if not roles["flank_left"] or not roles["flank_right"]:
+        raise RuntimeError(f"groove flanks not identified: {roles}")
+    return volumes, roles
+
+
+def _snap_segment(gmsh, grooves, roles: dict[str, list[int]]) -> None:
+    for groove, name in zip(grooves, ("flank_left", "flank_right")):
+        _snap_to_groove(gmsh, groove, roles[name], np.eye(3), np.zeros(3))
+    _snap_to_bottom(gmsh, grooves, roles["flank_left"], roles["flank_right"])
+
+
 def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
                          contact_angle: float, body: str = "screw", *, deviations=(0.0, 0.0),
-                         profile_plane: str = "normal", land_radius: float | None = None, back_radius: float | None = None,
-                         half_angle: float | None = None, axial_half_width: float | None = None,
-                         h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
-                         fine_radius: float | None = None, cache: bool = True) -> Path:
+                         profile_plane: str = "normal", land_radius: float | None = None,
+                         back_radius: float | None = None, half_angle: float | None = None,
+                         axial_half_width: float | None = None, h_contact: float | None = None,
+                         growth: float = 1.3, h_max: float | None = None, fine_radius: float | None = None,
+                         cache: bool = True) -> Path:
     """A screw-shaft (``body="screw"``) or nut segment with its helical gothic-arch groove,
     as a cached gmsh 4.1 ``.msh`` in the screw frame [m] (axis z, ball-centre helix
     ``H(phi)``, the groove's nominal contacts at phi = 0).
@@ -683,93 +772,36 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
     ``flank_right`` (nodes on the exact helical surface), ``land``, ``back``,
     ``segment_free`` (the cut faces).
     """
-    try:
-        deviations = [float(d) for d in deviations]
-    except (TypeError, ValueError):
-        raise ValueError(f"deviations must be two angles (left, right) [rad], got {deviations!r}") from None
-    if len(deviations) != 2 or not all(math.isfinite(d) and abs(d) <= math.radians(15) for d in deviations):
-        raise ValueError(f"deviations must be two angles (left, right) in [-15, 15] deg [rad], got {deviations!r}")
-    contact_angle = _contact_angle(contact_angle)
-    grooves = tuple(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle + deviation, body,
-                                   flank, profile_plane) for flank, deviation in zip(("left", "right"), deviations))
+    grooves = _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, body, deviations,
+                               profile_plane)
     left = grooves[0]
-    radius, r_p, p = left.ball_radius, left.pitch_radius, left.lead_per_radian
-    sign = left.sign_u
-    land = r_p + sign * 0.25 * radius if land_radius is None else _positive("land_radius", land_radius, "m")
-    back = r_p + sign * 2.0 * radius if back_radius is None else _positive("back_radius", back_radius, "m")
-    contact_u = sign * radius * min(math.cos(g.contact_angle) for g in grooves)
-    if not sign * (land - r_p) < sign * contact_u - 0.05 * radius:
-        raise ValueError(f"land_radius must leave the contact points (at radius {r_p + contact_u!r} m) in the "
-                         f"groove, got {land!r}")
-    bottom_u = _flank_intersections(*grooves)[0][0]
-    if not sign * (back - r_p) > sign * bottom_u + 0.05 * radius:
-        raise ValueError(f"back_radius must lie beyond the groove bottom (radius {r_p + bottom_u!r} m), got {back!r}")
-    half_angle = 2.0 * radius / r_p if half_angle is None else _positive("half_angle", half_angle, "rad")
-    if half_angle > math.pi / 2:
-        raise ValueError(f"half_angle must lie in (0, pi/2] rad, got {half_angle!r}")
-    limit = p * math.pi if p > 0 else math.inf  # lead / 2
-    width = min(p * half_angle + 1.5 * radius, limit) if axial_half_width is None else \
-        _positive("axial_half_width", axial_half_width, "m")
-    if width > limit:
-        raise ValueError(f"axial_half_width must lie in (0, lead/2] = (0, {limit!r}] m, got {width!r}")
+    land, back, half_angle, width = _segment_dimensions(grooves, land_radius, back_radius, half_angle,
+                                                        axial_half_width)
     refine = h_contact is not None
-    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
-                                                              growth, h_max, fine_radius)
-    params = dict(builder="screw_groove_segment", groove=[radius, left.conformity, r_p, left.lead,
-                  left.contact_angle, grooves[1].contact_angle, left.body, left.profile_plane], land=land, back=back, half_angle=half_angle,
-                  width=width, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
-                  fine_radius=fine_radius)
+    h_contact, growth, h_max, fine_radius = _check_refinement(left.ball_radius, left.ball_radius / 4 if h_contact
+                                                              is None else h_contact, growth, h_max, fine_radius)
+    params = dict(builder="screw_groove_segment", groove=[left.ball_radius, left.conformity, left.pitch_radius,
+                  left.lead, left.contact_angle, grooves[1].contact_angle, left.body, left.profile_plane],
+                  land=land, back=back, half_angle=half_angle, width=width, refine=refine, h_contact=h_contact,
+                  growth=growth, h_max=h_max, fine_radius=fine_radius)
     path, build = cached_msh(f"{left.body}-segment", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
     with session("groove_segment") as gmsh:
-        occ = gmsh.model.occ
-        r_in, r_out = min(land, back), max(land, back)
-        outer = occ.addCylinder(0.0, 0.0, -width, 0.0, 0.0, 2 * width, r_out, angle=2 * half_angle)
-        inner = occ.addCylinder(0.0, 0.0, -2 * width, 0.0, 0.0, 4 * width, r_in)
-        wedge, _ = occ.cut([(3, outer)], [(3, inner)])
-        occ.rotate(wedge, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, -half_angle)
-        # the cutter runs past the wedge: the groove leaves the band |z| <= width or the wedge's end planes
-        # (a profile plane spans azimuths within ~ 2 R_B sin(lambda) / rho of its own)
-        reach = 1.1 * half_angle + 0.02 + 3 * radius * math.sin(left.lead_angle) / (r_p - 2 * radius * (sign < 0))
-        # loft through exact lens sections (OCC: 1e-7 m from the exact surface, against 1e-6 m
-        # for a pipe along the spline helix over this reach; the flank nodes are snapped anyway)
-        sections = [_lens_loop(occ, grooves, phi) for phi in np.linspace(-reach, reach, 9)]
-        cutter = occ.addThruSections(sections, makeSolid=True, makeRuled=False)
-        result, _ = occ.cut(wedge, [vt for vt in cutter if vt[0] == 3])
-        occ.synchronize()
-        volumes = [tag for dim, tag in result if dim == 3]
-        roles: dict[str, list[int]] = {"flank_left": [], "flank_right": [], "land": [], "back": [],
-                                       "segment_free": []}
-        for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
-            xyz = _face_point(gmsh, tag)
-            rho = math.hypot(xyz[0], xyz[1])
-            residuals = [abs(surface_residual(g, xyz[None, :])[0]) for g in grooves]
-            if gmsh.model.getType(2, tag) == "Cylinder" and abs(rho - land) < 1e-6 * radius:
-                roles["land"].append(tag)
-            elif gmsh.model.getType(2, tag) == "Cylinder" and abs(rho - back) < 1e-6 * radius:
-                roles["back"].append(tag)
-            elif gmsh.model.getType(2, tag) not in ("Plane", "Cylinder") and min(residuals) < 0.01 * radius:
-                roles["flank_left" if residuals[0] < residuals[1] else "flank_right"].append(tag)
-            else:
-                roles["segment_free"].append(tag)
-        if not roles["flank_left"] or not roles["flank_right"]:
-            raise RuntimeError(f"groove flanks not identified: {roles}")
+        volumes, roles = _add_segment(gmsh, grooves, land, back, half_angle, width)
         physical(gmsh, 3, volumes, left.body)
         for name, tags in roles.items():
             if tags:
-                physical(gmsh, 2, tags, name)
+                physical(gmsh, 2, tags, "segment_free" if name == "free" else name)
         if refine:
-            contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
             from meshes.rail import _refine_at_points
 
+            contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
             _refine_at_points(gmsh, contacts, h_contact, growth, h_max, fine_radius)
         else:
             gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
             gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
         gmsh.model.mesh.generate(3)
-        for g, name in zip(grooves, ("flank_left", "flank_right")):
-            _snap_to_groove(gmsh, g, roles[name], np.eye(3), np.zeros(3))
-        _snap_to_bottom(gmsh, grooves, roles["flank_left"], roles["flank_right"])
+        _snap_segment(gmsh, grooves, roles)
         write_msh(gmsh, path)
     return path
