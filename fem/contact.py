@@ -1,0 +1,289 @@
+"""Frictionless unilateral contact of two linear-elastic bodies (small deformation).
+
+Formulation (docs/fem.md):
+
+* bodies and boundary conditions: the counter body is clamped on
+  ``counter_support``; the ball's ``ball_load`` face is held rigid and moved by
+  ``-U`` along z (the approach of the two reference faces, U > 0 pushes the
+  ball into the counter); symmetry cuts carry ``u_x = 0`` (``symmetry_x``) and
+  ``u_y = 0`` (``symmetry_y``).  Every rigid-body mode is thus removed.
+* node-to-surface contact along the contact normal z: candidate ball nodes
+  ``j`` (``ball_contact`` nodes with initial gap ``g0_j <= gap_limit``) are
+  projected along z onto the ``counter_contact`` triangles; the gap
+  ``g_j = g0_j + u_z(ball node j) - sum_k N_k(j) u_z(counter node k)`` [m].
+* contact forces ``lambda_j >= 0`` [N] act on ball node j along +z and, with the
+  weights ``-N_k(j)``, on the counter nodes: ``f = B^T lambda``, ``g = g0 - U + B u``.
+* condensed contact compliance ``W = B K^-1 B^T`` [m/N] (``K`` with the
+  boundary conditions above; :func:`fem.linsolve.inverse_block`); the rigid
+  translation of the ball adds ``-U`` to every gap:  ``g = g0 - U + W lambda``.
+* the linear complementarity problem ``lambda >= 0, g >= 0, lambda . g = 0``,
+  with either the force ``sum lambda = F / symmetry_factor`` (U unknown) or U
+  given, is solved exactly by a primal-dual active set method (Hintermueller,
+  Ito & Kunisch 2002): no penalty parameter enters the answer.
+
+The solve stops when the active set repeats and the complementarity residual
+``max_j |min(lambda_j / F_s, g_j / g_s)|`` (``F_s`` the mean active force,
+``g_s`` = U) is below ``tol``; otherwise :class:`lowmodel.errors.ConvergenceError`.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import scipy.sparse as sp
+
+from fem.elasticity import PairMesh, load_pair, stiffness
+from fem import linsolve
+from lowmodel.errors import ConvergenceError
+
+__all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement"]
+
+
+@dataclass
+class ContactModel:
+    """The condensed two-body contact problem of a mesh.
+
+    ``candidates`` (n_c,) ball node indices; ``g0`` (n_c,) initial gaps [m];
+    ``W`` (n_c, n_c) contact compliance [m/N]; ``area`` (n_c,) tributary
+    contact area of each candidate on the ball surface [m^2] (the model's cut);
+    ``B`` (n_c, ndof) sparse gap operator; ``K`` the constrained stiffness.
+    """
+
+    pair: PairMesh
+    candidates: np.ndarray
+    g0: np.ndarray
+    W: np.ndarray
+    area: np.ndarray
+    B: sp.csr_matrix
+    K: sp.csr_matrix
+    free: np.ndarray
+    basis: object
+    load_dofs: np.ndarray
+    boundary_candidates: np.ndarray
+    timings: dict = field(default_factory=dict)
+
+    @property
+    def ndofs(self) -> int:
+        return int(self.K.shape[0])
+
+    @property
+    def symmetry_factor(self) -> int:
+        return self.pair.symmetry_factor
+
+    @property
+    def xy(self) -> np.ndarray:
+        return self.pair.points[self.candidates, :2]
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """Solution at one load.  ``force`` [N] full-model force, ``approach`` U [m],
+    ``forces`` (n_c,) nodal contact forces of the model's cut [N], ``gaps`` (n_c,) [m],
+    ``pressure`` (n_c,) nodal pressure [Pa], ``active`` (n_c,) bool, ``iterations``,
+    ``residual`` (dimensionless complementarity residual)."""
+
+    force: float
+    approach: float
+    forces: np.ndarray
+    gaps: np.ndarray
+    pressure: np.ndarray
+    active: np.ndarray
+    iterations: int
+    residual: float
+
+
+def _lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
+    p = points[triangles]
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    out = np.zeros(n)
+    for k in range(3):
+        np.add.at(out, triangles[:, k], area / 3.0)
+    return out
+
+
+def _project(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Triangle (nodes (n, 3)) and barycentric weights (n, 3) of the z-projection of ``xy`` (n, 2)."""
+    from scipy.spatial import cKDTree
+
+    p = points[triangles][:, :, :2]
+    centroid = p.mean(axis=1)
+    tree = cKDTree(centroid)
+    k = min(32, len(triangles))
+    _, near = tree.query(xy, k=k)
+    near = np.atleast_2d(near)
+    nodes = np.empty((len(xy), 3), dtype=np.int64)
+    weights = np.empty((len(xy), 3))
+    for i, (point, cand) in enumerate(zip(xy, near)):
+        a, b, c = p[cand, 0], p[cand, 1], p[cand, 2]
+        v0, v1, v2 = b - a, c - a, point - a
+        det = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
+        l1 = (v2[:, 0] * v1[:, 1] - v2[:, 1] * v1[:, 0]) / det
+        l2 = (v0[:, 0] * v2[:, 1] - v0[:, 1] * v2[:, 0]) / det
+        l0 = 1.0 - l1 - l2
+        worst = np.minimum(np.minimum(l0, l1), l2)
+        best = int(np.argmax(worst))
+        if worst[best] < -1e-6:
+            raise ValueError(f"ball node at xy = {point} [m] projects outside counter_contact: enlarge the counter "
+                             "block or lower gap_limit")
+        nodes[i] = triangles[cand[best]]
+        weights[i] = np.clip([l0[best], l1[best], l2[best]], 0.0, 1.0)
+        weights[i] /= weights[i].sum()
+    return nodes, weights
+
+
+def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, order: int = 1,
+                method: str = "schur", min_candidates: int = 20) -> ContactModel:
+    """Assemble, constrain and condense the contact problem of a contact-pair mesh.
+
+    ``materials``: ``(E [Pa], nu)`` or one pair per body (ball, counter).
+    ``gap_limit`` [m]: ball nodes with initial gap at most this are contact
+    candidates (it must exceed the approach; a contact reaching the edge of the
+    candidate zone is refused at solve time).  ``order``: 1 (P1; contact is
+    node-to-surface on P1 nodes; P2 is refused).  ``method``: see :mod:`fem.linsolve`.
+    """
+    if order != 1:
+        raise ValueError(f"order must be 1 for contact (node-to-surface on P1 nodes), got {order!r}")
+    if not (np.isfinite(gap_limit) and gap_limit > 0):
+        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
+    timings = {}
+    t0 = time.perf_counter()
+    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
+    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
+        if name not in pair.surfaces:
+            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    timings["load_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    K, basis = stiffness(pair, materials, order=1)
+    timings["assembly_s"] = time.perf_counter() - t0
+    dofs = basis.nodal_dofs  # (3, nnodes)
+    fixed = [dofs[:, pair.nodes("counter_support")].ravel(), dofs[:, pair.nodes("ball_load")].ravel(),
+             dofs[0, pair.nodes("symmetry_x")], dofs[1, pair.nodes("symmetry_y")]]
+    fixed = np.unique(np.concatenate(fixed))
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+
+    points = pair.points
+    ball_nodes = pair.nodes("ball_contact")
+    ball_nodes = ball_nodes[np.abs(points[ball_nodes, 2]) < 0.5 * np.ptp(points[:, 2])]
+    counter_tris = pair.surfaces["counter_contact"]
+    # initial gap of ball-contact nodes against the (facetted) counter surface
+    near = ball_nodes[points[ball_nodes, 2] <= gap_limit + np.max(points[np.unique(counter_tris), 2])]
+    tri_nodes, weights = _project(points, counter_tris, points[near, :2]) if near.size else (None, None)
+    if near.size == 0:
+        raise ValueError("no ball node near the counter surface: check the mesh frame")
+    z_counter = np.einsum("ij,ij->i", points[tri_nodes, 2], weights)
+    g0_all = points[near, 2] - z_counter
+    keep = g0_all <= gap_limit
+    candidates, g0 = near[keep], g0_all[keep]
+    tri_nodes, weights = tri_nodes[keep], weights[keep]
+    if candidates.size < min_candidates:
+        raise ValueError(f"only {candidates.size} candidate contact nodes (need >= {min_candidates}): refine the "
+                         "mesh at the contact (smaller h_contact) or raise gap_limit")
+    if np.min(g0) < -1e-9 * np.ptp(points[:, 2]):
+        raise ValueError(f"initial penetration {-np.min(g0):.3e} m: the bodies overlap")
+    # candidates whose ball-surface neighbours are outside the zone: the zone edge
+    tris = pair.surfaces["ball_contact"]
+    in_zone = np.zeros(len(points), bool)
+    in_zone[candidates] = True
+    touched = in_zone[tris]
+    edge_tris = tris[touched.any(axis=1) & ~touched.all(axis=1)]
+    boundary = np.isin(candidates, edge_tris)
+    # gap operator B (n_c, ndof): +1 on the ball z DOF, -N_k on counter z DOFs
+    n_c = candidates.size
+    rows = np.concatenate([np.arange(n_c), np.repeat(np.arange(n_c), 3)])
+    cols = np.concatenate([dofs[2, candidates], dofs[2, tri_nodes.ravel()]])
+    vals = np.concatenate([np.ones(n_c), -weights.ravel()])
+    B = sp.csr_matrix((vals, (rows, cols)), shape=(n_c, K.shape[0]))
+    B.sum_duplicates()
+    Bf = B[:, free].tocsc()
+    K_ff = K[free][:, free].tocsr()
+    c_set = np.flatnonzero(Bf.getnnz(axis=0))
+    t0 = time.perf_counter()
+    inv_cc = linsolve.inverse_block(K_ff, c_set, method=method)
+    timings["condense_s"] = time.perf_counter() - t0
+    Bc = Bf[:, c_set].toarray()
+    W = Bc @ inv_cc @ Bc.T
+    W = 0.5 * (W + W.T)
+    area = _lumped_area(points, tris, len(points))[candidates]
+    return ContactModel(pair, candidates, g0, W, area, B.tocsr(), K, free, basis,
+                        dofs[2, pair.nodes("ball_load")], boundary, timings)
+
+
+def _pdas(model: ContactModel, force: float | None, approach: float | None, tol: float, max_iter: int,
+          active0: np.ndarray | None = None) -> ContactState:
+    W, g0 = model.W, model.g0
+    n = g0.size
+    scale_c = 1.0 / np.median(np.diag(W))  # [N/m], makes lambda - c g dimensionally consistent
+    active = (g0 <= np.min(g0) + 1e-30) if active0 is None else active0.copy()
+    cut_force = None if force is None else force / model.symmetry_factor
+    history = []
+    lam = np.zeros(n)
+    U = 0.0
+    residual = np.inf
+    for iteration in range(1, max_iter + 1):
+        idx = np.flatnonzero(active)
+        lam = np.zeros(n)
+        if force is not None:
+            m = idx.size
+            mat = np.zeros((m + 1, m + 1))
+            mat[:m, :m] = W[np.ix_(idx, idx)]
+            mat[:m, m] = -1.0
+            mat[m, :m] = 1.0
+            rhs = np.concatenate([-g0[idx], [cut_force]])
+            sol = np.linalg.solve(mat, rhs)
+            lam[idx], U = sol[:m], sol[m]
+        else:
+            U = approach
+            if idx.size:
+                lam[idx] = np.linalg.solve(W[np.ix_(idx, idx)], U - g0[idx])
+        gap = g0 - U + W @ lam
+        new_active = lam - scale_c * gap > 0.0
+        f_s = max(np.sum(lam) / max(idx.size, 1), 1e-300)
+        g_s = max(abs(U), 1e-300)
+        residual = float(np.max(np.abs(np.minimum(lam / f_s, gap / g_s))))
+        key = new_active.tobytes()
+        if np.array_equal(new_active, active) and residual <= tol:
+            break
+        if key in history and not np.array_equal(new_active, active):
+            raise ConvergenceError("primal-dual active set cycles", residual=residual, iterations=iteration,
+                                   tolerance=tol)
+        history.append(active.tobytes())
+        active = new_active
+        if not active.any():
+            active = g0 <= np.min(g0)
+    else:
+        raise ConvergenceError("primal-dual active set did not converge", residual=residual, iterations=max_iter,
+                               tolerance=tol)
+    if np.any(active & model.boundary_candidates):
+        raise ValueError("the contact reaches the edge of the candidate zone: raise gap_limit (and refine the mesh "
+                         "over the larger zone)")
+    total = float(np.sum(lam)) * model.symmetry_factor
+    return ContactState(total, float(U), lam, gap, lam / model.area, active, iteration, residual)
+
+
+def solve_force(model: ContactModel, force: float, *, tol: float = 1e-10, max_iter: int = 50) -> ContactState:
+    """Contact under the total (full-model) force ``force`` [N] > 0 on the ball's load face."""
+    if not (np.isfinite(force) and force > 0):
+        raise ValueError(f"force must be a finite number > 0 N, got {force!r}")
+    return _pdas(model, float(force), None, tol, max_iter)
+
+
+def solve_approach(model: ContactModel, approach: float, *, tol: float = 1e-10, max_iter: int = 50) -> ContactState:
+    """Contact under the prescribed approach ``approach`` [m] > min(g0) of the load face."""
+    if not (np.isfinite(approach) and approach > np.min(model.g0)):
+        raise ValueError(f"approach must exceed the smallest initial gap {np.min(model.g0):.3e} m, got {approach!r}")
+    return _pdas(model, None, float(approach), tol, max_iter)
+
+
+def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
+    """Nodal displacement field (nnodes, 3) [m] of a solved state (one sparse solve)."""
+    ndof = model.K.shape[0]
+    f = model.B.T @ state.forces
+    u = np.zeros(ndof)
+    u[model.load_dofs] = -state.approach
+    rhs = f - model.K @ u
+    solve = linsolve.factorize(model.K[model.free][:, model.free])
+    u[model.free] = solve(rhs[model.free])
+    solve.free()
+    return u[model.basis.nodal_dofs].T.copy()

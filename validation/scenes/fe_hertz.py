@@ -1,0 +1,223 @@
+"""FE contact benchmark: scikit-fem two-body contact against exact Hertz (lowmodel.hertz).
+
+Each scene meshes a symmetry cut of its pair (meshes.contact_pairs, or the
+helical screw pair of meshes.helical), solves the frictionless contact
+(fem.contact, condensed compliance + primal-dual active set) over a load sweep
+and compares the fitted a, b, p0 and the contact approach delta (bulk
+compliance of the finite bodies removed: fem.postprocess) with Hertz.
+
+Mesh levels: ``n`` elements across the Hertz minor semi-axis b (h_contact = b/n)
+and the growth rate of the size away from the contact.  Fidelity ``quick`` is
+the coarse CI level, ``default`` the default level, ``fine`` the convergence
+study (>= 4 levels; the finest is checked).  Tolerances (issue 5): default level
+a, b 0.5 %, p0 1 %, delta 0.5 %, <= 60 s; finest level a, b 0.3 %, p0 0.5 %,
+delta 0.2 %, <= 300 s.  The quick level is a smoke test of the whole chain
+with its own, stated tolerance (3 %, p0 4 %).
+"""
+from __future__ import annotations
+
+import csv
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from lowmodel import hertz
+from validation.scene import scene
+
+MODEL = "fem.contact"
+E_STEEL, NU_STEEL = 2.1e11, 0.28  # lin2019 Table 1
+BALL_RADIUS = 5e-3  # m, lin2019 Table 1
+LOAD = 100.0  # N
+QUANTITIES = (("a", "m"), ("b", "m"), ("p0", "Pa"), ("delta", "m"))
+TOLERANCES = {
+    "quick": {"a": 0.03, "b": 0.03, "p0": 0.04, "delta": 0.03},
+    "default": {"a": 0.005, "b": 0.005, "p0": 0.01, "delta": 0.005},
+    "fine": {"a": 0.003, "b": 0.003, "p0": 0.005, "delta": 0.002},
+}
+TIME_LIMIT_S = {"quick": 60.0, "default": 60.0, "fine": 300.0}
+# (n = b / h_contact, growth)
+LEVELS = {
+    "quick": [(6.0, 1.3)],
+    "default": [(10.0, 1.2)],
+    "fine": [(6.0, 1.3), (8.0, 1.2), (10.0, 1.2), (14.0, 1.2), (18.0, 1.15)],
+}
+
+
+@dataclass(frozen=True)
+class PairCase:
+    """What a scene solves: a mesh builder of (h_contact, growth), the Hertz geometry,
+    the force [N] and the source text of the reference."""
+
+    name: str
+    builder: object
+    geometry: hertz.HertzGeometry
+    force: float
+    source: str
+
+
+def _steel_groove(conformity: float) -> PairCase:
+    from meshes import contact_pairs
+
+    geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+    ref = hertz.solve_load(geometry, LOAD)
+
+    def build(h, growth):
+        return contact_pairs.ball_in_groove_pair(BALL_RADIUS, conformity, h, growth, fine_radius=1.4 * ref.b,
+                                                 fine_half_length=1.1 * ref.a)
+
+    return PairCase(f"groove {conformity}", build, geometry, LOAD,
+                    f"lowmodel.hertz.ball_in_groove (conformity {conformity}, R_B 5 mm, 100 N)")
+
+
+def pair_case(scene_name: str) -> PairCase:
+    """The pair of an ``fe-hertz-*`` scene."""
+    from meshes import contact_pairs
+
+    if scene_name == "fe-hertz-flat":
+        geometry = hertz.ball_on_flat(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+        ref = hertz.solve_load(geometry, LOAD)
+        return PairCase("ball on flat", lambda h, g: contact_pairs.ball_on_flat_pair(
+            BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
+            "lowmodel.hertz.ball_on_flat (R_B 5 mm, 100 N)")
+    if scene_name == "fe-hertz-ball-ball":
+        geometry = hertz.ball_on_ball(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+        ref = hertz.solve_load(geometry, LOAD)
+        return PairCase("ball on ball", lambda h, g: contact_pairs.ball_on_ball_pair(
+            BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
+            "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)")
+    if scene_name.startswith("fe-hertz-groove-0"):
+        return _steel_groove(int(scene_name[-3:]) / 1000.0)
+    if scene_name == "fe-hertz-screw":
+        from meshes import helical
+
+        # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
+        args = (2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0))
+        frame = helical.contact_frame(helical.helical_groove(*args))
+        radius = args[0]
+        geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
+                                         youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+        ref = hertz.solve_load(geometry, LOAD)
+        return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
+            *args, h_contact=h, growth=g, fine_radius=1.1 * ref.a), geometry, LOAD,
+            "lowmodel.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)")
+    raise ValueError(f"no FE Hertz scene {scene_name!r}")
+
+
+def solve_level(case: PairCase, n: float, growth: float):
+    """FE result and Hertz reference at level (n = b/h, growth)."""
+    from fem import hertz_case
+
+    ref = hertz.solve_load(case.geometry, case.force)
+    result = hertz_case.solve_case(lambda: case.builder(ref.b / n, growth), case.force, (E_STEEL, NU_STEEL),
+                                   gap_limit=1.25 * float(ref.delta))
+    return result, ref
+
+
+def write_vtu(result, path) -> None:
+    """Mesh with displacement [m] and contact pressure [Pa] point data (meshio)."""
+    import meshio
+
+    from fem.contact import full_displacement
+
+    model, state = result.model, result.state
+    u = full_displacement(model, state)
+    pressure = np.zeros(len(model.pair.points))
+    pressure[model.candidates] = state.pressure
+    mesh = meshio.Mesh(model.pair.points, [("tetra", model.pair.tets)],
+                       point_data={"displacement": u, "contact_pressure": pressure},
+                       cell_data={"body": [model.pair.body]})
+    mesh.write(path)
+
+
+def _run(run, scene_name: str) -> None:
+    case = pair_case(scene_name)
+    levels = LEVELS[run.fidelity]
+    rows, results = [], []
+    for n, growth in run.progress(levels, desc=f"{scene_name} mesh levels"):
+        start = time.perf_counter()
+        result, ref = solve_level(case, n, growth)
+        wall = time.perf_counter() - start
+        errors = {q: float(getattr(result, q) / float(getattr(ref, q)) - 1.0) for q, _ in QUANTITIES}
+        rows.append(dict(n=n, growth=growth, h_contact=result.h_contact, ndofs=result.ndofs,
+                         candidates=result.n_candidates, iterations=result.iterations, residual=result.residual,
+                         wall_s=wall, **{f"{k}_s": v for k, v in result.timings.items()},
+                         **{f"err_{q}": e for q, e in errors.items()}))
+        results.append((result, ref, wall))
+    result, ref, wall = results[-1]
+    tolerances = TOLERANCES[run.fidelity]
+    level = "finest level" if run.fidelity == "fine" else f"{run.fidelity} level"
+    for quantity, unit in QUANTITIES:
+        run.check(model=MODEL, quantity=quantity, unit=unit, value=getattr(result, quantity),
+                  reference=float(getattr(ref, quantity)), source=case.source, tolerance=tolerances[quantity],
+                  time_s=wall, note=f"{level}: n = b/h = {rows[-1]['n']:g}, growth {rows[-1]['growth']:g}, "
+                                    f"{result.ndofs} DOFs")
+    run.check(model=MODEL, quantity="force_sum", unit="N", value=result.force_sum, reference=case.force,
+              source="load equilibrium (sum of contact forces)", tolerance=1e-9, time_s=wall)
+    run.check(model=MODEL, quantity="wall_time", unit="s", value=wall, reference=TIME_LIMIT_S[run.fidelity],
+              source="issue 5 time budget", tolerance=0.0, relation="le", time_s=wall)
+    run.note(f"contact solve: {result.iterations} active-set iterations, complementarity residual "
+             f"{result.residual:.1e} (tolerance 1e-10); bulk compliance C_b = {result.bulk_compliance:.3e} m/N "
+             f"(FE approach of the reference faces {result.approach:.4e} m = delta + C_b F)")
+    with open(run.path("convergence.csv"), "w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    run.add_artifact(run.path("convergence.csv"))
+    write_vtu(result, run.path("fields.vtu"))
+    run.add_artifact(run.path("fields.vtu"))
+    _plot(run, scene_name, rows)
+
+
+def _plot(run, scene_name, rows) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    h = np.array([r["h_contact"] for r in rows]) * 1e6
+    t = np.array([r["wall_s"] for r in rows])
+    for quantity, _ in QUANTITIES:
+        err = np.abs([r[f"err_{quantity}"] for r in rows]) * 100
+        axes[0].loglog(h, err, "o-", label=quantity)
+        axes[1].loglog(t, err, "o-", label=quantity)
+    axes[0].set_xlabel("h at the contact [um]")
+    axes[1].set_xlabel("wall time [s]")
+    for ax in axes:
+        ax.set_ylabel("|error| vs Hertz [%]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend()
+    fig.suptitle(f"{scene_name}: mesh convergence")
+    run.save_figure(fig, "convergence.png")
+
+
+@scene("fe-hertz-flat", "FE contact, ball (R 5 mm) on a flat, 100 N, steel: a, b, p0, delta against Hertz")
+def fe_hertz_flat(run):
+    _run(run, "fe-hertz-flat")
+
+
+@scene("fe-hertz-ball-ball", "FE contact, ball on ball (R 5 mm each), 100 N: a, b, p0, delta against Hertz")
+def fe_hertz_ball_ball(run):
+    _run(run, "fe-hertz-ball-ball")
+
+
+@scene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz")
+def fe_hertz_groove_052(run):
+    _run(run, "fe-hertz-groove-052")
+
+
+@scene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz")
+def fe_hertz_groove_056(run):
+    _run(run, "fe-hertz-groove-056")
+
+
+@scene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz")
+def fe_hertz_groove_060(run):
+    _run(run, "fe-hertz-groove-060")
+
+
+@scene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz")
+def fe_hertz_screw(run):
+    _run(run, "fe-hertz-screw")
