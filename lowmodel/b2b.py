@@ -45,20 +45,51 @@ from dataclasses import dataclass
 import numpy as np
 
 from lowmodel.bearing_ball import (
+    N_UNKNOWNS,
     BallContacts,
     BallState,
     _ball_terms,
-    _initial_guess,
     _state,
-    newton,
+    _solve_free,
+    ball_contacts,
     solve_ball,
+    solve_branch,
 )
 from lowmodel.errors import ConvergenceError
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "COMPLEMENTARITY_SCALE"]
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
 
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
+
+
+def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.0, 0.0), n_balls: int = 2,
+                    nominal_angle: float = math.pi / 4, vertical_force: float = 100.0, ball_radius: float = 5e-3,
+                    conformity: float = 0.56, friction_coefficient: float = 0.1, groove_velocity: float = 0.01,
+                    youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28) -> BallContacts:
+    """Balls of the lin2019 case study (Sec 2.4, Fig 7; defaults: Table 1).
+
+    Contact angles ``beta_BL = beta_0 - theta``, ``beta_BR = beta_0 + theta``
+    (bottom rail), ``beta_TR = beta_0 + top_deviations[0]``,
+    ``beta_TL = beta_0 + top_deviations[1]`` (Table 2 case (b):
+    ``(-theta, +theta)``); all angles in rad.  Yaw loading: the same
+    ``N_y = vertical_force`` [N] on every ball and ``N_x = +-rho N_y``
+    alternating, ball 0 (behind, "ball 1") carrying ``+rho N_y``.  Normal
+    forces from lin2017 eq 36 (not the sqrt(2)/2 approximation of Sec 2.4.1,
+    which only the analytical model uses).
+    """
+    if not isinstance(n_balls, (int, np.integer)) or n_balls < 1:
+        raise ValueError(f"n_balls must be an integer >= 1, got {n_balls!r}")
+    for name, value in (("theta", theta), ("side_force_ratio", side_force_ratio)):
+        if not math.isfinite(float(value)):
+            raise ValueError(f"{name} must be finite, got {value!r}")
+    top = np.asarray(top_deviations, dtype=float)
+    angles = nominal_angle + np.array([-theta, theta, top[0], top[1]])
+    sign = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0)
+    return ball_contacts(np.tile(angles, (n_balls, 1)), sign * side_force_ratio * vertical_force, vertical_force,
+                         ball_radius=ball_radius, conformity=conformity,
+                         friction_coefficient=friction_coefficient, groove_velocity=groove_velocity,
+                         youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
 
 
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
@@ -148,57 +179,62 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     touching = np.flatnonzero(gaps <= gap_tolerance)
     if n == 1 or touching.size == 0:
         return solve_ball(contacts, tolerance=tolerance)
-    free = solve_ball(contacts, tolerance=tolerance)  # initial guess: each ball on its own
     mu = contacts.friction_coefficient
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)
-    x_free = np.column_stack([free.ball_velocity / speed, free.omega * radius / speed])
+    k = N_UNKNOWNS
+    guess, _, _ = _solve_free(contacts, reference_force, tolerance, max_iterations)  # each ball on its own
     m = touching.size
     gamma = COMPLEMENTARITY_SCALE
+    size = k * n + m
 
     def unpack(z):
-        scaled = z[:3 * n].reshape(n, 3)
+        balls = z[:k * n].reshape(n, k)
         forces = np.zeros(n - 1)
-        forces[touching] = z[3 * n:]
-        return scaled, forces
+        forces[touching] = z[k * n:]
+        return balls, forces
 
     def function(z):
-        scaled, forces = unpack(z)
-        terms = _ball_terms(scaled, contacts, reference_force)
-        load, d_scaled, d_forces, _ = _b2b_terms(scaled, forces, mu)
-        jac = np.zeros((3 * n + m, 3 * n + m))
-        blocks = d_scaled.reshape(3 * n, 3 * n)
+        balls, forces = unpack(z)
+        terms = _ball_terms(balls, contacts, reference_force)
+        load, d_scaled, d_forces, _ = _b2b_terms(balls[:, :3], forces, mu)
+        jac = np.zeros((size, size))
+        residual = np.empty(size)
+        ball_residual = terms.residual.copy()
+        ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
+        residual[:k * n] = ball_residual.reshape(-1)
         for ball in range(n):
-            blocks[3 * ball:3 * ball + 3, 3 * ball:3 * ball + 3] += terms.jacobian[ball]
-        jac[:3 * n, :3 * n] = blocks
-        jac[:3 * n, 3 * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
-        residual = np.empty(3 * n + m)
-        residual[:3 * n] = (terms.residual + load).reshape(-1)  # lin2019 eq 8 for every ball
+            rows = slice(k * ball, k * ball + k)
+            jac[rows, rows] = terms.jacobian[ball]
+        rows3 = (k * np.arange(n)[:, None] + np.arange(3)[None, :]).reshape(-1)  # equilibrium rows
+        jac[np.ix_(rows3, rows3)] += d_scaled.reshape(3 * n, 3 * n)
+        jac[rows3, k * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
         # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
-        lam = z[3 * n:]
-        separation = scaled[touching + 1, 0] - scaled[touching, 0]
+        lam = z[k * n:]
+        separation = balls[touching + 1, 0] - balls[touching, 0]
         force_branch = lam <= gamma * separation
-        residual[3 * n:] = np.where(force_branch, lam, gamma * separation)
-        rows = 3 * n + np.arange(m)
-        jac[rows[force_branch], 3 * n + np.flatnonzero(force_branch)] = 1.0
+        residual[k * n:] = np.where(force_branch, lam, gamma * separation)
+        rows = k * n + np.arange(m)
+        jac[rows[force_branch], k * n + np.flatnonzero(force_branch)] = 1.0
         vel = ~force_branch
-        jac[rows[vel], 3 * (touching[vel] + 1)] = gamma
-        jac[rows[vel], 3 * touching[vel]] = -gamma
+        jac[rows[vel], k * (touching[vel] + 1)] = gamma
+        jac[rows[vel], k * touching[vel]] = -gamma
         return residual, jac
 
-    z0 = np.concatenate([x_free.reshape(-1), np.zeros(m)])
-    z, residual, iterations = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations,
-                                     what=f"{n}-ball B2B contact")
-    scaled, forces = unpack(z)
-    separation = scaled[touching + 1, 0] - scaled[touching, 0]
+    z0 = np.concatenate([guess.reshape(-1), np.zeros(m)])
+    z, residual, iterations = solve_branch(function, z0, lambda z: z[:k * n].reshape(n, k), contacts,
+                                           reference_force, tolerance=tolerance, max_iterations=max_iterations,
+                                           what=f"{n}-ball B2B contact")
+    balls, forces = unpack(z)
+    separation = balls[touching + 1, 0] - balls[touching, 0]
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
     if violation > 10 * tolerance:
         raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
                                iterations=iterations, tolerance=tolerance)
     forces = np.maximum(forces, 0.0)
-    terms = _ball_terms(scaled, contacts, reference_force)
-    _, _, _, slip = _b2b_terms(scaled, forces, mu)
-    return _state(scaled, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
+    terms = _ball_terms(balls, contacts, reference_force)
+    _, _, _, slip = _b2b_terms(balls[:, :3], forces, mu)
+    return _state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                   b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
 
 
@@ -266,7 +302,7 @@ def simulate_gaps(contacts: BallContacts, initial_gaps, t_end: float, *, max_eve
             else:
                 hit = -1
         gaps = gaps + rate * dt
-        gaps[touching & (rate <= 0.0)] = 0.0  # touching pairs that stay together
+        gaps[touching & (state.b2b_force > 0.0)] = 0.0  # pairs that stay pressed together
         if hit >= 0:
             gaps[hit] = 0.0
         gaps = np.maximum(gaps, 0.0)

@@ -48,9 +48,10 @@ Newton tolerance (it checks kinematics, moment arms and signs, not the
 quadrature).  The tabulated loss of eq A6 is reported alongside
 (``friction_loss_table``) and agrees to the accuracy of the friction map.
 
-Newton's method in the scaled unknowns ``(v_B, omega_x R_B, omega_y R_B)/|v|``
-with the analytic Jacobian (chain rule through the map's derivatives);
-residuals in units of ``mu max(F_i)``.
+Newton's method (globalised by Levenberg-Marquardt, :func:`newton`) in the
+scaled unknowns ``(v_B, omega_x R_B, omega_y R_B)/|v|`` with the analytic
+Jacobian (chain rule through the map's derivatives); residuals in units of
+``mu max(F_i)``.
 """
 from __future__ import annotations
 
@@ -68,6 +69,7 @@ __all__ = [
     "contacts_from_forces",
     "solve_ball",
     "contact_normals",
+    "newton",
     "CONTACT_NAMES",
 ]
 
@@ -262,52 +264,83 @@ def _friction(spin, slide, b_over_a):
 
 @dataclass(frozen=True)
 class _Terms:
-    residual: np.ndarray  # (n, 3) units mu F_ref
-    jacobian: np.ndarray  # (n, 3, 3) d residual / d scaled unknowns
+    residual: np.ndarray  # (n, 7): eq 4 rows in units mu F_ref, then 4 kinematic rows in units |v|
+    jacobian: np.ndarray  # (n, 7, 7) d residual / d unknowns
     slide: np.ndarray  # (n, 4) units |v|
     spin_velocity: np.ndarray  # (n, 4) omega_i a_i, units |v|
+    slip_speed: np.ndarray  # (n, 4) signed |(slide, spin)| along (sin phi, cos phi), units |v|
     force: np.ndarray  # (n, 4) units mu F_ref, on the ball along +z
     moment: np.ndarray  # (n, 4) M_{i,O}/R_B, units mu F_ref
     loss_table: np.ndarray  # (n, 4) units mu F_ref |v|
 
 
-def _ball_terms(scaled: np.ndarray, contacts: BallContacts, reference_force: float) -> _Terms:
-    """Residual of lin2019 eq 4 for each ball and its Jacobian.
+N_UNKNOWNS = 7  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v| and the four slip angles phi_i
 
-    ``scaled`` (n, 3) = (v_B, omega_x R_B, omega_y R_B) / |v|.
+
+def _ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: float) -> _Terms:
+    """Residual of lin2019 eq 4 and of the slip kinematics for each ball, and its Jacobian.
+
+    ``unknowns`` (n, 7): ``x = (v_B, omega_x R_B, omega_y R_B)/|v|`` and the
+    slip-direction angles ``phi_i`` of the four contacts.  Friction of each
+    contact depends on its slip direction only, ``(slide_i, spin_i) =
+    r_i (sin phi_i, cos phi_i)``, so eq 4 is written in ``phi`` and the
+    kinematics (eqs 1-2, A1-A3) as ``slide_i cos phi_i - spin_i sin phi_i = 0``
+    (linear in ``x``).  Smooth everywhere, also where a contact's slip
+    vanishes (``r_i -> 0``: the rolling limit, where ``atan2(slide, spin)`` is
+    singular and Newton in ``x`` alone fails); the branch ``r_i >= 0`` is
+    checked after convergence.
     """
+    x = unknowns[:, :3]
+    phi = unknowns[:, 3:]
     normals = contact_normals(contacts.contact_angles)  # (n, 4, 2)
     nx, ny = normals[..., 0], normals[..., 1]
     direction = math.copysign(1.0, contacts.groove_velocity)
     arm = contacts.semi_major / contacts.ball_radius  # a_i / R_B
     load = contacts.normal_forces / reference_force
-    x0, x1, x2 = scaled[:, 0:1], scaled[:, 1:2], scaled[:, 2:3]
+    x0, x1, x2 = x[:, 0:1], x[:, 1:2], x[:, 2:3]
     slide = x0 - direction * _TOP + x1 * ny - x2 * nx  # lin2019 eqs 1, A1-A3 (z slip at the centre)
     spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2
-    fr = _friction(spin_velocity, slide, contacts.b_over_a)
+    cos, sin = np.cos(phi), np.sin(phi)
+    fr = _friction(cos, sin, contacts.b_over_a)  # unit slip speed in direction phi
     force = load * fr.force  # eq A4
     moment = load * arm * fr.moment  # eq A5, M_{i,O}/R_B about -y_i
-    # d/d(x0, x1, x2) of slide and spin
+    dforce = load * (fr.dforce_dslide * cos - fr.dforce_dspin * sin)  # d/d phi
+    dmoment = load * arm * (fr.dmoment_dslide * cos - fr.dmoment_dspin * sin)
+    n = x.shape[0]
+    residual = np.empty((n, N_UNKNOWNS))
+    residual[:, 0] = force.sum(axis=1)  # lin2019 eq 4, row 1
+    residual[:, 1] = (ny * force + nx * moment).sum(axis=1)  # row 2
+    residual[:, 2] = (-nx * force + ny * moment).sum(axis=1)  # row 3
+    residual[:, 3:] = slide * cos - spin_velocity * sin  # slip along (sin phi, cos phi)
+    slip_speed = slide * sin + spin_velocity * cos
+    jacobian = np.zeros((n, N_UNKNOWNS, N_UNKNOWNS))
+    jacobian[:, 0, 3:] = dforce
+    jacobian[:, 1, 3:] = ny * dforce + nx * dmoment
+    jacobian[:, 2, 3:] = -nx * dforce + ny * dmoment
     dslide = np.stack([np.ones_like(nx), ny, -nx], axis=-1)  # (n, 4, 3)
     dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)
-    dforce = (load * fr.dforce_dslide)[..., None] * dslide + (load * fr.dforce_dspin)[..., None] * dspin
-    dmoment = (load * arm * fr.dmoment_dslide)[..., None] * dslide + (load * arm * fr.dmoment_dspin)[..., None] * dspin
-    residual = np.stack([force.sum(axis=1),  # lin2019 eq 4, row 1
-                         (ny * force + nx * moment).sum(axis=1),  # row 2
-                         (-nx * force + ny * moment).sum(axis=1)], axis=-1)  # row 3
-    jacobian = np.stack([dforce.sum(axis=1),
-                         (ny[..., None] * dforce + nx[..., None] * dmoment).sum(axis=1),
-                         (-nx[..., None] * dforce + ny[..., None] * dmoment).sum(axis=1)], axis=1)
-    return _Terms(residual, jacobian, slide, spin_velocity, force, moment, load * fr.loss)
+    jacobian[:, 3:, :3] = cos[..., None] * dslide - sin[..., None] * dspin
+    index = np.arange(4)
+    jacobian[:, 3 + index, 3 + index] = -slip_speed
+    loss_table = load * fr.loss * slip_speed  # eq A6 (loss is per unit slip speed here)
+    return _Terms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
 def _initial_guess(contacts: BallContacts) -> np.ndarray:
-    """Rolling about x with v_B = v/2 (the theta = 0 solution), scaled."""
+    """Rolling about x with v_B = v/2 (the theta = 0 solution), and its slip angles."""
     direction = math.copysign(1.0, contacts.groove_velocity)
     cos_mean = np.cos(contacts.contact_angles).mean(axis=1)
-    guess = np.zeros((contacts.n_balls, 3))
+    guess = np.zeros((contacts.n_balls, N_UNKNOWNS))
     guess[:, 0] = 0.5 * direction
     guess[:, 1] = 0.5 * direction / cos_mean
+    return _with_angles(guess, contacts)
+
+
+def _with_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
+    """Set the slip angles of ``guess`` from its velocities (atan2(slide, spin))."""
+    terms = _ball_terms(guess, contacts, 1.0)
+    guess = guess.copy()
+    guess[:, 3:] = np.arctan2(terms.slide, terms.spin_velocity)
     return guess
 
 
@@ -320,9 +353,8 @@ def _state(scaled, terms: _Terms, contacts: BallContacts, reference_force: float
     omega = scaled[:, 1:3] * speed / radius
     spin = terms.spin_velocity * speed / contacts.semi_major
     slide = terms.slide * speed
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c_over_a = np.where(terms.spin_velocity != 0.0, terms.slide / terms.spin_velocity,
-                            np.sign(terms.slide) * np.inf)
+    phi = scaled[:, 3:]
+    c_over_a = np.where(np.abs(np.cos(phi)) > 1e-15, np.tan(phi), np.sign(np.sin(phi)) * np.inf)  # slide/spin
     force = terms.force * mu_f
     moment = terms.moment * mu_f * radius
     # power of the tractions on the slip field: P = -(f slide + m omega), m = -M (about +y_i)
@@ -342,53 +374,69 @@ def _state(scaled, terms: _Terms, contacts: BallContacts, reference_force: float
 # Newton
 # --------------------------------------------------------------------------
 def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str):
-    """Damped Newton on ``function(x) -> (residual, jacobian)`` (dense).
+    """Newton's method globalised by Levenberg-Marquardt on ``function(x) -> (residual, jacobian)``.
 
-    Backtracking on ``|r|^2``; stops when ``max|r| <= tolerance``.  Returns
-    ``(x, residual_vector, iterations)``; raises ConvergenceError with the
-    residual otherwise (also on a singular Jacobian).
+    Each iteration solves ``(J^T J + lam I) dx = -J^T r`` with the analytic
+    Jacobian ``J``; ``lam`` follows the gain ratio of actual to predicted
+    decrease of ``|r|^2`` (Nielsen's update), so far from the solution the
+    steps are short gradient-like steps (friction saturates: the residual is
+    bounded and plain Newton steps can be huge), and near it ``lam -> 0``
+    gives Newton steps and quadratic convergence.  Stops when
+    ``max|r| <= tolerance``.  Returns ``(x, residual_vector, iterations)``;
+    raises ConvergenceError with the residual otherwise.
     """
     x = np.array(x0, dtype=float)
     residual, jacobian = function(x)
     norm = float(np.max(np.abs(residual))) if residual.size else 0.0
     iterations = 0
+    damping = None
+    growth = 2.0
     while norm > tolerance:
         if iterations >= max_iterations or not np.isfinite(norm):
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
                                    tolerance=tolerance)
-        try:
-            step = np.linalg.solve(jacobian, -residual)
-        except np.linalg.LinAlgError:
-            raise ConvergenceError(f"{what}: singular Jacobian", residual=norm, iterations=iterations,
-                                   tolerance=tolerance) from None
-        if not np.all(np.isfinite(step)):
-            raise ConvergenceError(f"{what}: non-finite Newton step", residual=norm, iterations=iterations,
-                                   tolerance=tolerance)
+        iterations += 1
+        normal = jacobian.T @ jacobian
+        gradient = jacobian.T @ residual
+        if damping is None:
+            damping = 1e-8 * float(np.max(np.diag(normal)))
         merit = float(residual @ residual)
-        length = 1.0
-        for _ in range(30):
-            trial = x + length * step
-            trial_residual, trial_jacobian = function(trial)
-            trial_merit = float(trial_residual @ trial_residual)
-            if np.isfinite(trial_merit) and trial_merit <= (1.0 - 1e-4 * length) * merit:
-                break
-            length *= 0.5
-        else:
-            raise ConvergenceError(f"{what}: line search failed", residual=norm, iterations=iterations,
-                                   tolerance=tolerance)
+        while True:
+            try:
+                step = np.linalg.solve(normal + damping * np.eye(x.size), -gradient)
+            except np.linalg.LinAlgError:
+                step = np.full(x.size, np.nan)
+            predicted = merit - float(np.sum((residual + jacobian @ step) ** 2))
+            if np.all(np.isfinite(step)) and predicted > 0.0:
+                trial = x + step
+                trial_residual, trial_jacobian = function(trial)
+                trial_merit = float(trial_residual @ trial_residual)
+                gain = (merit - trial_merit) / predicted
+                if np.isfinite(trial_merit) and gain > 1e-4:
+                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
+                    growth = 2.0
+                    break
+            elif np.all(np.isfinite(step)) and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
+                raise ConvergenceError(f"{what}: stationary point of |residual|", residual=norm,
+                                       iterations=iterations, tolerance=tolerance)
+            damping *= growth
+            growth *= 2.0
+            if not np.isfinite(damping) or damping > 1e30:
+                raise ConvergenceError(f"{what}: no descent step (damping diverged)", residual=norm,
+                                       iterations=iterations, tolerance=tolerance)
         x, residual, jacobian = trial, trial_residual, trial_jacobian
         norm = float(np.max(np.abs(residual)))
-        iterations += 1
     return x, residual, iterations
 
 
-def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 50) -> BallState:
+def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 60) -> BallState:
     """Solve lin2019 eq 4 for each ball independently (no ball-to-ball contact).
 
     Parameters
     ----------
     contacts : BallContacts for ``n`` balls (see :func:`ball_contacts`)
-    tolerance : max residual of eq 4 in units of ``mu max(F_i)`` (forces, and moments / R_B)
+    tolerance : max residual of eq 4 in units of ``mu max(F_i)`` (forces, and
+        moments / R_B) and of the slip kinematics in units of ``|v|``
     max_iterations : Newton iterations per ball
 
     Returns
@@ -397,19 +445,59 @@ def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iteratio
     Raises ConvergenceError (with the residual) if Newton fails.
     """
     reference_force = float(contacts.normal_forces.max())
-    scaled = _initial_guess(contacts)
+    unknowns, iterations, residual = _solve_free(contacts, reference_force, tolerance, max_iterations)
+    terms = _ball_terms(unknowns, contacts, reference_force)
+    return _state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
+
+
+def _solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int):
+    """Unknowns (n, 7) of every ball alone; largest iteration count and residual."""
+    unknowns = _initial_guess(contacts)
     worst_iterations, worst_residual = 0, 0.0
     for index in range(contacts.n_balls):
         single = contacts.ball(index)
 
-        def function(x, single=single):
-            terms = _ball_terms(x[None, :], single, reference_force)
+        def function(z, single=single):
+            terms = _ball_terms(z[None, :], single, reference_force)
             return terms.residual[0], terms.jacobian[0]
 
-        x, residual, iterations = newton(function, scaled[index], tolerance=tolerance,
-                                         max_iterations=max_iterations, what=f"ball {index}")
-        scaled[index] = x
+        z, residual, iterations = solve_branch(function, unknowns[index], lambda z: z[None, :], single,
+                                               reference_force, tolerance=tolerance,
+                                               max_iterations=max_iterations, what=f"ball {index}")
+        unknowns[index] = z
         worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, float(np.max(np.abs(residual))))
-    terms = _ball_terms(scaled, contacts, reference_force)
-    return _state(scaled, terms, contacts, reference_force, iterations=worst_iterations, residual=worst_residual)
+    return unknowns, worst_iterations, worst_residual
+
+
+def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
+                 max_iterations: int, what: str, attempts: int = 4):
+    """Newton on the slip-angle formulation, then keep only the physical branch.
+
+    ``slide_i cos phi_i = spin_i sin phi_i`` also holds for ``phi_i + pi``
+    (friction reversed against the slip); a converged point with a slip speed
+    ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``.
+    ``balls_of(z)`` returns the (n, 7) ball unknowns of the state vector ``z``.
+    """
+    z = np.array(z0, dtype=float)
+    total = 0
+    for _ in range(attempts):
+        z, residual, iterations = newton(function, z, tolerance=tolerance,
+                                         max_iterations=max_iterations - total, what=what)
+        total += iterations
+        balls = balls_of(z)
+        terms = _ball_terms(balls, contacts, reference_force)
+        wrong = terms.slip_speed < -1e3 * tolerance
+        if not np.any(wrong):
+            return z, residual, total
+        balls = balls.copy()
+        balls[:, 3:] = np.where(wrong, balls[:, 3:] + math.pi, balls[:, 3:])
+        z = _replace_balls(z, balls)
+    raise ConvergenceError(f"{what}: converged only to slip directions against the slip",
+                           residual=float(-terms.slip_speed.min()), iterations=total, tolerance=tolerance)
+
+
+def _replace_balls(z: np.ndarray, balls: np.ndarray) -> np.ndarray:
+    z = z.copy()
+    z[:balls.size] = balls.reshape(-1)
+    return z
