@@ -63,18 +63,24 @@ def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, n
     surfaces: dict[str, list[int]] = {name: [] for name in directions}
     surfaces["free"] = []
     cap_area = 2 * math.pi * radius**2 * (1 - math.cos(cap_angle))
+    areas = {name: 0.0 for name in directions}
     for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
         if gmsh.model.getType(2, tag) != "Sphere":
             continue
         offset = np.asarray(occ.getCenterOfMass(2, tag)) - centre
         area = occ.getMass(2, tag)
         name = "free"
-        if abs(area - cap_area) < 1e-3 * cap_area and np.linalg.norm(offset) > 0:
+        if area < cap_area * (1 + 1e-3) and np.linalg.norm(offset) > 0:
+            # a cap, or a piece of one cut by the sphere's seam meridian
             unit = offset / np.linalg.norm(offset)
             best = max(directions, key=lambda key: unit @ directions[key])
-            if unit @ directions[best] > math.cos(cap_angle / 2):
+            if unit @ directions[best] > math.cos(cap_angle):
                 name = best
+                areas[name] += area
         surfaces[name].append(tag)
+    for name, area in areas.items():
+        if abs(area - cap_area) > 1e-3 * cap_area:
+            raise RuntimeError(f"ball cap {name} not identified (area {area!r} of {cap_area!r} m^2)")
     return volumes, surfaces
 
 

@@ -624,3 +624,89 @@ def test_groove_segment_bad_input_names_the_parameter(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         helical.screw_groove_segment(**args, cache=False)
+
+
+# --------------------------------------------------------------------------
+# ball-screw module (lin2019 Fig 12b)
+# --------------------------------------------------------------------------
+from meshes import helical_module  # noqa: E402
+
+SCREW_DEVIATIONS = (0.0, math.radians(2.0), 0.0, 0.0)  # lin2019 Fig 17 case (a) on the screw, uniform
+
+
+@pytest.fixture(scope="module")
+def screw_module_mesh():
+    path = helical_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA, SCREW_DEVIATIONS, n_balls=2,
+                                            h_contact=1e-4, growth=1.5, cache=False)
+    return meshio.read(path)
+
+
+def test_ball_centre_azimuths_give_the_chord():
+    for spacing in (2 * R_B, 2.5 * R_B):
+        dphi = helical_module.ball_centre_azimuths(R_P, LEAD, spacing)
+        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
+        chord = np.linalg.norm(groove.helix(dphi / 2) - groove.helix(-dphi / 2))
+        assert chord == pytest.approx(spacing, rel=1e-14)
+    # lead 0: the chord of a circle
+    assert helical_module.ball_centre_azimuths(R_P, 0.0, 2 * R_B) == pytest.approx(2 * math.asin(R_B / R_P),
+                                                                                 rel=1e-14)
+
+
+def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_mesh):
+    """Every ball centre lies R_B from each of the four flanks (touching, never inside);
+    flank nodes on their exact helical surfaces; caps centred on their contacts."""
+    mesh = screw_module_mesh
+    bodies = ("screw", "nut", "ball1", "ball2")
+    nodes = [set(_group_nodes(mesh, name)) for name in bodies]
+    for i in range(4):
+        for j in range(i + 1, 4):
+            assert not nodes[i] & nodes[j]
+    for name in ("screw_land", "nut_land", "screw_support", "nut_load"):
+        assert len(_group_cells(mesh, name, "triangle")) > 0
+    dphi = helical_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    flanks = {"SL": ("screw", "left", 0), "SR": ("screw", "right", 1), "NR": ("nut", "right", 2),
+              "NL": ("nut", "left", 3)}
+    h = 1e-4
+    for name, (body, flank, index) in flanks.items():
+        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + SCREW_DEVIATIONS[index], body, flank)
+        flank_nodes = mesh.points[_group_nodes(mesh, name)]
+        assert np.abs(helical.surface_residual(groove, flank_nodes)).max() < 1e-12 * R_B
+        for k, phi in ((1, -dphi / 2), (2, dphi / 2)):
+            centre = groove.helix(phi)
+            distance = np.linalg.norm(flank_nodes - centre, axis=1)
+            assert R_B * (1 - 1e-12) < distance.min() < R_B + h**2 / (8 * R_B)
+            contact = groove.surface(groove.contact_theta, phi)
+            cap = mesh.points[_group_nodes(mesh, f"ball{k}_{name}")]
+            assert np.abs(np.linalg.norm(cap - centre, axis=1) - R_B).max() < 1e-12
+            axis = cap.mean(axis=0) - centre
+            cosine = axis @ (contact - centre) / (np.linalg.norm(axis) * R_B)
+            assert math.degrees(math.acos(min(1.0, cosine))) < 2.0
+
+
+def test_screw_module_balls_touch_each_other(screw_module_mesh):
+    mesh = screw_module_mesh
+    dphi = helical_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
+    contact = (groove.helix(-dphi / 2) + groove.helix(dphi / 2)) / 2
+    for k in (1, 2):
+        cap = mesh.points[_group_nodes(mesh, f"ball{k}_B2B")]
+        assert np.linalg.norm(cap - contact, axis=1).min() < 2e-4  # refined at the B2B point
+    volume = _tet_volume(mesh.points, _group_cells(mesh, "ball1", "tetra"))
+    assert volume < 4.0 / 3.0 * math.pi * R_B**3 and volume > 0.97 * 4.0 / 3.0 * math.pi * R_B**3
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(deviations=(0.0, 0.0)), "deviations"),
+    (dict(n_balls=0), "n_balls"),
+    (dict(n_balls=2, spacing=5e-3), "spacing"),
+    (dict(half_angle=0.05), "half_angle"),
+    (dict(nut_land_radius=R_P + 0.8 * R_B), "nut_land_radius"),
+    (dict(screw_back_radius=R_P - 0.5 * R_B), "screw_back_radius"),
+    (dict(conformity=0.5), "conformity"),
+    (dict(lead=-1.0), "lead"),
+])
+def test_screw_module_bad_input_names_the_parameter(kwargs, match):
+    args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        helical_module.ball_screw_module(**args, cache=False)

@@ -1,0 +1,166 @@
+"""The ball-screw module of lin2019 Fig 12(b) / Fig 18: a screw segment, a nut
+segment and one or two balls in four-point contact with the helical gothic-arch
+grooves (lin2019 Sec 3, Fig 13; Table 4 geometry).
+
+Screw frame: axis ``z``; ball centres on the helix ``H(phi) = (R_P cos phi,
+R_P sin phi, p phi)``, ``p = lead / 2 pi``: one ball at ``phi = 0``, two balls at
+``phi = -+ dphi/2`` with the chord ``|H(dphi/2) - H(-dphi/2)| = spacing`` (default
+``2 R_B``: they touch, the ball-to-ball contact of lin2019 Sec 3.2, Fig 16).  The
+grooves are those of :mod:`meshes.helical` with the profile in the plane normal to
+the helix (lin2019 eq 41), the only profile for which a ball on the helix touches
+all four flanks.  Contacts in the order ``(SL, SR, NR, NL)`` (screw/nut,
+left/right; left = the ``-z3`` side, lin2019 eq 37), contact angles
+``beta_0 + dbeta_i``, uniform along the segments.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from meshes.fourpoint_module import _split_ball
+from meshes.gmsh_tools import cached_msh, physical, session, write_msh
+from meshes.helical import (MESH_FORMAT_VERSION as _HELICAL_VERSION, _add_segment, _check_refinement, _finite,
+                            _positive, _segment_dimensions, _segment_grooves, _snap_segment)
+
+__all__ = ["CONTACTS", "ball_centre_azimuths", "ball_screw_module"]
+
+MESH_FORMAT_VERSION = f"ballscrew-module-1/{_HELICAL_VERSION}"
+CONTACTS = ("SL", "SR", "NR", "NL")
+
+
+def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> float:
+    """Azimuth difference ``dphi`` [rad] of two ball centres on the helix a chord
+    ``spacing`` [m] apart: ``(2 R_P sin(dphi/2))^2 + (p dphi)^2 = spacing^2`` (Newton)."""
+    p = lead / (2 * math.pi)
+    dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
+    for _ in range(50):
+        chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
+        slope = 2 * pitch_radius**2 * math.sin(dphi) + 2 * p**2 * dphi
+        step = (chord2 - spacing**2) / slope
+        dphi -= step
+        if abs(step) < 1e-15 * dphi:
+            return dphi
+    raise RuntimeError("ball_centre_azimuths did not converge")  # unreachable for spacing << R_P
+
+
+def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                      contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0), n_balls: int = 1, *,
+                      spacing: float | None = None, screw_land_radius: float | None = None,
+                      screw_back_radius: float | None = None, nut_land_radius: float | None = None,
+                      nut_back_radius: float | None = None, half_angle: float | None = None,
+                      h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
+                      fine_radius: float | None = None, cap_angle: float = math.radians(30.0),
+                      cache: bool = True) -> Path:
+    """The ball-screw module as a cached gmsh 4.1 ``.msh`` [m] (screw frame).
+
+    ``deviations`` [rad]: contact angle deviations ``(SL, SR, NR, NL)``;
+    ``n_balls`` 1 or 2; ``spacing`` [m] chord between two ball centres (default
+    ``2 R_B``).  Segments as :func:`meshes.helical.screw_groove_segment` (screw land
+    ``R_P - 0.25 R_B``, core ``R_P - 2 R_B``; nut land ``R_P + 0.25 R_B``, outside
+    ``R_P + 2 R_B``; ``half_angle`` default ``dphi/2 + 2 R_B / R_P``).  With
+    ``h_contact`` [m] the mesh is refined at every contact point (four per ball and
+    the B2B point).
+
+    Physical groups: volumes ``screw``, ``nut``, ``ball1`` (``ball2``); surfaces
+    ``SL``, ``SR`` (screw flanks), ``NR``, ``NL`` (nut flanks), ``screw_land``,
+    ``nut_land``, ``screw_support`` (the screw core), ``nut_load`` (the nut's outer
+    face), ``screw_free``, ``nut_free``; ``ball{k}_{SL,SR,NR,NL}`` (spherical caps of
+    half-angle ``cap_angle`` centred on the contacts), ``ball{k}_B2B`` (two balls),
+    ``ball{k}_free``.  Bodies share no nodes.
+    """
+    try:
+        deviations = [float(d) for d in deviations]
+    except (TypeError, ValueError):
+        raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}") from None
+    if len(deviations) != 4:
+        raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}")
+    screw = _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "screw",
+                             (deviations[0], deviations[1]), "normal")
+    nut = _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "nut",
+                           (deviations[3], deviations[2]), "normal")  # (left, right) = (NL, NR)
+    radius, r_p = screw[0].ball_radius, screw[0].pitch_radius
+    if n_balls not in (1, 2):
+        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
+    spacing = 2.0 * radius if spacing is None else _finite("spacing", spacing, "[2 R_B, R_P] m")
+    if n_balls == 2 and not 2.0 * radius <= spacing <= r_p:
+        raise ValueError(f"spacing must lie in [2 ball_radius, pitch_radius] = [{2 * radius!r}, {r_p!r}] m, "
+                         f"got {spacing!r}")
+    dphi = ball_centre_azimuths(r_p, screw[0].lead, spacing) if n_balls == 2 else 0.0
+    if half_angle is None:
+        half_angle = dphi / 2 + 2.0 * radius / r_p
+    half_angle = _positive("half_angle", half_angle, "rad")
+    if half_angle < dphi / 2 + 1.2 * radius / r_p:
+        raise ValueError(f"half_angle must be at least {dphi / 2 + 1.2 * radius / r_p!r} rad to hold the balls, "
+                         f"got {half_angle!r}")
+    s_land, s_back, half_angle, s_width = _segment_dimensions(screw, screw_land_radius, screw_back_radius,
+                                                              half_angle, None, prefix="screw_")
+    n_land, n_back, _, n_width = _segment_dimensions(nut, nut_land_radius, nut_back_radius, half_angle, None,
+                                                     prefix="nut_")
+    if n_land - s_land <= 0.0:
+        raise ValueError("screw_land_radius must be smaller than nut_land_radius")
+    cap_angle = _finite("cap_angle", cap_angle, "(0, pi/4] rad")
+    if not 0.0 < cap_angle <= math.pi / 4:
+        raise ValueError(f"cap_angle must lie in (0, pi/4] rad, got {cap_angle!r}")
+    refine = h_contact is not None
+    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
+                                                              growth, h_max, fine_radius)
+    params = dict(builder="ball_screw_module", radius=radius, conformity=screw[0].conformity, pitch_radius=r_p,
+                  lead=screw[0].lead, angles=[g.contact_angle for g in (*screw, *nut)], n_balls=n_balls,
+                  spacing=spacing, screw=[s_land, s_back], nut=[n_land, n_back], half_angle=half_angle,
+                  widths=[s_width, n_width], refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
+                  fine_radius=fine_radius, cap_angle=cap_angle)
+    path, build = cached_msh("ballscrew-module", params, MESH_FORMAT_VERSION, cache=cache)
+    if not build:
+        return path
+
+    phis = [0.0] if n_balls == 1 else [-dphi / 2, dphi / 2]
+    flanks = {"SL": screw[0], "SR": screw[1], "NR": nut[1], "NL": nut[0]}
+    with session("ball_screw_module") as gmsh:
+        screw_volumes, screw_roles = _add_segment(gmsh, screw, s_land, s_back, half_angle, s_width)
+        nut_volumes, nut_roles = _add_segment(gmsh, nut, n_land, n_back, half_angle, n_width)
+        contact_points, ball_groups = [], []
+        centres = [screw[0].helix(phi) for phi in phis]
+        for k, (phi, centre) in enumerate(zip(phis, centres)):
+            directions = {}
+            for name in CONTACTS:
+                groove = flanks[name]
+                point = groove.surface(groove.contact_theta, phi)
+                contact_points.append(point)
+                directions[name] = (point - centre) / radius
+            if n_balls == 2:
+                chord = centres[1] - centres[0]
+                directions["B2B"] = (1.0 if k == 0 else -1.0) * chord / np.linalg.norm(chord)
+            ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))
+        gmsh.model.occ.synchronize()
+        physical(gmsh, 3, screw_volumes, "screw")
+        physical(gmsh, 3, nut_volumes, "nut")
+        physical(gmsh, 2, screw_roles["flank_left"], "SL")
+        physical(gmsh, 2, screw_roles["flank_right"], "SR")
+        physical(gmsh, 2, nut_roles["flank_right"], "NR")
+        physical(gmsh, 2, nut_roles["flank_left"], "NL")
+        physical(gmsh, 2, screw_roles["land"], "screw_land")
+        physical(gmsh, 2, nut_roles["land"], "nut_land")
+        physical(gmsh, 2, screw_roles["back"], "screw_support")
+        physical(gmsh, 2, nut_roles["back"], "nut_load")
+        physical(gmsh, 2, screw_roles["free"], "screw_free")
+        physical(gmsh, 2, nut_roles["free"], "nut_free")
+        for k, (volumes, surfaces) in enumerate(ball_groups, start=1):
+            physical(gmsh, 3, volumes, f"ball{k}")
+            for name, tags in surfaces.items():
+                physical(gmsh, 2, tags, f"ball{k}_{name}")
+        if refine:
+            from meshes.rail import _refine_at_points
+
+            if n_balls == 2:
+                contact_points.append((centres[0] + centres[1]) / 2)
+            _refine_at_points(gmsh, contact_points, h_contact, growth, h_max, fine_radius)
+        else:
+            gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+            gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+        gmsh.model.mesh.generate(3)
+        _snap_segment(gmsh, screw, screw_roles)
+        _snap_segment(gmsh, nut, nut_roles)
+        write_msh(gmsh, path)
+    return path
