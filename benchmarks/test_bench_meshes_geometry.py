@@ -11,7 +11,7 @@ import pytest
 meshio = pytest.importorskip("meshio")
 pytest.importorskip("gmsh")
 
-from meshes import fourpoint_module, helical, rail  # noqa: E402
+from meshes import fourpoint_module, helical, helical_module, rail  # noqa: E402
 
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0)  # lin2019 Table 4
 
@@ -25,6 +25,8 @@ CASES = {
     "rail_50um": lambda: rail.rail_segment(5e-3, CONF, BETA, h_contact=5e-5, cache=False),
     "fourpoint_2_balls_100um": lambda: fourpoint_module.fourpoint_module(
         5e-3, CONF, BETA, (-math.radians(2), math.radians(2), 0.0, 0.0), 2, h_contact=1e-4, cache=False),
+    "ball_screw_module_2_balls_100um": lambda: helical_module.ball_screw_module(
+        R_B, CONF, R_P, LEAD, BETA, (0.0, math.radians(2), 0.0, 0.0), 2, h_contact=1e-4, cache=False),
 }
 
 
