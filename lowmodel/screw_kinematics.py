@@ -28,14 +28,28 @@ from lowmodel import helix
 
 __all__ = ["ScrewKinematics", "kinematics", "pitch_angle", "orbital_speed", "ball_spin_speed",
            "ball_angular_velocity", "centrifugal_force", "absolute_velocity_measures", "entrainment_velocity",
-           "slide_roll_ratio", "wei_ball_centre_kinematics", "WeiKinematics"]
+           "slide_roll_ratio", "slide_roll_ratio_magnitude", "wei_ball_centre_kinematics", "WeiKinematics"]
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product over the last axis (components written out: faster than np.cross)."""
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+def _cross3(a, b):
+    """Cross product of two (t, n, b) component triples."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _scale(factor, a):
+    return (factor * a[0], factor * a[1], factor * a[2])
+
+
+def _length(a):
+    return np.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
 
 
 def _norm(vector: np.ndarray) -> np.ndarray:
@@ -100,8 +114,13 @@ def entrainment_velocity(velocity_1, velocity_2) -> np.ndarray:
 
 
 def slide_roll_ratio(sliding_velocity, entrainment) -> np.ndarray:
-    """S = |V_S| / U (wang2022 eq 4); 0 where both are exactly zero (a contact at rest)."""
-    sliding = _norm(np.asarray(sliding_velocity))
+    """S = |V_S| / U (wang2022 eq 4) of a sliding velocity ``(..., 3)``; 0 where both are exactly zero."""
+    return slide_roll_ratio_magnitude(_norm(np.asarray(sliding_velocity)), entrainment)
+
+
+def slide_roll_ratio_magnitude(sliding_speed, entrainment) -> np.ndarray:
+    """S = |V_S| / U (wang2022 eq 4) from the sliding speed |V_S|; 0 where both are exactly zero (contact at rest)."""
+    sliding = np.asarray(sliding_speed, dtype=float)
     entrainment = np.asarray(entrainment, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = sliding / entrainment
@@ -222,34 +241,51 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
     zero = np.zeros(r_m.shape)
 
-    beta = np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + r_b / r_m))  # wang2022 eq 21
-    omega_m = orbital_speed(omega, r_b, r_m, alpha_o, alpha_i, beta)  # wang2022 eq 18
-    omega_spin = ball_spin_speed(omega_m, r_b, r_m, alpha_o, psi, beta)  # wang2022 eq 19
-    omega_ball = ball_angular_velocity(omega_spin, beta, yaw)  # wang2022 eq 20
+    # trigonometric functions once (the eq-by-eq helpers above recompute them; same formulas)
+    cos_o, sin_o, cos_i, sin_i = np.cos(alpha_o), np.sin(alpha_o), np.cos(alpha_i), np.sin(alpha_i)
+    gamma = r_b / r_m  # gamma' of wang2022
+    beta = np.arctan2(sin_o, cos_o * (1.0 + gamma))  # wang2022 eq 21
+    hypotenuse = np.sqrt(sin_o**2 + (cos_o * (1.0 + gamma)) ** 2)
+    cos_beta, sin_beta = cos_o * (1.0 + gamma) / hypotenuse, sin_o / hypotenuse
+    tan_beta = sin_beta / cos_beta
+    ratio = ((1.0 + gamma * cos_o) * (cos_i + tan_beta * sin_i)
+             / ((1.0 - gamma * cos_i) * (cos_o + tan_beta * sin_o)))
+    omega_m = omega / (1.0 + ratio)  # wang2022 eq 18
+    omega_spin = (omega_m * (1.0 + gamma * cos_o) * cos_psi
+                  / (gamma * (cos_beta * cos_o + sin_beta * sin_o)))  # wang2022 eq 19
+    # vectors as (t, n, b) component triples inside (contiguous, fast); stacked to (..., 3) on output
+    omega_ball = (omega_spin * cos_beta * np.sin(yaw), -omega_spin * sin_beta,
+                  -omega_spin * cos_beta * np.cos(yaw))  # wang2022 eq 20
+    axis = (sin_psi, zero, cos_psi)  # k in CS1 (wang2022 eq 15)
+    offset_a = (zero, -r_b * cos_o, r_b * sin_o)  # wang2022 eq 11
+    offset_b = (zero, r_b * cos_i, -r_b * sin_i)  # wang2022 eq 12
+    # ball-centre position at theta = 0 in CS1 (r_m i = -r_m n); its axial part drops out of k x R
+    centre_b = (zero, offset_b[1] - r_m, offset_b[2])
 
-    axis = np.stack([sin_psi, zero, cos_psi], axis=-1)  # k in CS1 (wang2022 eq 15)
-    offset_a = np.stack([zero, -r_b * np.cos(alpha_o), r_b * np.sin(alpha_o)], axis=-1)  # wang2022 eq 11
-    offset_b = np.stack([zero, r_b * np.cos(alpha_i), -r_b * np.sin(alpha_i)], axis=-1)  # wang2022 eq 12
-    # ball-centre position at theta = 0 in CS1; its axial part drops out of k x R
-    centre_radial = np.stack([zero, -r_m, zero], axis=-1)  # r_m i = -r_m n at theta = 0
-
-    nut = (-omega * h)[..., None] * axis  # wang2022 eq 16
-    screw = omega[..., None] * _cross(axis, centre_radial + offset_b)  # wang2022 eq 17
+    nut = _scale(-omega * h, axis)  # wang2022 eq 16
+    screw = _scale(omega, _cross3(axis, centre_b))  # wang2022 eq 17
     # convected velocity: ball-centre velocity + frame rotation omega_m k x R (wang2022 eqs 25-26)
-    centre_velocity = np.stack([omega_m * r_m * cos_psi + (omega_m - omega) * h * sin_psi, zero,
-                                -omega_m * r_m * sin_psi + (omega_m - omega) * h * cos_psi], axis=-1)
-    frame_rate = omega_m[..., None] * axis
-    convected_a = centre_velocity + _cross(frame_rate, offset_a)  # wang2022 eq 25
-    convected_b = centre_velocity + _cross(frame_rate, offset_b)  # wang2022 eq 26
-    ball_rel_a = _cross(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23
-    ball_rel_b = _cross(omega_ball, offset_b)  # omega_R x R_O'B, wang2022 eq 24
-    ball_a = convected_a + ball_rel_a  # wang2022 eq 23
-    ball_b = convected_b + ball_rel_b  # wang2022 eq 24
-    nut_rel = nut - convected_a  # wang2022 eq 27
-    screw_rel = screw - convected_b  # wang2022 eq 29
-    # eqs 28 and 30 (V_Ab^r = V_Ab^a - V_A^e) are ball_rel_a and ball_rel_b
-    u_a, sliding_a, s_a = absolute_velocity_measures(nut_rel, ball_rel_a, raceway_is_driver=False)
-    u_b, sliding_b, s_b = absolute_velocity_measures(screw_rel, ball_rel_b, raceway_is_driver=True)
+    tangential, axial = omega_m * r_m, (omega_m - omega) * h
+    centre_velocity = (tangential * cos_psi + axial * sin_psi, zero, -tangential * sin_psi + axial * cos_psi)
+    frame_rate = _scale(omega_m, axis)
+    convected_a = _add(centre_velocity, _cross3(frame_rate, offset_a))  # wang2022 eq 25
+    convected_b = _add(centre_velocity, _cross3(frame_rate, offset_b))  # wang2022 eq 26
+    ball_rel_a = _cross3(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23 (= V_Ab^r, eq 28)
+    ball_rel_b = _cross3(omega_ball, offset_b)  # omega_R x R_O'B, wang2022 eq 24 (= V_Bb^r, eq 30)
+    ball_a = _add(convected_a, ball_rel_a)  # wang2022 eq 23
+    ball_b = _add(convected_b, ball_rel_b)  # wang2022 eq 24
+    nut_rel = _sub(nut, convected_a)  # wang2022 eq 27
+    screw_rel = _sub(screw, convected_b)  # wang2022 eq 29
+    sliding_a = _sub(ball_rel_a, nut_rel)  # wang2022 eq 5
+    sliding_b = _sub(screw_rel, ball_rel_b)  # wang2022 eq 6
+    u_a = 0.5 * _length(_add(nut_rel, ball_rel_a))  # wang2022 eq 1
+    u_b = 0.5 * _length(_add(screw_rel, ball_rel_b))  # wang2022 eq 2
+    s_a = slide_roll_ratio_magnitude(_length(sliding_a), u_a)  # wang2022 eq 4
+    s_b = slide_roll_ratio_magnitude(_length(sliding_b), u_b)  # wang2022 eq 4
+    (omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a, ball_rel_b,
+     sliding_a, sliding_b) = (np.stack(v, axis=-1) for v in (
+        omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a,
+        ball_rel_b, sliding_a, sliding_b))
     return ScrewKinematics(psi, beta, omega_m, omega_spin, omega_ball, nut, screw, ball_a, ball_b,
                            convected_a, convected_b, nut_rel, screw_rel, ball_rel_a, ball_rel_b,
                            sliding_a, sliding_b, u_a, u_b, s_a, s_b)
