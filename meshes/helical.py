@@ -539,8 +539,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     half_length = 0.6 * radius if block_half_length is None else _positive("block_half_length", block_half_length, "m")
     depth = 0.6 * radius if block_depth is None else _positive("block_depth", block_depth, "m")
     cap = radius if cap_height is None else _positive("cap_height", cap_height, "m")
-    if cap > 2.0 * radius:
-        raise ValueError(f"cap_height must lie in (0, 2 ball_radius] = (0, {2 * radius!r}] m, got {cap!r}")
+    if cap >= 2.0 * radius:
+        raise ValueError(f"cap_height must lie in (0, 2 ball_radius) = (0, {2 * radius!r}) m (the cap needs its "
+                         f"flat loaded face), got {cap!r}")
     if element_order not in (1, 2):
         raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
     if fine_patch is not None:
@@ -572,7 +573,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         face = occ.addPlaneSurface([loop])
         counter = _sweep_along_helix(occ, groove, face, (-dphi, dphi))
         occ.synchronize()
-        (counter_dim, counter_tag), = [vt for vt in counter if vt[0] == 3]
+        (_, counter_tag), = [vt for vt in counter if vt[0] == 3]
         groove_faces, support_faces = [], []
         for _, tag in gmsh.model.getBoundary([(3, counter_tag)], oriented=False):
             xyz = _face_point(gmsh, tag)[None, :]

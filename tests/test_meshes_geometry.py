@@ -374,6 +374,7 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(h_max=1e-6), "h_max"),
     (dict(block_half_width=3e-3), "block_half_width"),
     (dict(cap_height=-1.0), "cap_height"),
+    (dict(cap_height=2 * R_B), "cap_height"),
     (dict(flank="up"), "flank"),
     (dict(profile_plane="oblique"), "profile_plane"),
     (dict(fine_patch=(1e-4, -1e-4)), "fine_patch"),
