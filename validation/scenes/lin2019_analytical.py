@@ -1,0 +1,242 @@
+"""Scenes for the friction integrals over a Hertz ellipse and the analytical B2B model (lin2019 Sec 2.3, App.)."""
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+
+from lowmodel import b2b_analytical as b2b
+from lowmodel import ellipse_friction as ef
+from lowmodel import hertz
+from validation.scene import scene
+
+BALL_RADIUS = 5e-3      # m, lin2019 Table 1
+CONFORMITY = 0.56       # lin2019 Table 1
+STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # lin2019 Table 1
+NORMAL_LOAD = 100.0     # N_y [N], lin2019 Table 1
+GROOVE_VELOCITY = 0.01  # v [m/s], lin2019 Table 1
+MU = 0.1                # lin2019 Table 1
+PSI_TABLE1 = 5.307e-4   # (m^2/N)^(1/3), lin2019 Table 1 (recomputed below, papers/README.md)
+THETA = math.radians(2.0)  # Table 2/3 case
+RHO = -0.6                 # Table 2/3 case (yaw moment, Sec 2.4.2)
+FIG5_CONFORMITIES = (0.52, 0.54, 0.56, 0.58)  # "four typical conformity ratios" (Fig 5, Fig 22 starts at 0.52)
+
+
+def _geometry(conformity: float = CONFORMITY):
+    return hertz.ball_in_groove(ball_radius=BALL_RADIUS, conformity=conformity, **STEEL)
+
+
+def _axis_ratio(conformity: float = CONFORMITY) -> float:
+    contact = hertz.solve_load(_geometry(conformity), NORMAL_LOAD)  # b/a does not depend on the load
+    return float(contact.b / contact.a)
+
+
+def _cartesian_force(kappa: float, beta: float) -> float:
+    """Independent reference: nested adaptive quadrature of lin2019 eq A4 (second line) in (t, s)."""
+    from scipy import integrate
+
+    def integrand(s, t):
+        distance = math.hypot(t - kappa, beta * s)
+        return math.sqrt(max(1 - t * t - s * s, 0.0)) * (t - kappa) / distance if distance > 0 else 0.0
+
+    def inner(t):
+        half = math.sqrt(max(1 - t * t, 0.0))
+        return integrate.quad(integrand, -half, half, args=(t,), points=[0.0], epsabs=1e-12, epsrel=1e-12,
+                              limit=200)[0]
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        value = integrate.quad(inner, -1, 1, points=[kappa] if abs(kappa) < 1 else None, epsabs=1e-11,
+                               epsrel=1e-11, limit=200)[0]
+    return 1.5 / math.pi * value
+
+
+@scene("lin2019-kf", "k_f of lin2019 eq 14 two ways (exact slope at c/a = 0, least squares over |c/a| <= 0.5) "
+                     "against the paper's 1.38; limits eqs 11-12; quadrature and friction map accuracy (Fig 5)")
+def lin2019_kf(run):
+    beta = _axis_ratio()
+    model = "lowmodel.ellipse_friction"
+    k_ls, time_ls = run.time(ef.k_f_least_squares, beta, 0.5)
+    k_exact, time_exact = run.time(ef.k_f_exact, beta)
+    run.check(model=model, quantity="k_f, least-squares slope of -f/(mu F) over |c/a| <= 0.5 (conf 0.56)",
+              unit="1", value=float(k_ls), reference=b2b.K_F_PAPER, source="lin2019 Sec 2.3.2 (read off Fig 5)",
+              tolerance=0.01, time_s=time_ls,
+              note="tolerance 1 %: the paper's value is read off a plot to 3 digits (rounding alone 0.4 %)")
+    run.check(model=model, quantity="k_f, exact slope at c/a = 0 (conf 0.56), bound >= paper value", unit="1",
+              value=float(k_exact), reference=b2b.K_F_PAPER, source="lin2019 Sec 2.3.2 (read off Fig 5)",
+              tolerance=0.0, relation="ge", time_s=time_exact,
+              note="the force is -k_f c/a + g3 (c/a)^3 with g3 > 0 inside the ellipse, so every fitted slope "
+                   "lies below the tangent slope")
+    spread = ef.k_f_least_squares(np.array([_axis_ratio(f) for f in FIG5_CONFORMITIES]), 0.5)
+    step = 1e-4
+    slope = float((ef.friction_exact(-step, beta).force - ef.friction_exact(step, beta).force) / (2 * step))
+    run.check(model=model, quantity="k_f exact: closed form (b^2/a^2/2) R_D(0, 1, b^2/a^2) vs quadrature slope",
+              unit="1", value=float(k_exact), reference=slope, source="central difference of eq A4 quadrature",
+              tolerance=1e-7, time_s=time_exact)
+
+    # limits of eqs 11 and 12 on the tabulated map (the solver's inputs)
+    ef.friction(0.0, beta)  # load the map (disk cache or build) outside the timing
+    result, time_map = run.time(ef.friction, np.array([0.0, 1e6, -1e6]), beta)
+    spin = float(ef.spin_moment(beta))
+    run.check(model=model, quantity="M_O/(mu F a) at c/a = 0 (map)", unit="1", value=float(result.moment[0]),
+              reference=spin, source="lin2019 eq 11: (3/8) Ellip(e)", tolerance=1e-6, time_s=time_map)
+    run.check(model=model, quantity="f_z/(mu F) at c/a = 0 (map)", unit="1", value=float(result.force[0]),
+              reference=0.0, scale=1.0, source="lin2019 eq 11", tolerance=1e-9, time_s=time_map)
+    run.check(model=model, quantity="f_z/(mu F) at c/a = +1e6 (map)", unit="1", value=float(result.force[1]),
+              reference=-1.0, source="lin2019 eq 12", tolerance=1e-6, time_s=time_map)
+    run.check(model=model, quantity="f_z/(mu F) at c/a = -1e6 (map)", unit="1", value=float(result.force[2]),
+              reference=1.0, source="lin2019 eq 12", tolerance=1e-6, time_s=time_map)
+    run.check(model=model, quantity="M_O/(mu F a) at c/a = 1e6 (map)", unit="1", value=float(result.moment[1]),
+              reference=0.0, scale=spin, source="lin2019 eq 12", tolerance=1e-6, time_s=time_map)
+
+    # quadrature against an independent adaptive quadrature
+    points = [(0.3, beta), (0.95, beta), (1.0, beta), (2.0, beta)]
+    if run.fidelity != "quick":
+        points += [(-0.6, 1.0), (0.5, 0.05)]
+    worst_quad = 0.0
+    for kappa, ratio in run.progress(points, desc="independent quadrature"):
+        worst_quad = max(worst_quad, abs(float(ef.friction_exact(kappa, ratio).force) - _cartesian_force(kappa, ratio)))
+    _, time_exact_eval = run.time(ef.friction_exact, np.array([p[0] for p in points]), np.array([p[1] for p in points]))
+    run.check(model=model, quantity=f"max |f_z/(mu F)| error of the quadrature at {len(points)} points", unit="1",
+              value=worst_quad, reference=0.0, scale=1.0, source="adaptive Cartesian quadrature of eq A4 (scipy)",
+              tolerance=1e-6, time_s=time_exact_eval, note="value is itself the worst error; reference 0 on scale 1")
+
+    # map against the quadrature over the whole (c/a, b/a) range
+    rng = np.random.default_rng(0)
+    count = {"quick": 2000, "default": 20000, "fine": 100000}[run.fidelity]
+    kappa = np.concatenate([np.tan(rng.uniform(-1.5707, 1.5707, count)), 1 + rng.uniform(-0.05, 0.05, count // 4)])
+    ratio = np.exp(rng.uniform(math.log(ef.B_OVER_A_RANGE[0]), 0.0, kappa.size))
+    exact = ef.friction_exact(kappa, ratio)
+    table, time_table = run.time(ef.friction, kappa, ratio)
+    worst_map = max(np.max(np.abs(table.force - exact.force)), np.max(np.abs(table.moment - exact.moment)))
+    run.check(model=model, quantity=f"max force/moment error of the map at {kappa.size} random points", unit="1",
+              value=float(worst_map), reference=0.0, scale=1.0, source="friction_exact (velocity-centre quadrature)",
+              tolerance=1e-6, time_s=time_table / kappa.size, note="time is per point (vectorised)")
+    start = time.perf_counter()
+    build = ef.friction_map.__wrapped__(use_cache=False)
+    build_time = time.perf_counter() - start
+    run.check(model=model, quantity="friction map build (cold, no cache)", unit="s", value=build_time,
+              reference=10.0, relation="le", source="issue 3 target (<= 10 s)", tolerance=0.0, time_s=build_time,
+              note=f"{build.phi.size} x {build.log_b_over_a.size} nodes (phi, log b/a)")
+    run.note(f"conformity 0.56 gives b/a = {beta:.5f}; k_f exact = {float(k_exact):.4f}, least squares over "
+             f"|c/a| <= 0.5 = {float(k_ls):.4f}. Over the conformities {FIG5_CONFORMITIES} the least-squares "
+             f"slope spans {spread.min():.4f} to {spread.max():.4f}: the paper's 1.38 matches the "
+             "least-squares slope, not the tangent (4.5 % higher).")
+    _figure_5(run, beta, float(k_ls))
+
+
+def _figure_5(run, beta: float, k_ls: float) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, (full, zoom) = plt.subplots(1, 2, figsize=(10, 4))
+    kappa_full = np.linspace(-10, 10, 801)
+    kappa_zoom = np.linspace(-1, 1, 401)
+    for conformity in FIG5_CONFORMITIES:
+        ratio = _axis_ratio(conformity)
+        for axes, kappa in ((full, kappa_full), (zoom, kappa_zoom)):
+            result = ef.friction(kappa, ratio)
+            axes.plot(kappa, result.force, label=f"force, conf {conformity}")
+            axes.plot(kappa, result.moment, "--", label=f"moment, conf {conformity}")
+    zoom.plot(kappa_zoom, -k_ls * kappa_zoom, "k:", label=f"-{k_ls:.3f} c/a (least squares, conf 0.56)")
+    zoom.axvspan(-0.5, 0.5, color="0.9", zorder=0)
+    for axes in (full, zoom):
+        axes.set_xlabel("c/a")
+        axes.grid(True, alpha=0.3)
+    full.set_ylabel("f_z/(sgn(omega) mu F),  M_O/(sgn(omega) mu F a)")
+    zoom.set_ylim(-1.1, 1.1)
+    zoom.legend(fontsize=6)
+    full.set_title("lin2019 Fig 5(a) equivalent")
+    zoom.set_title("Fig 5(b): |c/a| <= 1, fit range shaded")
+    run.save_figure(figure, "fig5_friction_vs_c_over_a.png")
+
+
+@scene("lin2019-analytical", "Analytical B2B model (lin2019 eqs 22, 30, 32, 33): Table 2 and Table 3 analytical "
+                             "values, mitigation rule (case b), vectorised throughput")
+def lin2019_analytical(run):
+    model = "lowmodel.b2b_analytical"
+    geometry = _geometry()
+    psi, time_psi = run.time(hertz.psi_constant, geometry, BALL_RADIUS)
+    run.check(model="lowmodel.hertz", quantity="Psi (lin2019 eq 15), conf 0.56", unit="(m^2/N)^(1/3)",
+              value=psi, reference=PSI_TABLE1, source="lin2019 Table 1", tolerance=1e-4, time_s=time_psi,
+              note="tolerance: half a unit of the 4th published digit")
+    common = dict(normal_load=NORMAL_LOAD, groove_velocity=GROOVE_VELOCITY, friction_coefficient=MU, psi=psi,
+                  ball_radius=BALL_RADIUS)
+    case_a, time_a = run.time(b2b.two_ball_case, THETA, RHO, **common)
+    for name, sign in (("epsilon_1", 1.0), ("epsilon_2", -1.0)):
+        run.check(model=model, quantity=f"{name} case (a), theta = 2 deg, rho = -0.6", unit="%",
+                  value=100 * float(getattr(case_a, name)), reference=sign * 0.75,
+                  source="lin2019 Table 2, analytical (eq 33; columns merged, papers/README.md)",
+                  tolerance=0.005 / 0.75, time_s=time_a, note="tolerance: half a unit of the 2nd published decimal")
+    run.check(model=model, quantity="F_B2B case (a), k_f = 1.38", unit="N", value=float(case_a.b2b_force),
+              reference=3.74, source="lin2019 Table 3, analytical formula (eq 30)", tolerance=0.005, time_s=time_a)
+    run.check(model=model, quantity="F_B2B case (a), k_f = 1.38, against FEA", unit="N",
+              value=float(case_a.b2b_force), reference=3.96, source="lin2019 Table 3, ANSYS FEA",
+              tolerance=0.07, time_s=time_a, note="tolerance: the paper's own claim (error within 6-7 %)")
+    beta = _axis_ratio()
+    k_ls = float(ef.k_f_least_squares(beta, 0.5))
+    case_ls, time_ls = run.time(b2b.two_ball_case, THETA, RHO, k_f=k_ls, **common)
+    run.check(model=model, quantity=f"F_B2B case (a), k_f = {k_ls:.4f} (least squares of our map)", unit="N",
+              value=float(case_ls.b2b_force), reference=3.74, source="lin2019 Table 3, analytical formula (eq 30)",
+              tolerance=0.005, time_s=time_ls)
+    run.check(model=model, quantity="P_fB2B case (a), k_f = 1.38", unit="W", value=float(case_a.b2b_friction_loss),
+              reference=MU * 3.74 * GROOVE_VELOCITY / math.cos(math.pi / 4),
+              source="lin2019 eq 32 with the Table 3 force 3.74 N", tolerance=0.005, time_s=time_a)
+    # case (b): the mitigation rule of Sec 2.4.2
+    top = b2b.mitigating_top_deviations(-THETA, THETA)
+    case_b, time_b = run.time(b2b.two_ball_case, THETA, RHO, delta_beta_top=top, **common)
+    run.check(model=model, quantity="F_B2B case (b) (Delta beta_TR = Delta beta_BL, Delta beta_TL = Delta beta_BR)",
+              unit="N", value=float(case_b.b2b_force), reference=0.0, scale=3.74,
+              source="lin2019 Table 3, case (b)", tolerance=0.0, time_s=time_b, note="zero on the scale of case (a)")
+    for name in ("epsilon_1", "epsilon_2"):
+        run.check(model=model, quantity=f"{name} case (b)", unit="%", value=100 * float(getattr(case_b, name)),
+                  reference=0.0, scale=0.75, source="lin2019 Table 2, case (b)", tolerance=0.0, time_s=time_b)
+    rng = np.random.default_rng(1)
+    count = 10000
+    theta = rng.uniform(-math.radians(3), math.radians(3), count)
+    rho = rng.uniform(-0.95, 0.95, count)
+    mitigated = b2b.two_ball_case(theta, rho, delta_beta_top=b2b.mitigating_top_deviations(-theta, theta), **common)
+    run.check(model=model, quantity=f"max |epsilon_1 - epsilon_2| under the mitigation rule, {count} random "
+                                    "(theta, rho)", unit="1",
+              value=float(np.max(np.abs(mitigated.epsilon_1 - mitigated.epsilon_2))), reference=0.0, scale=0.015,
+              source="lin2019 Sec 2.3.2 insight (3)", tolerance=0.0, time_s=time_b)
+    # throughput
+    size = {"quick": 100_000, "default": 1_000_000, "fine": 1_000_000}[run.fidelity]
+    theta = rng.uniform(-math.radians(3), math.radians(3), size)
+    rho = rng.uniform(-0.95, 0.95, size)
+    _, time_bulk = run.time(b2b.two_ball_case, theta, rho, **common, budget_s=1.0, max_repeat=5)
+    run.check(model=model, quantity=f"throughput of two_ball_case ({size} cases per call)", unit="cases/s",
+              value=size / time_bulk, reference=1e6, relation="ge", source="issue 3 target (>= 1e6 cases/s)",
+              tolerance=0.0, time_s=time_bulk, note="machine shared with other jobs; benchmark in benchmarks/")
+    run.note(f"Psi from exact Hertz theory (lowmodel.hertz) = {psi:.6e}; contact forces sqrt(2)/2 (N_y -+ N_x) "
+             "of Sec 2.4.1 with N_x = rho N_y on ball 1 (behind); with the tangent k_f = "
+             f"{float(ef.k_f_exact(beta)):.4f} eq 30 would give "
+             f"{float(b2b.two_ball_case(THETA, RHO, k_f=float(ef.k_f_exact(beta)), **common).b2b_force):.3f} N.")
+    _figures_8_9(run, common)
+
+
+def _figures_8_9(run, common) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rho = np.linspace(-0.9, 0.9, 181)
+    theta_deg = np.linspace(-3, 3, 121)
+    case = b2b.two_ball_case(np.radians(theta_deg)[:, None], rho[None, :], **common)
+    figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    image = left.contourf(rho, theta_deg, 100 * (case.epsilon_1 - case.epsilon_2), 21, cmap="RdBu_r")
+    figure.colorbar(image, ax=left, label="epsilon_1 - epsilon_2 [%]")
+    left.set_title("Fig 8(b) equivalent: analytical eq 33")
+    image = right.contourf(rho, theta_deg, case.b2b_force, 21, cmap="viridis")
+    figure.colorbar(image, ax=right, label="F_B2B [N]")
+    right.set_title("Fig 9(b) equivalent: analytical eq 30 (k_f = 1.38)")
+    for axes in (left, right):
+        axes.set_xlabel("rho = N_x/N_y")
+        axes.set_ylabel("theta [deg]")
+        axes.plot([RHO], [2.0], "k*")
+    run.save_figure(figure, "fig8b_fig9b_analytical.png")
