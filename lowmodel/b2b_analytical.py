@@ -116,8 +116,11 @@ def velocity_deviation(delta_beta, force_up, force_down,
     up = _contact_forces("force_up", force_up) ** (2.0 / 3.0)
     down = _contact_forces("force_down", force_down) ** (2.0 / 3.0)
     beta0 = _contact_angle(nominal_contact_angle)
-    bl, br, tr, tl = np.moveaxis(deviations, -1, 0)
-    # lin2019 eq 22
+    return _epsilon(*np.moveaxis(deviations, -1, 0), up, down, beta0)
+
+
+def _epsilon(bl, br, tr, tl, up, down, beta0):
+    """lin2019 eq 22 without input checks; ``up``, ``down`` are F_U^(2/3), F_D^(2/3)."""
     return (1.0 - np.cos(2.0 * beta0)) * ((-bl + tr) * up + (-br + tl) * down) / (2.0 * (up + down))
 
 
@@ -135,10 +138,14 @@ def diagonal_forces(normal_load, side_load, nominal_contact_angle=NOMINAL_CONTAC
     n_y = _positive("normal_load", normal_load, "N")
     n_x = _finite("side_load", side_load)
     beta0 = _contact_angle(nominal_contact_angle)
+    return _diagonal(n_y, n_x, beta0)
+
+
+def _diagonal(n_y, n_x, beta0):
     vertical = 0.5 * n_y / np.cos(beta0)
     lateral = 0.5 * n_x / np.sin(beta0)
     up, down = vertical - lateral, vertical + lateral
-    if np.any(up <= 0.0) or np.any(down <= 0.0):
+    if not (np.all(up > 0.0) and np.all(down > 0.0)):
         raise ValueError("loss of four-point contact: |side_load| must be < normal_load * tan(nominal_contact_angle) "
                          f"(|rho| < {float(np.min(np.tan(beta0))):.6g})")
     return up, down
@@ -201,11 +208,14 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     psi = _positive("psi", psi, "(m^2/N)^(1/3)")
     radius = _positive("ball_radius", ball_radius, "m")
     beta0 = _contact_angle(nominal_contact_angle)
-    approaching = (eps_1 > eps_2) & np.asarray(touching, dtype=bool)
-    # lin2019 eq 30
+    return _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, np.asarray(touching, dtype=bool))
+
+
+def _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, touching):
+    """lin2019 eq 30 without input checks; ``s_j = F_jU^(2/3) + F_jD^(2/3)``."""
     force = (2.0 * k_f * mu * radius ** (2.0 / 3.0) / (psi * (1.0 - np.cos(2.0 * beta0)))
              * s_1 * s_2 / (s_1 + s_2) * (eps_1 - eps_2))
-    return np.where(approaching, force, 0.0)
+    return np.where((eps_1 > eps_2) & touching, force, 0.0)
 
 
 def friction_loss(b2b_force, friction_coefficient, groove_velocity,
@@ -263,21 +273,24 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     theta = _finite("theta", theta)
     rho = _finite("rho", rho)
     n_y = _positive("normal_load", normal_load, "N")
-    top_tr, top_tl = (_finite("delta_beta_top", value) for value in delta_beta_top)
-    deviations = np.stack(np.broadcast_arrays(-theta, theta, top_tr, top_tl), axis=-1)  # (BL, BR, TR, TL)
-    forces_1 = diagonal_forces(n_y, rho * n_y, nominal_contact_angle)
-    forces_2 = diagonal_forces(n_y, -rho * n_y, nominal_contact_angle)
-    epsilon_1 = velocity_deviation(deviations, *forces_1, nominal_contact_angle)
-    epsilon_2 = velocity_deviation(deviations, *forces_2, nominal_contact_angle)
-    force = contact_force(epsilon_1, epsilon_2, forces_1, forces_2, k_f=k_f,
-                          friction_coefficient=friction_coefficient, psi=psi, ball_radius=ball_radius,
-                          nominal_contact_angle=nominal_contact_angle)
-    loss = friction_loss(force, friction_coefficient, groove_velocity, nominal_contact_angle)
     v = _finite("groove_velocity", groove_velocity)
-    s_1 = sum(f ** (2.0 / 3.0) for f in forces_1)
-    s_2 = sum(f ** (2.0 / 3.0) for f in forces_2)
-    # common velocity (eqs 25-29): Delta epsilon_j is proportional to -/+ F_B2B / S_j, so the
-    # contact velocity is the S-weighted mean of the free ones
-    common = np.where(force > 0.0, (s_1 * epsilon_1 + s_2 * epsilon_2) / (s_1 + s_2), np.nan)
+    mu = _non_negative("friction_coefficient", friction_coefficient, "")
+    psi = _positive("psi", psi, "(m^2/N)^(1/3)")
+    radius = _positive("ball_radius", ball_radius, "m")
+    k_f = _positive("k_f", k_f, "")
+    beta0 = _contact_angle(nominal_contact_angle)
+    top_tr, top_tl = (_finite("delta_beta_top", value) for value in delta_beta_top)
+    side = rho * n_y
+    powers = [f ** (2.0 / 3.0) for f in (*_diagonal(n_y, side, beta0), *_diagonal(n_y, -side, beta0))]
+    # (BL, BR, TR, TL) = (-theta, theta, top_tr, top_tl) for both balls
+    epsilon_1 = _epsilon(-theta, theta, top_tr, top_tl, powers[0], powers[1], beta0)   # ball 1: N_x = rho N_y
+    epsilon_2 = _epsilon(-theta, theta, top_tr, top_tl, powers[2], powers[3], beta0)   # ball 2: N_x = -rho N_y
+    s_1 = powers[0] + powers[1]
+    s_2 = powers[2] + powers[3]
+    force = _force(epsilon_1, epsilon_2, s_1, s_2, k_f, mu, psi, radius, beta0, True)
+    loss = mu * force * np.abs(v) / np.cos(beta0)  # lin2019 eq 32
+    # common velocity (eqs 25-29): Delta epsilon_1 = -F_B2B / (C S_1), Delta epsilon_2 = +F_B2B / (C S_2)
+    # with C the prefactor of eq 30, so the contact velocity is the S-weighted mean of the free ones
+    common = (s_1 * epsilon_1 + s_2 * epsilon_2) / (s_1 + s_2)
     return TwoBallCase(epsilon_1, epsilon_2, (1.0 + epsilon_1) * 0.5 * v, (1.0 + epsilon_2) * 0.5 * v,
                        force, loss, np.where(force > 0.0, (1.0 + common) * 0.5 * v, np.nan))

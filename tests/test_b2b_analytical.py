@@ -54,28 +54,41 @@ def test_eq22_from_eqs_16_19_21(beta0_deg):
         assert b2b.velocity_deviation(delta_beta, f_up, f_down, beta0) == pytest.approx(epsilon, rel=1e-10, abs=1e-15)
 
 
+def _delta_epsilon(forces, load, k_f, psi, beta0=math.pi / 4):
+    """Additional deviation of one ball pushed by ``load`` along z: solve eqs 25 and 27, evaluate eq 28."""
+    force_rows, _ = _matrices(beta0)
+    f = np.array([forces[0], forces[1], forces[0], forces[1]])
+    system = np.vstack([force_rows * _linear_gains(f, k_f, psi), [1, -1, -1, 1]])  # eq 25, eq 27
+    zeta = np.linalg.solve(system, np.array([load, 0.0, 0.0, 0.0]))
+    return (1 - math.cos(2 * beta0)) * (-zeta[1] + zeta[3]) / 2                     # eq 28
+
+
 def test_eq30_from_eqs_25_27_28_29():
     """Solve eqs 25 and 27 for each ball under +-F_B2B, take eq 28 and impose eq 29: F_B2B must be eq 30."""
-    beta0 = math.pi / 4
     psi, k_f = _psi(), 1.38
-    force_rows, _ = _matrices(beta0)
     forces_1 = b2b.diagonal_forces(N_Y, -0.6 * N_Y)
     forces_2 = b2b.diagonal_forces(N_Y, 0.6 * N_Y)
     eps_1, eps_2 = 0.0123, -0.004
-
-    def delta_epsilon(forces, load):  # additional deviation of one ball pushed by `load` along z (eq 25 rhs)
-        f = np.array([forces[0], forces[1], forces[0], forces[1]])
-        system = np.vstack([force_rows * _linear_gains(f, k_f, psi), [1, -1, -1, 1]])  # eq 25, eq 27
-        zeta = np.linalg.solve(system, np.array([load, 0.0, 0.0, 0.0]))
-        return (1 - math.cos(2 * beta0)) * (-zeta[1] + zeta[3]) / 2                     # eq 28
-
     # eq 29 is linear in F_B2B: ball 1 gets +F on the rhs of eq 24, ball 2 -F
-    per_newton = delta_epsilon(forces_1, 1.0) - delta_epsilon(forces_2, -1.0)
+    per_newton = _delta_epsilon(forces_1, 1.0, k_f, psi) - _delta_epsilon(forces_2, -1.0, k_f, psi)
     force = (eps_2 - eps_1) / per_newton
     expected = b2b.contact_force(eps_1, eps_2, forces_1, forces_2, k_f=k_f, friction_coefficient=MU, psi=psi,
                                  ball_radius=BALL_RADIUS)
     assert force == pytest.approx(float(expected), rel=1e-12)
     assert per_newton < 0.0  # the B2B force slows ball 1 and speeds up ball 2
+
+
+def test_common_velocity_from_eq28():
+    psi, k_f = _psi(), 1.38
+    case = b2b.two_ball_case(math.radians(2.0), -0.45, normal_load=N_Y, groove_velocity=V, friction_coefficient=MU,
+                             psi=psi, ball_radius=BALL_RADIUS, k_f=k_f)
+    force = float(case.b2b_force)
+    forces_1 = b2b.diagonal_forces(N_Y, -0.45 * N_Y)
+    forces_2 = b2b.diagonal_forces(N_Y, 0.45 * N_Y)
+    v_1 = (1 + float(case.epsilon_1) + _delta_epsilon(forces_1, force, k_f, psi)) * V / 2
+    v_2 = (1 + float(case.epsilon_2) + _delta_epsilon(forces_2, -force, k_f, psi)) * V / 2
+    assert v_1 == pytest.approx(v_2, rel=1e-12)                               # eq 29 holds
+    assert float(case.common_velocity) == pytest.approx(v_1, rel=1e-12)
 
 
 def test_eq33_is_eq22_with_the_case_study_forces():
