@@ -192,8 +192,9 @@ def frame_angular_velocity(orbital_speed, lead_angle) -> np.ndarray:
     The frame turns about the screw axis at the orbital speed omega_m: its
     Darboux vector ``(tau t + kappa b) ds/dt = omega_m k = omega_m (sin psi, 0, cos psi)``.
     """
-    omega_m = check_finite("orbital_speed", orbital_speed)
-    return omega_m[..., None] * axis_in_frenet(lead_angle)
+    omega_m, psi = np.broadcast_arrays(check_finite("orbital_speed", orbital_speed),
+                                       check_lead_angle("lead_angle", lead_angle))
+    return np.stack([omega_m * np.sin(psi), np.zeros_like(omega_m), omega_m * np.cos(psi)], axis=-1)
 
 
 def to_global(frame, vector_frenet) -> np.ndarray:

@@ -139,3 +139,13 @@ def test_ball_centre_velocity_is_time_derivative():
 def test_bad_input_names_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_broadcasting_balls_by_geometries():
+    theta = np.linspace(0, 2 * np.pi, 6)[:, None]  # balls
+    leads = np.array([0.0, 10e-3, 20e-3, 40e-3])  # geometries
+    points = helix.contact_point(theta, R_M, leads, R_B, np.radians(45), "screw")
+    assert points.shape == (6, 4, 3)
+    single = helix.contact_point(theta[2, 0], R_M, leads[3], R_B, np.radians(45), "screw")
+    np.testing.assert_allclose(points[2, 3], single, rtol=1e-15)
+    assert helix.frame_angular_velocity(np.ones((6, 1)), helix.lead_angle(leads, R_M)).shape == (6, 4, 3)
