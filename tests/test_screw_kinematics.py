@@ -253,6 +253,21 @@ def test_contact_angle_and_ball_diameter_effects_are_weak():
     assert np.all(np.diff(result.slide_roll_nut) > 0) and np.all(np.diff(result.slide_roll_screw) > 0)
 
 
+def test_relative_velocities_tangent_to_contact():
+    """No normal approach: every relative surface velocity and the sliding velocity is normal to R_O'(A,B)."""
+    rng = np.random.default_rng(0)
+    count = 50
+    r_b, alpha_o, alpha_i = rng.uniform(1e-3, 4e-3, count), rng.uniform(0.4, 1.2, count), rng.uniform(0.4, 1.2, count)
+    result = sk.kinematics(rng.uniform(0.01, 0.05, count), r_b, rng.uniform(0, 0.06, count),
+                           rng.uniform(-400, 400, count), alpha_o, alpha_i)
+    normal_a, normal_b = helix.contact_offset(r_b, alpha_o, "nut"), helix.contact_offset(r_b, alpha_i, "screw")
+    for vector, normal in ((result.nut_velocity_rel, normal_a), (result.ball_velocity_nut_rel, normal_a),
+                           (result.sliding_velocity_nut, normal_a), (result.screw_velocity_rel, normal_b),
+                           (result.ball_velocity_screw_rel, normal_b), (result.sliding_velocity_screw, normal_b)):
+        speed = np.linalg.norm(vector, axis=-1)
+        np.testing.assert_allclose(np.einsum("...i,...i", vector, normal) / (r_b * speed), 0.0, atol=1e-13)
+
+
 def test_single_equation_helpers_match_kinematics(table2):
     p = TABLE_A1
     beta = sk.pitch_angle(p["contact_angle_nut"], p["ball_radius"], p["pitch_radius"])
