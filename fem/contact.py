@@ -47,7 +47,7 @@ class ContactModel:
 
     ``candidates`` (n_c,) ball node indices; ``g0`` (n_c,) initial gaps [m];
     ``W`` (n_c, n_c) contact compliance [m/N]; ``area`` (n_c,) tributary
-    contact area of each candidate on the ball surface [m^2] (the model's cut);
+    contact area of each candidate, projected on the xy plane [m^2] (the model's cut);
     ``B`` (n_c, ndof) sparse gap operator; ``K`` the constrained stiffness.
     """
 
@@ -96,7 +96,7 @@ class ContactState:
 
 def _lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
     p = points[triangles]
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    area = 0.5 * np.abs(np.cross(p[:, 1, :2] - p[:, 0, :2], p[:, 2, :2] - p[:, 0, :2]))  # projected on xy
     out = np.zeros(n)
     for k in range(3):
         np.add.at(out, triangles[:, k], area / 3.0)

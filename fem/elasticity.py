@@ -62,6 +62,8 @@ def load_pair(path: Path | str) -> PairMesh:
     tets, body = [], []
     surfaces: dict[str, list] = {}
     for name, per_block in cell_sets.items():
+        if name.startswith("gmsh:"):
+            continue
         for i, idx in enumerate(per_block):
             idx = np.asarray(idx, dtype=np.int64)
             if idx.size == 0:
@@ -121,7 +123,7 @@ def stiffness(pair: PairMesh, materials, order: int = 1):
     ``materials``: ``(E, nu)`` for both bodies, or ``[(E_ball, nu_ball), (E_counter, nu_counter)]``.
     """
     from skfem import BilinearForm, asm
-    from skfem.helpers import ddot, eye, sym_grad, trace
+    from skfem.helpers import ddot, sym_grad, trace
 
     if np.ndim(materials[0]) == 0:
         materials = [materials, materials]

@@ -94,7 +94,10 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
     timings["contact_s"] = time.perf_counter() - t0
     symmetric_x = "symmetry_x" in model.pair.surfaces
     symmetric_y = "symmetry_y" in model.pair.surfaces
-    fit = postprocess.fit_ellipse(model.xy, nominal.pressure, symmetric_x=symmetric_x, symmetric_y=symmetric_y)
+    xq, operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
+                                              model.candidates)
+    fit = postprocess.fit_ellipse_forces(xq, operator, nominal.forces, symmetric_x=symmetric_x,
+                                         symmetric_y=symmetric_y)
     h = contact_edge_length(model, nominal.active)
     postprocess.mesh_check(h, min(fit.a, fit.b), min_elements)
     approach = postprocess.approach_fit(forces, approaches)

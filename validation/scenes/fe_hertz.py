@@ -88,7 +88,7 @@ def pair_case(scene_name: str) -> PairCase:
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
             "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)")
     if scene_name.startswith("fe-hertz-groove-0"):
-        return _steel_groove(int(scene_name[-3:]) / 1000.0)
+        return _steel_groove(int(scene_name[-3:]) / 100.0)
     if scene_name == "fe-hertz-screw":
         from meshes import helical
 
