@@ -330,6 +330,38 @@ def _trend_figure(run, values, x_label, results, filename, title, x_scale=1.0, n
     run.save_figure(figure, filename)
 
 
+def _methods_figure(run, count):
+    """U and S of the three methods against the lead (Table A1 otherwise); Harris exists at lead 0 only."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    leads = np.linspace(0.0, 40e-3, count)
+    present = sk.kinematics(**{**TABLE_A1, "lead": leads})
+    wei = sk.wei_ball_centre_kinematics(**{**TABLE_A1, "lead": leads})
+    bearing = harris.kinematics(TABLE_A1["pitch_radius"], TABLE_A1["ball_radius"], TABLE_A1["screw_speed"],
+                                TABLE_A1["contact_angle_nut"])
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    x = leads * 1e3
+    for state, name, style in ((present, "present", "-"), (wei, "Wei (ball at centre velocity)", ":")):
+        left.plot(x, state.slide_roll_nut, style, color="C0", label=f"S_A {name}")
+        left.plot(x, state.slide_roll_screw, style, color="C1", label=f"S_B {name}")
+        right.plot(x, state.entrainment_nut, style, color="C0", label=f"U_A {name}")
+        right.plot(x, state.entrainment_screw, style, color="C1", label=f"U_B {name}")
+    left.plot([0.0], [float(bearing.slide_roll_outer)], "k*", ms=9, label="Harris (lead 0)")
+    right.plot([0.0, 0.0], [float(bearing.entrainment_outer), float(bearing.entrainment_inner)], "k*", ms=9,
+               label="Harris (lead 0)")
+    left.set_ylabel("slide-roll ratio [-]")
+    right.set_ylabel("entrainment velocity [m/s]")
+    for axes in (left, right):
+        axes.set_xlabel("lead [mm]")
+        axes.grid(True, alpha=0.3)
+        axes.legend(fontsize=7)
+    figure.suptitle("Three methods on the same inputs (Table A1, lead varied)")
+    run.save_figure(figure, "methods_vs_lead.png")
+
+
 def _steps_against(values, sign) -> int:
     """Number of steps of ``values`` that go against the stated direction (sign +1 rising, -1 falling)."""
     return int(np.sum(np.sign(np.diff(values)) != sign))
@@ -423,6 +455,7 @@ def wang2022_trends(run):
               value=float(np.ptp(state.entrainment_nut) / np.mean(state.entrainment_nut)), reference=0.05,
               relation="le", tolerance=0.0, source=f"{source}: U 'reduces slightly' with ball diameter (Fig 9)",
               time_s=time_s, note="'slightly' read as below 5 %")
+    _methods_figure(run, count)
     run.note("Sweep ranges are chosen here (the figures are missing from the text): speed 100-5000 rpm, "
              "alpha 30-60 deg, lead 2-40 mm, d_m 24-100 mm, d_b 3-10 mm, all other inputs Table A1. Verbal "
              "bounds ('negligible', 'dramatically') are read as stated in each row's note.")
