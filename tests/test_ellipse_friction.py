@@ -233,3 +233,12 @@ def test_below_table_range_and_nan_inputs():
         ef.friction_velocity(float("nan"), 0.0, 0.3)
     with pytest.raises(ValueError, match="c_max"):
         ef.k_f_least_squares(0.3, c_max=-1.0)
+
+
+def test_force_is_concave_for_positive_c_so_fitted_slopes_lie_below_the_tangent():
+    """-force is concave on c/a >= 0 (the curvature decreases), which backs the scene's bound k_f_exact >= 1.38."""
+    kappa = np.linspace(0.0, 20.0, 2001)
+    for beta in (0.02, 0.23, 1.0):
+        curvature = -ef.friction_exact(kappa, beta).dforce_dc
+        assert np.all(np.diff(curvature) <= 1e-14)
+        assert ef.k_f_least_squares(beta, 0.5) < ef.k_f_exact(beta)
