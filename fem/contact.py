@@ -96,7 +96,8 @@ class ContactState:
 
 def _lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
     p = points[triangles]
-    area = 0.5 * np.abs(np.cross(p[:, 1, :2] - p[:, 0, :2], p[:, 2, :2] - p[:, 0, :2]))  # projected on xy
+    e1, e2 = p[:, 1, :2] - p[:, 0, :2], p[:, 2, :2] - p[:, 0, :2]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])  # projected on xy
     out = np.zeros(n)
     for k in range(3):
         np.add.at(out, triangles[:, k], area / 3.0)
@@ -262,11 +263,14 @@ def _pdas(model: ContactModel, force: float | None, approach: float | None, tol:
     return ContactState(total, float(U), lam, gap, lam / model.area, active, iteration, residual)
 
 
-def solve_force(model: ContactModel, force: float, *, tol: float = 1e-10, max_iter: int = 50) -> ContactState:
-    """Contact under the total (full-model) force ``force`` [N] > 0 on the ball's load face."""
+def solve_force(model: ContactModel, force: float, *, tol: float = 1e-10, max_iter: int = 50,
+                start: ContactState | None = None) -> ContactState:
+    """Contact under the total (full-model) force ``force`` [N] > 0 on the ball's load face.
+
+    ``start``: a solved state whose active set starts the iteration (load sweeps)."""
     if not (np.isfinite(force) and force > 0):
         raise ValueError(f"force must be a finite number > 0 N, got {force!r}")
-    return _pdas(model, float(force), None, tol, max_iter)
+    return _pdas(model, float(force), None, tol, max_iter, None if start is None else start.active)
 
 
 def solve_approach(model: ContactModel, approach: float, *, tol: float = 1e-10, max_iter: int = 50) -> ContactState:

@@ -84,9 +84,9 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
     model = contact.build_model(path, materials, gap_limit, method=method)
     timings.update(model.timings)
     t0 = time.perf_counter()
-    forces, approaches, nominal = [], [], None
+    forces, approaches, nominal, state = [], [], None, None
     for factor in sorted(set(load_factors) | {1.0}):
-        state = contact.solve_force(model, factor * force, tol=tol)
+        state = contact.solve_force(model, factor * force, tol=tol, start=state)
         forces.append(state.force)
         approaches.append(state.approach)
         if factor == 1.0:

@@ -39,7 +39,7 @@ TOLERANCES = {
 TIME_LIMIT_S = {"quick": 60.0, "default": 60.0, "fine": 300.0}
 # (n = b / h_contact, growth)
 LEVELS = {
-    "quick": [(6.0, 1.3)],
+    "quick": [(8.0, 1.3)],
     "default": [(10.0, 1.2)],
     "fine": [(6.0, 1.3), (8.0, 1.2), (10.0, 1.2), (14.0, 1.2), (18.0, 1.15)],
 }

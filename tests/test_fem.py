@@ -1,0 +1,179 @@
+"""fem: elasticity patch tests, contact solver (complementarity, equilibrium, force/approach
+duality, non-convergence, coarse mesh refusal), post-processing fits, linear solvers."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from fem import contact, hertz_case, linsolve, postprocess
+from fem.elasticity import PairMesh, lame, stiffness
+from lowmodel import hertz
+from lowmodel.errors import ConvergenceError
+from meshes import contact_pairs
+
+E, NU = 2.1e11, 0.28
+R = 5e-3
+
+
+def _cube(order_points: int = 3) -> PairMesh:
+    from skfem import MeshTet
+
+    mesh = MeshTet.init_tensor(*(np.linspace(0, 1e-3, order_points),) * 3)
+    return PairMesh(mesh.p.T.copy(), mesh.t.T.copy(), np.zeros(mesh.t.shape[1], dtype=int), {})
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_patch_test_uniform_strain(order):
+    """A linear displacement field on the boundary is reproduced exactly inside (P1 and P2)."""
+    pair = _cube()
+    K, basis = stiffness(pair, (E, NU), order=order)
+    grad = np.array([[1e-4, 2e-5, 0.0], [0.0, -3e-5, 1e-5], [4e-6, 0.0, 2e-4]])
+    x = basis.doflocs  # (3, ndof): location of each DOF
+    exact = np.einsum("ij,jk->ik", grad, x)  # u_i at every DOF location
+    dof_comp = np.zeros(K.shape[0], dtype=int)
+    for c in range(3):
+        dof_comp[basis.nodal_dofs[c]] = c
+        if order == 2:
+            dof_comp[basis.edge_dofs[c]] = c
+    u_exact = exact[dof_comp, np.arange(K.shape[0])]
+    boundary = basis.get_dofs().flatten()
+    interior = np.setdiff1d(np.arange(K.shape[0]), boundary)
+    assert interior.size > 0
+    u = u_exact.copy()
+    u[interior] = 0.0
+    rhs = -(K @ u)[interior]
+    u[interior] = sp.linalg.spsolve(K[interior][:, interior].tocsc(), rhs)
+    assert np.max(np.abs(u - u_exact)) < 1e-12 * np.max(np.abs(u_exact))
+
+
+def test_rigid_body_modes_are_stress_free():
+    pair = _cube()
+    K, basis = stiffness(pair, (E, NU))
+    x = pair.points
+    for mode in (np.array([1.0, 0, 0]) + 0 * x, np.cross([0.3, -0.2, 1.0], x)):
+        u = np.zeros(K.shape[0])
+        for c in range(3):
+            u[basis.nodal_dofs[c]] = mode[:, c]
+        assert np.max(np.abs(K @ u)) < 1e-9 * np.max(np.abs(K.data)) * np.max(np.abs(u))
+
+
+def test_lame_bad_input():
+    with pytest.raises(ValueError, match="poisson_ratio"):
+        lame(E, 0.5)
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        lame(-1.0, 0.3)
+
+
+def test_inverse_block_methods_agree():
+    rng = np.random.default_rng(0)
+    a = sp.random(400, 400, density=0.02, random_state=1)
+    K = (a @ a.T + 3 * sp.eye(400)).tocsr()
+    c = rng.choice(400, 12, replace=False)
+    reference = np.linalg.inv(K.toarray())[np.ix_(c, c)]
+    for method in linsolve.METHODS:
+        assert np.allclose(linsolve.inverse_block(K, c, method), reference, rtol=1e-10, atol=1e-14)
+    with pytest.raises(ValueError, match="method"):
+        linsolve.inverse_block(K, c, "cg")
+
+
+def test_approach_fit_recovers_coefficients():
+    forces = np.array([50.0, 75.0, 100.0, 125.0, 150.0])
+    fit = postprocess.approach_fit(forces, 2e-7 * forces ** (2 / 3) - 1e-9 * forces)
+    assert fit.hertz_constant == pytest.approx(2e-7, rel=1e-12)
+    assert fit.bulk_compliance == pytest.approx(-1e-9, rel=1e-10)
+    with pytest.raises(ValueError, match=">= 3"):
+        postprocess.approach_fit([1.0, 2.0], [1.0, 2.0])
+
+
+def test_mesh_check_gives_size():
+    with pytest.raises(ValueError, match=r"use h_contact <= 2\.000e-05"):
+        postprocess.mesh_check(5e-5, 1e-4)
+    postprocess.mesh_check(1e-5, 1e-4)
+
+
+@pytest.fixture(scope="module")
+def flat_model():
+    geometry = hertz.ball_on_flat(R, youngs_modulus=E, poisson_ratio=NU)
+    ref = hertz.solve_load(geometry, 100.0)
+    path = contact_pairs.ball_on_flat_pair(R, ref.a / 6, 1.4, fine_radius=1.3 * ref.a)
+    return contact.build_model(path, (E, NU), gap_limit=1.25 * ref.delta), ref
+
+
+def test_contact_complementarity_and_equilibrium(flat_model):
+    model, ref = flat_model
+    state = contact.solve_force(model, 100.0)
+    scale = np.max(state.forces)
+    assert state.force == pytest.approx(100.0, rel=1e-12)
+    assert np.all(state.forces >= -1e-12 * scale)
+    assert np.all(state.gaps >= -1e-10 * state.approach)
+    assert np.max(np.abs(state.forces * state.gaps)) < 1e-10 * scale * state.approach
+    assert state.residual <= 1e-10 and 2 <= state.iterations <= 50
+    # the approach control gives back the same solution
+    again = contact.solve_approach(model, state.approach)
+    assert again.force == pytest.approx(100.0, rel=1e-9)
+    assert np.allclose(again.forces, state.forces, atol=1e-9 * scale)
+    # W is symmetric positive definite (a compliance)
+    assert np.allclose(model.W, model.W.T)
+    assert np.min(np.linalg.eigvalsh(model.W)) > 0
+
+
+def test_contact_is_monotone_and_hertz_like(flat_model):
+    model, ref = flat_model
+    low, high = contact.solve_force(model, 50.0), contact.solve_force(model, 100.0)
+    assert high.approach > low.approach and high.active.sum() >= low.active.sum()
+    # Hertz: U(100)/U(50) = 2^(2/3) up to the (small) linear bulk term
+    assert high.approach / low.approach == pytest.approx(2 ** (2 / 3), rel=0.05)
+
+
+def test_nonconvergence_raises(flat_model):
+    model, _ = flat_model
+    with pytest.raises(ConvergenceError, match="residual"):
+        contact.solve_force(model, 100.0, max_iter=1)
+
+
+def test_bad_loads(flat_model):
+    model, _ = flat_model
+    for bad in (0.0, -5.0, float("nan")):
+        with pytest.raises(ValueError, match="force"):
+            contact.solve_force(model, bad)
+    with pytest.raises(ValueError, match="approach"):
+        contact.solve_approach(model, -1e-6)
+
+
+def test_contact_zone_too_small_is_refused(flat_model):
+    model, ref = flat_model
+    with pytest.raises(ValueError, match="edge of the candidate zone"):
+        contact.solve_force(model, 800.0)
+
+
+def test_too_coarse_mesh_is_refused():
+    geometry = hertz.ball_in_groove(R, 0.56, youngs_modulus=E, poisson_ratio=NU)
+    ref = hertz.solve_load(geometry, 100.0)
+    with pytest.raises(ValueError, match="mesh too coarse.*use h_contact <="):
+        hertz_case.solve_case(lambda: contact_pairs.ball_in_groove_pair(R, 0.56, ref.b / 2.5, 1.5,
+                                                                        fine_radius=1.4 * ref.b,
+                                                                        fine_half_length=1.1 * ref.a),
+                              100.0, (E, NU), gap_limit=1.25 * ref.delta)
+
+
+def test_ellipse_fit_recovers_exact_hertz_forces(flat_model):
+    model, ref = flat_model
+    xq, operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
+                                              model.candidates)
+    a, b, p0 = 1.1 * ref.a, 0.8 * ref.a, 2e9
+    field = p0 * np.sqrt(np.clip(1 - (xq[:, 0] / a) ** 2 - (xq[:, 1] / b) ** 2, 0, None))
+    fit = postprocess.fit_ellipse_forces(xq, operator, operator @ field)
+    assert (fit.a, fit.b, fit.p0) == pytest.approx((a, b, p0), rel=1e-8)
+
+
+def test_groove_quick_level_against_hertz():
+    """Coarse CI level of the conformity-0.56 groove: within 3 % (p0 4 %) of Hertz."""
+    from validation.scenes import fe_hertz
+
+    case = fe_hertz.pair_case("fe-hertz-groove-056")
+    (n, growth), = fe_hertz.LEVELS["quick"]
+    result, ref = fe_hertz.solve_level(case, n, growth)
+    assert result.force_sum == pytest.approx(100.0, rel=1e-12)
+    for quantity, tol in fe_hertz.TOLERANCES["quick"].items():
+        assert getattr(result, quantity) == pytest.approx(float(getattr(ref, quantity)), rel=tol), quantity
