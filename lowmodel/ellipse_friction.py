@@ -73,6 +73,8 @@ from scipy.special import elliprd, ellipe, ellipk
 __all__ = [
     "EllipseFriction",
     "SlipFriction",
+    "AngleFriction",
+    "friction_angle",
     "friction",
     "friction_exact",
     "friction_velocity",
@@ -144,6 +146,29 @@ class SlipFriction:
     dmoment_dslide: np.ndarray
     dloss_dspin: np.ndarray
     dloss_dslide: np.ndarray
+
+
+@dataclass(frozen=True)
+class AngleFriction:
+    """Friction of one Hertz ellipse as a function of the slip-direction angle (see :func:`friction_angle`).
+
+    ``phi = atan2(omega c, omega a)``: the slip at the contact centre and the spin velocity are
+    ``(omega c, omega a) = r (sin phi, cos phi)`` with slip speed scale ``r >= 0`` [m/s].
+    Dimensional values::
+
+        f_{i,z} = mu * F     * force         [N]
+        M_{i,O} = mu * F * a * moment        [N m], about -y_i
+        P_{f,i} = mu * F * r * loss          [W]   (loss per unit r, dimensionless)
+
+    ``d<q>_dphi``: derivatives with respect to ``phi`` [1/rad].
+    """
+
+    force: np.ndarray
+    moment: np.ndarray
+    loss: np.ndarray
+    dforce_dphi: np.ndarray
+    dmoment_dphi: np.ndarray
+    dloss_dphi: np.ndarray
 
 
 # --------------------------------------------------------------------------
@@ -491,29 +516,41 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     return table
 
 
+_ACTIVE: list = []  # [(phi nodes, log b/a nodes, cell centres x, y, coefficients (cells, 3, 16))] of the default map
+
+
+def _active_patches():
+    if not _ACTIVE:
+        table = friction_map()
+        _, mid_x, mid_y, coefficients = _patches(table)
+        flat = np.ascontiguousarray(coefficients.reshape(mid_x.size * mid_y.size, 3, 16))
+        _ACTIVE.append((table.phi, table.log_b_over_a, mid_x, mid_y, flat))
+    return _ACTIVE[0]
+
+
 def _evaluate(phi: np.ndarray, beta: np.ndarray):
-    """(force, d force/d phi, moment, d moment/d phi, loss_direction, d loss_direction/d phi)."""
-    table = friction_map()
-    _, mid_x, mid_y, coefficients = _patches(table)
-    phi = np.asarray(phi, dtype=float)
-    shape = phi.shape
-    x = phi.ravel()
-    y = np.log(np.asarray(beta, dtype=float)).ravel()
-    i = np.clip(np.searchsorted(table.phi, x) - 1, 0, mid_x.size - 1)
-    j = np.clip(np.searchsorted(table.log_b_over_a, y) - 1, 0, mid_y.size - 1)
+    """(force, d force/d phi, moment, d moment/d phi, loss_direction, d loss_direction/d phi).
+
+    ``phi`` and ``beta`` arrays of the same shape; evaluates the bicubic patch of the cell of each point.
+    """
+    nodes_x, nodes_y, mid_x, mid_y, flat = _active_patches()
+    shape = np.shape(phi)
+    x = np.ravel(phi)
+    y = np.log(np.ravel(beta))
+    i = np.searchsorted(nodes_x, x) - 1
+    np.clip(i, 0, mid_x.size - 1, out=i)
+    j = np.searchsorted(nodes_y, y) - 1
+    np.clip(j, 0, mid_y.size - 1, out=j)
     dx = x - mid_x[i]
     dy = y - mid_y[j]
-    c = coefficients[i, j]                                  # (n, 3, 4, 4)
-    powers_y = np.stack([np.ones_like(dy), dy, dy**2, dy**3], axis=-1)
-    along_x = np.einsum("nqmk,nk->nqm", c, powers_y)        # polynomial in dphi
-    value = ((along_x[..., 3] * dx[:, None] + along_x[..., 2]) * dx[:, None] + along_x[..., 1]) * dx[:, None] \
-        + along_x[..., 0]
-    slope = (3.0 * along_x[..., 3] * dx[:, None] + 2.0 * along_x[..., 2]) * dx[:, None] + along_x[..., 1]
-    out = []
-    for q in range(3):
-        out.append(value[:, q].reshape(shape))
-        out.append(slope[:, q].reshape(shape))
-    return out
+    ones = np.ones_like(dx)
+    power_x = np.stack([ones, dx, dx * dx, dx * dx * dx], axis=1)                  # (n, 4)
+    slope_x = np.stack([0.0 * dx, ones, 2.0 * dx, 3.0 * dx * dx], axis=1)
+    power_y = np.stack([ones, dy, dy * dy, dy * dy * dy], axis=1)
+    basis = np.stack([(power_x[:, :, None] * power_y[:, None, :]).reshape(-1, 16),
+                      (slope_x[:, :, None] * power_y[:, None, :]).reshape(-1, 16)], axis=2)  # (n, 16, 2)
+    values = flat[i * mid_y.size + j] @ basis                                      # (n, 3, 2)
+    return [values[:, q, d].reshape(shape) for q in range(3) for d in range(2)]
 
 
 def friction(c_over_a, b_over_a) -> EllipseFriction:
@@ -589,3 +626,32 @@ def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
                         dforce * dphi_dspin, dforce * dphi_dslide,
                         dmoment * dphi_dspin, dmoment * dphi_dslide,
                         dloss_dspin, dloss_dslide)
+
+
+def friction_angle(slip_angle, b_over_a) -> AngleFriction:
+    """Friction of a Hertz ellipse as a smooth function of the slip-direction angle ``phi``.
+
+    Parameters
+    ----------
+    slip_angle : array_like [rad], ``phi = atan2(omega c, omega a)``, any real value
+        (periodic, period ``2 pi``); ``phi = arctan(c/a)`` for ``omega > 0`` and
+        ``phi = +-pi/2`` for pure sliding (``omega = 0``).
+    b_over_a : array_like in ``[0.02, 1]``; broadcast with ``slip_angle``.
+
+    Returns
+    -------
+    AngleFriction: ``force``, ``moment``, ``loss`` per unit slip scale and their
+    ``d/d phi`` from the same C2 spline as :func:`friction`.  Symmetries:
+    ``force(phi + pi) = -force(phi)``, ``moment(phi + pi) = -moment(phi)``,
+    ``loss(phi + pi) = loss(phi)``; ``loss = cos(phi) moment - sin(phi) force``
+    (power balance, to map accuracy).
+    """
+    phi = np.asarray(slip_angle, dtype=float)
+    if not np.all(np.isfinite(phi)):
+        raise ValueError("slip_angle must be finite (rad)")
+    beta = _check_ratio(b_over_a)
+    if phi.shape != beta.shape:
+        phi, beta = np.broadcast_arrays(phi, beta)
+    wrapped = np.remainder(phi + math.pi, 2.0 * math.pi) - math.pi   # [-pi, pi)
+    force, dforce, moment, dmoment, loss, dloss = _evaluate(wrapped, beta)
+    return AngleFriction(force, moment, loss, dforce, dmoment, dloss)

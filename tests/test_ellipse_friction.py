@@ -242,3 +242,24 @@ def test_force_is_concave_for_positive_c_so_fitted_slopes_lie_below_the_tangent(
         curvature = -ef.friction_exact(kappa, beta).dforce_dc
         assert np.all(np.diff(curvature) <= 1e-14)
         assert ef.k_f_least_squares(beta, 0.5) < ef.k_f_exact(beta)
+
+
+def test_angle_form_matches_the_other_forms_and_its_derivatives():
+    rng = np.random.default_rng(9)
+    phi = rng.uniform(-3 * math.pi, 3 * math.pi, 300)
+    beta = rng.uniform(0.05, 1.0, phi.size)
+    result = ef.friction_angle(phi, beta)
+    by_velocity = ef.friction_velocity(np.cos(phi), np.sin(phi), beta)
+    np.testing.assert_allclose(result.force, by_velocity.force, atol=1e-12)
+    np.testing.assert_allclose(result.moment, by_velocity.moment, atol=1e-12)
+    np.testing.assert_allclose(result.loss, by_velocity.loss, atol=1e-12)
+    np.testing.assert_allclose(result.loss, np.cos(phi) * result.moment - np.sin(phi) * result.force, atol=1e-6)
+    step = 1e-6
+    plus, minus = ef.friction_angle(phi + step, beta), ef.friction_angle(phi - step, beta)
+    for name in ("force", "moment", "loss"):
+        difference = (getattr(plus, name) - getattr(minus, name)) / (2 * step)
+        np.testing.assert_allclose(difference, getattr(result, f"d{name}_dphi"), atol=1e-6, err_msg=name)
+    shifted = ef.friction_angle(phi + math.pi, beta)
+    np.testing.assert_allclose(shifted.force, -result.force, atol=1e-12)
+    with pytest.raises(ValueError, match="slip_angle"):
+        ef.friction_angle(float("nan"), 0.3)
