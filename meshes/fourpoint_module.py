@@ -40,6 +40,33 @@ def contact_points(ball_radius: float, contact_angles) -> np.ndarray:
                                    [math.sin(b_tr), math.cos(b_tr)], [-math.sin(b_tl), math.cos(b_tl)]])
 
 
+def _pole_axis(directions: list[np.ndarray]) -> np.ndarray:
+    """Unit axis whose two poles lie farthest (in angle) from every direction (n, 3)."""
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    k = np.arange(200)
+    z = 1.0 - (k + 0.5) / 200  # a Fibonacci half-sphere of candidates
+    r = np.sqrt(1.0 - z * z)
+    candidates = np.stack([r * np.cos(golden * k), r * np.sin(golden * k), z], 1)
+    worst = np.max(np.abs(candidates @ np.asarray(directions).T), axis=1)  # cos of the nearest cap, both poles
+    return candidates[int(np.argmin(worst))]
+
+
+def _cap_angle(cap_angle, directions: list[np.ndarray]) -> float:
+    """Validated cap half-angle [rad]: default ``min(30 deg, 0.45 x)`` with ``x`` the
+    smallest angle between two contact directions of a ball (caps must not overlap)."""
+    unit = np.asarray(directions, dtype=float)
+    cosines = np.clip(unit @ unit.T, -1.0, 1.0)
+    np.fill_diagonal(cosines, -1.0)
+    limit = 0.45 * math.acos(float(cosines.max()))
+    if cap_angle is None:
+        return min(math.radians(30.0), limit)
+    cap_angle = _finite("cap_angle", cap_angle, f"(0, {limit!r}] rad")
+    if not 0.0 < cap_angle <= limit:
+        raise ValueError(f"cap_angle must lie in (0, {limit!r}] rad (0.45 x the smallest angle between two contacts "
+                         f"of a ball, so the caps do not overlap), got {cap_angle!r}")
+    return cap_angle
+
+
 def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, np.ndarray],
                 cap_angle: float) -> tuple[list[int], dict[str, list[int]]]:
     """OCC ball cut by planes into a core and one cap of half-angle ``cap_angle``
@@ -47,6 +74,11 @@ def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, n
     'free' is the rest of the sphere)."""
     occ = gmsh.model.occ
     ball = occ.addSphere(*centre, radius)
+    # turn the sphere's poles (degenerate points of its parametrisation) away from the caps
+    axis = _pole_axis(list(directions.values()))
+    turn = np.cross([0.0, 0.0, 1.0], axis)
+    if np.linalg.norm(turn) > 1e-12:
+        occ.rotate([(3, ball)], *centre, *turn, math.acos(float(np.clip(axis[2], -1.0, 1.0))))
     disks = []
     for direction in directions.values():
         middle = centre + radius * math.cos(cap_angle) * direction
@@ -71,10 +103,11 @@ def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, n
         area = occ.getMass(2, tag)
         name = "free"
         if area < cap_area * (1 + 1e-3) and np.linalg.norm(offset) > 0:
-            # a cap, or a piece of one cut by the sphere's seam meridian
+            # a cap, or a piece of one cut by the sphere's seam meridian (its centre of
+            # mass lies inside the cap's cone, up to round-off for a sliver at the rim)
             unit = offset / np.linalg.norm(offset)
             best = max(directions, key=lambda key: unit @ directions[key])
-            if unit @ directions[best] > math.cos(cap_angle):
+            if unit @ directions[best] > math.cos(1.02 * cap_angle):
                 name = best
                 areas[name] += area
         surfaces[name].append(tag)
@@ -88,7 +121,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                      n_balls: int = 1, *, spacing: float | None = None, land_height: float | None = None,
                      width: float | None = None, depth: float | None = None, length: float | None = None,
                      h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
-                     fine_radius: float | None = None, cap_angle: float = math.radians(30.0),
+                     fine_radius: float | None = None, cap_angle: float | None = None,
                      cache: bool = True) -> Path:
     """The four-point module as a cached gmsh 4.1 ``.msh`` [m].
 
@@ -105,7 +138,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     ``bottom_support`` (bottom face of the bottom rail), ``top_load`` (top face of
     the top rail), ``bottom_land``, ``top_land``, ``rail_free``; ball surfaces
     ``ball{k}_{BL,BR,TR,TL}`` (spherical caps of half-angle ``cap_angle`` centred on
-    the contacts), ``ball{k}_B2B`` (two balls: cap around the B2B point),
+    the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``), ``ball{k}_B2B`` (two balls: cap around the B2B point),
     ``ball{k}_free``.  Bodies share no nodes.
     """
     radius = _positive("ball_radius", ball_radius, "m")
@@ -123,9 +156,6 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if n_balls == 2 and spacing < 2.0 * radius:
         raise ValueError(f"spacing must lie in [2 ball_radius, inf) = [{2 * radius!r}, inf) m (balls may not "
                          f"overlap), got {spacing!r}")
-    cap_angle = _finite("cap_angle", cap_angle, "(0, pi/4] rad")
-    if not 0.0 < cap_angle <= math.pi / 4:
-        raise ValueError(f"cap_angle must lie in (0, pi/4] rad, got {cap_angle!r}")
     width = 2.6 * radius if width is None else _positive("width", width, "m")
     depth = 1.6 * radius if depth is None else _positive("depth", depth, "m")
     length = (n_balls - 1) * spacing + 2.4 * radius if length is None else _positive("length", length, "m")
@@ -142,6 +172,10 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                                                               growth, h_max, fine_radius)
     angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,
               top.contact_angle_right]
+    in_plane = contact_points(radius, angles)
+    ball_directions = {name: np.append(point / radius, 0.0) for name, point in zip(CONTACTS, in_plane)}
+    cap_angle = _cap_angle(cap_angle, list(ball_directions.values()) + ([np.array([0.0, 0.0, 1.0])]
+                                                                         if n_balls == 2 else []))
     params = dict(builder="fourpoint_module", radius=radius, conformity=bottom.conformity, angles=angles,
                   land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
                   length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
@@ -150,7 +184,6 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if not build:
         return path
 
-    in_plane = contact_points(radius, angles)
     centres = [np.array([0.0, 0.0, 0.0])] if n_balls == 1 else [np.array([0.0, 0.0, -spacing / 2]),
                                                                  np.array([0.0, 0.0, spacing / 2])]
     with session("fourpoint_module") as gmsh:
@@ -163,7 +196,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
         occ.rotate([(3, top_rail)], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, math.pi)  # left flank -> TR
         ball_groups = []
         for k, centre in enumerate(centres):
-            directions = {name: np.append(point / radius, 0.0) for name, point in zip(CONTACTS, in_plane)}
+            directions = dict(ball_directions)
             if n_balls == 2:
                 directions["B2B"] = np.array([0.0, 0.0, 1.0 if k == 0 else -1.0])
             ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.fourpoint_module import _split_ball
+from meshes.fourpoint_module import _cap_angle, _split_ball
 from meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from meshes.helical import (MESH_FORMAT_VERSION as _HELICAL_VERSION, _add_segment, _check_refinement, _finite,
                             _positive, _segment_dimensions, _segment_grooves, _snap_segment)
@@ -51,7 +51,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                       screw_back_radius: float | None = None, nut_land_radius: float | None = None,
                       nut_back_radius: float | None = None, half_angle: float | None = None,
                       h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
-                      fine_radius: float | None = None, cap_angle: float = math.radians(30.0),
+                      fine_radius: float | None = None, cap_angle: float | None = None,
                       cache: bool = True) -> Path:
     """The ball-screw module as a cached gmsh 4.1 ``.msh`` [m] (screw frame).
 
@@ -67,7 +67,8 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     ``SL``, ``SR`` (screw flanks), ``NR``, ``NL`` (nut flanks), ``screw_land``,
     ``nut_land``, ``screw_support`` (the screw core), ``nut_load`` (the nut's outer
     face), ``screw_free``, ``nut_free``; ``ball{k}_{SL,SR,NR,NL}`` (spherical caps of
-    half-angle ``cap_angle`` centred on the contacts), ``ball{k}_B2B`` (two balls),
+    half-angle ``cap_angle`` centred on the contacts; default ``min(30 deg, 0.45 x the
+    smallest angle between contacts)``), ``ball{k}_B2B`` (two balls),
     ``ball{k}_free``.  Bodies share no nodes.
     """
     try:
@@ -100,9 +101,18 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                                                      prefix="nut_")
     if n_land - s_land <= 0.0:
         raise ValueError("screw_land_radius must be smaller than nut_land_radius")
-    cap_angle = _finite("cap_angle", cap_angle, "(0, pi/4] rad")
-    if not 0.0 < cap_angle <= math.pi / 4:
-        raise ValueError(f"cap_angle must lie in (0, pi/4] rad, got {cap_angle!r}")
+    phis = [0.0] if n_balls == 1 else [-dphi / 2, dphi / 2]
+    flanks = {"SL": screw[0], "SR": screw[1], "NR": nut[1], "NL": nut[0]}
+    centres = [screw[0].helix(phi) for phi in phis]
+    ball_directions = []
+    for k, (phi, centre) in enumerate(zip(phis, centres)):
+        directions = {name: (groove.surface(groove.contact_theta, phi) - centre) / radius
+                      for name, groove in flanks.items()}
+        if n_balls == 2:
+            chord = centres[1] - centres[0]
+            directions["B2B"] = (1.0 if k == 0 else -1.0) * chord / np.linalg.norm(chord)
+        ball_directions.append(directions)
+    cap_angle = _cap_angle(cap_angle, list(ball_directions[0].values()))
     refine = h_contact is not None
     h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                               growth, h_max, fine_radius)
@@ -115,24 +125,13 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     if not build:
         return path
 
-    phis = [0.0] if n_balls == 1 else [-dphi / 2, dphi / 2]
-    flanks = {"SL": screw[0], "SR": screw[1], "NR": nut[1], "NL": nut[0]}
     with session("ball_screw_module") as gmsh:
         screw_volumes, screw_roles = _add_segment(gmsh, screw, s_land, s_back, half_angle, s_width)
         nut_volumes, nut_roles = _add_segment(gmsh, nut, n_land, n_back, half_angle, n_width)
-        contact_points, ball_groups = [], []
-        centres = [screw[0].helix(phi) for phi in phis]
-        for k, (phi, centre) in enumerate(zip(phis, centres)):
-            directions = {}
-            for name in CONTACTS:
-                groove = flanks[name]
-                point = groove.surface(groove.contact_theta, phi)
-                contact_points.append(point)
-                directions[name] = (point - centre) / radius
-            if n_balls == 2:
-                chord = centres[1] - centres[0]
-                directions["B2B"] = (1.0 if k == 0 else -1.0) * chord / np.linalg.norm(chord)
-            ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))
+        contact_points = [centre + radius * directions[name] for centre, directions in zip(centres, ball_directions)
+                          for name in CONTACTS]
+        ball_groups = [_split_ball(gmsh, centre, radius, directions, cap_angle)
+                       for centre, directions in zip(centres, ball_directions)]
         gmsh.model.occ.synchronize()
         physical(gmsh, 3, screw_volumes, "screw")
         physical(gmsh, 3, nut_volumes, "nut")
