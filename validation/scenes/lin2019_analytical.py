@@ -133,7 +133,7 @@ def _figure_5(run, beta: float, k_ls: float) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    figure, (full, zoom) = plt.subplots(1, 2, figsize=(10, 4))
+    figure, (full, zoom) = plt.subplots(1, 2, figsize=(11, 4.5), layout="constrained")
     kappa_full = np.linspace(-10, 10, 801)
     kappa_zoom = np.linspace(-1, 1, 401)
     for conformity in FIG5_CONFORMITIES:
@@ -228,7 +228,7 @@ def _figures_8_9(run, common) -> None:
     rho = np.linspace(-0.9, 0.9, 181)
     theta_deg = np.linspace(-3, 3, 121)
     case = b2b.two_ball_case(np.radians(theta_deg)[:, None], rho[None, :], **common)
-    figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    figure, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
     image = left.contourf(rho, theta_deg, 100 * (case.epsilon_1 - case.epsilon_2), 21, cmap="RdBu_r")
     figure.colorbar(image, ax=left, label="epsilon_1 - epsilon_2 [%]")
     left.set_title("Fig 8(b) equivalent: analytical eq 33")
