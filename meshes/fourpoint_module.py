@@ -138,8 +138,8 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     ``bottom_support`` (bottom face of the bottom rail), ``top_load`` (top face of
     the top rail), ``bottom_land``, ``top_land``, ``rail_free``; ball surfaces
     ``ball{k}_{BL,BR,TR,TL}`` (spherical caps of half-angle ``cap_angle`` centred on
-    the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``), ``ball{k}_B2B`` (two balls: cap around the B2B point),
-    ``ball{k}_free``.  Bodies share no nodes.
+    the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``),
+    ``ball{k}_B2B`` (two balls: cap around the B2B point), ``ball{k}_free``.  Bodies share no nodes.
     """
     radius = _positive("ball_radius", ball_radius, "m")
     try:
