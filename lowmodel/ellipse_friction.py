@@ -64,6 +64,8 @@ spline (C2), whose analytic derivatives are returned for Newton's method.
 from __future__ import annotations
 
 import math
+import os
+import time
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -496,9 +498,11 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     symmetry; ``n_beta`` uniform nodes of ``log(b/a)`` on
     ``[log 0.02, 0]``.  Disk cache: ``lowmodel.cache.cache_dir("ellipse_friction")``.
     """
-    import time
     from lowmodel.cache import cache_dir, parameter_hash
 
+    for name, value, least in (("n_uniform", n_uniform, 9), ("n_cluster", n_cluster, 1), ("n_beta", n_beta, 4)):
+        if int(value) != value or value < least:
+            raise ValueError(f"{name} must be an integer >= {least}, got {value!r}")
     params = {"n_uniform": n_uniform, "n_cluster": n_cluster, "n_beta": n_beta,
               "b_over_a_range": list(B_OVER_A_RANGE)}
     path = cache_dir("ellipse_friction") / f"map-{parameter_hash(params, _MAP_VERSION)}.npz"
@@ -513,7 +517,7 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     arrays = _build_table(n_uniform, n_cluster, n_beta)
     table = FrictionMap(*arrays, build_time_s=time.perf_counter() - start, from_cache=False)
     if use_cache:
-        tmp = path.with_suffix(".tmp.npz")
+        tmp = path.with_name(f"{path.stem}.{os.getpid()}.tmp.npz")  # unique per process, then atomic rename
         np.savez(tmp, phi=table.phi, log_b_over_a=table.log_b_over_a, force=table.force,
                  moment=table.moment, loss_direction=table.loss_direction)
         tmp.replace(path)

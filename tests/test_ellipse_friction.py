@@ -263,3 +263,10 @@ def test_angle_form_matches_the_other_forms_and_its_derivatives():
     np.testing.assert_allclose(shifted.force, -result.force, atol=1e-12)
     with pytest.raises(ValueError, match="slip_angle"):
         ef.friction_angle(float("nan"), 0.3)
+
+
+def test_bad_grid():
+    with pytest.raises(ValueError, match="n_beta"):
+        ef.friction_map.__wrapped__(n_beta=2, use_cache=False)
+    with pytest.raises(ValueError, match="n_uniform"):
+        ef.friction_map.__wrapped__(n_uniform=4.5, use_cache=False)
