@@ -654,6 +654,21 @@ def test_ball_centre_azimuths_give_the_chord():
                                                                                  rel=1e-14)
 
 
+def test_ball_centre_azimuths_against_lin2019_eq56():
+    """lin2019 eq 56: touching balls are 2 beta_B2B apart, beta_B2B = asin(2 pi R_B / L),
+    L = sqrt((2 pi R_P)^2 + p^2) (eq 45): the helix taken as a circle of radius L / 2 pi.
+    The exact chord agrees to 1.7e-4 for Table 4, the difference vanishing as lead^2."""
+    def relative_gap(lead):
+        length = math.hypot(2 * math.pi * R_P, lead)
+        beta_b2b = math.asin(2 * math.pi * R_B / length)
+        exact = helical_module.ball_centre_azimuths(R_P, lead, 2 * R_B)
+        return abs(exact - 2 * beta_b2b) / exact
+
+    assert relative_gap(LEAD) < 2e-4
+    assert 12.0 < relative_gap(LEAD) / relative_gap(LEAD / 4) < 18.0  # ~ lead^2
+    assert relative_gap(0.0) < 1e-14
+
+
 def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_mesh):
     """Every ball centre lies R_B from each of the four flanks (touching, never inside);
     flank nodes on their exact helical surfaces; caps centred on their contacts."""
