@@ -49,6 +49,8 @@ from lowmodel.bearing_ball import (
     BallContacts,
     BallState,
     _ball_terms,
+    _explained,
+    _initial_guess,
     _state,
     _solve_free,
     ball_contacts,
@@ -140,12 +142,13 @@ def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     d_scaled = np.zeros((n, 3, n, 3))
     d_forces = np.zeros((n, 3, pairs))
     idx = np.arange(pairs)
-    for ball in (idx, idx + 1):  # the two balls of each pair receive the same moment
-        for other in (idx, idx + 1):  # dv depends on both balls of the pair
-            d_scaled[ball, 1, other, 1] += -dfy_dx1
-            d_scaled[ball, 1, other, 2] += -dfy_dx2
-            d_scaled[ball, 2, other, 1] += dfx_dx1
-            d_scaled[ball, 2, other, 2] += dfx_dx2
+    # the moment (rows 1, 2) on both balls of a pair depends on (x1, x2) of both balls alike
+    block = np.empty((pairs, 2, 2))
+    block[:, 0, 0], block[:, 0, 1] = -dfy_dx1, -dfy_dx2
+    block[:, 1, 0], block[:, 1, 1] = dfx_dx1, dfx_dx2
+    for ball in (idx, idx + 1):
+        for other in (idx, idx + 1):
+            d_scaled[ball, 1:3, other, 1:3] += block
         d_forces[ball, 1, idx] += mu * ey
         d_forces[ball, 2, idx] += -mu * ex
     d_forces[idx, 0, idx] -= 1.0
@@ -183,7 +186,6 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)
     k = N_UNKNOWNS
-    guess, _, _ = _solve_free(contacts, reference_force, tolerance, max_iterations)  # each ball on its own
     m = touching.size
     gamma = COMPLEMENTARITY_SCALE
     size = k * n + m
@@ -221,10 +223,20 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         jac[rows[vel], k * touching[vel]] = -gamma
         return residual, jac
 
-    z0 = np.concatenate([guess.reshape(-1), np.zeros(m)])
-    z, residual, iterations = solve_branch(function, z0, lambda z: z[:k * n].reshape(n, k), contacts,
-                                           reference_force, tolerance=tolerance, max_iterations=max_iterations,
-                                           what=f"{n}-ball B2B contact")
+    def attempt(guess):
+        z0 = np.concatenate([guess.reshape(-1), np.zeros(m)])
+        return solve_branch(function, z0, lambda z: z[:k * n].reshape(n, k), contacts, reference_force,
+                            tolerance=tolerance, max_iterations=max_iterations, what=f"{n}-ball B2B contact")
+
+    try:  # from rolling at v/2 (cheap) ...
+        z, residual, iterations = attempt(_initial_guess(contacts))
+    except ConvergenceError:  # ... else from the solution of every ball on its own
+        guess, free_iterations, _ = _solve_free(contacts, reference_force, tolerance, max_iterations)
+        try:
+            z, residual, iterations = attempt(guess)
+        except ConvergenceError as error:
+            raise _explained(error, contacts) from None
+        iterations += free_iterations
     balls, forces = unpack(z)
     separation = balls[touching + 1, 0] - balls[touching, 0]
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))

@@ -70,6 +70,7 @@ __all__ = [
     "solve_ball",
     "contact_normals",
     "newton",
+    "spin_capacity_ratio",
     "CONTACT_NAMES",
 ]
 
@@ -247,6 +248,29 @@ def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: fl
                                 friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)
 
 
+def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
+    """Can the friction forces of one diagonal balance the spin moments of the other? Shape (n,).
+
+    ``min`` over the two diagonals of ``R_B (F_k + F_l) / (m0 (F_i a_i + F_j a_j))`` with
+    ``(i, j) = (BL, TR), (k, l) = (BR, TL)`` and vice versa, ``m0 = (3/8) E(e)`` (lin2019 eq 11).
+    Along a diagonal the spin moments of its two contacts add up (their spins have
+    opposite signs in four-point rolling) and only the z-forces of the other diagonal,
+    at most ``mu F`` each with arm ``R_B``, balance them; ``mu`` cancels.  Below 1 the
+    full-sliding friction of lin2019 (eqs A4-A6) admits no quasi-static state: the
+    solver then raises ConvergenceError (docs/b2b_bearing.md, validity).  Checked
+    against the solver: the last converged rho towards the four-point limit and the
+    zero of ``ratio - 1`` coincide (lin2019-stability).
+    """
+    from scipy.special import ellipe
+
+    force, axis = contacts.normal_forces, contacts.semi_major
+    m0 = 0.375 * ellipe(1.0 - contacts.b_over_a[:, 0] ** 2)  # lin2019 eq 11 (scipy: parameter m = e^2)
+    radius = contacts.ball_radius
+    up = radius * (force[:, 1] + force[:, 3]) / (m0 * (force[:, 0] * axis[:, 0] + force[:, 2] * axis[:, 2]))
+    down = radius * (force[:, 0] + force[:, 2]) / (m0 * (force[:, 1] * axis[:, 1] + force[:, 3] * axis[:, 3]))
+    return np.minimum(up, down)
+
+
 def contact_normals(contact_angles) -> np.ndarray:
     """Outward unit normals ``(n_x, n_y)`` of the contacts, shape ``(..., 4, 2)`` (module docstring)."""
     angles = np.asarray(contact_angles, dtype=float)
@@ -336,11 +360,21 @@ def _initial_guess(contacts: BallContacts) -> np.ndarray:
     return _with_angles(guess, contacts)
 
 
+def _kinematics(unknowns: np.ndarray, contacts: BallContacts):
+    """Slip at the contact centres (units |v|): ``slide_i`` (eqs 1, A1-A3) and ``spin_i = omega_i a_i`` (eq 2)."""
+    normals = contact_normals(contacts.contact_angles)
+    nx, ny = normals[..., 0], normals[..., 1]
+    x0, x1, x2 = unknowns[:, 0:1], unknowns[:, 1:2], unknowns[:, 2:3]
+    slide = x0 - math.copysign(1.0, contacts.groove_velocity) * _TOP + x1 * ny - x2 * nx
+    spin = -(x1 * nx + x2 * ny) * (contacts.semi_major / contacts.ball_radius)
+    return slide, spin
+
+
 def _with_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
     """Set the slip angles of ``guess`` from its velocities (atan2(slide, spin))."""
-    terms = _ball_terms(guess, contacts, 1.0)
+    slide, spin = _kinematics(guess, contacts)
     guess = guess.copy()
-    guess[:, 3:] = np.arctan2(terms.slide, terms.spin_velocity)
+    guess[:, 3:] = np.arctan2(slide, spin)
     return guess
 
 
@@ -461,9 +495,12 @@ def _solve_free(contacts: BallContacts, reference_force: float, tolerance: float
             terms = _ball_terms(z[None, :], single, reference_force)
             return terms.residual[0], terms.jacobian[0]
 
-        z, residual, iterations = solve_branch(function, unknowns[index], lambda z: z[None, :], single,
-                                               reference_force, tolerance=tolerance,
-                                               max_iterations=max_iterations, what=f"ball {index}")
+        try:
+            z, residual, iterations = solve_branch(function, unknowns[index], lambda z: z[None, :], single,
+                                                   reference_force, tolerance=tolerance,
+                                                   max_iterations=max_iterations, what=f"ball {index}")
+        except ConvergenceError as error:
+            raise _explained(error, single) from None
         unknowns[index] = z
         worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, float(np.max(np.abs(residual))))
@@ -495,6 +532,17 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
         z = _replace_balls(z, balls)
     raise ConvergenceError(f"{what}: converged only to slip directions against the slip",
                            residual=float(-terms.slip_speed.min()), iterations=total, tolerance=tolerance)
+
+
+def _explained(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:
+    """Add the spin-capacity diagnosis to a ConvergenceError (same residual and counts)."""
+    ratio = float(np.min(spin_capacity_ratio(contacts)))
+    reason = (f"; spin-capacity ratio {ratio:.3f} < 1: no quasi-static state with full sliding at all four "
+              "contacts (near the four-point limit, outside lin2019's friction model)" if ratio < 1.0 else
+              f"; spin-capacity ratio {ratio:.3f}")
+    message = str(error).split(" (residual")[0] + reason
+    return ConvergenceError(message, residual=error.residual, iterations=error.iterations,
+                            tolerance=error.tolerance)
 
 
 def _replace_balls(z: np.ndarray, balls: np.ndarray) -> np.ndarray:

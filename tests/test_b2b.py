@@ -56,7 +56,7 @@ def test_case_a_contact_force_and_power_balance():
 
 def test_case_b_mitigation_gives_no_contact_force():
     state = b2b.solve(module(2.0, -0.6, top=(-2.0, 2.0)), [0.0])
-    assert state.b2b_force[0] == 0.0
+    assert abs(state.b2b_force[0]) <= 1e-11 * MU * VERTICAL  # zero to the solver tolerance
     assert np.allclose(state.velocity_deviation, 0.0, atol=1e-12)
     assert power_error(state) < 1e-8
 
@@ -64,14 +64,14 @@ def test_case_b_mitigation_gives_no_contact_force():
 @pytest.mark.parametrize("rho", [-0.6, 0.0, 0.7])
 def test_theta_zero_no_contact(rho):
     state = b2b.solve(module(0.0, rho), [0.0])
-    assert state.b2b_force[0] == 0.0
+    assert abs(state.b2b_force[0]) <= 1e-11 * MU * VERTICAL
     np.testing.assert_allclose(state.ball_velocity, SPEED / 2, rtol=1e-12)
 
 
 def test_separating_balls_and_open_gap_have_zero_force():
     contacts = module(2.0, 0.6)  # ball 1 slower: the balls separate
     state = b2b.solve(contacts, [0.0])
-    assert state.b2b_force[0] == 0.0 and state.ball_velocity[1] > state.ball_velocity[0]
+    assert abs(state.b2b_force[0]) <= 1e-11 * MU * VERTICAL and state.ball_velocity[1] > state.ball_velocity[0]
     approaching = module(2.0, -0.6)
     open_state = b2b.solve(approaching, [1e-4])
     free = bb.solve_ball(approaching)

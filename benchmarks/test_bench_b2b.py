@@ -1,0 +1,58 @@
+"""Speed of the low-order numerical B2B model (lin2019 Sec 2.2).
+
+Two-ball B2B solve of Table 3 case (a) (paper: 0.74 s in MATLAB; target <= 5 ms median),
+the single-ball solve (eq 4) and a 50-ball chain.
+
+Run: python -m pytest benchmarks/test_bench_b2b.py
+"""
+import math
+
+import numpy as np
+
+from lowmodel import b2b, bearing_ball, hertz
+
+RADIUS = 5e-3  # lin2019 Table 1
+
+
+def _contacts(n_balls=2, theta_deg=2.0, rho=-0.6):
+    """Table 1 / Sec 2.4 module with lin2017 eq 36 normal forces (written out: no dependency on fourpoint)."""
+    theta = math.radians(theta_deg)
+    angles = np.tile(math.pi / 4 + np.array([-theta, theta, 0.0, 0.0]), (n_balls, 1))
+    side = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0) * rho * 100.0
+    bl, br, tr, tl = angles.T
+    forces = np.stack([-(side * np.cos(br) - 100.0 * np.sin(br)) / np.sin(bl + br),
+                       (side * np.cos(bl) + 100.0 * np.sin(bl)) / np.sin(bl + br),
+                       -(side * np.cos(tl) - 100.0 * np.sin(tl)) / np.sin(tl + tr),
+                       (side * np.cos(tr) + 100.0 * np.sin(tr)) / np.sin(tl + tr)], axis=-1)  # lin2017 eq 36
+    contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), forces)
+    return bearing_ball.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+                                             friction_coefficient=0.1, groove_velocity=0.01)
+
+
+def test_two_ball_b2b_solve(benchmark):
+    contacts = _contacts()
+    b2b.solve(contacts, [0.0])  # warm-up: friction map loaded once
+    state = benchmark(b2b.solve, contacts, [0.0])
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations, f_b2b=float(state.b2b_force[0]))
+    print(f"\ntwo-ball B2B solve: {median * 1e3:.2f} ms median, {state.iterations} Newton iterations, "
+          f"F_B2B = {state.b2b_force[0]:.3f} N (paper: 0.74 s in MATLAB; target <= 5 ms)")
+
+
+def test_single_ball_solve(benchmark):
+    contacts = _contacts(n_balls=1)
+    bearing_ball.solve_ball(contacts)
+    state = benchmark(bearing_ball.solve_ball, contacts)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations)
+    print(f"\nsingle-ball solve (eq 4): {median * 1e3:.2f} ms median, {state.iterations} Newton iterations")
+
+
+def test_fifty_ball_chain(benchmark):
+    contacts = _contacts(n_balls=50)
+    gaps = np.zeros(49)
+    b2b.solve(contacts, gaps)
+    state = benchmark.pedantic(b2b.solve, args=(contacts, gaps), rounds=3, iterations=1)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations)
+    print(f"\n50-ball chain, all touching: {median * 1e3:.1f} ms median, {state.iterations} Newton iterations")
