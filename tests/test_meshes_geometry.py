@@ -732,3 +732,20 @@ def test_screw_module_bad_input_names_the_parameter(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         helical_module.ball_screw_module(**args, cache=False)
+
+
+def test_builders_over_the_parameter_range():
+    """Every builder meshes across conformity 0.51-0.7, contact angle 30-60 deg, lead 0-40 mm,
+    screw/nut, both profile planes, one and two balls (coarse, about 17 s)."""
+    import itertools
+    for conformity, beta, lead, body, plane in itertools.product((0.51, 0.6, 0.7), (30, 45, 60), (0.0, 5e-3, 40e-3),
+                                                                  ("screw", "nut"), ("normal", "axial")):
+        helical.ball_in_screw_groove_pair(R_B, conformity, R_P, lead, math.radians(beta), body, h_contact=2e-4,
+                                          growth=1.6, profile_plane=plane, cache=False)
+    for conformity, beta in itertools.product((0.51, 0.7), (30, 60)):
+        helical.screw_groove_segment(R_B, conformity, R_P, LEAD, math.radians(beta), "nut", cache=False)
+        for n_balls in (1, 2):
+            helical_module.ball_screw_module(R_B, conformity, R_P, LEAD, math.radians(beta), n_balls=n_balls,
+                                             cache=False)
+            fourpoint_module.fourpoint_module(R_RAIL, conformity, math.radians(beta), (0.03, -0.03, 0.02, 0.0),
+                                              n_balls=n_balls, cache=False)
