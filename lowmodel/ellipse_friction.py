@@ -70,7 +70,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.special import ellipe, elliprd
+from scipy.special import ellipe, ellipk, elliprd
 
 __all__ = [
     "EllipseFriction",
@@ -82,6 +82,8 @@ __all__ = [
     "friction_velocity",
     "k_f_exact",
     "k_f_least_squares",
+    "cubic_coefficient",
+    "friction_inside",
     "spin_moment",
     "friction_map",
     "FrictionMap",
@@ -214,6 +216,51 @@ def k_f_exact(b_over_a) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         value = 0.5 * beta2 * elliprd(0.0, 1.0, beta2)
     return np.where(beta2 > 0.0, value, 1.5)
+
+
+def cubic_coefficient(b_over_a) -> np.ndarray:
+    """``g3`` of ``force = -k_f (c/a) + g3 (c/a)^3``, exact for ``|c/a| <= 1``.
+
+    Polar integration about the velocity centre shows that the curvature
+    ``-d force/d kappa`` is exactly ``k_f - 3 g3 kappa^2`` inside the ellipse
+    (the odd part of the radial integral cancels), with
+    ``k_f = (3/2) int_0^(pi/2) cos^2 / Delta`` and
+    ``g3 = (1/2) int_0^(pi/2) cos^4 / Delta^3``, ``Delta = sqrt(1 - e^2 sin^2)``, i.e.
+    ``g3 = ((1 + beta^2) E(e) - 2 beta^2 K(e)) / (2 e^4)``; ``3 pi/32`` for a circle.
+    Dimensionless.
+    """
+    beta = _check_ratio(b_over_a, lower=0.0)
+    shape = beta.shape
+    b = np.atleast_1d(beta).astype(float).ravel()
+    m = 1.0 - b**2
+    result = np.empty_like(b)
+    far = b <= 0.5  # no cancellation in the closed form (e^4 >= 0.56)
+    result[far] = ((1.0 + b[far] ** 2) * ellipe(m[far]) - 2.0 * b[far] ** 2 * ellipk(m[far])) / (2.0 * m[far] ** 2)
+    if np.any(~far):  # near-circular: smooth integrand, 48-point Gauss-Legendre
+        x, w = _gauss(48)
+        psi = 0.5 * math.pi * x
+        delta = np.sqrt(1.0 - m[~far, None] * np.sin(psi) ** 2)
+        result[~far] = 0.5 * (0.5 * math.pi) * (np.cos(psi) ** 4 / delta**3) @ w
+    return result.reshape(shape)
+
+
+def friction_inside(c_over_a, b_over_a) -> EllipseFriction:
+    """Closed form of lin2019 eqs A4-A6 while the velocity centre lies in the ellipse (``|c/a| <= 1``).
+
+    ``force = -k_f kappa + g3 kappa^3``, ``loss = (3/8) E(e) + (k_f/2) kappa^2 - (g3/4) kappa^4``,
+    ``moment = loss + kappa force = (3/8) E(e) - (k_f/2) kappa^2 + (3/4) g3 kappa^4``
+    (:func:`k_f_exact`, :func:`cubic_coefficient`).  Raises ValueError for ``|c/a| > 1``.
+    """
+    kappa = _check_kappa(c_over_a)
+    if np.any(np.abs(kappa) > 1.0):
+        raise ValueError("c_over_a must lie in [-1, 1] for the closed form (velocity centre inside the ellipse)")
+    beta = _check_ratio(b_over_a, lower=1e-3)
+    k_f, g3, spin = k_f_exact(beta), cubic_coefficient(beta), spin_moment(beta)
+    k2 = kappa**2
+    force = -k_f * kappa + g3 * kappa * k2
+    loss = spin + 0.5 * k_f * k2 - 0.25 * g3 * k2**2
+    return EllipseFriction(force, loss + kappa * force, loss, -k_f + 3.0 * g3 * k2,
+                           -kappa * (k_f - 3.0 * g3 * k2), -force)
 
 
 # --------------------------------------------------------------------------

@@ -83,15 +83,23 @@ def test_k_f_exact_closed_forms():
 
 
 def test_force_is_an_odd_cubic_inside_the_ellipse():
-    """For |c/a| <= 1 the loss is an even quartic in c/a (potential of a Hertz density), so
-    force = -k_f kappa + g3 kappa^3 exactly; this also gives the least-squares slope in closed form."""
-    beta = 0.23
-    kappa = np.linspace(-1.0, 1.0, 21)
-    force = ef.friction_exact(kappa, beta).force
-    g3 = (force[15] + ef.k_f_exact(beta) * kappa[15]) / kappa[15] ** 3
-    np.testing.assert_allclose(force, -ef.k_f_exact(beta) * kappa + g3 * kappa**3, atol=2e-13)
-    assert ef.k_f_least_squares(beta, 0.5) == pytest.approx(ef.k_f_exact(beta) - 0.15 * g3, rel=1e-12)
-    assert ef.k_f_least_squares(1.0, 0.5) == pytest.approx(3 * math.pi / 8 - 0.15 * 3 * math.pi / 32, rel=1e-12)
+    """For |c/a| <= 1 the curvature is exactly k_f - 3 g3 (c/a)^2 (polar integration about the velocity
+    centre), so force = -k_f kappa + g3 kappa^3 and the least-squares slope is k_f - (3/5) c_max^2 g3."""
+    for beta in (0.02, 0.23, 0.7, 1.0):
+        kappa = np.linspace(-0.99, 0.99, 23)
+        exact = ef.friction_exact(kappa, beta)
+        closed = ef.friction_inside(kappa, beta)
+        for name in ("force", "moment", "loss", "dforce_dc", "dmoment_dc", "dloss_dc"):
+            np.testing.assert_allclose(getattr(closed, name), getattr(exact, name), atol=1e-12, err_msg=name)
+        rim = ef.friction_exact(np.array([-1.0, 1.0]), beta)
+        np.testing.assert_allclose(ef.friction_inside(np.array([-1.0, 1.0]), beta).force, rim.force, atol=1e-9)
+        assert ef.k_f_least_squares(beta, 0.5) == pytest.approx(
+            ef.k_f_exact(beta) - 0.15 * ef.cubic_coefficient(beta), rel=1e-12)
+    assert ef.cubic_coefficient(1.0) == pytest.approx(3 * math.pi / 32, rel=1e-14)
+    # both branches of cubic_coefficient agree where they meet
+    assert ef.cubic_coefficient(0.5) == pytest.approx(float(ef.cubic_coefficient(0.5 + 1e-12)), rel=1e-10)
+    with pytest.raises(ValueError, match="c_over_a"):
+        ef.friction_inside(1.5, 0.3)
 
 
 def test_identities_power_balance_and_derivatives():

@@ -103,6 +103,17 @@ def lin2019_kf(run):
               value=worst_quad, reference=0.0, scale=1.0, source="adaptive Cartesian quadrature of eq A4 (scipy)",
               tolerance=1e-6, time_s=time_exact_eval, note="value is itself the worst error; reference 0 on scale 1")
 
+    # closed form inside the ellipse against the quadrature
+    inside = np.linspace(-0.999, 0.999, 201)
+    closed, time_closed = run.time(ef.friction_inside, inside, beta)
+    quadrature = ef.friction_exact(inside, beta)
+    worst_closed = max(float(np.max(np.abs(getattr(closed, n) - getattr(quadrature, n))))
+                       for n in ("force", "moment", "loss"))
+    run.check(model=model, quantity="max error of the closed form inside the ellipse (|c/a| < 1, 201 points)",
+              unit="1", value=worst_closed, reference=0.0, scale=1.0,
+              source="friction_exact (velocity-centre quadrature)", tolerance=1e-10, time_s=time_closed,
+              note=f"force = -k_f c/a + g3 (c/a)^3, g3 = {float(ef.cubic_coefficient(beta)):.6f} at conf 0.56")
+
     # map against the quadrature over the whole (c/a, b/a) range
     rng = np.random.default_rng(0)
     count = {"quick": 2000, "default": 20000, "fine": 100000}[run.fidelity]
