@@ -749,3 +749,21 @@ def test_builders_over_the_parameter_range():
                                              cache=False)
             fourpoint_module.fourpoint_module(R_RAIL, conformity, math.radians(beta), (0.03, -0.03, 0.02, 0.0),
                                               n_balls=n_balls, cache=False)
+
+
+@pytest.mark.parametrize("build", [
+    lambda: rail.rail_segment(R_RAIL, CONF, BETA, h_contact=5e-4),
+    lambda: helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, "nut"),
+    lambda: fourpoint_module.fourpoint_module(R_RAIL, CONF, BETA),
+    lambda: helical_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA),
+], ids=["rail", "segment", "fourpoint", "ballscrew"])
+def test_every_builder_hits_its_cache(build, monkeypatch):
+    first = build()
+    stamp = first.stat().st_mtime_ns
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("gmsh was started for a cached mesh")
+
+    monkeypatch.setattr(gmsh, "initialize", refuse)
+    second = build()
+    assert second == first and second.stat().st_mtime_ns == stamp
