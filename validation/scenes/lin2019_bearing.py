@@ -29,6 +29,8 @@ RHO = -0.6
 TABLE1 = dict(ball_radius=RADIUS, conformity=CONFORMITY, vertical_force=VERTICAL, groove_velocity=SPEED,
               friction_coefficient=MU, youngs_modulus=2.1e11, poisson_ratio=0.28)
 GRID = {"quick": (9, 9), "default": (25, 25), "fine": (49, 49)}  # (rho, theta) points of Figs 8 and 9
+EDGE_MARGINS = {"quick": (0.02, 0.005), "default": (0.04, 0.02, 0.01, 0.003, 0.001),
+                "fine": (0.05, 0.04, 0.03, 0.02, 0.01, 0.003, 0.001, 1e-4)}  # extra rho near the eq 37 limit
 
 
 def _four_point_limit(theta: float) -> tuple[float, float]:
@@ -209,15 +211,18 @@ def fig9_worst(run):
     import matplotlib.pyplot as plt
 
     n_rho, n_theta = GRID[run.fidelity]
+    edge = EDGE_MARGINS[run.fidelity]
     thetas = np.radians(np.linspace(-3.0, 3.0, n_theta))
-    force = np.full((n_theta, n_rho), np.nan)
-    ratio = np.full((n_theta, n_rho), np.nan)
+    n_points = n_rho + 2 * len(edge)
+    force = np.full((n_theta, n_points), np.nan)
+    ratio = np.full((n_theta, n_points), np.nan)
     failures = []
     worst = (-np.inf, None)
     rho_all = []
     for i in run.progress(range(n_theta), desc="Fig 9 grid"):
         low, high = _four_point_limit(abs(thetas[i]))
-        rhos = np.linspace(low, high, n_rho + 2)[1:-1]  # up to the limit, exclusive
+        rhos = np.sort(np.concatenate([low + np.asarray(edge), np.linspace(low, high, n_rho + 2)[1:-1],
+                                       high - np.asarray(edge)]))  # up to the limit, exclusive
         rho_all.append(rhos)
         for j, rho in enumerate(rhos):
             try:
@@ -237,14 +242,14 @@ def fig9_worst(run):
               source="lin2019 Sec 2.4.1 / Fig 9(c): 'more than 185.2 %'",
               note=f"at theta = {theta_w:.2f} deg, rho = {rho_w:.4f}, F_B2B = {force_w:.2f} N")
     run.note(f"Grid: {n_theta} values of theta in [-3, 3] deg; for each, {n_rho} values of rho evenly inside the "
-             f"four-point range of both balls (lin2017 eq 37, ends excluded).  Baseline = ball-to-groove loss of the "
+             f"four-point range of both balls (lin2017 eq 37, ends excluded) plus rho at {edge} from either end.  Baseline = ball-to-groove loss of the "
              f"free balls; total = ball-to-groove + B2B loss of the touching balls.  {len(failures)} grid points "
              f"near the four-point limit have no quasi-static state with full sliding at every contact "
              f"(ConvergenceError; docs/b2b_bearing.md 'validity'); the largest increase on the solvable part of "
              f"the grid is {100 * increase:.1f} %.")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     rho_grid = np.array(rho_all)
-    theta_grid = np.repeat(np.degrees(thetas)[:, None], n_rho, axis=1)
+    theta_grid = np.repeat(np.degrees(thetas)[:, None], n_points, axis=1)
     for ax, values, title, label in ((axes[0], force, "(a) F_B2B, low-order numerical", "F_B2B [N]"),
                                      (axes[1], ratio, "(c) total / baseline friction loss", "ratio [-]")):
         mesh = ax.scatter(rho_grid.ravel(), theta_grid.ravel(), c=values.ravel(), s=18, cmap="viridis",
