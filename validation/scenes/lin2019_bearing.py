@@ -244,9 +244,10 @@ def fig9_worst(run):
     run.note(f"Grid: {n_theta} values of theta in [-3, 3] deg; for each, {n_rho} values of rho evenly inside the "
              f"four-point range of both balls (lin2017 eq 37, ends excluded) plus rho at {edge} from either end.  Baseline = ball-to-groove loss of the "
              f"free balls; total = ball-to-groove + B2B loss of the touching balls.  {len(failures)} grid points "
-             f"near the four-point limit have no quasi-static state with full sliding at every contact "
-             f"(ConvergenceError; docs/b2b_bearing.md 'validity'); the largest increase on the solvable part of "
-             f"the grid is {100 * increase:.1f} %.")
+             f"near the four-point limit raise ConvergenceError: no converged state with full sliding at every "
+             f"contact (there the lightly loaded contacts of ball 1 already slide with |c/a| > 20 and cannot "
+             f"carry more; docs/b2b_bearing.md 'validity').  The largest increase on the converged part of the "
+             f"grid is {100 * increase:.1f} %, short of the paper's 185.2 %.")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     rho_grid = np.array(rho_all)
     theta_grid = np.repeat(np.degrees(thetas)[:, None], n_points, axis=1)
