@@ -490,7 +490,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
                               contact_angle: float, body: str = "screw", h_contact: float = 2e-5,
                               growth: float = 1.3, *, flank: str = "left", profile_plane: str = "normal",
                               h_max: float | None = None, fine_radius: float | None = None,
-                              fine_patch: tuple[float, float] | None = None,
+                              fine_half_length: float = 0.0, fine_patch: tuple[float, float] | None = None,
                               block_half_width: float | None = None, block_half_length: float | None = None,
                               block_depth: float | None = None, cap_height: float | None = None,
                               element_order: int = 1, cache: bool = True) -> Path:
@@ -517,7 +517,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     (groove face; its nodes lie exactly on the helical surface), ``counter_support``
     (the back face of the block).  Mesh size: :func:`meshes.gmsh_tools.contact_refinement`,
     ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``, ``r`` the
-    distance from the contact point; or, with ``fine_patch = (l_x, l_y)`` [m], ``r`` the
+    distance from the contact point, or from the segment ``|x| <= fine_half_length`` of
+    the x axis (as :func:`meshes.contact_pairs.ball_in_groove_pair`: ``fine_radius ~ b``,
+    ``fine_half_length ~ a``); or, with ``fine_patch = (l_x, l_y)`` [m], ``r`` the
     distance from the rectangle ``|x| <= l_x, |y| <= l_y`` of the contact plane
     (e.g. ``(1.2 a, 1.2 b)`` of the Hertz ellipse).
 
@@ -544,6 +546,11 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
                          f"flat loaded face), got {cap!r}")
     if element_order not in (1, 2):
         raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
+    fine_half_length = _finite("fine_half_length", fine_half_length, "[0, inf) m")
+    if fine_half_length < 0.0:
+        raise ValueError(f"fine_half_length must lie in [0, inf) m, got {fine_half_length!r}")
+    if fine_patch is not None and fine_half_length > 0.0:
+        raise ValueError("fine_patch and fine_half_length exclude each other: give one fine zone")
     if fine_patch is not None:
         try:
             fine_patch = tuple(_positive("fine_patch", v, "m") for v in fine_patch)
@@ -557,7 +564,8 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     params = dict(builder="ball_in_screw_groove_pair", groove=[radius, groove.conformity, groove.pitch_radius,
                   groove.lead, groove.contact_angle, groove.body, groove.flank, groove.profile_plane],
                   h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius, half_width=half_width,
-                  half_length=half_length, depth=depth, cap=cap, order=element_order, fine_patch=fine_patch)
+                  half_length=half_length, depth=depth, cap=cap, order=element_order, fine_patch=fine_patch,
+                  fine_half_length=fine_half_length)
     path, build = cached_msh("screw-pair", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -603,7 +611,14 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         physical(gmsh, 2, groove_faces, "counter_contact")
         physical(gmsh, 2, support_faces, "counter_support")
         if fine_patch is None:
-            contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
+            threshold = contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
+            if fine_half_length > 0.0:  # distance from the segment |x| <= fine_half_length instead of the point
+                distance = gmsh.model.mesh.field.add("MathEval")
+                gmsh.model.mesh.field.setString(
+                    distance, "F", f"Sqrt(((Abs(x) - ({fine_half_length!r}) + Abs(Abs(x) - ({fine_half_length!r})))"
+                                   f" / 2)^2 + y^2 + z^2)")
+                gmsh.model.mesh.field.setNumber(threshold, "InField", distance)
+                gmsh.model.mesh.field.setAsBackgroundMesh(threshold)
         else:
             _patch_refinement(gmsh, h_contact, growth, h_max, fine_patch)
         gmsh.model.mesh.generate(3)

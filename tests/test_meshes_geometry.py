@@ -269,6 +269,15 @@ def test_pair_fine_patch_refines_the_ellipse_not_a_ball():
 
     assert 0.5 * h < size_near(0.9 * l_x, 0.0) < 2 * h
     assert size_near(0.0, 0.9 * l_x) > 2.5 * h  # h + 0.3 (0.9 l_x - l_y) = 4.2 h
+    # the capsule of contact_pairs: fine_radius about the segment |x| <= fine_half_length
+    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
+                                             fine_radius=l_y, fine_half_length=l_x)
+    mesh = meshio.read(path)
+    tri = _group_cells(mesh, "counter_contact", "triangle")
+    centre = mesh.points[tri].mean(axis=1)
+    edges = np.linalg.norm(mesh.points[tri[:, 0]] - mesh.points[tri[:, 1]], axis=1)
+    assert 0.5 * h < size_near(0.9 * l_x, 0.0) < 2 * h
+    assert size_near(0.0, 0.9 * l_x) > 2.5 * h
 
 
 def test_pair_volumes_against_closed_forms():
@@ -380,6 +389,8 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(fine_patch=(1e-4, -1e-4)), "fine_patch"),
     (dict(fine_patch=(1e-4,)), "fine_patch"),
     (dict(fine_patch=1e-4), "fine_patch"),
+    (dict(fine_half_length=-1e-4), "fine_half_length"),
+    (dict(fine_half_length=1e-4, fine_patch=(1e-4, 1e-4)), "fine_patch and fine_half_length"),
 ])
 def test_pair_bad_input_names_the_parameter(kwargs, name):
     args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA, body="screw",
