@@ -21,11 +21,11 @@ Per contact (lin2019 eqs 1-3, A1-A3), with ``V_i`` the groove velocity
     omega_i = -Omega . n_i                     spin about the inward normal y_i (eq 2)
     spin_i  = omega_i a_i                      [m/s]
 
-Friction comes from :func:`lowmodel.ellipse_friction.friction_velocity`,
-a function of ``(spin_i, slide_i)`` that stays finite when
-``omega_i -> 0`` (``c_i -> inf``, pure sliding): the velocity-centre
-offset ``c_i/a_i = slide/spin`` is never formed, the tabulation is in the
-slip-direction angle ``atan2(slide, spin)``.
+Friction comes from :func:`lowmodel.ellipse_friction.friction_velocity`
+and depends only on the slip-direction angle ``phi_i = atan2(slide_i,
+spin_i)`` (``c_i/a_i = tan phi_i``); the velocity-centre offset ``c_i`` is
+never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
+ordinary point ``phi_i = +-pi/2``.
 
     f_i   = mu F_i force_i                 friction force on the ball along +z [N]      (eq A4)
     M_i   = mu F_i a_i moment_i            spin moment on the ball about -y_i [N m]     (eq A5)
@@ -48,10 +48,15 @@ Newton tolerance (it checks kinematics, moment arms and signs, not the
 quadrature).  The tabulated loss of eq A6 is reported alongside
 (``friction_loss_table``) and agrees to the accuracy of the friction map.
 
-Newton's method (globalised by Levenberg-Marquardt, :func:`newton`) in the
-scaled unknowns ``(v_B, omega_x R_B, omega_y R_B)/|v|`` with the analytic
-Jacobian (chain rule through the map's derivatives); residuals in units of
-``mu max(F_i)``.
+Unknowns of Newton's method, per ball: ``(v_B, omega_x R_B, omega_y
+R_B)/|v|`` and the four ``phi_i``; equations: eq 4 (in ``phi``) and the
+kinematics ``slide_i cos phi_i - spin_i sin phi_i = 0`` (see
+:func:`_ball_terms`: smooth also where a contact's slip vanishes).  Analytic
+Jacobian (chain rule through the map's spline derivatives), globalised by
+Levenberg-Marquardt (:func:`newton`); residuals in units of ``mu max(F_i)``
+and ``|v|``.  Near the four-point limit the full-sliding model stops having a
+solution (:func:`spin_capacity_ratio`); the solver then raises
+ConvergenceError with that diagnosis.
 """
 from __future__ import annotations
 
@@ -378,16 +383,16 @@ def _with_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
     return guess
 
 
-def _state(scaled, terms: _Terms, contacts: BallContacts, reference_force: float, *, b2b_force=None,
+def _state(unknowns, terms: _Terms, contacts: BallContacts, reference_force: float, *, b2b_force=None,
            b2b_slip=None, iterations: int, residual: float) -> BallState:
     speed = abs(contacts.groove_velocity)
     radius = contacts.ball_radius
     mu_f = contacts.friction_coefficient * reference_force
-    velocity = scaled[:, 0] * speed
-    omega = scaled[:, 1:3] * speed / radius
+    velocity = unknowns[:, 0] * speed
+    omega = unknowns[:, 1:3] * speed / radius
     spin = terms.spin_velocity * speed / contacts.semi_major
     slide = terms.slide * speed
-    phi = scaled[:, 3:]
+    phi = unknowns[:, 3:]
     c_over_a = np.where(np.abs(np.cos(phi)) > 1e-15, np.tan(phi), np.sign(np.sin(phi)) * np.inf)  # slide/spin
     force = terms.force * mu_f
     moment = terms.moment * mu_f * radius
