@@ -141,18 +141,15 @@ def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     dfy_dx2 = -mu * forces * dex_ddvy
     d_scaled = np.zeros((n, 3, n, 3))
     d_forces = np.zeros((n, 3, pairs))
-    idx = np.arange(pairs)
     # the moment (rows 1, 2) on both balls of a pair depends on (x1, x2) of both balls alike
     block = np.empty((pairs, 2, 2))
     block[:, 0, 0], block[:, 0, 1] = -dfy_dx1, -dfy_dx2
     block[:, 1, 0], block[:, 1, 1] = dfx_dx1, dfx_dx2
-    for ball in (idx, idx + 1):
-        for other in (idx, idx + 1):
-            d_scaled[ball, 1:3, other, 1:3] += block
-        d_forces[ball, 1, idx] += mu * ey
-        d_forces[ball, 2, idx] += -mu * ex
-    d_forces[idx, 0, idx] -= 1.0
-    d_forces[idx + 1, 0, idx] += 1.0
+    for j in range(pairs):
+        d_scaled[j:j + 2, 1:3, j:j + 2, 1:3] += block[j][None, :, None, :]
+        d_forces[j:j + 2, 0, j] = (-1.0, 1.0)
+        d_forces[j:j + 2, 1, j] = mu * ey[j]
+        d_forces[j:j + 2, 2, j] = -mu * ex[j]
     return load, d_scaled, d_forces, np.sqrt(dvx**2 + dvy**2)
 
 

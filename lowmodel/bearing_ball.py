@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -112,6 +113,17 @@ class BallContacts:
     @property
     def n_balls(self) -> int:
         return self.normal_forces.shape[0]
+
+    @cached_property
+    def _geometry(self):
+        """Load-independent arrays of :func:`_ball_terms` (computed once per instance)."""
+        normals = contact_normals(self.contact_angles)
+        nx, ny = normals[..., 0], normals[..., 1]
+        arm = self.semi_major / self.ball_radius  # a_i / R_B
+        dslide = np.stack([np.ones_like(nx), ny, -nx], axis=-1)  # d slide / d x, (n, 4, 3)
+        dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)  # d spin / d x
+        top = math.copysign(1.0, self.groove_velocity) * _TOP
+        return nx, ny, arm, dslide, dspin, top
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -321,14 +333,10 @@ def _ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: f
     """
     x = unknowns[:, :3]
     phi = unknowns[:, 3:]
-    normals = contact_normals(contacts.contact_angles)  # (n, 4, 2)
-    nx, ny = normals[..., 0], normals[..., 1]
-    direction = math.copysign(1.0, contacts.groove_velocity)
-    arm = contacts.semi_major / contacts.ball_radius  # a_i / R_B
+    nx, ny, arm, dslide, dspin, top = contacts._geometry
     load = contacts.normal_forces / reference_force
-    x0, x1, x2 = x[:, 0:1], x[:, 1:2], x[:, 2:3]
-    slide = x0 - direction * _TOP + x1 * ny - x2 * nx  # lin2019 eqs 1, A1-A3 (z slip at the centre)
-    spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2
+    slide = np.einsum("nk,nik->ni", x, dslide) - top  # lin2019 eqs 1, A1-A3 (z slip at the centre)
+    spin_velocity = np.einsum("nk,nik->ni", x, dspin)  # omega_i a_i, eq 2
     cos, sin = np.cos(phi), np.sin(phi)
     fr = _friction(cos, sin, contacts.b_over_a)  # unit slip speed in direction phi
     force = load * fr.force  # eq A4
@@ -346,8 +354,6 @@ def _ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: f
     jacobian[:, 0, 3:] = dforce
     jacobian[:, 1, 3:] = ny * dforce + nx * dmoment
     jacobian[:, 2, 3:] = -nx * dforce + ny * dmoment
-    dslide = np.stack([np.ones_like(nx), ny, -nx], axis=-1)  # (n, 4, 3)
-    dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)
     jacobian[:, 3:, :3] = cos[..., None] * dslide - sin[..., None] * dspin
     index = np.arange(4)
     jacobian[:, 3 + index, 3 + index] = -slip_speed
@@ -367,12 +373,9 @@ def _initial_guess(contacts: BallContacts) -> np.ndarray:
 
 def _kinematics(unknowns: np.ndarray, contacts: BallContacts):
     """Slip at the contact centres (units |v|): ``slide_i`` (eqs 1, A1-A3) and ``spin_i = omega_i a_i`` (eq 2)."""
-    normals = contact_normals(contacts.contact_angles)
-    nx, ny = normals[..., 0], normals[..., 1]
-    x0, x1, x2 = unknowns[:, 0:1], unknowns[:, 1:2], unknowns[:, 2:3]
-    slide = x0 - math.copysign(1.0, contacts.groove_velocity) * _TOP + x1 * ny - x2 * nx
-    spin = -(x1 * nx + x2 * ny) * (contacts.semi_major / contacts.ball_radius)
-    return slide, spin
+    _, _, _, dslide, dspin, top = contacts._geometry
+    x = unknowns[:, :3]
+    return np.einsum("nk,nik->ni", x, dslide) - top, np.einsum("nk,nik->ni", x, dspin)
 
 
 def _with_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
