@@ -193,10 +193,13 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         forces[touching] = z[k * n:]
         return balls, forces
 
+    last = {}
+
     def function(z):
         balls, forces = unpack(z)
         terms = _ball_terms(balls, contacts, reference_force)
-        load, d_scaled, d_forces, _ = _b2b_terms(balls[:, :3], forces, mu)
+        load, d_scaled, d_forces, slip = _b2b_terms(balls[:, :3], forces, mu)
+        last.update(z=z, terms=terms, slip=slip)
         jac = np.zeros((size, size))
         residual = np.empty(size)
         ball_residual = terms.residual.copy()
@@ -241,8 +244,11 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
                                iterations=iterations, tolerance=tolerance)
     forces = np.maximum(forces, 0.0)
-    terms = _ball_terms(balls, contacts, reference_force)
-    _, _, _, slip = _b2b_terms(balls[:, :3], forces, mu)
+    if last.get("z") is z:  # the last evaluation was at the solution
+        terms, slip = last["terms"], last["slip"]
+    else:
+        terms = _ball_terms(balls, contacts, reference_force)
+        slip = _b2b_terms(balls[:, :3], forces, mu)[3]
     return _state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                   b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
 

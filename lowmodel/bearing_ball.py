@@ -531,15 +531,16 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
                                          max_iterations=max_iterations - total, what=what)
         total += iterations
         balls = balls_of(z)
-        terms = _ball_terms(balls, contacts, reference_force)
-        wrong = terms.slip_speed < -1e3 * tolerance
+        slide, spin = _kinematics(balls, contacts)
+        slip_speed = slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])
+        wrong = slip_speed < -1e3 * tolerance
         if not np.any(wrong):
             return z, residual, total
         balls = balls.copy()
         balls[:, 3:] = np.where(wrong, balls[:, 3:] + math.pi, balls[:, 3:])
         z = _replace_balls(z, balls)
     raise ConvergenceError(f"{what}: converged only to slip directions against the slip",
-                           residual=float(-terms.slip_speed.min()), iterations=total, tolerance=tolerance)
+                           residual=float(-slip_speed.min()), iterations=total, tolerance=tolerance)
 
 
 def _explained(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:
