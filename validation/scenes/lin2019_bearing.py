@@ -303,6 +303,7 @@ def stability(run):
         theta = math.radians(theta_deg)
         low, _ = _four_point_limit(theta)
         ok, bad = 0.3, 1e-9
+        bisection_start = clock.perf_counter()
         for _ in range(25):  # bisection in log(margin) on ball 1 alone
             mid = math.sqrt(ok * bad)
             try:
@@ -310,16 +311,18 @@ def stability(run):
                 ok = mid
             except ConvergenceError:
                 bad = mid
+        solve_time = (clock.perf_counter() - bisection_start) / 25
         ratio = float(bearing_ball.spin_capacity_ratio(_case(theta, low + ok, n_balls=1))[0])
         boundary.append((theta_deg, ok, ratio))
         run.check(model=MODEL_BALL, quantity=f"spin-capacity ratio at the last converged rho, theta = {theta_deg:.0f} "
-                  "deg", unit="1", value=ratio, reference=1.0, tolerance=0.03, time_s=0.0,
+                  "deg", unit="1", value=ratio, reference=1.0, tolerance=0.03, time_s=solve_time,
                   source="moment balance along the loaded diagonal (docs/b2b_bearing.md, validity)",
                   note="tolerance: the bound neglects the misalignment theta of the diagonal")
     # 2) error exactly at loss of contact: bisect rho on both sides of the eq 37 limit
     theta = math.radians(3.0)
     low, _ = _four_point_limit(theta)
     inside, outside = low + 0.05, low - 0.05
+    _, setup_time = run.time(_case, theta, inside)
     for _ in range(60):
         mid = 0.5 * (inside + outside)
         try:
@@ -329,7 +332,7 @@ def stability(run):
             outside = mid
     run.check(model=MODEL_B2B, quantity="rho at which ValueError (loss of four-point contact) starts", unit="1",
               value=outside, reference=low, tolerance=1e-12, source="lin2017 eq 37: rho >= -min(tan beta_BL, "
-              "tan beta_TR), theta = 3 deg", time_s=0.0)
+              "tan beta_TR), theta = 3 deg", time_s=setup_time)
     # 3) N balls with random gaps, loads, angles, mu
     counts = {"quick": (2, 5, 20), "default": (2, 5, 10, 20, 50), "fine": (2, 3, 5, 10, 20, 30, 50)}[run.fidelity]
     for n_balls in run.progress(counts, desc="N-ball chains"):
