@@ -54,6 +54,7 @@ from lowmodel.bearing_ball import (
     _state,
     _solve_free,
     ball_contacts,
+    check_solver_options,
     solve_ball,
     solve_branch,
 )
@@ -171,6 +172,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     Raises ConvergenceError with its residual if the solve fails, or if the
     converged point violates complementarity.
     """
+    check_solver_options(tolerance, max_iterations)
     n = contacts.n_balls
     radius = contacts.ball_radius
     gaps = _check_gaps(gaps, n, radius)

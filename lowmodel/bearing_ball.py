@@ -192,6 +192,14 @@ def _finite_positive(name: str, value, unit: str) -> float:
     return value
 
 
+def check_solver_options(tolerance, max_iterations) -> None:
+    """ValueError unless ``tolerance`` is finite and > 0 and ``max_iterations`` an integer >= 1."""
+    if not (isinstance(tolerance, (int, float, np.floating)) and math.isfinite(tolerance) and tolerance > 0.0):
+        raise ValueError(f"tolerance must be a finite number > 0, got {tolerance!r}")
+    if not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
+        raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+
+
 def _check_angles(contact_angles) -> np.ndarray:
     angles = np.asarray(contact_angles, dtype=float)
     if angles.ndim == 1:
@@ -486,6 +494,7 @@ def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iteratio
     BallState; ``iterations`` is the largest count over the balls.
     Raises ConvergenceError (with the residual) if Newton fails.
     """
+    check_solver_options(tolerance, max_iterations)
     reference_force = float(contacts.normal_forces.max())
     unknowns, iterations, residual = _solve_free(contacts, reference_force, tolerance, max_iterations)
     terms = _ball_terms(unknowns, contacts, reference_force)

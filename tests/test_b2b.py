@@ -257,3 +257,13 @@ def test_module_contacts_error_exactly_at_loss_of_contact(fourpoint_module):
 def test_module_contacts_reproduce_table3(fourpoint_module):
     state = b2b.solve(b2b.module_contacts(math.radians(2.0), -0.6), [0.0])
     assert state.b2b_force[0] == pytest.approx(4.01, rel=0.03)  # lin2019 Table 3 case (a), numerical
+
+
+@pytest.mark.parametrize("kwargs, name", [(dict(tolerance=0.0), "tolerance"), (dict(tolerance=float("nan")), "tolerance"),
+                                          (dict(max_iterations=0), "max_iterations"),
+                                          (dict(max_iterations=2.5), "max_iterations")])
+def test_bad_solver_options(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        b2b.solve(module(2.0, -0.6), [0.0], **kwargs)
+    with pytest.raises(ValueError, match=name):
+        bb.solve_ball(module(2.0, -0.6), **kwargs)
