@@ -180,7 +180,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         gap_tolerance = 1e-9 * radius
     touching = np.flatnonzero(gaps <= gap_tolerance)
     if n == 1 or touching.size == 0:
-        return solve_ball(contacts, tolerance=tolerance)
+        return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)
     mu = contacts.friction_coefficient
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)
