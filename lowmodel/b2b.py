@@ -246,6 +246,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
                                iterations=iterations, tolerance=tolerance)
     forces = np.maximum(forces, 0.0)
+    forces[touching[z[k * n:] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
     if last.get("z") is z:  # the last evaluation was at the solution
         terms, slip = last["terms"], last["slip"]
     else:

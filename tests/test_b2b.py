@@ -267,3 +267,12 @@ def test_bad_solver_options(kwargs, name):
         b2b.solve(module(2.0, -0.6), [0.0], **kwargs)
     with pytest.raises(ValueError, match=name):
         bb.solve_ball(module(2.0, -0.6), **kwargs)
+
+
+def test_gap_history_separation():
+    """Touching balls whose complementarity solution separates them: the gap opens linearly."""
+    contacts = module(2.0, 0.6)  # ball 1 (behind) slower
+    free = bb.solve_ball(contacts)
+    history = b2b.simulate_gaps(contacts, [0.0], 10.0)
+    assert np.all(history.b2b_force == 0.0)
+    assert history.gaps[-1, 0] == pytest.approx(10.0 * (free.ball_velocity[1] - free.ball_velocity[0]), rel=1e-9)
