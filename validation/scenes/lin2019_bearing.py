@@ -152,6 +152,12 @@ def table2_b(run):
     for label, history in histories.items():
         ax.plot(history.times, history.gaps[:, 0] / RADIUS, marker="o", ms=3,
                 label=f"case ({label})" + (" mitigated top groove" if label == "b" else ""))
+    from lowmodel import b2b_analytical
+
+    eps_1 = b2b_analytical.side_force_deviation(THETA, RHO)  # lin2019 eq 33, as the paper's Fig 10(a)
+    eps_2 = b2b_analytical.side_force_deviation(THETA, -RHO)
+    t_contact = gap0 / ((eps_1 - eps_2) * SPEED / 2)
+    ax.plot([0.0, t_contact, t_end], [0.1, 0.0, 0.0], ls="--", c="grey", label="case (a), analytical eq 33")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("gap between the balls / R_B")
     ax.set_ylim(bottom=-0.005)
