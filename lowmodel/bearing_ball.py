@@ -61,6 +61,7 @@ ConvergenceError with that diagnosis.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -323,6 +324,7 @@ class _Terms:
     loss_table: np.ndarray  # (n, 4) units mu F_ref |v|
 
 
+_SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 N_UNKNOWNS = 7  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v| and the four slip angles phi_i
 
 
@@ -446,15 +448,32 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
                                    tolerance=tolerance)
         iterations += 1
-        normal = jacobian.T @ jacobian
+        sparse = x.size > _SPARSE_SIZE
+        if sparse:  # many balls: the Jacobian is block tridiagonal
+            from scipy import sparse as sp
+            from scipy.sparse.linalg import spsolve
+
+            jac_sparse = sp.csr_matrix(jacobian)
+            normal = (jac_sparse.T @ jac_sparse).tocsc()
+            identity = sp.identity(x.size, format="csc")
+            diagonal_max = float(normal.diagonal().max())
+        else:
+            normal = jacobian.T @ jacobian
+            identity = np.eye(x.size)
+            diagonal_max = float(np.max(np.diag(normal)))
         gradient = jacobian.T @ residual
         if damping is None:
-            damping = 1e-8 * float(np.max(np.diag(normal)))
+            damping = 1e-8 * diagonal_max
         merit = float(residual @ residual)
         while True:
             try:
-                step = np.linalg.solve(normal + damping * np.eye(x.size), -gradient)
-            except np.linalg.LinAlgError:
+                if sparse:
+                    with warnings.catch_warnings():  # a singular matrix gives NaN: handled below
+                        warnings.simplefilter("ignore")
+                        step = spsolve(normal + damping * identity, -gradient)
+                else:
+                    step = np.linalg.solve(normal + damping * identity, -gradient)
+            except (np.linalg.LinAlgError, RuntimeError):
                 step = np.full(x.size, np.nan)
             predicted = merit - float(np.sum((residual + jacobian @ step) ** 2))
             if np.all(np.isfinite(step)) and predicted > 0.0:
