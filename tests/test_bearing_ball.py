@@ -179,3 +179,24 @@ def test_loss_of_contact_is_an_error():
         bb.contacts_from_forces(case_angles(1.0), [50.0, 0.0, 50.0, 50.0], 1e-4, 0.2, **GOOD)
     with pytest.raises(ValueError, match="normal_forces"):
         bb.contacts_from_forces(case_angles(1.0), [50.0, float("nan"), 50.0, 50.0], 1e-4, 0.2, **GOOD)
+
+
+def test_solution_satisfies_eq4_with_exact_quadrature():
+    """Independent of the tabulated map: eq 4 at the solution with lin2019 eqs A4-A5 by direct quadrature."""
+    from lowmodel.ellipse_friction import friction_exact
+
+    contacts = make_contacts(case_angles(2.0, (0.5, -0.3)), -60.0)
+    state = bb.solve_ball(contacts)
+    exact = friction_exact(state.c_over_a[0], contacts.b_over_a[0])
+    sign = np.sign(state.spin[0])
+    mu_force = MU * contacts.normal_forces[0]
+    force = sign * mu_force * exact.force  # f_{i,z}, eq A4
+    moment = sign * mu_force * contacts.semi_major[0] * exact.moment  # M_{i,O}, eq A5
+    np.testing.assert_allclose(force, state.friction_force[0], rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(moment, state.friction_moment[0], rtol=1e-6, atol=1e-12)
+    beta = contacts.contact_angles[0]
+    s, c = np.sin(beta), np.cos(beta)
+    rows = np.array([[1, 1, 1, 1], [-c[0], -c[1], c[2], c[3]], [s[0], -s[1], -s[2], s[3]]])  # lin2019 eq 4
+    moment_rows = np.array([[0, 0, 0, 0], [s[0], -s[1], -s[2], s[3]], [c[0], c[1], -c[2], -c[3]]])
+    residual = rows @ force + moment_rows @ (-moment / RADIUS)
+    assert np.max(np.abs(residual)) < 1e-6 * MU * contacts.normal_forces.max()
