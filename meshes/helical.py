@@ -51,6 +51,8 @@ __all__ = [
     "surface_residual",
     "profile_coordinates",
     "pair_hertz_geometry",
+    "pair_initial_gap",
+    "counter_height",
     "screw_groove_segment",
     "ball_in_screw_groove_pair",
 ]
@@ -331,6 +333,64 @@ def pair_hertz_geometry(ball_radius: float, conformity: float, pitch_radius: flo
                                  youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
 
 
+def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndarray:
+    """Height ``z`` [m] of the exact groove surface above the point ``(x, y)`` of the
+    contact frame (:func:`contact_frame`; the pair's frame), arrays of any shape.
+
+    Solves ``Q (S(theta, phi) - P) = (x, y, z)`` for ``(theta, phi, z)`` by Newton
+    from the contact (theta_c, 0); valid over the groove flank around the contact.
+    """
+    frame = contact_frame(groove)
+    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+    shape = x.shape
+    target = np.stack([x.ravel(), y.ravel()], 1)
+    rotation = frame.rotation
+    r_g = groove.groove_radius
+    theta = np.full(target.shape[0], groove.contact_theta)
+    phi = np.zeros(target.shape[0])
+    z_hat = np.array([0.0, 0.0, 1.0])
+    e1, c = np.array([1.0, 0.0, 0.0]), groove.plane_axis
+    for _ in range(iterations):
+        local = (groove.surface(theta, phi) - frame.point) @ rotation.T
+        residual = local[:, :2] - target
+        uw_t = np.stack([-r_g * np.sin(theta), r_g * np.cos(theta)], 1)
+        s_t = np.einsum("nij,nj->ni", _rot_z(phi), uw_t[:, :1] * e1 + uw_t[:, 1:] * c)
+        world = groove.surface(theta, phi)
+        s_p = np.cross(z_hat, world) + groove.lead_per_radian * z_hat
+        jac = np.stack([s_t @ rotation[:2].T, s_p @ rotation[:2].T], 2)  # (n, 2 xy, 2 (theta, phi))
+        step = np.linalg.solve(jac, residual[..., None])[..., 0]
+        theta -= step[:, 0]
+        phi -= step[:, 1]
+        if np.max(np.abs(step[:, 0]) * r_g + np.abs(step[:, 1]) * groove.pitch_radius) < 1e-16:
+            break
+    local = (groove.surface(theta, phi) - frame.point) @ rotation.T
+    return local[:, 2].reshape(shape)
+
+
+def pair_initial_gap(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
+                     contact_angle: float, body: str = "screw", *, flank: str = "left",
+                     profile_plane: str = "normal"):
+    """Exact initial gap ``g0(x, y)`` [m] between the undeformed ball and groove of
+    :func:`ball_in_screw_groove_pair` (same arguments), measured along z at the point
+    ``(x, y)`` of the ball surface: ``R_B - sqrt(R_B^2 - x^2 - y^2) - counter_height``.
+
+    Node-to-facet gaps of P1 meshes of these conforming surfaces err by up to
+    ``~ kappa_groove h^2 / 8`` (chords of the concave groove lie inside the ball:
+    an apparent initial penetration of some nm); this callable gives the FE contact
+    the gap of the exact geometry instead (``fem.contact.build_model(initial_gap=...)``).
+    For small ``(x, y)`` it tends to Hertz's ``A x^2 + B y^2``.
+    """
+    groove = helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
+    radius = groove.ball_radius
+
+    def initial_gap(x, y):
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        ball = radius - np.sqrt(np.maximum(radius**2 - x * x - y * y, 0.0))
+        return ball - counter_height(groove, x, y)
+
+    return initial_gap
+
+
 def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:
     """Azimuth ``phi`` [rad] of the profile plane through each world point and the
     point's profile coordinates ``(u, w)`` [m] in it; ``points`` shape (n, 3).
@@ -461,17 +521,18 @@ def _check_refinement(ball_radius: float, h_contact, growth, h_max, fine_radius)
     return h_contact, growth, h_max, fine_radius
 
 
-def _patch_refinement(gmsh, h_contact: float, growth: float, h_max: float, half_lengths: tuple[float, float]) -> int:
+def _patch_refinement(gmsh, h_contact: float, growth: float, h_max: float, half_lengths) -> int:
     """Background size field ``h = min(h_max, h_contact + (growth - 1) d)`` with ``d`` the
-    distance [m] from the rectangle ``|x| <= half_lengths[0], |y| <= half_lengths[1]`` of
-    the contact plane z = 0 (fits an elongated Hertz ellipse better than a sphere).
-    The same law as :func:`meshes.gmsh_tools.contact_refinement`, whose fine zone is a ball."""
-    a_x, a_y = (float(v) for v in half_lengths)
+    distance [m] from the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z`` about the contact
+    (``half_lengths = (l_x, l_y[, l_z])``, ``l_z`` default 0: the rectangle of the contact
+    plane).  The same law as :func:`meshes.gmsh_tools.contact_refinement`, whose fine
+    zone is a ball; a box fits an elongated Hertz ellipse and its subsurface field."""
+    lengths = [float(v) for v in half_lengths] + [0.0] * (3 - len(half_lengths))
     field = gmsh.model.mesh.field
     distance = field.add("MathEval")
-    beyond_x = f"((Abs(x) - ({a_x!r}) + Abs(Abs(x) - ({a_x!r}))) / 2)"  # max(0, |x| - a_x)
-    beyond_y = f"((Abs(y) - ({a_y!r}) + Abs(Abs(y) - ({a_y!r}))) / 2)"
-    field.setString(distance, "F", f"Sqrt({beyond_x}^2 + {beyond_y}^2 + z^2)")
+    beyond = [f"((Abs({axis}) - ({length!r}) + Abs(Abs({axis}) - ({length!r}))) / 2)"  # max(0, |x| - l_x)
+              for axis, length in zip("xyz", lengths)]
+    field.setString(distance, "F", f"Sqrt({beyond[0]}^2 + {beyond[1]}^2 + {beyond[2]}^2)")
     threshold = field.add("Threshold")
     field.setNumber(threshold, "InField", distance)
     field.setNumber(threshold, "SizeMin", h_contact)
@@ -519,9 +580,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     ``h(r) = min(h_max, h_contact + (growth - 1) max(0, r - fine_radius))``, ``r`` the
     distance from the contact point, or from the segment ``|x| <= fine_half_length`` of
     the x axis (as :func:`meshes.contact_pairs.ball_in_groove_pair`: ``fine_radius ~ b``,
-    ``fine_half_length ~ a``); or, with ``fine_patch = (l_x, l_y)`` [m], ``r`` the
-    distance from the rectangle ``|x| <= l_x, |y| <= l_y`` of the contact plane
-    (e.g. ``(1.2 a, 1.2 b)`` of the Hertz ellipse).
+    ``fine_half_length ~ a``); or, with ``fine_patch = (l_x, l_y[, l_z])`` [m], ``r`` the
+    distance from the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z`` (``l_z`` default 0:
+    the rectangle of the contact plane), e.g. ``(1.15 a, 1.4 b, 0.6 a)``.
 
     ``h_contact`` [m] size at the contact, ``growth`` the size ratio of
     neighbouring elements away from the fine zone of radius ``fine_radius`` [m]
@@ -555,9 +616,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         try:
             fine_patch = tuple(_positive("fine_patch", v, "m") for v in fine_patch)
         except TypeError:
-            raise ValueError(f"fine_patch must be two half-lengths (l_x, l_y) [m], got {fine_patch!r}") from None
-        if len(fine_patch) != 2:
-            raise ValueError(f"fine_patch must be two half-lengths (l_x, l_y) [m], got {fine_patch!r}")
+            raise ValueError(f"fine_patch must be half-lengths (l_x, l_y[, l_z]) [m], got {fine_patch!r}") from None
+        if len(fine_patch) not in (2, 3):
+            raise ValueError(f"fine_patch must be half-lengths (l_x, l_y[, l_z]) [m], got {fine_patch!r}")
     if groove.body == "screw" and depth >= groove.pitch_radius - radius:
         raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
 

@@ -280,6 +280,29 @@ def test_pair_fine_patch_refines_the_ellipse_not_a_ball():
     assert size_near(0.0, 0.9 * l_x) > 2.5 * h
 
 
+@pytest.mark.parametrize("body, plane", [("screw", "normal"), ("nut", "axial")])
+def test_pair_initial_gap_is_the_exact_separation(body, plane):
+    """counter_height reproduces the meshed groove nodes (which lie on the exact surface);
+    the exact initial gap is >= 0, zero at the contact and tends to Hertz's A x^2 + B y^2."""
+    args = (R_B, CONF, R_P, LEAD, BETA, body)
+    path = helical.ball_in_screw_groove_pair(*args, profile_plane=plane, **COARSE)
+    mesh = meshio.read(path)
+    groove = helical.helical_groove(*args, "left", plane)
+    nodes = mesh.points[_group_nodes(mesh, "counter_contact")]
+    near = np.hypot(nodes[:, 0], nodes[:, 1]) < 0.4 * R_B
+    height = helical.counter_height(groove, nodes[near, 0], nodes[near, 1])
+    assert np.abs(height - nodes[near, 2]).max() < 1e-15
+    gap = helical.pair_initial_gap(*args, profile_plane=plane)
+    geometry = helical.pair_hertz_geometry(*args, profile_plane=plane)
+    assert gap(0.0, 0.0) == pytest.approx(0.0, abs=1e-18)
+    r = 1e-5
+    assert gap(r, 0.0) == pytest.approx(geometry.A * r * r, rel=1e-3)
+    assert gap(0.0, r) == pytest.approx(geometry.B * r * r, rel=1e-3)
+    ball = mesh.points[_group_nodes(mesh, "ball_contact")]
+    ball = ball[np.hypot(ball[:, 0], ball[:, 1]) < 0.3 * R_B]
+    assert gap(ball[:, 0], ball[:, 1]).min() > -1e-15  # the exact bodies do not overlap
+
+
 def test_pair_volumes_against_closed_forms():
     """Ball cap: pi c^2 (3 R - c) / 3.  Helical block: Pappus for a screw motion,
     V = 2 dphi A [(R_P + u_c) cos(lambda) + p sin(lambda)] (flux of the screw velocity
@@ -388,6 +411,7 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(profile_plane="oblique"), "profile_plane"),
     (dict(fine_patch=(1e-4, -1e-4)), "fine_patch"),
     (dict(fine_patch=(1e-4,)), "fine_patch"),
+    (dict(fine_patch=(1e-4, 1e-4, 1e-4, 1e-4)), "fine_patch"),
     (dict(fine_patch=1e-4), "fine_patch"),
     (dict(fine_half_length=-1e-4), "fine_half_length"),
     (dict(fine_half_length=1e-4, fine_patch=(1e-4, 1e-4)), "fine_patch and fine_half_length"),
