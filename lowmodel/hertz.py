@@ -232,22 +232,34 @@ def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: flo
 
 
 def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
-                              lead_angle: float, body: str = "screw") -> tuple[float, float, float]:
+                              lead_angle: float, body: str = "screw",
+                              profile_plane: str = "normal") -> tuple[float, float, float]:
     """Principal curvatures of a helical ball-screw groove at the contact point.
 
-    The groove surface is the screw motion of a circular-arc profile of radius
-    ``conformity * 2 * ball_radius`` defined in the axial plane: the ball centre
-    lies at ``pitch_radius`` [m] from the axis and touches the groove at
-    ``contact_angle`` [rad] from the radial direction; the lead per radian is
-    ``pitch_radius * tan(lead_angle)``.  With the surface
-    ``X(s, phi) = (rho(s) cos phi, rho(s) sin phi, z(s) + p phi)`` the first and
-    second fundamental forms are exact, and the curvatures are the eigenvalues
-    of the shape operator (sign: positive convex, as seen from the ball).
+    The groove surface is the screw motion (lead per radian
+    ``p = pitch_radius * tan(lead_angle)``) of a circular-arc profile of radius
+    ``conformity * 2 * ball_radius`` [m].  The ball centre lies on the helix of
+    radius ``pitch_radius`` [m]; in the profile plane the ball touches the arc
+    at ``contact_angle`` [rad] from the radial direction (toward the axis on the
+    screw, away from it on the nut).  ``profile_plane``:
 
-    Returns ``(kappa_1, kappa_2, angle)``: principal curvatures [1/m] with
-    ``kappa_1`` the one closer to the profile (across-groove) direction and
-    ``angle`` [rad] between that principal direction and the profile tangent.
-    At ``lead_angle = 0`` this reduces to the bearing raceway
+    * ``"normal"`` (default; lin2019 Sec 3.1, eq 41): the profile is drawn in
+      the plane normal to the helix, spanned by the radial direction and
+      ``(0, -sin lambda, cos lambda)``.  A ball centred on the helix is then
+      tangent to the swept surface at the profile contact point.
+    * ``"axial"``: the profile is drawn in the plane containing the screw axis
+      (a manufacturing convention).  The surface normal at the profile contact
+      point then tilts out of that plane, so a ball on the helix is not exactly
+      tangent there; offered for comparison only.
+
+    With the surface ``S(t, phi) = rot_z(phi) [(R_p + u(t)) e_r + w(t) c] + p phi e_z``
+    the first and second fundamental forms are exact, and the curvatures are
+    the eigenvalues of the shape operator (positive convex, seen from the ball).
+
+    Returns ``(kappa_1, kappa_2, angle)``: principal curvatures [1/m], ``kappa_1``
+    the one closer to the profile (across-groove) direction, and ``angle`` [rad]
+    between that principal direction and the profile tangent.  At
+    ``lead_angle = 0`` both planes reduce to the bearing raceway
     ``(-1/r_groove, +-cos(alpha)/(R_p -+ R_B cos(alpha)))`` (Harris).
     """
     radius = _positive("ball_radius", ball_radius, "m")
@@ -261,39 +273,40 @@ def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radiu
         raise ValueError(f"lead_angle must lie in [0, pi/2) rad, got {lead_angle!r}")
     if body not in ("screw", "nut"):
         raise ValueError(f"body must be 'screw' or 'nut', got {body!r}")
-    if body == "screw" and pitch_radius <= radius:
-        raise ValueError("pitch_radius must exceed ball_radius for a screw groove")
+    if profile_plane not in ("normal", "axial"):
+        raise ValueError(f"profile_plane must be 'normal' or 'axial', got {profile_plane!r}")
     groove_radius = conformity * 2.0 * radius
-    # profile in the (rho, z) half plane; ball centre at (pitch_radius, 0)
-    outward = -1.0 if body == "screw" else 1.0  # contact lies toward the axis on the screw
-    ca, sa = math.cos(contact_angle), math.sin(contact_angle)
-    contact = np.array([pitch_radius + outward * radius * ca, radius * sa])
-    to_ball = -np.array([outward * ca, sa])  # unit vector from contact point to ball centre
-    centre = contact + groove_radius * to_ball  # centre of the groove arc
-    # arc parameterised by psi: P = centre - r_g (cos psi, sin psi) rotated so psi0 -> contact
-    psi0 = math.atan2(-to_ball[1], -to_ball[0])
-    rho, z = contact
-    rho_s, z_s = -groove_radius * math.sin(psi0), groove_radius * math.cos(psi0)
-    rho_ss, z_ss = -groove_radius * math.cos(psi0), -groove_radius * math.sin(psi0)
-    p = pitch_radius * math.tan(lead_angle)  # lead / (2 pi)
-    x_s = np.array([rho_s, 0.0, z_s])
-    x_phi = np.array([0.0, rho, p])
-    x_ss = np.array([rho_ss, 0.0, z_ss])
-    x_sphi = np.array([0.0, rho_s, 0.0])
-    x_phiphi = np.array([-rho, 0.0, 0.0])
-    normal = np.cross(x_s, x_phi)
+    if body == "screw" and pitch_radius <= groove_radius:
+        raise ValueError(f"pitch_radius must exceed the groove radius {groove_radius!r} m for a screw groove")
+    radial = np.array([1.0, 0.0, 0.0])
+    axis = np.array([0.0, 0.0, 1.0])
+    plane_axis = axis if profile_plane == "axial" else np.array([0.0, -math.sin(lead_angle), math.cos(lead_angle)])
+    # profile coordinates (u, w) from the ball centre: contact direction and arc
+    outward = -1.0 if body == "screw" else 1.0
+    direction = np.array([outward * math.cos(contact_angle), math.sin(contact_angle)])
+    theta = math.atan2(direction[1], direction[0])  # arc angle of the contact point
+    centre = -(groove_radius - radius) * direction  # arc centre; contact = centre + r_g (cos, sin)
+    u, w = centre + groove_radius * direction
+    u_t, w_t = -groove_radius * math.sin(theta), groove_radius * math.cos(theta)
+    u_tt, w_tt = -groove_radius * math.cos(theta), -groove_radius * math.sin(theta)
+    p = pitch_radius * math.tan(lead_angle)
+    point = (pitch_radius + u) * radial + w * plane_axis
+    s_t = u_t * radial + w_t * plane_axis
+    s_tt = u_tt * radial + w_tt * plane_axis
+    s_p = np.cross(axis, point) + p * axis  # d/dphi of rot_z(phi) v is e_z x v at phi = 0
+    s_tp = np.cross(axis, s_t)
+    s_pp = np.cross(axis, np.cross(axis, point))
+    normal = np.cross(s_t, s_p)
     normal /= np.linalg.norm(normal)
-    ball_dir = np.array([to_ball[0], 0.0, to_ball[1]])
-    if normal @ ball_dir < 0.0:
-        normal = -normal  # normal points out of the groove material, toward the ball
-    first = np.array([[x_s @ x_s, x_s @ x_phi], [x_s @ x_phi, x_phi @ x_phi]])
-    second = np.array([[x_ss @ normal, x_sphi @ normal], [x_sphi @ normal, x_phiphi @ normal]])
+    if normal @ -(direction[0] * radial + direction[1] * plane_axis) < 0.0:
+        normal = -normal  # out of the groove material, toward the ball
+    first = np.array([[s_t @ s_t, s_t @ s_p], [s_t @ s_p, s_p @ s_p]])
+    second = np.array([[s_tt @ normal, s_tp @ normal], [s_tp @ normal, s_pp @ normal]])
     # convex-positive curvature = -(shape operator eigenvalue) with the outward normal
-    shape = -np.linalg.solve(first, second)
-    eigenvalues, eigenvectors = np.linalg.eig(shape)
+    eigenvalues, eigenvectors = np.linalg.eig(-np.linalg.solve(first, second))
     eigenvalues = eigenvalues.real
-    tangents = [eigenvectors[0, i].real * x_s + eigenvectors[1, i].real * x_phi for i in range(2)]
-    profile_dir = x_s / np.linalg.norm(x_s)
+    tangents = [eigenvectors[0, i].real * s_t + eigenvectors[1, i].real * s_p for i in range(2)]
+    profile_dir = s_t / np.linalg.norm(s_t)
     align = [abs(t @ profile_dir) / np.linalg.norm(t) for t in tangents]
     i1 = int(np.argmax(align))
     angle = math.acos(min(1.0, align[i1]))
@@ -301,7 +314,8 @@ def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radiu
 
 
 def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
-                         lead_angle: float, body: str = "screw", *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
+                         lead_angle: float, body: str = "screw", *, profile_plane: str = "normal",
+                         youngs_modulus: float = STEEL_YOUNGS_MODULUS,
                          poisson_ratio: float = STEEL_POISSON_RATIO) -> HertzGeometry:
     """A ball in the helical groove of a ball screw (``body='screw'``) or nut (``'nut'``).
 
@@ -311,7 +325,7 @@ def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: fl
     a sphere, the ellipse axes follow the groove's principal directions.
     """
     kappa_1, kappa_2, _ = groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
-                                                    lead_angle, body)
+                                                    lead_angle, body, profile_plane)
     radius = float(ball_radius)
     return from_curvatures((1 / radius, 1 / radius), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio)

@@ -119,14 +119,16 @@ def test_screw_groove_zero_lead_is_bearing_raceway(body):
     assert angle == pytest.approx(0.0, abs=1e-12)
 
 
+@pytest.mark.parametrize("plane", ["normal", "axial"])
 @pytest.mark.parametrize("body", ["screw", "nut"])
-def test_screw_groove_curvature_by_surface_fit(body):
+def test_screw_groove_curvature_by_surface_fit(body, plane):
     """Independent route: fit the height of the swept groove surface over its tangent plane."""
     radius, conformity, pitch_radius, alpha = 2.778e-3, 0.56, 16.5e-3, math.radians(45)
     lead = 20e-3
     lead_angle = math.atan(lead / (2 * math.pi * pitch_radius))
-    k1, k2, _ = hertz.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, lead_angle, body)
-    # build the surface independently: arc of radius r_g in the axial plane, swept by the screw motion
+    k1, k2, _ = hertz.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, lead_angle, body, plane)
+    # build the surface independently: arc of radius r_g in the profile plane (rho, c), swept by the screw motion
+    c = np.array([0.0, 0.0, 1.0]) if plane == "axial" else np.array([0.0, -math.sin(lead_angle), math.cos(lead_angle)])
     r_g = 2 * conformity * radius
     outward = -1 if body == "screw" else 1
     contact = np.array([pitch_radius + outward * radius * math.cos(alpha), radius * math.sin(alpha)])
@@ -137,13 +139,16 @@ def test_screw_groove_curvature_by_surface_fit(body):
     s, phi = np.meshgrid(np.linspace(-2e-5, 2e-5, 21) / r_g, np.linspace(-2e-5, 2e-5, 21) / pitch_radius)
     rho = centre[0] + r_g * np.cos(psi0 + s)
     z = centre[1] + r_g * np.sin(psi0 + s)
-    points = np.stack([rho * np.cos(phi), rho * np.sin(phi), z + p * phi], axis=-1).reshape(-1, 3)
-    origin = np.array([contact[0], 0.0, contact[1]])
-    d_s = np.array([-r_g * math.sin(psi0), 0.0, r_g * math.cos(psi0)])
-    d_phi = np.array([0.0, contact[0], p])
+    local = rho[..., None] * np.array([1.0, 0.0, 0.0]) + z[..., None] * c
+    points = np.stack([local[..., 0] * np.cos(phi) - local[..., 1] * np.sin(phi),
+                       local[..., 0] * np.sin(phi) + local[..., 1] * np.cos(phi),
+                       local[..., 2] + p * phi], axis=-1).reshape(-1, 3)
+    origin = contact[0] * np.array([1.0, 0.0, 0.0]) + contact[1] * c
+    d_s = -r_g * math.sin(psi0) * np.array([1.0, 0.0, 0.0]) + r_g * math.cos(psi0) * c
+    d_phi = np.cross([0.0, 0.0, 1.0], origin) + p * np.array([0.0, 0.0, 1.0])
     normal = np.cross(d_s, d_phi)
     normal /= np.linalg.norm(normal)
-    to_ball = np.array([ball[0] - contact[0], 0.0, ball[1] - contact[1]])
+    to_ball = (ball[0] - contact[0]) * np.array([1.0, 0.0, 0.0]) + (ball[1] - contact[1]) * c
     if normal @ to_ball < 0:
         normal = -normal
     e1 = d_s / np.linalg.norm(d_s)

@@ -54,14 +54,16 @@ def _quadratic_fit(points: np.ndarray, radius: float, degree: int = 3) -> np.nda
 # --------------------------------------------------------------------------
 # exact helical geometry
 # --------------------------------------------------------------------------
+@pytest.mark.parametrize("plane", ["normal", "axial"])
 @pytest.mark.parametrize("body", ["screw", "nut"])
 @pytest.mark.parametrize("flank", ["left", "right"])
-def test_axial_profile_curvatures_equal_lowmodel_hertz(body, flank):
-    """Two independent implementations of the axial-plane groove agree (lowmodel.hertz
+def test_profile_curvatures_equal_lowmodel_hertz(body, flank, plane):
+    """Two independent implementations of the helical groove agree (lowmodel.hertz
     works at the +z flank; the left flank is its image under the half-turn about x3)."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, "axial")
+    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
     frame = helical.contact_frame(groove)
-    kappa_1, kappa_2, angle = hertz.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body)
+    kappa_1, kappa_2, angle = hertz.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body,
+                                                              plane)
     assert frame.curvature_major == pytest.approx(kappa_1, rel=1e-12)
     assert frame.curvature_minor == pytest.approx(kappa_2, rel=1e-12)
     assert frame.profile_angle == pytest.approx(angle, abs=1e-12)
@@ -71,7 +73,7 @@ def test_axial_profile_curvatures_equal_lowmodel_hertz(body, flank):
 def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
     mine = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body, profile_plane="axial")
     lead_angle = math.atan(LEAD / (2 * math.pi * R_P))
-    reference = hertz.ball_in_screw_groove(R_B, CONF, R_P, BETA, lead_angle, body)
+    reference = hertz.ball_in_screw_groove(R_B, CONF, R_P, BETA, lead_angle, body, profile_plane="axial")
     assert mine.A == pytest.approx(reference.A, rel=1e-12)
     assert mine.B == pytest.approx(reference.B, rel=1e-12)
     # the lin2019 normal-section profile is a different groove: at 100 N, a differs by
