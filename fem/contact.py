@@ -63,6 +63,12 @@ class ContactModel:
     load_dofs: np.ndarray
     boundary_candidates: np.ndarray
     timings: dict = field(default_factory=dict)
+    weights: np.ndarray | None = None
+    multiplier: str = "force"
+
+    def __post_init__(self):
+        if self.weights is None:
+            self.weights = np.ones(self.candidates.size)
 
     @property
     def ndofs(self) -> int:
@@ -135,7 +141,7 @@ def _project(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple
 
 
 def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, order: int = 1,
-                method: str = "schur", min_candidates: int = 20) -> ContactModel:
+                method: str = "schur", min_candidates: int = 20, initial_gap=None) -> ContactModel:
     """Assemble, constrain and condense the contact problem of a contact-pair mesh.
 
     ``materials``: ``(E [Pa], nu)`` or one pair per body (ball, counter).
@@ -143,6 +149,10 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     candidates (it must exceed the approach; a contact reaching the edge of the
     candidate zone is refused at solve time).  ``order``: 1 (P1; contact is
     node-to-surface on P1 nodes; P2 is refused).  ``method``: see :mod:`fem.linsolve`.
+    ``initial_gap``: None (the gap of the meshed surfaces: ball node to the
+    facetted counter surface) or a callable ``g0(x, y)`` [m] of the ball node's
+    xy position, e.g. Hertz's quadratic separation ``A x^2 + B y^2``
+    (Johnson 1985 eq 4.1), to compare with Hertz under Hertz's own gap.
     """
     if order != 1:
         raise ValueError(f"order must be 1 for contact (node-to-surface on P1 nodes), got {order!r}")
@@ -175,6 +185,8 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
         raise ValueError("no ball node near the counter surface: check the mesh frame")
     z_counter = np.einsum("ij,ij->i", points[tri_nodes, 2], weights)
     g0_all = points[near, 2] - z_counter
+    if initial_gap is not None:
+        g0_all = np.asarray(initial_gap(points[near, 0], points[near, 1]), dtype=float)
     keep = g0_all <= gap_limit
     candidates, g0 = near[keep], g0_all[keep]
     tri_nodes, weights = tri_nodes[keep], weights[keep]
@@ -213,7 +225,7 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
 
 def _pdas(model: ContactModel, force: float | None, approach: float | None, tol: float, max_iter: int,
           active0: np.ndarray | None = None) -> ContactState:
-    W, g0 = model.W, model.g0
+    W, g0, weights = model.W, model.g0, model.weights
     n = g0.size
     scale_c = 1.0 / np.median(np.diag(W))  # [N/m], makes lambda - c g dimensionally consistent
     active = (g0 <= np.min(g0) + 1e-30) if active0 is None else active0.copy()
@@ -229,19 +241,19 @@ def _pdas(model: ContactModel, force: float | None, approach: float | None, tol:
             m = idx.size
             mat = np.zeros((m + 1, m + 1))
             mat[:m, :m] = W[np.ix_(idx, idx)]
-            mat[:m, m] = -1.0
-            mat[m, :m] = 1.0
+            mat[:m, m] = -weights[idx]
+            mat[m, :m] = weights[idx]
             rhs = np.concatenate([-g0[idx], [cut_force]])
             sol = np.linalg.solve(mat, rhs)
             lam[idx], U = sol[:m], sol[m]
         else:
             U = approach
             if idx.size:
-                lam[idx] = np.linalg.solve(W[np.ix_(idx, idx)], U - g0[idx])
-        gap = g0 - U + W @ lam
+                lam[idx] = np.linalg.solve(W[np.ix_(idx, idx)], U * weights[idx] - g0[idx])
+        gap = g0 - U * weights + W @ lam
         new_active = lam - scale_c * gap > 0.0
         f_s = max(np.sum(lam) / max(idx.size, 1), 1e-300)
-        g_s = max(abs(U), 1e-300)
+        g_s = max(abs(U) * float(np.median(weights)), 1e-300)
         residual = float(np.max(np.abs(np.minimum(lam / f_s, gap / g_s))))
         key = new_active.tobytes()
         if np.array_equal(new_active, active) and residual <= tol:
@@ -259,7 +271,9 @@ def _pdas(model: ContactModel, force: float | None, approach: float | None, tol:
     if np.any(active & model.boundary_candidates):
         raise ValueError("the contact reaches the edge of the candidate zone: raise gap_limit (and refine the mesh "
                          "over the larger zone)")
-    total = float(np.sum(lam)) * model.symmetry_factor
+    total = float(weights @ lam) * model.symmetry_factor
+    if model.multiplier == "pressure":  # mortar: lambda are nodal pressures [Pa]
+        return ContactState(total, float(U), weights * lam, gap, lam, active, iteration, residual)
     return ContactState(total, float(U), lam, gap, lam / model.area, active, iteration, residual)
 
 
@@ -281,9 +295,10 @@ def solve_approach(model: ContactModel, approach: float, *, tol: float = 1e-10, 
 
 
 def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
-    """Nodal displacement field (nnodes, 3) [m] of a solved state (one sparse solve)."""
+    """Nodal displacement field (nnodes, 3) [m] at the mesh vertices of a solved state (one sparse solve)."""
     ndof = model.K.shape[0]
-    f = model.B.T @ state.forces
+    multipliers = state.pressure if model.multiplier == "pressure" else state.forces
+    f = model.B.T @ multipliers
     u = np.zeros(ndof)
     u[model.load_dofs] = -state.approach
     rhs = f - model.K @ u

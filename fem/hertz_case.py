@@ -67,7 +67,8 @@ def contact_edge_length(model: contact.ContactModel, active: np.ndarray) -> floa
 
 
 def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_factors=LOAD_FACTORS,
-               method: str = "schur", min_elements: float = 5.0, tol: float = 1e-10) -> CaseResult:
+               method: str = "schur", min_elements: float = 5.0, tol: float = 1e-10,
+               initial_gap=None, formulation: str = "node", order: int = 1) -> CaseResult:
     """Solve one FE Hertz case.
 
     ``mesh_builder()`` returns the ``.msh`` path (timed as meshing; a cached
@@ -75,13 +76,22 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
     ``gap_limit`` [m] candidate zone (see :func:`fem.contact.build_model`); it must
     hold the contact at ``max(load_factors) * force``.  A contact patch with fewer
     than ``min_elements`` elements across its fitted minor semi-axis raises
-    ValueError with the size to use.
+    ValueError with the size to use.  ``initial_gap``: see :func:`fem.contact.build_model`.
     """
     timings = {}
     t0 = time.perf_counter()
     path = Path(mesh_builder())
     timings["mesh_s"] = time.perf_counter() - t0
-    model = contact.build_model(path, materials, gap_limit, method=method)
+    if formulation == "node":
+        if order != 1:
+            raise ValueError(f"node-to-surface contact needs order 1, got {order!r}")
+        model = contact.build_model(path, materials, gap_limit, method=method, initial_gap=initial_gap)
+    elif formulation == "mortar":
+        from fem.mortar import build_mortar_model
+
+        model = build_mortar_model(path, materials, gap_limit, order=order, method=method, initial_gap=initial_gap)
+    else:
+        raise ValueError(f"formulation must be 'node' or 'mortar', got {formulation!r}")
     timings.update(model.timings)
     t0 = time.perf_counter()
     forces, approaches, nominal, state = [], [], None, None
@@ -96,8 +106,13 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
     symmetric_y = "symmetry_y" in model.pair.surfaces
     xq, operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
                                               model.candidates)
-    fit = postprocess.fit_ellipse_forces(xq, operator, nominal.forces, symmetric_x=symmetric_x,
-                                         symmetric_y=symmetric_y)
+    if model.multiplier == "pressure":  # mortar: fit the P1 pressure field in the same (Galerkin) sense
+        column = np.asarray(operator.sum(axis=0)).ravel()
+        field_q = (operator.T @ nominal.pressure) / np.where(column > 0, column, 1.0)
+        target = operator @ field_q
+    else:
+        target = nominal.forces
+    fit = postprocess.fit_ellipse_forces(xq, operator, target, symmetric_x=symmetric_x, symmetric_y=symmetric_y)
     h = contact_edge_length(model, nominal.active)
     postprocess.mesh_check(h, min(fit.a, fit.b), min_elements)
     approach = postprocess.approach_fit(forces, approaches)

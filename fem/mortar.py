@@ -1,0 +1,186 @@
+"""Mortar (segment-to-segment) frictionless contact for P1 or P2 tetrahedra.
+
+The contact pressure is a piecewise-linear field on the ball's contact
+triangles, ``p = sum_i lambda_i phi_i`` (``phi_i`` the P1 hat function of vertex
+i, ``lambda_i`` [Pa]), and non-penetration is imposed on the weighted gaps
+
+    g~_i = int phi_i g dA >= 0,  lambda_i >= 0,  lambda_i g~_i = 0,
+
+with ``g = g0 + u_z(ball) - u_z(counter at the z-projection)`` and the
+integrals over the xy-projection of the ball triangles (the Hertz pressure
+acts on the projected area).  Contact forces ``f = B^T lambda`` with
+``B_i = int phi_i (N_ball - N_counter) e_z dA`` (P1 or P2 shape functions N on
+either surface), so the discrete problem is the same LCP as node-to-surface
+(:mod:`fem.contact`) with the rigid translation weighted by ``m_i = int phi_i dA``.
+Quadrature: each ball triangle split into 16 sub-triangles (centroid rule),
+the counter interpolated at every point.
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+import scipy.sparse as sp
+
+from fem import linsolve
+from fem.contact import ContactModel, _lumped_area, _project
+from fem.elasticity import PairMesh, load_pair, stiffness
+
+__all__ = ["build_mortar_model", "surface_dofs"]
+
+SUBDIVISIONS = 4
+
+
+def _edge_index(mesh) -> dict:
+    edges = mesh.edges.T
+    return {(int(min(a, b)), int(max(a, b))): i for i, (a, b) in enumerate(edges)}
+
+
+def _triangle_dofs(basis, triangles: np.ndarray, component: int, edge_map: dict | None) -> np.ndarray:
+    """(k, 3 or 6) DOFs of ``component`` on the triangles: vertices, then edges (01, 12, 20)."""
+    vert = basis.nodal_dofs[component][triangles]
+    if edge_map is None:
+        return vert
+    pairs = [(0, 1), (1, 2), (2, 0)]
+    edge = np.array([[edge_map[(min(t[i], t[j]), max(t[i], t[j]))] for i, j in pairs] for t in triangles])
+    return np.hstack([vert, basis.edge_dofs[component][edge]])
+
+
+def surface_dofs(basis, pair: PairMesh, name: str, component: int, order: int, edge_map=None) -> np.ndarray:
+    """All DOFs of ``component`` on the named surface (vertex and, for P2, edge DOFs)."""
+    if name not in pair.surfaces:
+        return np.zeros(0, dtype=np.int64)
+    if order == 1:
+        return basis.nodal_dofs[component][pair.nodes(name)]
+    return np.unique(_triangle_dofs(basis, pair.surfaces[name], component, edge_map))
+
+
+def _shape(bary: np.ndarray, order: int) -> np.ndarray:
+    """Shape-function values (q, 3 or 6) at barycentric points (q, 3)."""
+    if order == 1:
+        return bary
+    l0, l1, l2 = bary.T
+    return np.column_stack([l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), 4 * l0 * l1, 4 * l1 * l2,
+                            4 * l2 * l0])
+
+
+def _sub_points(s: int) -> np.ndarray:
+    pts = []
+    for i in range(s):
+        for j in range(s - i):
+            pts.append(((i + 1 / 3) / s, (j + 1 / 3) / s))
+            if i + j < s - 1:
+                pts.append(((i + 2 / 3) / s, (j + 2 / 3) / s))
+    pts = np.array(pts)
+    return np.column_stack([1.0 - pts.sum(axis=1), pts])
+
+
+def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, order: int = 2,
+                       method: str = "schur", initial_gap=None, min_candidates: int = 20) -> ContactModel:
+    """Mortar contact model (see module docstring); arguments as :func:`fem.contact.build_model`.
+
+    ``order`` 1 or 2 (P1 / P2 tetrahedra on the mesh vertices; P2 edge nodes on
+    straight edges).  The returned model's multipliers are nodal pressures [Pa]
+    (``multiplier == "pressure"``), its ``weights`` the integrals ``m_i`` [m^2].
+    """
+    if order not in (1, 2):
+        raise ValueError(f"order must be 1 or 2, got {order!r}")
+    if not (np.isfinite(gap_limit) and gap_limit > 0):
+        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
+    timings = {}
+    t0 = time.perf_counter()
+    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
+    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
+        if name not in pair.surfaces:
+            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    timings["load_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    K, basis = stiffness(pair, materials, order=order)
+    timings["assembly_s"] = time.perf_counter() - t0
+    edge_map = _edge_index(basis.mesh) if order == 2 else None
+    fixed = [surface_dofs(basis, pair, "counter_support", c, order, edge_map) for c in range(3)]
+    fixed += [surface_dofs(basis, pair, "ball_load", c, order, edge_map) for c in range(3)]
+    fixed += [surface_dofs(basis, pair, "symmetry_x", 0, order, edge_map),
+              surface_dofs(basis, pair, "symmetry_y", 1, order, edge_map)]
+    fixed = np.unique(np.concatenate(fixed))
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+    load_dofs = surface_dofs(basis, pair, "ball_load", 2, order, edge_map)
+
+    points = pair.points
+    ball_tris = pair.surfaces["ball_contact"]
+    counter_tris = pair.surfaces["counter_contact"]
+    z_top = np.max(points[np.unique(counter_tris), 2]) + gap_limit
+    low = ball_tris[(points[ball_tris, 2] <= z_top).all(axis=1)]
+    if low.size == 0:
+        raise ValueError("no ball triangle near the counter surface: check the mesh frame")
+    # initial gap at the vertices decides the multiplier set
+    verts = np.unique(low)
+    if initial_gap is None:
+        tri_v, w_v = _project(points, counter_tris, points[verts, :2])
+        g_vert = points[verts, 2] - np.einsum("ij,ij->i", points[tri_v, 2], w_v)
+    else:
+        g_vert = np.asarray(initial_gap(points[verts, 0], points[verts, 1]), float)
+    candidates = verts[g_vert <= gap_limit]
+    if candidates.size < min_candidates:
+        raise ValueError(f"only {candidates.size} candidate contact nodes (need >= {min_candidates}): refine the "
+                         "mesh at the contact (smaller h_contact) or raise gap_limit")
+    index = -np.ones(len(points), dtype=np.int64)
+    index[candidates] = np.arange(candidates.size)
+    tris = low[(index[low] >= 0).any(axis=1)]
+    # quadrature points on the projected ball triangles
+    bary = _sub_points(SUBDIVISIONS)  # (s2, 3)
+    nq = len(bary)
+    p2 = points[tris][:, :, :2]
+    e1, e2 = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
+    zq_ball = np.einsum("qv,kv->kq", bary, points[tris][:, :, 2]).ravel()
+    wq = np.repeat(area / nq, nq)
+    phi = np.tile(bary, (len(tris), 1))  # multiplier hats at each point (k*s2, 3)
+    mult = np.repeat(index[tris], nq, axis=0)  # (k*s2, 3) multiplier index or -1
+    ball_dofs = np.repeat(_triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
+    ball_shape = np.tile(_shape(bary, order), (len(tris), 1))
+    c_tris, c_bary = _project(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
+    counter_dofs = _triangle_dofs(basis, c_tris, 2, edge_map)
+    counter_shape = _shape(c_bary, order)
+    if initial_gap is None:
+        g0q = zq_ball - np.einsum("ij,ij->i", points[c_tris, 2], c_bary)
+    else:
+        g0q = np.asarray(initial_gap(xq[:, 0], xq[:, 1]), float)
+    n_c = candidates.size
+    rows, cols, vals = [], [], []
+    g0 = np.zeros(n_c)
+    weights = np.zeros(n_c)
+    for k in range(3):
+        ok = mult[:, k] >= 0
+        i = mult[ok, k]
+        wphi = wq[ok] * phi[ok, k]
+        np.add.at(g0, i, wphi * g0q[ok])
+        np.add.at(weights, i, wphi)
+        ncol = ball_dofs.shape[1]
+        rows.append(np.repeat(i, ncol))
+        cols.append(ball_dofs[ok].ravel())
+        vals.append((wphi[:, None] * ball_shape[ok]).ravel())
+        rows.append(np.repeat(i, counter_dofs.shape[1]))
+        cols.append(counter_dofs[ok].ravel())
+        vals.append((-wphi[:, None] * counter_shape[ok]).ravel())
+    B = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n_c, K.shape[0]))
+    B.sum_duplicates()
+    if np.min(g0 / weights) < -1e-9 * np.ptp(points[:, 2]):
+        raise ValueError(f"initial penetration {-np.min(g0 / weights):.3e} m: the bodies overlap")
+    # zone edge: candidates that are vertices of a triangle with a non-candidate vertex
+    edge_tris = tris[(index[tris] < 0).any(axis=1)]
+    boundary = np.isin(candidates, edge_tris)
+    Bf = B[:, free].tocsc()
+    c_set = np.flatnonzero(Bf.getnnz(axis=0))
+    K_ff = K[free][:, free].tocsr()
+    t0 = time.perf_counter()
+    inv_cc = linsolve.inverse_block(K_ff, c_set, method=method)
+    timings["condense_s"] = time.perf_counter() - t0
+    Bc = Bf[:, c_set].toarray()
+    W = Bc @ inv_cc @ Bc.T
+    W = 0.5 * (W + W.T)
+    lumped = _lumped_area(points, pair.surfaces["ball_contact"], len(points))[candidates]
+    return ContactModel(pair, candidates, g0, W, lumped, B.tocsr(), K, free, basis, load_dofs, boundary, timings,
+                        weights=weights, multiplier="pressure")
