@@ -262,7 +262,9 @@ def fig9_worst(run):
         mesh = ax.scatter(rho_grid.ravel(), theta_grid.ravel(), c=values.ravel(), s=18, cmap="viridis",
                           marker="s")
         bad = np.isnan(values.ravel())
-        ax.scatter(rho_grid.ravel()[bad], theta_grid.ravel()[bad], s=10, marker="x", c="red")
+        ax.scatter(rho_grid.ravel()[bad], theta_grid.ravel()[bad], s=10, marker="x", c="red",
+                   label="no converged full-sliding state")
+        ax.legend(loc="lower center", fontsize=7)
         fig.colorbar(mesh, ax=ax, label=label)
         ax.set_xlabel("rho = N_x / N_y")
         ax.set_title(title)
