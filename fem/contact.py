@@ -254,7 +254,8 @@ def _pdas(model: ContactModel, force: float | None, approach: float | None, tol:
         new_active = lam - scale_c * gap > 0.0
         f_s = max(np.sum(lam) / max(idx.size, 1), 1e-300)
         g_s = max(abs(U) * float(np.median(weights)), 1e-300)
-        residual = float(np.max(np.abs(np.minimum(lam / f_s, gap / g_s))))
+        with np.errstate(over="ignore", invalid="ignore"):
+            residual = float(np.max(np.abs(np.minimum(lam / f_s, gap / g_s))))
         key = new_active.tobytes()
         if np.array_equal(new_active, active) and residual <= tol:
             break

@@ -177,3 +177,49 @@ def test_groove_quick_level_against_hertz():
     assert result.force_sum == pytest.approx(100.0, rel=1e-12)
     for quantity, tol in fe_hertz.TOLERANCES["quick"].items():
         assert getattr(result, quantity) == pytest.approx(float(getattr(ref, quantity)), rel=tol), quantity
+
+
+@pytest.fixture(scope="module", params=[1, 2], ids=["P1", "P2"])
+def mortar_flat(request):
+    from fem.mortar import build_mortar_model
+
+    geometry = hertz.ball_on_flat(R, youngs_modulus=E, poisson_ratio=NU)
+    ref = hertz.solve_load(geometry, 100.0)
+    path = contact_pairs.ball_on_flat_pair(R, ref.a / 5, 1.5, fine_radius=1.3 * ref.a)
+    model = build_mortar_model(path, (E, NU), 1.25 * ref.delta, order=request.param,
+                               initial_gap=lambda x, y: geometry.A * x * x + geometry.B * y * y)
+    return model, ref
+
+
+def test_mortar_complementarity_and_equilibrium(mortar_flat):
+    model, ref = mortar_flat
+    assert model.multiplier == "pressure"
+    # the weights m_i = int phi_i dA add up to the projected area of the candidate zone
+    assert np.all(model.weights > 0)
+    state = contact.solve_force(model, 100.0)
+    assert state.force == pytest.approx(100.0, rel=1e-12)
+    assert np.all(state.pressure >= -1e-9 * np.max(state.pressure))
+    assert np.all(state.gaps >= -1e-10 * state.approach * np.max(model.weights))
+    assert state.residual <= 1e-10
+    again = contact.solve_approach(model, state.approach)
+    assert np.allclose(again.pressure, state.pressure, atol=1e-8 * np.max(state.pressure))
+
+
+def test_p2_mortar_flat_against_hertz():
+    """P2 mortar on a coarse quarter ball-on-flat: a, p0, delta within 1.5 % of Hertz."""
+    geometry = hertz.ball_on_flat(R, youngs_modulus=E, poisson_ratio=NU)
+    ref = hertz.solve_load(geometry, 100.0)
+    result = hertz_case.solve_case(
+        lambda: contact_pairs.ball_on_flat_pair(R, ref.a / 5.5, 1.5, fine_radius=1.3 * ref.a), 100.0, (E, NU),
+        gap_limit=1.25 * ref.delta, initial_gap=lambda x, y: geometry.A * x * x + geometry.B * y * y,
+        formulation="mortar", order=2)
+    assert result.a == pytest.approx(ref.a, rel=0.015)
+    assert result.b == pytest.approx(ref.b, rel=0.015)
+    assert result.p0 == pytest.approx(ref.p0, rel=0.015)
+    assert result.delta == pytest.approx(ref.delta, rel=0.015)
+
+
+def test_bad_formulation():
+    with pytest.raises(ValueError, match="formulation"):
+        hertz_case.solve_case(lambda: contact_pairs.ball_on_flat_pair(R, 2.5e-4, 1.5), 100.0, (E, NU),
+                              gap_limit=1e-6, formulation="penalty")

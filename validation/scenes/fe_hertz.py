@@ -42,9 +42,9 @@ TIME_LIMIT_S = {"quick": 60.0, "default": 60.0, "fine": 300.0}
 # P2 tetrahedra, mortar contact; (n = b / h_contact, growth)
 ORDER, FORMULATION = 2, "mortar"
 LEVELS = {
-    "quick": [(5.0, 1.4)],
+    "quick": [(5.5, 1.4)],
     "default": [(6.0, 1.3)],
-    "fine": [(5.0, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)],
+    "fine": [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
 
 
