@@ -200,3 +200,21 @@ def test_solution_satisfies_eq4_with_exact_quadrature():
     moment_rows = np.array([[0, 0, 0, 0], [s[0], -s[1], -s[2], s[3]], [c[0], c[1], -c[2], -c[3]]])
     residual = rows @ force + moment_rows @ (-moment / RADIUS)
     assert np.max(np.abs(residual)) < 1e-6 * MU * contacts.normal_forces.max()
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+deviation = st.floats(min_value=-3.0, max_value=3.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(dbl=deviation, dbr=deviation, dtr=deviation, dtl=deviation, rho=st.floats(min_value=-0.5, max_value=0.5))
+def test_random_balls_balance_power_and_mirror(dbl, dbr, dtr, dtl, rho):
+    """Any deviations within +-3 deg and |rho| <= 0.5: converged, power balanced, mirror-symmetric."""
+    angles = math.pi / 4 + np.radians([dbl, dbr, dtr, dtl])
+    state = bb.solve_ball(make_contacts(angles, rho * VERTICAL))
+    assert state.residual <= 1e-12 and power_error(state) < 1e-8
+    mirrored = bb.solve_ball(make_contacts(angles[[1, 0, 3, 2]], -rho * VERTICAL))
+    assert mirrored.ball_velocity[0] == pytest.approx(state.ball_velocity[0], rel=1e-9)
+    assert mirrored.omega[0, 1] == pytest.approx(-state.omega[0, 1], rel=1e-6, abs=1e-9 * abs(state.omega[0, 0]))
