@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from lowmodel import bearing_ball as bb
 from lowmodel import hertz
@@ -201,9 +203,6 @@ def test_solution_satisfies_eq4_with_exact_quadrature():
     residual = rows @ force + moment_rows @ (-moment / RADIUS)
     assert np.max(np.abs(residual)) < 1e-6 * MU * contacts.normal_forces.max()
 
-
-from hypothesis import given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
 
 deviation = st.floats(min_value=-3.0, max_value=3.0)
 
