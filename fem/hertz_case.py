@@ -67,7 +67,7 @@ def contact_edge_length(model: contact.ContactModel, active: np.ndarray) -> floa
 
 
 def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_factors=LOAD_FACTORS,
-               method: str = "schur", min_elements: float = 5.0, tol: float = 1e-10,
+               method: str = "augmented", min_elements: float = 5.0, tol: float = 1e-10,
                initial_gap=None, formulation: str = "node", order: int = 1) -> CaseResult:
     """Solve one FE Hertz case.
 

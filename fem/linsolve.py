@@ -20,7 +20,7 @@ import ctypes
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["inverse_block", "factorize", "METHODS"]
+__all__ = ["compliance", "inverse_block", "factorize", "METHODS"]
 
 METHODS = ("schur", "rhs", "splu")
 
@@ -63,11 +63,12 @@ def factorize(K: sp.spmatrix):
     return solve
 
 
-def _schur_pardiso(K: sp.csr_matrix, c: np.ndarray) -> np.ndarray:
-    """Dense Schur complement of ``K`` (SPD) onto ``c`` by MKL pardiso (mtype 2, iparm[35] = 1)."""
+def _schur_pardiso(K: sp.csr_matrix, c: np.ndarray, mtype: int = 2) -> np.ndarray:
+    """Dense Schur complement of the symmetric ``K`` onto ``c`` by MKL pardiso (iparm[35] = 1);
+    ``mtype`` 2 (SPD) or -2 (symmetric indefinite)."""
     import pypardiso
 
-    host = pypardiso.PyPardisoSolver(mtype=2)
+    host = pypardiso.PyPardisoSolver(mtype=mtype)
     lib = host._mkl_pardiso
     upper = sp.triu(K, format="csr")
     upper.sort_indices()
@@ -93,7 +94,7 @@ def _schur_pardiso(K: sp.csr_matrix, c: np.ndarray) -> np.ndarray:
 
     def call(phase: int, x) -> None:
         lib(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(ctypes.c_int32(1)),
-            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(mtype)), ctypes.byref(ctypes.c_int32(phase)),
             ctypes.byref(ctypes.c_int32(n)), data.ctypes.data_as(f64), ia.ctypes.data_as(i32),
             ja.ctypes.data_as(i32), perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(1)),
             iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(f64),
@@ -107,6 +108,34 @@ def _schur_pardiso(K: sp.csr_matrix, c: np.ndarray) -> np.ndarray:
         call(-1, np.zeros(1))
     # pardiso returns the Schur block in the order of increasing global index of c
     return np.ascontiguousarray(schur)
+
+
+def compliance(K: sp.spmatrix, B: sp.spmatrix, method: str = "augmented") -> np.ndarray:
+    """Dense ``W = B K^-1 B^T`` (m x m) for SPD sparse ``K`` (n x n) and sparse ``B`` (m x n).
+
+    ``"augmented"``: pardiso's Schur complement of the symmetric indefinite
+    ``[[K, B^T], [B, 0]]`` onto its last m rows is ``-W`` (the dense part is only
+    m x m, not the size of B's column support).  Other methods: ``B_c (K^-1)_cc B_c^T``
+    with :func:`inverse_block` on the columns ``c`` that B touches.
+    """
+    B = sp.csr_matrix(B)
+    if method == "augmented" and _pardiso_available():
+        m = B.shape[0]
+        zero = sp.diags(np.zeros(m), format="csr")  # explicit zero diagonal (pardiso needs the entries)
+        augmented = sp.bmat([[sp.csr_matrix(K), B.T], [B, zero]], format="csr")
+        augmented.sum_duplicates()
+        upper = sp.triu(augmented, format="csr")
+        # make sure the zero diagonal entries are stored
+        upper = upper + sp.diags(np.r_[np.zeros(K.shape[0]), np.full(m, 1e-300)], format="csr")
+        n = K.shape[0]
+        schur = _schur_pardiso(upper, np.arange(n, n + m), mtype=-2)
+        W = -schur
+        return 0.5 * (W + W.T)
+    columns = np.flatnonzero(B.getnnz(axis=0))
+    block = inverse_block(K, columns, "schur" if method == "augmented" else method)
+    Bc = B[:, columns].toarray()
+    W = Bc @ block @ Bc.T
+    return 0.5 * (W + W.T)
 
 
 def inverse_block(K: sp.spmatrix, c: np.ndarray, method: str = "schur") -> np.ndarray:

@@ -75,6 +75,11 @@ def test_inverse_block_methods_agree():
         assert np.allclose(linsolve.inverse_block(K, c, method), reference, rtol=1e-10, atol=1e-14)
     with pytest.raises(ValueError, match="method"):
         linsolve.inverse_block(K, c, "cg")
+    # W = B K^-1 B^T: the augmented-system Schur complement agrees with the dense reference
+    B = sp.random(15, 400, density=0.03, random_state=2).tocsr()
+    W_ref = B @ np.linalg.inv(K.toarray()) @ B.T.toarray()
+    for method in ("augmented", "schur", "rhs", "splu"):
+        assert np.allclose(linsolve.compliance(K, B, method), W_ref, rtol=1e-10, atol=1e-14 * np.abs(W_ref).max())
 
 
 def test_approach_fit_recovers_coefficients():
