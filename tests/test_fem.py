@@ -177,7 +177,7 @@ def test_groove_quick_level_against_hertz():
     from validation.scenes import fe_hertz
 
     case = fe_hertz.pair_case("fe-hertz-groove-056")
-    (n, growth), = fe_hertz.LEVELS["quick"]
+    (n, growth), = case.level_list("quick")
     result, ref = fe_hertz.solve_level(case, n, growth)
     assert result.force_sum == pytest.approx(100.0, rel=1e-12)
     for quantity, tol in fe_hertz.TOLERANCES["quick"].items():

@@ -41,7 +41,7 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
         raise ValueError(f"fidelity must be one of {tuple(fe_hertz.LEVELS)}, got {fidelity!r}")
     pv.OFF_SCREEN = True
     case = fe_hertz.pair_case(scene_name)
-    n, growth = fe_hertz.LEVELS[fidelity][-1]
+    n, growth = case.level_list(fidelity)[-1]
     result, ref = fe_hertz.solve_level(case, n, growth)
     model, state = result.model, result.state
     pair = model.pair
@@ -69,7 +69,8 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     surface.point_data["contact pressure [MPa]"] = pressure[used]
     plotter = pv.Plotter(off_screen=True, window_size=(1200, 900))
     plotter.add_mesh(surface, scalars="contact pressure [MPa]", cmap="viridis", show_edges=True, edge_color="grey",
-                     line_width=0.3, scalar_bar_args={"title": "contact pressure [MPa]", "vertical": True,
+                     line_width=0.3, scalar_bar_args={"title": "contact pressure [MPa]", "vertical": False,
+                                                      "position_x": 0.25, "position_y": 0.06, "width": 0.5,
                                                       "fmt": "%.0f"})
     hertz_line = pv.lines_from_points(_ellipse(ref.a * mm, ref.b * mm, 1e-4, quarter, half))
     plotter.add_mesh(hertz_line, color="red", line_width=4, label=f"Hertz ellipse a = {ref.a * 1e3:.4f} mm, "
@@ -79,9 +80,9 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
                                                                   f"b = {result.b * 1e3:.4f} mm")
     plotter.add_legend(bcolor="black", size=(0.45, 0.1), loc="upper left")
     plotter.add_text(f"{scene_name}: p0 FE {result.p0 / 1e6:.0f} MPa, Hertz {float(ref.p0) / 1e6:.0f} MPa "
-                     f"(coordinates in mm)", position="lower_left", font_size=10)
+                     f"(coordinates in mm)", position="upper_right", font_size=10)
     plotter.view_xy()
-    plotter.show_bounds(xtitle="x [mm]", ytitle="y [mm]", ztitle="", font_size=10)
+    plotter.show_bounds(xtitle="x [mm]", ytitle="y [mm]", ztitle="", font_size=10, fmt="%.3f")
     path = target / "pressure.png"
     plotter.screenshot(str(path))
     plotter.close()
@@ -97,11 +98,12 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     cut = clipped.slice(normal=(0, 1, 0), origin=(0, y_cut, 0))
     plotter = pv.Plotter(off_screen=True, window_size=(1200, 900))
     plotter.add_mesh(cut, scalars="|u| [um]", cmap="plasma", show_edges=True, edge_color="grey", line_width=0.2,
-                     scalar_bar_args={"title": "displacement magnitude [um]", "vertical": True, "fmt": "%.2f"})
+                     scalar_bar_args={"title": "displacement magnitude [um]", "vertical": False, "position_x": 0.25,
+                                      "position_y": 0.06, "width": 0.5, "fmt": "%.2f"})
     plotter.add_text(f"{scene_name}: cut y = 0 through the contact, approach {result.approach * 1e6:.3f} um "
                      f"(coordinates in mm)", position="upper_left", font_size=10)
     plotter.view_xz()
-    plotter.show_bounds(xtitle="x [mm]", ytitle="", ztitle="z [mm]", font_size=10)
+    plotter.show_bounds(xtitle="x [mm]", ytitle="", ztitle="z [mm]", font_size=10, fmt="%.2f")
     path = target / "displacement.png"
     plotter.screenshot(str(path))
     plotter.close()

@@ -50,6 +50,12 @@ LEVELS = {
     "default": [(6.0, 1.3)],
     "fine": [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
+# circular contacts have as many elements across a as across b: finer n at the same cost
+LEVELS_CIRCULAR = {
+    "quick": [(6.0, 1.4)],
+    "default": [(10.0, 1.3)],
+    "fine": [(6.0, 1.4), (8.0, 1.3), (10.0, 1.3), (12.0, 1.25), (14.0, 1.2)],
+}
 
 
 @dataclass(frozen=True)
@@ -62,6 +68,10 @@ class PairCase:
     geometry: hertz.HertzGeometry
     force: float
     source: str
+    levels: dict = None
+
+    def level_list(self, fidelity: str) -> list:
+        return (self.levels or LEVELS)[fidelity]
 
 
 def _steel_groove(conformity: float) -> PairCase:
@@ -87,13 +97,13 @@ def pair_case(scene_name: str) -> PairCase:
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on flat", lambda h, g: contact_pairs.ball_on_flat_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.hertz.ball_on_flat (R_B 5 mm, 100 N)")
+            "lowmodel.hertz.ball_on_flat (R_B 5 mm, 100 N)", LEVELS_CIRCULAR)
     if scene_name == "fe-hertz-ball-ball":
         geometry = hertz.ball_on_ball(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on ball", lambda h, g: contact_pairs.ball_on_ball_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)")
+            "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)", LEVELS_CIRCULAR)
     if scene_name.startswith("fe-hertz-groove-0"):
         return _steel_groove(int(scene_name[-3:]) / 100.0)
     if scene_name == "fe-hertz-screw":
@@ -146,7 +156,7 @@ def write_vtu(result, path) -> None:
 
 def _run(run, scene_name: str) -> None:
     case = pair_case(scene_name)
-    levels = LEVELS[run.fidelity]
+    levels = case.level_list(run.fidelity)
     rows, results = [], []
     for n, growth in run.progress(levels, desc=f"{scene_name} mesh levels"):
         start = time.perf_counter()
