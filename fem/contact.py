@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from fem.elasticity import PairMesh, load_pair, stiffness
+from fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
 from fem import linsolve
 from lowmodel.errors import ConvergenceError
 

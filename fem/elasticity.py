@@ -5,7 +5,9 @@
   tetrahedron and the node sets / triangles of the named surfaces.
 * :func:`stiffness` assembles ``K`` [N/m] of the isotropic linear-elastic
   bodies with P1 (``order=1``) or P2 (``order=2``) tetrahedra, Lame parameters
-  per body.  P1 uses the one-point rule (exact for constant strains, about 10x
+  per body, through scikit-fem forms; :func:`stiffness_fast` builds the same
+  matrix (same DOF numbering, equal to 1e-15: test) with numpy element
+  matrices, 3-4x faster for P2; the contact solvers use it.  P1 uses the one-point rule (exact for constant strains, about 10x
   faster than the default rule: issue 5 notes); P2 the degree-2 rule (exact on
   straight-sided tetrahedra).
 
@@ -139,4 +141,77 @@ def stiffness(pair: PairMesh, materials, order: int = 1):
 
     nqp = basis.X.shape[-1]
     K = asm(form, basis, lam=np.repeat(lam_e, nqp, axis=1), mu=np.repeat(mu_e, nqp, axis=1))
+    return K.tocsr(), basis
+
+
+_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+_QA, _QB = 0.5854101966249685, 0.1381966011250105  # 4-point degree-2 rule on the tetrahedron
+
+
+def _global_dofs(pair: PairMesh, basis, order: int) -> np.ndarray:
+    """(nel, nloc, 3) global DOF of (scalar local function, component) on each tetrahedron."""
+    tets = pair.tets
+    dofs = [basis.nodal_dofs[:, tets].transpose(1, 2, 0)]  # (nel, 4, 3)
+    if order == 2:
+        edges = np.sort(basis.mesh.edges, axis=0)
+        n = len(pair.points)
+        keys = edges[0].astype(np.int64) * n + edges[1]
+        sorter = np.argsort(keys)
+        local = []
+        for i, j in _EDGES:
+            lo = np.minimum(tets[:, i], tets[:, j]).astype(np.int64)
+            hi = np.maximum(tets[:, i], tets[:, j])
+            pos = sorter[np.searchsorted(keys, lo * n + hi, sorter=sorter)]
+            local.append(basis.edge_dofs[:, pos].T)  # (nel, 3)
+        dofs.append(np.stack(local, axis=1))
+    return np.concatenate(dofs, axis=1)
+
+
+def _shape_gradients(pair: PairMesh, order: int):
+    """Gradients (nel, nq, nloc, 3) [1/m] and quadrature weights (nel, nq) [m^3]."""
+    x = pair.points[pair.tets]  # (nel, 4, 3)
+    jac = np.stack([x[:, 1] - x[:, 0], x[:, 2] - x[:, 0], x[:, 3] - x[:, 0]], axis=2)  # columns
+    inv = np.linalg.inv(jac)  # rows: grad lambda_1..3
+    grad_l = np.concatenate([-inv.sum(axis=1, keepdims=True), inv], axis=1)  # (nel, 4, 3)
+    volume = np.abs(np.linalg.det(jac)) / 6.0
+    if order == 1:
+        return grad_l[:, None], volume[:, None]
+    bary = np.full((4, 4), _QB) + np.eye(4) * (_QA - _QB)  # (nq, 4)
+    grads = []
+    for k in range(4):
+        grads.append((4.0 * bary[:, k] - 1.0)[None, :, None] * grad_l[:, None, k, :])
+    for i, j in _EDGES:
+        grads.append(4.0 * (bary[:, i][None, :, None] * grad_l[:, None, j, :]
+                            + bary[:, j][None, :, None] * grad_l[:, None, i, :]))
+    return np.stack(grads, axis=2), np.repeat(volume[:, None] / 4.0, 4, axis=1)
+
+
+def stiffness_fast(pair: PairMesh, materials, order: int = 1, chunk: int = 20000):
+    """Same matrix as :func:`stiffness` (same DOF numbering), assembled with numpy
+    element matrices ``K_e[(i,c),(j,d)] = lambda T_icjd + mu (T_idjc + delta_cd sum_k T_ikjk)``,
+    ``T_icjd = sum_q w_q d_c phi_i d_d phi_j``; about 3x faster for P2."""
+    import scipy.sparse as sp
+
+    if np.ndim(materials[0]) == 0:
+        materials = [materials, materials]
+    lam_mu = np.array([lame(*m) for m in materials])
+    basis = vector_basis(pair, order)
+    gdofs = _global_dofs(pair, basis, order)
+    ndof = basis.N
+    K = sp.csr_matrix((ndof, ndof))
+    eye = np.eye(3)
+    for start in range(0, len(pair.tets), chunk):
+        sl = slice(start, start + chunk)
+        sub = PairMesh(pair.points, pair.tets[sl], pair.body[sl])
+        grads, weights = _shape_gradients(sub, order)
+        T = np.einsum("eqic,eqjd,eq->eicjd", grads, grads, weights, optimize=True)
+        lam = lam_mu[pair.body[sl], 0][:, None, None, None, None]
+        mu = lam_mu[pair.body[sl], 1][:, None, None, None, None]
+        trace = np.einsum("eikjk->eij", T)[:, :, None, :, None] * eye[None, None, :, None, :]
+        Ke = lam * T + mu * (T.transpose(0, 1, 4, 3, 2) + trace)
+        g = gdofs[sl]  # (e, nloc, 3)
+        nloc = g.shape[1] * 3
+        rows = np.broadcast_to(g.reshape(-1, nloc, 1), (g.shape[0], nloc, nloc))
+        cols = np.broadcast_to(g.reshape(-1, 1, nloc), (g.shape[0], nloc, nloc))
+        K = K + sp.csr_matrix((Ke.reshape(-1), (rows.reshape(-1), cols.reshape(-1))), shape=(ndof, ndof))
     return K.tocsr(), basis

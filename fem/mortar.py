@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem import linsolve
 from fem.contact import ContactModel, _lumped_area, _project
-from fem.elasticity import PairMesh, load_pair, stiffness
+from fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
 
 __all__ = ["build_mortar_model", "surface_dofs"]
 

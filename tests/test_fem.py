@@ -228,3 +228,14 @@ def test_bad_formulation():
     with pytest.raises(ValueError, match="formulation"):
         hertz_case.solve_case(lambda: contact_pairs.ball_on_flat_pair(R, 2.5e-4, 1.5), 100.0, (E, NU),
                               gap_limit=1e-6, formulation="penalty")
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_fast_assembly_equals_scikit_fem(order):
+    from fem.elasticity import load_pair, stiffness_fast
+
+    pair = load_pair(contact_pairs.ball_on_flat_pair(R, 2.5e-4, 1.5))
+    materials = [(E, NU), (2.0e11, 0.3)]
+    K_ref, _ = stiffness(pair, materials, order=order)
+    K_fast, _ = stiffness_fast(pair, materials, order=order, chunk=3000)
+    assert abs(K_ref - K_fast).max() < 1e-12 * abs(K_ref).max()
