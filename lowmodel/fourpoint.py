@@ -1,0 +1,329 @@
+"""Rigid four-point contact: rolling/sliding state, ball motion and friction loss (lin2017).
+
+Lin, Duan, Okwudire, Wou, IMECE2017-72486 (papers/lin2017-four-point-rolling-sliding.md).
+
+Frame (lin2017 Figs 1-2): ball centre at the origin, ``z`` along the grooves
+(the top groove moves at ``v`` along +z, the bottom groove is fixed), ``y`` up,
+``x`` to the right.  Contacts in the order (BL, BR, TR, TL); contact ``i`` sits
+at ``q_i = R_B (-sin, -cos), (sin, -cos), (sin, cos), (-sin, cos)`` of its
+contact angle ``beta_i`` measured from the -y / +y axis (lin2017 eq 1).
+
+Model (Coulomb friction, rigid bodies, point contacts, normal forces fixed a
+priori by lin2017 eq 35):
+
+* ``omega_z = 0``.  The local-x slip of every contact is ``omega_z R_B``
+  (lin2017 eqs 4, 6), so a spinning ball slides at all four points with
+  local-x friction of one sign, whose moment about z cannot vanish
+  (lin2017 end of Sec 2.4).  Hence the local-x friction is zero and the
+  problem is the z-problem below.
+* Slip along z (lin2017 eq 7), in the scaled unknowns
+  ``u = (v_B, R_B omega_x, R_B omega_y)``:  ``slip = A u - b`` with the rows of
+  ``A`` (lin2017 eq 7 / R_B) and ``b = (0, 0, v, v)``.
+* Friction on the ball ``f_i`` (along +z); ball equilibrium of force along z
+  and moment about x, y (lin2017 eq 19) is ``A^T f = 0``, so ``f = lambda n``
+  with ``n`` the null vector of ``A^T`` (the signed 3x3 minors of ``A``).
+  Coulomb: ``|f_i| <= mu F_i``, ``f_i = -mu F_i sgn(slip_i)`` where a contact
+  slides.  Its magnitudes ``|n_i|`` are the denominators of lin2017 eq 23, so
+  ``K_i = F_i / |n_i|`` (eq 23) and ``|lambda| <= mu min_i K_i``.
+* The work of the friction on the slips is ``-f . slip = lambda n . b =
+  lambda v C_beta`` with ``C_beta = n_TR + n_TL`` (lin2017 eq 13; ``n`` is
+  normalised so that ``n_TR > 0``).  Pure rolling is possible iff
+  ``C_beta = 0`` (lin2017 eqs 9-10) and then ``u`` is lin2017 eq 11.
+  Otherwise ``lambda = mu K_min sgn(v C_beta)``: every contact with
+  ``K_i > K_min`` sticks (its Coulomb bound is not reached), the contact(s)
+  with the smallest ``K`` slide (lin2017 eq 22, Remark 1; eqs 29, 32, 34 for
+  ties), and the friction loss is ``mu K_min |v C_beta|`` (lin2017 eqs 24, 30).
+
+The same state is the minimiser of the dissipation ``sum_i mu F_i |slip_i|``
+(a weighted least-absolute-deviation fit of ``b`` by ``A``): its optimality
+conditions are exactly equilibrium plus Coulomb's law (checked against an LP
+solver in tests/test_fourpoint.py).
+
+With a tie (two to four contacts share ``K_min``), friction forces and loss are
+unique but the ball motion is not (lin2017 eq 30): the admissible motions are the
+convex hull of the one-point motions of the tied contacts.  :func:`solve`
+returns the centroid (each tied contact dissipates ``P/k``), flags
+``motion_unique = False`` and gives the range of ``v_B`` over the hull.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["CONTACTS", "FourPointState", "normal_forces", "contact_limits", "rolling_condition",
+           "characteristic_parameters", "two_point_sliding_ratio", "solve", "solve_forces"]
+
+CONTACTS = ("BL", "BR", "TR", "TL")
+TIE_TOLERANCE = 1e-12   # relative: K_i <= K_min (1 + tol) counts as a tie (roundoff of eq 23 is ~1e-15)
+ROLLING_TOLERANCE = 64 * np.finfo(float).eps  # |C_beta| below this (C_beta is O(1)) is pure rolling
+
+
+@dataclass(frozen=True)
+class FourPointState:
+    """Steady rolling/sliding state of a ball in four-point contact (lin2017).
+
+    Shapes: ``(...)`` is the broadcast shape of the inputs; per-contact arrays
+    have a trailing axis of 4 in the order (BL, BR, TR, TL).
+
+    Attributes
+    ----------
+    ball_velocity : (...) m/s, ``v_B`` along z (centroid of the admissible set on a tie)
+    omega : (..., 3) rad/s, ``(omega_x, omega_y, omega_z)``; ``omega_z = 0``
+    sliding : (..., 4) bool, contacts that slide (all False in pure rolling)
+    slip_velocity : (..., 4) m/s, relative velocity ball - groove along z (lin2017 eqs 4, 6)
+    friction_forces : (..., 4) N, friction on the ball along +z (lin2017 eqs 14, 20, 27);
+        the local-x components are zero
+    friction_loss : (...) W, ``sum mu F_i |slip_i|`` over the sliding contacts (lin2017 eqs 24, 30)
+    K : (..., 4) N, characteristic parameters (lin2017 eq 23)
+    C_beta : (...) 1, lin2017 eq 13; zero is the pure-rolling condition (eq 9)
+    normal_forces : (..., 4) N
+    pure_rolling : (...) bool
+    motion_unique : (...) bool, False on a tie (then the motion is the centroid)
+    ball_velocity_range : (..., 2) m/s, min and max of ``v_B`` over the admissible motions
+    """
+
+    ball_velocity: np.ndarray
+    omega: np.ndarray
+    sliding: np.ndarray
+    slip_velocity: np.ndarray
+    friction_forces: np.ndarray
+    friction_loss: np.ndarray
+    K: np.ndarray
+    C_beta: np.ndarray
+    normal_forces: np.ndarray
+    pure_rolling: np.ndarray
+    motion_unique: np.ndarray
+    ball_velocity_range: np.ndarray
+
+    @property
+    def n_sliding(self) -> np.ndarray:
+        """Number of sliding contacts, (...) int."""
+        return np.sum(self.sliding, axis=-1)
+
+
+# --- input checks ---------------------------------------------------------------------------
+def _angles(contact_angles) -> np.ndarray:
+    angles = np.asarray(contact_angles, dtype=float)
+    if angles.ndim == 0 or angles.shape[-1] != 4:
+        raise ValueError(f"contact_angles must have a trailing axis of 4 (BL, BR, TR, TL) [rad], got shape "
+                         f"{angles.shape}")
+    if not np.all((angles > 0.0) & (angles < 0.5 * math.pi)):  # lin2017 Sec 2.1; False for NaN
+        bad = angles[~((angles > 0.0) & (angles < 0.5 * math.pi))].ravel()[0]
+        raise ValueError(f"contact_angles must lie in (0, 90) deg, i.e. (0, pi/2) rad, got {bad!r} rad")
+    return angles
+
+
+def _positive(name: str, value, unit: str) -> np.ndarray:
+    array = np.asarray(value, dtype=float)
+    if not np.all(array > 0.0) or not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite and > 0 {unit}, i.e. in (0, inf), got {value!r}")
+    return array
+
+
+def _finite(name: str, value, unit: str, *, minimum: float | None = None) -> np.ndarray:
+    array = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite [{unit}], got {value!r}")
+    if minimum is not None and np.any(array < minimum):
+        raise ValueError(f"{name} must be >= {minimum} [{unit}], i.e. in [{minimum}, inf), got {value!r}")
+    return array
+
+
+# --- lin2017 eqs 35-37 -------------------------------------------------------------------------
+def _eq36(side_force, vertical_force, angles):
+    bl, br, tr, tl = np.moveaxis(angles, -1, 0)
+    bottom = np.sin(bl + br)
+    top = np.sin(tl + tr)
+    return np.stack([-(side_force * np.cos(br) - vertical_force * np.sin(br)) / bottom,   # lin2017 eq 36
+                     (side_force * np.cos(bl) + vertical_force * np.sin(bl)) / bottom,
+                     -(side_force * np.cos(tl) - vertical_force * np.sin(tl)) / top,
+                     (side_force * np.cos(tr) + vertical_force * np.sin(tr)) / top], axis=-1)
+
+
+def contact_limits(contact_angles) -> tuple[np.ndarray, np.ndarray]:
+    """Range of the side-force ratio ``rho = N_x / N_y`` with four-point contact (lin2017 eq 37).
+
+    ``contact_angles`` (..., 4) rad.  Returns ``(rho_min, rho_max)``, each (...);
+    contact needs ``rho_min < rho < rho_max`` (equality: a force is zero).
+    """
+    bl, br, tr, tl = np.moveaxis(_angles(contact_angles), -1, 0)
+    return -np.minimum(np.tan(bl), np.tan(tr)), np.minimum(np.tan(br), np.tan(tl))  # lin2017 eq 37
+
+
+def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:
+    """Normal contact forces from the loads on the top groove (lin2017 eqs 35-36).
+
+    Parameters
+    ----------
+    side_force : (...) N, ``N_x`` on the top groove along +x
+    vertical_force : (...) N, ``N_y`` pressing the top groove down (-y), > 0
+    contact_angles : (..., 4) rad, (BL, BR, TR, TL), each in (0, pi/2)
+
+    Returns
+    -------
+    (..., 4) N, ``(F_BL, F_BR, F_TR, F_TL)``, all > 0.
+
+    Raises ValueError when four-point contact is lost (a force <= 0, lin2017
+    eq 37), naming the allowed range of ``side_force``.
+    """
+    angles = _angles(contact_angles)
+    vertical = _positive("vertical_force", vertical_force, "N (lin2017 eq 37: N_y > 0)")
+    side = _finite("side_force", side_force, "N")
+    shape = np.broadcast_shapes(side.shape, vertical.shape, angles.shape[:-1])
+    side, vertical = np.broadcast_to(side, shape), np.broadcast_to(vertical, shape)
+    angles = np.broadcast_to(angles, shape + (4,))
+    forces = _eq36(side, vertical, angles)                 # lin2017 eq 36
+    if not np.all(forces > 0.0):
+        lower, upper = contact_limits(angles)
+        ratio = side / vertical
+        index = np.unravel_index(np.argmin(np.min(forces, axis=-1)), forces.shape[:-1])
+        raise ValueError(
+            f"side_force: loss of four-point contact (lin2017 eq 37), N_x/N_y = {float(ratio[index]):.6g} "
+            f"must lie in ({float(lower[index]):.6g}, {float(upper[index]):.6g}) = "
+            f"(-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL)); "
+            f"contact {CONTACTS[int(np.argmin(forces[index]))]} has F = {float(np.min(forces[index])):.6g} N")
+    return forces
+
+
+# --- kinematics and the null vector of A^T --------------------------------------------------------
+def _rows(angles) -> np.ndarray:
+    """Rows of lin2017 eq 7's A_v divided by R_B (columns 1, q_y/R_B, -q_x/R_B), (..., 4, 3)."""
+    cos, sin = np.cos(angles), np.sin(angles)
+    sign_y = np.array([-1.0, -1.0, 1.0, 1.0])   # q_y / (R_B cos beta): bottom -, top +
+    sign_x = np.array([1.0, -1.0, -1.0, 1.0])   # -q_x / (R_B sin beta): left +, right -
+    return np.stack([np.ones_like(cos), sign_y * cos, sign_x * sin], axis=-1)
+
+
+def _null_vector(rows) -> np.ndarray:
+    """Signed 3x3 minors of the 4x3 matrix ``rows``: ``n`` with ``rows^T n = 0``, ``n_TR > 0``. (..., 4)."""
+    def det3(a, b, c):
+        return np.einsum("...i,...i->...", a, np.cross(b, c))
+
+    r0, r1, r2, r3 = (rows[..., k, :] for k in range(4))
+    n = np.stack([det3(r1, r2, r3), -det3(r0, r2, r3), det3(r0, r1, r3), -det3(r0, r1, r2)], axis=-1)
+    return n * np.sign(n[..., 2:3])
+
+
+def rolling_condition(contact_angles) -> np.ndarray:
+    """``C_beta`` of lin2017 eq 13, (...) dimensionless, from the minors of eq 7's A_v.
+
+    Pure rolling is possible iff ``C_beta = 0`` (lin2017 eqs 9-10).
+    """
+    n = _null_vector(_rows(_angles(contact_angles)))
+    return n[..., 2] + n[..., 3]
+
+
+def characteristic_parameters(contact_angles, forces) -> np.ndarray:
+    """``K_i = F_i / |n_i|`` (lin2017 eqs 23, 38), (..., 4) N.
+
+    ``forces`` (..., 4) N are the normal contact forces (BL, BR, TR, TL).
+    """
+    n = _null_vector(_rows(_angles(contact_angles)))
+    return np.asarray(forces, dtype=float) / np.abs(n)
+
+
+def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarray:
+    """Side-force ratio ``rho = N_x / N_y`` at which ``K_first = K_second`` (..., ) 1.
+
+    The forces of lin2017 eq 36 are linear in ``rho`` at fixed ``N_y``, so
+    ``K_first - K_second`` is linear in ``rho`` and its zero is exact.  Where
+    both are also the smallest ``K`` this is a two-point sliding line (lin2017
+    Figs 7, 11; eq 39 for case study 1).  Returns NaN where the difference
+    does not depend on ``rho`` (identical or parallel K lines).
+    """
+    i, j = CONTACTS.index(first), CONTACTS.index(second)
+    angles = _angles(contact_angles)
+    weight = 1.0 / np.abs(_null_vector(_rows(angles)))
+    at_zero = _eq36(0.0, 1.0, angles) * weight        # K / N_y at rho = 0
+    slope = _eq36(1.0, 0.0, angles) * weight          # dK / d(N_x)
+    difference = at_zero[..., i] - at_zero[..., j]
+    rate = slope[..., j] - slope[..., i]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = difference / rate
+    return np.where(np.abs(rate) > 1e-14 * (np.abs(slope[..., i]) + np.abs(slope[..., j])), ratio, np.nan)
+
+
+# --- the rolling/sliding state ----------------------------------------------------------------------
+def solve(contact_angles, side_force, vertical_force, *, ball_radius, friction_coefficient,
+          groove_velocity, tie_tolerance: float = TIE_TOLERANCE) -> FourPointState:
+    """Rolling/sliding state of a ball in four-point contact (lin2017 Sec 2-3).
+
+    Parameters
+    ----------
+    contact_angles : (..., 4) rad, (BL, BR, TR, TL), each in (0, pi/2)
+    side_force, vertical_force : (...) N, ``N_x``, ``N_y`` on the top groove (lin2017 eq 35)
+    ball_radius : (...) m, ``R_B`` > 0
+    friction_coefficient : (...) ``mu_k`` >= 0 (mu -> 0+ limit at 0)
+    groove_velocity : (...) m/s, ``v`` of the top groove along z (any sign)
+    tie_tolerance : relative tolerance under which two ``K`` count as equal
+
+    All inputs broadcast against each other (leading axes of contact_angles).
+    """
+    forces = normal_forces(side_force, vertical_force, contact_angles)
+    return solve_forces(contact_angles, forces, ball_radius=ball_radius,
+                        friction_coefficient=friction_coefficient, groove_velocity=groove_velocity,
+                        tie_tolerance=tie_tolerance)
+
+
+def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, groove_velocity,
+                 tie_tolerance: float = TIE_TOLERANCE) -> FourPointState:
+    """As :func:`solve`, from given normal forces ``forces`` (..., 4) N, each > 0."""
+    angles = _angles(contact_angles)
+    forces = _positive("normal forces", forces, "N (four-point contact, lin2017 eq 37)")
+    if forces.shape[-1:] != (4,):
+        raise ValueError(f"forces must have a trailing axis of 4 (BL, BR, TR, TL) [N], got shape {forces.shape}")
+    radius = _positive("ball_radius", ball_radius, "m")
+    mu = _finite("friction_coefficient", friction_coefficient, "1", minimum=0.0)
+    velocity = _finite("groove_velocity", groove_velocity, "m/s")
+    if not (tie_tolerance >= 0.0 and tie_tolerance < 1e-3):
+        raise ValueError(f"tie_tolerance must lie in [0, 1e-3), got {tie_tolerance!r}")
+    shape = np.broadcast_shapes(angles.shape[:-1], forces.shape[:-1], radius.shape, mu.shape, velocity.shape)
+    angles = np.broadcast_to(angles, shape + (4,))
+    forces = np.broadcast_to(forces, shape + (4,))
+    radius, mu, velocity = (np.broadcast_to(x, shape) for x in (radius, mu, velocity))
+
+    rows = _rows(angles)                                   # lin2017 eq 7 / R_B
+    n = _null_vector(rows)                                 # |n| = denominators of eq 23
+    K = forces / np.abs(n)                                 # lin2017 eq 23
+    C_beta = n[..., 2] + n[..., 3]                         # lin2017 eq 13
+    rolling = np.abs(C_beta) <= ROLLING_TOLERANCE          # lin2017 eq 9
+    k_min = np.min(K, axis=-1)
+    sliding = (K <= k_min[..., None] * (1.0 + tie_tolerance)) & ~rolling[..., None]   # lin2017 eqs 22, 29, 32, 34
+    count = np.maximum(np.sum(sliding, axis=-1), 1)
+
+    b = np.zeros(shape + (4,))
+    b[..., 2:] = velocity[..., None]                       # top groove moves at v (lin2017 eq 7)
+    nb = velocity * C_beta                                 # n . b
+    # slip of the tied contacts at the centroid of the admissible set (each dissipates P / k)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip_target = np.where(sliding, -nb[..., None] / (count[..., None] * n), 0.0)
+    gram = np.einsum("...ki,...kj->...ij", rows, rows)
+    rhs = np.concatenate([np.einsum("...ki,...k->...i", rows, b + slip_target)[..., None],
+                          np.swapaxes(rows, -1, -2)], axis=-1)          # (..., 3, 5)
+    solution = np.linalg.solve(gram, rhs)
+    scaled = solution[..., 0]                              # (v_B, R_B omega_x, R_B omega_y)
+    slip = np.einsum("...ki,...i->...k", rows, scaled) - b  # lin2017 eqs 4, 6, 7
+    slip = np.where(sliding, slip, 0.0)                    # sticking contacts: zero up to roundoff
+
+    # one-point motions of the tied contacts (vertices of the admissible set): v_B range
+    base = solution[..., 0, 0] - np.einsum("...k,...k->...", solution[..., 0, 1:], slip_target)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex_velocity = base[..., None] + solution[..., 0, 1:] * np.where(sliding, -nb[..., None] / n, 0.0)
+    any_sliding = np.any(sliding, axis=-1)
+    velocity_range = np.stack([np.where(any_sliding, np.min(np.where(sliding, vertex_velocity, np.inf), axis=-1),
+                                        scaled[..., 0]),
+                               np.where(any_sliding, np.max(np.where(sliding, vertex_velocity, -np.inf), axis=-1),
+                                        scaled[..., 0])], axis=-1)
+
+    # friction: f = lambda n (ball equilibrium, lin2017 eq 19), |lambda| = mu K_min (eqs 20-22)
+    multiplier = np.where(rolling, 0.0, mu * k_min * np.sign(nb))
+    friction = multiplier[..., None] * n                   # lin2017 eq 20 (eqs 14, 27 where sliding)
+    loss = np.sum(mu[..., None] * forces * np.abs(slip), axis=-1)   # lin2017 eqs 24, 30
+
+    omega = np.stack([scaled[..., 1] / radius, scaled[..., 2] / radius, np.zeros(shape)], axis=-1)
+    return FourPointState(ball_velocity=scaled[..., 0], omega=omega, sliding=sliding, slip_velocity=slip,
+                          friction_forces=friction, friction_loss=loss, K=K, C_beta=C_beta,
+                          normal_forces=np.array(forces), pure_rolling=rolling,
+                          motion_unique=np.sum(sliding, axis=-1) <= 1, ball_velocity_range=velocity_range)
