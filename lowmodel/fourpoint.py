@@ -43,7 +43,7 @@ With a tie (two to four contacts share ``K_min``), friction forces and loss are
 unique but the ball motion is not (lin2017 eq 30): the admissible motions are the
 convex hull of the one-point motions of the tied contacts.  :func:`solve`
 returns the centroid (each tied contact dissipates ``P/k``), flags
-``motion_unique = False`` and gives the range of ``v_B`` over the hull.
+``motion_unique = False`` and gives the componentwise range of the motion over the hull.
 """
 from __future__ import annotations
 
@@ -81,7 +81,8 @@ class FourPointState:
     normal_forces : (..., 4) N
     pure_rolling : (...) bool
     motion_unique : (...) bool, False on a tie (then the motion is the centroid)
-    ball_velocity_range : (..., 2) m/s, min and max of ``v_B`` over the admissible motions
+    motion_range : (..., 2, 3) min (row 0) and max (row 1) of ``(v_B [m/s], omega_x, omega_y [rad/s])``
+        over the admissible motions (equal to the motion when it is unique)
     """
 
     ball_velocity: np.ndarray
@@ -95,7 +96,7 @@ class FourPointState:
     normal_forces: np.ndarray
     pure_rolling: np.ndarray
     motion_unique: np.ndarray
-    ball_velocity_range: np.ndarray
+    motion_range: np.ndarray
 
     @property
     def n_sliding(self) -> np.ndarray:
@@ -307,15 +308,16 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     slip = np.einsum("...ki,...i->...k", rows, scaled) - b  # lin2017 eqs 4, 6, 7
     slip = np.where(sliding, slip, 0.0)                    # sticking contacts: zero up to roundoff
 
-    # one-point motions of the tied contacts (vertices of the admissible set): v_B range
-    base = solution[..., 0, 0] - np.einsum("...k,...k->...", solution[..., 0, 1:], slip_target)
+    # one-point motions of the tied contacts (vertices of the admissible set, lin2017 eq 30): ranges
+    base = solution[..., 0] - np.einsum("...ik,...k->...i", solution[..., 1:], slip_target)   # motion for b alone
     with np.errstate(divide="ignore", invalid="ignore"):
-        vertex_velocity = base[..., None] + solution[..., 0, 1:] * np.where(sliding, -nb[..., None] / n, 0.0)
-    any_sliding = np.any(sliding, axis=-1)
-    velocity_range = np.stack([np.where(any_sliding, np.min(np.where(sliding, vertex_velocity, np.inf), axis=-1),
-                                        scaled[..., 0]),
-                               np.where(any_sliding, np.max(np.where(sliding, vertex_velocity, -np.inf), axis=-1),
-                                        scaled[..., 0])], axis=-1)
+        vertex_slip = np.where(sliding, -nb[..., None] / n, 0.0)
+    vertices = base[..., None, :] + solution[..., 1:].swapaxes(-1, -2) * vertex_slip[..., None]   # (..., 4, 3)
+    any_sliding = np.any(sliding, axis=-1)[..., None]
+    mask = sliding[..., None]
+    motion_range = np.stack([np.where(any_sliding, np.min(np.where(mask, vertices, np.inf), axis=-2), scaled),
+                             np.where(any_sliding, np.max(np.where(mask, vertices, -np.inf), axis=-2), scaled)],
+                            axis=-2) / np.stack([np.ones(shape), radius, radius], axis=-1)[..., None, :]
 
     # friction: f = lambda n (ball equilibrium, lin2017 eq 19), |lambda| = mu K_min (eqs 20-22)
     multiplier = np.where(rolling, 0.0, mu * k_min * np.sign(nb))
@@ -326,4 +328,4 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     return FourPointState(ball_velocity=scaled[..., 0], omega=omega, sliding=sliding, slip_velocity=slip,
                           friction_forces=friction, friction_loss=loss, K=K, C_beta=C_beta,
                           normal_forces=np.array(forces), pure_rolling=rolling,
-                          motion_unique=np.sum(sliding, axis=-1) <= 1, ball_velocity_range=velocity_range)
+                          motion_unique=np.sum(sliding, axis=-1) <= 1, motion_range=motion_range)
