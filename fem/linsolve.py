@@ -39,16 +39,13 @@ def factorize(K: sp.spmatrix):
     if _pardiso_available():
         import pypardiso
 
-        solver = pypardiso.PyPardisoSolver(mtype=11)
-        solver.set_iparm(1, 1)
-        solver.set_iparm(2, 2)
-        solver.set_iparm(10, 13)
-        solver.set_iparm(11, 1)
-        solver.set_iparm(13, 1)
-        solver.factorize(K)
+        solver = pypardiso.PyPardisoSolver(mtype=2)  # real SPD: the upper triangle is used
+        upper = sp.triu(K, format="csr")
+        upper.sort_indices()
+        solver.factorize(upper)
 
         def solve(b):
-            return solver.solve(K, np.asarray(b, dtype=float))
+            return solver.solve(upper, np.asarray(b, dtype=float))
 
         solve.free = lambda: solver.free_memory(everything=True)
         return solve

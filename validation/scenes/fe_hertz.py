@@ -50,6 +50,12 @@ LEVELS = {
     "default": [(6.0, 1.3)],
     "fine": [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
+# conformity 0.52: the most elongated ellipse (a/b = 8.1), b needs n = 6.5 at the default level
+LEVELS_052 = {
+    "quick": [(5.5, 1.4)],
+    "default": [(6.5, 1.3)],
+    "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.2)],
+}
 # the screw pair is a full model (no symmetry): about 2.5x the DOFs of a quarter groove
 LEVELS_SCREW = {
     "quick": [(5.5, 1.6)],
@@ -80,7 +86,7 @@ class PairCase:
         return (self.levels or LEVELS)[fidelity]
 
 
-def _steel_groove(conformity: float) -> PairCase:
+def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
     from meshes import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
@@ -91,7 +97,7 @@ def _steel_groove(conformity: float) -> PairCase:
                                                  fine_half_length=1.1 * ref.a)
 
     return PairCase(f"groove {conformity}", build, geometry, LOAD,
-                    f"lowmodel.hertz.ball_in_groove (conformity {conformity}, R_B 5 mm, 100 N)")
+                    f"lowmodel.hertz.ball_in_groove (conformity {conformity}, R_B 5 mm, 100 N)", levels)
 
 
 def pair_case(scene_name: str) -> PairCase:
@@ -111,7 +117,8 @@ def pair_case(scene_name: str) -> PairCase:
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
             "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)", LEVELS_CIRCULAR)
     if scene_name.startswith("fe-hertz-groove-0"):
-        return _steel_groove(int(scene_name[-3:]) / 100.0)
+        conformity = int(scene_name[-3:]) / 100.0
+        return _steel_groove(conformity, LEVELS_052 if scene_name.endswith("052") else None)
     if scene_name == "fe-hertz-screw":
         from meshes import helical
 
@@ -185,7 +192,8 @@ def _run(run, scene_name: str) -> None:
     run.check(model=MODEL, quantity="force_sum", unit="N", value=result.force_sum, reference=case.force,
               source="load equilibrium (sum of contact forces)", tolerance=1e-9, time_s=wall)
     run.check(model=MODEL, quantity="wall_time", unit="s", value=wall, reference=TIME_LIMIT_S[run.fidelity],
-              source="issue 5 time budget", tolerance=0.0, relation="le", time_s=wall)
+              source="issue 5 time budget (meshing + assembly + condensation + load sweep + fit of the checked "
+                     "level; a cached mesh costs nothing)", tolerance=0.0, relation="le", time_s=wall)
     run.note(f"contact solve: {result.iterations} active-set iterations, complementarity residual "
              f"{result.residual:.1e} (tolerance 1e-10); bulk compliance C_b = {result.bulk_compliance:.3e} m/N "
              f"(FE approach of the reference faces {result.approach:.4e} m = delta + C_b F)")
@@ -194,8 +202,12 @@ def _run(run, scene_name: str) -> None:
         writer.writeheader()
         writer.writerows(rows)
     run.add_artifact(run.path("convergence.csv"))
-    write_vtu(result, run.path("fields.vtu"))
-    run.add_artifact(run.path("fields.vtu"))
+    if run.fidelity != "quick":  # one more sparse solve; CI skips it
+        start = time.perf_counter()
+        write_vtu(result, run.path("fields.vtu"))
+        run.add_artifact(run.path("fields.vtu"))
+        run.note(f"fields.vtu (displacement, contact pressure) took {time.perf_counter() - start:.1f} s more "
+                 "(one sparse solve for the full displacement field); not part of the checked wall time")
     _plot(run, scene_name, rows)
 
 
