@@ -234,6 +234,8 @@ def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarr
     Figs 7, 11; eq 39 for case study 1).  Returns NaN where the difference
     does not depend on ``rho`` (identical or parallel K lines).
     """
+    if first not in CONTACTS or second not in CONTACTS or first == second:
+        raise ValueError(f"first and second must be two different contacts of {CONTACTS}, got {first!r}, {second!r}")
     i, j = CONTACTS.index(first), CONTACTS.index(second)
     angles = _angles(contact_angles)
     weight = 1.0 / np.abs(_null_vector(_rows(angles)))
@@ -272,7 +274,7 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
                  tie_tolerance: float = TIE_TOLERANCE) -> FourPointState:
     """As :func:`solve`, from given normal forces ``forces`` (..., 4) N, each > 0."""
     angles = _angles(contact_angles)
-    forces = _positive("normal forces", forces, "N (four-point contact, lin2017 eq 37)")
+    forces = _positive("forces", forces, "N (normal forces; four-point contact, lin2017 eq 37)")
     if forces.shape[-1:] != (4,):
         raise ValueError(f"forces must have a trailing axis of 4 (BL, BR, TR, TL) [N], got shape {forces.shape}")
     radius = _positive("ball_radius", ball_radius, "m")

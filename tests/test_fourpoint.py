@@ -123,9 +123,11 @@ def test_bad_input_names_parameter_and_range(name, value, match):
 def test_bad_input_normal_forces_and_solve_forces():
     with pytest.raises(ValueError, match=r"contact_angles.*\(0, 90\) deg"):
         fourpoint.normal_forces(0.0, N_Y, np.radians([45, 45, 45, 95.0]))
-    with pytest.raises(ValueError, match=r"normal forces.*> 0"):
+    with pytest.raises(ValueError, match=r"forces.*> 0"):
         fourpoint.solve_forces(case1(0.0), [10.0, -1.0, 10.0, 10.0], ball_radius=R_B, friction_coefficient=MU,
                                groove_velocity=V)
+    with pytest.raises(ValueError, match="first and second"):
+        fourpoint.two_point_sliding_ratio(case1(0.01), "TR", "XX")
     with pytest.raises(ValueError, match="tie_tolerance"):
         fourpoint.solve(**GOOD, tie_tolerance=-1.0)
 
