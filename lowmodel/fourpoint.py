@@ -116,19 +116,27 @@ def _angles(contact_angles) -> np.ndarray:
     return angles
 
 
+def _first(array: np.ndarray, bad: np.ndarray) -> float:
+    """The first offending element (for the error message)."""
+    return float(np.broadcast_to(array, bad.shape)[bad].ravel()[0])
+
+
 def _positive(name: str, value, unit: str) -> np.ndarray:
     array = np.asarray(value, dtype=float)
-    if not np.all(array > 0.0) or not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite and > 0 {unit}, i.e. in (0, inf), got {value!r}")
+    bad = ~((array > 0.0) & np.isfinite(array))
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite and > 0 {unit}, i.e. in (0, inf), got {_first(array, bad)!r}")
     return array
 
 
 def _finite(name: str, value, unit: str, *, minimum: float | None = None) -> np.ndarray:
     array = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite [{unit}], got {value!r}")
+    bad = ~np.isfinite(array)
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite [{unit}], got {_first(array, bad)!r}")
     if minimum is not None and np.any(array < minimum):
-        raise ValueError(f"{name} must be >= {minimum} [{unit}], i.e. in [{minimum}, inf), got {value!r}")
+        raise ValueError(f"{name} must be >= {minimum} [{unit}], i.e. in [{minimum}, inf), got "
+                         f"{_first(array, array < minimum)!r}")
     return array
 
 
@@ -190,7 +198,7 @@ def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:
 
 # --- kinematics and the null vector of A^T --------------------------------------------------------
 def _rows(angles) -> np.ndarray:
-    """Rows of lin2017 eq 7's A_v divided by R_B (columns 1, q_y/R_B, -q_x/R_B), (..., 4, 3)."""
+    """lin2017 eq 7's A_v with columns 2-3 divided by R_B: rows (1, q_y/R_B, -q_x/R_B), (..., 4, 3)."""
     cos, sin = np.cos(angles), np.sin(angles)
     sign_y = np.array([-1.0, -1.0, 1.0, 1.0])   # q_y / (R_B cos beta): bottom -, top +
     sign_x = np.array([1.0, -1.0, -1.0, 1.0])   # -q_x / (R_B sin beta): left +, right -
@@ -291,7 +299,7 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     n = _null_vector(rows)                                 # |n| = denominators of eq 23
     K = forces / np.abs(n)                                 # lin2017 eq 23
     C_beta = n[..., 2] + n[..., 3]                         # lin2017 eq 13
-    rolling = np.abs(C_beta) <= ROLLING_TOLERANCE          # lin2017 eq 9
+    rolling = (np.abs(C_beta) <= ROLLING_TOLERANCE) | (velocity == 0.0)   # lin2017 eq 9 (or a groove at rest)
     k_min = np.min(K, axis=-1)
     sliding = (K <= k_min[..., None] * (1.0 + tie_tolerance)) & ~rolling[..., None]   # lin2017 eqs 22, 29, 32, 34
     count = np.maximum(np.sum(sliding, axis=-1), 1)

@@ -274,7 +274,8 @@ def test_physics_random_cases():
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.lists(st.floats(10, 80), min_size=4, max_size=4), st.floats(0.02, 0.98), st.floats(-1.0, 1.0))
+@given(st.lists(st.floats(10, 80), min_size=4, max_size=4), st.floats(0.02, 0.98),
+       st.floats(-1.0, 1.0, allow_subnormal=False))
 def test_physics_property(angles_deg, fraction, velocity):
     angles = np.radians(angles_deg)
     lower, upper = fourpoint.contact_limits(angles)
@@ -375,6 +376,9 @@ def test_scaling_in_load_and_mu():
     heavy = solve(angles, rho, vertical=3 * N_Y, mu=0.2)
     np.testing.assert_allclose(heavy.ball_velocity, state.ball_velocity, rtol=1e-14)
     np.testing.assert_allclose(heavy.friction_loss, 6 * state.friction_loss, rtol=1e-12)
+    at_rest = solve(angles, rho, v=0.0)
+    assert np.all(at_rest.pure_rolling) and not at_rest.sliding.any() and np.all(at_rest.friction_loss == 0.0)
+    assert np.all(at_rest.ball_velocity == 0.0) and np.all(at_rest.omega == 0.0)
     zero = solve(angles, rho, mu=0.0)
     assert np.all(zero.friction_loss == 0.0) and np.all(zero.friction_forces == 0.0)
 
