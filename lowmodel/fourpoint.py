@@ -256,6 +256,15 @@ def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarr
     return np.where(np.abs(rate) > 1e-14 * (np.abs(slope[..., i]) + np.abs(slope[..., j])), ratio, np.nan)
 
 
+def _solve3(matrix, rhs):
+    """Solve stacked 3x3 systems by the adjugate (columns r1 x r2, r2 x r0, r0 x r1 over det)."""
+    r0, r1, r2 = matrix[..., 0, :], matrix[..., 1, :], matrix[..., 2, :]
+    c0, c1, c2 = np.cross(r1, r2), np.cross(r2, r0), np.cross(r0, r1)
+    det = np.einsum("...i,...i->...", r0, c0)
+    inverse = np.stack([c0, c1, c2], axis=-1) / det[..., None, None]
+    return np.einsum("...ij,...jk->...ik", inverse, rhs)
+
+
 # --- the rolling/sliding state ----------------------------------------------------------------------
 def solve(contact_angles, side_force, vertical_force, *, ball_radius, friction_coefficient,
           groove_velocity, tie_tolerance: float = TIE_TOLERANCE) -> FourPointState:
@@ -313,7 +322,7 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     gram = np.einsum("...ki,...kj->...ij", rows, rows)
     rhs = np.concatenate([np.einsum("...ki,...k->...i", rows, b + slip_target)[..., None],
                           np.swapaxes(rows, -1, -2)], axis=-1)          # (..., 3, 5)
-    solution = np.linalg.solve(gram, rhs)
+    solution = _solve3(gram, rhs)
     scaled = solution[..., 0]                              # (v_B, R_B omega_x, R_B omega_y)
     slip = np.einsum("...ki,...i->...k", rows, scaled) - b  # lin2017 eqs 4, 6, 7
     slip = np.where(sliding, slip, 0.0)                    # sticking contacts: zero up to roundoff
