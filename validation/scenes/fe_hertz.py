@@ -57,10 +57,11 @@ LEVELS_052 = {
     "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
 # the screw pair is a full model (no symmetry): about 2.5x the DOFs of a quarter groove
+# (and a tighter fine zone, 1.2 b around |x| <= a, still covering the 1.5 F contact)
 LEVELS_SCREW = {
     "quick": [(5.5, 1.6)],
-    "default": [(5.5, 1.4)],
-    "fine": [(5.5, 1.6), (5.5, 1.5), (5.5, 1.4), (6.0, 1.3)],
+    "default": [(6.0, 1.45)],
+    "fine": [(5.5, 1.6), (6.0, 1.45), (6.5, 1.4), (7.0, 1.35)],
 }
 # circular contacts have as many elements across a as across b: finer n at the same cost
 LEVELS_CIRCULAR = {
@@ -130,7 +131,7 @@ def pair_case(scene_name: str) -> PairCase:
                                          youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
-            *args, h_contact=h, growth=g, fine_radius=1.4 * ref.b, fine_half_length=1.1 * ref.a), geometry, LOAD,
+            *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
             "lowmodel.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", LEVELS_SCREW)
     raise ValueError(f"no FE Hertz scene {scene_name!r}")
 
