@@ -219,11 +219,10 @@ def lin2017_eq41(run):
     run.check(model=MODEL, quantity=f"omega_x, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
               unit="rad/s", value=value, reference=reference, source="lin2017 eq 41", tolerance=1e-9, time_s=time_s)
     scale = v / BALL_RADIUS
-    for column, name in ((1, "omega_y"), (2, "omega_z")):
-        worst = int(np.argmax(np.abs(state.omega[:, column])))
-        run.check(model=MODEL, quantity=f"{name}, largest |value| over theta in [0, 5] deg", unit="rad/s",
-                  value=float(state.omega[worst, column]), reference=0.0, source="lin2017 eq 41",
-                  tolerance=1e-9, scale=scale, time_s=time_s, note="scale v / R_B")
+    worst = int(np.argmax(np.abs(state.omega[:, 1])))
+    run.check(model=MODEL, quantity="omega_y, largest |value| over theta in [0, 5] deg", unit="rad/s",
+              value=float(state.omega[worst, 1]), reference=0.0, source="lin2017 eq 41", tolerance=1e-9,
+              scale=scale, time_s=time_s, note="scale v / R_B")
     tr_only = np.all(state.sliding[1:] == [False, False, True, False], axis=-1)
     run.check(model=MODEL, quantity="fraction of theta in (0, 5] deg with TR sliding alone", unit="1",
               value=float(np.mean(tr_only)), reference=1.0, source="lin2017 Sec 3.2 ('the TR contact point will be "
@@ -235,6 +234,7 @@ def lin2017_eq41(run):
               source="lin2017 Sec 3.2 ('translational and rotational velocities decrease')", tolerance=0.0,
               time_s=time_s)
     run.note("Eq 11 as printed lacks the factor v of the numerator; eq 41 carries it (v_B = v/2 at theta = 0).")
+    run.note("omega_z = 0 is not computed but follows from the model (lin2017 end of Sec 2.4; docs/fourpoint.md).")
 
 
 @scene("lin2017-eq40", "Friction loss of case study 1 against lin2017 eq 40 (K of eq 38); power balance; "
