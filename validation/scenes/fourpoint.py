@@ -216,7 +216,8 @@ def lin2017_eq41(run):
     run.check(model=MODEL, quantity=f"v_B, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
               unit="m/s", value=value, reference=reference, source="lin2017 eq 41", tolerance=1e-9, time_s=time_s)
     value, reference, k = _worst(state.omega[:, 0], eq41 * math.sqrt(2) / BALL_RADIUS)
-    run.check(model=MODEL, quantity=f"omega_x, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
+    run.check(model=MODEL,
+              quantity=f"omega_x, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
               unit="rad/s", value=value, reference=reference, source="lin2017 eq 41", tolerance=1e-9, time_s=time_s)
     scale = v / BALL_RADIUS
     worst = int(np.argmax(np.abs(state.omega[:, 1])))
@@ -277,7 +278,8 @@ def lin2017_eq40(run):
     line = fourpoint.two_point_sliding_ratio(case1_angles(theta_values[rows]), "TR", "BR")
     run.check(model=MODEL, quantity="fraction of theta != 0 whose loss over rho peaks at the two-point line "
                                     "(|rho| <= tan 2.5 deg) and falls on both sides", unit="1",
-              value=_unimodal_rows(loss[rows], rho_values, line) / len(rows), reference=1.0, tolerance=0.0, time_s=time_s,
+              value=_unimodal_rows(loss[rows], rho_values, line) / len(rows), reference=1.0, tolerance=0.0,
+              time_s=time_s,
               source="lin2017 Sec 3.2 ('smaller side load generally gives rise to more friction loss')")
     fig = _loss_figure(theta_values, rho_values, loss, r"angular misalignment $\theta$ [deg]",
                        "lin2017 Fig 8: relative friction loss, case 1")
