@@ -214,34 +214,7 @@ def test_breakdown_near_four_point_limit_is_diagnosed():
     assert info.value.residual > 1e-6
 
 
-@pytest.fixture
-def fourpoint_module(monkeypatch):
-    """lowmodel.fourpoint, or a local eq-36 stand-in while that module has not landed."""
-    try:
-        from lowmodel import fourpoint
-        return fourpoint
-    except ImportError:
-        import sys
-        import types
-
-        import lowmodel
-
-        stand_in = types.ModuleType("lowmodel.fourpoint")
-
-        def normal_forces(side_force, vertical_force, contact_angles):
-            forces = eq36(np.asarray(side_force, dtype=float), np.asarray(vertical_force, dtype=float),
-                          contact_angles)
-            if np.any(forces <= 0.0):
-                raise ValueError("side_force: loss of four-point contact (lin2017 eq 37)")
-            return forces
-
-        stand_in.normal_forces = normal_forces
-        monkeypatch.setitem(sys.modules, "lowmodel.fourpoint", stand_in)
-        monkeypatch.setattr(lowmodel, "fourpoint", stand_in, raising=False)
-        return stand_in
-
-
-def test_module_contacts_error_exactly_at_loss_of_contact(fourpoint_module):
+def test_module_contacts_error_exactly_at_loss_of_contact():
     theta = math.radians(3.0)
     limit = math.tan(math.pi / 4 - theta)  # lin2017 eq 37 for ball 1
     contacts = b2b.module_contacts(theta, -limit * (1 - 1e-12))
@@ -254,7 +227,7 @@ def test_module_contacts_error_exactly_at_loss_of_contact(fourpoint_module):
         b2b.module_contacts(float("nan"), 0.1)
 
 
-def test_module_contacts_reproduce_table3(fourpoint_module):
+def test_module_contacts_reproduce_table3():
     state = b2b.solve(b2b.module_contacts(math.radians(2.0), -0.6), [0.0])
     assert state.b2b_force[0] == pytest.approx(4.01, rel=0.03)  # lin2019 Table 3 case (a), numerical
 
