@@ -45,6 +45,7 @@ class CaseResult:
     timings: dict
     sweep: tuple
     fit: postprocess.EllipseFit
+    approach_fit: postprocess.ApproachFit
     model: contact.ContactModel = field(repr=False)
     state: contact.ContactState = field(repr=False)
 
@@ -119,4 +120,4 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
     return CaseResult(fit.a, fit.b, fit.p0, approach.contact_approach(force), nominal.approach,
                       approach.bulk_compliance, nominal.force, nominal.iterations, nominal.residual, model.ndofs,
                       int(model.candidates.size), h, timings, (np.array(forces), np.array(approaches)), fit,
-                      model, nominal)
+                      approach, model, nominal)

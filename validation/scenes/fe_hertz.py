@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem.hertz_case import LOAD_FACTORS
 from lowmodel import hertz
 from validation.scene import scene
 
@@ -197,7 +198,9 @@ def _run(run, scene_name: str) -> None:
                      "level; a cached mesh costs nothing)", tolerance=0.0, relation="le", time_s=wall)
     run.note(f"contact solve: {result.iterations} active-set iterations, complementarity residual "
              f"{result.residual:.1e} (tolerance 1e-10); bulk compliance C_b = {result.bulk_compliance:.3e} m/N "
-             f"(FE approach of the reference faces {result.approach:.4e} m = delta + C_b F)")
+             f"(FE approach of the reference faces {result.approach:.4e} m = delta + C_b F; rms residual of "
+             f"U = C_H F^(2/3) + C_b F over the sweep F x {LOAD_FACTORS}: "
+             f"{result.approach_fit.rms / result.delta:.1e} delta)")
     with open(run.path("convergence.csv"), "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
