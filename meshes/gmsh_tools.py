@@ -97,8 +97,20 @@ def contact_refinement(gmsh, h_contact: float, growth: float, h_max: float, *,
     field = gmsh.model.mesh.field
     distance = field.add("MathEval")
     field.setString(distance, "F", f"Sqrt((x-({x0!r}))^2 + (y-({y0!r}))^2 + (z-({z0!r}))^2)")
+    return size_threshold(gmsh, distance, h_contact, growth, h_max, fine_radius=fine_radius)
+
+
+def size_threshold(gmsh, distance_field: int, h_contact: float, growth: float, h_max: float, *,
+                   fine_radius: float = 0.0) -> int:
+    """Background size ``h = min(h_max, h_contact + (growth - 1) max(0, d - fine_radius))``
+    with ``d`` the value [m] of the gmsh field ``distance_field``; returns the field tag.
+
+    Turns off MeshSizeFromPoints/FromCurvature/ExtendFromBoundary so that the
+    field alone governs the size (issue 5 notes).
+    """
+    field = gmsh.model.mesh.field
     threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
+    field.setNumber(threshold, "InField", distance_field)
     field.setNumber(threshold, "SizeMin", h_contact)
     field.setNumber(threshold, "SizeMax", h_max)
     field.setNumber(threshold, "DistMin", fine_radius)
@@ -106,7 +118,7 @@ def contact_refinement(gmsh, h_contact: float, growth: float, h_max: float, *,
     field.setNumber(threshold, "DistMax", fine_radius + (h_max - h_contact) / slope)
     field.setAsBackgroundMesh(threshold)
     for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
-        gmsh.option.setNumber(option, 0)  # the field alone governs the size (issue 5 notes)
+        gmsh.option.setNumber(option, 0)
     gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
     return threshold

@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, write_msh
+from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, size_threshold, write_msh
 
 __all__ = [
     "HelicalGroove",
@@ -533,18 +533,7 @@ def _patch_refinement(gmsh, h_contact: float, growth: float, h_max: float, half_
     beyond = [f"((Abs({axis}) - ({length!r}) + Abs(Abs({axis}) - ({length!r}))) / 2)"  # max(0, |x| - l_x)
               for axis, length in zip("xyz", lengths)]
     field.setString(distance, "F", f"Sqrt({beyond[0]}^2 + {beyond[1]}^2 + {beyond[2]}^2)")
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    field.setNumber(threshold, "SizeMin", h_contact)
-    field.setNumber(threshold, "SizeMax", h_max)
-    field.setNumber(threshold, "DistMin", 0.0)
-    field.setNumber(threshold, "DistMax", (h_max - h_contact) / max(growth - 1.0, 1e-9))
-    field.setAsBackgroundMesh(threshold)
-    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
-        gmsh.option.setNumber(option, 0)  # the field alone governs the size (issue 5 notes)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
-    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
-    return threshold
+    return size_threshold(gmsh, distance, h_contact, growth, h_max)
 
 
 def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
