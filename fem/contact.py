@@ -156,18 +156,7 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     """
     if order != 1:
         raise ValueError(f"order must be 1 for contact (node-to-surface on P1 nodes), got {order!r}")
-    if not (np.isfinite(gap_limit) and gap_limit > 0):
-        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
-    timings = {}
-    t0 = time.perf_counter()
-    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
-    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
-        if name not in pair.surfaces:
-            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
-    timings["load_s"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    K, basis = stiffness(pair, materials, order=1)
-    timings["assembly_s"] = time.perf_counter() - t0
+    pair, K, basis, timings = load_and_assemble(mesh, materials, order=1, gap_limit=gap_limit)
     dofs = basis.nodal_dofs  # (3, nnodes)
     fixed = [dofs[:, pair.nodes("counter_support")].ravel(), dofs[:, pair.nodes("ball_load")].ravel(),
              dofs[0, pair.nodes("symmetry_x")], dofs[1, pair.nodes("symmetry_y")]]
@@ -302,3 +291,21 @@ def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
     u[model.free] = solve(rhs[model.free])
     solve.free()
     return u[model.basis.nodal_dofs].T.copy()
+
+
+def load_and_assemble(mesh, materials, *, order: int, gap_limit: float):
+    """Load a contact pair (path or :class:`PairMesh`), check its physical groups and
+    ``gap_limit`` [m], and assemble the stiffness; returns ``(pair, K, basis, timings)``."""
+    if not (np.isfinite(gap_limit) and gap_limit > 0):
+        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
+    timings = {}
+    t0 = time.perf_counter()
+    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
+    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
+        if name not in pair.surfaces:
+            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    timings["load_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    K, basis = stiffness(pair, materials, order=order)
+    timings["assembly_s"] = time.perf_counter() - t0
+    return pair, K, basis, timings

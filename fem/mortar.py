@@ -24,8 +24,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from fem import linsolve
-from fem.contact import ContactModel, _lumped_area, _project
-from fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
+from fem.contact import ContactModel, _lumped_area, _project, load_and_assemble
+from fem.elasticity import PairMesh
 
 __all__ = ["build_mortar_model", "surface_dofs"]
 
@@ -86,18 +86,7 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     """
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
-    if not (np.isfinite(gap_limit) and gap_limit > 0):
-        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
-    timings = {}
-    t0 = time.perf_counter()
-    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
-    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
-        if name not in pair.surfaces:
-            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
-    timings["load_s"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    K, basis = stiffness(pair, materials, order=order)
-    timings["assembly_s"] = time.perf_counter() - t0
+    pair, K, basis, timings = load_and_assemble(mesh, materials, order=order, gap_limit=gap_limit)
     edge_map = _edge_index(basis.mesh) if order == 2 else None
     fixed = [surface_dofs(basis, pair, "counter_support", c, order, edge_map) for c in range(3)]
     fixed += [surface_dofs(basis, pair, "ball_load", c, order, edge_map) for c in range(3)]
