@@ -9,7 +9,9 @@ import math
 
 import numpy as np
 
-from lowmodel import b2b, bearing_ball, hertz
+from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+
+from ballbench.lowmodel.contact import hertz
 
 RADIUS = 5e-3  # lin2019 Table 1
 

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from lowmodel import b2b_analytical as b2b
+from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 
 N_CASES = 1_000_000
 COMMON = dict(normal_load=100.0, groove_velocity=0.01, friction_coefficient=0.1, psi=5.3073e-4, ball_radius=5e-3)

@@ -4,7 +4,7 @@ Run: python -m pytest benchmarks/test_bench_ellipse_friction.py
 """
 import numpy as np
 
-from lowmodel import ellipse_friction as ef
+from ballbench.lowmodel.contact import ellipse_friction as ef
 
 
 def test_map_build_cold(benchmark, tmp_path, monkeypatch):

@@ -4,7 +4,7 @@ Run: python -m pytest benchmarks/test_bench_hertz.py
 """
 import numpy as np
 
-from lowmodel import hertz
+from ballbench.lowmodel.contact import hertz
 
 N_LOADS = 100_000
 

@@ -11,7 +11,7 @@ import pytest
 meshio = pytest.importorskip("meshio")
 pytest.importorskip("gmsh")
 
-from meshes import fourpoint_module, helical, helical_module, rail  # noqa: E402
+from ballbench.meshes import fourpoint_module, helical, helical_module, rail
 
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0)  # lin2019 Table 4
 

@@ -7,8 +7,8 @@ Run: python -m pytest benchmarks/test_bench_screw_kinematics.py
 """
 import numpy as np
 
-from lowmodel import harris
-from lowmodel import screw_kinematics as sk
+from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.screw import kinematics as sk
 
 N_BALLS = 200_000
 

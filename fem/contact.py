@@ -34,9 +34,9 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
-from fem import linsolve
-from lowmodel.errors import ConvergenceError
+from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
+from ballbench.fem import linsolve
+from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement"]
 

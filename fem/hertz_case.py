@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem import contact, postprocess
+from ballbench.fem import contact, postprocess
 
 __all__ = ["CaseResult", "solve_case", "contact_edge_length"]
 
@@ -88,7 +88,7 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
             raise ValueError(f"node-to-surface contact needs order 1, got {order!r}")
         model = contact.build_model(path, materials, gap_limit, method=method, initial_gap=initial_gap)
     elif formulation == "mortar":
-        from fem.mortar import build_mortar_model
+        from ballbench.fem.mortar import build_mortar_model
 
         model = build_mortar_model(path, materials, gap_limit, order=order, method=method, initial_gap=initial_gap)
     else:

@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from fem import linsolve
-from fem.contact import ContactModel, _lumped_area, _project, load_and_assemble
-from fem.elasticity import PairMesh
+from ballbench.fem import linsolve
+from ballbench.fem.contact import ContactModel, _lumped_area, _project, load_and_assemble
+from ballbench.fem.elasticity import PairMesh
 
 __all__ = ["build_mortar_model", "surface_dofs"]
 

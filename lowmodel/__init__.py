@@ -3,17 +3,17 @@
 numpy/scipy only; importing this package must stay light (no gmsh, pyvista,
 vtk or matplotlib at import time).  One module per model:
 
-- ``lowmodel.hertz``: exact Hertz point contact (Johnson 1985; lin2019 eqs 15, 53)
+- ``lowmodel.contact.hertz``: exact Hertz point contact (Johnson 1985; lin2019 eqs 15, 53)
 - ``lowmodel.fourpoint``: rigid four-point rolling/sliding (lin2017)
-- ``lowmodel.ellipse_friction``: friction over a Hertz ellipse with an offset
+- ``lowmodel.contact.ellipse_friction``: friction over a Hertz ellipse with an offset
   velocity centre (lin2019 Appendix A4-A7), tabulated and cached
-- ``lowmodel.bearing_ball``: single-ball quasi-static friction solver (lin2019 eqs 1-4)
-- ``lowmodel.b2b``: two- and N-ball ball-to-ball contact (lin2019 eqs 5-10)
-- ``lowmodel.b2b_analytical``: analytical B2B model (lin2019 eqs 11-33)
-- ``lowmodel.helix``: ball-screw helix and Frenet frame (shared geometry)
-- ``lowmodel.screw_kinematics``: contact kinematics, slide-roll ratio,
+- ``lowmodel.linear_bearing.bearing_ball``: single-ball quasi-static friction solver (lin2019 eqs 1-4)
+- ``lowmodel.linear_bearing.b2b``: two- and N-ball ball-to-ball contact (lin2019 eqs 5-10)
+- ``lowmodel.linear_bearing.b2b_analytical``: analytical B2B model (lin2019 eqs 11-33)
+- ``lowmodel.geometry.helix``: ball-screw helix and Frenet frame (shared geometry)
+- ``lowmodel.screw.kinematics``: contact kinematics, slide-roll ratio,
   entrainment velocity (wang2022), Wei's absolute-velocity measures
-- ``lowmodel.harris``: ball-bearing kinematics relative to the cage (Harris)
+- ``lowmodel.screw.harris``: ball-bearing kinematics relative to the cage (Harris)
 
 Shared: ``lowmodel.errors`` (ConvergenceError), ``lowmodel.cache``.
 """

@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from meshes import gmsh_tools
+from ballbench.meshes import gmsh_tools
 
 __all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "SYMMETRIES"]
 

@@ -23,9 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.gmsh_tools import cached_msh, physical, session, write_msh
-from meshes.helical import _check_refinement, _finite, _positive
-from meshes.rail import _add_bottom_rail, _classify_rail_faces, _refine_at_points, gothic_arch
+from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
+from ballbench.meshes.helical import _check_refinement, _finite, _positive
+from ballbench.meshes.rail import _add_bottom_rail, _classify_rail_faces, _refine_at_points, gothic_arch
 
 __all__ = ["CONTACTS", "contact_points", "fourpoint_module"]
 

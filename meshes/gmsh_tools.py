@@ -57,7 +57,7 @@ def cached_msh(prefix: str, parameters: dict, version: str = "1", *, cache: bool
     Returns ``(path, build)``; ``build`` is True if the file is missing or
     ``cache`` is False.
     """
-    from lowmodel.cache import cache_dir, parameter_hash
+    from ballbench.lowmodel.cache import cache_dir, parameter_hash
 
     path = cache_dir("meshes") / f"{prefix}-{parameter_hash(parameters, version)}.msh"
     return path, (not cache) or (not path.exists())

@@ -26,7 +26,7 @@ Two profile planes are offered (``profile_plane``):
     and the surface normal there passes through the ball centre (the helix
     velocity of the contact point is orthogonal to the contact normal).
 ``"axial"``: the profile is drawn in the axial plane (``c = (0, 0, 1)``), the
-    convention of :func:`lowmodel.hertz.groove_curvatures_helical`.  The surface
+    convention of :func:`lowmodel.contact.hertz.groove_curvatures_helical`.  The surface
     normal at the profile contact point is then tilted out of the axial plane
     (by 8.8 deg for lin2019 Table 4), so a ball tangent there has its centre
     ``R_B`` along the true normal, slightly off the helix.
@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, size_threshold, write_msh
+from ballbench.meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, size_threshold, write_msh
 
 __all__ = [
     "HelicalGroove",
@@ -253,7 +253,7 @@ class ContactFrame:
     (along the groove, the rolling direction, oriented with increasing azimuth);
     ``major = minor x normal`` so (major, minor, normal) is right-handed.
     Curvatures are positive convex as seen from the ball (the concave groove
-    cross-section has ``curvature_major ~ -1/r_g``), as in :mod:`lowmodel.hertz`.
+    cross-section has ``curvature_major ~ -1/r_g``), as in :mod:`lowmodel.contact.hertz`.
     """
 
     point: np.ndarray
@@ -319,12 +319,12 @@ def pair_hertz_geometry(ball_radius: float, conformity: float, pitch_radius: flo
                         contact_angle: float, body: str = "screw", *, flank: str = "left",
                         profile_plane: str = "normal", youngs_modulus: float = 2.1e11,
                         poisson_ratio: float = 0.28):
-    """Hertz geometry (:class:`lowmodel.hertz.HertzGeometry`) of the contact meshed by
+    """Hertz geometry (:class:`lowmodel.contact.hertz.HertzGeometry`) of the contact meshed by
     :func:`ball_in_screw_groove_pair` with the same arguments: the ball's curvature
     ``1/R_B`` and the groove's exact principal curvatures at the contact; ``A``
     belongs to the contact-frame x axis.  For ``profile_plane="axial"`` it equals
-    :func:`lowmodel.hertz.ball_in_screw_groove` (tested)."""
-    from lowmodel import hertz
+    :func:`lowmodel.contact.hertz.ball_in_screw_groove` (tested)."""
+    from ballbench.lowmodel.contact import hertz
 
     frame = contact_frame(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank,
                                          profile_plane))
@@ -860,7 +860,7 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
             if tags:
                 physical(gmsh, 2, tags, "segment_free" if name == "free" else name)
         if refine:
-            from meshes.rail import _refine_at_points
+            from ballbench.meshes.rail import _refine_at_points
 
             contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
             _refine_at_points(gmsh, contacts, h_contact, growth, h_max, fine_radius)

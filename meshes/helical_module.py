@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.fourpoint_module import _cap_angle, _split_ball
-from meshes.gmsh_tools import cached_msh, physical, session, write_msh
-from meshes.helical import (MESH_FORMAT_VERSION as _HELICAL_VERSION, _add_segment, _check_refinement, _finite,
+from ballbench.meshes.fourpoint_module import _cap_angle, _split_ball
+from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
+from ballbench.meshes.helical import (MESH_FORMAT_VERSION as _HELICAL_VERSION, _add_segment, _check_refinement, _finite,
                             _positive, _segment_dimensions, _segment_grooves, _snap_segment)
 
 __all__ = ["CONTACTS", "ball_centre_azimuths", "ball_screw_module"]
@@ -150,7 +150,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
             for name, tags in surfaces.items():
                 physical(gmsh, 2, tags, f"ball{k}_{name}")
         if refine:
-            from meshes.rail import _refine_at_points
+            from ballbench.meshes.rail import _refine_at_points
 
             if n_balls == 2:
                 contact_points.append((centres[0] + centres[1]) / 2)

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, write_msh
-from meshes.helical import _check_refinement, _conformity, _contact_angle, _finite, _positive
+from ballbench.meshes.gmsh_tools import cached_msh, contact_refinement, physical, session, write_msh
+from ballbench.meshes.helical import _check_refinement, _conformity, _contact_angle, _finite, _positive
 
 __all__ = ["GothicArch", "gothic_arch", "rail_segment"]
 

@@ -6,10 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from lowmodel import b2b
-from lowmodel import bearing_ball as bb
-from lowmodel import hertz
-from lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
 
 from test_bearing_ball import GEOMETRY, MU, RADIUS, SPEED, VERTICAL, case_angles, eq36, power_error
 

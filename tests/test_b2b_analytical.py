@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from lowmodel import b2b_analytical as b2b
-from lowmodel import hertz
+from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
+from ballbench.lowmodel.contact import hertz
 
 BALL_RADIUS = 5e-3  # lin2019 Table 1
 MU = 0.1

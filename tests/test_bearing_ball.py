@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lowmodel import bearing_ball as bb
-from lowmodel import hertz
-from lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
 
 RADIUS = 5e-3  # lin2019 Table 1
 CONFORMITY = 0.56
@@ -185,7 +185,7 @@ def test_loss_of_contact_is_an_error():
 
 def test_solution_satisfies_eq4_with_exact_quadrature():
     """Independent of the tabulated map: eq 4 at the solution with lin2019 eqs A4-A5 by direct quadrature."""
-    from lowmodel.ellipse_friction import friction_exact
+    from ballbench.lowmodel.contact.ellipse_friction import friction_exact
 
     contacts = make_contacts(case_angles(2.0, (0.5, -0.3)), -60.0)
     state = bb.solve_ball(contacts)

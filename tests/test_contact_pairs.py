@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fem.elasticity import load_pair
-from meshes import contact_pairs, gmsh_tools
+from ballbench.fem.elasticity import load_pair
+from ballbench.meshes import contact_pairs, gmsh_tools
 
 R = 5e-3
 COARSE = dict(h_contact=2.5e-4, growth=1.5)

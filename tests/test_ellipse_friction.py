@@ -8,7 +8,7 @@ import pytest
 from scipy import integrate
 from scipy.special import ellipe, ellipk
 
-from lowmodel import ellipse_friction as ef
+from ballbench.lowmodel.contact import ellipse_friction as ef
 
 
 # --------------------------------------------------------------------------

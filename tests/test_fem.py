@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from fem import contact, hertz_case, linsolve, postprocess
-from fem.elasticity import PairMesh, lame, stiffness
-from lowmodel import hertz
-from lowmodel.errors import ConvergenceError
-from meshes import contact_pairs
+from ballbench.fem import contact, hertz_case, linsolve, postprocess
+from ballbench.fem.elasticity import PairMesh, lame, stiffness
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.meshes import contact_pairs
 
 E, NU = 2.1e11, 0.28
 R = 5e-3
@@ -174,7 +174,7 @@ def test_ellipse_fit_recovers_exact_hertz_forces(flat_model):
 
 def test_groove_quick_level_against_hertz():
     """Coarse CI level of the conformity-0.56 groove: within 3 % (p0 4 %) of Hertz."""
-    from validation.scenes import fe_hertz
+    from ballbench.validation.scenes import fe_hertz
 
     case = fe_hertz.pair_case("fe-hertz-groove-056")
     (n, growth), = case.level_list("quick")
@@ -186,7 +186,7 @@ def test_groove_quick_level_against_hertz():
 
 @pytest.fixture(scope="module", params=[1, 2], ids=["P1", "P2"])
 def mortar_flat(request):
-    from fem.mortar import build_mortar_model
+    from ballbench.fem.mortar import build_mortar_model
 
     geometry = hertz.ball_on_flat(R, youngs_modulus=E, poisson_ratio=NU)
     ref = hertz.solve_load(geometry, 100.0)
@@ -232,7 +232,7 @@ def test_bad_formulation():
 
 @pytest.mark.parametrize("order", [1, 2])
 def test_fast_assembly_equals_scikit_fem(order):
-    from fem.elasticity import load_pair, stiffness_fast
+    from ballbench.fem.elasticity import load_pair, stiffness_fast
 
     pair = load_pair(contact_pairs.ball_on_flat_pair(R, 2.5e-4, 1.5))
     materials = [(E, NU), (2.0e11, 0.3)]

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import pytest
 
-from validation.runner import run_scene
-from validation.scene import registry
+from ballbench.validation.runner import run_scene
+from ballbench.validation.scene import registry
 
 FAST = ["fe-hertz-flat", "fe-hertz-ball-ball", "fe-hertz-groove-052", "fe-hertz-groove-056", "fe-hertz-groove-060"]
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from validation import show
+from ballbench.validation import show
 
 
 def test_show_writes_pngs(tmp_path):

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linprog
 
-from lowmodel import fourpoint
+from ballbench.lowmodel import fourpoint
 
 R_B = 5e-3
 MU = 0.1

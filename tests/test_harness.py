@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from validation import cli
-from validation.report import write_report
-from validation.runner import run_scene
-from validation.scene import Scene, relative_error
+from ballbench.validation import cli
+from ballbench.validation.report import write_report
+from ballbench.validation.runner import run_scene
+from ballbench.validation.scene import Scene, relative_error
 
 
 def test_relative_error_conventions():

@@ -1,8 +1,8 @@
-"""lowmodel.helix: Frenet frame of the ball-centre helix, contact points (wang2022 eqs 9-15)."""
+"""lowmodel.geometry.helix: Frenet frame of the ball-centre helix, contact points (wang2022 eqs 9-15)."""
 import numpy as np
 import pytest
 
-from lowmodel import helix
+from ballbench.lowmodel.geometry import helix
 
 R_M = 20.7e-3  # m, wang2022 Table A1 (d_m / 2)
 LEAD = 20e-3  # m

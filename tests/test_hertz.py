@@ -1,4 +1,4 @@
-"""lowmodel.hertz against closed forms, an independent quadrature route and limits."""
+"""lowmodel.contact.hertz against closed forms, an independent quadrature route and limits."""
 from __future__ import annotations
 
 import math
@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lowmodel import hertz
-from validation.reference_hertz import ellipse_quadrature, sphere_closed_form
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.reference_hertz import ellipse_quadrature, sphere_closed_form
 
 E_STEEL, NU_STEEL = 2.1e11, 0.28
 

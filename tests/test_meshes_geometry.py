@@ -10,8 +10,8 @@ import pytest
 gmsh = pytest.importorskip("gmsh")
 meshio = pytest.importorskip("meshio")
 
-from lowmodel import hertz  # noqa: E402
-from meshes import helical  # noqa: E402
+from ballbench.lowmodel.contact import hertz
+from ballbench.meshes import helical
 
 # lin2019 Table 4
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0)
@@ -58,7 +58,7 @@ def _quadratic_fit(points: np.ndarray, radius: float, degree: int = 3) -> np.nda
 @pytest.mark.parametrize("body", ["screw", "nut"])
 @pytest.mark.parametrize("flank", ["left", "right"])
 def test_profile_curvatures_equal_lowmodel_hertz(body, flank, plane):
-    """Two independent implementations of the helical groove agree (lowmodel.hertz
+    """Two independent implementations of the helical groove agree (lowmodel.contact.hertz
     works at the +z flank; the left flank is its image under the half-turn about x3)."""
     groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
     frame = helical.contact_frame(groove)
@@ -467,7 +467,7 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
 # --------------------------------------------------------------------------
 # straight gothic-arch rail
 # --------------------------------------------------------------------------
-from meshes import fourpoint_module, rail  # noqa: E402
+from ballbench.meshes import fourpoint_module, rail
 
 R_RAIL = 5e-3  # lin2019 Table 1
 DEV = math.radians(2.0)
@@ -668,7 +668,7 @@ def test_groove_segment_bad_input_names_the_parameter(kwargs, match):
 # --------------------------------------------------------------------------
 # ball-screw module (lin2019 Fig 12b)
 # --------------------------------------------------------------------------
-from meshes import helical_module  # noqa: E402
+from ballbench.meshes import helical_module
 
 SCREW_DEVIATIONS = (0.0, math.radians(2.0), 0.0, 0.0)  # lin2019 Fig 17 case (a) on the screw, uniform
 

@@ -1,9 +1,11 @@
-"""lowmodel.screw_kinematics and lowmodel.harris against wang2022 (Tables 1-2, eqs 1-30, Sec 3.4 trends)."""
+"""lowmodel.screw.kinematics and lowmodel.screw.harris against wang2022 (Tables 1-2, eqs 1-30, Sec 3.4 trends)."""
 import numpy as np
 import pytest
 
-from lowmodel import harris, helix
-from lowmodel import screw_kinematics as sk
+from ballbench.lowmodel.screw import harris
+
+from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel.screw import kinematics as sk
 
 RPM = 2 * np.pi / 60
 # wang2022 Table A1 (d_m and d_b are diameters; r_m, r_b radii)

@@ -11,7 +11,7 @@ import fnmatch
 import sys
 from pathlib import Path
 
-from validation.scene import registry
+from ballbench.validation.scene import registry
 
 
 def _select(names: list[str]):
@@ -38,8 +38,8 @@ def _cmd_scenes(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from validation.report import write_report
-    from validation.runner import run_scenes
+    from ballbench.validation.report import write_report
+    from ballbench.validation.runner import run_scenes
 
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
     scenes = sorted(_select(args.scenes), key=lambda s: s.name)
@@ -58,7 +58,7 @@ def _cmd_show(args) -> int:
     scenes = registry()
     if args.scene not in scenes:
         raise SystemExit(f"ballbench: no scene {args.scene!r}; `ballbench scenes` lists them")
-    from validation import show
+    from ballbench.validation import show
 
     paths = show.show(args.scene, Path(args.out), fidelity="quick" if args.quick else "default")
     for p in paths:

@@ -1,4 +1,4 @@
-"""Reference solutions for Hertz contact, kept apart from ``lowmodel.hertz``.
+"""Reference solutions for Hertz contact, kept apart from ``lowmodel.contact.hertz``.
 
 Two independent routes:
 

@@ -17,7 +17,7 @@ import math
 from pathlib import Path
 from typing import Sequence
 
-from validation.scene import Output, SceneResult
+from ballbench.validation.scene import Output, SceneResult
 
 CSV_FIELDS = ("scene", "model", "quantity", "unit", "value", "reference", "source",
               "rel_error", "tolerance", "passed", "time_s", "relation", "note")

@@ -7,7 +7,7 @@ import traceback
 from pathlib import Path
 from typing import Iterable
 
-from validation.scene import Run, Scene, SceneResult
+from ballbench.validation.scene import Run, Scene, SceneResult
 
 
 def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = True) -> SceneResult:

@@ -3,12 +3,12 @@
 A scene is a plain function decorated with :func:`scene`.  It receives a
 :class:`Run` and uses it to time model calls and record checked outputs::
 
-    from validation.scene import scene
+    from ballbench.validation.scene import scene
 
     @scene("hertz-sphere-flat", "Ball on a flat: exact Hertz against the closed form")
     def hertz_sphere_flat(run):
         contact, time_s = run.time(hertz.solve_load, geometry, 100.0)
-        run.check(model="lowmodel.hertz", quantity="a", unit="m",
+        run.check(model="lowmodel.contact.hertz", quantity="a", unit="m",
                   value=contact.a, reference=a_closed_form,
                   source="Johnson (1985) eq 4.22", tolerance=1e-10,
                   time_s=time_s)
@@ -234,7 +234,7 @@ class Run:
 
 def registry() -> dict[str, Scene]:
     """All registered scenes, after importing every module of validation.scenes."""
-    from validation import scenes as _scenes  # noqa: F401  (imports register)
+    from ballbench.validation import scenes as _scenes
 
     _scenes.load_all()
     return dict(_REGISTRY)

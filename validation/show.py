@@ -4,7 +4,7 @@ Two PNGs in ``<out>/<scene>/``:
 
 * ``pressure.png`` - nodal contact pressure [MPa] on the ball's contact surface
   (seen along -z, through the counter body), with the Hertz ellipse outline
-  (lowmodel.hertz, semi-axes a along x, b along y) drawn over it and the
+  (lowmodel.contact.hertz, semi-axes a along x, b along y) drawn over it and the
   fitted FE ellipse dashed;
 * ``displacement.png`` - displacement magnitude [um] on the cut y = 0 through
   the contact (both bodies), zoomed on the contact.
@@ -32,8 +32,8 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     """Solve the scene's FE case at ``fidelity`` and write its screenshots; returns the PNG paths."""
     import pyvista as pv
 
-    from fem.contact import full_displacement
-    from validation.scenes import fe_hertz
+    from ballbench.fem.contact import full_displacement
+    from ballbench.validation.scenes import fe_hertz
 
     if not scene_name.startswith("fe-hertz-"):
         raise ValueError(f"show supports the FE scenes fe-hertz-*, got {scene_name!r}")

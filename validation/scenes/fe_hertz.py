@@ -1,4 +1,4 @@
-"""FE contact benchmark: scikit-fem two-body contact against exact Hertz (lowmodel.hertz).
+"""FE contact benchmark: scikit-fem two-body contact against exact Hertz (lowmodel.contact.hertz).
 
 Each scene meshes a symmetry cut of its pair (meshes.contact_pairs, or the
 helical screw pair of meshes.helical), solves the frictionless contact
@@ -25,9 +25,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.hertz_case import LOAD_FACTORS
-from lowmodel import hertz
-from validation.scene import scene
+from ballbench.fem.hertz_case import LOAD_FACTORS
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.scene import scene
 
 MODEL = "fem.contact"
 E_STEEL, NU_STEEL = 2.1e11, 0.28  # lin2019 Table 1
@@ -89,7 +89,7 @@ class PairCase:
 
 
 def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
-    from meshes import contact_pairs
+    from ballbench.meshes import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
     ref = hertz.solve_load(geometry, LOAD)
@@ -99,30 +99,30 @@ def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
                                                  fine_half_length=1.1 * ref.a)
 
     return PairCase(f"groove {conformity}", build, geometry, LOAD,
-                    f"lowmodel.hertz.ball_in_groove (conformity {conformity}, R_B 5 mm, 100 N)", levels)
+                    f"lowmodel.contact.hertz.ball_in_groove (conformity {conformity}, R_B 5 mm, 100 N)", levels)
 
 
 def pair_case(scene_name: str) -> PairCase:
     """The pair of an ``fe-hertz-*`` scene."""
-    from meshes import contact_pairs
+    from ballbench.meshes import contact_pairs
 
     if scene_name == "fe-hertz-flat":
         geometry = hertz.ball_on_flat(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on flat", lambda h, g: contact_pairs.ball_on_flat_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.hertz.ball_on_flat (R_B 5 mm, 100 N)", LEVELS_CIRCULAR)
+            "lowmodel.contact.hertz.ball_on_flat (R_B 5 mm, 100 N)", LEVELS_CIRCULAR)
     if scene_name == "fe-hertz-ball-ball":
         geometry = hertz.ball_on_ball(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on ball", lambda h, g: contact_pairs.ball_on_ball_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.hertz.ball_on_ball (R_B 5 mm each, 100 N)", LEVELS_CIRCULAR)
+            "lowmodel.contact.hertz.ball_on_ball (R_B 5 mm each, 100 N)", LEVELS_CIRCULAR)
     if scene_name.startswith("fe-hertz-groove-0"):
         conformity = int(scene_name[-3:]) / 100.0
         return _steel_groove(conformity, LEVELS_052 if scene_name.endswith("052") else None)
     if scene_name == "fe-hertz-screw":
-        from meshes import helical
+        from ballbench.meshes import helical
 
         # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
         args = (2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0))
@@ -133,13 +133,13 @@ def pair_case(scene_name: str) -> PairCase:
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
             *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
-            "lowmodel.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", LEVELS_SCREW)
+            "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", LEVELS_SCREW)
     raise ValueError(f"no FE Hertz scene {scene_name!r}")
 
 
 def solve_level(case: PairCase, n: float, growth: float):
     """FE result and Hertz reference at level (n = b/h, growth)."""
-    from fem import hertz_case
+    from ballbench.fem import hertz_case
 
     ref = hertz.solve_load(case.geometry, case.force)
     geometry = case.geometry
@@ -157,7 +157,7 @@ def write_vtu(result, path) -> None:
     """Mesh with displacement [m] and contact pressure [Pa] point data (meshio)."""
     import meshio
 
-    from fem.contact import full_displacement
+    from ballbench.fem.contact import full_displacement
 
     model, state = result.model, result.state
     u = full_displacement(model, state)

@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
-from lowmodel import fourpoint
-from validation.scene import relative_error, scene
+from ballbench.lowmodel import fourpoint
+from ballbench.validation.scene import relative_error, scene
 
 MODEL = "lowmodel.fourpoint"
 NOMINAL = math.pi / 4          # all nominal contact angles 45 deg (lin2017 Secs 3.2, 3.3)

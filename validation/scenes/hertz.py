@@ -1,15 +1,15 @@
-"""Scenes for exact Hertz point contact (lowmodel.hertz)."""
+"""Scenes for exact Hertz point contact (lowmodel.contact.hertz)."""
 from __future__ import annotations
 
 import warnings
 
 import numpy as np
 
-from lowmodel import hertz
-from validation.reference_hertz import ellipse_quadrature, sphere_closed_form
-from validation.scene import scene
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.reference_hertz import ellipse_quadrature, sphere_closed_form
+from ballbench.validation.scene import scene
 
-MODEL = "lowmodel.hertz"
+MODEL = "lowmodel.contact.hertz"
 STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # lin2019 Table 1
 BALL_RADIUS = 5e-3  # m, lin2019 Table 1
 LOAD = 100.0  # N, lin2019 Table 1 (N_y)

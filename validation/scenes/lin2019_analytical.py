@@ -7,10 +7,10 @@ import warnings
 
 import numpy as np
 
-from lowmodel import b2b_analytical as b2b
-from lowmodel import ellipse_friction as ef
-from lowmodel import hertz
-from validation.scene import scene
+from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
+from ballbench.lowmodel.contact import ellipse_friction as ef
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.scene import scene
 
 BALL_RADIUS = 5e-3      # m, lin2019 Table 1
 CONFORMITY = 0.56       # lin2019 Table 1
@@ -57,7 +57,7 @@ def _cartesian_force(kappa: float, beta: float) -> float:
                      "against the paper's 1.38; limits eqs 11-12; quadrature and friction map accuracy (Fig 5)")
 def lin2019_kf(run):
     beta = _axis_ratio()
-    model = "lowmodel.ellipse_friction"
+    model = "lowmodel.contact.ellipse_friction"
     k_ls, time_ls = run.time(ef.k_f_least_squares, beta, 0.5)
     k_exact, time_exact = run.time(ef.k_f_exact, beta)
     run.check(model=model, quantity="k_f, least-squares slope of -f/(mu F) over |c/a| <= 0.5 (conf 0.56)",
@@ -169,10 +169,10 @@ def _figure_5(run, beta: float, k_ls: float) -> None:
 @scene("lin2019-analytical", "Analytical B2B model (lin2019 eqs 22, 30, 32, 33): Table 2 and Table 3 analytical "
                              "values, mitigation rule (case b), vectorised throughput")
 def lin2019_analytical(run):
-    model = "lowmodel.b2b_analytical"
+    model = "lowmodel.linear_bearing.b2b_analytical"
     geometry = _geometry()
     psi, time_psi = run.time(hertz.psi_constant, geometry, BALL_RADIUS)
-    run.check(model="lowmodel.hertz", quantity="Psi (lin2019 eq 15), conf 0.56", unit="(m^2/N)^(1/3)",
+    run.check(model="lowmodel.contact.hertz", quantity="Psi (lin2019 eq 15), conf 0.56", unit="(m^2/N)^(1/3)",
               value=psi, reference=PSI_TABLE1, source="lin2019 Table 1", tolerance=1e-4, time_s=time_psi,
               note="tolerance: half a unit of the 4th published digit")
     common = dict(normal_load=NORMAL_LOAD, groove_velocity=GROOVE_VELOCITY, friction_coefficient=MU, psi=psi,
@@ -223,7 +223,7 @@ def lin2019_analytical(run):
     run.check(model=model, quantity=f"throughput of two_ball_case ({size} cases per call)", unit="cases/s",
               value=size / time_bulk, reference=1e6, relation="ge", source="issue 3 target (>= 1e6 cases/s)",
               tolerance=0.0, time_s=time_bulk, note="machine shared with other jobs; benchmark in benchmarks/")
-    run.note(f"Psi from exact Hertz theory (lowmodel.hertz) = {psi:.6e}; contact forces sqrt(2)/2 (N_y -+ N_x) "
+    run.note(f"Psi from exact Hertz theory (lowmodel.contact.hertz) = {psi:.6e}; contact forces sqrt(2)/2 (N_y -+ N_x) "
              "of Sec 2.4.1 with N_x = rho N_y on ball 1 (behind); with the tangent k_f = "
              f"{float(ef.k_f_exact(beta)):.4f} eq 30 would give "
              f"{float(b2b.two_ball_case(THETA, RHO, k_f=float(ef.k_f_exact(beta)), **common).b2b_force):.3f} N.")

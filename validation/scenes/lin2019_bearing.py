@@ -1,7 +1,7 @@
 """Scenes for the low-order numerical B2B model of a linear ball bearing (lin2019 Sec 2.1-2.2, 2.4-2.5).
 
-Models: lowmodel.bearing_ball (eqs 1-4), lowmodel.b2b (eqs 5-10); the
-analytical model (lowmodel.b2b_analytical, eqs 22, 30, 32, 33) for Fig 8 and
+Models: lowmodel.linear_bearing.bearing_ball (eqs 1-4), lowmodel.linear_bearing.b2b (eqs 5-10); the
+analytical model (lowmodel.linear_bearing.b2b_analytical, eqs 22, 30, 32, 33) for Fig 8 and
 as a second reference of the ANSYS value.  Parameters: lin2019 Table 1; the
 case study of Sec 2.4 (Fig 7): ``beta_0 = 45 deg``, ``beta_BL = beta_0 -
 theta``, ``beta_BR = beta_0 + theta``, ball 1 (behind) carries ``N_x = rho
@@ -13,12 +13,14 @@ import math
 
 import numpy as np
 
-from lowmodel import b2b, bearing_ball, hertz
-from lowmodel.errors import ConvergenceError
-from validation.scene import scene
+from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
 
-MODEL_BALL = "lowmodel.bearing_ball"
-MODEL_B2B = "lowmodel.b2b"
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.validation.scene import scene
+
+MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
+MODEL_B2B = "lowmodel.linear_bearing.b2b"
 RADIUS = 5e-3  # m, lin2019 Table 1
 CONFORMITY = 0.56
 VERTICAL = 100.0  # N, N_y
@@ -80,7 +82,7 @@ def table2_a(run):
 def _figure8(run):
     import matplotlib.pyplot as plt
 
-    from lowmodel import b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     n_rho, n_theta = GRID[run.fidelity]
     thetas = np.radians(np.linspace(-3.0, 3.0, n_theta))
@@ -152,7 +154,7 @@ def table2_b(run):
     for label, history in histories.items():
         ax.plot(history.times, history.gaps[:, 0] / RADIUS, marker="o", ms=3,
                 label=f"case ({label})" + (" mitigated top groove" if label == "b" else ""))
-    from lowmodel import b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     eps_1 = b2b_analytical.side_force_deviation(THETA, RHO)  # lin2019 eq 33, as the paper's Fig 10(a)
     eps_2 = b2b_analytical.side_force_deviation(THETA, -RHO)
@@ -172,7 +174,7 @@ def table2_b(run):
 
 @scene("lin2019-table3-a", "B2B contact force of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 3 case a)")
 def table3_a(run):
-    from lowmodel import b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     contacts = _case(THETA, RHO)
     state, time_s = run.time(b2b.solve, contacts, [0.0])
@@ -189,7 +191,7 @@ def table3_a(run):
     psi = hertz.psi_constant(geometry, RADIUS)
     analytical, time_a = run.time(b2b_analytical.two_ball_case, THETA, RHO, normal_load=VERTICAL,
                                   groove_velocity=SPEED, friction_coefficient=MU, psi=psi, ball_radius=RADIUS)
-    run.check(model="lowmodel.b2b_analytical", quantity="F_B2B", unit="N", value=float(analytical.b2b_force),
+    run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B", unit="N", value=float(analytical.b2b_force),
               reference=3.96, source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07, time_s=time_a,
               note="k_f = 1.38, Psi from Hertz; tolerance: the paper's own claim (within 6-7 %)")
     run.note(f"Numerical model: F_B2B = {force:.3f} N, common velocity eps = {state.velocity_deviation[0] * 100:.3f} %, "

@@ -1,18 +1,18 @@
 """Scenes for ball-screw contact kinematics with the Frenet frame as a virtual cage (wang2022).
 
-Models: lowmodel.screw_kinematics (present model, Wei's absolute-velocity
-measures), lowmodel.harris (ball bearing).  Inputs in the paper's units are
+Models: lowmodel.screw.kinematics (present model, Wei's absolute-velocity
+measures), lowmodel.screw.harris (ball bearing).  Inputs in the paper's units are
 converted to SI here.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from lowmodel import harris
-from lowmodel import screw_kinematics as sk
-from validation.scene import scene
+from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.screw import kinematics as sk
+from ballbench.validation.scene import scene
 
-MODEL = "lowmodel.screw_kinematics"
+MODEL = "lowmodel.screw.kinematics"
 RPM = 2.0 * np.pi / 60.0  # rad/s per rpm
 HALF_UNIT = 0.0005  # wang2022 Tables 1-2 print 3 decimals
 
@@ -163,7 +163,7 @@ def wang2022_table2(run):
     run.note("Gap, Wei's ball surface velocities: wang2022 does not give Wei's expressions. What its equations "
              "define is checked above: the mean of Wei's V_Ab^a and V_Bb^a is the ball-centre velocity (d/dt of "
              f"eq 10 with eq 18), n = 0, b = nut b. The antisymmetric t-term, -/+{delta:.3f} m/s at A/B, cannot "
-             "be derived. With it set to zero (lowmodel.screw_kinematics.wei_ball_centre_kinematics) Wei's "
+             "be derived. With it set to zero (lowmodel.screw.kinematics.wei_ball_centre_kinematics) Wei's "
              f"measures are U_A = {float(wei.entrainment_nut):.3f}, U_B = {float(wei.entrainment_screw):.3f} m/s, "
              f"S_A = {float(wei.slide_roll_nut):.3f}, S_B = {float(wei.slide_roll_screw):.3f} (table: 1.071, "
              "2.937, 1.766, 0.648); they are reported, not checked.")
@@ -207,14 +207,14 @@ def wang2022_table1(run):
     for quantity, value, model, time_s in (
             ("U_A (outer)", present.entrainment_nut, MODEL, time_p),
             ("U_B (inner)", present.entrainment_screw, MODEL, time_p),
-            ("U_A (outer)", bearing.entrainment_outer, "lowmodel.harris", time_h),
-            ("U_B (inner)", bearing.entrainment_inner, "lowmodel.harris", time_h)):
+            ("U_A (outer)", bearing.entrainment_outer, "lowmodel.screw.harris", time_h),
+            ("U_B (inner)", bearing.entrainment_inner, "lowmodel.screw.harris", time_h)):
         _check_printed(run, model=model, quantity=quantity, unit="m/s", value=value, reference=TABLE1["present"],
                        source=source, time_s=time_s)
     for quantity, value, model, time_s in (
             ("S_A", present.slide_roll_nut, MODEL, time_p), ("S_B", present.slide_roll_screw, MODEL, time_p),
-            ("S_A", bearing.slide_roll_outer, "lowmodel.harris", time_h),
-            ("S_B", bearing.slide_roll_inner, "lowmodel.harris", time_h)):
+            ("S_A", bearing.slide_roll_outer, "lowmodel.screw.harris", time_h),
+            ("S_B", bearing.slide_roll_inner, "lowmodel.screw.harris", time_h)):
         run.check(model=model, quantity=quantity, unit="1", value=value, reference=0.0, scale=1.0,
                   tolerance=1e-12, source=source + " (0.000); pure rolling", time_s=time_s,
                   note="exact zero expected (lead 0); tolerance 1e-12 on scale 1 for round-off")
@@ -223,7 +223,7 @@ def wang2022_table1(run):
             ("U_B present vs Harris", present.entrainment_screw, bearing.entrainment_inner),
             ("omega_m present vs Harris cage speed", present.orbital_speed, bearing.cage_speed)):
         run.check(model=MODEL, quantity=quantity, unit="m/s" if quantity[0] == "U" else "rad/s", value=value,
-                  reference=reference, source="lowmodel.harris (Harris & Kotzalas 2006)", tolerance=1e-12,
+                  reference=reference, source="lowmodel.screw.harris (Harris & Kotzalas 2006)", tolerance=1e-12,
                   time_s=time_p, note="the two methods agree exactly at lead 0 (round-off only)")
 
     # ---- Wei's model -------------------------------------------------

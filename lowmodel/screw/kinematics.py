@@ -7,9 +7,9 @@ frame, relative velocities, entrainment velocity (eqs 1-2), sliding velocity
 and centrifugal force (eq 22).  The same inputs also give Wei's measures
 (:func:`absolute_velocity_measures`, entrainment and slide-roll ratio from
 absolute velocities) and the Harris method of a ball bearing
-(:mod:`lowmodel.harris`).
+(:mod:`lowmodel.screw.harris`).
 
-Geometry and frames come from :mod:`lowmodel.helix`: vectors are Frenet
+Geometry and frames come from :mod:`lowmodel.geometry.helix`: vectors are Frenet
 components ``(t, n, b)`` of the ball at azimuth ``theta = 0`` (wang2022
 Sec 2.3: in CS1 the velocities do not depend on theta).  Contact A is the
 ball-nut contact, B the ball-screw contact; the screw turns at omega about
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lowmodel import helix
+from ballbench.lowmodel.geometry import helix
 
 __all__ = ["ScrewKinematics", "kinematics", "pitch_angle", "orbital_speed", "ball_spin_speed",
            "ball_angular_velocity", "centrifugal_force", "absolute_velocity_measures", "entrainment_velocity",

@@ -21,7 +21,7 @@ Per contact (lin2019 eqs 1-3, A1-A3), with ``V_i`` the groove velocity
     omega_i = -Omega . n_i                     spin about the inward normal y_i (eq 2)
     spin_i  = omega_i a_i                      [m/s]
 
-Friction comes from :func:`lowmodel.ellipse_friction.friction_velocity`
+Friction comes from :func:`lowmodel.contact.ellipse_friction.friction_velocity`
 and depends only on the slip-direction angle ``phi_i = atan2(slide_i,
 spin_i)`` (``c_i/a_i = tan phi_i``); the velocity-centre offset ``c_i`` is
 never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
@@ -37,7 +37,7 @@ Equilibrium (lin2019 eq 4; ``m_i = -M_i`` is the moment about ``+y_i = -n_i``):
     sum_i (-n_i,x f_i + n_i,y M_i / R_B)      = -M_ext,y / R_B
 
 (the rows of eq 4: e.g. BL has ``n_y = -cos``, ``-n_x = sin``).  ``F_ext``
-and ``M_ext`` carry the ball-to-ball terms of :mod:`lowmodel.b2b`.
+and ``M_ext`` carry the ball-to-ball terms of :mod:`lowmodel.linear_bearing.b2b`.
 
 Friction loss of contact ``i`` is the power of its tractions on the slip
 field, ``P_i = -(f_i slide_i + m_i omega_i) = mu F_i (a_i omega_i moment_i
@@ -67,7 +67,7 @@ from functools import cached_property
 
 import numpy as np
 
-from lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = [
     "BallContacts",
@@ -255,9 +255,10 @@ def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: fl
 
     Normal forces from :func:`lowmodel.fourpoint.normal_forces` (lin2017 eq
     36; ValueError at loss of four-point contact), semi-axes from
-    :func:`lowmodel.hertz.ball_in_groove` / ``solve_load``.
+    :func:`lowmodel.contact.hertz.ball_in_groove` / ``solve_load``.
     """
-    from lowmodel import fourpoint, hertz
+    from ballbench.lowmodel import fourpoint
+    from ballbench.lowmodel.contact import hertz
 
     angles = _check_angles(contact_angles)
     n = angles.shape[0]
@@ -307,7 +308,7 @@ def contact_normals(contact_angles) -> np.ndarray:
 # residual of the ball equilibrium (vectorised over balls)
 # --------------------------------------------------------------------------
 def _friction(spin, slide, b_over_a):
-    from lowmodel.ellipse_friction import friction_velocity
+    from ballbench.lowmodel.contact.ellipse_friction import friction_velocity
 
     return friction_velocity(spin, slide, b_over_a)
 

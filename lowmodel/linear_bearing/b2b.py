@@ -1,7 +1,7 @@
 """Ball-to-ball (B2B) contact of 2 to N balls in a four-point-contact linear ball bearing.
 
 lin2019 Sec 2.2, eqs 5-10 (low-order numerical model), built on the single-ball
-equilibrium of :mod:`lowmodel.bearing_ball` (eq 4).
+equilibrium of :mod:`lowmodel.linear_bearing.bearing_ball` (eq 4).
 
 Balls ``j = 0 .. n-1`` are ordered along +z (ball 0 is "ball 1, behind" of
 lin2019 Fig 1).  Pair ``j`` is (ball j, ball j+1); ``gap_j = d_{j,j+1} - 2 R_B``.
@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lowmodel.bearing_ball import (
+from ballbench.lowmodel.linear_bearing.bearing_ball import (
     N_UNKNOWNS,
     BallContacts,
     BallState,
@@ -58,7 +58,7 @@ from lowmodel.bearing_ball import (
     solve_ball,
     solve_branch,
 )
-from lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
 

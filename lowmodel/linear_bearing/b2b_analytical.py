@@ -25,8 +25,8 @@ carries ``N_x = rho N_y``, ball 2 carries ``-N_x`` (Sec 2.4.1, Fig 7); B2B
 contact needs ``epsilon_1 > epsilon_2`` (ball 1 faster).
 ``k_f`` (slope of the linearised friction force, eq 14) and ``Psi`` (eq 15)
 are inputs: :data:`K_F_PAPER` is the paper's 1.38,
-``lowmodel.ellipse_friction.k_f_exact`` / ``k_f_least_squares`` compute it,
-``lowmodel.hertz.psi_constant`` computes ``Psi``.
+``lowmodel.contact.ellipse_friction.k_f_exact`` / ``k_f_least_squares`` compute it,
+``lowmodel.contact.hertz.psi_constant`` computes ``Psi``.
 """
 from __future__ import annotations
 

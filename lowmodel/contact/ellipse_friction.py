@@ -545,7 +545,7 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     symmetry; ``n_beta`` uniform nodes of ``log(b/a)`` on
     ``[log 0.02, 0]``.  Disk cache: ``lowmodel.cache.cache_dir("ellipse_friction")``.
     """
-    from lowmodel.cache import cache_dir, parameter_hash
+    from ballbench.lowmodel.cache import cache_dir, parameter_hash
 
     for name, value, least in (("n_uniform", n_uniform, 9), ("n_cluster", n_cluster, 1), ("n_beta", n_beta, 4)):
         if int(value) != value or value < least:

@@ -13,7 +13,7 @@ spin: with ``gamma = D cos(alpha) / d_m = r_b cos(alpha) / r_m``,
 
 Both speeds equal ``(omega_i - omega_o) r_m (1 - gamma^2) / 2``; wang2022
 Table 1 (61830, 3600 rpm) prints 15.994 m/s.  Names follow the ball screw of
-:mod:`lowmodel.screw_kinematics`: the inner ring is the screw (contact B),
+:mod:`lowmodel.screw.kinematics`: the inner ring is the screw (contact B),
 the outer ring the nut (contact A).
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lowmodel import helix
+from ballbench.lowmodel.geometry import helix
 
 __all__ = ["HarrisKinematics", "kinematics"]
 

@@ -1,0 +1,1 @@
+"""Contact mechanics: exact Hertz point contact and friction over a contact ellipse."""

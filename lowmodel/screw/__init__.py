@@ -1,0 +1,1 @@
+"""Ball-screw kinematics (wang2022) and Harris's bearing kinematics."""
