@@ -234,8 +234,10 @@ def cubic_coefficient(b_over_a) -> np.ndarray:
     b = np.atleast_1d(beta).astype(float).ravel()
     m = 1.0 - b**2
     result = np.empty_like(b)
-    far = b <= 0.5  # no cancellation in the closed form (e^4 >= 0.56)
+    far = (b <= 0.5) & (b > 0.0)  # no cancellation in the closed form (e^4 >= 0.56)
     result[far] = ((1.0 + b[far] ** 2) * ellipe(m[far]) - 2.0 * b[far] ** 2 * ellipk(m[far])) / (2.0 * m[far] ** 2)
+    result[b == 0.0] = 0.5  # limit b/a -> 0: E(1) = 1 and b^2 K ~ b^2 ln(4/b) -> 0
+    far |= b == 0.0
     if np.any(~far):  # near-circular: smooth integrand, 48-point Gauss-Legendre
         x, w = _gauss(48)
         psi = 0.5 * math.pi * x
@@ -367,6 +369,40 @@ def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6):
     return force, loss, curvature
 
 
+ASYMPTOTIC_C_OVER_A = 200.0  # |c/a| above which friction_exact uses the far-field series (error < 1e-16 there)
+
+
+def _far_field(kappa: np.ndarray, beta: np.ndarray):
+    """(force, moment, loss, curvature, d moment/d kappa) for a distant velocity centre, ``|kappa| >> 1``.
+
+    With ``u = |kappa| - sign(kappa) t``, ``q = beta^2 s^2``, ``D = sqrt(u^2 + q)`` the integrands are
+    expanded in ``e = 1/|kappa|`` and integrated term by term against ``p_hat`` (its odd moments vanish;
+    ``iint p_hat t^m s^n`` in closed form), to ``e^6``::
+
+        force  = -sign(kappa) (1 - c2 e^2 - c4 e^4 - c6 e^6)
+        loss   = |kappa| + c2 e + l3 e^3 + l5 e^5
+        moment = beta^2 e (56 + (16 - 12 beta^2) e^2 + (8 - 12 beta^2 + 5 beta^4) e^4) / 280
+        c2 = beta^2/10,  c4 = 3 beta^2/70 - 9 beta^4/280,  c6 = beta^2/42 - beta^4/28 + 5 beta^6/336
+        l3 = beta^2/70 - 3 beta^4/280,  l5 = beta^2/210 - beta^4/140 + beta^6/336
+
+    relative error O(e^8); ``moment = loss + kappa force`` holds term by term, without the
+    cancellation (absolute error ``eps |kappa|``) of that identity in floating point.
+    """
+    e = 1.0 / np.abs(kappa)
+    sign = np.sign(kappa)
+    b2 = beta**2
+    e2 = e * e
+    c2 = 0.1 * b2
+    c4 = b2 * (3.0 / 70.0 - 9.0 / 280.0 * b2)
+    c6 = b2 * (1.0 / 42.0 - b2 / 28.0 + 5.0 / 336.0 * b2 * b2)
+    force = -sign * (1.0 - e2 * (c2 + e2 * (c4 + e2 * c6)))
+    loss = np.abs(kappa) + e * (c2 + e2 * (b2 * (1.0 / 70.0 - 3.0 / 280.0 * b2)
+                                           + e2 * b2 * (1.0 / 210.0 - b2 / 140.0 + b2 * b2 / 336.0)))
+    moment = b2 * e * (56.0 + e2 * ((16.0 - 12.0 * b2) + e2 * (8.0 - 12.0 * b2 + 5.0 * b2 * b2))) / 280.0
+    curvature = e2 * e * (2.0 * c2 + e2 * (4.0 * c4 + e2 * 6.0 * c6))  # -d force / d kappa
+    return force, moment, loss, curvature, -kappa * curvature
+
+
 def friction_exact(c_over_a, b_over_a) -> EllipseFriction:
     """Friction integrals of lin2019 eqs A4-A6 by direct quadrature (no table).
 
@@ -380,6 +416,8 @@ def friction_exact(c_over_a, b_over_a) -> EllipseFriction:
     -------
     EllipseFriction with arrays of the broadcast shape.  Accuracy about 1e-12
     (tests compare it with an independent adaptive Cartesian quadrature).
+    For ``|c/a| > ASYMPTOTIC_C_OVER_A`` the far-field series (:func:`_far_field`)
+    replaces the quadrature, whose ``moment = loss + (c/a) force`` would cancel.
     Derivatives use the exact identities of the module docstring.
     """
     kappa = _check_kappa(c_over_a)
@@ -388,10 +426,14 @@ def friction_exact(c_over_a, b_over_a) -> EllipseFriction:
     shape = kappa.shape
     k = kappa.ravel().astype(float)
     b = beta.ravel().astype(float)
-    force, loss, curvature = _integrals(k, b)
+    far = np.isfinite(k) & (np.abs(k) > ASYMPTOTIC_C_OVER_A)
+    force, loss, curvature = _integrals(np.where(far, 0.0, k), b)
     with np.errstate(invalid="ignore"):
         moment = np.where(np.isfinite(k), loss + k * force, 0.0)
         dmoment = np.where(np.isfinite(k), -k * curvature, 0.0)
+    if np.any(far):  # loss + kappa force cancels (absolute error eps |kappa|): the series instead
+        kf, bf = k[far], b[far]
+        force[far], moment[far], loss[far], curvature[far], dmoment[far] = _far_field(kf, bf)
     return EllipseFriction(force.reshape(shape), moment.reshape(shape), loss.reshape(shape),
                            (-curvature).reshape(shape), dmoment.reshape(shape), (-force).reshape(shape))
 
@@ -666,17 +708,16 @@ def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
         raise ValueError("spin_velocity and slide_velocity must be finite (m/s)")
     beta = _check_ratio(b_over_a)
     spin, slide, beta = np.broadcast_arrays(spin, slide, beta)
-    speed2 = spin**2 + slide**2
     phi = np.arctan2(slide, spin)
     force, dforce, moment, dmoment, direction, ddirection = _evaluate(phi, beta)
-    speed = np.sqrt(speed2)
-    safe2 = np.where(speed2 > 0.0, speed2, 1.0)
-    dphi_dspin = np.where(speed2 > 0.0, -slide / safe2, 0.0)
-    dphi_dslide = np.where(speed2 > 0.0, spin / safe2, 0.0)
+    speed = np.hypot(spin, slide)  # no overflow of spin^2 + slide^2 for huge velocities
     safe = np.where(speed > 0.0, speed, 1.0)
+    cos, sin = spin / safe, slide / safe  # (cos phi, sin phi)
+    dphi_dspin = np.where(speed > 0.0, -sin / safe, 0.0)
+    dphi_dslide = np.where(speed > 0.0, cos / safe, 0.0)
     loss = speed * direction
-    dloss_dspin = np.where(speed > 0.0, (spin * direction - slide * ddirection) / safe, 0.0)
-    dloss_dslide = np.where(speed > 0.0, (slide * direction + spin * ddirection) / safe, 0.0)
+    dloss_dspin = np.where(speed > 0.0, cos * direction - sin * ddirection, 0.0)
+    dloss_dslide = np.where(speed > 0.0, sin * direction + cos * ddirection, 0.0)
     return SlipFriction(force, moment, loss,
                         dforce * dphi_dspin, dforce * dphi_dslide,
                         dmoment * dphi_dspin, dmoment * dphi_dslide,

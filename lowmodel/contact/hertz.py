@@ -57,6 +57,7 @@ __all__ = [
 
 STEEL_YOUNGS_MODULUS = 2.1e11  # Pa, lin2019 Tables 1 and 4
 STEEL_POISSON_RATIO = 0.28  # lin2019 Tables 1 and 4
+VALIDITY_RATIO = 0.3  # a / R beyond which a contact is flagged outside Hertz's small-contact assumption
 
 
 # --------------------------------------------------------------------------
@@ -101,6 +102,12 @@ class HertzGeometry:
         of body 1, as given to :func:`from_curvatures`.
     axis_ratio : float
         ``k = b/a`` in (0, 1], solved from ``B/A`` (load independent).
+    reference_radius : float
+        The smallest principal radius of curvature [m] of either surface
+        (``1 / max |kappa|``; a ball's radius); Hertz's half-space assumption needs
+        ``a`` small against it (:data:`VALIDITY_RATIO`, ``HertzContact.within_validity``).
+        ``inf`` when unknown (two flats cannot form a point contact, so never for a
+        geometry from :func:`from_curvatures`).
     """
 
     A: float
@@ -108,6 +115,7 @@ class HertzGeometry:
     contact_modulus: float
     major_axis_angle: float = 0.0
     axis_ratio: float = 1.0
+    reference_radius: float = math.inf
 
     @property
     def equivalent_radius(self) -> float:
@@ -177,7 +185,8 @@ def from_curvatures(curvatures_1: tuple[float, float], curvatures_2: tuple[float
             f"relative curvatures A = {A:.6g} 1/m, B = {B:.6g} 1/m: both must be > 0 for Hertz point contact "
             "(the surfaces conform or do not touch at a point)")
     major_axis_angle = float(math.atan2(eigenvectors[1, 0], eigenvectors[0, 0]))
-    return HertzGeometry(A, B, e_star, major_axis_angle, _axis_ratio(B / A))
+    reference_radius = 1.0 / float(np.max(np.abs(np.concatenate([k1, k2]))))  # > 0 since A > 0
+    return HertzGeometry(A, B, e_star, major_axis_angle, _axis_ratio(B / A), reference_radius)
 
 
 def ball_on_flat(ball_radius: float, *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
@@ -253,6 +262,11 @@ class HertzContact:
     stiffness : dF/d(delta) [N/m]
     eccentricity : ``e = sqrt(1 - (b/a)^2)``
     ellip_k, ellip_e : complete elliptic integrals K(e), E(e) (modulus e)
+    within_validity : bool array, ``a <= VALIDITY_RATIO * R`` with ``R`` the geometry's
+        ``reference_radius`` (the ball radius for the bearing contacts): False flags a
+        contact too large for Hertz's half-space assumption; the numbers are still the
+        exact solution of the Hertz problem, but no longer of the real contact
+        (docs/hertz.md, validity)
     """
 
     force: np.ndarray
@@ -264,6 +278,7 @@ class HertzContact:
     eccentricity: float
     ellip_k: float
     ellip_e: float
+    within_validity: np.ndarray
 
 
 def _unit_solution(geometry: HertzGeometry) -> tuple[float, float, float]:
@@ -293,7 +308,8 @@ def _build(geometry: HertzGeometry, force: np.ndarray) -> HertzContact:
     delta = delta_unit * cube_root**2
     stiffness = 1.5 * np.sqrt(delta) / delta_unit**1.5  # dF/d(delta) of F = (delta/C)^(3/2)
     return HertzContact(force, a, b, p0, delta, stiffness, math.sqrt(max(0.0, 1.0 - k2)),
-                        float(elliprf(0.0, k2, 1.0)), float(2.0 * elliprg(0.0, k2, 1.0)))
+                        float(elliprf(0.0, k2, 1.0)), float(2.0 * elliprg(0.0, k2, 1.0)),
+                        a <= VALIDITY_RATIO * geometry.reference_radius)
 
 
 def solve_load(geometry: HertzGeometry, force) -> HertzContact:

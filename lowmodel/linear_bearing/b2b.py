@@ -58,6 +58,7 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
     solve_ball,
     solve_branch,
 )
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
@@ -81,12 +82,13 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
     forces from lin2017 eq 36 (not the sqrt(2)/2 approximation of Sec 2.4.1,
     which only the analytical model uses).
     """
-    if not isinstance(n_balls, (int, np.integer)) or n_balls < 1:
-        raise ValueError(f"n_balls must be an integer >= 1, got {n_balls!r}")
-    for name, value in (("theta", theta), ("side_force_ratio", side_force_ratio)):
-        if not math.isfinite(float(value)):
-            raise ValueError(f"{name} must be finite, got {value!r}")
-    top = np.asarray(top_deviations, dtype=float)
+    n_balls = checks.count("n_balls", n_balls, 1)
+    theta = checks.finite("theta", theta, "rad")
+    side_force_ratio = checks.finite("side_force_ratio", side_force_ratio)
+    top = checks.finite("top_deviations", top_deviations, "rad")
+    if np.shape(top) != (2,):
+        raise ValueError("top_deviations must be a pair (Delta beta_TR, Delta beta_TL) [rad], got shape "
+                         f"{np.shape(top)}")
     angles = nominal_angle + np.array([-theta, theta, top[0], top[1]])
     sign = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0)
     return ball_contacts(np.tile(angles, (n_balls, 1)), sign * side_force_ratio * vertical_force, vertical_force,
@@ -176,8 +178,8 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     n = contacts.n_balls
     radius = contacts.ball_radius
     gaps = _check_gaps(gaps, n, radius)
-    if gap_tolerance is None:
-        gap_tolerance = 1e-9 * radius
+    gap_tolerance = 1e-9 * radius if gap_tolerance is None else checks.non_negative("gap_tolerance", gap_tolerance,
+                                                                                     "m")
     touching = np.flatnonzero(gaps <= gap_tolerance)
     if n == 1 or touching.size == 0:
         return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)

@@ -35,6 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.fourpoint import contact_limits
+
 __all__ = [
     "K_F_PAPER",
     "velocity_deviation",
@@ -116,6 +119,7 @@ def velocity_deviation(delta_beta, force_up, force_down,
     up = _contact_forces("force_up", force_up) ** (2.0 / 3.0)
     down = _contact_forces("force_down", force_down) ** (2.0 / 3.0)
     beta0 = _contact_angle(nominal_contact_angle)
+    checks.contact_angle("contact angles beta_0 + delta_beta", np.asarray(beta0)[..., None] + deviations)
     return _epsilon(*np.moveaxis(deviations, -1, 0), up, down, beta0)
 
 
@@ -180,13 +184,18 @@ def mitigating_top_deviations(delta_beta_bl, delta_beta_br):
 # two balls
 # --------------------------------------------------------------------------
 def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coefficient, psi,
-                  ball_radius, nominal_contact_angle=NOMINAL_CONTACT_ANGLE, touching=True) -> np.ndarray:
+                  ball_radius, nominal_contact_angle=NOMINAL_CONTACT_ANGLE, touching=True,
+                  groove_velocity=1.0) -> np.ndarray:
     """B2B contact force ``F_B2B`` [N] (lin2019 eq 30).
 
-    ``F_B2B = 2 k_f mu R_B^(2/3) / (Psi (1 - cos 2 beta_0)) * S_1 S_2 / (S_1 + S_2) * (epsilon_1 - epsilon_2)``
+    ``F_B2B = 2 k_f mu R_B^(2/3) / (Psi (1 - cos 2 beta_0)) * S_1 S_2 / (S_1 + S_2) * |epsilon_1 - epsilon_2|``
     with ``S_j = F_jU^(2/3) + F_jD^(2/3)``, when the balls touch
-    (``d_12 <= 2 R_B``) and ball 1 (behind) is faster (``epsilon_1 > epsilon_2``);
-    zero otherwise (eq 9).
+    (``d_12 <= 2 R_B``) and approach; zero otherwise (eq 9).  Ball 1 sits behind
+    ball 2 along +z, so with the top groove moving along +z (``groove_velocity > 0``,
+    the paper's case) they approach when ``epsilon_1 > epsilon_2``; moving along -z
+    (``groove_velocity < 0``: ball velocities ``(1 + epsilon_j) v/2 < 0``) they
+    approach when ``epsilon_2 > epsilon_1`` (the mirror image of eq 30); at ``v = 0``
+    nothing moves and the force is zero.
 
     Parameters
     ----------
@@ -198,6 +207,7 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     ball_radius : ``R_B`` [m], > 0.
     nominal_contact_angle : ``beta_0`` [rad].
     touching : bool array_like, ``d_12 <= 2 R_B``.
+    groove_velocity : v [m/s] of the top groove; only its sign (direction of motion) is used.
     """
     eps_1 = _finite("epsilon_1", epsilon_1)
     eps_2 = _finite("epsilon_2", epsilon_2)
@@ -208,14 +218,20 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     psi = _positive("psi", psi, "(m^2/N)^(1/3)")
     radius = _positive("ball_radius", ball_radius, "m")
     beta0 = _contact_angle(nominal_contact_angle)
-    return _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, np.asarray(touching, dtype=bool))
+    direction = np.sign(checks.finite("groove_velocity", groove_velocity, "m/s"))
+    return _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, np.asarray(touching, dtype=bool),
+                  direction)
 
 
-def _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, touching):
-    """lin2019 eq 30 without input checks; ``s_j = F_jU^(2/3) + F_jD^(2/3)``."""
+def _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, touching, direction):
+    """lin2019 eq 30 without input checks; ``s_j = F_jU^(2/3) + F_jD^(2/3)``, ``direction = sign(v)``.
+
+    The approach rate of ball 1 (behind) on ball 2 is ``(epsilon_1 - epsilon_2) v/2``.
+    """
+    approach = (eps_1 - eps_2) * direction
     force = (2.0 * k_f * mu * radius ** (2.0 / 3.0) / (psi * (1.0 - np.cos(2.0 * beta0)))
-             * s_1 * s_2 / (s_1 + s_2) * (eps_1 - eps_2))
-    return np.where((eps_1 > eps_2) & touching, force, 0.0)
+             * s_1 * s_2 / (s_1 + s_2) * approach)
+    return np.where((approach > 0.0) & touching, force, 0.0)
 
 
 def friction_loss(b2b_force, friction_coefficient, groove_velocity,
@@ -241,8 +257,12 @@ class TwoBallCase:
     ball_velocity_1, ball_velocity_2 : ``(1 + epsilon_j) v/2`` before contact [m/s] (eq 21)
     b2b_force : ``F_B2B`` [N] (eq 30, touching balls)
     b2b_friction_loss : ``P_fB2B`` [W] (eq 32)
-    common_velocity : velocity of both balls in contact [m/s]: ``(1 + epsilon_1 + Delta epsilon_1) v/2``
-        (eq 29), equal to the free velocity of each ball when they separate
+    common_velocity : ``(1 + (S_1 epsilon_1 + S_2 epsilon_2)/(S_1 + S_2)) v/2`` [m/s], the S-weighted mean
+        of the free velocities: where ``b2b_force > 0`` it is the velocity of both balls in contact,
+        ``(1 + epsilon_1 + Delta epsilon_1) v/2`` (eqs 25-29); where the balls separate they share no
+        velocity (see ``final_velocity_1/2``) and it is only that mean
+    final_velocity_1, final_velocity_2 : velocity of each ball with the B2B contact resolved [m/s]:
+        ``common_velocity`` where ``b2b_force > 0``, the free velocity ``ball_velocity_j`` otherwise
     """
 
     epsilon_1: np.ndarray
@@ -252,6 +272,8 @@ class TwoBallCase:
     b2b_force: np.ndarray
     b2b_friction_loss: np.ndarray
     common_velocity: np.ndarray
+    final_velocity_1: np.ndarray
+    final_velocity_2: np.ndarray
 
 
 def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coefficient, psi, ball_radius,
@@ -264,6 +286,11 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     ``(-theta, theta)``); ball 1 (behind) carries ``N_x = rho N_y``, ball 2
     ``-rho N_y``; contact forces from :func:`diagonal_forces`; eq 22 for
     ``epsilon``, eq 30 for ``F_B2B`` (balls touching), eq 32 for the loss.
+    The direction of motion is honoured (``groove_velocity < 0``: ball 2 is behind,
+    see :func:`contact_force`).  Validity: four-point contact of both balls at their
+    actual contact angles ``beta_0 + (-theta, theta, Delta beta_TR, Delta beta_TL)``,
+    i.e. each in (0, pi/2) and ``rho`` inside the lin2017 eq 37 range for ball 1 and
+    ``-rho`` for ball 2 (:func:`lowmodel.fourpoint.contact_limits`); ValueError otherwise.
 
     Parameters: ``theta`` [rad] and ``rho`` (broadcast), ``normal_load`` N_y [N],
     ``groove_velocity`` v [m/s], ``friction_coefficient`` mu, ``psi``
@@ -279,7 +306,8 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     radius = _positive("ball_radius", ball_radius, "m")
     k_f = _positive("k_f", k_f, "")
     beta0 = _contact_angle(nominal_contact_angle)
-    top_tr, top_tl = (_finite("delta_beta_top", value) for value in delta_beta_top)
+    top_tr, top_tl = _top_pair(delta_beta_top)
+    _check_four_point(theta, rho, top_tr, top_tl, beta0)
     side = rho * n_y
     powers = [f ** (2.0 / 3.0) for f in (*_diagonal(n_y, side, beta0), *_diagonal(n_y, -side, beta0))]
     # (BL, BR, TR, TL) = (-theta, theta, top_tr, top_tl) for both balls
@@ -287,10 +315,63 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     epsilon_2 = _epsilon(-theta, theta, top_tr, top_tl, powers[2], powers[3], beta0)   # ball 2: N_x = -rho N_y
     s_1 = powers[0] + powers[1]
     s_2 = powers[2] + powers[3]
-    force = _force(epsilon_1, epsilon_2, s_1, s_2, k_f, mu, psi, radius, beta0, True)
+    force = _force(epsilon_1, epsilon_2, s_1, s_2, k_f, mu, psi, radius, beta0, True, np.sign(v))
     loss = mu * force * np.abs(v) / np.cos(beta0)  # lin2019 eq 32
     # common velocity (eqs 25-29): Delta epsilon_1 = -F_B2B / (C S_1), Delta epsilon_2 = +F_B2B / (C S_2)
     # with C the prefactor of eq 30, so the contact velocity is the S-weighted mean of the free ones
-    common = (s_1 * epsilon_1 + s_2 * epsilon_2) / (s_1 + s_2)
-    return TwoBallCase(epsilon_1, epsilon_2, (1.0 + epsilon_1) * 0.5 * v, (1.0 + epsilon_2) * 0.5 * v,
-                       force, loss, np.where(force > 0.0, (1.0 + common) * 0.5 * v, np.nan))
+    common = (1.0 + (s_1 * epsilon_1 + s_2 * epsilon_2) / (s_1 + s_2)) * 0.5 * v
+    free_1, free_2 = (1.0 + epsilon_1) * 0.5 * v, (1.0 + epsilon_2) * 0.5 * v
+    pressed = force > 0.0
+    return TwoBallCase(epsilon_1, epsilon_2, free_1, free_2, force, loss, common,
+                       np.where(pressed, common, free_1), np.where(pressed, common, free_2))
+
+
+def _top_pair(delta_beta_top):
+    """``(Delta beta_TR, Delta beta_TL)`` from a pair of array_like [rad]; ValueError unless exactly two."""
+    if isinstance(delta_beta_top, np.ndarray):
+        pair = list(delta_beta_top) if delta_beta_top.ndim >= 1 else [delta_beta_top]
+    else:
+        try:
+            pair = list(delta_beta_top)
+        except TypeError:
+            pair = [delta_beta_top]
+    if len(pair) != 2:
+        raise ValueError("delta_beta_top must be a pair (Delta beta_TR, Delta beta_TL) [rad], "
+                         f"got {len(pair)} entries")
+    return checks.finite("delta_beta_top", pair[0], "rad"), checks.finite("delta_beta_top", pair[1], "rad")
+
+
+def _check_four_point(theta, rho, top_tr, top_tl, beta0) -> None:
+    """ValueError unless both balls keep four-point contact at their actual angles (lin2017 eq 37).
+
+    Ball 1 needs ``rho`` and ball 2 ``-rho`` inside the eq 37 range
+    ``(-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL))``; for the pair
+    this is ``|rho| < tan(min_i beta_i)`` (tan rises on (0, pi/2)), the fast test used
+    here; the message quotes :func:`lowmodel.fourpoint.contact_limits`.
+    """
+    # worst case over the whole batch first (reductions only): the common case needs no elementwise tan
+    theta_max = float(np.max(np.abs(theta)))
+    low_all = float(np.min(beta0)) - max(theta_max, float(np.max(-top_tr)), float(np.max(-top_tl)))
+    high_all = float(np.max(beta0)) + max(theta_max, float(np.max(top_tr)), float(np.max(top_tl)))
+    if 0.0 < low_all and high_all < 0.5 * math.pi and float(np.max(np.abs(rho))) < math.tan(low_all):
+        return
+    spread = np.maximum(np.abs(theta), np.maximum(np.abs(top_tr), np.abs(top_tl)))
+    low = beta0 - np.maximum(np.abs(theta), np.maximum(-top_tr, -top_tl))
+    high = beta0 + np.maximum(np.abs(theta), np.maximum(top_tr, top_tl))
+    if not (np.all(low > 0.0) and np.all(high < 0.5 * math.pi)):
+        angles = np.stack(np.broadcast_arrays(beta0 - theta, beta0 + theta, beta0 + top_tr, beta0 + top_tl), axis=-1)
+        checks.contact_angle("contact angles beta_0 + (-theta, theta, delta_beta_top) (theta, delta_beta_top)",
+                             angles)
+    bad = ~(np.abs(rho) < np.tan(low))
+    if np.any(bad):
+        shape = np.broadcast_shapes(bad.shape, np.shape(spread))
+        bad = np.broadcast_to(bad, shape)
+        index = np.unravel_index(np.argmax(bad), shape)
+        pick = [float(np.broadcast_to(value, shape)[index]) for value in (theta, rho, top_tr, top_tl, beta0)]
+        angles = np.array([pick[4] - pick[0], pick[4] + pick[0], pick[4] + pick[2], pick[4] + pick[3]])
+        lower, upper = contact_limits(angles)  # lin2017 eq 37
+        raise ValueError(
+            "rho: loss of four-point contact (lin2017 eq 37 at the actual contact angles); ball 1 carries "
+            f"N_x/N_y = rho = {pick[1]:.6g} and ball 2 -rho, both must lie in ({float(lower):.6g}, "
+            f"{float(upper):.6g}) = (-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL)) "
+            f"at theta = {math.degrees(pick[0]):.6g} deg")

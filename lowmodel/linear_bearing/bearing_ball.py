@@ -63,7 +63,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -78,6 +78,7 @@ __all__ = [
     "contact_normals",
     "newton",
     "spin_capacity_ratio",
+    "minimum_conformity",
     "CONTACT_NAMES",
 ]
 
@@ -267,12 +268,44 @@ def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: fl
     forces = np.asarray(fourpoint.normal_forces(side, vertical, angles), dtype=float)  # lin2017 eq 36
     geometry = hertz.ball_in_groove(ball_radius, conformity, youngs_modulus=youngs_modulus,
                                     poisson_ratio=poisson_ratio)
+    _check_axis_ratio(geometry.axis_ratio, conformity)
     if not np.all(np.isfinite(forces)) or np.any(forces <= 0.0):
         raise ValueError("side_force/vertical_force give a normal force <= 0: loss of four-point "
                          "contact (lin2017 eq 37)")
     contact = hertz.solve_load(geometry, forces)
     return contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=ball_radius,
                                 friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)
+
+
+def minimum_conformity() -> float:
+    """Smallest conformity whose Hertz axis ratio ``b/a`` lies in the friction map's range (about 0.5007).
+
+    In a straight groove ``b/a`` depends on the conformity only; below this value
+    ``b/a < B_OVER_A_RANGE[0]`` of :mod:`lowmodel.contact.ellipse_friction` (lin2019 eqs A4-A7 tabulated).
+    """
+    return _minimum_conformity()
+
+
+@lru_cache(maxsize=1)
+def _minimum_conformity() -> float:
+    from scipy.optimize import brentq
+
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.lowmodel.contact.ellipse_friction import B_OVER_A_RANGE
+
+    def excess(f):
+        return hertz.ball_in_groove(1.0, f).axis_ratio - B_OVER_A_RANGE[0]
+
+    return float(brentq(excess, 0.5 + 1e-9, 0.9, xtol=1e-12))
+
+
+def _check_axis_ratio(axis_ratio: float, conformity) -> None:
+    from ballbench.lowmodel.contact.ellipse_friction import B_OVER_A_RANGE
+
+    if axis_ratio < B_OVER_A_RANGE[0]:
+        raise ValueError(f"conformity = {float(conformity)!r} gives a Hertz axis ratio b/a = {axis_ratio:.4g}, below "
+                         f"{B_OVER_A_RANGE[0]}, the range of the ellipse friction map (lin2019 eqs A4-A7): conformity "
+                         f"must lie in [{minimum_conformity():.6f}, 1) for this model")
 
 
 def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:

@@ -50,11 +50,16 @@ def _scale(factor, a):
 
 
 def _length(a):
-    return np.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    with np.errstate(over="ignore"):
+        squared = a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
+    if np.all(np.isfinite(squared)):
+        return np.sqrt(squared)
+    return np.hypot(np.hypot(a[0], a[1]), a[2])  # huge speeds: no overflow of the squares
 
 
 def _norm(vector: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.einsum("...i,...i->...", vector, vector))
+    vector = np.asarray(vector)
+    return np.hypot(np.hypot(vector[..., 0], vector[..., 1]), vector[..., 2])
 
 
 # --------------------------------------------------------------------------
@@ -217,6 +222,7 @@ def _check_geometry(pitch_radius, ball_radius, lead, screw_speed, contact_angle_
     return r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi
 
 
+@np.errstate(over="ignore", invalid="ignore")  # overflow at huge speeds is detected and raised below
 def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw=None, *,
                lead_angle=None, yaw_angle=0.0) -> ScrewKinematics:
     """Contact kinematics of the present model (wang2022 eqs 1-30), vectorised.
@@ -226,7 +232,8 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     pitch_radius : r_m [m], nominal (pitch) radius of the ball-centre helix, > ball_radius
     ball_radius : r_b [m] > 0 (wang2022 calls it a diameter; it is a radius)
     lead : L [m] >= 0 (0 is a ball bearing)
-    screw_speed : omega [rad/s], screw (inner ring) speed about +k
+    screw_speed : omega [rad/s], screw (inner ring) speed about +k, finite; every velocity is linear
+        in it (ValueError if they would overflow double precision, e.g. |omega| ~ 1e308 rad/s)
     contact_angle_nut, contact_angle_screw : alpha_o, alpha_i [rad] in (0, pi/2);
         ``contact_angle_screw=None`` takes alpha_i = alpha_o
     lead_angle : psi [rad]; ``None`` (default) takes ``arctan(L / (2 pi r_m))``,
@@ -281,8 +288,14 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     sliding_b = _sub(screw_rel, ball_rel_b)  # wang2022 eq 6
     u_a = 0.5 * _length(_add(nut_rel, ball_rel_a))  # wang2022 eq 1
     u_b = 0.5 * _length(_add(screw_rel, ball_rel_b))  # wang2022 eq 2
-    s_a = slide_roll_ratio_magnitude(_length(sliding_a), u_a)  # wang2022 eq 4
-    s_b = slide_roll_ratio_magnitude(_length(sliding_b), u_b)  # wang2022 eq 4
+    slip_a, slip_b = _length(sliding_a), _length(sliding_b)
+    s_a = slide_roll_ratio_magnitude(slip_a, u_a)  # wang2022 eq 4
+    s_b = slide_roll_ratio_magnitude(slip_b, u_b)  # wang2022 eq 4
+    if not all(np.all(np.isfinite(x)) for x in (slip_a, slip_b, u_a, u_b, _length(ball_a), _length(ball_b))):
+        # every velocity is linear in omega: only a speed whose velocities exceed the float range gets here
+        raise ValueError("screw_speed: the velocities overflow double precision (|screw_speed| * pitch_radius "
+                         "must stay well below 1e308 m/s); got screw_speed up to "
+                         f"{float(np.max(np.abs(omega)))!r} rad/s")
     (omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a, ball_rel_b,
      sliding_a, sliding_b) = (np.stack(v, axis=-1) for v in (
         omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a,
