@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove
-from ballbench.validation.reference_hertz import ellipse_quadrature, sphere_closed_form
+from ballbench.validation.references.hertz import ellipse_quadrature, sphere_closed_form
 
 E_STEEL, NU_STEEL = 2.1e11, 0.28
 

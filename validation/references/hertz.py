@@ -1,5 +1,9 @@
 """Reference solutions for Hertz contact, kept apart from ``lowmodel.contact.hertz``.
 
+Raw inputs only: the contact modulus from ``E, nu`` (:func:`contact_modulus`), the
+half curvature sums ``A, B`` of a ball in a straight groove from ``R_B`` and the
+conformity (:func:`groove_half_curvatures`); nothing here calls ``lowmodel``.
+
 Two independent routes:
 
 * closed forms for a sphere on a flat and sphere on sphere (Johnson 1985,
@@ -19,6 +23,23 @@ from __future__ import annotations
 import math
 
 from scipy.integrate import quad
+
+
+def contact_modulus(youngs_modulus: float, poisson_ratio: float, youngs_modulus_2: float | None = None,
+                    poisson_ratio_2: float | None = None) -> float:
+    """E* [Pa] from the raw material data: ``1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2`` (Johnson eq 4.22)."""
+    e2 = youngs_modulus if youngs_modulus_2 is None else youngs_modulus_2
+    n2 = poisson_ratio if poisson_ratio_2 is None else poisson_ratio_2
+    return 1.0 / ((1.0 - poisson_ratio**2) / youngs_modulus + (1.0 - n2**2) / e2)
+
+
+def groove_half_curvatures(ball_radius: float, conformity: float) -> tuple[float, float]:
+    """``(A, B)`` [1/m] of a ball in a straight groove of radius ``2 f R_B`` (Johnson eq 4.20).
+
+    Across the groove the ball (``1/R_B``) meets the concave groove (``-1/(2 f R_B)``),
+    along it the straight groove (0): ``A = (1/R_B - 1/(2 f R_B))/2``, ``B = 1/(2 R_B)``.
+    """
+    return 0.5 * (1.0 / ball_radius - 1.0 / (2.0 * conformity * ball_radius)), 0.5 / ball_radius
 
 
 def sphere_closed_form(force: float, radius: float, contact_modulus: float) -> dict[str, float]:
