@@ -8,6 +8,11 @@
   that may restart it from a corrected point.
 * :func:`check_solver_options`: the shared check of ``tolerance`` and
   ``max_iterations``.
+* :func:`continuation`: natural-parameter continuation with step control along
+  a homotopy ``s`` from 0 (a problem that converges) to 1 (the target), for
+  when Newton from the cheap start fails; reports the path, and raises
+  ConvergenceError naming the last converged ``s`` where the path stops
+  (a fold, or no state beyond it).
 
 A solver that does not converge raises
 :class:`ballbench.lowmodel.errors.ConvergenceError` with its residual; it
@@ -19,13 +24,15 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["newton", "solve_with_restarts", "check_solver_options", "SPARSE_SIZE"]
+__all__ = ["newton", "solve_with_restarts", "check_solver_options", "continuation", "ContinuationStep",
+           "SPARSE_SIZE"]
 
 SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 
@@ -134,3 +141,68 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
             return x, residual, total
         x, violation = verdict
     raise ConvergenceError(f"{what}: {rejection}", residual=float(violation), iterations=total, tolerance=tolerance)
+
+
+@dataclass(frozen=True)
+class ContinuationStep:
+    """One converged point of a continuation path: homotopy parameter ``s`` in [0, 1] and Newton iterations."""
+
+    parameter: float
+    iterations: int
+
+
+def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", initial_step: float = 0.25,
+                 min_step: float = 1.0 / 1024.0, max_steps: int = 200):
+    """Follow the solution of a homotopy from ``s = 0`` (where ``x_start`` solves it) to ``s = 1``.
+
+    ``solve_at(s, x0)`` solves the problem at ``s`` by Newton from ``x0`` and returns
+    ``(x, residual_vector, iterations)`` or raises ConvergenceError.  Natural-parameter
+    continuation: the predictor is the secant through the last two converged points,
+    a converged step in at most 6 iterations doubles the next one, a failed one
+    halves it; below ``min_step`` the path stops and ConvergenceError is raised with
+    ``reason = "continuation stopped (fold or no state beyond)"`` and
+    ``last_converged = (name, s)``.  Returns ``(x, residual_vector, path)`` with ``path`` a
+    tuple of :class:`ContinuationStep` (``s = 0`` first, ``s = 1`` last).
+    """
+    x = np.array(x_start, dtype=float)
+    previous = None  # (s, x) of the point before the last
+    s = 0.0
+    step = float(initial_step)
+    path = [ContinuationStep(0.0, 0)]
+    residual = None
+    last_error = None
+    for _ in range(max_steps):
+        target = min(1.0, s + step)
+        if previous is not None:  # secant predictor
+            guess = x + (x - previous[1]) * (target - s) / (s - previous[0])
+        else:
+            guess = x
+        try:
+            x_new, residual, iterations = solve_at(target, guess)
+        except ConvergenceError as error:
+            last_error = error
+            if previous is not None and not np.array_equal(guess, x):
+                try:  # the secant may overshoot a bend: retry from the last point itself
+                    x_new, residual, iterations = solve_at(target, x)
+                except ConvergenceError as error_again:
+                    last_error = error_again
+                    x_new = None
+            else:
+                x_new = None
+            if x_new is None:
+                step *= 0.5
+                if step < min_step:
+                    break
+                continue
+        previous = (s, x)
+        s, x = target, x_new
+        path.append(ContinuationStep(s, int(iterations)))
+        if s >= 1.0:
+            return x, residual, tuple(path)
+        if iterations <= 6:
+            step *= 2.0
+    residual_norm = last_error.residual if last_error is not None else math.inf
+    raise ConvergenceError(f"{what}: continuation in {name} stopped at {name} = {s:.6g} of 1 (fold or no state "
+                           "beyond)", residual=residual_norm, iterations=sum(p.iterations for p in path),
+                           tolerance=last_error.tolerance if last_error is not None else 0.0,
+                           reason="continuation stopped (fold or no state beyond)", last_converged=(name, s))

@@ -39,6 +39,7 @@ solution at each event).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -57,7 +58,7 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
     solve_ball,
     solve_branch,
     solve_free,
-    with_spin_capacity_diagnosis,
+    solve_with_continuation,
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
@@ -187,21 +188,68 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     k = N_UNKNOWNS
     m = touching.size
     gamma = COMPLEMENTARITY_SCALE
+    what = f"{n}-ball B2B contact"
+
+    def balls_of(z):
+        return z[:k * n].reshape(n, k)
+
+    def solve_at(contacts_s, z0, label=what):
+        function = _coupled_equations(contacts_s, touching, reference_force)
+        return solve_branch(function, z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
+                            max_iterations=max_iterations, what=label)
+
+    def start_guess(contacts_s):
+        return np.concatenate([initial_guess(contacts_s).reshape(-1), np.zeros(m)])
+
+    paths = []
+    try:  # from rolling at v/2 (cheap) ...
+        z, residual, iterations = solve_at(contacts, start_guess(contacts))
+    except ConvergenceError as first_error:  # ... else from the solution of every ball on its own ...
+        try:
+            guess, free_iterations, _ = solve_free(contacts, reference_force, tolerance, max_iterations, paths)
+            z, residual, iterations = solve_at(contacts, np.concatenate([guess.reshape(-1), np.zeros(m)]))
+            iterations += free_iterations
+        except ConvergenceError as error:  # ... else by continuation of the coupled problem
+            paths = []
+            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, start_guess,
+                                                                       error if error.iterations else first_error,
+                                                                       what=what)
+            paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
+    balls = balls_of(z)
+    forces = np.zeros(n - 1)
+    forces[touching] = z[k * n:]
+    separation = balls[touching + 1, 0] - balls[touching, 0]
+    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
+    if violation > 10 * tolerance:
+        raise ConvergenceError(f"{what}: complementarity violated", residual=violation,
+                               iterations=iterations, tolerance=tolerance)
+    forces = np.maximum(forces, 0.0)
+    forces[touching[z[k * n:] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
+    terms = ball_terms(balls, contacts, reference_force)
+    slip = _b2b_terms(balls[:, :3], forces, mu)[3]
+    state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
+                       b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
+    return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_force: float):
+    """``function(z) -> (residual, jacobian)`` of the coupled B2B problem (eqs 4, 8, 9-10) for ``contacts``.
+
+    ``z`` = the (n, 7) ball unknowns, then the forces ``F_B2B / (mu F_ref)`` of the touching pairs.
+    """
+    n = contacts.n_balls
+    mu = contacts.friction_coefficient
+    k = N_UNKNOWNS
+    m = touching.size
+    gamma = COMPLEMENTARITY_SCALE
     size = k * n + m
 
-    def unpack(z):
+    def function(z):
         balls = z[:k * n].reshape(n, k)
         forces = np.zeros(n - 1)
         forces[touching] = z[k * n:]
-        return balls, forces
-
-    last = {}
-
-    def function(z):
-        balls, forces = unpack(z)
         terms = ball_terms(balls, contacts, reference_force)
         load, d_scaled, d_forces, slip = _b2b_terms(balls[:, :3], forces, mu)
-        last.update(z=z, terms=terms, slip=slip)
         jac = np.zeros((size, size))
         residual = np.empty(size)
         ball_residual = terms.residual.copy()
@@ -225,35 +273,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         jac[rows[vel], k * touching[vel]] = -gamma
         return residual, jac
 
-    def attempt(guess):
-        z0 = np.concatenate([guess.reshape(-1), np.zeros(m)])
-        return solve_branch(function, z0, lambda z: z[:k * n].reshape(n, k), contacts, reference_force,
-                            tolerance=tolerance, max_iterations=max_iterations, what=f"{n}-ball B2B contact")
-
-    try:  # from rolling at v/2 (cheap) ...
-        z, residual, iterations = attempt(initial_guess(contacts))
-    except ConvergenceError:  # ... else from the solution of every ball on its own
-        guess, free_iterations, _ = solve_free(contacts, reference_force, tolerance, max_iterations)
-        try:
-            z, residual, iterations = attempt(guess)
-        except ConvergenceError as error:
-            raise with_spin_capacity_diagnosis(error, contacts) from None
-        iterations += free_iterations
-    balls, forces = unpack(z)
-    separation = balls[touching + 1, 0] - balls[touching, 0]
-    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
-    if violation > 10 * tolerance:
-        raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
-                               iterations=iterations, tolerance=tolerance)
-    forces = np.maximum(forces, 0.0)
-    forces[touching[z[k * n:] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
-    if last.get("z") is z:  # the last evaluation was at the solution
-        terms, slip = last["terms"], last["slip"]
-    else:
-        terms = ball_terms(balls, contacts, reference_force)
-        slip = _b2b_terms(balls[:, :3], forces, mu)[3]
-    return ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
-                  b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
+    return function
 
 
 @dataclass(frozen=True)

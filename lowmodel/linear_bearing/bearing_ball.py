@@ -60,6 +60,7 @@ ConvergenceError with that diagnosis.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
@@ -69,7 +70,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
-from ballbench.lowmodel.solvers import check_solver_options, solve_with_restarts
+from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options, continuation, solve_with_restarts
 
 __all__ = [
     "BallContacts",
@@ -78,6 +79,9 @@ __all__ = [
     "ball_contacts",
     "contacts_from_forces",
     "solve_ball",
+    "ContinuationPath",
+    "homotopy_paths",
+    "solve_with_continuation",
     "spin_capacity_ratio",
     "minimum_conformity",
     "ball_terms",
@@ -160,6 +164,8 @@ class BallState:
     b2b_friction_loss : (n - 1,) W, lin2019 eq 7
     b2b_slip : (n - 1,) m/s, ``|Delta v_B2B|`` (eq 5)
     iterations : Newton iterations; residual : final max residual / (mu max F)
+    continuation : the continuation paths taken where Newton from the cheap start failed, a tuple of
+        :class:`ContinuationPath` (empty when the direct solve converged)
     """
 
     ball_velocity: np.ndarray
@@ -178,6 +184,7 @@ class BallState:
     b2b_slip: np.ndarray
     iterations: int
     residual: float
+    continuation: tuple = ()
 
     @property
     def total_loss(self) -> float:
@@ -188,6 +195,23 @@ class BallState:
     def groove_loss(self) -> float:
         """Ball-to-groove friction loss [W]."""
         return float(self.friction_loss.sum())
+
+
+@dataclass(frozen=True)
+class ContinuationPath:
+    """A continuation path taken by a solver (:func:`solve_with_continuation`).
+
+    balls : indices of the balls solved along it; kind : ``"arm"`` (Hertz semi-axes scaled by
+    ``start_scale^(1 - s)``: the spin moments grow back from a larger arm to the target) or
+    ``"theta"`` (contact angles blended from their mean, the symmetric ball, to the target);
+    start_scale : the arm scale at ``s = 0`` (1 for ``"theta"``); steps : the converged
+    :class:`lowmodel.solvers.ContinuationStep` (``s``, Newton iterations), ``s = 1`` last.
+    """
+
+    balls: tuple
+    kind: str
+    start_scale: float
+    steps: tuple
 
 
 # --------------------------------------------------------------------------
@@ -456,41 +480,126 @@ def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iteratio
 
     Returns
     -------
-    BallState; ``iterations`` is the largest count over the balls.
-    Raises ConvergenceError (with the residual) if Newton fails.
+    BallState; ``iterations`` is the largest count over the balls; ``continuation`` the paths
+    taken for balls whose Newton from the cheap start failed (:func:`solve_with_continuation`).
+    Raises ConvergenceError (with the residual, ``reason`` and ``last_converged``) where no state
+    is found.
     """
     check_solver_options(tolerance, max_iterations)
     reference_force = float(contacts.normal_forces.max())
-    unknowns, iterations, residual = solve_free(contacts, reference_force, tolerance, max_iterations)
+    paths = []
+    unknowns, iterations, residual = solve_free(contacts, reference_force, tolerance, max_iterations, paths)
     terms = ball_terms(unknowns, contacts, reference_force)
-    return ball_state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
+    state = ball_state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
+    return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
 
 
-def solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int):
+def solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int,
+               paths: list | None = None):
     """Unknowns (n, 7) of every ball alone (no ball-to-ball contact); largest iteration count and residual.
 
-    ``reference_force`` [N] is the unit of the force residuals (``mu F_ref``).
-    Raises ConvergenceError with the spin-capacity diagnosis if a ball fails.
+    ``reference_force`` [N] is the unit of the force residuals (``mu F_ref``).  A ball whose
+    Newton from the cheap start fails is solved by continuation (:func:`solve_with_continuation`);
+    the paths taken are appended to ``paths`` (a list) when given.  Raises ConvergenceError with
+    the spin-capacity diagnosis, the reason and the last converged parameter if a ball fails.
     """
     unknowns = initial_guess(contacts)
     worst_iterations, worst_residual = 0, 0.0
     for index in range(contacts.n_balls):
         single = contacts.ball(index)
 
-        def function(z, single=single):
-            terms = ball_terms(z[None, :], single, reference_force)
-            return terms.residual[0], terms.jacobian[0]
+        def solve_at(ball_contacts, z0, what):
+            def function(z):
+                terms = ball_terms(z[None, :], ball_contacts, reference_force)
+                return terms.residual[0], terms.jacobian[0]
+            return solve_branch(function, z0, lambda z: z[None, :], ball_contacts, reference_force,
+                                tolerance=tolerance, max_iterations=max_iterations, what=what)
 
         try:
-            z, residual, iterations = solve_branch(function, unknowns[index], lambda z: z[None, :], single,
-                                                   reference_force, tolerance=tolerance,
-                                                   max_iterations=max_iterations, what=f"ball {index}")
+            z, residual, iterations = solve_at(single, unknowns[index], f"ball {index}")
         except ConvergenceError as error:
-            raise with_spin_capacity_diagnosis(error, single) from None
+            (z, residual, iterations), taken = solve_with_continuation(
+                single, solve_at, lambda c: initial_guess(c)[0], error, what=f"ball {index}")
+            if paths is not None:
+                paths.append(ContinuationPath((index,), taken.kind, taken.start_scale, taken.steps))
         unknowns[index] = z
         worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, float(np.max(np.abs(residual))))
     return unknowns, worst_iterations, worst_residual
+
+
+def homotopy_paths(contacts: BallContacts):
+    """The homotopies tried by :func:`solve_with_continuation`, as ``(kind, start_scale, contacts_at)``.
+
+    ``contacts_at(s)`` gives the BallContacts at homotopy parameter ``s`` in [0, 1] (the target at 1).
+    Normal forces, ``b/a``, ``mu`` and ``v`` stay those of the target (``mu`` and ``v`` drop out of the
+    scaled equations anyway); only what makes Newton hard changes:
+
+    * ``"arm"``: the semi-axes ``a_i`` scaled by ``lambda^(1 - s)``, ``lambda`` up to 4 but keeping the
+      spin-capacity ratio >= 3 at the start.  Light loads (small ``a/R_B``) bring the state close to the
+      rigid lin2017 solution with sticking contacts, where the full-sliding equations are stiff; a
+      larger arm is the same ball under a heavier load (``a ~ F^(1/3)``), which converges.
+    * ``"theta"``: contact angles ``beta_mean + s (beta_i - beta_mean)`` from the symmetric ball (all
+      four angles equal, converged in 2-3 iterations) to the target; follows misalignment up to the
+      lin2017 eq 37 limit.
+    """
+    ratio = float(np.min(spin_capacity_ratio(contacts)))
+    paths = []
+    scale = min(4.0, ratio / 3.0)
+    if scale > 1.2:
+        def arm_at(s, scale=scale):
+            return BallContacts(contacts.contact_angles, contacts.normal_forces,
+                                contacts.semi_major * scale ** (1.0 - s), contacts.b_over_a, contacts.ball_radius,
+                                contacts.friction_coefficient, contacts.groove_velocity)
+        paths.append(("arm", scale, arm_at))
+    mean = contacts.contact_angles.mean(axis=1, keepdims=True)
+
+    def theta_at(s):
+        return BallContacts(mean + s * (contacts.contact_angles - mean), contacts.normal_forces,
+                            contacts.semi_major, contacts.b_over_a, contacts.ball_radius,
+                            contacts.friction_coefficient, contacts.groove_velocity)
+    paths.append(("theta", 1.0, theta_at))
+    return paths
+
+
+def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error: ConvergenceError, *, what: str):
+    """Continuation along :func:`homotopy_paths` after Newton from the cheap start failed with ``error``.
+
+    ``solve_at(contacts_s, z0, what)`` solves the problem (one ball, or the coupled B2B chain) for the
+    contacts ``contacts_s`` from ``z0`` and returns ``(z, residual, iterations)``; ``start_guess(contacts_s)``
+    is the cheap start at ``s = 0``.  Paths are tried in order; the first that reaches ``s = 1`` gives
+    ``((z, residual, iterations), ContinuationPath)``.  Where none does, ConvergenceError with the
+    spin-capacity diagnosis, the reason (spin-capacity ratio < 1, or the continuation stopped: a fold
+    or no state beyond) and the last converged parameter of the path that got furthest.
+    """
+    furthest = None
+    for kind, scale, contacts_at in homotopy_paths(contacts):
+        try:
+            start = contacts_at(0.0)
+            z0, _, iterations0 = solve_at(start, start_guess(start), f"{what}, {kind} path start")
+        except ConvergenceError:
+            continue
+
+        def step(s, z, contacts_at=contacts_at, kind=kind):
+            return solve_at(contacts_at(s), z, f"{what}, {kind} path")
+
+        try:
+            z, residual, steps = continuation(step, z0, what=f"{what}, {kind} path", name=f"s ({kind})")
+        except ConvergenceError as stopped:
+            if furthest is None or stopped.last_converged[1] > furthest.last_converged[1]:
+                furthest = stopped
+            continue
+        steps = (ContinuationStep(0.0, iterations0),) + steps[1:]
+        return (z, residual, sum(p.iterations for p in steps)), ContinuationPath((), kind, scale, steps)
+    ratio = float(np.min(spin_capacity_ratio(contacts)))
+    reason = ("spin-capacity ratio < 1" if ratio < 1.0 else
+              furthest.reason if furthest is not None else "no continuation path could start")
+    last = furthest.last_converged if furthest is not None else None
+    where = f"; continuation got to {last[0]} = {last[1]:.6g}" if last is not None else ""
+    diagnosed = with_spin_capacity_diagnosis(error, contacts)
+    message = str(diagnosed).split(" (residual")[0] + where
+    raise ConvergenceError(message, residual=error.residual, iterations=error.iterations,
+                           tolerance=error.tolerance, reason=reason, last_converged=last) from None
 
 
 def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
