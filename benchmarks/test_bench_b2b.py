@@ -58,3 +58,28 @@ def test_fifty_ball_chain(benchmark):
     median = benchmark.stats.stats.median
     benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations)
     print(f"\n50-ball chain, all touching: {median * 1e3:.1f} ms median, {state.iterations} Newton iterations")
+
+
+def test_chain_cost_per_ball(benchmark):
+    """Chains of 50 to 1000 touching balls: targets 200 balls <= 40 ms, 1000 balls <= 250 ms, time per ball
+    constant within 30 % from 50 to 1000 balls (issue 10; sparse block-tridiagonal Jacobian, banded Cholesky)."""
+    import time
+
+    per_ball = {}
+    for n_balls in (50, 100, 200, 400, 1000):
+        contacts = _contacts(n_balls=n_balls)
+        gaps = np.zeros(n_balls - 1)
+        b2b.solve(contacts, gaps)
+        times = []
+        for _ in range(5):
+            start = time.perf_counter()
+            b2b.solve(contacts, gaps)
+            times.append(time.perf_counter() - start)
+        per_ball[n_balls] = float(np.median(times))
+    contacts = _contacts(n_balls=200)
+    benchmark.pedantic(b2b.solve, args=(contacts, np.zeros(199)), rounds=5, iterations=1)
+    spread = max(t / n for n, t in per_ball.items()) / min(t / n for n, t in per_ball.items()) - 1
+    benchmark.extra_info.update({f"median_ms_{n}": 1e3 * t for n, t in per_ball.items()}, per_ball_spread=spread)
+    print("\nchain solve, median: " + ", ".join(f"{n} balls {1e3 * t:.1f} ms ({1e3 * t / n:.3f} ms/ball)"
+                                                for n, t in per_ball.items())
+          + f"; per-ball spread {100 * spread:.0f} % (targets: 200 balls <= 40 ms, 1000 <= 250 ms, spread <= 30 %)")

@@ -54,7 +54,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
     steps are short gradient-like steps (friction saturates: the residual is
     bounded and plain Newton steps can be huge), and near it ``lam -> 0``
     gives Newton steps and quadratic convergence.  Stops when
-    ``max|r| <= tolerance``.  Returns ``(x, residual_vector, iterations)``;
+    ``max|r| <= tolerance``.  ``jacobian`` may be a dense array (sparse normal equations
+    above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).  Returns ``(x, residual_vector, iterations)``;
     raises ConvergenceError with the residual otherwise.
     """
     x = np.array(x0, dtype=float)
@@ -68,13 +69,17 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
                                    tolerance=tolerance)
         iterations += 1
-        sparse = x.size > SPARSE_SIZE
-        if sparse:  # many balls: the Jacobian is block tridiagonal
+        sparse = x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
+        if sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
             from scipy import sparse as sp
             from scipy.sparse.linalg import spsolve
 
             jac_sparse = sp.csr_matrix(jacobian)
-            normal = (jac_sparse.T @ jac_sparse).tocsc()
+            jacobian = jac_sparse
+            normal = (jac_sparse.T @ jac_sparse).tocoo()
+            lower = normal.row >= normal.col
+            band = _Band(normal.row[lower], normal.col[lower], normal.data[lower], x.size)
+            normal = normal.tocsc()
             identity = sp.identity(x.size, format="csc")
             diagonal_max = float(normal.diagonal().max())
         else:
@@ -87,7 +92,9 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
         merit = float(residual @ residual)
         while True:
             try:
-                if sparse:
+                if sparse and band.narrow:  # banded SPD system (block-tridiagonal J): Cholesky, O(n b^2)
+                    step = band.solve(damping, -gradient)
+                elif sparse:
                     with warnings.catch_warnings():  # a singular matrix gives NaN: handled below
                         warnings.simplefilter("ignore")
                         step = spsolve(normal + damping * identity, -gradient)
@@ -116,6 +123,31 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
         x, residual, jacobian = trial, trial_residual, trial_jacobian
         norm = float(np.max(np.abs(residual)))
     return x, residual, iterations
+
+
+class _Band:
+    """Lower band storage of the normal matrix ``J^T J`` for scipy's banded Cholesky (``solveh_banded``).
+
+    ``narrow`` when the bandwidth is small against the size (the interleaved block-tridiagonal systems of
+    the ball chains: bandwidth ~ 30 whatever the number of balls), else the caller uses SuperLU.
+    """
+
+    def __init__(self, rows, cols, values, size):
+        self.width = int(np.max(rows - cols, initial=0))
+        self.narrow = (self.width + 1) * 8 < size
+        if self.narrow:
+            self.storage = np.zeros((self.width + 1, size))
+            self.storage[rows - cols, cols] = values
+
+    def solve(self, damping, rhs):
+        from scipy.linalg import solveh_banded
+
+        storage = self.storage.copy()
+        storage[0] += damping
+        try:
+            return solveh_banded(storage, rhs, lower=True, check_finite=False)
+        except np.linalg.LinAlgError:
+            return np.full(rhs.size, np.nan)
 
 
 def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, max_iterations: int, what: str,

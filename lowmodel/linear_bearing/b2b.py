@@ -62,7 +62,7 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
 
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -113,8 +113,10 @@ def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
 
     scaled (n, 3) ball unknowns; forces (n-1,) in units of mu F_ref.
-    Returns (load (n, 3) added to the ball residuals, d load/d scaled (n, 3, n, 3),
-    d load/d forces (n, 3, n-1), slip |dv| (n-1,) in units |v|).
+    Returns (load (n, 3) added to the ball residuals, ``block`` (n-1, 2, 2): d (rows 1, 2 of the
+    load on ball j and on ball j+1, the same) / d (x_1, x_2 of ball j and of ball j+1, the same),
+    ``d_force`` (n-1, 3, 2): d (rows 0, 1, 2 of the load) / d F_j on ball j ([:, :, 0]) and j+1
+    ([:, :, 1]), slip |dv| (n-1,) in units |v|).
     """
     n = scaled.shape[0]
     pairs = n - 1
@@ -141,18 +143,15 @@ def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     dfx_dx2 = -mu * forces * dex_ddvx
     dfy_dx1 = -mu * forces * (-dey_ddvy)
     dfy_dx2 = -mu * forces * dex_ddvy
-    d_scaled = np.zeros((n, 3, n, 3))
-    d_forces = np.zeros((n, 3, pairs))
     # the moment (rows 1, 2) on both balls of a pair depends on (x1, x2) of both balls alike
     block = np.empty((pairs, 2, 2))
     block[:, 0, 0], block[:, 0, 1] = -dfy_dx1, -dfy_dx2
     block[:, 1, 0], block[:, 1, 1] = dfx_dx1, dfx_dx2
-    for j in range(pairs):
-        d_scaled[j:j + 2, 1:3, j:j + 2, 1:3] += block[j][None, :, None, :]
-        d_forces[j:j + 2, 0, j] = (-1.0, 1.0)
-        d_forces[j:j + 2, 1, j] = mu * ey[j]
-        d_forces[j:j + 2, 2, j] = -mu * ex[j]
-    return load, d_scaled, d_forces, np.sqrt(dvx**2 + dvy**2)
+    d_force = np.empty((pairs, 3, 2))
+    d_force[:, 0, 0], d_force[:, 0, 1] = -1.0, 1.0
+    d_force[:, 1, :] = (mu * ey)[:, None]
+    d_force[:, 2, :] = (-mu * ex)[:, None]
+    return load, block, d_force, np.sqrt(dvx**2 + dvy**2)
 
 
 def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,
@@ -190,16 +189,23 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     gamma = COMPLEMENTARITY_SCALE
     what = f"{n}-ball B2B contact"
 
+    ball_index, force_index = _layout(n, touching)
+
     def balls_of(z):
-        return z[:k * n].reshape(n, k)
+        return z[ball_index]
+
+    def pack(balls):
+        z = np.zeros(k * n + m)
+        z[ball_index] = balls
+        return z
 
     def solve_at(contacts_s, z0, label=what):
-        function = _coupled_equations(contacts_s, touching, reference_force)
+        function = _coupled_equations(contacts_s, touching, reference_force, ball_index, force_index)
         return solve_branch(function, z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
                             max_iterations=max_iterations, what=label)
 
     def start_guess(contacts_s):
-        return np.concatenate([initial_guess(contacts_s).reshape(-1), np.zeros(m)])
+        return pack(initial_guess(contacts_s))
 
     paths = []
     try:  # from rolling at v/2 (cheap) ...
@@ -207,7 +213,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     except ConvergenceError as first_error:  # ... else from the solution of every ball on its own ...
         try:
             guess, free_iterations, _ = solve_free(contacts, reference_force, tolerance, max_iterations, paths)
-            z, residual, iterations = solve_at(contacts, np.concatenate([guess.reshape(-1), np.zeros(m)]))
+            z, residual, iterations = solve_at(contacts, pack(guess))
             iterations += free_iterations
         except ConvergenceError as error:  # ... else by continuation of the coupled problem
             paths = []
@@ -217,14 +223,14 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls = balls_of(z)
     forces = np.zeros(n - 1)
-    forces[touching] = z[k * n:]
+    forces[touching] = z[force_index]
     separation = balls[touching + 1, 0] - balls[touching, 0]
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
     if violation > 10 * tolerance:
         raise ConvergenceError(f"{what}: complementarity violated", residual=violation,
                                iterations=iterations, tolerance=tolerance)
     forces = np.maximum(forces, 0.0)
-    forces[touching[z[k * n:] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
+    forces[touching[z[force_index] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
     terms = ball_terms(balls, contacts, reference_force)
     slip = _b2b_terms(balls[:, :3], forces, mu)[3]
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
@@ -232,10 +238,32 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
 
 
-def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_force: float):
+SPARSE_BALLS = 40  # chains of at least this many balls get a sparse Jacobian (dense LU is faster below)
+
+
+def _layout(n: int, touching: np.ndarray):
+    """Positions of the unknowns in ``z``: ball j's 7 unknowns, then the force of pair j if it touches.
+
+    Interleaving keeps the Jacobian banded (a ball couples only to its neighbours and to the
+    forces between them), so its normal equations have a bandwidth independent of ``n``.
+    Returns ``ball_index`` (n, 7) and ``force_index`` (touching pairs,).
+    """
+    k = N_UNKNOWNS
+    carries = np.zeros(n, dtype=int)
+    carries[touching] = 1
+    start = k * np.arange(n) + np.concatenate([[0], np.cumsum(carries)[:-1]])
+    return start[:, None] + np.arange(k)[None, :], start[touching] + k
+
+
+def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_force: float,
+                       ball_index: np.ndarray, force_index: np.ndarray):
     """``function(z) -> (residual, jacobian)`` of the coupled B2B problem (eqs 4, 8, 9-10) for ``contacts``.
 
-    ``z`` = the (n, 7) ball unknowns, then the forces ``F_B2B / (mu F_ref)`` of the touching pairs.
+    ``z[ball_index]`` (n, 7) are the ball unknowns, ``z[force_index]`` the forces
+    ``F_B2B / (mu F_ref)`` of the touching pairs (:func:`_layout`).  The Jacobian is block
+    tridiagonal (a ball couples to its neighbours through the B2B terms); it is assembled
+    directly from its nonzero blocks (no dense scan), as a scipy CSR matrix for
+    ``n >= SPARSE_BALLS`` (cost linear in ``n``) and as a dense array below.
     """
     n = contacts.n_balls
     mu = contacts.friction_coefficient
@@ -243,34 +271,51 @@ def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_f
     m = touching.size
     gamma = COMPLEMENTARITY_SCALE
     size = k * n + m
+    sparse = n >= SPARSE_BALLS
+    # fixed sparsity pattern: (row, col) of every stored entry, in the order the values are written below
+    ball_rows = np.repeat(ball_index[:, :, None], k, axis=2)  # (n, 7, 7)
+    ball_cols = np.repeat(ball_index[:, None, :], k, axis=1)
+    pair = np.arange(n - 1)
+    # B2B moment block: rows (1, 2) of balls (j, j+1) x columns (1, 2) of balls (j, j+1)
+    side = np.array([0, 0, 1, 1])  # ball offset of rows/cols in the 4 x 4 block (j, j+1)
+    local = np.array([1, 2, 1, 2])
+    moment_index = ball_index[pair[:, None] + side[None, :], local[None, :]]  # (n-1, 4)
+    moment_rows = np.repeat(moment_index[:, :, None], 4, axis=2)
+    moment_cols = np.repeat(moment_index[:, None, :], 4, axis=1)
+    # force columns: rows 0..2 of balls j and j+1 for the touching pairs
+    t_rows = np.stack([ball_index[touching, :3], ball_index[touching + 1, :3]], axis=-1)  # (m, 3, 2)
+    t_cols = np.broadcast_to(force_index[:, None, None], t_rows.shape)
+    behind, front = ball_index[touching, 0], ball_index[touching + 1, 0]  # v_B of the pair's balls
 
     def function(z):
-        balls = z[:k * n].reshape(n, k)
+        balls = z[ball_index]
         forces = np.zeros(n - 1)
-        forces[touching] = z[k * n:]
+        forces[touching] = z[force_index]
         terms = ball_terms(balls, contacts, reference_force)
-        load, d_scaled, d_forces, slip = _b2b_terms(balls[:, :3], forces, mu)
-        jac = np.zeros((size, size))
+        load, block, d_force, slip = _b2b_terms(balls[:, :3], forces, mu)
         residual = np.empty(size)
         ball_residual = terms.residual.copy()
         ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
-        residual[:k * n] = ball_residual.reshape(-1)
-        for ball in range(n):
-            rows = slice(k * ball, k * ball + k)
-            jac[rows, rows] = terms.jacobian[ball]
-        rows3 = (k * np.arange(n)[:, None] + np.arange(3)[None, :]).reshape(-1)  # equilibrium rows
-        jac[np.ix_(rows3, rows3)] += d_scaled.reshape(3 * n, 3 * n)
-        jac[rows3, k * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
+        residual[ball_index] = ball_residual
         # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
-        lam = z[k * n:]
+        lam = z[force_index]
         separation = balls[touching + 1, 0] - balls[touching, 0]
         force_branch = lam <= gamma * separation
-        residual[k * n:] = np.where(force_branch, lam, gamma * separation)
-        rows = k * n + np.arange(m)
-        jac[rows[force_branch], k * n + np.flatnonzero(force_branch)] = 1.0
+        residual[force_index] = np.where(force_branch, lam, gamma * separation)
+        moment_values = np.tile(block, (1, 2, 2))  # the same 2 x 2 block on (j, j), (j, j+1), (j+1, j), (j+1, j+1)
         vel = ~force_branch
-        jac[rows[vel], k * (touching[vel] + 1)] = gamma
-        jac[rows[vel], k * touching[vel]] = -gamma
+        count = int(vel.sum())
+        rows = [ball_rows.ravel(), moment_rows.ravel(), t_rows.ravel(), force_index, force_index[vel],
+                force_index[vel]]
+        cols = [ball_cols.ravel(), moment_cols.ravel(), t_cols.ravel(), force_index, front[vel], behind[vel]]
+        values = [terms.jacobian.ravel(), moment_values.ravel(), d_force[touching].ravel(),
+                  np.where(force_branch, 1.0, 0.0), np.full(count, gamma), np.full(count, -gamma)]
+        rows, cols, values = np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
+        if sparse:
+            from scipy import sparse as sp
+
+            return residual, sp.csr_matrix((values, (rows, cols)), shape=(size, size))  # duplicates are summed
+        jac = np.bincount(rows * size + cols, weights=values, minlength=size * size).reshape(size, size)
         return residual, jac
 
     return function
