@@ -55,8 +55,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
     bounded and plain Newton steps can be huge), and near it ``lam -> 0``
     gives Newton steps and quadratic convergence.  Stops when
     ``max|r| <= tolerance``.  ``jacobian`` may be a dense array (sparse normal equations
-    above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).  Returns ``(x, residual_vector, iterations)``;
-    raises ConvergenceError with the residual otherwise.
+    above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).  Returns
+    ``(x, residual_vector, iterations)``; raises ConvergenceError with the residual otherwise.
     """
     x = np.array(x0, dtype=float)
     residual, jacobian = function(x)
