@@ -108,9 +108,9 @@ def _spin_moment(monkeypatch):  # lin2019 eq 11 spin moment (3/8) E(e) x 1.01
 
 
 def _eq22_sign(monkeypatch):  # lin2019 eq 22 with the top-groove deviations entering with the wrong sign
-    original = b2b_analytical._epsilon
-    monkeypatch.setattr(b2b_analytical, "_epsilon", lambda bl, br, tr, tl, up, down, beta0:
-                        original(bl, br, -tr, -tl, up, down, beta0))
+    original = b2b_analytical._weighted
+    monkeypatch.setattr(b2b_analytical, "_weighted", lambda bl, br, tr, tl, up, down:
+                        original(bl, br, -tr, -tl, up, down))
 
 
 def _normal_forces(monkeypatch):  # lin2017 eq 36 with the bottom pair swapped

@@ -70,7 +70,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.special import ellipe, ellipk, elliprd
+from scipy.special import ellipe, ellipkm1, elliprd
 
 from ballbench.lowmodel import checks
 
@@ -93,6 +93,7 @@ __all__ = [
 ]
 
 B_OVER_A_RANGE = (0.02, 1.0)  # tabulated range of b/a (a >= b by convention)
+SLIP_FLOOR = 1e-300  # m/s: friction_velocity treats a slip speed below this as zero (contact at rest)
 _PREFACTOR = 3.0 / (2.0 * math.pi)  # lin2019 eq A7: p0 a b / F
 
 
@@ -140,7 +141,8 @@ class SlipFriction:
     ``d<q>_dspin``, ``d<q>_dslide``: partial derivatives with respect to
     ``spin_velocity`` and ``slide_velocity`` [1/(m/s)] (loss: dimensionless).
     At ``spin = slide = 0`` force and moment are undefined (returned as the
-    pure-spin value ``force = 0``, ``moment = (3/8) E``, derivatives 0).
+    pure-spin value ``force = 0``, ``moment = (3/8) E``, derivatives 0); slip speeds
+    below ``SLIP_FLOOR`` (1e-300 m/s) count as zero.
     """
 
     force: np.ndarray
@@ -231,10 +233,13 @@ def cubic_coefficient(b_over_a) -> np.ndarray:
     b = np.atleast_1d(beta).astype(float).ravel()
     m = 1.0 - b**2
     result = np.empty_like(b)
-    far = (b <= 0.5) & (b > 0.0)  # no cancellation in the closed form (e^4 >= 0.56)
-    result[far] = ((1.0 + b[far] ** 2) * ellipe(m[far]) - 2.0 * b[far] ** 2 * ellipk(m[far])) / (2.0 * m[far] ** 2)
-    result[b == 0.0] = 0.5  # limit b/a -> 0: E(1) = 1 and b^2 K ~ b^2 ln(4/b) -> 0
-    far |= b == 0.0
+    tiny = b * b == 0.0  # b/a below 1e-154: b^2 K(e) ~ b^2 ln(4/b) underflows, the limit itself
+    far = (b <= 0.5) & ~tiny  # no cancellation in the closed form (e^4 >= 0.56)
+    # K(m) through ellipkm1(1 - m = b^2): exact also where m = 1 - b^2 rounds to 1 (tiny b)
+    b2 = b[far] ** 2
+    result[far] = ((1.0 + b2) * ellipe(m[far]) - 2.0 * b2 * ellipkm1(b2)) / (2.0 * m[far] ** 2)
+    result[tiny] = 0.5  # limit b/a -> 0: E(1) = 1 and b^2 K ~ b^2 ln(4/b) -> 0
+    far |= tiny
     if np.any(~far):  # near-circular: smooth integrand, 48-point Gauss-Legendre
         x, w = _gauss(48)
         psi = 0.5 * math.pi * x
@@ -450,6 +455,8 @@ def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
     """
     c_max = checks.positive("c_max", c_max)
     beta = _check_ratio(b_over_a, lower=1e-3)
+    if c_max < 1e-3:  # the quadrature's absolute accuracy (~1e-16) would swamp c_max: the exact cubic instead
+        return k_f_exact(beta) - 0.6 * c_max**2 * cubic_coefficient(beta)
     x, w = _gauss(24)
     kappa = c_max * x  # (0, c_max]; the integrand force*kappa is even
     shape = beta.shape
@@ -706,6 +713,7 @@ def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
     phi = np.arctan2(slide, spin)
     force, dforce, moment, dmoment, direction, ddirection = _evaluate(phi, beta)
     speed = np.hypot(spin, slide)  # no overflow of spin^2 + slide^2 for huge velocities
+    speed = np.where(speed > SLIP_FLOOR, speed, 0.0)  # below: at rest (1/speed of the derivatives overflows)
     safe = np.where(speed > 0.0, speed, 1.0)
     cos, sin = spin / safe, slide / safe  # (cos phi, sin phi)
     dphi_dspin = np.where(speed > 0.0, -sin / safe, 0.0)

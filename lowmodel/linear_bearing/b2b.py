@@ -92,10 +92,15 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
                          f"{np.shape(top)}")
     angles = nominal_angle + np.array([-theta, theta, top[0], top[1]])
     sign = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0)
-    return ball_contacts(np.tile(angles, (n_balls, 1)), sign * side_force_ratio * vertical_force, vertical_force,
-                         ball_radius=ball_radius, conformity=conformity,
-                         friction_coefficient=friction_coefficient, groove_velocity=groove_velocity,
-                         youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
+    try:
+        return ball_contacts(np.tile(angles, (n_balls, 1)), sign * side_force_ratio * vertical_force,
+                             vertical_force, ball_radius=ball_radius, conformity=conformity,
+                             friction_coefficient=friction_coefficient, groove_velocity=groove_velocity,
+                             youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
+    except ValueError as error:
+        if "side_force" in str(error) and "side_force_ratio" not in str(error):  # name this function's parameter
+            raise ValueError(f"side_force_ratio (N_x = side_force_ratio * vertical_force): {error}") from None
+        raise
 
 
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:

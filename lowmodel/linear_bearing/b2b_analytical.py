@@ -94,7 +94,17 @@ def velocity_deviation(delta_beta, force_up, force_down,
 
 def _epsilon(bl, br, tr, tl, up, down, beta0):
     """lin2019 eq 22 without input checks; ``up``, ``down`` are F_U^(2/3), F_D^(2/3)."""
-    return (1.0 - np.cos(2.0 * beta0)) * ((-bl + tr) * up + (-br + tl) * down) / (2.0 * (up + down))
+    return _geometric(beta0) * _weighted(bl, br, tr, tl, up, down)
+
+
+def _geometric(beta0):
+    """``1 - cos(2 beta_0)`` of eqs 22 and 30, written ``2 sin^2(beta_0)`` (no cancellation at small beta_0)."""
+    return 2.0 * np.sin(beta0) ** 2
+
+
+def _weighted(bl, br, tr, tl, up, down):
+    """eq 22 divided by ``1 - cos(2 beta_0)``."""
+    return ((-bl + tr) * up + (-br + tl) * down) / (2.0 * (up + down))
 
 
 def diagonal_forces(normal_load, side_load, nominal_contact_angle=NOMINAL_CONTACT_ANGLE):
@@ -189,18 +199,22 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     radius = np.asarray(checks.positive("ball_radius", ball_radius, "m"))
     beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
     direction = np.sign(checks.finite("groove_velocity", groove_velocity, "m/s"))
-    return _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, np.asarray(touching, dtype=bool),
+    geometric = _geometric(beta0)
+    if np.any(geometric <= 0.0):
+        raise ValueError(f"nominal_contact_angle must be well inside (0, pi/2) rad: 1 - cos(2 beta_0) of eq 30 "
+                         f"underflows to 0 at beta_0 = {float(np.min(beta0))!r}")
+    return _force((eps_1 - eps_2) / geometric, s_1, s_2, k_f, mu, psi, radius, np.asarray(touching, dtype=bool),
                   direction)
 
 
-def _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, touching, direction):
-    """lin2019 eq 30 without input checks; ``s_j = F_jU^(2/3) + F_jD^(2/3)``, ``direction = sign(v)``.
+def _force(difference, s_1, s_2, k_f, mu, psi, radius, touching, direction):
+    """lin2019 eq 30 without input checks; ``difference = (epsilon_1 - epsilon_2) / (1 - cos 2 beta_0)``,
+    ``s_j = F_jU^(2/3) + F_jD^(2/3)``, ``direction = sign(v)``.
 
     The approach rate of ball 1 (behind) on ball 2 is ``(epsilon_1 - epsilon_2) v/2``.
     """
-    approach = (eps_1 - eps_2) * direction
-    force = (2.0 * k_f * mu * radius ** (2.0 / 3.0) / (psi * (1.0 - np.cos(2.0 * beta0)))
-             * s_1 * s_2 / (s_1 + s_2) * approach)
+    approach = difference * direction
+    force = 2.0 * k_f * mu * radius ** (2.0 / 3.0) / psi * s_1 * s_2 / (s_1 + s_2) * approach
     return np.where((approach > 0.0) & touching, force, 0.0)
 
 
@@ -281,11 +295,13 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     side = rho * n_y
     powers = [f ** (2.0 / 3.0) for f in (*_diagonal(n_y, side, beta0), *_diagonal(n_y, -side, beta0))]
     # (BL, BR, TR, TL) = (-theta, theta, top_tr, top_tl) for both balls
-    epsilon_1 = _epsilon(-theta, theta, top_tr, top_tl, powers[0], powers[1], beta0)   # ball 1: N_x = rho N_y
-    epsilon_2 = _epsilon(-theta, theta, top_tr, top_tl, powers[2], powers[3], beta0)   # ball 2: N_x = -rho N_y
+    weighted_1 = _weighted(-theta, theta, top_tr, top_tl, powers[0], powers[1])   # ball 1: N_x = rho N_y
+    weighted_2 = _weighted(-theta, theta, top_tr, top_tl, powers[2], powers[3])   # ball 2: N_x = -rho N_y
+    epsilon_1 = _geometric(beta0) * weighted_1  # lin2019 eq 22
+    epsilon_2 = _geometric(beta0) * weighted_2
     s_1 = powers[0] + powers[1]
     s_2 = powers[2] + powers[3]
-    force = _force(epsilon_1, epsilon_2, s_1, s_2, k_f, mu, psi, radius, beta0, True, np.sign(v))
+    force = _force(weighted_1 - weighted_2, s_1, s_2, k_f, mu, psi, radius, True, np.sign(v))  # eq 30
     loss = mu * force * np.abs(v) / np.cos(beta0)  # lin2019 eq 32
     # common velocity (eqs 25-29): Delta epsilon_1 = -F_B2B / (C S_1), Delta epsilon_2 = +F_B2B / (C S_2)
     # with C the prefactor of eq 30, so the contact velocity is the S-weighted mean of the free ones
