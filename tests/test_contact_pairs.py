@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from ballbench.fem.elasticity import load_pair
-from ballbench.meshes import contact_pairs, gmsh_tools
+from ballbench.meshes import gmsh_tools, refinement
+from ballbench.meshes.assemblies import contact_pairs
 
 R = 5e-3
 COARSE = dict(h_contact=2.5e-4, growth=1.5)
@@ -102,6 +103,6 @@ def test_bad_input(kwargs, word):
 def test_refinement_helper_bad_input():
     with gmsh_tools.session("t") as gmsh:
         with pytest.raises(ValueError, match="growth"):
-            gmsh_tools.contact_refinement(gmsh, 1e-4, 5.0, 1e-3)
+            refinement.contact_refinement(gmsh, 1e-4, 5.0, 1e-3)
         with pytest.raises(ValueError, match="h_max"):
-            gmsh_tools.contact_refinement(gmsh, 1e-4, 1.2, 1e-5)
+            refinement.contact_refinement(gmsh, 1e-4, 1.2, 1e-5)

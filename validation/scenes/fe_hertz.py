@@ -89,7 +89,7 @@ class PairCase:
 
 
 def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
-    from ballbench.meshes import contact_pairs
+    from ballbench.meshes.assemblies import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
     ref = hertz.solve_load(geometry, LOAD)
@@ -104,7 +104,7 @@ def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
 
 def pair_case(scene_name: str) -> PairCase:
     """The pair of an ``fe-hertz-*`` scene."""
-    from ballbench.meshes import contact_pairs
+    from ballbench.meshes.assemblies import contact_pairs
 
     if scene_name == "fe-hertz-flat":
         geometry = hertz.ball_on_flat(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
@@ -123,6 +123,7 @@ def pair_case(scene_name: str) -> PairCase:
         return _steel_groove(conformity, LEVELS_052 if scene_name.endswith("052") else None)
     if scene_name == "fe-hertz-screw":
         from ballbench.meshes import helical
+        from ballbench.meshes.assemblies import screw_pair
 
         # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
         args = (2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0))
@@ -131,7 +132,7 @@ def pair_case(scene_name: str) -> PairCase:
         geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
                                          youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
-        return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
+        return PairCase("ball in screw groove", lambda h, g: screw_pair.ball_in_screw_groove_pair(
             *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
             "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", LEVELS_SCREW)
     raise ValueError(f"no FE Hertz scene {scene_name!r}")
