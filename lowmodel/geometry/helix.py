@@ -71,7 +71,9 @@ def lead_angle(lead, pitch_radius) -> np.ndarray:
     L = 20 mm, r_m = 20.7 mm gives psi = 8.74 deg).
     """
     radius = checks.positive("pitch_radius", pitch_radius, "m")
-    return np.arctan(helix_parameter(lead) / radius)
+    # as atan2(L, 2 pi r_m), the form the mesh builders used: the same angle to 1 ulp, and
+    # gmsh meshes (chaotic in their input at the ulp level) stay bit-identical
+    return np.arctan2(checks.non_negative("lead", lead, "m"), 2.0 * np.pi * radius)
 
 
 def curvature(pitch_radius, lead) -> np.ndarray:
