@@ -21,7 +21,8 @@ ignores the field near small curves.
 * :func:`contact_refinement` - the law about one point; :func:`refine_at_points` -
   the smallest of the laws about several points (the contacts of a module);
   :func:`refine_contact` - the law about the fine zone of a contact pair.
-* :func:`uniform_size` - the fallback without refinement: sizes in ``[h_max / 2, h_max]``.
+* :func:`uniform_size` - the fallback without refinement: sizes in ``[h_max / 2, h_max]``;
+  :func:`size_at_points` - the contacts' refinement or that fallback.
 
 gmsh is passed in (the module of an open :func:`meshes.gmsh_tools.session`); all
 lengths in metres.
@@ -33,10 +34,10 @@ from typing import Sequence
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
 
 __all__ = ["check_refinement", "check_fine_zone", "size_threshold", "point_distance", "segment_distance",
-           "box_distance", "contact_refinement", "refine_at_points", "refine_contact", "uniform_size"]
+           "box_distance", "contact_refinement", "refine_at_points", "refine_contact", "uniform_size", "size_at_points"]
 
 GROWTH_RANGE = (1.0, 3.0)  # size ratio of neighbouring elements away from the fine zone
 
@@ -199,3 +200,12 @@ def uniform_size(gmsh, h_max: float) -> None:
     """No refinement: element sizes between ``h_max / 2`` and ``h_max`` [m]."""
     gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
     gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+
+
+def size_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
+    """The size of a module or part: :func:`refine_at_points` about ``points`` (n, 3) [m], or
+    :func:`uniform_size` ``h_max`` where ``points`` is None (the builder was given no ``h_contact``)."""
+    if points is None:
+        uniform_size(gmsh, h_max)
+    else:
+        refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)

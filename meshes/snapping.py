@@ -4,14 +4,14 @@ approximation of them: sweeps and lofts lie within about 1e-7 m of the exact sur
 * :func:`snap_to_groove` - the nodes of groove faces onto the flank's helical arc surface;
 * :func:`snap_to_bottom` - the nodes shared by both flanks onto the groove-bottom helix.
 
-Exact geometry: :mod:`meshes.helical` (``HelicalGroove``, ``profile_coordinates``).
+Exact geometry: the geometry core, :mod:`lowmodel.geometry.groove`.
 All lengths in metres.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ballbench.meshes.helical import HelicalGroove, profile_coordinates
+from ballbench.lowmodel.geometry.groove import HelicalGroove, profile_coordinates
 
 __all__ = ["snap_to_groove", "snap_to_bottom"]
 

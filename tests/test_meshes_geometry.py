@@ -10,7 +10,7 @@ import pytest
 
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove as groove_core
-from ballbench.meshes import helical
+from ballbench.lowmodel.geometry import helix
 from ballbench.meshes.assemblies import ball_screw_module, fourpoint_module, screw_pair
 from ballbench.meshes.parts import groove_segment, rail
 
@@ -60,8 +60,8 @@ def pair_hertz_geometry(ball_radius, conformity, pitch_radius, lead, contact_ang
     """Hertz geometry of the contact meshed by ``ball_in_screw_groove_pair`` with the same
     arguments: the ball's curvature ``1/R_B`` and the groove's exact principal curvatures at
     the contact (``A`` belongs to the contact-frame x axis)."""
-    frame = helical.contact_frame(helical.helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle,
-                                                         body, flank, profile_plane))
+    frame = groove_core.contact_frame(groove_core.helical_groove(ball_radius, conformity, pitch_radius, lead,
+                                                                 contact_angle, body, flank, profile_plane))
     curvature = 1.0 / float(ball_radius)
     return hertz.from_curvatures((curvature, curvature), (frame.curvature_major, frame.curvature_minor),
                                  youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
@@ -70,21 +70,6 @@ def pair_hertz_geometry(ball_radius, conformity, pitch_radius, lead, contact_ang
 # --------------------------------------------------------------------------
 # exact helical geometry
 # --------------------------------------------------------------------------
-@pytest.mark.parametrize("plane", ["normal", "axial"])
-@pytest.mark.parametrize("body", ["screw", "nut"])
-@pytest.mark.parametrize("flank", ["left", "right"])
-def test_profile_curvatures_equal_lowmodel_hertz(body, flank, plane):
-    """Two independent implementations of the helical groove agree (lowmodel.contact.hertz
-    works at the +z flank; the left flank is its image under the half-turn about x3)."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
-    frame = helical.contact_frame(groove)
-    kappa_1, kappa_2, angle = groove_core.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body,
-                                                                   plane)
-    assert frame.curvature_major == pytest.approx(kappa_1, rel=1e-12)
-    assert frame.curvature_minor == pytest.approx(kappa_2, rel=1e-12)
-    assert frame.profile_angle == pytest.approx(angle, abs=1e-12)
-
-
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
     mine = pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body, profile_plane="axial")
@@ -103,8 +88,8 @@ def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_zero_lead_is_the_bearing_raceway(plane, body):
     """lead = 0: the torus of a bearing raceway (Harris): (-1/r_g, +-cos b/(R_P -+ R_B cos b))."""
-    groove = helical.helical_groove(R_B, CONF, R_P, 0.0, BETA, body, "left", plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, 0.0, BETA, body, "left", plane)
+    frame = groove_core.contact_frame(groove)
     sign = 1.0 if body == "screw" else -1.0
     assert frame.curvature_major == pytest.approx(-1.0 / (2 * CONF * R_B), rel=1e-12)
     assert frame.curvature_minor == pytest.approx(sign * math.cos(BETA) / (R_P - sign * R_B * math.cos(BETA)),
@@ -116,8 +101,8 @@ def test_zero_lead_is_the_bearing_raceway(plane, body):
 def test_normal_profile_contact_normal_passes_through_ball_centre_on_helix(body):
     """lin2019 eq 37: a ball centred on the helix touches the groove at beta from -+x3
     in the plane normal to the helix, and the groove normal there passes through its centre."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", "normal")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", "normal")
+    frame = groove_core.contact_frame(groove)
     assert np.linalg.norm(frame.ball_centre - groove.helix(0.0)) < 1e-12 * R_B
     radial = np.array([1.0, 0.0, 0.0])
     toward_ball = radial if body == "screw" else -radial  # the normal points from the groove into the ball
@@ -129,8 +114,8 @@ def test_normal_profile_contact_normal_passes_through_ball_centre_on_helix(body)
 def test_axial_profile_puts_the_ball_centre_off_the_helix():
     """With the profile in the axial plane the contact normal tilts out of that plane
     by atan(p sin b / rho) (8.8 deg for lin2019 Table 4), so the ball centre leaves the helix."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", "left", "axial")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", "left", "axial")
+    frame = groove_core.contact_frame(groove)
     rho = R_P - R_B * math.cos(BETA)
     tilt = math.atan(groove.lead_per_radian * math.sin(BETA) / rho)
     assert math.asin(abs(frame.normal[1])) == pytest.approx(tilt, rel=1e-12)
@@ -142,8 +127,8 @@ def test_axial_profile_puts_the_ball_centre_off_the_helix():
 def test_contact_frame_maps_the_surface_to_its_hertz_quadratic(plane, body):
     """In the contact frame the exact surface is z = -(k_major x^2 + k_minor y^2)/2 + O(r^3):
     tangent plane z = 0 and principal axes x, y (no xy term)."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", plane)
+    frame = groove_core.contact_frame(groove)
     eps = 1e-5
     theta = groove.contact_theta + eps * np.cos(np.linspace(0, 2 * np.pi, 13))
     phi = 0.2 * eps * np.sin(np.linspace(0, 2 * np.pi, 13))
@@ -155,23 +140,28 @@ def test_contact_frame_maps_the_surface_to_its_hertz_quadratic(plane, body):
 
 @pytest.mark.parametrize("plane", ["normal", "axial"])
 def test_profile_coordinates_invert_the_screw_motion(plane):
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut", "right", plane)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut", "right", plane)
     theta = groove.contact_theta + np.linspace(-0.5, 0.5, 7)
     phi = np.linspace(-0.4, 0.4, 5)
     points = groove.surface(theta[:, None], phi[None, :]).reshape(-1, 3)
-    phi_found, uw = helical.profile_coordinates(groove, points)
+    phi_found, uw = groove_core.profile_coordinates(groove, points)
     assert np.allclose(phi_found, np.broadcast_to(phi[None, :], (7, 5)).ravel(), atol=1e-13)
     assert np.allclose(uw, groove.profile(np.repeat(theta, 5)), atol=1e-15)
-    assert np.abs(helical.surface_residual(groove, points)).max() < 1e-15
-    assert helical.surface_residual(groove, groove.helix(0.0)[None, :])[0] == pytest.approx(-R_B, rel=1e-12)
+    assert np.abs(groove_core.surface_residual(groove, points)).max() < 1e-15
+    assert groove_core.surface_residual(groove, groove.helix(0.0)[None, :])[0] == pytest.approx(-R_B, rel=1e-12)
 
 
-def test_left_and_right_flanks_are_congruent():
-    """The half-turn about the radial line through a helix point maps the helix onto itself."""
-    frames = [helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", flank))
+@pytest.mark.parametrize("plane", ["normal", "axial"])
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_left_and_right_flanks_are_congruent(body, plane):
+    """The half-turn about the radial line through a helix point maps the helix onto itself,
+    so both flanks have the same principal curvatures (groove_curvatures_helical evaluates the
+    right flank only; the builders mesh either)."""
+    frames = [groove_core.contact_frame(groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane))
               for flank in ("left", "right")]
     assert frames[0].curvature_major == pytest.approx(frames[1].curvature_major, rel=1e-12)
     assert frames[0].curvature_minor == pytest.approx(frames[1].curvature_minor, rel=1e-12)
+    assert frames[0].profile_angle == pytest.approx(frames[1].profile_angle, abs=1e-12)
 
 
 # --------------------------------------------------------------------------
@@ -206,9 +196,9 @@ def test_pair_physical_groups_exist_and_are_not_empty(screw_pair_mesh):
 
 def test_pair_contact_point_lies_on_both_surfaces_with_normal_plus_z(screw_pair_mesh):
     _, mesh = screw_pair_mesh
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
-    frame = helical.contact_frame(groove)
-    assert abs(helical.surface_residual(groove, frame.point[None, :])[0]) < 1e-15  # origin on the groove
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = groove_core.contact_frame(groove)
+    assert abs(groove_core.surface_residual(groove, frame.point[None, :])[0]) < 1e-15  # origin on the groove
     points = mesh.points
     ball_nodes = points[_group_nodes(mesh, "ball_contact")]
     # the ball surface passes through the origin with the centre at (0, 0, R_B)
@@ -227,13 +217,13 @@ def test_pair_groove_nodes_lie_on_the_helical_arc(screw_pair_mesh):
     """Every counter_contact node lies at r_g = 2 conf R_B from the flank's arc centre
     in the profile plane of its azimuth (the helix equation of the swept profile)."""
     _, mesh = screw_pair_mesh
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = groove_core.contact_frame(groove)
     local = mesh.points[_group_nodes(mesh, "counter_contact")]
     world = frame.point + local @ frame.rotation
-    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, world)).max() < 1e-12 * R_B
     # and the ball-centre path is the helix of lin2019 eq 42: z = p phi at rho = R_P
-    phi, uw = helical.profile_coordinates(groove, world)
+    phi, uw = groove_core.profile_coordinates(groove, world)
     assert np.ptp(phi) > 0.1  # the block spans a real stretch of helix
 
 
@@ -241,7 +231,7 @@ def test_pair_principal_directions_and_curvatures_from_the_mesh(screw_pair_mesh)
     """Independent route: a cubic fit of the meshed groove surface around the origin
     gives z = -(kappa_major x^2 + kappa_minor y^2)/2 with no xy term."""
     _, mesh = screw_pair_mesh
-    frame = helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw"))
+    frame = groove_core.contact_frame(groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw"))
     coef = _quadratic_fit(mesh.points[_group_nodes(mesh, "counter_contact")], 0.1 * R_B, degree=4)
     assert coef[3] == pytest.approx(-frame.curvature_major / 2, rel=1e-3)
     assert coef[5] == pytest.approx(-frame.curvature_minor / 2, rel=1e-3)
@@ -305,12 +295,12 @@ def test_pair_initial_gap_is_the_exact_separation(body, plane):
     args = (R_B, CONF, R_P, LEAD, BETA, body)
     path = screw_pair.ball_in_screw_groove_pair(*args, profile_plane=plane, **COARSE)
     mesh = meshio.read(path)
-    groove = helical.helical_groove(*args, "left", plane)
+    groove = groove_core.helical_groove(*args, "left", plane)
     nodes = mesh.points[_group_nodes(mesh, "counter_contact")]
     near = np.hypot(nodes[:, 0], nodes[:, 1]) < 0.4 * R_B
-    height = helical.counter_height(groove, nodes[near, 0], nodes[near, 1])
+    height = groove_core.counter_height(groove, nodes[near, 0], nodes[near, 1])
     assert np.abs(height - nodes[near, 2]).max() < 1e-15
-    gap = helical.pair_initial_gap(*args, profile_plane=plane)
+    gap = groove_core.pair_initial_gap(*args, profile_plane=plane)
     geometry = pair_hertz_geometry(*args, profile_plane=plane)
     assert gap(0.0, 0.0) == pytest.approx(0.0, abs=1e-18)
     r = 1e-5
@@ -337,8 +327,8 @@ def test_pair_volumes_against_closed_forms():
     exact = math.pi * cap**2 * (3 * R_B - cap) / 3
     area, edge = _surface_area_and_longest_edge(mesh, "ball_contact")
     assert exact - area * edge**2 / (6 * R_B) < ball < exact  # inscribed polyhedron
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = groove_core.contact_frame(groove)
     speed = np.linalg.norm(np.cross([0, 0, 1.0], frame.point) + [0, 0, groove.lead_per_radian])
     dphi = half_length / speed
     r1, r2 = groove.groove_radius, groove.groove_radius + depth
@@ -363,10 +353,10 @@ def test_pair_other_grooves_touch_the_ball_at_the_origin_only(body, plane, flank
     path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, body, flank=flank, profile_plane=plane,
                                              **COARSE)
     mesh = meshio.read(path)
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
+    frame = groove_core.contact_frame(groove)
     local = mesh.points[_group_nodes(mesh, "counter_contact")]
-    assert np.abs(helical.surface_residual(groove, frame.point + local @ frame.rotation)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, frame.point + local @ frame.rotation)).max() < 1e-12 * R_B
     counter = mesh.points[_group_nodes(mesh, "counter")]
     assert np.linalg.norm(counter - [0.0, 0.0, R_B], axis=1).min() > R_B * (1 - 1e-12)
     coef = _quadratic_fit(local, 0.3 * R_B, degree=4)
@@ -378,13 +368,13 @@ def test_pair_quadratic_elements_stay_on_the_helical_surface():
     path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", element_order=2, **COARSE)
     mesh = meshio.read(path)
     assert len(_group_cells(mesh, "counter", "tetra10")) > 100
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = groove_core.contact_frame(groove)
     tri = np.concatenate([block.data[ids] for block, ids in zip(mesh.cells, mesh.cell_sets["counter_contact"])
                           if len(ids)])
     assert tri.shape[1] == 6  # mid-side nodes included
     world = frame.point + mesh.points[np.unique(tri)] @ frame.rotation
-    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, world)).max() < 1e-12 * R_B
 
 
 def test_pair_cache_hit_does_not_rebuild(monkeypatch):
@@ -463,19 +453,19 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
     # OCC's loft/boolean intersection lies within 1e-7 m of it)
     assert np.abs(np.hypot(nodes[:, 0], nodes[:, 1]) - land).max() < 1e-7
     for flank, deviation in zip(("left", "right"), deviations):
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + deviation, body, flank)
+        groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA + deviation, body, flank)
         nodes = mesh.points[_group_nodes(mesh, f"flank_{flank}")]
-        assert np.abs(helical.surface_residual(groove, nodes)).max() < 1e-12 * R_B
+        assert np.abs(groove_core.surface_residual(groove, nodes)).max() < 1e-12 * R_B
         for phi in (-0.1, 0.0, 0.1):
             distance = np.linalg.norm(nodes - groove.helix(phi), axis=1)
             assert distance.min() > R_B * (1 - 1e-12)
             if phi == 0.0:  # refined there: chord sagitta h^2 / (8 R_B) bounds the miss
                 assert distance.min() < R_B + h**2 / (8 * R_B)
     # the flanks meet at the groove bottom: a helix, fixed in the profile plane
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
     shared = np.intersect1d(_group_nodes(mesh, "flank_left"), _group_nodes(mesh, "flank_right"))
     assert len(shared) > 5
-    phi, uw = helical.profile_coordinates(groove, mesh.points[shared])
+    phi, uw = groove_core.profile_coordinates(groove, mesh.points[shared])
     assert np.ptp(uw[:, 1]) < 1e-12 and np.ptp(uw[:, 0]) < 1e-12
     assert (abs(uw[0, 1]) < 1e-12) == (deviations[0] == deviations[1])  # symmetric only without deviation
 
@@ -692,17 +682,6 @@ def screw_module_mesh():
     return meshio.read(path)
 
 
-def test_ball_centre_azimuths_give_the_chord():
-    for spacing in (2 * R_B, 2.5 * R_B):
-        dphi = ball_screw_module.ball_centre_azimuths(R_P, LEAD, spacing)
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
-        chord = np.linalg.norm(groove.helix(dphi / 2) - groove.helix(-dphi / 2))
-        assert chord == pytest.approx(spacing, rel=1e-14)
-    # lead 0: the chord of a circle
-    assert ball_screw_module.ball_centre_azimuths(R_P, 0.0, 2 * R_B) == pytest.approx(2 * math.asin(R_B / R_P),
-                                                                                 rel=1e-14)
-
-
 def test_ball_centre_azimuths_against_lin2019_eq56():
     """lin2019 eq 56: touching balls are 2 beta_B2B apart, beta_B2B = asin(2 pi R_B / L),
     L = sqrt((2 pi R_P)^2 + p^2) (eq 45): the helix taken as a circle of radius L / 2 pi.
@@ -710,7 +689,7 @@ def test_ball_centre_azimuths_against_lin2019_eq56():
     def relative_gap(lead):
         length = math.hypot(2 * math.pi * R_P, lead)
         beta_b2b = math.asin(2 * math.pi * R_B / length)
-        exact = ball_screw_module.ball_centre_azimuths(R_P, lead, 2 * R_B)
+        exact = helix.ball_centre_azimuths(R_P, lead, 2 * R_B)
         return abs(exact - 2 * beta_b2b) / exact
 
     assert relative_gap(LEAD) < 2e-4
@@ -729,14 +708,14 @@ def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_m
             assert not nodes[i] & nodes[j]
     for name in ("screw_land", "nut_land", "screw_support", "nut_load"):
         assert len(_group_cells(mesh, name, "triangle")) > 0
-    dphi = ball_screw_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    dphi = helix.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
     flanks = {"SL": ("screw", "left", 0), "SR": ("screw", "right", 1), "NR": ("nut", "right", 2),
               "NL": ("nut", "left", 3)}
     h = 1e-4
     for name, (body, flank, index) in flanks.items():
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + SCREW_DEVIATIONS[index], body, flank)
+        groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA + SCREW_DEVIATIONS[index], body, flank)
         flank_nodes = mesh.points[_group_nodes(mesh, name)]
-        assert np.abs(helical.surface_residual(groove, flank_nodes)).max() < 1e-12 * R_B
+        assert np.abs(groove_core.surface_residual(groove, flank_nodes)).max() < 1e-12 * R_B
         for k, phi in ((1, -dphi / 2), (2, dphi / 2)):
             centre = groove.helix(phi)
             distance = np.linalg.norm(flank_nodes - centre, axis=1)
@@ -751,8 +730,8 @@ def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_m
 
 def test_screw_module_balls_touch_each_other(screw_module_mesh):
     mesh = screw_module_mesh
-    dphi = ball_screw_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
+    dphi = helix.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA)
     contact = (groove.helix(-dphi / 2) + groove.helix(dphi / 2)) / 2
     for k in (1, 2):
         cap = mesh.points[_group_nodes(mesh, f"ball{k}_B2B")]

@@ -14,37 +14,22 @@ left/right; left = the ``-z3`` side, lin2019 eq 37), contact angles
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.helix import ball_centre_azimuths
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts import groove_segment
 from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
 from ballbench.meshes.parts.groove_segment import add_groove_segment, segment_dimensions, segment_grooves, snap_segment
-from ballbench.meshes.refinement import check_refinement, refine_at_points, uniform_size
+from ballbench.meshes.refinement import check_refinement, size_at_points
 
-__all__ = ["CONTACTS", "ball_centre_azimuths", "ball_screw_module"]
+__all__ = ["CONTACTS", "ball_screw_module"]
 
 MESH_FORMAT_VERSION = f"ballscrew-module-1/{groove_segment.MESH_FORMAT_VERSION}"
 CONTACTS = ("SL", "SR", "NR", "NL")
-
-
-def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> float:
-    """Azimuth difference ``dphi`` [rad] of two ball centres on the helix a chord
-    ``spacing`` [m] apart: ``(2 R_P sin(dphi/2))^2 + (p dphi)^2 = spacing^2`` (Newton)."""
-    p = lead / (2 * math.pi)
-    dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
-    for _ in range(50):
-        chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
-        slope = 2 * pitch_radius**2 * math.sin(dphi) + 2 * p**2 * dphi
-        step = (chord2 - spacing**2) / slope
-        dphi -= step
-        if abs(step) < 1e-15 * dphi:
-            return dphi
-    raise RuntimeError("ball_centre_azimuths did not converge")  # unreachable for spacing << R_P
 
 
 def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
@@ -151,12 +136,9 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
             physical(gmsh, 3, volumes, f"ball{k}")
             for name, tags in surfaces.items():
                 physical(gmsh, 2, tags, f"ball{k}_{name}")
-        if refine:
-            if n_balls == 2:
-                contact_points.append((centres[0] + centres[1]) / 2)
-            refine_at_points(gmsh, contact_points, h_contact, growth, h_max, fine_radius)
-        else:
-            uniform_size(gmsh, h_max)
+        if n_balls == 2:
+            contact_points.append((centres[0] + centres[1]) / 2)  # the B2B contact
+        size_at_points(gmsh, contact_points if refine else None, h_contact, growth, h_max, fine_radius)
         gmsh.model.mesh.generate(3)
         snap_segment(gmsh, screw, screw_roles)
         snap_segment(gmsh, nut, nut_roles)

@@ -35,8 +35,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ballbench.lowmodel import checks
 from ballbench.meshes import gmsh_tools
-from ballbench.meshes import inputs as checks
 from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
 
 __all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "SYMMETRIES"]

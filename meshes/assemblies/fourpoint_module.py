@@ -10,7 +10,8 @@ db_i`` in the order ``(BL, BR, TR, TL)`` (docs/developing.md), measured from
 ``-y`` (bottom) or ``+y`` (top) as in lin2017 eq 1: the contact points are
 ``R_B (-sin b_BL, -cos b_BL)``, ``R_B (sin b_BR, -cos b_BR)``,
 ``R_B (sin b_TR, cos b_TR)``, ``R_B (-sin b_TL, cos b_TL)`` in each ball's
-cross-section.  Each rail is the gothic arch of :mod:`meshes.parts.rail`; the top rail
+cross-section (:func:`lowmodel.geometry.fourpoint.contact_points`).  Each rail is the
+gothic arch of :mod:`lowmodel.geometry.groove` built by :mod:`meshes.parts.rail`; the top rail
 is the bottom construction turned by pi about ``z`` (its left flank becomes TR).
 A contact angle deviation turns a flank's arc centre about the ball centre, so
 every ball keeps touching all four flanks (lin2019 Fig 7: ``db_BL = -theta``,
@@ -23,23 +24,18 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_points
+from ballbench.lowmodel.geometry.groove import gothic_arch
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
-from ballbench.meshes.parts.rail import add_bottom_rail, classify_rail_faces, gothic_arch
-from ballbench.meshes.refinement import check_refinement, refine_at_points, uniform_size
+from ballbench.meshes.parts.rail import add_bottom_rail, classify_rail_faces
+from ballbench.meshes.refinement import check_refinement, size_at_points
 
-__all__ = ["CONTACTS", "contact_points", "fourpoint_module"]
+__all__ = ["CONTACTS", "fourpoint_module"]
 
 MESH_FORMAT_VERSION = "fourpoint-1"
-CONTACTS = ("BL", "BR", "TR", "TL")
-
-
-def contact_points(ball_radius: float, contact_angles) -> np.ndarray:
-    """Contact points ``(BL, BR, TR, TL)`` of a ball centred at the origin, shape (4, 2) [m] (lin2017 eq 1)."""
-    b_bl, b_br, b_tr, b_tl = contact_angles
-    return ball_radius * np.array([[-math.sin(b_bl), -math.cos(b_bl)], [math.sin(b_br), -math.cos(b_br)],
-                                   [math.sin(b_tr), math.cos(b_tr)], [-math.sin(b_tl), math.cos(b_tl)]])
+CONTACTS = CONTACT_NAMES  # flank and cap group names: the contact order (BL, BR, TR, TL) of the geometry core
 
 
 def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0),
@@ -147,13 +143,10 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                 if not tags:
                     raise RuntimeError(f"ball {k}: cap {name} not identified")
                 add(2, tags, name=f"ball{k}_{name}")
-        if refine:
-            points = [np.append(p, c[2]) for c in centres for p in in_plane]
-            if n_balls == 2:
-                points.append((centres[0] + centres[1]) / 2 + np.array([0.0, 0.0, 0.0]))
-            refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)
-        else:
-            uniform_size(gmsh, h_max)
+        points = [np.append(p, c[2]) for c in centres for p in in_plane]
+        if n_balls == 2:
+            points.append((centres[0] + centres[1]) / 2)  # the B2B contact
+        size_at_points(gmsh, points if refine else None, h_contact, growth, h_max, fine_radius)
         gmsh.model.mesh.generate(3)
         write_msh(gmsh, path)
     return path

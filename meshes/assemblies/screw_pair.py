@@ -3,7 +3,7 @@ Table 4), in the contact-pair frame of docs/developing.md.
 
 Parts: the ball cap (sphere ``|X - (0, 0, R_B)| <= R_B`` cut at ``z = cap_height``) and
 the helical groove block of :mod:`meshes.parts.groove_block`, moved from the screw
-frame into the exact contact frame of :func:`meshes.helical.contact_frame`; the groove
+frame into the exact contact frame of :func:`lowmodel.geometry.groove.contact_frame`; the groove
 face's nodes are then moved onto the exact helical surface
 (:func:`meshes.snapping.snap_to_groove`).  All lengths in metres, angles in radians.
 """
@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.groove import contact_frame, helical_groove
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
-from ballbench.meshes.helical import contact_frame, helical_groove
 from ballbench.meshes.parts.groove_block import add_groove_block
 from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
 from ballbench.meshes.snapping import snap_to_groove
@@ -41,7 +41,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     cross-section profile (across the groove: the major axis ``a`` of the Hertz
     ellipse), ``y`` the principal direction nearest the helix (along the groove,
     towards increasing azimuth).  x and y are the exact principal directions at
-    the contact point (:func:`meshes.helical.contact_frame`).
+    the contact point (:func:`lowmodel.geometry.groove.contact_frame`).
 
     Bodies: the ball truncated to the cap ``z <= cap_height`` (default ``R_B``: a
     hemisphere, load on its flat face), the groove truncated to a helical block:

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
 
 __all__ = ["check_cap_angle", "add_split_ball"]
 

@@ -3,15 +3,15 @@
 The annular sector ``r_g <= r <= r_g + depth`` about the flank's arc centre, spanning
 the arc angles ``theta_c -+ gamma`` around the contact, swept along the ball-centre
 helix over the azimuths ``-+ dphi`` (lin2019 Sec 3.1; exact geometry in
-:mod:`meshes.helical`).  Built in the screw frame; faces identified by their distance
+:mod:`lowmodel.geometry.groove`).  Built in the screw frame; faces identified by their distance
 from the exact helical arc surfaces.  All lengths in metres, angles in radians.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from ballbench.lowmodel.geometry.groove import HelicalGroove, surface_residual
 from ballbench.meshes.gmsh_tools import face_point
-from ballbench.meshes.helical import HelicalGroove, surface_residual
 
 __all__ = ["add_groove_block"]
 

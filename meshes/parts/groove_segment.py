@@ -2,7 +2,7 @@
 
 The body is an annular wedge about the screw axis minus the gothic-arch lens (the
 region inside both flank circles) swept along the ball-centre helix; both flanks
-are exact helical arc surfaces (:mod:`meshes.helical`) after :func:`snap_segment`.
+are exact helical arc surfaces (:mod:`lowmodel.geometry.groove`) after :func:`snap_segment`.
 Used alone (:func:`screw_groove_segment`) and by :mod:`meshes.assemblies.ball_screw_module`.
 
 Screw frame: axis z, ball-centre helix ``H(phi) = (R_P cos phi, R_P sin phi, p phi)``,
@@ -15,17 +15,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.meshes import inputs as checks
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.groove import MAX_DEVIATION, HelicalGroove, helical_groove, surface_residual
 from ballbench.meshes.gmsh_tools import cached_msh, face_point, physical, session, write_msh
-from ballbench.meshes.helical import HelicalGroove, helical_groove, surface_residual
-from ballbench.meshes.refinement import check_refinement, refine_at_points, uniform_size
+from ballbench.meshes.refinement import check_refinement, size_at_points
 from ballbench.meshes.snapping import snap_to_bottom, snap_to_groove
 
 __all__ = ["screw_groove_segment", "segment_grooves", "segment_dimensions", "add_groove_segment", "snap_segment",
            "flank_intersections"]
 
 MESH_FORMAT_VERSION = "helical-1"
-MAX_DEVIATION = math.radians(15.0)
 
 
 def segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, body, deviations,
@@ -167,7 +166,7 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
     groove enters), minus the gothic-arch lens swept along the helix (both flanks;
     lin2019 Fig 13).  Default ``half_angle``: ``2 R_B / R_P``.  With ``h_contact``
     the mesh is refined around the two contact points of a ball at phi = 0
-    (:func:`meshes.refinement.refine_at_points`), else uniform ``h_max``.
+    (:func:`meshes.refinement.size_at_points`), else uniform ``h_max``.
     ``deviations`` [rad]: contact angle deviations (left, right) of the two flanks
     (lin2019 Fig 17, eq 17 ``b = b_0 + db``): a flank's arc centre turns about the
     ball centre so a ball on the helix touches it at ``contact_angle + db``.
@@ -197,11 +196,8 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
         for name, tags in roles.items():
             if tags:
                 physical(gmsh, 2, tags, "segment_free" if name == "free" else name)
-        if refine:
-            contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
-            refine_at_points(gmsh, contacts, h_contact, growth, h_max, fine_radius)
-        else:
-            uniform_size(gmsh, h_max)
+        contacts = [g.surface(g.contact_theta, 0.0) for g in grooves]
+        size_at_points(gmsh, contacts if refine else None, h_contact, growth, h_max, fine_radius)
         gmsh.model.mesh.generate(3)
         snap_segment(gmsh, grooves, roles)
         write_msh(gmsh, path)

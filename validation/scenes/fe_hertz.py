@@ -1,7 +1,7 @@
 """FE contact benchmark: scikit-fem two-body contact against exact Hertz (lowmodel.contact.hertz).
 
-Each scene meshes a symmetry cut of its pair (meshes.contact_pairs, or the
-helical screw pair of meshes.helical), solves the frictionless contact
+Each scene meshes a symmetry cut of its pair (meshes.assemblies.contact_pairs, or the
+helical screw pair of meshes.assemblies.screw_pair), solves the frictionless contact
 (fem.contact, condensed compliance + primal-dual active set) over a load sweep
 and compares the fitted a, b, p0 and the contact approach delta (bulk
 compliance of the finite bodies removed: fem.postprocess) with Hertz.
@@ -122,12 +122,12 @@ def pair_case(scene_name: str) -> PairCase:
         conformity = int(scene_name[-3:]) / 100.0
         return _steel_groove(conformity, LEVELS_052 if scene_name.endswith("052") else None)
     if scene_name == "fe-hertz-screw":
-        from ballbench.meshes import helical
+        from ballbench.lowmodel.geometry import groove
         from ballbench.meshes.assemblies import screw_pair
 
         # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
         args = (2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0))
-        frame = helical.contact_frame(helical.helical_groove(*args))
+        frame = groove.contact_frame(groove.helical_groove(*args))
         radius = args[0]
         geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
                                          youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
