@@ -92,6 +92,10 @@ def test_cache_hit_and_vtu(tmp_path):
     (dict(ball_radius=-1.0), "ball_radius"),
     (dict(block_half_width=6e-3), "block_half_width"),
     (dict(h_max=1e-5), "h_max"),
+    (dict(element_order=3), "element_order"),
+    (dict(element_order=True), "element_order"),
+    (dict(fine_radius=6e-3), "fine_radius"),
+    (dict(fine_half_length=-1e-4), "fine_half_length"),
 ])
 def test_bad_input(kwargs, word):
     args = dict(ball_radius=R, conformity=0.56, h_contact=2.5e-4, growth=1.5)

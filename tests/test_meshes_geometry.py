@@ -422,6 +422,7 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(fine_patch=(1e-4, 1e-4, 1e-4, 1e-4)), "fine_patch"),
     (dict(fine_patch=1e-4), "fine_patch"),
     (dict(fine_half_length=-1e-4), "fine_half_length"),
+    (dict(element_order=True), "element_order"),
     (dict(fine_half_length=1e-4, fine_patch=(1e-4, 1e-4)), "fine_patch and fine_half_length"),
 ])
 def test_pair_bad_input_names_the_parameter(kwargs, name):
@@ -639,6 +640,7 @@ def test_module_ball_volumes(module_mesh):
     (dict(deviations=(0.0, 0.0, 0.0)), "deviations"),
     (dict(deviations=(0.0, 0.0, float("nan"), 0.0)), "deviation_left"),
     (dict(n_balls=3), "n_balls"),
+    (dict(n_balls=True), "n_balls"),
     (dict(n_balls=2, spacing=9e-3), "spacing"),
     (dict(land_height=-0.8 * R_RAIL), "four-point contact"),
     (dict(conformity=0.49), "conformity"),
@@ -748,6 +750,7 @@ def test_screw_module_balls_touch_each_other(screw_module_mesh):
 @pytest.mark.parametrize("kwargs, match", [
     (dict(deviations=(0.0, 0.0)), "deviations"),
     (dict(n_balls=0), "n_balls"),
+    (dict(n_balls=2.0), "n_balls"),
     (dict(n_balls=2, spacing=5e-3), "spacing"),
     (dict(half_angle=0.05), "half_angle"),
     (dict(nut_land_radius=R_P + 0.8 * R_B), "nut_land_radius"),

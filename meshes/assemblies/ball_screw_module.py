@@ -69,8 +69,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     nut = segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "nut",
                           (deviations[3], deviations[2]), "normal")  # (left, right) = (NL, NR)
     radius, r_p = screw[0].ball_radius, screw[0].pitch_radius
-    if n_balls not in (1, 2):
-        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
+    n_balls = checks.count("n_balls", n_balls, 1, 2)
     spacing = 2.0 * radius if spacing is None else checks.finite("spacing", spacing, "m")
     if n_balls == 2 and not 2.0 * radius <= spacing <= r_p:
         raise ValueError(f"spacing must lie in [2 ball_radius, pitch_radius] = [{2 * radius!r}, {r_p!r}] m, "

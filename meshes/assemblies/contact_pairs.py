@@ -51,9 +51,8 @@ def _check_common(ball_radius, h_contact, growth, h_max, fine_radius, fine_half_
                                                              fine_radius_max=radius)
     fine_half_length, _ = check_fine_zone(fine_half_length, upper=radius)
     checks.choice("symmetry", symmetry, SYMMETRIES)
-    if element_order not in (1, 2):
-        raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
-    return radius, h_contact, growth, h_max, fine_radius, fine_half_length
+    element_order = checks.count("element_order", element_order, 1, 2)
+    return radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order
 
 
 def _bounds(symmetry: str, half_x: float, half_y: float) -> tuple[float, float, float, float]:
@@ -64,11 +63,10 @@ def _bounds(symmetry: str, half_x: float, half_y: float) -> tuple[float, float, 
 
 
 def _classify_faces(gmsh, volume: tuple[int, int], tol: float) -> dict[str, list[int]]:
-    """Boundary faces of ``volume`` by kind: 'plane_x0', 'plane_y0', 'plane_z=<v>' (by centre), 'curved'."""
+    """Boundary faces of ``volume`` by kind: 'x0', 'y0' (planes x = 0, y = 0), 'other_plane', 'curved'."""
     faces: dict[str, list[int]] = {"x0": [], "y0": [], "other_plane": [], "curved": []}
     for _, tag in gmsh.model.getBoundary([volume], oriented=False):
         kind = gmsh.model.getType(2, tag)
-        cx, cy, cz = gmsh.model.occ.getCenterOfMass(2, tag)
         if kind == "Plane":
             lo = gmsh.model.getBoundingBox(2, tag)
             if abs(lo[0]) < tol and abs(lo[3]) < tol:
@@ -144,7 +142,7 @@ def ball_on_flat_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
 
     Block defaults: half-width and depth ``R_B``.  Mesh size: module docstring.
     """
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
     half = radius if block_half_width is None else checks.positive("block_half_width", block_half_width, "m")
     depth = radius if block_depth is None else checks.positive("block_depth", block_depth, "m")
@@ -165,7 +163,7 @@ def ball_on_ball_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
                       symmetry: str = "quarter", element_order: int = 1, cache: bool = True) -> Path:
     """Ball on ball (the B2B pair): the counter is the hemisphere ``-R_2 <= z <= 0`` of a
     second ball of radius ``other_radius`` (default ``ball_radius``) [m], held on its flat face."""
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
     other = radius if other_radius is None else checks.positive("other_radius", other_radius, "m")
 
@@ -194,7 +192,7 @@ def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float,
     ``0.6 R_B`` (at most ``0.9 r_g``), half-length (along it) ``0.6 R_B``, depth
     below the contact ``0.6 R_B``.
     """
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
     conformity = checks.conformity("conformity", conformity)
     r_g = conformity * 2.0 * radius

@@ -71,8 +71,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
         raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}")
     bottom = gothic_arch(radius, conformity, contact_angle, deviations[0], deviations[1], land_height)
     top = gothic_arch(radius, conformity, contact_angle, deviations[2], deviations[3], land_height)
-    if n_balls not in (1, 2):
-        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
+    n_balls = checks.count("n_balls", n_balls, 1, 2)
     spacing = 2.0 * radius if spacing is None else checks.finite("spacing", spacing, "m")
     if n_balls == 2 and spacing < 2.0 * radius:
         raise ValueError(f"spacing must lie in [2 ball_radius, inf) = [{2 * radius!r}, inf) m (balls may not "

@@ -85,8 +85,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     if cap >= 2.0 * radius:
         raise ValueError(f"cap_height must lie in (0, 2 ball_radius) = (0, {2 * radius!r}) m (the cap needs its "
                          f"flat loaded face), got {cap!r}")
-    if element_order not in (1, 2):
-        raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
+    element_order = checks.count("element_order", element_order, 1, 2)
     fine_half_length, fine_patch = check_fine_zone(fine_half_length, fine_patch)
     if groove.body == "screw" and depth >= groove.pitch_radius - radius:
         raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
