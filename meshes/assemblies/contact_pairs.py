@@ -36,6 +36,7 @@ import math
 from pathlib import Path
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.meshes import gmsh_tools
 from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
 
@@ -195,7 +196,7 @@ def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float,
     radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
     conformity = checks.conformity("conformity", conformity)
-    r_g = conformity * 2.0 * radius
+    r_g = groove_radius(radius, conformity)
     half_w = 0.6 * radius if block_half_width is None else checks.positive("block_half_width", block_half_width, "m")
     if half_w > 0.9 * r_g:
         raise ValueError(f"block_half_width must lie in (0, 0.9 r_g] = (0, {0.9 * r_g!r}] m, got {half_w!r}")
