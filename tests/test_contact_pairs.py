@@ -69,6 +69,26 @@ def test_refinement_size_at_contact():
     assert np.mean(np.linalg.norm(p[far[:, 0]] - p[far[:, 1]], axis=1)) > 3 * h
 
 
+def test_refinement_follows_the_growth_law_about_the_segment():
+    """meshes.refinement: edge lengths of the counter face follow h(d) = min(h_max, h_contact +
+    (growth - 1) max(0, d - fine_radius)), d the distance from the segment |x| <= fine_half_length
+    (mean ratio per distance band within 30 %; a point fine zone would double the size at x = L)."""
+    h, growth, fine_radius, half_length = 1e-4, 1.3, 2e-4, 6e-4
+    pair = load_pair(contact_pairs.ball_on_flat_pair(R, h, growth, fine_radius=fine_radius,
+                                                     fine_half_length=half_length))
+    tris, p = pair.surfaces["counter_contact"], pair.points
+    centre = p[tris].mean(axis=1)
+    d = np.hypot(np.maximum(np.abs(centre[:, 0]) - half_length, 0.0), centre[:, 1])
+    edges = np.mean([np.linalg.norm(p[tris[:, i]] - p[tris[:, (i + 1) % 3]], axis=1) for i in range(3)], axis=0)
+    law = np.minimum(R / 3, h + (growth - 1) * np.maximum(0.0, d - fine_radius))
+    for lo, hi in [(0, 2e-4), (2e-4, 5e-4), (5e-4, 1e-3), (1e-3, 2e-3), (2e-3, 5e-3)]:
+        band = (d >= lo) & (d < hi)
+        assert band.sum() >= 10
+        assert 0.7 < np.mean(edges[band] / law[band]) < 1.3, (lo, hi)
+    end = np.abs(np.abs(centre[:, 0]) - half_length) + np.abs(centre[:, 1]) < 1.5e-4  # near (+-L, 0)
+    assert np.mean(edges[end]) < 1.3 * h
+
+
 def test_cache_hit_and_vtu(tmp_path):
     first = contact_pairs.ball_on_flat_pair(R, **COARSE)
     stamp = first.stat().st_mtime_ns
