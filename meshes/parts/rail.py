@@ -30,7 +30,7 @@ MESH_FORMAT_VERSION = "rail-1"
 # gmsh construction (shared with meshes.assemblies.fourpoint_module)
 # --------------------------------------------------------------------------
 def add_bottom_rail(occ, arch: GothicArch, width: float, depth: float, length: float,
-                     z_start: float) -> int:
+                    z_start: float) -> int:
     """OCC volume of a bottom rail: the box ``|x| <= width/2``, ``land - depth <= y <= land``,
     ``z_start <= z <= z_start + length`` minus the gothic-arch lens.  Returns its tag."""
     r_g = arch.groove_radius
