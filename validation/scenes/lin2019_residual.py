@@ -11,20 +11,20 @@ F_B2B against the paper's 4.01 N cannot (docs/mutations.md).
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.validation.papers import lin2019 as paper
 from ballbench.validation.references import lin2019 as reference
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.linear_bearing.b2b"
 # lin2019 Table 1 and the Sec 2.4 case (a): theta = 2 deg, rho = -0.6
-TABLE1 = dict(ball_radius=5e-3, conformity=0.56, friction_coefficient=0.1, groove_velocity=0.01,
-              youngs_modulus=2.1e11, poisson_ratio=0.28)
-VERTICAL = 100.0
-THETA, RHO = math.radians(2.0), -0.6
+TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conformity,
+              friction_coefficient=paper.TABLE1.friction_coefficient, groove_velocity=paper.TABLE1.groove_velocity,
+              **paper.TABLE1.material)
+VERTICAL = paper.TABLE1.vertical_force
+THETA, RHO = paper.CASE.theta, paper.CASE.side_force_ratio
 
 
 @scene("lin2019-b2b-residual", "Numerical B2B model, lin2019 Table 3 case (a): F_B2B, groove friction, B2B friction "

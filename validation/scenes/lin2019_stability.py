@@ -16,13 +16,15 @@ import numpy as np
 from ballbench.lowmodel import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.validation.papers import lin2019 as paper
 from ballbench.validation.scene import scene
 
 MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
 # lin2019 Table 1
-TABLE1 = dict(ball_radius=5e-3, conformity=0.56, vertical_force=100.0, groove_velocity=0.01,
-              friction_coefficient=0.1, youngs_modulus=2.1e11, poisson_ratio=0.28)
+TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conformity,
+              vertical_force=paper.TABLE1.vertical_force, groove_velocity=paper.TABLE1.groove_velocity,
+              friction_coefficient=paper.TABLE1.friction_coefficient, **paper.TABLE1.material)
 RATIO_FLOOR = 1.05  # spin-capacity ratio above which a state exists and must be found
 SIZES = {"quick": dict(grid=(9, 7), margins=(1e-3, 1e-2, 3e-2), loads=9, mus=5, chains=(1, 2, 5, 20, 200),
                        repeats=2),
