@@ -141,7 +141,7 @@ def stability(run):
               value=float(np.nanmax(power[converged])), reference=0.0, scale=1.0, tolerance=1e-8,
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=per_solve)
     iterations, residuals = tally.column(4), tally.column(5)
-    run.check(model=MODEL_B2B, quantity="worst final residual, converged solves (units mu max F, |v|)", unit="1",
+    run.check(model=MODEL_B2B, quantity="worst final residual, converged solves (units mu max F and v)", unit="1",
               value=float(np.max(residuals[converged])), reference=1e-12, relation="le", tolerance=0.0,
               source="solver tolerance 1e-12", time_s=per_solve)
     _spin_capacity_boundary(run)
