@@ -74,14 +74,17 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             from scipy import sparse as sp
             from scipy.sparse.linalg import spsolve
 
-            jac_sparse = sp.csr_matrix(jacobian)
+            jac_sparse = jacobian if sp.isspmatrix_csr(jacobian) else sp.csr_matrix(jacobian)
             jacobian = jac_sparse
             normal = (jac_sparse.T @ jac_sparse).tocoo()
             lower = normal.row >= normal.col
             band = _Band(normal.row[lower], normal.col[lower], normal.data[lower], x.size)
-            normal = normal.tocsc()
-            identity = sp.identity(x.size, format="csc")
-            diagonal_max = float(normal.diagonal().max())
+            if band.narrow:  # banded Cholesky below: no CSC copy, no identity
+                diagonal_max = float(band.storage[0].max())
+            else:
+                normal = normal.tocsc()
+                identity = sp.identity(x.size, format="csc")
+                diagonal_max = float(normal.diagonal().max())
         else:
             normal = jacobian.T @ jacobian
             identity = np.eye(x.size)
