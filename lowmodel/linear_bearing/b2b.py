@@ -60,7 +60,9 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
 )
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
+           "complementarity_forces", "touching_pairs",
+           "COMPLEMENTARITY_SCALE"]
 
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -108,7 +110,16 @@ def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
     return gaps
 
 
-def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
+def touching_pairs(gaps, n_balls: int, ball_radius: float, gap_tolerance: float | None = None) -> np.ndarray:
+    """Indices of the pairs ``(j, j+1)`` whose gap [m] (shape (n-1,), default all 0) is at most
+    ``gap_tolerance`` (default ``1e-9 R_B``); ValueError for a wrong shape, NaN or an overlap."""
+    gaps = _check_gaps(gaps, n_balls, ball_radius)
+    if gap_tolerance is None:
+        gap_tolerance = 1e-9 * ball_radius
+    return np.flatnonzero(gaps <= gap_tolerance)
+
+
+def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
 
     scaled (n, 3) ball unknowns; forces (n-1,) in units of mu F_ref.
@@ -174,11 +185,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     """
     check_solver_options(tolerance, max_iterations)
     n = contacts.n_balls
-    radius = contacts.ball_radius
-    gaps = _check_gaps(gaps, n, radius)
-    if gap_tolerance is None:
-        gap_tolerance = 1e-9 * radius
-    touching = np.flatnonzero(gaps <= gap_tolerance)
+    touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
     if n == 1 or touching.size == 0:
         return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)
     mu = contacts.friction_coefficient
@@ -186,44 +193,14 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     speed = abs(contacts.groove_velocity)
     k = N_UNKNOWNS
     m = touching.size
-    gamma = COMPLEMENTARITY_SCALE
-    size = k * n + m
-
-    def unpack(z):
-        balls = z[:k * n].reshape(n, k)
-        forces = np.zeros(n - 1)
-        forces[touching] = z[k * n:]
-        return balls, forces
-
     last = {}
 
-    def function(z):
-        balls, forces = unpack(z)
+    def ball_function(balls):
         terms = _ball_terms(balls, contacts, reference_force)
-        load, d_scaled, d_forces, slip = _b2b_terms(balls[:, :3], forces, mu)
-        last.update(z=z, terms=terms, slip=slip)
-        jac = np.zeros((size, size))
-        residual = np.empty(size)
-        ball_residual = terms.residual.copy()
-        ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
-        residual[:k * n] = ball_residual.reshape(-1)
-        for ball in range(n):
-            rows = slice(k * ball, k * ball + k)
-            jac[rows, rows] = terms.jacobian[ball]
-        rows3 = (k * np.arange(n)[:, None] + np.arange(3)[None, :]).reshape(-1)  # equilibrium rows
-        jac[np.ix_(rows3, rows3)] += d_scaled.reshape(3 * n, 3 * n)
-        jac[rows3, k * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
-        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
-        lam = z[k * n:]
-        separation = balls[touching + 1, 0] - balls[touching, 0]
-        force_branch = lam <= gamma * separation
-        residual[k * n:] = np.where(force_branch, lam, gamma * separation)
-        rows = k * n + np.arange(m)
-        jac[rows[force_branch], k * n + np.flatnonzero(force_branch)] = 1.0
-        vel = ~force_branch
-        jac[rows[vel], k * (touching[vel] + 1)] = gamma
-        jac[rows[vel], k * touching[vel]] = -gamma
-        return residual, jac
+        last.update(balls=balls, terms=terms)
+        return terms.residual, terms.jacobian
+
+    function, unpack = coupled_system(ball_function, n, k, touching, mu)
 
     def attempt(guess):
         z0 = np.concatenate([guess.reshape(-1), np.zeros(m)])
@@ -239,21 +216,90 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         except ConvergenceError as error:
             raise _explained(error, contacts) from None
         iterations += free_iterations
-    balls, forces = unpack(z)
+    balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations,
+                                           what=f"{n}-ball B2B contact")
+    if last.get("balls") is not None and np.array_equal(last["balls"], balls):  # last evaluation at the solution
+        terms = last["terms"]
+    else:
+        terms = _ball_terms(balls, contacts, reference_force)
+    slip = b2b_terms(balls[:, :3], forces, mu)[3]
+    return _state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
+                  b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
+
+
+def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.ndarray, mu: float):
+    """Residual and Jacobian of ``n_balls`` balls with B2B contact at the ``touching`` pairs (lin2019 eqs 4-10).
+
+    ``ball_function(balls)`` -> ``(residual (n, k), jacobian (n, k, k))`` of every ball on its own, with
+    ``balls`` (n, k) the per-ball unknowns: the first three are ``(v_B, omega_x R_B, omega_y R_B)/|v|``,
+    the first three residual rows eq 4 (z force, x and y moments / R_B) in units of ``mu F_ref``; the
+    other ``k - 3`` unknowns and rows are the model's own (slip angles of the low-order model; none for
+    :mod:`lowmodel.linear_bearing.b2b_traction`).  The B2B loads (eqs 5-8, :func:`b2b_terms`) are added
+    to the eq 4 rows and the complementarity of eqs 9-10 is written as the semismooth
+    ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (``gamma`` = COMPLEMENTARITY_SCALE).
+
+    Returns ``(function, unpack)``: ``function(z) -> (residual, jacobian)`` on the state
+    ``z = (balls.ravel(), F_B2B/(mu F_ref) of the touching pairs)`` and ``unpack(z) -> (balls, forces (n-1,))``.
+    """
+    n, k = n_balls, n_unknowns
+    m = touching.size
+    gamma = COMPLEMENTARITY_SCALE
+    size = k * n + m
+
+    def unpack(z):
+        balls = z[:k * n].reshape(n, k)
+        forces = np.zeros(n - 1)
+        forces[touching] = z[k * n:]
+        return balls, forces
+
+    def function(z):
+        balls, forces = unpack(z)
+        ball_residual, ball_jacobian = ball_function(balls)
+        load, d_scaled, d_forces, _ = b2b_terms(balls[:, :3], forces, mu)
+        jac = np.zeros((size, size))
+        residual = np.empty(size)
+        ball_residual = np.array(ball_residual, dtype=float)
+        ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
+        residual[:k * n] = ball_residual.reshape(-1)
+        for ball in range(n):
+            rows = slice(k * ball, k * ball + k)
+            jac[rows, rows] = ball_jacobian[ball]
+        rows3 = (k * np.arange(n)[:, None] + np.arange(3)[None, :]).reshape(-1)  # equilibrium rows
+        jac[np.ix_(rows3, rows3)] += d_scaled.reshape(3 * n, 3 * n)
+        jac[rows3, k * n:] = d_forces.reshape(3 * n, n - 1)[:, touching]
+        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
+        lam = z[k * n:]
+        separation = balls[touching + 1, 0] - balls[touching, 0]
+        force_branch = lam <= gamma * separation
+        residual[k * n:] = np.where(force_branch, lam, gamma * separation)
+        rows = k * n + np.arange(m)
+        jac[rows[force_branch], k * n + np.flatnonzero(force_branch)] = 1.0
+        vel = ~force_branch
+        jac[rows[vel], k * (touching[vel] + 1)] = gamma
+        jac[rows[vel], k * touching[vel]] = -gamma
+        return residual, jac
+
+    return function, unpack
+
+
+def complementarity_forces(z: np.ndarray, n_balls: int, n_unknowns: int, touching: np.ndarray, *,
+                           tolerance: float, iterations: int, what: str):
+    """Ball unknowns (n, k) and B2B forces (n-1,) [units mu F_ref] of a converged state of
+    :func:`coupled_system`; ConvergenceError if eqs 9-10 are violated by more than ``10 tolerance``.
+    Pairs on the ``F = 0`` branch of the min() function get exactly zero force."""
+    n, k = n_balls, n_unknowns
+    gamma = COMPLEMENTARITY_SCALE
+    balls = z[:k * n].reshape(n, k)
+    forces = np.zeros(n - 1)
+    forces[touching] = z[k * n:]
     separation = balls[touching + 1, 0] - balls[touching, 0]
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
     if violation > 10 * tolerance:
-        raise ConvergenceError(f"{n}-ball B2B contact: complementarity violated", residual=violation,
-                               iterations=iterations, tolerance=tolerance)
+        raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
+                               tolerance=tolerance)
     forces = np.maximum(forces, 0.0)
     forces[touching[z[k * n:] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
-    if last.get("z") is z:  # the last evaluation was at the solution
-        terms, slip = last["terms"], last["slip"]
-    else:
-        terms = _ball_terms(balls, contacts, reference_force)
-        slip = _b2b_terms(balls[:, :3], forces, mu)[3]
-    return _state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
-                  b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
+    return balls, forces
 
 
 @dataclass(frozen=True)
