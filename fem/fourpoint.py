@@ -47,7 +47,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
            "exact_gap", "build_module_model", "solve_module",
-           "residual_load", "traction_patches"]
+           "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
 CONTACTS = ("BL", "BR", "TR", "TL")
 _SIGN_X = np.array([-1.0, 1.0, 1.0, -1.0])
@@ -611,3 +611,37 @@ def traction_patches(model: ModuleModel, result: ModuleResult, *, normal: str = 
         patches.append(TractionPatch(points + np.asarray(offset, dtype=float), normals, forces, top=i >= 2,
                                      name=contact.name))
     return tuple(patches)
+
+
+def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
+    """Displacement DOF vector (ndofs,) [m] of a solved module: one sparse solve with the contact
+    forces ``B^T lam``, the top load face moved by ``(U_x, U_y, 0)`` and the ball's 3-2-1 nodes held
+    (the ball's rigid translation ``(X, Y)`` is not added: it carries no stress)."""
+    edges = _edge_map(model.basis.mesh)
+    tris = model.pair.surfaces["top_load"]
+    u = np.zeros(model.ndofs)
+    for component in (0, 1):
+        u[np.unique(_triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
+    rhs = model.B.T @ result.multipliers - model.K @ u
+    solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
+    u[model.free] = solve(rhs[model.free])
+    solve.free()
+    return u
+
+
+def von_mises(model: ModuleModel, displacement: np.ndarray, materials=(2.1e11, 0.28)) -> np.ndarray:
+    """Element-mean von Mises stress (n_tets,) [Pa] of the displacement DOF vector (P2, 4-point rule)."""
+    from ballbench.fem.elasticity import lame
+
+    lam, mu = lame(*materials)
+    grad = model.basis.interpolate(displacement).grad  # (3, 3, nel, nq)
+    strain = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    trace = strain[0, 0] + strain[1, 1] + strain[2, 2]
+    stress = 2.0 * mu * strain
+    for c in range(3):
+        stress[c, c] += lam * trace
+    deviator = stress.copy()
+    mean = trace * (lam + 2.0 * mu / 3.0)  # (1/3) tr(sigma)
+    for c in range(3):
+        deviator[c, c] -= mean
+    return np.sqrt(1.5 * np.einsum("ijeq,ijeq->eq", deviator, deviator)).mean(axis=1)

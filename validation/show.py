@@ -35,6 +35,10 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     from ballbench.fem.contact import full_displacement
     from ballbench.validation.scenes import fe_hertz
 
+    if scene_name.startswith("fe-b2b-"):  # the four-point modules (validation/scenes/fe_b2b.py)
+        from ballbench.validation.scenes import fe_b2b
+
+        return fe_b2b.show(scene_name, out_dir, fidelity)
     if not scene_name.startswith("fe-hertz-"):
         raise ValueError(f"show supports the FE scenes fe-hertz-*, got {scene_name!r}")
     if fidelity not in fe_hertz.LEVELS:

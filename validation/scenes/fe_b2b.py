@@ -259,6 +259,10 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
 
 
 def _plot_patches(run, model, results, hertz_geometry) -> None:
+    run.save_figure(_patch_figure(model, results, hertz_geometry), "pressure_patches.png")
+
+
+def _patch_figure(model, results, hertz_geometry):
     """Pressure on the four contact patches of each ball with the Hertz ellipse (eq 36 force) and the
     fitted FE ellipse, in the tangent plane of each contact (e1 across the groove, z along the rails)."""
     import matplotlib
@@ -293,7 +297,65 @@ def _plot_patches(run, model, results, hertz_geometry) -> None:
             ax.set_ylabel("z [mm]")
     axes[0, 0].legend(fontsize=7)
     fig.tight_layout()
-    run.save_figure(fig, "pressure_patches.png")
+    return fig
+
+
+def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
+    """``ballbench show fe-b2b-linear-a|b``: ``pressure.png`` (the four contact patches of both balls with the
+    Hertz ellipses of the low-order model and the fitted FE ellipses) and ``stress.png`` (von Mises stress of
+    ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and BR-TL are the two
+    pairs of opposite contacts), at the scene's level for ``fidelity``."""
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pyvista as pv
+
+    from ballbench.fem import fourpoint as fp
+    from ballbench.lowmodel.contact import hertz
+
+    cases = {"fe-b2b-linear-a": "a", "fe-b2b-linear-b": "b"}
+    if scene_name not in cases:
+        raise ValueError(f"show supports {tuple(cases)} here, got {scene_name!r}")
+    if fidelity not in ("quick", "default"):
+        raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
+    h_contact, growth = LEVELS[fidelity][-1]
+    model, results, _ = solve_fe_level(cases[scene_name], h_contact, growth)
+    target = Path(out_dir) / scene_name
+    target.mkdir(parents=True, exist_ok=True)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+    fig = _patch_figure(model, results, geometry)
+    fig.suptitle(f"{scene_name}: contact pressure, h = {h_contact * 1e6:.0f} um (white: Hertz, red: FE fit)")
+    pressure_path = target / "pressure.png"
+    fig.savefig(pressure_path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    # von Mises stress on z = 0, ball 1
+    result = results[0]
+    u = fp.full_displacement(model, result)
+    stress = fp.von_mises(model, u, (E_STEEL, NU_STEEL)) / 1e6
+    pair = model.pair
+    mm = 1e3
+    grid = pv.UnstructuredGrid({pv.CellType.TETRA: pair.tets}, pair.points * mm)
+    grid.cell_data["von Mises [MPa]"] = stress
+    grid.cell_data["body"] = pair.body
+    cut = grid.slice(normal=(0, 0, 1), origin=(0, 0, 0))
+    plotter = pv.Plotter(off_screen=True, window_size=(1300, 1000))
+    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="inferno", clim=(0.0, float(np.percentile(stress, 99.9))),
+                     show_edges=False, scalar_bar_args={"title": "von Mises stress [MPa]", "vertical": False,
+                                                        "position_x": 0.25, "position_y": 0.04, "width": 0.5,
+                                                        "fmt": "%.0f"})
+    angles = ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
+                       for c in result.contacts)
+    plotter.add_text(f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), cut z = 0 "
+                     f"through the four contacts [mm]\n{angles}", position="upper_left", font_size=9)
+    plotter.view_xy()
+    plotter.camera.zoom(1.6)
+    stress_path = target / "stress.png"
+    plotter.screenshot(str(stress_path))
+    plotter.close()
+    return [pressure_path, stress_path]
 
 
 @scene("fe-b2b-linear-a", "FE-informed B2B force on lin2019's two-ball linear-bearing module, case (a) "
