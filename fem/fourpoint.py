@@ -420,14 +420,15 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
     ``G^T lam = r`` (``W`` is SPD; the gaps are the multipliers of ``lam >= 0``, ``q`` those of
     the equalities).  ``W`` of P2 mortar contact is not an M-matrix (about 44 % positive
     off-diagonal entries), and the primal-dual active set method of :mod:`fem.contact` cycles
-    here; the QP is solved by the dual active-set method of Goldfarb & Idnani (1983, quadprog),
-    then polished by one exact solve on its active set.  ConvergenceError unless the polished
+    from a cold start; the QP is solved by the dual active-set method of Goldfarb & Idnani (1983,
+    quadprog), then polished by one exact solve on its active set.  The geometric updates start the
+    active set iteration from the previous active set (quadprog if that fails).  ConvergenceError unless the polished
     state meets complementarity to ``tol`` (lam in units of its mean, weighted gaps in units of
     the largest rigid displacement times the median weight).
 
     ``geometric_update``: the ball's rigid displacement relative to a rail has a tangential part
     ``t_i`` (along e1) of the order of the approach, which moves the contact along the conforming
-    flank by about ``t_i r_g / (r_g - R_B)`` (the contact angle under load); small-deformation
+    flank by about ``t_i R_B / (r_g - R_B)`` on the ball (the contact angle under load); small-deformation
     contact with a fixed projection misses it.  With the update the exact gap is re-evaluated with
     the ball shifted by ``t_i`` (:func:`exact_gap`) and the QP re-solved on the same ``W`` until
     ``t_i`` changes by less than 1e-4 of the rigid displacement (fixed point; 3-5 solves).  The
@@ -440,8 +441,11 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
     load = np.array([0.0, 0.0, -side_force, vertical_force])
     g0 = model.g0
     shifts = np.zeros(4)
+    active = None
+    iteration = 0
     for update in range(max_updates + 1):
-        lam, q, active, iteration, residual = _solve_lcp(model, load, tol, g0)
+        lam, q, active, iterations, residual = _solve_lcp(model, load, tol, g0, active)
+        iteration += iterations
         if not geometric_update:
             break
         new_shifts = np.array([_relative_displacement(q, i) @ model.geometry.frame(i)[0] for i in range(4)])
@@ -493,8 +497,13 @@ def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
     return g0
 
 
-def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray):
-    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve_module`."""
+def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, start: np.ndarray | None = None):
+    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve_module`.
+
+    With ``start`` (an active set, e.g. of the previous geometric update) the primal-dual active set
+    iteration is tried first (it converges in a few steps near the solution); if it cycles or does not
+    converge, or without ``start``, the QP is solved by quadprog.  Either way the answer is the exact
+    solve on the final active set, checked for complementarity."""
     import quadprog
 
     W, G = model.W, model.G
@@ -502,40 +511,70 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray):
     w_scale = float(np.median(np.diag(W)))
     force_scale = float(np.max(np.abs(r)))
     pressure_scale = force_scale / float(np.sum(model.weights)) * 50.0  # a typical peak pressure [Pa]
+    length_scale = 1e-6  # q in um
     # x = lam / pressure_scale; objective / (pressure_scale^2 w_scale)
     hessian = W / w_scale
     linear = -g0 / (pressure_scale * w_scale)
-    constraints = np.hstack([G * (pressure_scale / force_scale), np.eye(n)])
-    bounds = np.concatenate([r / force_scale, np.zeros(n)])
-    try:
-        x, _, _, (iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, 4)
-    except ValueError as error:  # quadprog: "constraints are inconsistent, no solution"
-        raise ConvergenceError(f"four-point module: QP failed ({error})", residual=float("inf"), iterations=0,
-                               tolerance=tol) from None
-    active = x > 1e-12 * np.max(x)
-    for i in range(4):
-        if not active[model.contact_of == i].any():
-            raise ValueError(f"four-point module: contact {CONTACTS[i]} lost (lin2017 eq 37)")
-    idx = np.flatnonzero(active)
-    m = idx.size
-    # exact solve on the active set, scaled: x = lam / pressure_scale, q in units of 1 um
-    length_scale = 1e-6
-    mat = np.zeros((m + 4, m + 4))
-    mat[:m, :m] = hessian[np.ix_(idx, idx)]
-    mat[:m, m:] = G[idx] * (length_scale / (w_scale * pressure_scale))
-    mat[m:, :m] = constraints[idx, :4].T
-    sol = np.linalg.solve(mat, np.concatenate([linear[idx], bounds[:4]]))
-    lam = np.zeros(n)
-    lam[idx] = sol[:m] * pressure_scale
-    q = sol[m:] * length_scale
-    gap = g0 + W @ lam + G @ q
-    lam_scale = float(np.mean(lam[idx]))
-    gap_scale = float(np.max(np.abs(q))) * float(np.median(model.weights))  # the approach over a weight [m^3]
-    residual = float(np.max(np.abs(np.minimum(lam / lam_scale, gap / gap_scale))))
+    coupling = G * (length_scale / (w_scale * pressure_scale))
+    equality = G * (pressure_scale / force_scale)
+
+    def on_active(active):
+        idx = np.flatnonzero(active)
+        m = idx.size
+        mat = np.zeros((m + 4, m + 4))
+        mat[:m, :m] = hessian[np.ix_(idx, idx)]
+        mat[:m, m:] = coupling[idx]
+        mat[m:, :m] = equality[idx].T
+        sol = np.linalg.solve(mat, np.concatenate([linear[idx], r / force_scale]))
+        x = np.zeros(n)
+        x[idx] = sol[:m]
+        gap = hessian @ x + coupling @ sol[m:] - linear  # scaled: gap / (pressure_scale w_scale)
+        return x, sol[m:], gap
+
+    def residual_of(x, q_scaled, gap, active):
+        lam_scale = float(np.mean(x[active]))
+        gap_scale = float(np.max(np.abs(q_scaled))) * length_scale * float(np.median(model.weights)) / (
+            pressure_scale * w_scale)
+        return float(np.max(np.abs(np.minimum(x / lam_scale, gap / gap_scale))))
+
+    iterations = 0
+    solution = None
+    if start is not None and start.any():
+        active = start.copy()
+        seen = set()
+        for _ in range(30):
+            iterations += 1
+            x, q_scaled, gap = on_active(active)
+            new = x - gap > 0.0  # lam - c g with c = 1 / median diag W, in scaled units
+            if np.array_equal(new, active):
+                if residual_of(x, q_scaled, gap, active) <= tol:
+                    solution = (x, q_scaled, gap, active)
+                break
+            if new.tobytes() in seen or not all(new[model.contact_of == i].any() for i in range(4)):
+                break
+            seen.add(active.tobytes())
+            active = new
+    if solution is None:
+        constraints = np.hstack([equality, np.eye(n)])
+        bounds = np.concatenate([r / force_scale, np.zeros(n)])
+        try:
+            x, _, _, (qp_iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, 4)
+        except ValueError as error:  # quadprog: "constraints are inconsistent, no solution"
+            raise ConvergenceError(f"four-point module: QP failed ({error})", residual=float("inf"),
+                                   iterations=iterations, tolerance=tol) from None
+        iterations += int(qp_iterations)
+        active = x > 1e-12 * np.max(x)
+        for i in range(4):
+            if not active[model.contact_of == i].any():
+                raise ValueError(f"four-point module: contact {CONTACTS[i]} lost (lin2017 eq 37)")
+        x, q_scaled, gap = on_active(active)  # exact solve on the QP's active set
+        solution = (x, q_scaled, gap, active)
+    x, q_scaled, gap, active = solution
+    residual = residual_of(x, q_scaled, gap, active)
     if not residual <= tol:
-        raise ConvergenceError("four-point module: complementarity not met after the QP", residual=residual,
-                               iterations=int(iterations), tolerance=tol)
-    return lam, q, active, int(iterations), residual
+        raise ConvergenceError("four-point module: complementarity not met", residual=residual,
+                               iterations=iterations, tolerance=tol)
+    return x * pressure_scale, q_scaled * length_scale, active, iterations, residual
 
 
 def _fit(patch: _Patch, nodal: np.ndarray) -> EllipseFit | None:

@@ -50,8 +50,8 @@ def test_bad_input():
 def coarse_module():
     from ballbench.meshes.fourpoint_module import fourpoint_module
 
-    path = fourpoint_module(5e-3, 0.56, math.pi / 4, DEVIATIONS, 1, h_contact=1e-4, growth=1.5,
-                            fine_radius=4.5e-4)
+    path = fourpoint_module(5e-3, 0.56, math.pi / 4, DEVIATIONS, 1, h_contact=4e-5, growth=1.4,
+                            fine_radius=1.5e-4)  # the quick level of fe-b2b-linear-a
     return fp.build_module_model(path, GEOMETRY, gap_limit=4e-6)
 
 
