@@ -44,14 +44,14 @@ from ballbench.fem import linsolve
 from ballbench.fem.elasticity import PairMesh, stiffness_fast
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+from ballbench.lowmodel.geometry.groove import groove_radius
 
 __all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
            "exact_gap", "build_module_model", "solve_module",
            "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
-CONTACTS = ("BL", "BR", "TR", "TL")
-_SIGN_X = np.array([-1.0, 1.0, 1.0, -1.0])
-_SIGN_Y = np.array([-1.0, -1.0, 1.0, 1.0])
+CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
 _SUBDIVISIONS = 4  # mortar quadrature: 16 sub-triangles per ball triangle
 
 
@@ -66,13 +66,13 @@ class ModuleGeometry:
 
     @property
     def normals(self) -> np.ndarray:
-        """(4, 3) outward unit contact normals (lin2017 eq 1)."""
-        b = np.asarray(self.contact_angles, dtype=float)
-        return np.stack([_SIGN_X * np.sin(b), _SIGN_Y * np.cos(b), np.zeros(4)], axis=1)
+        """(4, 3) outward unit contact normals (lin2017 eq 1, :func:`lowmodel.geometry.fourpoint.contact_normals`)."""
+        return np.column_stack([contact_normals(np.asarray(self.contact_angles, dtype=float)), np.zeros(4)])
 
     @property
     def groove_radius(self) -> float:
-        return self.conformity * 2.0 * self.ball_radius
+        """Flank radius ``r_g = 2 f R_B`` [m] (:func:`lowmodel.geometry.groove.groove_radius`)."""
+        return float(groove_radius(self.ball_radius, self.conformity))
 
     def frame(self, i: int) -> np.ndarray:
         """(3, 3) rows ``e1, e2, e3`` of contact ``i`` (module docstring)."""

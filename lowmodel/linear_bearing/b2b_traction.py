@@ -30,7 +30,7 @@ both models).  Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
 The residual of one ball is ``-grad`` of the regularised dissipation
 ``sum_k mu F_k sqrt(|P_k s_k|^2 + eps^2)``, so its Jacobian is symmetric and
 negative semi-definite (a single ball has a unique state); Newton with
-Levenberg-Marquardt damping (:func:`lowmodel.linear_bearing.bearing_ball.newton`).
+Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`).
 
 Assumptions kept from lin2019's low-order model: full sliding at every point
 (no stick zone), Coulomb friction with one ``mu``, ball-to-groove normal loads
@@ -55,14 +55,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
-from ballbench.lowmodel.linear_bearing.bearing_ball import (
-    CONTACT_NAMES,
-    BallContacts,
-    check_solver_options,
-    contact_normals,
-    newton,
-)
+from ballbench.lowmodel.linear_bearing.bearing_ball import BallContacts
+from ballbench.lowmodel.solvers import check_solver_options, newton
 
 __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
 
