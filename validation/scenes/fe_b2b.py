@@ -39,7 +39,8 @@ THETA = math.radians(2.0)  # Table 2/3 cases
 RHO = -0.6
 ANSYS_A = 3.96  # N, lin2019 Table 3 case (a)
 LOW_ORDER_A = 4.01  # N, lin2019 Table 3 case (a), the paper's low-order numerical model
-GAP_LIMIT = 4e-6  # m, candidate zone (largest Hertz approach 3.1 um + bulk compliance)
+GAP_LIMIT = 6e-6  # m, candidate zone: the largest approach is 3.1 um; the coarse growth zone about the ends of
+# the major axes needs the margin (4 um let BL reach the zone edge at the quick level)
 # (h_contact [m], growth, fine_radius [m]) at the four contact points.  The fine zone is a ball about
 # each point (meshes.fourpoint_module); a small one resolves the minor axes b = 61-102 um (along the
 # rails) at the cost of the ends of the major axes (a = 0.26-0.44 mm, in the growth zone): measured,
@@ -50,6 +51,17 @@ LEVELS = {
     "fine": [(5.0e-5, 1.45, 1.2e-4), (4.0e-5, 1.4, 1.5e-4), (3.0e-5, 1.35, 1.5e-4), (2.2e-5, 1.3, 1.5e-4)],
 }
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its level
+# Case (b) is zero by the rotation by pi about z that swaps BL <-> TR and BR <-> TL (every ball rolls at
+# v/2).  The FE meshes the two rails and the ball caps independently, so the FE-informed balls keep
+# free-ball velocity deviations of the size of the discretisation error (|epsilon| ~ 4e-5 at the
+# default level against 0.87 % in case (a)), whose difference decides touching or not: the sign flips
+# between meshes (70 um isotropic: balls separate; 30 um focused: 0.023 N).  The FE-informed check is
+# therefore "no B2B force beyond 1 % of case (a)", a bound of the order of the FE-informed F_B2B's own
+# mesh dependence (4.13 / 3.91 / 4.00 / 4.06 N over the levels measured); the low-order model keeps 1e-9.
+CASE_B_FE_TOLERANCE = 0.01
+CASE_B_FE_NOTE = ("scale 4.01 N (case a); tolerance 1 %: zero holds by the pi-rotation symmetry of case (b), "
+                  "which the independently meshed rails keep only to the discretisation error (levels.csv: "
+                  "free-ball epsilon of both balls)")
 MODEL_LOW = "lowmodel.linear_bearing.b2b"
 MODEL_ANALYTICAL = "lowmodel.linear_bearing.b2b_analytical"
 
@@ -110,9 +122,10 @@ def _run(run, case: str) -> None:
             run.check(model=model, quantity="F_B2B", unit="N", value=value, reference=ANSYS_A, source=source,
                       tolerance=0.07, time_s=time_s, note=note or "issue 12 / lin2019's own claim: within 7 %")
         else:
+            fe = model.startswith("FE-informed")
             run.check(model=model, quantity="F_B2B", unit="N", value=value, reference=0.0, scale=LOW_ORDER_A,
-                      tolerance=1e-9, source=source, time_s=time_s,
-                      note=note or "scale: the case (a) force 4.01 N")
+                      tolerance=CASE_B_FE_TOLERANCE if fe else 1e-9, source=source, time_s=time_s,
+                      note=note + "; " + CASE_B_FE_NOTE if fe else "scale: the case (a) force 4.01 N")
 
     b2b.solve(contacts, [0.0])  # loads the friction map (disk cache) outside the timed calls
     low, time_low = run.time(b2b.solve, contacts, [0.0])
