@@ -52,7 +52,7 @@ def coarse_module():
 
     path = fourpoint_module(5e-3, 0.56, math.pi / 4, DEVIATIONS, 1, h_contact=4e-5, growth=1.4,
                             fine_radius=1.5e-4)  # the quick level of fe-b2b-linear-a
-    return fp.build_module_model(path, GEOMETRY, gap_limit=4e-6)
+    return fp.build_module_model(path, GEOMETRY, gap_limit=6e-6)
 
 
 @pytest.mark.slow
