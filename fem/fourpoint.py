@@ -1,7 +1,7 @@
 """FE four-point contact module of a linear ball bearing: one ball between a fixed bottom rail
 and a loaded top rail, P2 elasticity, mortar contact at the four ball-to-groove contacts.
 
-Mesh: :func:`meshes.fourpoint_module.fourpoint_module` (one ball, gothic-arch rails, the
+Mesh: :func:`meshes.assemblies.fourpoint_module.fourpoint_module` (one ball, gothic-arch rails, the
 real sphere and flank surfaces, refined about the four contact points).  Frame of
 lin2017 Fig 2: ball centre at the origin, ``z`` along the rails, ``y`` up; contacts
 (BL, BR, TR, TL) at ``R_B n_i`` with the outward normals of lin2017 eq 1.
@@ -117,7 +117,7 @@ def exact_gap(geometry: ModuleGeometry, i: int, local: np.ndarray, shift: float 
 
 
 def load_module(path) -> PairMesh:
-    """Read a one-ball :func:`meshes.fourpoint_module.fourpoint_module` mesh: ``body`` 0 = ball,
+    """Read a one-ball :func:`meshes.assemblies.fourpoint_module.fourpoint_module` mesh: ``body`` 0 = ball,
     1 = bottom rail, 2 = top rail; surfaces by their physical names."""
     import meshio
 

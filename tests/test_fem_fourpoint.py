@@ -48,7 +48,7 @@ def test_bad_input():
 
 @pytest.fixture(scope="module")
 def coarse_module():
-    from ballbench.meshes.fourpoint_module import fourpoint_module
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
 
     path = fourpoint_module(5e-3, 0.56, math.pi / 4, DEVIATIONS, 1, h_contact=4e-5, growth=1.4,
                             fine_radius=1.5e-4)  # the quick level of fe-b2b-linear-a

@@ -26,23 +26,24 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
+from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import scene
 
-RADIUS = 5e-3  # m, lin2019 Table 1
-CONFORMITY = 0.56
-VERTICAL = 100.0  # N, N_y per ball
-SPEED = 0.01  # m/s
-MU = 0.1
-E_STEEL, NU_STEEL = 2.1e11, 0.28
-BETA0 = math.pi / 4
-THETA = math.radians(2.0)  # Table 2/3 cases
-RHO = -0.6
-ANSYS_A = 3.96  # N, lin2019 Table 3 case (a)
-LOW_ORDER_A = 4.01  # N, lin2019 Table 3 case (a), the paper's low-order numerical model
+RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
+CONFORMITY = TABLE1.conformity
+VERTICAL = TABLE1.vertical_force  # N, N_y per ball
+SPEED = TABLE1.groove_velocity  # m/s
+MU = TABLE1.friction_coefficient
+E_STEEL, NU_STEEL = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+BETA0 = CASE.nominal_angle
+THETA = CASE.theta  # Table 2/3 cases
+RHO = CASE.side_force_ratio
+ANSYS_A = PRINTED.f_b2b_ansys  # N, lin2019 Table 3 case (a)
+LOW_ORDER_A = PRINTED.f_b2b_numerical  # N, lin2019 Table 3 case (a), the paper's low-order numerical model
 GAP_LIMIT = 6e-6  # m, candidate zone: the largest approach is 3.1 um; the coarse growth zone about the ends of
 # the major axes needs the margin (4 um let BL reach the zone edge at the quick level)
 # (h_contact [m], growth, fine_radius [m]) at the four contact points.  The fine zone is a ball about
-# each point (meshes.fourpoint_module); a small one resolves the minor axes b = 61-102 um (along the
+# each point (meshes.assemblies.fourpoint_module); a small one resolves the minor axes b = 61-102 um (along the
 # rails) at the cost of the ends of the major axes (a = 0.26-0.44 mm, in the growth zone): measured,
 # (30 um, 0.15 mm) gives a, b within 4 % at the DOFs of (70 um, 0.45 mm), which misses b by 18 %.
 LEVELS = {
@@ -85,7 +86,7 @@ def low_order_contacts(case: str):
 def solve_fe_level(case: str, h_contact: float, growth: float, fine_radius: float):
     """Mesh, condense and solve the module for both balls' loads; returns (model, results, timings)."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.meshes.fourpoint_module import fourpoint_module
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
 
     deviations = case_deviations(case)
     timings = {}
