@@ -359,16 +359,17 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     grid.cell_data["body"] = pair.body
     cut = grid.slice(normal=(0, 0, 1), origin=(0, 0, 0))
     plotter = pv.Plotter(off_screen=True, window_size=(1300, 1000))
-    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="inferno", clim=(0.0, float(np.percentile(stress, 99.9))),
+    plotter.set_background("white")
+    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="YlOrRd", clim=(0.0, float(np.percentile(stress, 99.9))),
                      show_edges=False, scalar_bar_args={"title": "von Mises stress [MPa]", "vertical": False,
                                                         "position_x": 0.25, "position_y": 0.04, "width": 0.5,
-                                                        "fmt": "%.0f"})
+                                                        "fmt": "%.0f", "color": "black"})
     angles = ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
                        for c in result.contacts)
     plotter.add_text(f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), cut z = 0 "
-                     f"through the four contacts [mm]\n{angles}", position="upper_left", font_size=9)
+                     f"through the four contacts [mm]\n{angles}", position="upper_left", font_size=8, color="black")
     plotter.view_xy()
-    plotter.camera.zoom(1.6)
+    plotter.camera.zoom(1.25)
     stress_path = target / "stress.png"
     plotter.screenshot(str(stress_path))
     plotter.close()
