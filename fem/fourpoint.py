@@ -239,8 +239,8 @@ class ModuleModel:
     patches: list
     g0: np.ndarray  # (n_c,) weighted initial gaps [m^3]
     weights: np.ndarray  # (n_c,) m_k [m^2]
-    G: np.ndarray  # (n_c, 4) rigid-mode columns
-    W: np.ndarray  # (n_c, n_c) [m/Pa per m^2 ...] compliance of the multipliers
+    G: np.ndarray  # (n_c, 4) [m^2]: weighted gap per rigid translation (X, Y, U_x, U_y)
+    W: np.ndarray  # (n_c, n_c) [m^5/N]: weighted gaps [m^3] per nodal pressure [Pa], B K^-1 B^T
     contact_of: np.ndarray  # (n_c,) contact index 0..3
     B: sp.csr_matrix
     K: sp.csr_matrix
