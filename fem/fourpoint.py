@@ -42,6 +42,7 @@ import scipy.sparse as sp
 
 from ballbench.fem import linsolve
 from ballbench.fem.elasticity import PairMesh, stiffness_fast
+from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
@@ -154,38 +155,9 @@ def load_module(path) -> PairMesh:
     return PairMesh(points, tets, body, surf, str(path))
 
 
-def _edge_map(mesh) -> dict:
-    return {(int(min(a, b)), int(max(a, b))): k for k, (a, b) in enumerate(mesh.edges.T)}
-
-
-def _triangle_dofs(basis, triangles: np.ndarray, component: int, edges: dict) -> np.ndarray:
-    """(k, 6) P2 DOFs of ``component`` on the triangles: vertices, then edges (01, 12, 20)."""
-    vert = basis.nodal_dofs[component][triangles]
-    pairs = ((0, 1), (1, 2), (2, 0))
-    edge = np.array([[edges[(min(t[a], t[b]), max(t[a], t[b]))] for a, b in pairs] for t in triangles])
-    return np.hstack([vert, basis.edge_dofs[component][edge]])
-
-
 def _surface_dofs(basis, pair: PairMesh, name: str, edges: dict) -> np.ndarray:
-    tris = pair.surfaces[name]
-    return np.unique(np.concatenate([_triangle_dofs(basis, tris, c, edges).ravel() for c in range(3)]))
-
-
-def _p2_shape(bary: np.ndarray) -> np.ndarray:
-    l0, l1, l2 = bary.T
-    return np.column_stack([l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), 4 * l0 * l1, 4 * l1 * l2,
-                            4 * l2 * l0])
-
-
-def _sub_points(s: int) -> np.ndarray:
-    pts = []
-    for a in range(s):
-        for b in range(s - a):
-            pts.append(((a + 1 / 3) / s, (b + 1 / 3) / s))
-            if a + b < s - 1:
-                pts.append(((a + 2 / 3) / s, (b + 2 / 3) / s))
-    pts = np.array(pts)
-    return np.column_stack([1.0 - pts.sum(axis=1), pts])
+    """All P2 DOFs (every component) on the named surface."""
+    return np.unique(np.concatenate([surface_dofs(basis, pair, name, c, 2, edges) for c in range(3)]))
 
 
 def _locate(local_points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -281,7 +253,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
     K, basis = stiffness_fast(pair, [materials] * 3, order=2)
     timings["assembly_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    edges = _edge_map(basis.mesh)
+    edges = edge_index(basis.mesh)
     points = pair.points
     radius = geometry.ball_radius
     # Dirichlet: bottom support clamped, top load face clamped (its rigid translation is in G)
@@ -298,9 +270,9 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
     top_nodes = pair.nodes("top_load")
     top_dofs = np.stack([basis.nodal_dofs[0][top_nodes], basis.nodal_dofs[1][top_nodes]])
 
-    bary = _sub_points(_SUBDIVISIONS)
+    bary = sub_triangle_points(_SUBDIVISIONS)
     nq = len(bary)
-    shape = _p2_shape(bary)
+    shape = surface_shape(bary, 2)
     patches, rows, cols, vals, g0_all, w_all, contact_of, g_cols = [], [], [], [], [], [], [], []
     offset = 0
     for i, name in enumerate(CONTACTS):
@@ -327,10 +299,10 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         mult = np.repeat(index[tris], nq, axis=0)
         g0q, surface = exact_gap(geometry, i, xq)
         rail_rows, rail_bary = _locate(local, rail_tris, xq)
-        ball_dofs = [np.repeat(_triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
-        rail_dofs = [_triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
+        ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
+        rail_dofs = [triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
         ball_shape = np.tile(shape, (len(tris), 1))
-        rail_shape = _p2_shape(rail_bary)
+        rail_shape = surface_shape(rail_bary, 2)
         e3 = frame[2]
         n_c = candidates.size
         g0 = np.zeros(n_c)
@@ -656,11 +628,11 @@ def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
     """Displacement DOF vector (ndofs,) [m] of a solved module: one sparse solve with the contact
     forces ``B^T lam``, the top load face moved by ``(U_x, U_y, 0)`` and the ball's 3-2-1 nodes held
     (the ball's rigid translation ``(X, Y)`` is not added: it carries no stress)."""
-    edges = _edge_map(model.basis.mesh)
+    edges = edge_index(model.basis.mesh)
     tris = model.pair.surfaces["top_load"]
     u = np.zeros(model.ndofs)
     for component in (0, 1):
-        u[np.unique(_triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
+        u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
     rhs = model.B.T @ result.multipliers - model.K @ u
     solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
     u[model.free] = solve(rhs[model.free])
