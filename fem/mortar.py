@@ -28,17 +28,19 @@ from ballbench.fem.contact import ContactModel, load_and_assemble
 from ballbench.fem.elasticity import PairMesh
 from ballbench.fem.surface import lumped_area, project_along_z
 
-__all__ = ["build_mortar_model", "surface_dofs"]
+__all__ = ["build_mortar_model", "surface_dofs", "edge_index", "triangle_dofs", "surface_shape",
+           "sub_triangle_points"]
 
 SUBDIVISIONS = 4
 
 
-def _edge_index(mesh) -> dict:
+def edge_index(mesh) -> dict:
+    """Edge number of each sorted vertex pair ``(a, b)`` of a scikit-fem mesh (P2 edge DOFs)."""
     edges = mesh.edges.T
     return {(int(min(a, b)), int(max(a, b))): i for i, (a, b) in enumerate(edges)}
 
 
-def _triangle_dofs(basis, triangles: np.ndarray, component: int, edge_map: dict | None) -> np.ndarray:
+def triangle_dofs(basis, triangles: np.ndarray, component: int, edge_map: dict | None) -> np.ndarray:
     """(k, 3 or 6) DOFs of ``component`` on the triangles: vertices, then edges (01, 12, 20)."""
     vert = basis.nodal_dofs[component][triangles]
     if edge_map is None:
@@ -54,10 +56,10 @@ def surface_dofs(basis, pair: PairMesh, name: str, component: int, order: int, e
         return np.zeros(0, dtype=np.int64)
     if order == 1:
         return basis.nodal_dofs[component][pair.nodes(name)]
-    return np.unique(_triangle_dofs(basis, pair.surfaces[name], component, edge_map))
+    return np.unique(triangle_dofs(basis, pair.surfaces[name], component, edge_map))
 
 
-def _shape(bary: np.ndarray, order: int) -> np.ndarray:
+def surface_shape(bary: np.ndarray, order: int) -> np.ndarray:
     """Shape-function values (q, 3 or 6) at barycentric points (q, 3)."""
     if order == 1:
         return bary
@@ -66,7 +68,8 @@ def _shape(bary: np.ndarray, order: int) -> np.ndarray:
                             4 * l2 * l0])
 
 
-def _sub_points(s: int) -> np.ndarray:
+def sub_triangle_points(s: int) -> np.ndarray:
+    """Barycentric centroids (s^2, 3) of the ``s^2`` congruent sub-triangles of a triangle (mortar quadrature)."""
     pts = []
     for i in range(s):
         for j in range(s - i):
@@ -88,7 +91,7 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
     pair, K, basis, timings = load_and_assemble(mesh, materials, order=order, gap_limit=gap_limit)
-    edge_map = _edge_index(basis.mesh) if order == 2 else None
+    edge_map = edge_index(basis.mesh) if order == 2 else None
     fixed = [surface_dofs(basis, pair, "counter_support", c, order, edge_map) for c in range(3)]
     fixed += [surface_dofs(basis, pair, "ball_load", c, order, edge_map) for c in range(3)]
     fixed += [surface_dofs(basis, pair, "symmetry_x", 0, order, edge_map),
@@ -119,7 +122,7 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     index[candidates] = np.arange(candidates.size)
     tris = low[(index[low] >= 0).any(axis=1)]
     # quadrature points on the projected ball triangles
-    bary = _sub_points(SUBDIVISIONS)  # (s2, 3)
+    bary = sub_triangle_points(SUBDIVISIONS)  # (s2, 3)
     nq = len(bary)
     p2 = points[tris][:, :, :2]
     e1, e2 = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
@@ -129,11 +132,11 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     wq = np.repeat(area / nq, nq)
     phi = np.tile(bary, (len(tris), 1))  # multiplier hats at each point (k*s2, 3)
     mult = np.repeat(index[tris], nq, axis=0)  # (k*s2, 3) multiplier index or -1
-    ball_dofs = np.repeat(_triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
-    ball_shape = np.tile(_shape(bary, order), (len(tris), 1))
+    ball_dofs = np.repeat(triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
+    ball_shape = np.tile(surface_shape(bary, order), (len(tris), 1))
     c_tris, c_bary = project_along_z(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
-    counter_dofs = _triangle_dofs(basis, c_tris, 2, edge_map)
-    counter_shape = _shape(c_bary, order)
+    counter_dofs = triangle_dofs(basis, c_tris, 2, edge_map)
+    counter_shape = surface_shape(c_bary, order)
     if initial_gap is None:
         g0q = zq_ball - np.einsum("ij,ij->i", points[c_tris, 2], c_bary)
     else:

@@ -29,3 +29,11 @@ def test_fe_screw_quick_level_accuracy(tmp_path):
     assert not result.error, result.error
     accuracy = [o for o in result.outputs if o.quantity != "wall_time"]
     assert accuracy and all(o.passed for o in accuracy), [(o.quantity, o.rel_error) for o in accuracy]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["fe-b2b-linear-a", "fe-b2b-linear-b"])
+def test_fe_b2b_scene_quick_level_passes(name, tmp_path):
+    # FE four-point module (111k P2 DOFs) for both balls' loads + FE-informed B2B: ~30-40 s each
+    result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
+    assert result.passed, [o for o in result.outputs if not o.passed] or result.error

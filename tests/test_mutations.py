@@ -51,12 +51,12 @@ def _k_f_exact(monkeypatch):  # eq 14 slope of the friction integrals 1 % off
 
 
 def _no_b2b_friction(monkeypatch):  # eqs 6, 8 without the B2B friction (normal force kept)
-    original = b2b._b2b_terms
-    monkeypatch.setattr(b2b, "_b2b_terms", lambda scaled, forces, mu: original(scaled, forces, 0.0 * mu))
+    original = b2b.b2b_terms
+    monkeypatch.setattr(b2b, "b2b_terms", lambda scaled, forces, mu: original(scaled, forces, 0.0 * mu))
 
 
 def _b2b_moment_sign(monkeypatch):  # B2B friction moment on the ball in front with the wrong sign
-    original = b2b._b2b_terms
+    original = b2b.b2b_terms
 
     def mutant(scaled, forces, mu):
         load, block, d_force, slip = original(scaled, forces, mu)
@@ -64,7 +64,7 @@ def _b2b_moment_sign(monkeypatch):  # B2B friction moment on the ball in front w
             load = load.copy()
             load[1, 1:] *= -1.0
         return load, block, d_force, slip
-    monkeypatch.setattr(b2b, "_b2b_terms", mutant)
+    monkeypatch.setattr(b2b, "b2b_terms", mutant)
 
 
 def _hamrock_brewe(monkeypatch):  # b/a = 1 / (1.0339 (B/A)^0.636) instead of the exact ratio

@@ -53,7 +53,7 @@ def test_fe_scenes_are_data_and_names_are_not_parsed():
     from ballbench.validation.scenes import fe_hertz
 
     names = {entry.name for entry in fe_hertz.FE_SCENES}
-    assert names == {name for name in registry() if name.startswith("fe-")}
+    assert names == {name for name in registry() if name.startswith("fe-hertz-")}  # fe-b2b-*: fe_b2b.py
     assert fe_hertz.fe_scene("fe-hertz-groove-052").conformity == 0.52
     with pytest.raises(ValueError, match="FE scenes"):
         fe_hertz.fe_scene("hertz-sphere-flat")

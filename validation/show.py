@@ -35,6 +35,10 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     from ballbench.fem.contact import full_displacement
     from ballbench.validation.scenes import fe_hertz
 
+    if scene_name.startswith("fe-b2b-"):  # the four-point modules (validation/scenes/fe_b2b.py)
+        from ballbench.validation.scenes import fe_b2b
+
+        return fe_b2b.show(scene_name, out_dir, fidelity)
     entry = fe_hertz.fe_scene(scene_name)  # ValueError naming the FE scenes
     if fidelity not in entry.levels:
         raise ValueError(f"fidelity must be one of {tuple(entry.levels)}, got {fidelity!r}")

@@ -62,7 +62,8 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
+           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
 
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -114,7 +115,18 @@ def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
     return gaps
 
 
-def _b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
+def touching_pairs(gaps, n_balls: int, ball_radius: float, gap_tolerance: float | None = None) -> np.ndarray:
+    """Indices of the pairs ``(j, j+1)`` whose gap [m] (shape (n-1,), default all 0) is at most
+    ``gap_tolerance`` (default ``1e-9 R_B``); ValueError for a wrong shape, NaN or an overlap."""
+    gaps = _check_gaps(gaps, n_balls, ball_radius)
+    if gap_tolerance is None:
+        gap_tolerance = 1e-9 * ball_radius
+    else:  # a NaN tolerance would silently switch B2B contact off
+        gap_tolerance = checks.non_negative("gap_tolerance", gap_tolerance, "m")
+    return np.flatnonzero(gaps <= gap_tolerance)
+
+
+def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
 
     scaled (n, 3) ball unknowns; forces (n-1,) in units of mu F_ref.
@@ -179,33 +191,27 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     """
     check_solver_options(tolerance, max_iterations)
     n = contacts.n_balls
-    radius = contacts.ball_radius
-    gaps = _check_gaps(gaps, n, radius)
-    gap_tolerance = 1e-9 * radius if gap_tolerance is None else checks.non_negative("gap_tolerance", gap_tolerance,
-                                                                                     "m")
-    touching = np.flatnonzero(gaps <= gap_tolerance)
+    touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
     if n == 1 or touching.size == 0:
         return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)
     mu = contacts.friction_coefficient
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)
     k = N_UNKNOWNS
-    m = touching.size
-    gamma = COMPLEMENTARITY_SCALE
     what = f"{n}-ball B2B contact"
-
-    ball_index, force_index = _layout(n, touching)
+    ball_index, _ = _layout(n, k, touching)
 
     def balls_of(z):
         return z[ball_index]
 
-    def pack(balls):
-        z = np.zeros(k * n + m)
-        z[ball_index] = balls
-        return z
+    pack = coupled_system(None, n, k, touching, mu)[2]
 
     def solve_at(contacts_s, z0, label=what):
-        function = _coupled_equations(contacts_s, touching, reference_force, ball_index, force_index)
+        def ball_function(balls):
+            terms = ball_terms(balls, contacts_s, reference_force)
+            return terms.residual, terms.jacobian
+
+        function = coupled_system(ball_function, n, k, touching, mu)[0]
         return solve_branch(function, z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
                             max_iterations=max_iterations, what=label)
 
@@ -226,18 +232,9 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                                                                        error if error.iterations else first_error,
                                                                        what=what)
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
-    balls = balls_of(z)
-    forces = np.zeros(n - 1)
-    forces[touching] = z[force_index]
-    separation = balls[touching + 1, 0] - balls[touching, 0]
-    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
-    if violation > 10 * tolerance:
-        raise ConvergenceError(f"{what}: complementarity violated", residual=violation,
-                               iterations=iterations, tolerance=tolerance)
-    forces = np.maximum(forces, 0.0)
-    forces[touching[z[force_index] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
+    balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
     terms = ball_terms(balls, contacts, reference_force)
-    slip = _b2b_terms(balls[:, :3], forces, mu)[3]
+    slip = b2b_terms(balls[:, :3], forces, mu)[3]
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
@@ -246,39 +243,44 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
 SPARSE_BALLS = 40  # chains of at least this many balls get a sparse Jacobian (dense LU is faster below)
 
 
-def _layout(n: int, touching: np.ndarray):
-    """Positions of the unknowns in ``z``: ball j's 7 unknowns, then the force of pair j if it touches.
+def _layout(n: int, k: int, touching: np.ndarray):
+    """Positions of the unknowns in ``z``: ball j's ``k`` unknowns, then the force of pair j if it touches.
 
     Interleaving keeps the Jacobian banded (a ball couples only to its neighbours and to the
     forces between them), so its normal equations have a bandwidth independent of ``n``.
-    Returns ``ball_index`` (n, 7) and ``force_index`` (touching pairs,).
+    Returns ``ball_index`` (n, k) and ``force_index`` (touching pairs,).
     """
-    k = N_UNKNOWNS
     carries = np.zeros(n, dtype=int)
     carries[touching] = 1
     start = k * np.arange(n) + np.concatenate([[0], np.cumsum(carries)[:-1]])
     return start[:, None] + np.arange(k)[None, :], start[touching] + k
 
 
-def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_force: float,
-                       ball_index: np.ndarray, force_index: np.ndarray):
-    """``function(z) -> (residual, jacobian)`` of the coupled B2B problem (eqs 4, 8, 9-10) for ``contacts``.
+def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.ndarray, mu: float):
+    """Residual and Jacobian of ``n_balls`` balls with B2B contact at the ``touching`` pairs (lin2019 eqs 4-10).
 
-    ``z[ball_index]`` (n, 7) are the ball unknowns, ``z[force_index]`` the forces
-    ``F_B2B / (mu F_ref)`` of the touching pairs (:func:`_layout`).  The Jacobian is block
-    tridiagonal (a ball couples to its neighbours through the B2B terms); it is assembled
-    directly from its nonzero blocks (no dense scan), as a scipy CSR matrix for
-    ``n >= SPARSE_BALLS`` (cost linear in ``n``) and as a dense array below.
+    ``ball_function(balls)`` -> ``(residual (n, k), jacobian (n, k, k))`` of every ball on its own, with
+    ``balls`` (n, k) the per-ball unknowns: the first three are ``(v_B, omega_x R_B, omega_y R_B)/|v|``,
+    the first three residual rows eq 4 (z force, x and y moments / R_B) in units of ``mu F_ref``; the
+    other ``k - 3`` unknowns and rows are the model's own (slip angles of the low-order model; none for
+    :mod:`lowmodel.linear_bearing.b2b_traction`).  The B2B loads (eqs 5-8, :func:`b2b_terms`) are added
+    to the eq 4 rows and the complementarity of eqs 9-10 is written as the semismooth
+    ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (``gamma`` = COMPLEMENTARITY_SCALE).
+
+    The state ``z`` interleaves ball j's unknowns and the force ``F_B2B/(mu F_ref)`` of pair j when it
+    touches (:func:`_layout`), so the Jacobian is block tridiagonal; it is assembled directly from its
+    nonzero blocks, as a scipy CSR matrix for ``n >= SPARSE_BALLS`` (cost linear in ``n``) and as a dense
+    array below.  Returns ``(function, unpack, pack)``: ``function(z) -> (residual, jacobian)``,
+    ``unpack(z) -> (balls (n, k), forces (n-1,))`` and ``pack(balls) -> z`` (touching forces 0).
     """
-    n = contacts.n_balls
-    mu = contacts.friction_coefficient
-    k = N_UNKNOWNS
+    n, k = n_balls, n_unknowns
     m = touching.size
     gamma = COMPLEMENTARITY_SCALE
     size = k * n + m
     sparse = n >= SPARSE_BALLS
+    ball_index, force_index = _layout(n, k, touching)
     # fixed sparsity pattern: (row, col) of every stored entry, in the order the values are written below
-    ball_rows = np.repeat(ball_index[:, :, None], k, axis=2)  # (n, 7, 7)
+    ball_rows = np.repeat(ball_index[:, :, None], k, axis=2)  # (n, k, k)
     ball_cols = np.repeat(ball_index[:, None, :], k, axis=1)
     pair = np.arange(n - 1)
     # B2B moment block: rows (1, 2) of balls (j, j+1) x columns (1, 2) of balls (j, j+1)
@@ -292,14 +294,22 @@ def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_f
     t_cols = np.broadcast_to(force_index[:, None, None], t_rows.shape)
     behind, front = ball_index[touching, 0], ball_index[touching + 1, 0]  # v_B of the pair's balls
 
-    def function(z):
-        balls = z[ball_index]
+    def unpack(z):
         forces = np.zeros(n - 1)
         forces[touching] = z[force_index]
-        terms = ball_terms(balls, contacts, reference_force)
-        load, block, d_force, slip = _b2b_terms(balls[:, :3], forces, mu)
+        return z[ball_index], forces
+
+    def pack(balls):
+        z = np.zeros(size)
+        z[ball_index] = balls
+        return z
+
+    def function(z):
+        balls, forces = unpack(z)
+        ball_residual, ball_jacobian = ball_function(balls)
+        load, block, d_force, _ = b2b_terms(balls[:, :3], forces, mu)
         residual = np.empty(size)
-        ball_residual = terms.residual.copy()
+        ball_residual = np.array(ball_residual, dtype=float)
         ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
         residual[ball_index] = ball_residual
         # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
@@ -313,7 +323,7 @@ def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_f
         rows = [ball_rows.ravel(), moment_rows.ravel(), t_rows.ravel(), force_index, force_index[vel],
                 force_index[vel]]
         cols = [ball_cols.ravel(), moment_cols.ravel(), t_cols.ravel(), force_index, front[vel], behind[vel]]
-        values = [terms.jacobian.ravel(), moment_values.ravel(), d_force[touching].ravel(),
+        values = [np.asarray(ball_jacobian, dtype=float).ravel(), moment_values.ravel(), d_force[touching].ravel(),
                   np.where(force_branch, 1.0, 0.0), np.full(count, gamma), np.full(count, -gamma)]
         rows, cols, values = np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
         if sparse:
@@ -323,7 +333,27 @@ def _coupled_equations(contacts: BallContacts, touching: np.ndarray, reference_f
         jac = np.bincount(rows * size + cols, weights=values, minlength=size * size).reshape(size, size)
         return residual, jac
 
-    return function
+    return function, unpack, pack
+
+
+def complementarity_forces(z: np.ndarray, n_balls: int, n_unknowns: int, touching: np.ndarray, *,
+                           tolerance: float, iterations: int, what: str):
+    """Ball unknowns (n, k) and B2B forces (n-1,) [units mu F_ref] of a converged state of
+    :func:`coupled_system`; ConvergenceError if eqs 9-10 are violated by more than ``10 tolerance``.
+    Pairs on the ``F = 0`` branch of the min() function get exactly zero force."""
+    gamma = COMPLEMENTARITY_SCALE
+    ball_index, force_index = _layout(n_balls, n_unknowns, touching)
+    balls = z[ball_index]
+    forces = np.zeros(n_balls - 1)
+    forces[touching] = z[force_index]
+    separation = balls[touching + 1, 0] - balls[touching, 0]
+    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
+    if violation > 10 * tolerance:
+        raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
+                               tolerance=tolerance)
+    forces = np.maximum(forces, 0.0)
+    forces[touching[z[force_index] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
+    return balls, forces
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,658 @@
+"""FE four-point contact module of a linear ball bearing: one ball between a fixed bottom rail
+and a loaded top rail, P2 elasticity, mortar contact at the four ball-to-groove contacts.
+
+Mesh: :func:`meshes.assemblies.fourpoint_module.fourpoint_module` (one ball, gothic-arch rails, the
+real sphere and flank surfaces, refined about the four contact points).  Frame of
+lin2017 Fig 2: ball centre at the origin, ``z`` along the rails, ``y`` up; contacts
+(BL, BR, TR, TL) at ``R_B n_i`` with the outward normals of lin2017 eq 1.
+
+Contact (per contact ``i``, frame ``e1 = (-n_y, n_x, 0)`` in the cross-section, ``e2 = e_z``,
+``e3 = -n_i`` from the flank into the ball): as :mod:`fem.mortar`, a piecewise-linear
+pressure on the ball's cap triangles and weighted gaps over their projection on the tangent
+plane, ``g = g0 + (u_ball - u_rail(P)) . e3`` with ``P`` the projection along ``e3`` on the
+flank triangles.  **The initial gap ``g0`` is that of the exact surfaces** (sphere of radius
+``R_B`` and flank cylinder of radius ``r_g = f 2 R_B`` about its arc centre, intersected along
+``e3`` at every quadrature point), not Hertz's quadratic ``A x^2 + B y^2``: the FE can disagree
+with Hertz where the real shape differs.
+
+Boundary conditions and rigid modes: the bottom rail is clamped on ``bottom_support``; the
+top rail's ``top_load`` face moves rigidly by ``(U_x, U_y, 0)`` (unknown), carrying the load
+``(N_x, -N_y)`` (lin2017 eq 35: ``N_x`` along +x, ``N_y`` pressing down); the ball is held by
+a 3-2-1 set of interior nodes (centre; ``0.5 R_B e_z``: x, y; ``0.5 R_B e_x``: y) and
+translates by ``(X, Y, 0)`` (unknown).  The frictionless contact cannot hold the ball's
+rotations or its z translation (all normals pass through the centre), so the 3-2-1 nodes
+carry only the small residual moments and z force of the discretised pressure (reported).
+Condensed on the multipliers (``W = B K^-1 B^T``, :func:`fem.linsolve.compliance`) the
+problem is the mixed LCP
+
+    g = g0 + W lam + G q >= 0,  lam >= 0,  lam . g = 0,   G^T lam = r,
+
+``q = (X, Y, U_x, U_y)``, ``G_k = m_k (e3_x, e3_y, -e3_x [top], -e3_y [top])``,
+``r = (0, 0, -N_x, N_y)`` (ball free in x, y; top rail loaded), solved by a primal-dual
+active set method (Hintermueller, Ito & Kunisch 2002) as :mod:`fem.contact`.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ballbench.fem import linsolve
+from ballbench.fem.elasticity import PairMesh, stiffness_fast
+from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
+from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+from ballbench.lowmodel.geometry.groove import groove_radius
+
+__all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
+           "exact_gap", "build_module_model", "solve_module",
+           "residual_load", "traction_patches", "full_displacement", "von_mises"]
+
+CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
+_SUBDIVISIONS = 4  # mortar quadrature: 16 sub-triangles per ball triangle
+
+
+@dataclass(frozen=True)
+class ModuleGeometry:
+    """Ball and groove geometry of the module: ``ball_radius`` [m], ``conformity``,
+    ``contact_angles`` (4,) [rad] (BL, BR, TR, TL) of the undeformed contacts."""
+
+    ball_radius: float
+    conformity: float
+    contact_angles: tuple
+
+    @property
+    def normals(self) -> np.ndarray:
+        """(4, 3) outward unit contact normals (lin2017 eq 1, :func:`lowmodel.geometry.fourpoint.contact_normals`)."""
+        return np.column_stack([contact_normals(np.asarray(self.contact_angles, dtype=float)), np.zeros(4)])
+
+    @property
+    def groove_radius(self) -> float:
+        """Flank radius ``r_g = 2 f R_B`` [m] (:func:`lowmodel.geometry.groove.groove_radius`)."""
+        return float(groove_radius(self.ball_radius, self.conformity))
+
+    def frame(self, i: int) -> np.ndarray:
+        """(3, 3) rows ``e1, e2, e3`` of contact ``i`` (module docstring)."""
+        n = self.normals[i]
+        return np.array([[-n[1], n[0], 0.0], [0.0, 0.0, 1.0], -n])
+
+    def arc_centre(self, i: int) -> np.ndarray:
+        """(3,) centre of the flank circle of contact ``i`` (z = 0): ``-(r_g - R_B) n_i``."""
+        return -(self.groove_radius - self.ball_radius) * self.normals[i]
+
+
+def exact_gap(geometry: ModuleGeometry, i: int, local: np.ndarray, shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Gap [m] between the exact sphere and flank cylinder of contact ``i`` along ``e3`` at the
+    tangent-plane points ``local`` (k, 2) = (x along e1, y along e2) [m]; also the sphere points (k, 3).
+
+    Line ``Q + s e3``, ``Q = R_B n_i + x e1 + y e2``: ``s_ball`` solves ``|Q + s e3| = R_B``,
+    ``s_rail`` solves ``|(Q + s e3 - C_i)_xy| = r_g`` (the roots nearest the tangent plane);
+    ``g0 = s_ball - s_rail``.  ``shift`` [m]: the ball moved rigidly by ``shift e1`` relative to the rail
+    (its point ``local`` then faces the flank at ``local + shift e1``; the normal part of the rigid motion
+    is not included here).
+    """
+    radius, r_g = geometry.ball_radius, geometry.groove_radius
+    e1, e2, e3 = geometry.frame(i)
+    q = radius * geometry.normals[i] + local[:, :1] * e1 + local[:, 1:2] * e2
+    # sphere: s^2 + 2 s (q.e3) + |q|^2 - R^2 = 0, root near 0 (q.e3 ~ -R)
+    b = q @ e3
+    c = np.einsum("ki,ki->k", q, q) - radius**2
+    disc = b * b - c
+    if np.any(disc < 0.0):
+        raise ValueError("exact_gap: a point lies outside the ball's silhouette (candidate zone too large)")
+    s_ball = c / (-b + np.sqrt(disc))  # = -b - sqrt(disc), written without cancellation
+    # cylinder about the z axis through C: only x, y count
+    d = (q + shift * e1 - geometry.arc_centre(i))[:, :2]
+    e = e3[:2]
+    bb = d @ e
+    cc = np.einsum("ki,ki->k", d, d) - r_g**2
+    disc = bb * bb - cc
+    if np.any(disc < 0.0):
+        raise ValueError("exact_gap: a point misses the flank cylinder")
+    s_rail = cc / (-bb + np.sqrt(disc))  # root near 0 (bb ~ -r_g < 0)
+    return s_ball - s_rail, q + s_ball[:, None] * e3
+
+
+def load_module(path) -> PairMesh:
+    """Read a one-ball :func:`meshes.assemblies.fourpoint_module.fourpoint_module` mesh: ``body`` 0 = ball,
+    1 = bottom rail, 2 = top rail; surfaces by their physical names."""
+    import meshio
+
+    mesh = meshio.read(path)
+    volumes = {"ball1": 0, "bottom_rail": 1, "top_rail": 2}
+    tets, body, surfaces = [], [], {}
+    for name, per_block in mesh.cell_sets.items():
+        if name.startswith("gmsh:"):
+            continue
+        for k, idx in enumerate(per_block):
+            idx = np.asarray(idx, dtype=np.int64)
+            if idx.size == 0:
+                continue
+            block = mesh.cells[k]
+            if block.type.startswith("tetra") and name in volumes:
+                tets.append(block.data[idx, :4])
+                body.append(np.full(idx.size, volumes[name]))
+            elif block.type.startswith("triangle"):
+                surfaces.setdefault(name, []).append(block.data[idx, :3])
+    if len(body) == 0 or {int(b[0]) for b in body} != {0, 1, 2}:
+        raise ValueError(f"{path}: need the physical volumes ball1, bottom_rail and top_rail (one-ball module)")
+    tets = np.vstack(tets).astype(np.int64)
+    body = np.concatenate(body)
+    used = np.unique(tets)
+    remap = -np.ones(len(mesh.points), dtype=np.int64)
+    remap[used] = np.arange(used.size)
+    points = np.asarray(mesh.points[used], dtype=float)
+    tets = remap[tets]
+    surf = {name: remap[np.vstack(tris).astype(np.int64)] for name, tris in surfaces.items()}
+    d = points[tets]
+    vol = np.einsum("ij,ij->i", np.cross(d[:, 1] - d[:, 0], d[:, 2] - d[:, 0]), d[:, 3] - d[:, 0])
+    flip = vol < 0
+    tets[flip] = tets[flip][:, [0, 2, 1, 3]]
+    return PairMesh(points, tets, body, surf, str(path))
+
+
+def _surface_dofs(basis, pair: PairMesh, name: str, edges: dict) -> np.ndarray:
+    """All P2 DOFs (every component) on the named surface."""
+    return np.unique(np.concatenate([surface_dofs(basis, pair, name, c, 2, edges) for c in range(3)]))
+
+
+def _locate(local_points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows of ``triangles`` containing the points ``xy`` (n, 2) of the plane and their barycentric
+    coordinates (n, 3), in the projection on the first two coordinates of ``local_points``."""
+    from scipy.spatial import cKDTree
+
+    p = local_points[triangles][:, :, :2]
+    tree = cKDTree(p.mean(axis=1))
+    k = min(24, len(triangles))
+    _, near = tree.query(xy, k=k)
+    near = np.atleast_2d(near)
+    a, b, c = p[near, 0], p[near, 1], p[near, 2]  # (n, k, 2)
+    v0, v1, v2 = b - a, c - a, xy[:, None, :] - a
+    det = v0[..., 0] * v1[..., 1] - v0[..., 1] * v1[..., 0]
+    l1 = (v2[..., 0] * v1[..., 1] - v2[..., 1] * v1[..., 0]) / det
+    l2 = (v0[..., 0] * v2[..., 1] - v0[..., 1] * v2[..., 0]) / det
+    l0 = 1.0 - l1 - l2
+    worst = np.minimum(np.minimum(l0, l1), l2)
+    best = np.argmax(worst, axis=1)
+    rows = np.arange(len(xy))
+    if np.any(worst[rows, best] < -1e-6):
+        raise ValueError("a ball quadrature point projects outside its flank: enlarge the rails or lower gap_limit")
+    bary = np.clip(np.stack([l0[rows, best], l1[rows, best], l2[rows, best]], axis=1), 0.0, 1.0)
+    return near[rows, best], bary / bary.sum(axis=1, keepdims=True)
+
+
+@dataclass
+class _Patch:
+    """Mortar data of one contact (local quadrature points, gap operator rows)."""
+
+    name: str
+    candidates: np.ndarray  # ball vertex indices
+    local_nodes: np.ndarray  # (n, 2) tangent-plane coordinates of the candidates
+    triangles: np.ndarray  # (t, 3) candidate-local indices (-1 outside) of the ball triangles
+    xq: np.ndarray  # (q, 2) quadrature points (tangent plane)
+    wq: np.ndarray  # (q,) projected areas
+    phi: np.ndarray  # (q, 3) multiplier hats
+    mult: np.ndarray  # (q, 3) global multiplier index (-1 outside)
+    g0q: np.ndarray  # (q,) exact initial gap
+    surface: np.ndarray  # (q, 3) sphere points of the quadrature points
+    boundary: np.ndarray  # (n,) candidates on the zone edge
+
+
+@dataclass
+class ModuleModel:
+    """Condensed four-point module (build with :func:`build_module_model`)."""
+
+    geometry: ModuleGeometry
+    pair: PairMesh
+    patches: list
+    g0: np.ndarray  # (n_c,) weighted initial gaps [m^3]
+    weights: np.ndarray  # (n_c,) m_k [m^2]
+    G: np.ndarray  # (n_c, 4) [m^2]: weighted gap per rigid translation (X, Y, U_x, U_y)
+    W: np.ndarray  # (n_c, n_c) [m^5/N]: weighted gaps [m^3] per nodal pressure [Pa], B K^-1 B^T
+    contact_of: np.ndarray  # (n_c,) contact index 0..3
+    B: sp.csr_matrix
+    K: sp.csr_matrix
+    free: np.ndarray
+    basis: object
+    top_dofs: np.ndarray  # (2, k) x and y DOFs of the top_load face
+    pin_dofs: np.ndarray
+    timings: dict = field(default_factory=dict)
+
+    @property
+    def ndofs(self) -> int:
+        return int(self.K.shape[0])
+
+    @property
+    def n_multipliers(self) -> int:
+        return int(self.g0.size)
+
+
+def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.28), gap_limit: float,
+                       method: str = "augmented") -> ModuleModel:
+    """Assemble (P2), constrain and condense the four-point module on its contact multipliers.
+
+    ``mesh``: path of a one-ball module mesh or a :class:`PairMesh` from :func:`load_module`;
+    ``geometry`` its ball/groove geometry; ``materials`` ``(E [Pa], nu)`` of all bodies;
+    ``gap_limit`` [m]: ball cap vertices with an exact initial gap at most this are multipliers
+    (it must exceed the approach at every contact; a contact reaching the zone edge raises).
+    """
+    if not (math.isfinite(gap_limit) and gap_limit > 0.0):
+        raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
+    timings = {}
+    t0 = time.perf_counter()
+    pair = mesh if isinstance(mesh, PairMesh) else load_module(mesh)
+    for name in ("bottom_support", "top_load") + CONTACTS + tuple(f"ball1_{c}" for c in CONTACTS):
+        if name not in pair.surfaces:
+            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    timings["load_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    K, basis = stiffness_fast(pair, [materials] * 3, order=2)
+    timings["assembly_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    edges = edge_index(basis.mesh)
+    points = pair.points
+    radius = geometry.ball_radius
+    # Dirichlet: bottom support clamped, top load face clamped (its rigid translation is in G)
+    fixed = [_surface_dofs(basis, pair, "bottom_support", edges), _surface_dofs(basis, pair, "top_load", edges)]
+    ball_nodes = np.unique(pair.tets[pair.body == 0])
+    pins = []
+    for target, components in (((0.0, 0.0, 0.0), (0, 1, 2)), ((0.0, 0.0, 0.5 * radius), (0, 1)),
+                               ((0.5 * radius, 0.0, 0.0), (1,))):
+        node = ball_nodes[np.argmin(np.linalg.norm(points[ball_nodes] - np.array(target), axis=1))]
+        pins += [basis.nodal_dofs[c][node] for c in components]
+    pin_dofs = np.array(pins, dtype=np.int64)
+    fixed = np.unique(np.concatenate(fixed + [pin_dofs]))
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+    top_nodes = pair.nodes("top_load")
+    top_dofs = np.stack([basis.nodal_dofs[0][top_nodes], basis.nodal_dofs[1][top_nodes]])
+
+    bary = sub_triangle_points(_SUBDIVISIONS)
+    nq = len(bary)
+    shape = surface_shape(bary, 2)
+    patches, rows, cols, vals, g0_all, w_all, contact_of, g_cols = [], [], [], [], [], [], [], []
+    offset = 0
+    for i, name in enumerate(CONTACTS):
+        frame = geometry.frame(i)
+        origin = radius * geometry.normals[i]
+        local = (points - origin) @ frame.T  # (n, 3): e1, e2, e3 coordinates
+        ball_tris = pair.surfaces[f"ball1_{name}"]
+        rail_tris = pair.surfaces[name]
+        verts = np.unique(ball_tris)
+        g_vert, _ = exact_gap(geometry, i, local[verts, :2])
+        candidates = verts[g_vert <= gap_limit]
+        if candidates.size < 20:
+            raise ValueError(f"contact {name}: only {candidates.size} candidate nodes (need >= 20): refine the mesh "
+                             "at the contact (smaller h_contact) or raise gap_limit")
+        index = -np.ones(len(points), dtype=np.int64)
+        index[candidates] = np.arange(candidates.size)
+        tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
+        p2 = local[tris][:, :, :2]
+        e_a, e_b = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
+        area = 0.5 * np.abs(e_a[:, 0] * e_b[:, 1] - e_a[:, 1] * e_b[:, 0])
+        xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
+        wq = np.repeat(area / nq, nq)
+        phi = np.tile(bary, (len(tris), 1))
+        mult = np.repeat(index[tris], nq, axis=0)
+        g0q, surface = exact_gap(geometry, i, xq)
+        rail_rows, rail_bary = _locate(local, rail_tris, xq)
+        ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
+        rail_dofs = [triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
+        ball_shape = np.tile(shape, (len(tris), 1))
+        rail_shape = surface_shape(rail_bary, 2)
+        e3 = frame[2]
+        n_c = candidates.size
+        g0 = np.zeros(n_c)
+        weights = np.zeros(n_c)
+        for k in range(3):
+            ok = mult[:, k] >= 0
+            j = mult[ok, k]
+            wphi = wq[ok] * phi[ok, k]
+            np.add.at(g0, j, wphi * g0q[ok])
+            np.add.at(weights, j, wphi)
+            for c in range(3):  # g = g0 + (u_ball - u_rail) . e3
+                if abs(e3[c]) < 1e-15:
+                    continue
+                rows.append(np.repeat(j + offset, 6))
+                cols.append(ball_dofs[c][ok].ravel())
+                vals.append((e3[c] * wphi[:, None] * ball_shape[ok]).ravel())
+                rows.append(np.repeat(j + offset, 6))
+                cols.append(rail_dofs[c][ok].ravel())
+                vals.append((-e3[c] * wphi[:, None] * rail_shape[ok]).ravel())
+        top = i >= 2
+        g_cols.append(weights[:, None] * np.array([e3[0], e3[1], -e3[0] if top else 0.0, -e3[1] if top else 0.0]))
+        edge_tris = tris[(index[tris] < 0).any(axis=1)]
+        patches.append(_Patch(name, candidates, local[candidates, :2], index[tris], xq, wq, phi,
+                              np.where(mult >= 0, mult + offset, -1), g0q, surface,
+                              np.isin(candidates, edge_tris)))
+        g0_all.append(g0)
+        w_all.append(weights)
+        contact_of.append(np.full(n_c, i))
+        offset += n_c
+    B = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(offset, K.shape[0]))
+    B.sum_duplicates()
+    timings["contact_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    W = linsolve.compliance(K[free][:, free].tocsr(), B[:, free], method=method)
+    timings["condense_s"] = time.perf_counter() - t0
+    return ModuleModel(geometry, pair, patches, np.concatenate(g0_all), np.concatenate(w_all), np.vstack(g_cols), W,
+                       np.concatenate(contact_of), B.tocsr(), K, free, basis, top_dofs, pin_dofs, timings)
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """One contact of a solved module.
+
+    normal_force [N]; contact_angle [rad] under load (force-weighted centre of the pressure on the
+    ball); approach [m]: rigid ball-to-rail displacement along ``-n_i`` (ball into rail; includes the
+    bulk compliance of the truncated bodies); ellipse: Hertz field fitted to the pressure (``a`` along
+    e1 in the cross-section, ``b`` along z); quadrature (points on the sphere (q, 3) [m], pressure (q,)
+    [Pa], projected areas (q,) [m^2], tangent-plane coordinates (q, 2) [m]); nodal pressures (n,) [Pa]
+    at the candidate nodes ``local_nodes`` (n, 2) [m].
+    """
+
+    name: str
+    normal_force: float
+    contact_angle: float
+    approach: float
+    ellipse: EllipseFit | None
+    points: np.ndarray
+    pressure: np.ndarray
+    areas: np.ndarray
+    local: np.ndarray
+    nodal_pressure: np.ndarray
+    local_nodes: np.ndarray
+
+
+@dataclass(frozen=True)
+class ModuleResult:
+    """Solved module: contacts (BL, BR, TR, TL); ``rigid`` (X, Y, U_x, U_y) [m]; ``pin_force`` [N] and
+    ``pin_moment`` [N m]: the z force and moment the ball's 3-2-1 nodes carry (:func:`residual_load`);
+    ``iterations``, ``residual`` of the active set; ``multipliers`` the nodal pressures [Pa]."""
+
+    contacts: tuple
+    rigid: np.ndarray
+    pin_force: float
+    pin_moment: float
+    iterations: int
+    residual: float
+    multipliers: np.ndarray
+
+
+def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *, tol: float = 1e-9,
+                 fit: bool = True, geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
+    """Solve the module under ``N_x = side_force`` [N] (along +x on the top rail) and
+    ``N_y = vertical_force`` [N] > 0 (pressing the top rail down), lin2017 eq 35.
+
+    The mixed LCP is the convex QP ``min 1/2 lam W lam + g0 . lam`` subject to ``lam >= 0``,
+    ``G^T lam = r`` (``W`` is SPD; the gaps are the multipliers of ``lam >= 0``, ``q`` those of
+    the equalities).  ``W`` of P2 mortar contact is not an M-matrix (about 44 % positive
+    off-diagonal entries), and the primal-dual active set method of :mod:`fem.contact` cycles
+    from a cold start; the QP is solved by the dual active-set method of Goldfarb & Idnani (1983,
+    quadprog), then polished by one exact solve on its active set.  The geometric updates start the
+    active set iteration from the previous active set (quadprog if that fails).  ConvergenceError unless the polished
+    state meets complementarity to ``tol`` (lam in units of its mean, weighted gaps in units of
+    the largest rigid displacement times the median weight).
+
+    ``geometric_update``: the ball's rigid displacement relative to a rail has a tangential part
+    ``t_i`` (along e1) of the order of the approach, which moves the contact along the conforming
+    flank by about ``t_i R_B / (r_g - R_B)`` on the ball (the contact angle under load); small-deformation
+    contact with a fixed projection misses it.  With the update the exact gap is re-evaluated with
+    the ball shifted by ``t_i`` (:func:`exact_gap`) and the QP re-solved on the same ``W`` until
+    ``t_i`` changes by less than 1e-4 of the rigid displacement (fixed point; 3-5 solves).  The
+    force directions stay the contact normals ``n_i`` (small deformation), so the forces remain
+    those of lin2017 eq 36 at the undeformed angles."""
+    if not (math.isfinite(vertical_force) and vertical_force > 0.0):
+        raise ValueError(f"vertical_force must be a finite number > 0 N, got {vertical_force!r}")
+    if not math.isfinite(side_force):
+        raise ValueError(f"side_force must be finite N, got {side_force!r}")
+    load = np.array([0.0, 0.0, -side_force, vertical_force])
+    g0 = model.g0
+    shifts = np.zeros(4)
+    active = None
+    iteration = 0
+    for update in range(max_updates + 1):
+        lam, q, active, iterations, residual = _solve_lcp(model, load, tol, g0, active)
+        iteration += iterations
+        if not geometric_update:
+            break
+        new_shifts = np.array([_relative_displacement(q, i) @ model.geometry.frame(i)[0] for i in range(4)])
+        change = float(np.max(np.abs(new_shifts - shifts)))
+        shifts = new_shifts
+        if change <= 1e-4 * float(np.max(np.abs(q))):
+            break
+        g0 = _weighted_gap(model, shifts)
+    else:
+        raise ConvergenceError("four-point module: geometric update of the gap did not converge", residual=change,
+                               iterations=max_updates, tolerance=1e-4 * float(np.max(np.abs(q))))
+    for patch in model.patches:
+        if np.any(active[np.flatnonzero(model.contact_of == CONTACTS.index(patch.name))][patch.boundary]):
+            raise ValueError(f"contact {patch.name} reaches the edge of the candidate zone: raise gap_limit")
+    results = []
+    for i, patch in enumerate(model.patches):
+        sel = model.contact_of == i
+        lam_i = lam[sel]
+        force = float(model.weights[sel] @ lam_i)
+        p_q = np.zeros(len(patch.xq))
+        for k in range(3):
+            ok = patch.mult[:, k] >= 0
+            p_q[ok] += patch.phi[ok, k] * lam[patch.mult[ok, k]]
+        f_q = p_q * patch.wq
+        centre = f_q @ patch.surface / max(f_q.sum(), 1e-300)
+        angle = math.atan2(abs(centre[0]), abs(centre[1]))
+        e3 = model.geometry.frame(i)[2]
+        approach = float(-(_relative_displacement(q, i) @ e3))  # ball towards the rail: along -e3 = n_i
+        ellipse = _fit(patch, lam_i) if fit else None
+        results.append(ContactResult(patch.name, force, angle, approach, ellipse, patch.surface, p_q, patch.wq,
+                                     patch.xq, lam_i, patch.local_nodes))
+    pin_force, pin_moment = residual_load(model, results)
+    return ModuleResult(tuple(results), q, pin_force, pin_moment, iteration, residual, lam)
+
+
+def _relative_displacement(q: np.ndarray, i: int) -> np.ndarray:
+    """Rigid displacement (3,) [m] of the ball relative to the rail of contact ``i``."""
+    return np.array([q[0], q[1], 0.0]) - (np.array([q[2], q[3], 0.0]) if i >= 2 else 0.0)
+
+
+def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
+    """Weighted exact gaps ``int phi_k g0 dA`` (n_c,) with the ball shifted by ``shifts`` (4,) [m] along e1."""
+    g0 = np.zeros(model.n_multipliers)
+    for i, patch in enumerate(model.patches):
+        g0q, _ = exact_gap(model.geometry, i, patch.xq, float(shifts[i]))
+        for k in range(3):
+            ok = patch.mult[:, k] >= 0
+            np.add.at(g0, patch.mult[ok, k], patch.wq[ok] * patch.phi[ok, k] * g0q[ok])
+    return g0
+
+
+def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, start: np.ndarray | None = None):
+    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve_module`.
+
+    With ``start`` (an active set, e.g. of the previous geometric update) the primal-dual active set
+    iteration is tried first (it converges in a few steps near the solution); if it cycles or does not
+    converge, or without ``start``, the QP is solved by quadprog.  Either way the answer is the exact
+    solve on the final active set, checked for complementarity."""
+    import quadprog
+
+    W, G = model.W, model.G
+    n = g0.size
+    w_scale = float(np.median(np.diag(W)))
+    force_scale = float(np.max(np.abs(r)))
+    pressure_scale = force_scale / float(np.sum(model.weights)) * 50.0  # a typical peak pressure [Pa]
+    length_scale = 1e-6  # q in um
+    # x = lam / pressure_scale; objective / (pressure_scale^2 w_scale)
+    hessian = W / w_scale
+    linear = -g0 / (pressure_scale * w_scale)
+    coupling = G * (length_scale / (w_scale * pressure_scale))
+    equality = G * (pressure_scale / force_scale)
+
+    def on_active(active):
+        idx = np.flatnonzero(active)
+        m = idx.size
+        mat = np.zeros((m + 4, m + 4))
+        mat[:m, :m] = hessian[np.ix_(idx, idx)]
+        mat[:m, m:] = coupling[idx]
+        mat[m:, :m] = equality[idx].T
+        sol = np.linalg.solve(mat, np.concatenate([linear[idx], r / force_scale]))
+        x = np.zeros(n)
+        x[idx] = sol[:m]
+        gap = hessian @ x + coupling @ sol[m:] - linear  # scaled: gap / (pressure_scale w_scale)
+        return x, sol[m:], gap
+
+    def residual_of(x, q_scaled, gap, active):
+        lam_scale = float(np.mean(x[active]))
+        gap_scale = float(np.max(np.abs(q_scaled))) * length_scale * float(np.median(model.weights)) / (
+            pressure_scale * w_scale)
+        return float(np.max(np.abs(np.minimum(x / lam_scale, gap / gap_scale))))
+
+    iterations = 0
+    solution = None
+    if start is not None and start.any():
+        active = start.copy()
+        seen = set()
+        for _ in range(30):
+            iterations += 1
+            x, q_scaled, gap = on_active(active)
+            new = x - gap > 0.0  # lam - c g with c = 1 / median diag W, in scaled units
+            if np.array_equal(new, active):
+                if residual_of(x, q_scaled, gap, active) <= tol:
+                    solution = (x, q_scaled, gap, active)
+                break
+            if new.tobytes() in seen or not all(new[model.contact_of == i].any() for i in range(4)):
+                break
+            seen.add(active.tobytes())
+            active = new
+    if solution is None:
+        constraints = np.hstack([equality, np.eye(n)])
+        bounds = np.concatenate([r / force_scale, np.zeros(n)])
+        try:
+            x, _, _, (qp_iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, 4)
+        except ValueError as error:  # quadprog: "constraints are inconsistent, no solution"
+            raise ConvergenceError(f"four-point module: QP failed ({error})", residual=float("inf"),
+                                   iterations=iterations, tolerance=tol) from None
+        iterations += int(qp_iterations)
+        active = x > 1e-12 * np.max(x)
+        for i in range(4):
+            if not active[model.contact_of == i].any():
+                raise ValueError(f"four-point module: contact {CONTACTS[i]} lost (lin2017 eq 37)")
+        x, q_scaled, gap = on_active(active)  # exact solve on the QP's active set
+        solution = (x, q_scaled, gap, active)
+    x, q_scaled, gap, active = solution
+    residual = residual_of(x, q_scaled, gap, active)
+    if not residual <= tol:
+        raise ConvergenceError("four-point module: complementarity not met", residual=residual,
+                               iterations=iterations, tolerance=tol)
+    return x * pressure_scale, q_scaled * length_scale, active, iterations, residual
+
+
+def _fit(patch: _Patch, nodal: np.ndarray) -> EllipseFit | None:
+    """Hertz field fitted to the consistent nodal forces of the piecewise-linear pressure with nodal
+    values ``nodal`` (the multipliers) [Pa] (fem.postprocess.fit_ellipse_forces), centre free along e1."""
+    tris = patch.triangles[(patch.triangles >= 0).all(axis=1)]
+    if len(tris) < 5 or np.count_nonzero(nodal > 0) < 5:
+        return None
+    local = np.column_stack([patch.local_nodes, np.zeros(len(patch.local_nodes))])
+    xq, operator = force_operator(local, tris, np.arange(len(patch.local_nodes)))
+    return fit_ellipse_forces(xq, operator, operator @ _interpolate(local, tris, nodal, xq), 1, symmetric_x=False,
+                              symmetric_y=True)
+
+
+def _interpolate(local: np.ndarray, tris: np.ndarray, nodal: np.ndarray, xq: np.ndarray) -> np.ndarray:
+    """Piecewise-linear field with nodal values ``nodal`` at the points ``xq`` of the triangles (force_operator
+    order: ``len(xq) / len(tris)`` consecutive points per triangle)."""
+    per = len(xq) // len(tris)
+    p = local[tris][:, :, :2]
+    x = xq.reshape(len(tris), per, 2)
+    v0, v1 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    v2 = x - p[:, None, 0]
+    det = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
+    l1 = (v2[..., 0] * v1[:, None, 1] - v2[..., 1] * v1[:, None, 0]) / det[:, None]
+    l2 = (v0[:, None, 0] * v2[..., 1] - v0[:, None, 1] * v2[..., 0]) / det[:, None]
+    values = nodal[tris]
+    out = (1.0 - l1 - l2) * values[:, None, 0] + l1 * values[:, None, 1] + l2 * values[:, None, 2]
+    return out.reshape(-1)
+
+
+def residual_load(model: ModuleModel, result_contacts) -> tuple[float, float]:
+    """z force [N] and moment about the centre [N m] of all contact pressures on the ball: what the
+    3-2-1 nodes carry (zero for an exactly symmetric, radial pressure)."""
+    force = np.zeros(3)
+    moment = np.zeros(3)
+    for i, contact in enumerate(result_contacts):
+        e3 = model.geometry.frame(i)[2]
+        f = (contact.pressure * contact.areas)[:, None] * e3[None, :]
+        force += f.sum(axis=0)
+        moment += np.cross(contact.points, f).sum(axis=0)
+    return float(abs(force[2])), float(np.linalg.norm(moment))
+
+
+def traction_patches(model: ModuleModel, result: ModuleResult, *, normal: str = "mid", offset=(0.0, 0.0, 0.0)):
+    """The solved contacts as :class:`lowmodel.linear_bearing.b2b_traction.TractionPatch` (BL, BR, TR, TL).
+
+    Points: the quadrature points of the mortar pressure on the exact sphere [m] (relative to the ball
+    centre, plus ``offset``); forces: pressure x projected area [N].  ``normal``: ``"mid"`` (default) the
+    normalised mean of the sphere's and the flank's normals at the point (for equal elastic constants the
+    loaded interface lies halfway between the two surfaces), ``"sphere"`` the ball's normal, ``"contact"``
+    the fixed contact normal ``n_i`` of the mortar gap.
+    """
+    from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
+
+    if normal not in ("mid", "sphere", "contact"):
+        raise ValueError(f"normal must be 'mid', 'sphere' or 'contact', got {normal!r}")
+    patches = []
+    for i, contact in enumerate(result.contacts):
+        keep = contact.pressure > 0.0
+        points = contact.points[keep]
+        sphere = points / np.linalg.norm(points, axis=1)[:, None]
+        if normal == "sphere":
+            normals = sphere
+        elif normal == "contact":
+            normals = np.repeat(model.geometry.normals[i][None, :], len(points), axis=0)
+        else:
+            radial = points - model.geometry.arc_centre(i)
+            radial[:, 2] = 0.0
+            radial /= np.linalg.norm(radial, axis=1)[:, None]
+            normals = sphere + radial
+            normals /= np.linalg.norm(normals, axis=1)[:, None]
+        forces = (contact.pressure * contact.areas)[keep]
+        patches.append(TractionPatch(points + np.asarray(offset, dtype=float), normals, forces, top=i >= 2,
+                                     name=contact.name))
+    return tuple(patches)
+
+
+def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
+    """Displacement DOF vector (ndofs,) [m] of a solved module: one sparse solve with the contact
+    forces ``B^T lam``, the top load face moved by ``(U_x, U_y, 0)`` and the ball's 3-2-1 nodes held
+    (the ball's rigid translation ``(X, Y)`` is not added: it carries no stress)."""
+    edges = edge_index(model.basis.mesh)
+    tris = model.pair.surfaces["top_load"]
+    u = np.zeros(model.ndofs)
+    for component in (0, 1):
+        u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
+    rhs = model.B.T @ result.multipliers - model.K @ u
+    solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
+    u[model.free] = solve(rhs[model.free])
+    solve.free()
+    return u
+
+
+def von_mises(model: ModuleModel, displacement: np.ndarray, materials=(2.1e11, 0.28)) -> np.ndarray:
+    """Element-mean von Mises stress (n_tets,) [Pa] of the displacement DOF vector (P2, 4-point rule)."""
+    from ballbench.fem.elasticity import lame
+
+    lam, mu = lame(*materials)
+    grad = model.basis.interpolate(displacement).grad  # (3, 3, nel, nq)
+    strain = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    trace = strain[0, 0] + strain[1, 1] + strain[2, 2]
+    stress = 2.0 * mu * strain
+    for c in range(3):
+        stress[c, c] += lam * trace
+    deviator = stress.copy()
+    mean = trace * (lam + 2.0 * mu / 3.0)  # (1/3) tr(sigma)
+    for c in range(3):
+        deviator[c, c] -= mean
+    return np.sqrt(1.5 * np.einsum("ijeq,ijeq->eq", deviator, deviator)).mean(axis=1)

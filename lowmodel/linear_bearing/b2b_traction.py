@@ -1,0 +1,354 @@
+"""FE-informed ball-to-ball (B2B) model: lin2019 eqs 4-10 with sampled contact tractions.
+
+The low-order model of :mod:`lowmodel.linear_bearing.b2b` integrates Coulomb
+friction over a planar Hertz ellipse at a rigid contact angle (lin2019 eqs
+A4-A7).  Here each ball-to-groove contact is instead given as *sampled points*
+of the (curved) contact surface, each with the normal force it carries (an FE
+pressure times its quadrature area, or samples of Hertz's ellipse in tests):
+
+    point r_k [m] relative to the ball centre (lin2019 Fig 2 frame: x right, y up, z along the raceway),
+    unit normal N_k of the contact surface at r_k (outward from the ball),
+    normal force F_k >= 0 [N] (traction x area).
+
+Full-slip Coulomb friction at every point, opposite to the rigid-body slip of
+the ball against its groove projected on the tangent plane of the contact
+surface (lin2019 eqs 1-3 without the contact-plane approximation):
+
+    s_k = (v_B - V_k) e_z + Omega x r_k,     Omega = (omega_x, omega_y, 0),  V_k = 0 (bottom) or v (top)
+    f_k = -mu F_k P_k s_k / |P_k s_k|,       P_k = I - N_k N_k^T
+
+On a planar patch at ``R_B n_i`` this is exactly lin2019 eq 3 (the in-plane
+part of ``Omega`` gives the slide ``omega_i c_i``, its normal part the spin
+``omega_i = -Omega . n_i``), so Hertz samples on the plane reproduce eqs A4-A5
+up to the quadrature (tests/test_b2b_traction.py).
+
+Ball equilibrium and the B2B conditions are those of the low-order model: the
+three rows of lin2019 eq 4 (z force, x and y moments about the ball centre),
+with the B2B loads of eqs 5-8 and the complementarity of eqs 9-10 from
+:func:`lowmodel.linear_bearing.b2b.coupled_system` (one implementation for
+both models).  Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
+The residual of one ball is ``-grad`` of the regularised dissipation
+``sum_k mu F_k sqrt(|P_k s_k|^2 + eps^2)``, so its Jacobian is symmetric and
+negative semi-definite (a single ball has a unique state); Newton with
+Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`).
+
+Assumptions kept from lin2019's low-order model: full sliding at every point
+(no stick zone), Coulomb friction with one ``mu``, ball-to-groove normal loads
+decoupled from friction and from the B2B force (the sampled tractions are
+given), quasi-static equilibrium in z force and x, y moments only (``omega_z =
+0``; friction's x, y forces and z moment are not balanced, as in eq 4), rigid
+ball kinematics, B2B contact a point at ``+-R_B e_z`` (eqs 5-8).
+Assumptions removed: Hertz's elliptical pressure (any sampled traction field),
+the planar contact (points on the real curved surface, slip projected on the
+local tangent plane), the rigid contact angle (the patch sits where the loaded
+FE contact is).
+
+Power balance (checked in every solve): the input power of the top groove
+``v sum_top f_z`` equals the friction loss ``-sum_k f_k . s_k`` plus the B2B
+loss ``mu F_B2B |dv|`` (eq 7) at equilibrium, independent of ``eps``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
+from ballbench.lowmodel.linear_bearing.bearing_ball import BallContacts
+from ballbench.lowmodel.solvers import check_solver_options, newton
+
+__all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
+
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
+N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
+
+
+@dataclass(frozen=True)
+class TractionPatch:
+    """Sampled normal traction of one ball-to-groove contact.
+
+    points  : (k, 3) m, on the ball surface, relative to the ball centre
+    normals : (k, 3) unit outward normal of the contact surface at the points
+    forces  : (k,) N, normal force carried by each point (>= 0)
+    top     : True on the moving (top) groove
+    name    : contact name, e.g. "BL"
+    """
+
+    points: np.ndarray
+    normals: np.ndarray
+    forces: np.ndarray
+    top: bool
+    name: str = ""
+
+    @property
+    def normal_force(self) -> float:
+        """Total normal force [N]."""
+        return float(self.forces.sum())
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Force-weighted centre of the patch (3,) [m] (the loaded contact point)."""
+        return self.forces @ self.points / self.normal_force
+
+    def contact_angle(self) -> float:
+        """Loaded contact angle [rad] of the patch centre, measured from -y (bottom) or +y (top) (lin2017 eq 1)."""
+        x, y, _ = self.centre
+        return math.atan2(abs(x), abs(y))
+
+
+def _check_patch(patch: TractionPatch, index: int) -> TractionPatch:
+    points = np.asarray(patch.points, dtype=float)
+    normals = np.asarray(patch.normals, dtype=float)
+    forces = np.asarray(patch.forces, dtype=float)
+    name = patch.name or f"patch {index}"
+    if points.ndim != 2 or points.shape[1] != 3 or normals.shape != points.shape or forces.shape != points[:, 0].shape:
+        raise ValueError(f"{name}: points and normals must have shape (k, 3) and forces (k,), got "
+                         f"{points.shape}, {normals.shape}, {forces.shape}")
+    if not (np.all(np.isfinite(points)) and np.all(np.isfinite(normals)) and np.all(np.isfinite(forces))):
+        raise ValueError(f"{name}: points, normals and forces must be finite")
+    if np.any(forces < 0.0) or forces.sum() <= 0.0:
+        raise ValueError(f"{name}: forces must be >= 0 N with a positive sum (loss of contact otherwise)")
+    length = np.linalg.norm(normals, axis=1)
+    if np.any(np.abs(length - 1.0) > 1e-6):
+        raise ValueError(f"{name}: normals must be unit vectors (|N| in [1 - 1e-6, 1 + 1e-6])")
+    return TractionPatch(points, normals / length[:, None], forces, bool(patch.top), patch.name)
+
+
+@dataclass(frozen=True)
+class TractionState:
+    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; patches in the given order).
+
+    ball_velocity : (n,) m/s;  omega : (n, 2) rad/s ``(omega_x, omega_y)``
+    velocity_deviation : (n,) ``2 v_B / v - 1`` (lin2019 eq 21)
+    friction_force : (n, p) N, z friction force of each patch on the ball
+    friction_moment : (n, p, 3) N m, friction moment of each patch about the ball centre
+    friction_loss : (n, p) W, ``-sum f . s`` of each patch
+    input_power : W, ``v sum_top f_z``
+    b2b_force, b2b_friction_loss, b2b_slip : (n-1,) N, W, m/s (eqs 5-7)
+    power_balance : |input - losses| / input
+    iterations, residual : Newton iterations, final max residual / (mu F_ref)
+    """
+
+    ball_velocity: np.ndarray
+    omega: np.ndarray
+    velocity_deviation: np.ndarray
+    friction_force: np.ndarray
+    friction_moment: np.ndarray
+    friction_loss: np.ndarray
+    input_power: float
+    b2b_force: np.ndarray
+    b2b_friction_loss: np.ndarray
+    b2b_slip: np.ndarray
+    power_balance: float
+    iterations: int
+    residual: float
+
+    @property
+    def total_loss(self) -> float:
+        """Ball-to-groove plus ball-to-ball friction loss [W]."""
+        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
+
+
+class _Samples:
+    """All points of all balls, flattened, with their ball and patch indices."""
+
+    def __init__(self, balls, radius: float, reference_force: float, velocity_sign: float, eps: float):
+        pts, nrm, load, top, ball_of, patch_of = [], [], [], [], [], []
+        self.n_balls = len(balls)
+        self.n_patches = len(balls[0])
+        for b, patches in enumerate(balls):
+            for p, patch in enumerate(patches):
+                pts.append(patch.points)
+                nrm.append(patch.normals)
+                load.append(patch.forces / reference_force)
+                top.append(np.full(len(patch.forces), velocity_sign if patch.top else 0.0))
+                ball_of.append(np.full(len(patch.forces), b))
+                patch_of.append(np.full(len(patch.forces), b * self.n_patches + p))
+        self.r = np.concatenate(pts)
+        self.normal = np.concatenate(nrm)
+        self.load = np.concatenate(load)
+        self.groove = np.concatenate(top)
+        self.ball = np.concatenate(ball_of)
+        self.patch = np.concatenate(patch_of)
+        self.eps = eps
+        rx, ry, rz = self.r.T / radius
+        zero, one = np.zeros_like(rx), np.ones_like(rx)
+        # D[k, :, j] = d s_k / d x_j, x = (v_B, omega_x R_B, omega_y R_B)/|v|; also the moment rows (D^T f)
+        self.D = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
+                           np.stack([rz, zero, -rx], 1)], axis=2)
+        self.projector = np.eye(3)[None] - self.normal[:, :, None] * self.normal[:, None, :]
+        self.PD = self.projector @ self.D
+
+    def evaluate(self, balls: np.ndarray, jacobian: bool = True):
+        """Residual (n, 3) of eq 4 in units mu F_ref (and Jacobian (n, 3, 3)); slips and forces per point."""
+        x = balls[self.ball]  # (k, 3)
+        slip = np.einsum("kij,kj->ki", self.D, x)
+        slip[:, 2] -= self.groove  # groove velocity along +z (units |v|)
+        tangential = np.einsum("kij,kj->ki", self.projector, slip)
+        norm = np.sqrt(np.einsum("ki,ki->k", tangential, tangential) + self.eps**2)
+        force = -(self.load / norm)[:, None] * tangential  # Coulomb, full slip (units mu F_ref)
+        rows = np.einsum("kij,ki->kj", self.D, force)  # (D^T f): z force, x and y moments / R_B
+        residual = np.zeros((self.n_balls, 3))
+        np.add.at(residual, self.ball, rows)
+        jac = None
+        if jacobian:
+            unit = tangential / norm[:, None]
+            inner = (np.eye(3)[None] - unit[:, :, None] * unit[:, None, :]) / norm[:, None, None]
+            block = -self.load[:, None, None] * np.einsum("kai,kab,kbj->kij", self.PD, inner, self.PD)
+            jac = np.zeros((self.n_balls, 3, 3))
+            np.add.at(jac, self.ball, block)
+        return residual, jac, slip, force
+
+
+def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, n_angular: int = 96,
+                  planar: bool = True) -> tuple[TractionPatch, ...]:
+    """Samples of the Hertz pressure of the low-order model's contacts of ``ball`` (BL, BR, TR, TL).
+
+    Each ellipse (lin2019 eq A7: ``p = p0 sqrt(1 - x^2/a^2 - z^2/b^2)``, ``a`` in the
+    cross-section, ``b`` along z) is sampled by Gauss-Jacobi in ``1 - rho^2`` (weight
+    ``sqrt``, exact for the radial pressure profile) times ``n_angular`` equal angles;
+    the weights sum to ``F_i`` exactly.  ``planar=True``: points on the tangent plane at
+    ``R_B n_i`` with normal ``n_i`` (the low-order model's contact); ``False``: the same
+    points projected radially onto the sphere, with the sphere's normal (a curved Hertz patch).
+    """
+    from scipy.special import roots_jacobi
+
+    if not (isinstance(n_radial, int) and n_radial >= 1 and isinstance(n_angular, int) and n_angular >= 4):
+        raise ValueError(f"n_radial must be an integer >= 1 and n_angular >= 4, got {n_radial!r}, {n_angular!r}")
+    radius = contacts.ball_radius
+    normals2 = contact_normals(contacts.contact_angles[ball])  # (4, 2)
+    nodes, weights = roots_jacobi(n_radial, 0.0, 0.5)  # weight (1 + t)^(1/2) on [-1, 1]
+    q = 0.5 * (1.0 + nodes)  # q = 1 - rho^2 in [0, 1]
+    rho = np.sqrt(1.0 - q)
+    angle = 2.0 * math.pi * (np.arange(n_angular) + 0.5) / n_angular
+    rr, tt = np.meshgrid(rho, angle, indexing="ij")
+    ww = np.repeat(weights[:, None], n_angular, axis=1)
+    patches = []
+    for i, name in enumerate(CONTACT_NAMES):
+        a = contacts.semi_major[ball, i]
+        b = a * contacts.b_over_a[ball, i]
+        n = np.array([normals2[i, 0], normals2[i, 1], 0.0])
+        e1 = np.array([-n[1], n[0], 0.0])  # in-plane tangent (major axis a)
+        xi, zeta = (a * rr * np.cos(tt)).ravel(), (b * rr * np.sin(tt)).ravel()
+        points = radius * n[None, :] + xi[:, None] * e1[None, :] + zeta[:, None] * np.array([0.0, 0.0, 1.0])
+        w = ww.ravel()
+        forces = contacts.normal_forces[ball, i] * w / w.sum()
+        if planar:
+            normals = np.repeat(n[None, :], len(w), axis=0)
+        else:
+            normals = points / np.linalg.norm(points, axis=1)[:, None]
+            points = radius * normals
+        patches.append(TractionPatch(points, normals, forces, top=i >= 2, name=name))
+    return tuple(patches)
+
+
+def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float, gaps=None,
+          tolerance: float = 1e-11, max_iterations: int = 100, regularisation: float = 1e-12) -> TractionState:
+    """Quasi-static motion of ``n >= 1`` balls with sampled contact tractions and B2B contact.
+
+    Parameters
+    ----------
+    balls : sequence of ``n`` sequences of :class:`TractionPatch` (the same number of patches per ball),
+        balls ordered along +z (ball 0 behind, lin2019 "ball 1"); the ball centre is the origin of its points
+    ball_radius : m;  friction_coefficient : mu (> 0, ball-to-groove and ball-to-ball)
+    groove_velocity : m/s, velocity of the top groove along +z (nonzero)
+    gaps : (n-1,) m, ``d_{j,j+1} - 2 R_B`` (default all touching)
+    tolerance : max residual of eq 4 in units of ``mu F_ref`` (F_ref the largest patch force) and of eqs 9-10
+    regularisation : eps, slip floor in units of ``|v|`` in ``s / sqrt(|s|^2 + eps^2)``
+
+    Raises ValueError for bad input, ConvergenceError (with its residual) if Newton fails or if the power
+    balance misses POWER_BALANCE_TOLERANCE.
+    """
+    check_solver_options(tolerance, max_iterations)
+    radius = float(ball_radius)
+    if not math.isfinite(radius) or radius <= 0.0:
+        raise ValueError(f"ball_radius must be a finite number > 0 m, got {ball_radius!r}")
+    mu = float(friction_coefficient)
+    if not math.isfinite(mu) or mu <= 0.0:
+        raise ValueError(f"friction_coefficient must be a finite number > 0, got {friction_coefficient!r}")
+    velocity = float(groove_velocity)
+    if not math.isfinite(velocity) or velocity == 0.0:
+        raise ValueError(f"groove_velocity must be finite and nonzero m/s, got {groove_velocity!r}")
+    eps = float(regularisation)
+    if not math.isfinite(eps) or not 0.0 < eps <= 1e-6:
+        raise ValueError(f"regularisation must lie in (0, 1e-6], got {regularisation!r}")
+    balls = [[_check_patch(patch, i) for i, patch in enumerate(patches)] for patches in balls]
+    n = len(balls)
+    if n < 1 or len({len(p) for p in balls}) != 1 or len(balls[0]) < 1:
+        raise ValueError("balls must hold n >= 1 balls with the same number (>= 1) of patches each")
+    touching = touching_pairs(gaps, n, radius)
+    reference_force = max(p.normal_force for patches in balls for p in patches)  # F_ref [N]
+    sign = math.copysign(1.0, velocity)
+    samples = _Samples(balls, radius, reference_force, sign, eps)
+    guess = _initial_guess(balls, sign)
+
+    def ball_function(states):
+        residual, jac, _, _ = samples.evaluate(states)
+        return residual, jac
+
+    free = np.empty_like(guess)
+    iterations = 0
+    for b in range(n):  # every ball on its own: the start of the coupled solve
+        def single(x, b=b):
+            states = guess.copy()
+            states[b] = x
+            residual, jac = ball_function(states)
+            return residual[b], jac[b]
+
+        free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
+                                 what=f"FE-informed ball {b}")
+        iterations = max(iterations, its)
+    if touching.size == 0:
+        states, forces = free, np.zeros(n - 1)
+        residual_norm = float(np.max(np.abs(ball_function(states)[0])))
+    else:
+        function, _, pack = coupled_system(ball_function, n, N_UNKNOWNS, touching, mu)
+        z0 = pack(free)
+        what = f"FE-informed {n}-ball B2B contact"
+        z, residual, its = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations, what=what)
+        iterations += its
+        states, forces = complementarity_forces(z, n, N_UNKNOWNS, touching, tolerance=tolerance,
+                                                iterations=iterations, what=what)
+        residual_norm = float(np.max(np.abs(residual)))
+    return _state(samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
+                  residual_norm)
+
+
+def _initial_guess(balls, sign: float) -> np.ndarray:
+    """Rolling about x at v_B = v/2 (the theta = 0 state of lin2019), from the patch centres."""
+    guess = np.zeros((len(balls), N_UNKNOWNS))
+    for b, patches in enumerate(balls):
+        cos = [abs(p.centre[1]) / np.linalg.norm(p.centre[:2]) for p in patches]
+        guess[b] = (0.5 * sign, 0.5 * sign / float(np.mean(cos)), 0.0)
+    return guess
+
+
+def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
+           residual_norm) -> TractionState:
+    speed = abs(velocity)
+    n, p = samples.n_balls, samples.n_patches
+    _, _, slip, force = samples.evaluate(states, jacobian=False)
+    force_n = force * mu * reference_force  # N
+    slip_ms = slip * speed  # m/s
+    friction_force = np.bincount(samples.patch, force_n[:, 2], minlength=n * p).reshape(n, p)
+    moment_k = np.cross(samples.r, force_n)
+    friction_moment = np.stack([np.bincount(samples.patch, moment_k[:, c], minlength=n * p) for c in range(3)],
+                               axis=1).reshape(n, p, 3)
+    loss = np.bincount(samples.patch, -np.einsum("ki,ki->k", force_n, slip_ms), minlength=n * p).reshape(n, p)
+    top = np.array([[patch.top for patch in patches] for patches in balls])
+    input_power = float(velocity * friction_force[top].sum())
+    b2b_slip = b2b_terms(states, forces, mu)[3] * speed
+    b2b_force = forces * mu * reference_force
+    b2b_loss = mu * b2b_force * b2b_slip  # lin2019 eq 7
+    losses = float(loss.sum() + b2b_loss.sum())
+    balance = abs(input_power - losses) / max(abs(input_power), 1e-300)
+    if not balance <= POWER_BALANCE_TOLERANCE:
+        raise ConvergenceError("FE-informed B2B: power balance missed", residual=balance, iterations=iterations,
+                               tolerance=POWER_BALANCE_TOLERANCE)
+    ball_velocity = states[:, 0] * speed
+    return TractionState(ball_velocity, states[:, 1:3] * speed / radius, 2.0 * ball_velocity / velocity - 1.0,
+                         friction_force, friction_moment, loss, input_power, b2b_force, b2b_loss, b2b_slip,
+                         balance, iterations, residual_norm)
