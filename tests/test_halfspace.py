@@ -137,3 +137,27 @@ def test_bad_input_and_non_convergence():
     with pytest.raises(ConvergenceError) as caught:
         hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, max_iterations=2)
     assert caught.value.residual > 0
+
+
+def test_rough_height_map_route():
+    # sun2021 eq 9: gap = c_g + c_r with a fractal raceway (lowmodel.contact.ehl); rough contact is patchy,
+    # carries the same load on less area at higher peak pressure, and keeps complementarity
+    from ballbench.lowmodel.contact import ehl
+
+    geometry = GEOMETRIES["ball on flat"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), n=96, margin=1.5)
+    X, Y = grid.coordinates()
+    roughness = ehl.weierstrass_mandelbrot_surface(X, Y, 2.47, 1e-10, 4 * float(contact.a),
+                                                   cutoff_length=2 * grid.dx, seed=1)
+    assert 0.02 * float(contact.delta) < np.ptp(roughness) < float(contact.delta)
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B) + roughness
+    result = hs.solve(gap - gap.min(), grid, geometry.contact_modulus, force=LOAD, tolerance=1e-10)
+    assert result.force == pytest.approx(LOAD, rel=1e-12)
+    smooth = hs.solve(hs.quadratic_gap(grid, geometry.A, geometry.B), grid, geometry.contact_modulus, force=LOAD)
+    assert result.contact_area < smooth.contact_area
+    assert result.max_pressure > smooth.max_pressure
+    loaded = gap - gap.min() + result.deformation - result.approach
+    in_contact = result.pressure > 0
+    assert np.max(np.abs(loaded[in_contact])) < 1e-7 * float(contact.delta)
+    assert np.min(loaded[~in_contact]) > -1e-7 * float(contact.delta)
