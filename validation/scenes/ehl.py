@@ -5,10 +5,12 @@ import numpy as np
 
 from ballbench.lowmodel.contact import ehl, hertz
 from ballbench.lowmodel.contact import halfspace as hs
+from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.ehl"
-E, NU, ETA0, RHO0, RX = 2.1e11, 0.3, 0.05, 970.0, 0.01  # steel; sun2021 Table 1 oil (eta0, rho0)
+E, NU = lin2019.TABLE1.youngs_modulus, 0.3  # steel (E of lin2019 Table 1, nu 0.3)
+ETA0, RHO0, RX = 0.05, 970.0, 0.01  # sun2021 Table 1 oil (eta0 [Pa s], rho0 [kg/m^3]); R_x [m]
 # (R_y / R_x, load [N], entrainment speed [m/s]): Moes M 12-51, L 11-16, ellipticity 1.03 and 2.5;
 # G = alpha E' = 5340 (Roelands alpha of eta0 = 0.05 Pa s), U 5e-12 to 2e-11, W 2e-7 to 9e-7
 OPERATING_POINTS = [(1, 8, 1.0), (1, 8, 2.0), (1, 20, 1.0), (4, 20, 1.0), (4, 8, 0.5), (1, 4, 0.5)]

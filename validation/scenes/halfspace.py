@@ -2,11 +2,12 @@
 from __future__ import annotations
 
 from ballbench.lowmodel.contact import halfspace, hertz
+from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.halfspace"
-STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # lin2019 Table 1
-BALL_RADIUS = 5e-3  # m, lin2019 Table 1
+STEEL = lin2019.TABLE1.material  # lin2019 Table 1 steel
+BALL_RADIUS = lin2019.TABLE1.ball_radius
 LOAD = 100.0  # N
 TOLERANCE = 5e-3  # issue 14: p0, semi-axes and approach within 0.5 % at the default grid
 CASES = {

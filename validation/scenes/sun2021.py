@@ -2,7 +2,7 @@
 
 Model: lowmodel.contact.screw_contact (BEM of lowmodel.contact.halfspace on the exact
 helical gap of the geometry core, against full-tensor, profile-frame and helix-free Hertz).
-Inputs in the paper's units are converted to SI here.
+Inputs: validation/papers/sun2021.py (SI, declared once).
 """
 from __future__ import annotations
 
@@ -12,39 +12,30 @@ import numpy as np
 
 from ballbench.lowmodel.contact import screw_contact
 from ballbench.lowmodel.geometry import helix
+from ballbench.validation.papers import sun2021 as paper
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.screw_contact"
 
-# sun2021 Table 1, SI.  TODO(lead): move to validation/papers/sun2021.py once issue8-val's
-# parameters-as-data folder is on main (declared once, here until then).
-TABLE_1 = dict(pitch_radius=16e-3,  # "screw radius r" = ball-centre radius: atan(L0 / 2 pi r) = 5.68 deg
-               ball_radius=2.9765e-3, groove_radius=3.215e-3,  # r_S = r_N
-               lead=10e-3, contact_angle=math.radians(40.26), preload=1500.0, ball_count=168,
-               youngs_modulus=200e9, poisson_ratio=0.3, lubricant_density=970.0, viscosity=0.05)
-HELIX_ANGLES_DEG = (5.68, 13.97, 21.71)  # sun2021 Sec 4.2 and Fig 9
+T1 = paper.TABLE_1
+HELIX_ANGLES_DEG = paper.HELIX_ANGLES_DEG
 POINTS = {"A": ("screw", "left"), "B": ("nut", "right")}  # A on the screw, B diametrically opposite on the nut
-
-
-def _conformity() -> float:
-    return TABLE_1["groove_radius"] / (2.0 * TABLE_1["ball_radius"])
 
 
 def _load() -> float:
     # sun2021 eq 1 at the Table 1 helix angle, held for the parameter study (the paper's Hertz central
     # pressure "does not change with the helix angle", Sec 4.2: the load is fixed)
-    lead_angle = float(helix.lead_angle(TABLE_1["lead"], TABLE_1["pitch_radius"]))
-    return screw_contact.preload_contact_load(TABLE_1["preload"], TABLE_1["ball_count"], lead_angle,
-                                              TABLE_1["contact_angle"])
+    return screw_contact.preload_contact_load(T1.preload, T1.ball_count, T1.helix_angle,
+                                              T1.contact_angle)
 
 
 def _contact(helix_angle_deg: float, point: str, n: int):
     body, flank = POINTS[point]
-    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), TABLE_1["pitch_radius"]))
-    return screw_contact.groove_contact(TABLE_1["ball_radius"], _conformity(), TABLE_1["pitch_radius"], lead,
-                                        TABLE_1["contact_angle"], _load(), body, flank,
-                                        youngs_modulus=TABLE_1["youngs_modulus"],
-                                        poisson_ratio=TABLE_1["poisson_ratio"], n=n)
+    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), T1.pitch_radius))
+    return screw_contact.groove_contact(T1.ball_radius, T1.conformity, T1.pitch_radius, lead,
+                                        T1.contact_angle, _load(), body, flank,
+                                        youngs_modulus=T1.youngs_modulus,
+                                        poisson_ratio=T1.poisson_ratio, n=n)
 
 
 def _difference_figure(results, filename_title):
@@ -151,16 +142,16 @@ def sun2021_dry_contact(run):
                                        "sun2021 Fig 7 analogue (21.71 deg)"), "fig7_21deg.png")
 
 
-ENTRAINMENT_SPEED = 1.0053  # m/s, sun2021 Sec 4.3 (1005.3 mm/s)
-EHL_HALF_WIDTH = 277e-6  # m, sun2021 eq 18: x, y in [-277, 277] um
+ENTRAINMENT_SPEED = paper.ENTRAINMENT_SPEED
+EHL_HALF_WIDTH = paper.EHL_HALF_WIDTH
 
 
 def _contact_semi_axis(frame) -> float:
     from ballbench.lowmodel.contact import hertz
 
-    ball = (1.0 / TABLE_1["ball_radius"], 1.0 / TABLE_1["ball_radius"])
+    ball = (1.0 / T1.ball_radius, 1.0 / T1.ball_radius)
     geometry = hertz.from_curvatures(ball, (frame.curvature_major, frame.curvature_minor),
-                                     youngs_modulus=TABLE_1["youngs_modulus"], poisson_ratio=TABLE_1["poisson_ratio"])
+                                     youngs_modulus=T1.youngs_modulus, poisson_ratio=T1.poisson_ratio)
     return float(hertz.solve_load(geometry, _load()).a)
 
 
@@ -169,8 +160,8 @@ def _ehl_case(helix_angle_deg: float, point: str, n: int):
     from ballbench.lowmodel.geometry import groove
 
     body, flank = POINTS[point]
-    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), TABLE_1["pitch_radius"]))
-    args = (TABLE_1["ball_radius"], _conformity(), TABLE_1["pitch_radius"], lead, TABLE_1["contact_angle"], body)
+    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), T1.pitch_radius))
+    args = (T1.ball_radius, T1.conformity, T1.pitch_radius, lead, T1.contact_angle, body)
     frame = groove.contact_frame(groove.helical_groove(*args, flank))
     exact_gap = groove.pair_initial_gap(*args, flank=flank)
     # across the groove the paper's +-277 um does not hold the contact (a ~ 275 um at A): widened to 1.3 a
@@ -181,14 +172,14 @@ def _ehl_case(helix_angle_deg: float, point: str, n: int):
     # EHL x = entrainment = the track (contact-frame minor direction), y = across the groove (major)
     gap = exact_gap(Y, X)
     gap -= gap.min()
-    e_star = TABLE_1["youngs_modulus"] / (2.0 * (1.0 - TABLE_1["poisson_ratio"] ** 2))
-    radius_x = 1.0 / (1.0 / TABLE_1["ball_radius"] + frame.curvature_minor)  # along the track
-    radius_y = 1.0 / (1.0 / TABLE_1["ball_radius"] + frame.curvature_major)  # across the groove
-    alpha = ehl.roelands_pressure_viscosity_coefficient(TABLE_1["viscosity"])
+    e_star = T1.youngs_modulus / (2.0 * (1.0 - T1.poisson_ratio ** 2))
+    radius_x = 1.0 / (1.0 / T1.ball_radius + frame.curvature_minor)  # along the track
+    radius_y = 1.0 / (1.0 / T1.ball_radius + frame.curvature_major)  # across the groove
+    alpha = ehl.roelands_pressure_viscosity_coefficient(T1.viscosity)
     reference = ehl.hamrock_dowson_film(ENTRAINMENT_SPEED, _load(), radius_x, radius_y, 2 * e_star,
-                                        TABLE_1["viscosity"], alpha)
-    solution = ehl.solve_reynolds(gap, grid, e_star, _load(), ENTRAINMENT_SPEED, TABLE_1["viscosity"],
-                                  TABLE_1["lubricant_density"], initial_film=reference["h_c"], coarsest=16)
+                                        T1.viscosity, alpha)
+    solution = ehl.solve_reynolds(gap, grid, e_star, _load(), ENTRAINMENT_SPEED, T1.viscosity,
+                                  T1.lubricant_density, initial_film=reference["h_c"], coarsest=16)
     return solution, reference
 
 
@@ -243,13 +234,13 @@ def sun2021_ehl(run):
                 run.save_figure(_ehl_figure(solution, f"sun2021 Fig 10 analogue: point A, helix {angle} deg"),
                                 "fig10_point_A.png")
     first, last = HELIX_ANGLES_DEG[0], HELIX_ANGLES_DEG[-1]
-    for point, paper in (("A", "decreases"), ("B", "increases")):
+    for point, published in (("A", "decreases"), ("B", "increases")):
         change = films[(last, point)] / films[(first, point)] - 1.0
         found = "decreases" if change < 0 else "increases"
-        run.note(f"Fig 11{'c' if point == 'A' else 'd'}: sun2021 says the central film at {point} {paper} with the "
+        run.note(f"Fig 11{'c' if point == 'A' else 'd'}: sun2021 says the central film at {point} {published} with the "
                  f"helix angle; here it {found} by {100 * change:+.2f} % from {first} to {last} deg "
                  f"({', '.join(f'{films[(a, point)] * 1e9:.1f}' for a in HELIX_ANGLES_DEG)} nm)."
-                 + ("" if found == paper else " Not reproduced: the helix lengthens the track radius R_x at A "
+                 + ("" if found == published else " Not reproduced: the helix lengthens the track radius R_x at A "
                     "(convex screw) and shortens it at B (concave nut), and h_c grows with R_x (Hamrock-Dowson "
                     "R_x^0.46, matched by the solver above). TODO(lead): declare as a known gap."))
     run.note("Central EHL pressure [MPa]: " + "; ".join(f"{k[1]} {k[0]} deg {v / 1e6:.1f}"
