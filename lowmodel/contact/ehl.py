@@ -395,9 +395,11 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
             out = np.where(free, (perturbed - base) / tau, v[:n])
             return np.append(out, area * float(vp.sum()))
 
+        # inexact Newton: a loose linear solve far from the solution, a tight one near it (Eisenstat-Walker-like)
+        forcing = min(1e-2, max(1e-6, change))
         operator = LinearOperator((n + 1, n + 1), matvec=product)
         step, info = gmres(operator, rhs, M=LinearOperator((n + 1, n + 1), matvec=precondition),
-                           rtol=1e-6, restart=60, maxiter=3)
+                           rtol=forcing, restart=40, maxiter=2)
         dp, dh = step[:n].reshape(nx, ny), float(step[n])
 
         def merit(res_, p_):
