@@ -54,3 +54,20 @@ def test_convergence_error_and_bad_input():
     with pytest.raises(ValueError, match="gap"):
         ehl.solve_reynolds(gap[1:], grid, geometry.contact_modulus, 8.0, 1.0, ETA0, RHO0)
     assert math.isfinite(reference["h_c"])
+
+
+def test_film_traction_newtonian_limit_and_friction_coefficient():
+    geometry, _, grid, gap, reference = point_case(1, 8, 1.0, 32)
+    solution = ehl.solve_reynolds(gap, grid, geometry.contact_modulus, 8.0, 1.0, ETA0, RHO0,
+                                  initial_film=reference["h_c"])
+    wet = solution.pressure > 0
+    newtonian = float(np.sum(ehl.roelands_viscosity(solution.pressure[wet], ETA0) * 1e-3 / solution.film[wet]))
+    # tiny sliding: Eyring reduces to Newton; huge tau0 likewise
+    assert ehl.film_traction(solution, 1e-3, ETA0, 1e12) == pytest.approx(newtonian * grid.cell_area, rel=1e-9)
+    # shear thinning: a finite tau0 carries less than Newton at real sliding speeds, odd in du
+    assert ehl.film_traction(solution, 0.1, ETA0, 5e6) < 100 * newtonian * grid.cell_area
+    assert ehl.film_traction(solution, -0.1, ETA0, 5e6) == pytest.approx(-ehl.film_traction(solution, 0.1, ETA0,
+                                                                                             5e6))
+    assert ehl.friction_coefficient(2.0, 0.05, 8.0) == pytest.approx((0.1 * 2.0 + 0.05) / 8.0)
+    with pytest.raises(ValueError, match="asperity_load"):
+        ehl.friction_coefficient(9.0, 0.0, 8.0)

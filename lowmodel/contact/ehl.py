@@ -17,8 +17,10 @@ Implemented here (each a plain function, SI units):
 and the isothermal Reynolds solver (eqs 14, 15, 18, 19; :func:`solve_reynolds`)
 with the DC-FFT deformation of :mod:`.halfspace`.
 
-Not yet implemented (issue 14 item 6): the asperity/film load split (eqs
-21-22) and the friction torque (eq 20).
+The film traction (eqs 22-23, :func:`film_traction`) and the mixed friction
+coefficient (eq 21, :func:`friction_coefficient`) are here; the asperity load
+Q_a needs a rough (mixed) EHL solve, and the friction torque (eq 20) the
+friction components in the Frenet frame: both not yet implemented.
 """
 from __future__ import annotations
 
@@ -42,6 +44,8 @@ __all__ = [
     "weierstrass_mandelbrot_surface",
     "EHLSolution",
     "solve_reynolds",
+    "film_traction",
+    "friction_coefficient",
 ]
 
 ROELANDS_PRESSURE = 1.0 / 5.1e-9  # Pa, p_r = 1.96e8 Pa (sun2021 eq 16: 5.1e-9 p)
@@ -432,3 +436,32 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
     return EHLSolution(grid=grid, pressure=p, film=film, h0=h0, central_film=float(film[i, j]),
                        minimum_film=float(film.min()), central_pressure=float(p[i, j]), max_pressure=float(p.max()),
                        force=float(p.sum()) * area, load_error=load_error, iterations=iteration, residual=change)
+
+
+def film_traction(solution: EHLSolution, sliding_speed: float, viscosity_0: float, eyring_stress: float) -> float:
+    """Film friction force ``Q_f = int_{A_h} tau_f dA`` [N] of an EHL solution (sun2021 eqs 22-23).
+
+    ``tau_f = tau0 asinh(eta(p) du / (tau0 h))`` (Eyring, eq 23) with the Roelands
+    viscosity of the solution's pressure, summed over the cells that carry film
+    pressure (``A_h``: ``p > 0``); ``sliding_speed`` du = u1 - u2 [m/s] (signed, along
+    the entrainment), ``viscosity_0`` eta0 [Pa s], ``eyring_stress`` tau0 [Pa].
+    """
+    du = float(checks.finite("sliding_speed", sliding_speed, "m/s"))
+    wet = solution.pressure > 0.0
+    eta = roelands_viscosity(solution.pressure[wet], viscosity_0)
+    tau = eyring_shear_stress(eta, du, solution.film[wet], eyring_stress)
+    return float(np.sum(tau)) * solution.grid.cell_area
+
+
+def friction_coefficient(asperity_load: float, film_friction: float, load: float, dry_friction: float = 0.1) -> float:
+    """Mixed friction coefficient ``mu = (mu_a Q_a + Q_f) / Q`` (sun2021 eq 21; mu_a = 0.1 in sun2021 Sec 3.2).
+
+    ``asperity_load`` Q_a [N] >= 0, ``film_friction`` Q_f [N] (eq 22), ``load`` Q [N] > 0.
+    """
+    q_a = checks.non_negative("asperity_load", asperity_load, "N")
+    q_f = checks.finite("film_friction", film_friction, "N")
+    q = checks.positive("load", load, "N")
+    if q_a > q:
+        raise ValueError(f"asperity_load must not exceed load {q!r} N, got {q_a!r}")
+    mu_a = checks.non_negative("dry_friction", dry_friction)
+    return (mu_a * q_a + q_f) / q
