@@ -264,7 +264,7 @@ def sun2021_ehl(run):
     run.note("Domain: x (track) in [-277, 277] um as sun2021 eq 18; y (across the groove) widened to 1.3 times the "
              "Hertz semi-axis a (the paper's 277 um cuts the contact, a = 275 um at A).")
     run.note("Entrainment along the track (the minor principal direction; it differs from the track by theta_s "
-             "< 0.3 deg, neglected).  Smooth surfaces; roughness (eq 15 ROU), the asperity load of eqs 21-22, the friction torque "
-             "(eq 20) and Figs 6, 13 are not built yet (Fig 12 is checked against the entrainment speed, not the screw "
-             "speed); the 2.93 % / 3.01 % asperity-stress numbers and the "
-             "502.65 mm/s transition are therefore not checked.")
+             "< 0.3 deg, neglected).  Smooth surfaces; roughness (eq 15 ROU), the asperity load of eqs 21-22, the "
+             "friction torque (eq 20) and Figs 6, 13 are not built yet (Fig 12 is checked against the entrainment "
+             "speed, not the screw speed); the 2.93 % / 3.01 % asperity-stress numbers and the 502.65 mm/s "
+             "transition are therefore not checked.")
