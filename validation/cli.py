@@ -25,8 +25,8 @@ finite-element analysis and the numbers the source papers publish."""
 
 EPILOG = """examples:
   ballbench scenes                      list the scenes with their kind and rough cost
-  ballbench validate                    run every default scene (about 6 minutes on 2 cores)
-  ballbench validate --fast             the analytical and low-order scenes only (about 1 minute)
+  ballbench validate                    run every default scene (about 5 minutes on 2 idle cores)
+  ballbench validate --fast             the analytical and low-order scenes only (under a minute)
   ballbench validate 'lin2019-*'        scenes by name or pattern
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
 
@@ -79,9 +79,9 @@ def _cmd_scenes(args) -> int:
               f"{s.description}{flag}")
     default = [s for s in scenes.values() if s.default]
     fast = [s for s in default if s.kind != "FE"]
-    print(f"\ndefault run: {len(default)} scenes, about {_fmt_cost(sum(s.cost_s for s in default))}; "
-          f"--fast: {len(fast)} scenes, about {_fmt_cost(sum(s.cost_s for s in fast))} "
-          "(2 shared cores; costs at the default fidelity)")
+    print(f"\ndefault run: {len(default)} scenes, {_fmt_cost(sum(s.cost_s for s in default))}; "
+          f"--fast: {len(fast)} scenes, {_fmt_cost(sum(s.cost_s for s in fast))} "
+          "(costs at the default fidelity on an idle 2-core machine; a loaded machine takes longer)")
     return EXIT_OK
 
 
