@@ -111,7 +111,7 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
     left.set_ylabel("y [mm] (minor semi-axis b)")
     left.set_xlim(-1.5 * a * mm, 1.5 * a * mm)
     left.set_ylim(-1.5 * b * mm, 1.5 * b * mm)
-    left.legend(loc="upper left", fontsize=8, framealpha=0.9)
+    figure.legend(*left.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=2, frameon=False)
     left.set_title("contact pressure on the deformed ball surface (seen along the normal)", fontsize=10)
     figure.colorbar(image, ax=left, label="contact pressure [MPa]", location="right", shrink=0.9)
     # profiles along both axes
@@ -135,7 +135,7 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
     level = meta["level"]
     figure.suptitle(f"{meta['scene']}: {meta['force_N']:.0f} N, {meta['fidelity']} level (n = b/h {level['n']:g}, "
                     f"growth {level['growth']:g}); coordinates in mm", fontsize=11)
-    figure.savefig(path, dpi=100)
+    figure.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(figure)
     return path
 
@@ -193,17 +193,18 @@ def _stress_figure(data: dict, meta: dict, path: Path) -> Path:
     left.legend(loc="upper left", fontsize=8)
     left.set_title("von Mises stress on the cut y = 0 through the contact centre", fontsize=10)
     # along the axis
-    depth = np.linspace(0.005, 1.0, 150) * span
+    axis_span = min(span, 6.0 * depth_max)
+    depth = np.linspace(0.005, 1.0, 150) * axis_span
     sx, sy, sz = axis_stress(a, b, p0, nu, depth)
     reference = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2))
     right.plot(reference / 1e6, depth * 1e6, **HERTZ_STYLE, label="Hertz (Boussinesq quadrature)")
     right.plot(reference / 1e6, -depth * 1e6, **HERTZ_STYLE)
-    near_axis = np.abs(xz[:, 0]) <= 0.08 * a
+    near_axis = (np.abs(xz[:, 0]) <= 0.08 * a) & (np.abs(xz[:, 1]) <= axis_span)
     right.plot(von_mises[near_axis] / 1e6, xz[near_axis, 1] * 1e6, "o", ms=3.5, color="#0072B2",
                label="FE nodes near the axis (vertex-value recovery)")
     right.plot([value_max / 1e6] * 2, [depth_max * 1e6, -depth_max * 1e6], "x", ms=10, mew=2.5, color="#56B4E9",
                ls="none", label=f"Hertz maximum {value_max / p0:.3f} p0")
-    right.set_ylim(-span * 1e6, span * 1e6)
+    right.set_ylim(-axis_span * 1e6, axis_span * 1e6)
     right.set_xlabel("von Mises stress [MPa]")
     right.set_ylabel("z [um] on the contact axis")
     right.grid(True, alpha=0.3)
