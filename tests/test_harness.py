@@ -441,3 +441,12 @@ def test_fig9_worst_is_a_declared_known_gap():
     assert "spin-capacity" in lin2019_bearing.FIG9_GAP.reason
     assert "docs/b2b_bearing.md" in lin2019_bearing.FIG9_GAP.evidence
     assert "known_gap=FIG9_GAP" in inspect.getsource(lin2019_bearing.fig9_worst)
+
+
+def test_results_json_round_trip(fakes, tmp_path):
+    from ballbench.validation.report import results_from_json, to_json
+
+    _, out = _validate(tmp_path, "zz-a-pass", "zz-c-gap", "zz-d-budget")
+    data = json.loads((out / "results.json").read_text())
+    again = to_json(results_from_json(data), data["fidelity"])
+    assert json.loads(json.dumps(again)) == data

@@ -479,8 +479,10 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     else:
         lines += ["None in this run.", ""]
     lines += ["## Budgets (reported; they decide pass/fail only with `--strict-time`)", ""]
-    budget_rows = [(r.name, "scene wall time", fmt_time(r.wall_time_s), fmt_time(r.budget_s),
-                    "**over budget**" if r.wall_time_s > r.budget_s else "within budget") for r in results]
+    lines += ["Every scene's wall time and budget stand in the summary; here the model budgets and the scenes "
+              "over their budget.", ""]
+    budget_rows = [(r.name, "scene wall time", fmt_time(r.wall_time_s), fmt_time(r.budget_s), "**over budget**")
+                   for r in results if r.wall_time_s > r.budget_s]
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
@@ -622,8 +624,10 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
         parts.append("<p>None in this run.</p>")
     parts.append('<h2 id="budgets">Budgets</h2><p class="small">Reported; they decide pass/fail only with '
                  "<code>--strict-time</code>.</p>")
-    budget_rows = [(r.name, "scene wall time", fmt_time(r.wall_time_s), fmt_time(r.budget_s),
-                    "over budget" if r.wall_time_s > r.budget_s else "within budget") for r in results]
+    parts.append('<p class="small">Every scene\'s wall time and budget stand in the summary; here the model '
+                 "budgets and the scenes over their budget.</p>")
+    budget_rows = [(r.name, "scene wall time", fmt_time(r.wall_time_s), fmt_time(r.budget_s), "over budget")
+                   for r in results if r.wall_time_s > r.budget_s]
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
@@ -705,6 +709,26 @@ def to_junit(results: Sequence[SceneResult], *, strict: bool = False, strict_tim
         case = ET.SubElement(suite, "testcase", classname="ballbench", name=name, time="0")
         ET.SubElement(case, "skipped", message="not run: the run was interrupted")
     return ET.tostring(suite, encoding="utf-8", xml_declaration=True)
+
+
+# ----------------------------------------------------------------------------------------------- re-render
+def results_from_json(data: dict) -> list[SceneResult]:
+    """Scene results back from ``results.json`` data (to re-render a report without running the scenes)."""
+    from ballbench.validation.scene import KnownGap
+
+    fields = set(Output.__dataclass_fields__) - {"known_gap"}
+    results = []
+    for s in data["scenes"]:
+        outputs = []
+        for o in s["outputs"]:
+            values = {k: (_float(v) if k in ("value", "reference", "rel_error", "tolerance", "time_s", "scale")
+                          else v) for k, v in o.items() if k in fields}
+            gap = KnownGap(o["known_gap_reason"], o["known_gap_evidence"]) if o.get("known_gap_reason") else None
+            outputs.append(Output(**values, known_gap=gap))
+        results.append(SceneResult(s["name"], s["description"], data["fidelity"], tuple(outputs),
+                                   tuple(s["artifacts"]), tuple(s["notes"]), s["wall_time_s"], s["error"],
+                                   _float(s["budget_s"]), s["kind"], s["interrupted"]))
+    return results
 
 
 # ----------------------------------------------------------------------------------------------- all
