@@ -450,3 +450,13 @@ def test_results_json_round_trip(fakes, tmp_path):
     data = json.loads((out / "results.json").read_text())
     again = to_json(results_from_json(data), data["fidelity"])
     assert json.loads(json.dumps(again)) == data
+
+
+def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
+    out = tmp_path / "report"
+    out.mkdir()
+    for name in ("report.md", "results.json", "error_vs_time.png"):
+        (out / name).write_text("old")
+    assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
+    assert (out / ".ballbench-report").exists() and (out / "zz-a-pass").is_dir()
+    assert json.loads((out / "results.json").read_text())["scenes"][0]["name"] == "zz-a-pass"

@@ -89,7 +89,7 @@ def _check_out_dir(out: Path) -> None:
     """Refuse an --out that cannot hold a report, before any work is done."""
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is an existing file, not a folder; choose a folder")
-    if out.is_dir() and any(out.iterdir()) and not (out / MARKER).exists():
+    if out.is_dir() and any(out.iterdir()) and not _is_report(out):
         raise UsageError(f"--out {out} is a non-empty folder that is not a ballbench report (no {MARKER}); "
                          "choose a new or empty folder")
     try:
@@ -111,9 +111,15 @@ def _check_file_target(path: Path, option: str) -> None:
         raise UsageError(f"cannot write {option} {path}: permission denied")
 
 
+def _is_report(out: Path) -> bool:
+    """A folder an earlier run wrote: it carries the marker (or, before the marker existed, report.md and
+    results.json)."""
+    return (out / MARKER).exists() or ((out / "report.md").is_file() and (out / "results.json").is_file())
+
+
 def _clean(out: Path) -> None:
-    """Empty a previous report folder (it carries the marker), so no stale file survives a re-run."""
-    if (out / MARKER).exists():
+    """Empty a previous report folder, so no stale file survives a re-run."""
+    if _is_report(out):
         for child in out.iterdir():
             if child.is_dir() and not child.is_symlink():
                 shutil.rmtree(child)
