@@ -100,7 +100,9 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
     aspect = b / a
     figure, (left, right) = plt.subplots(1, 2, figsize=(13, max(4.8, 3.2 + 4.5 * aspect)), layout="constrained",
                                          gridspec_kw={"width_ratios": (1.5, 1.0)})
-    levels = np.linspace(0.0, max(float(pressure.max()), hertz["p0_Pa"] / 1e6) * 1.0001, 21)
+    from matplotlib.ticker import MaxNLocator
+
+    levels = MaxNLocator(nbins=20).tick_values(0.0, max(float(pressure.max()), hertz["p0_Pa"] / 1e6))
     image = left.tricontourf(triangulation, pressure, levels=levels, cmap="viridis")
     left.plot(*(_ellipse(a, b) * mm).T, **HERTZ_STYLE, label=f"Hertz ellipse a = {a * 1e6:.1f} um, "
                                                              f"b = {b * 1e6:.1f} um")
