@@ -460,3 +460,15 @@ def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
     assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
     assert (out / ".ballbench-report").exists() and (out / "zz-a-pass").is_dir()
     assert json.loads((out / "results.json").read_text())["scenes"][0]["name"] == "zz-a-pass"
+
+
+def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):
+    """Done-when of issue 9 at the quick level: the gap is listed, the run passes; --strict fails it."""
+    out = tmp_path / "report"
+    assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--out", str(out)]) == 0
+    scene_data = json.loads((out / "results.json").read_text())["scenes"][0]
+    assert scene_data["status"] == "known gap"
+    assert scene_data["outputs"][0]["known_gap_reason"]
+    assert "known gap" in capsys.readouterr().err
+    assert "lin2019-fig9-worst" in (out / "report.md").read_text().split("## Known gaps")[1].split("## Budgets")[0]
+    assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--strict", "--out", str(out)]) == 1

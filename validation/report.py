@@ -93,8 +93,9 @@ def fmt_number(x: float, digits: int = 5) -> str:
         return str(x)
     if x == 0.0:
         return "0"
-    if 1e-3 <= abs(x) < 1e7:
-        before = math.floor(math.log10(abs(x))) + 1
+    rounded = float(f"{x:.{digits}g}")  # so that 0.999999 counts as 1.0000, not 0.99999..
+    if 1e-3 <= abs(rounded) < 1e7:
+        before = math.floor(math.log10(abs(rounded))) + 1
         return f"{x:.{max(0, digits - before)}f}"
     return f"{x:.{digits - 1}e}"
 
