@@ -472,3 +472,21 @@ def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):
     assert "known gap" in capsys.readouterr().err
     assert "lin2019-fig9-worst" in (out / "report.md").read_text().split("## Known gaps")[1].split("## Budgets")[0]
     assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--strict", "--out", str(out)]) == 1
+
+
+def test_mesh_levels_join_the_accuracy_cost_front(tmp_path):
+    from ballbench.validation.report import mesh_level_points, to_json
+
+    def body(run):
+        path = run.path("convergence.csv")
+        path.write_text("n,growth,wall_s,err_a,err_p0\n5.5,1.4,10.0,0.02,-0.03\n8.0,1.2,80.0,0.001,0.002\n")
+        run.add_artifact(path)
+        run.check(model="fem.contact", quantity="a", unit="m", value=1.001, reference=1.0, source="Hertz",
+                  tolerance=0.003, time_s=80.0)
+        run.check(model="fem.contact", quantity="p0", unit="Pa", value=1.002, reference=1.0, source="Hertz",
+                  tolerance=0.005, time_s=80.0)
+
+    result = run_scene(_scene(body, kind="FE"), "fine", tmp_path)
+    levels = mesh_level_points(to_json([result], "fine"), tmp_path)
+    assert [p["time_s"] for p in levels] == [10.0, 80.0]
+    assert [p["error"] for p in levels] == pytest.approx([max(0.02 / 0.003, 0.03 / 0.005), 0.4])

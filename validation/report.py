@@ -238,7 +238,34 @@ def pareto_front(points: Sequence[dict]) -> list[dict]:
     return front
 
 
-def plot_error_vs_time(data: dict, path: Path) -> list[dict]:
+def mesh_level_points(data: dict, out_dir: Path) -> list[dict]:
+    """Every mesh level of the scenes that saved a ``convergence.csv`` (FE scenes), as accuracy-cost points.
+
+    A level's error is ``max_q |err_q| / tol_q`` over the quantities ``q``
+    that the scene checked (columns ``err_<q>``; tolerances from its checks),
+    its time the level's ``wall_s``; at the default fidelity the one level is
+    the checked one, at ``--fine`` the convergence study gives a front.
+    """
+    levels = []
+    for s in data["scenes"]:
+        if not any(a.endswith("convergence.csv") for a in s["artifacts"]):
+            continue
+        path = Path(out_dir) / next(a for a in s["artifacts"] if a.endswith("convergence.csv"))
+        tolerance = {o["quantity"]: _float(o["tolerance"]) for o in s["outputs"] if o.get("kind") == "accuracy"}
+        try:
+            with open(path, newline="") as handle:
+                rows = list(csv.DictReader(handle))
+        except OSError:
+            continue
+        for r in rows:
+            ratios = [abs(float(r[f"err_{q}"])) / tol for q, tol in tolerance.items() if f"err_{q}" in r and tol > 0]
+            if ratios and "wall_s" in r:
+                levels.append({"scene": s["name"], "time_s": float(r["wall_s"]), "error": max(ratios),
+                               "level": f"n = {r.get('n', '?')}, growth {r.get('growth', '?')}"})
+    return levels
+
+
+def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> list[dict]:
     """Error (multiple of tolerance) against the run time of one evaluation; returns the plotted points.
 
     Left: one numbered point per (scene, model), coloured and shaped by
@@ -293,6 +320,12 @@ def plot_error_vs_time(data: dict, path: Path) -> list[dict]:
         front = pareto_front(members)
         right.step([p["time_s"] for p in front], [p["y"] for p in front], where="post", color=colour, ls=line,
                    lw=2, label=f"{family} ({len(members)} points)")
+    levels = mesh_level_points(data, out_dir) if out_dir is not None else []
+    for scene_name in sorted({p["scene"] for p in levels}):
+        chosen = sorted((p for p in levels if p["scene"] == scene_name), key=lambda p: p["time_s"])
+        right.plot([p["time_s"] for p in chosen], [min(max(p["error"], FLOOR), CEILING) for p in chosen], "o-",
+                   color="0.35", ms=3, lw=0.8, label="FE mesh levels of a scene" if scene_name == min(
+                       p["scene"] for p in levels) else None)
     right.set_title("Accuracy against cost: front of each model family")
     if points:
         right.legend(loc="upper left", bbox_to_anchor=(0.0, 0.92), fontsize=8)
@@ -750,7 +783,7 @@ def write_report(results: Sequence[SceneResult], out_dir: Path, fidelity: str, *
     data = to_json(results, fidelity, **options)
     paths["json"].write_text(json.dumps(data, indent=2))
     write_csv(results, paths["csv"])
-    points = plot_error_vs_time(data, paths["png"]) if results else []
+    points = plot_error_vs_time(data, paths["png"], out_dir) if results else []
     if not results:
         paths.pop("png")
         paths.pop("points")
