@@ -73,3 +73,13 @@ def test_show_refuses_other_scenes(tmp_path):
         show.show("hertz-sphere-flat", tmp_path)
     with pytest.raises(ValueError, match="fidelity"):
         show.show("fe-hertz-flat", tmp_path, fidelity="ultra")
+
+
+def test_damaged_fields_end_in_one_line(tmp_path, capsys):
+    folder = tmp_path / SCENE
+    folder.mkdir()
+    (folder / "fields.vtu").write_text("not a vtu")
+    (folder / "fields.json").write_text("{}")
+    assert cli.main(["show", SCENE, "--out", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err and "fields.vtu" in err

@@ -24,6 +24,8 @@ on coarse meshes, and the figure says so.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import math
 from pathlib import Path
@@ -49,7 +51,16 @@ def load_fields(directory: Path) -> tuple[dict, dict]:
     if not (vtu.exists() and meta_path.exists()):
         raise FileNotFoundError(f"no saved fields in {directory} (fields.vtu, fields.json)")
     meta = json.loads(meta_path.read_text())
-    mesh = meshio.read(vtu)
+    messages = io.StringIO()
+    try:  # meshio prints and calls sys.exit on a file it cannot read
+        with contextlib.redirect_stdout(messages), contextlib.redirect_stderr(messages):
+            mesh = meshio.read(vtu, file_format="vtu")
+    except (SystemExit, Exception) as error:
+        reason = " ".join(messages.getvalue().split()) or str(error)
+        raise ValueError(f"cannot read {vtu}: {reason}") from None
+    for key in ("fields", "hertz", "fe", "symmetry", "level"):
+        if key not in meta:
+            raise ValueError(f"{meta_path} lacks {key!r}")
     tets = mesh.cells_dict["tetra"]
     data = {"points": np.asarray(mesh.points, dtype=float), "tets": np.asarray(tets),
             "body": np.asarray(mesh.cell_data_dict["body"]["tetra"])}
