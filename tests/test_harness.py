@@ -175,7 +175,7 @@ FAKES = {"zz-a-pass": (_figure_scene, "analytical"), "zz-b-fail": (_fail_scene, 
 def fakes(monkeypatch):
     scene_module.registry()  # load the real scenes first
     for name, (function, kind) in FAKES.items():
-        monkeypatch.setitem(scene_module._REGISTRY, name,
+        monkeypatch.setitem(scene_module.REGISTRY, name,
                             Scene(name, f"fake scene {name}", function, default=False, kind=kind, cost_s=0.1))
     return FAKES
 

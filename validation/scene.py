@@ -202,7 +202,8 @@ class Scene:
         return float(self.budget_s[fidelity])
 
 
-_REGISTRY: dict[str, Scene] = {}
+# every registered scene by name; the scene decorator fills it, registry() loads the scene modules first
+REGISTRY: dict[str, Scene] = {}
 
 
 def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True, kind: str = "low-order",
@@ -222,9 +223,9 @@ def scene(name: str, description: str, *, tags: Iterable[str] = (), default: boo
         raise ValueError(f"budget_s must give a time for each of {FIDELITIES}, got {budget_s!r}")
 
     def register(function: Callable[["Run"], None]) -> Callable[["Run"], None]:
-        if name in _REGISTRY and _REGISTRY[name].function is not function:
+        if name in REGISTRY and REGISTRY[name].function is not function:
             raise ValueError(f"scene {name!r} is registered twice")
-        _REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
+        REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
                                 level)
         return function
 
@@ -400,4 +401,4 @@ def registry() -> dict[str, Scene]:
     from ballbench.validation import scenes as _scenes
 
     _scenes.load_all()
-    return dict(_REGISTRY)
+    return dict(REGISTRY)
