@@ -18,9 +18,8 @@ cut the mesh) and writes into the scene's report folder:
   contact axis against Hertz (Boussinesq quadrature,
   validation.reference_hertz.axis_stress).
 
-The FE stresses are recovered from the vertex values of the P2 solution
-(linear in each tetrahedron, averaged at the nodes): they underestimate peaks
-on coarse meshes, and the figure says so.
+The FE stresses are the element means of the P2 stress, averaged at the
+nodes: they smooth peaks on coarse meshes, and the figure says so.
 """
 from __future__ import annotations
 
@@ -41,8 +40,8 @@ FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue
 def load_fields(directory: Path) -> tuple[dict, dict]:
     """The saved fields of an FE scene: ``(mesh, meta)``; FileNotFoundError if missing.
 
-    ``mesh``: ``points`` (n, 3) [m], ``tets`` (m, 4), ``body`` (m,) and the
-    point fields by their names in ``meta["fields"]``.
+    ``mesh``: ``points`` (n, 3) [m], ``tets`` (m, 10) quadratic tetrahedra (VTK node order) or (m, 4),
+    ``body`` (m,) and the point fields by their names in ``meta["fields"]``.
     """
     import meshio
 
@@ -61,9 +60,11 @@ def load_fields(directory: Path) -> tuple[dict, dict]:
     for key in ("fields", "hertz", "fe", "symmetry", "level"):
         if key not in meta:
             raise ValueError(f"{meta_path} lacks {key!r}")
-    tets = mesh.cells_dict["tetra"]
-    data = {"points": np.asarray(mesh.points, dtype=float), "tets": np.asarray(tets),
-            "body": np.asarray(mesh.cell_data_dict["body"]["tetra"])}
+    kind = "tetra10" if "tetra10" in mesh.cells_dict else "tetra"
+    if kind not in mesh.cells_dict:
+        raise ValueError(f"{vtu} holds no tetrahedra")
+    data = {"points": np.asarray(mesh.points, dtype=float), "tets": np.asarray(mesh.cells_dict[kind]),
+            "body": np.asarray(mesh.cell_data_dict["body"][kind])}
     data.update({name: np.asarray(values) for name, values in mesh.point_data.items()})
     return data, meta
 
@@ -159,7 +160,8 @@ def _cut(data: dict, meta: dict, field: str, span: float):
     from vtkmodules.vtkCommonCore import vtkObject
 
     vtkObject.GlobalWarningDisplayOff()
-    grid = pv.UnstructuredGrid({pv.CellType.TETRA: data["tets"]}, data["points"])
+    cell_type = pv.CellType.QUADRATIC_TETRA if data["tets"].shape[1] == 10 else pv.CellType.TETRA
+    grid = pv.UnstructuredGrid({cell_type: data["tets"]}, data["points"])
     grid.point_data["value"] = data[field]
     clipped = grid.clip_box([-span, span, -span, span, -span, span], invert=False)
     y_cut = 1e-6 * span if meta["symmetry"]["y"] else 0.0
@@ -214,7 +216,7 @@ def _stress_figure(data: dict, meta: dict, path: Path) -> Path:
     right.plot(reference / 1e6, -depth * 1e6, **HERTZ_STYLE)
     near_axis = (np.abs(xz[:, 0]) <= 0.08 * a) & (np.abs(xz[:, 1]) <= axis_span)
     right.plot(von_mises[near_axis] / 1e6, xz[near_axis, 1] * 1e6, "o", ms=3.5, color="#0072B2",
-               label="FE nodes near the axis (vertex-value recovery)")
+               label="FE nodes near the axis (nodal average of element means)")
     right.plot([value_max / 1e6] * 2, [depth_max * 1e6, -depth_max * 1e6], "x", ms=10, mew=2.5, color="#56B4E9",
                ls="none", label=f"Hertz maximum {value_max / p0:.3f} p0")
     right.set_ylim(-axis_span * 1e6, axis_span * 1e6)
@@ -225,8 +227,8 @@ def _stress_figure(data: dict, meta: dict, path: Path) -> Path:
     right.set_title("along the contact axis against Hertz", fontsize=10)
     level = meta["level"]
     figure.suptitle(f"{meta['scene']}: {meta['force_N']:.0f} N, {meta['fidelity']} level (n = b/h {level['n']:g}, "
-                    f"growth {level['growth']:g}); FE stress from vertex values: linear in each element, "
-                    "peaks underestimated on coarse meshes", fontsize=10)
+                    f"growth {level['growth']:g}); FE stress: element means of the P2 stress averaged at the "
+                    "nodes (smooths peaks on coarse meshes)", fontsize=10)
     figure.savefig(path, dpi=100)
     plt.close(figure)
     return path
