@@ -119,10 +119,10 @@ def axis_von_mises_maximum(a: float, b: float, p0: float, poisson_ratio: float) 
         sx, sy, sz = axis_stress(a, b, p0, poisson_ratio, z * scale)[:, 0]
         return -math.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2))
 
-    grid = np.linspace(0.1, 2.0, 39)
+    grid = np.linspace(0.1, 2.0, 16)
     values = [negative(z) for z in grid]
     k = int(np.argmin(values))
     best = minimize_scalar(negative, bracket=(grid[max(k - 1, 0)], grid[k], grid[min(k + 1, grid.size - 1)]),
-                           tol=1e-10) if 0 < k < grid.size - 1 else None
+                           tol=1e-8) if 0 < k < grid.size - 1 else None
     z = best.x if best is not None else grid[k]
     return float(z * scale), float(-negative(z))
