@@ -39,7 +39,8 @@ from ballbench.fem import linsolve
 from ballbench.fem.surface import lumped_area, project_along_z
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement"]
+__all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement",
+           "full_solution"]
 
 
 @dataclass
@@ -242,6 +243,12 @@ def solve_approach(model: ContactModel, approach: float, *, tol: float = 1e-10, 
 
 def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
     """Nodal displacement field (nnodes, 3) [m] at the mesh vertices of a solved state (one sparse solve)."""
+    return full_solution(model, state)[model.basis.nodal_dofs].T.copy()
+
+
+def full_solution(model: ContactModel, state: ContactState) -> np.ndarray:
+    """Every DOF (ndof,) [m] of the displacement of a solved state (one sparse solve); numbering of
+    ``model.basis`` (P2: vertex and edge DOFs, ``basis.nodal_dofs`` and ``basis.edge_dofs``)."""
     ndof = model.K.shape[0]
     multipliers = state.pressure if model.multiplier == "pressure" else state.forces
     f = model.B.T @ multipliers
@@ -251,7 +258,7 @@ def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
     solve = linsolve.factorize(model.K[model.free][:, model.free])
     u[model.free] = solve(rhs[model.free])
     solve.free()
-    return u[model.basis.nodal_dofs].T.copy()
+    return u
 
 
 def load_and_assemble(mesh, materials, *, order: int, gap_limit: float):

@@ -1,95 +1,314 @@
-"""The ``ballbench`` command.
+"""The ``ballbench`` command line.
 
-    ballbench scenes                       list scenes with a one-line description
-    ballbench validate [SCENE ...] [--out DIR] [--quick | --fine]
-    ballbench show SCENE [--out DIR]       PNG screenshots of an FE scene's fields
+Exit codes: 0 every scene passed (known gaps allowed), 1 a check failed or a
+scene raised, 2 wrong use (one line on stderr naming the problem), 130
+interrupted by Ctrl-C (a partial report is written).
 """
 from __future__ import annotations
 
 import argparse
 import fnmatch
+import os
+import shutil
+import signal
 import sys
 from pathlib import Path
 
+from ballbench import __version__
 from ballbench.validation.scene import registry
 
+MARKER = ".ballbench-report"  # written into every report folder; a re-run cleans only folders that carry it
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
-def _select(names: list[str]):
+DESCRIPTION = """Validate low-order friction models of ball bearings and ball screws against
+finite-element analysis and the numbers the source papers publish."""
+
+EPILOG = """examples:
+  ballbench scenes                      list the scenes with their kind and rough cost
+  ballbench validate                    run every default scene (about 5 minutes on 2 idle cores)
+  ballbench validate --fast             the analytical and low-order scenes only (under a minute)
+  ballbench validate 'lin2019-*'        scenes by name or pattern
+  ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
+
+exit codes: 0 passed (known gaps allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
+
+
+class UsageError(Exception):
+    """A wrong use of the command: reported as one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line instead of argparse's usage block
+        raise UsageError(f"{message} (see '{self.prog} --help')")
+
+
+def _select(names: list[str], fast: bool = False):
     scenes = registry()
     if not names:
-        return [s for s in scenes.values() if s.default]
-    chosen = []
-    for pattern in names:
-        matched = [s for n, s in scenes.items() if fnmatch.fnmatchcase(n, pattern)]
-        if not matched:
-            raise SystemExit(f"ballbench: no scene matches {pattern!r}; `ballbench scenes` lists them")
-        chosen += [s for s in matched if s not in chosen]
-    return chosen
+        chosen = [s for s in scenes.values() if s.default]
+    else:
+        chosen = []
+        for pattern in names:
+            matched = [s for n, s in scenes.items() if fnmatch.fnmatchcase(n, pattern)]
+            if not matched:
+                raise UsageError(f"no scene matches {pattern!r}; 'ballbench scenes' lists them")
+            chosen += [s for s in matched if s not in chosen]
+    if fast:
+        chosen = [s for s in chosen if s.kind != "FE"]
+        if not chosen:
+            raise UsageError("--fast leaves no scene: every selected scene is an FE scene")
+    return sorted(chosen, key=lambda s: s.name)
+
+
+def _fmt_cost(seconds: float) -> str:
+    if seconds < 1.0:
+        return "< 1 s"
+    if seconds < 90:
+        return f"~{seconds:.0f} s"
+    return f"~{seconds / 60:.1f} min"
 
 
 def _cmd_scenes(args) -> int:
     scenes = registry()
     width = max((len(n) for n in scenes), default=0)
+    print(f"{'scene':<{width}}  {'kind':<10}  {'cost':>8}  {'default level':<22}  description")
     for name in sorted(scenes):
         s = scenes[name]
-        flag = "" if s.default else "  [not in default run]"
-        print(f"{name:<{width}}  {s.description}{flag}")
-    return 0
+        flag = "" if s.default else "  [not in the default run]"
+        print(f"{name:<{width}}  {s.kind:<10}  {_fmt_cost(s.cost_s):>8}  {(s.level or '-'):<22}  "
+              f"{s.description}{flag}")
+    default = [s for s in scenes.values() if s.default]
+    fast = [s for s in default if s.kind != "FE"]
+    print(f"\ndefault run: {len(default)} scenes, {_fmt_cost(sum(s.cost_s for s in default))}; "
+          f"--fast: {len(fast)} scenes, {_fmt_cost(sum(s.cost_s for s in fast))} "
+          "(costs at the default fidelity on an idle 2-core machine; a loaded machine takes longer)")
+    return EXIT_OK
+
+
+def _check_out_dir(out: Path) -> None:
+    """Refuse an --out that cannot hold a report, before any work is done."""
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} is an existing file, not a folder; choose a folder")
+    if out.is_dir() and any(out.iterdir()) and not _is_report(out):
+        raise UsageError(f"--out {out} is a non-empty folder that is not a ballbench report (no {MARKER}); "
+                         "choose a new or empty folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        probe = out / f".write-test-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as error:
+        raise UsageError(f"cannot write to --out {out}: {error.strerror or error}") from None
+
+
+def _check_file_target(path: Path, option: str) -> None:
+    if path.is_dir():
+        raise UsageError(f"{option} {path} is a folder; give a file name")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise UsageError(f"{option} {path}: folder {parent} does not exist")
+    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise UsageError(f"cannot write {option} {path}: permission denied")
+
+
+def _is_report(out: Path) -> bool:
+    """A folder an earlier run wrote: it carries the marker (or, before the marker existed, report.md and
+    results.json)."""
+    return (out / MARKER).exists() or ((out / "report.md").is_file() and (out / "results.json").is_file())
+
+
+def _clean(out: Path) -> None:
+    """Empty a previous report folder, so no stale file survives a re-run."""
+    if _is_report(out):
+        for child in out.iterdir():
+            if child.is_dir() and not child.is_symlink():
+                shutil.rmtree(child)
+            else:
+                child.unlink()
+    (out / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
+
+
+class _Interrupt:
+    """SIGINT: the first Ctrl-C stops after the current scene, the second stops at once."""
+
+    def __init__(self):
+        self.requested = False
+        self.previous = None
+
+    def __enter__(self):
+        try:
+            self.previous = signal.signal(signal.SIGINT, self._handle)
+        except ValueError:  # not the main thread (e.g. in some test runners)
+            self.previous = None
+        return self
+
+    def _handle(self, signum, frame):
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+        print("\nballbench: Ctrl-C: stopping after the current scene (Ctrl-C again to stop now)", file=sys.stderr,
+              flush=True)
+
+    def __exit__(self, *exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+        return False
 
 
 def _cmd_validate(args) -> int:
-    from ballbench.validation.report import write_report
+    from ballbench.validation.report import failure_lines, row, status_word, write_report
     from ballbench.validation.runner import run_scenes
 
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
-    scenes = sorted(_select(args.scenes), key=lambda s: s.name)
+    scenes = _select(args.scenes, args.fast)
     out_dir = Path(args.out)
-    results = run_scenes(scenes, fidelity, out_dir, show_progress=not args.no_progress)
-    paths = write_report(results, out_dir, fidelity)
-    failed = [r.name for r in results if not r.passed]
-    print(f"{len(results) - len(failed)} of {len(results)} scenes passed; report: {paths['markdown']}")
+    _check_out_dir(out_dir)
+    junit = Path(args.junit) if args.junit else None
+    if junit is not None:
+        _check_file_target(junit, "--junit")
+    _clean(out_dir)
+    show_progress = sys.stderr.isatty() and not args.no_progress
+    options = dict(strict=args.strict, strict_time=args.strict_time)
+
+    def on_result(result):
+        status = result.status(**options)
+        print(f"{status_word(status)} {result.name} ({result.wall_time_s:.1f} s)"
+              + (f": {result.error}" if result.error else ""), file=sys.stderr, flush=True)
+        for line in failure_lines(result, **options):
+            print(line, file=sys.stderr)
+        if status == "known gap":
+            for o in result.outputs_with("known gap"):
+                r = row(o)
+                print(f"  known gap (declared, see the report): {o.quantity}: {r.value} {r.unit} vs published "
+                      f"{r.reference} {r.unit}", file=sys.stderr)
+
+    print(f"ballbench: {len(scenes)} scenes at fidelity {fidelity} into {out_dir}", file=sys.stderr, flush=True)
+    with _Interrupt() as interrupt:
+        results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
+                                      should_stop=lambda: interrupt.requested)
+    done = {r.name for r in results if not r.interrupted}
+    not_run = [s.name for s in scenes if s.name not in done]
+    results = [r for r in results if not r.interrupted]
+    paths = write_report(results, out_dir, fidelity, not_run=not_run if stopped else (), junit=junit, **options)
+    statuses = [r.status(**options) for r in results]
+    if stopped:
+        print(f"ballbench: interrupted; partial report of {len(results)} of {len(scenes)} scenes: "
+              f"{paths['markdown']}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
+    gaps = statuses.count("known gap")
+    print(f"{len(results) - len(failed)} of {len(results)} scenes passed"
+          + (f" ({gaps} with known gaps)" if gaps else "") + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
-        return 1
-    return 0
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def _cmd_show(args) -> int:
     scenes = registry()
     if args.scene not in scenes:
-        raise SystemExit(f"ballbench: no scene {args.scene!r}; `ballbench scenes` lists them")
+        raise UsageError(f"no scene {args.scene!r}; 'ballbench scenes' lists them")
+    scene = scenes[args.scene]
+    if scene.kind != "FE":
+        fe = ", ".join(sorted(n for n, s in scenes.items() if s.kind == "FE"))
+        raise UsageError(f"show draws the fields of FE scenes; {args.scene!r} is a {scene.kind} scene "
+                         f"(FE scenes: {fe})")
+    out_dir = Path(args.out)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise UsageError(f"--out {out_dir} is an existing file, not a folder")
+    try:
+        (out_dir / args.scene).mkdir(parents=True, exist_ok=True)
+        probe = out_dir / args.scene / f".write-test-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as error:
+        raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
+    if not (out_dir / MARKER).exists():
+        (out_dir / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
     from ballbench.validation import show
 
-    paths = show.show(args.scene, Path(args.out), fidelity="quick" if args.quick else "default")
-    for p in paths:
-        print(p)
-    return 0
+    fidelity = "quick" if args.quick else "default"
+    try:
+        paths = show.show(args.scene, out_dir, fidelity=fidelity, show_progress=sys.stderr.isatty())
+    except KeyboardInterrupt:
+        print("ballbench: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except (OSError, ValueError, KeyError) as error:  # e.g. a damaged fields.vtu / fields.json
+        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error} (delete "
+              f"{out_dir / args.scene / 'fields.vtu'} to solve the fields again)", file=sys.stderr)
+        return EXIT_FAILED
+    for path in paths:
+        print(path)
+    return EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="ballbench", description=DESCRIPTION, epilog=EPILOG,
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"ballbench {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    p = sub.add_parser("scenes", help="list the scenes: kind, rough cost, default mesh level",
+                       description="List the scenes: name, kind (analytical, low-order, FE), rough cost at the "
+                                   "default fidelity, default mesh level (FE) and description.")
+    p.set_defaults(func=_cmd_scenes)
+
+    p = sub.add_parser("validate", help="run scenes and write the report",
+                       description="Run scenes and write report.md, report.html, results.json, results.csv and "
+                                   "error_vs_time.png into the output folder (emptied first if it holds an "
+                                   "earlier report). Exit code 0 when every scene passes (declared known gaps "
+                                   "allowed), 1 when a check fails, 130 when interrupted (Ctrl-C stops after the "
+                                   "current scene and writes a partial report; twice stops at once).")
+    p.add_argument("scenes", nargs="*", metavar="SCENE",
+                   help="scene names or shell patterns such as 'lin2019-*' (default: every default scene)")
+    p.add_argument("--out", default="ballbench-report", metavar="DIR",
+                   help="report folder (default: ./ballbench-report)")
+    level = p.add_mutually_exclusive_group()
+    level.add_argument("--quick", action="store_true", help="coarsest level of every scene (what CI runs)")
+    level.add_argument("--fine", action="store_true", help="finest level: FE mesh-convergence studies (slow)")
+    p.add_argument("--fast", action="store_true", help="leave out the FE scenes (a first look in about a minute)")
+    p.add_argument("--strict", action="store_true", help="declared known gaps fail the run too")
+    p.add_argument("--strict-time", action="store_true",
+                   help="a scene over its wall-time budget fails (by default budgets are only reported, "
+                        "since run time depends on the machine's load)")
+    p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bars (they are shown only when stderr is a terminal)")
+    p.set_defaults(func=_cmd_validate)
+
+    p = sub.add_parser("show", help="pictures of an FE scene's saved fields",
+                       description="Draw the contact pressure and a stress cut of an FE scene from the fields "
+                                   "that 'ballbench validate' saved in DIR/SCENE/ (solving them first only if "
+                                   "they are missing) and write the PNG files there.")
+    p.add_argument("scene", metavar="SCENE", help="an FE scene, e.g. fe-hertz-groove-056")
+    p.add_argument("--out", default="ballbench-report", metavar="DIR",
+                   help="report folder of the validate run (default: ./ballbench-report)")
+    p.add_argument("--quick", action="store_true", help="coarsest mesh level when the fields must be solved")
+    p.set_defaults(func=_cmd_show)
+    return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="ballbench", description=__doc__.split("\n")[0])
-    sub = parser.add_subparsers(dest="command", required=True)
-
-    p = sub.add_parser("scenes", help="list scenes")
-    p.set_defaults(func=_cmd_scenes)
-
-    p = sub.add_parser("validate", help="run scenes and write the report")
-    p.add_argument("scenes", nargs="*", help="scene names or glob patterns (default: all default scenes)")
-    p.add_argument("--out", default="ballbench-report", help="output directory (default: ./ballbench-report)")
-    level = p.add_mutually_exclusive_group()
-    level.add_argument("--quick", action="store_true", help="coarsest fidelity of each scene (CI)")
-    level.add_argument("--fine", action="store_true", help="finest fidelity (slow FE levels)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bars")
-    p.set_defaults(func=_cmd_validate)
-
-    p = sub.add_parser("show", help="PNG screenshots of an FE scene's contact fields")
-    p.add_argument("scene")
-    p.add_argument("--out", default="ballbench-report", help="output directory")
-    p.add_argument("--quick", action="store_true", help="coarsest mesh level")
-    p.set_defaults(func=_cmd_show)
-
-    args = parser.parse_args(argv)
-    return args.func(args)
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        return args.func(args)
+    except UsageError as error:
+        print(f"ballbench: error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except BrokenPipeError:
+        # the reader went away (e.g. 'ballbench scenes | head'): stop quietly
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except OSError:
+            pass
+        return EXIT_OK
+    except KeyboardInterrupt:
+        print("ballbench: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 if __name__ == "__main__":

@@ -27,6 +27,22 @@ Error convention (kept stable, see docs/validation.md):
 * ``relation="le"``: the mirror of ``"ge"``.
 
 A check passes when ``rel_error <= tolerance`` and the value is finite.
+
+Guards (issue 10): ``tolerance`` must be finite and below 1, and ``scale``
+must not exceed ``|reference|`` (a zero reference always needs one), unless
+the check says why in ``why=`` (the sentence goes into the report).
+
+Known gaps: ``run.check(..., known_gap=KnownGap(reason, evidence))`` declares
+a published number this project does not reproduce, with the reason and the
+artifact or check that backs it.  It runs and is reported like any check, is
+listed in its own section, and does not fail the run; if it starts to pass it
+is reported loudly as an *unexpected pass* (and fails the run, so that the
+declaration is removed).  ``--strict`` makes known gaps fail.
+
+Budgets: ``run.budget(...)`` records a wall time or a throughput against its
+target.  Budgets are reported (budget, measured, over or under) and never
+decide pass or fail unless ``--strict-time`` is given; so is every scene's own
+wall time against ``Scene.budget_s``.
 """
 from __future__ import annotations
 
@@ -39,11 +55,38 @@ from typing import Any, Callable, Iterable
 
 FIDELITIES = ("quick", "default", "fine")
 RELATIONS = ("eq", "ge", "le")
+KINDS = ("analytical", "low-order", "FE")
+# wall-time budget of a scene at the default fidelity when the scene does not state one [s]
+DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
+
+
+@dataclass(frozen=True)
+class KnownGap:
+    """A published number the project does not reproduce: why, and what backs the explanation.
+
+    ``reason``: one or two sentences; ``evidence``: the artifact, document
+    section or check that backs the reason (e.g. ``"docs/b2b_bearing.md,
+    'Validity range'; lin2019-stability spin-capacity checks"``).
+    """
+
+    reason: str
+    evidence: str
+
+    def __post_init__(self):
+        for name in ("reason", "evidence"):
+            if not isinstance(getattr(self, name), str) or not getattr(self, name).strip():
+                raise ValueError(f"KnownGap.{name} must be a non-empty sentence")
 
 
 @dataclass(frozen=True)
 class Output:
-    """One checked number of a scene (a row of the report)."""
+    """One checked number of a scene (a row of the report).
+
+    ``kind`` is ``"accuracy"`` (a model against a reference) or ``"budget"``
+    (a wall time or throughput against its target; never decides pass/fail
+    unless ``--strict-time``).  ``passed`` is the raw comparison; ``status``
+    is what it means for the run.
+    """
 
     model: str
     quantity: str
@@ -57,9 +100,34 @@ class Output:
     time_s: float
     relation: str = "eq"
     note: str = ""
+    kind: str = "accuracy"
+    scale: float = 0.0
+    why: str = ""
+    known_gap: KnownGap | None = None
+
+    @property
+    def status(self) -> str:
+        """``pass``, ``fail``, ``known gap``, ``unexpected pass``, ``within budget`` or ``over budget``."""
+        if self.kind == "budget":
+            return "within budget" if self.passed else "over budget"
+        if self.known_gap is not None:
+            return "unexpected pass" if self.passed else "known gap"
+        return "pass" if self.passed else "fail"
+
+    @property
+    def error_over_tolerance(self) -> float:
+        """``rel_error / tolerance`` (1 = at tolerance); for a zero tolerance 0 if met, else inf."""
+        if self.tolerance > 0:
+            return self.rel_error / self.tolerance
+        return 0.0 if self.rel_error == 0 else math.inf
 
     def as_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        data = asdict(self)
+        data["status"] = self.status
+        gap = data.pop("known_gap")
+        data["known_gap_reason"] = gap["reason"] if gap else ""
+        data["known_gap_evidence"] = gap["evidence"] if gap else ""
+        return data
 
 
 @dataclass(frozen=True)
@@ -72,35 +140,93 @@ class SceneResult:
     notes: tuple[str, ...] = ()
     wall_time_s: float = 0.0
     error: str = ""
+    budget_s: float = math.inf
+    kind: str = "low-order"
+    interrupted: bool = False
+
+    def outputs_with(self, status: str) -> list[Output]:
+        return [o for o in self.outputs if o.status == status]
+
+    @property
+    def over_budget(self) -> bool:
+        """The scene's wall time or one of its budget rows is over its budget."""
+        return self.wall_time_s > self.budget_s or bool(self.outputs_with("over budget"))
+
+    def status(self, *, strict: bool = False, strict_time: bool = False) -> str:
+        """``error``, ``fail``, ``known gap`` (passes, with declared gaps) or ``pass``.
+
+        ``strict``: known gaps fail; ``strict_time``: a budget overrun fails.
+        An unexpected pass of a known gap always fails (remove the declaration).
+        """
+        if self.error or not self.outputs:
+            return "error"
+        if self.outputs_with("fail") or self.outputs_with("unexpected pass"):
+            return "fail"
+        if strict_time and self.over_budget:
+            return "fail"
+        if self.outputs_with("known gap"):
+            return "fail" if strict else "known gap"
+        return "pass"
 
     @property
     def passed(self) -> bool:
-        return not self.error and bool(self.outputs) and all(o.passed for o in self.outputs)
+        """Passes the default run (known gaps allowed, budgets reported only)."""
+        return self.status() in ("pass", "known gap")
 
 
 @dataclass(frozen=True)
 class Scene:
+    """A registered scene.
+
+    ``kind``: ``"analytical"`` (closed forms, microseconds), ``"low-order"``
+    (numerical low-order models) or ``"FE"``; ``cost_s``: rough wall time at
+    the default fidelity on a 2-core machine [s] (shown by ``ballbench
+    scenes``); ``budget_s``: wall-time budget per fidelity [s] (reported,
+    decides only with ``--strict-time``); ``level``: the default mesh level
+    in words (FE scenes).
+    """
+
     name: str
     description: str
     function: Callable[["Run"], None]
     tags: tuple[str, ...] = ()
     default: bool = True
+    kind: str = "low-order"
+    cost_s: float = 1.0
+    budget_s: dict | None = None
+    level: str = ""
+
+    def budget_for(self, fidelity: str) -> float:
+        if self.budget_s is None:
+            return DEFAULT_BUDGET_S[self.kind] * (5.0 if fidelity == "fine" else 1.0)
+        return float(self.budget_s[fidelity])
 
 
-_REGISTRY: dict[str, Scene] = {}
+# every registered scene by name; the scene decorator fills it, registry() loads the scene modules first
+REGISTRY: dict[str, Scene] = {}
 
 
-def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True):
-    """Register the decorated function as the scene ``name``.
+def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True, kind: str = "low-order",
+          cost_s: float = 1.0, budget_s: dict | float | None = None, level: str = ""):
+    """Register the decorated function as the scene ``name`` (see :class:`Scene` for the keywords).
 
     ``default=False`` keeps the scene out of a bare ``ballbench validate``
-    (it still runs when named).
+    (it still runs when named).  A single ``budget_s`` applies to every fidelity.
     """
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {KINDS}, got {kind!r}")
+    if not (isinstance(cost_s, (int, float)) and math.isfinite(cost_s) and cost_s > 0):
+        raise ValueError(f"cost_s must be a finite time > 0 s, got {cost_s!r}")
+    if isinstance(budget_s, (int, float)):
+        budget_s = {f: float(budget_s) for f in FIDELITIES}
+    if budget_s is not None and set(budget_s) != set(FIDELITIES):
+        raise ValueError(f"budget_s must give a time for each of {FIDELITIES}, got {budget_s!r}")
 
     def register(function: Callable[["Run"], None]) -> Callable[["Run"], None]:
-        if name in _REGISTRY and _REGISTRY[name].function is not function:
+        if name in REGISTRY and REGISTRY[name].function is not function:
             raise ValueError(f"scene {name!r} is registered twice")
-        _REGISTRY[name] = Scene(name, description, function, tuple(tags), default)
+        REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
+                                level)
         return function
 
     return register
@@ -174,19 +300,53 @@ class Run:
         relation: str = "eq",
         scale: float = 0.0,
         note: str = "",
+        why: str = "",
+        known_gap: KnownGap | None = None,
     ) -> Output:
         """Record ``value`` of ``quantity`` (SI ``unit``) against ``reference``.
 
         ``tolerance`` is on the relative error defined in the module docstring.
+        A tolerance that is not finite or not below 1, or a ``scale`` larger
+        than ``|reference|``, is rejected (ValueError) unless ``why`` says why.
+        ``known_gap`` declares the published number as not reproduced.
         """
         value = float(value)
         reference = float(reference)
+        scale = float(scale)
         if not tolerance >= 0.0:
-            raise ValueError(f"tolerance must be >= 0, got {tolerance!r}")
+            raise ValueError(f"tolerance must be >= 0, got {tolerance!r} ({quantity})")
+        if not why.strip():
+            if not (math.isfinite(tolerance) and tolerance < 1.0):
+                raise ValueError(f"tolerance {tolerance!r} of {quantity!r} is not finite or not below 1: "
+                                 "a check that passes (nearly) anything; pass why= to say why it is meant")
+            if abs(scale) > abs(reference):
+                raise ValueError(f"scale {scale!r} of {quantity!r} is larger than its reference {reference!r}: "
+                                 "pass why= to name the magnitude the error is judged against")
+        if known_gap is not None and not isinstance(known_gap, KnownGap):
+            raise TypeError("known_gap must be a KnownGap(reason, evidence)")
         rel_error = relative_error(value, reference, relation=relation, scale=scale)
         passed = bool(math.isfinite(value) and rel_error <= tolerance)
         output = Output(model, quantity, unit, value, reference, source, float(rel_error),
-                        float(tolerance), passed, float(time_s), relation, note)
+                        float(tolerance), passed, float(time_s), relation, note, "accuracy", scale, why.strip(),
+                        known_gap)
+        self._outputs.append(output)
+        return output
+
+    def budget(self, *, quantity: str, unit: str, value: float, budget: float, source: str, relation: str = "le",
+               model: str = "", time_s: float | None = None, note: str = "") -> Output:
+        """Record a wall time (``relation="le"``: at most ``budget``) or a throughput (``"ge"``: at least).
+
+        Reported as within or over budget; it decides pass/fail only with ``--strict-time``.
+        """
+        if relation not in ("le", "ge"):
+            raise ValueError(f"a budget's relation is 'le' (time) or 'ge' (throughput), got {relation!r}")
+        value, budget = float(value), float(budget)
+        if not (math.isfinite(budget) and budget > 0):
+            raise ValueError(f"budget must be a finite number > 0, got {budget!r} ({quantity})")
+        rel_error = relative_error(value, budget, relation=relation)
+        output = Output(model or self.scene.name, quantity, unit, value, budget, source, float(rel_error), 0.0,
+                        bool(math.isfinite(value) and rel_error == 0.0),
+                        float(value if time_s is None else time_s), relation, note, "budget")
         self._outputs.append(output)
         return output
 
@@ -226,10 +386,14 @@ class Run:
 
         return tqdm(iterable, total=total, desc=desc or self.scene.name, leave=False)
 
-    def result(self, wall_time_s: float, error: str = "") -> SceneResult:
+    @property
+    def outputs(self) -> tuple[Output, ...]:
+        return tuple(self._outputs)
+
+    def result(self, wall_time_s: float, error: str = "", interrupted: bool = False) -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
-                           wall_time_s, error)
+                           wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted)
 
 
 def registry() -> dict[str, Scene]:
@@ -237,4 +401,4 @@ def registry() -> dict[str, Scene]:
     from ballbench.validation import scenes as _scenes
 
     _scenes.load_all()
-    return dict(_REGISTRY)
+    return dict(REGISTRY)

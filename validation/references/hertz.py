@@ -21,6 +21,7 @@ Two independent routes:
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 from scipy.integrate import quad
 
@@ -78,3 +79,71 @@ def ellipse_quadrature(a: float, b: float, p0: float, contact_modulus: float) ->
     A = (delta - surface_displacement(x0, 0.0, a, b, p0, contact_modulus)) / (x0 * x0)
     B = (delta - surface_displacement(0.0, y0, a, b, p0, contact_modulus)) / (y0 * y0)
     return {"delta": delta, "A": A, "B": B, "force": 2.0 * math.pi * a * b * p0 / 3.0}
+
+
+# --------------------------------------------------------------------------- subsurface stress on the axis
+@lru_cache(maxsize=4)
+def _gauss_legendre(order: int):
+    import numpy as np
+
+    return np.polynomial.legendre.leggauss(order)
+
+
+def axis_stress(a: float, b: float, p0: float, poisson_ratio: float, depth, order: int = 160):
+    """Stresses (sigma_xx, sigma_yy, sigma_zz) [Pa] on the axis x = y = 0 below a Hertz pressure.
+
+    The elliptical pressure ``p0 sqrt(1 - x^2/a^2 - y^2/b^2)`` [Pa] on the
+    half-space is integrated against Boussinesq's point-load stresses (Johnson
+    1985 eq 3.87, compression negative) at each ``depth`` [m] (> 0; array):
+    Gauss-Legendre in ``x = a s cos(t), y = b s sin(t)`` with ``s = sin(phi)``,
+    which makes the integrand smooth.  On the axis the shear stresses vanish by
+    symmetry, so these are the principal stresses.  Independent of
+    lowmodel.contact.hertz (no elliptic integral).
+    """
+    import numpy as np
+
+    depth = np.atleast_1d(np.asarray(depth, dtype=float))
+    if not (a > 0 and b > 0 and np.all(depth > 0)):
+        raise ValueError("a, b [m] and every depth [m] must be > 0")
+    nodes, weights = _gauss_legendre(order)
+    phi = (nodes + 1) * math.pi / 4          # [0, pi/2]
+    w_phi = weights * math.pi / 4
+    t = (nodes + 1) * math.pi / 4            # a quarter of the ellipse; x^2, y^2 make the rest equal
+    w_t = weights * math.pi / 4
+    s = np.sin(phi)
+    # dA = a b s ds dt, ds = cos(phi) dphi, p = p0 cos(phi)
+    S, T = np.meshgrid(s, t, indexing="ij")
+    weight = 4 * a * b * S * np.cos(phi)[:, None] ** 2 * p0 * np.outer(w_phi, w_t)
+    x2 = (a * S * np.cos(T)) ** 2
+    y2 = (b * S * np.sin(T)) ** 2
+    r2 = x2 + y2
+    nu = poisson_ratio
+    out = np.empty((3, depth.size))
+    for k, z in enumerate(depth):
+        rho = np.sqrt(r2 + z * z)
+        common = (1 - 2 * nu) / r2
+        sx = common * ((1 - z / rho) * (x2 - y2) / r2 + z * y2 / rho**3) - 3 * z * x2 / rho**5
+        sy = common * ((1 - z / rho) * (y2 - x2) / r2 + z * x2 / rho**3) - 3 * z * y2 / rho**5
+        sz = -3 * z**3 / rho**5
+        out[:, k] = [np.sum(weight * sx), np.sum(weight * sy), np.sum(weight * sz)]
+    return out / (2 * math.pi)
+
+
+def axis_von_mises_maximum(a: float, b: float, p0: float, poisson_ratio: float) -> tuple[float, float]:
+    """Depth [m] and value [Pa] of the largest von Mises stress on the axis below a Hertz pressure."""
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    scale = min(a, b)
+
+    def negative(z):
+        sx, sy, sz = axis_stress(a, b, p0, poisson_ratio, z * scale)[:, 0]
+        return -math.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2))
+
+    grid = np.linspace(0.1, 2.0, 16)
+    values = [negative(z) for z in grid]
+    k = int(np.argmin(values))
+    best = minimize_scalar(negative, bracket=(grid[max(k - 1, 0)], grid[k], grid[min(k + 1, grid.size - 1)]),
+                           tol=1e-8) if 0 < k < grid.size - 1 else None
+    z = best.x if best is not None else grid[k]
+    return float(z * scale), float(-negative(z))

@@ -125,7 +125,7 @@ def _unimodal_rows(loss, rho_values, lines):
 
 
 @scene("lin2017-eq39", "Two-point sliding line of case study 1 (angular misalignment) against lin2017 eq 39; "
-                       "sliding-state map (Fig 7)")
+                       "sliding-state map (Fig 7)", kind="analytical", cost_s=0.6)
 def lin2017_eq39(run):
     n_theta, n_rho = _grid(run.fidelity)
     thetas = np.linspace(0.0, THETA_MAX, 51 if run.fidelity != "quick" else 11)
@@ -135,13 +135,15 @@ def lin2017_eq39(run):
     run.check(model=MODEL, quantity=f"rho on the K_TR = K_BR line (blue), worst of theta in [0, 5] deg "
                                     f"(theta = {math.degrees(thetas[k]):.2f} deg)", unit="1", value=value,
               reference=reference, source="lin2017 eq 39", tolerance=1e-9, scale=1.0, time_s=time_s,
+              why="rho is of order 1 (|rho| < 1.1 in Fig 7) and the line passes rho = 0 at theta = 0",
               note="scale 1: rho = 0 at theta = 0")
     red, time_s = run.time(fourpoint.two_point_sliding_ratio, case1_angles(-thetas), "BL", "TL")
     value, reference, k = _worst(red, -(1 - np.sin(thetas) - np.cos(thetas)) / (1 - np.sin(thetas) + np.cos(thetas)),
                                  scale=1.0)
     run.check(model=MODEL, quantity=f"rho on the K_BL = K_TL line (red), worst of theta in [-5, 0] deg "
                                     f"(theta = {-math.degrees(thetas[k]):.2f} deg)", unit="1", value=value,
-              reference=reference, source="lin2017 eq 39 (theta < 0)", tolerance=1e-9, scale=1.0, time_s=time_s)
+              reference=reference, source="lin2017 eq 39 (theta < 0)", tolerance=1e-9, scale=1.0, time_s=time_s,
+              why="rho is of order 1 (|rho| < 1.1 in Fig 7) and the line passes rho = 0 at theta = 0")
 
     # the solver's state on, just above and just below the line (theta > 0)
     positive = thetas[1:]
@@ -175,7 +177,8 @@ def lin2017_eq39(run):
     run.check(model=MODEL, quantity="max friction loss at theta = 0", unit="W",
               value=float(np.nanmax(loss[zero]) * MU * GROOVE_VELOCITY * VERTICAL_FORCE), reference=0.0,
               source="lin2017 Sec 2.2 (pure rolling: no loss)", tolerance=1e-12,
-              scale=MU * GROOVE_VELOCITY * VERTICAL_FORCE, time_s=time_map)
+              scale=MU * GROOVE_VELOCITY * VERTICAL_FORCE, time_s=time_map,
+              why="pure rolling loses nothing: zero judged against the loss scale mu v N_y")
     one_point = {label for label in labels[inside] if label and "+" not in label and label != "rolling"}
     run.check(model=MODEL, quantity="number of one-point sliding regions in Fig 7", unit="1",
               value=float(len(one_point)), reference=4.0, source="lin2017 Sec 3.2 ('The four regions')",
@@ -192,7 +195,8 @@ def lin2017_eq39(run):
              "linear in rho at fixed N_y (eq 36), with K from the minors of eq 7's A_v (eq 23).")
 
 
-@scene("lin2017-eq41", "Ball motion at rho = 0 (TR sliding) against lin2017 eq 41; pure rolling at theta = 0 (eq 11)")
+@scene("lin2017-eq41", "Ball motion at rho = 0 (TR sliding) against lin2017 eq 41; pure rolling at theta = 0 (eq 11)",
+       kind="analytical", cost_s=0.1)
 def lin2017_eq41(run):
     thetas = np.linspace(0.0, THETA_MAX, 51 if run.fidelity != "quick" else 11)
     state, time_s = run.time(_solve, case1_angles(thetas), 0.0)
@@ -209,7 +213,8 @@ def lin2017_eq41(run):
     worst = int(np.argmax(np.abs(state.omega[:, 1])))
     run.check(model=MODEL, quantity="omega_y, largest |value| over theta in [0, 5] deg", unit="rad/s",
               value=float(state.omega[worst, 1]), reference=0.0, source="lin2017 eq 41", tolerance=1e-9,
-              scale=scale, time_s=time_s, note="scale v / R_B")
+              scale=scale, time_s=time_s, note="scale v / R_B",
+              why="omega_y = 0 judged against the rolling speed scale v / R_B")
     tr_only = np.all(state.sliding[1:] == [False, False, True, False], axis=-1)
     run.check(model=MODEL, quantity="fraction of theta in (0, 5] deg with TR sliding alone", unit="1",
               value=float(np.mean(tr_only)), reference=1.0, source="lin2017 Sec 3.2 ('the TR contact point will be "
@@ -218,6 +223,7 @@ def lin2017_eq41(run):
               reference=v / 2, source="lin2017 eq 11 / Sec 3.2 ('translates at v/2')", tolerance=1e-12, time_s=time_s)
     run.check(model=MODEL, quantity="largest increase of v_B between neighbouring theta (decreasing)", unit="m/s",
               value=float(np.max(np.diff(state.ball_velocity))), reference=0.0, relation="le", scale=v,
+              why="a bound at zero judged against the groove speed v",
               source="lin2017 Sec 3.2 ('translational and rotational velocities decrease')", tolerance=0.0,
               time_s=time_s)
     run.note("Eq 11 as printed lacks the factor v of the numerator; eq 41 carries it (v_B = v/2 at theta = 0).")
@@ -225,7 +231,7 @@ def lin2017_eq41(run):
 
 
 @scene("lin2017-eq40", "Friction loss of case study 1 against lin2017 eq 40 (K of eq 38); power balance; "
-                       "relative loss map (Fig 8)")
+                       "relative loss map (Fig 8)", kind="analytical", cost_s=0.5)
 def lin2017_eq40(run):
     n_theta, n_rho = _grid(run.fidelity)
     theta_values = np.linspace(-THETA_MAX, THETA_MAX, n_theta)
@@ -243,12 +249,13 @@ def lin2017_eq40(run):
                                     f"{math.degrees(theta_grid[inside][k]):.2f} deg, rho = {rho_grid[inside][k]:.3f})",
               unit="W", value=value, reference=reference, source="lin2017 eq 40 with K_X of eq 38 (smallest)",
               tolerance=1e-9, scale=1e-12 * scale, time_s=time_s,
+              why="the loss is 0 at theta = 0: judged there against 1e-12 mu v N_y",
               note="reference 0 at theta = 0 judged against 1e-12 mu v N_y")
     groove = GROOVE_VELOCITY * (state.friction_forces[:, 2] + state.friction_forces[:, 3])
     value, reference, k = _worst(state.friction_loss, groove, scale=1e-12 * scale)
     run.check(model=MODEL, quantity="friction loss vs v (f_TR + f_TL), worst grid point", unit="W", value=value,
               reference=reference, source="power balance (work of the groove drive)", tolerance=1e-9,
-              scale=1e-12 * scale, time_s=time_s)
+              scale=1e-12 * scale, why="the loss is 0 at theta = 0: judged there against 1e-12 mu v N_y", time_s=time_s)
 
     loss = np.full(theta_grid.shape, np.nan)
     loss[inside] = state.friction_loss / scale
@@ -274,7 +281,7 @@ def lin2017_eq40(run):
 
 
 @scene("lin2017-case2", "Case study 2 (TR contact angle deviation alpha): K_BL = K_TR, two- and three-point "
-                        "sliding, loss trends (lin2017 Figs 11, 12)")
+                        "sliding, loss trends (lin2017 Figs 11, 12)", kind="analytical", cost_s=0.8)
 def lin2017_case2(run):
     n_alpha, n_rho = _grid(run.fidelity)
     alpha_values = np.linspace(-THETA_MAX, THETA_MAX, n_alpha)

@@ -29,13 +29,15 @@ def _check_sphere(run, geometry, equivalent_radius: float, source: str) -> None:
               tolerance=1e-10, time_s=time_s)
 
 
-@scene("hertz-sphere-flat", "Ball (R = 5 mm) on a flat, 100 N, steel: exact Hertz against the closed form")
+@scene("hertz-sphere-flat", "Ball (R = 5 mm) on a flat, 100 N, steel: exact Hertz against the closed form",
+       kind="analytical", cost_s=0.1)
 def hertz_sphere_flat(run):
     geometry = hertz.ball_on_flat(BALL_RADIUS, **STEEL)
     _check_sphere(run, geometry, BALL_RADIUS, "Johnson (1985) eqs 4.22-4.25, R = R_B")
 
 
-@scene("hertz-ball-ball", "Ball on ball (the B2B contact, R = 5 mm each), 100 N: exact Hertz against the closed form")
+@scene("hertz-ball-ball", "Ball on ball (the B2B contact, R = 5 mm each), 100 N: exact Hertz against the closed form",
+       kind="analytical", cost_s=0.1)
 def hertz_ball_ball(run):
     geometry = hertz.ball_on_ball(BALL_RADIUS, **STEEL)
     _check_sphere(run, geometry, BALL_RADIUS / 2, "Johnson (1985) eqs 4.22-4.25, R = R_B/2")
@@ -43,7 +45,8 @@ def hertz_ball_ball(run):
 
 @scene("hertz-groove-conformity",
        "Ball in a straight groove, conformity 0.5005 to 0.6, 100 N: exact Hertz against direct quadrature "
-       "of the pressure-displacement relation; no warning, NaN or non-monotone semi-axis")
+       "of the pressure-displacement relation; no warning, NaN or non-monotone semi-axis",
+       kind="analytical", cost_s=1.0)
 def hertz_groove_conformity(run):
     count = {"quick": 12, "default": 40, "fine": 200}[run.fidelity]
     # denser near 0.5, where the ellipse elongates fastest
@@ -79,15 +82,18 @@ def hertz_groove_conformity(run):
                             ("delta", "approach delta"), ("force", "load 2 pi a b p0 / 3")):
         run.check(model=MODEL, quantity=f"worst rel. error of {label} over sweep", unit="1",
                   value=worst[quantity], reference=0.0, scale=1.0, source=source, tolerance=1e-9,
+                  why="the value is itself a relative error: zero judged on the scale 1",
                   time_s=time_s, note="value is itself the worst relative error; reference 0 on scale 1")
     semi_a, semi_b = np.array(semi_a), np.array(semi_b)
     non_monotone = int(np.sum(np.diff(semi_a) >= 0) + np.sum(np.diff(semi_b) <= 0))
     non_finite = int(np.sum(~np.isfinite(semi_a)) + np.sum(~np.isfinite(semi_b)))
     run.check(model=MODEL, quantity="non-monotone steps of a (falling) and b (rising)", unit="count",
               value=non_monotone, reference=0.0, scale=1.0, source="Hertz theory: a falls, b rises with conformity",
+              why="a count: zero judged on the scale of one",
               tolerance=0.0, time_s=time_s)
     run.check(model=MODEL, quantity="warnings + non-finite values", unit="count",
               value=caught_warnings + non_finite, reference=0.0, scale=1.0, source="stability requirement (issue 2)",
+              why="a count: zero judged on the scale of one",
               tolerance=0.0, time_s=time_s)
     run.note(f"Sweep: {count} conformities geometrically spaced from 0.5005 to 0.6, R_B = 5 mm, F = 100 N, "
              f"E = 210 GPa, nu = 0.28; b/a from {semi_b[0] / semi_a[0]:.4f} to {semi_b[-1] / semi_a[-1]:.4f}.")
@@ -107,7 +113,8 @@ def hertz_groove_conformity(run):
     run.save_figure(figure, "semi_axes_vs_conformity.png")
 
 
-@scene("lin2019-table1-psi", "Psi of lin2019 eq 15 recomputed from Hertz theory for the Table 1 geometry")
+@scene("lin2019-table1-psi", "Psi of lin2019 eq 15 recomputed from Hertz theory for the Table 1 geometry",
+       kind="analytical", cost_s=0.1)
 def lin2019_table1_psi(run):
     def model():
         geometry = hertz.ball_in_groove(BALL_RADIUS, TABLE1.conformity, **STEEL)

@@ -34,6 +34,7 @@ TABLE1 = {"present": papers.TABLE1.present, "wei_U_A": papers.TABLE1.wei_U_A, "w
           "wei_S_A": papers.TABLE1.wei_S_A, "wei_S_B": papers.TABLE1.wei_S_B}
 BEARING_SPEED = papers.TABLE1.inner_ring_speed
 COMPONENTS = ("t", "n", "b")
+PRINTED_WHY = "printed to 3 decimals: half a unit (0.0005) is an absolute tolerance, judged on the scale 1"
 
 
 def _printed_tolerance(reference: float) -> tuple[float, float]:
@@ -45,7 +46,7 @@ def _printed_tolerance(reference: float) -> tuple[float, float]:
 def _check_printed(run, *, quantity, unit, value, reference, source, time_s, model=MODEL, note=""):
     tolerance, scale = _printed_tolerance(reference)
     run.check(model=model, quantity=quantity, unit=unit, value=value, reference=reference, source=source,
-              tolerance=tolerance, scale=scale, time_s=time_s, note=note)
+              tolerance=tolerance, scale=scale, time_s=time_s, note=note, why=PRINTED_WHY)
 
 
 def _wei_measures(vectors: dict[str, np.ndarray]) -> dict[str, float]:
@@ -80,7 +81,7 @@ def _rounding_bound(vectors: dict[str, tuple]) -> dict[str, float]:
 
 @scene("wang2022-table2",
        "Ball screw of wang2022 Table A1 at 2000 rpm: every vector and scalar of Table 2 (present model, "
-       "Frenet frame as virtual cage); Wei's column as far as its equations define it")
+       "Frenet frame as virtual cage); Wei's column as far as its equations define it", kind="analytical", cost_s=0.1)
 def wang2022_table2(run):
     result, time_s = run.time(sk.kinematics, **TABLE_A1)
     source = "wang2022 Table 2 (present model), inputs Table A1"
@@ -139,7 +140,7 @@ def wang2022_table2(run):
         scale = 1.0
         run.check(model=MODEL + " (Wei measures)", quantity=f"Wei {name} from the table's own vectors", unit=unit,
                   value=measures[name], reference=reference, source=source_w + "; eqs 1-6 on its V^a vectors",
-                  tolerance=bound[name] / max(abs(reference), scale), scale=scale, time_s=measure_time,
+                  tolerance=bound[name] / max(abs(reference), scale), scale=scale, time_s=measure_time, why=PRINTED_WHY,
                   note=f"tolerance: first-order rounding bound of the printed inputs + half a unit "
                        f"(+-{bound[name]:.4f})")
     delta = 0.5 * (TABLE2_WEI_VECTORS["V_Bb^a"][0] - TABLE2_WEI_VECTORS["V_Ab^a"][0])
@@ -161,7 +162,7 @@ def wang2022_table2(run):
 
 @scene("wang2022-table1",
        "Deep-groove ball bearing 61830 (lead 0) at 3600 rpm: present model = Harris = 15.994 m/s, S = 0; "
-       "Wei's model as far as its equations define it (wang2022 Table 1)")
+       "Wei's model as far as its equations define it (wang2022 Table 1)", kind="analytical", cost_s=0.1)
 def wang2022_table1(run):
     alpha = papers.TABLE1.contact_angle  # wang2022 Sec 3.1: alpha_i = alpha_o = pi/4
     # Geometry implied by Table 1 itself (the 61830 data of ref [21] are not given):
@@ -206,6 +207,7 @@ def wang2022_table1(run):
             ("S_A", bearing.slide_roll_outer, "lowmodel.screw.harris", time_h),
             ("S_B", bearing.slide_roll_inner, "lowmodel.screw.harris", time_h)):
         run.check(model=model, quantity=quantity, unit="1", value=value, reference=0.0, scale=1.0,
+                  why="S is a ratio of order 1: exact zero (lead 0) judged on the scale 1",
                   tolerance=1e-12, source=source + " (0.000); pure rolling", time_s=time_s,
                   note="exact zero expected (lead 0); tolerance 1e-12 on scale 1 for round-off")
     for quantity, value, reference in (
@@ -248,7 +250,7 @@ def wang2022_table1(run):
 
 @scene("wang2022-centrifugal",
        "Centrifugal force of a Table A1 ball at 3000 rpm: about 2 % of the 27 N mean contact load "
-       "(wang2022 Sec 3.3, eq 22); nearly independent of the contact angle (Fig 4)")
+       "(wang2022 Sec 3.3, eq 22); nearly independent of the contact angle (Fig 4)", kind="analytical", cost_s=0.2)
 def wang2022_centrifugal(run):
     def force(speed_rpm, alpha):
         state = sk.kinematics(**{**TABLE_A1, "screw_speed": speed_rpm * RPM, "contact_angle_nut": alpha})
@@ -266,6 +268,7 @@ def wang2022_centrifugal(run):
     closed = BALL_MASS * TABLE_A1["pitch_radius"] * (3000 * RPM * (1 - gamma * np.cos(angles)) / 2) ** 2
     run.check(model=MODEL, quantity="worst rel. deviation of F_n(alpha) from m r_m (omega (1 - gamma cos alpha)/2)^2",
               unit="1", value=float(np.max(np.abs(spread_forces / closed - 1))), reference=0.0, scale=1.0,
+              why="the value is itself a relative deviation: zero judged on the scale 1",
               tolerance=1e-12, source="wang2022 eqs 18, 22 with alpha_i = alpha_o (closed form)", time_s=time_s,
               note="value is itself the worst relative deviation over alpha = 35-55 deg")
     ratio = float(force(3000.0, np.radians(45.0)) / force(1000.0, np.radians(45.0)))
@@ -359,7 +362,7 @@ def _steps_against(values, sign) -> int:
 
 @scene("wang2022-trends",
        "Parameter studies of wang2022 Figs 5-9 (screw speed, contact angle, lead, nominal diameter, ball "
-       "diameter) around Table A1: the trends the paper states, and the figures")
+       "diameter) around Table A1: the trends the paper states, and the figures", kind="analytical", cost_s=2.0)
 def wang2022_trends(run):
     count = {"quick": 12, "default": 41, "fine": 201}[run.fidelity]
     source = "wang2022 Sec 3.4"
@@ -383,11 +386,13 @@ def wang2022_trends(run):
 
     def count_check(quantity, value, statement, time_s):
         run.check(model=MODEL, quantity=quantity, unit="count", value=value, reference=0.0, scale=1.0,
+                  why="a count: zero judged on the scale of one",
                   tolerance=0.0, source=f"{source}: {statement}", time_s=time_s)
 
     def spread_check(quantity, array, statement, time_s):
         run.check(model=MODEL, quantity=quantity, unit="1", value=float(np.ptp(array) / np.mean(np.abs(array))),
                   reference=0.0, scale=1.0, tolerance=1e-12, source=f"{source}: {statement}", time_s=time_s,
+                  why="a relative spread: zero judged on the scale 1",
                   note="relative spread; exact zero up to round-off")
 
     values, state, time_s = results["screw_speed"]
