@@ -3,6 +3,7 @@
     ballbench scenes                       list scenes with a one-line description
     ballbench validate [SCENE ...] [--out DIR] [--quick | --fine]
     ballbench show SCENE [--out DIR]       PNG screenshots of an FE scene's fields
+    ballbench sweep SPEC.toml [--scheduler ADDRESS | --serial]   parameter sweep on dask (docs/sweeps.md)
 """
 from __future__ import annotations
 
@@ -87,6 +88,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", default="ballbench-report", help="output directory")
     p.add_argument("--quick", action="store_true", help="coarsest mesh level")
     p.set_defaults(func=_cmd_show)
+
+    from ballbench.validation import sweep  # issue 13: ballbench sweep (validation/sweep.py)
+
+    sweep.add_parser(sub)
 
     args = parser.parse_args(argv)
     return args.func(args)
