@@ -6,6 +6,7 @@ import subprocess
 import sys
 import textwrap
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -185,3 +186,13 @@ def test_sweep_equivalence_scene_passes(tmp_path):
     result = run_scene(registry()["sweep-equivalence"], "quick", tmp_path, show_progress=False)
     assert result.passed, (result.error, [(o.quantity, o.value) for o in result.outputs if not o.passed])
     assert math.isfinite(result.wall_time_s)
+
+
+def test_example_specs_parse_and_match_the_scene():
+    from ballbench.validation.scenes.sweeps import EQUIVALENCE_SPEC
+
+    root = Path(__file__).resolve().parents[1] / "examples"
+    specs = {p.stem: sweep.load_spec(p) for p in sorted(root.glob("*.toml"))}
+    assert specs["two_ball_monte_carlo"].n_cases == 100_000
+    assert specs["lin2019_fig8_9"].grid_shape == (101, 101)
+    assert specs["sweep_equivalence"].identity() == sweep.spec_from_dict(EQUIVALENCE_SPEC).identity()

@@ -546,7 +546,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     computed = 0
     raw = spec.source
     own_client = None
-    where = "serial"
+    where = "serial" if serial else "nothing left to compute" if not chunks else ""
     try:
         if serial:
             for start, stop in chunks:
