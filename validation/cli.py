@@ -1,8 +1,9 @@
 """The ``ballbench`` command.
 
     ballbench scenes                       list scenes with a one-line description
-    ballbench validate [SCENE ...] [--out DIR] [--quick | --fine]
+    ballbench validate [SCENE ...] [--out DIR] [--quick | --fine] [--calibration FILE]
     ballbench show SCENE [--out DIR]       PNG screenshots of an FE scene's fields
+    ballbench calibrate SPEC.toml [--out FILE]   fit constants with intervals (docs/calibration.md)
     ballbench sweep SPEC.toml [--scheduler ADDRESS | --serial]   parameter sweep on dask (docs/sweeps.md)
 """
 from __future__ import annotations
@@ -82,6 +83,9 @@ def main(argv: list[str] | None = None) -> int:
     level.add_argument("--fine", action="store_true", help="finest fidelity (slow FE levels)")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.set_defaults(func=_cmd_validate)
+    from ballbench.validation import calibrate  # issue 13: --calibration FILE, ballbench calibrate
+
+    calibrate.add_validate_option(p)
 
     p = sub.add_parser("show", help="PNG screenshots of an FE scene's contact fields")
     p.add_argument("scene")
@@ -92,6 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     from ballbench.validation import sweep  # issue 13: ballbench sweep (validation/sweep.py)
 
     sweep.add_parser(sub)
+    calibrate.add_parser(sub)
 
     args = parser.parse_args(argv)
     return args.func(args)

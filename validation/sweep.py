@@ -594,15 +594,20 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
 
 def main(args) -> int:
     """``ballbench sweep`` (registered in validation/cli.py)."""
-    spec = load_spec(args.spec)
-    if args.chunk_size is not None:
-        if args.chunk_size < 1:
-            raise SystemExit(f"ballbench sweep: --chunk-size must be >= 1, got {args.chunk_size}")
-        spec = spec_from_dict({**spec.source, "chunk_size": args.chunk_size})
-    out_dir = Path(args.out) if args.out else Path("ballbench-sweeps") / spec.name
-    progress = False if args.no_progress else None
-    summary = run_sweep(spec, out_dir, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
-                        progress=progress)
+    try:
+        spec = load_spec(args.spec)
+        if args.chunk_size is not None:
+            if args.chunk_size < 1:
+                raise ValueError(f"--chunk-size must be >= 1, got {args.chunk_size}")
+            spec = spec_from_dict({**spec.source, "chunk_size": args.chunk_size})
+        if args.workers < 1:
+            raise ValueError(f"--workers must be >= 1, got {args.workers}")
+        out_dir = Path(args.out) if args.out else Path("ballbench-sweeps") / spec.name
+        progress = False if args.no_progress else None
+        summary = run_sweep(spec, out_dir, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
+                            progress=progress)
+    except ValueError as error:
+        raise SystemExit(f"ballbench sweep: {error}") from None
     print(f"{spec.name}: {summary.n_cases} cases, {summary.skipped} already done, {summary.computed} computed in "
           f"{summary.wall_time_s:.2f} s ({summary.throughput:.1f} cases/s, {summary.where}), "
           f"{summary.failed} failed; results: {out_dir}/part-*.parquet")
