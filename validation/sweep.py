@@ -563,7 +563,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
                     where = scheduler
                 else:
                     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                           dashboard_address=None, host="127.0.0.1")
+                                           dashboard_address="127.0.0.1:0", host="127.0.0.1")
                     own_client = Client(cluster)
                     where = f"local:{workers}"
                 client = own_client
