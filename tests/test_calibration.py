@@ -186,3 +186,12 @@ def test_fe_sweep_reproduces_the_cached_data():
     cached = calibrate.read_load_approach_csv(FE_CSV)
     for name in ("force", "approach", "a"):
         np.testing.assert_allclose(sweep[name], cached[name], rtol=1e-6)
+
+
+def test_roundtrip_scene_passes(tmp_path):
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import registry
+
+    result = run_scene(registry()["calibration-roundtrip"], "quick", tmp_path, show_progress=False)
+    assert result.passed, (result.error, [(o.quantity, o.value) for o in result.outputs if not o.passed])
+    assert len(result.outputs) == 13  # 6 constants, the file round trip, 6 coverages
