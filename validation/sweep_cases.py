@@ -6,18 +6,43 @@ outputs; the vectorised ones broadcast arrays.  Defaults: lin2019 Table 1
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
+from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
 
-__all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical"]
+__all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi"]
 
 TABLE1 = dict(ball_radius=5e-3, conformity=0.56, vertical_force=100.0, groove_velocity=0.01,
               friction_coefficient=0.1, youngs_modulus=2.1e11, poisson_ratio=0.28)  # lin2019 Table 1
 NOMINAL = math.pi / 4  # beta_0 [rad], lin2019 Sec 2.4
+
+
+@functools.lru_cache(maxsize=8)
+def _load(path: str) -> cal.Calibration:
+    return cal.load(path)
+
+
+def calibrated_psi(calibration: str, conformity: float) -> float:
+    """Psi [(m^2/N)^(1/3)] of the group ``ball-groove-<conformity>`` of a calibration file (``ballbench calibrate``)."""
+    return _load(str(calibration)).value(f"ball-groove-{conformity:g}", "psi")
+
+
+def with_psi(contacts: bearing_ball.BallContacts, psi: float) -> bearing_ball.BallContacts:
+    """The same contacts with the semi-axes of ``a = psi R_B^(1/3) F^(1/3)`` (lin2019 eq 15) instead of Hertz's;
+    the axis ratio b/a stays Hertz's."""
+    if not (math.isfinite(psi) and psi > 0.0):
+        raise ValueError(f"psi must be finite and > 0 (m^2/N)^(1/3), got {psi!r}")
+    forces = contacts.normal_forces
+    return bearing_ball.contacts_from_forces(contacts.contact_angles, forces,
+                                             psi * contacts.ball_radius ** (1 / 3) * forces ** (1 / 3),  # eq 15
+                                             contacts.b_over_a, ball_radius=contacts.ball_radius,
+                                             friction_coefficient=contacts.friction_coefficient,
+                                             groove_velocity=contacts.groove_velocity)
 
 
 def _two_ball(contacts: bearing_ball.BallContacts) -> dict:
@@ -30,7 +55,8 @@ def _two_ball(contacts: bearing_ball.BallContacts) -> dict:
             "iterations": float(state.iterations)}
 
 
-def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl: float = 0.0, **table1) -> dict:
+def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl: float = 0.0,
+                       calibration: str | None = None, **table1) -> dict:
     """Two balls of the lin2019 Sec 2.4 case (Fig 7) by the low-order numerical model.
 
     ``theta`` [rad]: bottom groove ``Delta beta_BL = -theta``, ``Delta beta_BR = +theta``;
@@ -38,8 +64,12 @@ def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl:
     Returns epsilon_1, epsilon_2 of the free balls (Fig 8), ``b2b_force`` [N] of the touching balls
     (Fig 9a), ``baseline_loss``/``total_loss`` [W] and ``friction_increase`` = total/baseline - 1 (Fig 9c).
     Outside four-point contact ValueError; no full-sliding state ConvergenceError.
+    ``calibration``: a calibration file whose ``ball-groove-<conformity>`` Psi sets the contact size.
     """
-    contacts = b2b.module_contacts(theta, rho, top_deviations=(top_tr, top_tl), **{**TABLE1, **table1})
+    options = {**TABLE1, **table1}
+    contacts = b2b.module_contacts(theta, rho, top_deviations=(top_tr, top_tl), **options)
+    if calibration:
+        contacts = with_psi(contacts, calibrated_psi(calibration, options["conformity"]))
     return _two_ball(contacts)
 
 
@@ -60,13 +90,17 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
 
 
 def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_analytical.K_F_PAPER,
-                        psi: float | None = None, ball_radius: float = 5e-3, conformity: float = 0.56,
+                        psi: float | None = None, calibration: str | None = None, ball_radius: float = 5e-3,
+                        conformity: float = 0.56,
                         normal_load: float = 100.0, groove_velocity: float = 0.01,
                         friction_coefficient: float = 0.1, youngs_modulus: float = 2.1e11,
                         poisson_ratio: float = 0.28) -> dict:
     """Vectorised analytical model (lin2019 eqs 22, 30, 32, 33) of the same case; ``psi`` default: Hertz
     (lowmodel.contact.hertz.psi_constant, lin2019 eq 15).  Outputs epsilon_1, epsilon_2, b2b_force [N],
-    b2b_friction_loss [W]; arrays broadcast with ``theta`` [rad] and ``rho``."""
+    b2b_friction_loss [W]; arrays broadcast with ``theta`` [rad] and ``rho``.  ``calibration``: a calibration
+    file; its ``ball-groove-<conformity>`` Psi replaces Hertz's (an explicit ``psi`` wins)."""
+    if psi is None and calibration:
+        psi = calibrated_psi(calibration, conformity)
     if psi is None:
         geometry = hertz.ball_in_groove(ball_radius, conformity, youngs_modulus=youngs_modulus,
                                         poisson_ratio=poisson_ratio)

@@ -141,16 +141,12 @@ def calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
 def b2b_force_with_psi(psi: float, theta: float, rho: float) -> tuple[float, float]:
     """F_B2B [N] of lin2019 Table 3 case (a) with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (eq 15):
     (analytical eq 30, low-order numerical eqs 4-10); Table 1 otherwise."""
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
+    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+    from ballbench.validation.sweep_cases import with_psi
 
     analytical = b2b_analytical.two_ball_case(theta, rho, normal_load=100.0, groove_velocity=0.01,
                                               friction_coefficient=0.1, psi=psi, ball_radius=RADIUS)
-    hertz_contacts = b2b.module_contacts(theta, rho)  # lin2019 Table 1 defaults, lin2017 eq 36 forces
-    forces = hertz_contacts.normal_forces
-    contacts = bearing_ball.contacts_from_forces(hertz_contacts.contact_angles, forces,
-                                                 psi * RADIUS ** (1 / 3) * forces ** (1 / 3),  # lin2019 eq 15
-                                                 hertz_contacts.b_over_a, ball_radius=RADIUS,
-                                                 friction_coefficient=0.1, groove_velocity=0.01)
+    contacts = with_psi(b2b.module_contacts(theta, rho), psi)  # lin2019 Table 1 defaults, lin2017 eq 36 forces
     return float(analytical.b2b_force), float(b2b.solve(contacts, [0.0]).b2b_force[0])
 
 
