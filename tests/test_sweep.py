@@ -196,3 +196,19 @@ def test_example_specs_parse_and_match_the_scene():
     assert specs["two_ball_monte_carlo"].n_cases == 100_000
     assert specs["lin2019_fig8_9"].grid_shape == (101, 101)
     assert specs["sweep_equivalence"].identity() == sweep.spec_from_dict(EQUIVALENCE_SPEC).identity()
+
+
+def test_many_chunks_through_a_bounded_window(helpers, tmp_path):
+    # an in-process dask client (threads, no worker processes: cheap); 100 chunks > the 16 tasks in flight
+    from dask.distributed import Client
+
+    spec = sweep.spec_from_dict(_spec(chunk_size=2, grid={"x": {"linspace": [1.0, 2.0, 40]}}))
+    with Client(processes=False, n_workers=1, threads_per_worker=2,
+                dashboard_address="127.0.0.1:0") as client:
+        summary = sweep.run_sweep(spec, tmp_path / "dask", client=client, progress=False)
+    sweep.run_sweep(spec, tmp_path / "serial", serial=True, progress=False)
+    assert summary.computed == spec.n_cases == 120
+    dask_result, serial_result = sweep.read_results(tmp_path / "dask"), sweep.read_results(tmp_path / "serial")
+    for name in ("case", "x", "y", "value", "pair[1]"):
+        np.testing.assert_array_equal(dask_result[name], serial_result[name])
+    assert list(dask_result["error"]) == list(serial_result["error"])

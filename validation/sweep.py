@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import itertools
 import json
 import math
 import os
@@ -64,6 +65,7 @@ __all__ = ["SweepSpec", "Distribution", "load_spec", "spec_from_dict", "case_inp
            "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK"]
 
 DRAW_BLOCK = 4096  # random draws per seeded block (fixed: changing it changes every draw)
+IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD = 16, 4  # tasks submitted ahead of the results
 # units accepted in a spec and their SI factor (inputs are converted at the edge, docs/developing.md)
 UNITS = {"": 1.0, "1": 1.0, "rad": 1.0, "deg": math.pi / 180.0, "m": 1.0, "mm": 1e-3, "um": 1e-6, "N": 1.0,
          "kN": 1e3, "Pa": 1.0, "GPa": 1e9, "m/s": 1.0, "mm/s": 1e-3, "s": 1.0}
@@ -569,14 +571,22 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
                 client = own_client
             else:
                 where = str(client.scheduler.address)
-            futures = [client.submit(run_chunk, raw, start, stop, pure=False) for start, stop in chunks]
-            for future in as_completed(futures):
-                chunk = future.result()
+            # a bounded window of tasks in flight: a sweep of millions of chunks does not flood the scheduler
+            window = max(IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD * sum(client.nthreads().values()))
+            pending = iter(chunks)
+            running = as_completed()
+            for start, stop in itertools.islice(pending, window):
+                running.add(client.submit(run_chunk, raw, start, stop, pure=False))
+            for future in running:
+                chunk = future.result()  # a task that itself fails (not a case) stops the sweep; parts stay
                 _write_part(out_dir, spec, chunk)
                 computed += len(chunk["case"])
                 if bar is not None:
                     bar.update(len(chunk["case"]))
                 future.release()
+                following = next(pending, None)
+                if following is not None:
+                    running.add(client.submit(run_chunk, raw, *following, pure=False))
     finally:
         if bar is not None:
             bar.close()
