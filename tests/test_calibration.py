@@ -46,9 +46,9 @@ def test_exact_data_recover_hertz():
 
 
 def test_intervals_cover_the_truth_in_at_least_90_percent_of_seeds():
-    from ballbench.validation.scenes.calibration import _truth, coverage
+    from ballbench.validation.scenes.calibration import synthetic_truth, coverage
 
-    shares = coverage(range(100), _truth())
+    shares = coverage(range(100), synthetic_truth())
     assert set(shares) == {"hertz_constant", "bulk_compliance", "psi", "mu", "mu_speed_slope", "k_f"}
     for name, share in shares.items():
         assert share >= 0.90, f"{name}: 95 % interval covers the truth in {100 * share:.0f} % of 100 seeds"

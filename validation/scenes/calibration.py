@@ -37,7 +37,8 @@ NOISE_F = 0.02  # N, friction force
 SEEDS = {"quick": 100, "default": 400, "fine": 2000}
 
 
-def _truth():
+def synthetic_truth() -> dict:
+    """The constants the synthetic data are drawn from (SI units)."""
     geometry = hertz.ball_in_groove(RADIUS, CONFORMITY)
     return {"hertz_constant": hertz.hertz_constant(geometry), "bulk_compliance": BULK,
             "psi": hertz.psi_constant(geometry, RADIUS), "mu": MU_0, "mu_speed_slope": MU_V, "k_f": K_F}
@@ -88,7 +89,7 @@ def coverage(seeds, truth: dict, confidence: float = 0.95) -> dict:
        "k_f data from known constants plus noise; the fits recover them within their 95 % intervals; coverage "
        "over many seeds")
 def calibration_roundtrip(run):
-    truth = _truth()
+    truth = synthetic_truth()
     with tempfile.TemporaryDirectory() as work:
         fitted, time_s = run.time(synthetic_fit, 2019, truth, Path(work), budget_s=0.05, max_repeat=3)
         path = cal.save(cal.Calibration({"roundtrip": fitted}), Path(work) / "calibration.json")
