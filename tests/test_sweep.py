@@ -22,7 +22,7 @@ HELPERS = textwrap.dedent('''
         if log:
             with open(log, "a") as handle:
                 handle.write(f"{x!r}\\n")
-        time.sleep(delay)
+        time.sleep(delay or float(os.environ.get("SWEEP_DELAY", "0")))
         if x < 0:
             raise ValueError(f"x must be >= 0, got {x}")
         if x == 0:
@@ -146,13 +146,12 @@ def test_killed_sweep_restarts_with_the_missing_cases_only(helpers, tmp_path):
         function = "sweep_helpers:square"
         chunk_size = 5
         outputs = ["value"]
-        fixed = { delay = 0.02 }
         [grid]
         x = { linspace = [1.0, 2.0, 200] }
     '''))
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONPATH": f"{helpers}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
-           "SWEEP_LOG": str(tmp_path / "first.log")}
+           "SWEEP_LOG": str(tmp_path / "first.log"), "SWEEP_DELAY": "0.05"}  # 10 s in all: killed long before
     process = subprocess.Popen([sys.executable, "-m", "ballbench", "sweep", str(spec_path), "--serial", "--out",
                                 str(out), "--no-progress"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60
