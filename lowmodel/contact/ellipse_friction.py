@@ -72,6 +72,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import ellipe, ellipk, elliprd
 
+from ballbench.lowmodel import checks
+
 __all__ = [
     "EllipseFriction",
     "SlipFriction",
@@ -179,18 +181,13 @@ class AngleFriction:
 # input checks
 # --------------------------------------------------------------------------
 def _check_ratio(b_over_a, *, lower: float = B_OVER_A_RANGE[0]) -> np.ndarray:
-    beta = np.asarray(b_over_a, dtype=float)
-    if not np.all(np.isfinite(beta)):
-        raise ValueError("b_over_a must be finite (got NaN or inf)")
-    if np.any(beta < lower) or np.any(beta > 1.0):
-        raise ValueError(f"b_over_a must lie in [{lower}, 1] (a is the semi-major axis), "
-                         f"got range [{beta.min()!r}, {beta.max()!r}]")
-    return beta
+    return np.asarray(checks.bounded("b_over_a", b_over_a, lower, 1.0, lower_closed=True, upper_closed=True,
+                                     note="a is the semi-major axis"))
 
 
 def _check_kappa(c_over_a) -> np.ndarray:
-    kappa = np.asarray(c_over_a, dtype=float)
-    if np.any(np.isnan(kappa)):
+    kappa = checks.real("c_over_a", c_over_a)
+    if np.any(np.isnan(kappa)):  # +-inf is pure sliding, allowed
         raise ValueError("c_over_a must not be NaN (+-inf is allowed: pure sliding)")
     return kappa
 
@@ -409,8 +406,7 @@ def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
     The paper reads ``k_f = 1.38`` off its Fig 5 over ``|c/a| < 0.5``
     (lin2019 Sec 2.3.1 and eq A8).  Dimensionless.
     """
-    if not (np.isfinite(c_max) and c_max > 0.0):
-        raise ValueError(f"c_max must be finite and > 0, got {c_max!r}")
+    c_max = checks.positive("c_max", c_max)
     beta = _check_ratio(b_over_a, lower=1e-3)
     x, w = _gauss(24)
     kappa = c_max * x  # (0, c_max]; the integrand force*kappa is even
@@ -557,7 +553,8 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     if use_cache and path.exists():
         try:
             with np.load(path) as data:
-                arrays = tuple(np.array(data[name]) for name in ("phi", "log_b_over_a", "force", "moment", "loss_direction"))
+                arrays = tuple(np.array(data[name])
+                               for name in ("phi", "log_b_over_a", "force", "moment", "loss_direction"))
             return FrictionMap(*arrays, build_time_s=time.perf_counter() - start, from_cache=True)
         except (OSError, KeyError, ValueError):
             pass  # unreadable entry: rebuild below
@@ -660,10 +657,8 @@ def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
     ``force = sgn(omega) force(c/a)`` etc., continuous through ``omega = 0``
     where ``force = -sign(slide_velocity)`` (pure sliding, lin2019 eq 12).
     """
-    spin = np.asarray(spin_velocity, dtype=float)
-    slide = np.asarray(slide_velocity, dtype=float)
-    if not (np.all(np.isfinite(spin)) and np.all(np.isfinite(slide))):
-        raise ValueError("spin_velocity and slide_velocity must be finite (m/s)")
+    spin = np.asarray(checks.finite("spin_velocity", spin_velocity, "m/s"))
+    slide = np.asarray(checks.finite("slide_velocity", slide_velocity, "m/s"))
     beta = _check_ratio(b_over_a)
     spin, slide, beta = np.broadcast_arrays(spin, slide, beta)
     speed2 = spin**2 + slide**2
@@ -701,9 +696,7 @@ def friction_angle(slip_angle, b_over_a) -> AngleFriction:
     ``loss(phi + pi) = loss(phi)``; ``loss = cos(phi) moment - sin(phi) force``
     (power balance, to map accuracy).
     """
-    phi = np.asarray(slip_angle, dtype=float)
-    if not np.all(np.isfinite(phi)):
-        raise ValueError("slip_angle must be finite (rad)")
+    phi = np.asarray(checks.finite("slip_angle", slip_angle, "rad"))
     beta = _check_ratio(b_over_a)
     if phi.shape != beta.shape:
         phi, beta = np.broadcast_arrays(phi, beta)

@@ -10,30 +10,16 @@ import math
 import numpy as np
 
 from ballbench.lowmodel import fourpoint
+from ballbench.validation.papers.lin2017 import CASES, case1_angles, case2_angles
 from ballbench.validation.scene import relative_error, scene
 
 MODEL = "lowmodel.fourpoint"
-NOMINAL = math.pi / 4          # all nominal contact angles 45 deg (lin2017 Secs 3.2, 3.3)
-VERTICAL_FORCE = 100.0         # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
-BALL_RADIUS = 5e-3             # m (drops out of v_B and the loss; sets omega)
-MU = 0.1                       # mu_k (drops out of the state; scales forces and loss)
-GROOVE_VELOCITY = 0.01         # v [m/s]
-THETA_MAX = math.radians(5.0)  # misalignment / deviation range of the checks and maps
+VERTICAL_FORCE = CASES.vertical_force           # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
+BALL_RADIUS = CASES.ball_radius                 # m (drops out of v_B and the loss; sets omega)
+MU = CASES.friction_coefficient                 # mu_k (drops out of the state; scales forces and loss)
+GROOVE_VELOCITY = CASES.groove_velocity         # v [m/s]
+THETA_MAX = CASES.angle_range                   # misalignment / deviation range of the checks and maps
 MIRROR = {"BL": "BR", "BR": "BL", "TR": "TL", "TL": "TR"}
-
-
-def case1_angles(theta):
-    """lin2017 Sec 3.2: beta_BL = beta_BR = 45 deg, beta_TR = 45 deg + theta, beta_TL = 45 deg - theta."""
-    theta = np.asarray(theta, dtype=float)
-    zero = np.zeros_like(theta)
-    return NOMINAL + np.stack([zero, zero, theta, -theta], axis=-1)
-
-
-def case2_angles(alpha):
-    """lin2017 Sec 3.3: beta_BL = beta_BR = beta_TL = 45 deg, beta_TR = 45 deg + alpha."""
-    alpha = np.asarray(alpha, dtype=float)
-    zero = np.zeros_like(alpha)
-    return NOMINAL + np.stack([zero, zero, alpha, zero], axis=-1)
 
 
 def _solve(angles, rho):
@@ -46,7 +32,7 @@ def _grid(fidelity):
 
 
 def _labels(sliding, pure_rolling):
-    names = np.array(fourpoint.CONTACTS)
+    names = np.array(fourpoint.CONTACT_NAMES)
     return np.array(["rolling" if rolling else "+".join(names[row]) for row, rolling in zip(sliding, pure_rolling)],
                     dtype=object)
 
@@ -176,7 +162,7 @@ def lin2017_eq39(run):
     rho_values = np.linspace(-1.1, 1.1, n_rho)
     (labels, loss, inside, limits), time_map = run.time(_map, case1_angles, theta_values, rho_values)
     mirrored = np.vectorize(lambda s: "+".join(sorted((MIRROR.get(c, c) for c in s.split("+")),
-                                                      key=lambda c: fourpoint.CONTACTS.index(c)))
+                                                      key=lambda c: fourpoint.CONTACT_NAMES.index(c)))
                             if s not in ("", "rolling") else s, otypes=[object])(labels[::-1, ::-1])
     run.check(model=MODEL, quantity="fraction of Fig 7 grid points whose state equals the left/right mirror of "
                                     "the state at (-theta, -rho)", unit="1", value=float(np.mean(labels == mirrored)),
