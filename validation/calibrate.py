@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.lowmodel import calibration as cal
+from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
            "FE_CONTACTS", "run_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
@@ -56,8 +57,9 @@ COLUMNS = {"normal_force": "force", "friction_force": "force", "friction_torque"
            "speed": "speed", "force": "force", "approach": "length", "a": "length"}
 # contact type -> (fe-hertz scene, ball radius [m]) of the pairs the FE benchmark meshes (fe_hertz.pair_case)
 FE_CONTACTS = {
-    "fe-hertz-groove-052": 5e-3, "fe-hertz-groove-056": 5e-3, "fe-hertz-groove-060": 5e-3,
-    "fe-hertz-ball-ball": 5e-3, "fe-hertz-flat": 5e-3, "fe-hertz-screw": 2.778e-3,  # lin2019 Tables 1, 4
+    "fe-hertz-groove-052": TABLE1.ball_radius, "fe-hertz-groove-056": TABLE1.ball_radius,
+    "fe-hertz-groove-060": TABLE1.ball_radius, "fe-hertz-ball-ball": TABLE1.ball_radius,
+    "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
 }
 _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 
@@ -270,7 +272,8 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
 
     if not (0.0 < fit_range):
         raise ValueError(f"k_f.fit_range must be > 0, got {fit_range!r}")
-    contact = hertz.solve_load(hertz.ball_in_groove(5e-3, conformity), 100.0)
+    contact = hertz.solve_load(hertz.ball_in_groove(TABLE1.ball_radius, conformity, **TABLE1.material),
+                               TABLE1.vertical_force)
     ratio = float(contact.b / contact.a)
     exact = float(ef.k_f_exact(ratio))
     continuous = float(ef.k_f_least_squares(ratio, fit_range))

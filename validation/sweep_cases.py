@@ -14,12 +14,15 @@ import numpy as np
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
+from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
 
 __all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi"]
 
-TABLE1 = dict(ball_radius=5e-3, conformity=0.56, vertical_force=100.0, groove_velocity=0.01,
-              friction_coefficient=0.1, youngs_modulus=2.1e11, poisson_ratio=0.28)  # lin2019 Table 1
-NOMINAL = math.pi / 4  # beta_0 [rad], lin2019 Sec 2.4
+TABLE1 = dict(ball_radius=LIN2019_TABLE1.ball_radius, conformity=LIN2019_TABLE1.conformity,
+              vertical_force=LIN2019_TABLE1.vertical_force, groove_velocity=LIN2019_TABLE1.groove_velocity,
+              friction_coefficient=LIN2019_TABLE1.friction_coefficient,
+              **LIN2019_TABLE1.material)  # keyword defaults of the case functions (lin2019 Table 1)
+NOMINAL = CASE.nominal_angle  # beta_0 [rad], lin2019 Sec 2.4
 
 
 @functools.lru_cache(maxsize=8)
@@ -90,11 +93,13 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
 
 
 def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_analytical.K_F_PAPER,
-                        psi: float | None = None, calibration: str | None = None, ball_radius: float = 5e-3,
-                        conformity: float = 0.56,
-                        normal_load: float = 100.0, groove_velocity: float = 0.01,
-                        friction_coefficient: float = 0.1, youngs_modulus: float = 2.1e11,
-                        poisson_ratio: float = 0.28) -> dict:
+                        psi: float | None = None, calibration: str | None = None,
+                        ball_radius: float = TABLE1["ball_radius"], conformity: float = TABLE1["conformity"],
+                        normal_load: float = TABLE1["vertical_force"],
+                        groove_velocity: float = TABLE1["groove_velocity"],
+                        friction_coefficient: float = TABLE1["friction_coefficient"],
+                        youngs_modulus: float = TABLE1["youngs_modulus"],
+                        poisson_ratio: float = TABLE1["poisson_ratio"]) -> dict:
     """Vectorised analytical model (lin2019 eqs 22, 30, 32, 33) of the same case; ``psi`` default: Hertz
     (lowmodel.contact.hertz.psi_constant, lin2019 eq 15).  Outputs epsilon_1, epsilon_2, b2b_force [N],
     b2b_friction_loss [W]; arrays broadcast with ``theta`` [rad] and ``rho``.  ``calibration``: a calibration

@@ -19,17 +19,18 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.calibration"
-RADIUS = 5e-3  # m, lin2019 Table 1
-CONFORMITY = 0.56
-GROUP = "ball-groove-0.56"
+RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
+CONFORMITY = TABLE1.conformity
+GROUP = f"ball-groove-{CONFORMITY:g}"
 # the synthetic truth: Hertz C and Psi of the Table 1 groove, a bulk compliance of the order FE finds, and a
 # friction coefficient with a speed dependence
 BULK = 2e-11  # m/N
 MU_0, MU_V = 0.1, 0.5  # 1, s/m
-K_F = 1.38  # lin2019 Sec 2.3.2
+K_F = PRINTED.k_f  # lin2019 Sec 2.3.2
 LOADS = np.linspace(25.0, 150.0, 9)  # N
 NOISE_U = 2e-9  # m (0.07 % of U at 150 N)
 NOISE_A = 0.003  # relative, contact size
@@ -39,7 +40,7 @@ SEEDS = {"quick": 100, "default": 400, "fine": 2000}
 
 def synthetic_truth() -> dict:
     """The constants the synthetic data are drawn from (SI units)."""
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
     return {"hertz_constant": hertz.hertz_constant(geometry), "bulk_compliance": BULK,
             "psi": hertz.psi_constant(geometry, RADIUS), "mu": MU_0, "mu_speed_slope": MU_V, "k_f": K_F}
 
@@ -131,7 +132,7 @@ def calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
     if given is not None and GROUP in given.constants and "psi" in given.constants[GROUP]:
         return given, "the --calibration file"
     sweep = fe_load_sweep("fe-hertz-groove-056", run.fidelity)
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
     law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=RADIUS,
                               source=f"FE fe-hertz-groove-056 {run.fidelity} level",
                               hertz_constant=hertz.hertz_constant(geometry), psi=hertz.psi_constant(geometry, RADIUS))
@@ -145,9 +146,15 @@ def b2b_force_with_psi(psi: float, theta: float, rho: float) -> tuple[float, flo
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
     from ballbench.validation.sweep_cases import with_psi
 
-    analytical = b2b_analytical.two_ball_case(theta, rho, normal_load=100.0, groove_velocity=0.01,
-                                              friction_coefficient=0.1, psi=psi, ball_radius=RADIUS)
-    contacts = with_psi(b2b.module_contacts(theta, rho), psi)  # lin2019 Table 1 defaults, lin2017 eq 36 forces
+    analytical = b2b_analytical.two_ball_case(theta, rho, normal_load=TABLE1.vertical_force,
+                                              groove_velocity=TABLE1.groove_velocity,
+                                              friction_coefficient=TABLE1.friction_coefficient, psi=psi,
+                                              ball_radius=RADIUS)
+    contacts = with_psi(b2b.module_contacts(theta, rho, ball_radius=RADIUS, conformity=CONFORMITY,
+                                            vertical_force=TABLE1.vertical_force,
+                                            groove_velocity=TABLE1.groove_velocity,
+                                            friction_coefficient=TABLE1.friction_coefficient, **TABLE1.material),
+                        psi)  # lin2017 eq 36 forces
     return float(analytical.b2b_force), float(b2b.solve(contacts, [0.0]).b2b_force[0])
 
 
@@ -157,23 +164,23 @@ def calibration_effect(run):
     start = time.perf_counter()
     calibration, origin = calibrated_contact_law(run)
     fit_time = time.perf_counter() - start
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
     c_hertz, psi_hertz = hertz.hertz_constant(geometry), hertz.psi_constant(geometry, RADIUS)
     psi = calibration.get(GROUP, "psi")
     c = calibration.get(GROUP, "hertz_constant")
     c_b = calibration.get(GROUP, "bulk_compliance")
-    theta, rho = math.radians(2.0), -0.6
+    theta, rho = CASE.theta, CASE.side_force_ratio
     (hertz_analytical, hertz_numerical), time_h = run.time(b2b_force_with_psi, psi_hertz, theta, rho)
     (cal_analytical, cal_numerical), time_c = run.time(b2b_force_with_psi, psi.value, theta, rho)
     run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B ratio calibrated / Hertz Psi, eq 30",
               unit="1", value=cal_analytical / hertz_analytical, reference=psi_hertz / psi.value, tolerance=1e-12,
               source="lin2019 eq 30: F_B2B proportional to 1/Psi", time_s=time_c)
     run.check(model="lowmodel.linear_bearing.b2b", quantity="F_B2B, calibrated Psi, numerical model", unit="N",
-              value=cal_numerical, reference=3.96, tolerance=0.07, time_s=time_c,
+              value=cal_numerical, reference=PRINTED.f_b2b_ansys, tolerance=0.07, time_s=time_c,
               source="lin2019 Table 3 case (a), ANSYS FEA",
               note=f"Hertz Psi: {hertz_numerical:.4f} N; tolerance: the paper's own claim (within 6-7 %)")
     law = cal.ContactLaw(c, c_b, psi)
-    load = 100.0
+    load = TABLE1.vertical_force
     approach_cal = float(law.approach(load))
     approach_hertz = c_hertz * load ** (2 / 3)  # lin2019 eq 53
     run.check(model=MODEL, quantity="calibrated approach U(100 N) against C F^(2/3) + C_b F", unit="m",
