@@ -58,7 +58,7 @@ def _report(benchmark, name, spec, serial_s, wall_s, target=""):
                                 cluster_cases_per_s=rate, efficiency=efficiency, overhead_per_case_s=overhead,
                                 load_average=load)
     print(f"\n{name}: {spec.n_cases} cases, chunks of {spec.chunk_size}: serial {serial_rate:.1f} cases/s, "
-          f"LocalCluster({WORKERS}) {rate:.1f} cases/s = {100 * efficiency:.0f} % of {WORKERS} x serial "
+          f"LocalCluster({WORKERS}) {rate:.1f} cases/s = {100 * efficiency:.0f} % of {WORKERS} x serial"
           f"{target}; overhead {overhead * 1e3:.3f} ms per case; load average {load:.2f}")
     return efficiency
 
