@@ -211,3 +211,14 @@ def test_many_chunks_through_a_bounded_window(helpers, tmp_path):
     for name in ("case", "x", "y", "value", "pair[1]"):
         np.testing.assert_array_equal(dask_result[name], serial_result[name])
     assert list(dask_result["error"]) == list(serial_result["error"])
+
+
+def test_cli_reports_spec_errors_as_messages(tmp_path):
+    from ballbench.validation import cli
+
+    with pytest.raises(SystemExit, match="no such file"):
+        cli.main(["sweep", str(tmp_path / "missing.toml"), "--serial"])
+    bad = tmp_path / "bad.toml"
+    bad.write_text('name = "b"\nfunction = "math:hypot"\noutputs = ["x"]\nchunk_size = 0\n')
+    with pytest.raises(SystemExit, match="chunk_size must be an integer >= 1"):
+        cli.main(["sweep", str(bad), "--serial"])

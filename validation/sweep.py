@@ -265,6 +265,8 @@ def load_spec(path: str | Path) -> SweepSpec:
     path = Path(path)
     try:
         raw = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"{path}: no such file") from None
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: not valid TOML: {error}") from None
     try:
