@@ -31,7 +31,7 @@ Spec (TOML; docs/sweeps.md)::
 
     [fixed]
     normal_load = 100.0
-    theta_top = { value = 0.5, unit = "deg" }
+    top_tr = { value = 0.5, unit = "deg" }
 
     [grid]
     theta = { linspace = [-3.0, 3.0, 101], unit = "deg" }
@@ -41,7 +41,7 @@ Spec (TOML; docs/sweeps.md)::
     draws = 1000
     seed = 2019
     [random.inputs]
-    d_bl = { distribution = "normal", mean = 0.0, sigma = 0.5, unit = "deg" }
+    top_tl = { distribution = "normal", mean = 0.0, sigma = 0.5, unit = "deg" }
 """
 from __future__ import annotations
 
