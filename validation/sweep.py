@@ -30,7 +30,7 @@ Spec (TOML; docs/sweeps.md)::
     outputs = ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"]
 
     [fixed]
-    normal_load = 100.0
+    vertical_force = 100.0
     top_tr = { value = 0.5, unit = "deg" }
 
     [grid]
