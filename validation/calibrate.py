@@ -167,7 +167,7 @@ def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0
     """
     import time
 
-    from ballbench.fem import contact, postprocess
+    from ballbench.fem import contact, hertz_case, postprocess
     from ballbench.validation.scenes import fe_hertz
 
     if scene_name not in FE_CONTACTS:
@@ -181,21 +181,12 @@ def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0
     n, growth = case.level_list(fidelity)[-1]
     result, _ = fe_hertz.solve_level(case, n, growth)  # mesh, condensation, the scene's own load sweep
     model = result.model
-    xq, operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
-                                              model.candidates)
-    symmetric = {"symmetric_x": "symmetry_x" in model.pair.surfaces,
-                 "symmetric_y": "symmetry_y" in model.pair.surfaces}
+    operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"], model.candidates)
     forces, approaches, semi_axes = [], [], []
     state = None
     for factor in np.sort(factors):
         state = contact.solve_force(model, factor * case.force, start=state)
-        # the ellipse fit of fem.hertz_case.solve_case, at every load (solve_case fits the nominal load only)
-        if model.multiplier == "pressure":
-            column = np.asarray(operator.sum(axis=0)).ravel()
-            target = operator @ ((operator.T @ state.pressure) / np.where(column > 0, column, 1.0))
-        else:
-            target = state.forces
-        fit = postprocess.fit_ellipse_forces(xq, operator, target, **symmetric)
+        fit = hertz_case.fit_contact_patch(model, state, operator)  # the fit solve_case makes at the nominal load
         forces.append(state.force)
         approaches.append(state.approach)
         semi_axes.append(fit.a)
