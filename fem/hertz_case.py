@@ -15,7 +15,7 @@ import numpy as np
 
 from ballbench.fem import contact, postprocess
 
-__all__ = ["CaseResult", "solve_case", "contact_edge_length"]
+__all__ = ["CaseResult", "solve_case", "contact_edge_length", "fit_contact_patch"]
 
 LOAD_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 
@@ -67,6 +67,26 @@ def contact_edge_length(model: contact.ContactModel, active: np.ndarray) -> floa
     return float(np.mean(np.linalg.norm(pts[edges[:, 0]] - pts[edges[:, 1]], axis=1)))
 
 
+def fit_contact_patch(model: contact.ContactModel, state: contact.ContactState, operator=None):
+    """Hertz-field fit (``postprocess.EllipseFit``: a, b [m], p0 [Pa]) of the contact patch of ``state``.
+
+    ``operator``: the ``(xq, M)`` of :func:`fem.postprocess.force_operator` for this model (computed when
+    None; pass it to fit several states of one model).
+    """
+    if operator is None:
+        operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
+                                              model.candidates)
+    xq, matrix = operator
+    if model.multiplier == "pressure":  # mortar: fit the P1 pressure field in the same (Galerkin) sense
+        column = np.asarray(matrix.sum(axis=0)).ravel()
+        field_q = (matrix.T @ state.pressure) / np.where(column > 0, column, 1.0)
+        target = matrix @ field_q
+    else:
+        target = state.forces
+    return postprocess.fit_ellipse_forces(xq, matrix, target, symmetric_x="symmetry_x" in model.pair.surfaces,
+                                          symmetric_y="symmetry_y" in model.pair.surfaces)
+
+
 def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_factors=LOAD_FACTORS,
                method: str = "augmented", min_elements: float = 5.0, tol: float = 1e-10,
                initial_gap=None, formulation: str = "node", order: int = 1) -> CaseResult:
@@ -103,17 +123,7 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
         if factor == 1.0:
             nominal = state
     timings["contact_s"] = time.perf_counter() - t0
-    symmetric_x = "symmetry_x" in model.pair.surfaces
-    symmetric_y = "symmetry_y" in model.pair.surfaces
-    xq, operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
-                                              model.candidates)
-    if model.multiplier == "pressure":  # mortar: fit the P1 pressure field in the same (Galerkin) sense
-        column = np.asarray(operator.sum(axis=0)).ravel()
-        field_q = (operator.T @ nominal.pressure) / np.where(column > 0, column, 1.0)
-        target = operator @ field_q
-    else:
-        target = nominal.forces
-    fit = postprocess.fit_ellipse_forces(xq, operator, target, symmetric_x=symmetric_x, symmetric_y=symmetric_y)
+    fit = fit_contact_patch(model, nominal)
     h = contact_edge_length(model, nominal.active)
     postprocess.mesh_check(h, min(fit.a, fit.b), min_elements)
     approach = postprocess.approach_fit(forces, approaches)

@@ -1,4 +1,4 @@
-"""validation.reference_hertz: the subsurface stress on the axis (Boussinesq quadrature) against closed forms."""
+"""validation.references.hertz: the subsurface stress on the axis (Boussinesq quadrature) against closed forms."""
 from __future__ import annotations
 
 import math
@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.validation.reference_hertz import axis_stress, axis_von_mises_maximum
+from ballbench.validation.references.hertz import axis_stress, axis_von_mises_maximum
 
 
 def test_axis_stress_of_a_circular_contact_matches_johnson():

@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 
 from ballbench import __version__
+from ballbench.validation import calibrate, sweep
 from ballbench.validation.scene import registry
 
 MARKER = ".ballbench-report"  # written into every report folder; a re-run cleans only folders that carry it
@@ -276,6 +277,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")
+    calibrate.add_validate_option(p)  # --calibration FILE (issue 13)
     p.set_defaults(func=_cmd_validate)
 
     p = sub.add_parser("show", help="pictures of an FE scene's saved fields",
@@ -287,6 +289,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="report folder of the validate run (default: ./ballbench-report)")
     p.add_argument("--quick", action="store_true", help="coarsest mesh level when the fields must be solved")
     p.set_defaults(func=_cmd_show)
+
+    sweep.add_parser(sub)  # ballbench sweep SPEC.toml (docs/sweeps.md)
+    calibrate.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)
     return parser
 
 

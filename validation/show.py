@@ -16,7 +16,7 @@ cut the mesh) and writes into the scene's report folder:
   contact centre (the plane of the major semi-axis a), both bodies, mirrored,
   with the Hertz subsurface maximum marked; beside it von Mises along the
   contact axis against Hertz (Boussinesq quadrature,
-  validation.reference_hertz.axis_stress).
+  validation.references.hertz.axis_stress).
 
 The FE stresses are the element means of the P2 stress, averaged at the
 nodes: they smooth peaks on coarse meshes, and the figure says so.
@@ -183,7 +183,7 @@ def _stress_figure(data: dict, meta: dict, path: Path) -> Path:
     import matplotlib.pyplot as plt
     import matplotlib.tri as mtri
 
-    from ballbench.validation.reference_hertz import axis_stress, axis_von_mises_maximum
+    from ballbench.validation.references.hertz import axis_stress, axis_von_mises_maximum
 
     hertz = meta["hertz"]
     a, b, p0 = hertz["a_m"], hertz["b_m"], hertz["p0_Pa"]

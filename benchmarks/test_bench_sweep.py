@@ -1,0 +1,93 @@
+"""Sweep throughput on dask.distributed against the serial speed, and the scheduler overhead per case.
+
+Issue 13 target: LocalCluster throughput (cases/s) >= 80 % of the serial speed times the number of workers
+for the linear-bearing two-ball Monte Carlo (examples/two_ball_monte_carlo.toml, low-order numerical model,
+about 8 ms per case).  The overhead per case is ``(workers x wall - serial compute) / cases``; for a
+no-op model (``builtins:dict``) it is the pure cost of tasks, transfer and Parquet writing.
+
+The machine is shared (2 cores); the load average at the start is printed with every figure.
+
+Run: python -m pytest benchmarks/test_bench_sweep.py -s
+"""
+import os
+import time
+from pathlib import Path
+
+import pytest
+
+from ballbench.validation import sweep
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKERS = 2
+
+
+@pytest.fixture(scope="module")
+def client():
+    from dask.distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=WORKERS, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0",
+                           host="127.0.0.1")
+    with Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def _monte_carlo(cases: int, chunk: int) -> sweep.SweepSpec:
+    raw = dict(sweep.load_spec(ROOT / "examples" / "two_ball_monte_carlo.toml").source)
+    raw["random"] = {**raw["random"], "draws": cases}
+    raw["chunk_size"] = chunk
+    return sweep.spec_from_dict(raw)
+
+
+def _serial_seconds(spec: sweep.SweepSpec) -> float:
+    chunks = sweep.missing_chunks(spec.n_cases, [], spec.chunk_size)
+    sweep.run_chunk(spec.source, 0, 1)  # warm-up: friction map and imports
+    start = time.perf_counter()
+    for first, stop in chunks:
+        sweep.run_chunk(spec.source, first, stop)
+    return time.perf_counter() - start
+
+
+def _report(benchmark, name, spec, serial_s, wall_s, target=""):
+    serial_rate = spec.n_cases / serial_s
+    rate = spec.n_cases / wall_s
+    efficiency = rate / (WORKERS * serial_rate)
+    overhead = (WORKERS * wall_s - serial_s) / spec.n_cases
+    load = os.getloadavg()[0]
+    benchmark.extra_info.update(cases=spec.n_cases, chunk_size=spec.chunk_size, serial_cases_per_s=serial_rate,
+                                cluster_cases_per_s=rate, efficiency=efficiency, overhead_per_case_s=overhead,
+                                load_average=load)
+    print(f"\n{name}: {spec.n_cases} cases, chunks of {spec.chunk_size}: serial {serial_rate:.1f} cases/s, "
+          f"LocalCluster({WORKERS}) {rate:.1f} cases/s = {100 * efficiency:.0f} % of {WORKERS} x serial"
+          f"{target}; overhead {overhead * 1e3:.3f} ms per case; load average {load:.2f}")
+    return efficiency
+
+
+def test_monte_carlo_throughput(benchmark, client, tmp_path):
+    spec = _monte_carlo(2000, 100)
+    serial_s = _serial_seconds(spec)
+    client.run(sweep.run_chunk, spec.source, 0, 1)  # warm the workers the same way
+    runs = iter(range(100))
+
+    def cluster_run():
+        return sweep.run_sweep(spec, tmp_path / f"run{next(runs)}", client=client, progress=False)
+
+    summary = benchmark.pedantic(cluster_run, rounds=1, iterations=1)
+    assert summary.computed == spec.n_cases
+    _report(benchmark, "two-ball Monte Carlo", spec, serial_s, summary.wall_time_s, " (target >= 80 %)")
+
+
+@pytest.mark.parametrize("chunk", [1, 250])
+def test_scheduler_overhead_per_case(benchmark, client, tmp_path, chunk):
+    cases = 200 if chunk == 1 else 20000
+    spec = sweep.spec_from_dict({"name": "null", "function": "builtins:dict", "outputs": ["x"], "chunk_size": chunk,
+                                 "grid": {"x": {"linspace": [0.0, 1.0, cases]}}})
+    serial_s = _serial_seconds(spec)
+    runs = iter(range(100))
+
+    def cluster_run():
+        return sweep.run_sweep(spec, tmp_path / f"run{next(runs)}", client=client, progress=False)
+
+    summary = benchmark.pedantic(cluster_run, rounds=1, iterations=1)
+    assert summary.computed == cases
+    _report(benchmark, "no-op model (scheduler, transfer, Parquet)", spec, serial_s, summary.wall_time_s)

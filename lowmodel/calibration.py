@@ -1,0 +1,320 @@
+"""Calibrated constants of the low-order models: fits with uncertainty and the calibration file.
+
+Fits (scipy ``least_squares``; covariance ``s^2 (J^T J)^-1`` from the Jacobian
+at the optimum with ``s^2 = SSR / (n - p)``; intervals ``value +- t_(n-p) SE``,
+Student t at the stated confidence):
+
+* :func:`fit_contact_law` -- the contact stiffness law of one contact type
+  from load-approach data (FE or a rig): ``U = C F^(2/3) + C_b F``
+  (lin2019 eq 53 plus the finite-body compliance ``C_b`` that Hertz leaves out,
+  the law of ``fem.postprocess.approach_fit``) and, from the contact size,
+  ``a = Psi R_B^(1/3) F^(1/3)`` (lin2019 eq 15);
+* :func:`fit_friction_coefficient` -- ``mu`` from measured friction and normal
+  forces, ``f = mu F`` (through the origin), or ``f = (mu_0 + mu_v v) F`` when
+  speeds are given;
+* :func:`fit_line_through_origin` -- ``k_f`` as the least-squares slope of a
+  friction map (lin2019 eq 14).
+
+The file (:func:`save` / :func:`load`) is JSON: ``{"format": "ballbench-calibration",
+"version": 1, "constants": {group: {name: {value, std_error, ci_low, ci_high,
+confidence, unit, source, ...}}}}``; groups are contact types (``ball-groove-0.56``,
+``ball-ball``, ...), ``friction`` and ``k_f``.  SI units.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ballbench.lowmodel.errors import ConvergenceError
+
+__all__ = ["Constant", "Calibration", "FitResult", "fit_least_squares", "fit_contact_law", "ContactLaw",
+           "fit_friction_coefficient", "fit_line_through_origin", "save", "load", "FORMAT", "VERSION"]
+
+FORMAT = "ballbench-calibration"
+VERSION = 1
+
+
+@dataclass(frozen=True)
+class Constant:
+    """A calibrated constant: ``value`` with its standard error and ``confidence`` interval [ci_low, ci_high]
+    (all in ``unit``), the ``source`` of the data, number of data points and rms fit residual."""
+
+    value: float
+    std_error: float
+    ci_low: float
+    ci_high: float
+    unit: str
+    source: str
+    confidence: float = 0.95
+    n_points: int = 0
+    rms_residual: float = 0.0
+    reference: float | None = None  # the uncalibrated (e.g. Hertz) value, if there is one
+
+    def covers(self, truth: float) -> bool:
+        return self.ci_low <= truth <= self.ci_high
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Constants by group and name: ``calibration.value("ball-groove-0.56", "psi")``."""
+
+    constants: dict = field(default_factory=dict)  # group -> name -> Constant
+    notes: tuple = ()
+
+    def get(self, group: str, name: str) -> Constant:
+        if group not in self.constants:
+            raise KeyError(f"calibration has no group {group!r}; groups: {sorted(self.constants)}")
+        if name not in self.constants[group]:
+            raise KeyError(f"calibration group {group!r} has no constant {name!r}; "
+                           f"constants: {sorted(self.constants[group])}")
+        return self.constants[group][name]
+
+    def value(self, group: str, name: str) -> float:
+        return self.get(group, name).value
+
+    def merged(self, group: str, constants: dict) -> "Calibration":
+        """A copy with ``constants`` (name -> Constant) added to ``group``."""
+        new = {g: dict(c) for g, c in self.constants.items()}
+        new.setdefault(group, {}).update(constants)
+        return Calibration(new, self.notes)
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """Least-squares fit: ``params`` (p,), ``covariance`` (p, p), ``std_error`` (p,), ``ci`` (p, 2) at
+    ``confidence``, ``rms`` residual, ``dof`` = n - p."""
+
+    params: np.ndarray
+    covariance: np.ndarray
+    std_error: np.ndarray
+    ci: np.ndarray
+    rms: float
+    dof: int
+    confidence: float
+
+
+def _check_confidence(confidence: float) -> float:
+    if not (0.0 < confidence < 1.0):
+        raise ValueError(f"confidence must lie in (0, 1), got {confidence!r}")
+    return float(confidence)
+
+
+def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_points: int,
+                      confidence: float = 0.95, x_scale=None) -> FitResult:
+    """Minimise ``sum residual(p)^2`` (scipy ``least_squares``, trust-region reflective).
+
+    ``residual(p)`` returns (n,) residuals of equal variance (divide by the
+    measurement sigma first when it varies).  Covariance ``s^2 (J^T J)^-1``
+    with ``s^2 = SSR/(n - p)``; intervals from Student's t with ``n - p``
+    degrees of freedom.  Needs ``n_points > p``.
+    """
+    from scipy import optimize, stats
+
+    confidence = _check_confidence(confidence)
+    p0 = np.asarray(p0, dtype=float)
+    if n_points <= p0.size:
+        raise ValueError(f"need more data points ({n_points}) than parameters ({p0.size}) for an uncertainty")
+    scale = np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None else x_scale
+    result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    if not result.success:
+        raise ConvergenceError(f"least squares: {result.message}", residual=float(np.linalg.norm(result.fun)),
+                               iterations=int(result.nfev), tolerance=1e-15)
+    dof = n_points - p0.size
+    ssr = float(result.fun @ result.fun)
+    jac = result.jac
+    _, singular, vt = np.linalg.svd(jac, full_matrices=False)
+    if singular[-1] <= singular[0] * 1e-12:
+        raise ValueError("the data do not determine every parameter (singular Jacobian): widen the load range")
+    covariance = (vt.T / singular**2) @ vt * (ssr / dof)
+    std_error = np.sqrt(np.diag(covariance))
+    half = float(stats.t.ppf(0.5 + 0.5 * confidence, dof)) * std_error
+    params = result.x
+    return FitResult(params, covariance, std_error, np.column_stack([params - half, params + half]),
+                     math.sqrt(ssr / n_points), dof, confidence)
+
+
+def _constant(fit: FitResult, k: int, unit: str, source: str, n: int, rms: float, reference=None) -> Constant:
+    return Constant(float(fit.params[k]), float(fit.std_error[k]), float(fit.ci[k, 0]), float(fit.ci[k, 1]), unit,
+                    source, fit.confidence, n, rms, None if reference is None else float(reference))
+
+
+def _data(name: str, values, unit: str, *, positive: bool = True) -> np.ndarray:
+    array = np.asarray(values, dtype=float).reshape(-1)
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite (got NaN or inf)")
+    if positive and np.any(array <= 0.0):
+        raise ValueError(f"{name} must be > 0 {unit}, got min {array.min()!r}")
+    return array
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Fitted contact stiffness law of one contact type: ``hertz_constant`` C [m N^-2/3],
+    ``bulk_compliance`` C_b [m/N] and (when contact sizes were given) ``psi`` [(m^2/N)^(1/3)]."""
+
+    hertz_constant: Constant
+    bulk_compliance: Constant
+    psi: Constant | None = None
+
+    def approach(self, force) -> np.ndarray:
+        """``U = C F^(2/3) + C_b F`` [m] at ``force`` [N]."""
+        force = np.asarray(force, dtype=float)
+        return self.hertz_constant.value * force ** (2.0 / 3.0) + self.bulk_compliance.value * force
+
+    def stiffness(self, force) -> np.ndarray:
+        """``dF/dU`` [N/m] of the calibrated law at ``force`` [N] (> 0)."""
+        force = np.asarray(force, dtype=float)
+        return 1.0 / (2.0 / 3.0 * self.hertz_constant.value * force ** (-1.0 / 3.0) + self.bulk_compliance.value)
+
+    def constants(self) -> dict:
+        out = {"hertz_constant": self.hertz_constant, "bulk_compliance": self.bulk_compliance}
+        if self.psi is not None:
+            out["psi"] = self.psi
+        return out
+
+
+def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | None = None,
+                    confidence: float = 0.95, source: str = "", hertz_constant: float | None = None,
+                    psi: float | None = None) -> ContactLaw:
+    """Fit ``U = C F^(2/3) + C_b F`` (lin2019 eq 53 + bulk compliance) and ``a = Psi R_B^(1/3) F^(1/3)`` (eq 15).
+
+    Parameters
+    ----------
+    forces : (n,) N, normal loads (> 0, n >= 3 distinct)
+    approaches : (n,) m, approach of the reference faces of the two bodies
+    semi_axes : (n,) m, major semi-axis ``a`` at each load (optional; needs ``ball_radius`` [m])
+    hertz_constant, psi : the uncalibrated (Hertz) values, stored as ``reference`` beside the fit
+    """
+    forces = _data("forces", forces, "N")
+    approaches = _data("approaches", approaches, "m")
+    if forces.size != approaches.size:
+        raise ValueError(f"forces and approaches must have the same length, got {forces.size} and {approaches.size}")
+    if np.unique(forces).size < 3:
+        raise ValueError(f"need >= 3 distinct loads for C and C_b with an uncertainty, got {np.unique(forces).size}")
+    f_scale = float(np.max(forces))
+    u_scale = float(np.max(approaches))
+    basis = np.column_stack([(forces / f_scale) ** (2.0 / 3.0), forces / f_scale])
+    guess, *_ = np.linalg.lstsq(basis, approaches / u_scale, rcond=None)
+
+    def residual(p):
+        return basis @ p - approaches / u_scale  # lin2019 eq 53 + C_b F, scaled
+
+    fit = fit_least_squares(residual, guess, n_points=forces.size, confidence=confidence,
+                            x_scale=np.maximum(np.abs(guess), 1e-3))
+    to_c = np.array([u_scale / f_scale ** (2.0 / 3.0), u_scale / f_scale])  # back to SI
+    fit_si = FitResult(fit.params * to_c, fit.covariance * np.outer(to_c, to_c), fit.std_error * to_c,
+                       fit.ci * to_c[:, None], fit.rms * u_scale, fit.dof, fit.confidence)
+    c = _constant(fit_si, 0, "m N^-2/3", source, forces.size, fit_si.rms, hertz_constant)
+    c_b = _constant(fit_si, 1, "m/N", source, forces.size, fit_si.rms, 0.0)
+    psi_constant = None
+    if semi_axes is not None:
+        if ball_radius is None:
+            raise ValueError("semi_axes need ball_radius [m] for Psi (lin2019 eq 15)")
+        radius = float(_data("ball_radius", ball_radius, "m")[0])
+        axes = _data("semi_axes", semi_axes, "m")
+        if axes.size != forces.size:
+            raise ValueError(f"semi_axes must have one value per force, got {axes.size} and {forces.size}")
+        regressor = radius ** (1.0 / 3.0) * forces ** (1.0 / 3.0)  # lin2019 eq 15: a = Psi R^(1/3) F^(1/3)
+        a_scale = float(np.max(axes))
+        start = float(regressor @ axes / (regressor @ regressor))
+        fit_psi = fit_least_squares(lambda p: (p[0] * regressor - axes) / a_scale, [start], n_points=forces.size,
+                                    confidence=confidence)
+        psi_constant = _constant(fit_psi, 0, "(m^2/N)^(1/3)", source, forces.size, fit_psi.rms * a_scale, psi)
+    return ContactLaw(c, c_b, psi_constant)
+
+
+def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confidence: float = 0.95,
+                             source: str = "") -> dict:
+    """``mu`` from ``f = mu F`` (least squares through the origin); with ``speed`` [m/s] given,
+    ``f = (mu_0 + mu_v v) F`` (``mu`` then is ``mu_0``, ``mu_speed_slope`` is ``mu_v`` [s/m]).
+
+    normal_force, friction_force : (n,) N (> 0); returns ``{name: Constant}``.
+    """
+    normal = _data("normal_force", normal_force, "N")
+    friction = _data("friction_force", friction_force, "N", positive=False)
+    if normal.size != friction.size:
+        raise ValueError(f"normal_force and friction_force must have the same length, got {normal.size} and "
+                         f"{friction.size}")
+    ratio = friction / normal
+    if speed is None:
+        fit = fit_least_squares(lambda p: p[0] * normal - friction, [float(np.mean(ratio))], n_points=normal.size,
+                                confidence=confidence)
+        return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms)}
+    speed = _data("speed", speed, "m/s", positive=False)
+    if speed.size != normal.size:
+        raise ValueError(f"speed must have one value per row, got {speed.size} and {normal.size}")
+    if np.unique(speed).size < 2:
+        raise ValueError("a speed dependence needs at least two distinct speeds")
+    guess, *_ = np.linalg.lstsq(np.column_stack([normal, normal * speed]), friction, rcond=None)
+    v_scale = float(np.max(np.abs(speed)))
+    fit = fit_least_squares(lambda p: (p[0] + p[1] * speed / v_scale) * normal - friction,
+                            [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
+                            x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
+    to_si = np.array([1.0, 1.0 / v_scale])
+    fit = FitResult(fit.params * to_si, fit.covariance * np.outer(to_si, to_si), fit.std_error * to_si,
+                    fit.ci * to_si[:, None], fit.rms, fit.dof, fit.confidence)
+    return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms),
+            "mu_speed_slope": _constant(fit, 1, "s/m", source, normal.size, fit.rms)}
+
+
+def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "", unit: str = "1") -> Constant:
+    """Least-squares slope ``k`` of ``y = -k x`` (lin2019 eq 14 ``f = -k_f mu F c/a``) with its interval.
+
+    The interval of a fit to a deterministic curve measures the misfit of the line, not noise.
+    """
+    x = _data("x", x, "", positive=False)
+    y = _data("y", y, "", positive=False)
+    if x.size != y.size:
+        raise ValueError(f"x and y must have the same length, got {x.size} and {y.size}")
+    start = float(-(x @ y) / (x @ x))
+    fit = fit_least_squares(lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
+    return _constant(fit, 0, unit, source, x.size, fit.rms)
+
+
+# --------------------------------------------------------------------------
+# the file
+# --------------------------------------------------------------------------
+def save(calibration: Calibration, path: str | Path) -> Path:
+    """Write ``calibration`` as JSON (see the module docstring); returns the path."""
+    path = Path(path)
+    document = {"format": FORMAT, "version": VERSION, "notes": list(calibration.notes),
+                "constants": {group: {name: asdict(c) for name, c in constants.items()}
+                              for group, constants in calibration.constants.items()}}
+    path.write_text(json.dumps(document, indent=2) + "\n")
+    return path
+
+
+def load(path: str | Path) -> Calibration:
+    """Read a calibration file written by :func:`save` (``ballbench calibrate``); errors name the file."""
+    path = Path(path)
+    try:
+        document = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"calibration file {path} does not exist") from None
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}: not a calibration file (invalid JSON: {error})") from None
+    if not isinstance(document, dict) or document.get("format") != FORMAT:
+        raise ValueError(f"{path}: not a calibration file (format must be {FORMAT!r})")
+    if document.get("version") != VERSION:
+        raise ValueError(f"{path}: calibration version {document.get('version')!r} is not supported "
+                         f"(this ballbench reads version {VERSION})")
+    fields = set(Constant.__dataclass_fields__)
+    constants = {}
+    for group, items in document.get("constants", {}).items():
+        constants[group] = {}
+        for name, record in items.items():
+            missing = {"value", "std_error", "ci_low", "ci_high", "unit", "source"} - set(record)
+            if missing or set(record) - fields:
+                raise ValueError(f"{path}: constant {group}/{name} must have the fields {sorted(fields)}, "
+                                 f"missing {sorted(missing)}, unknown {sorted(set(record) - fields)}")
+            constant = Constant(**record)
+            if not all(math.isfinite(v) for v in (constant.value, constant.std_error, constant.ci_low,
+                                                   constant.ci_high)):
+                raise ValueError(f"{path}: constant {group}/{name} is not finite")
+            constants[group][name] = constant
+    return Calibration(constants, tuple(document.get("notes", ())))

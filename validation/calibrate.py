@@ -1,0 +1,364 @@
+"""``ballbench calibrate SPEC``: fit the low-order constants from FE results and measurements.
+
+The fits and the file live in :mod:`ballbench.lowmodel.calibration`; this
+module reads data (FE load sweeps of the ``fe-hertz-*`` pairs, CSV files),
+runs the fits named in a spec, writes the calibration file and registers the
+``calibrate`` command and the ``--calibration FILE`` option of ``validate``.
+
+Spec (TOML; docs/calibration.md)::
+
+    output = "calibration.json"          # relative to the spec's folder (or --out)
+    confidence = 0.95
+
+    [contact.ball-groove-0.56]           # one table per contact type
+    fe_scene = "fe-hertz-groove-056"     # FE load sweep of that pair ...
+    fidelity = "quick"                   # ... at this mesh level
+    load_factors = [0.5, 0.75, 1.0, 1.25, 1.5]
+    # data = "groove056.csv"             # ... or measured/cached: force [N], approach [m], a [m]
+    # ball_radius = 5e-3                 # [m], with data (for Psi)
+
+    [friction]
+    data = "friction.csv"                # normal_force [N], friction_force [N] (or friction_torque + lever_arm),
+                                         # optional speed [m/s]
+    [k_f]
+    conformity = 0.56                    # friction map of a ball in a groove of this conformity
+    fit_range = 0.5                      # least squares over |c/a| <= fit_range
+
+CSV files: ``#`` lines are comments; the first other line is the header,
+each column ``name [unit]`` (units in :data:`CSV_UNITS`); a bad cell raises
+ValueError naming the file, line and column.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from ballbench.lowmodel import calibration as cal
+from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
+
+__all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
+           "FE_CONTACTS", "run_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
+
+CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
+# quantity -> {unit: SI factor}
+CSV_UNITS = {
+    "force": {"N": 1.0, "kN": 1e3, "mN": 1e-3},
+    "length": {"m": 1.0, "mm": 1e-3, "um": 1e-6},
+    "torque": {"N m": 1.0, "N mm": 1e-3},
+    "speed": {"m/s": 1.0, "mm/s": 1e-3},
+}
+COLUMNS = {"normal_force": "force", "friction_force": "force", "friction_torque": "torque", "lever_arm": "length",
+           "speed": "speed", "force": "force", "approach": "length", "a": "length"}
+# contact type -> (fe-hertz scene, ball radius [m]) of the pairs the FE benchmark meshes (fe_hertz.pair_case)
+FE_CONTACTS = {
+    "fe-hertz-groove-052": TABLE1.ball_radius, "fe-hertz-groove-056": TABLE1.ball_radius,
+    "fe-hertz-groove-060": TABLE1.ball_radius, "fe-hertz-ball-ball": TABLE1.ball_radius,
+    "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
+}
+_HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
+
+
+# --------------------------------------------------------------------------
+# CSV
+# --------------------------------------------------------------------------
+def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+    """Columns of a CSV with ``name [unit]`` headers, converted to SI: ``{name: (n,) array}``."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such file")
+    with open(path, newline="") as handle:
+        rows = [(k + 1, row) for k, row in enumerate(csv.reader(handle))]
+    rows = [(line, row) for line, row in rows if row and not row[0].lstrip().startswith("#") and any(c.strip()
+                                                                                                    for c in row)]
+    if not rows:
+        raise ValueError(f"{path}: no header line (columns 'name [unit]')")
+    header_line, header = rows[0]
+    names, factors = [], []
+    for column, cell in enumerate(header, start=1):
+        match = _HEADER.match(cell)
+        if not match:
+            raise ValueError(f"{path}, line {header_line}, column {column}: header {cell.strip()!r} must be "
+                             "'name [unit]', e.g. 'normal_force [N]'")
+        name, unit = match.group(1), match.group(2).strip()
+        if name not in COLUMNS or name not in required + optional:
+            raise ValueError(f"{path}, line {header_line}, column {column}: unknown column {name!r}; this file takes "
+                             f"{list(required)} and optionally {list(optional)}")
+        units = CSV_UNITS[COLUMNS[name]]
+        if unit not in units:
+            raise ValueError(f"{path}, line {header_line}, column {column}: unit {unit!r} of {name!r} must be one "
+                             f"of {list(units)}")
+        if name in names:
+            raise ValueError(f"{path}, line {header_line}, column {column}: column {name!r} repeats")
+        names.append(name)
+        factors.append(units[unit])
+    missing = [n for n in required if n not in names]
+    if missing:
+        raise ValueError(f"{path}, line {header_line}: missing column(s) {missing}")
+    values = {n: [] for n in names}
+    for line, row in rows[1:]:
+        if len(row) != len(names):
+            raise ValueError(f"{path}, line {line}: {len(row)} cells, the header has {len(names)} columns")
+        for column, (name, cell, factor) in enumerate(zip(names, row, factors), start=1):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not a "
+                                 "number") from None
+            if not math.isfinite(value):
+                raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not finite")
+            values[name].append(value * factor)
+    if not rows[1:]:
+        raise ValueError(f"{path}: no data rows under the header (line {header_line})")
+    return {name: np.array(v) for name, v in values.items()}
+
+
+def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
+    """Friction measurements: ``normal_force``, ``friction_force`` [N] (or ``friction_torque`` [N m] with
+    ``lever_arm`` [m]: friction force = torque / lever arm) and optionally ``speed`` [m/s]."""
+    data = read_csv(path, ("normal_force",), ("friction_force", "friction_torque", "lever_arm", "speed"))
+    if ("friction_force" in data) == ("friction_torque" in data):
+        raise ValueError(f"{path}: give exactly one of the columns friction_force, friction_torque")
+    if "friction_torque" in data:
+        if "lever_arm" not in data:
+            raise ValueError(f"{path}: friction_torque needs a lever_arm [m] column (force = torque / lever arm)")
+        if np.any(data["lever_arm"] <= 0.0):
+            line = int(np.argmax(data["lever_arm"] <= 0.0))
+            raise ValueError(f"{path}: lever_arm must be > 0 m (data row {line + 1})")
+        data["friction_force"] = data.pop("friction_torque") / data.pop("lever_arm")
+    for name in ("normal_force",):
+        bad = np.flatnonzero(data[name] <= 0.0)
+        if bad.size:
+            raise ValueError(f"{path}: {name} must be > 0 N (data row {bad[0] + 1})")
+    return data
+
+
+def read_load_approach_csv(path: str | Path) -> dict[str, np.ndarray]:
+    """Load-approach data of one contact: ``force`` [N], ``approach`` [m], optional ``a`` [m] (major semi-axis)."""
+    return read_csv(path, ("force", "approach"), ("a",))
+
+
+def write_load_approach_csv(path: str | Path, forces, approaches, semi_axes, comment: str = "") -> Path:
+    path = Path(path)
+    with open(path, "w", newline="") as handle:
+        for line in comment.splitlines():
+            handle.write(f"# {line}\n")
+        writer = csv.writer(handle)
+        writer.writerow(["force [N]", "approach [m]", "a [m]"])
+        for row in zip(forces, approaches, semi_axes):
+            writer.writerow([repr(float(v)) for v in row])
+    return path
+
+
+# --------------------------------------------------------------------------
+# FE load sweep
+# --------------------------------------------------------------------------
+def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
+    """FE load sweep of an ``fe-hertz-*`` pair: ``force`` [N], ``approach`` [m], ``a`` [m] at every load.
+
+    One mesh and one condensation (the checked level of the scene at ``fidelity``),
+    then a contact solve and a Hertz-field fit per load.  Returns also
+    ``ball_radius`` [m], the Hertz ``geometry`` and the wall time [s].
+    """
+    import time
+
+    from ballbench.fem import contact, hertz_case, postprocess
+    from ballbench.validation.scenes import fe_hertz
+
+    if scene_name not in FE_CONTACTS:
+        raise ValueError(f"fe_scene must be one of {sorted(FE_CONTACTS)}, got {scene_name!r}")
+    factors = np.asarray(load_factors, dtype=float)
+    if factors.size < 3 or np.any(factors <= 0.0) or np.any(factors > 1.5):
+        raise ValueError("load_factors must be >= 3 values in (0, 1.5] (the FE candidate zone holds the contact up "
+                         f"to 1.5 times the scene's force), got {list(load_factors)}")
+    start = time.perf_counter()
+    case = fe_hertz.pair_case(scene_name)
+    n, growth = case.level_list(fidelity)[-1]
+    result, _ = fe_hertz.solve_level(case, n, growth)  # mesh, condensation, the scene's own load sweep
+    model = result.model
+    operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"], model.candidates)
+    forces, approaches, semi_axes = [], [], []
+    state = None
+    for factor in np.sort(factors):
+        state = contact.solve_force(model, factor * case.force, start=state)
+        fit = hertz_case.fit_contact_patch(model, state, operator)  # the fit solve_case makes at the nominal load
+        forces.append(state.force)
+        approaches.append(state.approach)
+        semi_axes.append(fit.a)
+    return {"force": np.array(forces), "approach": np.array(approaches), "a": np.array(semi_axes),
+            "ball_radius": FE_CONTACTS[scene_name], "geometry": case.geometry, "level": (n, growth),
+            "ndofs": result.ndofs, "wall_time_s": time.perf_counter() - start}
+
+
+# --------------------------------------------------------------------------
+# spec
+# --------------------------------------------------------------------------
+def _hertz_references(geometry, ball_radius):
+    from ballbench.lowmodel.contact import hertz
+
+    return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
+
+
+def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
+    where = f"contact.{name}"
+    allowed = {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"}
+    if set(table) - allowed:
+        raise ValueError(f"{where}: unknown key(s) {sorted(set(table) - allowed)}; allowed {sorted(allowed)}")
+    if ("fe_scene" in table) == ("data" in table):
+        raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep) or 'data' (CSV file)")
+    reference_c = reference_psi = None
+    if "fe_scene" in table:
+        fidelity = table.get("fidelity", "quick")
+        if fidelity not in ("quick", "default", "fine"):
+            raise ValueError(f"{where}.fidelity must be quick, default or fine, got {fidelity!r}")
+        sweep = fe_load_sweep(table["fe_scene"], fidelity, table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
+        data = {k: sweep[k] for k in ("force", "approach", "a")}
+        radius = sweep["ball_radius"]
+        reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
+        source = (f"FE {table['fe_scene']} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
+                  f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {data['force'].size} loads "
+                  f"{data['force'].min():g}-{data['force'].max():g} N")
+        cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", data["force"], data["approach"],
+                                        data["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
+        log(f"{name}: {source} in {sweep['wall_time_s']:.1f} s; data cached in {cache}")
+    else:
+        path = (base / table["data"]).resolve()
+        data = read_load_approach_csv(path)
+        radius = table.get("ball_radius")
+        if "a" in data and radius is None:
+            raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
+        if "conformity" in table:  # Hertz reference of a ball in a straight groove
+            from ballbench.lowmodel.contact import hertz
+
+            geometry = hertz.ball_in_groove(radius, table["conformity"])
+            reference_c, reference_psi = _hertz_references(geometry, radius)
+        source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
+    law = cal.fit_contact_law(data["force"], data["approach"], semi_axes=data.get("a"), ball_radius=radius,
+                              confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
+    return law.constants()
+
+
+def _friction(table: dict, base: Path, confidence: float) -> dict:
+    if set(table) - {"data"} or "data" not in table:
+        raise ValueError(f"friction: needs 'data' (a CSV file) and nothing else, got keys {sorted(table)}")
+    path = (base / table["data"]).resolve()
+    data = read_friction_csv(path)
+    source = f"{path.name}, {data['normal_force'].size} rows"
+    return cal.fit_friction_coefficient(data["normal_force"], data["friction_force"], data.get("speed"),
+                                        confidence=confidence, source=source)
+
+
+def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float = 0.95,
+                 points: int = 201) -> dict:
+    """k_f of lin2019 eq 14 for a ball in a groove of ``conformity`` (R_B 5 mm, steel: b/a does not depend on
+    the load or the size): the exact slope at c/a = 0 and least squares over ``|c/a| <= fit_range`` (continuous,
+    and discrete on ``points`` values of the tabulated friction map, with its interval)."""
+    from ballbench.lowmodel.contact import ellipse_friction as ef
+    from ballbench.lowmodel.contact import hertz
+
+    if not (0.0 < fit_range):
+        raise ValueError(f"k_f.fit_range must be > 0, got {fit_range!r}")
+    contact = hertz.solve_load(hertz.ball_in_groove(TABLE1.ball_radius, conformity, **TABLE1.material),
+                               TABLE1.vertical_force)
+    ratio = float(contact.b / contact.a)
+    exact = float(ef.k_f_exact(ratio))
+    continuous = float(ef.k_f_least_squares(ratio, fit_range))
+    kappa = np.linspace(-fit_range, fit_range, points)
+    kappa = kappa[kappa != 0.0]
+    discrete = cal.fit_line_through_origin(kappa, ef.friction(kappa, ratio).force, confidence=confidence,
+                                           source=f"friction map (lowmodel.contact.ellipse_friction), b/a = "
+                                                  f"{ratio:.5f}, {kappa.size} points |c/a| <= {fit_range:g}")
+    where = f"conformity {conformity:g} (b/a = {ratio:.5f})"
+    return {
+        "least_squares": cal.Constant(continuous, 0.0, continuous, continuous, "1",
+                                      f"continuous least squares over |c/a| <= {fit_range:g} (exact integrals), "
+                                      f"{where}", confidence),
+        "least_squares_map": discrete,
+        "exact": cal.Constant(exact, 0.0, exact, exact, "1", f"exact slope at c/a = 0 (R_D closed form), {where}",
+                              confidence),
+    }
+
+
+def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print) -> tuple[Path, cal.Calibration]:
+    """Run the fits of a calibrate spec and write the calibration file; returns (path, calibration)."""
+    spec_path = Path(spec_path)
+    try:
+        spec = tomllib.loads(spec_path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"{spec_path}: no such file") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{spec_path}: not valid TOML: {error}") from None
+    allowed = {"output", "confidence", "contact", "friction", "k_f"}
+    if set(spec) - allowed:
+        raise ValueError(f"{spec_path}: unknown key(s) {sorted(set(spec) - allowed)}; allowed {sorted(allowed)}")
+    if not set(spec) & {"contact", "friction", "k_f"}:
+        raise ValueError(f"{spec_path}: nothing to calibrate (give [contact.<name>], [friction] or [k_f])")
+    confidence = spec.get("confidence", 0.95)
+    base = spec_path.parent
+    target = Path(output) if output else base / spec.get("output", "calibration.json")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    calibration = cal.Calibration({}, (f"ballbench calibrate {spec_path.name}",))
+    for name, table in spec.get("contact", {}).items():
+        calibration = calibration.merged(name, _contact(name, table, base, target.parent, confidence, log))
+    if "friction" in spec:
+        calibration = calibration.merged("friction", _friction(spec["friction"], base, confidence))
+    if "k_f" in spec:
+        table = spec["k_f"]
+        if set(table) - {"conformity", "fit_range"} or "conformity" not in table:
+            raise ValueError(f"k_f: needs 'conformity' and optionally 'fit_range', got keys {sorted(table)}")
+        calibration = calibration.merged("k_f", kf_constants(table["conformity"], table.get("fit_range", 0.5),
+                                                             confidence=confidence))
+    cal.save(calibration, target)
+    for group, constants in calibration.constants.items():
+        for name, c in constants.items():
+            ref = "" if c.reference is None else f"  (uncalibrated {c.reference:.6g})"
+            log(f"{group:>20} {name:<18} {c.value:.6g} {c.unit}  {100 * c.confidence:.0f} % interval "
+                f"[{c.ci_low:.6g}, {c.ci_high:.6g}]{ref}")
+    log(f"calibration written to {target}")
+    return target, calibration
+
+
+# --------------------------------------------------------------------------
+# CLI and the --calibration option
+# --------------------------------------------------------------------------
+def active_calibration() -> cal.Calibration | None:
+    """The calibration given to ``ballbench validate --calibration FILE`` (or ``$BALLBENCH_CALIBRATION``)."""
+    path = os.environ.get(CALIBRATION_ENV)
+    return cal.load(path) if path else None
+
+
+def _calibration_file(value: str) -> str:
+    import argparse
+
+    try:
+        cal.load(value)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    os.environ[CALIBRATION_ENV] = str(Path(value).resolve())  # read by scenes through active_calibration()
+    return value
+
+
+def add_validate_option(parser) -> None:
+    """``--calibration FILE`` on ``ballbench validate``: scenes that use calibrated constants load this file."""
+    parser.add_argument("--calibration", type=_calibration_file, metavar="FILE",
+                        help="calibration file of `ballbench calibrate` used by the scenes that take constants")
+
+
+def main(args) -> int:
+    try:
+        run_spec(args.spec, args.out)
+    except ValueError as error:
+        raise SystemExit(f"ballbench calibrate: {error}") from None
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("calibrate", help="fit constants (Psi, C, C_b, mu, k_f) with intervals; write a calibration")
+    p.add_argument("spec", help="calibration spec (TOML, docs/calibration.md)")
+    p.add_argument("--out", help="calibration file to write (default: the spec's 'output')")
+    p.set_defaults(func=main)

@@ -1,0 +1,117 @@
+"""Case functions for sweeps (``function = "ballbench.validation.sweep_cases:<name>"`` in a spec).
+
+Each takes scalar inputs as keywords (SI units) and returns a dict of scalar
+outputs; the vectorised ones broadcast arrays.  Defaults: lin2019 Table 1
+(R_B 5 mm, conformity 0.56, N_y 100 N, v 0.01 m/s, mu 0.1, steel).
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from ballbench.lowmodel import calibration as cal
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
+from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
+
+__all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi"]
+
+TABLE1 = dict(ball_radius=LIN2019_TABLE1.ball_radius, conformity=LIN2019_TABLE1.conformity,
+              vertical_force=LIN2019_TABLE1.vertical_force, groove_velocity=LIN2019_TABLE1.groove_velocity,
+              friction_coefficient=LIN2019_TABLE1.friction_coefficient,
+              **LIN2019_TABLE1.material)  # keyword defaults of the case functions (lin2019 Table 1)
+NOMINAL = CASE.nominal_angle  # beta_0 [rad], lin2019 Sec 2.4
+
+
+@functools.lru_cache(maxsize=8)
+def _load(path: str) -> cal.Calibration:
+    return cal.load(path)
+
+
+def calibrated_psi(calibration: str, conformity: float) -> float:
+    """Psi [(m^2/N)^(1/3)] of the group ``ball-groove-<conformity>`` of a calibration file (``ballbench calibrate``)."""
+    return _load(str(calibration)).value(f"ball-groove-{conformity:g}", "psi")
+
+
+def with_psi(contacts: bearing_ball.BallContacts, psi: float) -> bearing_ball.BallContacts:
+    """The same contacts with the semi-axes of ``a = psi R_B^(1/3) F^(1/3)`` (lin2019 eq 15) instead of Hertz's;
+    the axis ratio b/a stays Hertz's."""
+    if not (math.isfinite(psi) and psi > 0.0):
+        raise ValueError(f"psi must be finite and > 0 (m^2/N)^(1/3), got {psi!r}")
+    forces = contacts.normal_forces
+    return bearing_ball.contacts_from_forces(contacts.contact_angles, forces,
+                                             psi * contacts.ball_radius ** (1 / 3) * forces ** (1 / 3),  # eq 15
+                                             contacts.b_over_a, ball_radius=contacts.ball_radius,
+                                             friction_coefficient=contacts.friction_coefficient,
+                                             groove_velocity=contacts.groove_velocity)
+
+
+def _two_ball(contacts: bearing_ball.BallContacts) -> dict:
+    free = bearing_ball.solve_ball(contacts)  # balls apart (lin2019 eq 4)
+    state = b2b.solve(contacts, [0.0])  # balls touching (eqs 5-10)
+    return {"epsilon_1": float(free.velocity_deviation[0]), "epsilon_2": float(free.velocity_deviation[1]),
+            "b2b_force": float(state.b2b_force[0]),
+            "baseline_loss": float(free.groove_loss), "total_loss": float(state.total_loss),
+            "friction_increase": float(state.total_loss / free.groove_loss - 1.0),  # lin2019 Fig 9(c) ratio - 1
+            "iterations": float(state.iterations)}
+
+
+def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl: float = 0.0,
+                       calibration: str | None = None, **table1) -> dict:
+    """Two balls of the lin2019 Sec 2.4 case (Fig 7) by the low-order numerical model.
+
+    ``theta`` [rad]: bottom groove ``Delta beta_BL = -theta``, ``Delta beta_BR = +theta``;
+    ``rho = N_x/N_y`` of ball 1 (ball 2: ``-rho``); ``top_tr``, ``top_tl`` [rad] top-groove deviations.
+    Returns epsilon_1, epsilon_2 of the free balls (Fig 8), ``b2b_force`` [N] of the touching balls
+    (Fig 9a), ``baseline_loss``/``total_loss`` [W] and ``friction_increase`` = total/baseline - 1 (Fig 9c).
+    Outside four-point contact ValueError; no full-sliding state ConvergenceError.
+    ``calibration``: a calibration file whose ``ball-groove-<conformity>`` Psi sets the contact size.
+    """
+    options = {**TABLE1, **table1}
+    contacts = b2b.module_contacts(theta, rho, top_deviations=(top_tr, top_tl), **options)
+    if calibration:
+        contacts = with_psi(contacts, calibrated_psi(calibration, options["conformity"]))
+    return _two_ball(contacts)
+
+
+def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
+                        d2_bl: float, d2_br: float, d2_tr: float, d2_tl: float, *, rho: float = 0.0,
+                        **table1) -> dict:
+    """Two touching balls whose four contact angles each deviate by ``dj_<contact>`` [rad] from 45 deg.
+
+    Ball 1 (behind) carries ``N_x = rho N_y``, ball 2 ``-rho N_y`` (lin2019 Sec 2.4 loading); normal
+    forces lin2017 eq 36.  Outputs as :func:`two_ball_numerical` (the tolerance Monte Carlo of issue 13).
+    """
+    options = {**TABLE1, **table1}
+    vertical = options.pop("vertical_force")
+    angles = NOMINAL + np.array([[d1_bl, d1_br, d1_tr, d1_tl], [d2_bl, d2_br, d2_tr, d2_tl]], dtype=float)
+    sides = np.array([rho, -rho]) * vertical
+    contacts = bearing_ball.ball_contacts(angles, sides, vertical, **options)
+    return _two_ball(contacts)
+
+
+def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_analytical.K_F_PAPER,
+                        psi: float | None = None, calibration: str | None = None,
+                        ball_radius: float = TABLE1["ball_radius"], conformity: float = TABLE1["conformity"],
+                        normal_load: float = TABLE1["vertical_force"],
+                        groove_velocity: float = TABLE1["groove_velocity"],
+                        friction_coefficient: float = TABLE1["friction_coefficient"],
+                        youngs_modulus: float = TABLE1["youngs_modulus"],
+                        poisson_ratio: float = TABLE1["poisson_ratio"]) -> dict:
+    """Vectorised analytical model (lin2019 eqs 22, 30, 32, 33) of the same case; ``psi`` default: Hertz
+    (lowmodel.contact.hertz.psi_constant, lin2019 eq 15).  Outputs epsilon_1, epsilon_2, b2b_force [N],
+    b2b_friction_loss [W]; arrays broadcast with ``theta`` [rad] and ``rho``.  ``calibration``: a calibration
+    file; its ``ball-groove-<conformity>`` Psi replaces Hertz's (an explicit ``psi`` wins)."""
+    if psi is None and calibration:
+        psi = calibrated_psi(calibration, conformity)
+    if psi is None:
+        geometry = hertz.ball_in_groove(ball_radius, conformity, youngs_modulus=youngs_modulus,
+                                        poisson_ratio=poisson_ratio)
+        psi = hertz.psi_constant(geometry, ball_radius)
+    case = b2b_analytical.two_ball_case(theta, rho, normal_load=normal_load, groove_velocity=groove_velocity,
+                                        friction_coefficient=friction_coefficient, psi=psi, ball_radius=ball_radius,
+                                        k_f=k_f, delta_beta_top=(top_tr, top_tl))
+    return {"epsilon_1": case.epsilon_1, "epsilon_2": case.epsilon_2, "b2b_force": case.b2b_force,
+            "b2b_friction_loss": case.b2b_friction_loss}
