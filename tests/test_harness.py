@@ -94,6 +94,17 @@ def test_zero_reference_needs_its_scale_explained(tmp_path):
         KnownGap(reason=" ", evidence="x")
 
 
+def test_exact_check_needs_no_scale_reason(tmp_path):
+    """tolerance 0 demands exact agreement, so a unit scale on a zero reference makes nothing lax."""
+    def body(run, value):
+        run.check(model="m", quantity="count", unit="count", value=value, reference=0.0, scale=1.0, source="s",
+                  tolerance=0.0, time_s=1e-3)
+
+    assert run_scene(_scene(lambda run: body(run, 0.0)), "quick", tmp_path).passed
+    failed = run_scene(_scene(lambda run: body(run, 1e-300)), "quick", tmp_path)
+    assert not failed.error and not failed.passed
+
+
 def test_known_gap_statuses(tmp_path):
     def gap(run, value):
         run.check(model="m", quantity="increase", unit="%", value=value, reference=185.2, relation="ge",

@@ -307,7 +307,8 @@ class Run:
 
         ``tolerance`` is on the relative error defined in the module docstring.
         A tolerance that is not finite or not below 1, or a ``scale`` larger
-        than ``|reference|``, is rejected (ValueError) unless ``why`` says why.
+        than ``|reference|`` with a tolerance above 0, is rejected (ValueError)
+        unless ``why`` says why.
         ``known_gap`` declares the published number as not reproduced.
         """
         value = float(value)
@@ -319,7 +320,8 @@ class Run:
             if not (math.isfinite(tolerance) and tolerance < 1.0):
                 raise ValueError(f"tolerance {tolerance!r} of {quantity!r} is not finite or not below 1: "
                                  "a check that passes (nearly) anything; pass why= to say why it is meant")
-            if abs(scale) > abs(reference):
+            # with tolerance 0 the check demands exact agreement, so the scale cannot make it lax
+            if abs(scale) > abs(reference) and tolerance > 0.0:
                 raise ValueError(f"scale {scale!r} of {quantity!r} is larger than its reference {reference!r}: "
                                  "pass why= to name the magnitude the error is judged against")
         if known_gap is not None and not isinstance(known_gap, KnownGap):
