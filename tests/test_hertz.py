@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry import groove
 from ballbench.validation.reference_hertz import ellipse_quadrature, sphere_closed_form
 
 E_STEEL, NU_STEEL = 2.1e11, 0.28
@@ -112,7 +113,7 @@ def test_elliptic_integrals_reported():
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_screw_groove_zero_lead_is_bearing_raceway(body):
     radius, conformity, pitch_radius, alpha = 2.778e-3, 0.56, 16.5e-3, math.radians(45)
-    k1, k2, angle = hertz.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, 0.0, body)
+    k1, k2, angle = groove.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, 0.0, body)
     sign = -1 if body == "screw" else 1
     assert k1 == pytest.approx(-1 / (2 * conformity * radius), rel=1e-13)
     assert k2 == pytest.approx(-sign * math.cos(alpha) / (pitch_radius + sign * radius * math.cos(alpha)), rel=1e-13)
@@ -126,7 +127,7 @@ def test_screw_groove_curvature_by_surface_fit(body, plane):
     radius, conformity, pitch_radius, alpha = 2.778e-3, 0.56, 16.5e-3, math.radians(45)
     lead = 20e-3
     lead_angle = math.atan(lead / (2 * math.pi * pitch_radius))
-    k1, k2, _ = hertz.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, lead_angle, body, plane)
+    k1, k2, _ = groove.groove_curvatures_helical(radius, conformity, pitch_radius, alpha, lead_angle, body, plane)
     # build the surface independently: arc of radius r_g in the profile plane (rho, c), swept by the screw motion
     c = np.array([0.0, 0.0, 1.0]) if plane == "axial" else np.array([0.0, -math.sin(lead_angle), math.cos(lead_angle)])
     r_g = 2 * conformity * radius

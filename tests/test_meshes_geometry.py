@@ -11,6 +11,7 @@ gmsh = pytest.importorskip("gmsh")
 meshio = pytest.importorskip("meshio")
 
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.meshes import helical
 
 # lin2019 Table 4
@@ -62,8 +63,8 @@ def test_profile_curvatures_equal_lowmodel_hertz(body, flank, plane):
     works at the +z flank; the left flank is its image under the half-turn about x3)."""
     groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
     frame = helical.contact_frame(groove)
-    kappa_1, kappa_2, angle = hertz.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body,
-                                                              plane)
+    kappa_1, kappa_2, angle = groove_core.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body,
+                                                                   plane)
     assert frame.curvature_major == pytest.approx(kappa_1, rel=1e-12)
     assert frame.curvature_minor == pytest.approx(kappa_2, rel=1e-12)
     assert frame.profile_angle == pytest.approx(angle, abs=1e-12)

@@ -37,6 +37,9 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import elliprd, elliprf, elliprg
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry import groove
+
 __all__ = [
     "HertzGeometry",
     "HertzContact",
@@ -46,7 +49,6 @@ __all__ = [
     "ball_on_ball",
     "ball_in_groove",
     "ball_in_screw_groove",
-    "groove_curvatures_helical",
     "solve_load",
     "solve_approach",
     "psi_constant",
@@ -58,20 +60,11 @@ STEEL_POISSON_RATIO = 0.28  # lin2019 Tables 1 and 4
 
 
 # --------------------------------------------------------------------------
-# input checks
+# input checks (lowmodel.checks)
 # --------------------------------------------------------------------------
-def _positive(name: str, value: float, unit: str) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
-    return value
-
-
 def _material(youngs_modulus: float, poisson_ratio: float, suffix: str = "") -> tuple[float, float]:
-    youngs_modulus = _positive(f"youngs_modulus{suffix}", youngs_modulus, "Pa")
-    poisson_ratio = float(poisson_ratio)
-    if not (math.isfinite(poisson_ratio) and -1.0 < poisson_ratio < 0.5):
-        raise ValueError(f"poisson_ratio{suffix} must lie in (-1, 0.5), got {poisson_ratio!r}")
+    youngs_modulus = checks.positive(f"youngs_modulus{suffix}", youngs_modulus, "Pa")
+    poisson_ratio = checks.bounded(f"poisson_ratio{suffix}", poisson_ratio, -1.0, 0.5)
     return youngs_modulus, poisson_ratio
 
 
@@ -191,7 +184,7 @@ def ball_on_flat(ball_radius: float, *, youngs_modulus: float = STEEL_YOUNGS_MOD
                  poisson_ratio: float = STEEL_POISSON_RATIO, youngs_modulus_2: float | None = None,
                  poisson_ratio_2: float | None = None) -> HertzGeometry:
     """A ball of radius ``ball_radius`` [m] on a flat."""
-    radius = _positive("ball_radius", ball_radius, "m")
+    radius = checks.positive("ball_radius", ball_radius, "m")
     return from_curvatures((1 / radius, 1 / radius), (0.0, 0.0), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
                            poisson_ratio_2=poisson_ratio_2)
@@ -201,18 +194,11 @@ def ball_on_ball(ball_radius: float, other_radius: float | None = None, *,
                  youngs_modulus: float = STEEL_YOUNGS_MODULUS, poisson_ratio: float = STEEL_POISSON_RATIO,
                  youngs_modulus_2: float | None = None, poisson_ratio_2: float | None = None) -> HertzGeometry:
     """Two balls in contact (the ball-to-ball, B2B, contact of lin2019); radii [m]."""
-    r1 = _positive("ball_radius", ball_radius, "m")
-    r2 = r1 if other_radius is None else _positive("other_radius", other_radius, "m")
+    r1 = checks.positive("ball_radius", ball_radius, "m")
+    r2 = r1 if other_radius is None else checks.positive("other_radius", other_radius, "m")
     return from_curvatures((1 / r1, 1 / r1), (1 / r2, 1 / r2), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
                            poisson_ratio_2=poisson_ratio_2)
-
-
-def _check_conformity(conformity: float) -> float:
-    conformity = float(conformity)
-    if not (math.isfinite(conformity) and conformity > 0.5):
-        raise ValueError(f"conformity (groove radius / ball diameter) must be > 0.5, got {conformity!r}")
-    return conformity
 
 
 def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
@@ -223,94 +209,12 @@ def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: flo
     straight along its length.  x (major axis ``a``) lies across the groove in
     the cross-section, y along the groove (the rolling direction).
     """
-    radius = _positive("ball_radius", ball_radius, "m")
-    conformity = _check_conformity(conformity)
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    conformity = checks.conformity("conformity", conformity)
     groove_radius = conformity * 2.0 * radius
     # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0)
     return from_curvatures((1 / radius, 1 / radius), (-1 / groove_radius, 0.0), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio)
-
-
-def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
-                              lead_angle: float, body: str = "screw",
-                              profile_plane: str = "normal") -> tuple[float, float, float]:
-    """Principal curvatures of a helical ball-screw groove at the contact point.
-
-    The groove surface is the screw motion (lead per radian
-    ``p = pitch_radius * tan(lead_angle)``) of a circular-arc profile of radius
-    ``conformity * 2 * ball_radius`` [m].  The ball centre lies on the helix of
-    radius ``pitch_radius`` [m]; in the profile plane the ball touches the arc
-    at ``contact_angle`` [rad] from the radial direction (toward the axis on the
-    screw, away from it on the nut).  ``profile_plane``:
-
-    * ``"normal"`` (default; lin2019 Sec 3.1, eq 41): the profile is drawn in
-      the plane normal to the helix, spanned by the radial direction and
-      ``(0, -sin lambda, cos lambda)``.  A ball centred on the helix is then
-      tangent to the swept surface at the profile contact point.
-    * ``"axial"``: the profile is drawn in the plane containing the screw axis
-      (a manufacturing convention).  The surface normal at the profile contact
-      point then tilts out of that plane, so a ball on the helix is not exactly
-      tangent there; offered for comparison only.
-
-    With the surface ``S(t, phi) = rot_z(phi) [(R_p + u(t)) e_r + w(t) c] + p phi e_z``
-    the first and second fundamental forms are exact, and the curvatures are
-    the eigenvalues of the shape operator (positive convex, seen from the ball).
-
-    Returns ``(kappa_1, kappa_2, angle)``: principal curvatures [1/m], ``kappa_1``
-    the one closer to the profile (across-groove) direction, and ``angle`` [rad]
-    between that principal direction and the profile tangent.  At
-    ``lead_angle = 0`` both planes reduce to the bearing raceway
-    ``(-1/r_groove, +-cos(alpha)/(R_p -+ R_B cos(alpha)))`` (Harris).
-    """
-    radius = _positive("ball_radius", ball_radius, "m")
-    conformity = _check_conformity(conformity)
-    pitch_radius = _positive("pitch_radius", pitch_radius, "m")
-    contact_angle = float(contact_angle)
-    if not (math.isfinite(contact_angle) and 0.0 < contact_angle < math.pi / 2):
-        raise ValueError(f"contact_angle must lie in (0, pi/2) rad, got {contact_angle!r}")
-    lead_angle = float(lead_angle)
-    if not (math.isfinite(lead_angle) and 0.0 <= lead_angle < math.pi / 2):
-        raise ValueError(f"lead_angle must lie in [0, pi/2) rad, got {lead_angle!r}")
-    if body not in ("screw", "nut"):
-        raise ValueError(f"body must be 'screw' or 'nut', got {body!r}")
-    if profile_plane not in ("normal", "axial"):
-        raise ValueError(f"profile_plane must be 'normal' or 'axial', got {profile_plane!r}")
-    groove_radius = conformity * 2.0 * radius
-    if body == "screw" and pitch_radius <= groove_radius:
-        raise ValueError(f"pitch_radius must exceed the groove radius {groove_radius!r} m for a screw groove")
-    radial = np.array([1.0, 0.0, 0.0])
-    axis = np.array([0.0, 0.0, 1.0])
-    plane_axis = axis if profile_plane == "axial" else np.array([0.0, -math.sin(lead_angle), math.cos(lead_angle)])
-    # profile coordinates (u, w) from the ball centre: contact direction and arc
-    outward = -1.0 if body == "screw" else 1.0
-    direction = np.array([outward * math.cos(contact_angle), math.sin(contact_angle)])
-    theta = math.atan2(direction[1], direction[0])  # arc angle of the contact point
-    centre = -(groove_radius - radius) * direction  # arc centre; contact = centre + r_g (cos, sin)
-    u, w = centre + groove_radius * direction
-    u_t, w_t = -groove_radius * math.sin(theta), groove_radius * math.cos(theta)
-    u_tt, w_tt = -groove_radius * math.cos(theta), -groove_radius * math.sin(theta)
-    p = pitch_radius * math.tan(lead_angle)
-    point = (pitch_radius + u) * radial + w * plane_axis
-    s_t = u_t * radial + w_t * plane_axis
-    s_tt = u_tt * radial + w_tt * plane_axis
-    s_p = np.cross(axis, point) + p * axis  # d/dphi of rot_z(phi) v is e_z x v at phi = 0
-    s_tp = np.cross(axis, s_t)
-    s_pp = np.cross(axis, np.cross(axis, point))
-    normal = np.cross(s_t, s_p)
-    normal /= np.linalg.norm(normal)
-    if normal @ -(direction[0] * radial + direction[1] * plane_axis) < 0.0:
-        normal = -normal  # out of the groove material, toward the ball
-    first = np.array([[s_t @ s_t, s_t @ s_p], [s_t @ s_p, s_p @ s_p]])
-    second = np.array([[s_tt @ normal, s_tp @ normal], [s_tp @ normal, s_pp @ normal]])
-    # convex-positive curvature = -(shape operator eigenvalue) with the outward normal
-    eigenvalues, eigenvectors = np.linalg.eig(-np.linalg.solve(first, second))
-    eigenvalues = eigenvalues.real
-    tangents = [eigenvectors[0, i].real * s_t + eigenvectors[1, i].real * s_p for i in range(2)]
-    profile_dir = s_t / np.linalg.norm(s_t)
-    align = [abs(t @ profile_dir) / np.linalg.norm(t) for t in tangents]
-    i1 = int(np.argmax(align))
-    angle = math.acos(min(1.0, align[i1]))
-    return float(eigenvalues[i1]), float(eigenvalues[1 - i1]), angle
 
 
 def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
@@ -319,13 +223,15 @@ def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: fl
                          poisson_ratio: float = STEEL_POISSON_RATIO) -> HertzGeometry:
     """A ball in the helical groove of a ball screw (``body='screw'``) or nut (``'nut'``).
 
-    Inputs in [m] and [rad]; see :func:`groove_curvatures_helical` for the
-    groove definition (lin2019 Table 4: R_B 2.778 mm, conformity 0.56,
-    pitch radius 16.5 mm, contact angle 45 deg, lead 20 mm).  Since the ball is
-    a sphere, the ellipse axes follow the groove's principal directions.
+    Inputs in [m] and [rad]; the groove and its principal curvatures come from
+    the geometry core, :func:`lowmodel.geometry.groove.groove_curvatures_helical`
+    (profile in the plane normal to the helix by default, lin2019 eq 41;
+    lin2019 Table 4: R_B 2.778 mm, conformity 0.56, pitch radius 16.5 mm,
+    contact angle 45 deg, lead 20 mm).  Since the ball is a sphere, the
+    ellipse axes follow the groove's principal directions.
     """
-    kappa_1, kappa_2, _ = groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
-                                                    lead_angle, body, profile_plane)
+    kappa_1, kappa_2, _ = groove.groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
+                                                           lead_angle, body, profile_plane)
     radius = float(ball_radius)
     return from_curvatures((1 / radius, 1 / radius), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio)
@@ -372,12 +278,7 @@ def _unit_solution(geometry: HertzGeometry) -> tuple[float, float, float]:
 
 
 def _as_load(name: str, value, unit: str) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite (got NaN or inf)")
-    if np.any(array < 0.0):
-        raise ValueError(f"{name} must be >= 0 {unit}, got min {array.min()!r}")
-    return array
+    return np.asarray(checks.non_negative(name, value, unit))
 
 
 def _build(geometry: HertzGeometry, force: np.ndarray) -> HertzContact:
@@ -409,7 +310,7 @@ def solve_approach(geometry: HertzGeometry, delta) -> HertzContact:
 
 def psi_constant(geometry: HertzGeometry, ball_radius: float) -> float:
     """Psi of lin2019 eq 15, ``a = Psi R_B^(1/3) F^(1/3)`` [(m^2/N)^(1/3)]."""
-    radius = _positive("ball_radius", ball_radius, "m")
+    radius = checks.positive("ball_radius", ball_radius, "m")
     a_unit, _, _ = _unit_solution(geometry)
     return a_unit / radius ** (1.0 / 3.0)
 

@@ -1,23 +1,31 @@
-"""Shared ball-screw geometry: the helix of the ball centre and its Frenet frame.
+"""The ball-centre helix of a ball screw and its frames (the geometry core's helix).
 
-Frames (wang2022 Sec 2.2, Fig 1):
+One helix, two papers' notations:
 
-* ``CS0`` (global, fixed to the base): unit vectors ``i, j, k``; ``k`` along
-  the screw axis.  Global components are ordered ``(i, j, k)``.
-* ``CS1`` (Frenet frame, origin at the ball centre): ``t`` tangent to the
-  helix (pointing to +k for a positive lead), ``n`` principal normal pointing
-  from the ball centre to the screw axis, ``b = t x n``.  Frenet components are
-  ordered ``(t, n, b)``.
+* wang2022 eq 10: ``R_OO' = (r_m cos theta, r_m sin theta, h (theta - phi))``,
+  ``h = L / (2 pi)``, ``theta`` the ball azimuth, ``phi`` the screw rotation;
+* lin2019 eq 35: ``q_B(phi) = (R_P cos phi, R_P sin phi, p phi)`` (the paper
+  writes the lead per radian ``p`` as ``r_g`` with a bar), the same helix with
+  the screw at rest (lin2019's ``phi`` is wang2022's ``theta``).
 
-The ball centre lies on the helix ``r_m (cos theta, sin theta) , h theta``
-with ``h = L / (2 pi)`` (wang2022 eq 10, written for a screw at rest; the
-screw rotation angle ``phi`` shifts the axial coordinate by ``-h phi``).  The
-lead angle is ``psi = arctan(h / r_m)``.  A lead ``L = 0`` is a ball bearing:
-the helix degenerates to a circle, ``psi = 0`` and the frame stays defined.
+**Lead angle**: one name in the code, ``lead_angle`` =
+``arctan(L / (2 pi r_m))`` [rad] (:func:`lead_angle`).  The papers' symbols:
+``psi`` (wang2022 eq 9), ``alpha`` with a bar (lin2019 eq 42), ``lambda``
+(Harris; the earlier hertz module).  A lead ``L = 0`` is a ball bearing: the
+helix degenerates to a circle, ``lead_angle = 0`` and every frame stays defined.
 
-The rotation matrix :func:`frenet_frame` holds ``t, n, b`` as its columns
-(wang2022 eq 9), so ``v_global = T @ v_frenet`` and ``v_frenet = T.T @ v_global``
-(:func:`to_global`, :func:`to_frenet`).
+Frames (all rotation matrices hold the frame's unit vectors as columns, in
+global components, so ``v_global = T @ v_frame``):
+
+* ``CS0`` / lin2019's ``CS`` (global, fixed to the screw): ``i, j, k``, ``k``
+  along the screw axis; components ordered ``(i, j, k)`` = ``(x, y, z)``.
+* ``CS1`` (wang2022 Sec 2.2, Fig 1; the Frenet frame at the ball centre,
+  :func:`frenet_frame`, wang2022 eq 9): ``t`` tangent to the helix (towards
+  +k for a positive lead), ``n`` principal normal from the ball centre to the
+  screw axis, ``b = t x n``.  Frenet components are ordered ``(t, n, b)``.
+* ``CS3`` (lin2019 eq 41, :func:`cs3_frame`): ``T = rot_z(phi) rot_x(lead_angle)``,
+  ``x3`` radial (axis -> ball centre), ``y3`` tangent, ``z3 = x3 x y3``; the
+  same trihedron as CS1 ordered differently: ``(x3, y3, z3) = (-n, t, b)``.
 
 All functions take SI inputs (m, rad, rad/s) as scalars or numpy arrays that
 broadcast together; vectors are returned with a trailing axis of length 3.
@@ -26,71 +34,24 @@ mirror image).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = [
     "lead_angle", "helix_parameter", "curvature", "torsion", "ball_centre", "ball_centre_velocity",
-    "frenet_frame", "frame_angular_velocity", "to_global", "to_frenet", "contact_offset", "contact_point",
-    "axis_in_frenet", "BODIES",
+    "frenet_frame", "cs3_frame", "rotation_z", "frame_angular_velocity", "to_global", "to_frenet",
+    "contact_offset", "contact_point", "axis_in_frenet", "ball_centre_azimuths", "BODIES",
 ]
 
 BODIES = ("nut", "screw")
 
 
-# --------------------------------------------------------------------------
-# input checks (ValueError naming the parameter and the allowed range)
-# --------------------------------------------------------------------------
-def _array(name: str, value) -> np.ndarray:
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a real number or array, got {value!r}") from exc
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite (no NaN or inf), got {value!r}")
-    return array
-
-
-def check_positive(name: str, value, unit: str) -> np.ndarray:
-    """``value`` as a float array; ValueError unless finite and > 0."""
-    array = _array(name, value)
-    if np.any(array <= 0.0):
-        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}")
-    return array
-
-
-def check_non_negative(name: str, value, unit: str) -> np.ndarray:
-    """``value`` as a float array; ValueError unless finite and >= 0."""
-    array = _array(name, value)
-    if np.any(array < 0.0):
-        raise ValueError(f"{name} must be >= 0 {unit}, got {value!r}")
-    return array
-
-
-def check_finite(name: str, value) -> np.ndarray:
-    """``value`` as a float array; ValueError unless finite."""
-    return _array(name, value)
-
-
-def check_contact_angle(name: str, value) -> np.ndarray:
-    """Contact angle [rad] in the open range (0, pi/2)."""
-    array = _array(name, value)
-    if np.any(array <= 0.0) or np.any(array >= 0.5 * np.pi):
-        raise ValueError(f"{name} must lie in (0, pi/2) rad, i.e. (0, 90) deg, got {value!r}")
-    return array
-
-
-def check_lead_angle(name: str, value) -> np.ndarray:
-    """Lead (helix) angle [rad] in [0, pi/2)."""
-    array = _array(name, value)
-    if np.any(array < 0.0) or np.any(array >= 0.5 * np.pi):
-        raise ValueError(f"{name} must lie in [0, pi/2) rad, got {value!r}")
-    return array
-
-
 def _check_body(body: str) -> str:
-    if body not in BODIES:
-        raise ValueError(f"body must be one of {BODIES}, got {body!r}")
-    return body
+    return checks.choice("body", body, BODIES)
 
 
 # --------------------------------------------------------------------------
@@ -98,29 +59,31 @@ def _check_body(body: str) -> str:
 # --------------------------------------------------------------------------
 def helix_parameter(lead) -> np.ndarray:
     """Axial advance per radian ``h = L / (2 pi)`` [m/rad] (wang2022 eq 10)."""
-    return check_non_negative("lead", lead, "m") / (2.0 * np.pi)
+    return checks.non_negative("lead", lead, "m") / (2.0 * np.pi)
 
 
 def lead_angle(lead, pitch_radius) -> np.ndarray:
-    """Lead (helix) angle ``psi = arctan(L / (2 pi r_m))`` [rad] of the ball-centre helix.
+    """Lead (helix) angle ``arctan(L / (2 pi r_m))`` [rad] of the ball-centre helix.
+
+    wang2022's ``psi``, lin2019 eq 42's ``alpha`` (module docstring).
 
     ``lead`` L [m] >= 0, ``pitch_radius`` r_m [m] > 0 (wang2022 Table A1:
     L = 20 mm, r_m = 20.7 mm gives psi = 8.74 deg).
     """
-    radius = check_positive("pitch_radius", pitch_radius, "m")
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     return np.arctan(helix_parameter(lead) / radius)
 
 
 def curvature(pitch_radius, lead) -> np.ndarray:
     """Curvature ``kappa = r_m / (r_m^2 + h^2)`` [1/m] of the ball-centre helix."""
-    radius = check_positive("pitch_radius", pitch_radius, "m")
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     h = helix_parameter(lead)
     return radius / (radius**2 + h**2)
 
 
 def torsion(pitch_radius, lead) -> np.ndarray:
     """Torsion ``tau = h / (r_m^2 + h^2)`` [1/m] of the ball-centre helix (> 0: right hand)."""
-    radius = check_positive("pitch_radius", pitch_radius, "m")
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     h = helix_parameter(lead)
     return h / (radius**2 + h**2)
 
@@ -134,27 +97,28 @@ def ball_centre(theta, pitch_radius, lead, screw_angle=0.0) -> np.ndarray:
     ``theta`` azimuth of the ball [rad], ``screw_angle`` phi [rad]:
     ``R_OO' = (r_m cos theta, r_m sin theta, h (theta - phi))``.
     """
-    theta = check_finite("theta", theta)
-    radius = check_positive("pitch_radius", pitch_radius, "m")
+    theta = checks.finite("theta", theta)
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     h = helix_parameter(lead)
-    phi = check_finite("screw_angle", screw_angle)
+    phi = checks.finite("screw_angle", screw_angle)
     theta, radius, h, phi = np.broadcast_arrays(theta, radius, h, phi)
     return np.stack([radius * np.cos(theta), radius * np.sin(theta), h * (theta - phi)], axis=-1)
 
 
-def ball_centre_velocity(orbital_speed, screw_speed, pitch_radius, lead) -> np.ndarray:
+def ball_centre_velocity(orbital_speed, screw_speed, pitch_radius, lead, lead_angle=None) -> np.ndarray:
     """Ball-centre velocity [m/s] in Frenet components ``(t, n, b)``, shape ``(..., 3)``.
 
     Time derivative of wang2022 eq 10 with ``theta' = omega_m`` (orbital speed
     [rad/s]) and ``phi' = omega`` (screw speed [rad/s]), written in CS1:
     ``omega_m r_m (cos psi, 0, -sin psi) + (omega_m - omega) h (sin psi, 0, cos psi)``.
-    It does not depend on theta.
+    It does not depend on theta.  ``lead_angle`` psi [rad] defaults to
+    ``arctan(h / r_m)``; a value overrides it (wang2022 Table A1 prints 8.74 deg).
     """
-    omega_m = check_finite("orbital_speed", orbital_speed)
-    omega = check_finite("screw_speed", screw_speed)
-    radius = check_positive("pitch_radius", pitch_radius, "m")
+    omega_m = checks.finite("orbital_speed", orbital_speed)
+    omega = checks.finite("screw_speed", screw_speed)
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     h = helix_parameter(lead)
-    psi = np.arctan(h / radius)
+    psi = np.arctan(h / radius) if lead_angle is None else checks.lead_angle("lead_angle", lead_angle)
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
     tangential = omega_m * radius
     axial = (omega_m - omega) * h
@@ -169,8 +133,8 @@ def frenet_frame(theta, lead_angle) -> np.ndarray:
     ``theta`` ball azimuth [rad], ``lead_angle`` psi [rad] in [0, pi/2).
     At ``theta = 0`` this is wang2022 eq 15.
     """
-    theta = check_finite("theta", theta)
-    psi = check_lead_angle("lead_angle", lead_angle)
+    theta = checks.finite("theta", theta)
+    psi = checks.lead_angle("lead_angle", lead_angle)
     theta, psi = np.broadcast_arrays(theta, psi)
     cos_t, sin_t, cos_p, sin_p = np.cos(theta), np.sin(theta), np.cos(psi), np.sin(psi)
     zero = np.zeros_like(theta)
@@ -180,9 +144,31 @@ def frenet_frame(theta, lead_angle) -> np.ndarray:
     return np.stack([t, n, b], axis=-1)
 
 
+def rotation_z(phi) -> np.ndarray:
+    """Rotation matrices ``rot_z(phi)`` about the screw axis, shape ``(..., 3, 3)`` (lin2019 eq 41)."""
+    phi = np.asarray(phi, dtype=float)
+    c, s = np.cos(phi), np.sin(phi)
+    zero, one = np.zeros_like(phi), np.ones_like(phi)
+    return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
+                     np.stack([zero, zero, one], -1)], -2)
+
+
+def cs3_frame(phi, lead_angle) -> np.ndarray:
+    """Rotation matrix ``T_CS-CS3 = rot_z(phi) rot_x(lead_angle)`` with columns ``x3, y3, z3``,
+    shape ``(..., 3, 3)`` (lin2019 eq 41).
+
+    ``phi`` azimuth of the ball [rad] (lin2019 eq 35), ``lead_angle`` [rad] in
+    [0, pi/2).  ``x3`` is radial (from the axis to the ball centre), ``y3``
+    the helix tangent, ``z3 = x3 x y3``: the Frenet frame reordered,
+    ``(x3, y3, z3) = (-n, t, b)`` (module docstring).
+    """
+    frame = frenet_frame(phi, lead_angle)
+    return np.stack([-frame[..., :, 1], frame[..., :, 0], frame[..., :, 2]], axis=-1)
+
+
 def axis_in_frenet(lead_angle) -> np.ndarray:
     """Screw axis ``k`` in Frenet components: ``(sin psi, 0, cos psi)``, shape ``(..., 3)``."""
-    psi = check_lead_angle("lead_angle", lead_angle)
+    psi = checks.lead_angle("lead_angle", lead_angle)
     return np.stack([np.sin(psi), np.zeros_like(psi), np.cos(psi)], axis=-1)
 
 
@@ -192,9 +178,8 @@ def frame_angular_velocity(orbital_speed, lead_angle) -> np.ndarray:
     The frame turns about the screw axis at the orbital speed omega_m: its
     Darboux vector ``(tau t + kappa b) ds/dt = omega_m k = omega_m (sin psi, 0, cos psi)``.
     """
-    omega_m, psi = np.broadcast_arrays(check_finite("orbital_speed", orbital_speed),
-                                       check_lead_angle("lead_angle", lead_angle))
-    return np.stack([omega_m * np.sin(psi), np.zeros_like(omega_m), omega_m * np.cos(psi)], axis=-1)
+    omega_m = checks.finite("orbital_speed", orbital_speed)
+    return np.asarray(omega_m)[..., None] * axis_in_frenet(lead_angle)
 
 
 def to_global(frame, vector_frenet) -> np.ndarray:
@@ -215,8 +200,8 @@ def contact_offset(ball_radius, contact_angle, body: str) -> np.ndarray:
     ``(0, r_b cos alpha, -r_b sin alpha)``.  ``ball_radius`` r_b [m] (a radius,
     see docs/screw_kinematics.md), ``contact_angle`` alpha [rad] in (0, pi/2).
     """
-    radius = check_positive("ball_radius", ball_radius, "m")
-    alpha = check_contact_angle("contact_angle", contact_angle)
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    alpha = checks.contact_angle("contact_angle", contact_angle)
     sign = -1.0 if _check_body(body) == "nut" else 1.0
     radius, alpha = np.broadcast_arrays(radius, alpha)
     return np.stack([np.zeros_like(radius), sign * radius * np.cos(alpha), -sign * radius * np.sin(alpha)],
@@ -234,3 +219,27 @@ def contact_point(theta, pitch_radius, lead, ball_radius, contact_angle, body: s
     frame = frenet_frame(theta, psi)
     offset = contact_offset(ball_radius, contact_angle, body)
     return centre + to_global(frame, offset)
+
+
+def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> float:
+    """Azimuth difference ``dphi`` [rad] of two ball centres on the helix a chord
+    ``spacing`` [m] apart: ``(2 R_P sin(dphi/2))^2 + (p dphi)^2 = spacing^2`` (Newton).
+
+    ``pitch_radius`` R_P [m] > 0, ``lead`` [m] >= 0 (``p = lead / 2 pi``),
+    ``spacing`` [m] in (0, 2 R_P] (at lead 0 the chord of a circle cannot exceed
+    its diameter; the Newton start assumes ``spacing`` well below ``R_P``).
+    """
+    pitch_radius = checks.positive("pitch_radius", pitch_radius, "m")
+    p = float(helix_parameter(lead))
+    spacing = checks.bounded("spacing", spacing, 0.0, 2.0 * pitch_radius, "m", upper_closed=True,
+                             note="the chord between two ball centres, at most the pitch diameter")
+    dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
+    for iteration in range(50):
+        chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
+        slope = 2 * pitch_radius**2 * math.sin(dphi) + 2 * p**2 * dphi
+        step = (chord2 - spacing**2) / slope
+        dphi -= step
+        if abs(step) < 1e-15 * dphi:
+            return dphi
+    raise ConvergenceError("ball_centre_azimuths: Newton did not converge", residual=abs(step),
+                           iterations=iteration + 1, tolerance=1e-15 * dphi)

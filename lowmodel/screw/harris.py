@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel import checks
 
 __all__ = ["HarrisKinematics", "kinematics"]
 
@@ -51,14 +51,14 @@ def kinematics(pitch_radius, ball_radius, inner_speed, contact_angle, outer_spee
     pitch_radius r_m [m] > ball_radius; ball_radius r_b [m] > 0;
     inner_speed, outer_speed [rad/s]; contact_angle alpha [rad] in (0, pi/2).
     """
-    r_m = helix.check_positive("pitch_radius", pitch_radius, "m")
-    r_b = helix.check_positive("ball_radius", ball_radius, "m")
+    r_m = checks.positive("pitch_radius", pitch_radius, "m")
+    r_b = checks.positive("ball_radius", ball_radius, "m")
     if np.any(r_b >= r_m):
         raise ValueError(f"ball_radius must be < pitch_radius, got ball_radius={ball_radius!r}, "
                          f"pitch_radius={pitch_radius!r}")
-    omega_i = helix.check_finite("inner_speed", inner_speed)
-    omega_o = helix.check_finite("outer_speed", outer_speed)
-    alpha = helix.check_contact_angle("contact_angle", contact_angle)
+    omega_i = checks.finite("inner_speed", inner_speed)
+    omega_o = checks.finite("outer_speed", outer_speed)
+    alpha = checks.contact_angle("contact_angle", contact_angle)
     gamma = r_b * np.cos(alpha) / r_m
     cage = 0.5 * (omega_i * (1.0 - gamma) + omega_o * (1.0 + gamma))  # Harris: cage speed
     inner = np.abs(omega_i - cage) * r_m * (1.0 - gamma)  # inner raceway speed relative to cage

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry import helix
 
 __all__ = ["ScrewKinematics", "kinematics", "pitch_angle", "orbital_speed", "ball_spin_speed",
@@ -65,8 +66,8 @@ def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
     ``tan beta = sin alpha_o / (cos alpha_o + r_b cos alpha_o / r_m)``: the
     spin axis for pure rolling at the nut (outer) contact.
     """
-    alpha_o = helix.check_contact_angle("contact_angle_nut", contact_angle_nut)
-    gamma = helix.check_positive("ball_radius", ball_radius, "m") / helix.check_positive(
+    alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
+    gamma = checks.positive("ball_radius", ball_radius, "m") / checks.positive(
         "pitch_radius", pitch_radius, "m")
     return np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + gamma))  # wang2022 eq 21
 
@@ -74,7 +75,7 @@ def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
 def orbital_speed(screw_speed, ball_radius, pitch_radius, contact_angle_nut, contact_angle_screw,
                   pitch_angle_rad) -> np.ndarray:
     """Orbital angular speed omega_m = theta' [rad/s] of the ball (wang2022 eq 18)."""
-    omega = helix.check_finite("screw_speed", screw_speed)
+    omega = checks.finite("screw_speed", screw_speed)
     gamma = ball_radius / pitch_radius
     alpha_o, alpha_i, tan_beta = contact_angle_nut, contact_angle_screw, np.tan(pitch_angle_rad)
     ratio = ((1.0 + gamma * np.cos(alpha_o)) * (np.cos(alpha_i) + tan_beta * np.sin(alpha_i))
@@ -100,8 +101,8 @@ def ball_angular_velocity(spin_speed, pitch_angle_rad, yaw_angle=0.0) -> np.ndar
 
 def centrifugal_force(ball_mass, pitch_radius, orbital_speed_rad_s) -> np.ndarray:
     """Centrifugal force F_n = m r_m omega_m^2 [N] on the ball, along -n (wang2022 eq 22)."""
-    mass = helix.check_positive("ball_mass", ball_mass, "kg")
-    radius = helix.check_positive("pitch_radius", pitch_radius, "m")
+    mass = checks.positive("ball_mass", ball_mass, "kg")
+    radius = checks.positive("pitch_radius", pitch_radius, "m")
     return mass * radius * np.asarray(orbital_speed_rad_s, dtype=float) ** 2  # wang2022 eq 22
 
 
@@ -202,17 +203,17 @@ class ScrewKinematics:
 
 def _check_geometry(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw,
                     lead_angle):
-    r_m = helix.check_positive("pitch_radius", pitch_radius, "m")
-    r_b = helix.check_positive("ball_radius", ball_radius, "m")
+    r_m = checks.positive("pitch_radius", pitch_radius, "m")
+    r_b = checks.positive("ball_radius", ball_radius, "m")
     if np.any(r_b >= r_m):
         raise ValueError(f"ball_radius must be < pitch_radius (ball inside the pitch circle), "
                          f"got ball_radius={ball_radius!r}, pitch_radius={pitch_radius!r}")
-    lead_m = helix.check_non_negative("lead", lead, "m")
-    omega = helix.check_finite("screw_speed", screw_speed)
-    alpha_o = helix.check_contact_angle("contact_angle_nut", contact_angle_nut)
-    alpha_i = alpha_o if contact_angle_screw is None else helix.check_contact_angle(
+    lead_m = checks.non_negative("lead", lead, "m")
+    omega = checks.finite("screw_speed", screw_speed)
+    alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
+    alpha_i = alpha_o if contact_angle_screw is None else checks.contact_angle(
         "contact_angle_screw", contact_angle_screw)
-    psi = helix.lead_angle(lead_m, r_m) if lead_angle is None else helix.check_lead_angle("lead_angle", lead_angle)
+    psi = helix.lead_angle(lead_m, r_m) if lead_angle is None else checks.lead_angle("lead_angle", lead_angle)
     return r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi
 
 
@@ -234,7 +235,7 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     """
     r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi = _check_geometry(
         pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw, lead_angle)
-    yaw = helix.check_finite("yaw_angle", yaw_angle)
+    yaw = checks.finite("yaw_angle", yaw_angle)
     h = lead_m / (2.0 * np.pi)
     r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw = np.broadcast_arrays(
         r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw)

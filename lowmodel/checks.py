@@ -1,0 +1,161 @@
+"""Shared input checks: one ``ValueError`` per bad input, naming the parameter, its unit and allowed range.
+
+Every check takes the parameter's ``name`` first and returns the value as
+floats: a Python ``float`` for a scalar input (so it can go into a cache key
+or a frozen dataclass), a float ``numpy.ndarray`` for an array input.  NaN and
+inf are refused everywhere.  Messages show the offending value (the first
+offending element of an array, with the array's shape)::
+
+    ball_radius must be finite and > 0 m, i.e. in (0, inf) m; got -0.001
+
+Ranges used across the project, each defined once here:
+
+* ``contact_angle``: (0, pi/2) rad, i.e. (0, 90) deg (lin2017 Sec 2.1).
+* ``lead_angle``: [0, pi/2) rad (0 is a ball bearing).
+* ``conformity``: groove radius / ball diameter ``f = r_g / (2 R_B)`` in the
+  open range **(0.5, 1)**.  ``f > 0.5``: the groove is wider than the ball
+  (at 0.5 the surfaces conform and Hertz theory does not apply).  ``f < 1``:
+  the groove radius stays below the ball diameter; real grooves have 0.505 to
+  0.6 (lin2019 Tables 1 and 4: 0.56), and neither the papers nor the meshes
+  (the gothic-arch flank must rise above the contact point) go beyond.
+* integers (``count``): Python or numpy integers; ``True``/``False`` are refused.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+__all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
+           "choice", "count", "trailing_axis"]
+
+CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+def _shown(array: np.ndarray, bad: np.ndarray, value) -> str:
+    """The offending value for a message: the value itself, or an array's first bad element."""
+    if array.ndim == 0:
+        return repr(float(array))
+    first = float(np.broadcast_to(array, bad.shape)[bad].ravel()[0])
+    return f"{first!r} (first offending element of an array of shape {array.shape})"
+
+
+def _bound(x: float) -> str:
+    if x == 0.5 * math.pi:
+        return "pi/2"
+    return "inf" if x == math.inf else "-inf" if x == -math.inf else repr(x)
+
+
+def _out(array: np.ndarray):
+    return float(array) if array.ndim == 0 else array
+
+
+def real(name: str, value) -> np.ndarray:
+    """``value`` as a float array (any shape); ValueError if it is not real (strings, None, complex)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a real number, not a boolean; got {value!r}")
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number or array of them, got {value!r}") from None
+
+
+def finite(name: str, value, unit: str = ""):
+    """``value`` as floats; ValueError unless every element is finite (no NaN, no inf)."""
+    array = real(name, value)
+    bad = ~np.isfinite(array)
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite{_unit(unit)}, i.e. in (-inf, inf); got {_shown(array, bad, value)}")
+    return _out(array)
+
+
+def bounded(name: str, value, lower: float, upper: float, unit: str = "", *, lower_closed: bool = False,
+            upper_closed: bool = False, note: str = ""):
+    """``value`` as floats; ValueError unless finite and inside the interval from ``lower`` to ``upper``.
+
+    The ends are open unless ``lower_closed`` / ``upper_closed``; ``note`` is
+    appended to the message (e.g. the equivalent range in degrees).
+    """
+    array = real(name, value)
+    above = array >= lower if lower_closed else array > lower
+    below = array <= upper if upper_closed else array < upper
+    bad = ~(np.isfinite(array) & above & below)
+    if np.any(bad):
+        interval = f"{'[' if lower_closed else '('}{_bound(lower)}, {_bound(upper)}{']' if upper_closed else ')'}"
+        extra = f" ({note})" if note else ""
+        raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{extra}; got {_shown(array, bad, value)}")
+    return _out(array)
+
+
+def positive(name: str, value, unit: str = ""):
+    """``value`` as floats; ValueError unless finite and > 0."""
+    array = real(name, value)
+    bad = ~(np.isfinite(array) & (array > 0.0))
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite and > 0{_unit(unit)}, i.e. in (0, inf){_unit(unit)}; "
+                         f"got {_shown(array, bad, value)}")
+    return _out(array)
+
+
+def non_negative(name: str, value, unit: str = ""):
+    """``value`` as floats; ValueError unless finite and >= 0."""
+    array = real(name, value)
+    bad = ~(np.isfinite(array) & (array >= 0.0))
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite and >= 0{_unit(unit)}, i.e. in [0, inf){_unit(unit)}; "
+                         f"got {_shown(array, bad, value)}")
+    return _out(array)
+
+
+def contact_angle(name: str, value):
+    """Contact angle [rad] in the open range (0, pi/2), i.e. (0, 90) deg."""
+    return bounded(name, value, 0.0, 0.5 * math.pi, "rad", note="i.e. (0, 90) deg")
+
+
+def lead_angle(name: str, value):
+    """Lead (helix) angle [rad] in [0, pi/2); 0 is a ball bearing."""
+    return bounded(name, value, 0.0, 0.5 * math.pi, "rad", lower_closed=True, note="i.e. [0, 90) deg")
+
+
+def conformity(name: str, value):
+    """Conformity ``f = r_g / (2 R_B)`` (groove radius / ball diameter) in (0.5, 1) (module docstring)."""
+    return bounded(name, value, *CONFORMITY_RANGE, note="groove radius / ball diameter")
+
+
+def choice(name: str, value, allowed: tuple):
+    """``value`` itself; ValueError unless it is one of ``allowed``."""
+    try:
+        ok = value in allowed
+    except TypeError:  # unhashable or incomparable
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
+    return value
+
+
+def count(name: str, value, minimum: int = 0, maximum: int | None = None) -> int:
+    """``value`` as ``int``; ValueError unless an integer (not a bool) in ``[minimum, maximum]``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer (not a bool or float), got {value!r}")
+    if value < minimum or (maximum is not None and value > maximum):
+        upper = "inf)" if maximum is None else f"{maximum}]"
+        raise ValueError(f"{name} must be an integer in [{minimum}, {upper}, got {value!r}")
+    return int(value)
+
+
+def trailing_axis(name: str, value, length: int, labels: str = "", unit: str = "") -> np.ndarray:
+    """``value`` as a float array with a trailing axis of ``length`` (e.g. the four contacts); ValueError otherwise.
+
+    ``labels`` names the entries of that axis in the message, e.g. ``"(BL, BR, TR, TL)"``.
+    """
+    array = real(name, value)
+    if array.ndim == 0 or array.shape[-1] != length:
+        what = f" {labels}" if labels else ""
+        raise ValueError(f"{name} must have a trailing axis of {length}{what}{_unit(unit and f'[{unit}]')}, "
+                         f"got shape {array.shape}")
+    return array
