@@ -10,10 +10,15 @@ vtk or matplotlib at import time).  One module per model:
 - ``lowmodel.linear_bearing.bearing_ball``: single-ball quasi-static friction solver (lin2019 eqs 1-4)
 - ``lowmodel.linear_bearing.b2b``: two- and N-ball ball-to-ball contact (lin2019 eqs 5-10)
 - ``lowmodel.linear_bearing.b2b_analytical``: analytical B2B model (lin2019 eqs 11-33)
-- ``lowmodel.geometry.helix``: ball-screw helix and Frenet frame (shared geometry)
+- ``lowmodel.geometry``: the geometry core shared by models and mesh builders:
+  ``helix`` (ball-centre helix, lead angle, Frenet frame CS1 and lin2019's CS3),
+  ``groove`` (gothic-arch profiles, exact helical groove surface and its principal
+  curvatures), ``fourpoint`` (lin2017 eq 1 contact normals/points, ``CONTACT_NAMES``)
 - ``lowmodel.screw.kinematics``: contact kinematics, slide-roll ratio,
   entrainment velocity (wang2022), Wei's absolute-velocity measures
 - ``lowmodel.screw.harris``: ball-bearing kinematics relative to the cage (Harris)
 
-Shared: ``lowmodel.errors`` (ConvergenceError), ``lowmodel.cache``.
+Shared: ``lowmodel.checks`` (input checks: one ValueError naming parameter, unit,
+range and value), ``lowmodel.solvers`` (damped Newton), ``lowmodel.errors``
+(ConvergenceError), ``lowmodel.cache``.
 """

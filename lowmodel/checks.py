@@ -48,7 +48,7 @@ def _shown(array: np.ndarray, bad: np.ndarray, value) -> str:
 def _bound(x: float) -> str:
     if x == 0.5 * math.pi:
         return "pi/2"
-    return "inf" if x == math.inf else "-inf" if x == -math.inf else repr(x)
+    return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:.12g}"
 
 
 def _out(array: np.ndarray):
@@ -65,12 +65,20 @@ def real(name: str, value) -> np.ndarray:
         raise ValueError(f"{name} must be a real number or array of them, got {value!r}") from None
 
 
-def finite(name: str, value, unit: str = ""):
-    """``value`` as floats; ValueError unless every element is finite (no NaN, no inf)."""
+def _note(note: str) -> str:
+    return f" ({note})" if note else ""
+
+
+def finite(name: str, value, unit: str = "", *, note: str = ""):
+    """``value`` as floats; ValueError unless every element is finite (no NaN, no inf).
+
+    ``note`` (here and in the other checks) is added to the message in brackets.
+    """
     array = real(name, value)
     bad = ~np.isfinite(array)
     if np.any(bad):
-        raise ValueError(f"{name} must be finite{_unit(unit)}, i.e. in (-inf, inf); got {_shown(array, bad, value)}")
+        raise ValueError(f"{name} must be finite{_unit(unit)}, i.e. in (-inf, inf){_note(note)}; "
+                         f"got {_shown(array, bad, value)}")
     return _out(array)
 
 
@@ -87,27 +95,26 @@ def bounded(name: str, value, lower: float, upper: float, unit: str = "", *, low
     bad = ~(np.isfinite(array) & above & below)
     if np.any(bad):
         interval = f"{'[' if lower_closed else '('}{_bound(lower)}, {_bound(upper)}{']' if upper_closed else ')'}"
-        extra = f" ({note})" if note else ""
-        raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{extra}; got {_shown(array, bad, value)}")
+        raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{_note(note)}; got {_shown(array, bad, value)}")
     return _out(array)
 
 
-def positive(name: str, value, unit: str = ""):
+def positive(name: str, value, unit: str = "", *, note: str = ""):
     """``value`` as floats; ValueError unless finite and > 0."""
     array = real(name, value)
     bad = ~(np.isfinite(array) & (array > 0.0))
     if np.any(bad):
-        raise ValueError(f"{name} must be finite and > 0{_unit(unit)}, i.e. in (0, inf){_unit(unit)}; "
+        raise ValueError(f"{name} must be finite and > 0{_unit(unit)}, i.e. in (0, inf){_unit(unit)}{_note(note)}; "
                          f"got {_shown(array, bad, value)}")
     return _out(array)
 
 
-def non_negative(name: str, value, unit: str = ""):
+def non_negative(name: str, value, unit: str = "", *, note: str = ""):
     """``value`` as floats; ValueError unless finite and >= 0."""
     array = real(name, value)
     bad = ~(np.isfinite(array) & (array >= 0.0))
     if np.any(bad):
-        raise ValueError(f"{name} must be finite and >= 0{_unit(unit)}, i.e. in [0, inf){_unit(unit)}; "
+        raise ValueError(f"{name} must be finite and >= 0{_unit(unit)}, i.e. in [0, inf){_unit(unit)}{_note(note)}; "
                          f"got {_shown(array, bad, value)}")
     return _out(array)
 

@@ -10,7 +10,8 @@ class ConvergenceError(RuntimeError):
     """
 
     def __init__(self, message: str, *, residual: float, iterations: int, tolerance: float):
-        super().__init__(f"{message} (residual {residual:.3e} after {iterations} iterations, tolerance {tolerance:.1e})")
+        super().__init__(f"{message} (residual {residual:.3e} after {iterations} iterations, "
+                         f"tolerance {tolerance:.1e})")
         self.residual = residual
         self.iterations = iterations
         self.tolerance = tolerance

@@ -6,7 +6,7 @@ Frame (lin2017 Figs 1-2): ball centre at the origin, ``z`` along the grooves
 (the top groove moves at ``v`` along +z, the bottom groove is fixed), ``y`` up,
 ``x`` to the right.  Contacts in the order (BL, BR, TR, TL); contact ``i`` sits
 at ``q_i = R_B (-sin, -cos), (sin, -cos), (sin, cos), (-sin, cos)`` of its
-contact angle ``beta_i`` measured from the -y / +y axis (lin2017 eq 1).
+contact angle ``beta_i`` measured from the -y / +y axis (lin2017 eq 1; :mod:`lowmodel.geometry.fourpoint`).
 
 Model (Coulomb friction, rigid bodies, point contacts, normal forces fixed a
 priori by lin2017 eq 35):
@@ -47,15 +47,16 @@ returns the centroid (each tied contact dissipates ``P/k``), flags
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["CONTACTS", "FourPointState", "normal_forces", "contact_limits", "rolling_condition",
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+
+__all__ = ["CONTACT_NAMES", "FourPointState", "normal_forces", "contact_limits", "rolling_condition",
            "characteristic_parameters", "two_point_sliding_ratio", "solve", "solve_forces"]
 
-CONTACTS = ("BL", "BR", "TR", "TL")
 TIE_TOLERANCE = 1e-12   # relative: K_i <= K_min (1 + tol) counts as a tie (roundoff of eq 23 is ~1e-15)
 ROLLING_TOLERANCE = 64 * np.finfo(float).eps  # |C_beta| below this (C_beta is O(1)) is pure rolling
 
@@ -104,40 +105,10 @@ class FourPointState:
         return np.sum(self.sliding, axis=-1)
 
 
-# --- input checks ---------------------------------------------------------------------------
+# --- input checks (lowmodel.checks) ------------------------------------------------------------
 def _angles(contact_angles) -> np.ndarray:
-    angles = np.asarray(contact_angles, dtype=float)
-    if angles.ndim == 0 or angles.shape[-1] != 4:
-        raise ValueError(f"contact_angles must have a trailing axis of 4 (BL, BR, TR, TL) [rad], got shape "
-                         f"{angles.shape}")
-    if not np.all((angles > 0.0) & (angles < 0.5 * math.pi)):  # lin2017 Sec 2.1; False for NaN
-        bad = angles[~((angles > 0.0) & (angles < 0.5 * math.pi))].ravel()[0]
-        raise ValueError(f"contact_angles must lie in (0, 90) deg, i.e. (0, pi/2) rad, got {bad!r} rad")
-    return angles
-
-
-def _first(array: np.ndarray, bad: np.ndarray) -> float:
-    """The first offending element (for the error message)."""
-    return float(np.broadcast_to(array, bad.shape)[bad].ravel()[0])
-
-
-def _positive(name: str, value, unit: str) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    bad = ~((array > 0.0) & np.isfinite(array))
-    if np.any(bad):
-        raise ValueError(f"{name} must be finite and > 0 {unit}, i.e. in (0, inf), got {_first(array, bad)!r}")
-    return array
-
-
-def _finite(name: str, value, unit: str, *, minimum: float | None = None) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    bad = ~np.isfinite(array)
-    if np.any(bad):
-        raise ValueError(f"{name} must be finite [{unit}], got {_first(array, bad)!r}")
-    if minimum is not None and np.any(array < minimum):
-        raise ValueError(f"{name} must be >= {minimum} [{unit}], i.e. in [{minimum}, inf), got "
-                         f"{_first(array, array < minimum)!r}")
-    return array
+    angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
+    return checks.contact_angle("contact_angles", angles)  # lin2017 Sec 2.1
 
 
 # --- lin2017 eqs 35-37 -------------------------------------------------------------------------
@@ -178,8 +149,8 @@ def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:
     eq 37), naming the allowed range of ``side_force``.
     """
     angles = _angles(contact_angles)
-    vertical = _positive("vertical_force", vertical_force, "N (lin2017 eq 37: N_y > 0)")
-    side = _finite("side_force", side_force, "N")
+    vertical = np.asarray(checks.positive("vertical_force", vertical_force, "N", note="lin2017 eq 37: N_y > 0"))
+    side = np.asarray(checks.finite("side_force", side_force, "N"))
     shape = np.broadcast_shapes(side.shape, vertical.shape, angles.shape[:-1])
     side, vertical = np.broadcast_to(side, shape), np.broadcast_to(vertical, shape)
     angles = np.broadcast_to(angles, shape + (4,))
@@ -192,17 +163,16 @@ def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:
             f"side_force: loss of four-point contact (lin2017 eq 37), N_x/N_y = {float(ratio[index]):.6g} "
             f"must lie in ({float(lower[index]):.6g}, {float(upper[index]):.6g}) = "
             f"(-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL)); "
-            f"contact {CONTACTS[int(np.argmin(forces[index]))]} has F = {float(np.min(forces[index])):.6g} N")
+            f"contact {CONTACT_NAMES[int(np.argmin(forces[index]))]} has F = {float(np.min(forces[index])):.6g} N")
     return forces
 
 
 # --- kinematics and the null vector of A^T --------------------------------------------------------
 def _rows(angles) -> np.ndarray:
-    """lin2017 eq 7's A_v with columns 2-3 divided by R_B: rows (1, q_y/R_B, -q_x/R_B), (..., 4, 3)."""
-    cos, sin = np.cos(angles), np.sin(angles)
-    sign_y = np.array([-1.0, -1.0, 1.0, 1.0])   # q_y / (R_B cos beta): bottom -, top +
-    sign_x = np.array([1.0, -1.0, -1.0, 1.0])   # -q_x / (R_B sin beta): left +, right -
-    return np.stack([np.ones_like(cos), sign_y * cos, sign_x * sin], axis=-1)
+    """lin2017 eq 7's A_v with columns 2-3 divided by R_B: rows (1, q_y/R_B, -q_x/R_B), (..., 4, 3),
+    with ``q = R_B n`` the contact points of lin2017 eq 1 (:mod:`lowmodel.geometry.fourpoint`)."""
+    normals = contact_normals(angles)
+    return np.stack([np.ones_like(normals[..., 0]), normals[..., 1], -normals[..., 0]], axis=-1)
 
 
 def _null_vector(rows) -> np.ndarray:
@@ -242,9 +212,10 @@ def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarr
     Figs 7, 11; eq 39 for case study 1).  Returns NaN where the difference
     does not depend on ``rho`` (identical or parallel K lines).
     """
-    if first not in CONTACTS or second not in CONTACTS or first == second:
-        raise ValueError(f"first and second must be two different contacts of {CONTACTS}, got {first!r}, {second!r}")
-    i, j = CONTACTS.index(first), CONTACTS.index(second)
+    if first not in CONTACT_NAMES or second not in CONTACT_NAMES or first == second:
+        raise ValueError(f"first and second must be two different contacts of {CONTACT_NAMES}, "
+                         f"got {first!r}, {second!r}")
+    i, j = CONTACT_NAMES.index(first), CONTACT_NAMES.index(second)
     angles = _angles(contact_angles)
     weight = 1.0 / np.abs(_null_vector(_rows(angles)))
     at_zero = _eq36(0.0, 1.0, angles) * weight        # K / N_y at rho = 0
@@ -291,12 +262,11 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
                  tie_tolerance: float = TIE_TOLERANCE) -> FourPointState:
     """As :func:`solve`, from given normal forces ``forces`` (..., 4) N, each > 0."""
     angles = _angles(contact_angles)
-    forces = _positive("forces", forces, "N (normal forces; four-point contact, lin2017 eq 37)")
-    if forces.shape[-1:] != (4,):
-        raise ValueError(f"forces must have a trailing axis of 4 (BL, BR, TR, TL) [N], got shape {forces.shape}")
-    radius = _positive("ball_radius", ball_radius, "m")
-    mu = _finite("friction_coefficient", friction_coefficient, "1", minimum=0.0)
-    velocity = _finite("groove_velocity", groove_velocity, "m/s")
+    forces = np.asarray(checks.positive("forces", forces, "N", note="normal forces; four-point contact, lin2017 eq 37"))
+    checks.trailing_axis("forces", forces, 4, "(BL, BR, TR, TL)", "N")
+    radius = np.asarray(checks.positive("ball_radius", ball_radius, "m"))
+    mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient))
+    velocity = np.asarray(checks.finite("groove_velocity", groove_velocity, "m/s"))
     if not (tie_tolerance >= 0.0 and tie_tolerance < 1e-3):
         raise ValueError(f"tie_tolerance must lie in [0, 1e-3), got {tie_tolerance!r}")
     shape = np.broadcast_shapes(angles.shape[:-1], forces.shape[:-1], radius.shape, mu.shape, velocity.shape)

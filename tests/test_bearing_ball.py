@@ -96,13 +96,13 @@ def test_jacobian_matches_finite_differences():
     contacts = make_contacts(case_angles(2.0), -60.0)
     reference = float(contacts.normal_forces.max())
     z = np.array([[0.503, 0.71, 0.02, 0.1, 2.0, -3.0, 1.2]])
-    terms = bb._ball_terms(z, contacts, reference)
+    terms = bb.ball_terms(z, contacts, reference)
     step = 1e-7
     for k in range(bb.N_UNKNOWNS):
         dz = np.zeros_like(z)
         dz[0, k] = step
-        numeric = (bb._ball_terms(z + dz, contacts, reference).residual
-                   - bb._ball_terms(z - dz, contacts, reference).residual)[0] / (2 * step)
+        numeric = (bb.ball_terms(z + dz, contacts, reference).residual
+                   - bb.ball_terms(z - dz, contacts, reference).residual)[0] / (2 * step)
         np.testing.assert_allclose(terms.jacobian[0, :, k], numeric, rtol=1e-5, atol=1e-7)
 
 
@@ -113,8 +113,8 @@ def test_finite_at_zero_spin():
     omega_x = 0.7
     omega_y = -omega_x * math.tan(beta)  # omega_BL = omega_x sin + omega_y cos = 0
     z = np.array([[0.5, omega_x, omega_y, 0.0, 0.0, 0.0, 0.0]])
-    z = bb._with_angles(z, contacts)
-    terms = bb._ball_terms(z, contacts, 100.0)
+    z = bb.with_slip_angles(z, contacts)
+    terms = bb.ball_terms(z, contacts, 100.0)
     assert terms.spin_velocity[0, 0] == pytest.approx(0.0, abs=1e-15)
     assert abs(z[0, 3]) == pytest.approx(math.pi / 2)
     assert np.all(np.isfinite(terms.residual)) and np.all(np.isfinite(terms.jacobian))

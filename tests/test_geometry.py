@@ -74,7 +74,7 @@ def test_ball_centre_azimuths_give_the_chord(lead, spacing):
 
 
 def test_ball_centre_azimuths_bad_input():
-    with pytest.raises(ValueError, match=r"spacing must lie in \(0\.0, 0\.033\] m"):
+    with pytest.raises(ValueError, match=r"spacing must lie in \(0, 0\.033\] m"):
         helix.ball_centre_azimuths(R_P, 0.0, 0.04)
     with pytest.raises(ValueError, match="lead"):
         helix.ball_centre_azimuths(R_P, -1e-3, 2 * R_B)
@@ -97,7 +97,7 @@ def test_contact_points_are_lin2017_eq1():
 @pytest.mark.parametrize("args, match", [
     ((-5e-3, np.full(4, 0.7)), "ball_radius"),
     ((5e-3, np.full(3, 0.7)), "trailing axis of 4"),
-    ((5e-3, [0.7, 0.7, 1.6, 0.7]), r"contact_angles must lie in \(0\.0, pi/2\) rad"),
+    ((5e-3, [0.7, 0.7, 1.6, 0.7]), r"contact_angles must lie in \(0, pi/2\) rad"),
 ])
 def test_contact_points_bad_input(args, match):
     with pytest.raises(ValueError, match=match):
@@ -202,13 +202,13 @@ def test_helical_groove_lead_angle_and_helix_are_the_helix_module():
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: groove.helical_groove(R_B, 0.5, R_P, LEAD, BETA), r"conformity must lie in \(0\.5, 1\.0\)"),
-    (lambda: groove.helical_groove(R_B, 1.0, R_P, LEAD, BETA), r"conformity must lie in \(0\.5, 1\.0\)"),
+    (lambda: groove.helical_groove(R_B, 0.5, R_P, LEAD, BETA), r"conformity must lie in \(0\.5, 1\)"),
+    (lambda: groove.helical_groove(R_B, 1.0, R_P, LEAD, BETA), r"conformity must lie in \(0\.5, 1\)"),
     (lambda: groove.helical_groove(R_B, CONF, R_P, -1e-3, BETA), r"lead must be finite and >= 0 m"),
     (lambda: groove.helical_groove(R_B, CONF, R_P, LEAD, BETA, flank="top"), "flank must be one of"),
     (lambda: groove.helical_groove(R_B, CONF, R_P, LEAD, BETA, profile_plane="oblique"), "profile_plane"),
     (lambda: groove.helical_groove(R_B, CONF, 3e-3, LEAD, BETA), "pitch_radius must exceed the groove radius"),
-    (lambda: groove.groove_curvatures_helical(R_B, CONF, R_P, BETA, -0.1), r"lead_angle must lie in \[0\.0, pi/2\)"),
+    (lambda: groove.groove_curvatures_helical(R_B, CONF, R_P, BETA, -0.1), r"lead_angle must lie in \[0, pi/2\)"),
     (lambda: groove.gothic_arch(5e-3, CONF, BETA, 0.3), r"deviation_left must lie in .* rad \(i\.e\. \[-15, 15\] deg"),
     (lambda: groove.gothic_arch(5e-3, CONF, BETA, land_height=1e-3), "land_height"),
 ])
@@ -228,9 +228,9 @@ def test_groove_bad_input(call, match):
     (lambda: checks.finite("theta", [0.0, math.inf]), r"theta must be finite"),
     (lambda: checks.finite("theta", "abc"), r"theta must be a real number"),
     (lambda: checks.finite("theta", True), r"theta must be a real number, not a boolean"),
-    (lambda: checks.contact_angle("contact_angle", math.pi / 2), r"\(0\.0, pi/2\) rad \(i\.e\. \(0, 90\) deg\)"),
-    (lambda: checks.lead_angle("lead_angle", -0.1), r"\[0\.0, pi/2\) rad"),
-    (lambda: checks.conformity("conformity", 0.5), r"conformity must lie in \(0\.5, 1\.0\) \(groove radius"),
+    (lambda: checks.contact_angle("contact_angle", math.pi / 2), r"\(0, pi/2\) rad \(i\.e\. \(0, 90\) deg\)"),
+    (lambda: checks.lead_angle("lead_angle", -0.1), r"\[0, pi/2\) rad"),
+    (lambda: checks.conformity("conformity", 0.5), r"conformity must lie in \(0\.5, 1\) \(groove radius"),
     (lambda: checks.conformity("conformity", 1.2), r"got 1\.2"),
     (lambda: checks.choice("body", "cage", ("nut", "screw")), r"body must be one of \('nut', 'screw'\), got 'cage'"),
     (lambda: checks.choice("body", ["nut"], ("nut", "screw")), r"body must be one of"),
@@ -239,7 +239,7 @@ def test_groove_bad_input(call, match):
     (lambda: checks.count("n_balls", 0, 1), r"n_balls must be an integer in \[1, inf\), got 0"),
     (lambda: checks.count("element_order", 3, 1, 2), r"\[1, 2\], got 3"),
     (lambda: checks.trailing_axis("angles", [1.0, 2.0], 4, "(BL, BR, TR, TL)"), r"trailing axis of 4 \(BL"),
-    (lambda: checks.bounded("poisson_ratio", 0.5, -1.0, 0.5), r"poisson_ratio must lie in \(-1\.0, 0\.5\); got 0\.5"),
+    (lambda: checks.bounded("poisson_ratio", 0.5, -1.0, 0.5), r"poisson_ratio must lie in \(-1, 0\.5\); got 0\.5"),
 ])
 def test_checks_name_parameter_range_and_value(call, match):
     with pytest.raises(ValueError, match=match):

@@ -72,6 +72,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import ellipe, ellipk, elliprd
 
+from ballbench.lowmodel import checks
+
 __all__ = [
     "EllipseFriction",
     "SlipFriction",
@@ -180,18 +182,13 @@ class AngleFriction:
 # input checks
 # --------------------------------------------------------------------------
 def _check_ratio(b_over_a, *, lower: float = B_OVER_A_RANGE[0]) -> np.ndarray:
-    beta = np.asarray(b_over_a, dtype=float)
-    if not np.all(np.isfinite(beta)):
-        raise ValueError("b_over_a must be finite (got NaN or inf)")
-    if np.any(beta < lower) or np.any(beta > 1.0):
-        raise ValueError(f"b_over_a must lie in [{lower}, 1] (a is the semi-major axis), "
-                         f"got range [{beta.min()!r}, {beta.max()!r}]")
-    return beta
+    return np.asarray(checks.bounded("b_over_a", b_over_a, lower, 1.0, lower_closed=True, upper_closed=True,
+                                     note="a is the semi-major axis"))
 
 
 def _check_kappa(c_over_a) -> np.ndarray:
-    kappa = np.asarray(c_over_a, dtype=float)
-    if np.any(np.isnan(kappa)):
+    kappa = checks.real("c_over_a", c_over_a)
+    if np.any(np.isnan(kappa)):  # +-inf is pure sliding, allowed
         raise ValueError("c_over_a must not be NaN (+-inf is allowed: pure sliding)")
     return kappa
 
@@ -563,7 +560,8 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     if use_cache and path.exists():
         try:
             with np.load(path) as data:
-                arrays = tuple(np.array(data[name]) for name in ("phi", "log_b_over_a", "force", "moment", "loss_direction"))
+                arrays = tuple(np.array(data[name])
+                               for name in ("phi", "log_b_over_a", "force", "moment", "loss_direction"))
             return FrictionMap(*arrays, build_time_s=time.perf_counter() - start, from_cache=True)
         except (OSError, KeyError, ValueError):
             pass  # unreadable entry: rebuild below

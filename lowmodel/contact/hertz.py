@@ -210,11 +210,9 @@ def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: flo
     the cross-section, y along the groove (the rolling direction).
     """
     radius = checks.positive("ball_radius", ball_radius, "m")
-    conformity = checks.conformity("conformity", conformity)
-    groove_radius = conformity * 2.0 * radius
-    # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0)
-    return from_curvatures((1 / radius, 1 / radius), (-1 / groove_radius, 0.0), youngs_modulus=youngs_modulus,
-                           poisson_ratio=poisson_ratio)
+    # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0) from the geometry core
+    return from_curvatures((1 / radius, 1 / radius), groove.straight_groove_curvatures(radius, conformity),
+                           youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
 
 
 def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,

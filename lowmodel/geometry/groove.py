@@ -70,7 +70,7 @@ from ballbench.lowmodel.geometry import fourpoint, helix
 
 __all__ = [
     "BODIES", "FLANKS", "PROFILE_PLANES", "MAX_DEVIATION",
-    "GothicArch", "gothic_arch",
+    "groove_radius", "straight_groove_curvatures", "GothicArch", "gothic_arch",
     "HelicalGroove", "helical_groove", "ContactFrame", "contact_frame", "groove_curvatures_helical",
     "counter_height", "pair_initial_gap", "profile_coordinates", "surface_residual",
 ]
@@ -81,9 +81,25 @@ PROFILE_PLANES = ("normal", "axial")
 MAX_DEVIATION = math.radians(15.0)  # largest contact angle deviation of a flank [rad]
 
 
+def groove_radius(ball_radius, conformity):
+    """Flank radius ``r_g = conformity * 2 R_B`` [m] (lin2019 Sec 2.3.1: ``conf = R_G / 2 R_B``)."""
+    return conformity * 2.0 * ball_radius
+
+
 # --------------------------------------------------------------------------
 # straight gothic arch (linear-bearing rail)
 # --------------------------------------------------------------------------
+def straight_groove_curvatures(ball_radius: float, conformity: float) -> tuple[float, float]:
+    """Principal curvatures [1/m] of a straight groove flank, ``(across, along) = (-1/r_g, 0)``.
+
+    Positive convex as seen from the ball; ``across`` lies in the cross-section
+    (the major axis ``a`` of a ball's Hertz ellipse), ``along`` the groove.
+    ``ball_radius`` [m] > 0, ``conformity`` in (0.5, 1).
+    """
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    return -1.0 / groove_radius(radius, checks.conformity("conformity", conformity)), 0.0
+
+
 @dataclass(frozen=True)
 class GothicArch:
     """Cross-section of a bottom gothic-arch groove (build with :func:`gothic_arch`).
@@ -101,7 +117,7 @@ class GothicArch:
 
     @property
     def groove_radius(self) -> float:
-        return self.conformity * 2.0 * self.ball_radius
+        return groove_radius(self.ball_radius, self.conformity)
 
     def contact_point(self, side: str) -> np.ndarray:
         """(x, y) of the contact point of flank ``side`` ('left' or 'right') [m]: BL or BR of lin2017 eq 1."""
@@ -188,7 +204,7 @@ class HelicalGroove:
     @property
     def groove_radius(self) -> float:
         """``r_g = conformity * 2 R_B`` [m] (lin2019 Sec 2.3.1: conf = R_G / 2 R_B)."""
-        return self.conformity * 2.0 * self.ball_radius
+        return groove_radius(self.ball_radius, self.conformity)
 
     @property
     def lead_per_radian(self) -> float:
@@ -288,9 +304,9 @@ def helical_groove(ball_radius: float, conformity: float, pitch_radius: float, l
     body = checks.choice("body", body, BODIES)
     flank = checks.choice("flank", flank, FLANKS)
     profile_plane = checks.choice("profile_plane", profile_plane, PROFILE_PLANES)
-    if body == "screw" and pitch_radius <= 2.0 * conformity * ball_radius:
+    if body == "screw" and pitch_radius <= groove_radius(ball_radius, conformity):
         raise ValueError(f"pitch_radius must exceed the groove radius 2 conformity ball_radius "
-                         f"= {2 * conformity * ball_radius!r} m for a screw groove, got {pitch_radius!r}")
+                         f"= {groove_radius(ball_radius, conformity)!r} m for a screw groove, got {pitch_radius!r}")
     return HelicalGroove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
 
 
@@ -392,7 +408,7 @@ def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radiu
     lead_angle = checks.lead_angle("lead_angle", lead_angle)
     checks.choice("body", body, BODIES)
     checks.choice("profile_plane", profile_plane, PROFILE_PLANES)
-    lead = 2.0 * math.pi * pitch_radius * math.tan(lead_angle)
+    lead = float(helix.lead_from_angle(lead_angle, pitch_radius))
     frame = contact_frame(helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, "right",
                                          profile_plane))
     return frame.curvature_major, frame.curvature_minor, frame.profile_angle

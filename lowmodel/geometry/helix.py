@@ -42,7 +42,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = [
-    "lead_angle", "helix_parameter", "curvature", "torsion", "ball_centre", "ball_centre_velocity",
+    "lead_angle", "lead_from_angle", "helix_parameter", "curvature", "torsion", "ball_centre", "ball_centre_velocity",
     "frenet_frame", "cs3_frame", "rotation_z", "frame_angular_velocity", "to_global", "to_frenet",
     "contact_offset", "contact_point", "axis_in_frenet", "ball_centre_azimuths", "BODIES",
 ]
@@ -71,7 +71,19 @@ def lead_angle(lead, pitch_radius) -> np.ndarray:
     L = 20 mm, r_m = 20.7 mm gives psi = 8.74 deg).
     """
     radius = checks.positive("pitch_radius", pitch_radius, "m")
-    return np.arctan(helix_parameter(lead) / radius)
+    return np.arctan(helix_parameter(lead) / radius)  # wang2022 Sec 2.2, lin2019 eq 42
+
+
+_lead_angle = lead_angle  # for functions whose argument ``lead_angle`` hides the function
+
+
+def lead_from_angle(lead_angle, pitch_radius) -> np.ndarray:
+    """Lead ``L = 2 pi r_m tan(lead_angle)`` [m], the inverse of :func:`lead_angle`.
+
+    ``lead_angle`` [rad] in [0, pi/2), ``pitch_radius`` r_m [m] > 0.
+    """
+    angle = checks.lead_angle("lead_angle", lead_angle)
+    return 2.0 * np.pi * checks.positive("pitch_radius", pitch_radius, "m") * np.tan(angle)
 
 
 def curvature(pitch_radius, lead) -> np.ndarray:
@@ -118,7 +130,7 @@ def ball_centre_velocity(orbital_speed, screw_speed, pitch_radius, lead, lead_an
     omega = checks.finite("screw_speed", screw_speed)
     radius = checks.positive("pitch_radius", pitch_radius, "m")
     h = helix_parameter(lead)
-    psi = np.arctan(h / radius) if lead_angle is None else checks.lead_angle("lead_angle", lead_angle)
+    psi = _lead_angle(lead, radius) if lead_angle is None else checks.lead_angle("lead_angle", lead_angle)
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
     tangential = omega_m * radius
     axial = (omega_m - omega) * h

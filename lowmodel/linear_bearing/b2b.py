@@ -44,21 +44,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing.bearing_ball import (
     N_UNKNOWNS,
     BallContacts,
     BallState,
-    _ball_terms,
-    _explained,
-    _initial_guess,
-    _state,
-    _solve_free,
     ball_contacts,
-    check_solver_options,
+    ball_state,
+    ball_terms,
+    initial_guess,
     solve_ball,
     solve_branch,
+    solve_free,
+    with_spin_capacity_diagnosis,
 )
-from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.solvers import check_solver_options
 
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "COMPLEMENTARITY_SCALE"]
 
@@ -81,11 +82,9 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
     forces from lin2017 eq 36 (not the sqrt(2)/2 approximation of Sec 2.4.1,
     which only the analytical model uses).
     """
-    if not isinstance(n_balls, (int, np.integer)) or n_balls < 1:
-        raise ValueError(f"n_balls must be an integer >= 1, got {n_balls!r}")
-    for name, value in (("theta", theta), ("side_force_ratio", side_force_ratio)):
-        if not math.isfinite(float(value)):
-            raise ValueError(f"{name} must be finite, got {value!r}")
+    n_balls = checks.count("n_balls", n_balls, 1)
+    theta = checks.finite("theta", theta, "rad")
+    side_force_ratio = checks.finite("side_force_ratio", side_force_ratio)
     top = np.asarray(top_deviations, dtype=float)
     angles = nominal_angle + np.array([-theta, theta, top[0], top[1]])
     sign = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0)
@@ -98,13 +97,11 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
     if gaps is None:
         return np.zeros(n_balls - 1)
-    gaps = np.asarray(gaps, dtype=float).reshape(-1)
+    gaps = checks.real("gaps", gaps).reshape(-1)
     if gaps.shape != (n_balls - 1,):
         raise ValueError(f"gaps must have shape ({n_balls - 1},) (one per neighbouring pair), got {gaps.shape}")
-    if not np.all(np.isfinite(gaps)):
-        raise ValueError("gaps must be finite (m)")
-    if np.any(gaps < -1e-9 * radius):
-        raise ValueError(f"gaps must be >= 0 m (rigid balls cannot overlap), got min {gaps.min()!r}")
+    checks.bounded("gaps", gaps, -1e-9 * radius, math.inf, "m", lower_closed=True,
+                   note="rigid balls cannot overlap; -1e-9 R_B allows round-off")
     return gaps
 
 
@@ -199,7 +196,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
 
     def function(z):
         balls, forces = unpack(z)
-        terms = _ball_terms(balls, contacts, reference_force)
+        terms = ball_terms(balls, contacts, reference_force)
         load, d_scaled, d_forces, slip = _b2b_terms(balls[:, :3], forces, mu)
         last.update(z=z, terms=terms, slip=slip)
         jac = np.zeros((size, size))
@@ -231,13 +228,13 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                             tolerance=tolerance, max_iterations=max_iterations, what=f"{n}-ball B2B contact")
 
     try:  # from rolling at v/2 (cheap) ...
-        z, residual, iterations = attempt(_initial_guess(contacts))
+        z, residual, iterations = attempt(initial_guess(contacts))
     except ConvergenceError:  # ... else from the solution of every ball on its own
-        guess, free_iterations, _ = _solve_free(contacts, reference_force, tolerance, max_iterations)
+        guess, free_iterations, _ = solve_free(contacts, reference_force, tolerance, max_iterations)
         try:
             z, residual, iterations = attempt(guess)
         except ConvergenceError as error:
-            raise _explained(error, contacts) from None
+            raise with_spin_capacity_diagnosis(error, contacts) from None
         iterations += free_iterations
     balls, forces = unpack(z)
     separation = balls[touching + 1, 0] - balls[touching, 0]
@@ -250,9 +247,9 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     if last.get("z") is z:  # the last evaluation was at the solution
         terms, slip = last["terms"], last["slip"]
     else:
-        terms = _ball_terms(balls, contacts, reference_force)
+        terms = ball_terms(balls, contacts, reference_force)
         slip = _b2b_terms(balls[:, :3], forces, mu)[3]
-    return _state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
+    return ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                   b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
 
 
@@ -298,9 +295,7 @@ def simulate_gaps(contacts: BallContacts, initial_gaps, t_end: float, *, max_eve
     n = contacts.n_balls
     if n < 2:
         raise ValueError(f"simulate_gaps needs n >= 2 balls, got {n}")
-    t_end = float(t_end)
-    if not math.isfinite(t_end) or t_end <= 0.0:
-        raise ValueError(f"t_end must be finite and > 0 s, got {t_end!r}")
+    t_end = checks.positive("t_end", t_end, "s")
     gaps = _check_gaps(initial_gaps, n, contacts.ball_radius).copy()
     gap_tolerance = 1e-9 * contacts.ball_radius
     time = 0.0

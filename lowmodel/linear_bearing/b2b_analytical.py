@@ -35,6 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
+
 __all__ = [
     "K_F_PAPER",
     "velocity_deviation",
@@ -52,42 +54,11 @@ NOMINAL_CONTACT_ANGLE = 0.25 * math.pi  # beta_0 of the lin2019 case studies [ra
 
 
 # --------------------------------------------------------------------------
-# input checks
+# input checks (lowmodel.checks; arrays, since the inputs broadcast)
 # --------------------------------------------------------------------------
-def _finite(name: str, value) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite (got NaN or inf)")
-    return array
-
-
-def _positive(name: str, value, unit: str) -> np.ndarray:
-    array = _finite(name, value)
-    if np.any(array <= 0.0):
-        raise ValueError(f"{name} must be > 0 {unit}, got min {array.min()!r}")
-    return array
-
-
-def _non_negative(name: str, value, unit: str) -> np.ndarray:
-    array = _finite(name, value)
-    if np.any(array < 0.0):
-        raise ValueError(f"{name} must be >= 0 {unit}, got min {array.min()!r}")
-    return array
-
-
-def _contact_angle(value) -> np.ndarray:
-    angle = _finite("nominal_contact_angle", value)
-    if np.any(angle <= 0.0) or np.any(angle >= 0.5 * math.pi):
-        raise ValueError(f"nominal_contact_angle must lie in (0, pi/2) rad, got {value!r}")
-    return angle
-
-
 def _contact_forces(name: str, value) -> np.ndarray:
-    array = _finite(name, value)
-    if np.any(array <= 0.0):
-        raise ValueError(f"{name} must be > 0 N (four-point contact needs all four contact forces positive), "
-                         f"got min {array.min()!r}")
-    return array
+    return np.asarray(checks.positive(name, value, "N", note="four-point contact needs all four contact forces "
+                                                             "positive"))
 
 
 # --------------------------------------------------------------------------
@@ -110,12 +81,12 @@ def velocity_deviation(delta_beta, force_up, force_down,
     epsilon, dimensionless, broadcast shape of ``delta_beta[..., 0]``, the forces and ``beta_0``.
     Valid for small ``|Delta beta_i + Delta eta_i|`` and four-point contact (Sec 2.3.2).
     """
-    deviations = _finite("delta_beta", delta_beta)
+    deviations = np.asarray(checks.finite("delta_beta", delta_beta))
     if deviations.shape[-1:] != (4,):
         raise ValueError(f"delta_beta must have a last axis of length 4 (BL, BR, TR, TL), got shape {deviations.shape}")
     up = _contact_forces("force_up", force_up) ** (2.0 / 3.0)
     down = _contact_forces("force_down", force_down) ** (2.0 / 3.0)
-    beta0 = _contact_angle(nominal_contact_angle)
+    beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
     return _epsilon(*np.moveaxis(deviations, -1, 0), up, down, beta0)
 
 
@@ -135,9 +106,9 @@ def diagonal_forces(normal_load, side_load, nominal_contact_angle=NOMINAL_CONTAC
     Parameters: ``normal_load`` N_y [N] (> 0), ``side_load`` N_x [N], ``beta_0`` [rad].
     Raises ValueError when a diagonal loses contact (``|N_x| >= N_y tan(beta_0)``).
     """
-    n_y = _positive("normal_load", normal_load, "N")
-    n_x = _finite("side_load", side_load)
-    beta0 = _contact_angle(nominal_contact_angle)
+    n_y = np.asarray(checks.positive("normal_load", normal_load, "N"))
+    n_x = np.asarray(checks.finite("side_load", side_load))
+    beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
     return _diagonal(n_y, n_x, beta0)
 
 
@@ -159,8 +130,8 @@ def side_force_deviation(theta, rho) -> np.ndarray:
     ball 1 and ``epsilon_2 = side_force_deviation(theta, -rho)`` for ball 2.
     ``theta`` [rad], ``rho`` in (-1, 1); dimensionless result.
     """
-    theta = _finite("theta", theta)
-    rho = _finite("rho", rho)
+    theta = np.asarray(checks.finite("theta", theta))
+    rho = np.asarray(checks.finite("rho", rho))
     if np.any(np.abs(rho) >= 1.0):
         raise ValueError("loss of four-point contact: rho = N_x/N_y must lie in (-1, 1) at beta_0 = 45 deg")
     ratio = ((1.0 + rho) / (1.0 - rho)) ** (2.0 / 3.0)
@@ -173,7 +144,8 @@ def mitigating_top_deviations(delta_beta_bl, delta_beta_br):
     With them eq 22 gives ``epsilon = 0`` for every load (lin2019 Sec 2.3.2
     insight (3), Sec 2.4.2), so no two balls approach and ``F_B2B = 0``.  [rad]
     """
-    return _finite("delta_beta_bl", delta_beta_bl).copy(), _finite("delta_beta_br", delta_beta_br).copy()
+    return (np.array(checks.finite("delta_beta_bl", delta_beta_bl)),
+            np.array(checks.finite("delta_beta_br", delta_beta_br)))
 
 
 # --------------------------------------------------------------------------
@@ -199,15 +171,15 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     nominal_contact_angle : ``beta_0`` [rad].
     touching : bool array_like, ``d_12 <= 2 R_B``.
     """
-    eps_1 = _finite("epsilon_1", epsilon_1)
-    eps_2 = _finite("epsilon_2", epsilon_2)
+    eps_1 = np.asarray(checks.finite("epsilon_1", epsilon_1))
+    eps_2 = np.asarray(checks.finite("epsilon_2", epsilon_2))
     s_1 = sum(_contact_forces("forces_1", f) ** (2.0 / 3.0) for f in forces_1)
     s_2 = sum(_contact_forces("forces_2", f) ** (2.0 / 3.0) for f in forces_2)
-    k_f = _positive("k_f", k_f, "")
-    mu = _non_negative("friction_coefficient", friction_coefficient, "")
-    psi = _positive("psi", psi, "(m^2/N)^(1/3)")
-    radius = _positive("ball_radius", ball_radius, "m")
-    beta0 = _contact_angle(nominal_contact_angle)
+    k_f = np.asarray(checks.positive("k_f", k_f, ""))
+    mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient, ""))
+    psi = np.asarray(checks.positive("psi", psi, "(m^2/N)^(1/3)"))
+    radius = np.asarray(checks.positive("ball_radius", ball_radius, "m"))
+    beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
     return _force(eps_1, eps_2, s_1, s_2, k_f, mu, psi, radius, beta0, np.asarray(touching, dtype=bool))
 
 
@@ -226,10 +198,10 @@ def friction_loss(b2b_force, friction_coefficient, groove_velocity,
     magnitude is used), ``beta_0`` [rad].  Eq 31 takes the sliding speed at the B2B
     contact as ``v / cos(beta_0)`` (both balls rolling about x at ``beta_0``).
     """
-    force = _non_negative("b2b_force", b2b_force, "N")
-    mu = _non_negative("friction_coefficient", friction_coefficient, "")
-    speed = np.abs(_finite("groove_velocity", groove_velocity))
-    beta0 = _contact_angle(nominal_contact_angle)
+    force = np.asarray(checks.non_negative("b2b_force", b2b_force, "N"))
+    mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient, ""))
+    speed = np.abs(np.asarray(checks.finite("groove_velocity", groove_velocity)))
+    beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
     return mu * force * speed / np.cos(beta0)  # lin2019 eq 32
 
 
@@ -270,16 +242,16 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     [(m^2/N)^(1/3)], ``ball_radius`` [m], ``k_f``, ``delta_beta_top`` pair of
     array_like [rad] broadcasting with theta, ``nominal_contact_angle`` [rad].
     """
-    theta = _finite("theta", theta)
-    rho = _finite("rho", rho)
-    n_y = _positive("normal_load", normal_load, "N")
-    v = _finite("groove_velocity", groove_velocity)
-    mu = _non_negative("friction_coefficient", friction_coefficient, "")
-    psi = _positive("psi", psi, "(m^2/N)^(1/3)")
-    radius = _positive("ball_radius", ball_radius, "m")
-    k_f = _positive("k_f", k_f, "")
-    beta0 = _contact_angle(nominal_contact_angle)
-    top_tr, top_tl = (_finite("delta_beta_top", value) for value in delta_beta_top)
+    theta = np.asarray(checks.finite("theta", theta))
+    rho = np.asarray(checks.finite("rho", rho))
+    n_y = np.asarray(checks.positive("normal_load", normal_load, "N"))
+    v = np.asarray(checks.finite("groove_velocity", groove_velocity))
+    mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient, ""))
+    psi = np.asarray(checks.positive("psi", psi, "(m^2/N)^(1/3)"))
+    radius = np.asarray(checks.positive("ball_radius", ball_radius, "m"))
+    k_f = np.asarray(checks.positive("k_f", k_f, ""))
+    beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
+    top_tr, top_tl = (np.asarray(checks.finite("delta_beta_top", value)) for value in delta_beta_top)
     side = rho * n_y
     powers = [f ** (2.0 / 3.0) for f in (*_diagonal(n_y, side, beta0), *_diagonal(n_y, -side, beta0))]
     # (BL, BR, TR, TL) = (-theta, theta, top_tr, top_tl) for both balls

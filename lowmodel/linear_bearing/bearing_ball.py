@@ -51,9 +51,9 @@ quadrature).  The tabulated loss of eq A6 is reported alongside
 Unknowns of Newton's method, per ball: ``(v_B, omega_x R_B, omega_y
 R_B)/|v|`` and the four ``phi_i``; equations: eq 4 (in ``phi``) and the
 kinematics ``slide_i cos phi_i - spin_i sin phi_i = 0`` (see
-:func:`_ball_terms`: smooth also where a contact's slip vanishes).  Analytic
+:func:`ball_terms`: smooth also where a contact's slip vanishes).  Analytic
 Jacobian (chain rule through the map's spline derivatives), globalised by
-Levenberg-Marquardt (:func:`newton`); residuals in units of ``mu max(F_i)``
+Levenberg-Marquardt (:func:`lowmodel.solvers.newton`); residuals in units of ``mu max(F_i)``
 and ``|v|``.  Near the four-point limit the full-sliding model stops having a
 solution (:func:`spin_capacity_ratio`); the solver then raises
 ConvergenceError with that diagnosis.
@@ -61,29 +61,35 @@ ConvergenceError with that diagnosis.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import contact_normals
+from ballbench.lowmodel.solvers import check_solver_options, solve_with_restarts
 
 __all__ = [
     "BallContacts",
     "BallState",
+    "BallTerms",
     "ball_contacts",
     "contacts_from_forces",
     "solve_ball",
-    "contact_normals",
-    "newton",
     "spin_capacity_ratio",
-    "CONTACT_NAMES",
+    "ball_terms",
+    "initial_guess",
+    "with_slip_angles",
+    "slip_kinematics",
+    "ball_state",
+    "solve_free",
+    "solve_branch",
+    "with_spin_capacity_diagnosis",
+    "N_UNKNOWNS",
 ]
 
-CONTACT_NAMES = ("BL", "BR", "TR", "TL")  # lin2017 Fig 2 order, shared convention
-_SIGN_X = np.array([-1.0, 1.0, 1.0, -1.0])
-_SIGN_Y = np.array([-1.0, -1.0, 1.0, 1.0])
 _TOP = np.array([0.0, 0.0, 1.0, 1.0])  # contacts on the moving (top) groove
 
 
@@ -117,7 +123,7 @@ class BallContacts:
 
     @cached_property
     def _geometry(self):
-        """Load-independent arrays of :func:`_ball_terms` (computed once per instance)."""
+        """Load-independent arrays of :func:`ball_terms` (computed once per instance)."""
         normals = contact_normals(self.contact_angles)
         nx, ny = normals[..., 0], normals[..., 1]
         arm = self.semi_major / self.ball_radius  # a_i / R_B
@@ -186,31 +192,13 @@ class BallState:
 # --------------------------------------------------------------------------
 # input checks and construction
 # --------------------------------------------------------------------------
-def _finite_positive(name: str, value, unit: str) -> float:
-    value = float(value)
-    if not math.isfinite(value) or value <= 0.0:
-        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
-    return value
-
-
-def check_solver_options(tolerance, max_iterations) -> None:
-    """ValueError unless ``tolerance`` is finite and > 0 and ``max_iterations`` an integer >= 1."""
-    if not (isinstance(tolerance, (int, float, np.floating)) and math.isfinite(tolerance) and tolerance > 0.0):
-        raise ValueError(f"tolerance must be a finite number > 0, got {tolerance!r}")
-    if not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
-        raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
-
-
 def _check_angles(contact_angles) -> np.ndarray:
-    angles = np.asarray(contact_angles, dtype=float)
+    angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
     if angles.ndim == 1:
         angles = angles[None, :]
-    if angles.ndim != 2 or angles.shape[-1] != 4:
+    if angles.ndim != 2:
         raise ValueError(f"contact_angles must have shape (4,) or (n, 4), got {angles.shape}")
-    if not np.all(np.isfinite(angles)) or np.any(angles <= 0.0) or np.any(angles >= 0.5 * math.pi):
-        raise ValueError("contact_angles must lie in (0, pi/2) rad, i.e. (0, 90) deg; "
-                         f"got range [{np.nanmin(angles)!r}, {np.nanmax(angles)!r}] rad")
-    return angles
+    return checks.contact_angle("contact_angles", angles)
 
 
 def contacts_from_forces(contact_angles, normal_forces, semi_major, b_over_a, *, ball_radius: float,
@@ -219,23 +207,18 @@ def contacts_from_forces(contact_angles, normal_forces, semi_major, b_over_a, *,
 
     Shapes ``(4,)`` or ``(n, 4)``; forces [N] must be > 0 (four-point contact).
     """
-    radius = _finite_positive("ball_radius", ball_radius, "m")
-    mu = _finite_positive("friction_coefficient", friction_coefficient, "(mu = 0 leaves the ball motion undetermined)")
-    velocity = float(groove_velocity)
-    if not math.isfinite(velocity) or velocity == 0.0:
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    mu = checks.positive("friction_coefficient", friction_coefficient,
+                         note="mu = 0 leaves the ball motion undetermined")
+    velocity = checks.finite("groove_velocity", groove_velocity, "m/s")
+    if velocity == 0.0:
         raise ValueError(f"groove_velocity must be finite and nonzero m/s, got {groove_velocity!r}")
     angles = _check_angles(contact_angles)
-    forces = np.broadcast_to(np.asarray(normal_forces, dtype=float), angles.shape).copy()
-    if not np.all(np.isfinite(forces)) or np.any(forces <= 0.0):
-        raise ValueError("normal_forces must be finite and > 0 N at all four contacts "
-                         "(loss of four-point contact otherwise, lin2017 eq 37); "
-                         f"got min {np.nanmin(forces)!r}")
-    axes = np.broadcast_to(np.asarray(semi_major, dtype=float), angles.shape).copy()
-    if not np.all(np.isfinite(axes)) or np.any(axes <= 0.0):
-        raise ValueError("semi_major must be finite and > 0 m")
-    ratio = np.broadcast_to(np.asarray(b_over_a, dtype=float), angles.shape).copy()
-    if not np.all(np.isfinite(ratio)) or np.any(ratio <= 0.0) or np.any(ratio > 1.0):
-        raise ValueError("b_over_a must lie in (0, 1]")
+    forces = np.broadcast_to(checks.positive("normal_forces", normal_forces, "N", note=(
+        "at all four contacts; loss of four-point contact otherwise, lin2017 eq 37")), angles.shape).copy()
+    axes = np.broadcast_to(checks.positive("semi_major", semi_major, "m"), angles.shape).copy()
+    ratio = np.broadcast_to(checks.bounded("b_over_a", b_over_a, 0.0, 1.0, upper_closed=True),
+                            angles.shape).copy()
     return BallContacts(angles, forces, axes, ratio, radius, mu, velocity)
 
 
@@ -298,12 +281,6 @@ def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
     return np.minimum(up, down)
 
 
-def contact_normals(contact_angles) -> np.ndarray:
-    """Outward unit normals ``(n_x, n_y)`` of the contacts, shape ``(..., 4, 2)`` (module docstring)."""
-    angles = np.asarray(contact_angles, dtype=float)
-    return np.stack([_SIGN_X * np.sin(angles), _SIGN_Y * np.cos(angles)], axis=-1)
-
-
 # --------------------------------------------------------------------------
 # residual of the ball equilibrium (vectorised over balls)
 # --------------------------------------------------------------------------
@@ -314,7 +291,12 @@ def _friction(spin, slide, b_over_a):
 
 
 @dataclass(frozen=True)
-class _Terms:
+class BallTerms:
+    """Residual, Jacobian and contact terms of :func:`ball_terms` for ``n`` balls (dimensionless units).
+
+    Forces and moments in units of ``mu F_ref``, velocities in units of ``|v|``.
+    """
+
     residual: np.ndarray  # (n, 7): eq 4 rows in units mu F_ref, then 4 kinematic rows in units |v|
     jacobian: np.ndarray  # (n, 7, 7) d residual / d unknowns
     slide: np.ndarray  # (n, 4) units |v|
@@ -325,11 +307,10 @@ class _Terms:
     loss_table: np.ndarray  # (n, 4) units mu F_ref |v|
 
 
-_SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 N_UNKNOWNS = 7  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v| and the four slip angles phi_i
 
 
-def _ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: float) -> _Terms:
+def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: float) -> BallTerms:
     """Residual of lin2019 eq 4 and of the slip kinematics for each ball, and its Jacobian.
 
     ``unknowns`` (n, 7): ``x = (v_B, omega_x R_B, omega_y R_B)/|v|`` and the
@@ -369,36 +350,40 @@ def _ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: f
     index = np.arange(4)
     jacobian[:, 3 + index, 3 + index] = -slip_speed
     loss_table = load * fr.loss * slip_speed  # eq A6 (loss is per unit slip speed here)
-    return _Terms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
+    return BallTerms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
-def _initial_guess(contacts: BallContacts) -> np.ndarray:
+def initial_guess(contacts: BallContacts) -> np.ndarray:
     """Rolling about x with v_B = v/2 (the theta = 0 solution), and its slip angles."""
     direction = math.copysign(1.0, contacts.groove_velocity)
     cos_mean = np.cos(contacts.contact_angles).mean(axis=1)
     guess = np.zeros((contacts.n_balls, N_UNKNOWNS))
     guess[:, 0] = 0.5 * direction
     guess[:, 1] = 0.5 * direction / cos_mean
-    return _with_angles(guess, contacts)
+    return with_slip_angles(guess, contacts)
 
 
-def _kinematics(unknowns: np.ndarray, contacts: BallContacts):
+def slip_kinematics(unknowns: np.ndarray, contacts: BallContacts):
     """Slip at the contact centres (units |v|): ``slide_i`` (eqs 1, A1-A3) and ``spin_i = omega_i a_i`` (eq 2)."""
     _, _, _, dslide, dspin, top = contacts._geometry
     x = unknowns[:, :3]
     return np.einsum("nk,nik->ni", x, dslide) - top, np.einsum("nk,nik->ni", x, dspin)
 
 
-def _with_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
-    """Set the slip angles of ``guess`` from its velocities (atan2(slide, spin))."""
-    slide, spin = _kinematics(guess, contacts)
+def with_slip_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
+    """A copy of the unknowns ``guess`` (n, 7) with the slip angles set from its velocities (atan2(slide, spin))."""
+    slide, spin = slip_kinematics(guess, contacts)
     guess = guess.copy()
     guess[:, 3:] = np.arctan2(slide, spin)
     return guess
 
 
-def _state(unknowns, terms: _Terms, contacts: BallContacts, reference_force: float, *, b2b_force=None,
-           b2b_slip=None, iterations: int, residual: float) -> BallState:
+def ball_state(unknowns, terms: BallTerms, contacts: BallContacts, reference_force: float, *, b2b_force=None,
+               b2b_slip=None, iterations: int, residual: float) -> BallState:
+    """The :class:`BallState` [SI] of converged unknowns (n, 7) and their :func:`ball_terms`.
+
+    ``b2b_force`` [N] and ``b2b_slip`` [m/s], shape (n-1,), default to zero (no ball-to-ball contact).
+    """
     speed = abs(contacts.groove_velocity)
     radius = contacts.ball_radius
     mu_f = contacts.friction_coefficient * reference_force
@@ -424,81 +409,8 @@ def _state(unknowns, terms: _Terms, contacts: BallContacts, reference_force: flo
 
 
 # --------------------------------------------------------------------------
-# Newton
+# solution (the damped Newton of lowmodel.solvers)
 # --------------------------------------------------------------------------
-def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str):
-    """Newton's method globalised by Levenberg-Marquardt on ``function(x) -> (residual, jacobian)``.
-
-    Each iteration solves ``(J^T J + lam I) dx = -J^T r`` with the analytic
-    Jacobian ``J``; ``lam`` follows the gain ratio of actual to predicted
-    decrease of ``|r|^2`` (Nielsen's update), so far from the solution the
-    steps are short gradient-like steps (friction saturates: the residual is
-    bounded and plain Newton steps can be huge), and near it ``lam -> 0``
-    gives Newton steps and quadratic convergence.  Stops when
-    ``max|r| <= tolerance``.  Returns ``(x, residual_vector, iterations)``;
-    raises ConvergenceError with the residual otherwise.
-    """
-    x = np.array(x0, dtype=float)
-    residual, jacobian = function(x)
-    norm = float(np.max(np.abs(residual))) if residual.size else 0.0
-    iterations = 0
-    damping = None
-    growth = 2.0
-    while norm > tolerance:
-        if iterations >= max_iterations or not np.isfinite(norm):
-            raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
-                                   tolerance=tolerance)
-        iterations += 1
-        sparse = x.size > _SPARSE_SIZE
-        if sparse:  # many balls: the Jacobian is block tridiagonal
-            from scipy import sparse as sp
-            from scipy.sparse.linalg import spsolve
-
-            jac_sparse = sp.csr_matrix(jacobian)
-            normal = (jac_sparse.T @ jac_sparse).tocsc()
-            identity = sp.identity(x.size, format="csc")
-            diagonal_max = float(normal.diagonal().max())
-        else:
-            normal = jacobian.T @ jacobian
-            identity = np.eye(x.size)
-            diagonal_max = float(np.max(np.diag(normal)))
-        gradient = jacobian.T @ residual
-        if damping is None:
-            damping = 1e-8 * diagonal_max
-        merit = float(residual @ residual)
-        while True:
-            try:
-                if sparse:
-                    with warnings.catch_warnings():  # a singular matrix gives NaN: handled below
-                        warnings.simplefilter("ignore")
-                        step = spsolve(normal + damping * identity, -gradient)
-                else:
-                    step = np.linalg.solve(normal + damping * identity, -gradient)
-            except (np.linalg.LinAlgError, RuntimeError):
-                step = np.full(x.size, np.nan)
-            predicted = merit - float(np.sum((residual + jacobian @ step) ** 2))
-            if np.all(np.isfinite(step)) and predicted > 0.0:
-                trial = x + step
-                trial_residual, trial_jacobian = function(trial)
-                trial_merit = float(trial_residual @ trial_residual)
-                gain = (merit - trial_merit) / predicted
-                if np.isfinite(trial_merit) and gain > 1e-4:
-                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
-                    growth = 2.0
-                    break
-            elif np.all(np.isfinite(step)) and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
-                raise ConvergenceError(f"{what}: stationary point of |residual|", residual=norm,
-                                       iterations=iterations, tolerance=tolerance)
-            damping *= growth
-            growth *= 2.0
-            if not np.isfinite(damping) or damping > 1e30:
-                raise ConvergenceError(f"{what}: no descent step (damping diverged)", residual=norm,
-                                       iterations=iterations, tolerance=tolerance)
-        x, residual, jacobian = trial, trial_residual, trial_jacobian
-        norm = float(np.max(np.abs(residual)))
-    return x, residual, iterations
-
-
 def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 60) -> BallState:
     """Solve lin2019 eq 4 for each ball independently (no ball-to-ball contact).
 
@@ -516,20 +428,24 @@ def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iteratio
     """
     check_solver_options(tolerance, max_iterations)
     reference_force = float(contacts.normal_forces.max())
-    unknowns, iterations, residual = _solve_free(contacts, reference_force, tolerance, max_iterations)
-    terms = _ball_terms(unknowns, contacts, reference_force)
-    return _state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
+    unknowns, iterations, residual = solve_free(contacts, reference_force, tolerance, max_iterations)
+    terms = ball_terms(unknowns, contacts, reference_force)
+    return ball_state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
 
 
-def _solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int):
-    """Unknowns (n, 7) of every ball alone; largest iteration count and residual."""
-    unknowns = _initial_guess(contacts)
+def solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int):
+    """Unknowns (n, 7) of every ball alone (no ball-to-ball contact); largest iteration count and residual.
+
+    ``reference_force`` [N] is the unit of the force residuals (``mu F_ref``).
+    Raises ConvergenceError with the spin-capacity diagnosis if a ball fails.
+    """
+    unknowns = initial_guess(contacts)
     worst_iterations, worst_residual = 0, 0.0
     for index in range(contacts.n_balls):
         single = contacts.ball(index)
 
         def function(z, single=single):
-            terms = _ball_terms(z[None, :], single, reference_force)
+            terms = ball_terms(z[None, :], single, reference_force)
             return terms.residual[0], terms.jacobian[0]
 
         try:
@@ -537,7 +453,7 @@ def _solve_free(contacts: BallContacts, reference_force: float, tolerance: float
                                                    reference_force, tolerance=tolerance,
                                                    max_iterations=max_iterations, what=f"ball {index}")
         except ConvergenceError as error:
-            raise _explained(error, single) from None
+            raise with_spin_capacity_diagnosis(error, single) from None
         unknowns[index] = z
         worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, float(np.max(np.abs(residual))))
@@ -550,30 +466,29 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
 
     ``slide_i cos phi_i = spin_i sin phi_i`` also holds for ``phi_i + pi``
     (friction reversed against the slip); a converged point with a slip speed
-    ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``.
-    ``balls_of(z)`` returns the (n, 7) ball unknowns of the state vector ``z``.
+    ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``
+    (:func:`lowmodel.solvers.solve_with_restarts`).  ``balls_of(z)`` returns
+    the (n, 7) ball unknowns of the state vector ``z``; ``reference_force`` [N]
+    is the force unit of ``function``'s residual.
     """
-    z = np.array(z0, dtype=float)
-    total = 0
-    for _ in range(attempts):
-        z, residual, iterations = newton(function, z, tolerance=tolerance,
-                                         max_iterations=max_iterations - total, what=what)
-        total += iterations
+    def restart(z):
         balls = balls_of(z)
-        slide, spin = _kinematics(balls, contacts)
+        slide, spin = slip_kinematics(balls, contacts)
         slip_speed = slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])
         wrong = slip_speed < -1e3 * tolerance
         if not np.any(wrong):
-            return z, residual, total
+            return None
         balls = balls.copy()
         balls[:, 3:] = np.where(wrong, balls[:, 3:] + math.pi, balls[:, 3:])
-        z = _replace_balls(z, balls)
-    raise ConvergenceError(f"{what}: converged only to slip directions against the slip",
-                           residual=float(-slip_speed.min()), iterations=total, tolerance=tolerance)
+        return _replace_balls(z, balls), float(-slip_speed.min())
+
+    return solve_with_restarts(function, z0, restart, tolerance=tolerance, max_iterations=max_iterations, what=what,
+                               rejection="converged only to slip directions against the slip", attempts=attempts)
 
 
-def _explained(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:
-    """Add the spin-capacity diagnosis to a ConvergenceError (same residual and counts)."""
+def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:
+    """The ConvergenceError ``error`` with the spin-capacity diagnosis (:func:`spin_capacity_ratio`) added
+    to its message (same residual and counts)."""
     ratio = float(np.min(spin_capacity_ratio(contacts)))
     reason = (f"; spin-capacity ratio {ratio:.3f} < 1: no quasi-static state with full sliding at all four "
               "contacts (near the four-point limit, outside lin2019's friction model)" if ratio < 1.0 else

@@ -53,6 +53,11 @@ def _length(a):
     return np.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
 
 
+def _components(vector: np.ndarray):
+    """The three components of ``vector`` (..., 3) as contiguous arrays (fast elementwise arithmetic)."""
+    return tuple(np.array(vector[..., i]) for i in range(3))
+
+
 def _norm(vector: np.ndarray) -> np.ndarray:
     return np.sqrt(np.einsum("...i,...i->...", vector, vector))
 
@@ -236,13 +241,11 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi = _check_geometry(
         pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw, lead_angle)
     yaw = checks.finite("yaw_angle", yaw_angle)
-    h = lead_m / (2.0 * np.pi)
-    r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw = np.broadcast_arrays(
-        r_m, r_b, h, omega, alpha_o, alpha_i, psi, yaw)
-    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+    r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi, yaw = np.broadcast_arrays(
+        r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi, yaw)
     zero = np.zeros(r_m.shape)
 
-    # trigonometric functions once (the eq-by-eq helpers above recompute them; same formulas)
+    # ball motion: trigonometric functions once (the eq-by-eq helpers above recompute them; same formulas)
     cos_o, sin_o, cos_i, sin_i = np.cos(alpha_o), np.sin(alpha_o), np.cos(alpha_i), np.sin(alpha_i)
     gamma = r_b / r_m  # gamma' of wang2022
     beta = np.arctan2(sin_o, cos_o * (1.0 + gamma))  # wang2022 eq 21
@@ -252,23 +255,23 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     ratio = ((1.0 + gamma * cos_o) * (cos_i + tan_beta * sin_i)
              / ((1.0 - gamma * cos_i) * (cos_o + tan_beta * sin_o)))
     omega_m = omega / (1.0 + ratio)  # wang2022 eq 18
-    omega_spin = (omega_m * (1.0 + gamma * cos_o) * cos_psi
+    omega_spin = (omega_m * (1.0 + gamma * cos_o) * np.cos(psi)
                   / (gamma * (cos_beta * cos_o + sin_beta * sin_o)))  # wang2022 eq 19
     # vectors as (t, n, b) component triples inside (contiguous, fast); stacked to (..., 3) on output
     omega_ball = (omega_spin * cos_beta * np.sin(yaw), -omega_spin * sin_beta,
                   -omega_spin * cos_beta * np.cos(yaw))  # wang2022 eq 20
-    axis = (sin_psi, zero, cos_psi)  # k in CS1 (wang2022 eq 15)
-    offset_a = (zero, -r_b * cos_o, r_b * sin_o)  # wang2022 eq 11
-    offset_b = (zero, r_b * cos_i, -r_b * sin_i)  # wang2022 eq 12
+    # geometry and frame from the geometry core (lowmodel.geometry.helix), as component triples
+    axis = _components(helix.axis_in_frenet(psi))  # k in CS1 (wang2022 eq 15)
+    offset_a = _components(helix.contact_offset(r_b, alpha_o, "nut"))  # wang2022 eq 11
+    offset_b = _components(helix.contact_offset(r_b, alpha_i, "screw"))  # wang2022 eq 12
     # ball-centre position at theta = 0 in CS1 (r_m i = -r_m n); its axial part drops out of k x R
     centre_b = (zero, offset_b[1] - r_m, offset_b[2])
 
-    nut = _scale(-omega * h, axis)  # wang2022 eq 16
+    nut = _scale(-omega * helix.helix_parameter(lead_m), axis)  # wang2022 eq 16
     screw = _scale(omega, _cross3(axis, centre_b))  # wang2022 eq 17
     # convected velocity: ball-centre velocity + frame rotation omega_m k x R (wang2022 eqs 25-26)
-    tangential, axial = omega_m * r_m, (omega_m - omega) * h
-    centre_velocity = (tangential * cos_psi + axial * sin_psi, zero, -tangential * sin_psi + axial * cos_psi)
-    frame_rate = _scale(omega_m, axis)
+    centre_velocity = _components(helix.ball_centre_velocity(omega_m, omega, r_m, lead_m, lead_angle=psi))
+    frame_rate = _scale(omega_m, axis)  # helix.frame_angular_velocity: omega_m k
     convected_a = _add(centre_velocity, _cross3(frame_rate, offset_a))  # wang2022 eq 25
     convected_b = _add(centre_velocity, _cross3(frame_rate, offset_b))  # wang2022 eq 26
     ball_rel_a = _cross3(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23 (= V_Ab^r, eq 28)
@@ -333,13 +336,8 @@ def wei_ball_centre_kinematics(pitch_radius, ball_radius, lead, screw_speed, con
     """
     present = kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, contact_angle_screw,
                          lead_angle=lead_angle)
-    r_m = np.broadcast_to(np.asarray(pitch_radius, dtype=float), present.orbital_speed.shape)
-    h = np.broadcast_to(np.asarray(lead, dtype=float) / (2.0 * np.pi), r_m.shape)
-    omega = np.broadcast_to(np.asarray(screw_speed, dtype=float), r_m.shape)
-    psi, omega_m = present.lead_angle, present.orbital_speed
-    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
-    centre = np.stack([omega_m * r_m * cos_psi + (omega_m - omega) * h * sin_psi, np.zeros(r_m.shape),
-                       -omega_m * r_m * sin_psi + (omega_m - omega) * h * cos_psi], axis=-1)
+    centre = helix.ball_centre_velocity(present.orbital_speed, screw_speed, pitch_radius, lead,
+                                        lead_angle=present.lead_angle)  # time derivative of wang2022 eq 10
     u_a, sliding_a, s_a = absolute_velocity_measures(present.nut_velocity, centre, raceway_is_driver=False)
     u_b, sliding_b, s_b = absolute_velocity_measures(present.screw_velocity, centre, raceway_is_driver=True)
     return WeiKinematics(present.nut_velocity, present.screw_velocity, centre, centre, sliding_a, sliding_b,

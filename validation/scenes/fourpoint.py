@@ -46,7 +46,7 @@ def _grid(fidelity):
 
 
 def _labels(sliding, pure_rolling):
-    names = np.array(fourpoint.CONTACTS)
+    names = np.array(fourpoint.CONTACT_NAMES)
     return np.array(["rolling" if rolling else "+".join(names[row]) for row, rolling in zip(sliding, pure_rolling)],
                     dtype=object)
 
@@ -176,7 +176,7 @@ def lin2017_eq39(run):
     rho_values = np.linspace(-1.1, 1.1, n_rho)
     (labels, loss, inside, limits), time_map = run.time(_map, case1_angles, theta_values, rho_values)
     mirrored = np.vectorize(lambda s: "+".join(sorted((MIRROR.get(c, c) for c in s.split("+")),
-                                                      key=lambda c: fourpoint.CONTACTS.index(c)))
+                                                      key=lambda c: fourpoint.CONTACT_NAMES.index(c)))
                             if s not in ("", "rolling") else s, otypes=[object])(labels[::-1, ::-1])
     run.check(model=MODEL, quantity="fraction of Fig 7 grid points whose state equals the left/right mirror of "
                                     "the state at (-theta, -rho)", unit="1", value=float(np.mean(labels == mirrored)),
