@@ -60,7 +60,7 @@ to the Newton tolerance in every solve (tests); the friction torque is
 Newton with the analytic Jacobian: every quantity carries its derivatives
 with respect to the ball's unknowns and ``u`` (forward-mode chain rule,
 :class:`_Dual`), through the Jacobian of ``friction_offset``; globalised by
-the Levenberg-Marquardt ``newton`` of :mod:`lowmodel.linear_bearing.bearing_ball`.
+the Levenberg-Marquardt ``newton`` of :mod:`lowmodel.solvers`.
 """
 from __future__ import annotations
 
@@ -587,7 +587,7 @@ def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float =
     for the loaded pair, forces and moments / R_B) and of the axial balance.
     Raises ConvergenceError with its residual if Newton fails.
     """
-    from ballbench.lowmodel.linear_bearing.bearing_ball import check_solver_options
+    from ballbench.lowmodel.solvers import check_solver_options
 
     check_solver_options(tolerance, max_iterations)
     load = checks.finite("axial_load", axial_load, "N")
@@ -632,7 +632,7 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
 
 def _newton_one(single: BallContacts, scales: Scales, axial_load: float, guess: np.ndarray, oversize: float,
                 tolerance: float, max_iterations: int, what: str = "screw ball"):
-    from ballbench.lowmodel.linear_bearing.bearing_ball import newton
+    from ballbench.lowmodel.solvers import newton
 
     target = axial_load / scales.force
 
