@@ -78,7 +78,8 @@ from ballbench.lowmodel.geometry import helix
 __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
     "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
-    "free_rolling_guess",
+    "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
+    "state_from", "Scales", "BallTerms",
 ]
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
@@ -366,7 +367,8 @@ class Scales:
     force: float       # N: residual rows (mu F_ref)
 
 
-def _scales(contacts: BallContacts, reference_force: float) -> Scales:
+def scales_for(contacts: BallContacts, reference_force: float) -> Scales:
+    """Scales of one solve: Hertz approach of the reference force, omega_N, omega_N R_P / R_B, mu F_ref."""
     module = contacts.module
     constant = float(np.max(contacts.hertz_constant))
     speed = abs(module.nut_speed)
@@ -604,22 +606,25 @@ def reference_force(contacts: BallContacts, axial_load: float) -> float:
 
 
 def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance: float, max_iterations: int):
-    """One ball: Newton from free rolling; if that fails, continuation in the preload (oversize) from a
-    well-conditioned four-point state down to the module's value."""
+    """One ball with its own nut shift (:func:`solve_preloaded`)."""
     single = _single(contacts, index)
-    scales = _scales(single, reference_force(single, axial_load))
+    scales = scales_for(single, reference_force(single, axial_load))
     guess = np.zeros(N_UNKNOWNS + 1)
     rates = free_rolling_guess(single)[0]
     guess[2] = rates[0] / scales.orbit
     guess[3:6] = rates[1:] / scales.spin
-    target = single.module.oversize
-    start = continuation_start(single, axial_load)
-    if target >= 0.5 * start:   # well preloaded: four-point contact, Newton from free rolling
-        z, residual, iterations = _newton_one(single, scales, axial_load, guess, target, tolerance, max_iterations,
-                                              f"screw ball {index}")
-    else:
-        z, residual, iterations = _continuation(single, scales, axial_load, guess, start, target, tolerance,
-                                                max_iterations, what=f"screw ball {index}")
+    target = axial_load / scales.force
+
+    def make_function(oversize):
+        def function(z):
+            terms = ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales, oversize=oversize)
+            residual = np.concatenate([terms.residual[0], [terms.axial[0] - target]])
+            jacobian = np.vstack([terms.jacobian[0], terms.axial_gradient[0][None, :]])
+            return residual, jacobian
+        return function
+
+    z, residual, iterations = solve_preloaded(make_function, guess, single, axial_load, tolerance=tolerance,
+                                              max_iterations=max_iterations, what=f"screw ball {index}")
     terms = ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales)
     return z, terms, scales, iterations, float(np.max(np.abs(residual))), axial_load
 
@@ -630,33 +635,31 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
     return 2.0 * float(np.max(contacts.hertz_constant)) * reference_force(contacts, axial_load) ** (2.0 / 3.0)
 
 
-def _newton_one(single: BallContacts, scales: Scales, axial_load: float, guess: np.ndarray, oversize: float,
-                tolerance: float, max_iterations: int, what: str = "screw ball"):
+def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
+                    tolerance: float, max_iterations: int, what: str, steps: int = 6, max_halvings: int = 10,
+                    step_iterations: int = 15):
+    """Newton (:func:`lowmodel.solvers.newton`) on ``make_function(oversize)`` at the module's preload.
+
+    Below half of :func:`continuation_start` (little or no preload: two- and three-point
+    contact, where Newton from free rolling wanders) the solve starts at that
+    four-point preload and steps the oversize down to the module's value, each step
+    from the previous solution (step grown 1.5x after a success, halved after a failure).
+    Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
+    """
     from ballbench.lowmodel.solvers import newton
 
-    target = axial_load / scales.force
-
-    def function(z):
-        terms = ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales, oversize=oversize)
-        residual = np.concatenate([terms.residual[0], [terms.axial[0] - target]])
-        jacobian = np.vstack([terms.jacobian[0], terms.axial_gradient[0][None, :]])
-        return residual, jacobian
-
-    return newton(function, guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
-
-
-def _continuation(single: BallContacts, scales: Scales, axial_load: float, guess: np.ndarray, start: float,
-                  target: float, tolerance: float, max_iterations: int, *, what: str, steps: int = 6,
-                  max_halvings: int = 10, step_iterations: int = 15):
-    """Preload continuation: solve at ``oversize = start`` (four-point contact) and step down to ``target``."""
-    z, residual, total = _newton_one(single, scales, axial_load, guess, start, tolerance, max_iterations, what)
-    current, step = start, (start - target) / steps
-    halvings = 0
+    target = contacts.module.oversize
+    start = continuation_start(contacts, load_per_ball)
+    if target >= 0.5 * start:
+        return newton(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+    z, residual, total = newton(make_function(start), guess, tolerance=tolerance, max_iterations=max_iterations,
+                                what=what)
+    current, step, halvings = start, (start - target) / steps, 0
     while current > target:
         trial = max(target, current - step)
         try:
-            z_new, residual, iterations = _newton_one(single, scales, axial_load, z, trial, tolerance,
-                                                      min(step_iterations, max_iterations), what)
+            z_new, residual, iterations = newton(make_function(trial), z, tolerance=tolerance,
+                                                 max_iterations=min(step_iterations, max_iterations), what=what)
         except ConvergenceError as error:
             halvings += 1
             if halvings > max_halvings:

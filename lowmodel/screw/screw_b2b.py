@@ -1,0 +1,250 @@
+"""Ball-to-ball (B2B) contact of 2 to N balls in a ball screw (lin2019 Sec 3.2, eqs 56-61).
+
+Built on the single-ball equilibrium of :mod:`lowmodel.screw.screw_ball` (eq 54).
+Balls ``j = 0 .. n-1`` are ordered along the helix in the direction of their
+orbit (``omega_B > 0``: increasing azimuth); ball 0 is lin2019's "ball 1"
+(behind).  All balls share one nut and one screw: a common nut shift ``u`` and
+the total axial load ``sum_balls sum_screw contacts (force on ball) . z_hat``.
+
+Geometry of a touching pair (j, j+1): the centres lie on the nominal helix a
+chord ``2 R_B`` apart, azimuth difference ``dphi`` from
+:func:`lowmodel.geometry.helix.ball_centre_azimuths`; ``n`` is the unit chord
+from ball j to ball j+1 in ball j's CS3, ``R`` the rotation from ball j+1's CS3
+to ball j's (``T_CS-CS3(0)^T T_CS-CS3(dphi)``, eq 41).  ``n`` makes the angle
+``beta_chord`` with ``y3`` towards ``-x3``; lin2019 eq 56 writes it as
+``asin(2 pi R_B / L)`` (a circle of radius ``L / 2 pi`` in place of the helix;
+docs/ball_screw.md gives both, 2 % apart for Table 4).  The exact chord is
+used so that the contact points of the two balls coincide and the power
+balance is exact.
+
+Slip at the B2B contact, ball j relative to ball j+1 (eq 57): with both balls
+at the same orbit speed the helical motions of the two centres cancel at the
+contact point and
+
+    s = (omega_j + R omega_{j+1}) x (R_B n)      (CS3 of ball j; tangent to the contact)
+
+Friction on ball j ``f = -mu F s/|s|`` (eq 58) at ``+R_B n``; normal force
+``-F n``.  Ball j+1 gets ``+F n`` and ``-f`` at ``-R_B n``, i.e. the same moment
+``R_B n x f`` (eq 59 for ball 1, "opposite direction" for ball 2).  Loss
+``mu F |s|`` (power balance in :func:`solve`).
+
+Complementarity (eqs 60-61) for a touching pair: ``F >= 0``,
+``omega_B,j+1 - omega_B,j >= 0``, ``F (omega_B,j+1 - omega_B,j) = 0``; solved with
+the equilibrium of all balls and the axial balance by a semismooth Newton
+method on ``min(F / (mu F_ref), gamma (omega_B,j+1 - omega_B,j)/|omega_N|) = 0``
+(as :mod:`lowmodel.linear_bearing.b2b`).  A pair with a positive gap carries no force.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel.screw import screw_ball as sb
+
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "COMPLEMENTARITY_SCALE"]
+
+COMPLEMENTARITY_SCALE = 10.0
+_REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """Geometry of two touching balls (CS3 of the ball behind).
+
+    azimuth_step : rad, ``dphi`` between the two centres (chord 2 R_B)
+    chord : (3,) unit vector from ball j to ball j+1
+    rotation : (3, 3), CS3 of ball j+1 -> CS3 of ball j
+    angle : rad, ``beta_chord``, the angle of ``chord`` from ``y3`` towards ``-x3`` (eq 56's beta_B2B)
+    """
+
+    azimuth_step: float
+    chord: np.ndarray
+    rotation: np.ndarray
+    angle: float
+
+
+def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
+    """Exact helix chord of two touching balls (geometry core: :func:`helix.ball_centre_azimuths`)."""
+    step = helix.ball_centre_azimuths(module.pitch_radius, module.lead, 2.0 * module.ball_radius)
+    frame_0 = helix.cs3_frame(0.0, module.lead_angle)
+    frame_1 = helix.cs3_frame(step, module.lead_angle)
+    chord = frame_0.T @ (helix.ball_centre(step, module.pitch_radius, module.lead)
+                         - helix.ball_centre(0.0, module.pitch_radius, module.lead))
+    chord = chord / np.linalg.norm(chord)
+    return PairGeometry(float(step), chord, frame_0.T @ frame_1, float(math.asin(-chord[0])))
+
+
+def b2b_angle_eq56(module: sb.ScrewModule) -> float:
+    """lin2019 eq 56: ``beta_B2B = asin(2 pi R_B / L)`` [rad]."""
+    big_l = 2.0 * math.pi * module.helix_radius
+    return math.asin(2.0 * math.pi * module.ball_radius / big_l)
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius: float, mu: float):
+    """B2B loads for touching pairs.
+
+    spins (n, 3) rad/s in each ball's CS3; forces (n-1,) N (0 for open pairs).
+    Returns (load (n, 6) [force N, moment N m] in each ball's CS3, d load / d spins (n, 6, n, 3),
+    d load / d forces (n, 6, n-1), slip speeds (n-1,) m/s).
+    """
+    n = spins.shape[0]
+    a_mat = -radius * _skew(pair.chord)          # s = A (omega_j + R omega_{j+1})
+    b_mat = radius * _skew(pair.chord)           # moment = B f
+    rot = pair.rotation
+    load = np.zeros((n, 6))
+    d_spin = np.zeros((n, 6, n, 3))
+    d_force = np.zeros((n, 6, n - 1))
+    speeds = np.zeros(n - 1)
+    for j in range(n - 1):
+        slip = a_mat @ (spins[j] + rot @ spins[j + 1])
+        norm = math.sqrt(slip @ slip + (_REGULARISATION * radius) ** 2)
+        speeds[j] = math.sqrt(slip @ slip)
+        direction = slip / norm
+        friction = -mu * forces[j] * direction
+        dfric_dslip = -mu * forces[j] * (np.eye(3) - np.outer(direction, direction)) / norm
+        force_j = -forces[j] * pair.chord + friction
+        moment = b_mat @ friction
+        load[j, :3] += force_j
+        load[j, 3:] += moment
+        load[j + 1, :3] += rot.T @ (-force_j)
+        load[j + 1, 3:] += rot.T @ moment
+        d_fric_j = dfric_dslip @ a_mat              # d friction / d omega_j
+        d_fric_k = dfric_dslip @ a_mat @ rot        # d friction / d omega_{j+1}
+        for ball, d_fric in ((j, d_fric_j), (j + 1, d_fric_k)):
+            d_spin[j, :3, ball] += d_fric
+            d_spin[j, 3:, ball] += b_mat @ d_fric
+            d_spin[j + 1, :3, ball] += -rot.T @ d_fric
+            d_spin[j + 1, 3:, ball] += rot.T @ b_mat @ d_fric
+        dfric_dforce = -mu * direction
+        d_force[j, :3, j] = -pair.chord + dfric_dforce
+        d_force[j, 3:, j] = b_mat @ dfric_dforce
+        d_force[j + 1, :3, j] = rot.T @ (pair.chord - dfric_dforce)
+        d_force[j + 1, 3:, j] = rot.T @ b_mat @ dfric_dforce
+    return load, d_spin, d_force, speeds
+
+
+def _check_gaps(gaps, n: int) -> np.ndarray:
+    if gaps is None:
+        return np.zeros(n - 1)
+    gaps = np.asarray(checks.non_negative("gaps", gaps, "rad (azimuth gap between neighbouring balls)"),
+                      dtype=float).reshape(-1)
+    if gaps.shape != (n - 1,):
+        raise ValueError(f"gaps must have shape ({n - 1},) (one per neighbouring pair), got {gaps.shape}")
+    return gaps
+
+
+def solve(contacts: sb.BallContacts, axial_load: float, gaps=None, *, tolerance: float = 1e-10,
+          max_iterations: int = 80, with_b2b: bool = True) -> sb.ScrewBallState:
+    """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
+
+    Parameters
+    ----------
+    contacts : BallContacts of the ``n`` balls, ordered along the orbit (ball 0 behind)
+    axial_load : N, total force of the screw on the balls along +z
+    gaps : (n-1,) rad, azimuth gaps beyond touching (default: all touching, 0)
+    with_b2b : False solves the same balls with B2B contact switched off (the "before contact" state)
+
+    Returns ScrewBallState with ``b2b_force`` (n-1,) [N] and ``b2b_friction_loss`` [W].
+    Raises ConvergenceError with its residual if the solve fails or complementarity is violated.
+    """
+    from ballbench.lowmodel.solvers import check_solver_options
+
+    check_solver_options(tolerance, max_iterations)
+    load = checks.finite("axial_load", axial_load, "N")
+    n = contacts.n_balls
+    gaps = _check_gaps(gaps, n)
+    touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
+    module = contacts.module
+    reference = sb.reference_force(contacts, load / n)
+    scales = sb.scales_for(contacts, reference)
+    pair = pair_geometry(module)
+    k = sb.N_UNKNOWNS
+    m = touching.size
+    size = k * n + 1 + m
+    gamma = COMPLEMENTARITY_SCALE
+    target = load / scales.force
+
+    def unpack(z):
+        balls = z[:k * n].reshape(n, k)
+        forces = np.zeros(n - 1)
+        forces[touching] = z[k * n + 1:] * scales.force
+        return balls, z[k * n], forces
+
+    def make_function(oversize):
+        def function(z):
+            balls, shift, forces = unpack(z)
+            terms = sb.ball_terms(balls, shift, contacts, scales, oversize=oversize)
+            residual = np.empty(size)
+            jac = np.zeros((size, size))
+            ball_residual = terms.residual.copy()
+            if m:
+                spins = balls[:, 3:6] * scales.spin
+                loads, d_spin, d_force, _ = b2b_loads(spins, forces, pair, module.ball_radius,
+                                                       module.friction_coefficient)
+                loads[:, 3:] /= module.ball_radius
+                d_spin[:, 3:] /= module.ball_radius
+                d_force[:, 3:] /= module.ball_radius
+                ball_residual += loads / scales.force
+            residual[:k * n] = ball_residual.reshape(-1)
+            for ball in range(n):
+                rows = slice(k * ball, k * ball + k)
+                jac[rows, rows] = terms.jacobian[ball][:, :k]
+                jac[rows, k * n] = terms.jacobian[ball][:, k]
+            if m:
+                block = d_spin * (scales.spin / scales.force)          # (n, 6, n, 3)
+                for ball in range(n):
+                    for other in range(n):
+                        jac[k * ball:k * ball + 6, k * other + 3:k * other + 6] += block[ball, :, other]
+                d_lam = d_force[:, :, touching]                         # d/d(F / scales.force) = d/dF * scale / scale
+                jac[:k * n, k * n + 1:] = d_lam.reshape(k * n, m)
+            residual[k * n] = terms.axial.sum() - target
+            jac[k * n, :k * n] = terms.axial_gradient[:, :k].reshape(-1)
+            jac[k * n, k * n] = terms.axial_gradient[:, k].sum()
+            if m:
+                lam = z[k * n + 1:]
+                separation = gamma * (balls[touching + 1, 2] - balls[touching, 2]) * scales.orbit / abs(
+                    module.nut_speed)
+                force_branch = lam <= separation
+                rows = k * n + 1 + np.arange(m)
+                residual[rows] = np.where(force_branch, lam, separation)
+                jac[rows[force_branch], k * n + 1 + np.flatnonzero(force_branch)] = 1.0
+                velocity = ~force_branch
+                factor = gamma * scales.orbit / abs(module.nut_speed)
+                jac[rows[velocity], k * (touching[velocity] + 1) + 2] = factor
+                jac[rows[velocity], k * touching[velocity] + 2] = -factor
+            return residual, jac
+        return function
+
+    guess = np.zeros(size)
+    rates = sb.free_rolling_guess(contacts)
+    guess[:k * n].reshape(n, k)[:, 2] = rates[:, 0] / scales.orbit
+    guess[:k * n].reshape(n, k)[:, 3:6] = rates[:, 1:] / scales.spin
+    z, residual, iterations = sb.solve_preloaded(make_function, guess, contacts, load / n, tolerance=tolerance,
+                                                 max_iterations=max_iterations, what=f"{n}-ball screw module")
+    balls, shift, forces = unpack(z)
+    if m:
+        separation = balls[touching + 1, 2] - balls[touching, 2]
+        violation = max(float(np.max(-forces[touching] / scales.force, initial=0.0)),
+                        float(np.max(-separation * gamma, initial=0.0)))
+        if violation > 10 * tolerance:
+            raise ConvergenceError(f"{n}-ball screw module: complementarity violated", residual=violation,
+                                   iterations=iterations, tolerance=tolerance)
+        forces = np.maximum(forces, 0.0)
+        forces[touching[z[k * n + 1:] <= gamma * separation * scales.orbit / abs(module.nut_speed)]] = 0.0
+    terms = sb.ball_terms(balls, shift, contacts, scales)
+    speeds = np.zeros(n - 1)
+    if n > 1:
+        speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
+                            module.friction_coefficient)[3]
+    b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 7 / 58
+    return sb.state_from(balls, shift, terms, scales, axial_load=load, b2b_force=forces, b2b_loss=b2b_loss,
+                         iterations=iterations, residual=float(np.max(np.abs(residual))))
