@@ -102,17 +102,18 @@ class OffsetFriction:
 # --------------------------------------------------------------------------
 @lru_cache(maxsize=4)
 def _inside_rule(level: int):
-    """Angles th' (from the direction towards the disc centre) and weights over [-pi/2, 3 pi/2]."""
+    """Angles th' (from the direction towards the disc centre) over [-pi/2, 3 pi/2]: (cos, sin, weights)."""
     x, w = tanh_sinh_rule(level)
     angle = np.concatenate([-0.5 * math.pi + math.pi * x, 0.5 * math.pi + math.pi * x])
-    return angle, np.concatenate([w, w]) * math.pi
+    return np.cos(angle), np.sin(angle), np.concatenate([w, w]) * math.pi
 
 
 @lru_cache(maxsize=4)
 def _outside_rule(level: int):
-    """x in (-pi/2, pi/2) and weights (tanh-sinh), sin(th') = sin(x)/R_c."""
+    """x in (-pi/2, pi/2) (tanh-sinh), sin(th') = sin(x)/R_c: (sin x, cos x, weights)."""
     x, w = tanh_sinh_rule(level)
-    return math.pi * (x - 0.5), math.pi * w
+    x = math.pi * (x - 0.5)
+    return np.sin(x), np.cos(x), math.pi * w
 
 
 @lru_cache(maxsize=4)
@@ -142,13 +143,15 @@ def _centred(kappa: np.ndarray, lam: np.ndarray, beta: np.ndarray, level: int = 
     ``P = (3/(2 pi)) sqrt(1 - t^2 - s^2) dt ds``).
     """
     rc = np.hypot(kappa, lam)
-    psi = np.where(rc > 0.0, np.arctan2(lam, kappa), 0.0)  # direction of the centre from the disc centre
+    safe = np.where(rc > 0.0, rc, 1.0)
+    # direction of the centre from the disc centre; the ray angle is theta = psi + pi + th'
+    cos_psi, sin_psi = np.where(rc > 0.0, kappa / safe, 1.0), np.where(rc > 0.0, lam / safe, 0.0)
     out = np.empty((6, kappa.size))
     inside = rc < 1.0
     if np.any(inside):
-        angle, weight = _inside_rule(level)
+        cos_a, sin_a, weight = _inside_rule(level)
         r = rc[inside, None]
-        cos_p, sin_p = np.cos(angle)[None, :], np.sin(angle)[None, :]
+        cos_p, sin_p = cos_a[None, :], sin_a[None, :]
         b = -r * cos_p                       # w = rho + b along the ray; q = R^2 - w^2
         big_r2 = 1.0 - (r * sin_p) ** 2
         big_r = np.sqrt(big_r2)
@@ -160,13 +163,14 @@ def _centred(kappa: np.ndarray, lam: np.ndarray, beta: np.ndarray, level: int = 
         j0 = k0
         j1 = k1 - b * k0
         j2 = k2 - 2.0 * b * k1 + b * b * k0
-        theta = psi[inside, None] + math.pi + angle[None, :]
-        out[:, inside] = _angular(theta, j0, j1, j2, weight[None, :], beta[inside, None])
+        cos_t = -(cos_psi[inside, None] * cos_p - sin_psi[inside, None] * sin_p)   # cos(psi + pi + th')
+        sin_t = -(sin_psi[inside, None] * cos_p + cos_psi[inside, None] * sin_p)
+        out[:, inside] = _angular(cos_t, sin_t, j0, j1, j2, weight[None, :], beta[inside, None])
     outside = ~inside
     if np.any(outside):
-        x, weight = _outside_rule(level)
+        sin_x, cos_x, weight = _outside_rule(level)
         r = rc[outside, None]
-        sin_x, cos_x = np.sin(x)[None, :], np.cos(x)[None, :]
+        sin_x, cos_x = sin_x[None, :], cos_x[None, :]
         chord = np.sqrt((r - 1.0) * (r + 1.0) + cos_x**2)   # R_c cos(th') = -b
         # J_n d th' with d th' = cos x dx / chord, R^2 = cos^2 x (full chord); c3/chord -> cos^2 x at R_c = 1
         c3 = cos_x**3
@@ -174,22 +178,27 @@ def _centred(kappa: np.ndarray, lam: np.ndarray, beta: np.ndarray, level: int = 
         j0 = 0.5 * math.pi * ratio
         j1 = 0.5 * math.pi * c3
         j2 = 0.125 * math.pi * ratio * cos_x**2 + 0.5 * math.pi * chord * c3
-        theta = psi[outside, None] + math.pi + np.arcsin(sin_x / r)
-        out[:, outside] = _angular(theta, j0, j1, j2, weight[None, :], beta[outside, None])
+        sin_p = sin_x / r                 # th' = asin(sin x / R_c), cos th' = chord / R_c
+        cos_p = chord / r
+        cos_t = -(cos_psi[outside, None] * cos_p - sin_psi[outside, None] * sin_p)
+        sin_t = -(sin_psi[outside, None] * cos_p + cos_psi[outside, None] * sin_p)
+        out[:, outside] = _angular(cos_t, sin_t, j0, j1, j2, weight[None, :], beta[outside, None])
     return out
 
 
-def _angular(theta, j0, j1, j2, weight, beta):
-    cos, sin = np.cos(theta), np.sin(theta)
-    g2 = cos * cos + (beta * sin) ** 2
+def _angular(cos, sin, j0, j1, j2, weight, beta):
+    """Angular sums over rays of direction (cos, sin) (arrays (m, nodes)) with the radial integrals J_n."""
+    bsin = beta * sin
+    g2 = cos * cos + bsin * bsin
     g = np.sqrt(g2)
-    g3 = g2 * g
-    f_minor = _PREFACTOR * np.sum(weight * cos / g * j1, axis=1)
-    f_major = -_PREFACTOR * np.sum(weight * beta * sin / g * j1, axis=1)
+    w1 = weight * j1 / g
+    w0 = weight * j0 / (g2 * g)
+    f_minor = _PREFACTOR * np.sum(w1 * cos, axis=1)
+    f_major = -_PREFACTOR * np.sum(w1 * bsin, axis=1)
     loss = _PREFACTOR * np.sum(weight * g * j2, axis=1)
-    c_ss = _PREFACTOR * np.sum(weight * (beta * sin) ** 2 / g3 * j0, axis=1)
-    c_sc = _PREFACTOR * np.sum(weight * beta * sin * cos / g3 * j0, axis=1)
-    c_cc = _PREFACTOR * np.sum(weight * cos * cos / g3 * j0, axis=1)
+    c_ss = _PREFACTOR * np.sum(w0 * bsin * bsin, axis=1)
+    c_sc = _PREFACTOR * np.sum(w0 * bsin * cos, axis=1)
+    c_cc = _PREFACTOR * np.sum(w0 * cos * cos, axis=1)
     return np.stack([f_major, f_minor, loss, c_ss, c_sc, c_cc])
 
 

@@ -637,11 +637,12 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
 
 def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
                     tolerance: float, max_iterations: int, what: str, steps: int = 6, max_halvings: int = 10,
-                    step_iterations: int = 15):
+                    step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12):
     """Newton (:func:`lowmodel.solvers.newton`) on ``make_function(oversize)`` at the module's preload.
 
-    Below half of :func:`continuation_start` (little or no preload: two- and three-point
-    contact, where Newton from free rolling wanders) the solve starts at that
+    Between ``direct_fraction`` and half of :func:`continuation_start` Newton is tried
+    directly for ``direct_iterations``.  Below (little or no preload: two- and three-point
+    contact, where Newton from free rolling wanders) or if that fails, the solve starts at that
     four-point preload and steps the oversize down to the module's value, each step
     from the previous solution (step grown 1.5x after a success, halved after a failure).
     Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
@@ -652,6 +653,12 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
     start = continuation_start(contacts, load_per_ball)
     if target >= 0.5 * start:
         return newton(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+    if target >= direct_fraction * start:   # some preload: try Newton directly, briefly
+        try:
+            return newton(make_function(target), guess, tolerance=tolerance,
+                          max_iterations=min(direct_iterations, max_iterations), what=what)
+        except ConvergenceError:
+            pass
     z, residual, total = newton(make_function(start), guess, tolerance=tolerance, max_iterations=max_iterations,
                                 what=what)
     current, step, halvings = start, (start - target) / steps, 0
