@@ -89,162 +89,202 @@ def _skew(v: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
-def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius: float, mu: float):
-    """B2B loads for touching pairs.
+def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius: float, mu: float,
+              pairs=None):
+    """B2B loads of touching pairs (eqs 57-59).
 
-    spins (n, 3) rad/s in each ball's CS3; forces (n-1,) N (0 for open pairs).
+    spins (n, 3) rad/s in each ball's CS3; forces (p,) N (0 for open pairs); ``pairs``
+    (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``.
     Returns (load (n, 6) [force N, moment N m] in each ball's CS3, d load / d spins (n, 6, n, 3),
-    d load / d forces (n, 6, n-1), slip speeds (n-1,) m/s).
+    d load / d forces (n, 6, p), slip speeds (p,) m/s).
     """
     n = spins.shape[0]
-    a_mat = -radius * _skew(pair.chord)          # s = A (omega_j + R omega_{j+1})
+    if pairs is None:
+        pairs = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
+    pairs = np.asarray(pairs, dtype=int).reshape(-1, 2)
+    a_mat = -radius * _skew(pair.chord)          # s = A (omega_j + R omega_k)
     b_mat = radius * _skew(pair.chord)           # moment = B f
     rot = pair.rotation
     load = np.zeros((n, 6))
     d_spin = np.zeros((n, 6, n, 3))
-    d_force = np.zeros((n, 6, n - 1))
-    speeds = np.zeros(n - 1)
-    for j in range(n - 1):
-        slip = a_mat @ (spins[j] + rot @ spins[j + 1])
+    d_force = np.zeros((n, 6, len(pairs)))
+    speeds = np.zeros(len(pairs))
+    for index, (j, k) in enumerate(pairs):
+        slip = a_mat @ (spins[j] + rot @ spins[k])
         norm = math.sqrt(slip @ slip + (_REGULARISATION * radius) ** 2)
-        speeds[j] = math.sqrt(slip @ slip)
+        speeds[index] = math.sqrt(slip @ slip)
         direction = slip / norm
-        friction = -mu * forces[j] * direction
-        dfric_dslip = -mu * forces[j] * (np.eye(3) - np.outer(direction, direction)) / norm
-        force_j = -forces[j] * pair.chord + friction
+        friction = -mu * forces[index] * direction
+        force_j = -forces[index] * pair.chord + friction
         moment = b_mat @ friction
         load[j, :3] += force_j
         load[j, 3:] += moment
-        load[j + 1, :3] += rot.T @ (-force_j)
-        load[j + 1, 3:] += rot.T @ moment
-        d_fric_j = dfric_dslip @ a_mat              # d friction / d omega_j
-        d_fric_k = dfric_dslip @ a_mat @ rot        # d friction / d omega_{j+1}
-        for ball, d_fric in ((j, d_fric_j), (j + 1, d_fric_k)):
-            d_spin[j, :3, ball] += d_fric
-            d_spin[j, 3:, ball] += b_mat @ d_fric
-            d_spin[j + 1, :3, ball] += -rot.T @ d_fric
-            d_spin[j + 1, 3:, ball] += rot.T @ b_mat @ d_fric
+        load[k, :3] += rot.T @ (-force_j)
+        load[k, 3:] += rot.T @ moment
+        if forces[index] != 0.0:
+            dfric_dslip = -mu * forces[index] * (np.eye(3) - np.outer(direction, direction)) / norm
+            for ball, d_fric in ((j, dfric_dslip @ a_mat), (k, dfric_dslip @ a_mat @ rot)):
+                d_spin[j, :3, ball] += d_fric
+                d_spin[j, 3:, ball] += b_mat @ d_fric
+                d_spin[k, :3, ball] += -rot.T @ d_fric
+                d_spin[k, 3:, ball] += rot.T @ b_mat @ d_fric
         dfric_dforce = -mu * direction
-        d_force[j, :3, j] = -pair.chord + dfric_dforce
-        d_force[j, 3:, j] = b_mat @ dfric_dforce
-        d_force[j + 1, :3, j] = rot.T @ (pair.chord - dfric_dforce)
-        d_force[j + 1, 3:, j] = rot.T @ b_mat @ dfric_dforce
+        d_force[j, :3, index] = -pair.chord + dfric_dforce
+        d_force[j, 3:, index] = b_mat @ dfric_dforce
+        d_force[k, :3, index] = rot.T @ (pair.chord - dfric_dforce)
+        d_force[k, 3:, index] = rot.T @ b_mat @ dfric_dforce
     return load, d_spin, d_force, speeds
 
 
-def _check_gaps(gaps, n: int) -> np.ndarray:
+def _check_gaps(gaps, count: int) -> np.ndarray:
     if gaps is None:
-        return np.zeros(n - 1)
+        return np.zeros(count)
     gaps = np.asarray(checks.non_negative("gaps", gaps, "rad (azimuth gap between neighbouring balls)"),
                       dtype=float).reshape(-1)
-    if gaps.shape != (n - 1,):
-        raise ValueError(f"gaps must have shape ({n - 1},) (one per neighbouring pair), got {gaps.shape}")
+    if gaps.shape != (count,):
+        raise ValueError(f"gaps must have shape ({count},) (one per neighbouring pair), got {gaps.shape}")
     return gaps
 
 
-def solve(contacts: sb.BallContacts, axial_load: float, gaps=None, *, tolerance: float = 1e-10,
-          max_iterations: int = 80, with_b2b: bool = True) -> sb.ScrewBallState:
+def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
+          max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
+          ) -> sb.ScrewBallState:
     """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
 
     Parameters
     ----------
     contacts : BallContacts of the ``n`` balls, ordered along the orbit (ball 0 behind)
-    axial_load : N, total force of the screw on the balls along +z
-    gaps : (n-1,) rad, azimuth gaps beyond touching (default: all touching, 0)
+    axial_load : N; a scalar is the total force of the screw on the balls along +z with one common
+        nut shift; an array (n,) prescribes each ball's axial load (each ball its own nut shift:
+        a load distribution computed elsewhere, :mod:`lowmodel.screw.load_distribution`)
+    gaps : (pairs,) rad, azimuth gaps beyond touching (default: all touching, 0)
+    ring : the balls form a closed chain (recirculation): pair (n-1, 0) as well
     with_b2b : False solves the same balls with B2B contact switched off (the "before contact" state)
+    initial : a previous state of the same balls (warm start)
 
-    Returns ScrewBallState with ``b2b_force`` (n-1,) [N] and ``b2b_friction_loss`` [W].
+    Returns ScrewBallState with ``b2b_force`` (pairs,) [N] and ``b2b_friction_loss`` [W].
     Raises ConvergenceError with its residual if the solve fails or complementarity is violated.
     """
     from ballbench.lowmodel.solvers import check_solver_options
 
     check_solver_options(tolerance, max_iterations)
-    load = checks.finite("axial_load", axial_load, "N")
     n = contacts.n_balls
-    gaps = _check_gaps(gaps, n)
+    loads = np.atleast_1d(np.asarray(checks.finite("axial_load", axial_load, "N"), dtype=float))
+    per_ball = loads.size > 1 or (n == 1 and np.ndim(axial_load) == 1)
+    if per_ball and loads.shape != (n,):
+        raise ValueError(f"axial_load must be a scalar (total) or have shape ({n},) (per ball), got {loads.shape}")
+    pairs = [(j, j + 1) for j in range(n - 1)] + ([(n - 1, 0)] if ring and n > 1 else [])
+    pairs = np.array(pairs, dtype=int).reshape(-1, 2)
+    gaps = _check_gaps(gaps, len(pairs))
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     module = contacts.module
-    reference = sb.reference_force(contacts, load / n)
+    total = float(loads.sum())
+    reference = sb.reference_force(contacts, float(np.max(np.abs(loads))) if per_ball else total / n)
     scales = sb.scales_for(contacts, reference)
     pair = pair_geometry(module)
     k = sb.N_UNKNOWNS
     m = touching.size
-    size = k * n + 1 + m
+    n_shift = n if per_ball else 1
+    base = k * n + n_shift
+    size = base + m
     gamma = COMPLEMENTARITY_SCALE
-    target = load / scales.force
+    targets = loads / scales.force
+    speed_factor = gamma * scales.orbit / abs(module.nut_speed)
 
     def unpack(z):
         balls = z[:k * n].reshape(n, k)
-        forces = np.zeros(n - 1)
-        forces[touching] = z[k * n + 1:] * scales.force
-        return balls, z[k * n], forces
+        forces = np.zeros(len(pairs))
+        forces[touching] = z[base:] * scales.force
+        return balls, z[k * n:base], forces
 
     def make_function(oversize):
         def function(z):
             balls, shift, forces = unpack(z)
-            terms = sb.ball_terms(balls, shift, contacts, scales, oversize=oversize)
+            terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales, oversize=oversize)
             residual = np.empty(size)
             jac = np.zeros((size, size))
             ball_residual = terms.residual.copy()
             if m:
-                spins = balls[:, 3:6] * scales.spin
-                loads, d_spin, d_force, _ = b2b_loads(spins, forces, pair, module.ball_radius,
-                                                       module.friction_coefficient)
-                loads[:, 3:] /= module.ball_radius
-                d_spin[:, 3:] /= module.ball_radius
-                d_force[:, 3:] /= module.ball_radius
-                ball_residual += loads / scales.force
+                loads_b2b, d_spin, d_force, _ = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair,
+                                                          module.ball_radius, module.friction_coefficient, pairs)
+                for array in (loads_b2b, d_spin, d_force):
+                    array[:, 3:] /= module.ball_radius
+                ball_residual += loads_b2b / scales.force
+                block = d_spin * (scales.spin / scales.force)          # (n, 6, n, 3)
+                view = jac[:k * n, :k * n].reshape(n, k, n, k)     # a view: the square block of ball unknowns
+                view[:, :, :, 3:6] += block
+                jac[:k * n, base:] = d_force[:, :, touching].reshape(k * n, m)
             residual[:k * n] = ball_residual.reshape(-1)
             for ball in range(n):
                 rows = slice(k * ball, k * ball + k)
-                jac[rows, rows] = terms.jacobian[ball][:, :k]
-                jac[rows, k * n] = terms.jacobian[ball][:, k]
-            if m:
-                block = d_spin * (scales.spin / scales.force)          # (n, 6, n, 3)
+                jac[rows, rows] += terms.jacobian[ball][:, :k]
+                jac[rows, k * n + (ball if per_ball else 0)] = terms.jacobian[ball][:, k]
+            if per_ball:
+                residual[k * n:base] = terms.axial - targets
                 for ball in range(n):
-                    for other in range(n):
-                        jac[k * ball:k * ball + 6, k * other + 3:k * other + 6] += block[ball, :, other]
-                d_lam = d_force[:, :, touching]                         # d/d(F / scales.force) = d/dF * scale / scale
-                jac[:k * n, k * n + 1:] = d_lam.reshape(k * n, m)
-            residual[k * n] = terms.axial.sum() - target
-            jac[k * n, :k * n] = terms.axial_gradient[:, :k].reshape(-1)
-            jac[k * n, k * n] = terms.axial_gradient[:, k].sum()
+                    jac[k * n + ball, k * ball:k * ball + k] = terms.axial_gradient[ball, :k]
+                    jac[k * n + ball, k * n + ball] = terms.axial_gradient[ball, k]
+            else:
+                residual[k * n] = terms.axial.sum() - targets[0]
+                jac[k * n, :k * n] = terms.axial_gradient[:, :k].reshape(-1)
+                jac[k * n, k * n] = terms.axial_gradient[:, k].sum()
             if m:
-                lam = z[k * n + 1:]
-                separation = gamma * (balls[touching + 1, 2] - balls[touching, 2]) * scales.orbit / abs(
-                    module.nut_speed)
+                lam = z[base:]
+                ahead, behind = pairs[touching, 1], pairs[touching, 0]
+                separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
                 force_branch = lam <= separation
-                rows = k * n + 1 + np.arange(m)
+                rows = base + np.arange(m)
                 residual[rows] = np.where(force_branch, lam, separation)
-                jac[rows[force_branch], k * n + 1 + np.flatnonzero(force_branch)] = 1.0
+                jac[rows[force_branch], base + np.flatnonzero(force_branch)] = 1.0
                 velocity = ~force_branch
-                factor = gamma * scales.orbit / abs(module.nut_speed)
-                jac[rows[velocity], k * (touching[velocity] + 1) + 2] = factor
-                jac[rows[velocity], k * touching[velocity] + 2] = -factor
+                jac[rows[velocity], k * ahead[velocity] + 2] += speed_factor
+                jac[rows[velocity], k * behind[velocity] + 2] -= speed_factor
             return residual, jac
         return function
 
     guess = np.zeros(size)
-    rates = sb.free_rolling_guess(contacts)
-    guess[:k * n].reshape(n, k)[:, 2] = rates[:, 0] / scales.orbit
-    guess[:k * n].reshape(n, k)[:, 3:6] = rates[:, 1:] / scales.spin
-    z, residual, iterations = sb.solve_preloaded(make_function, guess, contacts, load / n, tolerance=tolerance,
-                                                 max_iterations=max_iterations, what=f"{n}-ball screw module")
+    if initial is not None and initial.orbit_speed.shape == (n,):
+        balls0 = guess[:k * n].reshape(n, k)
+        balls0[:, :2] = initial.centre / scales.length
+        balls0[:, 2] = initial.orbit_speed / scales.orbit
+        balls0[:, 3:6] = initial.omega / scales.spin
+        shifts = np.broadcast_to(np.asarray(initial.nut_shift, dtype=float), (n,))
+        guess[k * n:base] = (shifts if per_ball else shifts.mean(keepdims=True)) / scales.length
+        previous = np.asarray(initial.b2b_force, dtype=float)
+        if previous.shape == (len(pairs),):
+            guess[base:] = previous[touching] / scales.force
+        z, residual, iterations = _newton(make_function(module.oversize), guess, tolerance, max_iterations,
+                                          f"{n}-ball screw module (warm start)")
+    else:
+        rates = sb.free_rolling_guess(contacts)
+        guess[:k * n].reshape(n, k)[:, 2] = rates[:, 0] / scales.orbit
+        guess[:k * n].reshape(n, k)[:, 3:6] = rates[:, 1:] / scales.spin
+        z, residual, iterations = sb.solve_preloaded(make_function, guess, contacts,
+                                                     float(np.max(np.abs(loads))) if per_ball else total / n,
+                                                     tolerance=tolerance, max_iterations=max_iterations,
+                                                     what=f"{n}-ball screw module")
     balls, shift, forces = unpack(z)
     if m:
-        separation = balls[touching + 1, 2] - balls[touching, 2]
-        violation = max(float(np.max(-forces[touching] / scales.force, initial=0.0)),
-                        float(np.max(-separation * gamma, initial=0.0)))
+        ahead, behind = pairs[touching, 1], pairs[touching, 0]
+        separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
+        lam = z[base:]
+        violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
         if violation > 10 * tolerance:
             raise ConvergenceError(f"{n}-ball screw module: complementarity violated", residual=violation,
                                    iterations=iterations, tolerance=tolerance)
         forces = np.maximum(forces, 0.0)
-        forces[touching[z[k * n + 1:] <= gamma * separation * scales.orbit / abs(module.nut_speed)]] = 0.0
-    terms = sb.ball_terms(balls, shift, contacts, scales)
-    speeds = np.zeros(n - 1)
-    if n > 1:
+    terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales)
+    speeds = np.zeros(len(pairs))
+    if len(pairs):
         speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
-                            module.friction_coefficient)[3]
-    b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 7 / 58
-    return sb.state_from(balls, shift, terms, scales, axial_load=load, b2b_force=forces, b2b_loss=b2b_loss,
-                         iterations=iterations, residual=float(np.max(np.abs(residual))))
+                           module.friction_coefficient, pairs)[3]
+    b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
+    return sb.state_from(balls, shift * 1.0 if per_ball else shift[0], terms, scales, axial_load=total,
+                         b2b_force=forces, b2b_loss=b2b_loss, iterations=iterations,
+                         residual=float(np.max(np.abs(residual))))
+
+
+def _newton(function, guess, tolerance, max_iterations, what):
+    from ballbench.lowmodel.solvers import newton
+
+    return newton(function, guess, tolerance=tolerance, max_iterations=max_iterations, what=what)

@@ -401,7 +401,7 @@ class BallTerms:
 
 def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, scales: Scales, *,
                oversize: float | None = None) -> BallTerms:
-    """lin2019 eqs 36-54 for every ball at scaled ``unknowns`` (n, 6) and scaled ``nut_shift``.
+    """lin2019 eqs 36-54 for every ball at scaled ``unknowns`` (n, 6) and scaled ``nut_shift`` (scalar or (n,)).
 
     Unknowns: ``(x_B3, z_B3)/length``, ``omega_B/orbit``, ``(omega_x, omega_y, omega_z)/spin``.
     ``oversize`` [m] overrides the module's preload (continuation).
@@ -425,7 +425,8 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     x_b, z_b = var(0, scales.length), var(1, scales.length)
     orbit = var(2, scales.orbit)
     omega = (var(3, scales.spin), var(4, scales.spin), var(5, scales.spin))
-    shift = _Dual(np.full(m, nut_shift * scales.length), np.zeros((m, k)))
+    shift = _Dual(np.repeat(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)) * scales.length, 4),
+                  np.zeros((m, k)))
     shift.g[:, N_UNKNOWNS] = scales.length
     on_nut = np.tile(_ON_NUT, n)
     centre = contacts.arc_centres.reshape(m, 2)
@@ -513,7 +514,7 @@ class ScrewBallState:
 
     centre : (n, 2) m, ball centre ``(x_B3, z_B3)`` from the nominal helix
     orbit_speed : (n,) rad/s, ``omega_B``; omega : (n, 3) rad/s, spin relative to CS3
-    nut_shift : m, axial shift of the nut relative to the screw
+    nut_shift : m, axial shift of the nut relative to the screw (scalar, or (n,) per ball)
     normal_force : (n, 4) N; contact_angle : (n, 4) rad (actual); approach : (n, 4) m
     semi_major : (n, 4) m; spin : (n, 4) rad/s about the inward normal; slip_minor, slip_major : (n, 4) m/s
     friction_force : (n, 4, 3) N; friction_moment : (n, 4, 3) N m (CS3, on the ball)
@@ -694,8 +695,10 @@ def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scal
     n = z_balls.shape[0]
     if b2b_force is None:
         b2b_force, b2b_loss = np.zeros(max(n - 1, 0)), np.zeros(max(n - 1, 0))
+    shift = np.asarray(shift, dtype=float) * scales.length
     return ScrewBallState(z_balls[:, :2] * scales.length, z_balls[:, 2] * scales.orbit, z_balls[:, 3:6] * scales.spin,
-                          shift * scales.length, terms.normal_force, _contact_angles(terms.contact_direction),
+                          float(shift) if shift.ndim == 0 else shift, terms.normal_force,
+                          _contact_angles(terms.contact_direction),
                           terms.approach, terms.semi_major, terms.spin, terms.slip_minor, terms.slip_major,
                           terms.friction_force, terms.friction_moment, terms.friction_loss,
                           float(terms.input_power.sum()), axial_load, np.asarray(b2b_force, dtype=float),
