@@ -256,3 +256,30 @@ def test_bad_input():
         sb.solve_balls(sb.ball_contacts(sb.screw_module()), float("nan"))
     with pytest.raises(ConvergenceError):
         sb.solve_balls(sb.ball_contacts(sb.screw_module(oversize=1e-6)), 25.0, max_iterations=1)
+
+
+def test_hertz_table_matches_direct_solution():
+    module = sb.screw_module()
+    angles = module.nominal_angle + np.radians([-14.9, -3.0, -0.1234, 0.0, 2.0, 3.0, 7.77, 14.9])
+    for body in ("screw", "nut"):
+        contacts = sb.ball_contacts(module, angles - module.nominal_angle, reading="tilted")
+        column = 0 if body == "screw" else 2
+        for j, angle in enumerate(angles):
+            if body == "nut":
+                angle = module.nominal_angle
+            direct = sb.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius, module.lead_angle,
+                                     float(angle), body, module.youngs_modulus, module.poisson_ratio)
+            got = (contacts.hertz_constant[j, column], contacts.semi_major_unit[j, column],
+                   contacts.b_over_a[j, column])
+            np.testing.assert_allclose(got, direct, rtol=1e-9)
+
+
+def test_friction_level_of_the_screw_model():
+    """The screw model's quadrature level (FRICTION_LEVEL) against level 6 at the Table 4 axis ratios."""
+    rng = np.random.default_rng(4)
+    w, un, um = np.ones(2000), rng.normal(size=2000) * 2, rng.normal(size=2000) * 0.5
+    for ratio in (sb.FRICTION_LEVEL["coarse_min_b_over_a"], 0.215, 0.249):
+        coarse = eo.friction_offset(w, un, um, ratio, level=sb.FRICTION_LEVEL["coarse"])
+        fine = eo.friction_offset(w, un, um, ratio, level=6)
+        for name in ("force_major", "force_minor", "moment", "loss"):
+            assert np.max(np.abs(getattr(coarse, name) - getattr(fine, name))) < 1e-8

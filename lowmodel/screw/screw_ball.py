@@ -79,12 +79,14 @@ __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
     "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
     "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
-    "state_from", "Scales", "BallTerms",
+    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL",
 ]
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
 DEVIATION_READINGS = ("rotated", "tilted")
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
+# tanh-sinh level of friction_offset: 5 where every b/a >= 0.21 (measured error < 1e-8 there, tests), else 6
+FRICTION_LEVEL = {"coarse": 5, "fine": 6, "coarse_min_b_over_a": 0.21}
 _BODY = ("screw", "screw", "nut", "nut")
 _FLANK = ("left", "right", "right", "left")
 _ON_NUT = np.array([0.0, 0.0, 1.0, 1.0])
@@ -186,14 +188,38 @@ class BallContacts:
         return self.contact_angles.shape[0]
 
 
-def _hertz_of(module: ScrewModule, angle: float, body: str) -> tuple[float, float, float]:
-    """(C, a per F^(1/3), b/a) of a ball on a helical flank at contact angle ``angle`` (normal profile)."""
-    return _hertz_cached(module.ball_radius, module.conformity, module.pitch_radius, module.lead_angle, angle, body,
-                         module.youngs_modulus, module.poisson_ratio)
+def _hertz_of(module: ScrewModule, angle, body: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(C, a per F^(1/3), b/a) of a ball on a helical flank at contact angles ``angle`` (normal profile).
+
+    Interpolated (cubic spline) from :func:`lowmodel.contact.hertz.ball_in_screw_groove` on a 0.25 deg grid
+    of contact angles covering beta_0 +- 15 deg (measured agreement with the direct solution 1e-10 relative,
+    tests); exact at the nodes, beta_0 among them.
+    """
+    table = _hertz_table(module.ball_radius, module.conformity, module.pitch_radius, module.lead_angle,
+                         module.nominal_angle, body, module.youngs_modulus, module.poisson_ratio)
+    return tuple(spline(angle) for spline in table)
 
 
-@lru_cache(maxsize=512)
-def _hertz_cached(ball_radius, conformity, pitch_radius, lead_angle, angle, body, youngs_modulus, poisson_ratio):
+_HERTZ_STEP = math.radians(0.25)
+
+
+@lru_cache(maxsize=32)
+def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angle, body, youngs_modulus,
+                 poisson_ratio):
+    from scipy.interpolate import CubicSpline
+
+    low = max(nominal_angle - groove_core.MAX_DEVIATION, 1e-3)
+    high = min(nominal_angle + groove_core.MAX_DEVIATION, 0.5 * math.pi - 1e-3)
+    below = np.arange(nominal_angle, low, -_HERTZ_STEP)[::-1]
+    above = np.arange(nominal_angle + _HERTZ_STEP, high, _HERTZ_STEP)
+    angles = np.concatenate([below, above])
+    values = np.array([hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, float(a), body,
+                                    youngs_modulus, poisson_ratio) for a in angles])
+    return tuple(CubicSpline(angles, values[:, q]) for q in range(3))
+
+
+def hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, angle, body, youngs_modulus, poisson_ratio):
+    """(C [m N^-2/3], a per F^(1/3) [m N^-1/3], b/a) from :func:`hertz.ball_in_screw_groove` (no table)."""
     from ballbench.lowmodel.contact import hertz
 
     geometry = hertz.ball_in_screw_groove(ball_radius, conformity, pitch_radius, angle, lead_angle, body,
@@ -228,9 +254,9 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "rotated") -> n
 def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "rotated") -> BallContacts:
     """Contacts of ``n`` balls with screw-side deviations ``deviation`` [rad], shape () or (n,).
 
-    Flank arcs from the geometry core (:func:`groove.helical_groove`, normal profile),
+    Flank arcs from the geometry core (:class:`groove.HelicalGroove`, normal profile),
     Hertz constants from :func:`lowmodel.contact.hertz.ball_in_screw_groove` with the
-    helical groove curvatures at each flank's contact angle.
+    helical groove curvatures at each flank's contact angle (spline on a 0.25 deg grid, :func:`_hertz_of`).
     """
     angles = flank_angles(module.nominal_angle, deviation, reading)
     n = angles.shape[0]
@@ -238,12 +264,12 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "rotated") 
     constant = np.empty((n, 4))
     unit = np.empty((n, 4))
     ratio = np.empty((n, 4))
-    for j in range(n):
-        for i in range(4):
-            flank = groove_core.helical_groove(module.ball_radius, module.conformity, module.pitch_radius,
-                                               module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
+    for i in range(4):
+        constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
+        for j in range(n):   # angles validated by flank_angles; the core's flank gives the arc centre
+            flank = groove_core.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius,
+                                              module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
             centres[j, i] = flank.arc_centre  # (u, w) = (x3, z3)
-            constant[j, i], unit[j, i], ratio[j, i] = _hertz_of(module, float(angles[j, i]), _BODY[i])
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     return BallContacts(module, angles, centres, constant, unit, ratio, theta)
 
@@ -467,7 +493,8 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     idx = np.flatnonzero(loaded)
     if idx.size:
         ratio_ba = contacts.b_over_a.reshape(m)[idx]
-        fr = friction_offset(spin_velocity.v[idx], slip_minor.v[idx], slip_major.v[idx], ratio_ba)
+        level = FRICTION_LEVEL["coarse" if ratio_ba.min() >= FRICTION_LEVEL["coarse_min_b_over_a"] else "fine"]
+        fr = friction_offset(spin_velocity.v[idx], slip_minor.v[idx], slip_major.v[idx], ratio_ba, level=level)
         jac = fr.jacobian
         grads = (spin_velocity.g[idx], slip_minor.g[idx], slip_major.g[idx])
         for target, row in ((fr_force_major, 0), (fr_force_minor, 1), (fr_moment, 2)):
