@@ -46,7 +46,8 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import screw_ball as sb
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "COMPLEMENTARITY_SCALE"]
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "solve_at", "COMPLEMENTARITY_SCALE",
+           "LOAD_RAMP_START", "saturation"]
 
 COMPLEMENTARITY_SCALE = 10.0
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
@@ -146,9 +147,56 @@ def _check_gaps(gaps, count: int) -> np.ndarray:
     return gaps
 
 
+LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a load ramp from here
+
+
 def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
-          max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
-          ) -> sb.ScrewBallState:
+          max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None,
+          ramp_steps: int = 8) -> sb.ScrewBallState:
+    """:func:`solve_at` with a fallback for heavy loads: if it fails with more than ``LOAD_RAMP_START``
+    per ball, the load is ramped up geometrically from there in ``ramp_steps`` warm-started solves
+    (continuation in the load; the preload continuation alone stalls where contacts open under kN loads).
+    Parameters as :func:`solve_at`."""
+    try:
+        return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance, max_iterations=max_iterations,
+                        with_b2b=with_b2b, initial=initial)
+    except ConvergenceError as error:
+        loads = np.asarray(axial_load, dtype=float)
+        per_ball = float(np.max(np.abs(loads))) / (1 if loads.ndim else contacts.n_balls)
+        if per_ball <= LOAD_RAMP_START:
+            raise
+        state, reached = None, 0.0
+        for factor in np.geomspace(LOAD_RAMP_START / per_ball, 1.0, ramp_steps):
+            try:
+                state = solve_at(contacts, loads * factor, gaps, ring=ring, tolerance=tolerance,
+                                 max_iterations=max_iterations, with_b2b=with_b2b, initial=state)
+                reached = factor
+            except ConvergenceError as ramp_error:
+                reason = ""
+                if state is not None:
+                    sliding = saturation(state)
+                    reason = (f"; at {100 * reached:.1f} % of the load the contacts slide with |c/a| up to "
+                              f"{sliding:.1f} (friction near its sliding limit mu F): no full-sliding state of "
+                              f"lin2019's model beyond, as the spin moments grow like F a and the friction of the "
+                              f"light contacts only like F (docs/ball_screw.md)")
+                raise ConvergenceError(f"no converged state: load ramp stopped at {100 * factor:.1f} % of the "
+                                       f"load{reason}", residual=ramp_error.residual,
+                                       iterations=ramp_error.iterations, tolerance=tolerance) from error
+        return state
+
+
+def saturation(state: sb.ScrewBallState) -> float:
+    """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding)."""
+    loaded = state.normal_force > 0.0
+    spin = np.abs(state.spin * state.semi_major)[loaded]
+    slide = np.abs(state.slip_minor)[loaded]
+    with np.errstate(divide="ignore"):
+        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf)))
+
+
+def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
+             max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
+             ) -> sb.ScrewBallState:
     """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
 
     Parameters
