@@ -31,8 +31,10 @@ Friction on ball j ``f = -mu F s/|s|`` (eq 58) at ``+R_B n``; normal force
 Complementarity (eqs 60-61) for a touching pair: ``F >= 0``,
 ``omega_B,j+1 - omega_B,j >= 0``, ``F (omega_B,j+1 - omega_B,j) = 0``; solved with
 the equilibrium of all balls and the axial balance by a semismooth Newton
-method on ``min(F / (mu F_ref), gamma (omega_B,j+1 - omega_B,j)/|omega_N|) = 0``
-(as :mod:`lowmodel.linear_bearing.b2b`).  A pair with a positive gap carries no force.
+method on the Fischer-Burmeister function of ``F / (mu F_ref)`` and
+``gamma (omega_B,j+1 - omega_B,j)/|omega_N|`` (``a + b - sqrt(a^2 + b^2) = 0``; the ``min``
+form of :mod:`lowmodel.linear_bearing.b2b` stalled Levenberg-Marquardt on chains of 100 balls).
+A pair with a positive gap carries no force.
 """
 from __future__ import annotations
 
@@ -50,6 +52,7 @@ __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solv
            "LOAD_RAMP_START", "saturation"]
 
 COMPLEMENTARITY_SCALE = 10.0
+_FB_SMOOTHING = 1e-14  # keeps the Fischer-Burmeister function differentiable at (0, 0)
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
 
@@ -153,13 +156,23 @@ LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a l
 def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
           max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None,
           ramp_steps: int = 8) -> sb.ScrewBallState:
-    """:func:`solve_at` with a fallback for heavy loads: if it fails with more than ``LOAD_RAMP_START``
+    """:func:`solve_at` with fallbacks: a second start from the balls solved without B2B contact; and for
+    heavy loads, if that fails too with more than ``LOAD_RAMP_START``
     per ball, the load is ramped up geometrically from there in ``ramp_steps`` warm-started solves
     (continuation in the load; the preload continuation alone stalls where contacts open under kN loads).
     Parameters as :func:`solve_at`."""
     try:
-        return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance, max_iterations=max_iterations,
-                        with_b2b=with_b2b, initial=initial)
+        try:
+            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+                            max_iterations=max_iterations, with_b2b=with_b2b, initial=initial)
+        except ConvergenceError:
+            if not with_b2b or contacts.n_balls < 2:
+                raise
+            # second start: the balls without B2B contact, then the contact problem from there
+            free = solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+                            max_iterations=max_iterations, with_b2b=False)
+            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+                            max_iterations=max_iterations, with_b2b=True, initial=free)
     except ConvergenceError as error:
         loads = np.asarray(axial_load, dtype=float)
         per_ball = float(np.max(np.abs(loads))) / (1 if loads.ndim else contacts.n_balls)
@@ -280,13 +293,15 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
                 lam = z[base:]
                 ahead, behind = pairs[touching, 1], pairs[touching, 0]
                 separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
-                force_branch = lam <= separation
                 rows = base + np.arange(m)
-                residual[rows] = np.where(force_branch, lam, separation)
-                jac[rows[force_branch], base + np.flatnonzero(force_branch)] = 1.0
-                velocity = ~force_branch
-                jac[rows[velocity], k * ahead[velocity] + 2] += speed_factor
-                jac[rows[velocity], k * behind[velocity] + 2] -= speed_factor
+                # Fischer-Burmeister: phi(a, b) = a + b - sqrt(a^2 + b^2) = 0 <=> a >= 0, b >= 0, a b = 0
+                root = np.sqrt(lam * lam + separation * separation + _FB_SMOOTHING**2)
+                residual[rows] = lam + separation - root
+                d_lam = 1.0 - lam / root
+                d_sep = 1.0 - separation / root
+                jac[rows, base + np.arange(m)] = d_lam
+                np.add.at(jac, (rows, k * ahead + 2), d_sep * speed_factor)
+                np.add.at(jac, (rows, k * behind + 2), -d_sep * speed_factor)
             return residual, jac
         return function
 
