@@ -267,8 +267,7 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     radius = np.asarray(checks.positive("ball_radius", ball_radius, "m"))
     mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient))
     velocity = np.asarray(checks.finite("groove_velocity", groove_velocity, "m/s"))
-    if not (tie_tolerance >= 0.0 and tie_tolerance < 1e-3):
-        raise ValueError(f"tie_tolerance must lie in [0, 1e-3), got {tie_tolerance!r}")
+    tie_tolerance = checks.bounded("tie_tolerance", tie_tolerance, 0.0, 1e-3, lower_closed=True)
     shape = np.broadcast_shapes(angles.shape[:-1], forces.shape[:-1], radius.shape, mu.shape, velocity.shape)
     angles = np.broadcast_to(angles, shape + (4,))
     forces = np.broadcast_to(forces, shape + (4,))

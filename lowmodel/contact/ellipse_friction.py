@@ -412,8 +412,7 @@ def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
     The paper reads ``k_f = 1.38`` off its Fig 5 over ``|c/a| < 0.5``
     (lin2019 Sec 2.3.1 and eq A8).  Dimensionless.
     """
-    if not (np.isfinite(c_max) and c_max > 0.0):
-        raise ValueError(f"c_max must be finite and > 0, got {c_max!r}")
+    c_max = checks.positive("c_max", c_max)
     beta = _check_ratio(b_over_a, lower=1e-3)
     x, w = _gauss(24)
     kappa = c_max * x  # (0, c_max]; the integrand force*kappa is even
@@ -664,10 +663,8 @@ def friction_velocity(spin_velocity, slide_velocity, b_over_a) -> SlipFriction:
     ``force = sgn(omega) force(c/a)`` etc., continuous through ``omega = 0``
     where ``force = -sign(slide_velocity)`` (pure sliding, lin2019 eq 12).
     """
-    spin = np.asarray(spin_velocity, dtype=float)
-    slide = np.asarray(slide_velocity, dtype=float)
-    if not (np.all(np.isfinite(spin)) and np.all(np.isfinite(slide))):
-        raise ValueError("spin_velocity and slide_velocity must be finite (m/s)")
+    spin = np.asarray(checks.finite("spin_velocity", spin_velocity, "m/s"))
+    slide = np.asarray(checks.finite("slide_velocity", slide_velocity, "m/s"))
     beta = _check_ratio(b_over_a)
     spin, slide, beta = np.broadcast_arrays(spin, slide, beta)
     speed2 = spin**2 + slide**2
@@ -705,9 +702,7 @@ def friction_angle(slip_angle, b_over_a) -> AngleFriction:
     ``loss(phi + pi) = loss(phi)``; ``loss = cos(phi) moment - sin(phi) force``
     (power balance, to map accuracy).
     """
-    phi = np.asarray(slip_angle, dtype=float)
-    if not np.all(np.isfinite(phi)):
-        raise ValueError("slip_angle must be finite (rad)")
+    phi = np.asarray(checks.finite("slip_angle", slip_angle, "rad"))
     beta = _check_ratio(b_over_a)
     if phi.shape != beta.shape:
         phi, beta = np.broadcast_arrays(phi, beta)

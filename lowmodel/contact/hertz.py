@@ -159,12 +159,11 @@ def from_curvatures(curvatures_1: tuple[float, float], curvatures_2: tuple[float
         If a relative curvature is not positive (the bodies conform and Hertz
         theory does not apply) or an input is not finite.
     """
-    k1 = np.asarray(curvatures_1, dtype=float)
-    k2 = np.asarray(curvatures_2, dtype=float)
+    k1 = np.asarray(checks.finite("curvatures_1", curvatures_1, "1/m"))
+    k2 = np.asarray(checks.finite("curvatures_2", curvatures_2, "1/m"))
     if k1.shape != (2,) or k2.shape != (2,):
         raise ValueError("curvatures_1 and curvatures_2 must each be two principal curvatures [1/m]")
-    if not (np.all(np.isfinite(k1)) and np.all(np.isfinite(k2)) and math.isfinite(angle)):
-        raise ValueError("curvatures and angle must be finite")
+    angle = checks.finite("angle", angle, "rad")
     e_star = contact_modulus(youngs_modulus, poisson_ratio, youngs_modulus_2, poisson_ratio_2)
     c, s = math.cos(angle), math.sin(angle)
     rotation = np.array([[c, -s], [s, c]])

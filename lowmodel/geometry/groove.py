@@ -450,9 +450,10 @@ def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndar
 def pair_initial_gap(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
                      contact_angle: float, body: str = "screw", *, flank: str = "left",
                      profile_plane: str = "normal"):
-    """Exact initial gap ``g0(x, y)`` [m] between the undeformed ball and groove of
-    :func:`ball_in_screw_groove_pair` (same arguments), measured along z at the point
-    ``(x, y)`` of the ball surface: ``R_B - sqrt(R_B^2 - x^2 - y^2) - counter_height``.
+    """Exact initial gap ``g0(x, y)`` [m] between the undeformed ball and groove of the
+    ball-in-screw-groove contact pair meshed by ``meshes`` (same arguments; contact frame of
+    :func:`contact_frame`), measured along z at the point ``(x, y)`` of the ball surface:
+    ``R_B - sqrt(R_B^2 - x^2 - y^2) - counter_height``.
 
     Node-to-facet gaps of P1 meshes of these conforming surfaces err by up to
     ``~ kappa_groove h^2 / 8`` (chords of the concave groove lie inside the ball:
