@@ -283,3 +283,37 @@ def test_friction_level_of_the_screw_model():
         fine = eo.friction_offset(w, un, um, ratio, level=6)
         for name in ("force_major", "force_minor", "moment", "loss"):
             assert np.max(np.abs(getattr(coarse, name) - getattr(fine, name))) < 1e-8
+
+
+def test_kinematics_agree_with_wang2022_frenet_velocities():
+    """wang2022's ball motion (eqs 18-21, screw turning, nut translating) fed to this model's kinematics.
+
+    In the screw's frame wang2022's nut turns at -omega and advances -omega h (a screw motion), the orbit
+    rate relative to the screw is omega_m - omega and the spin relative to CS1 = CS3 is the same vector
+    (CS3 (x3, y3, z3) = Frenet (-n, t, b)).  Slip velocities are frame-independent, so the slip at the
+    nut contact A (this model's NR) and the screw contact B (SL) must equal wang2022's V_SA and -V_SB.
+    """
+    from ballbench.lowmodel.screw import kinematics
+
+    omega = 2.0 * math.pi
+    for lead, alpha in ((20e-3, 45 * DEG), (10e-3, 40 * DEG), (0.0, 45 * DEG)):
+        wang = kinematics.kinematics(16.5e-3, 2.778e-3, lead, omega, alpha)
+        module = sb.screw_module(lead=lead, nominal_angle=alpha, nut_speed=-omega, oversize=1e-6)
+        contacts = sb.ball_contacts(module, 0.0)
+        scales = sb.Scales(1e-6, 1.0, 1.0, 1.0)
+        spin_t, spin_n, spin_b = np.asarray(wang.ball_angular_velocity)
+        unknowns = np.array([[0.0, 0.0, float(wang.orbital_speed) - omega, -spin_n, spin_t, spin_b]])
+        terms = sb.ball_terms(unknowns, 0.0, contacts, scales)
+
+        def slip_vector(i):
+            e = terms.contact_direction[0, i]
+            major = np.array([e[1], 0.0, -e[0]])
+            return terms.slip_minor[0, i] * np.array([0.0, 1.0, 0.0]) + terms.slip_major[0, i] * major
+
+        def to_cs3(frenet):
+            t, n, b = np.asarray(frenet)
+            return np.array([-n, t, b])
+
+        scale = omega * 16.5e-3
+        np.testing.assert_allclose(slip_vector(2), to_cs3(wang.sliding_velocity_nut), atol=1e-12 * scale)
+        np.testing.assert_allclose(slip_vector(0), -to_cs3(wang.sliding_velocity_screw), atol=1e-12 * scale)
