@@ -106,37 +106,44 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     if pairs is None:
         pairs = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
     pairs = np.asarray(pairs, dtype=int).reshape(-1, 2)
+    count = len(pairs)
+    load = np.zeros((n, 6))
+    d_spin = np.zeros((n, 6, n, 3))
+    d_force = np.zeros((n, 6, count))
+    if count == 0:
+        return load, d_spin, d_force, np.zeros(0)
+    forces = np.asarray(forces, dtype=float)
     a_mat = -radius * _skew(pair.chord)          # s = A (omega_j + R omega_k)
     b_mat = radius * _skew(pair.chord)           # moment = B f
     rot = pair.rotation
-    load = np.zeros((n, 6))
-    d_spin = np.zeros((n, 6, n, 3))
-    d_force = np.zeros((n, 6, len(pairs)))
-    speeds = np.zeros(len(pairs))
-    for index, (j, k) in enumerate(pairs):
-        slip = a_mat @ (spins[j] + rot @ spins[k])
-        norm = math.sqrt(slip @ slip + (_REGULARISATION * radius) ** 2)
-        speeds[index] = math.sqrt(slip @ slip)
-        direction = slip / norm
-        friction = -mu * forces[index] * direction
-        force_j = -forces[index] * pair.chord + friction
-        moment = b_mat @ friction
-        load[j, :3] += force_j
-        load[j, 3:] += moment
-        load[k, :3] += rot.T @ (-force_j)
-        load[k, 3:] += rot.T @ moment
-        if forces[index] != 0.0:
-            dfric_dslip = -mu * forces[index] * (np.eye(3) - np.outer(direction, direction)) / norm
-            for ball, d_fric in ((j, dfric_dslip @ a_mat), (k, dfric_dslip @ a_mat @ rot)):
-                d_spin[j, :3, ball] += d_fric
-                d_spin[j, 3:, ball] += b_mat @ d_fric
-                d_spin[k, :3, ball] += -rot.T @ d_fric
-                d_spin[k, 3:, ball] += rot.T @ b_mat @ d_fric
-        dfric_dforce = -mu * direction
-        d_force[j, :3, index] = -pair.chord + dfric_dforce
-        d_force[j, 3:, index] = b_mat @ dfric_dforce
-        d_force[k, :3, index] = rot.T @ (pair.chord - dfric_dforce)
-        d_force[k, 3:, index] = rot.T @ b_mat @ dfric_dforce
+    behind, ahead = pairs[:, 0], pairs[:, 1]
+    slip = (spins[behind] + spins[ahead] @ rot.T) @ a_mat.T                 # (p, 3)
+    speeds = np.sqrt(np.einsum("pi,pi->p", slip, slip))
+    norm = np.sqrt(speeds**2 + (_REGULARISATION * radius) ** 2)
+    direction = slip / norm[:, None]
+    friction = -mu * forces[:, None] * direction                              # eq 58 on the ball behind
+    force_behind = -forces[:, None] * pair.chord + friction
+    moment = friction @ b_mat.T
+    np.add.at(load, (behind, slice(0, 3)), force_behind)
+    np.add.at(load, (behind, slice(3, 6)), moment)
+    np.add.at(load, (ahead, slice(0, 3)), -force_behind @ rot)                # rot.T @ (-f) per pair
+    np.add.at(load, (ahead, slice(3, 6)), moment @ rot)
+    # d friction / d slip = -mu F (I - d d^T) / |s|
+    projector = np.eye(3)[None] - direction[:, :, None] * direction[:, None, :]
+    dfric_dslip = (-mu * forces / norm)[:, None, None] * projector            # (p, 3, 3)
+    d_behind = dfric_dslip @ a_mat                                            # d friction / d omega_behind
+    d_ahead = d_behind @ rot                                                  # d friction / d omega_ahead
+    for ball_index, d_fric in ((behind, d_behind), (ahead, d_ahead)):
+        np.add.at(d_spin, (behind, slice(0, 3), ball_index), d_fric)
+        np.add.at(d_spin, (behind, slice(3, 6), ball_index), b_mat @ d_fric)
+        np.add.at(d_spin, (ahead, slice(0, 3), ball_index), -rot.T @ d_fric)
+        np.add.at(d_spin, (ahead, slice(3, 6), ball_index), rot.T @ b_mat @ d_fric)
+    dfric_dforce = -mu * direction                                            # (p, 3)
+    index = np.arange(count)
+    d_force[behind, 0:3, index] = -pair.chord + dfric_dforce
+    d_force[behind, 3:6, index] = dfric_dforce @ b_mat.T
+    d_force[ahead, 0:3, index] = (pair.chord - dfric_dforce) @ rot
+    d_force[ahead, 3:6, index] = dfric_dforce @ b_mat.T @ rot
     return load, d_spin, d_force, speeds
 
 
