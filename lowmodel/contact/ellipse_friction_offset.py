@@ -154,9 +154,8 @@ def _centred(kappa: np.ndarray, lam: np.ndarray, beta: np.ndarray, level: int = 
         cos_p, sin_p = cos_a[None, :], sin_a[None, :]
         b = -r * cos_p                       # w = rho + b along the ray; q = R^2 - w^2
         big_r2 = 1.0 - (r * sin_p) ** 2
-        big_r = np.sqrt(big_r2)
-        h = np.sqrt(np.maximum(1.0 - r * r, 0.0)) * np.ones_like(cos_p)  # sqrt(R^2 - b^2)
-        asin = np.arcsin(np.clip(b / big_r, -1.0, 1.0))
+        h = np.sqrt(np.maximum(1.0 - r * r, 0.0))    # sqrt(R^2 - b^2) = sqrt(1 - R_c^2), one per contact
+        asin = np.arctan2(b, h)                      # asin(b / R), without the division
         k0 = 0.25 * math.pi * big_r2 - 0.5 * (b * h + big_r2 * asin)
         k1 = h**3 / 3.0
         k2 = 0.0625 * math.pi * big_r2**2 - 0.125 * (b * (2.0 * b * b - big_r2) * h + big_r2**2 * asin)
@@ -193,13 +192,15 @@ def _angular(cos, sin, j0, j1, j2, weight, beta):
     g = np.sqrt(g2)
     w1 = weight * j1 / g
     w0 = weight * j0 / (g2 * g)
-    f_minor = _PREFACTOR * np.sum(w1 * cos, axis=1)
-    f_major = -_PREFACTOR * np.sum(w1 * bsin, axis=1)
-    loss = _PREFACTOR * np.sum(weight * g * j2, axis=1)
-    c_ss = _PREFACTOR * np.sum(w0 * bsin * bsin, axis=1)
-    c_sc = _PREFACTOR * np.sum(w0 * bsin * cos, axis=1)
-    c_cc = _PREFACTOR * np.sum(w0 * cos * cos, axis=1)
-    return np.stack([f_major, f_minor, loss, c_ss, c_sc, c_cc])
+    w0_bsin = w0 * bsin
+    w0_cos = w0 * cos
+    f_minor = np.einsum("ij,ij->i", w1, cos)
+    f_major = -np.einsum("ij,ij->i", w1, bsin)
+    loss = np.einsum("ij,ij->i", weight * g, j2)
+    c_ss = np.einsum("ij,ij->i", w0_bsin, bsin)
+    c_sc = np.einsum("ij,ij->i", w0_bsin, cos)
+    c_cc = np.einsum("ij,ij->i", w0_cos, cos)
+    return _PREFACTOR * np.stack([f_major, f_minor, loss, c_ss, c_sc, c_cc])
 
 
 # --------------------------------------------------------------------------
