@@ -47,6 +47,25 @@ def test_distribution_compatibility_and_balance(module, stiffness):
     np.testing.assert_allclose(equal, 400.0 / 12, rtol=1e-6)
 
 
+def test_lead_error_shifts_the_load_to_the_loaded_end(module, stiffness):
+    sections = ld.bar_sections(module)
+    psi = np.linspace(0.2, 12.0, 10)
+    base = ld.distribute(psi, 300.0, stiffness, sections, module.lead, module.youngs_modulus)
+    error = ld.distribute(psi, 300.0, stiffness, sections, module.lead, module.youngs_modulus, lead_error=2e-7)
+    assert error.sum() == pytest.approx(300.0, rel=1e-10)
+    assert error[0] > base[0] and error[-1] < base[-1]
+    # compatibility with the lead error, recomputed by a plain loop (as in the test above)
+    z = module.lead * psi / (2 * math.pi)
+    e = module.youngs_modulus
+    handed = 0.0
+    for j in range(1, len(psi)):
+        handed += error[j - 1]
+        strain = (300.0 - handed) / (e * sections.screw_area) + handed / (e * sections.nut_area)
+        expected = strain * (z[j] - z[j - 1]) + 2e-7 * (psi[j] - psi[j - 1]) / (2 * math.pi)
+        got = stiffness.shift(error[j]) - stiffness.shift(error[j - 1])
+        assert got == pytest.approx(expected, rel=1e-6)
+
+
 def test_short_simulation(module, stiffness):
     history = ws.simulate(module, n_balls=12, axial_load=300.0, duration=0.05, steps=5, stiffness=stiffness)
     assert history.time.shape == (6,)

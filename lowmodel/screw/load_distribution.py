@@ -101,11 +101,15 @@ def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13) -
 
 
 def distribute(positions, total_load: float, stiffness: AxialStiffness, sections: BarSections, lead: float,
-               youngs_modulus: float, *, tolerance: float = 1e-10, max_iterations: int = 50) -> np.ndarray:
+               youngs_modulus: float, *, lead_error: float = 0.0, tolerance: float = 1e-10,
+               max_iterations: int = 50) -> np.ndarray:
     """Axial load [N] of each ball, shape (n,).
 
     ``positions``: azimuth of each ball in the nut [rad] from the loaded end (``z = lead psi / 2 pi``);
-    ``total_load`` [N] >= 0 on the screw; ``lead`` [m]; ``youngs_modulus`` [Pa] of screw and nut.
+    ``total_load`` [N] >= 0 on the screw; ``lead`` [m]; ``youngs_modulus`` [Pa] of screw and nut;
+    ``lead_error`` [m per turn]: the nut groove's lead minus the screw's (a geometric error, lin2019
+    Sec 3.1 / ref [19]); it adds ``lead_error psi / 2 pi`` to the nut's axial position at each ball
+    (with the sign of the elastic shortening: a positive error unloads the far balls).
     """
     from scipy.optimize import brentq
 
@@ -118,6 +122,7 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         raise ValueError(f"total_load must be at most n * max_load of the stiffness table = "
                          f"{n * stiffness.loads[-1]!r} N, got {total!r}")
     z = lead * psi / (2.0 * math.pi)
+    geometric = checks.finite("lead_error", lead_error, "m per turn") * psi / (2.0 * math.pi)
     order = np.argsort(z)
     compliance_s = 1.0 / (youngs_modulus * sections.screw_area)
     compliance_n = 1.0 / (youngs_modulus * sections.nut_area)
@@ -130,6 +135,7 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         strain = (total - before) * compliance_s + before * compliance_n
         offset = np.empty(n)
         offset[order] = np.cumsum(strain * segment)                # int_0^z (eps_s + eps_n)
+        offset = offset + geometric
         sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
 
         def mismatch(u0):

@@ -86,13 +86,14 @@ class ScrewHistory:
 def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0, duration: float = 2.0,
              steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4, reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
-             progress=None) -> ScrewHistory:
+             lead_error: float = 0.0, progress=None) -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
     ``amplitude`` [rad] and ``cycles`` (over the two loaded turns) of the screw-side deviation,
     ``reading`` as :func:`screw_ball.flank_angles`; ``sections``/``stiffness`` of the load
     distribution (defaults: :func:`load_distribution.bar_sections`, :func:`load_distribution.axial_stiffness`
-    up to 3x the mean ball load); ``progress`` wraps the step iterator (e.g. a tqdm).
+    up to 3x the mean ball load); ``lead_error`` [m per turn] of the nut against the screw
+    (:func:`load_distribution.distribute`); ``progress`` wraps the step iterator (e.g. a tqdm).
     """
     n = checks.count("n_balls", n_balls, 2)
     total = checks.non_negative("axial_load", axial_load, "N")
@@ -127,7 +128,7 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
         theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
         contacts = sb.ball_contacts(module, theta, reading=reading)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
-                              module.youngs_modulus)
+                              module.youngs_modulus, lead_error=lead_error)
         touching_gaps = np.where(gaps <= 1e-12, 0.0, gaps)
         state = screw_b2b.solve(contacts, loads, touching_gaps, ring=True, initial=state)
         records["time"].append(time)
