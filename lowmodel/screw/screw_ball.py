@@ -228,15 +228,16 @@ def hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, angle, body,
     return hertz.hertz_constant(geometry), float(unit.a), float(unit.b / unit.a)
 
 
-def flank_angles(nominal_angle: float, deviation, reading: str = "rotated") -> np.ndarray:
+def flank_angles(nominal_angle: float, deviation, reading: str = "tilted") -> np.ndarray:
     """Contact angles (n, 4) of (SL, SR, NR, NL) with the screw-side deviation ``theta`` [rad].
 
     ``reading`` (lin2019 Fig 17 is missing; docs/ball_screw.md):
 
-    * ``"rotated"`` (default): the screw's gothic-arch profile turned by ``theta``
+    * ``"rotated"``: the screw's gothic-arch profile turned by ``theta``
       about the ball centre, ``beta_SL = beta_0 + theta``, ``beta_SR = beta_0 - theta``
       (the linear-bearing deviation of lin2019 Fig 7, Delta beta_BL = -Delta beta_BR);
-    * ``"tilted"``: both screw flanks tilted, ``beta_SL = beta_SR = beta_0 + theta``.
+    * ``"tilted"`` (default): both screw flanks tilted, ``beta_SL = beta_SR = beta_0 + theta``; the
+      reading that reproduces lin2019 Table 5 (docs/ball_screw.md).
 
     The nut flanks keep ``beta_0``.
     """
@@ -251,7 +252,7 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "rotated") -> n
     return angles
 
 
-def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "rotated") -> BallContacts:
+def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted") -> BallContacts:
     """Contacts of ``n`` balls with screw-side deviations ``deviation`` [rad], shape () or (n,).
 
     Flank arcs from the geometry core (:class:`groove.HelicalGroove`, normal profile),
@@ -752,10 +753,3 @@ def _stack(states, contacts: BallContacts) -> ScrewBallState:
                           float(sum(p.input_power for p in parts)), float(sum(p.axial_load for p in parts)),
                           np.zeros(n - 1), np.zeros(n - 1), max(p.iterations for p in parts),
                           max(p.residual for p in parts))
-
-
-def check_converged(state: ScrewBallState, tolerance: float) -> None:
-    """ConvergenceError if the state carries a residual above ``tolerance``."""
-    if not state.residual <= tolerance:
-        raise ConvergenceError("screw ball state not converged", residual=state.residual,
-                               iterations=state.iterations, tolerance=tolerance)
