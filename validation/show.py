@@ -35,10 +35,9 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
     from ballbench.fem.contact import full_displacement
     from ballbench.validation.scenes import fe_hertz
 
-    if not scene_name.startswith("fe-hertz-"):
-        raise ValueError(f"show supports the FE scenes fe-hertz-*, got {scene_name!r}")
-    if fidelity not in fe_hertz.LEVELS:
-        raise ValueError(f"fidelity must be one of {tuple(fe_hertz.LEVELS)}, got {fidelity!r}")
+    entry = fe_hertz.fe_scene(scene_name)  # ValueError naming the FE scenes
+    if fidelity not in entry.levels:
+        raise ValueError(f"fidelity must be one of {tuple(entry.levels)}, got {fidelity!r}")
     pv.OFF_SCREEN = True
     case = fe_hertz.pair_case(scene_name)
     n, growth = case.level_list(fidelity)[-1]

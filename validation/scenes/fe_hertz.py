@@ -19,7 +19,6 @@ with its own, stated tolerance (3 %, p0 4 %).
 from __future__ import annotations
 
 import csv
-import math
 import time
 from dataclasses import dataclass
 
@@ -27,12 +26,13 @@ import numpy as np
 
 from ballbench.fem.hertz_case import LOAD_FACTORS
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 from ballbench.validation.scene import scene
 
 MODEL = "fem.contact"
-E_STEEL, NU_STEEL = 2.1e11, 0.28  # lin2019 Table 1
-BALL_RADIUS = 5e-3  # m, lin2019 Table 1
-LOAD = 100.0  # N
+E_STEEL, NU_STEEL = TABLE1.youngs_modulus, TABLE1.poisson_ratio  # lin2019 Table 1
+BALL_RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
+LOAD = TABLE1.vertical_force  # N
 QUANTITIES = (("a", "m"), ("b", "m"), ("p0", "Pa"), ("delta", "m"))
 TOLERANCES = {
     "quick": {"a": 0.03, "b": 0.03, "p0": 0.04, "delta": 0.03},
@@ -70,6 +70,53 @@ LEVELS_CIRCULAR = {
     "default": [(10.0, 1.3)],
     "fine": [(6.0, 1.4), (8.0, 1.3), (10.0, 1.3), (12.0, 1.25), (14.0, 1.2)],
 }
+PAIRS = ("flat", "ball", "groove", "screw")
+
+
+@dataclass(frozen=True)
+class FeScene:
+    """One scene of the FE Hertz family, as data: what pair it meshes and at which levels.
+
+    ``pair`` is ``"flat"`` (ball on a flat), ``"ball"`` (ball on ball), ``"groove"`` (ball in a straight
+    groove of ``conformity``) or ``"screw"`` (ball in the helical screw groove of lin2019 Table 4);
+    ``levels`` maps a fidelity to its mesh levels ``[(n = b / h_contact, growth), ...]``.
+    """
+
+    name: str
+    description: str
+    pair: str
+    levels: dict
+    conformity: float | None = None
+
+    def __post_init__(self):
+        if self.pair not in PAIRS:
+            raise ValueError(f"pair must be one of {PAIRS}, got {self.pair!r}")
+        if (self.pair == "groove") != (self.conformity is not None):
+            raise ValueError("conformity is given for (and only for) a groove pair")
+
+
+FE_SCENES = (
+    FeScene("fe-hertz-flat", "FE contact, ball (R 5 mm) on a flat, 100 N, steel: a, b, p0, delta against Hertz",
+            "flat", LEVELS_CIRCULAR),
+    FeScene("fe-hertz-ball-ball", "FE contact, ball on ball (R 5 mm each), 100 N: a, b, p0, delta against Hertz",
+            "ball", LEVELS_CIRCULAR),
+    FeScene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz",
+            "groove", LEVELS_052, conformity=0.52),
+    FeScene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz",
+            "groove", LEVELS, conformity=0.56),
+    FeScene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz",
+            "groove", LEVELS, conformity=0.60),
+    FeScene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz",
+            "screw", LEVELS_SCREW),
+)
+
+
+def fe_scene(scene_name: str) -> FeScene:
+    """The :class:`FeScene` named ``scene_name``; ValueError naming the FE scenes if there is none."""
+    for entry in FE_SCENES:
+        if entry.name == scene_name:
+            return entry
+    raise ValueError(f"no FE Hertz scene {scene_name!r}; FE scenes: {', '.join(e.name for e in FE_SCENES)}")
 
 
 @dataclass(frozen=True)
@@ -88,7 +135,7 @@ class PairCase:
         return (self.levels or LEVELS)[fidelity]
 
 
-def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
+def _groove_case(conformity: float, levels: dict) -> PairCase:
     from ballbench.meshes import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
@@ -103,38 +150,36 @@ def _steel_groove(conformity: float, levels: dict | None = None) -> PairCase:
 
 
 def pair_case(scene_name: str) -> PairCase:
-    """The pair of an ``fe-hertz-*`` scene."""
+    """The pair of an ``fe-hertz-*`` scene, built from its :class:`FeScene` entry."""
     from ballbench.meshes import contact_pairs
 
-    if scene_name == "fe-hertz-flat":
+    entry = fe_scene(scene_name)
+    if entry.pair == "flat":
         geometry = hertz.ball_on_flat(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on flat", lambda h, g: contact_pairs.ball_on_flat_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.contact.hertz.ball_on_flat (R_B 5 mm, 100 N)", LEVELS_CIRCULAR)
-    if scene_name == "fe-hertz-ball-ball":
+            "lowmodel.contact.hertz.ball_on_flat (R_B 5 mm, 100 N)", entry.levels)
+    if entry.pair == "ball":
         geometry = hertz.ball_on_ball(BALL_RADIUS, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
         ref = hertz.solve_load(geometry, LOAD)
         return PairCase("ball on ball", lambda h, g: contact_pairs.ball_on_ball_pair(
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
-            "lowmodel.contact.hertz.ball_on_ball (R_B 5 mm each, 100 N)", LEVELS_CIRCULAR)
-    if scene_name.startswith("fe-hertz-groove-0"):
-        conformity = int(scene_name[-3:]) / 100.0
-        return _steel_groove(conformity, LEVELS_052 if scene_name.endswith("052") else None)
-    if scene_name == "fe-hertz-screw":
-        from ballbench.meshes import helical
+            "lowmodel.contact.hertz.ball_on_ball (R_B 5 mm each, 100 N)", entry.levels)
+    if entry.pair == "groove":
+        return _groove_case(entry.conformity, entry.levels)
+    from ballbench.meshes import helical
 
-        # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
-        args = (2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0))
-        frame = helical.contact_frame(helical.helical_groove(*args))
-        radius = args[0]
-        geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
-                                         youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
-        ref = hertz.solve_load(geometry, LOAD)
-        return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
-            *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
-            "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", LEVELS_SCREW)
-    raise ValueError(f"no FE Hertz scene {scene_name!r}")
+    # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
+    args = (TABLE4.ball_radius, TABLE4.conformity, TABLE4.pitch_radius, TABLE4.lead, TABLE4.nominal_angle)
+    frame = helical.contact_frame(helical.helical_groove(*args))
+    radius = args[0]
+    geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
+                                     **TABLE4.material)
+    ref = hertz.solve_load(geometry, LOAD)
+    return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
+        *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
+        "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", entry.levels)
 
 
 def solve_level(case: PairCase, n: float, growth: float):
@@ -238,31 +283,13 @@ def _plot(run, scene_name, rows) -> None:
     run.save_figure(fig, "convergence.png")
 
 
-@scene("fe-hertz-flat", "FE contact, ball (R 5 mm) on a flat, 100 N, steel: a, b, p0, delta against Hertz")
-def fe_hertz_flat(run):
-    _run(run, "fe-hertz-flat")
+def _register(entry: FeScene) -> None:
+    def run_entry(run):
+        _run(run, entry.name)
+
+    run_entry.__name__ = run_entry.__qualname__ = entry.name.replace("-", "_")
+    scene(entry.name, entry.description)(run_entry)
 
 
-@scene("fe-hertz-ball-ball", "FE contact, ball on ball (R 5 mm each), 100 N: a, b, p0, delta against Hertz")
-def fe_hertz_ball_ball(run):
-    _run(run, "fe-hertz-ball-ball")
-
-
-@scene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz")
-def fe_hertz_groove_052(run):
-    _run(run, "fe-hertz-groove-052")
-
-
-@scene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz")
-def fe_hertz_groove_056(run):
-    _run(run, "fe-hertz-groove-056")
-
-
-@scene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz")
-def fe_hertz_groove_060(run):
-    _run(run, "fe-hertz-groove-060")
-
-
-@scene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz")
-def fe_hertz_screw(run):
-    _run(run, "fe-hertz-screw")
+for _entry in FE_SCENES:
+    _register(_entry)

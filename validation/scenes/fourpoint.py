@@ -10,30 +10,16 @@ import math
 import numpy as np
 
 from ballbench.lowmodel import fourpoint
+from ballbench.validation.papers.lin2017 import CASES, case1_angles, case2_angles
 from ballbench.validation.scene import relative_error, scene
 
 MODEL = "lowmodel.fourpoint"
-NOMINAL = math.pi / 4          # all nominal contact angles 45 deg (lin2017 Secs 3.2, 3.3)
-VERTICAL_FORCE = 100.0         # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
-BALL_RADIUS = 5e-3             # m (drops out of v_B and the loss; sets omega)
-MU = 0.1                       # mu_k (drops out of the state; scales forces and loss)
-GROOVE_VELOCITY = 0.01         # v [m/s]
-THETA_MAX = math.radians(5.0)  # misalignment / deviation range of the checks and maps
+VERTICAL_FORCE = CASES.vertical_force           # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
+BALL_RADIUS = CASES.ball_radius                 # m (drops out of v_B and the loss; sets omega)
+MU = CASES.friction_coefficient                 # mu_k (drops out of the state; scales forces and loss)
+GROOVE_VELOCITY = CASES.groove_velocity         # v [m/s]
+THETA_MAX = CASES.angle_range                   # misalignment / deviation range of the checks and maps
 MIRROR = {"BL": "BR", "BR": "BL", "TR": "TL", "TL": "TR"}
-
-
-def case1_angles(theta):
-    """lin2017 Sec 3.2: beta_BL = beta_BR = 45 deg, beta_TR = 45 deg + theta, beta_TL = 45 deg - theta."""
-    theta = np.asarray(theta, dtype=float)
-    zero = np.zeros_like(theta)
-    return NOMINAL + np.stack([zero, zero, theta, -theta], axis=-1)
-
-
-def case2_angles(alpha):
-    """lin2017 Sec 3.3: beta_BL = beta_BR = beta_TL = 45 deg, beta_TR = 45 deg + alpha."""
-    alpha = np.asarray(alpha, dtype=float)
-    zero = np.zeros_like(alpha)
-    return NOMINAL + np.stack([zero, zero, alpha, zero], axis=-1)
 
 
 def _solve(angles, rho):

@@ -6,13 +6,14 @@ import warnings
 import numpy as np
 
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.papers.lin2019 import TABLE1
 from ballbench.validation.reference_hertz import ellipse_quadrature, sphere_closed_form
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.hertz"
-STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # lin2019 Table 1
-BALL_RADIUS = 5e-3  # m, lin2019 Table 1
-LOAD = 100.0  # N, lin2019 Table 1 (N_y)
+STEEL = TABLE1.material  # lin2019 Table 1
+BALL_RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
+LOAD = TABLE1.vertical_force  # N, lin2019 Table 1 (N_y)
 
 
 def _check_sphere(run, geometry, equivalent_radius: float, source: str) -> None:
@@ -104,11 +105,11 @@ def hertz_groove_conformity(run):
 @scene("lin2019-table1-psi", "Psi of lin2019 eq 15 recomputed from Hertz theory for the Table 1 geometry")
 def lin2019_table1_psi(run):
     def model():
-        geometry = hertz.ball_in_groove(BALL_RADIUS, 0.56, **STEEL)
+        geometry = hertz.ball_in_groove(BALL_RADIUS, TABLE1.conformity, **STEEL)
         return hertz.psi_constant(geometry, BALL_RADIUS)
 
     psi, time_s = run.time(model)
-    printed = 5.307e-4
+    printed = TABLE1.psi
     half_unit = 0.0005e-4 / printed  # the table prints 4 significant figures
     run.check(model=MODEL, quantity="Psi", unit="(m^2/N)^(1/3)", value=psi, reference=printed,
               source="lin2019 Table 1", tolerance=half_unit, time_s=time_s,

@@ -10,17 +10,18 @@ import numpy as np
 from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import scene
 
-BALL_RADIUS = 5e-3      # m, lin2019 Table 1
-CONFORMITY = 0.56       # lin2019 Table 1
-STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # lin2019 Table 1
-NORMAL_LOAD = 100.0     # N_y [N], lin2019 Table 1
-GROOVE_VELOCITY = 0.01  # v [m/s], lin2019 Table 1
-MU = 0.1                # lin2019 Table 1
-PSI_TABLE1 = 5.307e-4   # (m^2/N)^(1/3), lin2019 Table 1 (recomputed below, papers/README.md)
-THETA = math.radians(2.0)  # Table 2/3 case
-RHO = -0.6                 # Table 2/3 case (yaw moment, Sec 2.4.2)
+BALL_RADIUS = TABLE1.ball_radius         # m, lin2019 Table 1
+CONFORMITY = TABLE1.conformity
+STEEL = TABLE1.material
+NORMAL_LOAD = TABLE1.vertical_force      # N_y [N]
+GROOVE_VELOCITY = TABLE1.groove_velocity  # v [m/s]
+MU = TABLE1.friction_coefficient
+PSI_TABLE1 = TABLE1.psi                  # (m^2/N)^(1/3), recomputed below (papers/README.md)
+THETA = CASE.theta                       # Table 2/3 case
+RHO = CASE.side_force_ratio              # Table 2/3 case (yaw moment, Sec 2.4.2)
 FIG5_CONFORMITIES = (0.52, 0.54, 0.56, 0.58)  # "four typical conformity ratios" (Fig 5, Fig 22 starts at 0.52)
 
 
@@ -61,11 +62,11 @@ def lin2019_kf(run):
     k_ls, time_ls = run.time(ef.k_f_least_squares, beta, 0.5)
     k_exact, time_exact = run.time(ef.k_f_exact, beta)
     run.check(model=model, quantity="k_f, least-squares slope of -f/(mu F) over |c/a| <= 0.5 (conf 0.56)",
-              unit="1", value=float(k_ls), reference=b2b.K_F_PAPER, source="lin2019 Sec 2.3.2 (read off Fig 5)",
+              unit="1", value=float(k_ls), reference=PRINTED.k_f, source="lin2019 Sec 2.3.2 (read off Fig 5)",
               tolerance=0.01, time_s=time_ls,
               note="tolerance 1 %: the paper's value is read off a plot to 3 digits (rounding alone 0.4 %)")
     run.check(model=model, quantity="k_f, exact slope at c/a = 0 (conf 0.56), bound >= paper value", unit="1",
-              value=float(k_exact), reference=b2b.K_F_PAPER, source="lin2019 Sec 2.3.2 (read off Fig 5)",
+              value=float(k_exact), reference=PRINTED.k_f, source="lin2019 Sec 2.3.2 (read off Fig 5)",
               tolerance=0.0, relation="ge", time_s=time_exact,
               note="the force is -k_f c/a + g3 (c/a)^3 with g3 > 0 inside the ellipse, so every fitted slope "
                    "lies below the tangent slope")
@@ -180,32 +181,36 @@ def lin2019_analytical(run):
     case_a, time_a = run.time(b2b.two_ball_case, THETA, RHO, **common)
     for name, sign in (("epsilon_1", 1.0), ("epsilon_2", -1.0)):
         run.check(model=model, quantity=f"{name} case (a), theta = 2 deg, rho = -0.6", unit="%",
-                  value=100 * float(getattr(case_a, name)), reference=sign * 0.75,
+                  value=100 * float(getattr(case_a, name)), reference=sign * PRINTED.epsilon_analytical,
                   source="lin2019 Table 2, analytical (eq 33; columns merged, papers/README.md)",
-                  tolerance=0.005 / 0.75, time_s=time_a, note="tolerance: half a unit of the 2nd published decimal")
+                  tolerance=0.005 / PRINTED.epsilon_analytical, time_s=time_a,
+                  note="tolerance: half a unit of the 2nd published decimal")
     run.check(model=model, quantity="F_B2B case (a), k_f = 1.38", unit="N", value=float(case_a.b2b_force),
-              reference=3.74, source="lin2019 Table 3, analytical formula (eq 30)", tolerance=0.005, time_s=time_a)
+              reference=PRINTED.f_b2b_analytical, source="lin2019 Table 3, analytical formula (eq 30)",
+              tolerance=0.005, time_s=time_a)
     run.check(model=model, quantity="F_B2B case (a), k_f = 1.38, against FEA", unit="N",
-              value=float(case_a.b2b_force), reference=3.96, source="lin2019 Table 3, ANSYS FEA",
+              value=float(case_a.b2b_force), reference=PRINTED.f_b2b_ansys, source="lin2019 Table 3, ANSYS FEA",
               tolerance=0.07, time_s=time_a, note="tolerance: the paper's own claim (error within 6-7 %)")
     beta = _axis_ratio()
     k_ls = float(ef.k_f_least_squares(beta, 0.5))
     case_ls, time_ls = run.time(b2b.two_ball_case, THETA, RHO, k_f=k_ls, **common)
     run.check(model=model, quantity=f"F_B2B case (a), k_f = {k_ls:.4f} (least squares of our map)", unit="N",
-              value=float(case_ls.b2b_force), reference=3.74, source="lin2019 Table 3, analytical formula (eq 30)",
+              value=float(case_ls.b2b_force), reference=PRINTED.f_b2b_analytical,
+              source="lin2019 Table 3, analytical formula (eq 30)",
               tolerance=0.005, time_s=time_ls)
     run.check(model=model, quantity="P_fB2B case (a), k_f = 1.38", unit="W", value=float(case_a.b2b_friction_loss),
-              reference=MU * 3.74 * GROOVE_VELOCITY / math.cos(math.pi / 4),
+              reference=MU * PRINTED.f_b2b_analytical * GROOVE_VELOCITY / math.cos(CASE.nominal_angle),
               source="lin2019 eq 32 with the Table 3 force 3.74 N", tolerance=0.005, time_s=time_a)
     # case (b): the mitigation rule of Sec 2.4.2
     top = b2b.mitigating_top_deviations(-THETA, THETA)
     case_b, time_b = run.time(b2b.two_ball_case, THETA, RHO, delta_beta_top=top, **common)
     run.check(model=model, quantity="F_B2B case (b) (Delta beta_TR = Delta beta_BL, Delta beta_TL = Delta beta_BR)",
-              unit="N", value=float(case_b.b2b_force), reference=0.0, scale=3.74,
+              unit="N", value=float(case_b.b2b_force), reference=0.0, scale=PRINTED.f_b2b_analytical,
               source="lin2019 Table 3, case (b)", tolerance=0.0, time_s=time_b, note="zero on the scale of case (a)")
     for name in ("epsilon_1", "epsilon_2"):
         run.check(model=model, quantity=f"{name} case (b)", unit="%", value=100 * float(getattr(case_b, name)),
-                  reference=0.0, scale=0.75, source="lin2019 Table 2, case (b)", tolerance=0.0, time_s=time_b)
+                  reference=0.0, scale=PRINTED.epsilon_analytical, source="lin2019 Table 2, case (b)", tolerance=0.0,
+                  time_s=time_b)
     rng = np.random.default_rng(1)
     count = 10000
     theta = rng.uniform(-math.radians(3), math.radians(3), count)

@@ -17,19 +17,21 @@ from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
 
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import scene
 
 MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
-RADIUS = 5e-3  # m, lin2019 Table 1
-CONFORMITY = 0.56
-VERTICAL = 100.0  # N, N_y
-SPEED = 0.01  # m/s, v
-MU = 0.1
-THETA = math.radians(2.0)  # Table 2/3 cases
-RHO = -0.6
-TABLE1 = dict(ball_radius=RADIUS, conformity=CONFORMITY, vertical_force=VERTICAL, groove_velocity=SPEED,
-              friction_coefficient=MU, youngs_modulus=2.1e11, poisson_ratio=0.28)
+RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
+CONFORMITY = TABLE1.conformity
+VERTICAL = TABLE1.vertical_force  # N, N_y
+SPEED = TABLE1.groove_velocity  # m/s, v
+MU = TABLE1.friction_coefficient
+THETA = CASE.theta  # Table 2/3 cases
+RHO = CASE.side_force_ratio
+# keyword arguments of b2b.module_contacts (lin2019 Table 1)
+TABLE1_INPUTS = dict(ball_radius=RADIUS, conformity=CONFORMITY, vertical_force=VERTICAL, groove_velocity=SPEED,
+                     friction_coefficient=MU, nominal_angle=CASE.nominal_angle, **TABLE1.material)
 GRID = {"quick": (9, 9), "default": (25, 25), "fine": (49, 49)}  # (rho, theta) points of Figs 8 and 9
 EDGE_MARGINS = {"quick": (0.02, 0.005), "default": (0.04, 0.02, 0.01, 0.003, 0.001),
                 "fine": (0.05, 0.04, 0.03, 0.02, 0.01, 0.003, 0.001, 1e-4)}  # extra rho near the eq 37 limit
@@ -37,7 +39,7 @@ EDGE_MARGINS = {"quick": (0.02, 0.005), "default": (0.04, 0.02, 0.01, 0.003, 0.0
 
 def _four_point_limit(theta: float) -> tuple[float, float]:
     """Admissible rho of both balls (lin2017 eq 37 for N_x = +rho N_y and -rho N_y), top groove exact."""
-    b0 = math.pi / 4
+    b0 = CASE.nominal_angle
     tan_bl, tan_br, tan_top = math.tan(b0 - theta), math.tan(b0 + theta), math.tan(b0)
     # ball 1: -min(tan BL, tan TR) <= rho <= min(tan BR, tan TL); ball 2 the same for -rho
     upper = min(min(tan_br, tan_top), min(tan_bl, tan_top))
@@ -45,7 +47,7 @@ def _four_point_limit(theta: float) -> tuple[float, float]:
 
 
 def _case(theta, rho, top=(0.0, 0.0), **overrides):
-    return b2b.module_contacts(theta, rho, top_deviations=top, **{**TABLE1, **overrides})
+    return b2b.module_contacts(theta, rho, top_deviations=top, **{**TABLE1_INPUTS, **overrides})
 
 
 def _two_ball(theta, rho, top=(0.0, 0.0)):
@@ -66,7 +68,8 @@ def table2_a(run):
     bearing_ball.solve_ball(contacts)  # warm-up: loads the friction map once
     state, time_s = run.time(bearing_ball.solve_ball, contacts)
     eps = state.velocity_deviation * 100.0
-    run.check(model=MODEL_BALL, quantity="epsilon_1", unit="%", value=float(eps[0]), reference=0.87,
+    run.check(model=MODEL_BALL, quantity="epsilon_1", unit="%", value=float(eps[0]),
+              reference=PRINTED.epsilon_1_numerical,
               source="lin2019 Table 2 case (a), low-order numerical model", tolerance=0.006, time_s=time_s,
               note="tolerance = half a unit of the published last digit")
     run.check(model=MODEL_BALL, quantity="power balance (input - losses)/input", unit="1",
@@ -129,7 +132,8 @@ def table2_b(run):
     state, time_s = run.time(bearing_ball.solve_ball, contacts)
     for k in range(2):
         run.check(model=MODEL_BALL, quantity=f"epsilon_{k + 1}", unit="%",
-                  value=float(state.velocity_deviation[k] * 100.0), reference=0.0, scale=0.87, tolerance=1e-9,
+                  value=float(state.velocity_deviation[k] * 100.0), reference=0.0,
+                  scale=PRINTED.epsilon_1_numerical, tolerance=1e-9,
                   source="lin2019 Table 2 case (b)", time_s=time_s,
                   note="scale: the case (a) deviation 0.87 %")
     # Fig 10
@@ -179,24 +183,27 @@ def table3_a(run):
     contacts = _case(THETA, RHO)
     state, time_s = run.time(b2b.solve, contacts, [0.0])
     force = float(state.b2b_force[0])
-    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=4.01,
+    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_numerical,
               source="lin2019 Table 3 case (a), low-order numerical model", tolerance=0.03, time_s=time_s)
-    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=3.96,
+    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_ansys,
               source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07, time_s=time_s,
               note="tolerance: the paper's own claim for its models against ANSYS (within 6-7 %)")
     run.check(model=MODEL_B2B, quantity="power balance (input - losses)/input", unit="1",
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=time_s)
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=2.1e11, poisson_ratio=0.28)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
     psi = hertz.psi_constant(geometry, RADIUS)
     analytical, time_a = run.time(b2b_analytical.two_ball_case, THETA, RHO, normal_load=VERTICAL,
                                   groove_velocity=SPEED, friction_coefficient=MU, psi=psi, ball_radius=RADIUS)
-    run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B", unit="N", value=float(analytical.b2b_force),
-              reference=3.96, source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07, time_s=time_a,
+    run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B", unit="N",
+              value=float(analytical.b2b_force),
+              reference=PRINTED.f_b2b_ansys, source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07,
+              time_s=time_a,
               note="k_f = 1.38, Psi from Hertz; tolerance: the paper's own claim (within 6-7 %)")
-    run.note(f"Numerical model: F_B2B = {force:.3f} N, common velocity eps = {state.velocity_deviation[0] * 100:.3f} %, "
+    run.note(f"Numerical model: F_B2B = {force:.3f} N, common velocity eps = "
+             f"{state.velocity_deviation[0] * 100:.3f} %, "
              f"B2B slip {state.b2b_slip[0] * 1e3:.3f} mm/s (eq 31 approximation v/cos(beta_0) = "
-             f"{SPEED / math.cos(math.pi / 4) * 1e3:.3f} mm/s), Newton iterations {state.iterations}. "
+             f"{SPEED / math.cos(CASE.nominal_angle) * 1e3:.3f} mm/s), Newton iterations {state.iterations}. "
              f"Normal forces: lin2017 eq 36 with beta_BL = 45 - theta, beta_BR = 45 + theta (the sqrt(2)/2 (N_y -+ "
              f"N_x) forces of Sec 2.4.1 give a different value, see docs/b2b_bearing.md).")
 
@@ -206,7 +213,8 @@ def table3_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
     state, time_s = run.time(b2b.solve, contacts, [0.0])
     run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=float(state.b2b_force[0]), reference=0.0,
-              scale=4.01, tolerance=1e-9, source="lin2019 Table 3 case (b) (all three models: 0)", time_s=time_s,
+              scale=PRINTED.f_b2b_numerical, tolerance=1e-9, source="lin2019 Table 3 case (b) (all three models: 0)",
+              time_s=time_s,
               note="scale: the case (a) force 4.01 N")
     run.check(model=MODEL_B2B, quantity="power balance (input - losses)/input", unit="1",
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
@@ -246,11 +254,13 @@ def fig9_worst(run):
     contacts = _case(math.radians(theta_w), rho_w)
     _, time_s = run.time(b2b.solve, contacts, [0.0])
     run.check(model=MODEL_B2B, quantity="largest friction increase (total/baseline - 1)", unit="%",
-              value=100.0 * increase, reference=185.2, relation="ge", tolerance=0.0, time_s=time_s,
+              value=100.0 * increase, reference=PRINTED.worst_friction_increase, relation="ge", tolerance=0.0,
+              time_s=time_s,
               source="lin2019 Sec 2.4.1 / Fig 9(c): 'more than 185.2 %'",
               note=f"at theta = {theta_w:.2f} deg, rho = {rho_w:.4f}, F_B2B = {force_w:.2f} N")
     run.note(f"Grid: {n_theta} values of theta in [-3, 3] deg; for each, {n_rho} values of rho evenly inside the "
-             f"four-point range of both balls (lin2017 eq 37, ends excluded) plus rho at {edge} from either end.  Baseline = ball-to-groove loss of the "
+             f"four-point range of both balls (lin2017 eq 37, ends excluded) plus rho at {edge} from either end.  "
+             f"Baseline = ball-to-groove loss of the "
              f"free balls; total = ball-to-groove + B2B loss of the touching balls.  {len(failures)} grid points "
              f"near the four-point limit raise ConvergenceError: no converged state with full sliding at every "
              f"contact (there the lightly loaded contacts of ball 1 already slide with |c/a| > 20 and cannot "
@@ -348,7 +358,7 @@ def stability(run):
     for n_balls in run.progress(counts, desc="N-ball chains"):
         for _ in range(3):
             thetas = np.radians(rng.uniform(-3.0, 3.0, size=(n_balls, 2)))
-            angles = math.pi / 4 + np.column_stack([-thetas[:, 0], thetas[:, 0], thetas[:, 1] * 0.3,
+            angles = CASE.nominal_angle + np.column_stack([-thetas[:, 0], thetas[:, 0], thetas[:, 1] * 0.3,
                                                     -thetas[:, 1] * 0.3])
             sides = rng.uniform(-0.6, 0.6, n_balls) * VERTICAL
             mu = float(rng.uniform(0.01, 0.3))

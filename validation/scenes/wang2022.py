@@ -10,39 +10,29 @@ import numpy as np
 
 from ballbench.lowmodel.screw import harris
 from ballbench.lowmodel.screw import kinematics as sk
+from ballbench.validation.papers import wang2022 as papers
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.screw.kinematics"
-RPM = 2.0 * np.pi / 60.0  # rad/s per rpm
-HALF_UNIT = 0.0005  # wang2022 Tables 1-2 print 3 decimals
+RPM = papers.RPM  # rad/s per rpm
+HALF_UNIT = papers.HALF_UNIT  # wang2022 Tables 1-2 print 3 decimals
 
-# wang2022 Table A1 (d_m, d_b are diameters: r_m = d_m/2, r_b = d_b/2; papers/README.md)
-TABLE_A1 = dict(pitch_radius=41.4e-3 / 2, ball_radius=6.35e-3 / 2, lead=20e-3, screw_speed=2000 * RPM,
-                contact_angle_nut=np.radians(45.0))
-BALL_MASS = 1.05e-3  # kg, Table A1
-PRINTED_LEAD_ANGLE = np.radians(8.74)  # Table A1
+# wang2022 Table A1 as keyword arguments of lowmodel.screw.kinematics (r_m = d_m/2, r_b = d_b/2; papers/README.md)
+TABLE_A1 = dict(pitch_radius=papers.TABLE_A1.pitch_radius, ball_radius=papers.TABLE_A1.ball_radius,
+                lead=papers.TABLE_A1.lead, screw_speed=papers.TABLE_A1.screw_speed,
+                contact_angle_nut=papers.TABLE_A1.contact_angle)
+BALL_MASS = papers.TABLE_A1.ball_mass  # kg, Table A1
+PRINTED_LEAD_ANGLE = papers.TABLE_A1.lead_angle  # Table A1
 
-# wang2022 Table 2, present model (Frenet components t, n, b)
-TABLE2_PRESENT_VECTORS = {
-    ("V_An^a", "nut_velocity"): (-0.101, 0.000, -0.659),
-    ("V_Bs^a", "screw_velocity"): (3.820, 0.071, -0.587),
-    ("V_Ab^a", "ball_velocity_nut"): (-0.056, -0.032, -0.691),
-    ("V_Bb^a", "ball_velocity_screw"): (3.764, 0.032, -0.627),
-    ("V_SA", "sliding_velocity_nut"): (0.045, -0.032, -0.032),
-    ("V_SB", "sliding_velocity_screw"): (0.056, 0.040, 0.040),
-}
-TABLE2_PRESENT_SCALARS = {
-    ("U_A", "entrainment_nut", "m/s"): 2.140, ("U_B", "entrainment_screw", "m/s"): 2.146,
-    ("S_A", "slide_roll_nut", "1"): 0.030, ("S_B", "slide_roll_screw", "1"): 0.037,
-}
-# wang2022 Table 2, Wei's model
-TABLE2_WEI_VECTORS = {"V_An^a": (-0.101, 0.000, -0.659), "V_Bs^a": (3.820, -0.071, -0.587),
-                      "V_Ab^a": (1.789, 0.000, -0.659), "V_Bb^a": (1.919, 0.000, -0.659),
-                      "V_SA": (1.890, 0.000, 0.000), "V_SB": (1.901, -0.072, 0.072)}
-TABLE2_WEI_SCALARS = {"U_A": 1.071, "U_B": 2.937, "S_A": 1.766, "S_B": 0.648}
+# wang2022 Table 2, present model (Frenet components t, n, b) and Wei's model
+TABLE2_PRESENT_VECTORS = papers.TABLE2.present_vectors
+TABLE2_PRESENT_SCALARS = papers.TABLE2.present_scalars
+TABLE2_WEI_VECTORS = papers.TABLE2.wei_vectors
+TABLE2_WEI_SCALARS = papers.TABLE2.wei_scalars
 # wang2022 Table 1 (61830 deep-groove ball bearing, inner ring at 3600 rpm)
-TABLE1 = {"present": 15.994, "wei_U_A": 7.971, "wei_U_B": 22.740, "wei_S_A": 2.000, "wei_S_B": 0.701}
-BEARING_SPEED = 3600 * RPM
+TABLE1 = {"present": papers.TABLE1.present, "wei_U_A": papers.TABLE1.wei_U_A, "wei_U_B": papers.TABLE1.wei_U_B,
+          "wei_S_A": papers.TABLE1.wei_S_A, "wei_S_B": papers.TABLE1.wei_S_B}
+BEARING_SPEED = papers.TABLE1.inner_ring_speed
 COMPONENTS = ("t", "n", "b")
 
 
@@ -173,7 +163,7 @@ def wang2022_table2(run):
        "Deep-groove ball bearing 61830 (lead 0) at 3600 rpm: present model = Harris = 15.994 m/s, S = 0; "
        "Wei's model as far as its equations define it (wang2022 Table 1)")
 def wang2022_table1(run):
-    alpha = np.radians(45.0)  # wang2022 Sec 3.1: alpha_i = alpha_o = pi/4
+    alpha = papers.TABLE1.contact_angle  # wang2022 Sec 3.1: alpha_i = alpha_o = pi/4
     # Geometry implied by Table 1 itself (the 61830 data of ref [21] are not given):
     #   present U = omega r_m (1 - gamma^2) / 2 and, in Wei's model with a ball velocity along t,
     #   U_A + U_B = omega r_m (1 - gamma) (the ball term cancels), gamma = r_b cos(alpha) / r_m.
