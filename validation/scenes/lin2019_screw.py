@@ -25,23 +25,27 @@ from functools import lru_cache
 import numpy as np
 
 from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.screw.screw_b2b"
-AXIAL_LOAD = 50.0  # N on the screw, lin2019 Sec 3.3
-# lin2019 Table 5 (low-order numerical / ANSYS) and Sec 3.3 (friction increase)
-PRINTED = {"a": {"theta_deg": 2.0, "f_b2b": 1.92, "f_b2b_ansys": 1.80, "increase": 39.2},
-           "b": {"theta_deg": 3.0, "f_b2b": 2.89, "f_b2b_ansys": 2.71, "increase": 60.2}}
+AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw, lin2019 Sec 3.3
+PRINTED = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
 READING = "tilted"
 
 
 def _module(oversize: float) -> screw_ball.ScrewModule:
-    return screw_ball.screw_module(oversize=oversize)   # lin2019 Table 4 defaults (E = 210 GPa)
+    """lin2019 Table 4 (validation.papers) with the preload ``oversize`` [m]."""
+    t4 = lin2019.TABLE4
+    return screw_ball.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
+                                   pitch_radius=t4.pitch_radius, lead=t4.lead, nominal_angle=t4.nominal_angle,
+                                   nut_speed=t4.nut_angular_velocity, friction_coefficient=t4.friction_coefficient,
+                                   oversize=oversize, **t4.material)
 
 
 def two_ball(case: str, oversize: float, reading: str = READING):
     """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]."""
-    theta = math.radians(PRINTED[case]["theta_deg"])
+    theta = PRINTED[case].theta
     contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, theta]), reading=reading)
     free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
     state = screw_b2b.solve(contacts, AXIAL_LOAD)
@@ -58,7 +62,7 @@ def fitted_oversize(reading: str = READING) -> float:
     """Preload (oversize [m]) at which case (a)'s B2B force is the paper's 1.92 N (brentq, 1e-12 m)."""
     from scipy.optimize import brentq
 
-    target = PRINTED["a"]["f_b2b"]
+    target = PRINTED["a"].f_b2b_numerical
     return float(brentq(lambda oversize: two_ball("a", oversize, reading)[1].b2b_force[0] - target, 1.0e-6,
                         3.0e-6, xtol=1e-12))
 
@@ -67,21 +71,21 @@ def _table5(run, case: str):
     printed = PRINTED[case]
     oversize = fitted_oversize()
     (free, state), time_s = run.time(two_ball, case, oversize)
-    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, math.radians(printed["theta_deg"])]),
-                                        reading=READING)
+    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, printed.theta]), reading=READING)
     _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
     force = float(state.b2b_force[0])
     increase = friction_increase(free, state)
     balance = max(abs(s.input_power - s.total_loss) / s.total_loss for s in (free, state))
     fitted = "fitted on this case" if case == "a" else "prediction (preload fitted on case a)"
     if case == "b":
-        run.check(model=MODEL, quantity="F_B2B, case b", unit="N", value=force, reference=printed["f_b2b"],
+        run.check(model=MODEL, quantity="F_B2B, case b", unit="N", value=force, reference=printed.f_b2b_numerical,
                   source="lin2019 Table 5, low-order numerical", tolerance=0.05, time_s=solve_s, note=fitted)
-    run.check(model=MODEL, quantity=f"F_B2B, case {case}", unit="N", value=force, reference=printed["f_b2b_ansys"],
+    run.check(model=MODEL, quantity=f"F_B2B, case {case}", unit="N", value=force, reference=printed.f_b2b_ansys,
               source="lin2019 Table 5, ANSYS FEA", tolerance=0.07, time_s=solve_s,
               note="the paper's own model is 6.7 % off ANSYS")
     run.check(model=MODEL, quantity=f"friction increase by B2B, case {case}", unit="%", value=increase,
-              reference=printed["increase"], source="lin2019 Sec 3.3", tolerance=3.0 / printed["increase"],
+              reference=printed.friction_increase, source="lin2019 Sec 3.3",
+              tolerance=3.0 / printed.friction_increase,
               time_s=time_s, note="prediction (the fit uses the force only); tolerance 3 points")
     run.check(model=MODEL, quantity="power balance |P_in - P_loss| / P_loss", unit="1", value=balance,
               reference=0.0, scale=1.0, source="energy conservation (screw at rest, nut drives)",
@@ -93,14 +97,15 @@ def _table5(run, case: str):
              f"approaches by this much; {READING} deviation reading, beta_SL = beta_SR = 45 deg + theta).  "
              f"Normal forces (SL, SR, NR, NL) of ball 2: {np.round(state.normal_force[1], 2).tolist()} N; "
              f"orbit speeds before contact {np.round(free.orbit_speed / (2 * math.pi), 5).tolist()} rev/s, "
-             f"together {state.orbit_speed[0] / (2 * math.pi):.5f} rev/s; B2B loss {state.b2b_friction_loss[0]:.4e} W "
-             f"of {state.total_loss:.4e} W.")
+             f"together {state.orbit_speed[0] / (2 * math.pi):.5f} rev/s; B2B loss "
+             f"{state.b2b_friction_loss[0]:.4e} W of {state.total_loss:.4e} W.")
     run.note(f"Known gap, literal reading (no preload): F_B2B = {force_0:.3f} N against the paper's "
-             f"{printed['f_b2b']} N ({100 * (force_0 / printed['f_b2b'] - 1):+.1f} %), friction increase "
-             f"{increase_0:.1f} % against {printed['increase']} %.  Without preload the 50 N load leaves the "
-             f"diagonal SR-NL unloaded except for the third contact NL that friction pushes each ball onto "
-             f"(forces {np.round(state_0.normal_force[1], 2).tolist()} N), and F_B2B no longer scales with "
-             f"theta as the paper's 2.89/1.92 = 1.505 = 3 deg/2 deg does (docs/ball_screw.md).")
+             f"{printed.f_b2b_numerical} N ({100 * (force_0 / printed.f_b2b_numerical - 1):+.1f} %), friction "
+             f"increase {increase_0:.1f} % against {printed.friction_increase} %.  Without preload the "
+             f"{AXIAL_LOAD:g} N load leaves the diagonal SR-NL unloaded except for the third contact NL that "
+             f"friction pushes each ball onto (forces {np.round(state_0.normal_force[1], 2).tolist()} N), and "
+             f"F_B2B no longer scales with theta as the paper's (ratio of the cases = ratio of the deviations, "
+             f"3 deg / 2 deg) does (docs/ball_screw.md).")
 
 
 @scene("lin2019-table5-a", "Ball screw, two balls, theta = 0 / 2 deg: B2B force and friction increase (Table 5 a)",
@@ -118,16 +123,17 @@ def lin2019_table5_b(run):
     force_b = two_ball("b", oversize)[1].b2b_force[0]
     force_a0 = two_ball("a", 0.0)[1].b2b_force[0]
     force_b0 = two_ball("b", 0.0)[1].b2b_force[0]
+    ratio = PRINTED["b"].f_b2b_numerical / PRINTED["a"].f_b2b_numerical
     run.note(f"F_B2B(b)/F_B2B(a): {force_b / force_a:.4f} with the fitted preload, {force_b0 / force_a0:.4f} "
-             f"without (paper 2.89/1.92 = {2.89 / 1.92:.4f}).")
+             f"without (paper {ratio:.4f}).")
 
 
 # --------------------------------------------------------------------------
 # whole screw (lin2019 Sec 3.4, Figs 19-21)
 # --------------------------------------------------------------------------
-FIG21 = {"n_balls": 37, "axial_load": 1500.0, "duration": 2.0, "amplitude_deg": 3.0, "cycles": 4,
-         "groups": 4, "peak_increase": 49.6, "peak_angle_deg": 126.0, "zero_angle_deg": 306.0}
-FIG21_STEPS = {"quick": 50, "default": 200, "fine": 200}
+FIG21 = lin2019.WHOLE_SCREW
+FIG21_AMPLITUDE = math.radians(3.0)  # rad, deviation amplitude (Fig 19 missing): the largest Table 5 value
+FIG21_STEPS = {"quick": 50, "default": FIG21.steps, "fine": FIG21.steps}
 
 
 def whole_screw(steps: int, progress=None):
@@ -135,9 +141,9 @@ def whole_screw(steps: int, progress=None):
     from ballbench.lowmodel.screw import whole_screw as ws
 
     module = _module(fitted_oversize())
-    return ws.simulate(module, n_balls=FIG21["n_balls"], axial_load=FIG21["axial_load"],
-                       duration=FIG21["duration"], steps=steps, amplitude=math.radians(FIG21["amplitude_deg"]),
-                       cycles=FIG21["cycles"], reading=READING, progress=progress)
+    return ws.simulate(module, n_balls=FIG21.n_balls, axial_load=FIG21.axial_load, duration=FIG21.duration,
+                       steps=steps, amplitude=FIG21_AMPLITUDE, cycles=FIG21.theta_cycles, reading=READING,
+                       progress=progress)
 
 
 def fig21_summary(history) -> dict:
@@ -169,20 +175,21 @@ def lin2019_fig21(run):
               value=float(history.power_error.max()), reference=0.0, scale=1.0, tolerance=1e-8, time_s=elapsed,
               source="energy conservation (screw at rest, nut drives)")
     run.check(model="lowmodel.screw.whole_screw", quantity="number of B2B groups", unit="1",
-              value=summary["groups"], reference=FIG21["groups"], tolerance=0.0, time_s=elapsed,
+              value=summary["groups"], reference=FIG21.groups, tolerance=0.0, time_s=elapsed,
               source="lin2019 Sec 3.4 / Fig 20: four groups", note="most groups at any step")
     run.check(model="lowmodel.screw.whole_screw", quantity="B2B torque / groove torque after the peak, minimum",
               unit="1", value=summary["min_after_peak"], reference=0.0, scale=1.0, tolerance=0.0, time_s=elapsed,
               source="lin2019 Sec 3.4 / Fig 21: the groups dissolve (zero B2B torque at 306 deg)")
     run.note(f"Beside the paper (Fig 21): peak extra torque by B2B {summary['peak_increase']:.1f} % at nut angle "
-             f"{summary['peak_angle_deg']:.0f} deg (paper {FIG21['peak_increase']} % at {FIG21['peak_angle_deg']:.0f}"
-             f" deg); no B2B first at {summary['zero_angle_deg']:.0f} deg after the peak (paper "
-             f"{FIG21['zero_angle_deg']:.0f} deg); groups {summary['groups']} (paper {FIG21['groups']}).  "
-             f"Not fitted: the deviation amplitude ({FIG21['amplitude_deg']} deg, the largest of the paper's "
-             f"'typical' range and of Table 5; Fig 19 is missing), the phase of theta along the screw, the load "
-             f"distribution (ref [19] unavailable; lowmodel.screw.load_distribution) and the preload (fitted on "
-             f"Table 5 a) all move these numbers; docs/ball_screw.md.")
-    run.note(f"{steps} steps over {FIG21['duration']} s ({run.fidelity}); {int(history.iterations.sum())} Newton "
+             f"{summary['peak_angle_deg']:.0f} deg (paper {FIG21.peak_increase} % at "
+             f"{math.degrees(FIG21.peak_angle):.0f} deg); no B2B first at {summary['zero_angle_deg']:.0f} deg after "
+             f"the peak (paper {math.degrees(FIG21.zero_angle):.0f} deg); groups {summary['groups']} (paper "
+             f"{FIG21.groups}).  Known gap: not fitted are the deviation amplitude "
+             f"({math.degrees(FIG21_AMPLITUDE):.1f} deg, the largest Table 5 deviation; Fig 19 is missing; the peak "
+             f"is 18 % at 2 deg and 53 % at 2.7 deg), the phase of theta along the screw, the load distribution "
+             f"(ref [19] unavailable; lowmodel.screw.load_distribution) and the preload (fitted on Table 5 a); "
+             f"docs/ball_screw.md.")
+    run.note(f"{steps} steps over {FIG21.duration} s ({run.fidelity}); {int(history.iterations.sum())} Newton "
              f"iterations in {elapsed:.1f} s; axial loads per ball {history.axial_load.min():.1f} .. "
              f"{history.axial_load.max():.1f} N; friction torque ball-to-groove "
              f"{1e3 * history.groove_torque.mean():.1f} mN m (mean).")
