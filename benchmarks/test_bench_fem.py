@@ -13,7 +13,7 @@ import pytest
 
 from ballbench.fem import contact, hertz_case
 from ballbench.lowmodel.contact import hertz
-from ballbench.meshes import contact_pairs
+from ballbench.meshes.assemblies import contact_pairs
 
 R, E, NU, LOAD = 5e-3, 2.1e11, 0.28, 100.0
 LEVELS = [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)]  # the fe-hertz-groove-056 fine study (P2, mortar)

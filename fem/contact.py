@@ -36,6 +36,7 @@ import scipy.sparse as sp
 
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
 from ballbench.fem import linsolve
+from ballbench.fem.surface import lumped_area, project_along_z
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement"]
@@ -100,46 +101,6 @@ class ContactState:
     residual: float
 
 
-def _lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
-    p = points[triangles]
-    e1, e2 = p[:, 1, :2] - p[:, 0, :2], p[:, 2, :2] - p[:, 0, :2]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])  # projected on xy
-    out = np.zeros(n)
-    for k in range(3):
-        np.add.at(out, triangles[:, k], area / 3.0)
-    return out
-
-
-def _project(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Triangle (nodes (n, 3)) and barycentric weights (n, 3) of the z-projection of ``xy`` (n, 2)."""
-    from scipy.spatial import cKDTree
-
-    p = points[triangles][:, :, :2]
-    centroid = p.mean(axis=1)
-    tree = cKDTree(centroid)
-    k = min(32, len(triangles))
-    _, near = tree.query(xy, k=k)
-    near = np.atleast_2d(near)
-    nodes = np.empty((len(xy), 3), dtype=np.int64)
-    weights = np.empty((len(xy), 3))
-    for i, (point, cand) in enumerate(zip(xy, near)):
-        a, b, c = p[cand, 0], p[cand, 1], p[cand, 2]
-        v0, v1, v2 = b - a, c - a, point - a
-        det = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
-        l1 = (v2[:, 0] * v1[:, 1] - v2[:, 1] * v1[:, 0]) / det
-        l2 = (v0[:, 0] * v2[:, 1] - v0[:, 1] * v2[:, 0]) / det
-        l0 = 1.0 - l1 - l2
-        worst = np.minimum(np.minimum(l0, l1), l2)
-        best = int(np.argmax(worst))
-        if worst[best] < -1e-6:
-            raise ValueError(f"ball node at xy = {point} [m] projects outside counter_contact: enlarge the counter "
-                             "block or lower gap_limit")
-        nodes[i] = triangles[cand[best]]
-        weights[i] = np.clip([l0[best], l1[best], l2[best]], 0.0, 1.0)
-        weights[i] /= weights[i].sum()
-    return nodes, weights
-
-
 def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, order: int = 1,
                 method: str = "augmented", min_candidates: int = 20, initial_gap=None) -> ContactModel:
     """Assemble, constrain and condense the contact problem of a contact-pair mesh.
@@ -169,7 +130,7 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     counter_tris = pair.surfaces["counter_contact"]
     # initial gap of ball-contact nodes against the (facetted) counter surface
     near = ball_nodes[points[ball_nodes, 2] <= gap_limit + np.max(points[np.unique(counter_tris), 2])]
-    tri_nodes, weights = _project(points, counter_tris, points[near, :2]) if near.size else (None, None)
+    tri_nodes, weights = project_along_z(points, counter_tris, points[near, :2]) if near.size else (None, None)
     if near.size == 0:
         raise ValueError("no ball node near the counter surface: check the mesh frame")
     z_counter = np.einsum("ij,ij->i", points[tri_nodes, 2], weights)
@@ -202,7 +163,7 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     t0 = time.perf_counter()
     W = linsolve.compliance(K_ff, B[:, free], method=method)
     timings["condense_s"] = time.perf_counter() - t0
-    area = _lumped_area(points, tris, len(points))[candidates]
+    area = lumped_area(points, tris, len(points))[candidates]
     return ContactModel(pair, candidates, g0, W, area, B.tocsr(), K, free, basis,
                         dofs[2, pair.nodes("ball_load")], boundary, timings)
 

@@ -7,9 +7,9 @@
   bodies with P1 (``order=1``) or P2 (``order=2``) tetrahedra, Lame parameters
   per body, through scikit-fem forms; :func:`stiffness_fast` builds the same
   matrix (same DOF numbering, equal to 1e-15: test) with numpy element
-  matrices, 3-4x faster for P2; the contact solvers use it.  P1 uses the one-point rule (exact for constant strains, about 10x
-  faster than the default rule: issue 5 notes); P2 the degree-2 rule (exact on
-  straight-sided tetrahedra).
+  matrices, 3-4x faster for P2; the contact solvers use it.  P1 uses the
+  one-point rule (exact for constant strains, about 10x faster than the default
+  rule: issue 5 notes); P2 the degree-2 rule (exact on straight-sided tetrahedra).
 
 DOF numbering (scikit-fem ``ElementVector``): ``basis.nodal_dofs[c, n]`` is the
 DOF of component ``c`` (x, y, z) at mesh node ``n``.  SI units throughout.

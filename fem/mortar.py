@@ -24,8 +24,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from ballbench.fem import linsolve
-from ballbench.fem.contact import ContactModel, _lumped_area, _project, load_and_assemble
+from ballbench.fem.contact import ContactModel, load_and_assemble
 from ballbench.fem.elasticity import PairMesh
+from ballbench.fem.surface import lumped_area, project_along_z
 
 __all__ = ["build_mortar_model", "surface_dofs"]
 
@@ -106,7 +107,7 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     # initial gap at the vertices decides the multiplier set
     verts = np.unique(low)
     if initial_gap is None:
-        tri_v, w_v = _project(points, counter_tris, points[verts, :2])
+        tri_v, w_v = project_along_z(points, counter_tris, points[verts, :2])
         g_vert = points[verts, 2] - np.einsum("ij,ij->i", points[tri_v, 2], w_v)
     else:
         g_vert = np.asarray(initial_gap(points[verts, 0], points[verts, 1]), float)
@@ -130,7 +131,7 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     mult = np.repeat(index[tris], nq, axis=0)  # (k*s2, 3) multiplier index or -1
     ball_dofs = np.repeat(_triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
     ball_shape = np.tile(_shape(bary, order), (len(tris), 1))
-    c_tris, c_bary = _project(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
+    c_tris, c_bary = project_along_z(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
     counter_dofs = _triangle_dofs(basis, c_tris, 2, edge_map)
     counter_shape = _shape(c_bary, order)
     if initial_gap is None:
@@ -165,6 +166,6 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     t0 = time.perf_counter()
     W = linsolve.compliance(K_ff, B[:, free], method=method)
     timings["condense_s"] = time.perf_counter() - t0
-    lumped = _lumped_area(points, pair.surfaces["ball_contact"], len(points))[candidates]
+    lumped = lumped_area(points, pair.surfaces["ball_contact"], len(points))[candidates]
     return ContactModel(pair, candidates, g0, W, lumped, B.tocsr(), K, free, basis, load_dofs, boundary, timings,
                         weights=weights, multiplier="pressure")

@@ -232,7 +232,8 @@ def test_module_contacts_reproduce_table3():
     assert state.b2b_force[0] == pytest.approx(4.01, rel=0.03)  # lin2019 Table 3 case (a), numerical
 
 
-@pytest.mark.parametrize("kwargs, name", [(dict(tolerance=0.0), "tolerance"), (dict(tolerance=float("nan")), "tolerance"),
+@pytest.mark.parametrize("kwargs, name", [(dict(tolerance=0.0), "tolerance"),
+                                          (dict(tolerance=float("nan")), "tolerance"),
                                           (dict(max_iterations=0), "max_iterations"),
                                           (dict(max_iterations=2.5), "max_iterations")])
 def test_bad_solver_options(kwargs, name):

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from ballbench.fem.elasticity import load_pair
-from ballbench.meshes import contact_pairs, gmsh_tools
+from ballbench.meshes import gmsh_tools, refinement
+from ballbench.meshes.assemblies import contact_pairs
 
 R = 5e-3
 COARSE = dict(h_contact=2.5e-4, growth=1.5)
@@ -68,6 +69,26 @@ def test_refinement_size_at_contact():
     assert np.mean(np.linalg.norm(p[far[:, 0]] - p[far[:, 1]], axis=1)) > 3 * h
 
 
+def test_refinement_follows_the_growth_law_about_the_segment():
+    """meshes.refinement: edge lengths of the counter face follow h(d) = min(h_max, h_contact +
+    (growth - 1) max(0, d - fine_radius)), d the distance from the segment |x| <= fine_half_length
+    (mean ratio per distance band within 30 %; a point fine zone would double the size at x = L)."""
+    h, growth, fine_radius, half_length = 1e-4, 1.3, 2e-4, 6e-4
+    pair = load_pair(contact_pairs.ball_on_flat_pair(R, h, growth, fine_radius=fine_radius,
+                                                     fine_half_length=half_length))
+    tris, p = pair.surfaces["counter_contact"], pair.points
+    centre = p[tris].mean(axis=1)
+    d = np.hypot(np.maximum(np.abs(centre[:, 0]) - half_length, 0.0), centre[:, 1])
+    edges = np.mean([np.linalg.norm(p[tris[:, i]] - p[tris[:, (i + 1) % 3]], axis=1) for i in range(3)], axis=0)
+    law = np.minimum(R / 3, h + (growth - 1) * np.maximum(0.0, d - fine_radius))
+    for lo, hi in [(0, 2e-4), (2e-4, 5e-4), (5e-4, 1e-3), (1e-3, 2e-3), (2e-3, 5e-3)]:
+        band = (d >= lo) & (d < hi)
+        assert band.sum() >= 10
+        assert 0.7 < np.mean(edges[band] / law[band]) < 1.3, (lo, hi)
+    end = np.abs(np.abs(centre[:, 0]) - half_length) + np.abs(centre[:, 1]) < 1.5e-4  # near (+-L, 0)
+    assert np.mean(edges[end]) < 1.3 * h
+
+
 def test_cache_hit_and_vtu(tmp_path):
     first = contact_pairs.ball_on_flat_pair(R, **COARSE)
     stamp = first.stat().st_mtime_ns
@@ -91,6 +112,10 @@ def test_cache_hit_and_vtu(tmp_path):
     (dict(ball_radius=-1.0), "ball_radius"),
     (dict(block_half_width=6e-3), "block_half_width"),
     (dict(h_max=1e-5), "h_max"),
+    (dict(element_order=3), "element_order"),
+    (dict(element_order=True), "element_order"),
+    (dict(fine_radius=6e-3), "fine_radius"),
+    (dict(fine_half_length=-1e-4), "fine_half_length"),
 ])
 def test_bad_input(kwargs, word):
     args = dict(ball_radius=R, conformity=0.56, h_contact=2.5e-4, growth=1.5)
@@ -102,6 +127,6 @@ def test_bad_input(kwargs, word):
 def test_refinement_helper_bad_input():
     with gmsh_tools.session("t") as gmsh:
         with pytest.raises(ValueError, match="growth"):
-            gmsh_tools.contact_refinement(gmsh, 1e-4, 5.0, 1e-3)
+            refinement.contact_refinement(gmsh, 1e-4, 5.0, 1e-3)
         with pytest.raises(ValueError, match="h_max"):
-            gmsh_tools.contact_refinement(gmsh, 1e-4, 1.2, 1e-5)
+            refinement.contact_refinement(gmsh, 1e-4, 1.2, 1e-5)

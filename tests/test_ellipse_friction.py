@@ -167,7 +167,8 @@ def test_newton_on_the_map_converges_quadratically():
         assert abs(float(ef.friction_exact(exact_root, beta).force) - target) < 1e-6
         # order of convergence p = log(e_{n+1}/e_n) / log(e_n/e_{n-1}) over the last steps above round-off
         tail = [e for e in errors if e > 1e-14]
-        orders = [math.log(c / b) / math.log(b / a) for a, b, c in zip(tail, tail[1:], tail[2:]) if a < 0.05 and c < 1e-6]
+        orders = [math.log(c / b) / math.log(b / a)
+                  for a, b, c in zip(tail, tail[1:], tail[2:]) if a < 0.05 and c < 1e-6]
         assert orders and min(orders) > 1.8, (target, errors)
 
 

@@ -10,7 +10,7 @@ from ballbench.fem import contact, hertz_case, linsolve, postprocess
 from ballbench.fem.elasticity import PairMesh, lame, stiffness
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.meshes import contact_pairs
+from ballbench.meshes.assemblies import contact_pairs
 
 E, NU = 2.1e11, 0.28
 R = 5e-3

@@ -84,7 +84,8 @@ def test_stiffness_is_derivative_of_load():
 
 
 def test_approach_inverts_load():
-    geometry = hertz.ball_in_screw_groove(2.778e-3, 0.56, 16.5e-3, math.radians(45), math.atan(20 / (2 * math.pi * 16.5)))
+    lead_angle = math.atan(20 / (2 * math.pi * 16.5))
+    geometry = hertz.ball_in_screw_groove(2.778e-3, 0.56, 16.5e-3, math.radians(45), lead_angle)
     contact = hertz.solve_load(geometry, np.array([5.0, 50.0, 500.0]))
     back = hertz.solve_approach(geometry, contact.delta)
     np.testing.assert_allclose(back.force, contact.force, rtol=1e-13)

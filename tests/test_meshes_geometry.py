@@ -1,5 +1,6 @@
-"""Geometry checks of the gmsh builders in meshes/helical.py, meshes/rail.py and
-meshes/fourpoint_module.py (coarse meshes; default-run budget 90 s)."""
+"""Geometry checks of the gmsh builders of meshes/ (parts: rail, groove segment; assemblies:
+screw pair, four-point module, ball-screw module) and of the exact helical groove geometry
+they mesh (coarse meshes; default-run budget 90 s)."""
 from __future__ import annotations
 
 import math
@@ -7,12 +8,14 @@ import math
 import numpy as np
 import pytest
 
-gmsh = pytest.importorskip("gmsh")
-meshio = pytest.importorskip("meshio")
-
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove as groove_core
-from ballbench.meshes import helical
+from ballbench.lowmodel.geometry import helix
+from ballbench.meshes.assemblies import ball_screw_module, fourpoint_module, screw_pair
+from ballbench.meshes.parts import groove_segment, rail
+
+gmsh = pytest.importorskip("gmsh")
+meshio = pytest.importorskip("meshio")
 
 # lin2019 Table 4
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45.0)
@@ -52,34 +55,31 @@ def _quadratic_fit(points: np.ndarray, radius: float, degree: int = 3) -> np.nda
     return coef[:6] * radius / radius ** np.array([0, 1, 1, 2, 2, 2])
 
 
+def pair_hertz_geometry(ball_radius, conformity, pitch_radius, lead, contact_angle, body="screw", *, flank="left",
+                        profile_plane="normal", youngs_modulus=2.1e11, poisson_ratio=0.28):
+    """Hertz geometry of the contact meshed by ``ball_in_screw_groove_pair`` with the same
+    arguments: the ball's curvature ``1/R_B`` and the groove's exact principal curvatures at
+    the contact (``A`` belongs to the contact-frame x axis)."""
+    frame = groove_core.contact_frame(groove_core.helical_groove(ball_radius, conformity, pitch_radius, lead,
+                                                                 contact_angle, body, flank, profile_plane))
+    curvature = 1.0 / float(ball_radius)
+    return hertz.from_curvatures((curvature, curvature), (frame.curvature_major, frame.curvature_minor),
+                                 youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
+
+
 # --------------------------------------------------------------------------
 # exact helical geometry
 # --------------------------------------------------------------------------
-@pytest.mark.parametrize("plane", ["normal", "axial"])
-@pytest.mark.parametrize("body", ["screw", "nut"])
-@pytest.mark.parametrize("flank", ["left", "right"])
-def test_profile_curvatures_equal_lowmodel_hertz(body, flank, plane):
-    """Two independent implementations of the helical groove agree (lowmodel.contact.hertz
-    works at the +z flank; the left flank is its image under the half-turn about x3)."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
-    frame = helical.contact_frame(groove)
-    kappa_1, kappa_2, angle = groove_core.groove_curvatures_helical(R_B, CONF, R_P, BETA, groove.lead_angle, body,
-                                                                   plane)
-    assert frame.curvature_major == pytest.approx(kappa_1, rel=1e-12)
-    assert frame.curvature_minor == pytest.approx(kappa_2, rel=1e-12)
-    assert frame.profile_angle == pytest.approx(angle, abs=1e-12)
-
-
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
-    mine = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body, profile_plane="axial")
+    mine = pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body, profile_plane="axial")
     lead_angle = math.atan(LEAD / (2 * math.pi * R_P))
     reference = hertz.ball_in_screw_groove(R_B, CONF, R_P, BETA, lead_angle, body, profile_plane="axial")
     assert mine.A == pytest.approx(reference.A, rel=1e-12)
     assert mine.B == pytest.approx(reference.B, rel=1e-12)
     # the lin2019 normal-section profile is a different groove: at 100 N, a differs by
     # 1.0 % (screw) and 5.0 % (nut), so the FE scene must compare with its own geometry
-    normal = helical.pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body)
+    normal = pair_hertz_geometry(R_B, CONF, R_P, LEAD, BETA, body)
     a_axial, a_normal = hertz.solve_load(mine, 100.0).a, hertz.solve_load(normal, 100.0).a
     assert 5e-3 < abs(a_normal / a_axial - 1) < 0.1
 
@@ -88,8 +88,8 @@ def test_pair_hertz_geometry_axial_equals_lowmodel_hertz(body):
 @pytest.mark.parametrize("body", ["screw", "nut"])
 def test_zero_lead_is_the_bearing_raceway(plane, body):
     """lead = 0: the torus of a bearing raceway (Harris): (-1/r_g, +-cos b/(R_P -+ R_B cos b))."""
-    groove = helical.helical_groove(R_B, CONF, R_P, 0.0, BETA, body, "left", plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, 0.0, BETA, body, "left", plane)
+    frame = groove_core.contact_frame(groove)
     sign = 1.0 if body == "screw" else -1.0
     assert frame.curvature_major == pytest.approx(-1.0 / (2 * CONF * R_B), rel=1e-12)
     assert frame.curvature_minor == pytest.approx(sign * math.cos(BETA) / (R_P - sign * R_B * math.cos(BETA)),
@@ -101,8 +101,8 @@ def test_zero_lead_is_the_bearing_raceway(plane, body):
 def test_normal_profile_contact_normal_passes_through_ball_centre_on_helix(body):
     """lin2019 eq 37: a ball centred on the helix touches the groove at beta from -+x3
     in the plane normal to the helix, and the groove normal there passes through its centre."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", "normal")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", "normal")
+    frame = groove_core.contact_frame(groove)
     assert np.linalg.norm(frame.ball_centre - groove.helix(0.0)) < 1e-12 * R_B
     radial = np.array([1.0, 0.0, 0.0])
     toward_ball = radial if body == "screw" else -radial  # the normal points from the groove into the ball
@@ -114,8 +114,8 @@ def test_normal_profile_contact_normal_passes_through_ball_centre_on_helix(body)
 def test_axial_profile_puts_the_ball_centre_off_the_helix():
     """With the profile in the axial plane the contact normal tilts out of that plane
     by atan(p sin b / rho) (8.8 deg for lin2019 Table 4), so the ball centre leaves the helix."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", "left", "axial")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", "left", "axial")
+    frame = groove_core.contact_frame(groove)
     rho = R_P - R_B * math.cos(BETA)
     tilt = math.atan(groove.lead_per_radian * math.sin(BETA) / rho)
     assert math.asin(abs(frame.normal[1])) == pytest.approx(tilt, rel=1e-12)
@@ -127,8 +127,8 @@ def test_axial_profile_puts_the_ball_centre_off_the_helix():
 def test_contact_frame_maps_the_surface_to_its_hertz_quadratic(plane, body):
     """In the contact frame the exact surface is z = -(k_major x^2 + k_minor y^2)/2 + O(r^3):
     tangent plane z = 0 and principal axes x, y (no xy term)."""
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, "left", plane)
+    frame = groove_core.contact_frame(groove)
     eps = 1e-5
     theta = groove.contact_theta + eps * np.cos(np.linspace(0, 2 * np.pi, 13))
     phi = 0.2 * eps * np.sin(np.linspace(0, 2 * np.pi, 13))
@@ -140,36 +140,41 @@ def test_contact_frame_maps_the_surface_to_its_hertz_quadratic(plane, body):
 
 @pytest.mark.parametrize("plane", ["normal", "axial"])
 def test_profile_coordinates_invert_the_screw_motion(plane):
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut", "right", plane)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut", "right", plane)
     theta = groove.contact_theta + np.linspace(-0.5, 0.5, 7)
     phi = np.linspace(-0.4, 0.4, 5)
     points = groove.surface(theta[:, None], phi[None, :]).reshape(-1, 3)
-    phi_found, uw = helical.profile_coordinates(groove, points)
+    phi_found, uw = groove_core.profile_coordinates(groove, points)
     assert np.allclose(phi_found, np.broadcast_to(phi[None, :], (7, 5)).ravel(), atol=1e-13)
     assert np.allclose(uw, groove.profile(np.repeat(theta, 5)), atol=1e-15)
-    assert np.abs(helical.surface_residual(groove, points)).max() < 1e-15
-    assert helical.surface_residual(groove, groove.helix(0.0)[None, :])[0] == pytest.approx(-R_B, rel=1e-12)
+    assert np.abs(groove_core.surface_residual(groove, points)).max() < 1e-15
+    assert groove_core.surface_residual(groove, groove.helix(0.0)[None, :])[0] == pytest.approx(-R_B, rel=1e-12)
 
 
-def test_left_and_right_flanks_are_congruent():
-    """The half-turn about the radial line through a helix point maps the helix onto itself."""
-    frames = [helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw", flank))
+@pytest.mark.parametrize("plane", ["normal", "axial"])
+@pytest.mark.parametrize("body", ["screw", "nut"])
+def test_left_and_right_flanks_are_congruent(body, plane):
+    """The half-turn about the radial line through a helix point maps the helix onto itself,
+    so both flanks have the same principal curvatures (groove_curvatures_helical evaluates the
+    right flank only; the builders mesh either)."""
+    frames = [groove_core.contact_frame(groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane))
               for flank in ("left", "right")]
     assert frames[0].curvature_major == pytest.approx(frames[1].curvature_major, rel=1e-12)
     assert frames[0].curvature_minor == pytest.approx(frames[1].curvature_minor, rel=1e-12)
+    assert frames[0].profile_angle == pytest.approx(frames[1].profile_angle, abs=1e-12)
 
 
 # --------------------------------------------------------------------------
 # the contact-pair mesh
 # --------------------------------------------------------------------------
 @pytest.fixture(scope="module")
-def screw_pair(tmp_path_factory):
+def screw_pair_mesh(tmp_path_factory):
     import os
     old = os.environ.get("BALLBENCH_CACHE")
     os.environ["BALLBENCH_CACHE"] = str(tmp_path_factory.mktemp("cache"))
     try:
-        path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=2.5e-5,
-                                                 growth=1.5, h_max=R_B / 6)
+        path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=2.5e-5,
+                                                    growth=1.5, h_max=R_B / 6)
     finally:
         if old is None:
             del os.environ["BALLBENCH_CACHE"]
@@ -178,8 +183,8 @@ def screw_pair(tmp_path_factory):
     return path, meshio.read(path)
 
 
-def test_pair_physical_groups_exist_and_are_not_empty(screw_pair):
-    _, mesh = screw_pair
+def test_pair_physical_groups_exist_and_are_not_empty(screw_pair_mesh):
+    _, mesh = screw_pair_mesh
     for name in ("ball", "counter"):
         assert len(_group_cells(mesh, name, "tetra")) > 100
     for name in ("ball_contact", "ball_load", "counter_contact", "counter_support"):
@@ -189,11 +194,11 @@ def test_pair_physical_groups_exist_and_are_not_empty(screw_pair):
     assert not ball & counter  # the two bodies share no nodes
 
 
-def test_pair_contact_point_lies_on_both_surfaces_with_normal_plus_z(screw_pair):
-    _, mesh = screw_pair
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
-    frame = helical.contact_frame(groove)
-    assert abs(helical.surface_residual(groove, frame.point[None, :])[0]) < 1e-15  # origin on the groove
+def test_pair_contact_point_lies_on_both_surfaces_with_normal_plus_z(screw_pair_mesh):
+    _, mesh = screw_pair_mesh
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = groove_core.contact_frame(groove)
+    assert abs(groove_core.surface_residual(groove, frame.point[None, :])[0]) < 1e-15  # origin on the groove
     points = mesh.points
     ball_nodes = points[_group_nodes(mesh, "ball_contact")]
     # the ball surface passes through the origin with the centre at (0, 0, R_B)
@@ -208,33 +213,33 @@ def test_pair_contact_point_lies_on_both_surfaces_with_normal_plus_z(screw_pair)
     assert np.linalg.norm(counter - [0.0, 0.0, R_B], axis=1).min() > R_B * (1 - 1e-12)
 
 
-def test_pair_groove_nodes_lie_on_the_helical_arc(screw_pair):
+def test_pair_groove_nodes_lie_on_the_helical_arc(screw_pair_mesh):
     """Every counter_contact node lies at r_g = 2 conf R_B from the flank's arc centre
     in the profile plane of its azimuth (the helix equation of the swept profile)."""
-    _, mesh = screw_pair
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
-    frame = helical.contact_frame(groove)
+    _, mesh = screw_pair_mesh
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw")
+    frame = groove_core.contact_frame(groove)
     local = mesh.points[_group_nodes(mesh, "counter_contact")]
     world = frame.point + local @ frame.rotation
-    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, world)).max() < 1e-12 * R_B
     # and the ball-centre path is the helix of lin2019 eq 42: z = p phi at rho = R_P
-    phi, uw = helical.profile_coordinates(groove, world)
+    phi, uw = groove_core.profile_coordinates(groove, world)
     assert np.ptp(phi) > 0.1  # the block spans a real stretch of helix
 
 
-def test_pair_principal_directions_and_curvatures_from_the_mesh(screw_pair):
+def test_pair_principal_directions_and_curvatures_from_the_mesh(screw_pair_mesh):
     """Independent route: a cubic fit of the meshed groove surface around the origin
     gives z = -(kappa_major x^2 + kappa_minor y^2)/2 with no xy term."""
-    _, mesh = screw_pair
-    frame = helical.contact_frame(helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw"))
+    _, mesh = screw_pair_mesh
+    frame = groove_core.contact_frame(groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "screw"))
     coef = _quadratic_fit(mesh.points[_group_nodes(mesh, "counter_contact")], 0.1 * R_B, degree=4)
     assert coef[3] == pytest.approx(-frame.curvature_major / 2, rel=1e-3)
     assert coef[5] == pytest.approx(-frame.curvature_minor / 2, rel=1e-3)
     assert abs(coef[4]) < 1e-3 * abs(coef[3])
 
 
-def test_pair_mesh_size_at_the_contact(screw_pair):
-    _, mesh = screw_pair
+def test_pair_mesh_size_at_the_contact(screw_pair_mesh):
+    _, mesh = screw_pair_mesh
     h_contact = 2.5e-5
     for name in ("ball_contact", "counter_contact"):
         tri = _group_cells(mesh, name, "triangle")
@@ -259,7 +264,7 @@ def test_pair_fine_patch_refines_the_ellipse_not_a_ball():
     """fine_patch = (l_x, l_y): h_contact over the rectangle (a Hertz ellipse's box), growing
     beyond it; at (0.9 l_x, 0) the size is h_contact, at (0, 0.9 l_x) it is several times it."""
     h, l_x, l_y = 2e-5, 3e-4, 6e-5
-    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
+    path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
                                              fine_patch=(l_x, l_y))
     mesh = meshio.read(path)
     tri = _group_cells(mesh, "counter_contact", "triangle")
@@ -273,7 +278,7 @@ def test_pair_fine_patch_refines_the_ellipse_not_a_ball():
     assert 0.5 * h < size_near(0.9 * l_x, 0.0) < 2 * h
     assert size_near(0.0, 0.9 * l_x) > 2.5 * h  # h + 0.3 (0.9 l_x - l_y) = 4.2 h
     # the capsule of contact_pairs: fine_radius about the segment |x| <= fine_half_length
-    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
+    path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=h, growth=1.3,
                                              fine_radius=l_y, fine_half_length=l_x)
     mesh = meshio.read(path)
     tri = _group_cells(mesh, "counter_contact", "triangle")
@@ -288,15 +293,15 @@ def test_pair_initial_gap_is_the_exact_separation(body, plane):
     """counter_height reproduces the meshed groove nodes (which lie on the exact surface);
     the exact initial gap is >= 0, zero at the contact and tends to Hertz's A x^2 + B y^2."""
     args = (R_B, CONF, R_P, LEAD, BETA, body)
-    path = helical.ball_in_screw_groove_pair(*args, profile_plane=plane, **COARSE)
+    path = screw_pair.ball_in_screw_groove_pair(*args, profile_plane=plane, **COARSE)
     mesh = meshio.read(path)
-    groove = helical.helical_groove(*args, "left", plane)
+    groove = groove_core.helical_groove(*args, "left", plane)
     nodes = mesh.points[_group_nodes(mesh, "counter_contact")]
     near = np.hypot(nodes[:, 0], nodes[:, 1]) < 0.4 * R_B
-    height = helical.counter_height(groove, nodes[near, 0], nodes[near, 1])
+    height = groove_core.counter_height(groove, nodes[near, 0], nodes[near, 1])
     assert np.abs(height - nodes[near, 2]).max() < 1e-15
-    gap = helical.pair_initial_gap(*args, profile_plane=plane)
-    geometry = helical.pair_hertz_geometry(*args, profile_plane=plane)
+    gap = groove_core.pair_initial_gap(*args, profile_plane=plane)
+    geometry = pair_hertz_geometry(*args, profile_plane=plane)
     assert gap(0.0, 0.0) == pytest.approx(0.0, abs=1e-18)
     r = 1e-5
     assert gap(r, 0.0) == pytest.approx(geometry.A * r * r, rel=1e-3)
@@ -314,7 +319,7 @@ def test_pair_volumes_against_closed_forms():
     departs from it by at most e^2 / (6 r), which bounds the volume error."""
     cap = 0.8 * R_B
     half_width = half_length = depth = 0.5 * R_B
-    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", h_contact=1e-4, growth=1.5,
+    path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", h_contact=1e-4, growth=1.5,
                                              h_max=R_B / 10, cap_height=cap, block_half_width=half_width,
                                              block_half_length=half_length, block_depth=depth)
     mesh = meshio.read(path)
@@ -322,8 +327,8 @@ def test_pair_volumes_against_closed_forms():
     exact = math.pi * cap**2 * (3 * R_B - cap) / 3
     area, edge = _surface_area_and_longest_edge(mesh, "ball_contact")
     assert exact - area * edge**2 / (6 * R_B) < ball < exact  # inscribed polyhedron
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = groove_core.contact_frame(groove)
     speed = np.linalg.norm(np.cross([0, 0, 1.0], frame.point) + [0, 0, groove.lead_per_radian])
     dphi = half_length / speed
     r1, r2 = groove.groove_radius, groove.groove_radius + depth
@@ -345,13 +350,13 @@ def test_pair_volumes_against_closed_forms():
 @pytest.mark.parametrize("body, plane, flank", [("nut", "normal", "right"), ("screw", "axial", "left"),
                                                 ("nut", "axial", "left")])
 def test_pair_other_grooves_touch_the_ball_at_the_origin_only(body, plane, flank):
-    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, body, flank=flank, profile_plane=plane,
+    path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, body, flank=flank, profile_plane=plane,
                                              **COARSE)
     mesh = meshio.read(path)
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body, flank, plane)
+    frame = groove_core.contact_frame(groove)
     local = mesh.points[_group_nodes(mesh, "counter_contact")]
-    assert np.abs(helical.surface_residual(groove, frame.point + local @ frame.rotation)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, frame.point + local @ frame.rotation)).max() < 1e-12 * R_B
     counter = mesh.points[_group_nodes(mesh, "counter")]
     assert np.linalg.norm(counter - [0.0, 0.0, R_B], axis=1).min() > R_B * (1 - 1e-12)
     coef = _quadratic_fit(local, 0.3 * R_B, degree=4)
@@ -360,31 +365,31 @@ def test_pair_other_grooves_touch_the_ball_at_the_origin_only(body, plane, flank
 
 
 def test_pair_quadratic_elements_stay_on_the_helical_surface():
-    path = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", element_order=2, **COARSE)
+    path = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "nut", element_order=2, **COARSE)
     mesh = meshio.read(path)
     assert len(_group_cells(mesh, "counter", "tetra10")) > 100
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
-    frame = helical.contact_frame(groove)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, "nut")
+    frame = groove_core.contact_frame(groove)
     tri = np.concatenate([block.data[ids] for block, ids in zip(mesh.cells, mesh.cell_sets["counter_contact"])
                           if len(ids)])
     assert tri.shape[1] == 6  # mid-side nodes included
     world = frame.point + mesh.points[np.unique(tri)] @ frame.rotation
-    assert np.abs(helical.surface_residual(groove, world)).max() < 1e-12 * R_B
+    assert np.abs(groove_core.surface_residual(groove, world)).max() < 1e-12 * R_B
 
 
 def test_pair_cache_hit_does_not_rebuild(monkeypatch):
-    first = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
+    first = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
     stamp = first.stat().st_mtime_ns
 
     def refuse(*args, **kwargs):
         raise AssertionError("gmsh was started for a cached mesh")
 
     monkeypatch.setattr(gmsh, "initialize", refuse)
-    second = helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
+    second = screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **COARSE)
     assert second == first and second.stat().st_mtime_ns == stamp
     other = dict(COARSE, growth=1.6)
     with pytest.raises(AssertionError, match="gmsh was started"):
-        helical.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **other)
+        screw_pair.ball_in_screw_groove_pair(R_B, CONF, R_P, LEAD, BETA, "screw", **other)
 
 
 @pytest.mark.parametrize("kwargs, name", [
@@ -417,6 +422,7 @@ def test_pair_cache_hit_does_not_rebuild(monkeypatch):
     (dict(fine_patch=(1e-4, 1e-4, 1e-4, 1e-4)), "fine_patch"),
     (dict(fine_patch=1e-4), "fine_patch"),
     (dict(fine_half_length=-1e-4), "fine_half_length"),
+    (dict(element_order=True), "element_order"),
     (dict(fine_half_length=1e-4, fine_patch=(1e-4, 1e-4)), "fine_patch and fine_half_length"),
 ])
 def test_pair_bad_input_names_the_parameter(kwargs, name):
@@ -424,7 +430,7 @@ def test_pair_bad_input_names_the_parameter(kwargs, name):
                 **COARSE)
     args.update(kwargs)
     with pytest.raises(ValueError, match=name):
-        helical.ball_in_screw_groove_pair(**args)
+        screw_pair.ball_in_screw_groove_pair(**args)
 
 
 # --------------------------------------------------------------------------
@@ -438,7 +444,7 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
     lies inside them (lin2019 Fig 13: four-point contact with screw and nut), also with
     a contact angle deviation of 3 deg on one flank (lin2019 Fig 17, case b)."""
     h = 1e-4
-    path = helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, body, deviations=deviations, h_contact=h,
+    path = groove_segment.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, body, deviations=deviations, h_contact=h,
                                         growth=1.5)
     mesh = meshio.read(path)
     assert len(_group_cells(mesh, body, "tetra")) > 100
@@ -448,19 +454,19 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
     # OCC's loft/boolean intersection lies within 1e-7 m of it)
     assert np.abs(np.hypot(nodes[:, 0], nodes[:, 1]) - land).max() < 1e-7
     for flank, deviation in zip(("left", "right"), deviations):
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + deviation, body, flank)
+        groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA + deviation, body, flank)
         nodes = mesh.points[_group_nodes(mesh, f"flank_{flank}")]
-        assert np.abs(helical.surface_residual(groove, nodes)).max() < 1e-12 * R_B
+        assert np.abs(groove_core.surface_residual(groove, nodes)).max() < 1e-12 * R_B
         for phi in (-0.1, 0.0, 0.1):
             distance = np.linalg.norm(nodes - groove.helix(phi), axis=1)
             assert distance.min() > R_B * (1 - 1e-12)
             if phi == 0.0:  # refined there: chord sagitta h^2 / (8 R_B) bounds the miss
                 assert distance.min() < R_B + h**2 / (8 * R_B)
     # the flanks meet at the groove bottom: a helix, fixed in the profile plane
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA, body)
     shared = np.intersect1d(_group_nodes(mesh, "flank_left"), _group_nodes(mesh, "flank_right"))
     assert len(shared) > 5
-    phi, uw = helical.profile_coordinates(groove, mesh.points[shared])
+    phi, uw = groove_core.profile_coordinates(groove, mesh.points[shared])
     assert np.ptp(uw[:, 1]) < 1e-12 and np.ptp(uw[:, 0]) < 1e-12
     assert (abs(uw[0, 1]) < 1e-12) == (deviations[0] == deviations[1])  # symmetric only without deviation
 
@@ -468,8 +474,6 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
 # --------------------------------------------------------------------------
 # straight gothic-arch rail
 # --------------------------------------------------------------------------
-from ballbench.meshes import fourpoint_module, rail
-
 R_RAIL = 5e-3  # lin2019 Table 1
 DEV = math.radians(2.0)
 
@@ -636,6 +640,7 @@ def test_module_ball_volumes(module_mesh):
     (dict(deviations=(0.0, 0.0, 0.0)), "deviations"),
     (dict(deviations=(0.0, 0.0, float("nan"), 0.0)), "deviation_left"),
     (dict(n_balls=3), "n_balls"),
+    (dict(n_balls=True), "n_balls"),
     (dict(n_balls=2, spacing=9e-3), "spacing"),
     (dict(land_height=-0.8 * R_RAIL), "four-point contact"),
     (dict(conformity=0.49), "conformity"),
@@ -663,33 +668,20 @@ def test_groove_segment_bad_input_names_the_parameter(kwargs, match):
     args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA)
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
-        helical.screw_groove_segment(**args, cache=False)
+        groove_segment.screw_groove_segment(**args, cache=False)
 
 
 # --------------------------------------------------------------------------
 # ball-screw module (lin2019 Fig 12b)
 # --------------------------------------------------------------------------
-from ballbench.meshes import helical_module
-
 SCREW_DEVIATIONS = (0.0, math.radians(2.0), 0.0, 0.0)  # lin2019 Fig 17 case (a) on the screw, uniform
 
 
 @pytest.fixture(scope="module")
 def screw_module_mesh():
-    path = helical_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA, SCREW_DEVIATIONS, n_balls=2,
+    path = ball_screw_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA, SCREW_DEVIATIONS, n_balls=2,
                                             h_contact=1e-4, growth=1.5, cache=False)
     return meshio.read(path)
-
-
-def test_ball_centre_azimuths_give_the_chord():
-    for spacing in (2 * R_B, 2.5 * R_B):
-        dphi = helical_module.ball_centre_azimuths(R_P, LEAD, spacing)
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
-        chord = np.linalg.norm(groove.helix(dphi / 2) - groove.helix(-dphi / 2))
-        assert chord == pytest.approx(spacing, rel=1e-14)
-    # lead 0: the chord of a circle
-    assert helical_module.ball_centre_azimuths(R_P, 0.0, 2 * R_B) == pytest.approx(2 * math.asin(R_B / R_P),
-                                                                                 rel=1e-14)
 
 
 def test_ball_centre_azimuths_against_lin2019_eq56():
@@ -699,7 +691,7 @@ def test_ball_centre_azimuths_against_lin2019_eq56():
     def relative_gap(lead):
         length = math.hypot(2 * math.pi * R_P, lead)
         beta_b2b = math.asin(2 * math.pi * R_B / length)
-        exact = helical_module.ball_centre_azimuths(R_P, lead, 2 * R_B)
+        exact = helix.ball_centre_azimuths(R_P, lead, 2 * R_B)
         return abs(exact - 2 * beta_b2b) / exact
 
     assert relative_gap(LEAD) < 2e-4
@@ -718,14 +710,14 @@ def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_m
             assert not nodes[i] & nodes[j]
     for name in ("screw_land", "nut_land", "screw_support", "nut_load"):
         assert len(_group_cells(mesh, name, "triangle")) > 0
-    dphi = helical_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    dphi = helix.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
     flanks = {"SL": ("screw", "left", 0), "SR": ("screw", "right", 1), "NR": ("nut", "right", 2),
               "NL": ("nut", "left", 3)}
     h = 1e-4
     for name, (body, flank, index) in flanks.items():
-        groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA + SCREW_DEVIATIONS[index], body, flank)
+        groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA + SCREW_DEVIATIONS[index], body, flank)
         flank_nodes = mesh.points[_group_nodes(mesh, name)]
-        assert np.abs(helical.surface_residual(groove, flank_nodes)).max() < 1e-12 * R_B
+        assert np.abs(groove_core.surface_residual(groove, flank_nodes)).max() < 1e-12 * R_B
         for k, phi in ((1, -dphi / 2), (2, dphi / 2)):
             centre = groove.helix(phi)
             distance = np.linalg.norm(flank_nodes - centre, axis=1)
@@ -740,8 +732,8 @@ def test_screw_module_groups_and_four_point_contact_of_both_balls(screw_module_m
 
 def test_screw_module_balls_touch_each_other(screw_module_mesh):
     mesh = screw_module_mesh
-    dphi = helical_module.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
-    groove = helical.helical_groove(R_B, CONF, R_P, LEAD, BETA)
+    dphi = helix.ball_centre_azimuths(R_P, LEAD, 2 * R_B)
+    groove = groove_core.helical_groove(R_B, CONF, R_P, LEAD, BETA)
     contact = (groove.helix(-dphi / 2) + groove.helix(dphi / 2)) / 2
     for k in (1, 2):
         cap = mesh.points[_group_nodes(mesh, f"ball{k}_B2B")]
@@ -758,6 +750,7 @@ def test_screw_module_balls_touch_each_other(screw_module_mesh):
 @pytest.mark.parametrize("kwargs, match", [
     (dict(deviations=(0.0, 0.0)), "deviations"),
     (dict(n_balls=0), "n_balls"),
+    (dict(n_balls=2.0), "n_balls"),
     (dict(n_balls=2, spacing=5e-3), "spacing"),
     (dict(half_angle=0.05), "half_angle"),
     (dict(nut_land_radius=R_P + 0.8 * R_B), "nut_land_radius"),
@@ -769,7 +762,7 @@ def test_screw_module_bad_input_names_the_parameter(kwargs, match):
     args = dict(ball_radius=R_B, conformity=CONF, pitch_radius=R_P, lead=LEAD, contact_angle=BETA)
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
-        helical_module.ball_screw_module(**args, cache=False)
+        ball_screw_module.ball_screw_module(**args, cache=False)
 
 
 def test_builders_over_the_parameter_range():
@@ -778,12 +771,12 @@ def test_builders_over_the_parameter_range():
     import itertools
     for conformity, beta, lead, body, plane in itertools.product((0.51, 0.6, 0.7), (30, 45, 60), (0.0, 5e-3, 40e-3),
                                                                   ("screw", "nut"), ("normal", "axial")):
-        helical.ball_in_screw_groove_pair(R_B, conformity, R_P, lead, math.radians(beta), body, h_contact=2e-4,
+        screw_pair.ball_in_screw_groove_pair(R_B, conformity, R_P, lead, math.radians(beta), body, h_contact=2e-4,
                                           growth=1.6, profile_plane=plane, cache=False)
     for conformity, beta in itertools.product((0.51, 0.7), (30, 60)):
-        helical.screw_groove_segment(R_B, conformity, R_P, LEAD, math.radians(beta), "nut", cache=False)
+        groove_segment.screw_groove_segment(R_B, conformity, R_P, LEAD, math.radians(beta), "nut", cache=False)
         for n_balls in (1, 2):
-            helical_module.ball_screw_module(R_B, conformity, R_P, LEAD, math.radians(beta), n_balls=n_balls,
+            ball_screw_module.ball_screw_module(R_B, conformity, R_P, LEAD, math.radians(beta), n_balls=n_balls,
                                              cache=False)
             fourpoint_module.fourpoint_module(R_RAIL, conformity, math.radians(beta), (0.03, -0.03, 0.02, 0.0),
                                               n_balls=n_balls, cache=False)
@@ -791,9 +784,9 @@ def test_builders_over_the_parameter_range():
 
 @pytest.mark.parametrize("build", [
     lambda: rail.rail_segment(R_RAIL, CONF, BETA, h_contact=5e-4),
-    lambda: helical.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, "nut"),
+    lambda: groove_segment.screw_groove_segment(R_B, CONF, R_P, LEAD, BETA, "nut"),
     lambda: fourpoint_module.fourpoint_module(R_RAIL, CONF, BETA),
-    lambda: helical_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA),
+    lambda: ball_screw_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA),
 ], ids=["rail", "segment", "fourpoint", "ballscrew"])
 def test_every_builder_hits_its_cache(build, monkeypatch):
     first = build()

@@ -71,7 +71,9 @@ def lead_angle(lead, pitch_radius) -> np.ndarray:
     L = 20 mm, r_m = 20.7 mm gives psi = 8.74 deg).
     """
     radius = checks.positive("pitch_radius", pitch_radius, "m")
-    return np.arctan(helix_parameter(lead) / radius)  # wang2022 Sec 2.2, lin2019 eq 42
+    # wang2022 Sec 2.2, lin2019 eq 42; as atan2(L, 2 pi r_m), the form the mesh builders used:
+    # the same angle to 1 ulp, and gmsh meshes (chaotic at the ulp level) stay bit-identical
+    return np.arctan2(checks.non_negative("lead", lead, "m"), 2.0 * np.pi * radius)
 
 
 _lead_angle = lead_angle  # for functions whose argument ``lead_angle`` hides the function

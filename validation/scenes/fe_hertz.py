@@ -1,7 +1,7 @@
 """FE contact benchmark: scikit-fem two-body contact against exact Hertz (lowmodel.contact.hertz).
 
-Each scene meshes a symmetry cut of its pair (meshes.contact_pairs, or the
-helical screw pair of meshes.helical), solves the frictionless contact
+Each scene meshes a symmetry cut of its pair (meshes.assemblies.contact_pairs, or the
+helical screw pair of meshes.assemblies.screw_pair), solves the frictionless contact
 (fem.contact, condensed compliance + primal-dual active set) over a load sweep
 and compares the fitted a, b, p0 and the contact approach delta (bulk
 compliance of the finite bodies removed: fem.postprocess) with Hertz.
@@ -136,7 +136,7 @@ class PairCase:
 
 
 def _groove_case(conformity: float, levels: dict) -> PairCase:
-    from ballbench.meshes import contact_pairs
+    from ballbench.meshes.assemblies import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
     ref = hertz.solve_load(geometry, LOAD)
@@ -151,7 +151,7 @@ def _groove_case(conformity: float, levels: dict) -> PairCase:
 
 def pair_case(scene_name: str) -> PairCase:
     """The pair of an ``fe-hertz-*`` scene, built from its :class:`FeScene` entry."""
-    from ballbench.meshes import contact_pairs
+    from ballbench.meshes.assemblies import contact_pairs
 
     entry = fe_scene(scene_name)
     if entry.pair == "flat":
@@ -168,16 +168,17 @@ def pair_case(scene_name: str) -> PairCase:
             "lowmodel.contact.hertz.ball_on_ball (R_B 5 mm each, 100 N)", entry.levels)
     if entry.pair == "groove":
         return _groove_case(entry.conformity, entry.levels)
-    from ballbench.meshes import helical
+    from ballbench.lowmodel.geometry import groove
+    from ballbench.meshes.assemblies import screw_pair
 
     # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
     args = (TABLE4.ball_radius, TABLE4.conformity, TABLE4.pitch_radius, TABLE4.lead, TABLE4.nominal_angle)
-    frame = helical.contact_frame(helical.helical_groove(*args))
+    frame = groove.contact_frame(groove.helical_groove(*args))
     radius = args[0]
     geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
                                      **TABLE4.material)
     ref = hertz.solve_load(geometry, LOAD)
-    return PairCase("ball in screw groove", lambda h, g: helical.ball_in_screw_groove_pair(
+    return PairCase("ball in screw groove", lambda h, g: screw_pair.ball_in_screw_groove_pair(
         *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
         "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", entry.levels)
 

@@ -6,7 +6,7 @@ Screw frame: axis ``z``; ball centres on the helix ``H(phi) = (R_P cos phi,
 R_P sin phi, p phi)``, ``p = lead / 2 pi``: one ball at ``phi = 0``, two balls at
 ``phi = -+ dphi/2`` with the chord ``|H(dphi/2) - H(-dphi/2)| = spacing`` (default
 ``2 R_B``: they touch, the ball-to-ball contact of lin2019 Sec 3.2, Fig 16).  The
-grooves are those of :mod:`meshes.helical` with the profile in the plane normal to
+grooves are those of :mod:`meshes.parts.groove_segment` with the profile in the plane normal to
 the helix (lin2019 eq 41), the only profile for which a ball on the helix touches
 all four flanks.  Contacts in the order ``(SL, SR, NR, NL)`` (screw/nut,
 left/right; left = the ``-z3`` side, lin2019 eq 37), contact angles
@@ -14,35 +14,22 @@ left/right; left = the ``-z3`` side, lin2019 eq 37), contact angles
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 
-from ballbench.meshes.fourpoint_module import _cap_angle, _split_ball
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.helix import ball_centre_azimuths
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
-from ballbench.meshes.helical import (MESH_FORMAT_VERSION as _HELICAL_VERSION, _add_segment, _check_refinement, _finite,
-                            _positive, _segment_dimensions, _segment_grooves, _snap_segment)
+from ballbench.meshes.parts import groove_segment
+from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
+from ballbench.meshes.parts.groove_segment import add_groove_segment, segment_dimensions, segment_grooves, snap_segment
+from ballbench.meshes.refinement import check_refinement, size_at_points
 
-__all__ = ["CONTACTS", "ball_centre_azimuths", "ball_screw_module"]
+__all__ = ["CONTACTS", "ball_screw_module"]
 
-MESH_FORMAT_VERSION = f"ballscrew-module-1/{_HELICAL_VERSION}"
+MESH_FORMAT_VERSION = f"ballscrew-module-1/{groove_segment.MESH_FORMAT_VERSION}"
 CONTACTS = ("SL", "SR", "NR", "NL")
-
-
-def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> float:
-    """Azimuth difference ``dphi`` [rad] of two ball centres on the helix a chord
-    ``spacing`` [m] apart: ``(2 R_P sin(dphi/2))^2 + (p dphi)^2 = spacing^2`` (Newton)."""
-    p = lead / (2 * math.pi)
-    dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
-    for _ in range(50):
-        chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
-        slope = 2 * pitch_radius**2 * math.sin(dphi) + 2 * p**2 * dphi
-        step = (chord2 - spacing**2) / slope
-        dphi -= step
-        if abs(step) < 1e-15 * dphi:
-            return dphi
-    raise RuntimeError("ball_centre_azimuths did not converge")  # unreachable for spacing << R_P
 
 
 def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
@@ -57,7 +44,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
 
     ``deviations`` [rad]: contact angle deviations ``(SL, SR, NR, NL)``;
     ``n_balls`` 1 or 2; ``spacing`` [m] chord between two ball centres (default
-    ``2 R_B``).  Segments as :func:`meshes.helical.screw_groove_segment` (screw land
+    ``2 R_B``).  Segments as :func:`meshes.parts.groove_segment.screw_groove_segment` (screw land
     ``R_P - 0.25 R_B``, core ``R_P - 2 R_B``; nut land ``R_P + 0.25 R_B``, outside
     ``R_P + 2 R_B``; ``half_angle`` default ``dphi/2 + 2 R_B / R_P``).  With
     ``h_contact`` [m] the mesh is refined at every contact point (four per ball and
@@ -77,28 +64,27 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
         raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}") from None
     if len(deviations) != 4:
         raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}")
-    screw = _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "screw",
-                             (deviations[0], deviations[1]), "normal")
-    nut = _segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "nut",
-                           (deviations[3], deviations[2]), "normal")  # (left, right) = (NL, NR)
+    screw = segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "screw",
+                            (deviations[0], deviations[1]), "normal")
+    nut = segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "nut",
+                          (deviations[3], deviations[2]), "normal")  # (left, right) = (NL, NR)
     radius, r_p = screw[0].ball_radius, screw[0].pitch_radius
-    if n_balls not in (1, 2):
-        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
-    spacing = 2.0 * radius if spacing is None else _finite("spacing", spacing, "[2 R_B, R_P] m")
+    n_balls = checks.count("n_balls", n_balls, 1, 2)
+    spacing = 2.0 * radius if spacing is None else checks.finite("spacing", spacing, "m")
     if n_balls == 2 and not 2.0 * radius <= spacing <= r_p:
         raise ValueError(f"spacing must lie in [2 ball_radius, pitch_radius] = [{2 * radius!r}, {r_p!r}] m, "
                          f"got {spacing!r}")
     dphi = ball_centre_azimuths(r_p, screw[0].lead, spacing) if n_balls == 2 else 0.0
     if half_angle is None:
         half_angle = dphi / 2 + 2.0 * radius / r_p
-    half_angle = _positive("half_angle", half_angle, "rad")
+    half_angle = checks.positive("half_angle", half_angle, "rad")
     if half_angle < dphi / 2 + 1.2 * radius / r_p:
         raise ValueError(f"half_angle must be at least {dphi / 2 + 1.2 * radius / r_p!r} rad to hold the balls, "
                          f"got {half_angle!r}")
-    s_land, s_back, half_angle, s_width = _segment_dimensions(screw, screw_land_radius, screw_back_radius,
-                                                              half_angle, None, prefix="screw_")
-    n_land, n_back, _, n_width = _segment_dimensions(nut, nut_land_radius, nut_back_radius, half_angle, None,
-                                                     prefix="nut_")
+    s_land, s_back, half_angle, s_width = segment_dimensions(screw, screw_land_radius, screw_back_radius,
+                                                             half_angle, None, prefix="screw_")
+    n_land, n_back, _, n_width = segment_dimensions(nut, nut_land_radius, nut_back_radius, half_angle, None,
+                                                    prefix="nut_")
     if n_land - s_land <= 0.0:
         raise ValueError("screw_land_radius must be smaller than nut_land_radius")
     phis = [0.0] if n_balls == 1 else [-dphi / 2, dphi / 2]
@@ -112,10 +98,10 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
             chord = centres[1] - centres[0]
             directions["B2B"] = (1.0 if k == 0 else -1.0) * chord / np.linalg.norm(chord)
         ball_directions.append(directions)
-    cap_angle = _cap_angle(cap_angle, list(ball_directions[0].values()))
+    cap_angle = check_cap_angle(cap_angle, list(ball_directions[0].values()))
     refine = h_contact is not None
-    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
-                                                              growth, h_max, fine_radius)
+    h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
+                                                             growth, h_max, fine_radius)
     params = dict(builder="ball_screw_module", radius=radius, conformity=screw[0].conformity, pitch_radius=r_p,
                   lead=screw[0].lead, angles=[g.contact_angle for g in (*screw, *nut)], n_balls=n_balls,
                   spacing=spacing, screw=[s_land, s_back], nut=[n_land, n_back], half_angle=half_angle,
@@ -126,11 +112,11 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
         return path
 
     with session("ball_screw_module") as gmsh:
-        screw_volumes, screw_roles = _add_segment(gmsh, screw, s_land, s_back, half_angle, s_width)
-        nut_volumes, nut_roles = _add_segment(gmsh, nut, n_land, n_back, half_angle, n_width)
+        screw_volumes, screw_roles = add_groove_segment(gmsh, screw, s_land, s_back, half_angle, s_width)
+        nut_volumes, nut_roles = add_groove_segment(gmsh, nut, n_land, n_back, half_angle, n_width)
         contact_points = [centre + radius * directions[name] for centre, directions in zip(centres, ball_directions)
                           for name in CONTACTS]
-        ball_groups = [_split_ball(gmsh, centre, radius, directions, cap_angle)
+        ball_groups = [add_split_ball(gmsh, centre, radius, directions, cap_angle)
                        for centre, directions in zip(centres, ball_directions)]
         gmsh.model.occ.synchronize()
         physical(gmsh, 3, screw_volumes, "screw")
@@ -149,17 +135,11 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
             physical(gmsh, 3, volumes, f"ball{k}")
             for name, tags in surfaces.items():
                 physical(gmsh, 2, tags, f"ball{k}_{name}")
-        if refine:
-            from ballbench.meshes.rail import _refine_at_points
-
-            if n_balls == 2:
-                contact_points.append((centres[0] + centres[1]) / 2)
-            _refine_at_points(gmsh, contact_points, h_contact, growth, h_max, fine_radius)
-        else:
-            gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
-            gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+        if n_balls == 2:
+            contact_points.append((centres[0] + centres[1]) / 2)  # the B2B contact
+        size_at_points(gmsh, contact_points if refine else None, h_contact, growth, h_max, fine_radius)
         gmsh.model.mesh.generate(3)
-        _snap_segment(gmsh, screw, screw_roles)
-        _snap_segment(gmsh, nut, nut_roles)
+        snap_segment(gmsh, screw, screw_roles)
+        snap_segment(gmsh, nut, nut_roles)
         write_msh(gmsh, path)
     return path

@@ -10,7 +10,8 @@ db_i`` in the order ``(BL, BR, TR, TL)`` (docs/developing.md), measured from
 ``-y`` (bottom) or ``+y`` (top) as in lin2017 eq 1: the contact points are
 ``R_B (-sin b_BL, -cos b_BL)``, ``R_B (sin b_BR, -cos b_BR)``,
 ``R_B (sin b_TR, cos b_TR)``, ``R_B (-sin b_TL, cos b_TL)`` in each ball's
-cross-section.  Each rail is the gothic arch of :mod:`meshes.rail`; the top rail
+cross-section (:func:`lowmodel.geometry.fourpoint.contact_points`).  Each rail is the
+gothic arch of :mod:`lowmodel.geometry.groove` built by :mod:`meshes.parts.rail`; the top rail
 is the bottom construction turned by pi about ``z`` (its left flank becomes TR).
 A contact angle deviation turns a flank's arc centre about the ball centre, so
 every ball keeps touching all four flanks (lin2019 Fig 7: ``db_BL = -theta``,
@@ -23,98 +24,18 @@ from pathlib import Path
 
 import numpy as np
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_points
+from ballbench.lowmodel.geometry.groove import gothic_arch
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
-from ballbench.meshes.helical import _check_refinement, _finite, _positive
-from ballbench.meshes.rail import _add_bottom_rail, _classify_rail_faces, _refine_at_points, gothic_arch
+from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
+from ballbench.meshes.parts.rail import add_bottom_rail, classify_rail_faces
+from ballbench.meshes.refinement import check_refinement, size_at_points
 
-__all__ = ["CONTACTS", "contact_points", "fourpoint_module"]
+__all__ = ["CONTACTS", "fourpoint_module"]
 
 MESH_FORMAT_VERSION = "fourpoint-1"
-CONTACTS = ("BL", "BR", "TR", "TL")
-
-
-def contact_points(ball_radius: float, contact_angles) -> np.ndarray:
-    """Contact points ``(BL, BR, TR, TL)`` of a ball centred at the origin, shape (4, 2) [m] (lin2017 eq 1)."""
-    b_bl, b_br, b_tr, b_tl = contact_angles
-    return ball_radius * np.array([[-math.sin(b_bl), -math.cos(b_bl)], [math.sin(b_br), -math.cos(b_br)],
-                                   [math.sin(b_tr), math.cos(b_tr)], [-math.sin(b_tl), math.cos(b_tl)]])
-
-
-def _pole_axis(directions: list[np.ndarray]) -> np.ndarray:
-    """Unit axis whose two poles lie farthest (in angle) from every direction (n, 3)."""
-    golden = math.pi * (3.0 - math.sqrt(5.0))
-    k = np.arange(200)
-    z = 1.0 - (k + 0.5) / 200  # a Fibonacci half-sphere of candidates
-    r = np.sqrt(1.0 - z * z)
-    candidates = np.stack([r * np.cos(golden * k), r * np.sin(golden * k), z], 1)
-    worst = np.max(np.abs(candidates @ np.asarray(directions).T), axis=1)  # cos of the nearest cap, both poles
-    return candidates[int(np.argmin(worst))]
-
-
-def _cap_angle(cap_angle, directions: list[np.ndarray]) -> float:
-    """Validated cap half-angle [rad]: default ``min(30 deg, 0.45 x)`` with ``x`` the
-    smallest angle between two contact directions of a ball (caps must not overlap)."""
-    unit = np.asarray(directions, dtype=float)
-    cosines = np.clip(unit @ unit.T, -1.0, 1.0)
-    np.fill_diagonal(cosines, -1.0)
-    limit = 0.45 * math.acos(float(cosines.max()))
-    if cap_angle is None:
-        return min(math.radians(30.0), limit)
-    cap_angle = _finite("cap_angle", cap_angle, f"(0, {limit!r}] rad")
-    if not 0.0 < cap_angle <= limit:
-        raise ValueError(f"cap_angle must lie in (0, {limit!r}] rad (0.45 x the smallest angle between two contacts "
-                         f"of a ball, so the caps do not overlap), got {cap_angle!r}")
-    return cap_angle
-
-
-def _split_ball(gmsh, centre: np.ndarray, radius: float, directions: dict[str, np.ndarray],
-                cap_angle: float) -> tuple[list[int], dict[str, list[int]]]:
-    """OCC ball cut by planes into a core and one cap of half-angle ``cap_angle``
-    around each named unit direction.  Returns (volume tags, surfaces by name;
-    'free' is the rest of the sphere)."""
-    occ = gmsh.model.occ
-    ball = occ.addSphere(*centre, radius)
-    # turn the sphere's poles (degenerate points of its parametrisation) away from the caps
-    axis = _pole_axis(list(directions.values()))
-    turn = np.cross([0.0, 0.0, 1.0], axis)
-    if np.linalg.norm(turn) > 1e-12:
-        occ.rotate([(3, ball)], *centre, *turn, math.acos(float(np.clip(axis[2], -1.0, 1.0))))
-    disks = []
-    for direction in directions.values():
-        middle = centre + radius * math.cos(cap_angle) * direction
-        helper = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-        x_axis = np.cross(direction, helper)
-        size = 1.5 * radius * math.sin(cap_angle)
-        disks.append((2, occ.addDisk(*middle, size, size, zAxis=direction.tolist(), xAxis=x_axis.tolist())))
-    pieces, _ = occ.fragment([(3, ball)], disks)
-    occ.synchronize()
-    volumes = [tag for dim, tag in pieces if dim == 3]
-    leftovers = [(dim, tag) for dim, tag in pieces if dim == 2 and len(gmsh.model.getAdjacencies(2, tag)[0]) == 0]
-    occ.remove(leftovers, recursive=True)
-    occ.synchronize()
-    surfaces: dict[str, list[int]] = {name: [] for name in directions}
-    surfaces["free"] = []
-    cap_area = 2 * math.pi * radius**2 * (1 - math.cos(cap_angle))
-    areas = {name: 0.0 for name in directions}
-    for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True, oriented=False):
-        if gmsh.model.getType(2, tag) != "Sphere":
-            continue
-        offset = np.asarray(occ.getCenterOfMass(2, tag)) - centre
-        area = occ.getMass(2, tag)
-        name = "free"
-        if area < cap_area * (1 + 1e-3) and np.linalg.norm(offset) > 0:
-            # a cap, or a piece of one cut by the sphere's seam meridian (its centre of
-            # mass lies inside the cap's cone, up to round-off for a sliver at the rim)
-            unit = offset / np.linalg.norm(offset)
-            best = max(directions, key=lambda key: unit @ directions[key])
-            if unit @ directions[best] > math.cos(1.02 * cap_angle):
-                name = best
-                areas[name] += area
-        surfaces[name].append(tag)
-    for name, area in areas.items():
-        if abs(area - cap_area) > 1e-3 * cap_area:
-            raise RuntimeError(f"ball cap {name} not identified (area {area!r} of {cap_area!r} m^2)")
-    return volumes, surfaces
+CONTACTS = CONTACT_NAMES  # flank and cap group names: the contact order (BL, BR, TR, TL) of the geometry core
 
 
 def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0),
@@ -127,7 +48,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
 
     ``deviations`` [rad]: contact angle deviations ``(BL, BR, TR, TL)``;
     ``n_balls`` 1 or 2; ``spacing`` [m] centre distance of two balls (default
-    ``2 R_B``: touching); rail geometry as :func:`meshes.rail.rail_segment`
+    ``2 R_B``: touching); rail geometry as :func:`meshes.parts.rail.rail_segment`
     (defaults ``width 2.6 R_B``, ``depth 1.6 R_B``, ``land_height -0.25 R_B``;
     ``length`` default ``(n_balls - 1) spacing + 2.4 R_B``).  With ``h_contact`` [m]
     the mesh is refined around every contact point (four per ball and the B2B
@@ -141,7 +62,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``),
     ``ball{k}_B2B`` (two balls: cap around the B2B point), ``ball{k}_free``.  Bodies share no nodes.
     """
-    radius = _positive("ball_radius", ball_radius, "m")
+    radius = checks.positive("ball_radius", ball_radius, "m")
     try:
         deviations = [float(d) for d in deviations]
     except (TypeError, ValueError):
@@ -150,15 +71,14 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
         raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}")
     bottom = gothic_arch(radius, conformity, contact_angle, deviations[0], deviations[1], land_height)
     top = gothic_arch(radius, conformity, contact_angle, deviations[2], deviations[3], land_height)
-    if n_balls not in (1, 2):
-        raise ValueError(f"n_balls must be 1 or 2, got {n_balls!r}")
-    spacing = 2.0 * radius if spacing is None else _finite("spacing", spacing, "[2 R_B, inf) m")
+    n_balls = checks.count("n_balls", n_balls, 1, 2)
+    spacing = 2.0 * radius if spacing is None else checks.finite("spacing", spacing, "m")
     if n_balls == 2 and spacing < 2.0 * radius:
         raise ValueError(f"spacing must lie in [2 ball_radius, inf) = [{2 * radius!r}, inf) m (balls may not "
                          f"overlap), got {spacing!r}")
-    width = 2.6 * radius if width is None else _positive("width", width, "m")
-    depth = 1.6 * radius if depth is None else _positive("depth", depth, "m")
-    length = (n_balls - 1) * spacing + 2.4 * radius if length is None else _positive("length", length, "m")
+    width = 2.6 * radius if width is None else checks.positive("width", width, "m")
+    depth = 1.6 * radius if depth is None else checks.positive("depth", depth, "m")
+    length = (n_balls - 1) * spacing + 2.4 * radius if length is None else checks.positive("length", length, "m")
     for arch in (bottom, top):
         if arch.land_height - depth >= arch.bottom[1]:
             raise ValueError(f"depth must exceed the groove depth {arch.land_height - arch.bottom[1]!r} m, "
@@ -168,14 +88,14 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if length < (n_balls - 1) * spacing + 2.0 * radius:
         raise ValueError(f"length must be at least (n_balls - 1) spacing + 2 ball_radius, got {length!r}")
     refine = h_contact is not None
-    h_contact, growth, h_max, fine_radius = _check_refinement(radius, radius / 4 if h_contact is None else h_contact,
-                                                              growth, h_max, fine_radius)
+    h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
+                                                             growth, h_max, fine_radius)
     angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,
               top.contact_angle_right]
     in_plane = contact_points(radius, angles)
     ball_directions = {name: np.append(point / radius, 0.0) for name, point in zip(CONTACTS, in_plane)}
-    cap_angle = _cap_angle(cap_angle, list(ball_directions.values()) + ([np.array([0.0, 0.0, 1.0])]
-                                                                         if n_balls == 2 else []))
+    cap_angle = check_cap_angle(cap_angle, list(ball_directions.values()) + ([np.array([0.0, 0.0, 1.0])]
+                                                                              if n_balls == 2 else []))
     params = dict(builder="fourpoint_module", radius=radius, conformity=bottom.conformity, angles=angles,
                   land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
                   length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
@@ -188,18 +108,18 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                                                                  np.array([0.0, 0.0, spacing / 2])]
     with session("fourpoint_module") as gmsh:
         occ = gmsh.model.occ
-        bottom_rail = _add_bottom_rail(occ, bottom, width, depth, length, -length / 2)
-        top_rail = _add_bottom_rail(occ, top, width, depth, length, -length / 2)
+        bottom_rail = add_bottom_rail(occ, bottom, width, depth, length, -length / 2)
+        top_rail = add_bottom_rail(occ, top, width, depth, length, -length / 2)
         occ.synchronize()
-        bottom_faces = _classify_rail_faces(gmsh, bottom_rail, bottom, depth)
-        top_faces = _classify_rail_faces(gmsh, top_rail, top, depth)
+        bottom_faces = classify_rail_faces(gmsh, bottom_rail, bottom, depth)
+        top_faces = classify_rail_faces(gmsh, top_rail, top, depth)
         occ.rotate([(3, top_rail)], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, math.pi)  # left flank -> TR
         ball_groups = []
         for k, centre in enumerate(centres):
             directions = dict(ball_directions)
             if n_balls == 2:
                 directions["B2B"] = np.array([0.0, 0.0, 1.0 if k == 0 else -1.0])
-            ball_groups.append(_split_ball(gmsh, centre, radius, directions, cap_angle))
+            ball_groups.append(add_split_ball(gmsh, centre, radius, directions, cap_angle))
         occ.synchronize()
 
         def add(dim, tags, name):
@@ -222,14 +142,10 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                 if not tags:
                     raise RuntimeError(f"ball {k}: cap {name} not identified")
                 add(2, tags, name=f"ball{k}_{name}")
-        if refine:
-            points = [np.append(p, c[2]) for c in centres for p in in_plane]
-            if n_balls == 2:
-                points.append((centres[0] + centres[1]) / 2 + np.array([0.0, 0.0, 0.0]))
-            _refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)
-        else:
-            gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
-            gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+        points = [np.append(p, c[2]) for c in centres for p in in_plane]
+        if n_balls == 2:
+            points.append((centres[0] + centres[1]) / 2)  # the B2B contact
+        size_at_points(gmsh, points if refine else None, h_contact, growth, h_max, fine_radius)
         gmsh.model.mesh.generate(3)
         write_msh(gmsh, path)
     return path

@@ -23,7 +23,7 @@ Symmetry cuts (``symmetry``): ``"quarter"`` keeps ``x >= 0, y >= 0`` (groups
 ``"full"`` keeps everything.  Counter supports (``counter_support``): the face
 opposite the contact.
 
-Mesh size (:func:`meshes.gmsh_tools.contact_refinement`): ``h_contact`` within
+Mesh size (:func:`meshes.refinement.refine_contact`): ``h_contact`` within
 ``fine_radius`` of the segment ``|x| <= fine_half_length`` on the x axis (cover the
 contact ellipse: ``fine_half_length ~ a``, ``fine_radius ~ 1.3 b``), growing by
 the factor ``growth`` per element up to ``h_max``.
@@ -35,7 +35,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.meshes import gmsh_tools
+from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
 
 __all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "SYMMETRIES"]
 
@@ -43,37 +46,14 @@ MESH_FORMAT_VERSION = "contact-pairs-1"
 SYMMETRIES = ("quarter", "half", "full")
 
 
-def _positive(name: str, value, unit: str = "m") -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}") from None
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
-    return value
-
-
 def _check_common(ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order):
-    radius = _positive("ball_radius", ball_radius)
-    h_contact = _positive("h_contact", h_contact)
-    if h_contact > radius / 4.0:
-        raise ValueError(f"h_contact must lie in (0, ball_radius/4] = (0, {radius / 4!r}] m, got {h_contact!r}")
-    growth = float(growth)
-    if not (math.isfinite(growth) and 1.0 <= growth <= 3.0):
-        raise ValueError(f"growth (size ratio of neighbouring elements) must lie in [1, 3], got {growth!r}")
-    h_max = radius / 3.0 if h_max is None else _positive("h_max", h_max)
-    if h_max < h_contact:
-        raise ValueError(f"h_max must be >= h_contact = {h_contact!r} m, got {h_max!r}")
-    fine_radius = float(fine_radius)
-    fine_half_length = float(fine_half_length)
-    for name, value in (("fine_radius", fine_radius), ("fine_half_length", fine_half_length)):
-        if not (math.isfinite(value) and 0.0 <= value <= radius):
-            raise ValueError(f"{name} must lie in [0, ball_radius] = [0, {radius!r}] m, got {value!r}")
-    if symmetry not in SYMMETRIES:
-        raise ValueError(f"symmetry must be one of {SYMMETRIES}, got {symmetry!r}")
-    if element_order not in (1, 2):
-        raise ValueError(f"element_order must be 1 or 2, got {element_order!r}")
-    return radius, h_contact, growth, h_max, fine_radius, fine_half_length
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    h_contact, growth, h_max, fine_radius = check_refinement(radius, h_contact, growth, h_max, fine_radius,
+                                                             fine_radius_max=radius)
+    fine_half_length, _ = check_fine_zone(fine_half_length, upper=radius)
+    checks.choice("symmetry", symmetry, SYMMETRIES)
+    element_order = checks.count("element_order", element_order, 1, 2)
+    return radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order
 
 
 def _bounds(symmetry: str, half_x: float, half_y: float) -> tuple[float, float, float, float]:
@@ -84,11 +64,10 @@ def _bounds(symmetry: str, half_x: float, half_y: float) -> tuple[float, float, 
 
 
 def _classify_faces(gmsh, volume: tuple[int, int], tol: float) -> dict[str, list[int]]:
-    """Boundary faces of ``volume`` by kind: 'plane_x0', 'plane_y0', 'plane_z=<v>' (by centre), 'curved'."""
+    """Boundary faces of ``volume`` by kind: 'x0', 'y0' (planes x = 0, y = 0), 'other_plane', 'curved'."""
     faces: dict[str, list[int]] = {"x0": [], "y0": [], "other_plane": [], "curved": []}
     for _, tag in gmsh.model.getBoundary([volume], oriented=False):
         kind = gmsh.model.getType(2, tag)
-        cx, cy, cz = gmsh.model.occ.getCenterOfMass(2, tag)
         if kind == "Plane":
             lo = gmsh.model.getBoundingBox(2, tag)
             if abs(lo[0]) < tol and abs(lo[3]) < tol:
@@ -144,24 +123,12 @@ def _build_pair(kind: str, params: dict, counter_factory, *, radius: float, symm
             gmsh_tools.physical(gmsh, 2, bf["x0"] + cf["x0"], "symmetry_x")
         if symmetry in ("quarter", "half"):
             gmsh_tools.physical(gmsh, 2, bf["y0"] + cf["y0"], "symmetry_y")
-        _refine(gmsh, h_contact, growth, h_max, fine_radius, fine_half_length)
+        refine_contact(gmsh, h_contact, growth, h_max, fine_radius=fine_radius, fine_half_length=fine_half_length)
         gmsh.model.mesh.generate(3)
         if element_order == 2:
             gmsh.model.mesh.setOrder(2)
         gmsh_tools.write_msh(gmsh, path)
     return path
-
-
-def _refine(gmsh, h_contact, growth, h_max, fine_radius, fine_half_length) -> None:
-    """Size field about the segment |x| <= fine_half_length of the x axis (the contact ellipse)."""
-    threshold = gmsh_tools.contact_refinement(gmsh, h_contact, growth, h_max, fine_radius=fine_radius)
-    if fine_half_length > 0.0:
-        # replace the point distance by the distance to the segment
-        field = gmsh.model.mesh.field
-        distance = field.add("MathEval")
-        field.setString(distance, "F", f"Sqrt(Max(Fabs(x) - {fine_half_length!r}, 0)^2 + y^2 + z^2)")
-        field.setNumber(threshold, "InField", distance)
-        field.setAsBackgroundMesh(threshold)
 
 
 def _common_params(**kwargs) -> dict:
@@ -176,10 +143,10 @@ def ball_on_flat_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
 
     Block defaults: half-width and depth ``R_B``.  Mesh size: module docstring.
     """
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
-    half = radius if block_half_width is None else _positive("block_half_width", block_half_width)
-    depth = radius if block_depth is None else _positive("block_depth", block_depth)
+    half = radius if block_half_width is None else checks.positive("block_half_width", block_half_width, "m")
+    depth = radius if block_depth is None else checks.positive("block_depth", block_depth, "m")
 
     def counter(occ):
         x0, x1, y0, y1 = _bounds(symmetry, half, half)
@@ -197,9 +164,9 @@ def ball_on_ball_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
                       symmetry: str = "quarter", element_order: int = 1, cache: bool = True) -> Path:
     """Ball on ball (the B2B pair): the counter is the hemisphere ``-R_2 <= z <= 0`` of a
     second ball of radius ``other_radius`` (default ``ball_radius``) [m], held on its flat face."""
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
-    other = radius if other_radius is None else _positive("other_radius", other_radius)
+    other = radius if other_radius is None else checks.positive("other_radius", other_radius, "m")
 
     def counter(occ):
         x0, x1, y0, y1 = _bounds(symmetry, 2 * other, 2 * other)
@@ -226,20 +193,15 @@ def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float,
     ``0.6 R_B`` (at most ``0.9 r_g``), half-length (along it) ``0.6 R_B``, depth
     below the contact ``0.6 R_B``.
     """
-    radius, h_contact, growth, h_max, fine_radius, fine_half_length = _check_common(
+    radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
         ball_radius, h_contact, growth, h_max, fine_radius, fine_half_length, symmetry, element_order)
-    try:
-        conformity = float(conformity)
-    except (TypeError, ValueError):
-        raise ValueError(f"conformity must lie in (0.5, 1), got {conformity!r}") from None
-    if not (math.isfinite(conformity) and 0.5 < conformity < 1.0):
-        raise ValueError(f"conformity must lie in (0.5, 1), got {conformity!r}")
-    r_g = conformity * 2.0 * radius
-    half_w = 0.6 * radius if block_half_width is None else _positive("block_half_width", block_half_width)
+    conformity = checks.conformity("conformity", conformity)
+    r_g = groove_radius(radius, conformity)
+    half_w = 0.6 * radius if block_half_width is None else checks.positive("block_half_width", block_half_width, "m")
     if half_w > 0.9 * r_g:
         raise ValueError(f"block_half_width must lie in (0, 0.9 r_g] = (0, {0.9 * r_g!r}] m, got {half_w!r}")
-    half_l = 0.6 * radius if block_half_length is None else _positive("block_half_length", block_half_length)
-    depth = 0.6 * radius if block_depth is None else _positive("block_depth", block_depth)
+    half_l = 0.6 * radius if block_half_length is None else checks.positive("block_half_length", block_half_length, "m")
+    depth = 0.6 * radius if block_depth is None else checks.positive("block_depth", block_depth, "m")
 
     def counter(occ):
         x0, x1, y0, y1 = _bounds(symmetry, half_w, half_l)

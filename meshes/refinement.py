@@ -1,0 +1,211 @@
+"""Mesh-size control of every builder in ``meshes/``: one growth law, its fine zones, the
+uniform fallback and the checks of their arguments.
+
+Growth law (the only size control when refining; issue 5 notes):
+
+    h(d) = min(h_max, h_contact + (growth - 1) max(0, d - fine_radius))
+
+with ``d`` the distance [m] from a fine zone: a point (:func:`point_distance`), the
+segment ``|x| <= L`` of the x axis (:func:`segment_distance`, an elongated Hertz
+ellipse of a contact pair) or the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z``
+(:func:`box_distance`).  Along a ray away from the fine zone the sizes of
+neighbouring elements differ by about the factor ``growth`` (``h(d + h) = h +
+(growth - 1) h``).  gmsh's own size sources (MeshSizeFromPoints,
+MeshSizeFromCurvature, MeshSizeExtendFromBoundary) are switched off, otherwise gmsh
+ignores the field near small curves.
+
+* :func:`check_refinement` - validated ``(h_contact, growth, h_max, fine_radius)`` of
+  a builder (``h_contact <= R_B / 4``, ``growth`` in [1, 3], ``h_max`` default ``R_B / 3``);
+  :func:`check_fine_zone` - validated segment half-length or box half-lengths.
+* :func:`size_threshold` - the law on any gmsh distance field, set as background mesh.
+* :func:`contact_refinement` - the law about one point; :func:`refine_at_points` -
+  the smallest of the laws about several points (the contacts of a module);
+  :func:`refine_contact` - the law about the fine zone of a contact pair.
+* :func:`uniform_size` - the fallback without refinement: sizes in ``[h_max / 2, h_max]``;
+  :func:`size_at_points` - the contacts' refinement or that fallback.
+
+gmsh is passed in (the module of an open :func:`meshes.gmsh_tools.session`); all
+lengths in metres.
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+
+from ballbench.lowmodel import checks
+
+__all__ = ["check_refinement", "check_fine_zone", "size_threshold", "point_distance", "segment_distance",
+           "box_distance", "contact_refinement", "refine_at_points", "refine_contact", "uniform_size", "size_at_points"]
+
+GROWTH_RANGE = (1.0, 3.0)  # size ratio of neighbouring elements away from the fine zone
+
+
+# --------------------------------------------------------------------------
+# argument checks
+# --------------------------------------------------------------------------
+def _check_law(h_contact, growth, h_max, fine_radius) -> tuple[float, float, float, float]:
+    """The growth law's own conditions: lengths finite and positive, growth in [1, 3],
+    ``h_max >= h_contact``, ``fine_radius >= 0``."""
+    h_contact = checks.positive("h_contact", h_contact, "m")
+    growth = checks.finite("growth", growth)
+    if not GROWTH_RANGE[0] <= growth <= GROWTH_RANGE[1]:
+        raise ValueError(f"growth (size ratio of neighbouring elements) must lie in [1, 3], got {growth!r}")
+    h_max = checks.positive("h_max", h_max, "m")
+    if h_max < h_contact:
+        raise ValueError(f"h_max must be >= h_contact = {h_contact!r} m, got {h_max!r}")
+    fine_radius = checks.non_negative("fine_radius", fine_radius, "m")
+    return h_contact, growth, h_max, fine_radius
+
+
+def check_refinement(ball_radius: float, h_contact, growth, h_max=None, fine_radius=None, *,
+                     fine_radius_max: float = math.inf) -> tuple[float, float, float, float]:
+    """Validated ``(h_contact, growth, h_max, fine_radius)`` [m, -, m, m] of a builder
+    meshing a ball of radius ``ball_radius`` [m] (already validated).
+
+    ``h_contact`` in (0, R_B/4]; ``growth`` in [1, 3]; ``h_max`` (default ``R_B / 3``)
+    ``>= h_contact``; ``fine_radius`` (default 0) in ``[0, fine_radius_max]``.
+    ValueError names the parameter and its range.
+    """
+    h_contact = checks.positive("h_contact", h_contact, "m")
+    if h_contact > ball_radius / 4.0:
+        raise ValueError(f"h_contact must lie in (0, ball_radius/4] = (0, {ball_radius / 4!r}] m, got {h_contact!r}")
+    h_max = ball_radius / 3.0 if h_max is None else h_max
+    h_contact, growth, h_max, fine_radius = _check_law(h_contact, growth, h_max,
+                                                       0.0 if fine_radius is None else fine_radius)
+    if fine_radius > fine_radius_max:
+        raise ValueError(f"fine_radius must lie in [0, {fine_radius_max!r}] m, got {fine_radius!r}")
+    return h_contact, growth, h_max, fine_radius
+
+
+def check_fine_zone(fine_half_length=0.0, fine_patch=None, *,
+                    upper: float = math.inf) -> tuple[float, tuple[float, ...] | None]:
+    """Validated fine zone of a contact pair: ``fine_half_length`` [m] in ``[0, upper]``
+    (the segment ``|x| <= fine_half_length``; 0: the point) or ``fine_patch``, the box
+    half-lengths ``(l_x, l_y[, l_z])`` [m], each > 0; not both."""
+    fine_half_length = checks.non_negative("fine_half_length", fine_half_length, "m")
+    if fine_half_length > upper:
+        raise ValueError(f"fine_half_length must lie in [0, {upper!r}] m, got {fine_half_length!r}")
+    if fine_patch is None:
+        return fine_half_length, None
+    if fine_half_length > 0.0:
+        raise ValueError("fine_patch and fine_half_length exclude each other: give one fine zone")
+    try:
+        fine_patch = tuple(checks.positive("fine_patch", v, "m") for v in fine_patch)
+    except TypeError:
+        raise ValueError(f"fine_patch must be half-lengths (l_x, l_y[, l_z]) [m], got {fine_patch!r}") from None
+    if len(fine_patch) not in (2, 3):
+        raise ValueError(f"fine_patch must be half-lengths (l_x, l_y[, l_z]) [m], got {fine_patch!r}")
+    return fine_half_length, fine_patch
+
+
+# --------------------------------------------------------------------------
+# distance fields (gmsh MathEval) and the growth law
+# --------------------------------------------------------------------------
+def _beyond(axis: str, half_length: float) -> str:
+    """``max(0, |axis| - half_length)`` as a MathEval expression (exact: (a + |a|) / 2)."""
+    return f"((Abs({axis}) - ({half_length!r}) + Abs(Abs({axis}) - ({half_length!r}))) / 2)"
+
+
+def point_distance(gmsh, point: Sequence[float] = (0.0, 0.0, 0.0)) -> int:
+    """Field tag of the distance [m] from ``point`` [m]."""
+    x0, y0, z0 = (float(c) for c in point)
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    field.setString(distance, "F", f"Sqrt((x-({x0!r}))^2 + (y-({y0!r}))^2 + (z-({z0!r}))^2)")
+    return distance
+
+
+def box_distance(gmsh, half_lengths: Sequence[float]) -> int:
+    """Field tag of the distance [m] from the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z``
+    about the origin (``half_lengths = (l_x, l_y[, l_z])`` [m], missing ones 0)."""
+    lengths = [float(v) for v in half_lengths] + [0.0] * (3 - len(half_lengths))
+    beyond = [_beyond(axis, length) for axis, length in zip("xyz", lengths)]
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    field.setString(distance, "F", f"Sqrt({beyond[0]}^2 + {beyond[1]}^2 + {beyond[2]}^2)")
+    return distance
+
+
+def segment_distance(gmsh, half_length: float) -> int:
+    """Field tag of the distance [m] from the segment ``|x| <= half_length`` [m] of the x axis."""
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    field.setString(distance, "F", f"Sqrt({_beyond('x', float(half_length))}^2 + y^2 + z^2)")
+    return distance
+
+
+def size_threshold(gmsh, distance_field: int, h_contact: float, growth: float, h_max: float, *,
+                   fine_radius: float = 0.0) -> int:
+    """Background size ``h = min(h_max, h_contact + (growth - 1) max(0, d - fine_radius))``
+    with ``d`` the value [m] of the gmsh field ``distance_field``; returns the field tag.
+
+    Turns off MeshSizeFromPoints/FromCurvature/ExtendFromBoundary so that the
+    field alone governs the size (issue 5 notes).
+    """
+    h_contact, growth, h_max, fine_radius = _check_law(h_contact, growth, h_max, fine_radius)
+    field = gmsh.model.mesh.field
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance_field)
+    field.setNumber(threshold, "SizeMin", h_contact)
+    field.setNumber(threshold, "SizeMax", h_max)
+    field.setNumber(threshold, "DistMin", fine_radius)
+    slope = max(growth - 1.0, 1e-9)
+    field.setNumber(threshold, "DistMax", fine_radius + (h_max - h_contact) / slope)
+    field.setAsBackgroundMesh(threshold)
+    for option in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
+        gmsh.option.setNumber(option, 0)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    return threshold
+
+
+# --------------------------------------------------------------------------
+# fine zones of the builders
+# --------------------------------------------------------------------------
+def contact_refinement(gmsh, h_contact: float, growth: float, h_max: float, *,
+                       point: Sequence[float] = (0.0, 0.0, 0.0), fine_radius: float = 0.0) -> int:
+    """The growth law about ``point`` [m] (a contact point) as background mesh; returns the field tag."""
+    _check_law(h_contact, growth, h_max, fine_radius)
+    return size_threshold(gmsh, point_distance(gmsh, point), h_contact, growth, h_max, fine_radius=fine_radius)
+
+
+def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> int:
+    """Background size ``min_k h_k`` with ``h_k`` the growth law about the point ``X_k``
+    (``points`` shape (n, 3) [m]: the contacts of a module); returns the field tag."""
+    fields = [contact_refinement(gmsh, h_contact, growth, h_max, point=point, fine_radius=fine_radius)
+              for point in np.atleast_2d(np.asarray(points, dtype=float)).tolist()]
+    minimum = gmsh.model.mesh.field.add("Min")
+    gmsh.model.mesh.field.setNumbers(minimum, "FieldsList", fields)
+    gmsh.model.mesh.field.setAsBackgroundMesh(minimum)
+    return minimum
+
+
+def refine_contact(gmsh, h_contact: float, growth: float, h_max: float, *, fine_radius: float = 0.0,
+                   fine_half_length: float = 0.0, fine_patch: Sequence[float] | None = None) -> int:
+    """The growth law about the fine zone of a contact pair at the origin (checked by
+    :func:`check_fine_zone`): the box ``fine_patch`` if given (``fine_radius`` unused),
+    else the segment ``|x| <= fine_half_length`` of the x axis, else the origin."""
+    if fine_patch is not None:
+        return size_threshold(gmsh, box_distance(gmsh, fine_patch), h_contact, growth, h_max)
+    if fine_half_length > 0.0:
+        distance = segment_distance(gmsh, fine_half_length)
+    else:
+        distance = point_distance(gmsh)
+    return size_threshold(gmsh, distance, h_contact, growth, h_max, fine_radius=fine_radius)
+
+
+def uniform_size(gmsh, h_max: float) -> None:
+    """No refinement: element sizes between ``h_max / 2`` and ``h_max`` [m]."""
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h_max)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
+
+
+def size_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
+    """The size of a module or part: :func:`refine_at_points` about ``points`` (n, 3) [m], or
+    :func:`uniform_size` ``h_max`` where ``points`` is None (the builder was given no ``h_contact``)."""
+    if points is None:
+        uniform_size(gmsh, h_max)
+    else:
+        refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)
