@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -72,8 +73,9 @@ class PairGeometry:
     angle: float
 
 
+@lru_cache(maxsize=64)
 def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
-    """Exact helix chord of two touching balls (geometry core: :func:`helix.ball_centre_azimuths`)."""
+    """Exact helix chord of two touching balls (geometry core: :func:`helix.ball_centre_azimuths`); cached."""
     step = helix.ball_centre_azimuths(module.pitch_radius, module.lead, 2.0 * module.ball_radius)
     frame_0 = helix.cs3_frame(0.0, module.lead_angle)
     frame_1 = helix.cs3_frame(step, module.lead_angle)
