@@ -267,10 +267,13 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
         forces[touching] = z[base:] * scales.force
         return balls, z[k * n:base], forces
 
+    last = {}
+
     def make_function(oversize):
         def function(z):
             balls, shift, forces = unpack(z)
             terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales, oversize=oversize)
+            last.update(z=z, terms=terms, oversize=oversize)
             residual = np.empty(size)
             jac = np.zeros((size, size))
             ball_residual = terms.residual.copy()
@@ -345,7 +348,10 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
             raise ConvergenceError(f"{n}-ball screw module: complementarity violated", residual=violation,
                                    iterations=iterations, tolerance=tolerance)
         forces = np.maximum(forces, 0.0)
-    terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales)
+    if last.get("z") is z and last.get("oversize") == module.oversize:   # the last evaluation was at the solution
+        terms = last["terms"]
+    else:
+        terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales)
     speeds = np.zeros(len(pairs))
     if len(pairs):
         speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
