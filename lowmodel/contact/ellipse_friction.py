@@ -90,6 +90,7 @@ __all__ = [
     "friction_map",
     "FrictionMap",
     "B_OVER_A_RANGE",
+    "tanh_sinh_rule",
 ]
 
 B_OVER_A_RANGE = (0.02, 1.0)  # tabulated range of b/a (a >= b by convention)
@@ -284,6 +285,11 @@ def _tanh_sinh(level: int) -> tuple[np.ndarray, np.ndarray]:
     w = step * 0.25 * math.pi * np.cosh(t) / np.cosh(arg) ** 2
     keep = (x > 0.0) & (x < 1.0) & (w > 0.0)
     return x[keep], w[keep]
+
+
+def tanh_sinh_rule(level: int) -> tuple[np.ndarray, np.ndarray]:
+    """Tanh-sinh nodes and weights on (0, 1) (step ``2^-level``); shared with :mod:`ellipse_friction_offset`."""
+    return _tanh_sinh(level)
 
 
 @lru_cache(maxsize=8)

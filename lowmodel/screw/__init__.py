@@ -1,1 +1,7 @@
-"""Ball-screw kinematics (wang2022) and Harris's bearing kinematics."""
+"""Ball screws: contact kinematics (wang2022), Harris's bearing kinematics, and lin2019 Sec 3.
+
+Modules: ``kinematics`` (wang2022 Frenet-frame velocities), ``harris``,
+``screw_ball`` (one ball, lin2019 eqs 34-55), ``screw_b2b`` (2 to N balls with
+ball-to-ball contact, eqs 56-61), ``load_distribution`` (static axial load of each
+ball), ``whole_screw`` (Sec 3.4 simulation).  docs/ball_screw.md.
+"""

@@ -74,3 +74,37 @@ TABLE1 = LinearBearing()
 CASE = CaseStudy()
 PRINTED = PrintedTwoBallCase()
 TABLE4 = BallScrew()
+
+
+@dataclass(frozen=True)
+class PrintedScrewCase:
+    """lin2019 Table 5 and Sec 3.3: one two-ball case of the ball screw (ball 1 theta = 0, ball 2 theta)."""
+
+    theta: float                 # contact angle deviation of ball 2 on the screw side [rad]
+    f_b2b_numerical: float       # N (Table 5, low-order numerical)
+    f_b2b_ansys: float           # N (Table 5, ANSYS FEA)
+    friction_increase: float     # % (Sec 3.3, low-order numerical, "relative to that before B2B contact")
+
+
+@dataclass(frozen=True)
+class PrintedWholeScrew:
+    """lin2019 Sec 3.4 (Figs 19-21): the whole-screw simulation, inputs and printed results."""
+
+    screw_length: float = 0.8                 # m          printed 800 mm
+    n_balls: int = 37                         # [-]        "37 balls in two loaded turns"
+    loaded_turns: int = 2                     # [-]
+    occupation: float = 97.8                  # %          "97.8% occupation ratio of the active ball track"
+    axial_load: float = 1500.0                # N          printed 1500 N
+    duration: float = 2.0                     # s          "2 s in 200 steps"
+    steps: int = 200                          # [-]
+    theta_cycles: int = 4                     # [-]        four cycles over the two turns (Fig 19 missing)
+    groups: int = 4                           # [-]        "Four groups of ball-to-ball contact form"
+    peak_increase: float = 49.6               # %          B2B extra friction torque, maximum
+    peak_angle: float = math.radians(126.0)   # rad        printed 126 deg nut rotation angle
+    zero_angle: float = math.radians(306.0)   # rad        printed 306 deg (no B2B contact)
+    axial_load_two_ball: float = 50.0         # N          Sec 3.3 two-ball module, on the screw
+
+
+TABLE5_A = PrintedScrewCase(math.radians(2.0), 1.92, 1.80, 39.2)   # case (a): printed 2 deg, 1.92 / 1.80 N, 39.2 %
+TABLE5_B = PrintedScrewCase(math.radians(3.0), 2.89, 2.71, 60.2)   # case (b): printed 3 deg, 2.89 / 2.71 N, 60.2 %
+WHOLE_SCREW = PrintedWholeScrew()

@@ -1,0 +1,149 @@
+"""Static axial load distribution over the balls of a ball-screw nut (low-order; stands in for lin2019 ref [19]).
+
+lin2019 Sec 3.4 takes the load of each ball from its ref [19] (a low-order model with
+lateral deformation and geometric errors, not available here).  This module is a
+documented substitute with two ingredients:
+
+1. **Hertz contacts of one ball** (:mod:`lowmodel.screw.screw_ball`): the relative
+   axial shift ``u`` of nut and screw that makes a nominal ball (theta = 0, the
+   module's preload) carry the axial load ``q``, ``u = U(q)``, tabulated by solving the
+   single-ball model (friction included) on a grid of loads and interpolated
+   (monotone cubic, scipy ``PchipInterpolator``).
+2. **Axial compliance of screw and nut** as bars: between the loaded end of the
+   nut (``z = 0``) and its flange (``z = Z``) the screw carries ``N_s(z) = F_a - S(z)``
+   and the nut ``N_n(z) = S(z)``, ``S(z)`` the load already handed over by the balls
+   with ``z_i < z`` (the bolt-and-nut, "tension-compression" arrangement: the
+   screw is loaded at the end before the nut, the nut held at its far flange).
+   The shift seen by ball ``j`` is ``u_j = u_0 - int_0^{z_j} (N_s/(E A_s) + N_n/(E A_n)) dz``.
+
+The loads solve ``q_j = U^-1(u_j)``, ``sum q_j = F_a`` (fixed-point iteration on the
+elastic offsets, ``brentq`` for ``u_0``).  Left out (docs/ball_screw.md): radial and
+lateral deformation of screw and nut, thread bending, shear lag of the nut wall,
+geometric errors in the distribution (every ball is the nominal one here; the
+deviations enter the friction model only), friction's effect on the shares,
+centrifugal and gyroscopic loads.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.screw import screw_ball as sb
+
+__all__ = ["BarSections", "bar_sections", "AxialStiffness", "axial_stiffness", "distribute"]
+
+
+@dataclass(frozen=True)
+class BarSections:
+    """Axial cross-section areas [m^2] of the screw shaft and the nut wall."""
+
+    screw_area: float
+    nut_area: float
+
+
+def bar_sections(module: sb.ScrewModule, *, screw_radius: float | None = None,
+                 nut_outer_radius: float | None = None) -> BarSections:
+    """Screw as a solid bar of radius ``R_P - R_B`` (default), nut as a tube from ``R_P + R_B`` to
+    ``nut_outer_radius`` (default ``1.7 R_P``, an assumption: lin2019 Table 4 gives no nut size) [m]."""
+    inner = module.pitch_radius + module.ball_radius
+    screw_radius = module.pitch_radius - module.ball_radius if screw_radius is None else screw_radius
+    outer = 1.7 * module.pitch_radius if nut_outer_radius is None else nut_outer_radius
+    screw_radius = checks.positive("screw_radius", screw_radius, "m")
+    outer = checks.bounded("nut_outer_radius", outer, inner, math.inf, "m", note="beyond R_P + R_B")
+    return BarSections(math.pi * screw_radius**2, math.pi * (outer**2 - inner**2))
+
+
+@dataclass(frozen=True)
+class AxialStiffness:
+    """Tabulated shift ``u = U(q)`` [m] of one nominal ball against its axial load ``q`` [N]."""
+
+    loads: np.ndarray
+    shifts: np.ndarray
+
+    @cached_property
+    def _interpolant(self):
+        from scipy.interpolate import PchipInterpolator
+
+        order = np.argsort(self.shifts)
+        return PchipInterpolator(self.shifts[order], self.loads[order])
+
+    def load(self, shift) -> np.ndarray:
+        """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points."""
+        return self._interpolant(shift)
+
+    def shift(self, load) -> np.ndarray:
+        """``u = U(q)``, the exact inverse of :meth:`load` (brentq per value)."""
+        from scipy.optimize import brentq
+
+        values = np.atleast_1d(np.asarray(load, dtype=float))
+        low, high = self.shifts.min(), self.shifts.max()
+        out = np.array([brentq(lambda u, q=q: float(self._interpolant(u)) - q, low, high, xtol=1e-18)
+                        for q in values.ravel()])
+        return out.reshape(np.shape(load)) if np.ndim(load) else float(out[0])
+
+
+def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13) -> AxialStiffness:
+    """Solve the single-ball model (theta = 0) for ``points`` loads in ``[0, max_load]`` [N]."""
+    max_load = checks.positive("max_load", max_load, "N")
+    points = checks.count("points", points, 4)
+    loads = np.linspace(0.0, max_load, points)
+    contacts = sb.ball_contacts(module, 0.0)
+    shifts = np.array([sb.solve_balls(contacts, float(q)).nut_shift for q in loads])
+    steps = np.diff(shifts)
+    if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
+        raise ValueError("the ball's axial shift is not monotone in its load on [0, max_load]; "
+                         "reduce max_load or increase the preload")
+    return AxialStiffness(loads, shifts)
+
+
+def distribute(positions, total_load: float, stiffness: AxialStiffness, sections: BarSections, lead: float,
+               youngs_modulus: float, *, lead_error: float = 0.0, tolerance: float = 1e-10,
+               max_iterations: int = 50) -> np.ndarray:
+    """Axial load [N] of each ball, shape (n,).
+
+    ``positions``: azimuth of each ball in the nut [rad] from the loaded end (``z = lead psi / 2 pi``);
+    ``total_load`` [N] >= 0 on the screw; ``lead`` [m]; ``youngs_modulus`` [Pa] of screw and nut;
+    ``lead_error`` [m per turn]: the nut groove's lead minus the screw's (a geometric error, lin2019
+    Sec 3.1 / ref [19]); it adds ``lead_error psi / 2 pi`` to the nut's axial position at each ball
+    (with the sign of the elastic shortening: a positive error unloads the far balls).
+    """
+    from scipy.optimize import brentq
+
+    psi = np.asarray(checks.non_negative("positions", positions, "rad"), dtype=float).reshape(-1)
+    total = checks.non_negative("total_load", total_load, "N")
+    n = psi.size
+    if total == 0.0:
+        return np.zeros(n)
+    if total > n * stiffness.loads[-1]:
+        raise ValueError(f"total_load must be at most n * max_load of the stiffness table = "
+                         f"{n * stiffness.loads[-1]!r} N, got {total!r}")
+    z = lead * psi / (2.0 * math.pi)
+    geometric = checks.finite("lead_error", lead_error, "m per turn") * psi / (2.0 * math.pi)
+    order = np.argsort(z)
+    compliance_s = 1.0 / (youngs_modulus * sections.screw_area)
+    compliance_n = 1.0 / (youngs_modulus * sections.nut_area)
+    loads = np.full(n, total / n)
+    low, high = stiffness.shifts.min(), stiffness.shifts.max()
+    for _ in range(max_iterations):
+        handed = np.cumsum(loads[order]) - loads[order]           # S(z) just before each ball
+        segment = np.diff(np.concatenate([[0.0], z[order]]))      # z from the previous ball (or 0)
+        before = np.concatenate([[0.0], handed[1:]])               # S over each segment
+        strain = (total - before) * compliance_s + before * compliance_n
+        offset = np.empty(n)
+        offset[order] = np.cumsum(strain * segment)                # int_0^z (eps_s + eps_n)
+        offset = offset + geometric
+        sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
+
+        def mismatch(u0):
+            return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)
+
+        u0 = brentq(mismatch, low - offset.max(), high + offset.max(), xtol=1e-16)
+        new = stiffness.load(np.clip(u0 - sign * offset, low, high))
+        if np.max(np.abs(new - loads)) <= tolerance * total:
+            return new
+        loads = new
+    return loads

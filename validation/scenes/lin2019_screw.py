@@ -1,0 +1,293 @@
+"""Scenes for the ball-screw B2B model (lin2019 Sec 3.1-3.3, Tables 4-5).
+
+Models: lowmodel.screw.screw_ball (eqs 34-55), lowmodel.screw.screw_b2b (eqs 56-61).
+Two-ball module of lin2019 Sec 3.3 (Table 4 parameters, the screw_module
+defaults): ball 1 (behind, ball 0 here) theta = 0, ball 2 theta = 2 deg (case a)
+or 3 deg (case b), 50 N axial load on the screw, balls touching.
+
+Two readings the paper leaves open (docs/ball_screw.md):
+
+* preload: Table 4 gives none.  ``oversize`` (the approach of every contact of a
+  centred ball) is fitted on case (a)'s low-order B2B force alone; case (b) and
+  both friction increases are then predictions.
+* deviation (Fig 17 is missing): ``tilted`` (both screw flanks at beta_0 + theta)
+  reproduces the paper; ``rotated`` (the screw profile turned by theta) cannot
+  reach 1.92 N at any preload (its B2B force falls with preload from 1.0 N).
+
+The literal reading (no preload) is reported beside it; where it misses the
+paper it is a known gap (note of each scene).
+"""
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+
+from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.validation.papers import lin2019
+from ballbench.validation.scene import scene
+
+MODEL = "lowmodel.screw.screw_b2b"
+AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw, lin2019 Sec 3.3
+PRINTED = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
+READING = "tilted"
+
+
+def _module(oversize: float) -> screw_ball.ScrewModule:
+    """lin2019 Table 4 (validation.papers) with the preload ``oversize`` [m]."""
+    t4 = lin2019.TABLE4
+    return screw_ball.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
+                                   pitch_radius=t4.pitch_radius, lead=t4.lead, nominal_angle=t4.nominal_angle,
+                                   nut_speed=t4.nut_angular_velocity, friction_coefficient=t4.friction_coefficient,
+                                   oversize=oversize, **t4.material)
+
+
+def two_ball(case: str, oversize: float, reading: str = READING):
+    """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]."""
+    theta = PRINTED[case].theta
+    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, theta]), reading=reading)
+    free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
+    state = screw_b2b.solve(contacts, AXIAL_LOAD)
+    return free, state
+
+
+def friction_increase(free, state) -> float:
+    """Friction increase by B2B contact [%]: total loss of the touching balls over the free balls' loss."""
+    return 100.0 * (state.total_loss / free.total_loss - 1.0)
+
+
+@lru_cache(maxsize=2)
+def fitted_oversize(reading: str = READING) -> float:
+    """Preload (oversize [m]) at which case (a)'s B2B force is the paper's 1.92 N (brentq, 1e-12 m)."""
+    from scipy.optimize import brentq
+
+    target = PRINTED["a"].f_b2b_numerical
+    return float(brentq(lambda oversize: two_ball("a", oversize, reading)[1].b2b_force[0] - target, 1.0e-6,
+                        3.0e-6, xtol=1e-12))
+
+
+def _table5(run, case: str):
+    printed = PRINTED[case]
+    oversize = fitted_oversize()
+    (free, state), time_s = run.time(two_ball, case, oversize)
+    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, printed.theta]), reading=READING)
+    _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
+    force = float(state.b2b_force[0])
+    increase = friction_increase(free, state)
+    balance = max(abs(s.input_power - s.total_loss) / s.total_loss for s in (free, state))
+    fitted = "fitted on this case" if case == "a" else "prediction (preload fitted on case a)"
+    if case == "b":
+        run.check(model=MODEL, quantity="F_B2B, case b", unit="N", value=force, reference=printed.f_b2b_numerical,
+                  source="lin2019 Table 5, low-order numerical", tolerance=0.05, time_s=solve_s, note=fitted)
+    run.check(model=MODEL, quantity=f"F_B2B, case {case}", unit="N", value=force, reference=printed.f_b2b_ansys,
+              source="lin2019 Table 5, ANSYS FEA", tolerance=0.07, time_s=solve_s,
+              note="the paper's own model is 6.7 % off ANSYS")
+    run.check(model=MODEL, quantity=f"friction increase by B2B, case {case}", unit="%", value=increase,
+              reference=printed.friction_increase, source="lin2019 Sec 3.3",
+              tolerance=3.0 / printed.friction_increase,
+              time_s=time_s, note="prediction (the fit uses the force only); tolerance 3 points")
+    run.check(model=MODEL, quantity="power balance |P_in - P_loss| / P_loss", unit="1", value=balance,
+              reference=0.0, scale=1.0, source="energy conservation (screw at rest, nut drives)",
+              tolerance=1e-8, time_s=time_s)
+    # literal reading: no preload (Table 4 gives none); the deviation reading does not matter there
+    free_0, state_0 = two_ball(case, 0.0)
+    force_0, increase_0 = float(state_0.b2b_force[0]), friction_increase(free_0, state_0)
+    run.note(f"Preload fitted on case a: oversize {oversize * 1e6:.4f} um (every contact of a centred ball "
+             f"approaches by this much; {READING} deviation reading, beta_SL = beta_SR = 45 deg + theta).  "
+             f"Normal forces (SL, SR, NR, NL) of ball 2: {np.round(state.normal_force[1], 2).tolist()} N; "
+             f"orbit speeds before contact {np.round(free.orbit_speed / (2 * math.pi), 5).tolist()} rev/s, "
+             f"together {state.orbit_speed[0] / (2 * math.pi):.5f} rev/s; B2B loss "
+             f"{state.b2b_friction_loss[0]:.4e} W of {state.total_loss:.4e} W.")
+    run.note(f"Known gap, literal reading (no preload): F_B2B = {force_0:.3f} N against the paper's "
+             f"{printed.f_b2b_numerical} N ({100 * (force_0 / printed.f_b2b_numerical - 1):+.1f} %), friction "
+             f"increase {increase_0:.1f} % against {printed.friction_increase} %.  Without preload the "
+             f"{AXIAL_LOAD:g} N load leaves the diagonal SR-NL unloaded except for the third contact NL that "
+             f"friction pushes each ball onto (forces {np.round(state_0.normal_force[1], 2).tolist()} N), and "
+             f"F_B2B no longer scales with theta as the paper's (ratio of the cases = ratio of the deviations, "
+             f"3 deg / 2 deg) does (docs/ball_screw.md).")
+
+
+@scene("lin2019-table5-a", "Ball screw, two balls, theta = 0 / 2 deg: B2B force and friction increase (Table 5 a)",
+       tags=("lowmodel", "screw", "b2b"))
+def lin2019_table5_a(run):
+    _table5(run, "a")
+
+
+@scene("lin2019-table5-b", "Ball screw, two balls, theta = 0 / 3 deg: predicted B2B force and friction increase "
+       "(Table 5 b)", tags=("lowmodel", "screw", "b2b"))
+def lin2019_table5_b(run):
+    _table5(run, "b")
+    oversize = fitted_oversize()
+    force_a = two_ball("a", oversize)[1].b2b_force[0]
+    force_b = two_ball("b", oversize)[1].b2b_force[0]
+    force_a0 = two_ball("a", 0.0)[1].b2b_force[0]
+    force_b0 = two_ball("b", 0.0)[1].b2b_force[0]
+    ratio = PRINTED["b"].f_b2b_numerical / PRINTED["a"].f_b2b_numerical
+    run.note(f"F_B2B(b)/F_B2B(a): {force_b / force_a:.4f} with the fitted preload, {force_b0 / force_a0:.4f} "
+             f"without (paper {ratio:.4f}).")
+
+
+# --------------------------------------------------------------------------
+# whole screw (lin2019 Sec 3.4, Figs 19-21)
+# --------------------------------------------------------------------------
+FIG21 = lin2019.WHOLE_SCREW
+FIG21_AMPLITUDE = math.radians(3.0)  # rad, deviation amplitude (Fig 19 missing): the largest Table 5 value
+FIG21_STEPS = {"quick": 50, "default": FIG21.steps, "fine": FIG21.steps}
+
+
+def whole_screw(steps: int, progress=None):
+    """History of lin2019 Sec 3.4 with the Table 5 preload fit and the tilted deviation reading."""
+    from ballbench.lowmodel.screw import whole_screw as ws
+
+    module = _module(fitted_oversize())
+    return ws.simulate(module, n_balls=FIG21.n_balls, axial_load=FIG21.axial_load, duration=FIG21.duration,
+                       steps=steps, amplitude=FIG21_AMPLITUDE, cycles=FIG21.theta_cycles, reading=READING,
+                       progress=progress)
+
+
+def fig21_summary(history) -> dict:
+    """Groups, peak extra torque [%] and its nut angle [deg], the first nut angle after the peak with no B2B."""
+    ratio = history.b2b_torque / history.groove_torque
+    degrees = np.degrees(history.nut_angle)
+    peak = int(np.argmax(ratio))
+    after = np.flatnonzero(history.b2b_torque[peak:] == 0.0)
+    groups = [history.groups(step) for step in range(len(history.time))]
+    return {"groups": max(groups), "groups_per_step": groups, "peak_increase": 100.0 * float(ratio[peak]),
+            "peak_angle_deg": float(degrees[peak]),
+            "zero_angle_deg": float(degrees[peak + after[0]]) if after.size else float("nan"),
+            "min_after_peak": float(ratio[peak:].min())}
+
+
+@scene("lin2019-fig21", "Whole ball screw, 37 balls, 1500 N, 2 s: B2B groups and friction torque (Figs 20-21)",
+       tags=("lowmodel", "screw", "b2b", "slow"))
+def lin2019_fig21(run):
+    import time
+
+    import matplotlib.pyplot as plt
+
+    steps = FIG21_STEPS[run.fidelity]
+    start = time.perf_counter()
+    history = whole_screw(steps, progress=lambda it: run.progress(it, desc="whole screw steps"))
+    elapsed = time.perf_counter() - start
+    summary = fig21_summary(history)
+    run.check(model="lowmodel.screw.whole_screw", quantity="power balance, worst step", unit="1",
+              value=float(history.power_error.max()), reference=0.0, scale=1.0, tolerance=1e-8, time_s=elapsed,
+              source="energy conservation (screw at rest, nut drives)")
+    run.check(model="lowmodel.screw.whole_screw", quantity="number of B2B groups", unit="1",
+              value=summary["groups"], reference=FIG21.groups, tolerance=0.0, time_s=elapsed,
+              source="lin2019 Sec 3.4 / Fig 20: four groups", note="most groups at any step")
+    run.check(model="lowmodel.screw.whole_screw", quantity="B2B torque / groove torque after the peak, minimum",
+              unit="1", value=summary["min_after_peak"], reference=0.0, scale=1.0, tolerance=0.0, time_s=elapsed,
+              source="lin2019 Sec 3.4 / Fig 21: the groups dissolve (zero B2B torque at 306 deg)")
+    run.note(f"Beside the paper (Fig 21): peak extra torque by B2B {summary['peak_increase']:.1f} % at nut angle "
+             f"{summary['peak_angle_deg']:.0f} deg (paper {FIG21.peak_increase} % at "
+             f"{math.degrees(FIG21.peak_angle):.0f} deg); no B2B first at {summary['zero_angle_deg']:.0f} deg after "
+             f"the peak (paper {math.degrees(FIG21.zero_angle):.0f} deg); groups {summary['groups']} (paper "
+             f"{FIG21.groups}).  Known gap: not fitted are the deviation amplitude "
+             f"({math.degrees(FIG21_AMPLITUDE):.1f} deg, the largest Table 5 deviation; Fig 19 is missing; the peak "
+             f"is 18 % at 2 deg and 53 % at 2.7 deg), the phase of theta along the screw, the load distribution "
+             f"(ref [19] unavailable; lowmodel.screw.load_distribution) and the preload (fitted on Table 5 a); "
+             f"docs/ball_screw.md.")
+    run.note(f"{steps} steps over {FIG21.duration} s ({run.fidelity}); {int(history.iterations.sum())} Newton "
+             f"iterations in {elapsed:.1f} s; axial loads per ball {history.axial_load.min():.1f} .. "
+             f"{history.axial_load.max():.1f} N; friction torque ball-to-groove "
+             f"{1e3 * history.groove_torque.mean():.1f} mN m (mean).")
+    degrees = np.degrees(history.nut_angle)
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    spacing = np.degrees(history.spacing)
+    for ball in range(spacing.shape[1]):
+        ax.plot(degrees, spacing[:, ball], color="0.75", lw=0.6)
+    touching = history.b2b_force > 0.0
+    steps_idx, balls_idx = np.nonzero(touching)
+    ax.scatter(degrees[steps_idx], spacing[steps_idx, balls_idx], s=4, color="k", label="B2B contact")
+    ax.set_xlabel("nut rotation angle [deg]")
+    ax.set_ylabel("angular distance to the next ball [deg]")
+    ax.set_title("lin2019 Fig 20: angular distance between neighbouring balls")
+    ax.legend(loc="upper right")
+    run.save_figure(fig, "fig20.png")
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    ax.plot(degrees, 1e3 * history.total_torque, "k", label="total")
+    ax.plot(degrees, 1e3 * history.groove_torque, "b--", label="ball-to-groove")
+    ax.plot(degrees, 1e3 * history.b2b_torque, "r", label="ball-to-ball")
+    ax.set_xlabel("nut rotation angle [deg]")
+    ax.set_ylabel("friction torque [mN m]")
+    ax.set_title("lin2019 Fig 21: friction torque")
+    ax.legend()
+    run.save_figure(fig, "fig21.png")
+
+
+# --------------------------------------------------------------------------
+# robustness of the screw solvers
+# --------------------------------------------------------------------------
+def stability_cases(fidelity: str) -> list[dict]:
+    """Cases of ``lin2019-screw-stability``: lead angle, preload, deviation, number of balls, load."""
+    quick = fidelity == "quick"
+    cases = []
+    for lead_deg in ((2.0, 25.0) if quick else (2.0, 5.0, 10.0, 15.0, 20.0, 25.0)):
+        cases.append({"what": f"lead angle {lead_deg:g} deg", "lead_angle_deg": lead_deg, "oversize": 1.7e-6,
+                      "thetas": (0.0, 2.0), "load": 25.0})
+    for theta in ((0.0, 3.0) if quick else (0.0, 1.0, 2.0, 3.0)):
+        for load in ((1.0, 100.0) if quick else (1.0, 25.0, 100.0)):
+            cases.append({"what": f"no preload (contacts open), theta {theta:g} deg, {load:g} N", "oversize": 0.0,
+                          "thetas": (0.0, theta), "load": load})
+    for reading in ("rotated", "tilted"):
+        for theta in (-3.0, 3.0):
+            cases.append({"what": f"theta {theta:+g} deg ({reading})", "oversize": 1.7e-6, "thetas": (0.0, theta),
+                          "load": 25.0, "reading": reading})
+    rng = np.random.default_rng(11)
+    for n in ((1, 2, 20) if quick else (1, 2, 5, 20, 100)):
+        cases.append({"what": f"{n} balls, random theta in [-3, 3] deg", "oversize": 1.7e-6,
+                      "thetas": tuple(rng.uniform(-3.0, 3.0, n)), "load": 25.0})
+    for load in ((1.0, 5000.0) if quick else (1.0, 10.0, 100.0, 1000.0, 5000.0)):
+        cases.append({"what": f"{load:g} N per ball", "oversize": 1.7e-6, "thetas": (0.0, 2.0), "load": load})
+    return cases
+
+
+def run_stability_case(case: dict):
+    """Solve one case; returns the state (ConvergenceError / ValueError propagate)."""
+    lead = 2.0 * math.pi * 16.5e-3 * math.tan(math.radians(case.get("lead_angle_deg", math.degrees(
+        math.atan(20e-3 / (2 * math.pi * 16.5e-3))))))
+    module = screw_ball.screw_module(lead=lead, oversize=case["oversize"])
+    contacts = screw_ball.ball_contacts(module, np.radians(case["thetas"]), reading=case.get("reading", READING))
+    return screw_b2b.solve(contacts, case["load"] * len(case["thetas"]))
+
+
+@scene("lin2019-screw-stability", "Ball-screw solvers over lead angle, preload, deviation, 1-100 balls, 1 N-5 kN",
+       tags=("lowmodel", "screw", "robustness"))
+def lin2019_screw_stability(run):
+    import time
+
+    from ballbench.lowmodel.errors import ConvergenceError
+
+    cases = stability_cases(run.fidelity)
+    converged, failures, no_state, worst_power, nan_count = 0, [], [], 0.0, 0
+    start = time.perf_counter()
+    for case in run.progress(cases, desc="stability cases"):
+        try:
+            state = run_stability_case(case)
+        except (ConvergenceError, ValueError) as error:
+            if "no full-sliding state" in str(error):
+                no_state.append(f"{case['what']}: {error}")
+            else:
+                failures.append(f"{case['what']}: {error}")
+            continue
+        arrays = (state.orbit_speed, state.omega, state.normal_force, state.friction_loss, state.b2b_force)
+        nan_count += int(sum(np.count_nonzero(~np.isfinite(a)) for a in arrays))
+        worst_power = max(worst_power, abs(state.input_power - state.total_loss) / state.total_loss)
+        converged += 1
+    elapsed = time.perf_counter() - start
+    exists = len(cases) - len(no_state)
+    run.check(model=MODEL, quantity="converged cases / cases with a state", unit="1", value=converged / exists,
+              reference=1.0, tolerance=0.0, time_s=elapsed / len(cases),
+              source="issue 11: 100 % converged where a state exists",
+              note=f"{len(cases)} cases, {len(no_state)} without a full-sliding state (reasons below)")
+    run.check(model=MODEL, quantity="non-finite outputs", unit="1", value=nan_count, reference=0.0, scale=1.0,
+              tolerance=0.0, time_s=elapsed / len(cases), source="issue 11: no NaN")
+    run.check(model=MODEL, quantity="power balance, worst case", unit="1", value=worst_power, reference=0.0,
+              scale=1.0, tolerance=1e-8, time_s=elapsed / len(cases), source="energy conservation")
+    run.note("Cases: " + "; ".join(case["what"] for case in cases) + ".")
+    if no_state:
+        run.note("No state (friction saturated, reason given by the solver): " + " | ".join(no_state))
+    if failures:
+        run.note("Failures: " + " | ".join(failures))
