@@ -71,7 +71,8 @@ class _Tally:
 
 @scene("lin2019-stability", "Solver sweep: rho and theta up to the lin2017 eq 37 limit, N_y 1e-3 to 1e5 N, mu 1e-6 "
        "to 1, chains of 1 to 200 balls with random gaps and deviations; 100 % convergence where the "
-       "spin-capacity ratio >= 1.05, a reason for every failure; converged-region figure")
+       "spin-capacity ratio >= 1.05, a reason for every failure; converged-region figure",
+       kind="low-order", cost_s=21.0)  # cost: 24.7 s wall, CPU 85 % of wall (default, loaded machine)
 def stability(run):
     sizes = SIZES[run.fidelity]
     rng = np.random.default_rng(2019)
@@ -131,14 +132,17 @@ def stability(run):
     coupled_fraction = float(np.mean(converged[pairs])) if np.any(pairs) else 1.0
     run.check(model=MODEL_B2B, quantity="failures without a reason", unit="count",
               value=float(np.sum(~converged & (reasons == ""))), reference=0.0, scale=1.0, tolerance=0.0,
+              why="a count: tolerance 0, so a single failure without a reason fails; the scale is one solve",
               source="issue 10: ConvergenceError names the reason", time_s=per_solve)
     finite = tally.column(8).astype(bool)
     run.check(model=MODEL_B2B, quantity="converged solves returning NaN", unit="count",
               value=float(np.sum(converged & ~finite)), reference=0.0, scale=1.0, tolerance=0.0,
+              why="a count: tolerance 0, so a single NaN fails; the scale is one solve",
               source="stability requirement (issues 3, 10)", time_s=per_solve)
     power = tally.column(7)
     run.check(model=MODEL_B2B, quantity="worst power balance error, converged solves", unit="1",
               value=float(np.nanmax(power[converged])), reference=0.0, scale=1.0, tolerance=1e-8,
+              why="the value is itself a relative power error (per unit input power): zero judged on the scale 1",
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=per_solve)
     iterations, residuals = tally.column(4), tally.column(5)
     run.check(model=MODEL_B2B, quantity="worst final residual, converged solves (units mu max F and v)", unit="1",

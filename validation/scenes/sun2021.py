@@ -13,13 +13,27 @@ import numpy as np
 from ballbench.lowmodel.contact import screw_contact
 from ballbench.lowmodel.geometry import helix
 from ballbench.validation.papers import sun2021 as paper
-from ballbench.validation.scene import scene
+from ballbench.validation.scene import KnownGap, scene
 
 MODEL = "lowmodel.contact.screw_contact"
 
 T1 = paper.TABLE_1
 HELIX_ANGLES_DEG = paper.HELIX_ANGLES_DEG
 POINTS = {"A": ("screw", "left"), "B": ("nut", "right")}  # A on the screw, B diametrically opposite on the nut
+SIGN_TEST = "sign test: tolerance 0, so any value of the wrong sign fails; the scale only names the unit"
+# sun2021 Fig 11 trends that the solver (matched to Hamrock-Dowson in the same scene) does not give
+FILM_GAP = KnownGap(
+    reason="the helix lengthens the track radius R_x at A (convex screw) and shortens it at B (concave nut), and "
+           "h_c grows with R_x (Hamrock-Dowson R_x^0.46), so the film at A rises and at B falls with the helix "
+           "angle, opposite to sun2021 Fig 11c,d",
+    evidence="sun2021-ehl checks 'central film h_c' against Hamrock-Dowson with the full-tensor radii at every "
+             "point (within 15 %); docs/ehl.md (sun2021 scenes): A +1.0 %, B -0.7 % from 5.68 to 21.71 deg")
+PRESSURE_GAP = KnownGap(
+    reason="with smooth surfaces the film carries part of the load in the inlet, ahead of the Hertz zone, so the "
+           "centre carries less than the dry contact; sun2021 Fig 11a,b show it higher",
+    evidence="sun2021-ehl load-balance checks (eq 19, to 1e-4) and the dry BEM central pressure checked against "
+             "full-tensor Hertz in sun2021-dry-contact; docs/ehl.md: about 3 % lower (A 21.71 deg: 987 against "
+             "1017 MPa at 128 x 32)")
 
 
 def _load() -> float:
@@ -65,7 +79,8 @@ def _difference_figure(results, filename_title):
 @scene("sun2021-dry-contact",
        "sun2021 Table 1 ball screw (preload 1500 N, eq 1 load), helix 5.68/13.97/21.71 deg, points A (screw) "
        "and B (nut): BEM on the exact helical gap against full-tensor Hertz (central pressure, rotation); "
-       "Fig 9 trends; Figs 7-8 difference maps; which part of the difference is a misoriented Hertz")
+       "Fig 9 trends; Figs 7-8 difference maps; which part of the difference is a misoriented Hertz",
+       kind="low-order", cost_s=7.0)  # cost: 7.4 s wall, CPU 99 % of wall (default, loaded machine)
 def sun2021_dry_contact(run):
     n = {"quick": 96, "default": 192, "fine": 384}[run.fidelity]
     results = {}
@@ -83,32 +98,34 @@ def sun2021_dry_contact(run):
                       note="BEM on the exact gap; the higher-order gap terms are all that separates the two")
             run.check(model=MODEL, quantity=f"ellipse rotation theta_s {label}", unit="deg",
                       value=math.degrees(contact.bem_angle), reference=math.degrees(contact.hertz_angle),
-                      scale=1.0, tolerance=0.01, time_s=time_s,
+                      tolerance=1e-3, time_s=time_s,
                       source="principal directions of the exact curvature tensor (issue 14: to 0.01 deg)",
-                      note="angle of the major axis from the profile tangent toward the track; tolerance 0.01 "
-                           "on a 1-deg scale = 0.01 deg")
+                      note="angle of the major axis from the profile tangent toward the track; relative to the "
+                           "rotation itself: 0.1 % is 8e-5 deg at 5.68 deg, 3e-4 deg at 21.71 deg, within issue "
+                           "14's 0.01 deg (an absolute 0.01 deg would be 12 % of the 0.083 deg rotation)")
     first, last = HELIX_ANGLES_DEG[0], HELIX_ANGLES_DEG[-1]
     total_s = float(sum(times))
     pressure = {k: v.bem.central_pressure for k, v in results.items()}
     run.check(model=MODEL, quantity="Fig 9a: central pressure at A falls with helix angle, p(21.71) - p(5.68)",
               unit="Pa", value=pressure[(last, "A")] - pressure[(first, "A")], reference=0.0, relation="le",
-              scale=1e6, tolerance=0.0, time_s=total_s, source="sun2021 Sec 4.2, Fig 9a (trend)")
+              scale=1e6, tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9a (trend)")
     run.check(model=MODEL, quantity="Fig 9b: central pressure at B rises with helix angle, p(21.71) - p(5.68)",
               unit="Pa", value=pressure[(last, "B")] - pressure[(first, "B")], reference=0.0, relation="ge",
-              scale=1e6, tolerance=0.0, time_s=total_s, source="sun2021 Sec 4.2, Fig 9b (trend)")
+              scale=1e6, tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9b (trend)")
     errors = {k: v.bem.central_pressure / float(v.flat_helix.p0) - 1.0 for k, v in results.items()}
     run.check(model=MODEL, quantity="Fig 9c: |error of A| - |error of B| against helix-free Hertz at 21.71 deg",
               unit="1", value=abs(errors[(last, "A")]) - abs(errors[(last, "B")]), reference=0.0,
-              relation="ge", scale=1.0, tolerance=0.0, time_s=total_s,
+              relation="ge", scale=1.0, tolerance=0.0, why=SIGN_TEST, time_s=total_s,
               source="sun2021 Sec 4.2, Fig 9c (error of A larger)")
     for point in POINTS:
         run.check(model=MODEL, quantity=f"Fig 9c: error at {point} grows, |e(21.71)| - |e(5.68)|", unit="1",
                   value=abs(errors[(last, point)]) - abs(errors[(first, point)]), reference=0.0, relation="ge",
-                  scale=1.0, tolerance=0.0, time_s=total_s, source="sun2021 Sec 4.2, Fig 9c (errors increase)")
+                  scale=1.0, tolerance=0.0, why=SIGN_TEST, time_s=total_s,
+                  source="sun2021 Sec 4.2, Fig 9c (errors increase)")
         angles = [abs(results[(a, point)].bem_angle) for a in HELIX_ANGLES_DEG]
         run.check(model=MODEL, quantity=f"Fig 9d: theta_s at {point} grows with helix angle (smallest step)",
                   unit="deg", value=math.degrees(min(np.diff(angles))), reference=0.0, relation="ge", scale=1.0,
-                  tolerance=0.0, time_s=total_s, source="sun2021 Sec 4.2, Fig 9d (trend)")
+                  tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9d (trend)")
     lines = []
     for (angle, point), contact in results.items():
         bem = contact.bem
@@ -134,8 +151,7 @@ def sun2021_dry_contact(run):
              "sun2021 ref [20]; static, friction and inertia left out).  With eq 1 re-evaluated at each helix angle "
              "the load grows by 1/cos(alpha) (+6.6 % at 21.71 deg) and both central pressures rise.")
     run.note("sun2021 gives no number for Figs 7-9 in the text (figures missing); the trends are checked, the "
-             "magnitudes are not comparable.  TODO(lead): declare magnitudes as known gaps once the issue8-val "
-             "known-gap mechanism is on main.")
+             "magnitudes are not comparable (no published number, hence nothing to declare as a known gap).")
     run.save_figure(_difference_figure({k: v for k, v in results.items() if k[1] == "A"},
                                        "sun2021 Fig 8 analogue (point A)"), "fig8_point_A.png")
     run.save_figure(_difference_figure({k: v for k, v in results.items() if k[0] == HELIX_ANGLES_DEG[-1]},
@@ -213,7 +229,8 @@ def _ehl_figure(solution, title):
 @scene("sun2021-ehl",
        "sun2021 Sec 4.3: EHL at A (screw) and B (nut), Table 1 ball screw, eq 1 load, u_s 1005.3 mm/s, domain "
        "+-277 um, exact helical gap, helix 5.68/13.97/21.71 deg: film against Hamrock-Dowson with the "
-       "full-tensor radii, load balance, Fig 10 fields, Fig 11 trends (reported)")
+       "full-tensor radii, load balance, Fig 10 fields, Fig 11 trends (declared known gaps), Fig 12 trend",
+       kind="low-order", cost_s=170.0)  # cost: 239 s wall, CPU 73 % of wall (default, loaded machine)
 def sun2021_ehl(run):
     n = {"quick": 64, "default": 128, "fine": 256}[run.fidelity]  # grid 2n x n/2
     films, pressures, times = {}, {}, []
@@ -237,30 +254,33 @@ def sun2021_ehl(run):
     for point, published in (("A", "decreases"), ("B", "increases")):
         change = films[(last, point)] / films[(first, point)] - 1.0
         found = "decreases" if change < 0 else "increases"
-        run.note(f"Fig 11{'c' if point == 'A' else 'd'}: sun2021 says the central film at {point} {published} with the "
-                 f"helix angle; here it {found} by {100 * change:+.2f} % from {first} to {last} deg "
-                 f"({', '.join(f'{films[(a, point)] * 1e9:.1f}' for a in HELIX_ANGLES_DEG)} nm)."
-                 + ("" if found == published else " Not reproduced: the helix lengthens the track radius R_x at A "
-                    "(convex screw) and shortens it at B (concave nut), and h_c grows with R_x (Hamrock-Dowson "
-                    "R_x^0.46, matched by the solver above). TODO(lead): declare as a known gap."))
+        figure = "11c" if point == "A" else "11d"
+        run.check(model="lowmodel.contact.ehl",
+                  quantity=f"Fig {figure}: central film at {point} {published} with the helix angle, "
+                           f"h_c({last}) / h_c({first}) - 1",
+                  unit="1", value=change, reference=0.0, relation="le" if published == "decreases" else "ge",
+                  scale=1.0, tolerance=0.0, why=SIGN_TEST, time_s=float(sum(times)),
+                  source=f"sun2021 Sec 4.3, Fig {figure} (trend)", known_gap=FILM_GAP,
+                  note=f"here it {found} by {100 * change:+.2f} % "
+                       f"({', '.join(f'{films[(a, point)] * 1e9:.1f}' for a in HELIX_ANGLES_DEG)} nm)")
     speeds = (0.25, 0.5, ENTRAINMENT_SPEED, 2.0)  # m/s, entrainment (Fig 12 varies the screw speed)
     for point in POINTS:
         central = [_ehl_case(last, point, n, speed)[0].central_pressure for speed in speeds]
         run.check(model="lowmodel.contact.ehl",
                   quantity=f"Fig 12: central EHL pressure at {point}, {last} deg, falls with speed (largest step)",
                   unit="Pa", value=float(max(np.diff(central))), reference=0.0, relation="le", scale=1e6,
-                  tolerance=0.0, time_s=float(np.mean(times)), source="sun2021 Sec 4.4, Fig 12 (trend)",
+                  tolerance=0.0, why=SIGN_TEST, time_s=float(np.mean(times)), source="sun2021 Sec 4.4, Fig 12 (trend)",
                   note="u_s " + ", ".join(f"{u:g}" for u in speeds) + " m/s: "
                        + ", ".join(f"{p / 1e6:.1f}" for p in central) + " MPa")
     dry = {key: _contact(key[0], key[1], 96).bem.central_pressure for key in pressures}
-    higher = all(pressures[k] > dry[k] for k in dry)
-    run.note(f"Fig 11a,b: central EHL pressure ({2 * n} x {n // 2}) against the dry (BEM, 96 x 96) central "
-             "pressure [MPa]: "
-             + "; ".join(f"{k[1]} {k[0]} deg {v / 1e6:.1f} vs {dry[k] / 1e6:.1f}" for k, v in pressures.items())
-             + ".  sun2021 Sec 4.3 says the EHL central pressure exceeds the dry one; here it is "
-             + ("higher." if higher else "lower: not reproduced (the film carries part of the load in the inlet, "
-                "ahead of the Hertz zone, so the centre carries less; smooth surfaces).  TODO(lead): declare as a "
-                "known gap."))
+    excess = min(pressures[k] / dry[k] - 1.0 for k in dry)
+    run.check(model="lowmodel.contact.ehl",
+              quantity="Fig 11a,b: central EHL pressure exceeds the dry one, smallest p_EHL / p_dry - 1 over A, B "
+                       "and the three helix angles",
+              unit="1", value=excess, reference=0.0, relation="ge", scale=1.0, tolerance=0.0, why=SIGN_TEST,
+              time_s=float(sum(times)), source="sun2021 Sec 4.3, Fig 11a,b (trend)", known_gap=PRESSURE_GAP,
+              note=f"EHL {2 * n} x {n // 2} against dry BEM 96 x 96 [MPa]: "
+                   + "; ".join(f"{k[1]} {k[0]} deg {v / 1e6:.1f} vs {dry[k] / 1e6:.1f}" for k, v in pressures.items()))
     run.note("Domain: x (track) in [-277, 277] um as sun2021 eq 18; y (across the groove) widened to 1.3 times the "
              "Hertz semi-axis a (the paper's 277 um cuts the contact, a = 275 um at A).")
     run.note("Entrainment along the track (the minor principal direction; it differs from the track by theta_s "
