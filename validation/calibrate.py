@@ -34,12 +34,12 @@ import csv
 import math
 import os
 import re
-import tomllib
 from pathlib import Path
 
 import numpy as np
 
 from ballbench.lowmodel import calibration as cal
+from ballbench.validation.specs import read_toml
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
@@ -287,12 +287,7 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
 def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print) -> tuple[Path, cal.Calibration]:
     """Run the fits of a calibrate spec and write the calibration file; returns (path, calibration)."""
     spec_path = Path(spec_path)
-    try:
-        spec = tomllib.loads(spec_path.read_text())
-    except FileNotFoundError:
-        raise ValueError(f"{spec_path}: no such file") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{spec_path}: not valid TOML: {error}") from None
+    spec = read_toml(spec_path)
     allowed = {"output", "confidence", "contact", "friction", "k_f"}
     if set(spec) - allowed:
         raise ValueError(f"{spec_path}: unknown key(s) {sorted(set(spec) - allowed)}; allowed {sorted(allowed)}")

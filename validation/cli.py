@@ -277,7 +277,8 @@ def build_parser() -> argparse.ArgumentParser:
     level = p.add_mutually_exclusive_group()
     level.add_argument("--quick", action="store_true", help="coarsest level of every scene (what CI runs)")
     level.add_argument("--fine", action="store_true", help="finest level: FE mesh-convergence studies (slow)")
-    p.add_argument("--fast", action="store_true", help="a first look: leave out the FE scenes and those costing over 30 s")
+    p.add_argument("--fast", action="store_true",
+                   help="a first look: leave out the FE scenes and those costing over 30 s")
     p.add_argument("--strict", action="store_true", help="declared known gaps fail the run too")
     p.add_argument("--strict-time", action="store_true",
                    help="a scene over its wall-time budget fails (by default budgets are only reported, "

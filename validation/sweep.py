@@ -54,12 +54,13 @@ import os
 import re
 import sys
 import time
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
+
+from ballbench.validation.specs import read_toml
 
 __all__ = ["SweepSpec", "Distribution", "load_spec", "spec_from_dict", "case_inputs", "run_chunk", "run_sweep",
            "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK"]
@@ -263,12 +264,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
 def load_spec(path: str | Path) -> SweepSpec:
     """Read a TOML spec; errors name the file."""
     path = Path(path)
-    try:
-        raw = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no such file") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{path}: not valid TOML: {error}") from None
+    raw = read_toml(path)
     try:
         return spec_from_dict(raw)
     except ValueError as error:
