@@ -55,15 +55,23 @@ class PairMesh:
         return (2 if "symmetry_x" in self.surfaces else 1) * (2 if "symmetry_y" in self.surfaces else 1)
 
 
-def load_pair(path: Path | str) -> PairMesh:
-    """Read a contact-pair ``.msh`` (P1 tetrahedra; second-order meshes keep their corner nodes)."""
+PAIR_VOLUMES = {"ball": 0, "counter": 1}  # physical volume -> body index of a contact-pair mesh
+
+
+def load_pair(path: Path | str, volumes: dict[str, int] | None = None) -> PairMesh:
+    """Read a gmsh ``.msh`` of tetrahedra (second-order meshes keep their corner nodes) into a :class:`PairMesh`.
+
+    ``volumes`` maps physical volume names to body indices (default :data:`PAIR_VOLUMES`, a contact
+    pair: ball 0, counter-body 1); every one must hold tetrahedra.  Surfaces keep their physical names;
+    nodes in no tetrahedron are dropped; tetrahedra are oriented positively.
+    """
     import meshio
 
+    volumes = PAIR_VOLUMES if volumes is None else volumes
     mesh = meshio.read(path)
-    cell_sets = mesh.cell_sets
     tets, body = [], []
     surfaces: dict[str, list] = {}
-    for name, per_block in cell_sets.items():
+    for name, per_block in mesh.cell_sets.items():
         if name.startswith("gmsh:"):
             continue
         for i, idx in enumerate(per_block):
@@ -71,13 +79,15 @@ def load_pair(path: Path | str) -> PairMesh:
             if idx.size == 0:
                 continue
             block = mesh.cells[i]
-            if block.type.startswith("tetra") and name in ("ball", "counter"):
+            if block.type.startswith("tetra") and name in volumes:
                 tets.append(block.data[idx, :4])
-                body.append(np.full(idx.size, 0 if name == "ball" else 1))
+                body.append(np.full(idx.size, volumes[name]))
             elif block.type.startswith("triangle"):
                 surfaces.setdefault(name, []).append(block.data[idx, :3])
-    if not tets:
-        raise ValueError(f"{path}: no tetrahedra in physical volumes 'ball'/'counter'")
+    found = {int(b[0]) for b in body}
+    if found != set(volumes.values()):
+        missing = sorted(name for name, index in volumes.items() if index not in found)
+        raise ValueError(f"{path}: no tetrahedra in the physical volumes {missing} (need {sorted(volumes)})")
     tets = np.vstack(tets).astype(np.int64)
     body = np.concatenate(body)
     # drop unused nodes (second-order nodes, geometry points)

@@ -41,7 +41,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ballbench.fem import linsolve
-from ballbench.fem.elasticity import PairMesh, stiffness_fast
+from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
 from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
 from ballbench.lowmodel.errors import ConvergenceError
@@ -117,42 +117,13 @@ def exact_gap(geometry: ModuleGeometry, i: int, local: np.ndarray, shift: float 
     return s_ball - s_rail, q + s_ball[:, None] * e3
 
 
+MODULE_VOLUMES = {"ball1": 0, "bottom_rail": 1, "top_rail": 2}  # physical volume -> body index
+
+
 def load_module(path) -> PairMesh:
     """Read a one-ball :func:`meshes.assemblies.fourpoint_module.fourpoint_module` mesh: ``body`` 0 = ball,
     1 = bottom rail, 2 = top rail; surfaces by their physical names."""
-    import meshio
-
-    mesh = meshio.read(path)
-    volumes = {"ball1": 0, "bottom_rail": 1, "top_rail": 2}
-    tets, body, surfaces = [], [], {}
-    for name, per_block in mesh.cell_sets.items():
-        if name.startswith("gmsh:"):
-            continue
-        for k, idx in enumerate(per_block):
-            idx = np.asarray(idx, dtype=np.int64)
-            if idx.size == 0:
-                continue
-            block = mesh.cells[k]
-            if block.type.startswith("tetra") and name in volumes:
-                tets.append(block.data[idx, :4])
-                body.append(np.full(idx.size, volumes[name]))
-            elif block.type.startswith("triangle"):
-                surfaces.setdefault(name, []).append(block.data[idx, :3])
-    if len(body) == 0 or {int(b[0]) for b in body} != {0, 1, 2}:
-        raise ValueError(f"{path}: need the physical volumes ball1, bottom_rail and top_rail (one-ball module)")
-    tets = np.vstack(tets).astype(np.int64)
-    body = np.concatenate(body)
-    used = np.unique(tets)
-    remap = -np.ones(len(mesh.points), dtype=np.int64)
-    remap[used] = np.arange(used.size)
-    points = np.asarray(mesh.points[used], dtype=float)
-    tets = remap[tets]
-    surf = {name: remap[np.vstack(tris).astype(np.int64)] for name, tris in surfaces.items()}
-    d = points[tets]
-    vol = np.einsum("ij,ij->i", np.cross(d[:, 1] - d[:, 0], d[:, 2] - d[:, 0]), d[:, 3] - d[:, 0])
-    flip = vol < 0
-    tets[flip] = tets[flip][:, [0, 2, 1, 3]]
-    return PairMesh(points, tets, body, surf, str(path))
+    return load_pair(path, MODULE_VOLUMES)
 
 
 def _surface_dofs(basis, pair: PairMesh, name: str, edges: dict) -> np.ndarray:
