@@ -30,6 +30,7 @@ from typing import Callable
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["Constant", "Calibration", "FitResult", "fit_least_squares", "fit_contact_law", "ContactLaw",
@@ -98,12 +99,6 @@ class FitResult:
     confidence: float
 
 
-def _check_confidence(confidence: float) -> float:
-    if not (0.0 < confidence < 1.0):
-        raise ValueError(f"confidence must lie in (0, 1), got {confidence!r}")
-    return float(confidence)
-
-
 def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_points: int,
                       confidence: float = 0.95, x_scale=None) -> FitResult:
     """Minimise ``sum residual(p)^2`` (scipy ``least_squares``, trust-region reflective).
@@ -115,7 +110,7 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     """
     from scipy import optimize, stats
 
-    confidence = _check_confidence(confidence)
+    confidence = checks.bounded("confidence", confidence, 0.0, 1.0, note="a probability such as 0.95")
     p0 = np.asarray(p0, dtype=float)
     if n_points <= p0.size:
         raise ValueError(f"need more data points ({n_points}) than parameters ({p0.size}) for an uncertainty")
@@ -144,12 +139,9 @@ def _constant(fit: FitResult, k: int, unit: str, source: str, n: int, rms: float
 
 
 def _data(name: str, values, unit: str, *, positive: bool = True) -> np.ndarray:
-    array = np.asarray(values, dtype=float).reshape(-1)
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite (got NaN or inf)")
-    if positive and np.any(array <= 0.0):
-        raise ValueError(f"{name} must be > 0 {unit}, got min {array.min()!r}")
-    return array
+    """Data column ``values`` as a flat float array, checked by the shared ``lowmodel.checks``."""
+    check = checks.positive if positive else checks.finite
+    return np.reshape(check(name, values, unit), -1)
 
 
 @dataclass(frozen=True)

@@ -57,7 +57,7 @@ def test_intervals_cover_the_truth_in_at_least_90_percent_of_seeds():
 def test_too_few_points_and_bad_input():
     with pytest.raises(ValueError, match=">= 3 distinct loads"):
         cal.fit_contact_law([1.0, 2.0], [1e-6, 2e-6])
-    with pytest.raises(ValueError, match="forces must be > 0 N"):
+    with pytest.raises(ValueError, match="forces must be finite and > 0 N"):
         cal.fit_contact_law([0.0, 1.0, 2.0], [1e-6, 1e-6, 2e-6])
     with pytest.raises(ValueError, match="ball_radius"):
         cal.fit_contact_law([1.0, 2.0, 3.0], [1e-6, 1.5e-6, 2e-6], semi_axes=[1e-4, 1.2e-4, 1.3e-4])

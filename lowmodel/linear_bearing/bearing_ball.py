@@ -69,9 +69,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
-from ballbench.lowmodel.solvers import (ContinuationStep, check_solver_options, continuation, newton,
-                                        solve_with_restarts)
+from ballbench.lowmodel.geometry.fourpoint import contact_normals
+from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options, continuation, solve_with_restarts
 
 __all__ = [
     "BallContacts",
@@ -94,12 +93,6 @@ __all__ = [
     "solve_branch",
     "with_spin_capacity_diagnosis",
     "N_UNKNOWNS",
-    # re-exported from their homes for code written before issue 8 (new code imports them from
-    # lowmodel.geometry.fourpoint and lowmodel.solvers)
-    "CONTACT_NAMES",
-    "contact_normals",
-    "newton",
-    "check_solver_options",
 ]
 
 _TOP = np.array([0.0, 0.0, 1.0, 1.0])  # contacts on the moving (top) groove

@@ -88,7 +88,7 @@ def coverage(seeds, truth: dict, confidence: float = 0.95) -> dict:
 
 @scene("calibration-roundtrip", "Calibration round trip: synthetic load-approach, contact-size, friction (CSV) and "
        "k_f data from known constants plus noise; the fits recover them within their 95 % intervals; coverage "
-       "over many seeds")
+       "over many seeds", kind="low-order", cost_s=8.0)
 def calibration_roundtrip(run):
     truth = synthetic_truth()
     with tempfile.TemporaryDirectory() as work:
@@ -159,7 +159,8 @@ def b2b_force_with_psi(psi: float, theta: float, rho: float) -> tuple[float, flo
 
 
 @scene("calibration-effect", "The contact law of the 0.56 groove calibrated on FE (Psi, C, C_b) beside Hertz: "
-       "approach and stiffness at 100 N, F_B2B of lin2019 Table 3 case (a), analytical and numerical")
+       "approach and stiffness at 100 N, F_B2B of lin2019 Table 3 case (a), analytical and numerical",
+       kind="low-order", cost_s=29.0)
 def calibration_effect(run):
     start = time.perf_counter()
     calibration, origin = calibrated_contact_law(run)

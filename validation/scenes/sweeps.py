@@ -44,7 +44,8 @@ def _difference(first: dict, second: dict) -> tuple[float, int]:
 
 
 @scene("sweep-equivalence", "The same sweep (lin2019 two-ball cases, grid x seeded draws, failures included) "
-       "serially, on a LocalCluster with 2 workers, and stopped halfway then resumed: identical results")
+       "serially, on a LocalCluster with 2 workers, and stopped halfway then resumed: identical results",
+       kind="low-order", cost_s=10.5)
 def sweep_equivalence(run):
     spec = sweep.spec_from_dict(EQUIVALENCE_SPEC)
     work = Path(tempfile.mkdtemp(prefix="ballbench-sweep-"))
