@@ -16,8 +16,8 @@ use it:
 
 sun2021 leaves unstated: the unit of ``G``, the sample length ``L``, the cutoff
 ``L_s``, ``gamma`` and the number of ridges ``M``.  The choices (docs/mixed_lubrication.md):
-``L`` the longer side of the solution domain, ``L_s`` twice the larger cell
-size, ``gamma = 1.5`` and ``M = 10`` (Yan & Komvopoulos' values), ``G`` in
+``L`` and ``L_s`` given by the caller (defaults: the longer side of the
+grid, twice the larger cell size), ``gamma = 1.5`` and ``M = 10`` (Yan & Komvopoulos' values), ``G`` in
 metres as the caller gives it (the sun2021 scenes read the printed 0.41 in pm
 and in nm and report both).
 """
@@ -120,16 +120,23 @@ class RacewayRoughness:
 
 
 def raceway_roughness(grid: halfspace.SurfaceGrid, fractal_dimension: float, roughness_scale: float, *,
+                      sample_length: float | None = None, cutoff_length: float | None = None,
                       gamma: float = 1.5, ridges: int = 10, seed: int = 0) -> RacewayRoughness:
     """Seeded WM raceway heights on ``grid`` (sun2021 Sec 2.3: D = 2.47, G = 0.41, raceway rough, ball smooth).
 
-    Sample length ``L`` = the longer side of the grid, cutoff ``L_s`` = twice the
-    larger cell size (the shortest wavelength the grid resolves in both
-    directions); heights shifted to mean zero over the grid (the nominal surface
-    is the mean plane).  ``roughness_scale`` G [m].
+    ``sample_length`` L [m] (default the longer side of the grid), ``cutoff_length``
+    L_s [m] (default twice the larger cell size, the shortest wavelength the grid
+    resolves in both directions; a given L_s must be at least that); heights
+    shifted to mean zero over the grid (the nominal surface is the mean plane).
+    ``roughness_scale`` G [m].  A roughness that should not change with the grid
+    passes both lengths.
     """
-    L = max(grid.nx * grid.dx, grid.ny * grid.dy)
-    Ls = 2.0 * max(grid.dx, grid.dy)
+    L = max(grid.nx * grid.dx, grid.ny * grid.dy) if sample_length is None else float(sample_length)
+    nyquist = 2.0 * max(grid.dx, grid.dy)
+    Ls = nyquist if cutoff_length is None else float(cutoff_length)
+    if not Ls >= nyquist * (1.0 - 1e-12):
+        raise ValueError(f"cutoff_length must be >= twice the larger cell size {nyquist!r} m (the grid must resolve "
+                         f"the shortest wavelength), got {cutoff_length!r}")
     X, Y = grid.coordinates()
     z = ehl.weierstrass_mandelbrot_surface(X, Y, fractal_dimension, roughness_scale, L, cutoff_length=Ls,
                                            gamma=gamma, ridges=ridges, seed=seed)

@@ -44,3 +44,14 @@ FRACTAL_SCALE = 0.41                              # G (Sec 2.3), unit not printe
 DRY_FRICTION = 0.1                                # mu_a (Sec 3.2)
 MIXED_TO_HYDRODYNAMIC_SPEED = 0.50265             # [m/s]  printed 502.65 mm/s (Sec 3.2, Fig 6)
 ASPERITY_STRESS_GAIN_21_71 = {"A": 0.0293, "B": 0.0301}  # Sec 4.4: "2.93 % and 3.01 % more accurate"
+# Sec 2.3 leaves the WM sample length, cutoff, gamma, ridges and the unit of G unstated; the choices of the
+# sun2021 friction scenes (docs/mixed_lubrication.md): G read in pm (the nm reading is reported beside it)
+FRACTAL_SCALE_READINGS = {"pm": 1e-12, "nm": 1e-9}  # [m] per printed unit of G
+FRACTAL_SAMPLE_LENGTH = 2 * EHL_HALF_WIDTH        # L [m]: the eq 18 domain, 554 um (choice)
+FRACTAL_CUTOFF_LENGTH = 50e-6                     # L_s [m]: resolved by >= 2 cells at every fidelity (choice)
+EYRING_STRESS = 5e6                               # tau0 [Pa] of eq 23: unstated (choice, a mineral-oil value)
+
+
+def screw_speed_to_rpm(surface_speed: float) -> float:
+    """sun2021's screw speed Omega' [m/s] (pitch-circle surface speed) in rev/min: 0.50265 m/s is 300 rpm."""
+    return surface_speed / TABLE_1.pitch_radius * 60.0 / (2.0 * math.pi)
