@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel import fourpoint
-from ballbench.lowmodel.contact import ellipse_friction, hertz
+from ballbench.lowmodel.contact import ehl, ellipse_friction, hertz, mixed
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.screw import kinematics
 from ballbench.validation.runner import run_scene
@@ -118,6 +118,19 @@ def _normal_forces(monkeypatch):  # lin2017 eq 36 with the bottom pair swapped
     monkeypatch.setattr(fourpoint, "normal_forces", lambda *args: original(*args)[..., [1, 0, 2, 3]])
 
 
+def _wm_dimension(monkeypatch):  # sun2021 Sec 2.3 WM raceway with D + 0.1
+    original = ehl.weierstrass_mandelbrot_surface
+    monkeypatch.setattr(ehl, "weierstrass_mandelbrot_surface",
+                        lambda x, y, fractal_dimension, *args, **kwargs: original(x, y, fractal_dimension + 0.1,
+                                                                                  *args, **kwargs))
+
+
+def _smooth_film_shear(monkeypatch):  # sun2021 eqs 22-23 with the smooth film h_s instead of the rough h_s - z
+    original = mixed.mixed_friction
+    monkeypatch.setattr(mixed, "mixed_friction", lambda contact, *args, **kwargs: original(
+        dataclasses.replace(contact, rough_film=contact.film.film), *args, **kwargs))
+
+
 # mutant -> (what it is, scenes expected to reject it)
 MUTANTS = {
     "Psi x 1.001": (_psi, ["lin2019-table1-psi"]),
@@ -135,6 +148,8 @@ MUTANTS = {
     "eq 11 spin moment x 1.01": (_spin_moment, ["lin2019-kf"]),
     "eq 22 top deviations with the wrong sign": (_eq22_sign, ["lin2019-analytical"]),
     "lin2017 eq 36 bottom forces swapped": (_normal_forces, ["lin2019-table2-a"]),
+    "WM fractal dimension + 0.1": (_wm_dimension, ["sun2021-roughness"]),
+    "Eyring shear on the smooth film": (_smooth_film_shear, ["sun2021-fig6"]),
 }
 SCENES = sorted({name for _, names in MUTANTS.values() for name in names})
 CHEAP = {"hertz-sphere-flat", "lin2019-table1-psi", "lin2019-table3-a", "wang2022-table2"}  # < 1 s each at quick
