@@ -46,6 +46,9 @@ def test_rough_raceway_shares_the_load():
     assert 0.0 < contact.asperity_share < 1.0
     # load sharing, sun2021 eq 21: film load + asperity load = Q to the share tolerance
     assert contact.film.force + contact.asperity_load == pytest.approx(20.0, rel=1e-2)
+    # the rough film is the separation of the asperity contact: zero exactly where asperities carry pressure
+    assert np.all(contact.rough_film[contact.asperity_pressure > 0.0] == 0.0)
+    assert np.all(contact.rough_film >= 0.0)
     friction = mixed.mixed_friction(contact, 0.02, ETA0, 5e6, dry_friction=0.1)
     assert friction.asperity_friction == pytest.approx(0.1 * contact.asperity_load)
     assert friction.friction_coefficient > friction.film_friction / 20.0
@@ -53,8 +56,8 @@ def test_rough_raceway_shares_the_load():
 
 def test_asperity_contact_is_zero_without_interference_and_rejects_bad_shapes():
     grid, gap = case(16)
-    pressure, load = mixed.asperity_contact(gap + 1e-7, np.zeros_like(gap), grid, E_STAR)
-    assert load == 0.0 and not pressure.any()
+    pressure, load, rough = mixed.asperity_contact(gap + 1e-7, np.zeros_like(gap), grid, E_STAR)
+    assert load == 0.0 and not pressure.any() and np.array_equal(rough, gap + 1e-7)
     with pytest.raises(ValueError, match="heights"):
         mixed.solve_mixed(gap, np.zeros((3, 3)), grid, E_STAR, 20.0, 1.0, ETA0)
 

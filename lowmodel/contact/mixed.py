@@ -51,7 +51,7 @@ class MixedContact:
     film : :class:`~ballbench.lowmodel.contact.ehl.EHLSolution` of the smooth film at the film load
     smooth : the smooth EHL solution at the full load (the no-roughness reference)
     heights : raceway heights z [m] (``ROU = -z`` in sun2021 eq 15)
-    rough_film : ``h_s - z`` [m], 0 where asperities touch
+    rough_film : ``h_s - z + V(p_a)`` [m] (the asperities' own deflection included), 0 where they touch
     asperity_pressure : [Pa]
     load : Q [N];  film_load : W_f [N];  asperity_load : Q_a [N]
     asperity_share : R_s = Q_a / Q
@@ -75,20 +75,21 @@ class MixedContact:
 
 
 def asperity_contact(film: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGrid,
-                     contact_modulus: float) -> tuple[np.ndarray, float]:
-    """Asperity pressure [Pa] and load [N] where the raceway heights reach through the film.
+                     contact_modulus: float) -> tuple[np.ndarray, float, np.ndarray]:
+    """Asperity pressure [Pa], load [N] and rough film [m] where the raceway heights reach through the film.
 
     ``film`` h_s [m] and ``heights`` z [m] (nx, ny): the dry half-space contact
-    (sun2021 eqs 3-12) of the gap ``h_s - z`` at zero approach; no contact (zero
-    pressure) where ``h_s - z > 0`` everywhere.
+    (sun2021 eqs 3-12) of the gap ``h_s - z`` at zero approach; the rough film is
+    its separation ``h_s - z + V(p_a)`` (0 on the asperity contacts).  No contact
+    (zero pressure, rough film ``h_s - z``) where ``h_s - z > 0`` everywhere.
     """
     gap = np.asarray(film, dtype=float) - np.asarray(heights, dtype=float)
     if gap.shape != (grid.nx, grid.ny) or not np.all(np.isfinite(gap)):
         raise ValueError(f"film and heights must be finite arrays of shape {(grid.nx, grid.ny)}")
     if float(gap.min()) >= 0.0:
-        return np.zeros_like(gap), 0.0
+        return np.zeros_like(gap), 0.0, gap
     contact = halfspace.solve(gap, grid, contact_modulus, approach=0.0, tolerance=1e-6)
-    return contact.pressure, contact.force
+    return contact.pressure, contact.force, contact.separation
 
 
 def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus: float,
@@ -121,8 +122,8 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
         solution = ehl.solve_reynolds(gap, grid, e_star, film_load, entrainment_speed, viscosity_0, density_0,
                                       initial_film=initial_film, coarsest=coarsest, centre=centre,
                                       max_iterations=ehl_iterations)
-        pressure, asperity = asperity_contact(solution.film, heights, grid, e_star)
-        solves[film_load] = (solution, pressure, asperity)
+        pressure, asperity, separation = asperity_contact(solution.film, heights, grid, e_star)
+        solves[film_load] = (solution, pressure, asperity, separation)
         return film_load + asperity - load  # sun2021 eq 21: Q = W_f + Q_a
 
     hi = load
@@ -163,8 +164,7 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
             raise ConvergenceError("mixed lubrication load sharing did not converge", residual=min(
                 abs(f_lo), abs(f_hi)) / load, iterations=len(solves), tolerance=share_tolerance)
         best = min(solves, key=lambda w: abs(w + solves[w][2] - load))
-    film, pressure, asperity = solves[best]
-    rough = np.where(pressure > 0.0, 0.0, np.maximum(film.film - heights, 0.0))
+    film, pressure, asperity, rough = solves[best]
     X, Y = grid.coordinates()
     i, j = np.unravel_index(np.argmin((X - centre[0]) ** 2 + (Y - centre[1]) ** 2), X.shape)
     return MixedContact(film=film, smooth=smooth, heights=heights, rough_film=rough, asperity_pressure=pressure,
