@@ -29,7 +29,7 @@ COARSEST = 32
 READING = "pm"  # the unit the printed G = 0.41 is read in (docs/mixed_lubrication.md)
 
 
-def _setup(helix_angle_deg: float, point: str, n: int, helix_free: bool = False):
+def ehl_domain(helix_angle_deg: float, point: str, n: int, helix_free: bool = False):
     """Grid (x along the track = entrainment, y across the groove) and smooth gap of the EHL domain (eq 18)."""
     body, flank = POINTS[point]
     lead = 0.0 if helix_free else float(helix.lead_from_angle(math.radians(helix_angle_deg), T1.pitch_radius))
@@ -47,7 +47,8 @@ def _setup(helix_angle_deg: float, point: str, n: int, helix_free: bool = False)
     return grid, gap - gap.min()
 
 
-def _heights(grid, reading: str = READING, seed: int = 0) -> roughness.RacewayRoughness:
+def raceway_heights(grid, reading: str = READING, seed: int = 0) -> roughness.RacewayRoughness:
+    """The seeded WM raceway of sun2021 Sec 2.3 on ``grid`` with G read in ``reading`` ("pm" or "nm")."""
     return roughness.raceway_roughness(grid, paper.FRACTAL_DIMENSION,
                                        paper.FRACTAL_SCALE * paper.FRACTAL_SCALE_READINGS[reading],
                                        sample_length=paper.FRACTAL_SAMPLE_LENGTH,
@@ -59,7 +60,8 @@ def _speeds(surface_speed: float):
                                           T1.contact_angle)
 
 
-def _mixed_point(grid, gap, heights, surface_speed: float, point: str = "B"):
+def mixed_point(grid, gap, heights, surface_speed: float, point: str = "B"):
+    """Mixed contact, friction (eqs 21-23), eq 20 torque [N m] and entrainment [m/s] at screw speed [m/s]."""
     speeds = _speeds(surface_speed)
     u = float(speeds.entrainment_B if point == "B" else speeds.entrainment_A)
     sliding = speeds.sliding_B if point == "B" else speeds.sliding_A
@@ -100,7 +102,7 @@ def sun2021_roughness(run):
               value=float(fitted), reference=D, tolerance=0.004, time_s=time_s, source="sun2021 Sec 2.3: D = 2.47",
               note="slope of log amplitude against log frequency is D - 3; 0.004 relative is 0.01 in D")
     grid = halfspace.surface_grid(L / 2, L / 2, 64, 64)
-    samples = [_heights(grid, seed=seed) for seed in range(12)]
+    samples = [raceway_heights(grid, seed=seed) for seed in range(12)]
     ensemble = math.sqrt(float(np.mean([np.mean(s.heights**2) for s in samples])))
     run.check(model="lowmodel.contact.roughness", quantity="rms height over 12 seeds (554 um square)", unit="m",
               value=ensemble, reference=roughness.wm_rms(D, G, L, Ls), tolerance=0.12, time_s=time_s,
@@ -198,14 +200,14 @@ STRIBECK_GAP = KnownGap(
        kind="low-order", cost_s=35.0)  # cost: 29-43 s wall default (loaded machine)
 def sun2021_fig6(run):
     n = {"quick": 64, "default": 64, "fine": 128}[run.fidelity]  # grid 2n x n/2 (n >= 64 resolves L_s = 50 um)
-    grid, gap = _setup(paper.HELIX_ANGLES_DEG[0], "B", n)
-    rough = _heights(grid)
+    grid, gap = ehl_domain(paper.HELIX_ANGLES_DEG[0], "B", n)
+    rough = raceway_heights(grid)
     surface_speeds = {"quick": (0.083, 0.5, 2.0), "default": (0.083, 0.15, 0.3, 0.5, 1.0, 2.0),
                       "fine": (0.083, 0.15, 0.3, 0.5, 1.0, 2.0)}[run.fidelity]
     rows, times = [], []
     for speed in run.progress(surface_speeds, desc="screw speeds"):
         try:
-            (contact, friction, torque, u), time_s = run.time(_mixed_point, grid, gap, rough.heights, speed,
+            (contact, friction, torque, u), time_s = run.time(mixed_point, grid, gap, rough.heights, speed,
                                                               budget_s=0.0, max_repeat=1)
         except ConvergenceError as error:
             run.note(f"{speed * 1e3:.0f} mm/s: no solution ({error})")
@@ -258,11 +260,11 @@ def sun2021_fig6(run):
                   relation="ge" if how.startswith("upper bound") else "eq",
                   note=f"G in pm; {how}")
     # the nm reading: is the contact still mixed at the top speed?
-    rough_nm = _heights(grid, "nm")
+    rough_nm = raceway_heights(grid, "nm")
     nm_rows = []
     for speed in (1.0, 2.0):
         try:
-            contact, friction, _, _ = _mixed_point(grid, gap, rough_nm.heights, speed)
+            contact, friction, _, _ = mixed_point(grid, gap, rough_nm.heights, speed)
         except (ConvergenceError, ValueError) as error:
             run.note(f"G in nm: no mixed solution at {speed * 1e3:.0f} mm/s ({error})")
             continue
@@ -322,8 +324,8 @@ def sun2021_fig6(run):
 
 
 def _dry_rough(helix_angle_deg: float, point: str, n: int, helix_free: bool):
-    grid, gap = _setup(helix_angle_deg, point, n, helix_free)
-    heights = _heights(grid).heights  # boundary limit: the rough raceway carries the whole load
+    grid, gap = ehl_domain(helix_angle_deg, point, n, helix_free)
+    heights = raceway_heights(grid).heights  # boundary limit: the rough raceway carries the whole load
     smooth = halfspace.solve(gap, grid, E_STAR, force=LOAD)
     rough = halfspace.solve(gap - heights, grid, E_STAR, force=LOAD)
     return smooth, rough
@@ -332,9 +334,12 @@ def _dry_rough(helix_angle_deg: float, point: str, n: int, helix_free: bool):
 ASPERITY_GAP = KnownGap(
     reason="the helix changes the contact through the curvature tensor only (sun2021-dry-contact: BEM = "
            "full-tensor Hertz); against the helix-free contact the central pressure moves by about 1 % at 21.71 "
-           "deg, and the asperity stress on the same raceway inherits that difference, not 3 %",
-    evidence="sun2021-dry-contact (-0.91 % at A, +0.83 % at B against helix-free Hertz); sun2021-fig13 notes: the "
-             "smooth and the rough central pressures of the exact and the helix-free gap")
+           "deg, and the asperity stress of the boundary limit on the same raceway inherits that, not 3 %; in the "
+           "mixed regime the asperity share differs by a few per cent, but with the sign and size set by where the "
+           "asperities sit (seed)",
+    evidence="sun2021-dry-contact (-0.91 % at A, +0.83 % at B against helix-free Hertz); sun2021-fig13 notes; "
+             "docs/mixed_lubrication.md (83 mm/s, seeds 0-4: R_s differs by -2.1 to -8.3 % at A, +0.3 to +4.0 % "
+             "at B)")
 
 
 @scene("sun2021-fig13",
@@ -369,8 +374,8 @@ def sun2021_fig13(run):
         for point in POINTS:
             shares = []
             for helix_free in (False, True):
-                grid, gap = _setup(angle, point, 64, helix_free)
-                contact = _mixed_point(grid, gap, _heights(grid).heights, T1.screw_speed, point)[0]
+                grid, gap = ehl_domain(angle, point, 64, helix_free)
+                contact = mixed_point(grid, gap, raceway_heights(grid).heights, T1.screw_speed, point)[0]
                 touching = contact.asperity_pressure > 0.0
                 shares.append((contact.asperity_share, float(contact.asperity_pressure[touching].mean())
                                if touching.any() else 0.0, contact.central_asperity_pressure,
@@ -389,7 +394,7 @@ def sun2021_fig13(run):
 
 def _central_ehl_pressure(helix_angle_deg: float, point: str, n: int, surface_speed: float,
                           helix_free: bool = False) -> float:
-    grid, gap = _setup(helix_angle_deg, point, n, helix_free)
+    grid, gap = ehl_domain(helix_angle_deg, point, n, helix_free)
     speeds = _speeds(surface_speed)
     u = float(speeds.entrainment_B if point == "B" else speeds.entrainment_A)
     return ehl.solve_reynolds(gap, grid, E_STAR, LOAD, u, T1.viscosity, T1.lubricant_density, initial_film=8e-8,

@@ -1,0 +1,47 @@
+"""Mixed lubrication pieces (sun2021 eqs 15, 20-23): WM raceway, one load-shared mixed point, eq 20 torque.
+
+The sun2021 nut contact B at 5.68 deg on the 128 x 32 grid of the sun2021-fig6 scene, G read in pm:
+a full-film point (500 mm/s: one EHL solve and no asperity contact) and a mixed point (83 mm/s: load
+sharing, EHL solves plus the asperity half-space contact).
+Run: ``.venv/bin/python -m pytest benchmarks/test_bench_mixed.py -s``.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.contact import roughness
+from ballbench.lowmodel.screw import friction_torque
+from ballbench.validation.papers import sun2021 as paper
+from ballbench.validation.scenes import sun2021_friction as scene
+
+
+def test_bench_wm_raceway(benchmark):
+    grid, _ = scene.ehl_domain(5.68, "B", 64)
+    rough = benchmark(roughness.raceway_roughness, grid, 2.47, 0.41e-12, sample_length=554e-6, cutoff_length=50e-6)
+    print(f"\nWM raceway 128 x 32: {benchmark.stats.stats.median * 1e3:.1f} ms, rms {rough.rms * 1e9:.1f} nm")
+
+
+@pytest.mark.parametrize("surface_speed", [0.5, 0.083])
+def test_bench_mixed_point(benchmark, surface_speed):
+    grid, gap = scene.ehl_domain(5.68, "B", 64)
+    heights = scene.raceway_heights(grid).heights
+    contact, friction, torque, _ = benchmark.pedantic(scene.mixed_point, (grid, gap, heights, surface_speed),
+                                                      rounds=1, iterations=1)
+    print(f"\nmixed point {surface_speed * 1e3:.0f} mm/s: {benchmark.stats.stats.median:.2f} s, "
+          f"{contact.iterations} EHL solves, R_s {contact.asperity_share:.4f}, mu "
+          f"{friction.friction_coefficient:.4f}, torque {torque:.3f} N m")
+
+
+def test_bench_friction_torque(benchmark):
+    t1 = paper.TABLE_1
+    speeds = friction_torque.contact_speeds(np.linspace(0.05, 3.0, 1000), t1.pitch_radius, t1.ball_radius, t1.lead,
+                                            t1.contact_angle)
+
+    def run():
+        return friction_torque.friction_torque(0.03, 27.8, speeds.sliding_B, ball_count=t1.ball_count,
+                                               lead_angle=t1.helix_angle, pitch_radius=t1.pitch_radius,
+                                               ball_radius=t1.ball_radius, contact_angle_B=t1.contact_angle)
+
+    torque = benchmark(run)
+    print(f"\neq 20 torque, 1000 speeds: {benchmark.stats.stats.median * 1e6:.0f} us, {float(torque[0]):.3f} N m")
