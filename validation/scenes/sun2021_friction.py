@@ -300,7 +300,10 @@ def sun2021_fig6(run):
         import matplotlib.pyplot as plt
 
         figure, axes = plt.subplots(1, 3, figsize=(14, 4.2))
-        axes[0].semilogx(np.array(speeds) * 1e3, mu, "o-")
+        axes[0].semilogx(np.array(speeds) * 1e3, mu, "o-", label="G in pm")
+        if nm_rows:
+            axes[0].semilogx([r[0] * 1e3 for r in nm_rows], [r[2].friction_coefficient for r in nm_rows], "s-",
+                             label="G in nm")
         axes[0].axvline(paper.MIXED_TO_HYDRODYNAMIC_SPEED * 1e3, color="k", ls="--", label="sun2021 502.65 mm/s")
         if transition is not None:
             axes[0].axvline(transition * 1e3, color="r", ls=":", label="rough film separates (here)")
@@ -314,12 +317,13 @@ def sun2021_fig6(run):
         axes[1].set_title(f"pressure [MPa], {rows[0][0] * 1e3:.0f} mm/s")
         figure.colorbar(image, ax=axes[1])
         image = axes[2].imshow(last.rough_film * 1e9, origin="lower", extent=extent, aspect="auto",
-                               vmax=float(np.percentile(last.rough_film, 30)) * 1e9)
+                               vmax=4.0 * last.smooth.central_film * 1e9)
         axes[2].set_title("rough film h_s - z [nm]")
         figure.colorbar(image, ax=axes[2])
         for axis in axes[1:]:
             axis.set_xlabel("y, across the groove [um]")
             axis.set_ylabel("x, entrainment [um]")
+        figure.tight_layout()
         run.save_figure(figure, "fig6_friction.png")
 
 
