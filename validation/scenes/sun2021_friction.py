@@ -246,6 +246,16 @@ def sun2021_fig6(run):
         if a > 0.0 and offset > 0.0:
             run.note(f"extrapolated first touch (G in pm; clearance ~ Omega'^0.68 through {s1 * 1e3:.0f} and "
                      f"{s2 * 1e3:.0f} mm/s): {(offset / a) ** (1 / 0.68) * 1e3:.0f} mm/s (an estimate, not checked)")
+    # the film-parameter rule (lambda = h_min / sigma >= 3 for full film, Hamrock & Dowson): where it crosses 3
+    lam = [(r[0], r[2].smooth.minimum_film / rough.rms) for r in rows]
+    run.note("lambda_min = h_min / sigma (sigma " + f"{rough.rms * 1e9:.1f} nm): "
+             + ", ".join(f"{speed * 1e3:.0f} mm/s {value:.2f}" for speed, value in lam))
+    for (s1, l1), (s2, l2) in zip(lam, lam[1:]):
+        if l1 < 3.0 <= l2:
+            crossing = s1 * (s2 / s1) ** (math.log(3.0 / l1) / math.log(l2 / l1))
+            run.note(f"lambda_min = 3 (log-log between {s1 * 1e3:.0f} and {s2 * 1e3:.0f} mm/s) at {crossing * 1e3:.0f} "
+                     f"mm/s, {100 * (crossing / paper.MIXED_TO_HYDRODYNAMIC_SPEED - 1):+.0f} % from 502.65 mm/s "
+                     "(a rule of thumb, reported, not checked: the first touch is the model's own transition)")
     factor = _scale_at_first_touch(grid, gap, rough.heights, paper.MIXED_TO_HYDRODYNAMIC_SPEED)
     g_star = paper.FRACTAL_SCALE * paper.FRACTAL_SCALE_READINGS[READING] * factor ** (
         1.0 / (paper.FRACTAL_DIMENSION - 2.0))
