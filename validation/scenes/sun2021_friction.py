@@ -178,7 +178,8 @@ def _scale_at_first_touch(grid, gap, heights, surface_speed: float) -> float:
 
 TRANSITION_GAP = KnownGap(
     reason="sun2021 leaves the unit of G, the WM sample length and cutoff unstated; with G read in pm (rms 21 nm) "
-           "the rough film of the nut contact first separates at about 224 mm/s, with G in nm (rms 0.53 um) it "
+           "the rough film of the nut contact first separates at about 224 mm/s (128 x 32; about 165 mm/s at "
+           "256 x 64, the film thickens with refinement), with G in nm (rms 0.53 um) it "
            "stays mixed up to 2000 mm/s; no printed reading gives 502.65 mm/s (G = 1.9 pm would, on this seed)",
     evidence="sun2021-fig6 notes (clearance min(h_s - z) and R_s against screw speed for both readings, the G "
              "that puts the first touch at 502.65 mm/s); docs/mixed_lubrication.md")
