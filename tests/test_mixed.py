@@ -27,7 +27,7 @@ def test_smooth_raceway_is_full_film_and_equals_the_ehl_solve():
     grid, gap = case(64)
     contact = mixed.solve_mixed(gap, np.zeros_like(gap), grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
     direct = ehl.solve_reynolds(gap, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coarsest=16)
-    assert contact.asperity_load == 0.0 and contact.asperity_share == 0.0 and contact.iterations == 1
+    assert contact.coupled and contact.asperity_load == 0.0 and contact.asperity_share == 0.0
     assert contact.central_asperity_pressure == 0.0
     assert np.allclose(contact.film.pressure, direct.pressure, rtol=0, atol=1e-9 * direct.max_pressure)
     friction = mixed.mixed_friction(contact, 0.02, ETA0, 5e6)
@@ -41,8 +41,8 @@ def test_rough_raceway_shares_the_load():
     X, Y = grid.coordinates()
     # a ridge across the track as high as the film: it must reach through and carry load
     heights = 1.5 * smooth.central_film * np.exp(-((X / (4 * grid.dx)) ** 2))
-    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
-    assert contact.clearance < 0.0
+    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
+    assert not contact.coupled and contact.clearance < 0.0
     assert 0.0 < contact.asperity_share < 1.0
     # load sharing, sun2021 eq 21: film load + asperity load = Q to the share tolerance
     assert contact.film.force + contact.asperity_load == pytest.approx(20.0, rel=1e-2)
@@ -52,6 +52,20 @@ def test_rough_raceway_shares_the_load():
     friction = mixed.mixed_friction(contact, 0.02, ETA0, 5e6, dry_friction=0.1)
     assert friction.asperity_friction == pytest.approx(0.1 * contact.asperity_load)
     assert friction.friction_coefficient > friction.film_friction / 20.0
+
+
+def test_coupled_rough_film_flattens_long_waves():
+    grid, gap = case(64)
+    smooth = ehl.solve_reynolds(gap, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coarsest=16)
+    X, Y = grid.coordinates()
+    # a wave along the track, longer than the contact, as high as the smooth film: the rigid (decoupled)
+    # film touches, the coupled film pressure flattens it and stays open
+    heights = 1.2 * smooth.minimum_film * np.cos(2 * np.pi * X / (grid.nx * grid.dx))
+    decoupled = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
+    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
+    assert decoupled.clearance < 0.0 < contact.clearance
+    assert contact.coupled and contact.asperity_share == 0.0
+    assert contact.film.force == pytest.approx(20.0, rel=1e-4)
 
 
 def test_asperity_contact_is_zero_without_interference_and_rejects_bad_shapes():

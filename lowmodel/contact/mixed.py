@@ -11,8 +11,16 @@ and the friction force is ``mu_a Q_a + F_f`` with ``F_f`` the integral of eq 22.
 sun2021 solves one Reynolds equation with the rough film (eq 15 with ``ROU``,
 its ref [24] Hu & Zhu 2000: a unified equation whose contact cells carry the
 asperity pressure).  It leaves unstated how the contact cells are found and how
-the load is shared.  This module uses a decoupled, deterministic load sharing
-(docs/mixed_lubrication.md):
+the load is shared.  This module (docs/mixed_lubrication.md):
+
+0. coupled rough film (full film): the Reynolds equation with the roughness in
+   the film, eq 15 with ``ROU = -z`` (:func:`ballbench.lowmodel.contact.ehl.solve_reynolds`
+   on the gap ``gap - z``).  If it converges the film is positive everywhere
+   (the solver keeps ``h > 0``): full film, ``R_s = 0``; the film pressure also
+   flattens the roughness elastically.  If it does not converge the film is taken
+   to close (at the sun2021 scenes' grid the smooth solve converges at every
+   speed where the rough one fails) and the decoupled, deterministic load
+   sharing below estimates the asperity share:
 
 1. film: the smooth EHL solve of :func:`ballbench.lowmodel.contact.ehl.solve_reynolds`
    at the film load ``W_f`` gives the film ``h_s(x, y)`` (deformation included);
@@ -25,8 +33,10 @@ the load is shared.  This module uses a decoupled, deterministic load sharing
    regula falsi, Illinois).  ``Q_a = 0`` at ``W_f = Q`` is full film: the rough
    film ``h_s - z`` stays positive everywhere (``clearance > 0``).
 
-The film is computed without the roughness in the Reynolds equation (the
-roughness enters the film thickness of eqs 15, 22, 23 and the asperity contact).
+In steps 1-3 the film is computed without the roughness in the Reynolds equation
+(the roughness enters the film thickness of eqs 22-23 and the asperity contact), so
+the flattening of the roughness by the film pressure is lost there: the decoupled
+model touches at higher speeds than the coupled one (docs/mixed_lubrication.md).
 """
 from __future__ import annotations
 
@@ -48,20 +58,25 @@ class MixedContact:
 
     Attributes
     ----------
-    film : :class:`~ballbench.lowmodel.contact.ehl.EHLSolution` of the smooth film at the film load
+    film : :class:`~ballbench.lowmodel.contact.ehl.EHLSolution`: the coupled rough film (full film), or the
+        smooth film at the film load (decoupled)
     smooth : the smooth EHL solution at the full load (the no-roughness reference)
+    coupled : True when the coupled rough solve converged (full film)
     heights : raceway heights z [m] (``ROU = -z`` in sun2021 eq 15)
-    rough_film : ``h_s - z + V(p_a)`` [m] (the asperities' own deflection included), 0 where they touch
+    rough_film : [m] the coupled film, or ``h_s - z + V(p_a)`` (decoupled; the asperities' deflection
+        included, 0 where they touch)
     asperity_pressure : [Pa]
     load : Q [N];  film_load : W_f [N];  asperity_load : Q_a [N]
     asperity_share : R_s = Q_a / Q
-    clearance : ``min(h_s - z)`` at the full load [m] (> 0: full film, R_s = 0)
+    clearance : [m] the coupled film's minimum (coupled), or ``min(h_s - z)`` at the full load (decoupled,
+        negative where the rigid roughness reaches through the smooth film)
     central_asperity_pressure : asperity pressure at the grid point nearest the centre [Pa]
-    iterations : EHL solves of the load sharing
+    iterations : EHL solves (smooth, coupled, load sharing)
     """
 
     film: ehl.EHLSolution
     smooth: ehl.EHLSolution
+    coupled: bool
     heights: np.ndarray
     rough_film: np.ndarray
     asperity_pressure: np.ndarray
@@ -96,13 +111,14 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
                 load: float, entrainment_speed: float, viscosity_0: float, density_0: float = 1.0, *,
                 initial_film: float = 1e-7, share_tolerance: float = 1e-2, max_iterations: int = 12,
                 smallest_film_share: float = 0.02, coarsest: int = 16, ehl_iterations: int = 400,
-                centre: tuple[float, float] = (0.0, 0.0)) -> MixedContact:
+                centre: tuple[float, float] = (0.0, 0.0), coupled: bool = True) -> MixedContact:
     """Load-shared mixed EHL contact of a smooth ball on a rough raceway (module docstring).
 
     ``gap`` [m] (nx, ny) the smooth undeformed separation (as for
     :func:`~ballbench.lowmodel.contact.ehl.solve_reynolds`), ``heights`` z [m]
     the raceway roughness, ``contact_modulus`` E* [Pa], ``load`` Q [N],
     ``entrainment_speed`` [m/s], ``viscosity_0`` [Pa s], ``density_0`` [kg/m^3].
+    ``coupled=False`` skips step 0 (the decoupled model alone).
     The share ``W_f`` is found to ``|W_f + Q_a - Q| < share_tolerance Q``.
     ConvergenceError when the film would carry less than ``smallest_film_share``
     of the load (boundary lubrication: outside this model) or the sharing does
@@ -126,9 +142,23 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
         solves[film_load] = (solution, pressure, asperity, separation)
         return film_load + asperity - load  # sun2021 eq 21: Q = W_f + Q_a
 
+    X, Y = grid.coordinates()
+    i, j = np.unravel_index(np.argmin((X - centre[0]) ** 2 + (Y - centre[1]) ** 2), X.shape)
     hi = load
     f_hi = evaluate(hi)
     smooth = solves[hi][0]
+    if coupled:
+        try:  # step 0: sun2021 eq 15 with ROU = -z inside the Reynolds equation
+            rough = ehl.solve_reynolds(gap - heights, grid, e_star, load, entrainment_speed, viscosity_0, density_0,
+                                       initial_film=initial_film, coarsest=coarsest, centre=centre,
+                                       max_iterations=ehl_iterations)
+        except ConvergenceError:
+            rough = None
+        if rough is not None:
+            return MixedContact(film=rough, smooth=smooth, coupled=True, heights=heights, rough_film=rough.film,
+                                asperity_pressure=np.zeros_like(heights), load=load, film_load=load,
+                                asperity_load=0.0, asperity_share=0.0, clearance=rough.minimum_film,
+                                central_asperity_pressure=0.0, iterations=len(solves) + 1)
     clearance = float(np.min(smooth.film - heights))
     best = hi
     if f_hi > share_tolerance * load:
@@ -165,12 +195,11 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
                 abs(f_lo), abs(f_hi)) / load, iterations=len(solves), tolerance=share_tolerance)
         best = min(solves, key=lambda w: abs(w + solves[w][2] - load))
     film, pressure, asperity, rough = solves[best]
-    X, Y = grid.coordinates()
-    i, j = np.unravel_index(np.argmin((X - centre[0]) ** 2 + (Y - centre[1]) ** 2), X.shape)
-    return MixedContact(film=film, smooth=smooth, heights=heights, rough_film=rough, asperity_pressure=pressure,
+    return MixedContact(film=film, smooth=smooth, coupled=False, heights=heights, rough_film=rough,
+                        asperity_pressure=pressure,
                         load=load, film_load=float(best), asperity_load=float(asperity),
                         asperity_share=float(asperity) / load, clearance=clearance,
-                        central_asperity_pressure=float(pressure[i, j]), iterations=len(solves))
+                        central_asperity_pressure=float(pressure[i, j]), iterations=len(solves) + int(coupled))
 
 
 @dataclass(frozen=True)
