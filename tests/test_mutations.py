@@ -125,10 +125,10 @@ def _wm_dimension(monkeypatch):  # sun2021 Sec 2.3 WM raceway with D + 0.1
                                                                                   *args, **kwargs))
 
 
-def _smooth_film_shear(monkeypatch):  # sun2021 eqs 22-23 with the smooth film h_s instead of the rough h_s - z
+def _smooth_film_shear(monkeypatch):  # sun2021 eqs 22-23 with the smooth film instead of the rough one
     original = mixed.mixed_friction
     monkeypatch.setattr(mixed, "mixed_friction", lambda contact, *args, **kwargs: original(
-        dataclasses.replace(contact, rough_film=contact.film.film), *args, **kwargs))
+        dataclasses.replace(contact, rough_film=contact.smooth.film), *args, **kwargs))
 
 
 # mutant -> (what it is, scenes expected to reject it)
