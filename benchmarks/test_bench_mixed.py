@@ -1,8 +1,8 @@
 """Mixed lubrication pieces (sun2021 eqs 15, 20-23): WM raceway, one load-shared mixed point, eq 20 torque.
 
 The sun2021 nut contact B at 5.68 deg on the 128 x 32 grid of the sun2021-fig6 scene, G read in pm:
-a full-film point (500 mm/s: one EHL solve and no asperity contact) and a mixed point (83 mm/s: load
-sharing, EHL solves plus the asperity half-space contact).
+full-film points (500 and 83 mm/s: the smooth and the coupled rough EHL solves) and the decoupled
+mixed estimate at 83 mm/s (load sharing: EHL solves plus the asperity half-space contact).
 Run: ``.venv/bin/python -m pytest benchmarks/test_bench_mixed.py -s``.
 """
 from __future__ import annotations
@@ -22,13 +22,14 @@ def test_bench_wm_raceway(benchmark):
     print(f"\nWM raceway 128 x 32: {benchmark.stats.stats.median * 1e3:.1f} ms, rms {rough.rms * 1e9:.1f} nm")
 
 
-@pytest.mark.parametrize("surface_speed", [0.5, 0.083])
-def test_bench_mixed_point(benchmark, surface_speed):
+@pytest.mark.parametrize("surface_speed, coupled", [(0.5, True), (0.083, True), (0.083, False)])
+def test_bench_mixed_point(benchmark, surface_speed, coupled):
     grid, gap = scene.ehl_domain(5.68, "B", 64)
     heights = scene.raceway_heights(grid).heights
     contact, friction, torque, _ = benchmark.pedantic(scene.mixed_point, (grid, gap, heights, surface_speed),
-                                                      rounds=1, iterations=1)
-    print(f"\nmixed point {surface_speed * 1e3:.0f} mm/s: {benchmark.stats.stats.median:.2f} s, "
+                                                      kwargs={"coupled": coupled}, rounds=1, iterations=1)
+    print(f"\n{'coupled' if coupled else 'decoupled'} point {surface_speed * 1e3:.0f} mm/s: "
+          f"{benchmark.stats.stats.median:.2f} s, "
           f"{contact.iterations} EHL solves, R_s {contact.asperity_share:.4f}, mu "
           f"{friction.friction_coefficient:.4f}, torque {torque:.3f} N m")
 
