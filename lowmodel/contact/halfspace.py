@@ -250,19 +250,21 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.einsum("i,i->", a, b))
 
 
-_SPARSE_CELLS = 24  # below this many non-zero cells a direct sum beats the two FFTs
+_SPARSE_CELLS = 12  # below this many non-zero cells a direct sum beats the two (single-precision) FFTs
 
 
-def _apply_sparse(spectrum: np.ndarray, kernel: np.ndarray, field: np.ndarray, single: bool = False) -> np.ndarray:
-    # K * field (E* = 1) for a field that is mostly zero
-    cells = np.flatnonzero(field)
-    nx, ny = field.shape
+def _apply_sparse(spectrum: np.ndarray, kernel: np.ndarray, cells: np.ndarray, values: np.ndarray,
+                  shape: tuple[int, int], single: bool = False) -> np.ndarray:
+    # K * field (E* = 1) for the field that is ``values`` at the flat indices ``cells`` and zero elsewhere
+    nx, ny = shape
     if cells.size > _SPARSE_CELLS:
+        field = np.zeros(shape)
+        field.flat[cells] = values
         return _convolve(spectrum, field, single)
-    result = np.zeros_like(field)
-    for cell in cells:
+    result = np.zeros(shape)
+    for cell, value in zip(cells, values):
         k, m = divmod(int(cell), ny)
-        result += field[k, m] * kernel[nx - 1 - k:2 * nx - 1 - k, ny - 1 - m:2 * ny - 1 - m]
+        result += value * kernel[nx - 1 - k:2 * nx - 1 - k, ny - 1 - m:2 * ny - 1 - m]
     return result
 
 
@@ -486,15 +488,18 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         p_old = p
         trial = p - tau * t
         p = np.maximum(trial, 0.0)
+        changed = trial < 0.0  # clipped cells
         # cells outside the contact set that overlap (g < 0) re-enter with p = -tau g
         overlap = (p == 0.0) & (g < 0.0)
         if np.any(overlap):
             delta = 0.0
             p[overlap] -= tau * g[overlap]
+            changed |= overlap
         else:
             delta = 1.0
-        # K p = K p_old - tau K t + K (p - trial): p - trial is zero except on clipped and re-entering cells
-        correction = p - trial  # exactly 0.0 where p == trial
+        # K p = K p_old - tau K t + K (p - trial): p - trial is zero except on the clipped and re-entering cells
+        cells = np.flatnonzero(changed)
+        correction = p.flat[cells] - trial.flat[cells]
         total = float(p.sum()) * area
         if load_control:
             factor = force / total
@@ -503,7 +508,11 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         else:
             raise ConvergenceError("approach control lost all contact", residual=math.inf, iterations=iteration,
                                    tolerance=tolerance)
-        u = factor * (u - tau * r_raw + _apply_sparse(spectrum, kernel, correction, single=True) / e_star)
+        r_raw *= -tau
+        u += r_raw
+        if cells.size:
+            u += _apply_sparse(spectrum, kernel, cells, correction, p.shape, single=True) / e_star
+        u *= factor
         p *= factor
         reference = force if load_control else total
         residual = area * float(np.abs(p - p_old).sum()) / reference
