@@ -393,7 +393,7 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
         # Jacobian-free Newton-Krylov: the exact Jacobian (dense deflection, eps(p, h)) by a directional
         # difference of the residual, preconditioned by the sparse semi-system matrix above
         # the bordered semi-system matrix [[J, b], [c, 0]] by its Schur complement (no dense fill in the LU)
-        factor = splu(jac.tocsc())
+        factor = splu(jac.tocsc(), permc_spec="MMD_AT_PLUS_A")  # less fill than COLAMD on the grid stencil
         z = factor.solve(dh0)
         schur = float(load_row @ z)
 

@@ -232,7 +232,7 @@ def _ehl_figure(solution, title):
        "sun2021 Sec 4.3: EHL at A (screw) and B (nut), Table 1 ball screw, eq 1 load, u_s 1005.3 mm/s, domain "
        "+-277 um, exact helical gap, helix 5.68/13.97/21.71 deg: film against Hamrock-Dowson with the "
        "full-tensor radii, load balance, Fig 10 fields, Fig 11 trends (declared known gaps), Fig 12 trend",
-       kind="low-order", cost_s=170.0)  # cost: 239 s wall, CPU 73 % of wall (default, loaded machine)
+       kind="low-order", cost_s=35.0)  # cost: 182 s wall, 31 s CPU (default, load average 11 on 2 cores)
 def sun2021_ehl(run):
     n = {"quick": 64, "default": 128, "fine": 256}[run.fidelity]  # grid 2n x n/2
     films, pressures, times, solutions = {}, {}, [], {}
