@@ -204,15 +204,17 @@ def _ducc_fft():
     return ducc0.fft
 
 
-def _convolve(spectrum: np.ndarray, field: np.ndarray, single: bool = False) -> np.ndarray:
+def _convolve(spectrum: np.ndarray, field: np.ndarray, single_spectrum: np.ndarray | None = None) -> np.ndarray:
     # The zero-padded 2nx x 2ny convolution (rfft2/irfft2 with s=(2nx, 2ny)), arranged for speed: the
     # transforms skip the rows known to be zero on input or not wanted on output, the column transforms
     # run in place, and the real spectrum (already scaled by 1/(4 nx ny)) multiplies the complex array.
-    # ``single``: the transforms in single precision (relative error ~1e-7 of the result), for the
-    # increments of the conjugate gradient, whose error is relative to the step, not to the deflection.
+    # ``single_spectrum`` (``spectrum`` as float32): the transforms in single precision (relative error ~1e-7
+    # of the result; a float32 array is returned), for the increments of the conjugate gradient, whose
+    # error is relative to the step, not to the deflection.
     nx, ny = field.shape
     fft = _ducc_fft()
-    real, cplx = (np.float32, np.complex64) if single and fft is not None else (float, complex)
+    single = single_spectrum is not None and fft is not None
+    real, cplx = (np.float32, np.complex64) if single else (float, complex)
     padded = np.zeros((nx, 2 * ny), dtype=real)
     padded[:, :ny] = field
     columns = np.empty((2 * nx, ny + 1), dtype=cplx)
@@ -220,29 +222,15 @@ def _convolve(spectrum: np.ndarray, field: np.ndarray, single: bool = False) -> 
     if fft is not None:
         fft.r2c(padded, axes=(1,), out=columns[:nx])
         fft.c2c(columns, axes=(0,), forward=True, out=columns)
-        columns *= _single_spectrum(spectrum) if single else spectrum
+        columns *= single_spectrum if single else spectrum
         fft.c2c(columns, axes=(0,), forward=False, out=columns)
         fft.c2r(columns[:nx], axes=(1,), lastsize=2 * ny, forward=False, out=padded)
-        return padded[:, :ny].astype(float) if single else padded[:, :ny]
+        return padded[:, :ny]
     columns[:nx] = scipy.fft.rfft(padded, axis=1)
     columns = scipy.fft.fft(columns, axis=0, overwrite_x=True)
     columns *= spectrum
     columns = scipy.fft.ifft(columns, axis=0, overwrite_x=True, norm="forward")
     return scipy.fft.irfft(columns[:nx], n=2 * ny, axis=1, norm="forward")[:, :ny]
-
-
-_SINGLE_SPECTRA: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-
-
-def _single_spectrum(spectrum: np.ndarray) -> np.ndarray:
-    # float32 copy of a cached (read-only) spectrum, kept while the spectrum lives in the lru cache
-    entry = _SINGLE_SPECTRA.get(id(spectrum))
-    if entry is None or entry[0] is not spectrum:
-        if len(_SINGLE_SPECTRA) >= 16:
-            _SINGLE_SPECTRA.clear()
-        entry = (spectrum, spectrum.astype(np.float32))
-        _SINGLE_SPECTRA[id(spectrum)] = entry
-    return entry[1]
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -254,17 +242,18 @@ _SPARSE_CELLS = 12  # below this many non-zero cells a direct sum beats the two 
 
 
 def _apply_sparse(spectrum: np.ndarray, kernel: np.ndarray, cells: np.ndarray, values: np.ndarray,
-                  shape: tuple[int, int], single: bool = False) -> np.ndarray:
-    # K * field (E* = 1) for the field that is ``values`` at the flat indices ``cells`` and zero elsewhere
+                  shape: tuple[int, int], single_spectrum: np.ndarray | None, kernel_scale: float) -> np.ndarray:
+    # K * field for the field that is ``values`` at the flat indices ``cells`` and zero elsewhere; ``spectrum``
+    # (and ``single_spectrum``) already carry the scale that ``kernel`` gets from ``kernel_scale`` (1/E*)
     nx, ny = shape
     if cells.size > _SPARSE_CELLS:
         field = np.zeros(shape)
         field.flat[cells] = values
-        return _convolve(spectrum, field, single)
+        return _convolve(spectrum, field, single_spectrum)
     result = np.zeros(shape)
     for cell, value in zip(cells, values):
         k, m = divmod(int(cell), ny)
-        result += value * kernel[nx - 1 - k:2 * nx - 1 - k, ny - 1 - m:2 * ny - 1 - m]
+        result += (value * kernel_scale) * kernel[nx - 1 - k:2 * nx - 1 - k, ny - 1 - m:2 * ny - 1 - m]
     return result
 
 
@@ -434,12 +423,13 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
     tolerance = _finite_positive("tolerance", tolerance, "")
     if int(max_iterations) < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations!r}")
-    spectrum = _kernel_spectrum(grid.nx, grid.ny, grid.dx, grid.dy)
+    spectrum = _kernel_spectrum(grid.nx, grid.ny, grid.dx, grid.dy) / e_star  # the deflection for this E*
+    spectrum_single = spectrum.astype(np.float32)
     kernel = _kernel(grid.nx, grid.ny, grid.dx, grid.dy)
     area = grid.cell_area
 
     def apply(field, single=False):
-        return _convolve(spectrum, field, single) / e_star
+        return _convolve(spectrum, field, spectrum_single if single else None)
 
     if initial_pressure is not None:
         p = np.array(initial_pressure, dtype=float)
@@ -479,8 +469,8 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         g_old = g_norm
         t = np.zeros_like(p)
         t[in_contact] = t_c
-        r_raw = apply(t, single=True)
-        r_c = r_raw[in_contact]
+        r_raw = apply(t, single=True)  # float32 (single-precision increment)
+        r_c = r_raw[in_contact].astype(float)
         if load_control:
             r_c -= r_c.mean()
         denominator = _dot(r_c, t_c)
@@ -508,10 +498,9 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         else:
             raise ConvergenceError("approach control lost all contact", residual=math.inf, iterations=iteration,
                                    tolerance=tolerance)
-        r_raw *= -tau
-        u += r_raw
+        u -= tau * r_raw
         if cells.size:
-            u += _apply_sparse(spectrum, kernel, cells, correction, p.shape, single=True) / e_star
+            u += _apply_sparse(spectrum, kernel, cells, correction, p.shape, spectrum_single, 1.0 / e_star)
         u *= factor
         p *= factor
         reference = force if load_control else total
@@ -521,7 +510,7 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
     else:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=residual,
                                iterations=int(max_iterations), tolerance=tolerance)
-    u = apply(p)
+    u = np.ascontiguousarray(apply(p))
     in_contact = p > 0.0
     if load_control:
         approach = float((u + gap)[in_contact].mean())
