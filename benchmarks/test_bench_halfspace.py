@@ -9,6 +9,7 @@ time is the steadier figure when other jobs compete for the cores.
 """
 from __future__ import annotations
 
+import os
 import time
 
 import numpy as np
@@ -57,7 +58,8 @@ def test_bench_bem_hertz(benchmark, n, target_s):
     benchmark.extra_info.update({"n": n, "iterations": result.iterations, "cpu_s": cpu})
     print(f"\nBEM {n} x {n}: median wall {median:.3f} s (one run: wall {wall:.3f} s, CPU {cpu:.3f} s; "
           f"target < {target_s} s), {result.iterations} CG iterations; error vs Hertz "
-          + _errors(contact, result.pressure, grid, result.approach))
+          + _errors(contact, result.pressure, grid, result.approach)
+          + f"; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
 
 
 def test_bench_bem_vs_tamaas_512(benchmark):
@@ -91,4 +93,5 @@ def test_bench_bem_vs_tamaas_512(benchmark):
           f"  ballbench halfspace: wall {our_wall:.2f} s, CPU {our_cpu:.2f} s; error vs Hertz "
           f"{_errors(contact, result.pressure, grid, result.approach)}\n"
           f"  time ratio ours/tamaas: wall {our_wall / tamaas_wall:.2f}, CPU {our_cpu / tamaas_cpu:.2f} "
-          f"(target <= 1.5); max |p_ours - p_tamaas| / p0 = {difference:.1e}")
+          f"(target <= 1.5); max |p_ours - p_tamaas| / p0 = {difference:.1e}; "
+          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
