@@ -21,10 +21,10 @@ Per contact (lin2019 eqs 1-3, A1-A3), with ``V_i`` the groove velocity
     omega_i = -Omega . n_i                     spin about the inward normal y_i (eq 2)
     spin_i  = omega_i a_i                      [m/s]
 
-Friction comes from :func:`lowmodel.contact.ellipse_friction.friction_velocity`
-and depends only on the slip-direction angle ``phi_i = atan2(slide_i,
-spin_i)`` (``c_i/a_i = tan phi_i``); the velocity-centre offset ``c_i`` is
-never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
+Friction comes from the map of :mod:`lowmodel.contact.ellipse_friction`
+(:func:`~lowmodel.contact.ellipse_friction.friction_angle_at`) and depends only
+on the slip-direction angle ``phi_i = atan2(slide_i, spin_i)`` (``c_i/a_i = tan phi_i``);
+the velocity-centre offset ``c_i`` is never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
 ordinary point ``phi_i = +-pi/2``.
 
     f_i   = mu F_i force_i                 friction force on the ball along +z [N]      (eq A4)
@@ -136,6 +136,11 @@ class BallContacts:
         dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)  # d spin / d x
         top = math.copysign(1.0, self.groove_velocity) * _TOP
         return nx, ny, arm, dslide, dspin, top
+
+    @cached_property
+    def _friction_at(self):
+        """The friction map at this instance's axis ratios (lin2019 eqs A4-A6), as a function of the slip angles."""
+        return _friction_angle_function(self.b_over_a)
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -341,10 +346,12 @@ def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
 # --------------------------------------------------------------------------
 # residual of the ball equilibrium (vectorised over balls)
 # --------------------------------------------------------------------------
-def _friction(spin, slide, b_over_a):
-    from ballbench.lowmodel.contact.ellipse_friction import friction_velocity
+def _friction_angle_function(b_over_a):
+    """``phi -> (force, d force/d phi, moment, d moment/d phi, loss)`` per unit slip speed at fixed ``b/a``
+    (lin2019 eqs A4-A6; :func:`lowmodel.contact.ellipse_friction.friction_angle_at`)."""
+    from ballbench.lowmodel.contact.ellipse_friction import friction_angle_at
 
-    return friction_velocity(spin, slide, b_over_a)
+    return friction_angle_at(b_over_a)
 
 
 @dataclass(frozen=True)
@@ -384,14 +391,16 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     phi = unknowns[:, 3:]
     nx, ny, arm, dslide, dspin, top = contacts._geometry
     load = contacts.normal_forces / reference_force
-    slide = np.einsum("nk,nik->ni", x, dslide) - top  # lin2019 eqs 1, A1-A3 (z slip at the centre)
-    spin_velocity = np.einsum("nk,nik->ni", x, dspin)  # omega_i a_i, eq 2
+    x0, x1, x2 = x[:, 0:1], x[:, 1:2], x[:, 2:3]
+    slide = x0 + x1 * ny - x2 * nx - top  # lin2019 eqs 1, A1-A3 (z slip at the centre); dslide = (1, n_y, -n_x)
+    spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2; dspin = -(0, n_x, n_y) a_i/R_B
     cos, sin = np.cos(phi), np.sin(phi)
-    fr = _friction(cos, sin, contacts.b_over_a)  # unit slip speed in direction phi
-    force = load * fr.force  # eq A4
-    moment = load * arm * fr.moment  # eq A5, M_{i,O}/R_B about -y_i
-    dforce = load * (fr.dforce_dslide * cos - fr.dforce_dspin * sin)  # d/d phi
-    dmoment = load * arm * (fr.dmoment_dslide * cos - fr.dmoment_dspin * sin)
+    fr_force, fr_dforce, fr_moment, fr_dmoment, fr_loss = contacts._friction_at(phi)  # unit slip speed along phi
+    load_arm = load * arm
+    force = load * fr_force  # eq A4
+    moment = load_arm * fr_moment  # eq A5, M_{i,O}/R_B about -y_i
+    dforce = load * fr_dforce  # d/d phi
+    dmoment = load_arm * fr_dmoment
     n = x.shape[0]
     residual = np.empty((n, N_UNKNOWNS))
     residual[:, 0] = force.sum(axis=1)  # lin2019 eq 4, row 1
@@ -406,7 +415,7 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     jacobian[:, 3:, :3] = cos[..., None] * dslide - sin[..., None] * dspin
     index = np.arange(4)
     jacobian[:, 3 + index, 3 + index] = -slip_speed
-    loss_table = load * fr.loss * slip_speed  # eq A6 (loss is per unit slip speed here)
+    loss_table = load * fr_loss * slip_speed  # eq A6 (loss is per unit slip speed here)
     return BallTerms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
@@ -603,16 +612,19 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
 
 
 def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
-                 max_iterations: int, what: str, attempts: int = 4):
+                 max_iterations: int, what: str, attempts: int = 4, with_balls=None):
     """Newton on the slip-angle formulation, then keep only the physical branch.
 
     ``slide_i cos phi_i = spin_i sin phi_i`` also holds for ``phi_i + pi``
     (friction reversed against the slip); a converged point with a slip speed
     ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``
     (:func:`lowmodel.solvers.solve_with_restarts`).  ``balls_of(z)`` returns
-    the (n, 7) ball unknowns of the state vector ``z``; ``reference_force`` [N]
+    the (n, 7) ball unknowns of the state vector ``z`` and ``with_balls(z, balls)`` a copy of ``z``
+    with them replaced (default: ``z`` starts with the ball unknowns); ``reference_force`` [N]
     is the force unit of ``function``'s residual.
     """
+    replace = _replace_balls if with_balls is None else with_balls
+
     def restart(z):
         balls = balls_of(z)
         slide, spin = slip_kinematics(balls, contacts)
@@ -622,7 +634,7 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
             return None
         balls = balls.copy()
         balls[:, 3:] = np.where(wrong, balls[:, 3:] + math.pi, balls[:, 3:])
-        return _replace_balls(z, balls), float(-slip_speed.min())
+        return replace(z, balls), float(-slip_speed.min())
 
     return solve_with_restarts(function, z0, restart, tolerance=tolerance, max_iterations=max_iterations, what=what,
                                rejection="converged only to slip directions against the slip", attempts=attempts)
