@@ -243,7 +243,8 @@ def _normal_band_pattern(n: int, k: int):
 
 
 def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, max_iterations: int, what: str,
-                        rejection: str = "converged only to rejected points", attempts: int = 4):
+                        rejection: str = "converged only to rejected points", attempts: int = 4,
+                        rejection_reason: str = ""):
     """:func:`newton` from ``x0``, then ``restart(x)`` judges the converged point.
 
     ``restart(x)`` returns ``None`` to accept ``x``, or ``(x_new, violation)``
@@ -251,7 +252,7 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
     from acceptable, in the model's residual units).  At most ``attempts``
     runs share ``max_iterations``.  Returns ``(x, residual_vector,
     iterations)``; raises ConvergenceError (message ``what: rejection``,
-    residual the last violation) when no run ends at an accepted point.
+    residual the last violation, reason ``rejection_reason``) when no run ends at an accepted point.
     """
     x = np.array(x0, dtype=float)
     total = 0
@@ -264,7 +265,8 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
         if verdict is None:
             return x, residual, total
         x, violation = verdict
-    raise ConvergenceError(f"{what}: {rejection}", residual=float(violation), iterations=total, tolerance=tolerance)
+    raise ConvergenceError(f"{what}: {rejection}", residual=float(violation), iterations=total, tolerance=tolerance,
+                           reason=rejection_reason)
 
 
 @dataclass(frozen=True)
@@ -284,8 +286,10 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
     continuation: the predictor is the secant through the last two converged points,
     a converged step in at most 6 iterations doubles the next one, a failed one
     halves it; below ``min_step`` the path stops and ConvergenceError is raised with
-    ``reason = "continuation stopped (fold or no state beyond)"`` and
-    ``last_converged = (name, s)``.  Returns ``(x, residual_vector, path)`` with ``path`` a
+    ``last_converged = (name, s)`` and ``reason = "continuation stopped (fold or no state beyond)"``,
+    or, when the last failed step ended at a converged point that the model rejected with a reason
+    (``ConvergenceError.reason`` of ``solve_at``: the branch continues, but outside the model's validity),
+    ``"<that reason> beyond <name> = s"``.  Returns ``(x, residual_vector, path)`` with ``path`` a
     tuple of :class:`ContinuationStep` (``s = 0`` first, ``s = 1`` last).
     """
     x = np.array(x_start, dtype=float)
@@ -326,7 +330,14 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
         if iterations <= 6:
             step *= 2.0
     residual_norm = last_error.residual if last_error is not None else math.inf
-    raise ConvergenceError(f"{what}: continuation in {name} stopped at {name} = {s:.6g} of 1 (fold or no state "
-                           "beyond)", residual=residual_norm, iterations=sum(p.iterations for p in path),
-                           tolerance=last_error.tolerance if last_error is not None else 0.0,
-                           reason="continuation stopped (fold or no state beyond)", last_converged=(name, s))
+    if last_error is not None and last_error.reason:  # the branch goes on, but the model rejects it
+        reason = f"{last_error.reason} beyond {name} = {s:.6g}"
+        because = f"{last_error.reason}: {str(last_error).split(' (residual')[0]}"
+    else:
+        reason, because = "continuation stopped (fold or no state beyond)", "fold or no state beyond"
+    stopped = ConvergenceError(f"{what}: continuation in {name} stopped at {name} = {s:.6g} of 1 ({because})",
+                               residual=residual_norm, iterations=sum(p.iterations for p in path),
+                               tolerance=last_error.tolerance if last_error is not None else 0.0,
+                               reason=reason, last_converged=(name, s))
+    stopped.last_state = x  # the last converged point (at s), for the caller's diagnosis
+    raise stopped

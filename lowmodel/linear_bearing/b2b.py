@@ -65,6 +65,7 @@ from ballbench.lowmodel.solvers import check_solver_options
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
            "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
 
+MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
 
@@ -207,6 +208,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         return terms.residual, terms.jacobian
 
     function, _, pack = coupled_system(ball_function, n, k, touching, mu)
+    systems = {mu: function}  # one coupled system per friction coefficient (the mu path below)
 
     def balls_of(z):
         return z[ball_index]
@@ -218,11 +220,23 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
 
     def solve_at(contacts_s, z0, label=what):
         at["contacts"] = contacts_s
-        return solve_branch(function, z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
+        mu_s = contacts_s.friction_coefficient
+        if mu_s not in systems:
+            systems[mu_s] = coupled_system(ball_function, n, k, touching, mu_s)[0]
+        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
                             max_iterations=max_iterations, what=label, with_balls=with_balls)
+
+    def mu_at(s):  # the friction coefficient from mu / MU_PATH_START to mu, geometrically (B2B friction grows)
+        return dataclasses.replace(contacts, friction_coefficient=mu * MU_PATH_START ** (s - 1.0))
 
     def start_guess(contacts_s):
         return pack(initial_guess(contacts_s))
+
+    def free_start(contacts_s):  # path starts: every ball solved on its own (light loads need it per ball)
+        try:
+            return pack(solve_free(contacts_s, reference_force, tolerance, max_iterations)[0])
+        except ConvergenceError:
+            return start_guess(contacts_s)
 
     paths = []
     try:  # from rolling at v/2 (cheap) ...
@@ -234,9 +248,10 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
             iterations += free_iterations
         except ConvergenceError as error:  # ... else by continuation of the coupled problem
             paths = []
-            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, start_guess,
+            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, free_start,
                                                                        error if error.iterations else first_error,
-                                                                       what=what)
+                                                                       what=what, balls_of=balls_of,
+                                                                       extra_paths=(("mu", MU_PATH_START, mu_at),))
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
     terms = ball_terms(balls, contacts, reference_force)

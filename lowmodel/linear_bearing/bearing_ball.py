@@ -93,9 +93,11 @@ __all__ = [
     "solve_branch",
     "with_spin_capacity_diagnosis",
     "N_UNKNOWNS",
+    "STICK_REASON",
 ]
 
 _TOP = np.array([0.0, 0.0, 1.0, 1.0])  # contacts on the moving (top) groove
+STICK_REASON = "a contact stops sliding (full-sliding branch ends: its continuation slips against its friction)"
 
 
 # --------------------------------------------------------------------------
@@ -571,7 +573,8 @@ def homotopy_paths(contacts: BallContacts):
     return paths
 
 
-def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error: ConvergenceError, *, what: str):
+def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error: ConvergenceError, *, what: str,
+                            balls_of=None, extra_paths=()):
     """Continuation along :func:`homotopy_paths` after Newton from the cheap start failed with ``error``.
 
     ``solve_at(contacts_s, z0, what)`` solves the problem (one ball, or the coupled B2B chain) for the
@@ -579,10 +582,17 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     is the cheap start at ``s = 0``.  Paths are tried in order; the first that reaches ``s = 1`` gives
     ``((z, residual, iterations), ContinuationPath)``.  Where none does, ConvergenceError with the
     spin-capacity diagnosis, the reason (spin-capacity ratio < 1, or the continuation stopped: a fold
-    or no state beyond) and the last converged parameter of the path that got furthest.
+    or no state beyond; or a contact stops sliding: the branch continues with a contact slipping against
+    its friction) and the last converged parameter of the path that got furthest; its attribute
+    ``min_slip_speed`` is the smallest contact slip speed ``r_i`` [units |v|] at that last converged point
+    (``balls_of(z)`` gives the (n, 7) ball unknowns of a state; default one ball), NaN without one.
+    ``extra_paths``: more ``(kind, start_scale, contacts_at)`` tried after :func:`homotopy_paths`.
     """
-    furthest = None
-    for kind, scale, contacts_at in homotopy_paths(contacts):
+    if balls_of is None:
+        def balls_of(z):
+            return np.reshape(z, (-1, N_UNKNOWNS))
+    furthest, furthest_at = None, None
+    for kind, scale, contacts_at in (*homotopy_paths(contacts), *extra_paths):
         try:
             start = contacts_at(0.0)
             z0, _, iterations0 = solve_at(start, start_guess(start), f"{what}, {kind} path start")
@@ -596,7 +606,7 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
             z, residual, steps = continuation(step, z0, what=f"{what}, {kind} path", name=f"s ({kind})")
         except ConvergenceError as stopped:
             if furthest is None or stopped.last_converged[1] > furthest.last_converged[1]:
-                furthest = stopped
+                furthest, furthest_at = stopped, contacts_at
             continue
         steps = (ContinuationStep(0.0, iterations0),) + steps[1:]
         return (z, residual, sum(p.iterations for p in steps)), ContinuationPath((), kind, scale, steps)
@@ -604,11 +614,19 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     reason = ("spin-capacity ratio < 1" if ratio < 1.0 else
               furthest.reason if furthest is not None else "no continuation path could start")
     last = furthest.last_converged if furthest is not None else None
-    where = f"; continuation got to {last[0]} = {last[1]:.6g}" if last is not None else ""
+    min_slip = math.nan
+    if furthest is not None:  # how close the last converged point is to a contact that stops sliding
+        balls = balls_of(furthest.last_state)
+        slide, spin = slip_kinematics(balls, furthest_at(last[1]))
+        min_slip = float(np.min(slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])))
+    where = (f"; continuation got to {last[0]} = {last[1]:.6g}, smallest contact slip speed there "
+             f"{min_slip:.3g} |v|" if last is not None else "")
     diagnosed = with_spin_capacity_diagnosis(error, contacts)
     message = str(diagnosed).split(" (residual")[0] + where
-    raise ConvergenceError(message, residual=error.residual, iterations=error.iterations,
-                           tolerance=error.tolerance, reason=reason, last_converged=last) from None
+    failure = ConvergenceError(message, residual=error.residual, iterations=error.iterations,
+                               tolerance=error.tolerance, reason=reason, last_converged=last)
+    failure.min_slip_speed = min_slip
+    raise failure from None
 
 
 def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
@@ -637,7 +655,8 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
         return replace(z, balls), float(-slip_speed.min())
 
     return solve_with_restarts(function, z0, restart, tolerance=tolerance, max_iterations=max_iterations, what=what,
-                               rejection="converged only to slip directions against the slip", attempts=attempts)
+                               rejection="converged only to slip directions against the slip", attempts=attempts,
+                               rejection_reason=STICK_REASON)
 
 
 def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:

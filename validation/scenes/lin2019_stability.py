@@ -56,7 +56,7 @@ class _Tally:
             self.records.append((family, ratio, False, error.reason, error.iterations, error.residual, False,
                                  math.nan, False))
             self.failures.append((family, contacts.n_balls, ratio, error.reason, error.last_converged,
-                                  float(contacts.friction_coefficient)))
+                                  float(contacts.friction_coefficient), getattr(error, "min_slip_speed", math.nan)))
             return None
         values = np.concatenate([state.ball_velocity, state.omega.ravel(), state.b2b_force,
                                  state.friction_loss.ravel()])
@@ -130,6 +130,13 @@ def stability(run):
               source="issue 10: a state exists there (docs/b2b_bearing.md, validity)", time_s=per_solve)
     pairs = existing & coupled
     coupled_fraction = float(np.mean(converged[pairs])) if np.any(pairs) else 1.0
+    stick = np.array([reason.startswith(bearing_ball.STICK_REASON) for reason in reasons])
+    run.check(model=MODEL_B2B, quantity=f"touching balls, spin-capacity ratio >= {RATIO_FLOOR} ({int(pairs.sum())} "
+              "solves): fraction converged or ended where a contact stops sliding", unit="1",
+              value=float(np.mean((converged | stick)[pairs])) if np.any(pairs) else 1.0, reference=1.0,
+              tolerance=0.0, time_s=per_solve,
+              source="issue 10: the end of the full-sliding branch (a contact's slip speed crosses 0, "
+              "docs/b2b_bearing.md 'validity') is the existence bound for touching balls")
     run.check(model=MODEL_B2B, quantity="failures without a reason", unit="count",
               value=float(np.sum(~converged & (reasons == ""))), reference=0.0, scale=1.0, tolerance=0.0,
               why="a count: tolerance 0, so a single failure without a reason fails; the scale is one solve",
@@ -149,6 +156,7 @@ def stability(run):
               value=float(np.max(residuals[converged])), reference=1e-12, relation="le", tolerance=0.0,
               source="solver tolerance 1e-12", time_s=per_solve)
     _spin_capacity_boundary(run)
+    _stick_boundary(run)
     _loss_of_contact(run)
     families = ("grid", "load", "mu", "chain")
     summary = "; ".join(
@@ -161,13 +169,13 @@ def stability(run):
             failures[record[3]] = failures.get(record[3], 0) + 1
     timing = ", ".join(f"{n}: {1e3 * float(np.median(t)):.0f} ms" for n, t in sorted(chain_times.items()))
     pair_failures = [f for f in tally.failures if f[2] >= RATIO_FLOOR]
-    run.note(f"Known gap (touching balls): {int(pairs.sum())} solves with B2B contact and every ball's spin-capacity "
+    run.note(f"Touching balls: {int(pairs.sum())} solves with B2B contact and every ball's spin-capacity "
              f"ratio >= {RATIO_FLOOR}, of which {100 * coupled_fraction:.1f} % converged; failures: "
-             + ("; ".join(f"{f[0]}, {f[1]} balls, mu = {f[5]:.3g}, ratio {f[2]:.2f}: {f[3]} at {f[4]}"
-                          for f in pair_failures) or "none")
-             + ".  The single-ball ratio is not an existence bound for touching balls: the B2B force and its "
-             "friction moment use friction capacity too; a B2B-aware bound is not derived yet (evidence in "
-             "docs/b2b_bearing.md, 'validity').")
+             + ("; ".join(f"{f[0]}, {f[1]} balls, mu = {f[5]:.3g}, ratio {f[2]:.2f}: {f[3]} (last converged "
+                          f"{f[4]}, smallest slip speed there {f[6]:.2g} |v|)" for f in pair_failures) or "none")
+             + ".  The single-ball ratio is not an existence bound for touching balls (the B2B force and its "
+             "friction moment use friction capacity too); the bound is the end of the full-sliding branch, where "
+             "a contact's slip speed reaches 0 (docs/b2b_bearing.md, 'validity').")
     run.note(f"{len(tally.records)} solves in {elapsed:.1f} s. {summary}. Failures by reason: {failures or 'none'} "
              f"(all at spin-capacity ratio < {RATIO_FLOOR}: "
              f"{bool(np.all(ratio[~converged] < RATIO_FLOOR)) if np.any(~converged) else 'no failures'}). "
@@ -196,6 +204,32 @@ def _spin_capacity_boundary(run) -> None:
                   time_s=(time.perf_counter() - began) / 16,
                   source="moment balance along the loaded diagonal (docs/b2b_bearing.md, validity)",
                   note="tolerance: the bound neglects the misalignment theta of the diagonal")
+
+
+def _stick_boundary(run) -> None:
+    """Two touching balls, theta = 3 deg, rho = -0.7 (spin-capacity ratio 4.2): bisection in mu between a converged
+    solve and one that fails; at the last converged mu a contact's slip speed must be ~0 (the full-sliding
+    branch ends there) and the failure must say so."""
+    theta = math.radians(3.0)
+    ok, bad = 0.3, 0.6
+    began = time.perf_counter()
+    ok_state, failure = b2b.solve(_case(theta, -0.7, 2, friction_coefficient=ok), [0.0]), None
+    for _ in range(24):
+        mid = 0.5 * (ok + bad)
+        try:
+            ok_state, ok = b2b.solve(_case(theta, -0.7, 2, friction_coefficient=mid), [0.0]), mid
+        except ConvergenceError as error:
+            bad, failure = mid, error
+    slip = np.hypot(ok_state.slide, ok_state.spin * _case(theta, -0.7, 2).semi_major) / TABLE1["groove_velocity"]
+    run.check(model=MODEL_B2B, quantity=f"smallest contact slip speed / v at the last converged mu = {ok:.6f} "
+              "(theta = 3 deg, rho = -0.7, two touching balls)", unit="1", value=float(np.min(slip)),
+              reference=0.0, scale=1.0, tolerance=1e-3, time_s=(time.perf_counter() - began) / 24,
+              why="a slip speed per unit groove speed: zero judged on the scale 1 (the other contacts slip at "
+              "0.02 to 0.5 v)", source="end of the full-sliding branch (docs/b2b_bearing.md, validity)")
+    run.check(model=MODEL_B2B, quantity=f"failure just beyond (mu = {bad:.6f}) names the stick boundary", unit="1",
+              value=float(failure is not None and failure.reason.startswith(bearing_ball.STICK_REASON)),
+              reference=1.0, tolerance=0.0, time_s=(time.perf_counter() - began) / 24,
+              source="issue 10: a failure is proven to be no-state, reason given")
 
 
 def _loss_of_contact(run) -> None:
