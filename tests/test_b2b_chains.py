@@ -1,4 +1,5 @@
-"""Long B2B chains (issue 10 item 7): the block-tridiagonal Jacobian built directly, sparse for long chains."""
+"""Long B2B chains (issue 10 item 7): the block-tridiagonal Jacobian built directly, as block diagonals (banded
+Cholesky of J^T J) from SPARSE_BALLS balls, dense below."""
 from __future__ import annotations
 
 import math
@@ -16,7 +17,7 @@ def _chain(n_balls, seed=3):
 
 
 def test_sparse_and_dense_assembly_agree(monkeypatch):
-    """The same chain with the sparse (CSR, banded Cholesky) and the dense route: the same state."""
+    """The same chain with the block (banded Cholesky of J^T J) and the dense route: the same state."""
     contacts, gaps = _chain(45)
     sparse = b2b.solve(contacts, gaps)
     monkeypatch.setattr(b2b, "SPARSE_BALLS", 10_000)
@@ -27,7 +28,7 @@ def test_sparse_and_dense_assembly_agree(monkeypatch):
 
 
 def test_small_chain_through_the_sparse_route(monkeypatch):
-    """Force the sparse route for a 3-ball chain (one open gap): same state as the dense route."""
+    """Force the block route for a 3-ball chain (one open gap): same state as the dense route."""
     contacts, _ = _chain(3)
     gaps = np.array([0.0, 1e-4])
     dense = b2b.solve(contacts, gaps)
