@@ -63,7 +63,8 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
 from ballbench.lowmodel.solvers import check_solver_options
 
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
-           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
+           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS",
+           "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
