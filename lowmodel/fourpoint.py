@@ -116,10 +116,23 @@ def _eq36(side_force, vertical_force, angles):
     bl, br, tr, tl = np.moveaxis(angles, -1, 0)
     bottom = np.sin(bl + br)
     top = np.sin(tl + tr)
-    return np.stack([-(side_force * np.cos(br) - vertical_force * np.sin(br)) / bottom,   # lin2017 eq 36
-                     (side_force * np.cos(bl) + vertical_force * np.sin(bl)) / bottom,
-                     -(side_force * np.cos(tl) - vertical_force * np.sin(tl)) / top,
-                     (side_force * np.cos(tr) + vertical_force * np.sin(tr)) / top], axis=-1)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # a degenerate pair: checked by callers
+        return np.stack([-(side_force * np.cos(br) - vertical_force * np.sin(br)) / bottom,   # lin2017 eq 36
+                         (side_force * np.cos(bl) + vertical_force * np.sin(bl)) / bottom,
+                         -(side_force * np.cos(tl) - vertical_force * np.sin(tl)) / top,
+                         (side_force * np.cos(tr) + vertical_force * np.sin(tr)) / top], axis=-1)
+
+
+def _degenerate_pair(angles, where) -> ValueError:
+    """ValueError for contact angles whose contact pair (BL, BR) or (TR, TL) nearly coincides (sum near 0)
+    or is nearly opposite (sum near pi): lin2017 eqs 23 and 36 divide by ``sin(beta_BL + beta_BR)``,
+    ``sin(beta_TR + beta_TL)`` and the forces grow without bound (``where``: the offending entry)."""
+    bl, br, tr, tl = (float(a) for a in angles[where])
+    return ValueError(
+        f"contact_angles: a contact pair degenerates, (BL, BR, TR, TL) = ({bl!r}, {br!r}, {tr!r}, {tl!r}) rad: "
+        f"beta_BL + beta_BR = {bl + br:.6g} and beta_TR + beta_TL = {tr + tl:.6g} rad must stay far enough from 0 "
+        "and pi that the normal forces (lin2017 eq 36, ~ N / sin(sum)) and K (eq 23) stay finite; two contacts "
+        "that coincide (both angles near 0) or face each other (both near 90 deg) cannot carry the load")
 
 
 def contact_limits(contact_angles) -> tuple[np.ndarray, np.ndarray]:
@@ -157,13 +170,17 @@ def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:
     forces = _eq36(side, vertical, angles)                 # lin2017 eq 36
     if not np.all(forces > 0.0):
         lower, upper = contact_limits(angles)
-        ratio = side / vertical
+        with np.errstate(over="ignore"):  # N_x / N_y may overflow for a tiny N_y: the message shows inf
+            ratio = side / vertical
         index = np.unravel_index(np.argmin(np.min(forces, axis=-1)), forces.shape[:-1])
         raise ValueError(
             f"side_force: loss of four-point contact (lin2017 eq 37), N_x/N_y = {float(ratio[index]):.6g} "
             f"must lie in ({float(lower[index]):.6g}, {float(upper[index]):.6g}) = "
             f"(-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL)); "
             f"contact {CONTACT_NAMES[int(np.argmin(forces[index]))]} has F = {float(np.min(forces[index])):.6g} N")
+    if not np.all(np.isfinite(forces)):  # all > 0 but some overflow: a pair summing to nearly pi under a huge load
+        raise _degenerate_pair(angles, np.unravel_index(np.argmin(np.all(np.isfinite(forces), axis=-1)),
+                                                        forces.shape[:-1]))
     return forces
 
 
@@ -175,14 +192,27 @@ def _rows(angles) -> np.ndarray:
     return np.stack([np.ones_like(normals[..., 0]), normals[..., 1], -normals[..., 0]], axis=-1)
 
 
-def _null_vector(rows) -> np.ndarray:
-    """Signed 3x3 minors of the 4x3 matrix ``rows``: ``n`` with ``rows^T n = 0``, ``n_TR > 0``. (..., 4)."""
-    def det3(a, b, c):
-        return np.einsum("...i,...i->...", a, np.cross(b, c))
+def _null_vector(angles) -> np.ndarray:
+    """``n`` with ``A^T n = 0`` (``A``: the rows of :func:`_rows`), ``n_TR > 0``, (..., 4): the signed 3x3 minors.
 
-    r0, r1, r2, r3 = (rows[..., k, :] for k in range(4))
-    n = np.stack([det3(r1, r2, r3), -det3(r0, r2, r3), det3(r0, r1, r3), -det3(r0, r1, r2)], axis=-1)
-    return n * np.sign(n[..., 2:3])
+    The rows are ``(1, cos t_i, sin t_i)`` with the contact points at the polar angles ``t_BL = pi - beta_BL``,
+    ``t_BR = pi + beta_BR``, ``t_TR = 2 pi - beta_TR``, ``t_TL = 2 pi + beta_TL`` (increasing), and a minor of three
+    points on the unit circle is ``4 sin(a/2) sin(b/2) sin((a + b)/2)`` with ``a``, ``b`` the arcs between them
+    (``sin x + sin y + sin z = -4 sin(x/2) sin(y/2) sin(z/2)`` for ``x + y + z = 0``).  The arcs are
+    ``pi - beta_BL - beta_TL`` (left), ``beta_BL + beta_BR`` (bottom), ``pi - beta_BR - beta_TR`` (right) and
+    ``beta_TR + beta_TL`` (top), so the minors are products of sines and cosines of half sums, with no
+    cancellation when a pair of contacts nearly coincides (angles near 0) or faces (near 90 deg): lin2017
+    eq 23's denominators ``|n_i|`` stay accurate to the last digits there.
+    """
+    bl, br, tr, tl = np.moveaxis(angles, -1, 0)
+    bottom = np.sin(0.5 * (bl + br))      # sin(bottom arc / 2)
+    top = np.sin(0.5 * (tr + tl))         # sin(top arc / 2)
+    right = np.cos(0.5 * (br + tr))       # sin(right arc / 2)
+    left = np.cos(0.5 * (bl + tl))        # sin(left arc / 2)
+    cross_bl = np.cos(0.5 * (br - tl))    # sin((right + top) / 2) = sin((left + bottom) / 2)
+    cross_br = np.cos(0.5 * (bl - tr))    # sin((top + left) / 2) = sin((bottom + right) / 2)
+    return np.stack([4.0 * right * top * cross_bl, -4.0 * top * left * cross_br,
+                     4.0 * left * bottom * cross_bl, -4.0 * bottom * right * cross_br], axis=-1)
 
 
 def rolling_condition(contact_angles) -> np.ndarray:
@@ -190,7 +220,7 @@ def rolling_condition(contact_angles) -> np.ndarray:
 
     Pure rolling is possible iff ``C_beta = 0`` (lin2017 eqs 9-10).
     """
-    n = _null_vector(_rows(_angles(contact_angles)))
+    n = _null_vector(_angles(contact_angles))
     return n[..., 2] + n[..., 3]
 
 
@@ -199,8 +229,13 @@ def characteristic_parameters(contact_angles, forces) -> np.ndarray:
 
     ``forces`` (..., 4) N are the normal contact forces (BL, BR, TR, TL).
     """
-    n = _null_vector(_rows(_angles(contact_angles)))
-    return np.asarray(forces, dtype=float) / np.abs(n)
+    angles = _angles(contact_angles)
+    with np.errstate(over="ignore", divide="ignore"):
+        K = np.asarray(forces, dtype=float) / np.abs(_null_vector(angles))  # lin2017 eq 23
+    if not np.all(np.isfinite(K)):
+        raise _degenerate_pair(np.broadcast_to(angles, K.shape), np.unravel_index(
+            np.argmin(np.all(np.isfinite(K), axis=-1)), K.shape[:-1]))
+    return K
 
 
 def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarray:
@@ -217,7 +252,7 @@ def two_point_sliding_ratio(contact_angles, first: str, second: str) -> np.ndarr
                          f"got {first!r}, {second!r}")
     i, j = CONTACT_NAMES.index(first), CONTACT_NAMES.index(second)
     angles = _angles(contact_angles)
-    weight = 1.0 / np.abs(_null_vector(_rows(angles)))
+    weight = 1.0 / np.abs(_null_vector(angles))
     at_zero = _eq36(0.0, 1.0, angles) * weight        # K / N_y at rho = 0
     slope = _eq36(1.0, 0.0, angles) * weight          # dK / d(N_x)
     difference = at_zero[..., i] - at_zero[..., j]
@@ -274,8 +309,11 @@ def solve_forces(contact_angles, forces, *, ball_radius, friction_coefficient, g
     radius, mu, velocity = (np.broadcast_to(x, shape) for x in (radius, mu, velocity))
 
     rows = _rows(angles)                                   # lin2017 eq 7 / R_B
-    n = _null_vector(rows)                                 # |n| = denominators of eq 23
-    K = forces / np.abs(n)                                 # lin2017 eq 23
+    n = _null_vector(angles)                               # |n| = denominators of eq 23
+    with np.errstate(over="ignore", divide="ignore"):
+        K = forces / np.abs(n)                             # lin2017 eq 23
+    if not np.all(np.isfinite(K)):
+        raise _degenerate_pair(angles, np.unravel_index(np.argmin(np.all(np.isfinite(K), axis=-1)), shape))
     C_beta = n[..., 2] + n[..., 3]                         # lin2017 eq 13
     rolling = (np.abs(C_beta) <= ROLLING_TOLERANCE) | (velocity == 0.0)   # lin2017 eq 9 (or a groove at rest)
     k_min = np.min(K, axis=-1)

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -32,7 +33,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["newton", "solve_with_restarts", "check_solver_options", "continuation", "ContinuationStep",
-           "SPARSE_SIZE"]
+           "SPARSE_SIZE", "BlockTridiagonal"]
 
 SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 
@@ -69,8 +70,12 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
                                    tolerance=tolerance)
         iterations += 1
-        sparse = x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
-        if sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
+        blocks = isinstance(jacobian, BlockTridiagonal)
+        sparse = blocks or x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
+        if blocks:  # ball chains: J^T J in band storage straight from the blocks (no sparse matrix at all)
+            band = jacobian.normal_band()
+            diagonal_max = float(band.storage[0].max())
+        elif sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
             from scipy import sparse as sp
             from scipy.sparse.linalg import spsolve
 
@@ -89,7 +94,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             normal = jacobian.T @ jacobian
             identity = np.eye(x.size)
             diagonal_max = float(np.max(np.diag(normal)))
-        gradient = jacobian.T @ residual
+        gradient = jacobian.rmatvec(residual) if blocks else jacobian.T @ residual
         if damping is None:
             damping = 1e-8 * diagonal_max
         merit = float(residual @ residual)
@@ -105,7 +110,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
                     step = np.linalg.solve(normal + damping * identity, -gradient)
             except (np.linalg.LinAlgError, RuntimeError):
                 step = np.full(x.size, np.nan)
-            predicted = merit - float(np.sum((residual + jacobian @ step) ** 2))
+            change = jacobian.matvec(step) if blocks else jacobian @ step
+            predicted = merit - float(np.sum((residual + change) ** 2))
             if np.all(np.isfinite(step)) and predicted > 0.0:
                 trial = x + step
                 trial_residual, trial_jacobian = function(trial)
@@ -131,11 +137,14 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
 class _Band:
     """Lower band storage of the normal matrix ``J^T J`` for scipy's banded Cholesky (``solveh_banded``).
 
-    ``narrow`` when the bandwidth is small against the size (the interleaved block-tridiagonal systems of
+    ``narrow`` when the bandwidth is small against the size (banded systems of
     the ball chains: bandwidth ~ 30 whatever the number of balls), else the caller uses SuperLU.
     """
 
-    def __init__(self, rows, cols, values, size):
+    def __init__(self, rows, cols, values, size, storage=None):
+        if storage is not None:  # already in lower band storage (BlockTridiagonal.normal_band)
+            self.width, self.narrow, self.storage = storage.shape[0] - 1, True, storage
+            return
         self.width = int(np.max(rows - cols, initial=0))
         self.narrow = (self.width + 1) * 8 < size
         if self.narrow:
@@ -153,8 +162,89 @@ class _Band:
             return np.full(rhs.size, np.nan)
 
 
+class BlockTridiagonal:
+    """A square block-tridiagonal matrix of ``n`` blocks of size ``K`` (``n K`` unknowns).
+
+    ``lower``, ``diagonal``, ``upper`` : (n, K, K); block row ``i`` holds ``lower[i]`` in block column
+    ``i - 1``, ``diagonal[i]`` in ``i`` and ``upper[i]`` in ``i + 1`` (``lower[0]`` and ``upper[-1]`` are
+    ignored).  :func:`newton` forms the normal matrix ``J^T J`` (block pentadiagonal) directly in the
+    lower band storage of scipy's banded Cholesky, so a Newton step costs O(n K^3) with a handful of
+    batched numpy operations whatever ``n`` (the ball chains of :mod:`lowmodel.linear_bearing.b2b`).
+    """
+
+    def __init__(self, lower: np.ndarray, diagonal: np.ndarray, upper: np.ndarray):
+        self.lower, self.diagonal, self.upper = lower, diagonal, upper
+        self.blocks, self.block_size = diagonal.shape[0], diagonal.shape[1]
+        self.shape = (self.blocks * self.block_size,) * 2
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        """``J @ x`` for ``x`` of shape (n K,)."""
+        xb = x.reshape(self.blocks, self.block_size, 1)
+        y = np.matmul(self.diagonal, xb)
+        y[1:] += np.matmul(self.lower[1:], xb[:-1])
+        y[:-1] += np.matmul(self.upper[:-1], xb[1:])
+        return y.reshape(-1)
+
+    def rmatvec(self, r: np.ndarray) -> np.ndarray:
+        """``J^T @ r`` for ``r`` of shape (n K,)."""
+        rb = r.reshape(self.blocks, 1, self.block_size)
+        y = np.matmul(rb, self.diagonal)
+        y[:-1] += np.matmul(rb[1:], self.lower[1:])
+        y[1:] += np.matmul(rb[:-1], self.upper[:-1])
+        return y.reshape(-1)
+
+    def toarray(self) -> np.ndarray:
+        """The dense (n K, n K) matrix."""
+        n, k = self.blocks, self.block_size
+        dense = np.zeros((n, k, n, k))
+        index = np.arange(n)
+        dense[index, :, index, :] = self.diagonal
+        dense[index[1:], :, index[:-1], :] = self.lower[1:]
+        dense[index[:-1], :, index[1:], :] = self.upper[:-1]
+        return dense.reshape(n * k, n * k)
+
+    def normal_band(self) -> "_Band":
+        """``J^T J`` in lower band storage (bandwidth ``3 K - 1``).
+
+        Block columns ``a``: ``N[a, a] = D_a^T D_a + U_{a-1}^T U_{a-1} + L_{a+1}^T L_{a+1}``,
+        ``N[a, a+1] = D_a^T U_a + L_{a+1}^T D_{a+1}``, ``N[a, a+2] = L_{a+1}^T U_{a+1}``.
+        """
+        n, k = self.blocks, self.block_size
+        low, diag, up = self.lower, self.diagonal, self.upper
+        diag_t = diag.transpose(0, 2, 1)
+        n0 = np.matmul(diag_t, diag)
+        n0[1:] += np.matmul(up[:-1].transpose(0, 2, 1), up[:-1])
+        n0[:-1] += np.matmul(low[1:].transpose(0, 2, 1), low[1:])
+        n1 = np.matmul(diag_t[:-1], up[:-1]) + np.matmul(low[1:].transpose(0, 2, 1), diag[1:])
+        n2 = np.matmul(low[1:-1].transpose(0, 2, 1), up[1:-1])
+        index0, index1, index2, source0 = _normal_band_pattern(n, k)
+        storage = np.zeros(3 * k * n * k)
+        storage[index0] = n0.reshape(n, k * k)[:, source0].reshape(-1)
+        storage[index1] = n1.reshape(-1)
+        storage[index2] = n2.reshape(-1)
+        return _Band(None, None, None, n * k, storage=storage.reshape(3 * k, n * k))
+
+
+@lru_cache(maxsize=16)
+def _normal_band_pattern(n: int, k: int):
+    """Flat positions in the (3 k, n k) lower band storage of the blocks N[a, a] (lower triangle, in the
+    order of ``source0``), N[a, a+1] and N[a, a+2] (all entries, row-major), for :meth:`BlockTridiagonal.normal_band`.
+    Entry ``(row, col)`` with ``row >= col`` of the matrix goes to ``(row - col, col)``."""
+    size = n * k
+    p, q = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")  # block row p, block column q
+    keep = p >= q
+    source0 = (p * k + q)[keep]
+    base = k * np.arange(n)[:, None]
+    index0 = ((p - q)[keep][None, :] * size + base + q[keep][None, :]).reshape(-1)
+    # N[a, a+1][p, q] sits at (a k + p, (a+1) k + q); its mirror (row (a+1) k + q, col a k + p) is stored
+    index1 = ((k + q - p).reshape(-1)[None, :] * size + base[:-1] + p.reshape(-1)[None, :]).reshape(-1)
+    index2 = ((2 * k + q - p).reshape(-1)[None, :] * size + base[:-2] + p.reshape(-1)[None, :]).reshape(-1)
+    return index0, index1, index2, source0
+
+
 def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, max_iterations: int, what: str,
-                        rejection: str = "converged only to rejected points", attempts: int = 4):
+                        rejection: str = "converged only to rejected points", attempts: int = 4,
+                        rejection_reason: str = ""):
     """:func:`newton` from ``x0``, then ``restart(x)`` judges the converged point.
 
     ``restart(x)`` returns ``None`` to accept ``x``, or ``(x_new, violation)``
@@ -162,7 +252,7 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
     from acceptable, in the model's residual units).  At most ``attempts``
     runs share ``max_iterations``.  Returns ``(x, residual_vector,
     iterations)``; raises ConvergenceError (message ``what: rejection``,
-    residual the last violation) when no run ends at an accepted point.
+    residual the last violation, reason ``rejection_reason``) when no run ends at an accepted point.
     """
     x = np.array(x0, dtype=float)
     total = 0
@@ -175,7 +265,8 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
         if verdict is None:
             return x, residual, total
         x, violation = verdict
-    raise ConvergenceError(f"{what}: {rejection}", residual=float(violation), iterations=total, tolerance=tolerance)
+    raise ConvergenceError(f"{what}: {rejection}", residual=float(violation), iterations=total, tolerance=tolerance,
+                           reason=rejection_reason)
 
 
 @dataclass(frozen=True)
@@ -195,8 +286,10 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
     continuation: the predictor is the secant through the last two converged points,
     a converged step in at most 6 iterations doubles the next one, a failed one
     halves it; below ``min_step`` the path stops and ConvergenceError is raised with
-    ``reason = "continuation stopped (fold or no state beyond)"`` and
-    ``last_converged = (name, s)``.  Returns ``(x, residual_vector, path)`` with ``path`` a
+    ``last_converged = (name, s)`` and ``reason = "continuation stopped (fold or no state beyond)"``,
+    or, when the last failed step ended at a converged point that the model rejected with a reason
+    (``ConvergenceError.reason`` of ``solve_at``: the branch continues, but outside the model's validity),
+    ``"<that reason> beyond <name> = s"``.  Returns ``(x, residual_vector, path)`` with ``path`` a
     tuple of :class:`ContinuationStep` (``s = 0`` first, ``s = 1`` last).
     """
     x = np.array(x_start, dtype=float)
@@ -237,7 +330,14 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
         if iterations <= 6:
             step *= 2.0
     residual_norm = last_error.residual if last_error is not None else math.inf
-    raise ConvergenceError(f"{what}: continuation in {name} stopped at {name} = {s:.6g} of 1 (fold or no state "
-                           "beyond)", residual=residual_norm, iterations=sum(p.iterations for p in path),
-                           tolerance=last_error.tolerance if last_error is not None else 0.0,
-                           reason="continuation stopped (fold or no state beyond)", last_converged=(name, s))
+    if last_error is not None and last_error.reason:  # the branch goes on, but the model rejects it
+        reason = f"{last_error.reason} beyond {name} = {s:.6g}"
+        because = f"{last_error.reason}: {str(last_error).split(' (residual')[0]}"
+    else:
+        reason, because = "continuation stopped (fold or no state beyond)", "fold or no state beyond"
+    stopped = ConvergenceError(f"{what}: continuation in {name} stopped at {name} = {s:.6g} of 1 ({because})",
+                               residual=residual_norm, iterations=sum(p.iterations for p in path),
+                               tolerance=last_error.tolerance if last_error is not None else 0.0,
+                               reason=reason, last_converged=(name, s))
+    stopped.last_state = x  # the last converged point (at s), for the caller's diagnosis
+    raise stopped

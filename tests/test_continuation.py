@@ -114,3 +114,19 @@ def test_continuation_stops_at_a_fold():
     assert "fold" in error.value.reason
     x, _, path = continuation(lambda s, x0: solve_at(0.4 * s, x0), np.array([1.0]), what="toy")
     assert path[-1].parameter == 1.0 and float(x[0]) == pytest.approx(math.sqrt(0.2), rel=1e-10)
+
+
+def test_touching_pair_ends_where_a_contact_stops_sliding():
+    """Two touching balls at theta = 3 deg, rho = -0.7 (spin-capacity ratio 4.2): the B2B force grows with mu until
+    the BL contact of ball 0 stops sliding near mu = 0.4675; beyond, the continued branch slips against its friction
+    and the solver says so (issue 10: the single-ball ratio is no existence bound for touching balls)."""
+    theta = math.radians(3.0)
+    below = b2b.solve(b2b.module_contacts(theta, -0.7, n_balls=2, friction_coefficient=0.467), [0.0])
+    slip = np.hypot(below.slide, below.spin * b2b.module_contacts(theta, -0.7, n_balls=2).semi_major) / 0.01
+    assert np.min(slip) < 1e-3 < np.median(slip)  # one contact nearly stuck, the others slide
+    with pytest.raises(ConvergenceError) as error:
+        b2b.solve(b2b.module_contacts(theta, -0.7, n_balls=2, friction_coefficient=0.5), [0.0])
+    assert error.value.reason.startswith(bearing_ball.STICK_REASON)
+    name, last = error.value.last_converged
+    assert name == "s (mu)" and 0.46 < 0.5 * b2b.MU_PATH_START ** (last - 1.0) < 0.4676  # the mu reached
+    assert error.value.min_slip_speed < 1e-2

@@ -279,3 +279,19 @@ def test_bad_grid():
         ef.friction_map.__wrapped__(n_beta=2, use_cache=False)
     with pytest.raises(ValueError, match="n_uniform"):
         ef.friction_map.__wrapped__(n_uniform=4.5, use_cache=False)
+
+
+def test_friction_angle_at_equals_friction_angle():
+    """The fixed-b/a evaluator of the Newton solvers gives the values of friction_angle (same spline)."""
+    from ballbench.lowmodel.contact import ellipse_friction as ef
+
+    rng = np.random.default_rng(5)
+    beta = rng.uniform(0.02, 1.0, size=(40, 4))
+    phi = rng.uniform(-12.0, 12.0, size=(40, 4))  # any real angle: periodic
+    phi[0] = [-np.pi, np.pi, 0.5 * np.pi, -0.5 * np.pi]
+    got = ef.friction_angle_at(beta)(phi)
+    want = ef.friction_angle(phi, beta)
+    for value, reference in zip(got, (want.force, want.dforce_dphi, want.moment, want.dmoment_dphi, want.loss)):
+        np.testing.assert_allclose(value, reference, rtol=1e-12, atol=1e-12)
+    with pytest.raises(ValueError, match="b_over_a"):
+        ef.friction_angle_at(np.array([0.5, 1.5]))

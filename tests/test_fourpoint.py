@@ -346,7 +346,7 @@ def test_case2_two_point_bl_tr_and_three_point_line():
 def test_four_point_tie():
     """All K equal (eq 34): symmetric angles off the rolling condition, forces chosen so that K_i are equal."""
     angles = np.radians([40.0, 50.0, 47.0, 41.0])
-    forces = 10.0 * np.abs(fourpoint._null_vector(fourpoint._rows(angles)))
+    forces = 10.0 * np.abs(fourpoint._null_vector(angles))
     state = fourpoint.solve_forces(angles, forces, ball_radius=R_B, friction_coefficient=MU, groove_velocity=V)
     assert state.sliding.all() and state.n_sliding == 4
     check_physics(state, angles)

@@ -114,10 +114,13 @@ def test_k_f_least_squares(beta, c_max):
 
 
 # --- four-point contact, analytical and numerical B2B -----------------------------------------------
-# contact angles: (1e-3, pi/2 - 1e-3) rad, and outside (0, pi/2) for the errors.  Angles within 1e-3 rad of
-# 0 or 90 deg are left out: there lin2017 eqs 23, 36 and lin2019 eq 30 divide by sin or cos of them and
-# overflow (a known gap, issue 10 report)
-angle = st.one_of(real(1e-3, 0.5 * math.pi - 1e-3), real(-0.2, 0.0), real(0.5 * math.pi, 1.8))
+# contact angles: the whole of (0, pi/2) rad, with the last 1e-3 rad at either end (where lin2017 eqs 23, 36 and
+# lin2019 eqs 30, 32 divide by sin or cos of them) drawn as often as the rest, the extreme floats near 0 and pi/2,
+# and outside (0, pi/2) for the errors
+angle = st.one_of(real(1e-3, 0.5 * math.pi - 1e-3), real(0.0, 1e-3), real(0.5 * math.pi - 1e-3, 0.5 * math.pi),
+                  st.sampled_from([5e-324, 2.2250738585072014e-308, 1e-200, 1e-16, math.nextafter(0.5 * math.pi, 0.0),
+                                   0.5 * math.pi * (1.0 - 1e-12)]),
+                  real(-0.2, 0.0), real(0.5 * math.pi, 1.8))
 angles4 = st.lists(angle, min_size=4, max_size=4)
 
 

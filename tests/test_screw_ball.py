@@ -187,10 +187,15 @@ def test_linear_bearing_limit(monkeypatch):
     difference falls like R_B/R_P and is below 1e-8 (relative) at R_P = 1e10 R_B.
     """
 
-    def exact(spin, slide, b_over_a):
-        return _slip(eo.friction_offset(spin, slide, 0.0, b_over_a))
+    def exact(b_over_a):
+        def evaluate(phi):  # unit slip speed along phi: (spin, slide) = (cos phi, sin phi)
+            cos, sin = np.cos(phi), np.sin(phi)
+            r = _slip(eo.friction_offset(cos, sin, 0.0, b_over_a))
+            return (r.force, r.dforce_dslide * cos - r.dforce_dspin * sin, r.moment,
+                    r.dmoment_dslide * cos - r.dmoment_dspin * sin, r.loss)
+        return evaluate
 
-    monkeypatch.setattr(bb, "_friction", exact)
+    monkeypatch.setattr(bb, "_friction_angle_function", exact)
     speed, radius = 0.01, 2.778e-3
     errors = []
     for ratio in (1e6, 1e10):

@@ -79,6 +79,7 @@ __all__ = [
     "SlipFriction",
     "AngleFriction",
     "friction_angle",
+    "friction_angle_at",
     "friction",
     "friction_exact",
     "friction_velocity",
@@ -658,6 +659,40 @@ def _evaluate(phi: np.ndarray, beta: np.ndarray):
                       (slope_x[:, :, None] * power_y[:, None, :]).reshape(-1, 16)], axis=2)  # (n, 16, 2)
     values = flat[i * mid_y.size + j] @ basis                                      # (n, 3, 2)
     return [values[:, q, d].reshape(shape) for q in range(3) for d in range(2)]
+
+
+def friction_angle_at(b_over_a):
+    """:func:`friction_angle` for fixed axis ratios, for solvers that call it many times.
+
+    ``b_over_a`` (any shape, in ``[0.02, 1]``) is checked once and its table cells and powers of
+    ``log(b/a)`` are computed once.  Returns ``evaluate(phi)`` -> ``(force, d force/d phi, moment,
+    d moment/d phi, loss)`` for finite ``phi`` [rad] of the shape of ``b_over_a`` (not checked: the
+    caller's Newton iterates are finite); the same spline and values as :func:`friction_angle`
+    (lin2019 eqs A4-A6 tabulated).
+    """
+    beta = _check_ratio(b_over_a)
+    nodes_x, nodes_y, mid_x, mid_y, flat = _active_patches()
+    shape = beta.shape
+    y = np.log(beta.ravel())
+    j = np.clip(np.searchsorted(nodes_y, y) - 1, 0, mid_y.size - 1)
+    dy = y - mid_y[j]
+    power_y = np.stack([np.ones_like(dy), dy, dy * dy, dy * dy * dy], axis=1)[:, None, :, None]  # (m, 1, 4, 1)
+    count, last = y.size, mid_x.size - 1
+    two_pi = 2.0 * math.pi
+
+    def evaluate(phi):
+        x = np.remainder(np.ravel(phi) + math.pi, two_pi) - math.pi  # [-pi, pi), as friction_angle
+        i = np.searchsorted(nodes_x, x) - 1
+        np.clip(i, 0, last, out=i)
+        dx = (x - mid_x[i])[:, None]
+        # the patch's polynomial in dphi after summing over the powers of dlog(b/a): (m, 3, 4)
+        in_x = (flat[i * mid_y.size + j].reshape(count, 3, 4, 4) @ power_y)[..., 0]
+        value = ((in_x[:, :, 3] * dx + in_x[:, :, 2]) * dx + in_x[:, :, 1]) * dx + in_x[:, :, 0]  # Horner
+        slope = (3.0 * in_x[:, :, 3] * dx + 2.0 * in_x[:, :, 2]) * dx + in_x[:, :, 1]
+        return (value[:, 0].reshape(shape), slope[:, 0].reshape(shape), value[:, 1].reshape(shape),
+                slope[:, 1].reshape(shape), value[:, 2].reshape(shape))
+
+    return evaluate
 
 
 def friction(c_over_a, b_over_a) -> EllipseFriction:

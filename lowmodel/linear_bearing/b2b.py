@@ -63,8 +63,10 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
 from ballbench.lowmodel.solvers import check_solver_options
 
 __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
-           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS"]
+           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS",
+           "MU_PATH_START"]
 
+MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
 
@@ -200,23 +202,42 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     k = N_UNKNOWNS
     what = f"{n}-ball B2B contact"
     ball_index, _ = _layout(n, k, touching)
+    at = {}  # the contacts the coupled system is evaluated for (one system, built once per solve)
+
+    def ball_function(balls):
+        terms = ball_terms(balls, at["contacts"], reference_force)
+        return terms.residual, terms.jacobian
+
+    function, _, pack = coupled_system(ball_function, n, k, touching, mu)
+    systems = {mu: function}  # one coupled system per friction coefficient (the mu path below)
 
     def balls_of(z):
         return z[ball_index]
 
-    pack = coupled_system(None, n, k, touching, mu)[2]
+    def with_balls(z, balls):
+        z = z.copy()
+        z[ball_index] = balls
+        return z
 
     def solve_at(contacts_s, z0, label=what):
-        def ball_function(balls):
-            terms = ball_terms(balls, contacts_s, reference_force)
-            return terms.residual, terms.jacobian
+        at["contacts"] = contacts_s
+        mu_s = contacts_s.friction_coefficient
+        if mu_s not in systems:
+            systems[mu_s] = coupled_system(ball_function, n, k, touching, mu_s)[0]
+        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
+                            max_iterations=max_iterations, what=label, with_balls=with_balls)
 
-        function = coupled_system(ball_function, n, k, touching, mu)[0]
-        return solve_branch(function, z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
-                            max_iterations=max_iterations, what=label)
+    def mu_at(s):  # the friction coefficient from mu / MU_PATH_START to mu, geometrically (B2B friction grows)
+        return dataclasses.replace(contacts, friction_coefficient=mu * MU_PATH_START ** (s - 1.0))
 
     def start_guess(contacts_s):
         return pack(initial_guess(contacts_s))
+
+    def free_start(contacts_s):  # path starts: every ball solved on its own (light loads need it per ball)
+        try:
+            return pack(solve_free(contacts_s, reference_force, tolerance, max_iterations)[0])
+        except ConvergenceError:
+            return start_guess(contacts_s)
 
     paths = []
     try:  # from rolling at v/2 (cheap) ...
@@ -228,9 +249,10 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
             iterations += free_iterations
         except ConvergenceError as error:  # ... else by continuation of the coupled problem
             paths = []
-            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, start_guess,
+            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, free_start,
                                                                        error if error.iterations else first_error,
-                                                                       what=what)
+                                                                       what=what, balls_of=balls_of,
+                                                                       extra_paths=(("mu", MU_PATH_START, mu_at),))
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
     terms = ball_terms(balls, contacts, reference_force)
@@ -240,19 +262,19 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
 
 
-SPARSE_BALLS = 40  # chains of at least this many balls get a sparse Jacobian (dense LU is faster below)
+SPARSE_BALLS = 6  # chains of at least this many balls keep the block Jacobian (dense arrays are faster below)
 
 
 def _layout(n: int, k: int, touching: np.ndarray):
-    """Positions of the unknowns in ``z``: ball j's ``k`` unknowns, then the force of pair j if it touches.
+    """Positions of the unknowns in ``z``: ball j's ``k`` unknowns, then the force slot of pair j.
 
-    Interleaving keeps the Jacobian banded (a ball couples only to its neighbours and to the
-    forces between them), so its normal equations have a bandwidth independent of ``n``.
+    Every ball owns ``k + 1`` consecutive unknowns (a uniform block size): its own ``k`` and the force
+    ``F_B2B/(mu F_ref)`` of the pair (j, j+1).  The slot of an open pair (and of the last ball) is a
+    placeholder fixed at 0 by the residual row ``z = 0``.  The Jacobian is then block tridiagonal with
+    ``(k + 1)``-blocks (a ball couples only to its neighbours and to the forces between them).
     Returns ``ball_index`` (n, k) and ``force_index`` (touching pairs,).
     """
-    carries = np.zeros(n, dtype=int)
-    carries[touching] = 1
-    start = k * np.arange(n) + np.concatenate([[0], np.cumsum(carries)[:-1]])
+    start = (k + 1) * np.arange(n)
     return start[:, None] + np.arange(k)[None, :], start[touching] + k
 
 
@@ -267,71 +289,65 @@ def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.nd
     to the eq 4 rows and the complementarity of eqs 9-10 is written as the semismooth
     ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (``gamma`` = COMPLEMENTARITY_SCALE).
 
-    The state ``z`` interleaves ball j's unknowns and the force ``F_B2B/(mu F_ref)`` of pair j when it
-    touches (:func:`_layout`), so the Jacobian is block tridiagonal; it is assembled directly from its
-    nonzero blocks, as a scipy CSR matrix for ``n >= SPARSE_BALLS`` (cost linear in ``n``) and as a dense
-    array below.  Returns ``(function, unpack, pack)``: ``function(z) -> (residual, jacobian)``,
+    The state ``z`` holds ``k + 1`` unknowns per ball (:func:`_layout`), so the Jacobian is block
+    tridiagonal and is assembled as its three block diagonals, a
+    :class:`lowmodel.solvers.BlockTridiagonal` for ``n >= SPARSE_BALLS`` (Newton's normal equations go
+    straight into band storage: cost linear in ``n``, no per-solve index pattern) and a dense array below.
+    Returns ``(function, unpack, pack)``: ``function(z) -> (residual, jacobian)``,
     ``unpack(z) -> (balls (n, k), forces (n-1,))`` and ``pack(balls) -> z`` (touching forces 0).
     """
+    from ballbench.lowmodel.solvers import BlockTridiagonal
+
     n, k = n_balls, n_unknowns
-    m = touching.size
     gamma = COMPLEMENTARITY_SCALE
-    size = k * n + m
-    sparse = n >= SPARSE_BALLS
-    ball_index, force_index = _layout(n, k, touching)
-    # fixed sparsity pattern: (row, col) of every stored entry, in the order the values are written below
-    ball_rows = np.repeat(ball_index[:, :, None], k, axis=2)  # (n, k, k)
-    ball_cols = np.repeat(ball_index[:, None, :], k, axis=1)
-    pair = np.arange(n - 1)
-    # B2B moment block: rows (1, 2) of balls (j, j+1) x columns (1, 2) of balls (j, j+1)
-    side = np.array([0, 0, 1, 1])  # ball offset of rows/cols in the 4 x 4 block (j, j+1)
-    local = np.array([1, 2, 1, 2])
-    moment_index = ball_index[pair[:, None] + side[None, :], local[None, :]]  # (n-1, 4)
-    moment_rows = np.repeat(moment_index[:, :, None], 4, axis=2)
-    moment_cols = np.repeat(moment_index[:, None, :], 4, axis=1)
-    # force columns: rows 0..2 of balls j and j+1 for the touching pairs
-    t_rows = np.stack([ball_index[touching, :3], ball_index[touching + 1, :3]], axis=-1)  # (m, 3, 2)
-    t_cols = np.broadcast_to(force_index[:, None, None], t_rows.shape)
-    behind, front = ball_index[touching, 0], ball_index[touching + 1, 0]  # v_B of the pair's balls
+    dense = n < SPARSE_BALLS
+    touches = np.zeros(n, dtype=bool)
+    touches[touching] = True  # slot of pair j (last ball: never)
+    placeholder = ~touches
 
     def unpack(z):
-        forces = np.zeros(n - 1)
-        forces[touching] = z[force_index]
-        return z[ball_index], forces
+        blocks = z.reshape(n, k + 1)
+        return blocks[:, :k], np.where(touches[:-1], blocks[:-1, k], 0.0)
 
     def pack(balls):
-        z = np.zeros(size)
-        z[ball_index] = balls
-        return z
+        z = np.zeros((n, k + 1))
+        z[:, :k] = balls
+        return z.reshape(-1)
 
     def function(z):
-        balls, forces = unpack(z)
+        blocks = z.reshape(n, k + 1)
+        balls = blocks[:, :k]
+        lam = np.where(touches, blocks[:, k], 0.0)  # (n,), the last one 0
+        forces = lam[:-1]
         ball_residual, ball_jacobian = ball_function(balls)
         load, block, d_force, _ = b2b_terms(balls[:, :3], forces, mu)
-        residual = np.empty(size)
-        ball_residual = np.array(ball_residual, dtype=float)
-        ball_residual[:, :3] += load  # lin2019 eq 8 for every ball
-        residual[ball_index] = ball_residual
-        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth)
-        lam = z[force_index]
-        separation = balls[touching + 1, 0] - balls[touching, 0]
-        force_branch = lam <= gamma * separation
-        residual[force_index] = np.where(force_branch, lam, gamma * separation)
-        moment_values = np.tile(block, (1, 2, 2))  # the same 2 x 2 block on (j, j), (j, j+1), (j+1, j), (j+1, j+1)
-        vel = ~force_branch
-        count = int(vel.sum())
-        rows = [ball_rows.ravel(), moment_rows.ravel(), t_rows.ravel(), force_index, force_index[vel],
-                force_index[vel]]
-        cols = [ball_cols.ravel(), moment_cols.ravel(), t_cols.ravel(), force_index, front[vel], behind[vel]]
-        values = [np.asarray(ball_jacobian, dtype=float).ravel(), moment_values.ravel(), d_force[touching].ravel(),
-                  np.where(force_branch, 1.0, 0.0), np.full(count, gamma), np.full(count, -gamma)]
-        rows, cols, values = np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
-        if sparse:
-            from scipy import sparse as sp
-
-            return residual, sp.csr_matrix((values, (rows, cols)), shape=(size, size))  # duplicates are summed
-        jac = np.bincount(rows * size + cols, weights=values, minlength=size * size).reshape(size, size)
-        return residual, jac
+        residual = np.empty((n, k + 1))
+        residual[:, :k] = ball_residual
+        residual[:, :3] += load  # lin2019 eq 8 for every ball
+        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth); placeholders: z = 0
+        separation = np.zeros(n)
+        separation[:-1] = balls[1:, 0] - balls[:-1, 0]
+        force_branch = placeholder | (lam <= gamma * separation)
+        residual[:, k] = np.where(placeholder, blocks[:, k], np.where(force_branch, lam, gamma * separation))
+        lower = np.zeros((n, k + 1, k + 1))
+        diagonal = np.zeros((n, k + 1, k + 1))
+        upper = np.zeros((n, k + 1, k + 1))
+        diagonal[:, :k, :k] = ball_jacobian
+        # B2B moment: rows (1, 2) of balls (j, j+1) depend on columns (1, 2) of balls (j, j+1) alike
+        diagonal[:-1, 1:3, 1:3] += block
+        diagonal[1:, 1:3, 1:3] += block
+        upper[:-1, 1:3, 1:3] = block
+        lower[1:, 1:3, 1:3] = block
+        # force columns (slot k of ball j's block): rows 0..2 of ball j (diagonal) and ball j+1 (lower)
+        live = touches[:-1, None]
+        diagonal[:-1, :3, k] = np.where(live, d_force[:, :, 0], 0.0)
+        lower[1:, :3, k] = np.where(live, d_force[:, :, 1], 0.0)
+        velocity_branch = ~force_branch
+        diagonal[:, k, k] = force_branch
+        diagonal[:, k, 0] = np.where(velocity_branch, -gamma, 0.0)
+        upper[:, k, 0] = np.where(velocity_branch, gamma, 0.0)
+        jacobian = BlockTridiagonal(lower, diagonal, upper)
+        return residual.reshape(-1), (jacobian.toarray() if dense else jacobian)
 
     return function, unpack, pack
 

@@ -125,13 +125,21 @@ def diagonal_forces(normal_load, side_load, nominal_contact_angle=NOMINAL_CONTAC
 
 
 def _diagonal(n_y, n_x, beta0):
-    vertical = 0.5 * n_y / np.cos(beta0)
-    lateral = 0.5 * n_x / np.sin(beta0)
-    up, down = vertical - lateral, vertical + lateral
-    if not (np.all(up > 0.0) and np.all(down > 0.0)):
+    sin, cos = np.sin(beta0), np.cos(beta0)
+    # four-point contact |N_x| < N_y tan(beta_0), tested without dividing (beta_0 near 0 or 90 deg)
+    if not np.all(np.abs(n_x) * cos < n_y * sin):
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            limit = float(np.min(np.tan(beta0)))
         raise ValueError("loss of four-point contact: |side_load| must be < normal_load * tan(nominal_contact_angle) "
-                         f"(|rho| < {float(np.min(np.tan(beta0))):.6g})")
-    return up, down
+                         f"(|rho| < {limit:.6g})")
+    with np.errstate(over="ignore"):
+        vertical = 0.5 * n_y / cos
+        lateral = 0.5 * n_x / sin  # |lateral| < vertical by the test above
+    if not np.all(np.isfinite(vertical)):
+        raise ValueError(f"nominal_contact_angle = {float(np.max(beta0))!r} rad is too close to pi/2 for normal_load = "
+                         f"{float(np.max(n_y))!r} N: the diagonal forces N_y / (2 cos(beta_0)) overflow (lin2019 Sec "
+                         "2.4.1); beta_0 must lie in (0, pi/2) with N_y / cos(beta_0) finite")
+    return vertical - lateral, vertical + lateral
 
 
 def side_force_deviation(theta, rho) -> np.ndarray:
@@ -203,8 +211,14 @@ def contact_force(epsilon_1, epsilon_2, forces_1, forces_2, *, k_f, friction_coe
     if np.any(geometric <= 0.0):
         raise ValueError(f"nominal_contact_angle must be well inside (0, pi/2) rad: 1 - cos(2 beta_0) of eq 30 "
                          f"underflows to 0 at beta_0 = {float(np.min(beta0))!r}")
-    return _force((eps_1 - eps_2) / geometric, s_1, s_2, k_f, mu, psi, radius, np.asarray(touching, dtype=bool),
-                  direction)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        difference = (eps_1 - eps_2) / geometric
+        force = _force(difference, s_1, s_2, k_f, mu, psi, radius, np.asarray(touching, dtype=bool), direction)
+    if not np.all(np.isfinite(force)):
+        raise ValueError(f"nominal_contact_angle must lie in (0, pi/2) rad with (epsilon_1 - epsilon_2) / (1 - cos 2 "
+                         f"beta_0) of eq 30 finite: at beta_0 = {float(np.min(beta0))!r} rad F_B2B overflows (the "
+                         "epsilons of eq 22 carry the factor 1 - cos 2 beta_0: pass epsilons of that beta_0)")
+    return force
 
 
 def _force(difference, s_1, s_2, k_f, mu, psi, radius, touching, direction):
@@ -230,7 +244,17 @@ def friction_loss(b2b_force, friction_coefficient, groove_velocity,
     mu = np.asarray(checks.non_negative("friction_coefficient", friction_coefficient, ""))
     speed = np.abs(np.asarray(checks.finite("groove_velocity", groove_velocity)))
     beta0 = np.asarray(checks.contact_angle("nominal_contact_angle", nominal_contact_angle))
-    return mu * force * speed / np.cos(beta0)  # lin2019 eq 32
+    return _loss(mu, force, speed, beta0)
+
+
+def _loss(mu, force, speed, beta0):
+    """lin2019 eq 32 without input checks; ValueError where ``1 / cos(beta_0)`` overflows it (beta_0 near 90 deg)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        loss = mu * force * speed / np.cos(beta0)  # lin2019 eq 32
+    if not np.all(np.isfinite(loss)):
+        raise ValueError(f"nominal_contact_angle = {float(np.max(beta0))!r} rad: the B2B loss mu F_B2B v / cos(beta_0) "
+                         "of eq 32 overflows; beta_0 must lie in (0, pi/2) with that loss finite")
+    return loss
 
 
 @dataclass(frozen=True)
@@ -302,7 +326,7 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     s_1 = powers[0] + powers[1]
     s_2 = powers[2] + powers[3]
     force = _force(weighted_1 - weighted_2, s_1, s_2, k_f, mu, psi, radius, True, np.sign(v))  # eq 30
-    loss = mu * force * np.abs(v) / np.cos(beta0)  # lin2019 eq 32
+    loss = _loss(mu, force, np.abs(v), beta0)  # lin2019 eq 32
     # common velocity (eqs 25-29): Delta epsilon_1 = -F_B2B / (C S_1), Delta epsilon_2 = +F_B2B / (C S_2)
     # with C the prefactor of eq 30, so the contact velocity is the S-weighted mean of the free ones
     common = (1.0 + (s_1 * epsilon_1 + s_2 * epsilon_2) / (s_1 + s_2)) * 0.5 * v

@@ -21,10 +21,10 @@ Per contact (lin2019 eqs 1-3, A1-A3), with ``V_i`` the groove velocity
     omega_i = -Omega . n_i                     spin about the inward normal y_i (eq 2)
     spin_i  = omega_i a_i                      [m/s]
 
-Friction comes from :func:`lowmodel.contact.ellipse_friction.friction_velocity`
-and depends only on the slip-direction angle ``phi_i = atan2(slide_i,
-spin_i)`` (``c_i/a_i = tan phi_i``); the velocity-centre offset ``c_i`` is
-never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
+Friction comes from the map of :mod:`lowmodel.contact.ellipse_friction`
+(:func:`~lowmodel.contact.ellipse_friction.friction_angle_at`) and depends only
+on the slip-direction angle ``phi_i = atan2(slide_i, spin_i)`` (``c_i/a_i = tan phi_i``);
+the velocity-centre offset ``c_i`` is never formed, so ``omega_i -> 0`` (``c_i -> inf``, pure sliding) is an
 ordinary point ``phi_i = +-pi/2``.
 
     f_i   = mu F_i force_i                 friction force on the ball along +z [N]      (eq A4)
@@ -93,9 +93,11 @@ __all__ = [
     "solve_branch",
     "with_spin_capacity_diagnosis",
     "N_UNKNOWNS",
+    "STICK_REASON",
 ]
 
 _TOP = np.array([0.0, 0.0, 1.0, 1.0])  # contacts on the moving (top) groove
+STICK_REASON = "a contact stops sliding (full-sliding branch ends: its continuation slips against its friction)"
 
 
 # --------------------------------------------------------------------------
@@ -136,6 +138,11 @@ class BallContacts:
         dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)  # d spin / d x
         top = math.copysign(1.0, self.groove_velocity) * _TOP
         return nx, ny, arm, dslide, dspin, top
+
+    @cached_property
+    def _friction_at(self):
+        """The friction map at this instance's axis ratios (lin2019 eqs A4-A6), as a function of the slip angles."""
+        return _friction_angle_function(self.b_over_a)
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -341,10 +348,12 @@ def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
 # --------------------------------------------------------------------------
 # residual of the ball equilibrium (vectorised over balls)
 # --------------------------------------------------------------------------
-def _friction(spin, slide, b_over_a):
-    from ballbench.lowmodel.contact.ellipse_friction import friction_velocity
+def _friction_angle_function(b_over_a):
+    """``phi -> (force, d force/d phi, moment, d moment/d phi, loss)`` per unit slip speed at fixed ``b/a``
+    (lin2019 eqs A4-A6; :func:`lowmodel.contact.ellipse_friction.friction_angle_at`)."""
+    from ballbench.lowmodel.contact.ellipse_friction import friction_angle_at
 
-    return friction_velocity(spin, slide, b_over_a)
+    return friction_angle_at(b_over_a)
 
 
 @dataclass(frozen=True)
@@ -384,14 +393,16 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     phi = unknowns[:, 3:]
     nx, ny, arm, dslide, dspin, top = contacts._geometry
     load = contacts.normal_forces / reference_force
-    slide = np.einsum("nk,nik->ni", x, dslide) - top  # lin2019 eqs 1, A1-A3 (z slip at the centre)
-    spin_velocity = np.einsum("nk,nik->ni", x, dspin)  # omega_i a_i, eq 2
+    x0, x1, x2 = x[:, 0:1], x[:, 1:2], x[:, 2:3]
+    slide = x0 + x1 * ny - x2 * nx - top  # lin2019 eqs 1, A1-A3 (z slip at the centre); dslide = (1, n_y, -n_x)
+    spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2; dspin = -(0, n_x, n_y) a_i/R_B
     cos, sin = np.cos(phi), np.sin(phi)
-    fr = _friction(cos, sin, contacts.b_over_a)  # unit slip speed in direction phi
-    force = load * fr.force  # eq A4
-    moment = load * arm * fr.moment  # eq A5, M_{i,O}/R_B about -y_i
-    dforce = load * (fr.dforce_dslide * cos - fr.dforce_dspin * sin)  # d/d phi
-    dmoment = load * arm * (fr.dmoment_dslide * cos - fr.dmoment_dspin * sin)
+    fr_force, fr_dforce, fr_moment, fr_dmoment, fr_loss = contacts._friction_at(phi)  # unit slip speed along phi
+    load_arm = load * arm
+    force = load * fr_force  # eq A4
+    moment = load_arm * fr_moment  # eq A5, M_{i,O}/R_B about -y_i
+    dforce = load * fr_dforce  # d/d phi
+    dmoment = load_arm * fr_dmoment
     n = x.shape[0]
     residual = np.empty((n, N_UNKNOWNS))
     residual[:, 0] = force.sum(axis=1)  # lin2019 eq 4, row 1
@@ -406,7 +417,7 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     jacobian[:, 3:, :3] = cos[..., None] * dslide - sin[..., None] * dspin
     index = np.arange(4)
     jacobian[:, 3 + index, 3 + index] = -slip_speed
-    loss_table = load * fr.loss * slip_speed  # eq A6 (loss is per unit slip speed here)
+    loss_table = load * fr_loss * slip_speed  # eq A6 (loss is per unit slip speed here)
     return BallTerms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
@@ -562,7 +573,8 @@ def homotopy_paths(contacts: BallContacts):
     return paths
 
 
-def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error: ConvergenceError, *, what: str):
+def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error: ConvergenceError, *, what: str,
+                            balls_of=None, extra_paths=()):
     """Continuation along :func:`homotopy_paths` after Newton from the cheap start failed with ``error``.
 
     ``solve_at(contacts_s, z0, what)`` solves the problem (one ball, or the coupled B2B chain) for the
@@ -570,10 +582,17 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     is the cheap start at ``s = 0``.  Paths are tried in order; the first that reaches ``s = 1`` gives
     ``((z, residual, iterations), ContinuationPath)``.  Where none does, ConvergenceError with the
     spin-capacity diagnosis, the reason (spin-capacity ratio < 1, or the continuation stopped: a fold
-    or no state beyond) and the last converged parameter of the path that got furthest.
+    or no state beyond; or a contact stops sliding: the branch continues with a contact slipping against
+    its friction) and the last converged parameter of the path that got furthest; its attribute
+    ``min_slip_speed`` is the smallest contact slip speed ``r_i`` [units |v|] at that last converged point
+    (``balls_of(z)`` gives the (n, 7) ball unknowns of a state; default one ball), NaN without one.
+    ``extra_paths``: more ``(kind, start_scale, contacts_at)`` tried after :func:`homotopy_paths`.
     """
-    furthest = None
-    for kind, scale, contacts_at in homotopy_paths(contacts):
+    if balls_of is None:
+        def balls_of(z):
+            return np.reshape(z, (-1, N_UNKNOWNS))
+    furthest, furthest_at = None, None
+    for kind, scale, contacts_at in (*homotopy_paths(contacts), *extra_paths):
         try:
             start = contacts_at(0.0)
             z0, _, iterations0 = solve_at(start, start_guess(start), f"{what}, {kind} path start")
@@ -587,7 +606,7 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
             z, residual, steps = continuation(step, z0, what=f"{what}, {kind} path", name=f"s ({kind})")
         except ConvergenceError as stopped:
             if furthest is None or stopped.last_converged[1] > furthest.last_converged[1]:
-                furthest = stopped
+                furthest, furthest_at = stopped, contacts_at
             continue
         steps = (ContinuationStep(0.0, iterations0),) + steps[1:]
         return (z, residual, sum(p.iterations for p in steps)), ContinuationPath((), kind, scale, steps)
@@ -595,24 +614,35 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     reason = ("spin-capacity ratio < 1" if ratio < 1.0 else
               furthest.reason if furthest is not None else "no continuation path could start")
     last = furthest.last_converged if furthest is not None else None
-    where = f"; continuation got to {last[0]} = {last[1]:.6g}" if last is not None else ""
+    min_slip = math.nan
+    if furthest is not None:  # how close the last converged point is to a contact that stops sliding
+        balls = balls_of(furthest.last_state)
+        slide, spin = slip_kinematics(balls, furthest_at(last[1]))
+        min_slip = float(np.min(slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])))
+    where = (f"; continuation got to {last[0]} = {last[1]:.6g}, smallest contact slip speed there "
+             f"{min_slip:.3g} |v|" if last is not None else "")
     diagnosed = with_spin_capacity_diagnosis(error, contacts)
     message = str(diagnosed).split(" (residual")[0] + where
-    raise ConvergenceError(message, residual=error.residual, iterations=error.iterations,
-                           tolerance=error.tolerance, reason=reason, last_converged=last) from None
+    failure = ConvergenceError(message, residual=error.residual, iterations=error.iterations,
+                               tolerance=error.tolerance, reason=reason, last_converged=last)
+    failure.min_slip_speed = min_slip
+    raise failure from None
 
 
 def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
-                 max_iterations: int, what: str, attempts: int = 4):
+                 max_iterations: int, what: str, attempts: int = 4, with_balls=None):
     """Newton on the slip-angle formulation, then keep only the physical branch.
 
     ``slide_i cos phi_i = spin_i sin phi_i`` also holds for ``phi_i + pi``
     (friction reversed against the slip); a converged point with a slip speed
     ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``
     (:func:`lowmodel.solvers.solve_with_restarts`).  ``balls_of(z)`` returns
-    the (n, 7) ball unknowns of the state vector ``z``; ``reference_force`` [N]
+    the (n, 7) ball unknowns of the state vector ``z`` and ``with_balls(z, balls)`` a copy of ``z``
+    with them replaced (default: ``z`` starts with the ball unknowns); ``reference_force`` [N]
     is the force unit of ``function``'s residual.
     """
+    replace = _replace_balls if with_balls is None else with_balls
+
     def restart(z):
         balls = balls_of(z)
         slide, spin = slip_kinematics(balls, contacts)
@@ -622,10 +652,11 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
             return None
         balls = balls.copy()
         balls[:, 3:] = np.where(wrong, balls[:, 3:] + math.pi, balls[:, 3:])
-        return _replace_balls(z, balls), float(-slip_speed.min())
+        return replace(z, balls), float(-slip_speed.min())
 
     return solve_with_restarts(function, z0, restart, tolerance=tolerance, max_iterations=max_iterations, what=what,
-                               rejection="converged only to slip directions against the slip", attempts=attempts)
+                               rejection="converged only to slip directions against the slip", attempts=attempts,
+                               rejection_reason=STICK_REASON)
 
 
 def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts) -> ConvergenceError:

@@ -3,7 +3,9 @@
 Models: lowmodel.linear_bearing.bearing_ball (eqs 1-4), lowmodel.linear_bearing.b2b
 (eqs 5-10).  Where a quasi-static state with full sliding exists (spin-capacity
 ratio >= 1.05, docs/b2b_bearing.md "validity") every solve must converge, by
-Newton from the cheap start or by continuation; every failure must carry a
+Newton from the cheap start or by continuation; with touching balls every
+solve must converge or end where a contact stops sliding (the end of the
+full-sliding branch, checked by a bisection in mu); every failure must carry a
 reason; no solve may return NaN.  Parameters around lin2019 Table 1.
 """
 from __future__ import annotations
@@ -27,11 +29,11 @@ TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conf
               friction_coefficient=paper.TABLE1.friction_coefficient, **paper.TABLE1.material)
 RATIO_FLOOR = 1.05  # spin-capacity ratio above which a state exists and must be found
 SIZES = {"quick": dict(grid=(9, 7), margins=(1e-3, 1e-2, 3e-2), loads=9, mus=5, chains=(1, 2, 5, 20, 200),
-                       repeats=2),
+                       repeats=2, stick_steps=3),
          "default": dict(grid=(17, 13), margins=(1e-4, 1e-3, 3e-3, 1e-2, 3e-2), loads=17, mus=9,
-                         chains=(1, 2, 3, 5, 10, 20, 50, 200), repeats=3),
+                         chains=(1, 2, 3, 5, 10, 20, 50, 200), repeats=3, stick_steps=4),
          "fine": dict(grid=(33, 25), margins=(1e-5, 1e-4, 1e-3, 3e-3, 1e-2, 2e-2, 3e-2, 5e-2), loads=33, mus=13,
-                      chains=(1, 2, 3, 5, 10, 20, 50, 100, 200), repeats=5)}
+                      chains=(1, 2, 3, 5, 10, 20, 50, 100, 200), repeats=5, stick_steps=8)}
 
 
 def _case(theta, rho, n_balls=1, **overrides):
@@ -56,7 +58,7 @@ class _Tally:
             self.records.append((family, ratio, False, error.reason, error.iterations, error.residual, False,
                                  math.nan, False))
             self.failures.append((family, contacts.n_balls, ratio, error.reason, error.last_converged,
-                                  float(contacts.friction_coefficient)))
+                                  float(contacts.friction_coefficient), getattr(error, "min_slip_speed", math.nan)))
             return None
         values = np.concatenate([state.ball_velocity, state.omega.ravel(), state.b2b_force,
                                  state.friction_loss.ravel()])
@@ -72,7 +74,7 @@ class _Tally:
 @scene("lin2019-stability", "Solver sweep: rho and theta up to the lin2017 eq 37 limit, N_y 1e-3 to 1e5 N, mu 1e-6 "
        "to 1, chains of 1 to 200 balls with random gaps and deviations; 100 % convergence where the "
        "spin-capacity ratio >= 1.05, a reason for every failure; converged-region figure",
-       kind="low-order", cost_s=21.0)  # cost: 24.7 s wall, CPU 85 % of wall (default, loaded machine)
+       kind="low-order", cost_s=28.0)  # cost: 27.4 s CPU, 65 s wall at load average 5-10 (default level)
 def stability(run):
     sizes = SIZES[run.fidelity]
     rng = np.random.default_rng(2019)
@@ -130,6 +132,13 @@ def stability(run):
               source="issue 10: a state exists there (docs/b2b_bearing.md, validity)", time_s=per_solve)
     pairs = existing & coupled
     coupled_fraction = float(np.mean(converged[pairs])) if np.any(pairs) else 1.0
+    stick = np.array([reason.startswith(bearing_ball.STICK_REASON) for reason in reasons])
+    run.check(model=MODEL_B2B, quantity=f"touching balls, spin-capacity ratio >= {RATIO_FLOOR} ({int(pairs.sum())} "
+              "solves): fraction converged or ended where a contact stops sliding", unit="1",
+              value=float(np.mean((converged | stick)[pairs])) if np.any(pairs) else 1.0, reference=1.0,
+              tolerance=0.0, time_s=per_solve,
+              source="issue 10: the end of the full-sliding branch (a contact's slip speed crosses 0, "
+              "docs/b2b_bearing.md 'validity') is the existence bound for touching balls")
     run.check(model=MODEL_B2B, quantity="failures without a reason", unit="count",
               value=float(np.sum(~converged & (reasons == ""))), reference=0.0, scale=1.0, tolerance=0.0,
               why="a count: tolerance 0, so a single failure without a reason fails; the scale is one solve",
@@ -149,6 +158,7 @@ def stability(run):
               value=float(np.max(residuals[converged])), reference=1e-12, relation="le", tolerance=0.0,
               source="solver tolerance 1e-12", time_s=per_solve)
     _spin_capacity_boundary(run)
+    _stick_boundary(run, sizes["stick_steps"])
     _loss_of_contact(run)
     families = ("grid", "load", "mu", "chain")
     summary = "; ".join(
@@ -161,13 +171,13 @@ def stability(run):
             failures[record[3]] = failures.get(record[3], 0) + 1
     timing = ", ".join(f"{n}: {1e3 * float(np.median(t)):.0f} ms" for n, t in sorted(chain_times.items()))
     pair_failures = [f for f in tally.failures if f[2] >= RATIO_FLOOR]
-    run.note(f"Known gap (touching balls): {int(pairs.sum())} solves with B2B contact and every ball's spin-capacity "
+    run.note(f"Touching balls: {int(pairs.sum())} solves with B2B contact and every ball's spin-capacity "
              f"ratio >= {RATIO_FLOOR}, of which {100 * coupled_fraction:.1f} % converged; failures: "
-             + ("; ".join(f"{f[0]}, {f[1]} balls, mu = {f[5]:.3g}, ratio {f[2]:.2f}: {f[3]} at {f[4]}"
-                          for f in pair_failures) or "none")
-             + ".  The single-ball ratio is not an existence bound for touching balls: the B2B force and its "
-             "friction moment use friction capacity too; a B2B-aware bound is not derived yet (evidence in "
-             "docs/b2b_bearing.md, 'validity').")
+             + ("; ".join(f"{f[0]}, {f[1]} balls, mu = {f[5]:.3g}, ratio {f[2]:.2f}: {f[3]} (last converged "
+                          f"{f[4]}, smallest slip speed there {f[6]:.2g} |v|)" for f in pair_failures) or "none")
+             + ".  The single-ball ratio is not an existence bound for touching balls (the B2B force and its "
+             "friction moment use friction capacity too); the bound is the end of the full-sliding branch, where "
+             "a contact's slip speed reaches 0 (docs/b2b_bearing.md, 'validity').")
     run.note(f"{len(tally.records)} solves in {elapsed:.1f} s. {summary}. Failures by reason: {failures or 'none'} "
              f"(all at spin-capacity ratio < {RATIO_FLOOR}: "
              f"{bool(np.all(ratio[~converged] < RATIO_FLOOR)) if np.any(~converged) else 'no failures'}). "
@@ -196,6 +206,49 @@ def _spin_capacity_boundary(run) -> None:
                   time_s=(time.perf_counter() - began) / 16,
                   source="moment balance along the loaded diagonal (docs/b2b_bearing.md, validity)",
                   note="tolerance: the bound neglects the misalignment theta of the diagonal")
+
+
+def _stick_boundary(run, steps: int) -> None:
+    """Two touching balls, theta = 3 deg, rho = -0.7 (spin-capacity ratio 4.2): the solve at mu = 0.6 must fail and
+    say that a contact stops sliding; its mu continuation path brackets the end of the branch (last converged s,
+    and s + 2 min_step where the step control gave up); ``steps`` bisection steps in that bracket; at the last
+    converged mu a contact's slip speed must be ~0 (the full-sliding branch ends there)."""
+    theta = math.radians(3.0)
+    target = 0.6
+    began = time.perf_counter()
+    solves = 1
+    try:
+        b2b.solve(_case(theta, -0.7, 2, friction_coefficient=target), [0.0])
+        failure = None
+    except ConvergenceError as error:
+        failure = error
+    run.check(model=MODEL_B2B, quantity=f"failure at mu = {target} (theta = 3 deg, rho = -0.7, two touching balls) "
+              "names the stick boundary", unit="1",
+              value=float(failure is not None and failure.reason.startswith(bearing_ball.STICK_REASON)),
+              reference=1.0, tolerance=0.0, time_s=time.perf_counter() - began,
+              source="issue 10: a failure is proven to be no-state, reason given")
+    ok, bad = 0.4, target
+    if failure is not None and failure.last_converged and failure.last_converged[0] == "s (mu)":
+        s_last = failure.last_converged[1]
+
+        def mu_at(s):
+            return target * b2b.MU_PATH_START ** (s - 1.0)  # the mu path of b2b.solve
+        ok, bad = mu_at(s_last), mu_at(min(1.0, s_last + 2.0 / 1024.0))  # 1/1024: the continuation's min step
+    ok_state = b2b.solve(_case(theta, -0.7, 2, friction_coefficient=ok), [0.0])
+    for _ in range(steps):
+        mid = 0.5 * (ok + bad)
+        solves += 1
+        try:
+            ok_state, ok = b2b.solve(_case(theta, -0.7, 2, friction_coefficient=mid), [0.0]), mid
+        except ConvergenceError:
+            bad = mid
+    slip = np.hypot(ok_state.slide, ok_state.spin * _case(theta, -0.7, 2).semi_major) / TABLE1["groove_velocity"]
+    run.check(model=MODEL_B2B, quantity=f"smallest contact slip speed / v at the last converged mu = {ok:.6f} "
+              f"(next failing {bad:.6f}; theta = 3 deg, rho = -0.7, two touching balls)", unit="1",
+              value=float(np.min(slip)), reference=0.0, scale=1.0, tolerance=1e-3,
+              time_s=(time.perf_counter() - began) / (solves + 1),
+              why="a slip speed per unit groove speed: zero judged on the scale 1 (the other contacts slip at "
+              "0.02 to 0.5 v)", source="end of the full-sliding branch (docs/b2b_bearing.md, validity)")
 
 
 def _loss_of_contact(run) -> None:
