@@ -131,22 +131,40 @@ class SampledCoulomb:
         self.eps = float(eps)
         self.projector = np.eye(3)[None] - self.normal[:, :, None] * self.normal[:, None, :]
         self.PD = self.projector @ self.D
+        m = self.n_unknowns
+        self.gram = np.matmul(self.PD.transpose(0, 2, 1), self.PD).reshape(-1, m * m)  # (P D)^T (P D), constant
+        self.index = [np.flatnonzero(self.ball == b) for b in range(self.n_balls)]
 
-    def evaluate(self, balls: np.ndarray, jacobian: bool = True):
-        """Residual ``R`` (n, m) and Jacobian (n, m, m) at ``balls`` (n, m); slips (k, 3) and forces (k, 3)."""
-        x = balls[self.ball]  # (k, m)
-        slip = np.einsum("kij,kj->ki", self.D, x) - self.groove_slip
-        tangential = np.einsum("kij,kj->ki", self.projector, slip)
+    def evaluate(self, balls: np.ndarray, jacobian: bool = True, ball: int | None = None):
+        """Residual ``R`` (n, m) and Jacobian (n, m, m) at ``balls`` (n, m); slips (k, 3) and forces (k, 3).
+
+        ``ball``: only that ball's points (residual (m,), Jacobian (m, m), its points' slips and forces).
+        """
+        m = self.n_unknowns
+        if ball is None:
+            index, owner, count = slice(None), self.ball, self.n_balls
+        else:
+            index = self.index[ball]
+            owner, count = np.zeros(len(index), dtype=int), 1
+        D, normal = self.D[index], self.normal[index]
+        x = np.asarray(balls, dtype=float)[self.ball[index]]  # (k, m)
+        slip = np.matmul(D, x[:, :, None])[:, :, 0] - self.groove_slip[index]
+        tangential = slip - normal * np.einsum("ki,ki->k", normal, slip)[:, None]  # P s
         norm = np.sqrt(np.einsum("ki,ki->k", tangential, tangential) + self.eps**2)
-        force = -(self.load / norm)[:, None] * tangential  # Coulomb, full slip
-        rows = np.einsum("kij,ki->kj", self.D, force)  # D^T f
-        residual = np.zeros((self.n_balls, self.n_unknowns))
-        np.add.at(residual, self.ball, rows)
+        weight = self.load[index] / norm
+        force = -weight[:, None] * tangential  # Coulomb, full slip
+        rows = np.matmul(force[:, None, :], D)[:, 0, :]  # D^T f
+        residual = np.stack([np.bincount(owner, rows[:, j], minlength=count) for j in range(m)], axis=1)
         jac = None
         if jacobian:
-            unit = tangential / norm[:, None]
-            inner = (np.eye(3)[None] - unit[:, :, None] * unit[:, None, :]) / norm[:, None, None]
-            block = -self.load[:, None, None] * np.einsum("kai,kab,kbj->kij", self.PD, inner, self.PD)
-            jac = np.zeros((self.n_balls, self.n_unknowns, self.n_unknowns))
-            np.add.at(jac, self.ball, block)
+            # d f / d x = -(F / |Ps|) (I - u u^T) P D, u = Ps / |Ps|:  block = -w ((PD)^T PD - (PD)^T u u^T PD)
+            pdu = np.matmul((tangential / norm[:, None])[:, None, :], self.PD[index])[:, 0, :]  # (k, m)
+            gram = self.gram[index]
+            jac = np.empty((count, m, m))
+            groups = [np.arange(len(weight))] if ball is not None else self.index
+            for b, rows_b in enumerate(groups):
+                w = weight[rows_b]
+                jac[b] = -(w @ gram[rows_b]).reshape(m, m) + (pdu[rows_b] * w[:, None]).T @ pdu[rows_b]
+        if ball is not None:
+            return residual[0], jac[0] if jacobian else None, slip, force
         return residual, jac, slip, force

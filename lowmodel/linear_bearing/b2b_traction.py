@@ -215,8 +215,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         def single(x, b=b):
             states = guess.copy()
             states[b] = x
-            residual, jac = ball_function(states)
-            return residual[b], jac[b]
+            residual, jac, _, _ = samples.evaluate(states, ball=b)  # this ball's points only
+            return residual, jac
 
         free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
                                  what=f"FE-informed ball {b}")

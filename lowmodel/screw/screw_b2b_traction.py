@@ -258,8 +258,8 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         def single(x, b=b):
             states = guess.copy()
             states[b] = x
-            residual, jac = ball_function(states)
-            return residual[b], jac[b]
+            residual, jac, _, _ = samples.evaluate(states, ball=b)  # this ball's points only
+            return residual, jac
 
         free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
                                  what=f"FE-informed screw ball {b}")
