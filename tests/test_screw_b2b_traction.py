@@ -5,7 +5,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.contact.traction import TractionPatch
+from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt
 from ballbench.lowmodel.screw import screw_b2b, screw_ball
@@ -160,3 +160,31 @@ def test_bad_patches_raise_value_error_naming_them():
         sbt.hertz_patches(free, contacts, 0, n_radial=0)
     with pytest.raises(ConvergenceError):
         sbt.solve(good, module, max_iterations=1)
+
+
+def test_point_friction_is_tangent_full_slip_and_opposes_the_slip():
+    # lowmodel.contact.traction.SampledCoulomb on curved patches: every point's friction lies in the tangent
+    # plane of its normal, has the magnitude of its normal force (full slip) and opposes the tangential slip
+    contacts, free, _ = _low_order("a")
+    balls = _patches(free, contacts, n_radial=4, n_angular=16, planar=False)
+    points = np.concatenate([p.points for p in balls[0]])
+    normals = np.concatenate([p.normals for p in balls[0]])
+    loads = np.concatenate([p.forces for p in balls[0]])
+    rng = np.random.default_rng(3)
+    slip_matrix = rng.normal(size=(len(points), 3, 4))
+    groove = rng.normal(size=(len(points), 3))
+    core = SampledCoulomb(np.zeros(len(points), dtype=int), slip_matrix, groove, normals, loads, 1, 1e-12)
+    x = rng.normal(size=(1, 4))
+    residual, jac, slip, force = core.evaluate(x)
+    np.testing.assert_allclose(np.einsum("ki,ki->k", force, normals), 0.0, atol=1e-12 * loads.max())
+    np.testing.assert_allclose(np.linalg.norm(force, axis=1), loads, rtol=1e-9)
+    tangential = slip - normals * np.einsum("ki,ki->k", normals, slip)[:, None]
+    np.testing.assert_allclose(np.einsum("ki,ki->k", force, tangential), -loads * np.linalg.norm(tangential, axis=1),
+                               rtol=1e-9)
+    np.testing.assert_allclose(residual[0], np.einsum("kij,ki->j", slip_matrix, force), rtol=1e-9)
+    # the Jacobian against central differences, and symmetric (gradient of the dissipation)
+    step = 1e-7
+    numeric = np.stack([(core.evaluate(x + step * np.eye(4)[j])[0][0] - core.evaluate(x - step * np.eye(4)[j])[0][0])
+                        / (2 * step) for j in range(4)], axis=1)
+    np.testing.assert_allclose(jac[0], numeric, rtol=1e-5, atol=1e-6 * np.abs(numeric).max())
+    np.testing.assert_allclose(jac[0], jac[0].T, atol=1e-12 * np.abs(jac[0]).max())
