@@ -39,6 +39,7 @@ linear module the forces are statically indeterminate and follow from the FE's c
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import lru_cache
@@ -51,7 +52,7 @@ from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
 
 __all__ = ["CONTACTS", "ScrewModuleGeometry", "screw_module_geometry", "build_screw_model", "solve_screw_module",
-           "flank_angles_tilted"]
+           "flank_angles_tilted", "with_oversize"]
 
 CONTACTS = ("SL", "SR", "NR", "NL")  # lin2019 eq 54
 _BODY = ("screw", "screw", "nut", "nut")
@@ -229,3 +230,14 @@ def solve_screw_module(model: fourpoint.ModuleModel, axial_load: float, *, tol: 
         raise ValueError(f"axial_load must be a finite number > 0 N, got {axial_load!r}")
     return fourpoint.solve_loaded(model, np.array([0.0, 0.0, float(axial_load)]), tol=tol, fit=fit,
                                   geometric_update=geometric_update, max_updates=max_updates)
+
+
+def with_oversize(model: fourpoint.ModuleModel, oversize: float) -> fourpoint.ModuleModel:
+    """The condensed ``model`` with another preload ``oversize`` [m] (no new condensation: ``W`` does not depend on
+    it).  A uniform interference shifts every weighted gap by ``-oversize int phi_k dA = -oversize m_k``."""
+    geometry = model.geometry
+    if not isinstance(geometry, ScrewModuleGeometry):
+        raise ValueError(f"model must be a screw module, got a {type(geometry).__name__}")
+    new = screw_module_geometry(geometry.ball_radius, geometry.conformity, geometry.pitch_radius, geometry.lead,
+                                geometry.contact_angles, oversize)
+    return dataclasses.replace(model, geometry=new, g0=model.g0 - (new.oversize - geometry.oversize) * model.weights)

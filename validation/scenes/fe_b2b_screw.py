@@ -22,6 +22,7 @@ axis (normal + friction; the two shares add up to the 50 N).
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import time
 
@@ -39,10 +40,12 @@ E_STEEL, NU_STEEL = T4.youngs_modulus, T4.poisson_ratio
 GAP_LIMIT = 5e-6  # m, candidate zone (on the gap with the oversize subtracted): approaches 0.5-0.7 um + 1.7 um preload
 # (h_contact [m], growth, fine_radius [m]) about the four contact points.  The semi-axes are a = 185-290 um and
 # b = 40-70 um (b/a = 0.21-0.25): the fine zone resolves b, the ends of a lie in the growth zone (as fe_b2b.py).
+# Measured (case a, FE-informed F_B2B): 50 um 1.970 N, 40 um 2.003 N, 30 um 2.001 N; the 50 um level also misses b by
+# 19 % and p0 by 21 %, so the quick level is 40 um (within 0.1 % of the default's F_B2B).
 LEVELS = {
-    "quick": [(5.0e-5, 1.5, 1.5e-4)],
+    "quick": [(4.0e-5, 1.5, 1.5e-4)],
     "default": [(3.0e-5, 1.4, 1.5e-4)],
-    "fine": [(5.0e-5, 1.5, 1.5e-4), (3.0e-5, 1.4, 1.5e-4), (2.2e-5, 1.35, 1.5e-4)],
+    "fine": [(4.0e-5, 1.5, 1.5e-4), (3.0e-5, 1.4, 1.5e-4), (2.2e-5, 1.35, 1.5e-4)],
 }
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its level
 SCENE_BUDGET_S = {"quick": TIME_LIMIT_S["quick"], "default": TIME_LIMIT_S["default"],
@@ -56,6 +59,27 @@ FRICTIONLESS_GAP = KnownGap(
            "(mu = 0.1, eq 54): friction moves load between the diagonals SL-NR and SR-NL by up to 4 N of 14-21 N.",
     evidence="this scene: the FE forces against the frictionless Hertz statics of the same geometry, preload and "
              "axial share (hertz_statics, checked at 2 %); contacts.csv (F_FE, F_hertz_statics, F_low_order).")
+
+ANSYS_GAP = KnownGap(
+    reason="Table 4 gives no preload.  The reading of docs/ball_screw.md fits the ball oversize (1.6848 um) on the "
+           "paper's low-order F_B2B of case (a), 1.92 N, itself 6.7 % (case b: 6.6 %) above ANSYS.  At that preload "
+           "the FE-informed model lands 2.6-4.2 % above the low-order value (its contacts are stiffer than Hertz's, "
+           "so its preloaded forces are 2-5 % larger, and its normal loads are frictionless), i.e. 10-11 % above "
+           "ANSYS.  F_B2B is steep in the unknown preload: 0.09 um less oversize (where the low-order model gives "
+           "ANSYS's 1.80 N) brings the FE-informed F_B2B within 2 % of ANSYS.",
+    evidence="sensitivity.csv of this scene (default level): rows 'low-order at the oversize fitted on ANSYS's case "
+             "(a)' and 'FE-informed at that oversize', and the Hertz-ellipse rows that split the difference to the "
+             "low-order model into normal-force distribution, loaded angles and pressure field; levels.csv "
+             "(F_B2B per mesh level); docs/fe_b2b.md (screw half).")
+STIFFNESS_GAP = KnownGap(
+    reason="Preloaded and statically indeterminate (four forces, three equations), the forces follow the contacts' "
+           "stiffness.  The FE contacts are stiffer than Hertz's half-space (approach at the same force 0.6-3.4 % "
+           "below Hertz's delta at the default level: a conforming contact on a finite ball, groove segments clamped "
+           "1.75 R_B below the flanks), which with the 1.68 um interference raises every force by 1-2 N: +2 % on "
+           "the loaded diagonal SL-NR, +4-5.5 % on the light one SR-NL.",
+    evidence="contacts.csv: approach_um (FE rigid approach + oversize) against delta_hertz_um (Hertz at the FE force) "
+             "per contact; the statics themselves (ball equilibrium, the axial share) hold to 1e-9 "
+             "(tests/test_fem_screw_module.py).")
 
 
 def fe_model_name(h_contact: float) -> str:
@@ -71,12 +95,24 @@ def oversize() -> float:
     return lin2019_screw.fitted_oversize()
 
 
-def low_order(case: str):
-    """(contacts, free state, touching state) of the low-order model for Table 5 case ``case``."""
-    contacts = screw_ball.ball_contacts(lin2019_screw.table4_module(oversize()),
+def low_order(case: str, preload: float | None = None):
+    """(contacts, free state, touching state) of the low-order model for Table 5 case ``case`` at the oversize
+    ``preload`` [m] (default :func:`oversize`)."""
+    preload = oversize() if preload is None else preload
+    contacts = screw_ball.ball_contacts(lin2019_screw.table4_module(preload),
                                         np.array([0.0, PRINTED[case].theta]), reading=lin2019_screw.READING)
-    free, state = lin2019_screw.two_ball(case, oversize())
+    free, state = lin2019_screw.two_ball(case, preload)
     return contacts, free, state
+
+
+def ansys_fitted_oversize() -> float:
+    """Oversize [m] at which the low-order model gives ANSYS's case (a) force 1.80 N (brentq; sensitivity only:
+    the scene's preload is the reading of docs/ball_screw.md, fitted on the paper's low-order 1.92 N)."""
+    from scipy.optimize import brentq
+
+    target = PRINTED["a"].f_b2b_ansys
+    return float(brentq(lambda o: lin2019_screw.two_ball("a", o)[1].b2b_force[0] - target, 1.0e-6, 3.0e-6,
+                        xtol=1e-12))
 
 
 def axial_shares(contacts, state) -> np.ndarray:
@@ -172,22 +208,16 @@ def fe_informed(models, results, *, normal: str = "mid", free_balls=None):
         {} if free_balls is None else {"free_balls": free_balls}))
 
 
-def _has_fe_informed() -> bool:
-    import importlib.util
-
-    return importlib.util.find_spec("ballbench.lowmodel.screw.screw_b2b_traction") is not None
-
-
 def _run(run, case: str) -> None:
     printed = PRINTED[case]
     (contacts, free, state), time_low = run.time(low_order, case)
     _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
     force_low = float(state.b2b_force[0])
     increase_low = lin2019_screw.friction_increase(free, state)
-    run.check(model=MODEL_LOW, quantity="F_B2B (low-order)", unit="N", value=force_low,
-              reference=printed.f_b2b_numerical, source=f"lin2019 Table 5 case ({case}), low-order numerical",
-              tolerance=0.05, time_s=solve_s,
-              note="preload fitted on case (a)'s force: a fit in case (a), a prediction in case (b)")
+    if case == "b":  # case (a)'s low-order force is the preload's fit (docs/ball_screw.md): no check there
+        run.check(model=MODEL_LOW, quantity="F_B2B (low-order)", unit="N", value=force_low,
+                  reference=printed.f_b2b_numerical, source="lin2019 Table 5 case (b), low-order numerical",
+                  tolerance=0.05, time_s=solve_s, note="prediction: preload fitted on case (a)'s force alone")
     run.check(model=MODEL_LOW, quantity="F_B2B", unit="N", value=force_low, reference=printed.f_b2b_ansys,
               source=f"lin2019 Table 5 case ({case}), ANSYS FEA", tolerance=0.10, time_s=solve_s,
               note="issue 12: within 10 % of ANSYS (the paper's own low-order model is 6.4-6.7 % above)")
@@ -196,7 +226,6 @@ def _run(run, case: str) -> None:
               tolerance=3.0 / printed.friction_increase, time_s=time_low, note="tolerance 3 points")
     shares = axial_shares(contacts, state)
     reference = [hertz_statics(contacts, ball, shares[ball]) for ball in range(2)]
-    with_fe_informed = _has_fe_informed()
     rows, contact_rows = [], []
     last = None
     for h_contact, growth, fine_radius in run.progress(LEVELS[run.fidelity], desc=f"fe-b2b-screw-{case} mesh levels"):
@@ -204,31 +233,28 @@ def _run(run, case: str) -> None:
         models, results, timings = solve_fe_level(case, h_contact, growth, fine_radius, shares)
         row = dict(h_contact_um=h_contact * 1e6, growth=growth, fine_radius_um=fine_radius * 1e6,
                    ndofs=sum(m.ndofs for m in models), multipliers=sum(m.n_multipliers for m in models))
-        informed = None
-        if with_fe_informed:
-            t_b2b = time.perf_counter()
-            informed = fe_informed(models, results)
-            timings["b2b_s"] = time.perf_counter() - t_b2b
-            row.update(F_B2B=float(informed.b2b_force[0]), friction_increase_pct=float(informed.friction_increase),
-                       power_balance=float(informed.power_balance))
+        t_b2b = time.perf_counter()
+        informed = fe_informed(models, results)
+        timings["b2b_s"] = time.perf_counter() - t_b2b
+        row.update(F_B2B=float(informed.b2b_force[0]), friction_increase_pct=float(informed.friction_increase),
+                   power_balance=float(informed.power_balance))
         wall = time.perf_counter() - start
         row.update(wall_s=wall, **{k: float(v) for k, v in timings.items()})
         rows.append(row)
-        if informed is not None:
-            name = fe_informed_name(h_contact)
-            run.check(model=name, quantity="F_B2B", unit="N", value=float(informed.b2b_force[0]),
-                      reference=printed.f_b2b_ansys, source=f"lin2019 Table 5 case ({case}), ANSYS FEA",
-                      tolerance=0.10, time_s=wall,
-                      note=f"issue 12: within 10 %; {row['ndofs']} DOFs in two modules; mesh + assembly + "
-                           "condensation + 2 contact solves + B2B solves")
-            run.check(model=name, quantity="friction increase by B2B", unit="%",
-                      value=float(informed.friction_increase), reference=printed.friction_increase,
-                      source="lin2019 Sec 3.3 (the paper's low-order value; no FE value is printed)",
-                      tolerance=3.0 / printed.friction_increase, time_s=wall, note="tolerance 3 points")
-            run.check(model=name, quantity="power balance (input - losses)/input", unit="1",
-                      value=float(informed.power_balance), reference=0.0, scale=1.0, tolerance=1e-6, time_s=wall,
-                      why="the value is itself a relative power error: zero judged on the scale 1",
-                      source="energy conservation incl. B2B loss (screw at rest, nut drives); issue 12: 1e-6")
+        name = fe_informed_name(h_contact)
+        run.check(model=name, quantity="F_B2B", unit="N", value=float(informed.b2b_force[0]),
+                  reference=printed.f_b2b_ansys, source=f"lin2019 Table 5 case ({case}), ANSYS FEA",
+                  tolerance=0.10, time_s=wall,
+                  note=f"issue 12: within 10 %; {row['ndofs']} DOFs in two modules; mesh + assembly + "
+                       "condensation + 2 contact solves + B2B solves", known_gap=ANSYS_GAP)
+        run.check(model=name, quantity="friction increase by B2B", unit="%",
+                  value=float(informed.friction_increase), reference=printed.friction_increase,
+                  source="lin2019 Sec 3.3 (the paper's low-order value; no FE value is printed)",
+                  tolerance=3.0 / printed.friction_increase, time_s=wall, note="tolerance 3 points")
+        run.check(model=name, quantity="power balance (input - losses)/input", unit="1",
+                  value=float(informed.power_balance), reference=0.0, scale=1.0, tolerance=1e-6, time_s=wall,
+                  why="the value is itself a relative power error: zero judged on the scale 1",
+                  source="energy conservation incl. B2B loss (screw at rest, nut drives); issue 12: 1e-6")
         for ball, result in enumerate(results):
             forces = np.array([c.normal_force for c in result.contacts])
             ellipse = hertz_ellipse(contacts, ball, forces)
@@ -244,6 +270,7 @@ def _run(run, case: str) -> None:
                     b_um=np.nan if fit is None else fit.b * 1e6, b_hertz_um=ellipse[i, 1] * 1e6,
                     p0_MPa=np.nan if fit is None else fit.p0 / 1e6, p0_hertz_MPa=ellipse[i, 2] / 1e6,
                     approach_um=(contact.approach + oversize()) * 1e6,
+                    delta_hertz_um=float(contacts.hertz_constant[ball, i] * contact.normal_force ** (2 / 3)) * 1e6,
                     approach_low_order_um=float(state.approach[ball, i]) * 1e6))
         last = (h_contact, models, results, wall)
     h_contact, models, results, wall = last
@@ -257,7 +284,7 @@ def _run(run, case: str) -> None:
               value=worst("F", "F_hertz_statics"), reference=0.0, scale=1.0, tolerance=0.02, time_s=wall,
               source="frictionless Hertz statics of the same geometry, preload and axial share (hertz_statics); "
                      "issue 12: 2 %",
-              why="the value is itself a relative force error: zero judged on the scale 1",
+              why="the value is itself a relative force error: zero judged on the scale 1", known_gap=STIFFNESS_GAP,
               note="statically indeterminate (4 forces, 3 equations): the FE's compliance and the interference decide")
     run.check(model=name, quantity="contact forces, worst of 8: |F_FE/F_low-order - 1|", unit="1",
               value=worst("F", "F_low_order"), reference=0.0, scale=1.0, tolerance=0.02, time_s=wall,
@@ -284,15 +311,14 @@ def _run(run, case: str) -> None:
     lines = []
     for r in rows:
         text = f"{r['h_contact_um']:.0f} um: {r['ndofs']} DOFs, {r['wall_s']:.0f} s"
-        if "F_B2B" in r:
-            text += f", F_B2B {r['F_B2B']:.3f} N, increase {r['friction_increase_pct']:.1f} %"
+        text += f", F_B2B {r['F_B2B']:.3f} N, increase {r['friction_increase_pct']:.1f} %"
         lines.append(text)
     run.note(f"Preload: oversize {oversize() * 1e6:.4f} um (interference fit); axial shares {shares[0]:.3f} / "
              f"{shares[1]:.3f} N.  Low-order: F_B2B {force_low:.3f} N, friction increase {increase_low:.2f} %.  "
              "FE per level: " + "; ".join(lines) + ".  Per contact (contacts.csv): FE force against the frictionless "
              "Hertz statics and the low-order model, loaded vs rigid angle, fitted a, b, p0 vs Hertz, approach.")
     run.save_figure(_figure(models, results, contacts), "pressure_patches.png")
-    if with_fe_informed and run.fidelity != "quick":
+    if run.fidelity != "quick":
         _sensitivity(run, case, models, results, state, contacts)
 
 
@@ -314,10 +340,33 @@ def _sensitivity(run, case, models, results, state, contacts) -> None:
     hertz = [sbt.hertz_patches(state, contacts, ball) for ball in range(2)]
     rows.append(("Hertz samples on planes (screw_b2b_traction; quadrature check)",
                  float(sbt.module_b2b(hertz, module).b2b_force[0])))
+    # the normal-force distribution: Hertz ellipses at other forces (frictionless ones: the decoupling)
+    shares = axial_shares(contacts, state)
+    statics = np.array([hertz_statics(contacts, ball, shares[ball]) for ball in range(2)])
+    fe_forces = np.array([[c.normal_force for c in r.contacts] for r in results])
+    fe_angles = np.array([[c.contact_angle for c in r.contacts] for r in results])
+    for label, forces, angles in (
+            ("Hertz ellipses at the frictionless Hertz-statics forces, rigid angles (no FE)", statics,
+             contacts.contact_angles),
+            ("Hertz ellipses at the FE forces, rigid angles", fe_forces, contacts.contact_angles),
+            ("Hertz ellipses at the FE forces, FE loaded angles", fe_forces, fe_angles)):
+        variant = dataclasses.replace(state, normal_force=forces, contact_angle=np.asarray(angles),
+                                      semi_major=contacts.semi_major_unit * np.cbrt(forces))
+        patches = [sbt.hertz_patches(variant, contacts, ball) for ball in range(2)]
+        rows.append((label, float(sbt.module_b2b(patches, module).b2b_force[0])))
     for normal in ("mid", "sphere", "contact"):
         rows.append((f"FE tractions, loaded angles, normal '{normal}'",
                      float(fe_informed(models, results, normal=normal).b2b_force[0])))
-    shares = axial_shares(contacts, state)
+    # the unknown preload: the oversize at which the low-order model gives ANSYS's case (a) 1.80 N
+    ansys_oversize = ansys_fitted_oversize()
+    contacts_ansys, _, state_ansys = low_order(case, ansys_oversize)
+    shares_ansys = axial_shares(contacts_ansys, state_ansys)
+    lowered = [sm.solve_screw_module(sm.with_oversize(model, ansys_oversize), float(shares_ansys[ball]))
+               for ball, model in enumerate(models)]
+    rows.append((f"low-order at the oversize fitted on ANSYS's case (a) 1.80 N ({ansys_oversize * 1e6:.4f} um)",
+                 float(state_ansys.b2b_force[0])))
+    rows.append((f"FE-informed at that oversize ({ansys_oversize * 1e6:.4f} um)",
+                 float(fe_informed(models, lowered).b2b_force[0])))
     rigid = [sm.solve_screw_module(model, float(shares[ball]), geometric_update=False)
              for ball, model in enumerate(models)]
     rows.append(("FE tractions, rigid contact angles (no geometric update)",
