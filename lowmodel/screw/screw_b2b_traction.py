@@ -43,7 +43,9 @@ Assumptions kept from lin2019's low-order model: full sliding at every point (no
 zone), one Coulomb ``mu``; ball-to-groove normal loads decoupled from friction and from
 the B2B force (the sampled tractions are given: the x3, z3 components of friction and of
 the B2B force are carried by the given normal loads, not re-balanced; the low-order model
-moves the ball centre for them, 0.3 % of the normal forces in Table 5's cases);
+moves the ball centre for them: in Table 5's cases the B2B force changes the
+normal forces by up to 0.26 N, 1.7 % of the light SR contact, and the free-state loads move
+F_B2B by +0.05 %, docs/b2b_traction.md);
 quasi-static; rigid ball kinematics; the B2B contact a point on the exact helix chord.
 Assumptions removed: Hertz's elliptical pressure (any sampled traction field), the planar
 contact (points on the real curved surface, slip projected on the local tangent plane),
