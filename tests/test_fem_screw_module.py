@@ -115,3 +115,27 @@ def test_module_statics_and_fe_informed_b2b(quick_modules):
     informed = scene.fe_informed(models, results)
     assert informed.power_balance < 1e-6
     assert 1.6 < informed.b2b_force[0] < 2.3  # Table 5 (a): 1.80 N ANSYS, 1.92 N low-order
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["fe-b2b-screw-a", "fe-b2b-screw-b"])
+def test_fe_b2b_screw_scene_quick_level_passes(name, tmp_path):
+    # two FE modules (224k P2 DOFs in all) + FE-informed B2B: ~60-90 s each on the shared machine
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import registry
+
+    result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
+    assert result.passed, [o for o in result.outputs if not o.passed] or result.error
+    assert {"F_B2B", "power balance (input - losses)/input", "friction increase by B2B"} <= {
+        o.quantity for o in result.outputs}
+
+
+@pytest.mark.slow
+def test_show_screw_module_writes_pngs(tmp_path):
+    from ballbench.validation import show
+
+    paths = show.show("fe-b2b-screw-a", tmp_path, fidelity="quick")
+    assert [p.name for p in paths] == ["pressure.png", "stress.png"]
+    for path in paths:
+        assert path.exists() and path.stat().st_size > 10_000
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
