@@ -50,8 +50,9 @@ LEVELS = {
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its level
 SCENE_BUDGET_S = {"quick": TIME_LIMIT_S["quick"], "default": TIME_LIMIT_S["default"],
                   "fine": 5.0 * TIME_LIMIT_S["default"]}
-# rough wall time at the default level on 2 cores [s] (two modules of 193k DOFs, meshes cached): docs/fe_b2b.md
-SCENE_COST_S = 150.0
+# rough wall time at the default level on 2 cores [s] (two modules of 193k DOFs, meshes cached, with the
+# sensitivity study): measured 137 s per case at load 10-12, docs/fe_b2b.md
+SCENE_COST_S = 140.0
 MODEL_LOW = "lowmodel.screw.screw_b2b"
 FRICTIONLESS_GAP = KnownGap(
     reason="The FE module is frictionless (the issue's decoupling: normal tractions from the FE, friction in the "
@@ -66,7 +67,7 @@ ANSYS_GAP = KnownGap(
            "the FE-informed model lands 2.6-4.2 % above the low-order value (its contacts are stiffer than Hertz's, "
            "so its preloaded forces are 2-5 % larger, and its normal loads are frictionless), i.e. 10-11 % above "
            "ANSYS.  F_B2B is steep in the unknown preload: 0.09 um less oversize (where the low-order model gives "
-           "ANSYS's 1.80 N) brings the FE-informed F_B2B within 2 % of ANSYS.",
+           "ANSYS's 1.80 N) brings the FE-informed F_B2B to 1.864 N (a) and 2.802 N (b), +3.5 % / +3.4 % of ANSYS.",
     evidence="sensitivity.csv of this scene (default level): rows 'low-order at the oversize fitted on ANSYS's case "
              "(a)' and 'FE-informed at that oversize', and the Hertz-ellipse rows that split the difference to the "
              "low-order model into normal-force distribution, loaded angles and pressure field; levels.csv "
@@ -80,6 +81,17 @@ STIFFNESS_GAP = KnownGap(
     evidence="contacts.csv: approach_um (FE rigid approach + oversize) against delta_hertz_um (Hertz at the FE force) "
              "per contact; the statics themselves (ball equilibrium, the axial share) hold to 1e-9 "
              "(tests/test_fem_screw_module.py).")
+
+# the finest level resolves the slender ellipses (b = 40-69 um): measured, case (a), worst of 8 contacts
+ELLIPSE_RESOLVED_H = 2.2e-5  # m
+ELLIPSE_GAP = KnownGap(
+    reason="The ellipses are slender (b/a = 0.21-0.25, b = 40-69 um along the groove): at h = 40 / 30 um the fine "
+           "zone puts 1-2.3 elements across b and the fitted Hertz field trades p0 against b (as on the rails, "
+           "docs/fe_b2b.md).  Case (a), worst of 8: a -6.4 / -5.2 %, b -15.6 / -8.1 %, p0 +13.3 / +6.8 % at 40 / 30 "
+           "um; at 22 um a -3.9 %, b -3.6 %, p0 +5.0 %: the target is met at the finest level only.",
+    evidence="contacts.csv of `ballbench validate fe-b2b-screw-a --fine` (levels 40, 30, 22 um; the ellipse checks "
+             "pass at 22 um); docs/fe_b2b.md (screw half).  Graded (ellipse-shaped) refinement, issue 12 item 6, is "
+             "the remedy for the coarser levels.")
 
 
 def fe_model_name(h_contact: float) -> str:
@@ -297,7 +309,8 @@ def _run(run, case: str) -> None:
                   value=worst(f"{key}_{unit_key}", f"{key}_hertz_{unit_key}"), reference=0.0, scale=1.0,
                   tolerance=0.05, time_s=wall,
                   source="low-order model's Hertz ellipse (ball_in_screw_groove) at the FE's force; issue 12: 5 %",
-                  why="the value is itself a relative error: zero judged on the scale 1")
+                  why="the value is itself a relative error: zero judged on the scale 1",
+                  known_gap=ELLIPSE_GAP if h_contact > ELLIPSE_RESOLVED_H * 1.01 else None)
     if run.fidelity in TIME_LIMIT_S:
         run.check(model=name, quantity="wall_time", unit="s", value=sum(r["wall_s"] for r in rows),
                   reference=TIME_LIMIT_S[run.fidelity], relation="le", tolerance=0.0, time_s=wall,
