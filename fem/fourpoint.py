@@ -84,6 +84,52 @@ class ModuleGeometry:
         """(3,) centre of the flank circle of contact ``i`` (z = 0): ``-(r_g - R_B) n_i``."""
         return -(self.groove_radius - self.ball_radius) * self.normals[i]
 
+    # --- the module protocol of build_module_model / solve_loaded (fem.screw_module has the screw's) ---
+    contact_names = CONTACT_NAMES
+    volumes = {"ball1": 0, "bottom_rail": 1, "top_rail": 2}  # physical volume -> body index
+    clamped = ("bottom_support", "top_load")  # Dirichlet faces (the load face moves by load_face_motion)
+    load_face = "top_load"
+    ball_centre = np.zeros(3)
+    free_axis = np.array([0.0, 0.0, 1.0])  # the ball's translation no contact holds (along the rails)
+    rigid_names = ("X", "Y", "U_x", "U_y")
+    all_contacts = True  # every contact must carry load (lin2017 eq 37)
+
+    def contact_point(self, i: int) -> np.ndarray:
+        """(3,) undeformed contact point of contact ``i`` on the ball [m] (tangent-plane origin)."""
+        return self.ball_radius * self.normals[i]
+
+    def gap(self, i: int, local: np.ndarray, shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`exact_gap` (sphere points relative to the ball centre)."""
+        return exact_gap(self, i, local, shift)
+
+    def rigid_modes(self, i: int) -> np.ndarray:
+        """(4, 3): rigid displacement of the ball relative to the rail of contact ``i`` per unit
+        ``q = (X, Y, U_x, U_y)`` (ball translation, top-rail translation)."""
+        top = -1.0 if i >= 2 else 0.0
+        return np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [top, 0.0, 0.0], [0.0, top, 0.0]])
+
+    def load_face_motion(self, rigid: np.ndarray) -> np.ndarray:
+        """(3,) rigid displacement [m] of the load face for the rigid unknowns ``rigid``."""
+        return np.array([rigid[2], rigid[3], 0.0])
+
+    def moving(self, i: int) -> bool:
+        """True for the contacts on the loaded (top) rail."""
+        return i >= 2
+
+    def loaded_angle(self, i: int, centre: np.ndarray) -> float:
+        """Contact angle [rad] (lin2017 eq 1, from -y or +y) of the point ``centre`` (3,) on the ball."""
+        return math.atan2(abs(centre[0]), abs(centre[1]))
+
+    def flank_normals(self, i: int, points: np.ndarray) -> np.ndarray:
+        """(k, 3) unit normals of the flank of contact ``i`` facing the points (k, 3) (from its arc centre)."""
+        radial = points - self.arc_centre(i)
+        radial[:, 2] = 0.0
+        return radial / np.linalg.norm(radial, axis=1)[:, None]
+
+    def to_ball_frame(self, vectors: np.ndarray) -> np.ndarray:
+        """Vectors (k, 3) in the frame of TractionPatch (lin2017 Fig 2: the module's own frame)."""
+        return vectors
+
 
 def exact_gap(geometry: ModuleGeometry, i: int, local: np.ndarray, shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Gap [m] between the exact sphere and flank cylinder of contact ``i`` along ``e3`` at the
@@ -117,13 +163,14 @@ def exact_gap(geometry: ModuleGeometry, i: int, local: np.ndarray, shift: float 
     return s_ball - s_rail, q + s_ball[:, None] * e3
 
 
-MODULE_VOLUMES = {"ball1": 0, "bottom_rail": 1, "top_rail": 2}  # physical volume -> body index
+MODULE_VOLUMES = ModuleGeometry.volumes  # physical volume -> body index
 
 
-def load_module(path) -> PairMesh:
-    """Read a one-ball :func:`meshes.assemblies.fourpoint_module.fourpoint_module` mesh: ``body`` 0 = ball,
-    1 = bottom rail, 2 = top rail; surfaces by their physical names."""
-    return load_pair(path, MODULE_VOLUMES)
+def load_module(path, volumes=None) -> PairMesh:
+    """Read a one-ball module mesh (default :func:`meshes.assemblies.fourpoint_module.fourpoint_module`:
+    ``body`` 0 = ball, 1 = bottom rail, 2 = top rail; ``volumes`` another name -> body map); surfaces by
+    their physical names."""
+    return load_pair(path, MODULE_VOLUMES if volumes is None else volumes)
 
 
 def _surface_dofs(basis, pair: PairMesh, name: str, edges: dict) -> np.ndarray:
@@ -215,30 +262,32 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
     timings = {}
     t0 = time.perf_counter()
-    pair = mesh if isinstance(mesh, PairMesh) else load_module(mesh)
-    for name in ("bottom_support", "top_load") + CONTACTS + tuple(f"ball1_{c}" for c in CONTACTS):
+    names = geometry.contact_names
+    pair = mesh if isinstance(mesh, PairMesh) else load_module(mesh, geometry.volumes)
+    for name in tuple(geometry.clamped) + tuple(names) + tuple(f"ball1_{c}" for c in names):
         if name not in pair.surfaces:
             raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
     timings["load_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    K, basis = stiffness_fast(pair, [materials] * 3, order=2)
+    K, basis = stiffness_fast(pair, [materials] * len(geometry.volumes), order=2)
     timings["assembly_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     edges = edge_index(basis.mesh)
     points = pair.points
     radius = geometry.ball_radius
-    # Dirichlet: bottom support clamped, top load face clamped (its rigid translation is in G)
-    fixed = [_surface_dofs(basis, pair, "bottom_support", edges), _surface_dofs(basis, pair, "top_load", edges)]
+    # Dirichlet: the support clamped, the load face clamped (its rigid translation is in G)
+    fixed = [_surface_dofs(basis, pair, name, edges) for name in geometry.clamped]
     ball_nodes = np.unique(pair.tets[pair.body == 0])
     pins = []
     for target, components in (((0.0, 0.0, 0.0), (0, 1, 2)), ((0.0, 0.0, 0.5 * radius), (0, 1)),
                                ((0.5 * radius, 0.0, 0.0), (1,))):
-        node = ball_nodes[np.argmin(np.linalg.norm(points[ball_nodes] - np.array(target), axis=1))]
+        target = geometry.ball_centre + np.array(target)
+        node = ball_nodes[np.argmin(np.linalg.norm(points[ball_nodes] - target, axis=1))]
         pins += [basis.nodal_dofs[c][node] for c in components]
     pin_dofs = np.array(pins, dtype=np.int64)
     fixed = np.unique(np.concatenate(fixed + [pin_dofs]))
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
-    top_nodes = pair.nodes("top_load")
+    top_nodes = pair.nodes(geometry.load_face)
     top_dofs = np.stack([basis.nodal_dofs[0][top_nodes], basis.nodal_dofs[1][top_nodes]])
 
     bary = sub_triangle_points(_SUBDIVISIONS)
@@ -246,14 +295,14 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
     shape = surface_shape(bary, 2)
     patches, rows, cols, vals, g0_all, w_all, contact_of, g_cols = [], [], [], [], [], [], [], []
     offset = 0
-    for i, name in enumerate(CONTACTS):
+    for i, name in enumerate(names):
         frame = geometry.frame(i)
-        origin = radius * geometry.normals[i]
+        origin = geometry.contact_point(i)
         local = (points - origin) @ frame.T  # (n, 3): e1, e2, e3 coordinates
         ball_tris = pair.surfaces[f"ball1_{name}"]
         rail_tris = pair.surfaces[name]
         verts = np.unique(ball_tris)
-        g_vert, _ = exact_gap(geometry, i, local[verts, :2])
+        g_vert, _ = geometry.gap(i, local[verts, :2])
         candidates = verts[g_vert <= gap_limit]
         if candidates.size < 20:
             raise ValueError(f"contact {name}: only {candidates.size} candidate nodes (need >= 20): refine the mesh "
@@ -268,7 +317,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         wq = np.repeat(area / nq, nq)
         phi = np.tile(bary, (len(tris), 1))
         mult = np.repeat(index[tris], nq, axis=0)
-        g0q, surface = exact_gap(geometry, i, xq)
+        g0q, surface = geometry.gap(i, xq)
         rail_rows, rail_bary = _locate(local, rail_tris, xq)
         ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
         rail_dofs = [triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
@@ -293,8 +342,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
                 rows.append(np.repeat(j + offset, 6))
                 cols.append(rail_dofs[c][ok].ravel())
                 vals.append((-e3[c] * wphi[:, None] * rail_shape[ok]).ravel())
-        top = i >= 2
-        g_cols.append(weights[:, None] * np.array([e3[0], e3[1], -e3[0] if top else 0.0, -e3[1] if top else 0.0]))
+        g_cols.append(weights[:, None] * (geometry.rigid_modes(i) @ e3)[None, :])
         edge_tris = tris[(index[tris] < 0).any(axis=1)]
         patches.append(_Patch(name, candidates, local[candidates, :2], index[tris], xq, wq, phi,
                               np.where(mult >= 0, mult + offset, -1), g0q, surface,
@@ -381,9 +429,20 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
         raise ValueError(f"vertical_force must be a finite number > 0 N, got {vertical_force!r}")
     if not math.isfinite(side_force):
         raise ValueError(f"side_force must be finite N, got {side_force!r}")
-    load = np.array([0.0, 0.0, -side_force, vertical_force])
+    return solve_loaded(model, np.array([0.0, 0.0, -side_force, vertical_force]), tol=tol, fit=fit,
+                        geometric_update=geometric_update, max_updates=max_updates)
+
+
+def solve_loaded(model: ModuleModel, load: np.ndarray, *, tol: float = 1e-9, fit: bool = True,
+                 geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
+    """Solve a module for the right-hand side ``r = load`` of ``G^T lam = r`` (one entry per rigid unknown
+    of ``model.geometry.rigid_names`` [N]; :func:`solve_module` for the linear bearing's loads,
+    :func:`fem.screw_module.solve_screw_module` for the ball screw's), with the geometric update of the
+    gap described in :func:`solve_module`."""
+    geometry = model.geometry
+    n_contacts = len(model.patches)
     g0 = model.g0
-    shifts = np.zeros(4)
+    shifts = np.zeros(n_contacts)
     active = None
     iteration = 0
     for update in range(max_updates + 1):
@@ -391,7 +450,8 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
         iteration += iterations
         if not geometric_update:
             break
-        new_shifts = np.array([_relative_displacement(q, i) @ model.geometry.frame(i)[0] for i in range(4)])
+        new_shifts = np.array([_relative_displacement(model, q, i) @ geometry.frame(i)[0]
+                               for i in range(n_contacts)])
         change = float(np.max(np.abs(new_shifts - shifts)))
         shifts = new_shifts
         if change <= 1e-4 * float(np.max(np.abs(q))):
@@ -401,7 +461,7 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
         raise ConvergenceError("four-point module: geometric update of the gap did not converge", residual=change,
                                iterations=max_updates, tolerance=1e-4 * float(np.max(np.abs(q))))
     for patch in model.patches:
-        if np.any(active[np.flatnonzero(model.contact_of == CONTACTS.index(patch.name))][patch.boundary]):
+        if np.any(active[np.flatnonzero(model.contact_of == geometry.contact_names.index(patch.name))][patch.boundary]):
             raise ValueError(f"contact {patch.name} reaches the edge of the candidate zone: raise gap_limit")
     results = []
     for i, patch in enumerate(model.patches):
@@ -414,9 +474,9 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
             p_q[ok] += patch.phi[ok, k] * lam[patch.mult[ok, k]]
         f_q = p_q * patch.wq
         centre = f_q @ patch.surface / max(f_q.sum(), 1e-300)
-        angle = math.atan2(abs(centre[0]), abs(centre[1]))
-        e3 = model.geometry.frame(i)[2]
-        approach = float(-(_relative_displacement(q, i) @ e3))  # ball towards the rail: along -e3 = n_i
+        angle = geometry.loaded_angle(i, centre)
+        e3 = geometry.frame(i)[2]
+        approach = float(-(_relative_displacement(model, q, i) @ e3))  # ball towards the rail: along -e3 = n_i
         ellipse = _fit(patch, lam_i) if fit else None
         results.append(ContactResult(patch.name, force, angle, approach, ellipse, patch.surface, p_q, patch.wq,
                                      patch.xq, lam_i, patch.local_nodes))
@@ -424,16 +484,17 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
     return ModuleResult(tuple(results), q, pin_force, pin_moment, iteration, residual, lam)
 
 
-def _relative_displacement(q: np.ndarray, i: int) -> np.ndarray:
-    """Rigid displacement (3,) [m] of the ball relative to the rail of contact ``i``."""
-    return np.array([q[0], q[1], 0.0]) - (np.array([q[2], q[3], 0.0]) if i >= 2 else 0.0)
+def _relative_displacement(model: ModuleModel, q: np.ndarray, i: int) -> np.ndarray:
+    """Rigid displacement (3,) [m] of the ball relative to the rail (flank) of contact ``i``."""
+    return q @ model.geometry.rigid_modes(i)
 
 
 def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
-    """Weighted exact gaps ``int phi_k g0 dA`` (n_c,) with the ball shifted by ``shifts`` (4,) [m] along e1."""
+    """Weighted exact gaps ``int phi_k g0 dA`` (n_c,) with the ball shifted by ``shifts`` (one per contact) [m]
+    along e1."""
     g0 = np.zeros(model.n_multipliers)
     for i, patch in enumerate(model.patches):
-        g0q, _ = exact_gap(model.geometry, i, patch.xq, float(shifts[i]))
+        g0q, _ = model.geometry.gap(i, patch.xq, float(shifts[i]))
         for k in range(3):
             ok = patch.mult[:, k] >= 0
             np.add.at(g0, patch.mult[ok, k], patch.wq[ok] * patch.phi[ok, k] * g0q[ok])
@@ -451,6 +512,9 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, st
 
     W, G = model.W, model.G
     n = g0.size
+    n_rigid = G.shape[1]
+    n_contacts = len(model.patches)
+    names = model.geometry.contact_names
     w_scale = float(np.median(np.diag(W)))
     force_scale = float(np.max(np.abs(r)))
     pressure_scale = force_scale / float(np.sum(model.weights)) * 50.0  # a typical peak pressure [Pa]
@@ -464,7 +528,7 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, st
     def on_active(active):
         idx = np.flatnonzero(active)
         m = idx.size
-        mat = np.zeros((m + 4, m + 4))
+        mat = np.zeros((m + n_rigid, m + n_rigid))
         mat[:m, :m] = hessian[np.ix_(idx, idx)]
         mat[:m, m:] = coupling[idx]
         mat[m:, :m] = equality[idx].T
@@ -493,7 +557,7 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, st
                 if residual_of(x, q_scaled, gap, active) <= tol:
                     solution = (x, q_scaled, gap, active)
                 break
-            if new.tobytes() in seen or not all(new[model.contact_of == i].any() for i in range(4)):
+            if new.tobytes() in seen or not all(new[model.contact_of == i].any() for i in range(n_contacts)):
                 break
             seen.add(active.tobytes())
             active = new
@@ -501,15 +565,15 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, st
         constraints = np.hstack([equality, np.eye(n)])
         bounds = np.concatenate([r / force_scale, np.zeros(n)])
         try:
-            x, _, _, (qp_iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, 4)
+            x, _, _, (qp_iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, n_rigid)
         except ValueError as error:  # quadprog: "constraints are inconsistent, no solution"
             raise ConvergenceError(f"four-point module: QP failed ({error})", residual=float("inf"),
                                    iterations=iterations, tolerance=tol) from None
         iterations += int(qp_iterations)
         active = x > 1e-12 * np.max(x)
-        for i in range(4):
+        for i in range(n_contacts):
             if not active[model.contact_of == i].any():
-                raise ValueError(f"four-point module: contact {CONTACTS[i]} lost (lin2017 eq 37)")
+                raise ValueError(f"four-point module: contact {names[i]} lost (lin2017 eq 37)")
         x, q_scaled, gap = on_active(active)  # exact solve on the QP's active set
         solution = (x, q_scaled, gap, active)
     x, q_scaled, gap, active = solution
@@ -549,8 +613,8 @@ def _interpolate(local: np.ndarray, tris: np.ndarray, nodal: np.ndarray, xq: np.
 
 
 def residual_load(model: ModuleModel, result_contacts) -> tuple[float, float]:
-    """z force [N] and moment about the centre [N m] of all contact pressures on the ball: what the
-    3-2-1 nodes carry (zero for an exactly symmetric, radial pressure)."""
+    """Force along the geometry's ``free_axis`` (z for the rails) [N] and moment about the centre [N m] of all
+    contact pressures on the ball: what the 3-2-1 nodes carry (zero for an exactly symmetric, radial pressure)."""
     force = np.zeros(3)
     moment = np.zeros(3)
     for i, contact in enumerate(result_contacts):
@@ -558,22 +622,24 @@ def residual_load(model: ModuleModel, result_contacts) -> tuple[float, float]:
         f = (contact.pressure * contact.areas)[:, None] * e3[None, :]
         force += f.sum(axis=0)
         moment += np.cross(contact.points, f).sum(axis=0)
-    return float(abs(force[2])), float(np.linalg.norm(moment))
+    return float(abs(force @ model.geometry.free_axis)), float(np.linalg.norm(moment))
 
 
 def traction_patches(model: ModuleModel, result: ModuleResult, *, normal: str = "mid", offset=(0.0, 0.0, 0.0)):
-    """The solved contacts as :class:`lowmodel.linear_bearing.b2b_traction.TractionPatch` (BL, BR, TR, TL).
+    """The solved contacts as :class:`lowmodel.linear_bearing.b2b_traction.TractionPatch` (in the order of
+    ``geometry.contact_names``: BL, BR, TR, TL for the rails; ``top`` = on the loaded body).
 
     Points: the quadrature points of the mortar pressure on the exact sphere [m] (relative to the ball
-    centre, plus ``offset``); forces: pressure x projected area [N].  ``normal``: ``"mid"`` (default) the
-    normalised mean of the sphere's and the flank's normals at the point (for equal elastic constants the
-    loaded interface lies halfway between the two surfaces), ``"sphere"`` the ball's normal, ``"contact"``
-    the fixed contact normal ``n_i`` of the mortar gap.
+    centre, in the frame of ``geometry.to_ball_frame``, plus ``offset``); forces: pressure x projected area
+    [N].  ``normal``: ``"mid"`` (default) the normalised mean of the sphere's and the flank's normals at the
+    point (for equal elastic constants the loaded interface lies halfway between the two surfaces),
+    ``"sphere"`` the ball's normal, ``"contact"`` the fixed contact normal ``n_i`` of the mortar gap.
     """
     from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
 
     if normal not in ("mid", "sphere", "contact"):
         raise ValueError(f"normal must be 'mid', 'sphere' or 'contact', got {normal!r}")
+    geometry = model.geometry
     patches = []
     for i, contact in enumerate(result.contacts):
         keep = contact.pressure > 0.0
@@ -582,28 +648,28 @@ def traction_patches(model: ModuleModel, result: ModuleResult, *, normal: str = 
         if normal == "sphere":
             normals = sphere
         elif normal == "contact":
-            normals = np.repeat(model.geometry.normals[i][None, :], len(points), axis=0)
+            normals = np.repeat(geometry.normals[i][None, :], len(points), axis=0)
         else:
-            radial = points - model.geometry.arc_centre(i)
-            radial[:, 2] = 0.0
-            radial /= np.linalg.norm(radial, axis=1)[:, None]
-            normals = sphere + radial
+            normals = sphere + geometry.flank_normals(i, points)
             normals /= np.linalg.norm(normals, axis=1)[:, None]
         forces = (contact.pressure * contact.areas)[keep]
-        patches.append(TractionPatch(points + np.asarray(offset, dtype=float), normals, forces, top=i >= 2,
+        patches.append(TractionPatch(geometry.to_ball_frame(points) + np.asarray(offset, dtype=float),
+                                     geometry.to_ball_frame(normals), forces, top=geometry.moving(i),
                                      name=contact.name))
     return tuple(patches)
 
 
 def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
     """Displacement DOF vector (ndofs,) [m] of a solved module: one sparse solve with the contact
-    forces ``B^T lam``, the top load face moved by ``(U_x, U_y, 0)`` and the ball's 3-2-1 nodes held
-    (the ball's rigid translation ``(X, Y)`` is not added: it carries no stress)."""
+    forces ``B^T lam``, the load face moved rigidly (top rail: ``(U_x, U_y, 0)``) and the ball's 3-2-1 nodes held
+    (the ball's rigid translation is not added: it carries no stress)."""
     edges = edge_index(model.basis.mesh)
-    tris = model.pair.surfaces["top_load"]
+    tris = model.pair.surfaces[model.geometry.load_face]
+    motion = model.geometry.load_face_motion(result.rigid)
     u = np.zeros(model.ndofs)
-    for component in (0, 1):
-        u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
+    for component in range(3):
+        if motion[component] != 0.0:
+            u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = motion[component]
     rhs = model.B.T @ result.multipliers - model.K @ u
     solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
     u[model.free] = solve(rhs[model.free])

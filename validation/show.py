@@ -249,6 +249,10 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
 
     from ballbench.validation.scenes import fe_hertz
 
+    if scene_name.startswith("fe-b2b-screw-"):  # the ball-screw modules (validation/scenes/fe_b2b_screw.py)
+        from ballbench.validation.scenes import fe_b2b_screw
+
+        return fe_b2b_screw.show(scene_name, out_dir, fidelity)
     if scene_name.startswith("fe-b2b-"):  # the four-point modules (validation/scenes/fe_b2b.py)
         from ballbench.validation.scenes import fe_b2b
 

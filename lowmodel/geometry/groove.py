@@ -286,6 +286,21 @@ class HelicalGroove:
         """Ball-centre helix ``H(phi)`` [m], shape (..., 3) (lin2019 eq 35; :func:`helix.ball_centre`)."""
         return helix.ball_centre(phi, self.pitch_radius, self.lead)
 
+    def surface_normal(self, theta, phi) -> np.ndarray:
+        """Unit normal of ``S`` at ``(theta, phi)``, shape (..., 3), pointing from the groove's arc centre
+        side into the groove opening (towards the ball): ``S_theta x S_phi`` oriented along the profile's
+        inward radius ``-(cos theta, sin theta)``; ``S_phi = z x S + p z``."""
+        theta, phi = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(phi, dtype=float))
+        e1, c = np.array([1.0, 0.0, 0.0]), self.plane_axis
+        rot = helix.rotation_z(phi)
+        s_t = np.einsum("...ij,...j->...i", rot, (-np.sin(theta))[..., None] * e1 + np.cos(theta)[..., None] * c)
+        s_p = np.cross(np.array([0.0, 0.0, 1.0]), self.surface(theta, phi)) + self.lead_per_radian * np.array(
+            [0.0, 0.0, 1.0])
+        normal = np.cross(s_t, s_p)
+        inward = -np.einsum("...ij,...j->...i", rot, np.cos(theta)[..., None] * e1 + np.sin(theta)[..., None] * c)
+        normal *= np.sign(np.einsum("...i,...i->...", normal, inward))[..., None]
+        return normal / np.linalg.norm(normal, axis=-1, keepdims=True)
+
 
 def helical_groove(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
                    contact_angle: float, body: str = "screw", flank: str = "left",

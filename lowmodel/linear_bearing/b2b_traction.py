@@ -10,6 +10,10 @@ pressure times its quadrature area, or samples of Hertz's ellipse in tests):
     unit normal N_k of the contact surface at r_k (outward from the ball),
     normal force F_k >= 0 [N] (traction x area).
 
+(:class:`~lowmodel.contact.traction.TractionPatch`; the pointwise friction below is
+:class:`~lowmodel.contact.traction.SampledCoulomb`, shared with the ball screw's
+:mod:`lowmodel.screw.screw_b2b_traction`.)
+
 Full-slip Coulomb friction at every point, opposite to the rigid-body slip of
 the ball against its groove projected on the tangent plane of the contact
 surface (lin2019 eqs 1-3 without the contact-plane approximation):
@@ -54,6 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch, check_patch, ellipse_samples
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
@@ -64,57 +69,6 @@ __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BA
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
 N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
-
-
-@dataclass(frozen=True)
-class TractionPatch:
-    """Sampled normal traction of one ball-to-groove contact.
-
-    points  : (k, 3) m, on the ball surface, relative to the ball centre
-    normals : (k, 3) unit outward normal of the contact surface at the points
-    forces  : (k,) N, normal force carried by each point (>= 0)
-    top     : True on the moving (top) groove
-    name    : contact name, e.g. "BL"
-    """
-
-    points: np.ndarray
-    normals: np.ndarray
-    forces: np.ndarray
-    top: bool
-    name: str = ""
-
-    @property
-    def normal_force(self) -> float:
-        """Total normal force [N]."""
-        return float(self.forces.sum())
-
-    @property
-    def centre(self) -> np.ndarray:
-        """Force-weighted centre of the patch (3,) [m] (the loaded contact point)."""
-        return self.forces @ self.points / self.normal_force
-
-    def contact_angle(self) -> float:
-        """Loaded contact angle [rad] of the patch centre, measured from -y (bottom) or +y (top) (lin2017 eq 1)."""
-        x, y, _ = self.centre
-        return math.atan2(abs(x), abs(y))
-
-
-def _check_patch(patch: TractionPatch, index: int) -> TractionPatch:
-    points = np.asarray(patch.points, dtype=float)
-    normals = np.asarray(patch.normals, dtype=float)
-    forces = np.asarray(patch.forces, dtype=float)
-    name = patch.name or f"patch {index}"
-    if points.ndim != 2 or points.shape[1] != 3 or normals.shape != points.shape or forces.shape != points[:, 0].shape:
-        raise ValueError(f"{name}: points and normals must have shape (k, 3) and forces (k,), got "
-                         f"{points.shape}, {normals.shape}, {forces.shape}")
-    if not (np.all(np.isfinite(points)) and np.all(np.isfinite(normals)) and np.all(np.isfinite(forces))):
-        raise ValueError(f"{name}: points, normals and forces must be finite")
-    if np.any(forces < 0.0) or forces.sum() <= 0.0:
-        raise ValueError(f"{name}: forces must be >= 0 N with a positive sum (loss of contact otherwise)")
-    length = np.linalg.norm(normals, axis=1)
-    if np.any(np.abs(length - 1.0) > 1e-6):
-        raise ValueError(f"{name}: normals must be unit vectors (|N| in [1 - 1e-6, 1 + 1e-6])")
-    return TractionPatch(points, normals / length[:, None], forces, bool(patch.top), patch.name)
 
 
 @dataclass(frozen=True)
@@ -152,12 +106,11 @@ class TractionState:
         return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
-class _Samples:
-    """All points of all balls, flattened, with their ball and patch indices."""
+class _Samples(SampledCoulomb):
+    """All points of all balls, flattened, with their ball and patch indices (units mu F_ref and |v|)."""
 
     def __init__(self, balls, radius: float, reference_force: float, velocity_sign: float, eps: float):
         pts, nrm, load, top, ball_of, patch_of = [], [], [], [], [], []
-        self.n_balls = len(balls)
         self.n_patches = len(balls[0])
         for b, patches in enumerate(balls):
             for p, patch in enumerate(patches):
@@ -168,39 +121,16 @@ class _Samples:
                 ball_of.append(np.full(len(patch.forces), b))
                 patch_of.append(np.full(len(patch.forces), b * self.n_patches + p))
         self.r = np.concatenate(pts)
-        self.normal = np.concatenate(nrm)
-        self.load = np.concatenate(load)
-        self.groove = np.concatenate(top)
-        self.ball = np.concatenate(ball_of)
         self.patch = np.concatenate(patch_of)
-        self.eps = eps
         rx, ry, rz = self.r.T / radius
         zero, one = np.zeros_like(rx), np.ones_like(rx)
         # D[k, :, j] = d s_k / d x_j, x = (v_B, omega_x R_B, omega_y R_B)/|v|; also the moment rows (D^T f)
-        self.D = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
-                           np.stack([rz, zero, -rx], 1)], axis=2)
-        self.projector = np.eye(3)[None] - self.normal[:, :, None] * self.normal[:, None, :]
-        self.PD = self.projector @ self.D
-
-    def evaluate(self, balls: np.ndarray, jacobian: bool = True):
-        """Residual (n, 3) of eq 4 in units mu F_ref (and Jacobian (n, 3, 3)); slips and forces per point."""
-        x = balls[self.ball]  # (k, 3)
-        slip = np.einsum("kij,kj->ki", self.D, x)
-        slip[:, 2] -= self.groove  # groove velocity along +z (units |v|)
-        tangential = np.einsum("kij,kj->ki", self.projector, slip)
-        norm = np.sqrt(np.einsum("ki,ki->k", tangential, tangential) + self.eps**2)
-        force = -(self.load / norm)[:, None] * tangential  # Coulomb, full slip (units mu F_ref)
-        rows = np.einsum("kij,ki->kj", self.D, force)  # (D^T f): z force, x and y moments / R_B
-        residual = np.zeros((self.n_balls, 3))
-        np.add.at(residual, self.ball, rows)
-        jac = None
-        if jacobian:
-            unit = tangential / norm[:, None]
-            inner = (np.eye(3)[None] - unit[:, :, None] * unit[:, None, :]) / norm[:, None, None]
-            block = -self.load[:, None, None] * np.einsum("kai,kab,kbj->kij", self.PD, inner, self.PD)
-            jac = np.zeros((self.n_balls, 3, 3))
-            np.add.at(jac, self.ball, block)
-        return residual, jac, slip, force
+        slip_matrix = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
+                                np.stack([rz, zero, -rx], 1)], axis=2)
+        groove = np.zeros((len(rx), 3))
+        groove[:, 2] = np.concatenate(top)  # groove velocity along +z (units |v|)
+        super().__init__(np.concatenate(ball_of), slip_matrix, groove, np.concatenate(nrm), np.concatenate(load),
+                         len(balls), eps)
 
 
 def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, n_angular: int = 96,
@@ -214,28 +144,18 @@ def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, 
     ``R_B n_i`` with normal ``n_i`` (the low-order model's contact); ``False``: the same
     points projected radially onto the sphere, with the sphere's normal (a curved Hertz patch).
     """
-    from scipy.special import roots_jacobi
-
-    if not (isinstance(n_radial, int) and n_radial >= 1 and isinstance(n_angular, int) and n_angular >= 4):
-        raise ValueError(f"n_radial must be an integer >= 1 and n_angular >= 4, got {n_radial!r}, {n_angular!r}")
+    u, v, w = ellipse_samples(n_radial, n_angular)  # Gauss-Jacobi, weights sum to 1 (lowmodel.contact.traction)
     radius = contacts.ball_radius
     normals2 = contact_normals(contacts.contact_angles[ball])  # (4, 2)
-    nodes, weights = roots_jacobi(n_radial, 0.0, 0.5)  # weight (1 + t)^(1/2) on [-1, 1]
-    q = 0.5 * (1.0 + nodes)  # q = 1 - rho^2 in [0, 1]
-    rho = np.sqrt(1.0 - q)
-    angle = 2.0 * math.pi * (np.arange(n_angular) + 0.5) / n_angular
-    rr, tt = np.meshgrid(rho, angle, indexing="ij")
-    ww = np.repeat(weights[:, None], n_angular, axis=1)
     patches = []
     for i, name in enumerate(CONTACT_NAMES):
         a = contacts.semi_major[ball, i]
         b = a * contacts.b_over_a[ball, i]
         n = np.array([normals2[i, 0], normals2[i, 1], 0.0])
         e1 = np.array([-n[1], n[0], 0.0])  # in-plane tangent (major axis a)
-        xi, zeta = (a * rr * np.cos(tt)).ravel(), (b * rr * np.sin(tt)).ravel()
+        xi, zeta = a * u, b * v
         points = radius * n[None, :] + xi[:, None] * e1[None, :] + zeta[:, None] * np.array([0.0, 0.0, 1.0])
-        w = ww.ravel()
-        forces = contacts.normal_forces[ball, i] * w / w.sum()
+        forces = contacts.normal_forces[ball, i] * w
         if planar:
             normals = np.repeat(n[None, :], len(w), axis=0)
         else:
@@ -275,7 +195,7 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     eps = float(regularisation)
     if not math.isfinite(eps) or not 0.0 < eps <= 1e-6:
         raise ValueError(f"regularisation must lie in (0, 1e-6], got {regularisation!r}")
-    balls = [[_check_patch(patch, i) for i, patch in enumerate(patches)] for patches in balls]
+    balls = [[check_patch(patch, i) for i, patch in enumerate(patches)] for patches in balls]
     n = len(balls)
     if n < 1 or len({len(p) for p in balls}) != 1 or len(balls[0]) < 1:
         raise ValueError("balls must hold n >= 1 balls with the same number (>= 1) of patches each")
@@ -295,8 +215,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         def single(x, b=b):
             states = guess.copy()
             states[b] = x
-            residual, jac = ball_function(states)
-            return residual[b], jac[b]
+            residual, jac, _, _ = samples.evaluate(states, ball=b)  # this ball's points only
+            return residual, jac
 
         free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
                                  what=f"FE-informed ball {b}")

@@ -50,7 +50,7 @@ from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import screw_ball as sb
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "solve_at", "COMPLEMENTARITY_SCALE",
-           "LOAD_RAMP_START", "saturation"]
+           "LOAD_RAMP_START", "saturation", "fischer_burmeister", "check_gaps"]
 
 COMPLEMENTARITY_SCALE = 10.0
 _FB_SMOOTHING = 1e-14  # keeps the Fischer-Burmeister function differentiable at (0, 0)
@@ -149,7 +149,19 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     return load, d_spin, d_force, speeds
 
 
-def _check_gaps(gaps, count: int) -> np.ndarray:
+def fischer_burmeister(a, b):
+    """Fischer-Burmeister function of the complementarity ``a >= 0, b >= 0, a b = 0`` (eqs 60-61).
+
+    ``phi = a + b - sqrt(a^2 + b^2 + s^2)`` (``s`` a 1e-14 smoothing, differentiable at (0, 0));
+    ``phi = 0`` is the complementarity.  Returns ``(phi, d phi / d a, d phi / d b)``, arrays like ``a``.
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    root = np.sqrt(a * a + b * b + _FB_SMOOTHING**2)
+    return a + b - root, 1.0 - a / root, 1.0 - b / root
+
+
+def check_gaps(gaps, count: int) -> np.ndarray:
+    """Azimuth gaps (count,) [rad] >= 0 beyond touching; ``None`` is all touching (zeros)."""
     if gaps is None:
         return np.zeros(count)
     gaps = np.asarray(checks.non_negative("gaps", gaps, "rad (azimuth gap between neighbouring balls)"),
@@ -245,7 +257,7 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
         raise ValueError(f"axial_load must be a scalar (total) or have shape ({n},) (per ball), got {loads.shape}")
     pairs = [(j, j + 1) for j in range(n - 1)] + ([(n - 1, 0)] if ring and n > 1 else [])
     pairs = np.array(pairs, dtype=int).reshape(-1, 2)
-    gaps = _check_gaps(gaps, len(pairs))
+    gaps = check_gaps(gaps, len(pairs))
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     module = contacts.module
     total = float(loads.sum())
@@ -306,11 +318,7 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
                 ahead, behind = pairs[touching, 1], pairs[touching, 0]
                 separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
                 rows = base + np.arange(m)
-                # Fischer-Burmeister: phi(a, b) = a + b - sqrt(a^2 + b^2) = 0 <=> a >= 0, b >= 0, a b = 0
-                root = np.sqrt(lam * lam + separation * separation + _FB_SMOOTHING**2)
-                residual[rows] = lam + separation - root
-                d_lam = 1.0 - lam / root
-                d_sep = 1.0 - separation / root
+                residual[rows], d_lam, d_sep = fischer_burmeister(lam, separation)
                 jac[rows, base + np.arange(m)] = d_lam
                 np.add.at(jac, (rows, k * ahead + 2), d_sep * speed_factor)
                 np.add.at(jac, (rows, k * behind + 2), -d_sep * speed_factor)

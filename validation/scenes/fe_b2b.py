@@ -292,39 +292,84 @@ def _plot_patches(run, model, results, hertz_geometry) -> None:
 def _patch_figure(model, results, hertz_geometry):
     """Pressure on the four contact patches of each ball with the Hertz ellipse (eq 36 force) and the
     fitted FE ellipse, in the tangent plane of each contact (e1 across the groove, z along the rails)."""
+    from ballbench.lowmodel import fourpoint as rigid
+    from ballbench.lowmodel.contact import hertz
+
+    axes = []
+    for ball in range(len(results)):
+        forces = rigid.normal_forces(result_side(ball), VERTICAL, np.asarray(model.geometry.contact_angles))
+        ref = hertz.solve_load(hertz_geometry, forces)
+        axes.append(np.column_stack([ref.a, ref.b]))
+    return patch_figure(results, axes, ylabel="z [mm]")
+
+
+def patch_figure(results, hertz_axes, *, ylabel: str = "e2 [mm]", xlim: float = 0.6, ylim: float = 0.25):
+    """Figure: one row per solved module (``results``, :class:`fem.fourpoint.ModuleResult`), one panel per
+    contact: nodal pressure in the contact's tangent plane (e1 across the groove [mm], e2 along it), the Hertz
+    ellipse ``hertz_axes[row][i] = (a, b)`` [m] (white) and the fitted FE ellipse (red dashed)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ballbench.lowmodel import fourpoint as rigid
-    from ballbench.lowmodel.contact import hertz
-
-    fig, axes = plt.subplots(2, 4, figsize=(15, 6.5))
+    n_contacts = len(results[0].contacts)
+    fig, axes = plt.subplots(len(results), n_contacts, figsize=(15, 3.25 * len(results)), squeeze=False)
     t = np.linspace(0.0, 2 * math.pi, 200)
     for ball, result in enumerate(results):
-        forces = rigid.normal_forces(result_side(ball), VERTICAL, np.asarray(model.geometry.contact_angles))
-        ref = hertz.solve_load(hertz_geometry, forces)
         for i, contact in enumerate(result.contacts):
             ax = axes[ball, i]
             xy = contact.local_nodes * 1e3
             scatter = ax.tricontourf(xy[:, 0], xy[:, 1], np.clip(contact.nodal_pressure, 0.0, None) / 1e6, levels=14,
                                      cmap="viridis")
             fig.colorbar(scatter, ax=ax, label="p [MPa]")
-            ax.plot(ref.a[i] * 1e3 * np.cos(t), ref.b[i] * 1e3 * np.sin(t), "w-", lw=1.2, label="Hertz")
+            a_h, b_h = hertz_axes[ball][i]
+            ax.plot(a_h * 1e3 * np.cos(t), b_h * 1e3 * np.sin(t), "w-", lw=1.2, label="Hertz")
             if contact.ellipse is not None:
                 e = contact.ellipse
                 ax.plot((e.x0 + e.a * np.cos(t)) * 1e3, (e.y0 + e.b * np.sin(t)) * 1e3, "r--", lw=1.0, label="FE fit")
             ax.set_title(f"ball {ball + 1} {contact.name}: {contact.normal_force:.1f} N, "
                          f"{math.degrees(contact.contact_angle):.2f} deg", fontsize=9)
             ax.set_aspect("equal")
-            ax.set_xlim(-0.6, 0.6)
-            ax.set_ylim(-0.25, 0.25)
+            ax.set_xlim(-xlim, xlim)
+            ax.set_ylim(-ylim, ylim)
             ax.set_xlabel("e1 [mm]")
-            ax.set_ylabel("z [mm]")
+            ax.set_ylabel(ylabel)
     axes[0, 0].legend(fontsize=7)
     fig.tight_layout()
     return fig
+
+
+def stress_cut(model, result, path, *, normal, origin, title: str, view_up=None, materials=(E_STEEL, NU_STEEL)):
+    """PNG ``path`` of the von Mises stress [MPa] (:func:`fem.fourpoint.von_mises` of
+    :func:`fem.fourpoint.full_displacement`) of a solved module on the plane through ``origin`` [m] with
+    ``normal``, seen along the normal; ``title`` printed on it."""
+    import pyvista as pv
+
+    from ballbench.fem import fourpoint as fp
+
+    u = fp.full_displacement(model, result)
+    stress = fp.von_mises(model, u, materials) / 1e6
+    pair = model.pair
+    mm = 1e3
+    grid = pv.UnstructuredGrid({pv.CellType.TETRA: pair.tets}, pair.points * mm)
+    grid.cell_data["von Mises [MPa]"] = stress
+    grid.cell_data["body"] = pair.body
+    cut = grid.slice(normal=tuple(normal), origin=tuple(np.asarray(origin) * mm))
+    plotter = pv.Plotter(off_screen=True, window_size=(1300, 1000))
+    plotter.set_background("white")
+    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="YlOrRd", clim=(0.0, float(np.percentile(stress, 99.9))),
+                     show_edges=False, scalar_bar_args={"title": "von Mises stress [MPa]", "vertical": False,
+                                                        "position_x": 0.25, "position_y": 0.04, "width": 0.5,
+                                                        "fmt": "%.0f", "color": "black"})
+    plotter.add_text(title, position="upper_left", font_size=8, color="black")
+    if view_up is None:
+        plotter.view_xy()
+    else:
+        plotter.view_vector(tuple(normal), viewup=tuple(view_up))
+    plotter.camera.zoom(1.25)
+    plotter.screenshot(str(path))
+    plotter.close()
+    return path
 
 
 def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
@@ -338,9 +383,7 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import pyvista as pv
 
-    from ballbench.fem import fourpoint as fp
     from ballbench.lowmodel.contact import hertz
 
     cases = {"fe-b2b-linear-a": "a", "fe-b2b-linear-b": "b"}
@@ -360,29 +403,11 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     plt.close(fig)
     # von Mises stress on z = 0, ball 1
     result = results[0]
-    u = fp.full_displacement(model, result)
-    stress = fp.von_mises(model, u, (E_STEEL, NU_STEEL)) / 1e6
-    pair = model.pair
-    mm = 1e3
-    grid = pv.UnstructuredGrid({pv.CellType.TETRA: pair.tets}, pair.points * mm)
-    grid.cell_data["von Mises [MPa]"] = stress
-    grid.cell_data["body"] = pair.body
-    cut = grid.slice(normal=(0, 0, 1), origin=(0, 0, 0))
-    plotter = pv.Plotter(off_screen=True, window_size=(1300, 1000))
-    plotter.set_background("white")
-    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="YlOrRd", clim=(0.0, float(np.percentile(stress, 99.9))),
-                     show_edges=False, scalar_bar_args={"title": "von Mises stress [MPa]", "vertical": False,
-                                                        "position_x": 0.25, "position_y": 0.04, "width": 0.5,
-                                                        "fmt": "%.0f", "color": "black"})
     angles = ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
                        for c in result.contacts)
-    plotter.add_text(f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), cut z = 0 "
-                     f"through the four contacts [mm]\n{angles}", position="upper_left", font_size=8, color="black")
-    plotter.view_xy()
-    plotter.camera.zoom(1.25)
-    stress_path = target / "stress.png"
-    plotter.screenshot(str(stress_path))
-    plotter.close()
+    stress_path = stress_cut(model, result, target / "stress.png", normal=(0, 0, 1), origin=(0, 0, 0),
+                             title=f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), "
+                                   f"cut z = 0 through the four contacts [mm]\n{angles}")
     return [pressure_path, stress_path]
 
 

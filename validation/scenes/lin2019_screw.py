@@ -45,7 +45,7 @@ TABLE5_LITERAL_GAP = KnownGap(
              "(preload reading, 'rotated' reading unable to reach 1.92 N at any preload).")
 
 
-def _module(oversize: float) -> screw_ball.ScrewModule:
+def table4_module(oversize: float) -> screw_ball.ScrewModule:
     """lin2019 Table 4 (validation.papers) with the preload ``oversize`` [m]."""
     t4 = lin2019.TABLE4
     return screw_ball.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
@@ -57,7 +57,7 @@ def _module(oversize: float) -> screw_ball.ScrewModule:
 def two_ball(case: str, oversize: float, reading: str = READING):
     """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]."""
     theta = PRINTED[case].theta
-    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, theta]), reading=reading)
+    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading)
     free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
     state = screw_b2b.solve(contacts, AXIAL_LOAD)
     return free, state
@@ -82,7 +82,7 @@ def _table5(run, case: str):
     printed = PRINTED[case]
     oversize = fitted_oversize()
     (free, state), time_s = run.time(two_ball, case, oversize)
-    contacts = screw_ball.ball_contacts(_module(oversize), np.array([0.0, printed.theta]), reading=READING)
+    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, printed.theta]), reading=READING)
     _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
     force = float(state.b2b_force[0])
     increase = friction_increase(free, state)
@@ -174,7 +174,7 @@ def whole_screw(steps: int, progress=None):
     """History of lin2019 Sec 3.4 with the Table 5 preload fit and the tilted deviation reading."""
     from ballbench.lowmodel.screw import whole_screw as ws
 
-    module = _module(fitted_oversize())
+    module = table4_module(fitted_oversize())
     return ws.simulate(module, n_balls=FIG21.n_balls, axial_load=FIG21.axial_load, duration=FIG21.duration,
                        steps=steps, amplitude=FIG21_AMPLITUDE, cycles=FIG21.theta_cycles, reading=READING,
                        progress=progress)

@@ -1,0 +1,170 @@
+"""Sampled contact tractions with pointwise full-slip Coulomb friction (issue 12, FE-informed B2B models).
+
+Shared by the FE-informed ball-to-ball models of the linear bearing
+(:mod:`lowmodel.linear_bearing.b2b_traction`) and the ball screw
+(:mod:`lowmodel.screw.screw_b2b_traction`): one implementation of
+
+* :class:`TractionPatch`, one ball-to-groove contact given as sampled points of the
+  (curved) contact surface, each with its unit normal and the normal force it carries
+  (an FE pressure times its quadrature area, or samples of a Hertz ellipse);
+* :func:`ellipse_samples`, the Gauss-Jacobi quadrature of Hertz's pressure over an ellipse
+  (lin2019 eq A7, ``p = p0 sqrt(1 - x^2/a^2 - y^2/b^2)``), used by both models' ``hertz_patches``;
+* :class:`SampledCoulomb`, the friction of every point opposite to the rigid-body slip
+  projected on the local tangent plane (lin2019 eqs 1-3 and 43-47 without the contact-plane
+  approximation) and the generalised forces of a ball's unknowns, with their Jacobian:
+
+      s_k = D_k x_b - g_k                       (slip, linear in the ball's unknowns x_b)
+      f_k = -F_k P_k s_k / sqrt(|P_k s_k|^2 + eps^2),    P_k = I - N_k N_k^T
+      R_b = sum_{k on ball b} D_k^T f_k           (generalised force conjugate to x_b)
+
+  ``R_b = -grad`` of the regularised dissipation ``sum F_k sqrt(|P s|^2 + eps^2)``: its
+  Jacobian is symmetric negative semi-definite, a ball alone has a unique state.  At
+  ``R_b = 0`` the power identity ``sum f_k . s_k = -sum f_k . g_k`` holds exactly (the
+  models' power balance; independent of ``eps``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb"]
+
+
+@dataclass(frozen=True)
+class TractionPatch:
+    """Sampled normal traction of one ball-to-groove contact.
+
+    points  : (k, 3) m, on the ball surface, relative to the ball centre (the model's ball frame:
+              lin2019 Fig 2 for the linear bearing, CS3 of lin2019 eq 41 for the ball screw)
+    normals : (k, 3) unit outward normal of the contact surface at the points (from the ball into the groove)
+    forces  : (k,) N, normal force carried by each point (>= 0)
+    top     : True on the moving body (the top groove of the linear bearing, the nut of the ball screw)
+    name    : contact name, e.g. "BL" or "SL"
+    """
+
+    points: np.ndarray
+    normals: np.ndarray
+    forces: np.ndarray
+    top: bool
+    name: str = ""
+
+    @property
+    def normal_force(self) -> float:
+        """Total normal force [N]."""
+        return float(self.forces.sum())
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Force-weighted centre of the patch (3,) [m] (the loaded contact point)."""
+        return self.forces @ self.points / self.normal_force
+
+    def contact_angle(self) -> float:
+        """Loaded contact angle [rad] of the patch centre, measured from -y (bottom) or +y (top) (lin2017 eq 1;
+        linear-bearing frame)."""
+        x, y, _ = self.centre
+        return math.atan2(abs(x), abs(y))
+
+
+def check_patch(patch: TractionPatch, index: int) -> TractionPatch:
+    """The patch with float arrays and unit normals; ValueError naming the array otherwise.
+
+    Shapes (k, 3), (k, 3), (k,); finite values; forces >= 0 N with a positive sum (loss of
+    contact otherwise); normals unit vectors within 1e-6 (renormalised).
+    """
+    points = np.asarray(patch.points, dtype=float)
+    normals = np.asarray(patch.normals, dtype=float)
+    forces = np.asarray(patch.forces, dtype=float)
+    name = patch.name or f"patch {index}"
+    if points.ndim != 2 or points.shape[1] != 3 or normals.shape != points.shape or forces.shape != points[:, 0].shape:
+        raise ValueError(f"{name}: points and normals must have shape (k, 3) and forces (k,), got "
+                         f"{points.shape}, {normals.shape}, {forces.shape}")
+    if not (np.all(np.isfinite(points)) and np.all(np.isfinite(normals)) and np.all(np.isfinite(forces))):
+        raise ValueError(f"{name}: points, normals and forces must be finite")
+    if np.any(forces < 0.0) or forces.sum() <= 0.0:
+        raise ValueError(f"{name}: forces must be >= 0 N with a positive sum (loss of contact otherwise)")
+    length = np.linalg.norm(normals, axis=1)
+    if np.any(np.abs(length - 1.0) > 1e-6):
+        raise ValueError(f"{name}: normals must be unit vectors (|N| in [1 - 1e-6, 1 + 1e-6])")
+    return TractionPatch(points, normals / length[:, None], forces, bool(patch.top), patch.name)
+
+
+def ellipse_samples(n_radial: int = 24, n_angular: int = 96) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Quadrature of Hertz's pressure over the unit disk: ``(u, v, w)``, each (n_radial n_angular,).
+
+    Points ``(u, v) = rho (cos t, sin t)``; Gauss-Jacobi in ``q = 1 - rho^2`` with weight
+    ``sqrt(q)`` (exact for the radial profile of ``p0 sqrt(1 - rho^2)``, lin2019 eq A7) times
+    ``n_angular`` equal angles ``t = 2 pi (i + 1/2) / n_angular`` (symmetric in ``v -> -v``);
+    the weights ``w`` sum to 1, so ``F w`` are the forces of an ellipse ``(a u, b v)`` carrying ``F``.
+    """
+    from scipy.special import roots_jacobi
+
+    if not (isinstance(n_radial, int) and n_radial >= 1 and isinstance(n_angular, int) and n_angular >= 4):
+        raise ValueError(f"n_radial must be an integer >= 1 and n_angular >= 4, got {n_radial!r}, {n_angular!r}")
+    nodes, weights = roots_jacobi(n_radial, 0.0, 0.5)  # weight (1 + t)^(1/2) on [-1, 1]
+    q = 0.5 * (1.0 + nodes)  # q = 1 - rho^2 in [0, 1]
+    rho = np.sqrt(1.0 - q)
+    angle = 2.0 * math.pi * (np.arange(n_angular) + 0.5) / n_angular
+    rr, tt = np.meshgrid(rho, angle, indexing="ij")
+    w = np.repeat(weights[:, None], n_angular, axis=1).ravel()
+    return (rr * np.cos(tt)).ravel(), (rr * np.sin(tt)).ravel(), w / w.sum()
+
+
+class SampledCoulomb:
+    """Full-slip Coulomb friction of sampled points of ``n_balls`` balls (module docstring).
+
+    ball : (k,) int, the ball of each point;  slip_matrix : (k, 3, m) ``D_k = d s_k / d x`` (m unknowns per ball)
+    groove_slip : (k, 3) ``g_k`` (the groove's velocity at the point, in the units of ``s``)
+    normals : (k, 3) unit normals;  load : (k,) normal forces (any force unit: the residual is in it)
+    eps : slip floor (units of ``s``) in ``sqrt(|P s|^2 + eps^2)``
+    """
+
+    def __init__(self, ball, slip_matrix, groove_slip, normals, load, n_balls: int, eps: float):
+        self.ball = np.asarray(ball, dtype=int)
+        self.D = np.asarray(slip_matrix, dtype=float)
+        self.groove_slip = np.asarray(groove_slip, dtype=float)
+        self.normal = np.asarray(normals, dtype=float)
+        self.load = np.asarray(load, dtype=float)
+        self.n_balls = int(n_balls)
+        self.n_unknowns = self.D.shape[2]
+        self.eps = float(eps)
+        self.projector = np.eye(3)[None] - self.normal[:, :, None] * self.normal[:, None, :]
+        self.PD = self.projector @ self.D
+        m = self.n_unknowns
+        self.gram = np.matmul(self.PD.transpose(0, 2, 1), self.PD).reshape(-1, m * m)  # (P D)^T (P D), constant
+        self.index = [np.flatnonzero(self.ball == b) for b in range(self.n_balls)]
+
+    def evaluate(self, balls: np.ndarray, jacobian: bool = True, ball: int | None = None):
+        """Residual ``R`` (n, m) and Jacobian (n, m, m) at ``balls`` (n, m); slips (k, 3) and forces (k, 3).
+
+        ``ball``: only that ball's points (residual (m,), Jacobian (m, m), its points' slips and forces).
+        """
+        m = self.n_unknowns
+        if ball is None:
+            index, owner, count = slice(None), self.ball, self.n_balls
+        else:
+            index = self.index[ball]
+            owner, count = np.zeros(len(index), dtype=int), 1
+        D, normal = self.D[index], self.normal[index]
+        x = np.asarray(balls, dtype=float)[self.ball[index]]  # (k, m)
+        slip = np.matmul(D, x[:, :, None])[:, :, 0] - self.groove_slip[index]
+        tangential = slip - normal * np.einsum("ki,ki->k", normal, slip)[:, None]  # P s
+        norm = np.sqrt(np.einsum("ki,ki->k", tangential, tangential) + self.eps**2)
+        weight = self.load[index] / norm
+        force = -weight[:, None] * tangential  # Coulomb, full slip
+        rows = np.matmul(force[:, None, :], D)[:, 0, :]  # D^T f
+        residual = np.stack([np.bincount(owner, rows[:, j], minlength=count) for j in range(m)], axis=1)
+        jac = None
+        if jacobian:
+            # d f / d x = -(F / |Ps|) (I - u u^T) P D, u = Ps / |Ps|:  block = -w ((PD)^T PD - (PD)^T u u^T PD)
+            pdu = np.matmul((tangential / norm[:, None])[:, None, :], self.PD[index])[:, 0, :]  # (k, m)
+            gram = self.gram[index]
+            jac = np.empty((count, m, m))
+            groups = [np.arange(len(weight))] if ball is not None else self.index
+            for b, rows_b in enumerate(groups):
+                w = weight[rows_b]
+                jac[b] = -(w @ gram[rows_b]).reshape(m, m) + (pdu[rows_b] * w[:, None]).T @ pdu[rows_b]
+        if ball is not None:
+            return residual[0], jac[0] if jacobian else None, slip, force
+        return residual, jac, slip, force

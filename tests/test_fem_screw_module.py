@@ -1,0 +1,141 @@
+"""FE ball-screw module (fem.screw_module): exact helical gap, frames, statics, FE-informed B2B."""
+import math
+
+import numpy as np
+import pytest
+
+from ballbench.fem import screw_module as sm
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry import helix
+from ballbench.validation.papers.lin2019 import TABLE4 as T4
+
+THETA = math.radians(2.0)
+ANGLES = sm.flank_angles_tilted(T4.nominal_angle, THETA)
+GEOMETRY = sm.screw_module_geometry(T4.ball_radius, T4.conformity, T4.pitch_radius, T4.lead, ANGLES, 1.5e-6)
+
+
+def test_tilted_reading_and_frames():
+    # lin2019 Fig 17 as the low-order model reads it: both screw flanks at beta_0 + theta, the nut's at beta_0
+    np.testing.assert_allclose(ANGLES, T4.nominal_angle + np.array([THETA, THETA, 0.0, 0.0]), rtol=0, atol=1e-15)
+    centre = GEOMETRY.ball_centre
+    np.testing.assert_allclose(centre, [T4.pitch_radius, 0.0, 0.0], atol=1e-18)
+    cs3 = helix.cs3_frame(0.0, GEOMETRY.lead_angle)
+    for i in range(4):
+        e1, e2, e3 = GEOMETRY.frame(i)
+        # normal profile: the contact normal passes through the ball centre and lies in x3-z3
+        point = GEOMETRY.contact_point(i)
+        np.testing.assert_allclose(point + T4.ball_radius * e3, centre, atol=1e-12)
+        assert abs(e3 @ cs3[:, 1]) < 1e-12
+        # eq 37: the contact angle of the undeformed contact point, from -x3 (screw) / +x3 (nut)
+        assert GEOMETRY.loaded_angle(i, point - centre) == pytest.approx(ANGLES[i], abs=1e-12)
+    # screw contacts towards the axis (-x3), SL on -z3; nut contacts outward, NR on +z3 (lin2019 eq 37)
+    local = GEOMETRY.to_ball_frame(np.array([GEOMETRY.contact_point(i) - centre for i in range(4)]))
+    assert local[0, 0] < 0 and local[0, 2] < 0 and local[2, 0] > 0 and local[2, 2] > 0
+
+
+def test_exact_gap_is_hertz_to_leading_order_and_carries_the_oversize():
+    for i, body in enumerate(("screw", "screw", "nut", "nut")):
+        curvature = hertz.ball_in_screw_groove(T4.ball_radius, T4.conformity, T4.pitch_radius, ANGLES[i],
+                                               GEOMETRY.lead_angle, body)
+        local = np.array([[0.0, 0.0], [2e-5, 0.0], [0.0, 2e-5], [-1.5e-5, 1e-5]])
+        gap, surface = GEOMETRY.gap(i, local)
+        assert gap[0] == pytest.approx(-1.5e-6, abs=1e-15)  # the oversize: an interference fit
+        np.testing.assert_allclose(gap[1:] + 1.5e-6, curvature.A * local[1:, 0] ** 2 + curvature.B * local[1:, 1] ** 2,
+                                   rtol=3e-3)
+        np.testing.assert_allclose(np.linalg.norm(surface, axis=1), T4.ball_radius, rtol=1e-12)
+
+
+def test_exact_gap_follows_a_tangential_shift():
+    # a ball shifted by t along e1 touches the flank where the slopes agree: x = t R_B / (r_g - R_B)
+    x = np.linspace(-2e-4, 2e-4, 4001)
+    local = np.column_stack([x, np.zeros_like(x)])
+    shift = 1e-6
+    gap, _ = GEOMETRY.gap(1, local, shift)
+    expected = shift * T4.ball_radius / (GEOMETRY.groove_radius - T4.ball_radius)
+    assert abs(x[np.argmin(gap)] - expected) < 3e-7
+
+
+def test_flank_normals_are_the_contact_normal_at_the_contact():
+    for i in range(4):
+        point = GEOMETRY.contact_point(i) - GEOMETRY.ball_centre
+        np.testing.assert_allclose(GEOMETRY.flank_normals(i, point[None, :])[0], GEOMETRY.normals[i], atol=1e-9)
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="contact_angles"):
+        sm.screw_module_geometry(T4.ball_radius, T4.conformity, T4.pitch_radius, T4.lead, ANGLES[:3])
+    with pytest.raises(ValueError, match="oversize"):
+        sm.screw_module_geometry(T4.ball_radius, T4.conformity, T4.pitch_radius, T4.lead, ANGLES, -1e-6)
+    with pytest.raises(ValueError, match="gap_limit"):
+        sm.build_screw_model("missing.msh", GEOMETRY, gap_limit=0.0)
+    with pytest.raises(ValueError, match="silhouette"):
+        GEOMETRY.gap(0, np.array([[T4.ball_radius, 0.0]]))
+
+
+def test_hertz_statics_reference():
+    from ballbench.validation.scenes import fe_b2b_screw as scene
+
+    contacts, _, state = scene.low_order("a")
+    shares = scene.axial_shares(contacts, state)
+    assert shares.sum() == pytest.approx(50.0, rel=1e-8)  # the touching state's 50 N on the screw
+    forces = scene.hertz_statics(contacts, 0, 25.0)
+    # theta = 0 without friction: the half-turn about y3 maps SL <-> NR and SR <-> NL
+    assert forces[0] == pytest.approx(forces[2], rel=1e-3) and forces[1] == pytest.approx(forces[3], rel=1e-3)
+    # the axial load: screw contacts along z_hat (at the nominal angles; the ball's micrometre shift turns the
+    # normals by ~0.1 deg, 0.4 % of the axial component)
+    angle = T4.nominal_angle
+    axial = (forces[0] - forces[1]) * math.sin(angle) * math.cos(GEOMETRY.lead_angle)
+    assert axial == pytest.approx(25.0, rel=1e-2)
+    assert scene.hertz_statics(contacts, 0, 30.0)[0] > forces[0]  # more load, more on the loaded diagonal
+
+
+@pytest.fixture(scope="module")
+def quick_modules():
+    from ballbench.validation.scenes import fe_b2b_screw as scene
+
+    contacts, _, state = scene.low_order("a")
+    shares = scene.axial_shares(contacts, state)
+    models, results, _ = scene.solve_fe_level("a", *scene.LEVELS["quick"][0], shares)
+    return scene, contacts, state, shares, models, results
+
+
+@pytest.mark.slow
+def test_module_statics_and_fe_informed_b2b(quick_modules):
+    scene, contacts, state, shares, models, results = quick_modules
+    for ball, (model, result) in enumerate(zip(models, results)):
+        forces = np.array([c.normal_force for c in result.contacts])
+        on_ball = -(forces[:, None] * model.geometry.normals)
+        np.testing.assert_allclose(on_ball.sum(axis=0), 0.0, atol=1e-9 * forces.max())  # ball equilibrium
+        assert on_ball[:2, 2].sum() == pytest.approx(shares[ball], rel=1e-9)  # the screw's axial push
+        # indeterminate, preloaded: near the frictionless Hertz statics (the scene reports the difference)
+        np.testing.assert_allclose(forces, scene.hertz_statics(contacts, ball, shares[ball]), rtol=0.08)
+        assert result.pin_force < 1e-9
+        shift = np.degrees([c.contact_angle for c in result.contacts]) - np.degrees(model.geometry.contact_angles)
+        assert np.all(np.abs(shift) < 0.5)
+    informed = scene.fe_informed(models, results)
+    assert informed.power_balance < 1e-6
+    assert 1.6 < informed.b2b_force[0] < 2.3  # Table 5 (a): 1.80 N ANSYS, 1.92 N low-order
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["fe-b2b-screw-a", "fe-b2b-screw-b"])
+def test_fe_b2b_screw_scene_quick_level_passes(name, tmp_path):
+    # two FE modules (224k P2 DOFs in all) + FE-informed B2B: ~60-90 s each on the shared machine
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import registry
+
+    result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
+    assert result.passed, [o for o in result.outputs if not o.passed] or result.error
+    assert {"F_B2B", "power balance (input - losses)/input", "friction increase by B2B"} <= {
+        o.quantity for o in result.outputs}
+
+
+@pytest.mark.slow
+def test_show_screw_module_writes_pngs(tmp_path):
+    from ballbench.validation import show
+
+    paths = show.show("fe-b2b-screw-a", tmp_path, fidelity="quick")
+    assert [p.name for p in paths] == ["pressure.png", "stress.png"]
+    for path in paths:
+        assert path.exists() and path.stat().st_size > 10_000
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
