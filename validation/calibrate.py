@@ -31,7 +31,6 @@ ValueError naming the file, line and column.
 from __future__ import annotations
 
 import csv
-import math
 import os
 import re
 from pathlib import Path
@@ -39,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.lowmodel import calibration as cal
+from ballbench.lowmodel import checks
 from ballbench.validation.specs import read_toml
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
@@ -60,6 +60,7 @@ FE_CONTACTS = {
     "fe-hertz-groove-052": TABLE1.ball_radius, "fe-hertz-groove-056": TABLE1.ball_radius,
     "fe-hertz-groove-060": TABLE1.ball_radius, "fe-hertz-ball-ball": TABLE1.ball_radius,
     "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
+    "fe-hertz-nut": TABLE4.ball_radius,
 }
 _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 
@@ -67,8 +68,12 @@ _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 # --------------------------------------------------------------------------
 # CSV
 # --------------------------------------------------------------------------
-def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
-    """Columns of a CSV with ``name [unit]`` headers, converted to SI: ``{name: (n,) array}``."""
+def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = (),
+             positive: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+    """Columns of a CSV with ``name [unit]`` headers, converted to SI: ``{name: (n,) array}``.
+
+    Every cell must be a finite number, and > 0 in the ``positive`` columns (the shared
+    :mod:`lowmodel.checks`; the message names the file, line and column)."""
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"{path}: no such file")
@@ -79,7 +84,7 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
     if not rows:
         raise ValueError(f"{path}: no header line (columns 'name [unit]')")
     header_line, header = rows[0]
-    names, factors = [], []
+    names, factors, units_of = [], [], {}
     for column, cell in enumerate(header, start=1):
         match = _HEADER.match(cell)
         if not match:
@@ -97,6 +102,7 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
             raise ValueError(f"{path}, line {header_line}, column {column}: column {name!r} repeats")
         names.append(name)
         factors.append(units[unit])
+        units_of[name] = unit
     missing = [n for n in required if n not in names]
     if missing:
         raise ValueError(f"{path}, line {header_line}: missing column(s) {missing}")
@@ -110,8 +116,11 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
             except ValueError:
                 raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not a "
                                  "number") from None
-            if not math.isfinite(value):
-                raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not finite")
+            try:
+                check = checks.positive if name in positive else checks.finite
+                value = check(name, value, units_of[name])
+            except ValueError as error:
+                raise ValueError(f"{path}, line {line}, column {column}: {error}") from None
             values[name].append(value * factor)
     if not rows[1:]:
         raise ValueError(f"{path}: no data rows under the header (line {header_line})")
@@ -121,26 +130,20 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
 def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Friction measurements: ``normal_force``, ``friction_force`` [N] (or ``friction_torque`` [N m] with
     ``lever_arm`` [m]: friction force = torque / lever arm) and optionally ``speed`` [m/s]."""
-    data = read_csv(path, ("normal_force",), ("friction_force", "friction_torque", "lever_arm", "speed"))
+    data = read_csv(path, ("normal_force",), ("friction_force", "friction_torque", "lever_arm", "speed"),
+                    positive=("normal_force", "lever_arm"))
     if ("friction_force" in data) == ("friction_torque" in data):
         raise ValueError(f"{path}: give exactly one of the columns friction_force, friction_torque")
     if "friction_torque" in data:
         if "lever_arm" not in data:
             raise ValueError(f"{path}: friction_torque needs a lever_arm [m] column (force = torque / lever arm)")
-        if np.any(data["lever_arm"] <= 0.0):
-            line = int(np.argmax(data["lever_arm"] <= 0.0))
-            raise ValueError(f"{path}: lever_arm must be > 0 m (data row {line + 1})")
         data["friction_force"] = data.pop("friction_torque") / data.pop("lever_arm")
-    for name in ("normal_force",):
-        bad = np.flatnonzero(data[name] <= 0.0)
-        if bad.size:
-            raise ValueError(f"{path}: {name} must be > 0 N (data row {bad[0] + 1})")
     return data
 
 
 def read_load_approach_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Load-approach data of one contact: ``force`` [N], ``approach`` [m], optional ``a`` [m] (major semi-axis)."""
-    return read_csv(path, ("force", "approach"), ("a",))
+    return read_csv(path, ("force", "approach"), ("a",), positive=("force", "approach", "a"))
 
 
 def write_load_approach_csv(path: str | Path, forces, approaches, semi_axes, comment: str = "") -> Path:
