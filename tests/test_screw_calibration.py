@@ -105,3 +105,41 @@ def test_laws_from_a_calibration_and_bad_factor(module):
         sb.GrooveContactLaws.from_calibration(cal.Calibration({}))
     with pytest.raises(ValueError, match="within a factor 2"):
         sb.ball_contacts(module, 0.0, contact_law=_laws(module, 0.0, c_factor=3.0))
+
+
+DATA = __import__("pathlib").Path(__file__).parent / "data"
+
+
+def test_calibration_effect_screw_scene_from_cached_fe_sweeps(tmp_path, monkeypatch):
+    """The scene on the FE load sweeps of fe-hertz-screw / fe-hertz-nut (quick level, cached CSVs) given as a
+    calibration file: every check passes and the report shows Hertz beside the calibrated values."""
+    from ballbench.validation import calibrate
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import registry
+
+    spec = tmp_path / "spec.toml"
+    spec.write_text("\n".join(
+        f'[contact."{group}"]\ndata = "{DATA / f"fe_{body}_quick.load_approach.csv"}"\nball_radius = 2.778e-3\n'
+        for group, body in (("screw-groove", "screw"), ("nut-groove", "nut"))))
+    path, calibration = calibrate.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
+    assert calibration.value("nut-groove", "bulk_compliance") < 0  # FE: the finite bodies are stiffer than Hertz
+    monkeypatch.setenv(calibrate.CALIBRATION_ENV, str(path))
+    result = run_scene(registry()["calibration-effect-screw"], "quick", tmp_path)
+    assert result.passed, [(o.quantity, o.value, o.reference) for o in result.outputs if not o.passed] or result.error
+    text = " ".join(result.notes)
+    assert "calibrated same oversize" in text and "Load distribution" in text
+    rows = (tmp_path / "calibration-effect-screw" / "load_distribution.csv").read_text().splitlines()
+    assert len(rows) == 38
+
+
+@pytest.mark.slow
+def test_calibration_effect_screw_scene_runs_fe(tmp_path, monkeypatch):
+    """Without a calibration file the scene fits the laws to FE load sweeps of both grooves (~4 min)."""
+    from ballbench.validation import calibrate
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import registry
+
+    monkeypatch.delenv(calibrate.CALIBRATION_ENV, raising=False)
+    result = run_scene(registry()["calibration-effect-screw"], "quick", tmp_path)
+    assert result.passed, result.error
+    assert "fe-hertz-nut quick level" in " ".join(result.notes)

@@ -43,6 +43,7 @@ from ballbench.validation.specs import read_toml
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
+           "fe_contact_law",
            "FE_CONTACTS", "run_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
@@ -207,6 +208,22 @@ def _hertz_references(geometry, ball_radius):
     return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
 
 
+def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
+                   confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
+    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of an
+    ``fe-hertz-*`` pair (:func:`fe_load_sweep`), with the pair's Hertz C and Psi as references;
+    returns (law, sweep)."""
+    sweep = fe_load_sweep(scene_name, fidelity, load_factors)
+    radius = sweep["ball_radius"]
+    reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
+    source = (f"FE {scene_name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
+              f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
+              f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
+    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
+                              confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
+    return law, {**sweep, "source": source}
+
+
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
     where = f"contact.{name}"
     allowed = {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"}
@@ -219,28 +236,24 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
         fidelity = table.get("fidelity", "quick")
         if fidelity not in ("quick", "default", "fine"):
             raise ValueError(f"{where}.fidelity must be quick, default or fine, got {fidelity!r}")
-        sweep = fe_load_sweep(table["fe_scene"], fidelity, table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
-        data = {k: sweep[k] for k in ("force", "approach", "a")}
-        radius = sweep["ball_radius"]
-        reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
-        source = (f"FE {table['fe_scene']} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
-                  f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {data['force'].size} loads "
-                  f"{data['force'].min():g}-{data['force'].max():g} N")
-        cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", data["force"], data["approach"],
-                                        data["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
+        law, sweep = fe_contact_law(table["fe_scene"], fidelity,
+                                    table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)), confidence=confidence)
+        radius, source = sweep["ball_radius"], sweep["source"]
+        cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", sweep["force"], sweep["approach"],
+                                        sweep["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
         log(f"{name}: {source} in {sweep['wall_time_s']:.1f} s; data cached in {cache}")
-    else:
-        path = (base / table["data"]).resolve()
-        data = read_load_approach_csv(path)
-        radius = table.get("ball_radius")
-        if "a" in data and radius is None:
-            raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
-        if "conformity" in table:  # Hertz reference of a ball in a straight groove
-            from ballbench.lowmodel.contact import hertz
+        return law.constants()
+    path = (base / table["data"]).resolve()
+    data = read_load_approach_csv(path)
+    radius = table.get("ball_radius")
+    if "a" in data and radius is None:
+        raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
+    if "conformity" in table:  # Hertz reference of a ball in a straight groove
+        from ballbench.lowmodel.contact import hertz
 
-            geometry = hertz.ball_in_groove(radius, table["conformity"])
-            reference_c, reference_psi = _hertz_references(geometry, radius)
-        source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
+        geometry = hertz.ball_in_groove(radius, table["conformity"])
+        reference_c, reference_psi = _hertz_references(geometry, radius)
+    source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
     law = cal.fit_contact_law(data["force"], data["approach"], semi_axes=data.get("a"), ball_radius=radius,
                               confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
     return law.constants()
