@@ -63,9 +63,14 @@ def _report(benchmark, name, spec, serial_s, wall_s, target=""):
     return efficiency
 
 
-def test_monte_carlo_throughput(benchmark, client, tmp_path):
-    spec = _monte_carlo(2000, 100)
-    serial_s = _serial_seconds(spec)
+@pytest.mark.parametrize("chunk", [100, 250])
+def test_monte_carlo_throughput(benchmark, client, tmp_path, chunk):
+    """Serial before and after the LocalCluster run, on the same cases, in the same run: the ratio uses their mean,
+    and the drift between the two serial runs shows how much the machine's load moved meanwhile.  The workers'
+    own compute time (SweepSummary.compute_s) splits the cluster's loss into slower computing (load: the
+    scheduler and the client share the 2 cores with the workers) and time not computing (overhead)."""
+    spec = _monte_carlo(2000, chunk)
+    before_s = _serial_seconds(spec)
     client.run(sweep.run_chunk, spec.source, 0, 1)  # warm the workers the same way
     runs = iter(range(100))
 
@@ -73,8 +78,18 @@ def test_monte_carlo_throughput(benchmark, client, tmp_path):
         return sweep.run_sweep(spec, tmp_path / f"run{next(runs)}", client=client, progress=False)
 
     summary = benchmark.pedantic(cluster_run, rounds=1, iterations=1)
+    after_s = _serial_seconds(spec)
     assert summary.computed == spec.n_cases
+    serial_s = 0.5 * (before_s + after_s)
     _report(benchmark, "two-ball Monte Carlo", spec, serial_s, summary.wall_time_s, " (target >= 80 %)")
+    slowdown = summary.compute_s / serial_s  # worker compute time over serial compute time, same cases
+    benchmark.extra_info.update(serial_before_s=before_s, serial_after_s=after_s, worker_compute_s=summary.compute_s,
+                                utilisation=summary.utilisation, compute_slowdown=slowdown,
+                                overhead_not_computing_per_case_s=summary.overhead_per_case)
+    print(f"  serial {before_s:.2f} s before, {after_s:.2f} s after; workers computed {summary.compute_s:.2f} s "
+          f"({slowdown:.3f} x serial: CPU shared with scheduler, client and other jobs), busy "
+          f"{100 * summary.utilisation:.1f} % of {WORKERS} x {summary.wall_time_s:.2f} s; not computing "
+          f"{1e3 * summary.overhead_per_case:.3f} ms per case")
 
 
 @pytest.mark.parametrize("chunk", [1, 250])

@@ -269,3 +269,13 @@ def test_dataset_has_a_draw_dimension_and_needs_a_grid(helpers, tmp_path):
     flat = sweep.spec_from_dict({**_spec(), "grid": {}})
     with pytest.raises(ValueError, match="no grid"):
         sweep.to_dataset(flat, result)
+
+
+def test_summary_counts_compute_time_and_overhead(helpers, tmp_path, monkeypatch):
+    monkeypatch.setenv("SWEEP_DELAY", "0.01")
+    spec = sweep.spec_from_dict(_spec(chunk_size=5))
+    summary = sweep.run_sweep(spec, tmp_path / "o", serial=True, progress=False)
+    assert summary.workers == 1 and summary.computed == 15
+    assert 15 * 0.01 <= summary.compute_s <= summary.wall_time_s  # every case sleeps 10 ms inside run_chunk
+    assert 0.0 < summary.utilisation <= 1.0
+    assert summary.overhead_per_case == pytest.approx((summary.wall_time_s - summary.compute_s) / 15)

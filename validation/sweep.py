@@ -373,10 +373,12 @@ def run_chunk(raw: dict, start: int, stop: int) -> dict[str, np.ndarray | list]:
     """Compute cases ``start .. stop-1`` of the spec ``raw`` (a dict: it travels to workers).
 
     Returns columns ``case``, the swept inputs, the outputs (NaN where failed)
-    and ``error`` (list of str).  Vectorised specs call the function once with
-    arrays and fall back to one call per case when that call raises, so the
+    and ``error`` (list of str), and ``compute_s``: the wall time of this call in
+    the process that ran it [s] (not stored; :class:`SweepSummary` sums it).
+    Vectorised specs call the function once with arrays and fall back to one call per case when that call raises, so the
     failing cases are named.
     """
+    begin = time.perf_counter()
     spec = spec_from_dict(raw)
     function = _resolve(spec.function)
     inputs = case_inputs(spec, start, stop)
@@ -406,7 +408,8 @@ def run_chunk(raw: dict, start: int, stop: int) -> dict[str, np.ndarray | list]:
         if error:
             for name in spec.outputs:
                 columns[name][k] = np.nan
-    return {"case": np.arange(start, stop, dtype=np.int64), **inputs, **columns, "error": errors}
+    return {"case": np.arange(start, stop, dtype=np.int64), **inputs, **columns, "error": errors,
+            "compute_s": time.perf_counter() - begin}
 
 
 # --------------------------------------------------------------------------
@@ -585,11 +588,24 @@ class SweepSummary:
     wall_time_s: float
     where: str
     out_dir: Path
+    compute_s: float = 0.0   # sum over the chunks of the time spent computing them, where they ran [s]
+    workers: int = 1         # worker threads that computed (1 for serial)
 
     @property
     def throughput(self) -> float:
         """Cases per second computed by this call."""
         return self.computed / self.wall_time_s if self.wall_time_s > 0 else math.inf
+
+    @property
+    def utilisation(self) -> float:
+        """Share of the workers' time spent computing cases: ``compute_s / (workers wall)``."""
+        return self.compute_s / (self.workers * self.wall_time_s) if self.wall_time_s > 0 else 0.0
+
+    @property
+    def overhead_per_case(self) -> float:
+        """Worker time not spent computing, per case [s]: ``(workers wall - compute_s) / computed``
+        (scheduling, transfer, writing parts, idle workers at the start and end, other jobs on the machine)."""
+        return (self.workers * self.wall_time_s - self.compute_s) / self.computed if self.computed else 0.0
 
 
 def _progress_bar(total: int, initial: int, enabled: bool | None, name: str):
@@ -629,9 +645,12 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     own_client = None
     last_dataset = [time.perf_counter()]
 
-    def written(chunk_cases: int) -> None:
-        nonlocal computed
+    compute_s, threads = 0.0, 1
+
+    def written(chunk_cases: int, chunk_compute_s: float) -> None:
+        nonlocal computed, compute_s
         computed += chunk_cases
+        compute_s += chunk_compute_s
         if bar is not None:
             bar.update(chunk_cases)
         if spec.grid and time.perf_counter() - last_dataset[0] >= DATASET_EVERY_S:
@@ -642,8 +661,9 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     try:
         if serial:
             for start, stop in chunks:
-                _write_part(out_dir, spec, run_chunk(raw, start, stop))
-                written(stop - start)
+                chunk = run_chunk(raw, start, stop)
+                _write_part(out_dir, spec, chunk)
+                written(stop - start, chunk["compute_s"])
         elif chunks:
             from dask.distributed import Client, LocalCluster, as_completed
 
@@ -660,7 +680,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
             else:
                 where = str(client.scheduler.address)
             # a bounded window of tasks in flight: a sweep of millions of chunks does not flood the scheduler
-            window = max(IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD * sum(client.nthreads().values()))
+            threads = sum(client.nthreads().values())
+            window = max(IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD * threads)
             pending = iter(chunks)
             running = as_completed()
             for start, stop in itertools.islice(pending, window):
@@ -668,7 +689,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
             for future in running:
                 chunk = future.result()  # a task that itself fails (not a case) stops the sweep; parts stay
                 _write_part(out_dir, spec, chunk)
-                written(len(chunk["case"]))
+                written(len(chunk["case"]), chunk["compute_s"])
                 future.release()
                 following = next(pending, None)
                 if following is not None:
@@ -687,7 +708,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     failed = 0
     if _done_ranges(out_dir):
         failed = int(sum(bool(e) for e in read_results(out_dir)["error"]))
-    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir)
+    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir, compute_s, threads)
 
 
 def main(args) -> int:
@@ -708,7 +729,8 @@ def main(args) -> int:
         raise SystemExit(f"ballbench sweep: {error}") from None
     print(f"{spec.name}: {summary.n_cases} cases, {summary.skipped} already done, {summary.computed} computed in "
           f"{summary.wall_time_s:.2f} s ({summary.throughput:.1f} cases/s, {summary.where}), "
-          f"{summary.failed} failed; results: {out_dir}/part-*.parquet"
+          f"{summary.failed} failed; workers computing {100 * summary.utilisation:.0f} % of the time, overhead "
+          f"{1e3 * summary.overhead_per_case:.3f} ms per case; results: {out_dir}/part-*.parquet"
           + (f", gridded: {out_dir / DATASET_NAME} (xarray Dataset)" if spec.grid else ""))
     return 0
 
