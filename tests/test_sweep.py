@@ -279,3 +279,19 @@ def test_summary_counts_compute_time_and_overhead(helpers, tmp_path, monkeypatch
     assert 15 * 0.01 <= summary.compute_s <= summary.wall_time_s  # every case sleeps 10 ms inside run_chunk
     assert 0.0 < summary.utilisation <= 1.0
     assert summary.overhead_per_case == pytest.approx((summary.wall_time_s - summary.compute_s) / 15)
+
+
+@pytest.mark.parametrize("flag, lines", [([], ["#SBATCH --cpus-per-task=1", "#SBATCH --mem=2G", "#SBATCH -t 02:00:00"]),
+                                         (["--pbs"], ["#PBS -l select=1:ncpus=1", "#PBS -l walltime=02:00:00"])])
+def test_jobqueue_example_builds_its_job_script(flag, lines):
+    """The documented dask-jobqueue configuration (examples/jobqueue_sweep.py) builds and writes its batch job
+    script without a batch system (--dry-run); submitting to Slurm/PBS is not tested (none here)."""
+    pytest.importorskip("dask_jobqueue")
+    root = Path(__file__).resolve().parents[1]
+    result = subprocess.run([sys.executable, str(root / "examples" / "jobqueue_sweep.py"),
+                             str(root / "examples" / "two_ball_monte_carlo.toml"), "--dry-run", *flag],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    for line in lines:
+        assert line in result.stdout
+    assert "dask_worker" in result.stdout and "--nthreads 1" in result.stdout
