@@ -95,8 +95,8 @@ def test_monte_carlo_throughput(benchmark, client, tmp_path, chunk):
 @pytest.mark.parametrize("chunk", [1, 250])
 def test_scheduler_overhead_per_case(benchmark, client, tmp_path, chunk):
     cases = 200 if chunk == 1 else 20000
-    spec = sweep.spec_from_dict({"name": "null", "function": "builtins:dict", "outputs": ["x"], "chunk_size": chunk,
-                                 "grid": {"x": {"linspace": [0.0, 1.0, cases]}}})
+    spec = sweep.spec_from_dict({"name": "null", "function": "builtins:dict", "outputs": ["y"], "chunk_size": chunk,
+                                 "fixed": {"y": 0.0}, "grid": {"x": {"linspace": [0.0, 1.0, cases]}}})
     serial_s = _serial_seconds(spec)
     runs = iter(range(100))
 

@@ -91,6 +91,7 @@ def test_draws_do_not_depend_on_chunking():
      "sigma"),
     ({"fixed": {"x": 1.0}}, "more than one"),
     ({"colour": "red"}, "unknown spec key"),
+    ({"outputs": ["value", "x"]}, "share a name with a swept input"),
 ])
 def test_bad_specs_are_named(change, message):
     with pytest.raises(ValueError, match=message):

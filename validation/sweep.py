@@ -265,6 +265,10 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     clash = (set(fixed) & set(grid)) | (set(fixed) & set(random)) | (set(grid) & set(random))
     if clash:
         raise ValueError(f"input(s) {sorted(clash)} appear in more than one of fixed, grid, random")
+    shared = set(outputs) & (set(grid) | set(random))
+    if shared:
+        raise ValueError(f"output(s) {sorted(shared)} share a name with a swept input: each is one column (and one "
+                         "Dataset variable); rename the output or the input")
     reserved = {"case", "error"} & (set(grid) | set(random) | set(outputs))
     if reserved:
         raise ValueError(f"'case' and 'error' are reserved column names, got {sorted(reserved)}")
