@@ -45,3 +45,20 @@ def test_example_spec_runs_two_screws(tmp_path):
     assert summary.computed == 2 and summary.failed == 0
     result = sweep.read_results(tmp_path / "out")
     assert np.all(np.isfinite(result["mean_groove_torque"])) and np.all(result["peak_increase"] >= 0.0)
+
+
+def test_calibration_file_reaches_the_whole_screw(tmp_path):
+    """``calibration = FILE`` puts the FE screw/nut groove laws (cached quick-level sweeps) into every ball."""
+    from ballbench.validation import calibrate
+
+    data = Path(__file__).parent / "data"
+    spec = tmp_path / "spec.toml"
+    spec.write_text("\n".join(
+        f'[contact."{group}"]\ndata = "{data / f"fe_{body}_quick.load_approach.csv"}"\nball_radius = 2.778e-3\n'
+        for group, body in (("screw-groove", "screw"), ("nut-groove", "nut"))))
+    path, _ = calibrate.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
+    hertz = sweep_cases.whole_screw_fourier(b4=3 * DEG, steps=2)
+    calibrated = sweep_cases.whole_screw_fourier(b4=3 * DEG, steps=2, calibration=str(path))
+    _, laws, _ = sweep_cases._screw_setup(str(path), 37, 1500.0)
+    assert laws is not None and laws.nut.bulk_compliance.value < 0
+    assert calibrated["mean_groove_torque"] != pytest.approx(hertz["mean_groove_torque"], rel=1e-6)
