@@ -2,8 +2,9 @@
 
     python examples/plot_maps.py ballbench-sweeps/lin2019-fig8-9 [maps.png]
 
-Grey cells: failed cases (outside four-point contact or no full-sliding state; the reason is in the
-``error`` column of the Parquet parts) or not computed yet.
+Reads the sweep's xarray Dataset (coordinates theta [rad] and rho; ``validation.sweep.read_dataset``, the same
+as ``xarray.open_zarr(DIR / "results.zarr", consolidated=False)``).  Grey cells: failed cases (outside four-point
+contact or no full-sliding state; the reason is in the ``error`` variable) or not computed yet (``done`` false).
 """
 import sys
 from collections import Counter
@@ -11,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.sweep import read_results
+from ballbench.validation.sweep import read_dataset
 
 
 def main(directory: str, target: str | None = None) -> None:
@@ -20,19 +21,15 @@ def main(directory: str, target: str | None = None) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    result = read_results(directory)
-    thetas, rhos = np.unique(result["theta"]), np.unique(result["rho"])
-    shape = (thetas.size, rhos.size)
-    i, j = np.searchsorted(thetas, result["theta"]), np.searchsorted(rhos, result["rho"])
+    data = read_dataset(directory).transpose("theta", "rho")
+    thetas, rhos = data["theta"].values, data["rho"].values
 
     def grid(name):
-        values = np.full(shape, np.nan)
-        values[i, j] = result[name]
-        return values
+        return data[name].values
 
     panels = [("epsilon_1 - epsilon_2 [%]", 100 * (grid("epsilon_1") - grid("epsilon_2")), "RdBu_r"),
               ("F_B2B [N]", grid("b2b_force"), "viridis")]
-    if "friction_increase" in result:
+    if "friction_increase" in data:
         panels.append(("friction increase total/baseline - 1 [%]", 100 * grid("friction_increase"), "magma"))
     figure, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4.2), layout="constrained")
     for ax, (label, values, cmap) in zip(axes, panels):
@@ -41,8 +38,9 @@ def main(directory: str, target: str | None = None) -> None:
         figure.colorbar(mesh, ax=ax, label=label)
         ax.set_xlabel("rho = N_x / N_y")
         ax.set_ylabel("theta [deg]")
-    failed = Counter(e.split(":")[0] for e in result["error"] if e)
-    figure.suptitle(f"{Path(directory).name}: {result['case'].size} cases, failed {dict(failed) or 0}")
+    failed = Counter(str(e).split(":")[0] for e in data["error"].values.ravel() if e)
+    figure.suptitle(f"{Path(directory).name}: {int(data['done'].sum())} of {data['done'].size} cases, "
+                    f"failed {dict(failed) or 0}")
     target = target or str(Path(directory) / "maps.png")
     figure.savefig(target, dpi=120)
     print(f"{target}; failed cases by reason: {dict(failed)}")

@@ -33,7 +33,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["Constant", "Calibration", "FitResult", "fit_least_squares", "fit_contact_law", "ContactLaw",
+__all__ = ["Constant", "Calibration", "FitResult", "fit_least_squares", "fit_contact_law", "ContactLaw", "law_force",
            "fit_friction_coefficient", "fit_line_through_origin", "save", "load", "FORMAT", "VERSION"]
 
 FORMAT = "ballbench-calibration"
@@ -168,6 +168,47 @@ class ContactLaw:
         if self.psi is not None:
             out["psi"] = self.psi
         return out
+
+
+def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1e-14,
+              max_iterations: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Normal force ``F`` [N] and ``dF/dU`` [N/m] of the law ``U = C F^(2/3) + C_b F`` at approach ``U`` [m].
+
+    The inverse of :meth:`ContactLaw.approach` (lin2019 eq 53 with the finite-body compliance ``C_b``;
+    ``C_b = 0`` is Hertz, ``F = (U/C)^(3/2)``), elementwise over broadcast arrays: Newton on
+    ``s = F^(1/3)``, ``C s^2 + C_b s^3 = U``, from the Hertz root.  ``U <= 0`` gives 0 (no contact).
+    ``dF/dU = 3 s / (2 C + 3 C_b s)``.  With ``C_b < 0`` the law has a largest approach
+    ``C s*^2 / 3`` at ``s* = 2 C / (3 |C_b|)`` (where it stops being monotone): ValueError beyond it.
+    """
+    approach = np.asarray(approach, dtype=float)
+    c = np.broadcast_to(np.asarray(hertz_constant, dtype=float), approach.shape)
+    c_b = np.broadcast_to(np.asarray(bulk_compliance, dtype=float), approach.shape)
+    if np.any(c <= 0.0) or not np.all(np.isfinite(c)):
+        raise ValueError("hertz_constant must be > 0 m N^-2/3 and finite")
+    if not np.all(np.isfinite(c_b)):
+        raise ValueError("bulk_compliance must be finite [m/N]")
+    loaded = approach > 0.0
+    u = np.where(loaded, approach, 0.0)
+    with np.errstate(divide="ignore"):
+        s_max = np.where(c_b < 0.0, 2.0 * c / (3.0 * np.abs(c_b)), np.inf)
+    too_far = loaded & (c_b < 0.0) & (u >= c * s_max**2 / 3.0)
+    if np.any(too_far):
+        raise ValueError(f"approach must be below C s*^2 / 3 (s* = 2 C / (3 |C_b|)) where the law with C_b < 0 "
+                         f"is monotone, got {float(u[too_far][0])!r} m")
+    s = np.sqrt(u / c)                                     # Hertz root (C_b = 0)
+    for _ in range(max_iterations):
+        residual = c * s * s + c_b * s**3 - u
+        step = residual / np.where(loaded, 2.0 * c * s + 3.0 * c_b * s * s, 1.0)
+        s = np.where(loaded, s - step, 0.0)
+        if np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
+            break
+    else:
+        raise ConvergenceError("law_force: Newton on C s^2 + C_b s^3 = U did not converge",
+                               residual=float(np.max(np.abs(residual))), iterations=max_iterations,
+                               tolerance=tolerance)
+    force = s**3
+    slope = np.where(loaded, 3.0 * s / (2.0 * c + 3.0 * c_b * s), 0.0)
+    return force, slope
 
 
 def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | None = None,

@@ -90,9 +90,11 @@ def test_friction_csv_units_and_torque(tmp_path):
     ("# c\nnormal_force [N],speed [m/s]\n1,2\n", "exactly one of the columns friction_force, friction_torque"),
     ("friction_force [N]\n1\n", r"missing column\(s\) \['normal_force'\]"),
     ("normal_force [N],colour [1]\n1,2\n", "unknown column 'colour'"),
-    ("normal_force [N],friction_force [N]\n1,nan\n", "is not finite"),
+    ("normal_force [N],friction_force [N]\n1,nan\n", r"line 2, column 2: friction_force must be finite"),
     ("normal_force [N],friction_force [N]\n", "no data rows"),
-    ("normal_force [N],friction_force [N]\n-1,0.1\n", "normal_force must be > 0 N"),
+    ("normal_force [N],friction_force [N]\n-1,0.1\n", r"line 2, column 1: normal_force must be finite and > 0 N"),
+    ("normal_force [N],friction_torque [N m],lever_arm [mm]\n1,0.1,5\n2,0.1,0\n",
+     r"line 3, column 3: lever_arm must be finite and > 0 mm"),
 ])
 def test_bad_friction_csv_names_line_and_column(tmp_path, text, message):
     path = _write(tmp_path, text)

@@ -12,7 +12,7 @@ from ballbench.validation.runner import run_scene
 from ballbench.validation.scene import registry
 from ballbench.validation.scenes import fe_hertz
 
-FAST = [e.name for e in fe_hertz.FE_SCENES if e.pair != "screw"]
+FAST = [e.name for e in fe_hertz.FE_SCENES if e.pair not in ("screw", "nut")]
 
 
 @pytest.mark.parametrize("name", FAST)
@@ -29,8 +29,9 @@ def test_fe_scene_quick_level_passes(name, tmp_path):
 
 
 @pytest.mark.slow
-def test_fe_screw_quick_level_passes(tmp_path):
-    result = run_scene(registry()["fe-hertz-screw"], "quick", tmp_path)
+@pytest.mark.parametrize("name", ["fe-hertz-screw", "fe-hertz-nut"])
+def test_fe_screw_quick_level_passes(name, tmp_path):
+    result = run_scene(registry()[name], "quick", tmp_path)
     assert not result.error, result.error
     assert result.passed, [(o.quantity, o.rel_error) for o in result.outputs if o.status == "fail"]
 

@@ -91,6 +91,7 @@ def test_draws_do_not_depend_on_chunking():
      "sigma"),
     ({"fixed": {"x": 1.0}}, "more than one"),
     ({"colour": "red"}, "unknown spec key"),
+    ({"outputs": ["value", "x"]}, "share a name with a swept input"),
 ])
 def test_bad_specs_are_named(change, message):
     with pytest.raises(ValueError, match=message):
@@ -222,3 +223,76 @@ def test_cli_reports_spec_errors_as_messages(tmp_path):
     bad.write_text('name = "b"\nfunction = "math:hypot"\noutputs = ["x"]\nchunk_size = 0\n')
     with pytest.raises(SystemExit, match="chunk_size must be an integer >= 1"):
         cli.main(["sweep", str(bad), "--serial"])
+
+
+def test_gridded_sweep_lands_in_a_zarr_dataset_and_resumes_the_missing_cases(helpers, tmp_path, monkeypatch):
+    """A partial run writes the Dataset with done = False where cases are missing; the restart computes only
+    those (counted by the function's call log) and the final Dataset equals that of one uninterrupted run."""
+    import xarray as xr
+
+    log = tmp_path / "calls.log"
+    monkeypatch.setenv("SWEEP_LOG", str(log))
+    raw = _spec(grid={"x": {"values": [-1.0, 0.0, 1.0, 2.0, 3.0]}, "y": {"linspace": [0.0, 1.0, 2]}})
+    raw.pop("random")
+    spec = sweep.spec_from_dict(raw)
+    out = tmp_path / "partial"
+    first = sweep.run_sweep(spec, out, serial=True, progress=False, max_chunks=1)
+    assert first.computed == 4
+    partial = xr.open_zarr(out / sweep.DATASET_NAME, consolidated=False).load()
+    assert partial.sizes == {"x": 5, "y": 2} and int(partial["done"].sum()) == 4
+    assert np.isnan(partial["value"].values.reshape(-1)[4:]).all()
+    log.write_text("")
+    second = sweep.run_sweep(spec, out, serial=True, progress=False)
+    assert second.skipped == 4 and second.computed == 6 and len(log.read_text().split()) == 6
+    whole = sweep.run_sweep(spec, tmp_path / "whole", serial=True, progress=False)
+    assert whole.computed == 10
+    resumed = xr.open_zarr(out / sweep.DATASET_NAME, consolidated=False).load()
+    once = xr.open_zarr(tmp_path / "whole" / sweep.DATASET_NAME, consolidated=False).load()
+    xr.testing.assert_identical(resumed.drop_attrs(), once.drop_attrs())
+    assert bool(resumed["done"].all())
+    np.testing.assert_array_equal(resumed["x"].values, [-1.0, 0.0, 1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(resumed["y"].values, [0.0, 1.0])
+    # x = 1, y = 1: 1 + 1 + offset 1; x = -1 fails with its reason, x = 0 gives inf (a failure too)
+    assert float(resumed["value"].sel(x=1.0, y=1.0)) == 3.0
+    assert str(resumed["error"].sel(x=-1.0, y=0.0).values).startswith("ValueError: x must be >= 0")
+    assert "not finite" in str(resumed["error"].sel(x=0.0, y=1.0).values)
+    assert np.isnan(float(resumed["value"].sel(x=-1.0, y=0.0)))
+    xr.testing.assert_identical(sweep.read_dataset(out).drop_attrs(), resumed.drop_attrs())
+
+
+def test_dataset_has_a_draw_dimension_and_needs_a_grid(helpers, tmp_path):
+    spec = sweep.spec_from_dict(_spec())
+    sweep.run_sweep(spec, tmp_path / "o", serial=True, progress=False)
+    dataset = sweep.read_dataset(tmp_path / "o")
+    assert dataset.sizes == {"x": 5, "draw": 3} and "y" in dataset
+    result = sweep.read_results(tmp_path / "o")
+    np.testing.assert_array_equal(dataset["y"].values.reshape(-1), result["y"])  # case = point * draws + draw
+    flat = sweep.spec_from_dict({**_spec(), "grid": {}})
+    with pytest.raises(ValueError, match="no grid"):
+        sweep.to_dataset(flat, result)
+
+
+def test_summary_counts_compute_time_and_overhead(helpers, tmp_path, monkeypatch):
+    monkeypatch.setenv("SWEEP_DELAY", "0.01")
+    spec = sweep.spec_from_dict(_spec(chunk_size=5))
+    summary = sweep.run_sweep(spec, tmp_path / "o", serial=True, progress=False)
+    assert summary.workers == 1 and summary.computed == 15
+    assert 15 * 0.01 <= summary.compute_s <= summary.wall_time_s  # every case sleeps 10 ms inside run_chunk
+    assert 0.0 < summary.utilisation <= 1.0
+    assert summary.overhead_per_case == pytest.approx((summary.wall_time_s - summary.compute_s) / 15)
+
+
+@pytest.mark.parametrize("flag, lines", [([], ["#SBATCH --cpus-per-task=1", "#SBATCH --mem=2G", "#SBATCH -t 02:00:00"]),
+                                         (["--pbs"], ["#PBS -l select=1:ncpus=1", "#PBS -l walltime=02:00:00"])])
+def test_jobqueue_example_builds_its_job_script(flag, lines):
+    """The documented dask-jobqueue configuration (examples/jobqueue_sweep.py) builds and writes its batch job
+    script without a batch system (--dry-run); submitting to Slurm/PBS is not tested (none here)."""
+    pytest.importorskip("dask_jobqueue")
+    root = Path(__file__).resolve().parents[1]
+    result = subprocess.run([sys.executable, str(root / "examples" / "jobqueue_sweep.py"),
+                             str(root / "examples" / "two_ball_monte_carlo.toml"), "--dry-run", *flag],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    for line in lines:
+        assert line in result.stdout
+    assert "dask_worker" in result.stdout and "--nthreads 1" in result.stdout

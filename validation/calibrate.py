@@ -31,7 +31,6 @@ ValueError naming the file, line and column.
 from __future__ import annotations
 
 import csv
-import math
 import os
 import re
 from pathlib import Path
@@ -39,10 +38,12 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.lowmodel import calibration as cal
+from ballbench.lowmodel import checks
 from ballbench.validation.specs import read_toml
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
+           "fe_contact_law",
            "FE_CONTACTS", "run_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
@@ -60,6 +61,7 @@ FE_CONTACTS = {
     "fe-hertz-groove-052": TABLE1.ball_radius, "fe-hertz-groove-056": TABLE1.ball_radius,
     "fe-hertz-groove-060": TABLE1.ball_radius, "fe-hertz-ball-ball": TABLE1.ball_radius,
     "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
+    "fe-hertz-nut": TABLE4.ball_radius,
 }
 _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 
@@ -67,8 +69,12 @@ _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 # --------------------------------------------------------------------------
 # CSV
 # --------------------------------------------------------------------------
-def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
-    """Columns of a CSV with ``name [unit]`` headers, converted to SI: ``{name: (n,) array}``."""
+def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = (),
+             positive: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+    """Columns of a CSV with ``name [unit]`` headers, converted to SI: ``{name: (n,) array}``.
+
+    Every cell must be a finite number, and > 0 in the ``positive`` columns (the shared
+    :mod:`lowmodel.checks`; the message names the file, line and column)."""
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"{path}: no such file")
@@ -79,7 +85,7 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
     if not rows:
         raise ValueError(f"{path}: no header line (columns 'name [unit]')")
     header_line, header = rows[0]
-    names, factors = [], []
+    names, factors, units_of = [], [], {}
     for column, cell in enumerate(header, start=1):
         match = _HEADER.match(cell)
         if not match:
@@ -97,6 +103,7 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
             raise ValueError(f"{path}, line {header_line}, column {column}: column {name!r} repeats")
         names.append(name)
         factors.append(units[unit])
+        units_of[name] = unit
     missing = [n for n in required if n not in names]
     if missing:
         raise ValueError(f"{path}, line {header_line}: missing column(s) {missing}")
@@ -110,8 +117,11 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
             except ValueError:
                 raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not a "
                                  "number") from None
-            if not math.isfinite(value):
-                raise ValueError(f"{path}, line {line}, column {column} ({name}): {cell.strip()!r} is not finite")
+            try:
+                check = checks.positive if name in positive else checks.finite
+                value = check(name, value, units_of[name])
+            except ValueError as error:
+                raise ValueError(f"{path}, line {line}, column {column}: {error}") from None
             values[name].append(value * factor)
     if not rows[1:]:
         raise ValueError(f"{path}: no data rows under the header (line {header_line})")
@@ -121,26 +131,20 @@ def read_csv(path: str | Path, required: tuple[str, ...], optional: tuple[str, .
 def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Friction measurements: ``normal_force``, ``friction_force`` [N] (or ``friction_torque`` [N m] with
     ``lever_arm`` [m]: friction force = torque / lever arm) and optionally ``speed`` [m/s]."""
-    data = read_csv(path, ("normal_force",), ("friction_force", "friction_torque", "lever_arm", "speed"))
+    data = read_csv(path, ("normal_force",), ("friction_force", "friction_torque", "lever_arm", "speed"),
+                    positive=("normal_force", "lever_arm"))
     if ("friction_force" in data) == ("friction_torque" in data):
         raise ValueError(f"{path}: give exactly one of the columns friction_force, friction_torque")
     if "friction_torque" in data:
         if "lever_arm" not in data:
             raise ValueError(f"{path}: friction_torque needs a lever_arm [m] column (force = torque / lever arm)")
-        if np.any(data["lever_arm"] <= 0.0):
-            line = int(np.argmax(data["lever_arm"] <= 0.0))
-            raise ValueError(f"{path}: lever_arm must be > 0 m (data row {line + 1})")
         data["friction_force"] = data.pop("friction_torque") / data.pop("lever_arm")
-    for name in ("normal_force",):
-        bad = np.flatnonzero(data[name] <= 0.0)
-        if bad.size:
-            raise ValueError(f"{path}: {name} must be > 0 N (data row {bad[0] + 1})")
     return data
 
 
 def read_load_approach_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Load-approach data of one contact: ``force`` [N], ``approach`` [m], optional ``a`` [m] (major semi-axis)."""
-    return read_csv(path, ("force", "approach"), ("a",))
+    return read_csv(path, ("force", "approach"), ("a",), positive=("force", "approach", "a"))
 
 
 def write_load_approach_csv(path: str | Path, forces, approaches, semi_axes, comment: str = "") -> Path:
@@ -204,6 +208,22 @@ def _hertz_references(geometry, ball_radius):
     return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
 
 
+def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
+                   confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
+    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of an
+    ``fe-hertz-*`` pair (:func:`fe_load_sweep`), with the pair's Hertz C and Psi as references;
+    returns (law, sweep)."""
+    sweep = fe_load_sweep(scene_name, fidelity, load_factors)
+    radius = sweep["ball_radius"]
+    reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
+    source = (f"FE {scene_name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
+              f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
+              f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
+    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
+                              confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
+    return law, {**sweep, "source": source}
+
+
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
     where = f"contact.{name}"
     allowed = {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"}
@@ -216,28 +236,24 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
         fidelity = table.get("fidelity", "quick")
         if fidelity not in ("quick", "default", "fine"):
             raise ValueError(f"{where}.fidelity must be quick, default or fine, got {fidelity!r}")
-        sweep = fe_load_sweep(table["fe_scene"], fidelity, table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
-        data = {k: sweep[k] for k in ("force", "approach", "a")}
-        radius = sweep["ball_radius"]
-        reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
-        source = (f"FE {table['fe_scene']} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
-                  f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {data['force'].size} loads "
-                  f"{data['force'].min():g}-{data['force'].max():g} N")
-        cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", data["force"], data["approach"],
-                                        data["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
+        law, sweep = fe_contact_law(table["fe_scene"], fidelity,
+                                    table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)), confidence=confidence)
+        radius, source = sweep["ball_radius"], sweep["source"]
+        cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", sweep["force"], sweep["approach"],
+                                        sweep["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
         log(f"{name}: {source} in {sweep['wall_time_s']:.1f} s; data cached in {cache}")
-    else:
-        path = (base / table["data"]).resolve()
-        data = read_load_approach_csv(path)
-        radius = table.get("ball_radius")
-        if "a" in data and radius is None:
-            raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
-        if "conformity" in table:  # Hertz reference of a ball in a straight groove
-            from ballbench.lowmodel.contact import hertz
+        return law.constants()
+    path = (base / table["data"]).resolve()
+    data = read_load_approach_csv(path)
+    radius = table.get("ball_radius")
+    if "a" in data and radius is None:
+        raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
+    if "conformity" in table:  # Hertz reference of a ball in a straight groove
+        from ballbench.lowmodel.contact import hertz
 
-            geometry = hertz.ball_in_groove(radius, table["conformity"])
-            reference_c, reference_psi = _hertz_references(geometry, radius)
-        source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
+        geometry = hertz.ball_in_groove(radius, table["conformity"])
+        reference_c, reference_psi = _hertz_references(geometry, radius)
+    source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
     law = cal.fit_contact_law(data["force"], data["approach"], semi_axes=data.get("a"), ball_radius=radius,
                               confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
     return law.constants()

@@ -17,6 +17,16 @@ so a killed sweep never leaves a half file); a restarted sweep reads the part
 names and computes only the cases no part holds.  ``OUT/sweep.json`` keeps the
 spec; a restart with a different spec (other than ``chunk_size``) is refused.
 
+Gridded sweeps (a ``[grid]`` table) also land in an xarray Dataset,
+``OUT/results.zarr`` (Zarr format 3): one dimension per grid axis with the
+axis values as coordinates (``rho``, ``theta`` of the Fig 8/9 maps), plus
+``draw`` when the spec has random draws; data variables: the outputs, the
+random inputs, ``error`` (str) and ``done`` (bool).  It is rebuilt from the
+Parquet parts every :data:`DATASET_EVERY_S` seconds while a sweep runs and when
+it stops (also when interrupted); cases not computed yet are NaN with
+``done = False``.  The Parquet parts stay the record a restart resumes from
+(atomic per chunk); :func:`read_dataset` builds the same Dataset from them.
+
 Each row holds ``case``, the swept inputs (SI units), the outputs and
 ``error`` (empty, or ``"ExceptionType: message"`` of a failed case, whose
 outputs are null).  A non-finite output is a failure too.  Nothing is dropped.
@@ -63,10 +73,13 @@ import numpy as np
 from ballbench.validation.specs import read_toml
 
 __all__ = ["SweepSpec", "Distribution", "load_spec", "spec_from_dict", "case_inputs", "run_chunk", "run_sweep",
-           "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK"]
+           "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK", "to_dataset", "read_dataset", "write_dataset",
+           "DATASET_NAME", "DATASET_EVERY_S"]
 
 DRAW_BLOCK = 4096  # random draws per seeded block (fixed: changing it changes every draw)
 IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD = 16, 4  # tasks submitted ahead of the results
+DATASET_NAME = "results.zarr"  # xarray Dataset of a gridded sweep (Zarr store)
+DATASET_EVERY_S = 30.0  # rebuild the Dataset from the parts at most this often while a sweep runs [s]
 # units accepted in a spec and their SI factor (inputs are converted at the edge, docs/developing.md)
 UNITS = {"": 1.0, "1": 1.0, "rad": 1.0, "deg": math.pi / 180.0, "m": 1.0, "mm": 1e-3, "um": 1e-6, "N": 1.0,
          "kN": 1e3, "Pa": 1.0, "GPa": 1e9, "m/s": 1.0, "mm/s": 1e-3, "s": 1.0}
@@ -252,6 +265,10 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     clash = (set(fixed) & set(grid)) | (set(fixed) & set(random)) | (set(grid) & set(random))
     if clash:
         raise ValueError(f"input(s) {sorted(clash)} appear in more than one of fixed, grid, random")
+    shared = set(outputs) & (set(grid) | set(random))
+    if shared:
+        raise ValueError(f"output(s) {sorted(shared)} share a name with a swept input: each is one column (and one "
+                         "Dataset variable); rename the output or the input")
     reserved = {"case", "error"} & (set(grid) | set(random) | set(outputs))
     if reserved:
         raise ValueError(f"'case' and 'error' are reserved column names, got {sorted(reserved)}")
@@ -360,10 +377,12 @@ def run_chunk(raw: dict, start: int, stop: int) -> dict[str, np.ndarray | list]:
     """Compute cases ``start .. stop-1`` of the spec ``raw`` (a dict: it travels to workers).
 
     Returns columns ``case``, the swept inputs, the outputs (NaN where failed)
-    and ``error`` (list of str).  Vectorised specs call the function once with
-    arrays and fall back to one call per case when that call raises, so the
+    and ``error`` (list of str), and ``compute_s``: the wall time of this call in
+    the process that ran it [s] (not stored; :class:`SweepSummary` sums it).
+    Vectorised specs call the function once with arrays and fall back to one call per case when that call raises, so the
     failing cases are named.
     """
+    begin = time.perf_counter()
     spec = spec_from_dict(raw)
     function = _resolve(spec.function)
     inputs = case_inputs(spec, start, stop)
@@ -393,7 +412,8 @@ def run_chunk(raw: dict, start: int, stop: int) -> dict[str, np.ndarray | list]:
         if error:
             for name in spec.outputs:
                 columns[name][k] = np.nan
-    return {"case": np.arange(start, stop, dtype=np.int64), **inputs, **columns, "error": errors}
+    return {"case": np.arange(start, stop, dtype=np.int64), **inputs, **columns, "error": errors,
+            "compute_s": time.perf_counter() - begin}
 
 
 # --------------------------------------------------------------------------
@@ -490,6 +510,74 @@ def read_results(out_dir: str | Path) -> dict[str, np.ndarray]:
 
 
 # --------------------------------------------------------------------------
+# gridded sweeps as an xarray Dataset
+# --------------------------------------------------------------------------
+def to_dataset(spec: SweepSpec, columns: dict):
+    """The results ``columns`` (as :func:`read_results`, any subset of the cases) of a gridded ``spec`` as an
+    ``xarray.Dataset``: dims = the grid axes (coordinates: their values, SI) and ``draw`` if the spec draws;
+    variables = outputs and random inputs (NaN where not computed or failed), ``error`` (str) and ``done``."""
+    import xarray as xr
+
+    if not spec.grid:
+        raise ValueError(f"sweep {spec.name!r} has no grid: its results stay a table (read_results)")
+    dims = tuple(spec.grid) + (("draw",) if spec.random else ())
+    shape = spec.grid_shape + ((spec.draws,) if spec.random else ())
+    index = np.asarray(columns["case"], dtype=np.int64)
+
+    def place(values, fill, dtype):
+        out = np.full(spec.n_cases, fill, dtype=dtype)
+        out[index] = values
+        return out.reshape(shape)
+
+    done = place(True, False, bool)
+    data = {name: (dims, place(columns[name], np.nan, float)) for name in spec.outputs + tuple(spec.random)}
+    data["error"] = (dims, place(np.asarray(columns["error"], dtype=object), "", object))
+    data["done"] = (dims, done)
+    coords = {name: values for name, values in spec.grid.items()}
+    if spec.random:
+        coords["draw"] = np.arange(spec.draws)
+    attrs = {"name": spec.name, "function": spec.function, "identity": spec.identity(), "n_cases": spec.n_cases,
+             "done_cases": int(done.sum()), "failed_cases": int(sum(bool(e) for e in columns["error"])),
+             "units": "SI (angles in rad)", "case": "case = C-order index of the grid point * draws + draw"}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _manifest_spec(out_dir: Path) -> SweepSpec:
+    manifest = out_dir / "sweep.json"
+    if not manifest.exists():
+        raise ValueError(f"{out_dir}: no sweep.json (not a sweep directory)")
+    return spec_from_dict(json.loads(manifest.read_text())["spec"])
+
+
+def read_dataset(out_dir: str | Path):
+    """The Dataset (:func:`to_dataset`) of a gridded sweep directory, built from its Parquet parts."""
+    out_dir = Path(out_dir)
+    return to_dataset(_manifest_spec(out_dir), read_results(out_dir))
+
+
+def write_dataset(out_dir: str | Path, spec: SweepSpec | None = None) -> Path | None:
+    """(Re)write ``OUT/results.zarr`` from the parts of a gridded sweep (written aside, then swapped in);
+    returns its path, or None when the sweep has no grid or no part yet."""
+    import shutil
+
+    out_dir = Path(out_dir)
+    spec = _manifest_spec(out_dir) if spec is None else spec
+    if not spec.grid or not _done_ranges(out_dir):
+        return None
+    dataset = to_dataset(spec, read_results(out_dir))
+    target = out_dir / DATASET_NAME
+    temporary = out_dir / f".{DATASET_NAME}.{os.getpid()}.tmp"
+    shutil.rmtree(temporary, ignore_errors=True)
+    dataset.to_zarr(temporary, mode="w", consolidated=False)
+    old = out_dir / f".{DATASET_NAME}.{os.getpid()}.old"
+    if target.exists():
+        os.replace(target, old)
+    os.replace(temporary, target)
+    shutil.rmtree(old, ignore_errors=True)
+    return target
+
+
+# --------------------------------------------------------------------------
 # running
 # --------------------------------------------------------------------------
 @dataclass(frozen=True)
@@ -504,11 +592,24 @@ class SweepSummary:
     wall_time_s: float
     where: str
     out_dir: Path
+    compute_s: float = 0.0   # sum over the chunks of the time spent computing them, where they ran [s]
+    workers: int = 1         # worker threads that computed (1 for serial)
 
     @property
     def throughput(self) -> float:
         """Cases per second computed by this call."""
         return self.computed / self.wall_time_s if self.wall_time_s > 0 else math.inf
+
+    @property
+    def utilisation(self) -> float:
+        """Share of the workers' time spent computing cases: ``compute_s / (workers wall)``."""
+        return self.compute_s / (self.workers * self.wall_time_s) if self.wall_time_s > 0 else 0.0
+
+    @property
+    def overhead_per_case(self) -> float:
+        """Worker time not spent computing, per case [s]: ``(workers wall - compute_s) / computed``
+        (scheduling, transfer, writing parts, idle workers at the start and end, other jobs on the machine)."""
+        return (self.workers * self.wall_time_s - self.compute_s) / self.computed if self.computed else 0.0
 
 
 def _progress_bar(total: int, initial: int, enabled: bool | None, name: str):
@@ -546,14 +647,27 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     computed = 0
     raw = spec.source
     own_client = None
+    last_dataset = [time.perf_counter()]
+
+    compute_s, threads = 0.0, 1
+
+    def written(chunk_cases: int, chunk_compute_s: float) -> None:
+        nonlocal computed, compute_s
+        computed += chunk_cases
+        compute_s += chunk_compute_s
+        if bar is not None:
+            bar.update(chunk_cases)
+        if spec.grid and time.perf_counter() - last_dataset[0] >= DATASET_EVERY_S:
+            write_dataset(out_dir, spec)
+            last_dataset[0] = time.perf_counter()
+
     where = "serial" if serial else "nothing left to compute" if not chunks else ""
     try:
         if serial:
             for start, stop in chunks:
-                _write_part(out_dir, spec, run_chunk(raw, start, stop))
-                computed += stop - start
-                if bar is not None:
-                    bar.update(stop - start)
+                chunk = run_chunk(raw, start, stop)
+                _write_part(out_dir, spec, chunk)
+                written(stop - start, chunk["compute_s"])
         elif chunks:
             from dask.distributed import Client, LocalCluster, as_completed
 
@@ -570,7 +684,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
             else:
                 where = str(client.scheduler.address)
             # a bounded window of tasks in flight: a sweep of millions of chunks does not flood the scheduler
-            window = max(IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD * sum(client.nthreads().values()))
+            threads = sum(client.nthreads().values())
+            window = max(IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD * threads)
             pending = iter(chunks)
             running = as_completed()
             for start, stop in itertools.islice(pending, window):
@@ -578,9 +693,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
             for future in running:
                 chunk = future.result()  # a task that itself fails (not a case) stops the sweep; parts stay
                 _write_part(out_dir, spec, chunk)
-                computed += len(chunk["case"])
-                if bar is not None:
-                    bar.update(len(chunk["case"]))
+                written(len(chunk["case"]), chunk["compute_s"])
                 future.release()
                 following = next(pending, None)
                 if following is not None:
@@ -588,6 +701,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     finally:
         if bar is not None:
             bar.close()
+        if computed or (spec.grid and not (out_dir / DATASET_NAME).exists()):
+            write_dataset(out_dir, spec)  # also after an interruption: the Dataset holds what the parts hold
         if own_client is not None:
             cluster = own_client.cluster
             own_client.close()
@@ -597,7 +712,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     failed = 0
     if _done_ranges(out_dir):
         failed = int(sum(bool(e) for e in read_results(out_dir)["error"]))
-    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir)
+    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir, compute_s, threads)
 
 
 def main(args) -> int:
@@ -618,7 +733,9 @@ def main(args) -> int:
         raise SystemExit(f"ballbench sweep: {error}") from None
     print(f"{spec.name}: {summary.n_cases} cases, {summary.skipped} already done, {summary.computed} computed in "
           f"{summary.wall_time_s:.2f} s ({summary.throughput:.1f} cases/s, {summary.where}), "
-          f"{summary.failed} failed; results: {out_dir}/part-*.parquet")
+          f"{summary.failed} failed; workers computing {100 * summary.utilisation:.0f} % of the time, overhead "
+          f"{1e3 * summary.overhead_per_case:.3f} ms per case; results: {out_dir}/part-*.parquet"
+          + (f", gridded: {out_dir / DATASET_NAME} (xarray Dataset)" if spec.grid else ""))
     return 0
 
 

@@ -16,7 +16,8 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
 from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
 
-__all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi"]
+__all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi",
+           "whole_screw_fourier", "fourier_deviation", "FOURIER_HARMONICS"]
 
 TABLE1 = dict(ball_radius=LIN2019_TABLE1.ball_radius, conformity=LIN2019_TABLE1.conformity,
               vertical_force=LIN2019_TABLE1.vertical_force, groove_velocity=LIN2019_TABLE1.groove_velocity,
@@ -115,3 +116,70 @@ def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_
                                         k_f=k_f, delta_beta_top=(top_tr, top_tl))
     return {"epsilon_1": case.epsilon_1, "epsilon_2": case.epsilon_2, "b2b_force": case.b2b_force,
             "b2b_friction_loss": case.b2b_friction_loss}
+
+
+# --------------------------------------------------------------------------
+# whole ball screw with a random contact-angle deviation theta(phi)
+# --------------------------------------------------------------------------
+FOURIER_HARMONICS = 4  # harmonics k = 1..4 of the two loaded turns (period 4 pi / k of the screw azimuth)
+
+
+def fourier_deviation(cosines, sines):
+    """theta(phi) [rad] = sum_k a_k cos(k phi / 2) + b_k sin(k phi / 2), k = 1..K: a deviation of the screw
+    groove's contact angle that repeats every two turns (the loaded length, lin2019 Sec 3.4), ``cosines`` a_k and
+    ``sines`` b_k [rad]; lin2019 Fig 19's "four cycles over the two turns" is the single term b_4."""
+    a = np.asarray(cosines, dtype=float)
+    b = np.asarray(sines, dtype=float)
+    k = np.arange(1, a.size + 1)
+
+    def theta(phi):
+        phase = 0.5 * np.multiply.outer(np.asarray(phi, dtype=float), k)
+        return np.cos(phase) @ a + np.sin(phase) @ b
+
+    return theta
+
+
+@functools.lru_cache(maxsize=4)
+def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
+    """Module (lin2019 Table 4, preload fitted on Table 5 a), contact laws and axial stiffness table, once per
+    worker process."""
+    from ballbench.lowmodel.screw import load_distribution as ld
+    from ballbench.lowmodel.screw import screw_ball
+    from ballbench.validation.scenes import lin2019_screw
+
+    laws = screw_ball.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
+    module = lin2019_screw.table4_module(lin2019_screw.fitted_oversize())
+    stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)
+    return module, laws, stiffness
+
+
+def whole_screw_fourier(a1: float = 0.0, b1: float = 0.0, a2: float = 0.0, b2: float = 0.0, a3: float = 0.0,
+                        b3: float = 0.0, a4: float = 0.0, b4: float = 0.0, *, n_balls: int = 37,
+                        axial_load: float = 1500.0, duration: float = 2.0, steps: int = 50,
+                        calibration: str | None = None) -> dict:
+    """One ball screw of lin2019 Sec 3.4 (37 balls, 1500 N, 2 s = two nut turns; lowmodel.screw.whole_screw) whose
+    screw groove deviates by theta(phi) = sum_k a_k cos(k phi/2) + b_k sin(k phi/2) [rad], k = 1..4
+    (:func:`fourier_deviation`); Table 4 with the preload fitted on Table 5 (a), tilted reading.
+
+    Outputs [N m, %]: ``peak_b2b_torque`` and ``mean_b2b_torque`` (B2B friction torque on the nut over the
+    ``steps`` + 1 instants), ``mean_groove_torque``, ``peak_increase`` = max B2B / ball-groove torque [%],
+    ``mean_increase`` = mean B2B / mean ball-groove torque [%], ``max_b2b_force`` [N], ``max_groups``,
+    ``contact_share`` (share of instants with any B2B contact), ``max_deviation`` [rad] of theta over the screw.
+    ``calibration``: a calibration file with the groups ``screw-groove``, ``nut-groove`` (calibrated contact laws).
+    """
+    from ballbench.lowmodel.screw import whole_screw as ws
+
+    module, laws, stiffness = _screw_setup(calibration, int(n_balls), float(axial_load))
+    theta = fourier_deviation([a1, a2, a3, a4], [b1, b2, b3, b4])
+    history = ws.simulate(module, n_balls=int(n_balls), axial_load=axial_load, duration=duration, steps=int(steps),
+                          reading="tilted", stiffness=stiffness, deviation=theta, contact_law=laws)
+    b2b_torque, groove_torque = history.b2b_torque, history.groove_torque
+    grid = np.linspace(0.0, 4.0 * math.pi, 721)
+    return {"peak_b2b_torque": float(b2b_torque.max()), "mean_b2b_torque": float(b2b_torque.mean()),
+            "mean_groove_torque": float(groove_torque.mean()),
+            "peak_increase": float(100.0 * np.max(b2b_torque / groove_torque)),
+            "mean_increase": float(100.0 * b2b_torque.mean() / groove_torque.mean()),
+            "max_b2b_force": float(history.b2b_force.max()),
+            "max_groups": float(max(history.groups(k) for k in range(history.time.size))),
+            "contact_share": float(np.mean(np.any(history.b2b_force > 0.0, axis=1))),
+            "max_deviation": float(np.max(np.abs(theta(grid))))}

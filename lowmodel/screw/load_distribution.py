@@ -86,12 +86,17 @@ class AxialStiffness:
         return out.reshape(np.shape(load)) if np.ndim(load) else float(out[0])
 
 
-def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13) -> AxialStiffness:
-    """Solve the single-ball model (theta = 0) for ``points`` loads in ``[0, max_load]`` [N]."""
+def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *,
+                    contact_law: sb.GrooveContactLaws | None = None) -> AxialStiffness:
+    """Solve the single-ball model (theta = 0) for ``points`` loads in ``[0, max_load]`` [N].
+
+    ``contact_law``: calibrated contact laws of the screw and nut grooves (:class:`screw_ball.GrooveContactLaws`,
+    ``delta = C F^(2/3) + C_b F``) in place of Hertz's ``delta = C F^(2/3)`` (lin2019 eq 53).
+    """
     max_load = checks.positive("max_load", max_load, "N")
     points = checks.count("points", points, 4)
     loads = np.linspace(0.0, max_load, points)
-    contacts = sb.ball_contacts(module, 0.0)
+    contacts = sb.ball_contacts(module, 0.0, contact_law=contact_law)
     shifts = np.array([sb.solve_balls(contacts, float(q)).nut_shift for q in loads])
     steps = np.diff(shifts)
     if not (np.all(steps > 0.0) or np.all(steps < 0.0)):

@@ -79,7 +79,7 @@ __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
     "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
     "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
-    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL",
+    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws",
 ]
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
@@ -173,6 +173,7 @@ class BallContacts:
     semi_major_unit : m N^(-1/3), ``a_i = semi_major_unit F_i^(1/3)``
     b_over_a : Hertz axis ratio
     deviation : (n,) rad, the screw-side contact angle deviation theta of each ball
+    bulk_compliance : m/N, ``C_b`` of a calibrated law ``delta = C F^(2/3) + C_b F``; None: Hertz (eq 53)
     """
 
     module: ScrewModule
@@ -182,6 +183,7 @@ class BallContacts:
     semi_major_unit: np.ndarray
     b_over_a: np.ndarray
     deviation: np.ndarray
+    bulk_compliance: np.ndarray | None = None
 
     @property
     def n_balls(self) -> int:
@@ -252,12 +254,60 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "tilted") -> np
     return angles
 
 
-def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted") -> BallContacts:
+@dataclass(frozen=True)
+class GrooveContactLaws:
+    """Calibrated contact laws of the screw and the nut groove (issue 13, docs/calibration.md).
+
+    ``screw``, ``nut``: :class:`lowmodel.calibration.ContactLaw` of each groove, ``delta = C F^(2/3) + C_b F``
+    (lin2019 eq 53 plus the finite-body compliance ``C_b``) and ``a = Psi R_B^(1/3) F^(1/3)`` (eq 15), fitted
+    at the nominal contact angle (e.g. FE load sweeps of ``fe-hertz-screw`` / ``fe-hertz-nut``).
+    :func:`ball_contacts` scales the Hertz ``C`` and ``a / F^(1/3)`` of every flank by calibrated / Hertz
+    of its groove (the ``reference`` stored with each constant, else Hertz of the module at beta_0), so
+    the dependence on the contact angle stays Hertz's, and adds ``C_b``.  Hertz's b/a is kept.
+    """
+
+    screw: object
+    nut: object
+
+    @classmethod
+    def from_calibration(cls, calibration, screw_group: str = "screw-groove",
+                         nut_group: str = "nut-groove") -> "GrooveContactLaws":
+        """The laws of the groups ``screw_group`` and ``nut_group`` of a :class:`lowmodel.calibration.Calibration`."""
+        from ballbench.lowmodel.calibration import ContactLaw
+
+        def law(group):
+            psi = calibration.constants.get(group, {}).get("psi")
+            return ContactLaw(calibration.get(group, "hertz_constant"), calibration.get(group, "bulk_compliance"),
+                              psi)
+
+        return cls(law(screw_group), law(nut_group))
+
+    def factors(self, module: ScrewModule, body: str) -> tuple[float, float, float]:
+        """(C calibrated / Hertz, a calibrated / Hertz, C_b [m/N]) of the ``body`` groove."""
+        law = self.screw if body == "screw" else self.nut
+        c_hertz, a_unit, _ = hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                          module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
+                                          module.poisson_ratio)
+        c_ref = law.hertz_constant.reference or c_hertz
+        c_factor = law.hertz_constant.value / c_ref
+        a_factor = 1.0
+        if law.psi is not None:  # eq 15: a / F^(1/3) = Psi R_B^(1/3)
+            a_factor = law.psi.value / (law.psi.reference or a_unit / module.ball_radius ** (1.0 / 3.0))
+        for name, factor in (("hertz_constant", c_factor), ("psi", a_factor)):
+            if not (0.5 < factor < 2.0):
+                raise ValueError(f"the calibrated {name} of the {body} groove must lie within a factor 2 of Hertz's, "
+                                 f"got the ratio {factor!r} (a calibration of another geometry?)")
+        return c_factor, a_factor, float(law.bulk_compliance.value)
+
+
+def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *,
+                  contact_law: GrooveContactLaws | None = None) -> BallContacts:
     """Contacts of ``n`` balls with screw-side deviations ``deviation`` [rad], shape () or (n,).
 
     Flank arcs from the geometry core (:class:`groove.HelicalGroove`, normal profile),
     Hertz constants from :func:`lowmodel.contact.hertz.ball_in_screw_groove` with the
     helical groove curvatures at each flank's contact angle (spline on a 0.25 deg grid, :func:`_hertz_of`).
+    ``contact_law``: calibrated laws of the screw and nut grooves (:class:`GrooveContactLaws`); None: Hertz.
     """
     angles = flank_angles(module.nominal_angle, deviation, reading)
     n = angles.shape[0]
@@ -272,7 +322,16 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted") -
                                               module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
             centres[j, i] = flank.arc_centre  # (u, w) = (x3, z3)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
-    return BallContacts(module, angles, centres, constant, unit, ratio, theta)
+    bulk = None
+    if contact_law is not None:
+        bulk = np.empty((n, 4))
+        for body in ("screw", "nut"):
+            c_factor, a_factor, c_b = contact_law.factors(module, body)
+            columns = [i for i in range(4) if _BODY[i] == body]
+            constant[:, columns] *= c_factor
+            unit[:, columns] *= a_factor
+            bulk[:, columns] = c_b
+    return BallContacts(module, angles, centres, constant, unit, ratio, theta, bulk)
 
 
 def arc_profile(contacts: BallContacts, gamma, nut_shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -466,9 +525,15 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     approach = distance + (radius + preload - module.groove_radius)
     hertz_c = contacts.hertz_constant.reshape(m)
     loaded = approach.v > 0.0
-    ratio = np.where(loaded, approach.v, 0.0) / hertz_c
-    force_v = ratio**1.5
-    force = _Dual(force_v, approach.g * (1.5 * np.sqrt(ratio) / hertz_c)[:, None])  # eq 53
+    if contacts.bulk_compliance is None:
+        ratio = np.where(loaded, approach.v, 0.0) / hertz_c
+        force_v = ratio**1.5
+        force = _Dual(force_v, approach.g * (1.5 * np.sqrt(ratio) / hertz_c)[:, None])  # eq 53
+    else:  # calibrated law delta = C F^(2/3) + C_b F (eq 53 + finite-body compliance), lowmodel.calibration
+        from ballbench.lowmodel.calibration import law_force
+
+        force_v, slope = law_force(approach.v, hertz_c, contacts.bulk_compliance.reshape(m))
+        force = _Dual(force_v, approach.g * slope[:, None])
     semi = _Dual(contacts.semi_major_unit.reshape(m) * np.cbrt(force_v), np.zeros((m, k)))
     with np.errstate(divide="ignore", invalid="ignore"):
         da_dF = np.where(loaded, semi.v / (3.0 * np.where(loaded, force_v, 1.0)), 0.0)
@@ -714,7 +779,8 @@ def _single(contacts: BallContacts, index: int) -> BallContacts:
     sl = slice(index, index + 1)
     return BallContacts(contacts.module, contacts.contact_angles[sl], contacts.arc_centres[sl],
                         contacts.hertz_constant[sl], contacts.semi_major_unit[sl], contacts.b_over_a[sl],
-                        contacts.deviation[sl])
+                        contacts.deviation[sl],
+                        None if contacts.bulk_compliance is None else contacts.bulk_compliance[sl])
 
 
 def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scales, *, axial_load: float,

@@ -86,7 +86,8 @@ class ScrewHistory:
 def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0, duration: float = 2.0,
              steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4, reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
-             lead_error: float = 0.0, progress=None) -> ScrewHistory:
+             lead_error: float = 0.0, progress=None, deviation=None,
+             contact_law: sb.GrooveContactLaws | None = None) -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
     ``amplitude`` [rad] and ``cycles`` (over the two loaded turns) of the screw-side deviation,
@@ -94,6 +95,10 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
     distribution (defaults: :func:`load_distribution.bar_sections`, :func:`load_distribution.axial_stiffness`
     up to 3x the mean ball load); ``lead_error`` [m per turn] of the nut against the screw
     (:func:`load_distribution.distribute`); ``progress`` wraps the step iterator (e.g. a tqdm).
+    ``deviation``: a function of the screw azimuth phi [rad] (array) giving theta [rad] in place of the
+    sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep_cases);
+    ``contact_law``: calibrated contact laws of the grooves (:class:`screw_ball.GrooveContactLaws`) for the
+    balls and the default ``stiffness``; None: Hertz.
     """
     n = checks.count("n_balls", n_balls, 2)
     total = checks.non_negative("axial_load", axial_load, "N")
@@ -110,7 +115,7 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
                          f"{int(track / pair.azimuth_step)} balls)")
     sections = ld.bar_sections(module) if sections is None else sections
     if stiffness is None:
-        stiffness = ld.axial_stiffness(module, 3.0 * max(total, 1.0) / n)
+        stiffness = ld.axial_stiffness(module, 3.0 * max(total, 1.0) / n, contact_law=contact_law)
     gaps = np.full(n, slack / n)                     # evenly distributed (lin2019 Sec 3.4)
     first = 0.5 * gaps[0]
     dt = duration / steps
@@ -125,8 +130,11 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
         time = step * dt
         positions = first + np.concatenate([[0.0], np.cumsum(gaps[:-1] + pair.azimuth_step)])
         screw_azimuth = positions + omega_n * time
-        theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
-        contacts = sb.ball_contacts(module, theta, reading=reading)
+        if deviation is None:
+            theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
+        else:
+            theta = np.asarray(deviation(screw_azimuth), dtype=float)
+        contacts = sb.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
                               module.youngs_modulus, lead_error=lead_error)
         touching_gaps = np.where(gaps <= 1e-12, 0.0, gaps)

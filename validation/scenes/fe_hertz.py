@@ -72,7 +72,7 @@ LEVELS_CIRCULAR = {
     "default": [(10.0, 1.3)],
     "fine": [(6.0, 1.4), (8.0, 1.3), (10.0, 1.3), (12.0, 1.25), (14.0, 1.2)],
 }
-PAIRS = ("flat", "ball", "groove", "screw")
+PAIRS = ("flat", "ball", "groove", "screw", "nut")
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,7 @@ class FeScene:
     """One scene of the FE Hertz family, as data: what pair it meshes and at which levels.
 
     ``pair`` is ``"flat"`` (ball on a flat), ``"ball"`` (ball on ball), ``"groove"`` (ball in a straight
-    groove of ``conformity``) or ``"screw"`` (ball in the helical screw groove of lin2019 Table 4);
+    groove of ``conformity``), ``"screw"`` or ``"nut"`` (ball in the helical screw or nut groove of lin2019 Table 4);
     ``levels`` maps a fidelity to its mesh levels ``[(n = b / h_contact, growth), ...]``.
     """
 
@@ -111,6 +111,8 @@ FE_SCENES = (
             "groove", LEVELS, conformity=0.60, cost_s=25),
     FeScene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz",
             "screw", LEVELS_SCREW, cost_s=90),
+    FeScene("fe-hertz-nut", "FE contact, ball in a helical nut groove (lin2019 Table 4), 100 N: against Hertz",
+            "nut", LEVELS_SCREW, cost_s=90),
 )
 
 
@@ -174,16 +176,17 @@ def pair_case(scene_name: str) -> PairCase:
     from ballbench.lowmodel.geometry import groove
     from ballbench.meshes.assemblies import screw_pair
 
-    # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg
-    args = (TABLE4.ball_radius, TABLE4.conformity, TABLE4.pitch_radius, TABLE4.lead, TABLE4.nominal_angle)
+    # lin2019 Table 4: R_B 2.778 mm, conformity 0.56, R_P 16.5 mm, lead 20 mm, beta 45 deg; screw or nut groove
+    args = (TABLE4.ball_radius, TABLE4.conformity, TABLE4.pitch_radius, TABLE4.lead, TABLE4.nominal_angle, entry.pair)
     frame = groove.contact_frame(groove.helical_groove(*args))
     radius = args[0]
     geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
                                      **TABLE4.material)
     ref = hertz.solve_load(geometry, LOAD)
-    return PairCase("ball in screw groove", lambda h, g: screw_pair.ball_in_screw_groove_pair(
+    return PairCase(f"ball in {entry.pair} groove", lambda h, g: screw_pair.ball_in_screw_groove_pair(
         *args, h_contact=h, growth=g, fine_radius=1.2 * ref.b, fine_half_length=1.0 * ref.a), geometry, LOAD,
-        "lowmodel.contact.hertz.from_curvatures of the exact helical frame (lin2019 Table 4, 100 N)", entry.levels)
+        f"lowmodel.contact.hertz.from_curvatures of the exact helical {entry.pair} frame (lin2019 Table 4, 100 N)",
+        entry.levels)
 
 
 def solve_level(case: PairCase, n: float, growth: float):

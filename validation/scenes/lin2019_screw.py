@@ -54,10 +54,12 @@ def table4_module(oversize: float) -> screw_ball.ScrewModule:
                                    oversize=oversize, **t4.material)
 
 
-def two_ball(case: str, oversize: float, reading: str = READING):
-    """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]."""
+def two_ball(case: str, oversize: float, reading: str = READING, contact_law=None):
+    """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]; ``contact_law``:
+    calibrated laws of the grooves (:class:`screw_ball.GrooveContactLaws`), None: Hertz."""
     theta = PRINTED[case].theta
-    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading)
+    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading,
+                                        contact_law=contact_law)
     free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
     state = screw_b2b.solve(contacts, AXIAL_LOAD)
     return free, state
@@ -68,14 +70,14 @@ def friction_increase(free, state) -> float:
     return 100.0 * (state.total_loss / free.total_loss - 1.0)
 
 
-@lru_cache(maxsize=2)
-def fitted_oversize(reading: str = READING) -> float:
+@lru_cache(maxsize=4)
+def fitted_oversize(reading: str = READING, contact_law=None) -> float:
     """Preload (oversize [m]) at which case (a)'s B2B force is the paper's 1.92 N (brentq, 1e-12 m)."""
     from scipy.optimize import brentq
 
     target = PRINTED["a"].f_b2b_numerical
-    return float(brentq(lambda oversize: two_ball("a", oversize, reading)[1].b2b_force[0] - target, 1.0e-6,
-                        3.0e-6, xtol=1e-12))
+    return float(brentq(lambda oversize: two_ball("a", oversize, reading, contact_law)[1].b2b_force[0] - target,
+                        1.0e-6, 3.0e-6, xtol=1e-12))
 
 
 def _table5(run, case: str):
