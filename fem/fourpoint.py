@@ -41,6 +41,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ballbench.fem import linsolve
+from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
 from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
@@ -192,6 +193,7 @@ class ModuleModel:
     top_dofs: np.ndarray  # (2, k) x and y DOFs of the top_load face
     pin_dofs: np.ndarray
     timings: dict = field(default_factory=dict)
+    factor: object = field(default=None, repr=False)  # the factor W was computed with (linsolve.compliance)
 
     @property
     def ndofs(self) -> int:
@@ -308,10 +310,11 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
     B.sum_duplicates()
     timings["contact_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    W = linsolve.compliance(K[free][:, free].tocsr(), B[:, free], method=method)
+    W, factor = linsolve.compliance(K[free][:, free].tocsr(), B[:, free], method=method, keep_factor=True)
     timings["condense_s"] = time.perf_counter() - t0
     return ModuleModel(geometry, pair, patches, np.concatenate(g0_all), np.concatenate(w_all), np.vstack(g_cols), W,
-                       np.concatenate(contact_of), B.tocsr(), K, free, basis, top_dofs, pin_dofs, timings)
+                       np.concatenate(contact_of), B.tocsr(), K, free, basis, top_dofs, pin_dofs, timings,
+                       factor=factor)
 
 
 @dataclass(frozen=True)
@@ -605,9 +608,7 @@ def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
     for component in (0, 1):
         u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = result.rigid[2 + component]
     rhs = model.B.T @ result.multipliers - model.K @ u
-    solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
-    u[model.free] = solve(rhs[model.free])
-    solve.free()
+    u[model.free] = solve_free(model.K, model.free, rhs[model.free], model.factor)  # the condensation's factor
     return u
 
 

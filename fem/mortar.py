@@ -167,8 +167,8 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     boundary = np.isin(candidates, edge_tris)
     K_ff = K[free][:, free].tocsr()
     t0 = time.perf_counter()
-    W = linsolve.compliance(K_ff, B[:, free], method=method)
+    W, factor = linsolve.compliance(K_ff, B[:, free], method=method, keep_factor=True)
     timings["condense_s"] = time.perf_counter() - t0
     lumped = lumped_area(points, pair.surfaces["ball_contact"], len(points))[candidates]
     return ContactModel(pair, candidates, g0, W, lumped, B.tocsr(), K, free, basis, load_dofs, boundary, timings,
-                        weights=weights, multiplier="pressure")
+                        weights=weights, multiplier="pressure", factor=factor)
