@@ -43,7 +43,8 @@ import scipy.sparse as sp
 from ballbench.fem import linsolve
 from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
-from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
+from ballbench.fem.mortar import (edge_index, projected_quadrature, sub_triangle_points, surface_dofs,
+                                  surface_shape, triangle_dofs, weighted_gaps)
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
@@ -263,13 +264,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         index = -np.ones(len(points), dtype=np.int64)
         index[candidates] = np.arange(candidates.size)
         tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
-        p2 = local[tris][:, :, :2]
-        e_a, e_b = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
-        area = 0.5 * np.abs(e_a[:, 0] * e_b[:, 1] - e_a[:, 1] * e_b[:, 0])
-        xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
-        wq = np.repeat(area / nq, nq)
-        phi = np.tile(bary, (len(tris), 1))
-        mult = np.repeat(index[tris], nq, axis=0)
+        xq, wq, phi, mult = projected_quadrature(local[tris][:, :, :2], index[tris], bary)
         g0q, surface = exact_gap(geometry, i, xq)
         rail_rows, rail_bary = _locate(local, rail_tris, xq)
         ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
@@ -278,23 +273,14 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         rail_shape = surface_shape(rail_bary, 2)
         e3 = frame[2]
         n_c = candidates.size
-        g0 = np.zeros(n_c)
-        weights = np.zeros(n_c)
-        for k in range(3):
-            ok = mult[:, k] >= 0
-            j = mult[ok, k]
-            wphi = wq[ok] * phi[ok, k]
-            np.add.at(g0, j, wphi * g0q[ok])
-            np.add.at(weights, j, wphi)
-            for c in range(3):  # g = g0 + (u_ball - u_rail) . e3
-                if abs(e3[c]) < 1e-15:
-                    continue
-                rows.append(np.repeat(j + offset, 6))
-                cols.append(ball_dofs[c][ok].ravel())
-                vals.append((e3[c] * wphi[:, None] * ball_shape[ok]).ravel())
-                rows.append(np.repeat(j + offset, 6))
-                cols.append(rail_dofs[c][ok].ravel())
-                vals.append((-e3[c] * wphi[:, None] * rail_shape[ok]).ravel())
+        couplings = []
+        for c in range(3):  # g = g0 + (u_ball - u_rail) . e3
+            if abs(e3[c]) >= 1e-15:
+                couplings += [(ball_dofs[c], ball_shape, e3[c]), (rail_dofs[c], rail_shape, -e3[c])]
+        g0, weights, r, cc, v = weighted_gaps(mult, phi, wq, g0q, n_c, couplings, row_offset=offset)
+        rows += r
+        cols += cc
+        vals += v
         top = i >= 2
         g_cols.append(weights[:, None] * np.array([e3[0], e3[1], -e3[0] if top else 0.0, -e3[1] if top else 0.0]))
         edge_tris = tris[(index[tris] < 0).any(axis=1)]
@@ -437,9 +423,7 @@ def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
     g0 = np.zeros(model.n_multipliers)
     for i, patch in enumerate(model.patches):
         g0q, _ = exact_gap(model.geometry, i, patch.xq, float(shifts[i]))
-        for k in range(3):
-            ok = patch.mult[:, k] >= 0
-            np.add.at(g0, patch.mult[ok, k], patch.wq[ok] * patch.phi[ok, k] * g0q[ok])
+        g0 += weighted_gaps(patch.mult, patch.phi, patch.wq, g0q, model.n_multipliers)[0]
     return g0
 
 
