@@ -183,8 +183,8 @@ def ellipse_distance(gmsh, fine_ellipse: Sequence[float], *, centre: Sequence[fl
     # scaled coordinates U = u / l_1, V = v / l_2 (all constants in plain decimal notation for MathEval)
     scaled = e / np.array([l1, l2, 1.0])[:, None]
     shift = scaled @ np.array(c)
-    U, V, w = (f"({_num(scaled[k, 0])}*x + {_num(scaled[k, 1])}*y + {_num(scaled[k, 2])}*z - ({_num(shift[k])}))"
-               for k in range(3))
+    U, V, w = (f"(({_num(scaled[k, 0])})*x + ({_num(scaled[k, 1])})*y + ({_num(scaled[k, 2])})*z - ({_num(shift[k])}))"
+               for k in range(3))  # every constant in brackets: MathEval refuses "+ -1"
     r2 = f"({U}^2 + {V}^2)"
     # Sampson: (r^2 - 1) / |grad r^2| = (r^2 - 1) / (2 sqrt(U^2/l1^2 + V^2/l2^2)); the small constant
     # keeps the centre finite

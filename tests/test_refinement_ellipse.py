@@ -123,3 +123,34 @@ def test_groove_pair_with_the_elliptic_fine_zone():
     assert size_near(0.85 * l1, 0.0, 0.0) < 1.6 * h  # the tip of the ellipse is fine
     assert size_near(0.0, l2 + 4 * h, 0.0) > 1.5 * h  # h + 0.3 * 4 h = 2.2 h beyond the minor axis
     assert size_near(0.0, 0.0, -(l3 + 6 * h)) > 1.5 * h  # h + 0.3 * 6 h below the slab (the capsule: h)
+
+
+def test_fourpoint_module_with_elliptic_fine_zones():
+    """fine_ellipses in the four-point module: gmsh parses the rotated slabs (constants with their signs) and
+    the mesh is fine along each contact's e1 to 0.8 l_1 and coarser below the slab along the normal.  Catches
+    slabs in the wrong frame (e1 and e2 swapped: coarse at 0.8 l_1 along e1)."""
+    from ballbench.lowmodel.geometry.fourpoint import contact_points
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
+
+    radius, h, l1, l2, l3 = 2.5e-3, 6e-5, 6e-4, 1.5e-4, 5e-5
+    beta, deviations = math.radians(45.0), (-0.035, 0.035, 0.0, 0.0)
+    path = fourpoint_module(radius, 0.56, beta, deviations, 1, h_contact=h, growth=1.4, fine_radius=1e-4,
+                            fine_ellipses=(l1, l2, l3))
+    mesh = meshio.read(path)
+    tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"])
+    corners = mesh.points[tets]
+    centre = corners.mean(axis=1)
+    edge = np.linalg.norm(corners[:, 0] - corners[:, 1], axis=1)
+
+    def size_near(point):
+        near = np.linalg.norm(centre - point, axis=1) < 1.5 * h
+        assert near.any()
+        return float(np.median(edge[near]))
+
+    angles = [beta + deviations[0], beta + deviations[1], beta + deviations[2], beta + deviations[3]]
+    for point2 in contact_points(radius, angles):
+        n = np.append(point2 / radius, 0.0)
+        e1 = np.array([-n[1], n[0], 0.0])
+        contact = radius * n
+        assert size_near(contact + 0.8 * l1 * e1 - 0.3 * h * n) < 1.6 * h  # along the major axis: fine
+        assert size_near(contact - (l3 + 6 * h) * n) > 1.5 * h  # into the ball, below the slab: coarser
