@@ -27,7 +27,7 @@ import numpy as np
 from ballbench.fem.hertz_case import LOAD_FACTORS
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
-from ballbench.validation.scene import scene
+from ballbench.validation.scene import KnownGap, scene
 
 MODEL = "fem.contact"
 E_STEEL, NU_STEEL = TABLE1.youngs_modulus, TABLE1.poisson_ratio  # lin2019 Table 1
@@ -86,6 +86,17 @@ FINE_ZONES = ("capsule", "ellipse")
 # sweep (a, b x 1.145); measured on groove 0.56 at (6, 1.3): 109k DOFs against the capsule's 147k, b -0.33 %
 # against -0.42 % (docs/fem.md)
 ELLIPSE_ZONE = (1.2, 1.3, 0.8)  # (l_1 / a, l_2 / b, l_3 / b)
+# issue 12 item 6: the fine level of fe-hertz-groove-056 is to reach a, b within 0.2 % and p0 within 0.3 % of Hertz
+FINE_TARGETS_056 = {"a": 0.002, "b": 0.002, "p0": 0.003}
+B_PLATEAU_GAP = KnownGap(
+    reason="b of the conformity-0.56 groove levels off at -0.25 % of Hertz: the fine study's (7, 1.25) and (8, 1.25) "
+           "give -0.27 % / -0.24 % (172k / 218k DOFs), (9, 1.25) -0.25 % (273k), while a and p0 keep converging "
+           "(a -0.09 / -0.02 %, p0 +0.20 / +0.16 % at (8, 1.25) / (9, 1.25)); the capsule zone at 349k DOFs gave "
+           "-0.25 % too. The source of the plateau (the ellipse "
+           "fit of the piecewise-linear mortar pressure at the contact edge, the finite bodies, the far-field "
+           "growth) is not identified; the BEM (tamaas, benchmarks/test_bench_fem_vs_tamaas.py) reaches 0.001 %.",
+    evidence="docs/fem.md, fine-zone table (levels (8, 1.25, 0.6 b) and (9, 1.25, 0.8 b)) and the convergence study "
+             "of fe-hertz-groove-056 --fine (convergence.csv)")
 
 
 @dataclass(frozen=True)
@@ -104,6 +115,7 @@ class FeScene:
     conformity: float | None = None
     cost_s: float = 30.0  # rough wall time of the default level on 2 shared cores [s] (``ballbench scenes``)
     fine_zone: str = "capsule"  # groove pairs: "capsule" about the major axis or "ellipse" (ELLIPSE_ZONE)
+    fine_targets: dict | None = None  # extra tolerances of the finest level (issue 12 item 6), checked at --fine
 
     def __post_init__(self):
         if self.pair not in PAIRS:
@@ -122,7 +134,7 @@ FE_SCENES = (
     FeScene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz",
             "groove", LEVELS_052, conformity=0.52, cost_s=90),
     FeScene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz",
-            "groove", LEVELS_ELLIPSE, conformity=0.56, cost_s=30, fine_zone="ellipse"),
+            "groove", LEVELS_ELLIPSE, conformity=0.56, cost_s=30, fine_zone="ellipse", fine_targets=FINE_TARGETS_056),
     FeScene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz",
             "groove", LEVELS, conformity=0.60, cost_s=25),
     FeScene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz",
@@ -362,6 +374,13 @@ def _run(run, scene_name: str) -> None:
                   reference=float(getattr(ref, quantity)), source=case.source, tolerance=tolerances[quantity],
                   time_s=wall, note=f"{level}: n = b/h = {rows[-1]['n']:g}, growth {rows[-1]['growth']:g}, "
                                     f"{result.ndofs} DOFs")
+    targets = fe_scene(scene_name).fine_targets
+    if run.fidelity == "fine" and targets:
+        for quantity, tolerance in targets.items():
+            run.check(model=MODEL, quantity=f"{quantity} (issue 12 target)", unit=dict(QUANTITIES)[quantity],
+                      value=getattr(result, quantity), reference=float(getattr(ref, quantity)), source=case.source,
+                      tolerance=tolerance, time_s=wall, known_gap=B_PLATEAU_GAP if quantity == "b" else None,
+                      note="finest level: issue 12 item 6 asks a, b <= 0.2 %, p0 <= 0.3 % at --fine")
     run.check(model=MODEL, quantity="force_sum", unit="N", value=result.force_sum, reference=case.force,
               source="load equilibrium (sum of contact forces)", tolerance=1e-9, time_s=wall)
     run.budget(model=MODEL, quantity="wall_time", unit="s", value=wall, budget=TIME_LIMIT_S[run.fidelity],
