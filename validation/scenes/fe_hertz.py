@@ -89,12 +89,14 @@ ELLIPSE_ZONE = (1.2, 1.3, 0.8)  # (l_1 / a, l_2 / b, l_3 / b)
 # issue 12 item 6: the fine level of fe-hertz-groove-056 is to reach a, b within 0.2 % and p0 within 0.3 % of Hertz
 FINE_TARGETS_056 = {"a": 0.002, "b": 0.002, "p0": 0.003}
 B_PLATEAU_GAP = KnownGap(
-    reason="b of the conformity-0.56 groove levels off at -0.25 % of Hertz: the fine study's (7, 1.25) and (8, 1.25) "
-           "give -0.27 % / -0.24 % (172k / 218k DOFs), (9, 1.25) -0.25 % (273k), while a and p0 keep converging "
-           "(a -0.09 / -0.02 %, p0 +0.20 / +0.16 % at (8, 1.25) / (9, 1.25)); the capsule zone at 349k DOFs gave "
-           "-0.25 % too. The source of the plateau (the ellipse "
-           "fit of the piecewise-linear mortar pressure at the contact edge, the finite bodies, the far-field "
-           "growth) is not identified; the BEM (tamaas, benchmarks/test_bench_fem_vs_tamaas.py) reaches 0.001 %.",
+    reason="b of the conformity-0.56 groove levels off at -0.25 % of Hertz: the fine study's (7, 1.25) and "
+           "(8, 1.25) give -0.27 % / -0.24 % (172k / 218k DOFs), (9, 1.25) -0.25 % (273k), while a and p0 keep "
+           "converging (a -0.09 / -0.02 %, p0 +0.20 / +0.16 % at (8, 1.25) / (9, 1.25)); the capsule zone at 349k "
+           "DOFs gave -0.25 % too. Ruled out at (8, 1.25): the mortar quadrature (64 instead of 16 sub-triangles: "
+           "b -0.237 %), the finite bodies (blocks of 1.0 R instead of 0.6 R: -0.251 %), the growth away from "
+           "the zone ((6, 1.2) and (6, 1.3) alike). Not identified: the piecewise-linear pressure and its ellipse "
+           "fit at the contact edge are the remaining suspects; the BEM (tamaas, "
+           "benchmarks/test_bench_fem_vs_tamaas.py) reaches 0.001 %.",
     evidence="docs/fem.md, fine-zone table (levels (8, 1.25, 0.6 b) and (9, 1.25, 0.8 b)) and the convergence study "
              "of fe-hertz-groove-056 --fine (convergence.csv)")
 
