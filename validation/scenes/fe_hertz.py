@@ -66,6 +66,15 @@ LEVELS_052 = {
     "default": [(6.5, 1.3)],
     "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
+# the elliptic fine zone on groove 0.52: measured at (6.5, 1.3) 222k DOFs (capsule 289k), a -0.10 %, b -0.39 %,
+# p0 +0.33 %, delta -0.08 % (capsule -0.08 / -0.37 / +0.32 / -0.08 %).  Groove 0.60 keeps the capsule: with the
+# slab its default (6, 1.3) had 87k DOFs (capsule 122k), b -0.39 % (capsule -0.26 %), and its fine study ended at
+# (8, 1.25) with b -0.31 %, over the finest level's 0.3 % (one run, docs/fem.md)
+LEVELS_052_ELLIPSE = {
+    "quick": [(5.5, 1.4)],
+    "default": [(6.5, 1.3)],
+    "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.25)],
+}
 # the screw pair is a full model (no symmetry): about 2.5x the DOFs of a quarter groove
 # (and a tighter fine zone, 1.2 b around |x| <= a, still covering the 1.5 F contact)
 LEVELS_SCREW = {
@@ -134,7 +143,7 @@ FE_SCENES = (
     FeScene("fe-hertz-ball-ball", "FE contact, ball on ball (R 5 mm each), 100 N: a, b, p0, delta against Hertz",
             "ball", LEVELS_CIRCULAR, cost_s=15),
     FeScene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz",
-            "groove", LEVELS_052, conformity=0.52, cost_s=90),
+            "groove", LEVELS_052_ELLIPSE, conformity=0.52, cost_s=60, fine_zone="ellipse"),
     FeScene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz",
             "groove", LEVELS_ELLIPSE, conformity=0.56, cost_s=30, fine_zone="ellipse", fine_targets=FINE_TARGETS_056),
     FeScene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz",
