@@ -16,7 +16,7 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.meshes.assemblies import contact_pairs
 
 R, E, NU, LOAD = 5e-3, 2.1e11, 0.28, 100.0
-LEVELS = [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)]  # the fe-hertz-groove-056 fine study (P2, mortar)
+LEVELS = [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)]  # capsule zone (fe-hertz-groove-056 before the slab)
 
 
 @pytest.mark.parametrize("n, growth", LEVELS, ids=[f"n{n:g}-g{g:g}" for n, g in LEVELS])

@@ -40,7 +40,7 @@ from ballbench.fem.surface import lumped_area, project_along_z
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement",
-           "full_solution"]
+           "full_solution", "solve_free"]
 
 
 @dataclass
@@ -67,6 +67,7 @@ class ContactModel:
     timings: dict = field(default_factory=dict)
     weights: np.ndarray | None = None
     multiplier: str = "force"
+    factor: object = field(default=None, repr=False)  # the factor W was computed with (linsolve.compliance)
 
     def __post_init__(self):
         if self.weights is None:
@@ -162,11 +163,11 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     B.sum_duplicates()
     K_ff = K[free][:, free].tocsr()
     t0 = time.perf_counter()
-    W = linsolve.compliance(K_ff, B[:, free], method=method)
+    W, factor = linsolve.compliance(K_ff, B[:, free], method=method, keep_factor=True)
     timings["condense_s"] = time.perf_counter() - t0
     area = lumped_area(points, tris, len(points))[candidates]
     return ContactModel(pair, candidates, g0, W, area, B.tocsr(), K, free, basis,
-                        dofs[2, pair.nodes("ball_load")], boundary, timings)
+                        dofs[2, pair.nodes("ball_load")], boundary, timings, factor=factor)
 
 
 def _pdas(model: ContactModel, force: float | None, approach: float | None, tol: float, max_iter: int,
@@ -248,17 +249,29 @@ def full_displacement(model: ContactModel, state: ContactState) -> np.ndarray:
 
 def full_solution(model: ContactModel, state: ContactState) -> np.ndarray:
     """Every DOF (ndof,) [m] of the displacement of a solved state (one sparse solve); numbering of
-    ``model.basis`` (P2: vertex and edge DOFs, ``basis.nodal_dofs`` and ``basis.edge_dofs``)."""
+    ``model.basis`` (P2: vertex and edge DOFs, ``basis.nodal_dofs`` and ``basis.edge_dofs``).
+
+    Reuses the factor the condensation kept (``model.factor``); factorises ``K`` only if it was freed."""
     ndof = model.K.shape[0]
     multipliers = state.pressure if model.multiplier == "pressure" else state.forces
     f = model.B.T @ multipliers
     u = np.zeros(ndof)
     u[model.load_dofs] = -state.approach
     rhs = f - model.K @ u
-    solve = linsolve.factorize(model.K[model.free][:, model.free])
-    u[model.free] = solve(rhs[model.free])
-    solve.free()
+    u[model.free] = solve_free(model.K, model.free, rhs[model.free], model.factor)
     return u
+
+
+def solve_free(K: sp.spmatrix, free: np.ndarray, rhs: np.ndarray, factor=None) -> np.ndarray:
+    """``K_ff^-1 rhs`` (|free|,) with the kept ``factor`` of ``K_ff`` (:func:`fem.linsolve.compliance`)
+    if it is still alive, else one factorisation of ``K_ff`` (freed after the solve)."""
+    if factor is not None and getattr(factor, "alive", True):
+        return factor(rhs)
+    solve = linsolve.factorize(K[free][:, free])
+    try:
+        return solve(rhs)
+    finally:
+        solve.free()
 
 
 def load_and_assemble(mesh, materials, *, order: int, gap_limit: float):

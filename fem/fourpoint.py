@@ -41,8 +41,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ballbench.fem import linsolve
+from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
-from ballbench.fem.mortar import edge_index, sub_triangle_points, surface_dofs, surface_shape, triangle_dofs
+from ballbench.fem.mortar import (edge_index, projected_quadrature, sub_triangle_points, surface_dofs,
+                                  surface_shape, triangle_dofs, weighted_gaps)
 from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
@@ -239,6 +241,7 @@ class ModuleModel:
     top_dofs: np.ndarray  # (2, k) x and y DOFs of the top_load face
     pin_dofs: np.ndarray
     timings: dict = field(default_factory=dict)
+    factor: object = field(default=None, repr=False)  # the factor W was computed with (linsolve.compliance)
 
     @property
     def ndofs(self) -> int:
@@ -310,13 +313,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         index = -np.ones(len(points), dtype=np.int64)
         index[candidates] = np.arange(candidates.size)
         tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
-        p2 = local[tris][:, :, :2]
-        e_a, e_b = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
-        area = 0.5 * np.abs(e_a[:, 0] * e_b[:, 1] - e_a[:, 1] * e_b[:, 0])
-        xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
-        wq = np.repeat(area / nq, nq)
-        phi = np.tile(bary, (len(tris), 1))
-        mult = np.repeat(index[tris], nq, axis=0)
+        xq, wq, phi, mult = projected_quadrature(local[tris][:, :, :2], index[tris], bary)
         g0q, surface = geometry.gap(i, xq)
         rail_rows, rail_bary = _locate(local, rail_tris, xq)
         ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
@@ -325,23 +322,14 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         rail_shape = surface_shape(rail_bary, 2)
         e3 = frame[2]
         n_c = candidates.size
-        g0 = np.zeros(n_c)
-        weights = np.zeros(n_c)
-        for k in range(3):
-            ok = mult[:, k] >= 0
-            j = mult[ok, k]
-            wphi = wq[ok] * phi[ok, k]
-            np.add.at(g0, j, wphi * g0q[ok])
-            np.add.at(weights, j, wphi)
-            for c in range(3):  # g = g0 + (u_ball - u_rail) . e3
-                if abs(e3[c]) < 1e-15:
-                    continue
-                rows.append(np.repeat(j + offset, 6))
-                cols.append(ball_dofs[c][ok].ravel())
-                vals.append((e3[c] * wphi[:, None] * ball_shape[ok]).ravel())
-                rows.append(np.repeat(j + offset, 6))
-                cols.append(rail_dofs[c][ok].ravel())
-                vals.append((-e3[c] * wphi[:, None] * rail_shape[ok]).ravel())
+        couplings = []
+        for c in range(3):  # g = g0 + (u_ball - u_rail) . e3
+            if abs(e3[c]) >= 1e-15:
+                couplings += [(ball_dofs[c], ball_shape, e3[c]), (rail_dofs[c], rail_shape, -e3[c])]
+        g0, weights, r, cc, v = weighted_gaps(mult, phi, wq, g0q, n_c, couplings, row_offset=offset)
+        rows += r
+        cols += cc
+        vals += v
         g_cols.append(weights[:, None] * (geometry.rigid_modes(i) @ e3)[None, :])
         edge_tris = tris[(index[tris] < 0).any(axis=1)]
         patches.append(_Patch(name, candidates, local[candidates, :2], index[tris], xq, wq, phi,
@@ -356,10 +344,11 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
     B.sum_duplicates()
     timings["contact_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    W = linsolve.compliance(K[free][:, free].tocsr(), B[:, free], method=method)
+    W, factor = linsolve.compliance(K[free][:, free].tocsr(), B[:, free], method=method, keep_factor=True)
     timings["condense_s"] = time.perf_counter() - t0
     return ModuleModel(geometry, pair, patches, np.concatenate(g0_all), np.concatenate(w_all), np.vstack(g_cols), W,
-                       np.concatenate(contact_of), B.tocsr(), K, free, basis, top_dofs, pin_dofs, timings)
+                       np.concatenate(contact_of), B.tocsr(), K, free, basis, top_dofs, pin_dofs, timings,
+                       factor=factor)
 
 
 @dataclass(frozen=True)
@@ -495,9 +484,7 @@ def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
     g0 = np.zeros(model.n_multipliers)
     for i, patch in enumerate(model.patches):
         g0q, _ = model.geometry.gap(i, patch.xq, float(shifts[i]))
-        for k in range(3):
-            ok = patch.mult[:, k] >= 0
-            np.add.at(g0, patch.mult[ok, k], patch.wq[ok] * patch.phi[ok, k] * g0q[ok])
+        g0 += weighted_gaps(patch.mult, patch.phi, patch.wq, g0q, model.n_multipliers)[0]
     return g0
 
 
@@ -671,9 +658,7 @@ def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
         if motion[component] != 0.0:
             u[np.unique(triangle_dofs(model.basis, tris, component, edges))] = motion[component]
     rhs = model.B.T @ result.multipliers - model.K @ u
-    solve = linsolve.factorize(model.K[model.free][:, model.free].tocsr())
-    u[model.free] = solve(rhs[model.free])
-    solve.free()
+    u[model.free] = solve_free(model.K, model.free, rhs[model.free], model.factor)  # the condensation's factor
     return u
 
 

@@ -12,6 +12,9 @@ compliance of those DOFs.  Methods (measured in docs/fem.md):
 ``"splu"``   SciPy SuperLU with the same block right-hand sides (no MKL needed).
 
 :func:`factorize` returns a callable ``solve(b)`` (pardiso, else SuperLU).
+:func:`compliance` with ``keep_factor=True`` also returns the factor it used
+(:class:`CondensedFactor`), so the full displacement field of a solved contact needs no
+second factorisation of ``K`` (docs/fem.md).
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ import ctypes
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["compliance", "inverse_block", "factorize", "METHODS"]
+__all__ = ["compliance", "inverse_block", "factorize", "CondensedFactor", "METHODS"]
 
 METHODS = ("schur", "rhs", "splu")
 
@@ -60,60 +63,132 @@ def factorize(K: sp.spmatrix):
     return solve
 
 
+class _Pardiso:
+    """One MKL pardiso handle (symmetric ``mtype`` 2 or -2) on the upper triangle of a matrix, called
+    through pypardiso's MKL handle; ``schur`` DOFs (optional) are ordered last (``iparm[35] = 2``:
+    their dense Schur complement is returned by the factorisation and the whole factor is kept for
+    partial solves)."""
+
+    def __init__(self, upper: sp.csr_matrix, mtype: int, schur: np.ndarray | None = None):
+        import pypardiso
+
+        host = pypardiso.PyPardisoSolver(mtype=mtype)
+        self._lib = host._mkl_pardiso
+        self.n = upper.shape[0]
+        self.mtype = mtype
+        self.pt = np.zeros(64, dtype=np.int64)
+        self.iparm = np.zeros(64, dtype=np.int32)
+        self.iparm[0] = 1  # no solver defaults
+        self.iparm[1] = 2  # nested dissection (METIS)
+        self.iparm[9] = 8  # pivot perturbation 1e-8
+        self.iparm[34] = 1  # zero-based indexing
+        self.perm = np.zeros(self.n, dtype=np.int32)
+        self.nschur = 0 if schur is None else int(schur.size)
+        if schur is not None:
+            self.iparm[35] = 2  # Schur complement, whole factor kept (partial solves 331-333)
+            self.perm[schur] = 1
+        self.ia = upper.indptr.astype(np.int32)
+        self.ja = upper.indices.astype(np.int32)
+        self.data = np.ascontiguousarray(upper.data, dtype=float)
+        self.alive = False
+
+    def call(self, phase: int, b: np.ndarray, x: np.ndarray, nrhs: int = 1) -> None:
+        error = ctypes.c_int32(0)
+        i32 = ctypes.POINTER(ctypes.c_int32)
+        f64 = ctypes.POINTER(ctypes.c_double)
+        self._lib(self.pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(ctypes.c_int32(1)),
+                  ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(self.mtype)),
+                  ctypes.byref(ctypes.c_int32(phase)), ctypes.byref(ctypes.c_int32(self.n)),
+                  self.data.ctypes.data_as(f64), self.ia.ctypes.data_as(i32), self.ja.ctypes.data_as(i32),
+                  self.perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(nrhs)),
+                  self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(f64),
+                  x.ctypes.data_as(f64), ctypes.byref(error))
+        if error.value != 0:
+            raise RuntimeError(f"MKL pardiso phase {phase} failed with error {error.value}")
+
+    def factorize(self) -> np.ndarray | None:
+        """Analysis and factorisation; the dense Schur complement (``nschur`` x ``nschur``) if any."""
+        schur = np.zeros((max(self.nschur, 1), max(self.nschur, 1)), dtype=float, order="F")
+        try:
+            self.call(12, np.zeros(self.n), schur)
+        except RuntimeError:
+            self.free()
+            raise
+        self.alive = True
+        # pardiso returns the Schur block in the order of increasing global index
+        return np.ascontiguousarray(schur) if self.nschur else None
+
+    def free(self) -> None:
+        if self.alive or self.pt.any():
+            self.call(-1, np.zeros(1), np.zeros(1))
+        self.alive = False
+
+
 def _schur_pardiso(K: sp.csr_matrix, c: np.ndarray, mtype: int = 2) -> np.ndarray:
     """Dense Schur complement of the symmetric ``K`` onto ``c`` by MKL pardiso (iparm[35] = 1);
     ``mtype`` 2 (SPD) or -2 (symmetric indefinite)."""
-    import pypardiso
-
-    host = pypardiso.PyPardisoSolver(mtype=mtype)
-    lib = host._mkl_pardiso
     upper = sp.triu(K, format="csr")
     upper.sort_indices()
-    n = upper.shape[0]
-    nschur = int(c.size)
-    pt = np.zeros(64, dtype=np.int64)
-    iparm = np.zeros(64, dtype=np.int32)
-    iparm[0] = 1  # no solver defaults
-    iparm[1] = 2  # nested dissection (METIS)
-    iparm[9] = 8  # pivot perturbation 1e-8
-    iparm[34] = 1  # zero-based indexing
-    iparm[35] = 1  # Schur complement
-    perm = np.zeros(n, dtype=np.int32)
-    perm[c] = 1
-    ia = upper.indptr.astype(np.int32)
-    ja = upper.indices.astype(np.int32)
-    data = np.ascontiguousarray(upper.data, dtype=float)
-    schur = np.zeros((nschur, nschur), dtype=float, order="F")
-    b = np.zeros(n)
-    error = ctypes.c_int32(0)
-    i32 = ctypes.POINTER(ctypes.c_int32)
-    f64 = ctypes.POINTER(ctypes.c_double)
-
-    def call(phase: int, x) -> None:
-        lib(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(ctypes.c_int32(1)),
-            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(mtype)), ctypes.byref(ctypes.c_int32(phase)),
-            ctypes.byref(ctypes.c_int32(n)), data.ctypes.data_as(f64), ia.ctypes.data_as(i32),
-            ja.ctypes.data_as(i32), perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(1)),
-            iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(f64),
-            x.ctypes.data_as(f64), ctypes.byref(error))
-
+    handle = _Pardiso(upper, mtype, np.asarray(c))
     try:
-        call(12, schur)
-        if error.value != 0:
-            raise RuntimeError(f"MKL pardiso Schur complement failed with error {error.value}")
+        return handle.factorize()
     finally:
-        call(-1, np.zeros(1))
-    # pardiso returns the Schur block in the order of increasing global index of c
-    return np.ascontiguousarray(schur)
+        handle.free()
 
 
-def compliance(K: sp.spmatrix, B: sp.spmatrix, method: str = "augmented") -> np.ndarray:
+class CondensedFactor:
+    """The factor of the augmented ``[[K, B^T], [B, 0]]`` that :func:`compliance` computed ``W`` with,
+    kept so that solves with the same ``K`` need no second factorisation.
+
+    ``solve(f, mu=None)`` returns ``u = K^-1 (f - B^T mu)`` (n,) [``mu`` (m,), default 0: ``K^-1 f``]
+    by pardiso's partial solves (forward 331, diagonal 332, then the Schur unknowns set to ``mu``,
+    backward 333: the block LDL^T of the augmented matrix with the multipliers last).  ``free()``
+    releases the factor (also when the object is collected)."""
+
+    def __init__(self, handle: _Pardiso, n: int):
+        import weakref
+
+        self._handle = handle
+        self.n = n
+        self._finalizer = weakref.finalize(self, handle.free)
+
+    @property
+    def alive(self) -> bool:
+        return self._handle.alive
+
+    def solve(self, f, mu=None) -> np.ndarray:
+        if not self._handle.alive:
+            raise RuntimeError("the factor was freed")
+        f = np.asarray(f, dtype=float)
+        if f.shape != (self.n,):
+            raise ValueError(f"f must have shape ({self.n},), got {f.shape}")
+        total = self._handle.n
+        rhs = np.zeros(total)
+        rhs[:self.n] = f
+        forward, diagonal, out = np.zeros(total), np.zeros(total), np.zeros(total)
+        self._handle.call(331, rhs, forward)
+        self._handle.call(332, forward, diagonal)
+        diagonal[self.n:] = 0.0 if mu is None else np.asarray(mu, dtype=float)
+        self._handle.call(333, diagonal, out)
+        return out[:self.n]
+
+    __call__ = solve
+
+    def free(self) -> None:
+        self._finalizer()
+
+
+def compliance(K: sp.spmatrix, B: sp.spmatrix, method: str = "augmented", *, keep_factor: bool = False):
     """Dense ``W = B K^-1 B^T`` (m x m) for SPD sparse ``K`` (n x n) and sparse ``B`` (m x n).
 
     ``"augmented"``: pardiso's Schur complement of the symmetric indefinite
     ``[[K, B^T], [B, 0]]`` onto its last m rows is ``-W`` (the dense part is only
     m x m, not the size of B's column support).  Other methods: ``B_c (K^-1)_cc B_c^T``
     with :func:`inverse_block` on the columns ``c`` that B touches.
+
+    ``keep_factor``: return ``(W, factor)``, ``factor`` the :class:`CondensedFactor` that solves with the
+    same ``K`` without factorising again (``"augmented"`` with pardiso; None for the other methods,
+    which factorise ``K`` itself only where they must).
     """
     B = sp.csr_matrix(B)
     if method == "augmented" and _pardiso_available():
@@ -125,14 +200,21 @@ def compliance(K: sp.spmatrix, B: sp.spmatrix, method: str = "augmented") -> np.
         # make sure the zero diagonal entries are stored
         upper = upper + sp.diags(np.r_[np.zeros(K.shape[0]), np.full(m, 1e-300)], format="csr")
         n = K.shape[0]
-        schur = _schur_pardiso(upper, np.arange(n, n + m), mtype=-2)
-        W = -schur
-        return 0.5 * (W + W.T)
+        upper = sp.csr_matrix(upper)
+        upper.sort_indices()
+        handle = _Pardiso(upper, -2, np.arange(n, n + m))
+        W = -handle.factorize()
+        W = 0.5 * (W + W.T)
+        if keep_factor:
+            return W, CondensedFactor(handle, n)
+        handle.free()
+        return W
     columns = np.flatnonzero(B.getnnz(axis=0))
     block = inverse_block(K, columns, "schur" if method == "augmented" else method)
     Bc = B[:, columns].toarray()
     W = Bc @ block @ Bc.T
-    return 0.5 * (W + W.T)
+    W = 0.5 * (W + W.T)
+    return (W, None) if keep_factor else W
 
 
 def inverse_block(K: sp.spmatrix, c: np.ndarray, method: str = "schur") -> np.ndarray:

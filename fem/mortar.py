@@ -28,8 +28,8 @@ from ballbench.fem.contact import ContactModel, load_and_assemble
 from ballbench.fem.elasticity import PairMesh
 from ballbench.fem.surface import lumped_area, project_along_z
 
-__all__ = ["build_mortar_model", "surface_dofs", "edge_index", "triangle_dofs", "surface_shape",
-           "sub_triangle_points"]
+__all__ = ["build_mortar_model", "weighted_gaps", "projected_quadrature", "surface_dofs", "edge_index",
+           "triangle_dofs", "surface_shape", "sub_triangle_points"]
 
 SUBDIVISIONS = 4
 
@@ -80,6 +80,51 @@ def sub_triangle_points(s: int) -> np.ndarray:
     return np.column_stack([1.0 - pts.sum(axis=1), pts])
 
 
+def projected_quadrature(p2: np.ndarray, tri_index: np.ndarray, bary: np.ndarray):
+    """Mortar quadrature on triangles projected on a plane: ``p2`` (k, 3, 2) their vertices in the plane [m],
+    ``tri_index`` (k, 3) the multiplier index of each vertex (-1: none), ``bary`` (s, 3) the barycentric points
+    (:func:`sub_triangle_points`, equal weights).  Returns the points ``xq`` (k s, 2) [m], weights ``wq``
+    (k s,) [m^2], hats ``phi`` (k s, 3) and multiplier indices ``mult`` (k s, 3)."""
+    nq = len(bary)
+    e1, e2 = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
+    wq = np.repeat(area / nq, nq)
+    phi = np.tile(bary, (len(p2), 1))
+    mult = np.repeat(tri_index, nq, axis=0)
+    return xq, wq, phi, mult
+
+
+def weighted_gaps(mult: np.ndarray, phi: np.ndarray, wq: np.ndarray, g0q: np.ndarray, n_multipliers: int,
+                  couplings=(), row_offset: int = 0):
+    """Mortar integrals of one contact surface (the one implementation: contact pairs and the four-point module).
+
+    Quadrature points ``q`` on the multiplier side: ``mult`` (q, 3) the multiplier index of each
+    triangle vertex (-1: none), ``phi`` (q, 3) the hat functions there, ``wq`` (q,) the weights [m^2],
+    ``g0q`` (q,) the initial gap [m].  ``couplings``: ``(dofs (q, k), shape (q, k), factor)`` per
+    displacement field entering the gap, ``g = g0 + sum factor * shape . u[dofs]`` (e.g. ball and
+    counter z, or the components of ``(u_ball - u_rail) . e3``).
+
+    Returns ``g~0_i = int phi_i g0 dA`` (n,) [m^3], ``m_i = int phi_i dA`` (n,) [m^2] and the COO
+    triplets ``(rows, cols, vals)`` (lists of arrays) of ``B_ij = int phi_i factor N_j dA`` with the
+    rows shifted by ``row_offset``.
+    """
+    g0 = np.zeros(n_multipliers)
+    weights = np.zeros(n_multipliers)
+    rows, cols, vals = [], [], []
+    for k in range(3):
+        ok = mult[:, k] >= 0
+        i = mult[ok, k]
+        wphi = wq[ok] * phi[ok, k]
+        np.add.at(g0, i, wphi * g0q[ok])
+        np.add.at(weights, i, wphi)
+        for dofs, shape, factor in couplings:
+            rows.append(np.repeat(i + row_offset, dofs.shape[1]))
+            cols.append(dofs[ok].ravel())
+            vals.append((factor * wphi[:, None] * shape[ok]).ravel())
+    return g0, weights, rows, cols, vals
+
+
 def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, order: int = 2,
                        method: str = "augmented", initial_gap=None, min_candidates: int = 20) -> ContactModel:
     """Mortar contact model (see module docstring); arguments as :func:`fem.contact.build_model`.
@@ -124,14 +169,8 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     # quadrature points on the projected ball triangles
     bary = sub_triangle_points(SUBDIVISIONS)  # (s2, 3)
     nq = len(bary)
-    p2 = points[tris][:, :, :2]
-    e1, e2 = p2[:, 1] - p2[:, 0], p2[:, 2] - p2[:, 0]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
-    xq = np.einsum("qv,kvd->kqd", bary, p2).reshape(-1, 2)
+    xq, wq, phi, mult = projected_quadrature(points[tris][:, :, :2], index[tris], bary)
     zq_ball = np.einsum("qv,kv->kq", bary, points[tris][:, :, 2]).ravel()
-    wq = np.repeat(area / nq, nq)
-    phi = np.tile(bary, (len(tris), 1))  # multiplier hats at each point (k*s2, 3)
-    mult = np.repeat(index[tris], nq, axis=0)  # (k*s2, 3) multiplier index or -1
     ball_dofs = np.repeat(triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
     ball_shape = np.tile(surface_shape(bary, order), (len(tris), 1))
     c_tris, c_bary = project_along_z(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
@@ -142,22 +181,8 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     else:
         g0q = np.asarray(initial_gap(xq[:, 0], xq[:, 1]), float)
     n_c = candidates.size
-    rows, cols, vals = [], [], []
-    g0 = np.zeros(n_c)
-    weights = np.zeros(n_c)
-    for k in range(3):
-        ok = mult[:, k] >= 0
-        i = mult[ok, k]
-        wphi = wq[ok] * phi[ok, k]
-        np.add.at(g0, i, wphi * g0q[ok])
-        np.add.at(weights, i, wphi)
-        ncol = ball_dofs.shape[1]
-        rows.append(np.repeat(i, ncol))
-        cols.append(ball_dofs[ok].ravel())
-        vals.append((wphi[:, None] * ball_shape[ok]).ravel())
-        rows.append(np.repeat(i, counter_dofs.shape[1]))
-        cols.append(counter_dofs[ok].ravel())
-        vals.append((-wphi[:, None] * counter_shape[ok]).ravel())
+    g0, weights, rows, cols, vals = weighted_gaps(mult, phi, wq, g0q, n_c,
+                                                  [(ball_dofs, ball_shape, 1.0), (counter_dofs, counter_shape, -1.0)])
     B = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n_c, K.shape[0]))
     B.sum_duplicates()
     if np.min(g0 / weights) < -1e-9 * np.ptp(points[:, 2]):
@@ -167,8 +192,8 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     boundary = np.isin(candidates, edge_tris)
     K_ff = K[free][:, free].tocsr()
     t0 = time.perf_counter()
-    W = linsolve.compliance(K_ff, B[:, free], method=method)
+    W, factor = linsolve.compliance(K_ff, B[:, free], method=method, keep_factor=True)
     timings["condense_s"] = time.perf_counter() - t0
     lumped = lumped_area(points, pair.surfaces["ball_contact"], len(points))[candidates]
     return ContactModel(pair, candidates, g0, W, lumped, B.tocsr(), K, free, basis, load_dofs, boundary, timings,
-                        weights=weights, multiplier="pressure")
+                        weights=weights, multiplier="pressure", factor=factor)

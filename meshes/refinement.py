@@ -7,8 +7,11 @@ Growth law (the only size control when refining; issue 5 notes):
 
 with ``d`` the distance [m] from a fine zone: a point (:func:`point_distance`), the
 segment ``|x| <= L`` of the x axis (:func:`segment_distance`, an elongated Hertz
-ellipse of a contact pair) or the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z``
-(:func:`box_distance`).  Along a ray away from the fine zone the sizes of
+ellipse of a contact pair), the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z``
+(:func:`box_distance`) or the elliptic slab ``u^2/l_1^2 + v^2/l_2^2 <= 1, |w| <= l_3``
+in a contact's own frame (:func:`ellipse_distance`: the fine zone shaped as the contact
+ellipse, thin across the contact, so the fine tetrahedra follow the patch instead of
+filling a capsule as deep as it is wide).  Along a ray away from the fine zone the sizes of
 neighbouring elements differ by about the factor ``growth`` (``h(d + h) = h +
 (growth - 1) h``).  gmsh's own size sources (MeshSizeFromPoints,
 MeshSizeFromCurvature, MeshSizeExtendFromBoundary) are switched off, otherwise gmsh
@@ -16,10 +19,12 @@ ignores the field near small curves.
 
 * :func:`check_refinement` - validated ``(h_contact, growth, h_max, fine_radius)`` of
   a builder (``h_contact <= R_B / 4``, ``growth`` in [1, 3], ``h_max`` default ``R_B / 3``);
-  :func:`check_fine_zone` - validated segment half-length or box half-lengths.
+  :func:`check_fine_zone` - validated segment half-length or box half-lengths;
+  :func:`check_fine_ellipse` - validated elliptic slab ``(l_1, l_2, l_3)``.
 * :func:`size_threshold` - the law on any gmsh distance field, set as background mesh.
 * :func:`contact_refinement` - the law about one point; :func:`refine_at_points` -
-  the smallest of the laws about several points (the contacts of a module);
+  the smallest of the laws about several points (the contacts of a module), or about
+  an elliptic slab at each of them (``ellipses``);
   :func:`refine_contact` - the law about the fine zone of a contact pair.
 * :func:`uniform_size` - the fallback without refinement: sizes in ``[h_max / 2, h_max]``;
   :func:`size_at_points` - the contacts' refinement or that fallback.
@@ -36,8 +41,9 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 
-__all__ = ["check_refinement", "check_fine_zone", "size_threshold", "point_distance", "segment_distance",
-           "box_distance", "contact_refinement", "refine_at_points", "refine_contact", "uniform_size", "size_at_points"]
+__all__ = ["check_refinement", "check_fine_zone", "check_fine_ellipse", "size_threshold", "point_distance",
+           "segment_distance", "box_distance", "ellipse_distance", "contact_refinement", "refine_at_points",
+           "refine_contact", "uniform_size", "size_at_points"]
 
 GROWTH_RANGE = (1.0, 3.0)  # size ratio of neighbouring elements away from the fine zone
 
@@ -100,9 +106,30 @@ def check_fine_zone(fine_half_length=0.0, fine_patch=None, *,
     return fine_half_length, fine_patch
 
 
+def check_fine_ellipse(fine_ellipse) -> tuple[float, float, float] | None:
+    """Validated elliptic slab ``(l_1, l_2[, l_3])`` [m] (semi-axes along e1, e2 and the half-thickness
+    along the contact normal; ``l_3`` default 0), each finite and > 0 (``l_3 >= 0``), or None."""
+    if fine_ellipse is None:
+        return None
+    try:
+        values = [float(v) for v in fine_ellipse]
+    except (TypeError, ValueError):
+        raise ValueError(f"fine_ellipse must be (l_1, l_2[, l_3]) [m], got {fine_ellipse!r}") from None
+    if len(values) not in (2, 3):
+        raise ValueError(f"fine_ellipse must be (l_1, l_2[, l_3]) [m], got {fine_ellipse!r}")
+    semi = tuple(checks.positive("fine_ellipse", v, "m") for v in values[:2])
+    depth = checks.non_negative("fine_ellipse", values[2], "m") if len(values) == 3 else 0.0
+    return semi + (depth,)
+
+
 # --------------------------------------------------------------------------
 # distance fields (gmsh MathEval) and the growth law
 # --------------------------------------------------------------------------
+def _num(value: float) -> str:
+    """``value`` in plain decimal notation (gmsh's MathEval parser reads no exponent)."""
+    return np.format_float_positional(float(value), trim="-")
+
+
 def _beyond(axis: str, half_length: float) -> str:
     """``max(0, |axis| - half_length)`` as a MathEval expression (exact: (a + |a|) / 2)."""
     return f"((Abs({axis}) - ({half_length!r}) + Abs(Abs({axis}) - ({half_length!r}))) / 2)"
@@ -133,6 +160,42 @@ def segment_distance(gmsh, half_length: float) -> int:
     field = gmsh.model.mesh.field
     distance = field.add("MathEval")
     field.setString(distance, "F", f"Sqrt({_beyond('x', float(half_length))}^2 + y^2 + z^2)")
+    return distance
+
+
+def ellipse_distance(gmsh, fine_ellipse: Sequence[float], *, centre: Sequence[float] = (0.0, 0.0, 0.0),
+                     frame=None) -> int:
+    """Field tag of an approximate distance [m] from the elliptic slab ``u^2/l_1^2 + v^2/l_2^2 <= 1,
+    |w| <= l_3`` (``fine_ellipse = (l_1, l_2[, l_3])`` [m]) with ``(u, v, w) = frame (p - centre)``
+    (``frame`` rows ``e1, e2, e3``; default the identity: ``e3 = z`` the contact normal).
+
+    ``d = sqrt(d_e^2 + max(0, |w| - l_3)^2)`` with ``d_e`` the in-plane distance from the ellipse,
+    taken as the larger of two estimates that are both exact on the ellipse and both grow
+    from it: Sampson's first-order distance ``(r^2 - 1) / |grad r^2|``, ``r^2 = u^2/l_1^2 + v^2/l_2^2``
+    (exact to first order next to the ellipse; half the true distance far away), and
+    ``(r - 1) l_min`` (a lower bound, exact along the minor axis).  Inside, ``d_e = 0``.
+    """
+    l1, l2, l3 = check_fine_ellipse(fine_ellipse)
+    c = [float(v) for v in centre]
+    e = np.eye(3) if frame is None else np.asarray(frame, dtype=float)
+    if e.shape != (3, 3):
+        raise ValueError(f"frame must be three rows e1, e2, e3, got shape {e.shape}")
+    # scaled coordinates U = u / l_1, V = v / l_2 (all constants in plain decimal notation for MathEval)
+    scaled = e / np.array([l1, l2, 1.0])[:, None]
+    shift = scaled @ np.array(c)
+    U, V, w = (f"(({_num(scaled[k, 0])})*x + ({_num(scaled[k, 1])})*y + ({_num(scaled[k, 2])})*z - ({_num(shift[k])}))"
+               for k in range(3))  # every constant in brackets: MathEval refuses "+ -1"
+    r2 = f"({U}^2 + {V}^2)"
+    # Sampson: (r^2 - 1) / |grad r^2| = (r^2 - 1) / (2 sqrt(U^2/l1^2 + V^2/l2^2)); the small constant
+    # keeps the centre finite
+    sampson = (f"(({r2} - 1) / (2*Sqrt({U}^2*{_num(1 / l1**2)} + {V}^2*{_num(1 / l2**2)}) + "
+               f"{_num(1e-6 / max(l1, l2))}))")
+    radial = f"((Sqrt({r2}) - 1)*{_num(min(l1, l2))})"
+    larger = f"(({sampson} + {radial} + Abs({sampson} - {radial}))/2)"
+    in_plane = f"(({larger} + Abs({larger}))/2)"
+    field = gmsh.model.mesh.field
+    distance = field.add("MathEval")
+    field.setString(distance, "F", f"Sqrt({in_plane}^2 + {_beyond(w, l3).replace(repr(l3), _num(l3))}^2)")
     return distance
 
 
@@ -171,11 +234,26 @@ def contact_refinement(gmsh, h_contact: float, growth: float, h_max: float, *,
     return size_threshold(gmsh, point_distance(gmsh, point), h_contact, growth, h_max, fine_radius=fine_radius)
 
 
-def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> int:
+def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float, *,
+                     ellipses=None) -> int:
     """Background size ``min_k h_k`` with ``h_k`` the growth law about the point ``X_k``
-    (``points`` shape (n, 3) [m]: the contacts of a module); returns the field tag."""
-    fields = [contact_refinement(gmsh, h_contact, growth, h_max, point=point, fine_radius=fine_radius)
-              for point in np.atleast_2d(np.asarray(points, dtype=float)).tolist()]
+    (``points`` shape (n, 3) [m]: the contacts of a module); returns the field tag.
+
+    ``ellipses``: per point ``None`` or ``(fine_ellipse, frame)``: the law about the elliptic slab
+    ``fine_ellipse = (l_1, l_2, l_3)`` [m] in the contact frame ``frame`` (rows e1, e2, e3; e3 the
+    normal) centred on ``X_k`` (:func:`ellipse_distance`; ``fine_radius`` unused there)."""
+    points = np.atleast_2d(np.asarray(points, dtype=float)).tolist()
+    ellipses = [None] * len(points) if ellipses is None else list(ellipses)
+    if len(ellipses) != len(points):
+        raise ValueError(f"ellipses must give one entry per point ({len(points)}), got {len(ellipses)}")
+    fields = []
+    for point, ellipse in zip(points, ellipses):
+        if ellipse is None:
+            fields.append(contact_refinement(gmsh, h_contact, growth, h_max, point=point, fine_radius=fine_radius))
+        else:
+            semi, frame = ellipse
+            fields.append(size_threshold(gmsh, ellipse_distance(gmsh, semi, centre=point, frame=frame), h_contact,
+                                         growth, h_max))
     minimum = gmsh.model.mesh.field.add("Min")
     gmsh.model.mesh.field.setNumbers(minimum, "FieldsList", fields)
     gmsh.model.mesh.field.setAsBackgroundMesh(minimum)
@@ -183,10 +261,15 @@ def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float
 
 
 def refine_contact(gmsh, h_contact: float, growth: float, h_max: float, *, fine_radius: float = 0.0,
-                   fine_half_length: float = 0.0, fine_patch: Sequence[float] | None = None) -> int:
+                   fine_half_length: float = 0.0, fine_patch: Sequence[float] | None = None,
+                   fine_ellipse: Sequence[float] | None = None) -> int:
     """The growth law about the fine zone of a contact pair at the origin (checked by
-    :func:`check_fine_zone`): the box ``fine_patch`` if given (``fine_radius`` unused),
-    else the segment ``|x| <= fine_half_length`` of the x axis, else the origin."""
+    :func:`check_fine_zone`, :func:`check_fine_ellipse`): the elliptic slab ``fine_ellipse``
+    (``|z| <= l_3`` about the ellipse ``x^2/l_1^2 + y^2/l_2^2 <= 1``) or the box ``fine_patch`` if
+    given (``fine_radius`` unused), else the segment ``|x| <= fine_half_length`` of the x axis, else
+    the origin."""
+    if fine_ellipse is not None:
+        return size_threshold(gmsh, ellipse_distance(gmsh, fine_ellipse), h_contact, growth, h_max)
     if fine_patch is not None:
         return size_threshold(gmsh, box_distance(gmsh, fine_patch), h_contact, growth, h_max)
     if fine_half_length > 0.0:
@@ -202,10 +285,12 @@ def uniform_size(gmsh, h_max: float) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeMin", h_max / 2)
 
 
-def size_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float) -> None:
-    """The size of a module or part: :func:`refine_at_points` about ``points`` (n, 3) [m], or
-    :func:`uniform_size` ``h_max`` where ``points`` is None (the builder was given no ``h_contact``)."""
+def size_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float, *,
+                   ellipses=None) -> None:
+    """The size of a module or part: :func:`refine_at_points` about ``points`` (n, 3) [m] (and their
+    ``ellipses``), or :func:`uniform_size` ``h_max`` where ``points`` is None (the builder was given no
+    ``h_contact``)."""
     if points is None:
         uniform_size(gmsh, h_max)
     else:
-        refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius)
+        refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius, ellipses=ellipses)

@@ -239,3 +239,55 @@ def test_fast_assembly_equals_scikit_fem(order):
     K_ref, _ = stiffness(pair, materials, order=order)
     K_fast, _ = stiffness_fast(pair, materials, order=order, chunk=3000)
     assert abs(K_ref - K_fast).max() < 1e-12 * abs(K_ref).max()
+
+
+def test_kept_factor_solves_with_the_same_matrix():
+    """compliance(..., keep_factor=True): W unchanged, and the kept factor of [[K, B^T], [B, 0]] solves
+    u = K^-1 (f - B^T mu) by partial solves.  Catches a factor whose Schur unknowns are not set to mu
+    (or are left at the forward-solve values), or partial solves in the wrong order: u differs at O(1)."""
+    a = sp.random(400, 400, density=0.02, random_state=1)
+    K = (a @ a.T + 3 * sp.eye(400)).tocsr()
+    B = sp.random(15, 400, density=0.03, random_state=2).tocsr()
+    dense = np.linalg.inv(K.toarray())
+    W, factor = linsolve.compliance(K, B, keep_factor=True)
+    assert np.allclose(W, B @ dense @ B.T.toarray(), rtol=1e-10, atol=1e-14 * np.abs(W).max())
+    rng = np.random.default_rng(3)
+    f, mu = rng.standard_normal(400), rng.standard_normal(15)
+    for u, reference in ((factor.solve(f, mu), dense @ (f - B.T @ mu)), (factor(f), dense @ f)):
+        assert np.max(np.abs(u - reference)) < 1e-10 * np.max(np.abs(reference))
+    with pytest.raises(ValueError, match="shape"):
+        factor.solve(f[:-1])
+    factor.free()
+    factor.free()  # idempotent
+    with pytest.raises(RuntimeError, match="freed"):
+        factor.solve(f)
+    assert linsolve.compliance(K, B, "schur", keep_factor=True)[1] is None  # no extra factorisation
+
+
+def test_full_solution_reuses_the_condensation_factor(mortar_flat, monkeypatch):
+    """The VTU's full displacement field needs no second factorisation of K (issue 12 item 6) and equals
+    the one of a fresh factorisation; with the factor freed it factorises once more."""
+    model, ref = mortar_flat
+    state = contact.solve_force(model, 100.0)
+    calls = []
+    original = linsolve.factorize
+
+    def counting(K):
+        calls.append(K.shape)
+        return original(K)
+
+    monkeypatch.setattr(linsolve, "factorize", counting)
+    kept = contact.full_solution(model, state)
+    assert calls == []
+    fresh = contact.solve_free(model.K, model.free, (model.B.T @ state.pressure - model.K @ _loaded(model, state))[
+        model.free], None)
+    assert calls == [(model.free.size, model.free.size)]
+    u = _loaded(model, state)
+    u[model.free] = fresh
+    assert np.max(np.abs(kept - u)) < 1e-9 * np.max(np.abs(u))
+
+
+def _loaded(model, state):
+    u = np.zeros(model.K.shape[0])
+    u[model.load_dofs] = -state.approach
+    return u

@@ -26,7 +26,9 @@ opposite the contact.
 Mesh size (:func:`meshes.refinement.refine_contact`): ``h_contact`` within
 ``fine_radius`` of the segment ``|x| <= fine_half_length`` on the x axis (cover the
 contact ellipse: ``fine_half_length ~ a``, ``fine_radius ~ 1.3 b``), growing by
-the factor ``growth`` per element up to ``h_max``.
+the factor ``growth`` per element up to ``h_max``.  Or, with ``fine_ellipse = (l_1, l_2, l_3)``,
+``h_contact`` within the elliptic slab ``x^2/l_1^2 + y^2/l_2^2 <= 1, |z| <= l_3`` (the contact
+ellipse, thin across the contact: :func:`meshes.refinement.ellipse_distance`), growing from it.
 
 All lengths in metres.  Builders return the path of a cached gmsh 4.1 ``.msh``.
 """
@@ -38,7 +40,7 @@ from pathlib import Path
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.meshes import gmsh_tools
-from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
+from ballbench.meshes.refinement import check_fine_ellipse, check_fine_zone, check_refinement, refine_contact
 
 __all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "SYMMETRIES"]
 
@@ -92,7 +94,10 @@ def _plane_at_z(gmsh, tags: list[int], z: float, tol: float) -> list[int]:
 
 def _build_pair(kind: str, params: dict, counter_factory, *, radius: float, symmetry: str,
                 h_contact: float, growth: float, h_max: float, fine_radius: float, fine_half_length: float,
-                element_order: int, cache: bool) -> Path:
+                element_order: int, cache: bool, fine_ellipse=None) -> Path:
+    fine_ellipse = check_fine_ellipse(fine_ellipse)
+    if fine_ellipse is not None:  # only then: the cache names of the other zones stay as they were
+        params = dict(params, fine_ellipse=list(fine_ellipse))
     path, build = gmsh_tools.cached_msh(kind, params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -123,7 +128,8 @@ def _build_pair(kind: str, params: dict, counter_factory, *, radius: float, symm
             gmsh_tools.physical(gmsh, 2, bf["x0"] + cf["x0"], "symmetry_x")
         if symmetry in ("quarter", "half"):
             gmsh_tools.physical(gmsh, 2, bf["y0"] + cf["y0"], "symmetry_y")
-        refine_contact(gmsh, h_contact, growth, h_max, fine_radius=fine_radius, fine_half_length=fine_half_length)
+        refine_contact(gmsh, h_contact, growth, h_max, fine_radius=fine_radius, fine_half_length=fine_half_length,
+                       fine_ellipse=fine_ellipse)
         gmsh.model.mesh.generate(3)
         if element_order == 2:
             gmsh.model.mesh.setOrder(2)
@@ -138,7 +144,7 @@ def _common_params(**kwargs) -> dict:
 def ball_on_flat_pair(ball_radius: float, h_contact: float, growth: float = 1.3, *, h_max: float | None = None,
                       fine_radius: float = 0.0, fine_half_length: float = 0.0, symmetry: str = "quarter",
                       block_half_width: float | None = None, block_depth: float | None = None,
-                      element_order: int = 1, cache: bool = True) -> Path:
+                      element_order: int = 1, cache: bool = True, fine_ellipse=None) -> Path:
     """Ball (hemisphere, radius ``ball_radius`` [m]) on a flat block; cached ``.msh`` path.
 
     Block defaults: half-width and depth ``R_B``.  Mesh size: module docstring.
@@ -156,12 +162,13 @@ def ball_on_flat_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
                             sym=symmetry, half=half, depth=depth, order=element_order)
     return _build_pair("ball-flat", params, counter, radius=radius, symmetry=symmetry, h_contact=h_contact,
                        growth=growth, h_max=h_max, fine_radius=fine_radius, fine_half_length=fine_half_length,
-                       element_order=element_order, cache=cache)
+                       element_order=element_order, cache=cache, fine_ellipse=fine_ellipse)
 
 
 def ball_on_ball_pair(ball_radius: float, h_contact: float, growth: float = 1.3, *, other_radius: float | None = None,
                       h_max: float | None = None, fine_radius: float = 0.0, fine_half_length: float = 0.0,
-                      symmetry: str = "quarter", element_order: int = 1, cache: bool = True) -> Path:
+                      symmetry: str = "quarter", element_order: int = 1, cache: bool = True,
+                      fine_ellipse=None) -> Path:
     """Ball on ball (the B2B pair): the counter is the hemisphere ``-R_2 <= z <= 0`` of a
     second ball of radius ``other_radius`` (default ``ball_radius``) [m], held on its flat face."""
     radius, h_contact, growth, h_max, fine_radius, fine_half_length, element_order = _check_common(
@@ -179,14 +186,14 @@ def ball_on_ball_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
                             fl=fine_half_length, sym=symmetry, order=element_order)
     return _build_pair("ball-ball", params, counter, radius=radius, symmetry=symmetry, h_contact=h_contact,
                        growth=growth, h_max=h_max, fine_radius=fine_radius, fine_half_length=fine_half_length,
-                       element_order=element_order, cache=cache)
+                       element_order=element_order, cache=cache, fine_ellipse=fine_ellipse)
 
 
 def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float, growth: float = 1.3, *,
                         h_max: float | None = None, fine_radius: float = 0.0, fine_half_length: float = 0.0,
                         symmetry: str = "quarter", block_half_width: float | None = None,
                         block_half_length: float | None = None, block_depth: float | None = None,
-                        element_order: int = 1, cache: bool = True) -> Path:
+                        element_order: int = 1, cache: bool = True, fine_ellipse=None) -> Path:
     """Ball in a straight circular groove of radius ``r_g = conformity * 2 R_B`` [m].
 
     ``conformity`` in (0.5, 1).  Block defaults: half-width (across the groove)
@@ -217,4 +224,4 @@ def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float,
                             order=element_order)
     return _build_pair("ball-groove", params, counter, radius=radius, symmetry=symmetry, h_contact=h_contact,
                        growth=growth, h_max=h_max, fine_radius=fine_radius, fine_half_length=fine_half_length,
-                       element_order=element_order, cache=cache)
+                       element_order=element_order, cache=cache, fine_ellipse=fine_ellipse)

@@ -30,7 +30,7 @@ from ballbench.lowmodel.geometry.groove import gothic_arch
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
 from ballbench.meshes.parts.rail import add_bottom_rail, classify_rail_faces
-from ballbench.meshes.refinement import check_refinement, size_at_points
+from ballbench.meshes.refinement import check_fine_ellipse, check_refinement, size_at_points
 
 __all__ = ["CONTACTS", "fourpoint_module"]
 
@@ -43,7 +43,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                      width: float | None = None, depth: float | None = None, length: float | None = None,
                      h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
                      fine_radius: float | None = None, cap_angle: float | None = None,
-                     cache: bool = True) -> Path:
+                     fine_ellipses=None, cache: bool = True) -> Path:
     """The four-point module as a cached gmsh 4.1 ``.msh`` [m].
 
     ``deviations`` [rad]: contact angle deviations ``(BL, BR, TR, TL)``;
@@ -52,7 +52,11 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     (defaults ``width 2.6 R_B``, ``depth 1.6 R_B``, ``land_height -0.25 R_B``;
     ``length`` default ``(n_balls - 1) spacing + 2.4 R_B``).  With ``h_contact`` [m]
     the mesh is refined around every contact point (four per ball and the B2B
-    point), else uniform ``h_max`` (default ``R_B / 3``).
+    point), else uniform ``h_max`` (default ``R_B / 3``).  ``fine_ellipses`` (with ``h_contact``): the fine
+    zone of each contact shaped as its ellipse instead of a ball of ``fine_radius``: one ``(l_1, l_2, l_3)``
+    [m] for all four contacts or four of them (BL, BR, TR, TL), the elliptic slab of semi-axes ``l_1``
+    along ``e1 = (-n_y, n_x, 0)`` (the cross-section, the Hertz major axis), ``l_2`` along the rails and
+    half-thickness ``l_3`` along the normal ``n`` (:func:`meshes.refinement.ellipse_distance`).
 
     Physical groups: volumes ``bottom_rail``, ``top_rail``, ``ball1`` (``ball2``);
     rail surfaces ``BL``, ``BR`` (bottom flanks), ``TR``, ``TL`` (top flanks),
@@ -88,6 +92,16 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if length < (n_balls - 1) * spacing + 2.0 * radius:
         raise ValueError(f"length must be at least (n_balls - 1) spacing + 2 ball_radius, got {length!r}")
     refine = h_contact is not None
+    if fine_ellipses is not None:
+        if not refine:
+            raise ValueError("fine_ellipses needs h_contact (the size inside the ellipses)")
+        try:
+            items = list(fine_ellipses)
+            nested = len(items) == 4 and all(hasattr(item, "__len__") for item in items)
+        except TypeError:
+            raise ValueError(f"fine_ellipses must be (l_1, l_2, l_3) or four of them [m], got "
+                             f"{fine_ellipses!r}") from None
+        fine_ellipses = [check_fine_ellipse(item) for item in (items if nested else [items] * 4)]
     h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                              growth, h_max, fine_radius)
     angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,
@@ -100,6 +114,8 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                   land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
                   length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
                   fine_radius=fine_radius, cap_angle=cap_angle)
+    if fine_ellipses is not None:  # only then: the cache names of the ball zones stay as they were
+        params["fine_ellipses"] = [list(item) for item in fine_ellipses]
     path, build = cached_msh("fourpoint", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -145,7 +161,12 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
         points = [np.append(p, c[2]) for c in centres for p in in_plane]
         if n_balls == 2:
             points.append((centres[0] + centres[1]) / 2)  # the B2B contact
-        size_at_points(gmsh, points if refine else None, h_contact, growth, h_max, fine_radius)
+        ellipses = None
+        if fine_ellipses is not None:
+            frames = [np.array([[-d[1], d[0], 0.0], [0.0, 0.0, 1.0], d]) for d in ball_directions.values()]
+            ellipses = [(fine_ellipses[i], frames[i]) for _ in centres for i in range(4)]
+            ellipses += [None] * (len(points) - len(ellipses))  # the B2B point keeps the ball zone
+        size_at_points(gmsh, points if refine else None, h_contact, growth, h_max, fine_radius, ellipses=ellipses)
         gmsh.model.mesh.generate(3)
         write_msh(gmsh, path)
     return path

@@ -14,8 +14,8 @@ theta = 2 deg, rho = -0.6; case (a) exact top groove, case (b) top deviations (-
 
 References: lin2019 Table 3 (ANSYS 3.96 N, low-order 4.01 N, analytical 3.74 N; case b: 0).  Each
 FE-informed level is its own model in the report, so error_vs_time.png shows the scene's front.
-Mesh levels: ``h_contact`` in a ball of radius ``fine_radius`` about each of the four contact points,
-``growth`` beyond it (LEVELS).
+Mesh levels: ``h_contact`` in the elliptic slab FINE_ELLIPSE about each of the four contacts (issue 12 item 6;
+before, a ball of radius ``fine_radius`` about each contact point), ``growth`` beyond it (LEVELS).
 """
 from __future__ import annotations
 
@@ -46,10 +46,17 @@ GAP_LIMIT = 6e-6  # m, candidate zone: the largest approach is 3.1 um; the coars
 # each point (meshes.assemblies.fourpoint_module); a small one resolves the minor axes b = 61-102 um (along the
 # rails) at the cost of the ends of the major axes (a = 0.26-0.44 mm, in the growth zone): measured,
 # (30 um, 0.15 mm) gives a, b within 4 % at the DOFs of (70 um, 0.45 mm), which misses b by 18 %.
+# Since issue 12 item 6 the fine zone of each contact is the elliptic slab FINE_ELLIPSE (multiples of its Hertz
+# a, b at the eq 36 force, the larger of the two balls; meshes.refinement.ellipse_distance) and fine_radius is
+# unused (one ball: no B2B point).  Measured at 30 um (case a, one run, load 9): slab (0.6 a, 1.3 b, 0.5 b)
+# 294k DOFs, CPU 58 s, p0 +1.8 .. +3.5 % of Hertz; the 0.15 mm balls 218k DOFs, CPU 36 s, p0 +2.5 .. +8.4 %
+# (a slab over 1.2 a: 550k DOFs, stopped).  With the slabs 22 um would need about 12 GB (25 um: 364k DOFs,
+# 8.0 GB), so the fine study ends at 25 um.
+FINE_ELLIPSE = (0.6, 1.3, 0.5)  # (l_1 / a, l_2 / b, l_3 / b)
 LEVELS = {
     "quick": [(4.0e-5, 1.4, 1.5e-4)],
     "default": [(3.0e-5, 1.35, 1.5e-4)],
-    "fine": [(5.0e-5, 1.45, 1.2e-4), (4.0e-5, 1.4, 1.5e-4), (3.0e-5, 1.35, 1.5e-4), (2.2e-5, 1.3, 1.5e-4)],
+    "fine": [(5.0e-5, 1.45, 1.2e-4), (4.0e-5, 1.4, 1.5e-4), (3.0e-5, 1.35, 1.5e-4), (2.5e-5, 1.35, 1.5e-4)],
 }
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its level
 # wall-time budget of each scene per fidelity [s] (reported; decides only with --strict-time): issue 12's
@@ -57,8 +64,9 @@ TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its l
 SCENE_BUDGET_S = {"quick": TIME_LIMIT_S["quick"], "default": TIME_LIMIT_S["default"],
                   "fine": 5.0 * TIME_LIMIT_S["default"]}
 # rough wall time at the default level on 2 cores [s]: measured 38 s (case a) and 46 s (case b), CPU time
-# 50 / 48 s, with the meshes cached; a cold mesh cache adds the meshing (91-93 s in all, docs/fe_b2b.md)
-SCENE_COST_S = 45.0
+# 50 / 48 s, with the meshes cached and the ball fine zones; the slabs cost 1.6x the CPU time of one level
+# (58 s against 36 s, issue 12 item 6); a cold mesh cache adds the meshing (docs/fe_b2b.md)
+SCENE_COST_S = 70.0
 # Case (b) is zero by the rotation by pi about z that swaps BL <-> TR and BR <-> TL (every ball rolls at
 # v/2).  The FE meshes the two rails and the ball caps independently, so the FE-informed balls keep
 # free-ball velocity deviations of the size of the discretisation error (|epsilon| ~ 4e-5 at the
@@ -99,7 +107,7 @@ def solve_fe_level(case: str, h_contact: float, growth: float, fine_radius: floa
     timings = {}
     start = time.perf_counter()
     path = fourpoint_module(RADIUS, CONFORMITY, BETA0, deviations, 1, h_contact=h_contact, growth=growth,
-                            fine_radius=fine_radius)
+                            fine_radius=fine_radius, fine_ellipses=fine_ellipses(case))
     timings["mesh_s"] = time.perf_counter() - start
     geometry = fp.ModuleGeometry(RADIUS, CONFORMITY, tuple(BETA0 + np.asarray(deviations)))
     model = fp.build_module_model(path, geometry, materials=(E_STEEL, NU_STEEL), gap_limit=GAP_LIMIT)
@@ -109,6 +117,23 @@ def solve_fe_level(case: str, h_contact: float, growth: float, fine_radius: floa
     results = [fp.solve_module(model, side * RHO * VERTICAL, VERTICAL) for side in (1.0, -1.0)]
     timings["contact_solve_s"] = time.perf_counter() - start
     return model, results, timings
+
+
+def fine_ellipses(case: str) -> list | None:
+    """The fine slabs (l_1, l_2, l_3) [m] of the four contacts (BL, BR, TR, TL): FINE_ELLIPSE times the Hertz
+    semi-axes (a, b, b) at the eq 36 forces of the rigid angles, the larger of the two balls (None: ball zones)."""
+    if FINE_ELLIPSE is None:
+        return None
+    from ballbench.lowmodel import fourpoint as rigid
+    from ballbench.lowmodel.contact import hertz
+
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+    angles = BETA0 + np.asarray(case_deviations(case))
+    refs = [hertz.solve_load(geometry, rigid.normal_forces(result_side(ball), VERTICAL, angles)) for ball in (0, 1)]
+    a = np.maximum(np.asarray(refs[0].a), np.asarray(refs[1].a))
+    b = np.maximum(np.asarray(refs[0].b), np.asarray(refs[1].b))
+    k1, k2, k3 = FINE_ELLIPSE
+    return [(k1 * float(a_i), k2 * float(b_i), k3 * float(b_i)) for a_i, b_i in zip(a, b)]
 
 
 def fe_informed(model, results, *, normal: str = "mid"):
@@ -413,7 +438,11 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
 
 def _default_level() -> str:
     h_contact, growth, fine_radius = LEVELS["default"][-1]
-    return f"h {h_contact * 1e6:.0f} um, growth {growth:g}, fine zone {fine_radius * 1e6:.0f} um"
+    if FINE_ELLIPSE is not None:
+        zone = "fine slabs ({:g} a, {:g} b, {:g} b)".format(*FINE_ELLIPSE)
+    else:
+        zone = f"fine zone {fine_radius * 1e6:.0f} um"
+    return f"h {h_contact * 1e6:.0f} um, growth {growth:g}, {zone}"
 
 
 @scene("fe-b2b-linear-a", "FE-informed B2B force on lin2019's two-ball linear-bearing module, case (a) "

@@ -27,7 +27,7 @@ import numpy as np
 from ballbench.fem.hertz_case import LOAD_FACTORS
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
-from ballbench.validation.scene import scene
+from ballbench.validation.scene import KnownGap, scene
 
 MODEL = "fem.contact"
 E_STEEL, NU_STEEL = TABLE1.youngs_modulus, TABLE1.poisson_ratio  # lin2019 Table 1
@@ -53,11 +53,27 @@ LEVELS = {
     "default": [(6.0, 1.3)],
     "fine": [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.2)],
 }
+# the fine zone shaped as the ellipse (fe-hertz-groove-056): the same (n, growth) at the default level, 26 % fewer
+# DOFs; the finest level (8, 1.25) measured b -0.25 %, where the capsule's (8, 1.2) took 349k DOFs
+LEVELS_ELLIPSE = {
+    "quick": [(5.5, 1.4)],
+    "default": [(6.0, 1.3)],
+    "fine": [(5.5, 1.4), (6.0, 1.3), (7.0, 1.25), (8.0, 1.25)],
+}
 # conformity 0.52: the most elongated ellipse (a/b = 8.1), b needs n = 6.5 at the default level
 LEVELS_052 = {
     "quick": [(5.5, 1.4)],
     "default": [(6.5, 1.3)],
     "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.2)],
+}
+# the elliptic fine zone on groove 0.52: measured at (6.5, 1.3) 222k DOFs (capsule 289k), a -0.10 %, b -0.39 %,
+# p0 +0.33 %, delta -0.08 % (capsule -0.08 / -0.37 / +0.32 / -0.08 %).  Groove 0.60 keeps the capsule: with the
+# slab its default (6, 1.3) had 87k DOFs (capsule 122k), b -0.39 % (capsule -0.26 %), and its fine study ended at
+# (8, 1.25) with b -0.31 %, over the finest level's 0.3 % (one run, docs/fem.md)
+LEVELS_052_ELLIPSE = {
+    "quick": [(5.5, 1.4)],
+    "default": [(6.5, 1.3)],
+    "fine": [(5.5, 1.4), (6.5, 1.3), (7.0, 1.25), (8.0, 1.25)],
 }
 # the screw pair is a full model (no symmetry): about 2.5x the DOFs of a quarter groove
 # (and a tighter fine zone, 1.2 b around |x| <= a, still covering the 1.5 F contact)
@@ -73,6 +89,25 @@ LEVELS_CIRCULAR = {
     "fine": [(6.0, 1.4), (8.0, 1.3), (10.0, 1.3), (12.0, 1.25), (14.0, 1.2)],
 }
 PAIRS = ("flat", "ball", "groove", "screw", "nut")
+FINE_ZONES = ("capsule", "ellipse")
+# the fine zone shaped as the contact ellipse (meshes.refinement.ellipse_distance): the elliptic slab of
+# semi-axes (1.2 a, 1.3 b) and half-thickness 0.8 b about the contact, so that it holds the 1.5 F contact of the
+# sweep (a, b x 1.145); measured on groove 0.56 at (6, 1.3): 109k DOFs against the capsule's 147k, b -0.33 %
+# against -0.42 % (docs/fem.md)
+ELLIPSE_ZONE = (1.2, 1.3, 0.8)  # (l_1 / a, l_2 / b, l_3 / b)
+# issue 12 item 6: the fine level of fe-hertz-groove-056 is to reach a, b within 0.2 % and p0 within 0.3 % of Hertz
+FINE_TARGETS_056 = {"a": 0.002, "b": 0.002, "p0": 0.003}
+B_PLATEAU_GAP = KnownGap(
+    reason="b of the conformity-0.56 groove levels off at -0.25 % of Hertz: the fine study's (7, 1.25) and "
+           "(8, 1.25) give -0.27 % / -0.24 % (172k / 218k DOFs), (9, 1.25) -0.25 % (273k), while a and p0 keep "
+           "converging (a -0.09 / -0.02 %, p0 +0.20 / +0.16 % at (8, 1.25) / (9, 1.25)); the capsule zone at 349k "
+           "DOFs gave -0.25 % too. Ruled out at (8, 1.25): the mortar quadrature (64 instead of 16 sub-triangles: "
+           "b -0.237 %), the finite bodies (blocks of 1.0 R instead of 0.6 R: -0.251 %), the growth away from "
+           "the zone ((6, 1.2) and (6, 1.3) alike). Not identified: the piecewise-linear pressure and its ellipse "
+           "fit at the contact edge are the remaining suspects; the BEM (tamaas, "
+           "benchmarks/test_bench_fem_vs_tamaas.py) reaches 0.001 %.",
+    evidence="docs/fem.md, fine-zone table (levels (8, 1.25, 0.6 b) and (9, 1.25, 0.8 b)) and the convergence study "
+             "of fe-hertz-groove-056 --fine (convergence.csv)")
 
 
 @dataclass(frozen=True)
@@ -90,10 +125,14 @@ class FeScene:
     levels: dict
     conformity: float | None = None
     cost_s: float = 30.0  # rough wall time of the default level on 2 shared cores [s] (``ballbench scenes``)
+    fine_zone: str = "capsule"  # groove pairs: "capsule" about the major axis or "ellipse" (ELLIPSE_ZONE)
+    fine_targets: dict | None = None  # extra tolerances of the finest level (issue 12 item 6), checked at --fine
 
     def __post_init__(self):
         if self.pair not in PAIRS:
             raise ValueError(f"pair must be one of {PAIRS}, got {self.pair!r}")
+        if self.fine_zone not in FINE_ZONES:
+            raise ValueError(f"fine_zone must be one of {FINE_ZONES}, got {self.fine_zone!r}")
         if (self.pair == "groove") != (self.conformity is not None):
             raise ValueError("conformity is given for (and only for) a groove pair")
 
@@ -104,9 +143,9 @@ FE_SCENES = (
     FeScene("fe-hertz-ball-ball", "FE contact, ball on ball (R 5 mm each), 100 N: a, b, p0, delta against Hertz",
             "ball", LEVELS_CIRCULAR, cost_s=15),
     FeScene("fe-hertz-groove-052", "FE contact, ball in a straight groove, conformity 0.52, 100 N: against Hertz",
-            "groove", LEVELS_052, conformity=0.52, cost_s=90),
+            "groove", LEVELS_052_ELLIPSE, conformity=0.52, cost_s=60, fine_zone="ellipse"),
     FeScene("fe-hertz-groove-056", "FE contact, ball in a straight groove, conformity 0.56, 100 N: against Hertz",
-            "groove", LEVELS, conformity=0.56, cost_s=40),
+            "groove", LEVELS_ELLIPSE, conformity=0.56, cost_s=30, fine_zone="ellipse", fine_targets=FINE_TARGETS_056),
     FeScene("fe-hertz-groove-060", "FE contact, ball in a straight groove, conformity 0.60, 100 N: against Hertz",
             "groove", LEVELS, conformity=0.60, cost_s=25),
     FeScene("fe-hertz-screw", "FE contact, ball in a helical screw groove (lin2019 Table 4), 100 N: against Hertz",
@@ -140,13 +179,17 @@ class PairCase:
         return (self.levels or LEVELS)[fidelity]
 
 
-def _groove_case(conformity: float, levels: dict) -> PairCase:
+def _groove_case(conformity: float, levels: dict, fine_zone: str = "capsule") -> PairCase:
     from ballbench.meshes.assemblies import contact_pairs
 
     geometry = hertz.ball_in_groove(BALL_RADIUS, conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
     ref = hertz.solve_load(geometry, LOAD)
+    a, b = float(ref.a), float(ref.b)
 
     def build(h, growth):
+        if fine_zone == "ellipse":
+            return contact_pairs.ball_in_groove_pair(BALL_RADIUS, conformity, h, growth, fine_ellipse=(
+                ELLIPSE_ZONE[0] * a, ELLIPSE_ZONE[1] * b, ELLIPSE_ZONE[2] * b))
         return contact_pairs.ball_in_groove_pair(BALL_RADIUS, conformity, h, growth, fine_radius=1.4 * ref.b,
                                                  fine_half_length=1.1 * ref.a)
 
@@ -172,7 +215,7 @@ def pair_case(scene_name: str) -> PairCase:
             BALL_RADIUS, h, g, fine_radius=1.3 * ref.a), geometry, LOAD,
             "lowmodel.contact.hertz.ball_on_ball (R_B 5 mm each, 100 N)", entry.levels)
     if entry.pair == "groove":
-        return _groove_case(entry.conformity, entry.levels)
+        return _groove_case(entry.conformity, entry.levels, entry.fine_zone)
     from ballbench.lowmodel.geometry import groove
     from ballbench.meshes.assemblies import screw_pair
 
@@ -244,7 +287,8 @@ def nodal_stress(basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: flo
 
 def write_fields(result, ref, directory, *, scene_name: str, fidelity: str, level: tuple[float, float]) -> list:
     """Write ``fields.vtu`` (quadratic tetrahedra carrying the P2 solution at all nodes; field names carry their
-    units) and ``fields.json`` (what ``show`` needs).  One more sparse solve for the full displacement field.
+    units) and ``fields.json`` (what ``show`` needs).  One more sparse solve for the full displacement field,
+    with the factor the condensation kept (no second factorisation).
     Returns the two paths.
     """
     import json
@@ -334,6 +378,8 @@ def _run(run, scene_name: str) -> None:
                          wall_s=wall, **{k if k.endswith("_s") else f"{k}_s": v for k, v in result.timings.items()},
                          **{f"err_{q}": e for q, e in errors.items()}))
         results.append((result, ref, wall))
+        if len(results) < len(levels) and result.model.factor is not None:
+            result.model.factor.free()  # only the checked level's factor is kept (for the VTU export)
     result, ref, wall = results[-1]
     tolerances = TOLERANCES[run.fidelity]
     level = "finest level" if run.fidelity == "fine" else f"{run.fidelity} level"
@@ -342,6 +388,13 @@ def _run(run, scene_name: str) -> None:
                   reference=float(getattr(ref, quantity)), source=case.source, tolerance=tolerances[quantity],
                   time_s=wall, note=f"{level}: n = b/h = {rows[-1]['n']:g}, growth {rows[-1]['growth']:g}, "
                                     f"{result.ndofs} DOFs")
+    targets = fe_scene(scene_name).fine_targets
+    if run.fidelity == "fine" and targets:
+        for quantity, tolerance in targets.items():
+            run.check(model=MODEL, quantity=f"{quantity} (issue 12 target)", unit=dict(QUANTITIES)[quantity],
+                      value=getattr(result, quantity), reference=float(getattr(ref, quantity)), source=case.source,
+                      tolerance=tolerance, time_s=wall, known_gap=B_PLATEAU_GAP if quantity == "b" else None,
+                      note="finest level: issue 12 item 6 asks a, b <= 0.2 %, p0 <= 0.3 % at --fine")
     run.check(model=MODEL, quantity="force_sum", unit="N", value=result.force_sum, reference=case.force,
               source="load equilibrium (sum of contact forces)", tolerance=1e-9, time_s=wall)
     run.budget(model=MODEL, quantity="wall_time", unit="s", value=wall, budget=TIME_LIMIT_S[run.fidelity],
@@ -357,14 +410,15 @@ def _run(run, scene_name: str) -> None:
         writer.writeheader()
         writer.writerows(rows)
     run.add_artifact(run.path("convergence.csv"))
-    if run.fidelity != "quick":  # one more sparse solve; CI skips it
+    if run.fidelity != "quick":  # one more solve with the kept factor; CI skips it
         start = time.perf_counter()
         for path in write_fields(result, ref, run.path(""), scene_name=scene_name, fidelity=run.fidelity,
                                  level=levels[-1]):
             run.add_artifact(path)
         run.note(f"fields.vtu (quadratic tetrahedra: the P2 displacement at all nodes, contact pressure, von Mises "
                  f"and sigma_zz of the P2 stress; `ballbench show {scene_name}` draws them) took "
-                 f"{time.perf_counter() - start:.1f} s more (one sparse solve for the full displacement field); "
+                 f"{time.perf_counter() - start:.1f} s more (one solve with the factor of the condensation, no second "
+                 "factorisation); "
                  "not part of the checked wall time")
     _plot(run, scene_name, rows)
 

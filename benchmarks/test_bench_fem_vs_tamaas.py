@@ -1,0 +1,113 @@
+"""FE Hertz benchmark side by side with a half-space BEM code (issue 12 item 6).
+
+``fe-hertz-groove-056`` at its default level (the scene's own mesh level and solve:
+``validation.scenes.fe_hertz.solve_level``) against tamaas at 256 x 256 on the same Hertz
+problem (ball in a straight groove, conformity 0.56, R_B 5 mm, 100 N, steel; Hertz's
+quadratic gap), tamaas on one thread (``OMP_NUM_THREADS=1``, in a child process so that its
+OpenMP runtime starts with it), measured in one run.  Both errors in a, b and p0 against
+``lowmodel.contact.hertz`` and both times (wall and CPU) are printed.
+
+Target (issue 12): ours within 8x tamaas's time, the accuracy class kept (a, b 0.5 %, p0 1 %).
+The FE level is timed as the scene checks it (assembly + condensation + load sweep + fit,
+the mesh cached; the mesh build is timed separately, uncached, and printed too).
+
+Run: ``.venv/bin/python -m pytest benchmarks/test_bench_fem_vs_tamaas.py -s``.
+"""
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from ballbench.lowmodel.contact import hertz
+
+SCENE = "fe-hertz-groove-056"
+GRID = 256
+TOLERANCE = 1e-8  # tamaas's Polonsky-Keer relative tolerance, as benchmarks/test_bench_halfspace.py
+TARGET_RATIO = 8.0
+
+
+def _timed(function):
+    wall, cpu = time.perf_counter(), time.process_time()
+    result = function()
+    return result, time.perf_counter() - wall, time.process_time() - cpu
+
+
+_TAMAAS = """
+import json, sys, time
+import numpy as np
+import tamaas as tm
+from ballbench.lowmodel.contact import halfspace as hs
+from ballbench.lowmodel.contact import hertz
+radius, conformity, modulus, ratio, force, grid_n, tolerance = json.loads(sys.argv[1])
+geometry = hertz.ball_in_groove(radius, conformity, youngs_modulus=modulus, poisson_ratio=ratio)
+contact = hertz.solve_load(geometry, force)
+tm.set_log_level(tm.LogLevel.error)
+grid = hs.hertz_surface_grid(float(contact.a), float(contact.b), grid_n)
+gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
+sizes = [grid.nx * grid.dx, grid.ny * grid.dy]
+wall, cpu = time.perf_counter(), time.process_time()
+model = tm.ModelFactory.createModel(tm.model_type.basic_2d, sizes, [grid.nx, grid.ny])
+model.E, model.nu = geometry.contact_modulus, 0.0  # E* = E / (1 - nu^2)
+tm.ModelFactory.registerNonPeriodic(model, "dcfft")
+solver = tm.PolonskyKeerRey(model, -gap, tolerance)
+solver.setIntegralOperator("dcfft")
+solver.solve(force / (sizes[0] * sizes[1]))  # mean pressure over the grid
+pressure = np.array(model.traction)
+wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+a, b, _, _ = hs.pressure_ellipse(pressure, grid)
+print(json.dumps(dict(a=a, b=b, p0=float(pressure.max()), wall=wall, cpu=cpu, version=tm.__version__)))
+"""
+
+
+def _tamaas(conformity):
+    """tamaas on the groove's Hertz problem, in a child process with ``OMP_NUM_THREADS=1`` (set before
+    its OpenMP runtime starts); its own wall and CPU time of model set-up and solve."""
+    import json
+    import subprocess
+    import sys
+
+    pytest.importorskip("tamaas")
+    from ballbench.validation.scenes import fe_hertz
+
+    args = [fe_hertz.BALL_RADIUS, conformity, fe_hertz.E_STEEL, fe_hertz.NU_STEEL, fe_hertz.LOAD, GRID, TOLERANCE]
+    out = subprocess.run([sys.executable, "-c", _TAMAAS, json.dumps(args)], check=True, capture_output=True,
+                         text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_bench_fe_vs_tamaas(benchmark, tmp_path, monkeypatch):
+    from ballbench.validation.scenes import fe_hertz
+
+    entry = fe_hertz.fe_scene(SCENE)
+    case = fe_hertz.pair_case(SCENE)
+    n, growth = case.level_list("default")[-1]
+    ref = hertz.solve_load(case.geometry, case.force)
+    theirs = _tamaas(entry.conformity)
+
+    monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))  # the mesh build, uncached: what a first run pays
+    _, mesh_wall, mesh_cpu = _timed(lambda: case.builder(float(ref.b) / n, growth))
+    timed = benchmark.pedantic(_timed, args=(lambda: fe_hertz.solve_level(case, n, growth),), rounds=1,
+                               iterations=1)  # the benchmark's own statistic is the FE level's wall time
+    (result, _), wall, cpu = timed
+    ours = dict(a=result.a, b=result.b, p0=result.p0)
+    errors = {who: {q: values[q] / float(getattr(ref, q)) - 1.0 for q in ("a", "b", "p0")}
+              for who, values in (("ours", ours), ("tamaas", theirs))}
+    ratio_cpu, ratio_wall = cpu / theirs["cpu"], wall / theirs["wall"]
+    benchmark.extra_info.update(ndofs=result.ndofs, ours_wall_s=wall, ours_cpu_s=cpu, mesh_wall_s=mesh_wall,
+                                tamaas_wall_s=theirs["wall"], tamaas_cpu_s=theirs["cpu"], ratio_cpu=ratio_cpu,
+                                ratio_wall=ratio_wall, load_average=os.getloadavg()[0],
+                                **{f"{who}_err_{q}": e for who, err in errors.items() for q, e in err.items()})
+
+    def line(who):
+        return ", ".join(f"{q} {100 * e:+.3f} %" for q, e in errors[who].items())
+
+    print(f"\n{SCENE} default level (n = b/h {n:g}, growth {growth:g}, {result.ndofs} DOFs) vs tamaas "
+          f"{theirs['version']} {GRID} x {GRID} (PolonskyKeerRey, dcfft, tolerance {TOLERANCE:g}, one thread); "
+          f"load average {os.getloadavg()[0]:.1f}\n"
+          f"  ours:   wall {wall:.2f} s, CPU {cpu:.2f} s (+ mesh build {mesh_wall:.2f} s wall, {mesh_cpu:.2f} s CPU, "
+          f"uncached); error vs Hertz {line('ours')}\n"
+          f"  tamaas: wall {theirs['wall']:.2f} s, CPU {theirs['cpu']:.2f} s; error vs Hertz {line('tamaas')}\n"
+          f"  time ratio ours/tamaas: CPU {ratio_cpu:.1f}, wall {ratio_wall:.1f} (target <= {TARGET_RATIO:g}); "
+          f"with the mesh build: CPU {(cpu + mesh_cpu) / theirs['cpu']:.1f}")
