@@ -230,7 +230,8 @@ def _run(run, case: str) -> None:
                    "four forces those of eq 36 (this checks the FE's equilibrium, not a modelling choice)")
     if run.fidelity in TIME_LIMIT_S:
         run.budget(model=name, quantity="wall_time", unit="s", value=wall, budget=TIME_LIMIT_S[run.fidelity],
-                   time_s=wall, source=f"issue 12 time budget at the {run.fidelity} level (a cached mesh costs nothing)")
+                   time_s=wall,
+                   source=f"issue 12 time budget at the {run.fidelity} level (a cached mesh costs nothing)")
     with open(run.path("levels.csv"), "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
