@@ -29,7 +29,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb"]
+from ballbench.lowmodel.solvers import newton
+
+__all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb", "free_ball_starts"]
 
 
 @dataclass(frozen=True)
@@ -168,3 +170,26 @@ class SampledCoulomb:
         if ball is not None:
             return residual[0], jac[0] if jacobian else None, slip, force
         return residual, jac, slip, force
+
+
+def free_ball_starts(evaluate, guess: np.ndarray, *, tolerance: float, max_iterations: int,
+                     what: str) -> tuple[np.ndarray, int]:
+    """Every ball on its own, with its own points only: the start of a coupled B2B solve.
+
+    ``evaluate(states, ball=b)`` returns ``(residual, jacobian, ...)`` of ball ``b`` (shapes ``(k,)``, ``(k, k)``)
+    for the ``(n, k)`` states; ``guess`` is ``(n, k)``.  Returns the ``(n, k)`` free states and the largest Newton
+    iteration count (:func:`lowmodel.solvers.newton`, which raises ConvergenceError naming ``what`` and the ball).
+    """
+    free = np.empty_like(guess)
+    iterations = 0
+    for b in range(len(guess)):
+        def single(x, b=b):
+            states = guess.copy()
+            states[b] = x
+            residual, jac = evaluate(states, ball=b)[:2]
+            return residual, jac
+
+        free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
+                                 what=f"{what} {b}")
+        iterations = max(iterations, its)
+    return free, iterations

@@ -58,7 +58,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch, check_patch, ellipse_samples
+from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
+                                                 free_ball_starts)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
@@ -209,18 +210,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         residual, jac, _, _ = samples.evaluate(states)
         return residual, jac
 
-    free = np.empty_like(guess)
-    iterations = 0
-    for b in range(n):  # every ball on its own: the start of the coupled solve
-        def single(x, b=b):
-            states = guess.copy()
-            states[b] = x
-            residual, jac, _, _ = samples.evaluate(states, ball=b)  # this ball's points only
-            return residual, jac
-
-        free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
-                                 what=f"FE-informed ball {b}")
-        iterations = max(iterations, its)
+    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
+                                        max_iterations=max_iterations, what="FE-informed ball")
     if touching.size == 0:
         states, forces = free, np.zeros(n - 1)
         residual_norm = float(np.max(np.abs(ball_function(states)[0])))

@@ -63,7 +63,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch, check_patch, ellipse_samples
+from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
+                                                 free_ball_starts)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import screw_b2b
 from ballbench.lowmodel.screw import screw_ball as sb
@@ -254,18 +255,8 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         residual, jac, _, _ = samples.evaluate(states)
         return residual, jac
 
-    free = np.empty_like(guess)
-    iterations = 0
-    for b in range(n):  # every ball on its own: the start of the coupled solve
-        def single(x, b=b):
-            states = guess.copy()
-            states[b] = x
-            residual, jac, _, _ = samples.evaluate(states, ball=b)  # this ball's points only
-            return residual, jac
-
-        free[b], _, its = newton(single, guess[b], tolerance=tolerance, max_iterations=max_iterations,
-                                 what=f"FE-informed screw ball {b}")
-        iterations = max(iterations, its)
+    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
+                                        max_iterations=max_iterations, what="FE-informed screw ball")
     forces = np.zeros(n - 1)
     if touching.size == 0:
         states = free
