@@ -34,6 +34,8 @@ from ballbench.lowmodel.contact import halfspace
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = [
+    "wm_parameters",
+    "wm_top_level",
     "ROELANDS_PRESSURE",
     "ROELANDS_Z",
     "roelands_viscosity",
@@ -133,6 +135,27 @@ def hamrock_dowson_film(entrainment_speed: float, load: float, radius_x: float, 
     return {"h_c": h_c, "h_min": h_min, "U": U, "G": G, "W": W, "k": k}
 
 
+def wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma, ridges):
+    """Checked ``(D, G [m], L [m], L_s [m], gamma, M)`` of the WM surface: D in (2, 3), G, L, L_s > 0,
+    L_s < L, gamma > 1, M >= 1 (ValueError naming the parameter otherwise)."""
+    D = checks.bounded("fractal_dimension", fractal_dimension, 2.0, 3.0)
+    G = checks.positive("roughness_scale", roughness_scale, "m")
+    L = checks.positive("sample_length", sample_length, "m")
+    Ls = checks.positive("cutoff_length", cutoff_length, "m")
+    if not Ls < L:
+        raise ValueError(f"cutoff_length must be < sample_length {L!r} m, got {Ls!r}")
+    gamma = checks.positive("gamma", gamma)
+    if not gamma > 1.0:
+        raise ValueError(f"gamma must be > 1, got {gamma!r}")
+    M = checks.count("ridges", ridges, 1)
+    return D, G, L, Ls, gamma, M
+
+
+def wm_top_level(sample_length: float, cutoff_length: float, gamma: float) -> int:
+    """``n_max = floor(ln(L / L_s) / ln gamma)`` of Yan & Komvopoulos eq 4 (the smallest wavelength L_s)."""
+    return int(math.floor(math.log(sample_length / cutoff_length) / math.log(gamma)))
+
+
 def weierstrass_mandelbrot_surface(x, y, fractal_dimension: float, roughness_scale: float, sample_length: float,
                                    *, cutoff_length: float, gamma: float = 1.5, ridges: int = 10,
                                    seed: int = 0) -> np.ndarray:
@@ -150,18 +173,10 @@ def weierstrass_mandelbrot_surface(x, y, fractal_dimension: float, roughness_sca
     ``phi_mn`` uniform in [0, 2 pi) from ``numpy.random.default_rng(seed)``.
     ``z = 0`` at the origin by construction.
     """
-    D = checks.bounded("fractal_dimension", fractal_dimension, 2.0, 3.0)
-    G = checks.positive("roughness_scale", roughness_scale, "m")
-    L = checks.positive("sample_length", sample_length, "m")
-    Ls = checks.positive("cutoff_length", cutoff_length, "m")
-    if not Ls < L:
-        raise ValueError(f"cutoff_length must be < sample_length {L!r} m, got {Ls!r}")
-    gamma = checks.positive("gamma", gamma)
-    if not gamma > 1.0:
-        raise ValueError(f"gamma must be > 1, got {gamma!r}")
-    M = checks.count("ridges", ridges, 1)
+    D, G, L, Ls, gamma, M = wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma,
+                                          ridges)
     x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
-    n_max = int(math.floor(math.log(L / Ls) / math.log(gamma)))
+    n_max = wm_top_level(L, Ls, gamma)
     phases = np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, size=(M, n_max + 1))
     r = np.hypot(x, y)
     theta = np.arctan2(y, x)

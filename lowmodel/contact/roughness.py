@@ -28,29 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import ehl, halfspace
 
 __all__ = ["wm_amplitude", "wm_rms", "wm_line_spectrum", "RacewayRoughness", "raceway_roughness"]
-
-
-def _top_level(sample_length: float, cutoff_length: float, gamma: float) -> int:
-    # n_max of Yan & Komvopoulos eq 4 (same rule as ehl.weierstrass_mandelbrot_surface)
-    return int(math.floor(math.log(sample_length / cutoff_length) / math.log(gamma)))
-
-
-def _inputs(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma, ridges):
-    D = checks.bounded("fractal_dimension", fractal_dimension, 2.0, 3.0)
-    G = checks.positive("roughness_scale", roughness_scale, "m")
-    L = checks.positive("sample_length", sample_length, "m")
-    Ls = checks.positive("cutoff_length", cutoff_length, "m")
-    if not Ls < L:
-        raise ValueError(f"cutoff_length must be < sample_length {L!r} m, got {Ls!r}")
-    gamma = checks.positive("gamma", gamma)
-    if not gamma > 1.0:
-        raise ValueError(f"gamma must be > 1, got {gamma!r}")
-    M = checks.count("ridges", ridges, 1)
-    return D, G, L, Ls, gamma, M
 
 
 def wm_amplitude(fractal_dimension: float, roughness_scale: float, sample_length: float, *, gamma: float = 1.5,
@@ -59,8 +39,8 @@ def wm_amplitude(fractal_dimension: float, roughness_scale: float, sample_length
 
     The ridge ``m``, level ``n`` term has amplitude ``C gamma^((D-3) n)``.
     """
-    D, G, L, _, gamma, M = _inputs(fractal_dimension, roughness_scale, sample_length, 0.5 * sample_length, gamma,
-                                   ridges)
+    D, G, L, _, gamma, M = ehl.wm_parameters(fractal_dimension, roughness_scale, sample_length,
+                                             0.5 * sample_length, gamma, ridges)
     return L * (G / L) ** (D - 2.0) * math.sqrt(math.log(gamma) / M)
 
 
@@ -77,8 +57,9 @@ def wm_rms(fractal_dimension: float, roughness_scale: float, sample_length: floa
     ``fractal_dimension`` D in (2, 3), ``roughness_scale`` G [m],
     ``sample_length`` L [m], ``cutoff_length`` L_s [m] < L, ``gamma`` > 1.
     """
-    D, G, L, Ls, gamma, _ = _inputs(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma, 1)
-    n = np.arange(_top_level(L, Ls, gamma) + 1)
+    D, G, L, Ls, gamma, _ = ehl.wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_length,
+                                              gamma, 1)
+    n = np.arange(ehl.wm_top_level(L, Ls, gamma) + 1)
     return L * (G / L) ** (D - 2.0) * math.sqrt(0.5 * math.log(gamma) * float(np.sum(gamma ** (2.0 * (D - 3.0) * n))))
 
 
@@ -92,8 +73,9 @@ def wm_line_spectrum(fractal_dimension: float, roughness_scale: float, sample_le
     ``C gamma^((D-3) n)``: ``log(amplitude)`` falls with slope ``(D - 3)`` against
     ``log(frequency)`` (power spectrum ``~ f^(2D - 6)``).
     """
-    D, G, L, Ls, gamma, M = _inputs(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma, ridges)
-    n = np.arange(_top_level(L, Ls, gamma) + 1)
+    D, G, L, Ls, gamma, M = ehl.wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_length,
+                                              gamma, ridges)
+    n = np.arange(ehl.wm_top_level(L, Ls, gamma) + 1)
     amplitude = wm_amplitude(D, G, L, gamma=gamma, ridges=M) * gamma ** ((D - 3.0) * n)
     return gamma**n / L, amplitude
 
