@@ -31,7 +31,8 @@ import numpy as np
 
 from ballbench.lowmodel.solvers import newton
 
-__all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb", "free_ball_starts"]
+__all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb", "free_ball_starts", "StackedPatches",
+           "stack_patches"]
 
 
 @dataclass(frozen=True)
@@ -193,3 +194,33 @@ def free_ball_starts(evaluate, guess: np.ndarray, *, tolerance: float, max_itera
                                  what=f"{what} {b}")
         iterations = max(iterations, its)
     return free, iterations
+
+
+@dataclass(frozen=True)
+class StackedPatches:
+    """The sample points of all patches of all balls, stacked (``(k,)`` or ``(k, 3)`` arrays).
+
+    points [m] and normals as given; load = force / F_ref; moving = ``moving_value`` on patches with
+    ``top=True`` (the driven groove: linear top rail or nut), 0 elsewhere; ball and patch indices
+    (patch = ``ball * n_patches + position``).
+    """
+
+    points: np.ndarray
+    normals: np.ndarray
+    load: np.ndarray
+    moving: np.ndarray
+    ball: np.ndarray
+    patch: np.ndarray
+
+
+def stack_patches(balls, n_patches: int, reference_force: float, moving_value: float) -> StackedPatches:
+    """Stack the ``TractionPatch`` samples of ``balls`` (a sequence of patch sequences), see StackedPatches."""
+    rows = [(b * n_patches + p, b, patch) for b, patches in enumerate(balls) for p, patch in enumerate(patches)]
+    count = [len(patch.forces) for _, _, patch in rows]
+    return StackedPatches(
+        points=np.concatenate([patch.points for _, _, patch in rows]),
+        normals=np.concatenate([patch.normals for _, _, patch in rows]),
+        load=np.concatenate([patch.forces / reference_force for _, _, patch in rows]),
+        moving=np.repeat([moving_value if patch.top else 0.0 for _, _, patch in rows], count),
+        ball=np.repeat([b for _, b, _ in rows], count),
+        patch=np.repeat([i for i, _, _ in rows], count))

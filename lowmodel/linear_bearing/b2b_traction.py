@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts)
+                                                 free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
@@ -111,26 +111,18 @@ class _Samples(SampledCoulomb):
     """All points of all balls, flattened, with their ball and patch indices (units mu F_ref and |v|)."""
 
     def __init__(self, balls, radius: float, reference_force: float, velocity_sign: float, eps: float):
-        pts, nrm, load, top, ball_of, patch_of = [], [], [], [], [], []
         self.n_patches = len(balls[0])
-        for b, patches in enumerate(balls):
-            for p, patch in enumerate(patches):
-                pts.append(patch.points)
-                nrm.append(patch.normals)
-                load.append(patch.forces / reference_force)
-                top.append(np.full(len(patch.forces), velocity_sign if patch.top else 0.0))
-                ball_of.append(np.full(len(patch.forces), b))
-                patch_of.append(np.full(len(patch.forces), b * self.n_patches + p))
-        self.r = np.concatenate(pts)
-        self.patch = np.concatenate(patch_of)
+        stacked = stack_patches(balls, self.n_patches, reference_force, velocity_sign)
+        self.r = stacked.points
+        self.patch = stacked.patch
         rx, ry, rz = self.r.T / radius
         zero, one = np.zeros_like(rx), np.ones_like(rx)
         # D[k, :, j] = d s_k / d x_j, x = (v_B, omega_x R_B, omega_y R_B)/|v|; also the moment rows (D^T f)
         slip_matrix = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
                                 np.stack([rz, zero, -rx], 1)], axis=2)
         groove = np.zeros((len(rx), 3))
-        groove[:, 2] = np.concatenate(top)  # groove velocity along +z (units |v|)
-        super().__init__(np.concatenate(ball_of), slip_matrix, groove, np.concatenate(nrm), np.concatenate(load),
+        groove[:, 2] = stacked.moving  # groove velocity along +z (units |v|)
+        super().__init__(stacked.ball, slip_matrix, groove, stacked.normals, stacked.load,
                          len(balls), eps)
 
 

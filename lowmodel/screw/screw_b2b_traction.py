@@ -64,7 +64,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts)
+                                                 free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import screw_b2b
 from ballbench.lowmodel.screw import screw_ball as sb
@@ -178,17 +178,9 @@ class _Samples(SampledCoulomb):
         radius, ell = module.ball_radius, module.helix_radius
         s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
         sign = math.copysign(1.0, module.nut_speed)
-        pts, nrm, load, nut, ball_of, patch_of = [], [], [], [], [], []
-        for b, patches in enumerate(balls):
-            for p, patch in enumerate(patches):
-                pts.append(patch.points)
-                nrm.append(patch.normals)
-                load.append(patch.forces / reference_force)
-                nut.append(np.full(len(patch.forces), sign if patch.top else 0.0))
-                ball_of.append(np.full(len(patch.forces), b))
-                patch_of.append(np.full(len(patch.forces), b * self.n_patches + p))
-        self.r = np.concatenate(pts)
-        self.patch = np.concatenate(patch_of)
+        stacked = stack_patches(balls, self.n_patches, reference_force, sign)
+        self.r = stacked.points
+        self.patch = stacked.patch
         rx, ry, rz = self.r.T
         # helical field at the nominal ball centre + r, in units of L / 2 pi (lin2019 eqs 36, 43)
         self.helical = np.stack([s * rz - c * ry, ell + c * rx, -s * rx], axis=1) / ell
@@ -197,9 +189,9 @@ class _Samples(SampledCoulomb):
         # D[k, :, j] = d s_k / d x_j: orbit (H), then e_j x (r / R_B) for the spin (omega x r)
         slip_matrix = np.stack([self.helical, np.stack([zero, -z, y], 1), np.stack([z, zero, -x], 1),
                                 np.stack([-y, x, zero], 1)], axis=2)
-        self.on_nut = np.concatenate(nut)
-        super().__init__(np.concatenate(ball_of), slip_matrix, self.on_nut[:, None] * self.helical,
-                         np.concatenate(nrm), np.concatenate(load), len(balls), eps)
+        self.on_nut = stacked.moving
+        super().__init__(stacked.ball, slip_matrix, self.on_nut[:, None] * self.helical,
+                         stacked.normals, stacked.load, len(balls), eps)
 
 
 def _b2b_rows(module: sb.ScrewModule) -> np.ndarray:
