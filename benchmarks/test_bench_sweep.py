@@ -6,7 +6,10 @@ about 8 ms per case).  The overhead per case is ``(workers x wall - serial compu
 no-op model (``builtins:dict``) it is the pure cost of tasks, transfer and Parquet writing.
 
 The machine is shared (2 cores); the load average at the start is printed with every figure, and `cpu_scaling`
-(two spinning processes against one, measured just before) says how much of the second core was ours.
+(two spinning processes against one, measured just before) says how much of the second core was ours;
+`two_process_rate` (two plain processes running the serial loop on the two halves at once, no dask) is what
+this machine gives two single-threaded workers at that moment.  The cluster is started with
+`sweep.LOCAL_CLUSTER_CONFIG`, as `ballbench sweep` starts it.
 
 Run: python -m pytest benchmarks/test_bench_sweep.py -s
 """
@@ -24,10 +27,12 @@ WORKERS = 2
 
 @pytest.fixture(scope="module")
 def client():
+    import dask
     from dask.distributed import Client, LocalCluster
 
-    cluster = LocalCluster(n_workers=WORKERS, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0",
-                           host="127.0.0.1")
+    with dask.config.set(sweep.LOCAL_CLUSTER_CONFIG):  # the settings of run_sweep's own LocalCluster
+        cluster = LocalCluster(n_workers=WORKERS, threads_per_worker=1, processes=True,
+                               dashboard_address="127.0.0.1:0", host="127.0.0.1")
     with Client(cluster) as c:
         yield c
     cluster.close()
@@ -57,6 +62,27 @@ def cpu_scaling(seconds: float = 3.0) -> float:
     with multiprocessing.get_context("spawn").Pool(2) as pool:
         two = sum(pool.map(_spin, [seconds, seconds]))
     return two / (0.5 * (one + _spin(seconds)))
+
+
+def _serial_half(args) -> float:
+    raw, first, stop, chunk = args
+    sweep.run_chunk(raw, first, first + 1)  # warm-up, as _serial_seconds
+    start = time.perf_counter()
+    for begin in range(first, stop, chunk):
+        sweep.run_chunk(raw, begin, min(begin + chunk, stop))
+    return time.perf_counter() - start
+
+
+def two_process_rate(spec: sweep.SweepSpec) -> float:
+    """Cases/s of two plain processes (no dask) each running the serial loop over one half of the cases at the
+    same time: what this machine gives two single-threaded workers now, the ceiling of any LocalCluster(2)."""
+    import multiprocessing
+
+    half = spec.n_cases // 2
+    jobs = [(spec.source, 0, half, spec.chunk_size), (spec.source, half, spec.n_cases, spec.chunk_size)]
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        seconds = pool.map(_serial_half, jobs)
+    return spec.n_cases / max(seconds)
 
 
 def _serial_seconds(spec: sweep.SweepSpec) -> float:
@@ -100,11 +126,15 @@ def test_monte_carlo_throughput(benchmark, client, tmp_path, chunk):
 
     summary = benchmark.pedantic(cluster_run, rounds=1, iterations=1)
     after_s = _serial_seconds(spec)
+    pair_rate = two_process_rate(spec)
+    of_pair = spec.n_cases / summary.wall_time_s / pair_rate
     assert summary.computed == spec.n_cases
     serial_s = 0.5 * (before_s + after_s)
     _report(benchmark, "two-ball Monte Carlo", spec, serial_s, summary.wall_time_s, " (target >= 80 %)")
     slowdown = summary.compute_s / serial_s  # worker compute time over serial compute time, same cases
     benchmark.extra_info.update(cpu_scaling=scaling, serial_before_s=before_s, serial_after_s=after_s,
+                                two_process_cases_per_s=pair_rate,
+                                of_two_processes=of_pair,
                                 worker_compute_s=summary.compute_s,
                                 utilisation=summary.utilisation, compute_slowdown=slowdown,
                                 overhead_not_computing_per_case_s=summary.overhead_per_case)
@@ -112,7 +142,8 @@ def test_monte_carlo_throughput(benchmark, client, tmp_path, chunk):
           f"({slowdown:.3f} x serial: CPU shared with scheduler, client and other jobs), busy "
           f"{100 * summary.utilisation:.1f} % of {WORKERS} x {summary.wall_time_s:.2f} s; not computing "
           f"{1e3 * summary.overhead_per_case:.3f} ms per case; two spinning processes did {scaling:.2f} x the work "
-          f"of one just before (a rough reading of the CPU left to us: the load moves within seconds)")
+          f"of one just before (a rough reading of the CPU left to us: the load moves within seconds); two plain "
+          f"processes (no dask) {pair_rate:.1f} cases/s, the cluster {of_pair:.0%} of that")
 
 
 @pytest.mark.parametrize("chunk", [1, 250])

@@ -29,6 +29,11 @@ HELPERS = textwrap.dedent('''
             return {"value": math.inf, "pair": (x, y)}
         return {"value": x * x + y + offset, "pair": (x, y)}
 
+    def worker_profiling(x):
+        """1.0 where the process that computes it runs dask's statistical profiler, else 0.0."""
+        import dask
+        return {"value": float(dask.config.get("distributed.worker.profile.enabled"))}
+
     def vector_square(x, y=0.0):
         import numpy as np
         x = np.asarray(x)
@@ -280,6 +285,22 @@ def test_summary_counts_compute_time_and_overhead(helpers, tmp_path, monkeypatch
     assert 15 * 0.01 <= summary.compute_s <= summary.wall_time_s  # every case sleeps 10 ms inside run_chunk
     assert 0.0 < summary.utilisation <= 1.0
     assert summary.overhead_per_case == pytest.approx((summary.wall_time_s - summary.compute_s) / 15)
+
+
+def test_local_cluster_workers_run_without_the_profiler(helpers, tmp_path):
+    """run_sweep's own LocalCluster hands LOCAL_CLUSTER_CONFIG to its worker processes (the profiler's 10 ms
+    stack samples and the 20 ms tick cost the cases CPU; docs/sweeps.md run 9).  Catches: the settings applied
+    in the client only, or dask keys that no longer exist (dask.config.get raises on an unknown key)."""
+    import dask
+
+    for key in sweep.LOCAL_CLUSTER_CONFIG:
+        dask.config.get(key)
+    spec = sweep.spec_from_dict({"name": "p", "function": "sweep_helpers:worker_profiling", "outputs": ["value"],
+                                 "grid": {"x": {"values": [1.0]}}})
+    summary = sweep.run_sweep(spec, tmp_path / "o", workers=1, progress=False)
+    assert summary.where == "local:1" and summary.computed == 1
+    assert sweep.read_results(tmp_path / "o")["value"].tolist() == [0.0]
+    assert dask.config.get("distributed.worker.profile.enabled")  # the client's own config is left alone
 
 
 @pytest.mark.parametrize("flag, lines", [([], ["#SBATCH --cpus-per-task=1", "#SBATCH --mem=2G", "#SBATCH -t 02:00:00"]),

@@ -74,12 +74,17 @@ from ballbench.validation.specs import read_toml
 
 __all__ = ["SweepSpec", "Distribution", "load_spec", "spec_from_dict", "case_inputs", "run_chunk", "run_sweep",
            "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK", "to_dataset", "read_dataset", "write_dataset",
-           "DATASET_NAME", "DATASET_EVERY_S"]
+           "DATASET_NAME", "DATASET_EVERY_S", "LOCAL_CLUSTER_CONFIG"]
 
 DRAW_BLOCK = 4096  # random draws per seeded block (fixed: changing it changes every draw)
 IN_FLIGHT_MIN, IN_FLIGHT_PER_THREAD = 16, 4  # tasks submitted ahead of the results
 DATASET_NAME = "results.zarr"  # xarray Dataset of a gridded sweep (Zarr store)
 DATASET_EVERY_S = 30.0  # rebuild the Dataset from the parts at most this often while a sweep runs [s]
+# dask settings of the LocalCluster that run_sweep starts: the workers' statistical profiler (a stack sample of
+# every thread each 10 ms, for the dashboard) and the 20 ms event-loop tick cost CPU that the cases need on a
+# small machine (5,000-case two-ball Monte Carlo, 2 cores: 9-13 % less CPU in all, docs/sweeps.md run 9).
+# An external cluster keeps its own settings (DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False, docs).
+LOCAL_CLUSTER_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
 # units accepted in a spec and their SI factor (inputs are converted at the edge, docs/developing.md)
 UNITS = {"": 1.0, "1": 1.0, "rad": 1.0, "deg": math.pi / 180.0, "m": 1.0, "mm": 1e-3, "um": 1e-6, "N": 1.0,
          "kN": 1e3, "Pa": 1.0, "GPa": 1e9, "m/s": 1.0, "mm/s": 1e-3, "s": 1.0}
@@ -669,6 +674,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
                 _write_part(out_dir, spec, chunk)
                 written(stop - start, chunk["compute_s"])
         elif chunks:
+            import dask
             from dask.distributed import Client, LocalCluster, as_completed
 
             if client is None:
@@ -676,8 +682,9 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
                     own_client = Client(scheduler)
                     where = scheduler
                 else:
-                    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                           dashboard_address="127.0.0.1:0", host="127.0.0.1")
+                    with dask.config.set(LOCAL_CLUSTER_CONFIG):
+                        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                               dashboard_address="127.0.0.1:0", host="127.0.0.1")
                     own_client = Client(cluster)
                     where = f"local:{workers}"
                 client = own_client
