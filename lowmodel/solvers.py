@@ -74,7 +74,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
         sparse = blocks or x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
         if blocks:  # ball chains: J^T J in band storage straight from the blocks (no sparse matrix at all)
             band = jacobian.normal_band()
-            diagonal_max = float(band.storage[0].max())
+            diagonal_max = float(band.storage[0].max()) if damping is None else 0.0  # used once, below
         elif sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
             from scipy import sparse as sp
             from scipy.sparse.linalg import spsolve
@@ -111,17 +111,19 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             except (np.linalg.LinAlgError, RuntimeError):
                 step = np.full(x.size, np.nan)
             change = jacobian.matvec(step) if blocks else jacobian @ step
-            predicted = merit - float(np.sum((residual + change) ** 2))
-            if np.all(np.isfinite(step)) and predicted > 0.0:
+            linear = residual + change  # the linear model's residual
+            predicted = merit - float(linear @ linear)
+            finite = bool(np.isfinite(step).all())
+            if finite and predicted > 0.0:
                 trial = x + step
                 trial_residual, trial_jacobian = function(trial)
                 trial_merit = float(trial_residual @ trial_residual)
                 gain = (merit - trial_merit) / predicted
-                if np.isfinite(trial_merit) and gain > 1e-4:
+                if math.isfinite(trial_merit) and gain > 1e-4:
                     damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
                     growth = 2.0
                     break
-            elif np.all(np.isfinite(step)) and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
+            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
                 raise ConvergenceError(f"{what}: stationary point of |residual|", residual=norm,
                                        iterations=iterations, tolerance=tolerance)
             damping *= growth
@@ -130,7 +132,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
                 raise ConvergenceError(f"{what}: no descent step (damping diverged)", residual=norm,
                                        iterations=iterations, tolerance=tolerance)
         x, residual, jacobian = trial, trial_residual, trial_jacobian
-        norm = float(np.max(np.abs(residual)))
+        norm = float(np.abs(residual).max())
     return x, residual, iterations
 
 

@@ -129,6 +129,13 @@ def touching_pairs(gaps, n_balls: int, ball_radius: float, gap_tolerance: float 
     return np.flatnonzero(gaps <= gap_tolerance)
 
 
+def _slip_squared(scaled: np.ndarray):
+    """lin2019 eq 5: ``dv = (u_y, -u_x) |v|`` with ``u = (omega_x,j + omega_x,j+1, omega_y,j + omega_y,j+1) R_B/|v|``
+    for the ball unknowns ``scaled`` (n, 3); returns ``u`` (n-1, 2) and ``|dv|^2`` (n-1,) in units ``|v|^2``."""
+    u = scaled[:-1, 1:3] + scaled[1:, 1:3]
+    return u, np.einsum("pi,pi->p", u, u)
+
+
 def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
 
@@ -138,9 +145,7 @@ def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     ``d_force`` (n-1, 3, 2): d (rows 0, 1, 2 of the load) / d F_j on ball j ([:, :, 0]) and j+1
     ([:, :, 1]), slip |dv| (n-1,) in units |v|).
     """
-    # lin2019 eq 5: dv = (u_y, -u_x) |v| with u = (omega_x,j + omega_x,j+1, omega_y,j + omega_y,j+1) R_B/|v|
-    u = scaled[:-1, 1:3] + scaled[1:, 1:3]  # (n-1, 2)
-    squared = np.einsum("pi,pi->p", u, u)  # |dv|^2, units |v|^2
+    u, squared = _slip_squared(scaled)
     norm = np.sqrt(squared + _REGULARISATION**2)
     unit = u / norm[:, None]  # (-e_y, e_x) with e = dv/|dv|
     scale = -mu * forces
@@ -194,6 +199,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
 
     def ball_function(balls):
         terms = ball_terms(balls, at["contacts"], reference_force)
+        at["last"] = (balls, at["contacts"], terms)  # the converged point's terms are the last ones evaluated
         return terms.residual, terms.jacobian
 
     function, _, pack = coupled_system(ball_function, n, k, touching, mu)
@@ -243,8 +249,10 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                                                                        extra_paths=(("mu", MU_PATH_START, mu_at),))
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
-    terms = ball_terms(balls, contacts, reference_force)
-    slip = b2b_terms(balls[:, :3], forces, mu)[3]
+    last_balls, last_contacts, terms = at["last"]
+    if last_contacts is not contacts or not np.array_equal(last_balls, balls):
+        terms = ball_terms(balls, contacts, reference_force)
+    slip = np.sqrt(_slip_squared(balls[:, :3])[1])
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
