@@ -137,7 +137,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
 
 
 class _Band:
-    """Lower band storage of the normal matrix ``J^T J`` for scipy's banded Cholesky (``solveh_banded``).
+    """Lower band storage of the normal matrix ``J^T J`` for LAPACK's banded Cholesky (``dpbsv``).
 
     ``narrow`` when the bandwidth is small against the size (banded systems of
     the ball chains: bandwidth ~ 30 whatever the number of balls), else the caller uses SuperLU.
