@@ -74,7 +74,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
         sparse = blocks or x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
         if blocks:  # ball chains: J^T J in band storage straight from the blocks (no sparse matrix at all)
             band = jacobian.normal_band()
-            diagonal_max = float(band.storage[0].max())
+            diagonal_max = float(band.storage[0].max()) if damping is None else 0.0  # used once, below
         elif sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
             from scipy import sparse as sp
             from scipy.sparse.linalg import spsolve
@@ -111,17 +111,19 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             except (np.linalg.LinAlgError, RuntimeError):
                 step = np.full(x.size, np.nan)
             change = jacobian.matvec(step) if blocks else jacobian @ step
-            predicted = merit - float(np.sum((residual + change) ** 2))
-            if np.all(np.isfinite(step)) and predicted > 0.0:
+            linear = residual + change  # the linear model's residual
+            predicted = merit - float(linear @ linear)
+            finite = bool(np.isfinite(step).all())
+            if finite and predicted > 0.0:
                 trial = x + step
                 trial_residual, trial_jacobian = function(trial)
                 trial_merit = float(trial_residual @ trial_residual)
                 gain = (merit - trial_merit) / predicted
-                if np.isfinite(trial_merit) and gain > 1e-4:
+                if math.isfinite(trial_merit) and gain > 1e-4:
                     damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
                     growth = 2.0
                     break
-            elif np.all(np.isfinite(step)) and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
+            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
                 raise ConvergenceError(f"{what}: stationary point of |residual|", residual=norm,
                                        iterations=iterations, tolerance=tolerance)
             damping *= growth
@@ -130,12 +132,12 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
                 raise ConvergenceError(f"{what}: no descent step (damping diverged)", residual=norm,
                                        iterations=iterations, tolerance=tolerance)
         x, residual, jacobian = trial, trial_residual, trial_jacobian
-        norm = float(np.max(np.abs(residual)))
+        norm = float(np.abs(residual).max())
     return x, residual, iterations
 
 
 class _Band:
-    """Lower band storage of the normal matrix ``J^T J`` for scipy's banded Cholesky (``solveh_banded``).
+    """Lower band storage of the normal matrix ``J^T J`` for LAPACK's banded Cholesky (``dpbsv``).
 
     ``narrow`` when the bandwidth is small against the size (banded systems of
     the ball chains: bandwidth ~ 30 whatever the number of balls), else the caller uses SuperLU.
@@ -152,14 +154,14 @@ class _Band:
             self.storage[rows - cols, cols] = values
 
     def solve(self, damping, rhs):
-        from scipy.linalg import solveh_banded
+        """``(N + damping I)^-1 rhs`` by LAPACK's banded Cholesky ``dpbsv`` (what ``scipy.linalg.solveh_banded``
+        calls, without its per-call input checks); NaN where the matrix is not positive definite."""
+        from scipy.linalg.lapack import dpbsv
 
-        storage = self.storage.copy()
+        storage = self.storage.copy(order="F")  # LAPACK's column-major band storage: no further copy
         storage[0] += damping
-        try:
-            return solveh_banded(storage, rhs, lower=True, check_finite=False)
-        except np.linalg.LinAlgError:
-            return np.full(rhs.size, np.nan)
+        _, step, info = dpbsv(storage, rhs, lower=1, overwrite_ab=1)
+        return step if info == 0 else np.full(rhs.size, np.nan)
 
 
 class BlockTridiagonal:
@@ -218,27 +220,29 @@ class BlockTridiagonal:
         n1 = np.matmul(diag_t[:-1], up[:-1]) + np.matmul(low[1:].transpose(0, 2, 1), diag[1:])
         n2 = np.matmul(low[1:-1].transpose(0, 2, 1), up[1:-1])
         index0, index1, index2, source0 = _normal_band_pattern(n, k)
-        storage = np.zeros(3 * k * n * k)
-        storage[index0] = n0.reshape(n, k * k)[:, source0].reshape(-1)
-        storage[index1] = n1.reshape(-1)
-        storage[index2] = n2.reshape(-1)
-        return _Band(None, None, None, n * k, storage=storage.reshape(3 * k, n * k))
+        columns = np.zeros(3 * k * n * k)  # band storage column by column (LAPACK's column-major order)
+        columns[index0] = n0.reshape(n, k * k)[:, source0].reshape(-1)
+        columns[index1] = n1.reshape(-1)
+        columns[index2] = n2.reshape(-1)
+        return _Band(None, None, None, n * k, storage=columns.reshape(n * k, 3 * k).T)
 
 
 @lru_cache(maxsize=16)
 def _normal_band_pattern(n: int, k: int):
-    """Flat positions in the (3 k, n k) lower band storage of the blocks N[a, a] (lower triangle, in the
-    order of ``source0``), N[a, a+1] and N[a, a+2] (all entries, row-major), for :meth:`BlockTridiagonal.normal_band`.
-    Entry ``(row, col)`` with ``row >= col`` of the matrix goes to ``(row - col, col)``."""
-    size = n * k
+    """Flat positions in the (3 k, n k) lower band storage, stored column-major (Fortran order, what LAPACK
+    reads), of the blocks N[a, a] (lower triangle, in the order of ``source0``), N[a, a+1] and N[a, a+2] (all
+    entries, row-major), for :meth:`BlockTridiagonal.normal_band`.  Entry ``(row, col)`` with ``row >= col`` of
+    the matrix goes to ``(row - col, col)``, flat position ``col * 3 k + row - col``."""
+    size = 1  # stride of the band row index d; the stride of the column index is 3 k
     p, q = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")  # block row p, block column q
     keep = p >= q
     source0 = (p * k + q)[keep]
+    width = 3 * k
     base = k * np.arange(n)[:, None]
-    index0 = ((p - q)[keep][None, :] * size + base + q[keep][None, :]).reshape(-1)
+    index0 = ((p - q)[keep][None, :] * size + (base + q[keep][None, :]) * width).reshape(-1)
     # N[a, a+1][p, q] sits at (a k + p, (a+1) k + q); its mirror (row (a+1) k + q, col a k + p) is stored
-    index1 = ((k + q - p).reshape(-1)[None, :] * size + base[:-1] + p.reshape(-1)[None, :]).reshape(-1)
-    index2 = ((2 * k + q - p).reshape(-1)[None, :] * size + base[:-2] + p.reshape(-1)[None, :]).reshape(-1)
+    index1 = ((k + q - p).reshape(-1)[None, :] * size + (base[:-1] + p.reshape(-1)[None, :]) * width).reshape(-1)
+    index2 = ((2 * k + q - p).reshape(-1)[None, :] * size + (base[:-2] + p.reshape(-1)[None, :]) * width).reshape(-1)
     return index0, index1, index2, source0
 
 

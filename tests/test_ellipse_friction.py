@@ -295,3 +295,25 @@ def test_friction_angle_at_equals_friction_angle():
         np.testing.assert_allclose(value, reference, rtol=1e-12, atol=1e-12)
     with pytest.raises(ValueError, match="b_over_a"):
         ef.friction_angle_at(np.array([0.5, 1.5]))
+
+
+def test_friction_angle_at_stacked_slopes_are_derivatives():
+    """The stacked evaluator of the chain solves (one batched product per call) gives the 5-tuple's values, and
+    its slopes are the phi-derivatives of its values, d loss/d phi included (catches a basis built from the
+    wrong powers of dphi or with the (phi, log b/a) indices swapped, which the solvers' Newton would only see
+    as slow convergence)."""
+    from ballbench.lowmodel.contact import ellipse_friction as ef
+
+    rng = np.random.default_rng(11)
+    beta = rng.uniform(0.02, 1.0, size=(30, 4))
+    phi = rng.uniform(-4.0, 4.0, size=(30, 4))
+    table = ef.friction_angle_at(beta, stacked=True)(phi)
+    assert table.shape == (30, 4, 3, 2)
+    for value, reference in zip(ef.friction_angle_at(beta)(phi), (table[..., 0, 0], table[..., 0, 1],
+                                                                  table[..., 1, 0], table[..., 1, 1],
+                                                                  table[..., 2, 0])):
+        np.testing.assert_array_equal(value, reference)
+    step = 1e-6
+    evaluate = ef.friction_angle_at(beta, stacked=True)
+    numeric = (evaluate(phi + step)[..., 0] - evaluate(phi - step)[..., 0]) / (2 * step)
+    np.testing.assert_allclose(table[..., 1], numeric, rtol=1e-6, atol=1e-6)

@@ -191,8 +191,10 @@ def test_linear_bearing_limit(monkeypatch):
         def evaluate(phi):  # unit slip speed along phi: (spin, slide) = (cos phi, sin phi)
             cos, sin = np.cos(phi), np.sin(phi)
             r = _slip(eo.friction_offset(cos, sin, 0.0, b_over_a))
-            return (r.force, r.dforce_dslide * cos - r.dforce_dspin * sin, r.moment,
-                    r.dmoment_dslide * cos - r.dmoment_dspin * sin, r.loss)
+            # (force, moment, loss) x (value, d/d phi), as bearing_ball's map; d loss/d phi is not used
+            return np.stack([np.stack([r.force, r.dforce_dslide * cos - r.dforce_dspin * sin], axis=-1),
+                             np.stack([r.moment, r.dmoment_dslide * cos - r.dmoment_dspin * sin], axis=-1),
+                             np.stack([r.loss, np.full_like(r.loss, np.nan)], axis=-1)], axis=-2)
         return evaluate
 
     monkeypatch.setattr(bb, "_friction_angle_function", exact)

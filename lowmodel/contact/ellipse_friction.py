@@ -661,14 +661,19 @@ def _evaluate(phi: np.ndarray, beta: np.ndarray):
     return [values[:, q, d].reshape(shape) for q in range(3) for d in range(2)]
 
 
-def friction_angle_at(b_over_a):
+def friction_angle_at(b_over_a, *, stacked: bool = False):
     """:func:`friction_angle` for fixed axis ratios, for solvers that call it many times.
 
     ``b_over_a`` (any shape, in ``[0.02, 1]``) is checked once and its table cells and powers of
     ``log(b/a)`` are computed once.  Returns ``evaluate(phi)`` -> ``(force, d force/d phi, moment,
     d moment/d phi, loss)`` for finite ``phi`` [rad] of the shape of ``b_over_a`` (not checked: the
     caller's Newton iterates are finite); the same spline and values as :func:`friction_angle`
-    (lin2019 eqs A4-A6 tabulated).
+    (lin2019 eqs A4-A6 tabulated).  With ``stacked=True``, ``evaluate(phi)`` returns one array of shape
+    ``b_over_a.shape + (3, 2)``: (force, moment, loss) x (value, d/d phi) (``d loss/d phi`` included).
+
+    One batched product per call (the cost of a Newton step of a ball chain is mostly numpy call
+    overhead): the bicubic patch of each point, ``(3, 16)`` coefficients, times the ``(16, 2)`` basis
+    ``(dphi^p, p dphi^(p-1)) dlog(b/a)^q``.
     """
     beta = _check_ratio(b_over_a)
     nodes_x, nodes_y, mid_x, mid_y, flat = _active_patches()
@@ -676,21 +681,35 @@ def friction_angle_at(b_over_a):
     y = np.log(beta.ravel())
     j = np.clip(np.searchsorted(nodes_y, y) - 1, 0, mid_y.size - 1)
     dy = y - mid_y[j]
-    power_y = np.stack([np.ones_like(dy), dy, dy * dy, dy * dy * dy], axis=1)[:, None, :, None]  # (m, 1, 4, 1)
+    power_y = np.stack([np.ones_like(dy), dy, dy * dy, dy * dy * dy], axis=1)[:, None, :]  # (m, 1, 4)
     count, last = y.size, mid_x.size - 1
     two_pi = 2.0 * math.pi
+    exponents = np.arange(1.0, 4.0)  # d dphi^p / d dphi = p dphi^(p-1), p = 1..3
+
+    def table(phi):
+        x = np.remainder(np.ravel(phi) + math.pi, two_pi) - math.pi  # [-pi, pi), as friction_angle
+        i = np.searchsorted(nodes_x, x)
+        i -= 1  # >= 0: the nodes reach beyond -pi
+        np.minimum(i, last, out=i)  # x = NaN sorts last
+        basis = np.empty((count, 4, 4, 2))  # (m, p, q, value | slope)
+        powers = np.empty((count, 4))  # 1, dphi, dphi^2, dphi^3
+        powers[:, 0] = 1.0
+        np.subtract(x, mid_x[i], out=powers[:, 1])
+        np.multiply(powers[:, 1], powers[:, 1], out=powers[:, 2])
+        np.multiply(powers[:, 2], powers[:, 1], out=powers[:, 3])
+        np.multiply(powers[:, :, None], power_y, out=basis[..., 0])
+        basis[:, 0, :, 1] = 0.0
+        np.multiply((exponents * powers[:, :3])[:, :, None], power_y, out=basis[:, 1:, :, 1])
+        i *= mid_y.size
+        i += j
+        return (flat[i] @ basis.reshape(count, 16, 2)).reshape(shape + (3, 2))
+
+    if stacked:
+        return table
 
     def evaluate(phi):
-        x = np.remainder(np.ravel(phi) + math.pi, two_pi) - math.pi  # [-pi, pi), as friction_angle
-        i = np.searchsorted(nodes_x, x) - 1
-        np.clip(i, 0, last, out=i)
-        dx = (x - mid_x[i])[:, None]
-        # the patch's polynomial in dphi after summing over the powers of dlog(b/a): (m, 3, 4)
-        in_x = (flat[i * mid_y.size + j].reshape(count, 3, 4, 4) @ power_y)[..., 0]
-        value = ((in_x[:, :, 3] * dx + in_x[:, :, 2]) * dx + in_x[:, :, 1]) * dx + in_x[:, :, 0]  # Horner
-        slope = (3.0 * in_x[:, :, 3] * dx + 2.0 * in_x[:, :, 2]) * dx + in_x[:, :, 1]
-        return (value[:, 0].reshape(shape), slope[:, 0].reshape(shape), value[:, 1].reshape(shape),
-                slope[:, 1].reshape(shape), value[:, 2].reshape(shape))
+        values = table(phi)
+        return values[..., 0, 0], values[..., 0, 1], values[..., 1, 0], values[..., 1, 1], values[..., 2, 0]
 
     return evaluate
 

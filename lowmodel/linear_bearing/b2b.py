@@ -69,6 +69,7 @@ __all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
+_IDENTITY_2 = np.eye(2)
 
 
 def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.0, 0.0), n_balls: int = 2,
@@ -128,6 +129,13 @@ def touching_pairs(gaps, n_balls: int, ball_radius: float, gap_tolerance: float 
     return np.flatnonzero(gaps <= gap_tolerance)
 
 
+def _slip_squared(scaled: np.ndarray):
+    """lin2019 eq 5: ``dv = (u_y, -u_x) |v|`` with ``u = (omega_x,j + omega_x,j+1, omega_y,j + omega_y,j+1) R_B/|v|``
+    for the ball unknowns ``scaled`` (n, 3); returns ``u`` (n-1, 2) and ``|dv|^2`` (n-1,) in units ``|v|^2``."""
+    u = scaled[:-1, 1:3] + scaled[1:, 1:3]
+    return u, np.einsum("pi,pi->p", u, u)
+
+
 def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     """B2B loads on the balls (eqs 5-8) for pairs with normal forces ``forces``.
 
@@ -137,40 +145,25 @@ def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     ``d_force`` (n-1, 3, 2): d (rows 0, 1, 2 of the load) / d F_j on ball j ([:, :, 0]) and j+1
     ([:, :, 1]), slip |dv| (n-1,) in units |v|).
     """
-    n = scaled.shape[0]
-    pairs = n - 1
-    dvx = scaled[:-1, 2] + scaled[1:, 2]  # lin2019 eq 5, units |v|
-    dvy = -(scaled[:-1, 1] + scaled[1:, 1])
-    norm = np.sqrt(dvx**2 + dvy**2 + _REGULARISATION**2)
-    ex, ey = dvx / norm, dvy / norm
-    fx, fy = -mu * forces * ex, -mu * forces * ey  # eq 6 on ball j (units mu F_ref)
-    load = np.zeros((n, 3))
-    # ball j (behind): eq 8
-    load[:-1, 0] -= forces
-    load[:-1, 1] -= fy
-    load[:-1, 2] += fx
-    # ball j+1 (in front): force flips, moment does not (arm flips too)
-    load[1:, 0] += forces
-    load[1:, 1] -= fy
-    load[1:, 2] += fx
-    # derivatives of e = dv/|dv|
-    dex_ddvx = (1.0 - ex**2) / norm
-    dex_ddvy = -ex * ey / norm
-    dey_ddvy = (1.0 - ey**2) / norm
-    # d(fx, fy)/d(x1_j, x2_j) (same for j+1): dvx/dx2 = 1, dvy/dx1 = -1
-    dfx_dx1 = -mu * forces * (-dex_ddvy)
-    dfx_dx2 = -mu * forces * dex_ddvx
-    dfy_dx1 = -mu * forces * (-dey_ddvy)
-    dfy_dx2 = -mu * forces * dex_ddvy
-    # the moment (rows 1, 2) on both balls of a pair depends on (x1, x2) of both balls alike
-    block = np.empty((pairs, 2, 2))
-    block[:, 0, 0], block[:, 0, 1] = -dfy_dx1, -dfy_dx2
-    block[:, 1, 0], block[:, 1, 1] = dfx_dx1, dfx_dx2
-    d_force = np.empty((pairs, 3, 2))
-    d_force[:, 0, 0], d_force[:, 0, 1] = -1.0, 1.0
-    d_force[:, 1, :] = (mu * ey)[:, None]
-    d_force[:, 2, :] = (-mu * ex)[:, None]
-    return load, block, d_force, np.sqrt(dvx**2 + dvy**2)
+    u, squared = _slip_squared(scaled)
+    norm = np.sqrt(squared + _REGULARISATION**2)
+    unit = u / norm[:, None]  # (-e_y, e_x) with e = dv/|dv|
+    scale = -mu * forces
+    # eq 6: f = -mu F e on ball j; its moment (+R_B z) x f = (-f_y, f_x) R_B = -mu F unit, the same on ball j+1 (eq 8)
+    moment = scale[:, None] * unit
+    load = np.zeros((scaled.shape[0], 3))
+    load[:-1, 0] = -forces  # ball j (behind): eq 8
+    load[1:, 0] += forces  # ball j+1 (in front): force flips, moment does not (arm flips too)
+    load[:-1, 1:] += moment
+    load[1:, 1:] += moment
+    # d moment / d u = -mu F (I - unit unit^T)/|dv|, and u depends on (x_1, x_2) of both balls alike
+    block = unit[:, :, None] * unit[:, None, :]
+    block -= _IDENTITY_2
+    block *= (-scale / norm)[:, None, None]
+    d_force = np.empty((u.shape[0], 3, 2))
+    d_force[:, 0] = (-1.0, 1.0)
+    d_force[:, 1:] = (-mu * unit)[:, :, None]
+    return load, block, d_force, np.sqrt(squared)
 
 
 def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,
@@ -206,6 +199,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
 
     def ball_function(balls):
         terms = ball_terms(balls, at["contacts"], reference_force)
+        at["last"] = (balls, at["contacts"], terms)  # the converged point's terms are the last ones evaluated
         return terms.residual, terms.jacobian
 
     function, _, pack = coupled_system(ball_function, n, k, touching, mu)
@@ -255,8 +249,10 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                                                                        extra_paths=(("mu", MU_PATH_START, mu_at),))
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
-    terms = ball_terms(balls, contacts, reference_force)
-    slip = b2b_terms(balls[:, :3], forces, mu)[3]
+    last_balls, last_contacts, terms = at["last"]
+    if last_contacts is not contacts or not np.array_equal(last_balls, balls):
+        terms = ball_terms(balls, contacts, reference_force)
+    slip = np.sqrt(_slip_squared(balls[:, :3])[1])
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
@@ -314,10 +310,14 @@ def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.nd
         z[:, :k] = balls
         return z.reshape(-1)
 
+    every_pair = bool(touches[:-1].all())
+    live = touches[:-1, None]
+
     def function(z):
         blocks = z.reshape(n, k + 1)
         balls = blocks[:, :k]
-        lam = np.where(touches, blocks[:, k], 0.0)  # (n,), the last one 0
+        slots = blocks[:, k]
+        lam = np.where(touches, slots, 0.0)  # (n,), the last one 0
         forces = lam[:-1]
         ball_residual, ball_jacobian = ball_function(balls)
         load, block, d_force, _ = b2b_terms(balls[:, :3], forces, mu)
@@ -325,13 +325,14 @@ def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.nd
         residual[:, :k] = ball_residual
         residual[:, :3] += load  # lin2019 eq 8 for every ball
         # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth); placeholders: z = 0
-        separation = np.zeros(n)
-        separation[:-1] = balls[1:, 0] - balls[:-1, 0]
-        force_branch = placeholder | (lam <= gamma * separation)
-        residual[:, k] = np.where(placeholder, blocks[:, k], np.where(force_branch, lam, gamma * separation))
-        lower = np.zeros((n, k + 1, k + 1))
-        diagonal = np.zeros((n, k + 1, k + 1))
-        upper = np.zeros((n, k + 1, k + 1))
+        rate = np.zeros(n)  # gamma (v_B,j+1 - v_B,j)/|v|
+        np.subtract(balls[1:, 0], balls[:-1, 0], out=rate[:-1])
+        rate *= gamma
+        force_branch = lam <= rate
+        force_branch |= placeholder
+        residual[:, k] = np.where(force_branch, np.where(placeholder, slots, lam), rate)
+        jacobian = np.zeros((3, n, k + 1, k + 1))  # block diagonals: lower, diagonal, upper
+        lower, diagonal, upper = jacobian
         diagonal[:, :k, :k] = ball_jacobian
         # B2B moment: rows (1, 2) of balls (j, j+1) depend on columns (1, 2) of balls (j, j+1) alike
         diagonal[:-1, 1:3, 1:3] += block
@@ -339,13 +340,16 @@ def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.nd
         upper[:-1, 1:3, 1:3] = block
         lower[1:, 1:3, 1:3] = block
         # force columns (slot k of ball j's block): rows 0..2 of ball j (diagonal) and ball j+1 (lower)
-        live = touches[:-1, None]
-        diagonal[:-1, :3, k] = np.where(live, d_force[:, :, 0], 0.0)
-        lower[1:, :3, k] = np.where(live, d_force[:, :, 1], 0.0)
-        velocity_branch = ~force_branch
+        if every_pair:
+            diagonal[:-1, :3, k] = d_force[:, :, 0]
+            lower[1:, :3, k] = d_force[:, :, 1]
+        else:
+            diagonal[:-1, :3, k] = np.where(live, d_force[:, :, 0], 0.0)
+            lower[1:, :3, k] = np.where(live, d_force[:, :, 1], 0.0)
         diagonal[:, k, k] = force_branch
-        diagonal[:, k, 0] = np.where(velocity_branch, -gamma, 0.0)
-        upper[:, k, 0] = np.where(velocity_branch, gamma, 0.0)
+        velocity_branch = np.where(force_branch, 0.0, gamma)  # d (gamma separation rate) / d v_B of ball j+1
+        upper[:, k, 0] = velocity_branch
+        diagonal[:, k, 0] = -velocity_branch
         jacobian = BlockTridiagonal(lower, diagonal, upper)
         return residual.reshape(-1), (jacobian.toarray() if dense else jacobian)
 

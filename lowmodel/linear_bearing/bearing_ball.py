@@ -141,8 +141,22 @@ class BallContacts:
 
     @cached_property
     def _friction_at(self):
-        """The friction map at this instance's axis ratios (lin2019 eqs A4-A6), as a function of the slip angles."""
+        """The friction map at this instance's axis ratios (lin2019 eqs A4-A6), as a function of the slip angles:
+        ``phi`` (n, 4) -> (n, 4, 3, 2), (force, moment, loss) x (value, d/d phi) per unit slip speed."""
         return _friction_angle_function(self.b_over_a)
+
+    @cached_property
+    def _equilibrium(self):
+        """(n, 3, 8): the rows of lin2019 eq 4 as a matrix on ``(force_i, moment_i)`` (columns interleaved
+        ``f_0, M_0, f_1, M_1, ...``), the same as (n, 4, 3, 2) (contact, row, force | moment), and the
+        friction scales ``[load, load_arm, load]`` of each contact per reference force (a dict, filled by
+        :func:`ball_terms`)."""
+        nx, ny = self._geometry[:2]
+        rows = np.empty((self.n_balls, 3, 4, 2))
+        rows[:, 0, :, 0], rows[:, 0, :, 1] = 1.0, 0.0  # eq 4 row 1: sum f_i
+        rows[:, 1, :, 0], rows[:, 1, :, 1] = ny, nx  # row 2: n_y f + n_x M
+        rows[:, 2, :, 0], rows[:, 2, :, 1] = -nx, ny  # row 3: -n_x f + n_y M
+        return rows.reshape(self.n_balls, 3, 8), np.ascontiguousarray(rows.transpose(0, 2, 1, 3)), {}
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -349,11 +363,11 @@ def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
 # residual of the ball equilibrium (vectorised over balls)
 # --------------------------------------------------------------------------
 def _friction_angle_function(b_over_a):
-    """``phi -> (force, d force/d phi, moment, d moment/d phi, loss)`` per unit slip speed at fixed ``b/a``
-    (lin2019 eqs A4-A6; :func:`lowmodel.contact.ellipse_friction.friction_angle_at`)."""
+    """``phi`` (n, 4) -> (n, 4, 3, 2): (force, moment, loss) x (value, d/d phi) per unit slip speed at fixed
+    ``b/a`` (lin2019 eqs A4-A6; :func:`lowmodel.contact.ellipse_friction.friction_angle_at`)."""
     from ballbench.lowmodel.contact.ellipse_friction import friction_angle_at
 
-    return friction_angle_at(b_over_a)
+    return friction_angle_at(b_over_a, stacked=True)
 
 
 @dataclass(frozen=True)
@@ -392,32 +406,30 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     x = unknowns[:, :3]
     phi = unknowns[:, 3:]
     nx, ny, arm, dslide, dspin, top = contacts._geometry
-    load = contacts.normal_forces / reference_force
-    x0, x1, x2 = x[:, 0:1], x[:, 1:2], x[:, 2:3]
-    slide = x0 + x1 * ny - x2 * nx - top  # lin2019 eqs 1, A1-A3 (z slip at the centre); dslide = (1, n_y, -n_x)
-    spin_velocity = -(x1 * nx + x2 * ny) * arm  # omega_i a_i, eq 2; dspin = -(0, n_x, n_y) a_i/R_B
+    rows, per_contact, scales = contacts._equilibrium
+    scale = scales.get(reference_force)
+    if scale is None:  # the friction map's (force, moment, loss) per unit mu F_ref: (load, load a_i/R_B, load)
+        load = contacts.normal_forces / reference_force
+        scale = scales[reference_force] = np.stack([load, load * arm, load], axis=-1)[..., None]
+    # lin2019 eqs 1, A1-A3 (z slip at the centre): dslide = (1, n_y, -n_x);
+    # eq 2 (omega_i a_i): dspin = -(0, n_x, n_y) a_i/R_B
+    slide = np.matmul(dslide, x[:, :, None])[..., 0]
+    slide -= top
+    spin_velocity = np.matmul(dspin, x[:, :, None])[..., 0]
     cos, sin = np.cos(phi), np.sin(phi)
-    fr_force, fr_dforce, fr_moment, fr_dmoment, fr_loss = contacts._friction_at(phi)  # unit slip speed along phi
-    load_arm = load * arm
-    force = load * fr_force  # eq A4
-    moment = load_arm * fr_moment  # eq A5, M_{i,O}/R_B about -y_i
-    dforce = load * fr_dforce  # d/d phi
-    dmoment = load_arm * fr_dmoment
+    table = contacts._friction_at(phi)  # (n, 4, 3, 2): unit slip speed along phi
+    table *= scale  # eqs A4, A5 (M_{i,O}/R_B about -y_i), A6; and d/d phi
     n = x.shape[0]
     residual = np.empty((n, N_UNKNOWNS))
-    residual[:, 0] = force.sum(axis=1)  # lin2019 eq 4, row 1
-    residual[:, 1] = (ny * force + nx * moment).sum(axis=1)  # row 2
-    residual[:, 2] = (-nx * force + ny * moment).sum(axis=1)  # row 3
+    residual[:, :3] = np.matmul(rows, table[:, :, :2, 0].reshape(n, 8, 1))[..., 0]  # lin2019 eq 4, rows 1-3
     residual[:, 3:] = slide * cos - spin_velocity * sin  # slip along (sin phi, cos phi)
     slip_speed = slide * sin + spin_velocity * cos
     jacobian = np.zeros((n, N_UNKNOWNS, N_UNKNOWNS))
-    jacobian[:, 0, 3:] = dforce
-    jacobian[:, 1, 3:] = ny * dforce + nx * dmoment
-    jacobian[:, 2, 3:] = -nx * dforce + ny * dmoment
+    np.matmul(per_contact, table[:, :, :2, 1, None], out=jacobian[:, :3, 3:].transpose(0, 2, 1)[..., None])  # d/d phi_i
     jacobian[:, 3:, :3] = cos[..., None] * dslide - sin[..., None] * dspin
-    index = np.arange(4)
-    jacobian[:, 3 + index, 3 + index] = -slip_speed
-    loss_table = load * fr_loss * slip_speed  # eq A6 (loss is per unit slip speed here)
+    jacobian.reshape(n, N_UNKNOWNS * N_UNKNOWNS)[:, 3 * N_UNKNOWNS + 3::N_UNKNOWNS + 1] = -slip_speed  # d/d phi_i
+    force, moment = table[:, :, 0, 0], table[:, :, 1, 0]
+    loss_table = table[:, :, 2, 0] * slip_speed  # eq A6 (loss is per unit slip speed here)
     return BallTerms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
