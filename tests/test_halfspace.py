@@ -178,3 +178,42 @@ def test_rough_height_map_route():
     in_contact = result.pressure > 0
     assert np.max(np.abs(loaded[in_contact])) < 1e-7 * float(contact.delta)
     assert np.min(loaded[~in_contact]) > -1e-7 * float(contact.delta)
+
+
+def _full_grid_only(monkeypatch):
+    # the reference: the same solver without the coarse-grid box and start (every grid is "small")
+    monkeypatch.setattr(hs, "_BOX_MIN_CELLS", 10**9)
+
+
+def test_box_solve_equals_the_full_grid_solve(monkeypatch):
+    # the CG on the box around the coarse grid's contact is the same problem: same pressure as the full grid
+    geometry = GEOMETRIES["groove 0.56"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), float(contact.b), 160, margin=1.6)
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
+    boxed = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, tolerance=1e-12)
+    box, start = hs._coarse_start(gap, grid, geometry.contact_modulus, LOAD, None, 1e-12, None)
+    assert box != hs._FULL and start is not None  # the box path is the one tested
+    _full_grid_only(monkeypatch)
+    full = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, tolerance=1e-12)
+    assert np.max(np.abs(boxed.pressure - full.pressure)) < 1e-8 * full.max_pressure
+    assert boxed.approach == pytest.approx(full.approach, rel=1e-10)
+
+
+def test_contact_outside_the_coarse_box_is_found(monkeypatch):
+    # an asperity of one fine cell that the coarse grid (every 4th cell) does not see, far from the main contact:
+    # the box misses it, the check on the full grid finds the interpenetration and the full grid takes over
+    geometry = GEOMETRIES["ball on flat"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), n=160, margin=2.0)
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
+    gap[6, 7] = 0.0  # index 6, 7: not on the coarse lattice 1, 5, 9, ...
+    box, _ = hs._coarse_start(gap, grid, geometry.contact_modulus, LOAD, None, 1e-10, None)
+    assert box != hs._FULL and not (box[0].start <= 6 < box[0].stop and box[1].start <= 7 < box[1].stop)
+    result = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, tolerance=1e-10)
+    assert result.pressure[6, 7] > 0.0
+    loaded = gap + result.deformation - result.approach
+    assert np.min(loaded[result.pressure == 0]) > -1e-7 * result.approach
+    _full_grid_only(monkeypatch)
+    full = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, tolerance=1e-10)
+    assert np.max(np.abs(result.pressure - full.pressure)) < 1e-5 * full.max_pressure

@@ -176,10 +176,22 @@ def _kernel(nx: int, ny: int, dx: float, dy: float) -> np.ndarray:
     return kernel
 
 
-@functools.lru_cache(maxsize=16)
 def _kernel_spectrum(nx: int, ny: int, dx: float, dy: float) -> np.ndarray:
-    # wrap-around order in a 2nx x 2ny array, index nx (resp. ny) left zero (DC-FFT)
+    return _box_spectrum(nx, ny, dx, dy, nx, ny)
+
+
+def _box_kernel(nx: int, ny: int, dx: float, dy: float, mx: int, my: int) -> np.ndarray:
+    # the coefficients of an mx x my box of the nx x ny grid: the offsets up to mx - 1 (my - 1), a view
     kernel = _kernel(nx, ny, dx, dy)
+    return kernel[nx - mx:nx + mx - 1, ny - my:ny + my - 1]
+
+
+@functools.lru_cache(maxsize=16)
+def _box_spectrum(nx: int, ny: int, dx: float, dy: float, mx: int, my: int) -> np.ndarray:
+    # wrap-around order in a 2mx x 2my array, index mx (resp. my) left zero (DC-FFT); the kernel sliced from
+    # the nx x ny grid's (computed once per grid)
+    kernel = _box_kernel(nx, ny, dx, dy, mx, my)
+    nx, ny = mx, my
     padded = np.zeros((2 * nx, 2 * ny))
     padded[:nx, :ny] = kernel[nx - 1:, ny - 1:]
     padded[nx + 1:, :ny] = kernel[:nx - 1, ny - 1:]
@@ -377,66 +389,85 @@ def _bilinear(field: np.ndarray, grid: SurfaceGrid, point: tuple[float, float]) 
                  + (1 - s) * t * field[i, j + 1] + s * t * field[i + 1, j + 1])
 
 
-def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,
-          approach: float | None = None, centre: tuple[float, float] = (0.0, 0.0), tolerance: float = 1e-8,
-          max_iterations: int = 2000, initial_pressure: np.ndarray | None = None) -> HalfSpaceContact:
-    """Half-space contact on ``gap`` [m] by the Polonsky-Keer conjugate gradient (sun2021 eqs 3-12).
+_FULL = (slice(None), slice(None))
+_BOX_MIN_CELLS = 128  # grids with fewer cells across than this run on the full grid
+_COARSENING = 4
 
-    Parameters
-    ----------
-    gap : (nx, ny) separation of the undeformed surfaces at the cell centres [m]
-        (roughness included, sun2021 eq 9 ``c_g + c_r``).
-    grid : :class:`SurfaceGrid`
-    contact_modulus : E* [Pa]
-    force : load [N] (load control), or
-    approach : rigid approach [m] (approach control); exactly one of the two.
-    centre : point [m] where ``central_pressure`` is read (the initial contact point).
-    tolerance : on sun2021 eq 12, ``dA sum |p - p_old| / F``.
-    max_iterations : conjugate-gradient iterations before ConvergenceError.
-    initial_pressure : optional (nx, ny) start [Pa] (e.g. the solution of a nearby case).
 
-    Raises
-    ------
-    ValueError
-        bad input, or the contact reaches the grid edge (the grid is too small).
-    ConvergenceError
-        no convergence in ``max_iterations``.
-    """
-    gap = np.asarray(gap, dtype=float)
-    if gap.shape != (grid.nx, grid.ny):
-        raise ValueError(f"gap must have shape {(grid.nx, grid.ny)}, got {gap.shape}")
-    if not np.all(np.isfinite(gap)):
-        raise ValueError("gap must be finite (got NaN or inf)")
-    e_star = _finite_positive("contact_modulus", contact_modulus, "Pa")
-    if (force is None) == (approach is None):
-        raise ValueError("give exactly one of force [N] (load control) or approach [m] (approach control)")
+def _coarse_start(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: float | None, approach: float | None,
+                  tolerance: float, start: np.ndarray | None) -> tuple[tuple[slice, slice], np.ndarray | None]:
+    # The same problem on every 4th cell (a grid of 4x the cell size, 1/16 of the work): the bounding box of its
+    # contact, widened by 2.5 coarse cells, joined with the support of ``start`` and rounded up to sizes whose
+    # padded transforms (2 m) are fast; and its pressure interpolated (bilinear) onto the grid, the start of the
+    # fine CG unless ``start`` is given.  The full grid and no start when the box would not be much smaller than
+    # the grid or the coarse solve fails (e.g. its contact reaches the grid edge).
+    nx, ny = gap.shape
+    if min(nx, ny) < _BOX_MIN_CELLS:
+        return _FULL, None
+    k = _COARSENING
+    first = (k - 1) // 2
+    coarse_gap = np.ascontiguousarray(gap[first::k, first::k])
+    xs, ys = grid.x[first::k], grid.y[first::k]
+    coarse = SurfaceGrid(coarse_gap.shape[0], coarse_gap.shape[1], k * grid.dx, k * grid.dy,
+                         0.5 * (xs[0] + xs[-1]), 0.5 * (ys[0] + ys[-1]))
+    try:
+        solution = solve(coarse_gap, coarse, e_star, force=force, approach=approach, centre=(xs[0], ys[0]),
+                         tolerance=max(tolerance, 1e-6))
+    except (ValueError, ConvergenceError):
+        return _FULL, None
+    support = np.zeros(gap.shape, dtype=bool)
+    support[first::k, first::k] = solution.pressure > 0.0
+    if start is not None:
+        support |= start > 0.0
+    box = []
+    for axis, n in enumerate((nx, ny)):
+        used = np.flatnonzero(support.any(axis=1 - axis))
+        pad = 2 * k + k // 2
+        low, high = max(int(used[0]) - pad, 0), min(int(used[-1]) + 1 + pad, n)
+        size = min(_fft_size(high - low), n)
+        if size > 0.9 * n:
+            return _FULL, None
+        low = min(max(low - (size - (high - low)) // 2, 0), n - size)
+        box.append(slice(low, low + size))
+    if start is not None:
+        return (box[0], box[1]), start
+    # bilinear interpolation of the coarse cell values (at the fine cells first::k) onto every fine cell
+    i = np.clip((np.arange(nx) - first) / k, 0.0, coarse.nx - 1.0)
+    j = np.clip((np.arange(ny) - first) / k, 0.0, coarse.ny - 1.0)
+    i0 = np.minimum(i.astype(int), coarse.nx - 2)
+    j0 = np.minimum(j.astype(int), coarse.ny - 2)
+    s, t = (i - i0)[:, None], (j - j0)[None, :]
+    p = solution.pressure
+    fine = ((1 - s) * (1 - t) * p[np.ix_(i0, j0)] + s * (1 - t) * p[np.ix_(i0 + 1, j0)]
+            + (1 - s) * t * p[np.ix_(i0, j0 + 1)] + s * t * p[np.ix_(i0 + 1, j0 + 1)])
+    return (box[0], box[1]), fine
+
+
+def _fft_size(m: int) -> int:
+    # the smallest m' >= m whose padded length 2 m' has only the factors 2, 3, 5 and 7 (fast transforms)
+    while scipy.fft.next_fast_len(2 * m, real=True) != 2 * m:
+        m += 1
+    return m
+
+
+def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: float | None,
+                    approach: float | None, p: np.ndarray | None, tolerance: float,
+                    max_iterations: int) -> tuple[np.ndarray, int, float]:
+    # Polonsky & Keer's constrained CG on ``gap``, a box of ``grid`` (or all of it), from the pressure ``p`` (None
+    # or zero: the default start); returns the pressure, the iterations and the eq-12 residual
     load_control = force is not None
-    if load_control:
-        force = _finite_positive("force", force, "N")
-    else:
-        approach = float(approach)
-        if not math.isfinite(approach):
-            raise ValueError(f"approach must be finite [m], got {approach!r}")
-        if approach <= float(gap.min()):
-            raise ValueError(f"approach {approach!r} m does not exceed the smallest gap {float(gap.min())!r} m: "
-                             "the surfaces do not touch")
-    tolerance = _finite_positive("tolerance", tolerance, "")
-    if int(max_iterations) < 1:
-        raise ValueError(f"max_iterations must be >= 1, got {max_iterations!r}")
-    spectrum = _kernel_spectrum(grid.nx, grid.ny, grid.dx, grid.dy) / e_star  # the deflection for this E*
+    nx, ny = gap.shape
+    spectrum = _box_spectrum(grid.nx, grid.ny, grid.dx, grid.dy, nx, ny) / e_star  # the deflection for this E*
     spectrum_single = spectrum.astype(np.float32)
-    kernel = _kernel(grid.nx, grid.ny, grid.dx, grid.dy)
+    kernel = _box_kernel(grid.nx, grid.ny, grid.dx, grid.dy, nx, ny)
     area = grid.cell_area
+    if max_iterations < 1:
+        raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=math.inf,
+                               iterations=0, tolerance=tolerance)
 
     def apply(field, single=False):
         return _convolve(spectrum, field, spectrum_single if single else None)
 
-    if initial_pressure is not None:
-        p = np.array(initial_pressure, dtype=float)
-        if p.shape != gap.shape or not np.all(np.isfinite(p)) or np.any(p < 0):
-            raise ValueError("initial_pressure must be a finite, non-negative array of the grid's shape")
-    else:
-        p = None
     if p is None or not p.sum() > 0.0:
         if load_control:
             # start: uniform pressure where the gap is within the lowest 1 % of its range
@@ -454,7 +485,7 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
     delta = 0.0
     residual = math.inf
     u = apply(p)
-    for iteration in range(1, int(max_iterations) + 1):
+    for iteration in range(1, max_iterations + 1):
         if iteration % 32 == 0:
             u = apply(p)  # remove the drift of the incremental update below
         np.add(u, gap, out=g)
@@ -510,11 +541,89 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
             break
     else:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=residual,
-                               iterations=int(max_iterations), tolerance=tolerance)
-    u = np.ascontiguousarray(apply(p))
-    in_contact = p > 0.0
+                               iterations=max_iterations, tolerance=tolerance)
+    return p, iteration, residual
+
+
+def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,
+          approach: float | None = None, centre: tuple[float, float] = (0.0, 0.0), tolerance: float = 1e-8,
+          max_iterations: int = 2000, initial_pressure: np.ndarray | None = None) -> HalfSpaceContact:
+    """Half-space contact on ``gap`` [m] by the Polonsky-Keer conjugate gradient (sun2021 eqs 3-12).
+
+    Parameters
+    ----------
+    gap : (nx, ny) separation of the undeformed surfaces at the cell centres [m]
+        (roughness included, sun2021 eq 9 ``c_g + c_r``).
+    grid : :class:`SurfaceGrid`
+    contact_modulus : E* [Pa]
+    force : load [N] (load control), or
+    approach : rigid approach [m] (approach control); exactly one of the two.
+    centre : point [m] where ``central_pressure`` is read (the initial contact point).
+    tolerance : on sun2021 eq 12, ``dA sum |p - p_old| / F``.
+    max_iterations : conjugate-gradient iterations before ConvergenceError.
+    initial_pressure : optional (nx, ny) start [Pa] (e.g. the solution of a nearby case).
+
+    Raises
+    ------
+    ValueError
+        bad input, or the contact reaches the grid edge (the grid is too small).
+    ConvergenceError
+        no convergence in ``max_iterations``.
+    """
+    gap = np.asarray(gap, dtype=float)
+    if gap.shape != (grid.nx, grid.ny):
+        raise ValueError(f"gap must have shape {(grid.nx, grid.ny)}, got {gap.shape}")
+    if not np.all(np.isfinite(gap)):
+        raise ValueError("gap must be finite (got NaN or inf)")
+    e_star = _finite_positive("contact_modulus", contact_modulus, "Pa")
+    if (force is None) == (approach is None):
+        raise ValueError("give exactly one of force [N] (load control) or approach [m] (approach control)")
+    load_control = force is not None
     if load_control:
-        approach = float((u + gap)[in_contact].mean())
+        force = _finite_positive("force", force, "N")
+    else:
+        approach = float(approach)
+        if not math.isfinite(approach):
+            raise ValueError(f"approach must be finite [m], got {approach!r}")
+        if approach <= float(gap.min()):
+            raise ValueError(f"approach {approach!r} m does not exceed the smallest gap {float(gap.min())!r} m: "
+                             "the surfaces do not touch")
+    tolerance = _finite_positive("tolerance", tolerance, "")
+    if int(max_iterations) < 1:
+        raise ValueError(f"max_iterations must be >= 1, got {max_iterations!r}")
+    max_iterations = int(max_iterations)
+    area = grid.cell_area
+    if initial_pressure is not None:
+        p = np.array(initial_pressure, dtype=float)
+        if p.shape != gap.shape or not np.all(np.isfinite(p)) or np.any(p < 0):
+            raise ValueError("initial_pressure must be a finite, non-negative array of the grid's shape")
+    else:
+        p = None
+    # the conjugate gradient runs on a box that holds the contact (from a solve on a 4x coarser grid): the
+    # convolutions of a field that is zero outside the box are DC-FFTs of the box's size, exactly; the
+    # complementarity outside the box is checked on the full grid at the end, and the full grid takes over
+    # (from the box's solution) if any cell there interpenetrates
+    box, p = _coarse_start(gap, grid, e_star, force, approach, tolerance, p)
+    iterations = 0
+    while True:
+        rows, cols = box
+        p_box = None if p is None else np.array(p[rows, cols])
+        p_box, used, residual = _constrained_cg(np.ascontiguousarray(gap[rows, cols]), grid, e_star, force,
+                                                approach, p_box, tolerance, max_iterations - iterations)
+        iterations += used
+        p = np.zeros_like(gap)
+        p[rows, cols] = p_box
+        u = np.ascontiguousarray(deformation(p, grid, e_star))
+        in_contact = p > 0.0
+        if load_control:
+            approach = float((u + gap)[in_contact].mean())
+        if box == _FULL:
+            break
+        outside = np.ones(gap.shape, dtype=bool)
+        outside[rows, cols] = False
+        if not np.any((gap + u < approach) & outside):
+            break
+        box = _FULL  # a cell outside the box interpenetrates: the full grid, started from the box's solution
     total = float(p.sum()) * area
     if in_contact[0, :].any() or in_contact[-1, :].any() or in_contact[:, 0].any() or in_contact[:, -1].any():
         raise ValueError("the contact reaches the edge of the grid: enlarge the grid (half_width) so that it "
@@ -526,4 +635,4 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
                             approach=float(approach), contact_area=float(in_contact.sum()) * area,
                             central_pressure=_bilinear(p, grid, centre), max_pressure=float(p.max()),
                             semi_axis_a=a, semi_axis_b=b, ellipse_angle=angle, centroid=centroid,
-                            iterations=iteration, residual=residual)
+                            iterations=iterations, residual=residual)
