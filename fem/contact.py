@@ -36,7 +36,7 @@ import scipy.sparse as sp
 
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
 from ballbench.fem import linsolve
-from ballbench.fem.surface import lumped_area, project_along_z
+from ballbench.fem.surface import locate_along_z, lumped_area
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["ContactModel", "ContactState", "build_model", "solve_force", "solve_approach", "full_displacement",
@@ -132,14 +132,18 @@ def build_model(mesh: PairMesh | Path | str, materials, gap_limit: float, *, ord
     counter_tris = pair.surfaces["counter_contact"]
     # initial gap of ball-contact nodes against the (facetted) counter surface
     near = ball_nodes[points[ball_nodes, 2] <= gap_limit + np.max(points[np.unique(counter_tris), 2])]
-    tri_nodes, weights = project_along_z(points, counter_tris, points[near, :2]) if near.size else (None, None)
     if near.size == 0:
         raise ValueError("no ball node near the counter surface: check the mesh frame")
+    # ball nodes outside the counter's xy footprint (beside a concave block's rising edge) have no gap
+    tri_nodes, weights, inside = locate_along_z(points, counter_tris, points[near, :2])
     z_counter = np.einsum("ij,ij->i", points[tri_nodes, 2], weights)
-    g0_all = points[near, 2] - z_counter
+    g0_all = np.where(inside, points[near, 2] - z_counter, np.inf)
     if initial_gap is not None:
         g0_all = np.asarray(initial_gap(points[near, 0], points[near, 1]), dtype=float)
     keep = g0_all <= gap_limit
+    if not inside[keep].all():
+        raise ValueError(f"a candidate node at xy = {points[near[keep & ~inside][0], :2]} [m] projects outside "
+                         "counter_contact: enlarge the counter block or lower gap_limit")
     candidates, g0 = near[keep], g0_all[keep]
     tri_nodes, weights = tri_nodes[keep], weights[keep]
     if candidates.size < min_candidates:

@@ -26,7 +26,7 @@ import scipy.sparse as sp
 from ballbench.fem import linsolve
 from ballbench.fem.contact import ContactModel, load_and_assemble
 from ballbench.fem.elasticity import PairMesh
-from ballbench.fem.surface import lumped_area, project_along_z
+from ballbench.fem.surface import locate_along_z, lumped_area
 
 __all__ = ["build_mortar_model", "weighted_gaps", "projected_quadrature", "surface_dofs", "edge_index",
            "triangle_dofs", "surface_shape", "sub_triangle_points"]
@@ -152,11 +152,14 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     low = ball_tris[(points[ball_tris, 2] <= z_top).all(axis=1)]
     if low.size == 0:
         raise ValueError("no ball triangle near the counter surface: check the mesh frame")
-    # initial gap at the vertices decides the multiplier set
+    # initial gap at the vertices decides the multiplier set.  The z window above takes every ball vertex below
+    # the highest counter node; on a concave counter (a nut groove) that node lies at the block's rising edge, so
+    # the window holds ball vertices beside the block: outside its xy footprint there is no counter, no gap and
+    # no candidate (a candidate zone that reaches the footprint's edge raises below: the block is too small)
     verts = np.unique(low)
     if initial_gap is None:
-        tri_v, w_v = project_along_z(points, counter_tris, points[verts, :2])
-        g_vert = points[verts, 2] - np.einsum("ij,ij->i", points[tri_v, 2], w_v)
+        tri_v, w_v, inside = locate_along_z(points, counter_tris, points[verts, :2])
+        g_vert = np.where(inside, points[verts, 2] - np.einsum("ij,ij->i", points[tri_v, 2], w_v), np.inf)
     else:
         g_vert = np.asarray(initial_gap(points[verts, 0], points[verts, 1]), float)
     candidates = verts[g_vert <= gap_limit]
@@ -173,7 +176,11 @@ def build_mortar_model(mesh: PairMesh | Path | str, materials, gap_limit: float,
     zq_ball = np.einsum("qv,kv->kq", bary, points[tris][:, :, 2]).ravel()
     ball_dofs = np.repeat(triangle_dofs(basis, tris, 2, edge_map), nq, axis=0)
     ball_shape = np.tile(surface_shape(bary, order), (len(tris), 1))
-    c_tris, c_bary = project_along_z(points, counter_tris, xq)  # rows of counter_tris, barycentric in their order
+    c_tris, c_bary, inside = locate_along_z(points, counter_tris, xq)  # barycentric in the order of c_tris' nodes
+    if not inside.all():
+        raise ValueError(f"the candidate zone (gap <= gap_limit = {gap_limit!r} m) reaches the edge of "
+                         f"counter_contact at xy = {xq[int(np.argmin(inside))]} [m]: enlarge the counter block or "
+                         "lower gap_limit")
     counter_dofs = triangle_dofs(basis, c_tris, 2, edge_map)
     counter_shape = surface_shape(c_bary, order)
     if initial_gap is None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["lumped_area", "project_along_z"]
+__all__ = ["lumped_area", "locate_along_z", "project_along_z"]
 
 
 def lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
@@ -21,31 +21,58 @@ def lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray
     return out
 
 
-def project_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Triangle (nodes (n, 3)) and barycentric weights (n, 3) of the z-projection of ``xy`` (n, 2)."""
+def locate_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, tol: float = 1e-6):
+    """Triangle (nodes (n, 3)), barycentric weights (n, 3) and ``inside`` (n,) bool of the z-projection of
+    ``xy`` (n, 2) [m] on the surface ``triangles``.
+
+    ``inside`` is False where ``xy`` lies outside the xy footprint of the surface (no barycentric
+    coordinate above ``-tol``); there the nodes and weights are those of the nearest triangle found
+    (clipped weights) and must not be used as a projection.  The search takes the 32 triangles with
+    the nearest centroids and, for the points not found among them (a large triangle next to small
+    ones: its centroid lies far from the point), every triangle.
+    """
     from scipy.spatial import cKDTree
 
+    xy = np.atleast_2d(np.asarray(xy, dtype=float))
     p = points[triangles][:, :, :2]
-    centroid = p.mean(axis=1)
-    tree = cKDTree(centroid)
+    a, e1, e2 = p[:, 0], p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+
+    def barycentric(point, cand):
+        v = point - a[cand]
+        l1 = (v[:, 0] * e2[cand, 1] - v[:, 1] * e2[cand, 0]) / det[cand]
+        l2 = (e1[cand, 0] * v[:, 1] - e1[cand, 1] * v[:, 0]) / det[cand]
+        return np.column_stack([1.0 - l1 - l2, l1, l2])
+
+    tree = cKDTree(p.mean(axis=1))
     k = min(32, len(triangles))
     _, near = tree.query(xy, k=k)
-    near = np.atleast_2d(near)
+    near = np.asarray(near).reshape(len(xy), k)
+    every = np.arange(len(triangles))
     nodes = np.empty((len(xy), 3), dtype=np.int64)
     weights = np.empty((len(xy), 3))
+    inside = np.empty(len(xy), dtype=bool)
     for i, (point, cand) in enumerate(zip(xy, near)):
-        a, b, c = p[cand, 0], p[cand, 1], p[cand, 2]
-        v0, v1, v2 = b - a, c - a, point - a
-        det = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
-        l1 = (v2[:, 0] * v1[:, 1] - v2[:, 1] * v1[:, 0]) / det
-        l2 = (v0[:, 0] * v2[:, 1] - v0[:, 1] * v2[:, 0]) / det
-        l0 = 1.0 - l1 - l2
-        worst = np.minimum(np.minimum(l0, l1), l2)
+        bary = barycentric(point, cand)
+        worst = bary.min(axis=1)
+        if worst.max() < -tol:  # not among the nearest centroids: search every triangle
+            cand = every
+            bary = barycentric(point, cand)
+            worst = bary.min(axis=1)
         best = int(np.argmax(worst))
-        if worst[best] < -1e-6:
-            raise ValueError(f"ball node at xy = {point} [m] projects outside counter_contact: enlarge the counter "
-                             "block or lower gap_limit")
+        inside[i] = worst[best] >= -tol
         nodes[i] = triangles[cand[best]]
-        weights[i] = np.clip([l0[best], l1[best], l2[best]], 0.0, 1.0)
+        weights[i] = np.clip(bary[best], 0.0, 1.0)
         weights[i] /= weights[i].sum()
+    return nodes, weights, inside
+
+
+def project_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Triangle (nodes (n, 3)) and barycentric weights (n, 3) of the z-projection of ``xy`` (n, 2) [m];
+    ValueError if a point lies outside the surface's xy footprint (:func:`locate_along_z`)."""
+    nodes, weights, inside = locate_along_z(points, triangles, xy)
+    if not inside.all():
+        point = np.atleast_2d(xy)[int(np.argmin(inside))]
+        raise ValueError(f"ball node at xy = {point} [m] projects outside counter_contact: enlarge the counter "
+                         "block or lower gap_limit")
     return nodes, weights
