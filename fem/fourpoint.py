@@ -45,7 +45,7 @@ from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
 from ballbench.fem.mortar import (edge_index, projected_quadrature, sub_triangle_points, surface_dofs,
                                   surface_shape, triangle_dofs, weighted_gaps)
-from ballbench.fem.postprocess import EllipseFit, fit_ellipse_forces, force_operator
+from ballbench.fem.postprocess import EllipseFit, moment_ellipse
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
@@ -572,31 +572,12 @@ def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, st
 
 
 def _fit(patch: _Patch, nodal: np.ndarray) -> EllipseFit | None:
-    """Hertz field fitted to the consistent nodal forces of the piecewise-linear pressure with nodal
-    values ``nodal`` (the multipliers) [Pa] (fem.postprocess.fit_ellipse_forces), centre free along e1."""
+    """Hertz ellipse with the force and second moments of the piecewise-linear pressure with nodal
+    values ``nodal`` (the multipliers) [Pa] (fem.postprocess.moment_ellipse), centre free along e1."""
     tris = patch.triangles[(patch.triangles >= 0).all(axis=1)]
     if len(tris) < 5 or np.count_nonzero(nodal > 0) < 5:
         return None
-    local = np.column_stack([patch.local_nodes, np.zeros(len(patch.local_nodes))])
-    xq, operator = force_operator(local, tris, np.arange(len(patch.local_nodes)))
-    return fit_ellipse_forces(xq, operator, operator @ _interpolate(local, tris, nodal, xq), 1, symmetric_x=False,
-                              symmetric_y=True)
-
-
-def _interpolate(local: np.ndarray, tris: np.ndarray, nodal: np.ndarray, xq: np.ndarray) -> np.ndarray:
-    """Piecewise-linear field with nodal values ``nodal`` at the points ``xq`` of the triangles (force_operator
-    order: ``len(xq) / len(tris)`` consecutive points per triangle)."""
-    per = len(xq) // len(tris)
-    p = local[tris][:, :, :2]
-    x = xq.reshape(len(tris), per, 2)
-    v0, v1 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    v2 = x - p[:, None, 0]
-    det = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
-    l1 = (v2[..., 0] * v1[:, None, 1] - v2[..., 1] * v1[:, None, 0]) / det[:, None]
-    l2 = (v0[:, None, 0] * v2[..., 1] - v0[:, None, 1] * v2[..., 0]) / det[:, None]
-    values = nodal[tris]
-    out = (1.0 - l1 - l2) * values[:, None, 0] + l1 * values[:, None, 1] + l2 * values[:, None, 2]
-    return out.reshape(-1)
+    return moment_ellipse(patch.local_nodes[:, :2], tris, nodal, symmetric_x=False, symmetric_y=True)
 
 
 def residual_load(model: ModuleModel, result_contacts) -> tuple[float, float]:

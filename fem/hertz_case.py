@@ -68,23 +68,31 @@ def contact_edge_length(model: contact.ContactModel, active: np.ndarray) -> floa
 
 
 def fit_contact_patch(model: contact.ContactModel, state: contact.ContactState, operator=None):
-    """Hertz-field fit (``postprocess.EllipseFit``: a, b [m], p0 [Pa]) of the contact patch of ``state``.
+    """Hertz ellipse (``postprocess.EllipseFit``: a, b [m], p0 [Pa]) of the contact patch of ``state``.
 
-    ``operator``: the ``(xq, M)`` of :func:`fem.postprocess.force_operator` for this model (computed when
-    None; pass it to fit several states of one model).
+    Mortar models (nodal pressures): :func:`fem.postprocess.moment_ellipse`, the ellipse with the
+    FE pressure's force and second moments over the ball's contact triangles whose vertices are all
+    candidates.  Node-to-surface models (nodal forces): the least-squares fit of the consistent
+    forces (:func:`fem.postprocess.fit_ellipse_forces`); ``operator`` is the ``(xq, M)`` of
+    :func:`fem.postprocess.force_operator` for it (computed when None; pass it to fit several
+    states of one model; not used by mortar models).
     """
+    symmetric_x = "symmetry_x" in model.pair.surfaces
+    symmetric_y = "symmetry_y" in model.pair.surfaces
+    if model.multiplier == "pressure":
+        index = -np.ones(len(model.pair.points), dtype=np.int64)
+        index[model.candidates] = np.arange(model.candidates.size)
+        tris = index[model.pair.surfaces["ball_contact"]]
+        tris = tris[(tris >= 0).all(axis=1)]
+        return postprocess.moment_ellipse(model.pair.points[model.candidates, :2], tris, state.pressure,
+                                          symmetric_x=symmetric_x, symmetric_y=symmetric_y,
+                                          symmetry_factor=model.symmetry_factor)
     if operator is None:
         operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"],
                                               model.candidates)
     xq, matrix = operator
-    if model.multiplier == "pressure":  # mortar: fit the P1 pressure field in the same (Galerkin) sense
-        column = np.asarray(matrix.sum(axis=0)).ravel()
-        field_q = (matrix.T @ state.pressure) / np.where(column > 0, column, 1.0)
-        target = matrix @ field_q
-    else:
-        target = state.forces
-    return postprocess.fit_ellipse_forces(xq, matrix, target, symmetric_x="symmetry_x" in model.pair.surfaces,
-                                          symmetric_y="symmetry_y" in model.pair.surfaces)
+    return postprocess.fit_ellipse_forces(xq, matrix, state.forces, symmetric_x=symmetric_x,
+                                          symmetric_y=symmetric_y)
 
 
 def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_factors=LOAD_FACTORS,
