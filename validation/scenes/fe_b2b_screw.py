@@ -86,18 +86,18 @@ ANSYS_GAP = KnownGap(
 # the FE's rigid equations hold to the QP's tolerance (solve tol 1e-9); measured below 1e-14 (case a, 40 um)
 STATICS_TOL = 1e-9
 
-# the level from which each fitted quantity is within 5 % of Hertz (measured, worst of 8 contacts): a from 30 um
-# (default level, bodies of BODY_DEPTH: 4.7 / 4.3 %, cases a / b), b and p0 at 22 um only (fine level, measured with
-# the shallower segments of the builder's default; docs/fe_b2b.md)
+# the level from which each fitted quantity is within 5 % of Hertz (measured, worst of 8 contacts, bodies of
+# BODY_DEPTH): a from 30 um (default level: 4.7 / 4.3 %, cases a / b), b and p0 at 22 um only (fine level, case a:
+# a 3.5 %, b 3.8 %, p0 4.2 %; docs/fe_b2b.md)
 ELLIPSE_RESOLVED_H = {"a": 3.0e-5, "b": 2.2e-5, "p0": 2.2e-5}  # m
 ELLIPSE_GAP = KnownGap(
     reason="The ellipses are slender (b/a = 0.21-0.25, b = 40-69 um along the groove): at h = 40 / 30 um the fine "
            "zone puts 1-2.3 elements across b and the fitted Hertz field trades p0 against b (as on the rails, "
            "docs/fe_b2b.md).  Case (a), worst of 8, bodies of BODY_DEPTH: a 6.3 / 4.7 %, b 15.2 / 8.7 %, p0 "
-           "14.2 / 8.3 % at 40 / 30 um (a within 5 % from 30 um); at 22 um (shallow segments) a -3.9 %, b -3.6 %, "
-           "p0 +5.0 %: b and p0 meet the target at the finest level only.",
+           "14.2 / 8.3 % at 40 / 30 um (a within 5 % from 30 um); at 22 um a 3.5 %, b 3.8 %, p0 4.2 %: b and p0 "
+           "meet the target at the finest level only.",
     evidence="contacts.csv of `ballbench validate fe-b2b-screw-a` at --quick and the default level; of `--fine` "
-             "(levels 40, 30, 22 um; the ellipse checks passed at 22 um with the builder's default segments); "
+             "(levels 40, 30, 22 um; the ellipse checks pass at 22 um); "
              "docs/fe_b2b.md (screw half).  Graded (ellipse-shaped) refinement, issue 12 item 6, is the remedy for "
              "the coarser levels.")
 
