@@ -89,6 +89,31 @@ def test_hertz_statics_reference():
     assert scene.hertz_statics(contacts, 0, 30.0)[0] > forces[0]  # more load, more on the loaded diagonal
 
 
+def test_statics_checks_of_the_scene_reject_wrong_forces():
+    # the scene's physics checks on a module's forces (ball 1, theta = 0: four flanks at one angle):
+    # forces built from the frictionless statics by hand pass; the mutants of docs/mutations.md do not
+    from ballbench.validation.scenes import fe_b2b_screw as scene
+
+    contacts, _, _ = scene.low_order("a")
+    beta = contacts.contact_angles[0, 0]
+    assert np.allclose(contacts.contact_angles[0], beta)
+    share, preload = 24.7, 17.0
+    light = preload
+    heavy = light + share / (math.sin(beta) * math.cos(contacts.module.lead_angle))  # screw's push along z_hat
+    forces = np.array([heavy, light, heavy, light])  # (SL, SR, NR, NL)
+    np.testing.assert_allclose(scene.statics_residual(contacts, 0, forces, share), 0.0, atol=1e-12 * share)
+    assert scene.half_turn_asymmetry(forces) == 0.0
+    wrong = {"load with the wrong sign": (forces[[1, 0, 3, 2]], share),
+             "another ball's share": (forces, 1.03 * share),
+             "nut contacts NR, NL swapped": (forces[[0, 1, 3, 2]], share),
+             "screw and nut contacts swapped": (forces[[3, 2, 1, 0]], share)}
+    for name, (f, s) in wrong.items():
+        assert np.abs(scene.statics_residual(contacts, 0, f, s)).max() > 1e-2 * share, name
+    assert scene.half_turn_asymmetry(forces[[0, 1, 3, 2]]) > 0.5
+    # ball 2 (theta 2 deg, screw flanks tilted): the same forces do not balance at its angles
+    assert np.abs(scene.statics_residual(contacts, 1, forces, share)).max() > 1e-2 * share
+
+
 @pytest.fixture(scope="module")
 def quick_modules():
     from ballbench.validation.scenes import fe_b2b_screw as scene
