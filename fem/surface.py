@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["lumped_area", "locate_along_z", "project_along_z"]
+__all__ = ["lumped_area", "locate_along_z"]
 
 
 def lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
@@ -66,13 +66,3 @@ def locate_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, to
         weights[i] /= weights[i].sum()
     return nodes, weights, inside
 
-
-def project_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Triangle (nodes (n, 3)) and barycentric weights (n, 3) of the z-projection of ``xy`` (n, 2) [m];
-    ValueError if a point lies outside the surface's xy footprint (:func:`locate_along_z`)."""
-    nodes, weights, inside = locate_along_z(points, triangles, xy)
-    if not inside.all():
-        point = np.atleast_2d(xy)[int(np.argmin(inside))]
-        raise ValueError(f"ball node at xy = {point} [m] projects outside counter_contact: enlarge the counter "
-                         "block or lower gap_limit")
-    return nodes, weights
