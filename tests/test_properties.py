@@ -6,75 +6,21 @@ the call; never NaN, never a warning.
 """
 from __future__ import annotations
 
-import dataclasses
-import inspect
 import math
-import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from ballbench.lowmodel import fourpoint
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
 from ballbench.lowmodel.linear_bearing import b2b_analytical as analytical
 from ballbench.lowmodel.screw import harris
 from ballbench.lowmodel.screw import kinematics as screw
-
-SETTINGS = settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
-SLOW = settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
-
-
-def real(low, high):
-    return st.floats(low, high, allow_nan=False, allow_infinity=False)
-
-
-def positive(low=1e-6, high=1e6):
-    return st.floats(low, high, allow_nan=False, allow_infinity=False, exclude_min=True)
-
-
-def _values(result):
-    """Every float in a result (arrays, scalars, dataclasses, tuples), flattened."""
-    if dataclasses.is_dataclass(result):
-        return [v for field in dataclasses.fields(result) for v in _values(getattr(result, field.name))]
-    if isinstance(result, (tuple, list)):
-        return [v for item in result for v in _values(item)]
-    if isinstance(result, (bool, str, type(None))):
-        return []
-    array = np.asarray(result)
-    if array.dtype.kind in "fc":
-        return [array]
-    return []
-
-
-def call(function, *args, allow_inf=(), **kwargs):
-    """``function(*args, **kwargs)`` under the property: finite result, or an error naming a parameter."""
-    names = set(inspect.signature(function).parameters)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            result = function(*args, **kwargs)
-        except ValueError as error:
-            assert any(name in str(error) for name in names), f"{function.__name__}: {error}"
-            return None
-        except ConvergenceError as error:
-            assert math.isfinite(error.residual) or error.residual == math.inf
-            assert str(error)
-            return None
-    if dataclasses.is_dataclass(result):
-        for field in dataclasses.fields(result):
-            if field.name in allow_inf:
-                continue
-            for array in _values(getattr(result, field.name)):
-                assert np.all(np.isfinite(array)), f"{function.__name__}.{field.name} not finite"
-    else:
-        for array in _values(result):
-            assert np.all(np.isfinite(array)), f"{function.__name__} not finite"
-    return result
+from property_support import SETTINGS, SLOW, call, positive, real
 
 
 # --- contact ------------------------------------------------------------------------------------------
