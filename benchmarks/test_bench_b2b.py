@@ -92,11 +92,15 @@ def test_chain_cost_per_ball(benchmark):
         return max(t / n for n, t in values.items()) / min(t / n for n, t in values.items()) - 1
 
     per_ball, fixed = np.polyfit(np.array(sizes, dtype=float), np.array([cpu[n] for n in sizes]), 1)
+    # marginal cost per added ball between neighbouring sizes: constant if the cost is linear (affine) in n
+    marginal = {f"{a}-{b}": (cpu[b] - cpu[a]) / (b - a) for a, b in zip(sizes[:-1], sizes[1:])}
+    marginal_spread = max(marginal.values()) / min(marginal.values()) - 1
     benchmark.extra_info.update({f"median_cpu_ms_{n}": 1e3 * t for n, t in cpu.items()},
                                 **{f"median_wall_ms_{n}": 1e3 * t for n, t in wall.items()},
                                 per_ball_spread_cpu=spread(cpu), per_ball_spread_wall=spread(wall),
                                 per_ball_spread_least_cpu=spread(cpu_least), fixed_ms=1e3 * fixed,
-                                per_ball_ms=1e3 * per_ball)
+                                per_ball_ms=1e3 * per_ball, marginal_spread_cpu=marginal_spread,
+                                **{f"marginal_cpu_ms_{k}": 1e3 * v for k, v in marginal.items()})
 
     def row(values):
         return ", ".join(f"{n} {1e3 * t:.1f} ms ({1e3 * t / n:.4f} ms/ball)" for n, t in values.items())
@@ -107,5 +111,8 @@ def test_chain_cost_per_ball(benchmark):
           f"\nline through the median CPU times: {1e3 * fixed:.2f} ms fixed + {1e3 * per_ball:.4f} ms per ball "
           f"(30 % spread needs fixed <= {1e3 * 0.3 * 50 * per_ball:.2f} ms); targets: 200 balls <= 40 ms, "
           "1000 <= 250 ms, spread <= 30 %"
+          "\nmarginal CPU time per added ball: "
+          + ", ".join(f"{k} {1e3 * v:.4f} ms" for k, v in marginal.items())
+          + f"; spread {100 * marginal_spread:.0f} % (linear cost: the same slope at every size)"
           "\nbefore the fixed-cost cuts (e566c4d, same protocol, docs/b2b_bearing.md): median CPU 4.7, 6.5, 11.5, "
           "17.4, 39.0 ms, spread 140 %; 3.28 ms fixed + 0.0358 ms per ball")
