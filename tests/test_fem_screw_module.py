@@ -89,6 +89,21 @@ def test_hertz_statics_reference():
     assert scene.hertz_statics(contacts, 0, 30.0)[0] > forces[0]  # more load, more on the loaded diagonal
 
 
+def test_hertz_statics_of_both_cases_converge():
+    """Both balls of Table 4 cases (a) and (b) at their axial shares: balanced to the solver tolerance (MINPACK's
+    "not making good progress" at a 4e-12 N residual, case b ball 1, was once taken for a failure)."""
+    from ballbench.validation.scenes import fe_b2b_screw as scene
+
+    for case in ("a", "b"):
+        contacts, _, state = scene.low_order(case)
+        shares = scene.axial_shares(contacts, state)
+        for ball in range(2):
+            forces = scene.hertz_statics(contacts, ball, shares[ball])
+            assert np.all(forces > 0.0)
+            residual = scene.statics_residual(contacts, ball, forces, shares[ball])
+            assert np.abs(residual).max() < 1e-2 * shares[ball]  # rigid-flank statics: the same balance, roughly
+
+
 def test_statics_checks_of_the_scene_reject_wrong_forces():
     # the scene's physics checks on a module's forces (ball 1, theta = 0: four flanks at one angle):
     # forces built from the frictionless statics by hand pass; the mutants of docs/mutations.md do not

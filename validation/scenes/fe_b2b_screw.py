@@ -171,8 +171,10 @@ def hertz_statics(contacts, ball: int, axial_load: float) -> np.ndarray:
         on_ball = -(f[:, None] * e)
         return [on_ball[:, 0].sum(), on_ball[:, 1].sum(), on_ball[:2, 1].sum() * cos_a - axial_load]
 
-    z, info, ok, message = fsolve(residual, np.zeros(3), full_output=True, xtol=1e-13)
-    if ok != 1 or max(abs(r) for r in residual(z)) > 1e-8 * axial_load:
+    z, info, _, message = fsolve(residual, np.zeros(3), full_output=True, xtol=1e-13)
+    # judged by the residual, not by fsolve's flag: with xtol 1e-13 MINPACK may stop with "not making good
+    # progress" at a residual of 4e-12 N (case b, ball 1), a converged point
+    if max(abs(r) for r in residual(z)) > 1e-8 * axial_load:
         from ballbench.lowmodel.errors import ConvergenceError
 
         raise ConvergenceError(f"hertz_statics: {message}", residual=float(np.max(np.abs(residual(z)))),
