@@ -21,6 +21,8 @@ CASES = {
         R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=2e-5, growth=1.3, fine_patch=(4.2e-4, 9e-5), cache=False),
     "screw_pair_40um": lambda: screw_pair.ball_in_screw_groove_pair(
         R_B, CONF, R_P, LEAD, BETA, "screw", h_contact=4e-5, growth=1.3, cache=False),
+    # the segment and module cases mesh the default deep bodies (R_P -+ 5.25 R_B, since i15; before: 2 R_B,
+    # about half the tetrahedra)
     "nut_segment_50um": lambda: groove_segment.screw_groove_segment(
         R_B, CONF, R_P, LEAD, BETA, "nut", h_contact=5e-5, cache=False),
     "rail_50um": lambda: rail.rail_segment(5e-3, CONF, BETA, h_contact=5e-5, cache=False),

@@ -229,16 +229,17 @@ def force_operator(points: np.ndarray, triangles: np.ndarray, nodes: np.ndarray,
     return xq, M
 
 
-def fit_ellipse_forces(xq: np.ndarray, operator, forces: np.ndarray, symmetry_factor: int = 1, *,
-                       symmetric_x: bool = True, symmetric_y: bool = True) -> EllipseFit:
+def fit_ellipse_forces(xq: np.ndarray, operator, forces: np.ndarray, *, symmetric_x: bool = True,
+                       symmetric_y: bool = True) -> EllipseFit:
     """Fit the Hertz field to nodal contact forces ``forces`` (n,) [N] through their
     consistent-force ``operator`` (:func:`force_operator`): ``forces ~ M p(xq)``.
 
     This removes the bias of dividing forces by lumped areas near the edge of the
     patch, where the pressure falls as a square root.  The node-to-surface (P1) model's
     estimator; the mortar scenes use :func:`moment_ellipse` (the least-squares fit of a mortar
-    pressure is pulled by its edge ring: module docstring).  ``symmetry_factor`` scales
-    the fitted field's force to the full model.
+    pressure is pulled by its edge ring: module docstring).  The fitted ``a, b, p0`` are the whole
+    ellipse's also on a symmetry cut, so ``force = 2 pi p0 a b / 3`` is the full model's without a
+    symmetry factor (unlike :func:`moment_ellipse`, which integrates the meshed cut).
     """
     from scipy.optimize import least_squares
 

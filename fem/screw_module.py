@@ -215,7 +215,8 @@ def build_screw_model(mesh, geometry: ScrewModuleGeometry, *, materials=(2.1e11,
                       method: str = "augmented") -> fourpoint.ModuleModel:
     """Assemble, constrain and condense the screw module (:func:`fem.fourpoint.build_module_model` with the
     screw's geometry); ``mesh`` a path of a one-ball :func:`meshes.assemblies.ball_screw_module.ball_screw_module`
-    mesh; ``gap_limit`` [m] as there (on the gap with the oversize subtracted)."""
+    mesh (its default bodies, screw core and nut outside at ``R_P -+ 5.25 R_B``, are the validated depth:
+    docs/fe_b2b.md "Depth of the FE bodies"); ``gap_limit`` [m] as there (on the gap with the oversize subtracted)."""
     if not isinstance(geometry, ScrewModuleGeometry):
         raise ValueError(f"geometry must be a ScrewModuleGeometry, got {type(geometry).__name__}")
     return fourpoint.build_module_model(mesh, geometry, materials=materials, gap_limit=gap_limit, method=method)

@@ -170,6 +170,11 @@ def test_ellipse_fit_recovers_exact_hertz_forces(flat_model):
     field = p0 * np.sqrt(np.clip(1 - (xq[:, 0] / a) ** 2 - (xq[:, 1] / b) ** 2, 0, None))
     fit = postprocess.fit_ellipse_forces(xq, operator, operator @ field)
     assert (fit.a, fit.b, fit.p0) == pytest.approx((a, b, p0), rel=1e-8)
+    # a quarter model: the fitted field is the whole ellipse, its force the full one without a symmetry factor,
+    # 4x the quarter's nodal forces (to the quadrature's 4e-5); scaling it by the factor would give 4x too much
+    assert model.symmetry_factor == 4
+    assert fit.force == pytest.approx(2 * np.pi * p0 * a * b / 3, rel=1e-8)
+    assert fit.force == pytest.approx(model.symmetry_factor * (operator @ field).sum(), rel=1e-3)
 
 
 def test_groove_quick_level_against_hertz():

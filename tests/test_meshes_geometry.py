@@ -39,6 +39,11 @@ def _group_cells(mesh, name: str, kind: str) -> np.ndarray:
     return np.concatenate(blocks) if blocks else np.empty((0, 4 if kind == "tetra" else 3), int)
 
 
+def _radii(mesh, group: str) -> np.ndarray:
+    nodes = mesh.points[_group_nodes(mesh, group)]
+    return np.hypot(nodes[:, 0], nodes[:, 1])
+
+
 def _tet_volume(points: np.ndarray, tets: np.ndarray) -> float:
     a, b, c, d = (points[tets[:, i]] for i in range(4))
     return float(np.sum(np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a))) / 6.0)
@@ -449,6 +454,8 @@ def test_groove_segment_flanks_land_and_four_point_contact(body, deviations):
     mesh = meshio.read(path)
     assert len(_group_cells(mesh, body, "tetra")) > 100
     land = R_P - 0.25 * R_B if body == "screw" else R_P + 0.25 * R_B
+    back = R_P - 5.25 * R_B if body == "screw" else R_P + 5.25 * R_B  # the deep default bodies (docs/fe_b2b.md)
+    np.testing.assert_allclose(_radii(mesh, "back"), back, rtol=1e-12)
     nodes = mesh.points[_group_nodes(mesh, "land")]
     # (its edges with the flanks carry flank nodes moved onto the exact helical surface:
     # OCC's loft/boolean intersection lies within 1e-7 m of it)
@@ -747,6 +754,23 @@ def test_screw_module_balls_touch_each_other(screw_module_mesh):
     assert exact - area * edge**2 / (6 * R_B) < volume < exact
 
 
+def test_screw_module_default_bodies_are_the_deep_validated_ones(screw_module_mesh):
+    """By default the screw core and the nut's outside lie at R_P -+ 5.25 R_B, the depth of the validated FE module
+    (issue 12, docs/fe_b2b.md "Depth of the FE bodies": at the former 2 R_B the FE forces were up to 5.5 % above the
+    frictionless Hertz statics).  The default h_max R_B/3 (0.93 mm) lies within 0.1 % of the 1 mm the scenes take."""
+    for group, radius in (("screw_support", R_P - 5.25 * R_B), ("nut_load", R_P + 5.25 * R_B)):
+        np.testing.assert_allclose(_radii(screw_module_mesh, group), radius, rtol=1e-12)
+
+
+def test_thin_screw_keeps_a_core():
+    """R_P = 4 R_B: the deep default R_P - 5.25 R_B would cross the axis; the screw keeps a core of 0.1 R_P
+    (without it the core radius is negative and gmsh fails on a default the user did not give)."""
+    r_p = 4.0 * R_B
+    mesh = meshio.read(ball_screw_module.ball_screw_module(R_B, CONF, r_p, LEAD, BETA, cache=False))
+    np.testing.assert_allclose(_radii(mesh, "screw_support"), 0.1 * r_p, rtol=1e-12)
+    np.testing.assert_allclose(_radii(mesh, "nut_load"), r_p + 5.25 * R_B, rtol=1e-12)
+
+
 @pytest.mark.parametrize("kwargs, match", [
     (dict(deviations=(0.0, 0.0)), "deviations"),
     (dict(n_balls=0), "n_balls"),
@@ -767,7 +791,8 @@ def test_screw_module_bad_input_names_the_parameter(kwargs, match):
 
 def test_builders_over_the_parameter_range():
     """Every builder meshes across conformity 0.51-0.7, contact angle 30-60 deg, lead 0-40 mm,
-    screw/nut, both profile planes, one and two balls (coarse, about 17 s)."""
+    screw/nut, both profile planes, one and two balls (coarse; 14.7 s CPU with the deep default bodies, 11.7 s
+    with the former 2 R_B, 2026-11-23)."""
     import itertools
     for conformity, beta, lead, body, plane in itertools.product((0.51, 0.6, 0.7), (30, 45, 60), (0.0, 5e-3, 40e-3),
                                                                   ("screw", "nut"), ("normal", "axial")):

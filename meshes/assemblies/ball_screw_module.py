@@ -45,8 +45,9 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     ``deviations`` [rad]: contact angle deviations ``(SL, SR, NR, NL)``;
     ``n_balls`` 1 or 2; ``spacing`` [m] chord between two ball centres (default
     ``2 R_B``).  Segments as :func:`meshes.parts.groove_segment.screw_groove_segment` (screw land
-    ``R_P - 0.25 R_B``, core ``R_P - 2 R_B``; nut land ``R_P + 0.25 R_B``, outside
-    ``R_P + 2 R_B``; ``half_angle`` default ``dphi/2 + 2 R_B / R_P``).  With
+    ``R_P - 0.25 R_B``, core ``R_P - 5.25 R_B`` (at least ``0.1 R_P``); nut land ``R_P + 0.25 R_B``, outside
+    ``R_P + 5.25 R_B``: ``groove_segment.BODY_DEPTH``, the depth of the validated FE module, docs/fe_b2b.md;
+    ``half_angle`` default ``dphi/2 + 2 R_B / R_P``).  With
     ``h_contact`` [m] the mesh is refined at every contact point (four per ball and
     the B2B point).
 

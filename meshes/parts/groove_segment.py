@@ -21,10 +21,19 @@ from ballbench.meshes.gmsh_tools import cached_msh, face_point, physical, sessio
 from ballbench.meshes.refinement import check_refinement, size_at_points
 from ballbench.meshes.snapping import snap_to_bottom, snap_to_groove
 
-__all__ = ["screw_groove_segment", "segment_grooves", "segment_dimensions", "add_groove_segment", "snap_segment",
-           "flank_intersections"]
+__all__ = ["BODY_DEPTH", "MIN_CORE", "screw_groove_segment", "segment_grooves", "segment_dimensions",
+           "add_groove_segment", "snap_segment", "flank_intersections"]
 
 MESH_FORMAT_VERSION = "helical-1"
+# Default depth of the bodies [R_B from the pitch radius]: screw core at R_P - BODY_DEPTH R_B, nut outside at
+# R_P + BODY_DEPTH R_B, i.e. 5 R_B beyond the lands.  The validated FE ball-screw module (issue 12, docs/fe_b2b.md
+# "Depth of the FE bodies"): at the former 2 R_B the clamp and the rigid nut face sit 1.75 R_B below the lands and
+# the FE forces come out up to 5.5 % above the frictionless Hertz statics (F_B2B 2.003 N against 1.956 N), at
+# 5.25 R_B at most 1.2 % below them.
+BODY_DEPTH = 5.25
+# A screw thinner than that keeps a core of MIN_CORE R_P (a clamp on the axis itself is singular; Table 4's deep
+# core is 0.116 R_P).
+MIN_CORE = 0.1
 
 
 def segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, body, deviations,
@@ -64,8 +73,11 @@ def segment_dimensions(grooves, land_radius, back_radius, half_angle, axial_half
     sign = left.sign_u
     land = r_p + sign * 0.25 * radius if land_radius is None else \
         checks.positive(f"{prefix}land_radius", land_radius, "m")
-    back = r_p + sign * 2.0 * radius if back_radius is None else \
-        checks.positive(f"{prefix}back_radius", back_radius, "m")
+    if back_radius is None:
+        back = r_p + sign * BODY_DEPTH * radius
+        back = max(back, MIN_CORE * r_p) if sign < 0 else back
+    else:
+        back = checks.positive(f"{prefix}back_radius", back_radius, "m")
     contact_u = sign * radius * min(math.cos(g.contact_angle) for g in grooves)
     if not sign * (land - r_p) < sign * contact_u - 0.05 * radius:
         raise ValueError(f"{prefix}land_radius must leave the contact points (at radius {r_p + contact_u!r} m) "
@@ -161,7 +173,8 @@ def screw_groove_segment(ball_radius: float, conformity: float, pitch_radius: fl
 
     The body is the annular wedge ``|phi| <= half_angle`` between ``land_radius``
     (the land: default ``R_P -+ 0.25 R_B``) and ``back_radius`` (core of the screw /
-    outside of the nut, default ``R_P -+ 2 R_B``), within ``|z| <= axial_half_width``
+    outside of the nut, default ``R_P -+ BODY_DEPTH R_B`` = ``R_P -+ 5.25 R_B``, the screw's core at least
+    ``MIN_CORE R_P`` = ``0.1 R_P``: the validated FE depth, docs/fe_b2b.md), within ``|z| <= axial_half_width``
     (default ``p half_angle + 1.5 R_B``, at most ``lead/2`` so no other turn of the
     groove enters), minus the gothic-arch lens swept along the helix (both flanks;
     lin2019 Fig 13).  Default ``half_angle``: ``2 R_B / R_P``.  With ``h_contact``

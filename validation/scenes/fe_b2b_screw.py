@@ -29,6 +29,7 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.meshes.parts.groove_segment import BODY_DEPTH  # R_B from the pitch radius (the builder's default)
 from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import KnownGap, scene
 from ballbench.validation.scenes import lin2019_screw
@@ -52,12 +53,11 @@ LEVELS = {
     "fine": [(4.0e-5, 1.5, 1.5e-4, 1.0e-3), (3.0e-5, 1.4, 1.5e-4, 1.0e-3), (2.2e-5, 1.35, 1.5e-4, 1.0e-3)],
 }
 # The bodies (issue 12, docs/fe_b2b.md "Depth of the FE bodies"): screw core and nut outside at R_P -+ BODY_DEPTH R_B,
-# i.e. 5 R_B below the lands (the builder's default 2 R_B clamps the segments 1.75 R_B below them: too stiff, the FE
+# i.e. 5 R_B below the lands (the former default 2 R_B clamps the segments 1.75 R_B below them: too stiff, the FE
 # forces 2-5.5 % above the Hertz statics).  Table 4 gives neither radius; lin2019 Sec 3.3 meshed the CAD screw shaft
 # and nut (Fig 18).  R_P - 5.25 R_B = 1.92 mm: the screw segment reaches to near the shaft's axis (a solid shaft);
 # R_P + 5.25 R_B = 31.1 mm: a nut body of 62 mm outer diameter.  Measured (case a, 40 um): depth 2 / 3.25 / 5.25 R_B
 # -> worst force vs Hertz statics +5.5 / +2.6 / -1.1 %, F_B2B 2.003 / 1.985 / 1.955 N.
-BODY_DEPTH = 5.25  # R_B from the pitch radius
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # issue 12: per scene at its level
 SCENE_BUDGET_S = {"quick": TIME_LIMIT_S["quick"], "default": TIME_LIMIT_S["default"],
                   "fine": 5.0 * TIME_LIMIT_S["default"]}
