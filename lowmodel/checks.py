@@ -24,17 +24,20 @@ Frozen dataclasses that cache data derived from their arrays hold those arrays r
 (:func:`freeze_arrays` in ``__post_init__``): ``frozen=True`` stops rebinding a field but not
 ``obj.array[0] = x``, after which the caches would silently disagree with the arrays.  An in-place
 edit raises numpy's "assignment destination is read-only"; :func:`dataclasses.replace` builds the
-edited object with fresh caches.
+edited object with fresh caches.  Their ``__reduce__`` is :func:`rebuilt_through_init`, so pickle and
+:func:`copy.deepcopy` pass ``__init__`` too (they would otherwise hand back writable arrays).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 
 import numpy as np
 
 __all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
-           "choice", "count", "trailing_axis", "read_only", "freeze_arrays"]
+           "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
+           "rebuilt_through_init"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -199,3 +202,9 @@ def freeze_arrays(instance, *names: str) -> None:
         value = getattr(instance, name)
         if value is not None:
             object.__setattr__(instance, name, read_only(value))
+
+
+def rebuilt_through_init(instance) -> tuple:
+    """``__reduce__`` of a frozen dataclass with :func:`freeze_arrays`: ``(type, field values)``, so that pickle
+    and :mod:`copy` rebuild it through ``__init__`` (read-only arrays, no cached data carried over)."""
+    return type(instance), tuple(getattr(instance, field.name) for field in dataclasses.fields(instance))

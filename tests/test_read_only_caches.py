@@ -136,3 +136,31 @@ def test_cached_pair_geometry_refuses_in_place_edits():
             pair.rotation[0, 0] = 0.0
     finally:
         screw_b2b.pair_geometry.cache_clear()  # never leave an edited geometry behind for other tests
+
+
+def _instances():
+    table = ef.friction_map()
+    contacts = _linear_contacts()
+    bb.solve_ball(contacts)  # caches filled (its friction map is a closure: pickled as it was, this failed)
+    return [(contacts, ("contact_angles", "normal_forces", "semi_major", "b_over_a")),
+            (_stiffness(), ("loads", "shifts")),
+            (ef.FrictionMap(table.phi, table.log_b_over_a, table.force, table.moment, table.loss_direction, 0.0,
+                            False), ("phi", "log_b_over_a", "force", "moment", "loss_direction")),
+            (screw_b2b.pair_geometry.__wrapped__(screw_ball.screw_module()), ("chord", "rotation"))]
+
+
+@pytest.mark.parametrize("how", ["pickle", "deepcopy"])
+def test_pickled_and_deep_copied_objects_keep_read_only_arrays(how):
+    """pickle and copy.deepcopy rebuild the object without ``__init__`` unless told otherwise: they must
+    not hand back writable arrays (nor cached data that an edit of them would leave stale)."""
+    import copy
+    import pickle
+
+    for obj, names in _instances():
+        twin = pickle.loads(pickle.dumps(obj)) if how == "pickle" else copy.deepcopy(obj)
+        for name in names:
+            np.testing.assert_array_equal(getattr(twin, name), getattr(obj, name))
+            assert not getattr(twin, name).flags.writeable, f"{type(obj).__name__}.{name} after {how}"
+    contacts = _instances()[0][0]
+    twin = pickle.loads(pickle.dumps(contacts)) if how == "pickle" else copy.deepcopy(contacts)
+    np.testing.assert_array_equal(bb.solve_ball(twin).friction_force, bb.solve_ball(contacts).friction_force)

@@ -519,6 +519,9 @@ class FrictionMap:
     def __post_init__(self):
         checks.freeze_arrays(self, "phi", "log_b_over_a", "force", "moment", "loss_direction")
 
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
     @property
     def splines(self):
         """scipy RectBivariateSpline of (force, moment, loss_direction) over (phi, log b/a)."""

@@ -131,6 +131,9 @@ class BallContacts:
     def __post_init__(self):
         checks.freeze_arrays(self, "contact_angles", "normal_forces", "semi_major", "b_over_a")
 
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
     @property
     def n_balls(self) -> int:
         return self.normal_forces.shape[0]

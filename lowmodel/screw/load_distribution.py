@@ -71,6 +71,9 @@ class AxialStiffness:
     def __post_init__(self):
         checks.freeze_arrays(self, "loads", "shifts")
 
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
     @cached_property
     def _interpolant(self):
         from scipy.interpolate import PchipInterpolator

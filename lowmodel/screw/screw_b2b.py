@@ -78,6 +78,9 @@ class PairGeometry:
     def __post_init__(self):
         checks.freeze_arrays(self, "chord", "rotation")
 
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
 
 @lru_cache(maxsize=64)
 def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
