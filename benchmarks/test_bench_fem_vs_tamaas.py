@@ -16,9 +16,9 @@ Run: ``.venv/bin/python -m pytest benchmarks/test_bench_fem_vs_tamaas.py -s``.
 from __future__ import annotations
 
 import os
-import time
 
 import pytest
+from tamaas_support import hertz_groove_in_child, timed
 
 from ballbench.lowmodel.contact import hertz
 
@@ -28,53 +28,14 @@ TOLERANCE = 1e-8  # tamaas's Polonsky-Keer relative tolerance, as benchmarks/tes
 TARGET_RATIO = 8.0
 
 
-def _timed(function):
-    wall, cpu = time.perf_counter(), time.process_time()
-    result = function()
-    return result, time.perf_counter() - wall, time.process_time() - cpu
-
-
-_TAMAAS = """
-import json, sys, time
-import numpy as np
-import tamaas as tm
-from ballbench.lowmodel.contact import halfspace as hs
-from ballbench.lowmodel.contact import hertz
-radius, conformity, modulus, ratio, force, grid_n, tolerance = json.loads(sys.argv[1])
-geometry = hertz.ball_in_groove(radius, conformity, youngs_modulus=modulus, poisson_ratio=ratio)
-contact = hertz.solve_load(geometry, force)
-tm.set_log_level(tm.LogLevel.error)
-grid = hs.hertz_surface_grid(float(contact.a), float(contact.b), grid_n)
-gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
-sizes = [grid.nx * grid.dx, grid.ny * grid.dy]
-wall, cpu = time.perf_counter(), time.process_time()
-model = tm.ModelFactory.createModel(tm.model_type.basic_2d, sizes, [grid.nx, grid.ny])
-model.E, model.nu = geometry.contact_modulus, 0.0  # E* = E / (1 - nu^2)
-tm.ModelFactory.registerNonPeriodic(model, "dcfft")
-solver = tm.PolonskyKeerRey(model, -gap, tolerance)
-solver.setIntegralOperator("dcfft")
-solver.solve(force / (sizes[0] * sizes[1]))  # mean pressure over the grid
-pressure = np.array(model.traction)
-wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
-a, b, _, _ = hs.pressure_ellipse(pressure, grid)
-print(json.dumps(dict(a=a, b=b, p0=float(pressure.max()), wall=wall, cpu=cpu, version=tm.__version__)))
-"""
-
-
 def _tamaas(conformity):
-    """tamaas on the groove's Hertz problem, in a child process with ``OMP_NUM_THREADS=1`` (set before
-    its OpenMP runtime starts); its own wall and CPU time of model set-up and solve."""
-    import json
-    import subprocess
-    import sys
-
+    """tamaas on the groove's Hertz problem, in a child process with ``OMP_NUM_THREADS=1``
+    (:func:`tamaas_support.hertz_groove_in_child`); its own wall and CPU time of model set-up and solve."""
     pytest.importorskip("tamaas")
     from ballbench.validation.scenes import fe_hertz
 
-    args = [fe_hertz.BALL_RADIUS, conformity, fe_hertz.E_STEEL, fe_hertz.NU_STEEL, fe_hertz.LOAD, GRID, TOLERANCE]
-    out = subprocess.run([sys.executable, "-c", _TAMAAS, json.dumps(args)], check=True, capture_output=True,
-                         text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return hertz_groove_in_child(fe_hertz.BALL_RADIUS, conformity, fe_hertz.E_STEEL, fe_hertz.NU_STEEL, fe_hertz.LOAD,
+                                 GRID, TOLERANCE)
 
 
 def test_bench_fe_vs_tamaas(benchmark, tmp_path, monkeypatch):
@@ -87,10 +48,10 @@ def test_bench_fe_vs_tamaas(benchmark, tmp_path, monkeypatch):
     theirs = _tamaas(entry.conformity)
 
     monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))  # the mesh build, uncached: what a first run pays
-    _, mesh_wall, mesh_cpu = _timed(lambda: case.builder(float(ref.b) / n, growth))
-    timed = benchmark.pedantic(_timed, args=(lambda: fe_hertz.solve_level(case, n, growth),), rounds=1,
-                               iterations=1)  # the benchmark's own statistic is the FE level's wall time
-    (result, _), wall, cpu = timed
+    _, mesh_wall, mesh_cpu = timed(lambda: case.builder(float(ref.b) / n, growth))
+    measured = benchmark.pedantic(timed, args=(lambda: fe_hertz.solve_level(case, n, growth),), rounds=1,
+                                  iterations=1)  # the benchmark's own statistic is the FE level's wall time
+    (result, _), wall, cpu = measured
     ours = dict(a=result.a, b=result.b, p0=result.p0)
     errors = {who: {q: values[q] / float(getattr(ref, q)) - 1.0 for q in ("a", "b", "p0")}
               for who, values in (("ours", ours), ("tamaas", theirs))}

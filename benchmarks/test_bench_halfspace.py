@@ -10,10 +10,10 @@ time is the steadier figure when other jobs compete for the cores.
 from __future__ import annotations
 
 import os
-import time
 
 import numpy as np
 import pytest
+from tamaas_support import tamaas_pressure, timed
 
 from ballbench.lowmodel.contact import halfspace as hs
 from ballbench.lowmodel.contact import hertz
@@ -27,12 +27,6 @@ def _problem(n):
     contact = hertz.solve_load(GEOMETRY, LOAD)
     grid = hs.hertz_surface_grid(float(contact.a), float(contact.b), n)
     return contact, grid, hs.quadratic_gap(grid, GEOMETRY.A, GEOMETRY.B)
-
-
-def _timed(function):
-    wall, cpu = time.perf_counter(), time.process_time()
-    result = function()
-    return result, time.perf_counter() - wall, time.process_time() - cpu
 
 
 def _errors(contact, pressure, grid, approach=None):
@@ -52,7 +46,7 @@ def test_bench_bem_hertz(benchmark, n, target_s):
     def run():
         return hs.solve(gap, grid, GEOMETRY.contact_modulus, force=LOAD, tolerance=TOLERANCE)
 
-    result, wall, cpu = _timed(run)
+    result, wall, cpu = timed(run)
     benchmark.pedantic(run, rounds=3 if n <= 256 else 1, iterations=1)
     median = benchmark.stats.stats.median
     benchmark.extra_info.update({"n": n, "iterations": result.iterations, "cpu_s": cpu})
@@ -64,25 +58,17 @@ def test_bench_bem_hertz(benchmark, n, target_s):
 
 def test_bench_bem_vs_tamaas_512(benchmark):
     tm = pytest.importorskip("tamaas")
-    tm.set_log_level(tm.LogLevel.error)
     contact, grid, gap = _problem(512)
-    sizes = [grid.nx * grid.dx, grid.ny * grid.dy]
 
     def tamaas_solve():
-        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, sizes, [grid.nx, grid.ny])
-        model.E, model.nu = GEOMETRY.contact_modulus, 0.0  # E* = E / (1 - nu^2)
-        tm.ModelFactory.registerNonPeriodic(model, "dcfft")
-        solver = tm.PolonskyKeerRey(model, -gap, TOLERANCE)
-        solver.setIntegralOperator("dcfft")
-        solver.solve(LOAD / (sizes[0] * sizes[1]))  # mean pressure over the grid
-        return np.array(model.traction)
+        return tamaas_pressure(gap, grid, GEOMETRY.contact_modulus, LOAD, TOLERANCE)
 
     def ours():
         return hs.solve(gap, grid, GEOMETRY.contact_modulus, force=LOAD, tolerance=TOLERANCE)
 
     ours()  # kernel spectrum cached, as tamaas builds its operator once per model
-    theirs, tamaas_wall, tamaas_cpu = _timed(tamaas_solve)
-    result, our_wall, our_cpu = _timed(ours)
+    theirs, tamaas_wall, tamaas_cpu = timed(tamaas_solve)
+    result, our_wall, our_cpu = timed(ours)
     benchmark.pedantic(ours, rounds=1, iterations=1)
     difference = np.max(np.abs(result.pressure - theirs)) / float(contact.p0)
     benchmark.extra_info.update({"tamaas_wall_s": tamaas_wall, "tamaas_cpu_s": tamaas_cpu, "ours_wall_s": our_wall,

@@ -19,16 +19,25 @@ Ranges used across the project, each defined once here:
   0.6 (lin2019 Tables 1 and 4: 0.56), and neither the papers nor the meshes
   (the gothic-arch flank must rise above the contact point) go beyond.
 * integers (``count``): Python or numpy integers; ``True``/``False`` are refused.
+
+Frozen dataclasses that cache data derived from their arrays hold those arrays read-only
+(:func:`freeze_arrays` in ``__post_init__``): ``frozen=True`` stops rebinding a field but not
+``obj.array[0] = x``, after which the caches would silently disagree with the arrays.  An in-place
+edit raises numpy's "assignment destination is read-only"; :func:`dataclasses.replace` builds the
+edited object with fresh caches.  Their ``__reduce__`` is :func:`rebuilt_through_init`, so pickle and
+:func:`copy.deepcopy` pass ``__init__`` too (they would otherwise hand back writable arrays).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 
 import numpy as np
 
 __all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
-           "choice", "count", "trailing_axis"]
+           "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
+           "rebuilt_through_init"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -166,3 +175,36 @@ def trailing_axis(name: str, value, length: int, labels: str = "", unit: str = "
         raise ValueError(f"{name} must have a trailing axis of {length}{what}{_unit(unit and f'[{unit}]')}, "
                          f"got shape {array.shape}")
     return array
+
+
+def read_only(value) -> np.ndarray:
+    """``value`` as an array nobody can write into: ``value`` itself when neither it nor any array it is a
+    view of is writable (e.g. a slice of another read-only array), else a read-only copy.
+
+    A caller holding a writable array (or a writable base of a view) keeps it writable and theirs.
+    """
+    array = np.asarray(value)
+    base = array
+    while isinstance(base, np.ndarray):
+        if base.flags.writeable:
+            break
+        base = base.base
+    if base is not None:  # a writable array in the chain, or memory numpy does not own (a buffer)
+        array = array.copy()
+        array.setflags(write=False)
+    return array
+
+
+def freeze_arrays(instance, *names: str) -> None:
+    """Replace the fields ``names`` of the frozen dataclass ``instance`` by :func:`read_only` arrays (in
+    ``__post_init__``; ``None`` stays ``None``)."""
+    for name in names:
+        value = getattr(instance, name)
+        if value is not None:
+            object.__setattr__(instance, name, read_only(value))
+
+
+def rebuilt_through_init(instance) -> tuple:
+    """``__reduce__`` of a frozen dataclass with :func:`freeze_arrays`: ``(type, field values)``, so that pickle
+    and :mod:`copy` rebuild it through ``__init__`` (read-only arrays, no cached data carried over)."""
+    return type(instance), tuple(getattr(instance, field.name) for field in dataclasses.fields(instance))

@@ -1,17 +1,9 @@
 """The sun2021 roughness and friction scenes pass at the quick fidelity (known gaps declared, no error)."""
 import pytest
 
-from ballbench.validation.runner import run_scene
-from ballbench.validation.scene import registry
-from ballbench.validation.scenes import load_all
-
 
 # quick: fig6 15 s (22-26 s at load average 7-10), the others under 2 s
 @pytest.mark.parametrize("name", ["sun2021-roughness", "sun2021-fig12", "sun2021-fig13", "sun2021-fig6"])
-def test_scene_passes_quick(name, tmp_path):
-    load_all()
-    result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
-    failed = [o.quantity for o in result.outputs if not o.passed]
-    assert result.error in (None, ""), result.error
-    assert result.passed, failed
+def test_scene_passes_quick(name, quick_scene):
+    result = quick_scene(name)
     assert not [o.quantity for o in result.outputs if o.known_gap and o.passed], "a known gap passes: remove it"

@@ -67,7 +67,7 @@ import math
 import os
 import time
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from scipy.special import ellipe, ellipkm1, elliprd
@@ -503,6 +503,9 @@ class FrictionMap:
     every query point is interior; ``splines`` are scipy RectBivariateSpline
     (bicubic, s = 0) of ``force``, ``moment`` and ``loss cos(phi)`` (the last
     one equals ``loss / sqrt(1 + (c/a)^2)``, bounded).
+
+    The five arrays are read-only (the splines and patches are cached on the instance and built from
+    them; :func:`friction_map` shares one map with every caller; lowmodel.checks.freeze_arrays).
     """
 
     phi: np.ndarray
@@ -513,16 +516,29 @@ class FrictionMap:
     build_time_s: float
     from_cache: bool
 
+    def __post_init__(self):
+        checks.freeze_arrays(self, "phi", "log_b_over_a", "force", "moment", "loss_direction")
+
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
     @property
     def splines(self):
         """scipy RectBivariateSpline of (force, moment, loss_direction) over (phi, log b/a)."""
         return _patches(self)[0]
 
-
-_PATCH_CACHE: dict[int, tuple] = {}
+    @cached_property
+    def _patch_set(self):
+        # on the instance, not in a dict keyed on id(self): a map built at a freed map's address got its splines
+        return _build_patches(self)
 
 
 def _patches(table: FrictionMap):
+    """The splines and bicubic patches of ``table`` (:func:`_build_patches`), built once per map."""
+    return table._patch_set
+
+
+def _build_patches(table: FrictionMap):
     """Splines and their bicubic patches, Taylor coefficients about each cell centre.
 
     ``coefficients[i, j, q, m, n]`` multiplies ``dphi^m dlogb^n`` for quantity ``q``
@@ -530,29 +546,28 @@ def _patches(table: FrictionMap):
     evaluating the patches is evaluating the spline, only without fitpack's
     per-call overhead.
     """
-    key = id(table)
-    if key not in _PATCH_CACHE:
-        from scipy.interpolate import RectBivariateSpline
-        splines = tuple(RectBivariateSpline(table.phi, table.log_b_over_a, values, kx=3, ky=3, s=0)
-                        for values in (table.force, table.moment, table.loss_direction))
-        mid_x = 0.5 * (table.phi[1:] + table.phi[:-1])
-        mid_y = 0.5 * (table.log_b_over_a[1:] + table.log_b_over_a[:-1])
-        width_x = np.diff(table.phi)
-        width_y = np.diff(table.log_b_over_a)
-        # sample each cell at 4 x 4 interior points and solve the (fixed) Vandermonde system
-        unit = np.array([-0.375, -0.125, 0.125, 0.375])
-        inverse = np.linalg.inv(np.vander(unit, 4, increasing=True))   # samples -> coefficients in unit
-        xs = (mid_x[:, None] + width_x[:, None] * unit).ravel()
-        ys = (mid_y[:, None] + width_y[:, None] * unit).ravel()
-        scale_x = width_x[:, None] ** -np.arange(4.0)                  # (nx-1, 4)
-        scale_y = width_y[:, None] ** -np.arange(4.0)
-        coefficients = np.empty((mid_x.size, mid_y.size, 3, 4, 4))
-        for q, spline in enumerate(splines):
-            samples = spline(xs, ys, grid=True).reshape(mid_x.size, 4, mid_y.size, 4)
-            unit_coefficients = np.einsum("ma,iajb,nb->ijmn", inverse, samples, inverse)
-            coefficients[:, :, q] = unit_coefficients * scale_x[:, None, :, None] * scale_y[None, :, None, :]
-        _PATCH_CACHE[key] = (splines, mid_x, mid_y, coefficients)
-    return _PATCH_CACHE[key]
+    from scipy.interpolate import RectBivariateSpline
+    splines = tuple(RectBivariateSpline(table.phi, table.log_b_over_a, values, kx=3, ky=3, s=0)
+                    for values in (table.force, table.moment, table.loss_direction))
+    mid_x = 0.5 * (table.phi[1:] + table.phi[:-1])
+    mid_y = 0.5 * (table.log_b_over_a[1:] + table.log_b_over_a[:-1])
+    width_x = np.diff(table.phi)
+    width_y = np.diff(table.log_b_over_a)
+    # sample each cell at 4 x 4 interior points and solve the (fixed) Vandermonde system
+    unit = np.array([-0.375, -0.125, 0.125, 0.375])
+    inverse = np.linalg.inv(np.vander(unit, 4, increasing=True))   # samples -> coefficients in unit
+    xs = (mid_x[:, None] + width_x[:, None] * unit).ravel()
+    ys = (mid_y[:, None] + width_y[:, None] * unit).ravel()
+    scale_x = width_x[:, None] ** -np.arange(4.0)                  # (nx-1, 4)
+    scale_y = width_y[:, None] ** -np.arange(4.0)
+    coefficients = np.empty((mid_x.size, mid_y.size, 3, 4, 4))
+    for q, spline in enumerate(splines):
+        samples = spline(xs, ys, grid=True).reshape(mid_x.size, 4, mid_y.size, 4)
+        unit_coefficients = np.einsum("ma,iajb,nb->ijmn", inverse, samples, inverse)
+        coefficients[:, :, q] = unit_coefficients * scale_x[:, None, :, None] * scale_y[None, :, None, :]
+    for array in (mid_x, mid_y, coefficients):
+        array.setflags(write=False)
+    return splines, mid_x, mid_y, coefficients
 
 
 def _build_table(n_uniform: int, n_cluster: int, n_beta: int):

@@ -114,6 +114,10 @@ class BallContacts:
     ball_radius    : m
     friction_coefficient : mu (Coulomb, ball-to-groove and ball-to-ball)
     groove_velocity : m/s, velocity ``v`` of the top groove along +z (nonzero)
+
+    The four arrays are read-only (copied on construction unless they already are, with their bases):
+    the cached geometry, friction map and equilibrium rows are derived from them, so an in-place edit
+    would leave them stale; edit with :func:`dataclasses.replace` (lowmodel.checks.freeze_arrays).
     """
 
     contact_angles: np.ndarray
@@ -123,6 +127,12 @@ class BallContacts:
     ball_radius: float
     friction_coefficient: float
     groove_velocity: float
+
+    def __post_init__(self):
+        checks.freeze_arrays(self, "contact_angles", "normal_forces", "semi_major", "b_over_a")
+
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
 
     @property
     def n_balls(self) -> int:
@@ -137,7 +147,10 @@ class BallContacts:
         dslide = np.stack([np.ones_like(nx), ny, -nx], axis=-1)  # d slide / d x, (n, 4, 3)
         dspin = np.stack([np.zeros_like(nx), -nx * arm, -ny * arm], axis=-1)  # d spin / d x
         top = math.copysign(1.0, self.groove_velocity) * _TOP
-        return nx, ny, arm, dslide, dspin, top
+        derived = nx, ny, arm, dslide, dspin, top
+        for array in derived:  # fresh arrays (or views of them) held by this instance only: no copy needed
+            array.setflags(write=False)
+        return derived
 
     @cached_property
     def _friction_at(self):
@@ -156,7 +169,10 @@ class BallContacts:
         rows[:, 0, :, 0], rows[:, 0, :, 1] = 1.0, 0.0  # eq 4 row 1: sum f_i
         rows[:, 1, :, 0], rows[:, 1, :, 1] = ny, nx  # row 2: n_y f + n_x M
         rows[:, 2, :, 0], rows[:, 2, :, 1] = -nx, ny  # row 3: -n_x f + n_y M
-        return rows.reshape(self.n_balls, 3, 8), np.ascontiguousarray(rows.transpose(0, 2, 1, 3)), {}
+        matrix, per_contact = rows.reshape(self.n_balls, 3, 8), np.ascontiguousarray(rows.transpose(0, 2, 1, 3))
+        matrix.setflags(write=False)
+        per_contact.setflags(write=False)
+        return matrix, per_contact, {}
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -261,11 +277,10 @@ def contacts_from_forces(contact_angles, normal_forces, semi_major, b_over_a, *,
         raise ValueError(f"groove_velocity must be finite and nonzero m/s, got {groove_velocity!r}")
     angles = _check_angles(contact_angles)
     forces = np.broadcast_to(checks.positive("normal_forces", normal_forces, "N", note=(
-        "at all four contacts; loss of four-point contact otherwise, lin2017 eq 37")), angles.shape).copy()
-    axes = np.broadcast_to(checks.positive("semi_major", semi_major, "m"), angles.shape).copy()
-    ratio = np.broadcast_to(checks.bounded("b_over_a", b_over_a, 0.0, 1.0, upper_closed=True),
-                            angles.shape).copy()
-    return BallContacts(angles, forces, axes, ratio, radius, mu, velocity)
+        "at all four contacts; loss of four-point contact otherwise, lin2017 eq 37")), angles.shape)
+    axes = np.broadcast_to(checks.positive("semi_major", semi_major, "m"), angles.shape)
+    ratio = np.broadcast_to(checks.bounded("b_over_a", b_over_a, 0.0, 1.0, upper_closed=True), angles.shape)
+    return BallContacts(angles, forces, axes, ratio, radius, mu, velocity)  # copied there (read-only)
 
 
 def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: float, conformity: float,
@@ -411,6 +426,7 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     if scale is None:  # the friction map's (force, moment, loss) per unit mu F_ref: (load, load a_i/R_B, load)
         load = contacts.normal_forces / reference_force
         scale = scales[reference_force] = np.stack([load, load * arm, load], axis=-1)[..., None]
+        scale.setflags(write=False)
     # lin2019 eqs 1, A1-A3 (z slip at the centre): dslide = (1, n_y, -n_x);
     # eq 2 (omega_i a_i): dspin = -(0, n_x, n_y) a_i/R_B
     slide = np.matmul(dslide, x[:, :, None])[..., 0]

@@ -59,10 +59,20 @@ def bar_sections(module: sb.ScrewModule, *, screw_radius: float | None = None,
 
 @dataclass(frozen=True)
 class AxialStiffness:
-    """Tabulated shift ``u = U(q)`` [m] of one nominal ball against its axial load ``q`` [N]."""
+    """Tabulated shift ``u = U(q)`` [m] of one nominal ball against its axial load ``q`` [N].
+
+    ``loads`` and ``shifts`` are read-only (the cached interpolant is built from them; edit with
+    :func:`dataclasses.replace`, lowmodel.checks.freeze_arrays).
+    """
 
     loads: np.ndarray
     shifts: np.ndarray
+
+    def __post_init__(self):
+        checks.freeze_arrays(self, "loads", "shifts")
+
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
 
     @cached_property
     def _interpolant(self):

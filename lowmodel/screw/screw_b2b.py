@@ -65,12 +65,21 @@ class PairGeometry:
     chord : (3,) unit vector from ball j to ball j+1
     rotation : (3, 3), CS3 of ball j+1 -> CS3 of ball j
     angle : rad, ``beta_chord``, the angle of ``chord`` from ``y3`` towards ``-x3`` (eq 56's beta_B2B)
+
+    ``chord`` and ``rotation`` are read-only: :func:`pair_geometry` hands the same cached object to every
+    caller with the same module (lowmodel.checks.freeze_arrays).
     """
 
     azimuth_step: float
     chord: np.ndarray
     rotation: np.ndarray
     angle: float
+
+    def __post_init__(self):
+        checks.freeze_arrays(self, "chord", "rotation")
+
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
 
 
 @lru_cache(maxsize=64)
