@@ -7,6 +7,7 @@ interrupted by Ctrl-C (a partial report is written).
 from __future__ import annotations
 
 import argparse
+import difflib
 import fnmatch
 import os
 import shutil
@@ -59,7 +60,8 @@ def _select(names: list[str], fast: bool = False):
         for pattern in names:
             matched = [s for n, s in scenes.items() if fnmatch.fnmatchcase(n, pattern)]
             if not matched:
-                raise UsageError(f"no scene matches {pattern!r}; 'ballbench scenes' lists them")
+                raise UsageError(f"no scene matches {pattern!r}{_did_you_mean(pattern, scenes)}; "
+                                 "'ballbench scenes' lists them")
             chosen += [s for s in matched if s not in chosen]
     if fast:
         chosen = [s for s in chosen if _is_fast(s)]
@@ -67,6 +69,12 @@ def _select(names: list[str], fast: bool = False):
             raise UsageError(f"--fast leaves no scene: every selected scene is an FE scene or costs over "
                              f"{FAST_COST_S:.0f} s")
     return sorted(chosen, key=lambda s: s.name)
+
+
+def _did_you_mean(name: str, names) -> str:
+    """``" (did you mean 'x' or 'y'?)"`` for the closest scene names to a misspelt one, else ``""``."""
+    close = difflib.get_close_matches(name, sorted(names), n=3, cutoff=0.6)
+    return f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
 
 
 def _fmt_cost(seconds: float) -> str:
@@ -215,14 +223,19 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_show(args) -> int:
+    from ballbench.validation.show import can_show
+
     scenes = registry()
+    drawable = sorted(n for n in scenes if can_show(n))
     if args.scene not in scenes:
-        raise UsageError(f"no scene {args.scene!r}; 'ballbench scenes' lists them")
+        raise UsageError(f"no scene {args.scene!r}{_did_you_mean(args.scene, drawable)}; show draws: "
+                         f"{', '.join(drawable)}")
     scene = scenes[args.scene]
-    if scene.kind != "FE":
-        fe = ", ".join(sorted(n for n, s in scenes.items() if s.kind == "FE"))
-        raise UsageError(f"show draws the fields of FE scenes; {args.scene!r} is a {scene.kind} scene "
-                         f"(FE scenes: {fe})")
+    if not can_show(args.scene):
+        what = "an FE scene that saves no fields to draw" if scene.kind == "FE" else f"{scene.kind} scene"
+        what = what if scene.kind == "FE" else ("an " if scene.kind[0] in "aeiou" else "a ") + what
+        raise UsageError(f"show draws the saved fields of FE scenes; {args.scene!r} is {what} "
+                         f"(show draws: {', '.join(drawable)})")
     out_dir = Path(args.out)
     if out_dir.exists() and not out_dir.is_dir():
         raise UsageError(f"--out {out_dir} is an existing file, not a folder")

@@ -31,10 +31,18 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["show", "load_fields"]
+__all__ = ["show", "load_fields", "can_show"]
 
 HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillion, solid
 FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue, dashed
+
+
+def can_show(scene_name: str) -> bool:
+    """True for the FE scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``)
+    and the two-ball modules ``fe-b2b-*``; the other FE scenes (e.g. ``sun2021-fe-bem``) save no fields to draw."""
+    from ballbench.validation.scenes import fe_hertz
+
+    return scene_name.startswith("fe-b2b-") or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES)
 
 
 def load_fields(directory: Path) -> tuple[dict, dict]:
