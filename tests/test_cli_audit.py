@@ -42,3 +42,56 @@ def test_show_of_an_fe_scene_without_fields_is_wrong_use_not_a_damaged_file(caps
 def test_show_names_the_kind_with_the_right_article(capsys, no_work, tmp_path):
     line = _one_error_line(capsys, cli.main(["show", "hertz-sphere-flat", "--out", str(tmp_path / "r")]))
     assert "is an analytical scene" in line
+
+
+# ---------------------------------------------------------------------------------------------- sweep
+SWEEP_HELPERS = '''
+def square(x, offset=0.0):
+    """x^2 + offset [-]; x < 0 raises."""
+    if x < 0:
+        raise ValueError(f"x must be >= 0, got {x}")
+    return {"value": x * x + offset}
+'''
+
+
+@pytest.fixture
+def sweep_helpers(tmp_path, monkeypatch):
+    directory = tmp_path / "helpers"
+    directory.mkdir()
+    (directory / "audit_sweep_helpers.py").write_text(SWEEP_HELPERS)
+    monkeypatch.syspath_prepend(str(directory))
+    return directory
+
+
+def _sweep_spec(tmp_path, fixed: str, values: str) -> str:
+    path = tmp_path / "spec.toml"
+    path.write_text(f'name = "audit"\nfunction = "audit_sweep_helpers:square"\nchunk_size = 2\noutputs = ["value"]\n'
+                    f'[fixed]\n{fixed}\n[grid]\nx = {{ values = {values} }}\n')
+    return str(path)
+
+
+@pytest.mark.parametrize("fixed, expected", [
+    ("ofset = 1.0", "unexpected keyword argument 'ofset'"),  # a misspelt input
+    ("", None),                                               # fine: offset has a default
+])
+def test_sweep_input_names_are_checked_before_any_case_runs(sweep_helpers, tmp_path, capsys, fixed, expected):
+    spec = _sweep_spec(tmp_path, fixed, "[1.0, 2.0]")
+    out = tmp_path / "out"
+    if expected is None:
+        assert cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]) == 0
+        return
+    with pytest.raises(SystemExit) as stop:  # used to run every case, record a TypeError each and exit 0
+        cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"])
+    assert expected in str(stop.value) and "square(x, offset=0.0)" in str(stop.value)
+    assert not out.exists()
+
+
+def test_sweep_names_the_failure_reasons_and_fails_when_every_case_fails(sweep_helpers, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert cli.main(["sweep", _sweep_spec(tmp_path, "", "[-2.0, -1.0, 3.0]"), "--serial", "--out", str(out),
+                     "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "2 failed with ValueError; the first, case 0: ValueError: x must be >= 0, got -2.0" in printed
+    everything_fails = _sweep_spec(tmp_path, "", "[-2.0, -1.0]")
+    assert cli.main(["sweep", everything_fails, "--serial", "--out", str(tmp_path / "out2"), "--no-progress"]) == 1
+    assert "every case failed" in capsys.readouterr().err

@@ -57,6 +57,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import inspect
 import itertools
 import json
 import math
@@ -339,6 +340,23 @@ def _resolve(path: str) -> Callable:
     return target
 
 
+def check_inputs(spec: SweepSpec, function: Callable | None = None) -> None:
+    """ValueError when the spec's inputs (fixed, grid, random) cannot be passed to its function: a misspelt or
+    missing input name fails here, before any case runs, instead of failing every case with a TypeError.
+    Functions without an inspectable signature (some builtins) are not checked."""
+    function = _resolve(spec.function) if function is None else function
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return
+    names = list(spec.fixed) + list(spec.input_names)
+    try:
+        signature.bind(**{name: 0.0 for name in names})
+    except TypeError as error:
+        raise ValueError(f"the inputs of the spec ({', '.join(names) or 'none'}) do not fit {spec.function}"
+                         f"{signature}: {error}") from None
+
+
 _OUTPUT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
 
@@ -599,6 +617,7 @@ class SweepSummary:
     out_dir: Path
     compute_s: float = 0.0   # sum over the chunks of the time spent computing them, where they ran [s]
     workers: int = 1         # worker threads that computed (1 for serial)
+    reasons: tuple = ()      # failed cases by exception type: (type, count, first case, its error), see failure_reasons
 
     @property
     def throughput(self) -> float:
@@ -640,8 +659,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
     ``progress``: None shows a bar only when stderr is a terminal.
     """
     out_dir = Path(out_dir)
+    check_inputs(spec, _resolve(spec.function))  # fail early, in the client, before the directory is made
     _prepare(out_dir, spec)
-    _resolve(spec.function)  # fail early, in the client, with a clear message
     done = _done_ranges(out_dir)
     chunks = missing_chunks(spec.n_cases, done, spec.chunk_size)
     skipped = spec.n_cases - sum(stop - start for start, stop in chunks)
@@ -716,10 +735,24 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = N
             if cluster is not None:
                 cluster.close()
     wall = time.perf_counter() - start_time
-    failed = 0
+    failed, reasons = 0, ()
     if _done_ranges(out_dir):
-        failed = int(sum(bool(e) for e in read_results(out_dir)["error"]))
-    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir, compute_s, threads)
+        columns = read_results(out_dir)
+        failed = int(sum(bool(e) for e in columns["error"]))
+        reasons = failure_reasons(columns)
+    return SweepSummary(spec.n_cases, skipped, computed, failed, wall, where, out_dir, compute_s, threads, reasons)
+
+
+def failure_reasons(columns: dict) -> tuple[tuple[str, int, int, str], ...]:
+    """The failed cases of :func:`read_results` columns grouped by exception type, most frequent first:
+    ``(type, count, first case, its error text)``."""
+    groups: dict[str, list] = {}
+    for case, error in zip(columns["case"], columns["error"]):
+        if error:
+            kind = error.split(":", 1)[0]
+            groups.setdefault(kind, [0, int(case), error])[0] += 1
+    return tuple((kind, count, case, text) for kind, (count, case, text)
+                 in sorted(groups.items(), key=lambda item: (-item[1][0], item[1][1])))
 
 
 def main(args) -> int:
@@ -743,6 +776,11 @@ def main(args) -> int:
           f"{summary.failed} failed; workers computing {100 * summary.utilisation:.0f} % of the time, overhead "
           f"{1e3 * summary.overhead_per_case:.3f} ms per case; results: {out_dir}/part-*.parquet"
           + (f", gridded: {out_dir / DATASET_NAME} (xarray Dataset)" if spec.grid else ""))
+    for kind, count, case, text in summary.reasons:
+        print(f"  {count} failed with {kind}; the first, case {case}: {text}")
+    if summary.n_cases and summary.failed == summary.n_cases:
+        print(f"ballbench sweep: every case failed; see the reasons above and the spec {args.spec}", file=sys.stderr)
+        return 1
     return 0
 
 
