@@ -95,3 +95,21 @@ def test_sweep_names_the_failure_reasons_and_fails_when_every_case_fails(sweep_h
     everything_fails = _sweep_spec(tmp_path, "", "[-2.0, -1.0]")
     assert cli.main(["sweep", everything_fails, "--serial", "--out", str(tmp_path / "out2"), "--no-progress"]) == 1
     assert "every case failed" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------------------------- report figure
+def test_a_family_front_of_one_point_is_drawn_as_a_line_to_the_longest_time():
+    from ballbench.validation.report import front_line
+
+    # the fastest point is also the most accurate: the front is that one point (in the --fast run: the
+    # low-order numerical and 'other' families), which a post-step line drew as nothing at all
+    family = [{"time_s": 1e-3, "error": 1e-6}, {"time_s": 1e-2, "error": 0.4}, {"time_s": 0.7, "error": 0.9}]
+    times, errors = front_line(family)
+    assert times == [1e-3, 0.7] and errors == [1e-6, 1e-6]
+    # a front of several points keeps its steps and ends at the family's longest time
+    family.append({"time_s": 0.1, "error": 1e-9})
+    times, errors = front_line(family)
+    assert times == [1e-3, 0.1, 0.7] and errors == [1e-6, 1e-8, 1e-8]  # 1e-9 drawn on the 1e-8 floor
+    # one point in all: a short stub, still a line
+    times, errors = front_line([{"time_s": 2.0, "error": 0.5}])
+    assert len(times) == 2 and times[1] > times[0] and errors == [0.5, 0.5]

@@ -238,6 +238,22 @@ def pareto_front(points: Sequence[dict]) -> list[dict]:
     return front
 
 
+def front_line(points: Sequence[dict]) -> tuple[list[float], list[float]]:
+    """The step line of a family's front as drawn (``where="post"``): the front's (time, error / tol) and a last
+    vertex at the family's longest run time, so the best error reached so far holds to the right edge; a front of
+    one point (the fastest point is also the most accurate) is then a visible horizontal line, not a lone vertex."""
+    front = pareto_front(points)
+    if not front:
+        return [], []
+    times = [p["time_s"] for p in front]
+    errors = [min(max(p["error"], FLOOR), CEILING) for p in front]
+    longest = max(p["time_s"] for p in points)
+    if longest > times[-1] or len(front) == 1:
+        times.append(max(longest, times[-1] * 1.5))  # a lone point at the longest time: a short stub to the right
+        errors.append(errors[-1])
+    return times, errors
+
+
 def mesh_level_points(data: dict, out_dir: Path) -> list[dict]:
     """Every mesh level of the scenes that saved a ``convergence.csv`` (FE scenes), as accuracy-cost points.
 
@@ -317,9 +333,8 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         members = [p for p in points if p["family"] == family]
         right.scatter([p["time_s"] for p in members], [p["y"] for p in members], c=colour, marker=marker, s=30,
                       alpha=0.5)
-        front = pareto_front(members)
-        right.step([p["time_s"] for p in front], [p["y"] for p in front], where="post", color=colour, ls=line,
-                   lw=2, label=f"{family} ({len(members)} points)")
+        right.step(*front_line(members), where="post", color=colour, ls=line, lw=2,
+                   label=f"{family} ({len(members)} points)")
     levels = mesh_level_points(data, out_dir) if out_dir is not None else []
     for scene_name in sorted({p["scene"] for p in levels}):
         chosen = sorted((p for p in levels if p["scene"] == scene_name), key=lambda p: p["time_s"])
