@@ -1,6 +1,8 @@
 """What a new user trips over on the command line (issue 15 audit): each test fails on the behaviour found."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from ballbench.validation import cli
@@ -113,3 +115,43 @@ def test_a_family_front_of_one_point_is_drawn_as_a_line_to_the_longest_time():
     # one point in all: a short stub, still a line
     times, errors = front_line([{"time_s": 2.0, "error": 0.5}])
     assert len(times) == 2 and times[1] > times[0] and errors == [0.5, 0.5]
+
+
+# ---------------------------------------------------------------------------------------------- calibrate
+NUT_DATA = Path(__file__).parent / "data" / "fe_nut_quick.load_approach.csv"
+
+
+def _calibrate_spec(tmp_path, body: str) -> Path:
+    (tmp_path / "nut.csv").write_text(NUT_DATA.read_text())
+    path = tmp_path / "spec.toml"
+    path.write_text(f'output = "{tmp_path / "out" / "calibration.json"}"\n' + body)
+    return path
+
+
+FE_CONTACT = '[contact."ball-groove-0.56"]\nfe_scene = "fe-hertz-groove-056"\n'
+
+
+@pytest.mark.parametrize("body, expected", [
+    (FE_CONTACT + "[k_f]\nconformity = 0.56\nfit_rnage = 0.5\n", "unknown key(s) ['fit_rnage']"),
+    (FE_CONTACT + "[friction]\ndata = 'rig.csv'\n", "friction.data: no such file"),
+    (FE_CONTACT + "[k_f]\nconformity = 56\n", "k_f.conformity must lie in"),
+    ("confidence = 95\n" + FE_CONTACT, "confidence must lie in (0, 1)"),
+    ('[contact."ball-groove-0.56"]\nfe_scene = "fe-hertz-groove-056"\nfidelity = "coarse"\n', "fidelity must be"),
+    ('[contact.nut]\ndata = "nut.csv"\nball_radius = 3.175\n', "ball_radius must lie in [0.0001, 0.1] m"),
+])
+def test_calibrate_spec_mistakes_are_found_before_the_fe_sweep(tmp_path, monkeypatch, capsys, body, expected):
+    from ballbench.validation import calibrate
+
+    # a typo in the last table used to surface only after the FE load sweep of the first (minutes); a ball
+    # radius in mm used to give a Psi 10x off without a word
+    monkeypatch.setattr(calibrate, "fe_contact_law", lambda *a, **k: pytest.fail("FE started before the check"))
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))])
+    assert expected in str(stop.value)
+    assert not (tmp_path / "out").exists()
+
+
+def test_calibrate_spec_in_metres_still_runs(tmp_path, capsys):
+    body = '[contact.nut]\ndata = "nut.csv"\nball_radius = 2.778e-3\n'
+    assert cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))]) == 0
+    assert (tmp_path / "out" / "calibration.json").is_file()
