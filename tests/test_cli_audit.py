@@ -155,3 +155,25 @@ def test_calibrate_spec_in_metres_still_runs(tmp_path, capsys):
     body = '[contact.nut]\ndata = "nut.csv"\nball_radius = 2.778e-3\n'
     assert cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))]) == 0
     assert (tmp_path / "out" / "calibration.json").is_file()
+
+
+# ---------------------------------------------------------------------------------------------- README, help
+README = Path(__file__).parents[1] / "README.md"
+
+
+def test_readme_calibrate_writes_the_file_the_next_command_reads():
+    # the calibrate spec's output is relative to the spec's folder (examples/), so without --out the README's
+    # 'validate --calibration calibration.json' found no file (and examples/ got the output files)
+    lines = [x.split("#")[0].split() for x in README.read_text().splitlines() if x.startswith("ballbench ")]
+    calibrate = next(x for x in lines if x[1] == "calibrate")
+    validate = next(x for x in lines if x[1] == "validate" and "--calibration" in x)
+    written = calibrate[calibrate.index("--out") + 1] if "--out" in calibrate else None
+    assert written == validate[validate.index("--calibration") + 1]
+
+
+def test_help_states_no_run_time_of_its_own(capsys):
+    # the epilog said "about 5 minutes" for the default run while 'ballbench scenes' states ~27 min
+    with pytest.raises(SystemExit):
+        cli.main(["--help"])
+    text = capsys.readouterr().out
+    assert "minute" not in text and "'ballbench scenes' states the cost" in text

@@ -27,7 +27,7 @@ finite-element analysis and the numbers the source papers publish."""
 
 EPILOG = """examples:
   ballbench scenes                      list the scenes with their kind and rough cost
-  ballbench validate                    run every default scene (about 5 minutes on 2 idle cores)
+  ballbench validate                    run every default scene ('ballbench scenes' states the cost)
   ballbench validate --fast             a first look: the scenes that are not FE and cost at most 30 s each
   ballbench validate 'lin2019-*'        scenes by name or pattern
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
