@@ -177,3 +177,26 @@ def test_help_states_no_run_time_of_its_own(capsys):
         cli.main(["--help"])
     text = capsys.readouterr().out
     assert "minute" not in text and "'ballbench scenes' states the cost" in text
+
+
+def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, monkeypatch):
+    from ballbench.validation import scene as scene_module
+    from ballbench.validation.report import failure_lines, row
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def ratio_scene(run):
+        run.check(model="lowmodel.contact.mixed", quantity="relative change", unit="1", value=0.010156,
+                  reference=0.0293, source="sun2021 Sec 4.4", tolerance=0.2, time_s=1e-3)
+
+    result = run_scene(Scene("zz-ratio", "ratio", ratio_scene, default=False, kind="low-order", cost_s=0.1),
+                       "default", tmp_path)
+    # "0.010156 1 vs reference 0.029300 1" read as a value with a unit called "1"
+    assert "0.010156 vs reference 0.029300 (" in failure_lines(result)[0]
+    assert row(result.outputs[0]).unit == ""
+    monkeypatch.setitem(scene_module.REGISTRY, "zz-ratio", Scene("zz-ratio", "ratio", ratio_scene, default=False,
+                                                                 kind="low-order", cost_s=0.1))
+    assert cli.main(["validate", "zz-ratio", "--out", str(tmp_path / "r")]) == 1
+    assert "| relative change | 0.010156 | 0.029300 | - |" in (tmp_path / "r" / "report.md").read_text()
+    import json
+    assert json.loads((tmp_path / "r" / "results.json").read_text())["scenes"][0]["outputs"][0]["unit"] == "1"

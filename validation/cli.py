@@ -196,8 +196,8 @@ def _cmd_validate(args) -> int:
         if status == "known gap":
             for o in result.outputs_with("known gap"):
                 r = row(o)
-                print(f"  known gap (declared, see the report): {o.quantity}: {r.value} {r.unit} vs published "
-                      f"{r.reference} {r.unit}", file=sys.stderr)
+                print(f"  known gap (declared, see the report): {o.quantity}: {r.value_with_unit} vs published "
+                      f"{r.reference_with_unit}", file=sys.stderr)
 
     print(f"ballbench: {len(scenes)} scenes at fidelity {fidelity} into {out_dir}", file=sys.stderr, flush=True)
     with _Interrupt() as interrupt:

@@ -152,9 +152,21 @@ class Row:
     time: str
     note: str
 
+    @property
+    def value_with_unit(self) -> str:
+        return f"{self.value} {self.unit}" if self.unit else self.value
+
+    @property
+    def reference_with_unit(self) -> str:
+        return f"{self.reference} {self.unit}" if self.unit else self.reference
+
+
+DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "-" in a unit column
+
 
 def row(o: Output) -> Row:
     factor, unit = engineering(o.unit, o.value, o.reference)
+    unit = "" if unit in DIMENSIONLESS else unit
     value = fmt_number(o.value * factor)
     reference = _relation_symbol(o) + fmt_number(o.reference * factor)
     if o.kind == "budget":
@@ -428,7 +440,7 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "over budget": "over budget (--strict-time)"}.get(o.status, "")
         tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
-        lines.append(f"  {o.quantity} [{o.model}]: {r.value} {r.unit} vs reference {r.reference} {r.unit} "
+        lines.append(f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} "
                      f"({o.source}): error {r.error or '0 %'}, {tolerance}" + (f"; {what}" if what else ""))
     if strict_time and result.wall_time_s > result.budget_s:
         lines.append(f"  scene wall time {fmt_time(result.wall_time_s)} over its budget {fmt_time(result.budget_s)} "
@@ -523,7 +535,7 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
                   "They are checked and reported like any other check but do not fail the run (`--strict` makes "
                   "them fail).", ""]
         lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, f"{row(o).value} {row(o).unit}", f"{row(o).reference} {row(o).unit}", o.status,
+            (r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status,
              o.known_gap.reason, o.known_gap.evidence) for r, o in gaps])
     else:
         lines += ["None in this run.", ""]
@@ -535,7 +547,7 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
-            budget_rows.append((r.name, o.quantity, f"{rr.value} {rr.unit}", f"{rr.reference} {rr.unit}",
+            budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit,
                                 "within budget" if o.passed else "**over budget**"))
     lines += _md_table(("scene", "what", "measured", "budget", "result"), budget_rows)
     if points:
@@ -560,7 +572,7 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
             rows = [row(o) for o in outputs]
             lines += _md_table(("quantity", "value", "reference", "unit", "error", "tolerance", "error / tol",
                                 "status", "source"),
-                               [(x.quantity, x.value, x.reference, x.unit, x.error, x.tolerance, x.ratio,
+                               [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio,
                                  x.status if x.status == "pass" else f"**{x.status}**", x.source) for x in rows])
             notes = [f"- {x.quantity}: {x.note}" for x in rows if x.note]
             notes += [f"- {o.quantity}: known gap: {o.known_gap.reason} Evidence: {o.known_gap.evidence}"
@@ -667,7 +679,7 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
                      "Checked and reported like any other check; they do not fail the run (<code>--strict</code> "
                      "makes them fail).</p>")
         parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, f"{row(o).value} {row(o).unit}", f"{row(o).reference} {row(o).unit}", o.status,
+            (r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status,
              o.known_gap.reason, o.known_gap.evidence) for r, o in gaps], status_column=4))
     else:
         parts.append("<p>None in this run.</p>")
@@ -680,7 +692,7 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
-            budget_rows.append((r.name, o.quantity, f"{rr.value} {rr.unit}", f"{rr.reference} {rr.unit}", o.status))
+            budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit, o.status))
     parts.append(_table(("scene", "what", "measured", "budget", "result"), budget_rows, numeric=(2, 3),
                         status_column=4))
     if points:
@@ -708,7 +720,7 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
             rows = [row(o) for o in outputs]
             parts.append(_table(("quantity", "value", "reference", "unit", "error", "tolerance", "error / tol",
                                  "status", "source"),
-                                [(x.quantity, x.value, x.reference, x.unit, x.error, x.tolerance, x.ratio, x.status,
+                                [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio, x.status,
                                   x.source) for x in rows], numeric=(1, 2, 4, 5, 6), status_column=7))
             notes = [f"{x.quantity}: {x.note}" for x in rows if x.note]
             notes += [f"{o.quantity}: known gap: {o.known_gap.reason} Evidence: {o.known_gap.evidence}"
