@@ -720,8 +720,8 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
             rows = [row(o) for o in outputs]
             parts.append(_table(("quantity", "value", "reference", "unit", "error", "tolerance", "error / tol",
                                  "status", "source"),
-                                [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio, x.status,
-                                  x.source) for x in rows], numeric=(1, 2, 4, 5, 6), status_column=7))
+                                [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio,
+                                  x.status, x.source) for x in rows], numeric=(1, 2, 4, 5, 6), status_column=7))
             notes = [f"{x.quantity}: {x.note}" for x in rows if x.note]
             notes += [f"{o.quantity}: known gap: {o.known_gap.reason} Evidence: {o.known_gap.evidence}"
                       for o in outputs if o.known_gap is not None]
