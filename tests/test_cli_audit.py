@@ -200,3 +200,23 @@ def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, mo
     assert "| relative change | 0.010156 | 0.029300 | - |" in (tmp_path / "r" / "report.md").read_text()
     import json
     assert json.loads((tmp_path / "r" / "results.json").read_text())["scenes"][0]["outputs"][0]["unit"] == "1"
+
+
+@pytest.mark.parametrize("model, family", [
+    ("lowmodel.screw.screw_b2b", "low-order numerical"),        # was "analytical" (prefix lowmodel.screw)
+    ("lowmodel.screw.whole_screw", "low-order numerical"),      # was "analytical": a 5 s time simulation
+    ("lowmodel.contact.ehl", "low-order numerical"),            # was "other"
+    ("lowmodel.contact.halfspace", "low-order numerical"),      # was "other"
+    ("lowmodel.linear_bearing.b2b", "low-order numerical"),
+    ("lowmodel.linear_bearing.b2b (FE-informed)", "low-order numerical"),
+    ("lowmodel.linear_bearing.b2b_analytical", "analytical"),
+    ("lowmodel.screw.kinematics (Wei)", "analytical"),
+    ("lowmodel.contact.hertz.ball_in_groove", "analytical"),
+    ("lowmodel.fourpoint", "analytical"),
+    ("fem.mortar", "FE"),
+    ("lowmodel.calibration", "other"),
+])
+def test_model_families_of_the_error_budget_table(model, family):
+    from ballbench.validation.report import model_family
+
+    assert model_family(model) == family

@@ -44,19 +44,33 @@ STYLE = {
 }
 FLOOR = 1e-8     # error / tolerance drawn at this floor when it is exactly 0 (or below it)
 CEILING = 1e4    # ... and at this ceiling when infinite (a missed bound of tolerance 0, a non-finite value)
+# closed forms and explicit formulas (lin2017 rigid four-point, Hertz, the friction map, lin2019 eqs 22-33, wang2022)
 ANALYTICAL_MODELS = ("lowmodel.contact.hertz", "lowmodel.contact.ellipse_friction",
-                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw", "lowmodel.fourpoint")
-LOW_ORDER_MODELS = ("lowmodel.linear_bearing.bearing_ball", "lowmodel.linear_bearing.b2b")
+                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw.kinematics", "lowmodel.screw.harris",
+                     "lowmodel.fourpoint")
+# numerical solutions of the low-order equations: Newton on the ball equilibria (lin2019 eqs 1-10, 54-61), the
+# whole screw in time, the load distribution, and the BEM / EHL / mixed-lubrication solvers (sun2021)
+LOW_ORDER_MODELS = ("lowmodel.linear_bearing.bearing_ball", "lowmodel.linear_bearing.b2b",
+                    "lowmodel.linear_bearing.b2b_traction", "lowmodel.screw.screw_ball", "lowmodel.screw.screw_b2b",
+                    "lowmodel.screw.screw_b2b_traction", "lowmodel.screw.load_distribution",
+                    "lowmodel.screw.whole_screw", "lowmodel.contact.halfspace", "lowmodel.contact.screw_contact",
+                    "lowmodel.contact.ehl", "lowmodel.contact.mixed")
 
 
 # ----------------------------------------------------------------------------------------------- numbers
+def _is_model(model: str, module: str) -> bool:
+    """``model`` names ``module`` itself, one of its functions (``module.f``) or a variant (``module (note)``)."""
+    return model == module or model.startswith(module + " ") or model.startswith(module + ".")
+
+
 def model_family(model: str) -> str:
-    """``"FE"``, ``"low-order numerical"``, ``"analytical"`` or ``"other"`` (by the model's module name)."""
+    """``"FE"``, ``"low-order numerical"``, ``"analytical"`` or ``"other"`` (by the model's module name; ``other``:
+    fits, sampling and the harness itself, e.g. ``lowmodel.calibration``, ``lowmodel.contact.roughness``)."""
     if model.startswith("fem."):
         return "FE"
-    if any(model == m or model.startswith(m + " ") for m in LOW_ORDER_MODELS):
+    if any(_is_model(model, m) for m in LOW_ORDER_MODELS):
         return "low-order numerical"
-    if any(model.startswith(m) for m in ANALYTICAL_MODELS):
+    if any(_is_model(model, m) for m in ANALYTICAL_MODELS):
         return "analytical"
     return "other"
 
