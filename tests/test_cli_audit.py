@@ -220,3 +220,26 @@ def test_model_families_of_the_error_budget_table(model, family):
     from ballbench.validation.report import model_family
 
     assert model_family(model) == family
+
+
+def test_known_gaps_table_states_a_shared_reason_once(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import KnownGap, Scene
+
+    shared = KnownGap(reason="Fig 19 (the deviation along the screw) is not given.", evidence="docs/ball_screw.md")
+    other = KnownGap(reason="Table 4 gives no preload.", evidence="this scene")
+
+    def gaps(run):
+        for quantity, gap in (("peak", shared), ("angle of the peak", shared), ("F_B2B", other)):
+            run.check(model="lowmodel.screw.whole_screw", quantity=quantity, unit="deg", value=100.0,
+                      reference=126.0, source="lin2019 Fig 21", tolerance=0.05, time_s=1.0, known_gap=gap)
+
+    result = run_scene(Scene("zz-gaps", "gaps", gaps, default=False, kind="low-order", cost_s=0.1), "default",
+                       tmp_path)
+    markdown = to_markdown([result], "default")
+    section = markdown.split("## Known gaps")[1].split("## Budgets")[0]
+    assert section.count(shared.reason) == 1 and section.count(other.reason) == 1  # was 2 and 1
+    assert "| as above | as above |" in section
+    page = to_html([result], "default", tmp_path)
+    assert page.split('id="known-gaps"')[1].split('id="budgets"')[0].count(shared.reason) == 1

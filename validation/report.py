@@ -464,6 +464,23 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
     return lines
 
 
+SAME_AS_ABOVE = "as above"
+
+
+def known_gap_rows(gaps: Sequence[tuple[SceneResult, Output]]) -> list[tuple[str, ...]]:
+    """Rows of the known-gaps table: (scene, check, value, published, status, reason, evidence); a check of the
+    same scene declared with the same reason and evidence as the row above says "as above" instead of repeating
+    a paragraph (lin2019-fig21 declares three checks with one reason)."""
+    rows, previous = [], None
+    for r, o in gaps:
+        key = (r.name, o.known_gap.reason, o.known_gap.evidence)
+        reason, evidence = (SAME_AS_ABOVE, SAME_AS_ABOVE) if key == previous else key[1:]
+        rows.append((r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status, reason,
+                     evidence))
+        previous = key
+    return rows
+
+
 def _scene_budget_text(r: SceneResult) -> str:
     if not math.isfinite(r.budget_s):
         return "-"
@@ -548,9 +565,8 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
         lines += ["Published numbers this project does not reproduce, declared with their reason and evidence. "
                   "They are checked and reported like any other check but do not fail the run (`--strict` makes "
                   "them fail).", ""]
-        lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status,
-             o.known_gap.reason, o.known_gap.evidence) for r, o in gaps])
+        lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
+                           known_gap_rows(gaps))
     else:
         lines += ["None in this run.", ""]
     lines += ["## Budgets (reported; they decide pass/fail only with `--strict-time`)", ""]
@@ -692,9 +708,8 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
         parts.append("<p>Published numbers this project does not reproduce, declared with reason and evidence. "
                      "Checked and reported like any other check; they do not fail the run (<code>--strict</code> "
                      "makes them fail).</p>")
-        parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status,
-             o.known_gap.reason, o.known_gap.evidence) for r, o in gaps], status_column=4))
+        parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
+                            known_gap_rows(gaps), status_column=4))
     else:
         parts.append("<p>None in this run.</p>")
     parts.append('<h2 id="budgets">Budgets</h2><p class="small">Reported; they decide pass/fail only with '
