@@ -243,3 +243,23 @@ def test_known_gaps_table_states_a_shared_reason_once(tmp_path):
     assert "| as above | as above |" in section
     page = to_html([result], "default", tmp_path)
     assert page.split('id="known-gaps"')[1].split('id="budgets"')[0].count(shared.reason) == 1
+
+
+def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys):
+    import json
+
+    from ballbench.validation import show
+    from ballbench.validation.scenes import fe_hertz
+
+    class Stop(Exception):
+        pass
+
+    def stop(*args, **kwargs):
+        raise Stop
+
+    monkeypatch.setattr(fe_hertz, "compute_fields", stop)
+    (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": []}))
+    with pytest.raises(Stop):
+        show.show("fe-hertz-groove-056", tmp_path, "default")
+    # the user ran 'validate --quick' then 'show' and saw the default level solved without a reason
+    assert "a --quick run, which saves no fields" in capsys.readouterr().err

@@ -272,8 +272,17 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
     try:
         data, meta = load_fields(directory)
     except FileNotFoundError:
+        hint = ""
+        results = Path(out_dir) / "results.json"
+        if fidelity != "quick" and results.is_file():
+            try:
+                if json.loads(results.read_text()).get("fidelity") == "quick":
+                    hint = (f"; the report there is a --quick run, which saves no fields ('ballbench show "
+                            f"{scene_name} --quick' draws the quick level)")
+            except (OSError, ValueError):
+                pass
         print(f"ballbench: no saved fields in {directory}; solving the {fidelity} level of {scene_name} first "
-              f"(about {entry.cost_s:.0f} s)", file=sys.stderr, flush=True)
+              f"(about {entry.cost_s:.0f} s){hint}", file=sys.stderr, flush=True)
         fe_hertz.compute_fields(scene_name, fidelity, directory, show_progress=show_progress)
         data, meta = load_fields(directory)
     if not math.isfinite(meta["hertz"]["a_m"]):
