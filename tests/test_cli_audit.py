@@ -6,15 +6,7 @@ from pathlib import Path
 import pytest
 
 from ballbench.validation import cli
-
-
-def _one_error_line(capsys, code):
-    captured = capsys.readouterr()
-    lines = [x for x in captured.err.splitlines() if x.strip()]
-    assert code == 2, captured
-    assert len(lines) == 1 and lines[0].startswith("ballbench: error: "), lines
-    assert "Traceback" not in captured.err + captured.out
-    return lines[0]
+from cli_support import helper_module, one_error_line
 
 
 @pytest.fixture
@@ -26,23 +18,23 @@ def no_work(monkeypatch):
 
 
 def test_misspelt_scene_name_suggests_the_close_ones(capsys, no_work, tmp_path):
-    line = _one_error_line(capsys, cli.main(["validate", "fe-hertz-groove56", "--out", str(tmp_path / "r")]))
+    line = one_error_line(capsys, cli.main(["validate", "fe-hertz-groove56", "--out", str(tmp_path / "r")]))
     assert "did you mean 'fe-hertz-groove-056'" in line
-    line = _one_error_line(capsys, cli.main(["show", "fe-hertz-groove56", "--out", str(tmp_path / "r")]))
+    line = one_error_line(capsys, cli.main(["show", "fe-hertz-groove56", "--out", str(tmp_path / "r")]))
     assert "did you mean 'fe-hertz-groove-056'" in line
 
 
 def test_show_of_an_fe_scene_without_fields_is_wrong_use_not_a_damaged_file(capsys, no_work, tmp_path):
     # sun2021-fe-bem is an FE scene but saves no fields.vtu: 'show' used to start, fail with exit 1 and advise
     # deleting a fields.vtu that never existed
-    line = _one_error_line(capsys, cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]))
+    line = one_error_line(capsys, cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]))
     assert "saves no fields" in line and "fe-hertz-groove-056" in line and "fe-b2b-linear-a" in line
     assert "sun2021-fe-bem," not in line.split("show draws:")[1]
     assert not (tmp_path / "r").exists()
 
 
 def test_show_names_the_kind_with_the_right_article(capsys, no_work, tmp_path):
-    line = _one_error_line(capsys, cli.main(["show", "hertz-sphere-flat", "--out", str(tmp_path / "r")]))
+    line = one_error_line(capsys, cli.main(["show", "hertz-sphere-flat", "--out", str(tmp_path / "r")]))
     assert "is an analytical scene" in line
 
 
@@ -58,11 +50,7 @@ def square(x, offset=0.0):
 
 @pytest.fixture
 def sweep_helpers(tmp_path, monkeypatch):
-    directory = tmp_path / "helpers"
-    directory.mkdir()
-    (directory / "audit_sweep_helpers.py").write_text(SWEEP_HELPERS)
-    monkeypatch.syspath_prepend(str(directory))
-    return directory
+    return helper_module(tmp_path, monkeypatch, "audit_sweep_helpers", SWEEP_HELPERS)
 
 
 def _sweep_spec(tmp_path, fixed: str, values: str) -> str:
