@@ -425,5 +425,6 @@ def main(args) -> int:
 def add_parser(sub) -> None:
     p = sub.add_parser("calibrate", help="fit constants (Psi, C, C_b, mu, k_f) with intervals; write a calibration")
     p.add_argument("spec", help="calibration spec (TOML, docs/calibration.md)")
-    p.add_argument("--out", help="calibration file to write (default: the spec's 'output')")
+    p.add_argument("--out", help="calibration file to write, relative to the current folder (default: the "
+                                 "spec's 'output', relative to the spec's folder)")
     p.set_defaults(func=main)
