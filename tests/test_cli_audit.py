@@ -251,3 +251,24 @@ def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys
         show.show("fe-hertz-groove-056", tmp_path, "default")
     # the user ran 'validate --quick' then 'show' and saw the default level solved without a reason
     assert "a --quick run, which saves no fields" in capsys.readouterr().err
+
+
+def test_junit_lists_every_check_of_a_scene(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    from ballbench.validation.report import to_junit
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def two_checks(run):
+        run.check(model="fem.mortar", quantity="a", unit="m", value=421.3e-6, reference=421.2e-6,
+                  source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
+        run.check(model="fem.mortar", quantity="p0", unit="Pa", value=1159e6, reference=1159.2e6,
+                  source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
+
+    result = run_scene(Scene("zz-fe", "fe", two_checks, default=False, kind="FE", cost_s=0.1), "default", tmp_path)
+    case = ET.fromstring(to_junit([result])).find("testcase")
+    text = case.find("system-out").text
+    # a passing FE scene's JUnit case held only its wall time: a CI page showed no number of the check
+    assert "a [fem.mortar]: 421.30 um vs reference 421.20 um (Hertz, Johnson (1985) eq 4.39)" in text
+    assert "p0 [fem.mortar]: 1159.0 MPa" in text and text.count(": pass") == 2

@@ -444,18 +444,23 @@ def status_word(status: str) -> str:
     return {"pass": "PASS", "known gap": "PASS (known gap)", "fail": "FAIL", "error": "ERROR"}[status]
 
 
+def check_line(o: Output) -> str:
+    """One check as a line: quantity, model, value and reference with unit, source, error and tolerance."""
+    r = row(o)
+    tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
+    return (f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
+            f"error {r.error or '0 %'}, {tolerance}")
+
+
 def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: bool = False, limit: int = 5) -> list[str]:
     """One line per failed check: quantity, model, value, reference, error and tolerance."""
     bad = [o for o in result.outputs if o.status in ("fail", "unexpected pass")
            or (strict and o.status == "known gap") or (strict_time and o.status == "over budget")]
     lines = []
     for o in bad[:limit]:
-        r = row(o)
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "over budget": "over budget (--strict-time)"}.get(o.status, "")
-        tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
-        lines.append(f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} "
-                     f"({o.source}): error {r.error or '0 %'}, {tolerance}" + (f"; {what}" if what else ""))
+        lines.append(check_line(o) + (f"; {what}" if what else ""))
     if strict_time and result.wall_time_s > result.budget_s:
         lines.append(f"  scene wall time {fmt_time(result.wall_time_s)} over its budget {fmt_time(result.budget_s)} "
                      "(--strict-time)")
@@ -794,7 +799,8 @@ def to_junit(results: Sequence[SceneResult], *, strict: bool = False, strict_tim
             ET.SubElement(case, "skipped", message="known gap: " + "; ".join(
                 f"{o.quantity}: {o.known_gap.reason}" for o in gaps))
         budget = f"wall time {fmt_time(r.wall_time_s)}, budget {_scene_budget_text(r)}"
-        ET.SubElement(case, "system-out").text = budget
+        checks = [f"{check_line(o)}: {o.status}" for o in r.outputs]
+        ET.SubElement(case, "system-out").text = "\n".join([budget, *checks])
     for name in not_run:
         case = ET.SubElement(suite, "testcase", classname="ballbench", name=name, time="0")
         ET.SubElement(case, "skipped", message="not run: the run was interrupted")
