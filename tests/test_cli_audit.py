@@ -272,3 +272,20 @@ def test_junit_lists_every_check_of_a_scene(tmp_path):
     # a passing FE scene's JUnit case held only its wall time: a CI page showed no number of the check
     assert "a [fem.mortar]: 421.30 um vs reference 421.20 um (Hertz, Johnson (1985) eq 4.39)" in text
     assert "p0 [fem.mortar]: 1159.0 MPa" in text and text.count(": pass") == 2
+
+
+def test_a_scene_that_raises_points_to_its_traceback(tmp_path, capsys, monkeypatch):
+    from ballbench.validation import scene as scene_module
+    from ballbench.validation.scene import Scene
+
+    def raises(run):
+        raise ValueError("conformity must lie in (0.5, 1); got 0.49")
+
+    scene_module.registry()
+    monkeypatch.setitem(scene_module.REGISTRY, "zz-raises",
+                        Scene("zz-raises", "raises", raises, default=False, kind="low-order", cost_s=0.1))
+    assert cli.main(["validate", "zz-raises", "--out", str(tmp_path / "r")]) == 1
+    err = capsys.readouterr().err
+    # the terminal said only "ERROR zz-raises (0.0 s): ValueError: ..." and the traceback sat in a file it never named
+    assert f"traceback: {tmp_path / 'r' / 'zz-raises' / 'error.txt'}" in err
+    assert (tmp_path / "r" / "zz-raises" / "error.txt").read_text().startswith("Traceback")

@@ -193,6 +193,9 @@ def _cmd_validate(args) -> int:
               + (f": {result.error}" if result.error else ""), file=sys.stderr, flush=True)
         for line in failure_lines(result, **options):
             print(line, file=sys.stderr)
+        traceback = [a for a in result.artifacts if a.endswith("error.txt")]
+        if traceback:
+            print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
         if status == "known gap":
             for o in result.outputs_with("known gap"):
                 r = row(o)
