@@ -289,3 +289,12 @@ def test_a_scene_that_raises_points_to_its_traceback(tmp_path, capsys, monkeypat
     # the terminal said only "ERROR zz-raises (0.0 s): ValueError: ..." and the traceback sat in a file it never named
     assert f"traceback: {tmp_path / 'r' / 'zz-raises' / 'error.txt'}" in err
     assert (tmp_path / "r" / "zz-raises" / "error.txt").read_text().startswith("Traceback")
+
+
+def test_show_labels_give_the_fe_error_against_hertz():
+    from ballbench.validation.show import against
+
+    # pressure.png drew Hertz and FE ellipses 0.01 % apart with nothing but the two lengths to 0.1 um
+    assert against(421.2844e-6, 421.2438e-6) == "+0.010 %"
+    assert against(97.757e-6, 97.790e-6) == "-0.034 %"
+    assert against(1.0, 0.0) == "n/a"

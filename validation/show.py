@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["show", "load_fields", "can_show"]
+__all__ = ["show", "load_fields", "can_show", "against"]
 
 HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillion, solid
 FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue, dashed
@@ -75,6 +75,13 @@ def load_fields(directory: Path) -> tuple[dict, dict]:
             "body": np.asarray(mesh.cell_data_dict["body"][kind])}
     data.update({name: np.asarray(values) for name, values in mesh.point_data.items()})
     return data, meta
+
+
+def against(value: float, reference: float) -> str:
+    """``"+0.010 %"``: the signed relative difference of ``value`` from ``reference`` for a figure label."""
+    if not (math.isfinite(value) and math.isfinite(reference)) or reference == 0.0:
+        return "n/a"
+    return f"{100.0 * (value / reference - 1.0):+.3f} %"
 
 
 def _mirror_points(xy: np.ndarray, values: np.ndarray, mirror_x: bool, mirror_y: bool):
@@ -127,7 +134,8 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
     left.plot(*(_ellipse(a, b) * mm).T, **HERTZ_STYLE, label=f"Hertz ellipse a = {a * 1e6:.1f} um, "
                                                              f"b = {b * 1e6:.1f} um")
     left.plot(*(_ellipse(fe["a_m"], fe["b_m"]) * mm).T, **FE_STYLE,
-              label=f"fitted FE ellipse a = {fe['a_m'] * 1e6:.1f} um, b = {fe['b_m'] * 1e6:.1f} um")
+              label=f"fitted FE ellipse a = {fe['a_m'] * 1e6:.1f} um ({against(fe['a_m'], a)} against Hertz), "
+                    f"b = {fe['b_m'] * 1e6:.1f} um ({against(fe['b_m'], b)})")
     left.set_aspect("equal")
     left.set_xlabel("x [mm] (major semi-axis a)")
     left.set_ylabel("y [mm] (minor semi-axis b)")
@@ -147,7 +155,8 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
                label="FE nodes near the x axis (x / a)")
     right.plot(xy[band_x, 1] / b, pressure[band_x], "^", ms=3.5, color="#E69F00",
                label="FE nodes near the y axis (y / b)")
-    right.axhline(fe["p0_Pa"] / 1e6, **FE_STYLE, label=f"fitted FE p0 = {fe['p0_Pa'] / 1e6:.0f} MPa")
+    right.axhline(fe["p0_Pa"] / 1e6, **FE_STYLE, label=f"fitted FE p0 = {fe['p0_Pa'] / 1e6:.0f} MPa "
+                                                      f"({against(fe['p0_Pa'], hertz['p0_Pa'])})")
     right.set_xlabel("x / a or y / b [-]")
     right.set_ylabel("contact pressure [MPa]")
     right.set_ylim(bottom=0)
