@@ -298,3 +298,41 @@ def test_show_labels_give_the_fe_error_against_hertz():
     assert against(421.2844e-6, 421.2438e-6) == "+0.010 %"
     assert against(97.757e-6, 97.790e-6) == "-0.034 %"
     assert against(1.0, 0.0) == "n/a"
+
+
+VECTOR_HELPERS = '''
+import numpy as np
+
+CALLS = []
+
+
+def vector_square(x):
+    """x^2 [-]; raises for the whole batch when any x < 0 (as b2b_analytical does outside four-point contact)."""
+    x = np.asarray(x, dtype=float)
+    CALLS.append(x.size)
+    if np.any(x < 0):
+        raise ValueError("x must be >= 0")
+    return {"value": x * x}
+'''
+
+
+def test_a_vectorised_chunk_with_one_failing_case_stays_vectorised(tmp_path, monkeypatch):
+    import importlib
+
+    import numpy as np
+
+    from ballbench.validation import sweep
+
+    helper_module(tmp_path, monkeypatch, "audit_vector_helpers", VECTOR_HELPERS)
+    helpers = importlib.import_module("audit_vector_helpers")
+    values = [float(v) for v in range(1, 1025)]
+    values[700] = -1.0
+    spec = sweep.spec_from_dict({"name": "v", "function": "audit_vector_helpers:vector_square", "vectorised": True,
+                                 "chunk_size": 1024, "outputs": ["value"], "grid": {"x": {"values": values}}})
+    columns = sweep.run_chunk(spec.source, 0, 1024)
+    assert [bool(e) for e in columns["error"]].count(True) == 1 and columns["error"][700].startswith("ValueError")
+    ok = np.arange(1024) != 700
+    np.testing.assert_array_equal(columns["value"][ok], np.asarray(values)[ok] ** 2)
+    singles = [size for size in helpers.CALLS if size == 1]
+    # the whole chunk used to be recomputed one case at a time: 1 + 1024 calls
+    assert len(singles) <= sweep.VECTOR_LEAF and len(helpers.CALLS) <= 2 * 10 + sweep.VECTOR_LEAF
