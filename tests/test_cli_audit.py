@@ -336,3 +336,23 @@ def test_a_vectorised_chunk_with_one_failing_case_stays_vectorised(tmp_path, mon
     singles = [size for size in helpers.CALLS if size == 1]
     # the whole chunk used to be recomputed one case at a time: 1 + 1024 calls
     assert len(singles) <= sweep.VECTOR_LEAF and len(helpers.CALLS) <= 2 * 10 + sweep.VECTOR_LEAF
+
+
+def test_error_figure_of_one_fe_scene_has_a_readable_time_axis(tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+
+    from ballbench.validation.report import plot_error_vs_time
+
+    kept = []
+    monkeypatch.setattr(plt, "close", kept.append)
+    data = {"fidelity": "quick", "scenes": [{"name": "fe-hertz-groove-056", "artifacts": [], "outputs": [
+        {"model": "fem.contact", "kind": "accuracy", "quantity": "a", "rel_error": 0.001, "tolerance": 0.03,
+         "time_s": 23.9, "status": "pass"}]}]}
+    plot_error_vs_time(data, tmp_path / "e.png", tmp_path)
+    left, right = kept[0].axes[:2]
+    # a run of one FE scene gave the right panel 23.9 - 36 s, whose log axis printed its minor labels on each other
+    for axes in (left, right):
+        low, high = axes.get_xlim()
+        assert high >= 10 * low * (1 - 1e-9) and low <= 23.9 <= high
+    assert left.get_xlim() == right.get_xlim()
+    assert any("a bound that holds" in t.get_text() for t in left.texts)

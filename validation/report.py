@@ -340,7 +340,8 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         axes.axhline(1.0, color="black", lw=1.0, ls="--")
         axes.axhspan(FLOOR / 5, FLOOR * 2, color="0.9", zorder=0)
         axes.axhspan(CEILING / 2, CEILING * 5, color="0.9", zorder=0)
-        axes.text(0.01, 0.015, "floor: exact agreement (0) or below 1e-8", transform=axes.transAxes, fontsize=7)
+        axes.text(0.01, 0.015, "floor: error 0 (exact agreement, or every check a bound that holds) or below 1e-8",
+                  transform=axes.transAxes, fontsize=7)
         axes.text(0.01, 0.965, "ceiling: tolerance-0 bound missed / non-finite", transform=axes.transAxes,
                   fontsize=7, va="top")
         axes.set_xlabel("run time of one model evaluation [s]")
@@ -367,6 +368,16 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         right.plot([p["time_s"] for p in chosen], [min(max(p["error"], FLOOR), CEILING) for p in chosen], "o-",
                    color="0.35", ms=3, lw=0.8, label="FE mesh levels of a scene" if scene_name == min(
                        p["scene"] for p in levels) else None)
+    # one time axis for both panels, at least a decade wide (a narrower log axis labels its minor ticks on top
+    # of each other, e.g. a run of one FE scene)
+    if points or levels:
+        low = min(left.get_xlim()[0], right.get_xlim()[0])
+        high = max(left.get_xlim()[1], right.get_xlim()[1])
+        if high < 10.0 * low:
+            centre = math.sqrt(low * high)
+            low, high = centre / math.sqrt(10.0), centre * math.sqrt(10.0)
+        for axes in (left, right):
+            axes.set_xlim(low, high)
     right.set_title("Accuracy against cost: front of each model family")
     if points:
         right.legend(loc="upper left", bbox_to_anchor=(0.0, 0.92), fontsize=8)
