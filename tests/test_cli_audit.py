@@ -356,3 +356,21 @@ def test_error_figure_of_one_fe_scene_has_a_readable_time_axis(tmp_path, monkeyp
         assert high >= 10 * low * (1 - 1e-9) and low <= 23.9 <= high
     assert left.get_xlim() == right.get_xlim()
     assert any("a bound that holds" in t.get_text() for t in left.texts)
+
+
+def test_an_empty_budgets_section_says_so(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def quick(run):
+        run.check(model="lowmodel.contact.hertz", quantity="a", unit="m", value=1.0e-4, reference=1.0e-4,
+                  source="Johnson (1985) eq 4.22", tolerance=1e-9, time_s=1e-5)
+
+    result = run_scene(Scene("zz-quick", "quick", quick, default=False, kind="analytical", cost_s=0.1), "default",
+                       tmp_path)
+    # the section showed a table header with no row under it
+    section = to_markdown([result], "default").split("## Budgets")[1].split("##")[0]
+    assert "None in this run" in section and "| scene | what |" not in section
+    page = to_html([result], "default", tmp_path).split('id="budgets"')[1].split("<h2")[0]
+    assert "None in this run" in page and "<table>" not in page

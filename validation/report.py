@@ -386,7 +386,7 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
     key.text(0.0, 1.0, "Key: number, scene, model\n" + "\n".join(lines), va="top", ha="left",
              fontsize=7 if len(lines) < 45 else 5.5, family="monospace",
              transform=key.transAxes)
-    figure.suptitle(f"ballbench {data.get('fidelity', '')} run: error against run time "
+    figure.suptitle(f"ballbench run at fidelity {data.get('fidelity', '')}: error against run time "
                     "(1 = at tolerance; below the dashed line passes)", fontsize=11)
     figure.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(figure)
@@ -481,6 +481,7 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
 
 
 SAME_AS_ABOVE = "as above"
+NO_BUDGET_ROWS = "None in this run: no model budget recorded and no scene over its wall-time budget."
 
 
 def known_gap_rows(gaps: Sequence[tuple[SceneResult, Output]]) -> list[tuple[str, ...]]:
@@ -595,7 +596,8 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
             rr = row(o)
             budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit,
                                 "within budget" if o.passed else "**over budget**"))
-    lines += _md_table(("scene", "what", "measured", "budget", "result"), budget_rows)
+    lines += (_md_table(("scene", "what", "measured", "budget", "result"), budget_rows) if budget_rows
+              else [NO_BUDGET_ROWS, ""])
     if points:
         lines += ["## Which model for an error budget", "",
                   "Each point of the figure below is one (scene, model): its worst error as a multiple of its "
@@ -739,7 +741,7 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
             rr = row(o)
             budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit, o.status))
     parts.append(_table(("scene", "what", "measured", "budget", "result"), budget_rows, numeric=(2, 3),
-                        status_column=4))
+                        status_column=4) if budget_rows else f"<p>{NO_BUDGET_ROWS}</p>")
     if points:
         parts.append('<h2 id="error-vs-time">Which model for an error budget</h2>'
                      "<p>Each point is one (scene, model): its worst error as a multiple of its tolerance at the "
