@@ -374,3 +374,21 @@ def test_an_empty_budgets_section_says_so(tmp_path):
     assert "None in this run" in section and "| scene | what |" not in section
     page = to_html([result], "default", tmp_path).split('id="budgets"')[1].split("<h2")[0]
     assert "None in this run" in page and "<table>" not in page
+
+
+def test_known_gaps_section_of_a_strict_run_says_they_fail(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import KnownGap, Scene
+
+    def gap(run):
+        run.check(model="lowmodel.linear_bearing.b2b", quantity="increase", unit="%", value=150.4, reference=185.2,
+                  relation="ge", tolerance=0.0, source="lin2019 Sec 2.4.1", time_s=0.01,
+                  known_gap=KnownGap(reason="no full-sliding state", evidence="docs/b2b_bearing.md"))
+
+    result = run_scene(Scene("zz-gap", "gap", gap, default=False, kind="low-order", cost_s=0.1), "default", tmp_path)
+    # the --strict report failed the scene and said in the same page that known gaps "do not fail the run"
+    strict_md = to_markdown([result], "default", strict=True).split("## Known gaps")[1].split("## Budgets")[0]
+    assert "do not fail the run" not in strict_md and "counts them as failures" in strict_md
+    assert "do not fail the run" in to_markdown([result], "default")
+    assert "counts them as failures" in to_html([result], "default", tmp_path, strict=True)

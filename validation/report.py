@@ -580,8 +580,9 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     lines += ["## Known gaps", ""]
     if gaps:
         lines += ["Published numbers this project does not reproduce, declared with their reason and evidence. "
-                  "They are checked and reported like any other check but do not fail the run (`--strict` makes "
-                  "them fail).", ""]
+                  "They are checked and reported like any other check" + (
+                      "; this `--strict` run counts them as failures." if strict else
+                      " but do not fail the run (`--strict` makes them fail)."), ""]
         lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
                            known_gap_rows(gaps))
     else:
@@ -724,8 +725,9 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
     parts.append('<h2 id="known-gaps">Known gaps</h2>')
     if gaps:
         parts.append("<p>Published numbers this project does not reproduce, declared with reason and evidence. "
-                     "Checked and reported like any other check; they do not fail the run (<code>--strict</code> "
-                     "makes them fail).</p>")
+                     "Checked and reported like any other check; " + (
+                         "this <code>--strict</code> run counts them as failures.</p>" if strict else
+                         "they do not fail the run (<code>--strict</code> makes them fail).</p>"))
         parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
                             known_gap_rows(gaps), status_column=4))
     else:
