@@ -392,3 +392,26 @@ def test_known_gaps_section_of_a_strict_run_says_they_fail(tmp_path):
     assert "do not fail the run" not in strict_md and "counts them as failures" in strict_md
     assert "do not fail the run" in to_markdown([result], "default")
     assert "counts them as failures" in to_html([result], "default", tmp_path, strict=True)
+
+
+def test_a_bound_that_holds_is_not_called_exact(tmp_path):
+    from ballbench.validation.report import fmt_ratio, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def bounds(run):
+        run.check(model="lowmodel.calibration", quantity="coverage of the 95 % interval", unit="1", value=0.9525,
+                  reference=0.9, relation="ge", tolerance=0.0, source="issue 13", time_s=1e-3)
+
+    def exact(run):
+        run.check(model="lowmodel.calibration", quantity="constants changed by save/load", unit="count", value=0.0,
+                  reference=0.0, tolerance=0.0, scale=1.0, source="JSON round trip", time_s=1e-3,
+                  why="a count: any change is one")
+
+    results = [run_scene(Scene(name, name, f, default=False, kind="low-order", cost_s=0.1), "default", tmp_path)
+               for name, f in (("zz-bounds", bounds), ("zz-exact", exact))]
+    # calibration-roundtrip's coverage bounds read "0 (exact)" in the table and the summary
+    assert fmt_ratio(results[0].outputs[0]) == "0 (bound met)"
+    assert fmt_ratio(results[1].outputs[0]) == "0 (exact)"
+    summary = to_markdown(results, "default").split("## Summary")[1].split("## Known gaps")[0]
+    assert "| 1 | 0 (bounds met) |" in summary and "| 1 | 0 (exact) |" in summary

@@ -137,11 +137,12 @@ def fmt_ratio(o: Output) -> str:
     """Error as a multiple of the tolerance (1 = at tolerance)."""
     if o.kind == "budget":
         return ""
+    met = "0 (bound met)" if o.relation != "eq" else "0 (exact)"  # a bound that holds has error 0 too
     if o.tolerance == 0:
-        return "0 (exact)" if o.rel_error == 0 else "bound missed" if o.relation != "eq" else "not exact"
+        return met if o.rel_error == 0 else "bound missed" if o.relation != "eq" else "not exact"
     r = o.error_over_tolerance
     if r == 0:
-        return "0 (exact)"
+        return met
     return f"{r:.2g}" if r >= 1e-3 else f"{r:.1e}"
 
 
@@ -206,6 +207,18 @@ def model_runs(result: SceneResult) -> list[tuple[str, float, list[Output]]]:
         if o.kind == "accuracy":
             groups.setdefault((o.model, o.time_s), []).append(o)
     return [(model, t, outputs) for (model, t), outputs in groups.items()]
+
+
+def worst_ratio_text(outputs: Sequence[Output]) -> str:
+    """The summary's worst error / tolerance; a 0 says whether it is exact agreement or bounds that hold."""
+    worst = worst_ratio(outputs)
+    if worst != 0:
+        return _ratio_text(worst)
+    relations = {o.relation == "eq" for o in outputs if o.kind == "accuracy"}
+    if not relations:
+        return "-"
+    return {frozenset({True}): "0 (exact)", frozenset({False}): "0 (bounds met)"}.get(
+        frozenset(relations), "0 (exact; bounds met)")
 
 
 def worst_ratio(outputs: Sequence[Output]) -> float:
@@ -574,7 +587,7 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
               "tolerance). Values are shown in engineering units; results.json and results.csv stay SI.", ""]
     lines += _md_table(("scene", "kind", "status", "checks", "worst error / tol", "wall time", "budget"), [
         (f"[{r.name}](#{r.name})", r.kind, status_word(s) + (" (interrupted)" if r.interrupted else ""),
-         f"{len([o for o in r.outputs if o.kind == 'accuracy'])}", _ratio_text(worst_ratio(r.outputs)),
+         f"{len([o for o in r.outputs if o.kind == 'accuracy'])}", worst_ratio_text(r.outputs),
          fmt_time(r.wall_time_s), _scene_budget_text(r)) for r, s in zip(results, data_status)])
     gaps = [(r, o) for r in results for o in r.outputs if o.known_gap is not None]
     lines += ["## Known gaps", ""]
@@ -718,7 +731,7 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
                  "results.json and results.csv stay SI.</p>")
     parts.append(_table(("scene", "kind", "status", "checks", "worst error / tol", "wall time", "budget"), [
         ((f'<a href="#{html.escape(r.name)}">{html.escape(r.name)}</a>',), r.kind, s,
-         len([o for o in r.outputs if o.kind == "accuracy"]), _ratio_text(worst_ratio(r.outputs)),
+         len([o for o in r.outputs if o.kind == "accuracy"]), worst_ratio_text(r.outputs),
          fmt_time(r.wall_time_s), _scene_budget_text(r)) for r, s in zip(results, statuses)],
         numeric=(3, 4, 5), status_column=2))
     gaps = [(r, o) for r in results for o in r.outputs if o.known_gap is not None]
