@@ -415,3 +415,12 @@ def test_a_bound_that_holds_is_not_called_exact(tmp_path):
     assert fmt_ratio(results[1].outputs[0]) == "0 (exact)"
     summary = to_markdown(results, "default").split("## Summary")[1].split("## Known gaps")[0]
     assert "| 1 | 0 (bounds met) |" in summary and "| 1 | 0 (exact) |" in summary
+
+
+def test_one_scene_is_not_one_scenes(tmp_path, capsys):
+    from ballbench.validation.report import count
+
+    assert count(1, "scene") == "1 scene" and count(35, "scene") == "35 scenes" and count(0, "point") == "0 points"
+    assert cli.main(["validate", "hertz-sphere-flat", "--out", str(tmp_path / "r")]) == 0
+    assert "ballbench: 1 scene at fidelity default" in capsys.readouterr().err
+    assert "mode default. 1 scene: 1 passed" in (tmp_path / "r" / "report.md").read_text()

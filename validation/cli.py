@@ -173,7 +173,7 @@ class _Interrupt:
 
 
 def _cmd_validate(args) -> int:
-    from ballbench.validation.report import failure_lines, row, status_word, write_report
+    from ballbench.validation.report import count, failure_lines, row, status_word, write_report
     from ballbench.validation.runner import run_scenes
 
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
@@ -202,7 +202,8 @@ def _cmd_validate(args) -> int:
                 print(f"  known gap (declared, see the report): {o.quantity}: {r.value_with_unit} vs published "
                       f"{r.reference_with_unit}", file=sys.stderr)
 
-    print(f"ballbench: {len(scenes)} scenes at fidelity {fidelity} into {out_dir}", file=sys.stderr, flush=True)
+    print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
+          flush=True)
     with _Interrupt() as interrupt:
         results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
                                       should_stop=lambda: interrupt.requested)

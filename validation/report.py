@@ -114,6 +114,11 @@ def fmt_number(x: float, digits: int = 5) -> str:
     return f"{x:.{digits - 1}e}"
 
 
+def count(n: int, noun: str) -> str:
+    """``"1 scene"``, ``"35 scenes"``: a count with its noun (regular plural)."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
+
+
 def fmt_time(t: float) -> str:
     if not math.isfinite(t):
         return str(t)
@@ -374,7 +379,7 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         right.scatter([p["time_s"] for p in members], [p["y"] for p in members], c=colour, marker=marker, s=30,
                       alpha=0.5)
         right.step(*front_line(members), where="post", color=colour, ls=line, lw=2,
-                   label=f"{family} ({len(members)} points)")
+                   label=f"{family} ({count(len(members), 'point')})")
     levels = mesh_level_points(data, out_dir) if out_dir is not None else []
     for scene_name in sorted({p["scene"] for p in levels}):
         chosen = sorted((p for p in levels if p["scene"] == scene_name), key=lambda p: p["time_s"])
@@ -570,10 +575,10 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     counts = {k: data_status.count(k) for k in ("pass", "known gap", "fail", "error")}
     lines = ["# ballbench validation report", ""]
     mode = ", ".join(m for m, on in (("--strict", strict), ("--strict-time", strict_time)) if on) or "default"
-    lines += [f"Fidelity `{fidelity}`, mode {mode}. {len(results)} scenes: {counts['pass']} passed, "
+    lines += [f"Fidelity `{fidelity}`, mode {mode}. {count(len(results), 'scene')}: {counts['pass']} passed, "
               f"{counts['known gap']} passed with known gaps, {counts['fail']} failed, {counts['error']} raised.", ""]
     if not_run:
-        lines += [f"**Partial report: the run was interrupted; {len(not_run)} scenes did not run:** "
+        lines += [f"**Partial report: the run was interrupted; {count(len(not_run), 'scene')} did not run:** "
                   + ", ".join(not_run), ""]
     unexpected = [(r, o) for r in results for o in r.outputs if o.status == "unexpected pass"]
     if unexpected:
@@ -710,7 +715,8 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              "<title>ballbench validation report</title>", f"<style>{_CSS}</style></head><body>",
              "<h1>ballbench validation report</h1>",
-             f'<div class="banner {"ok" if ok else "bad"}"><b>{len(results)} scenes</b>: {counts["pass"]} passed, '
+             f'<div class="banner {"ok" if ok else "bad"}"><b>{count(len(results), "scene")}</b>: '
+             f'{counts["pass"]} passed, '
              f'{counts["known gap"]} passed with known gaps, {counts["fail"]} failed, {counts["error"]} raised. '
              f'Fidelity <code>{html.escape(fidelity)}</code>'
              f'{", --strict" if strict else ""}{", --strict-time" if strict_time else ""}.</div>']
