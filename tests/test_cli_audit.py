@@ -424,3 +424,14 @@ def test_one_scene_is_not_one_scenes(tmp_path, capsys):
     assert cli.main(["validate", "hertz-sphere-flat", "--out", str(tmp_path / "r")]) == 0
     assert "ballbench: 1 scene at fidelity default" in capsys.readouterr().err
     assert "mode default. 1 scene: 1 passed" in (tmp_path / "r" / "report.md").read_text()
+
+
+def test_sweep_summary_of_a_serial_or_finished_run_names_no_workers(sweep_helpers, tmp_path, capsys):
+    spec = _sweep_spec(tmp_path, "", "[1.0, 2.0]")
+    argv = ["sweep", spec, "--serial", "--out", str(tmp_path / "out"), "--no-progress"]
+    assert cli.main(argv) == 0
+    first = capsys.readouterr().out
+    # "--serial" printed "workers computing 0 % of the time"; a resumed run with nothing left printed it too
+    assert "workers" not in first and "this process computing" in first
+    assert cli.main(argv) == 0
+    assert "computing" not in capsys.readouterr().out

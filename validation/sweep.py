@@ -785,10 +785,12 @@ def main(args) -> int:
                             progress=progress)
     except ValueError as error:
         raise SystemExit(f"ballbench sweep: {error}") from None
+    who = "this process" if args.serial else "workers"
+    busy = (f"; {who} computing {100 * summary.utilisation:.0f} % of the time, overhead "
+            f"{1e3 * summary.overhead_per_case:.3f} ms per case" if summary.computed else "")
     print(f"{spec.name}: {summary.n_cases} cases, {summary.skipped} already done, {summary.computed} computed in "
           f"{summary.wall_time_s:.2f} s ({summary.throughput:.1f} cases/s, {summary.where}), "
-          f"{summary.failed} failed; workers computing {100 * summary.utilisation:.0f} % of the time, overhead "
-          f"{1e3 * summary.overhead_per_case:.3f} ms per case; results: {out_dir}/part-*.parquet"
+          f"{summary.failed} failed{busy}; results: {out_dir}/part-*.parquet"
           + (f", gridded: {out_dir / DATASET_NAME} (xarray Dataset)" if spec.grid else ""))
     for kind, count, case, text in summary.reasons:
         print(f"  {count} failed with {kind}; the first, case {case}: {text}")
