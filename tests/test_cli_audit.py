@@ -355,7 +355,7 @@ def test_error_figure_of_one_fe_scene_has_a_readable_time_axis(tmp_path, monkeyp
         low, high = axes.get_xlim()
         assert high >= 10 * low * (1 - 1e-9) and low <= 23.9 <= high
     assert left.get_xlim() == right.get_xlim()
-    assert any("a bound that holds" in t.get_text() for t in left.texts)
+    assert any("all bounds met" in t.get_text() for t in left.texts)
 
 
 def test_an_empty_budgets_section_says_so(tmp_path):

@@ -358,7 +358,7 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         axes.axhline(1.0, color="black", lw=1.0, ls="--")
         axes.axhspan(FLOOR / 5, FLOOR * 2, color="0.9", zorder=0)
         axes.axhspan(CEILING / 2, CEILING * 5, color="0.9", zorder=0)
-        axes.text(0.01, 0.015, "floor: error 0 (exact agreement, or every check a bound that holds) or below 1e-8",
+        axes.text(0.01, 0.015, "floor: error 0 (exact, or all bounds met) or below 1e-8",
                   transform=axes.transAxes, fontsize=7)
         axes.text(0.01, 0.965, "ceiling: tolerance-0 bound missed / non-finite", transform=axes.transAxes,
                   fontsize=7, va="top")
