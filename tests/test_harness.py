@@ -19,6 +19,7 @@ from html.parser import HTMLParser
 import pytest
 
 from ballbench.validation import cli
+from cli_support import one_error_line
 from ballbench.validation import scene as scene_module
 from ballbench.validation.report import error_points, write_report
 from ballbench.validation.runner import run_scene
@@ -219,15 +220,6 @@ def test_fail_line_names_check_value_reference_and_error(fakes, tmp_path, capsys
     assert "4.52" in line and "4.01" in line and "12.7 %" in line and "tolerance 3 %" in line
 
 
-def _one_error_line(capsys, code):
-    captured = capsys.readouterr()
-    lines = [x for x in captured.err.splitlines() if x.strip()]
-    assert code == 2, captured
-    assert len(lines) == 1 and lines[0].startswith("ballbench: error: "), lines
-    assert "Traceback" not in captured.err + captured.out
-    return lines[0]
-
-
 @pytest.mark.parametrize("argv, expected", [
     (["validate", "no-such-scene"], "no scene matches"),
     (["validate", "--bogus"], "unrecognized arguments"),
@@ -243,7 +235,7 @@ def test_cli_wrong_use_is_one_line_and_exit_2(fakes, capsys, monkeypatch, argv, 
     from ballbench.validation import runner
 
     monkeypatch.setattr(runner, "run_scenes", lambda *a, **k: pytest.fail("work started before the check"))
-    assert expected in _one_error_line(capsys, cli.main(argv))
+    assert expected in one_error_line(capsys, cli.main(argv))
 
 
 def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
@@ -262,9 +254,9 @@ def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path)], "--junit"),
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path / "missing" / "j.xml")], "does not exist")]
     for extra, expected in cases:
-        assert expected in _one_error_line(capsys, cli.main(["validate", "zz-a-pass", *extra]))
+        assert expected in one_error_line(capsys, cli.main(["validate", "zz-a-pass", *extra]))
     assert (other / "mine.txt").read_text() == "keep me"
-    assert "existing file" in _one_error_line(capsys, cli.main(["show", "fe-hertz-flat", "--out", str(a_file)]))
+    assert "existing file" in one_error_line(capsys, cli.main(["show", "fe-hertz-flat", "--out", str(a_file)]))
 
 
 def test_rerun_into_same_out_starts_clean(fakes, tmp_path):

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from ballbench.validation import sweep
+from cli_support import helper_module
 
 HELPERS = textwrap.dedent('''
     import math, os, time
@@ -45,11 +46,7 @@ HELPERS = textwrap.dedent('''
 
 @pytest.fixture
 def helpers(tmp_path, monkeypatch):
-    directory = tmp_path / "helpers"
-    directory.mkdir()
-    (directory / "sweep_helpers.py").write_text(HELPERS)
-    monkeypatch.syspath_prepend(str(directory))
-    return directory
+    return helper_module(tmp_path, monkeypatch, "sweep_helpers", HELPERS)
 
 
 def _spec(**overrides):

@@ -44,7 +44,7 @@ from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
            "fe_contact_law",
-           "FE_CONTACTS", "run_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
+           "FE_CONTACTS", "run_spec", "check_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
 # quantity -> {unit: SI factor}
@@ -63,6 +63,9 @@ FE_CONTACTS = {
     "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
     "fe-hertz-nut": TABLE4.ball_radius,
 }
+# a ball radius [m] outside this range is most likely given in mm (0.2 mm to 200 mm ball diameter)
+BALL_RADIUS_RANGE = (1e-4, 0.1)
+FIDELITIES = ("quick", "default", "fine")
 _HEADER = re.compile(r"^\s*([a-z_]+)\s*\[([^\]]+)\]\s*$")
 
 
@@ -162,6 +165,14 @@ def write_load_approach_csv(path: str | Path, forces, approaches, semi_axes, com
 # --------------------------------------------------------------------------
 # FE load sweep
 # --------------------------------------------------------------------------
+def _check_load_factors(load_factors) -> np.ndarray:
+    factors = np.asarray(load_factors, dtype=float)
+    if factors.ndim != 1 or factors.size < 3 or np.any(factors <= 0.0) or np.any(factors > 1.5):
+        raise ValueError("load_factors must be >= 3 values in (0, 1.5] (the FE candidate zone holds the contact up "
+                         f"to 1.5 times the scene's force), got {list(np.atleast_1d(load_factors))}")
+    return factors
+
+
 def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
     """FE load sweep of an ``fe-hertz-*`` pair: ``force`` [N], ``approach`` [m], ``a`` [m] at every load.
 
@@ -176,10 +187,7 @@ def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0
 
     if scene_name not in FE_CONTACTS:
         raise ValueError(f"fe_scene must be one of {sorted(FE_CONTACTS)}, got {scene_name!r}")
-    factors = np.asarray(load_factors, dtype=float)
-    if factors.size < 3 or np.any(factors <= 0.0) or np.any(factors > 1.5):
-        raise ValueError("load_factors must be >= 3 values in (0, 1.5] (the FE candidate zone holds the contact up "
-                         f"to 1.5 times the scene's force), got {list(load_factors)}")
+    factors = _check_load_factors(load_factors)
     start = time.perf_counter()
     case = fe_hertz.pair_case(scene_name)
     n, growth = case.level_list(fidelity)[-1]
@@ -225,17 +233,9 @@ def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 
 
 
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
-    where = f"contact.{name}"
-    allowed = {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"}
-    if set(table) - allowed:
-        raise ValueError(f"{where}: unknown key(s) {sorted(set(table) - allowed)}; allowed {sorted(allowed)}")
-    if ("fe_scene" in table) == ("data" in table):
-        raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep) or 'data' (CSV file)")
     reference_c = reference_psi = None
     if "fe_scene" in table:
         fidelity = table.get("fidelity", "quick")
-        if fidelity not in ("quick", "default", "fine"):
-            raise ValueError(f"{where}.fidelity must be quick, default or fine, got {fidelity!r}")
         law, sweep = fe_contact_law(table["fe_scene"], fidelity,
                                     table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)), confidence=confidence)
         radius, source = sweep["ball_radius"], sweep["source"]
@@ -247,7 +247,7 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
     data = read_load_approach_csv(path)
     radius = table.get("ball_radius")
     if "a" in data and radius is None:
-        raise ValueError(f"{where}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
+        raise ValueError(f"contact.{name}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
     if "conformity" in table:  # Hertz reference of a ball in a straight groove
         from ballbench.lowmodel.contact import hertz
 
@@ -260,8 +260,6 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
 
 
 def _friction(table: dict, base: Path, confidence: float) -> dict:
-    if set(table) - {"data"} or "data" not in table:
-        raise ValueError(f"friction: needs 'data' (a CSV file) and nothing else, got keys {sorted(table)}")
     path = (base / table["data"]).resolve()
     data = read_friction_csv(path)
     source = f"{path.name}, {data['normal_force'].size} rows"
@@ -300,15 +298,73 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
     }
 
 
-def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print) -> tuple[Path, cal.Calibration]:
-    """Run the fits of a calibrate spec and write the calibration file; returns (path, calibration)."""
-    spec_path = Path(spec_path)
-    spec = read_toml(spec_path)
-    allowed = {"output", "confidence", "contact", "friction", "k_f"}
-    if set(spec) - allowed:
-        raise ValueError(f"{spec_path}: unknown key(s) {sorted(set(spec) - allowed)}; allowed {sorted(allowed)}")
+def _unknown_keys(where: str, table, allowed: set) -> None:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table")
+    if set(table) - allowed:
+        raise ValueError(f"{where}: unknown key(s) {sorted(set(table) - allowed)}; allowed {sorted(allowed)}")
+
+
+def check_spec(spec: dict, spec_path: str | Path) -> None:
+    """ValueError naming the key for any mistake in a calibrate spec, before any fit or FE sweep runs (so a typo
+    in the last table does not surface after minutes of FE): keys, FE scene, fidelity, load factors, data files,
+    ball radius [m] (a radius outside BALL_RADIUS_RANGE is most likely in mm), conformity, confidence, k_f."""
+    base = Path(spec_path).parent
+    _unknown_keys(str(spec_path), spec, {"output", "confidence", "contact", "friction", "k_f"})
     if not set(spec) & {"contact", "friction", "k_f"}:
         raise ValueError(f"{spec_path}: nothing to calibrate (give [contact.<name>], [friction] or [k_f])")
+    checks.bounded("confidence", spec.get("confidence", 0.95), 0.0, 1.0, note="a probability such as 0.95")
+    contacts = spec.get("contact", {})
+    _unknown_keys("contact", contacts, set(contacts))
+    for name, table in contacts.items():
+        where = f"contact.{name}"
+        _unknown_keys(where, table, {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"})
+        if ("fe_scene" in table) == ("data" in table):
+            raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep) or 'data' (CSV file)")
+        if "fe_scene" in table:
+            if table["fe_scene"] not in FE_CONTACTS:
+                raise ValueError(f"{where}.fe_scene must be one of {sorted(FE_CONTACTS)}, got {table['fe_scene']!r}")
+            if table.get("fidelity", "quick") not in FIDELITIES:
+                raise ValueError(f"{where}.fidelity must be quick, default or fine, got {table['fidelity']!r}")
+            _check_load_factors(table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
+            extra = set(table) & {"data", "ball_radius", "conformity"}
+            if extra:
+                raise ValueError(f"{where}: {sorted(extra)} belong to a 'data' contact; the FE scene sets them")
+        else:
+            if set(table) & {"fidelity", "load_factors"}:
+                raise ValueError(f"{where}: fidelity and load_factors belong to an 'fe_scene' contact")
+            if not (base / table["data"]).is_file():
+                raise ValueError(f"{where}.data: no such file {base / table['data']}")
+            if "ball_radius" in table:
+                checks.bounded(f"{where}.ball_radius", table["ball_radius"], *BALL_RADIUS_RANGE, "m",
+                               lower_closed=True, upper_closed=True, note="metres: 5 mm is 5e-3")
+            if "conformity" in table:
+                if "ball_radius" not in table:
+                    raise ValueError(f"{where}: conformity needs ball_radius [m] (the Hertz reference)")
+                checks.conformity(f"{where}.conformity", table["conformity"])
+    if "friction" in spec:
+        table = spec["friction"]
+        _unknown_keys("friction", table, {"data"})
+        if "data" not in table:
+            raise ValueError(f"friction: needs 'data' (a CSV file), got keys {sorted(table)}")
+        if not (base / table["data"]).is_file():
+            raise ValueError(f"friction.data: no such file {base / table['data']}")
+    if "k_f" in spec:
+        table = spec["k_f"]
+        _unknown_keys("k_f", table, {"conformity", "fit_range"})
+        if "conformity" not in table:
+            raise ValueError(f"k_f: needs 'conformity' and optionally 'fit_range', got keys {sorted(table)}")
+        checks.conformity("k_f.conformity", table["conformity"])
+        checks.positive("k_f.fit_range", table.get("fit_range", 0.5), note="the largest |c/a| of the fit")
+
+
+def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print) -> tuple[Path, cal.Calibration]:
+    """Run the fits of a calibrate spec and write the calibration file; returns (path, calibration).
+
+    The whole spec is checked first (:func:`check_spec`)."""
+    spec_path = Path(spec_path)
+    spec = read_toml(spec_path)
+    check_spec(spec, spec_path)
     confidence = spec.get("confidence", 0.95)
     base = spec_path.parent
     target = Path(output) if output else base / spec.get("output", "calibration.json")
@@ -320,8 +376,6 @@ def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print)
         calibration = calibration.merged("friction", _friction(spec["friction"], base, confidence))
     if "k_f" in spec:
         table = spec["k_f"]
-        if set(table) - {"conformity", "fit_range"} or "conformity" not in table:
-            raise ValueError(f"k_f: needs 'conformity' and optionally 'fit_range', got keys {sorted(table)}")
         calibration = calibration.merged("k_f", kf_constants(table["conformity"], table.get("fit_range", 0.5),
                                                              confidence=confidence))
     cal.save(calibration, target)
@@ -371,5 +425,6 @@ def main(args) -> int:
 def add_parser(sub) -> None:
     p = sub.add_parser("calibrate", help="fit constants (Psi, C, C_b, mu, k_f) with intervals; write a calibration")
     p.add_argument("spec", help="calibration spec (TOML, docs/calibration.md)")
-    p.add_argument("--out", help="calibration file to write (default: the spec's 'output')")
+    p.add_argument("--out", help="calibration file to write, relative to the current folder (default: the "
+                                 "spec's 'output', relative to the spec's folder)")
     p.set_defaults(func=main)

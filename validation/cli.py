@@ -7,6 +7,7 @@ interrupted by Ctrl-C (a partial report is written).
 from __future__ import annotations
 
 import argparse
+import difflib
 import fnmatch
 import os
 import shutil
@@ -26,7 +27,7 @@ finite-element analysis and the numbers the source papers publish."""
 
 EPILOG = """examples:
   ballbench scenes                      list the scenes with their kind and rough cost
-  ballbench validate                    run every default scene (about 5 minutes on 2 idle cores)
+  ballbench validate                    run every default scene ('ballbench scenes' states the cost)
   ballbench validate --fast             a first look: the scenes that are not FE and cost at most 30 s each
   ballbench validate 'lin2019-*'        scenes by name or pattern
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
@@ -59,7 +60,8 @@ def _select(names: list[str], fast: bool = False):
         for pattern in names:
             matched = [s for n, s in scenes.items() if fnmatch.fnmatchcase(n, pattern)]
             if not matched:
-                raise UsageError(f"no scene matches {pattern!r}; 'ballbench scenes' lists them")
+                raise UsageError(f"no scene matches {pattern!r}{_did_you_mean(pattern, scenes)}; "
+                                 "'ballbench scenes' lists them")
             chosen += [s for s in matched if s not in chosen]
     if fast:
         chosen = [s for s in chosen if _is_fast(s)]
@@ -67,6 +69,12 @@ def _select(names: list[str], fast: bool = False):
             raise UsageError(f"--fast leaves no scene: every selected scene is an FE scene or costs over "
                              f"{FAST_COST_S:.0f} s")
     return sorted(chosen, key=lambda s: s.name)
+
+
+def _did_you_mean(name: str, names) -> str:
+    """``" (did you mean 'x' or 'y'?)"`` for the closest scene names to a misspelt one, else ``""``."""
+    close = difflib.get_close_matches(name, sorted(names), n=3, cutoff=0.6)
+    return f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
 
 
 def _fmt_cost(seconds: float) -> str:
@@ -165,7 +173,7 @@ class _Interrupt:
 
 
 def _cmd_validate(args) -> int:
-    from ballbench.validation.report import failure_lines, row, status_word, write_report
+    from ballbench.validation.report import count, failure_lines, row, status_word, write_report
     from ballbench.validation.runner import run_scenes
 
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
@@ -185,13 +193,17 @@ def _cmd_validate(args) -> int:
               + (f": {result.error}" if result.error else ""), file=sys.stderr, flush=True)
         for line in failure_lines(result, **options):
             print(line, file=sys.stderr)
+        traceback = [a for a in result.artifacts if a.endswith("error.txt")]
+        if traceback:
+            print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
         if status == "known gap":
             for o in result.outputs_with("known gap"):
                 r = row(o)
-                print(f"  known gap (declared, see the report): {o.quantity}: {r.value} {r.unit} vs published "
-                      f"{r.reference} {r.unit}", file=sys.stderr)
+                print(f"  known gap (declared, see the report): {o.quantity}: {r.value_with_unit} vs published "
+                      f"{r.reference_with_unit}", file=sys.stderr)
 
-    print(f"ballbench: {len(scenes)} scenes at fidelity {fidelity} into {out_dir}", file=sys.stderr, flush=True)
+    print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
+          flush=True)
     with _Interrupt() as interrupt:
         results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
                                       should_stop=lambda: interrupt.requested)
@@ -215,14 +227,19 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_show(args) -> int:
+    from ballbench.validation.show import can_show
+
     scenes = registry()
+    drawable = sorted(n for n in scenes if can_show(n))
     if args.scene not in scenes:
-        raise UsageError(f"no scene {args.scene!r}; 'ballbench scenes' lists them")
+        raise UsageError(f"no scene {args.scene!r}{_did_you_mean(args.scene, drawable)}; show draws: "
+                         f"{', '.join(drawable)}")
     scene = scenes[args.scene]
-    if scene.kind != "FE":
-        fe = ", ".join(sorted(n for n, s in scenes.items() if s.kind == "FE"))
-        raise UsageError(f"show draws the fields of FE scenes; {args.scene!r} is a {scene.kind} scene "
-                         f"(FE scenes: {fe})")
+    if not can_show(args.scene):
+        what = "an FE scene that saves no fields to draw" if scene.kind == "FE" else f"{scene.kind} scene"
+        what = what if scene.kind == "FE" else ("an " if scene.kind[0] in "aeiou" else "a ") + what
+        raise UsageError(f"show draws the saved fields of FE scenes; {args.scene!r} is {what} "
+                         f"(show draws: {', '.join(drawable)})")
     out_dir = Path(args.out)
     if out_dir.exists() and not out_dir.is_dir():
         raise UsageError(f"--out {out_dir} is an existing file, not a folder")

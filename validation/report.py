@@ -44,19 +44,33 @@ STYLE = {
 }
 FLOOR = 1e-8     # error / tolerance drawn at this floor when it is exactly 0 (or below it)
 CEILING = 1e4    # ... and at this ceiling when infinite (a missed bound of tolerance 0, a non-finite value)
+# closed forms and explicit formulas (lin2017 rigid four-point, Hertz, the friction map, lin2019 eqs 22-33, wang2022)
 ANALYTICAL_MODELS = ("lowmodel.contact.hertz", "lowmodel.contact.ellipse_friction",
-                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw", "lowmodel.fourpoint")
-LOW_ORDER_MODELS = ("lowmodel.linear_bearing.bearing_ball", "lowmodel.linear_bearing.b2b")
+                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw.kinematics", "lowmodel.screw.harris",
+                     "lowmodel.fourpoint")
+# numerical solutions of the low-order equations: Newton on the ball equilibria (lin2019 eqs 1-10, 54-61), the
+# whole screw in time, the load distribution, and the BEM / EHL / mixed-lubrication solvers (sun2021)
+LOW_ORDER_MODELS = ("lowmodel.linear_bearing.bearing_ball", "lowmodel.linear_bearing.b2b",
+                    "lowmodel.linear_bearing.b2b_traction", "lowmodel.screw.screw_ball", "lowmodel.screw.screw_b2b",
+                    "lowmodel.screw.screw_b2b_traction", "lowmodel.screw.load_distribution",
+                    "lowmodel.screw.whole_screw", "lowmodel.contact.halfspace", "lowmodel.contact.screw_contact",
+                    "lowmodel.contact.ehl", "lowmodel.contact.mixed")
 
 
 # ----------------------------------------------------------------------------------------------- numbers
+def _is_model(model: str, module: str) -> bool:
+    """``model`` names ``module`` itself, one of its functions (``module.f``) or a variant (``module (note)``)."""
+    return model == module or model.startswith(module + " ") or model.startswith(module + ".")
+
+
 def model_family(model: str) -> str:
-    """``"FE"``, ``"low-order numerical"``, ``"analytical"`` or ``"other"`` (by the model's module name)."""
+    """``"FE"``, ``"low-order numerical"``, ``"analytical"`` or ``"other"`` (by the model's module name; ``other``:
+    fits, sampling and the harness itself, e.g. ``lowmodel.calibration``, ``lowmodel.contact.roughness``)."""
     if model.startswith("fem."):
         return "FE"
-    if any(model == m or model.startswith(m + " ") for m in LOW_ORDER_MODELS):
+    if any(_is_model(model, m) for m in LOW_ORDER_MODELS):
         return "low-order numerical"
-    if any(model.startswith(m) for m in ANALYTICAL_MODELS):
+    if any(_is_model(model, m) for m in ANALYTICAL_MODELS):
         return "analytical"
     return "other"
 
@@ -100,6 +114,11 @@ def fmt_number(x: float, digits: int = 5) -> str:
     return f"{x:.{digits - 1}e}"
 
 
+def count(n: int, noun: str) -> str:
+    """``"1 scene"``, ``"35 scenes"``: a count with its noun (regular plural)."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
+
+
 def fmt_time(t: float) -> str:
     if not math.isfinite(t):
         return str(t)
@@ -123,11 +142,12 @@ def fmt_ratio(o: Output) -> str:
     """Error as a multiple of the tolerance (1 = at tolerance)."""
     if o.kind == "budget":
         return ""
+    met = "0 (bound met)" if o.relation != "eq" else "0 (exact)"  # a bound that holds has error 0 too
     if o.tolerance == 0:
-        return "0 (exact)" if o.rel_error == 0 else "bound missed" if o.relation != "eq" else "not exact"
+        return met if o.rel_error == 0 else "bound missed" if o.relation != "eq" else "not exact"
     r = o.error_over_tolerance
     if r == 0:
-        return "0 (exact)"
+        return met
     return f"{r:.2g}" if r >= 1e-3 else f"{r:.1e}"
 
 
@@ -152,9 +172,21 @@ class Row:
     time: str
     note: str
 
+    @property
+    def value_with_unit(self) -> str:
+        return f"{self.value} {self.unit}" if self.unit else self.value
+
+    @property
+    def reference_with_unit(self) -> str:
+        return f"{self.reference} {self.unit}" if self.unit else self.reference
+
+
+DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "-" in a unit column
+
 
 def row(o: Output) -> Row:
     factor, unit = engineering(o.unit, o.value, o.reference)
+    unit = "" if unit in DIMENSIONLESS else unit
     value = fmt_number(o.value * factor)
     reference = _relation_symbol(o) + fmt_number(o.reference * factor)
     if o.kind == "budget":
@@ -180,6 +212,18 @@ def model_runs(result: SceneResult) -> list[tuple[str, float, list[Output]]]:
         if o.kind == "accuracy":
             groups.setdefault((o.model, o.time_s), []).append(o)
     return [(model, t, outputs) for (model, t), outputs in groups.items()]
+
+
+def worst_ratio_text(outputs: Sequence[Output]) -> str:
+    """The summary's worst error / tolerance; a 0 says whether it is exact agreement or bounds that hold."""
+    worst = worst_ratio(outputs)
+    if worst != 0:
+        return _ratio_text(worst)
+    relations = {o.relation == "eq" for o in outputs if o.kind == "accuracy"}
+    if not relations:
+        return "-"
+    return {frozenset({True}): "0 (exact)", frozenset({False}): "0 (bounds met)"}.get(
+        frozenset(relations), "0 (exact; bounds met)")
 
 
 def worst_ratio(outputs: Sequence[Output]) -> float:
@@ -236,6 +280,22 @@ def pareto_front(points: Sequence[dict]) -> list[dict]:
             front.append(p)
             best = p["error"]
     return front
+
+
+def front_line(points: Sequence[dict]) -> tuple[list[float], list[float]]:
+    """The step line of a family's front as drawn (``where="post"``): the front's (time, error / tol) and a last
+    vertex at the family's longest run time, so the best error reached so far holds to the right edge; a front of
+    one point (the fastest point is also the most accurate) is then a visible horizontal line, not a lone vertex."""
+    front = pareto_front(points)
+    if not front:
+        return [], []
+    times = [p["time_s"] for p in front]
+    errors = [min(max(p["error"], FLOOR), CEILING) for p in front]
+    longest = max(p["time_s"] for p in points)
+    if longest > times[-1] or len(front) == 1:
+        times.append(max(longest, times[-1] * 1.5))  # a lone point at the longest time: a short stub to the right
+        errors.append(errors[-1])
+    return times, errors
 
 
 def mesh_level_points(data: dict, out_dir: Path) -> list[dict]:
@@ -298,7 +358,8 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         axes.axhline(1.0, color="black", lw=1.0, ls="--")
         axes.axhspan(FLOOR / 5, FLOOR * 2, color="0.9", zorder=0)
         axes.axhspan(CEILING / 2, CEILING * 5, color="0.9", zorder=0)
-        axes.text(0.01, 0.015, "floor: exact agreement (0) or below 1e-8", transform=axes.transAxes, fontsize=7)
+        axes.text(0.01, 0.015, "floor: error 0 (exact, or all bounds met) or below 1e-8",
+                  transform=axes.transAxes, fontsize=7)
         axes.text(0.01, 0.965, "ceiling: tolerance-0 bound missed / non-finite", transform=axes.transAxes,
                   fontsize=7, va="top")
         axes.set_xlabel("run time of one model evaluation [s]")
@@ -317,15 +378,24 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
         members = [p for p in points if p["family"] == family]
         right.scatter([p["time_s"] for p in members], [p["y"] for p in members], c=colour, marker=marker, s=30,
                       alpha=0.5)
-        front = pareto_front(members)
-        right.step([p["time_s"] for p in front], [p["y"] for p in front], where="post", color=colour, ls=line,
-                   lw=2, label=f"{family} ({len(members)} points)")
+        right.step(*front_line(members), where="post", color=colour, ls=line, lw=2,
+                   label=f"{family} ({count(len(members), 'point')})")
     levels = mesh_level_points(data, out_dir) if out_dir is not None else []
     for scene_name in sorted({p["scene"] for p in levels}):
         chosen = sorted((p for p in levels if p["scene"] == scene_name), key=lambda p: p["time_s"])
         right.plot([p["time_s"] for p in chosen], [min(max(p["error"], FLOOR), CEILING) for p in chosen], "o-",
                    color="0.35", ms=3, lw=0.8, label="FE mesh levels of a scene" if scene_name == min(
                        p["scene"] for p in levels) else None)
+    # one time axis for both panels, at least a decade wide (a narrower log axis labels its minor ticks on top
+    # of each other, e.g. a run of one FE scene)
+    if points or levels:
+        low = min(left.get_xlim()[0], right.get_xlim()[0])
+        high = max(left.get_xlim()[1], right.get_xlim()[1])
+        if high < 10.0 * low:
+            centre = math.sqrt(low * high)
+            low, high = centre / math.sqrt(10.0), centre * math.sqrt(10.0)
+        for axes in (left, right):
+            axes.set_xlim(low, high)
     right.set_title("Accuracy against cost: front of each model family")
     if points:
         right.legend(loc="upper left", bbox_to_anchor=(0.0, 0.92), fontsize=8)
@@ -334,7 +404,7 @@ def plot_error_vs_time(data: dict, path: Path, out_dir: Path | None = None) -> l
     key.text(0.0, 1.0, "Key: number, scene, model\n" + "\n".join(lines), va="top", ha="left",
              fontsize=7 if len(lines) < 45 else 5.5, family="monospace",
              transform=key.transAxes)
-    figure.suptitle(f"ballbench {data.get('fidelity', '')} run: error against run time "
+    figure.suptitle(f"ballbench run at fidelity {data.get('fidelity', '')}: error against run time "
                     "(1 = at tolerance; below the dashed line passes)", fontsize=11)
     figure.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(figure)
@@ -403,24 +473,47 @@ def status_word(status: str) -> str:
     return {"pass": "PASS", "known gap": "PASS (known gap)", "fail": "FAIL", "error": "ERROR"}[status]
 
 
+def check_line(o: Output) -> str:
+    """One check as a line: quantity, model, value and reference with unit, source, error and tolerance."""
+    r = row(o)
+    tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
+    return (f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
+            f"error {r.error or '0 %'}, {tolerance}")
+
+
 def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: bool = False, limit: int = 5) -> list[str]:
     """One line per failed check: quantity, model, value, reference, error and tolerance."""
     bad = [o for o in result.outputs if o.status in ("fail", "unexpected pass")
            or (strict and o.status == "known gap") or (strict_time and o.status == "over budget")]
     lines = []
     for o in bad[:limit]:
-        r = row(o)
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "over budget": "over budget (--strict-time)"}.get(o.status, "")
-        tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
-        lines.append(f"  {o.quantity} [{o.model}]: {r.value} {r.unit} vs reference {r.reference} {r.unit} "
-                     f"({o.source}): error {r.error or '0 %'}, {tolerance}" + (f"; {what}" if what else ""))
+        lines.append(check_line(o) + (f"; {what}" if what else ""))
     if strict_time and result.wall_time_s > result.budget_s:
         lines.append(f"  scene wall time {fmt_time(result.wall_time_s)} over its budget {fmt_time(result.budget_s)} "
                      "(--strict-time)")
     if len(bad) > limit:
         lines.append(f"  ... and {len(bad) - limit} more failed checks (report.md)")
     return lines
+
+
+SAME_AS_ABOVE = "as above"
+NO_BUDGET_ROWS = "None in this run: no model budget recorded and no scene over its wall-time budget."
+
+
+def known_gap_rows(gaps: Sequence[tuple[SceneResult, Output]]) -> list[tuple[str, ...]]:
+    """Rows of the known-gaps table: (scene, check, value, published, status, reason, evidence); a check of the
+    same scene declared with the same reason and evidence as the row above says "as above" instead of repeating
+    a paragraph (lin2019-fig21 declares three checks with one reason)."""
+    rows, previous = [], None
+    for r, o in gaps:
+        key = (r.name, o.known_gap.reason, o.known_gap.evidence)
+        reason, evidence = (SAME_AS_ABOVE, SAME_AS_ABOVE) if key == previous else key[1:]
+        rows.append((r.name, o.quantity, row(o).value_with_unit, row(o).reference_with_unit, o.status, reason,
+                     evidence))
+        previous = key
+    return rows
 
 
 def _scene_budget_text(r: SceneResult) -> str:
@@ -482,10 +575,10 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     counts = {k: data_status.count(k) for k in ("pass", "known gap", "fail", "error")}
     lines = ["# ballbench validation report", ""]
     mode = ", ".join(m for m, on in (("--strict", strict), ("--strict-time", strict_time)) if on) or "default"
-    lines += [f"Fidelity `{fidelity}`, mode {mode}. {len(results)} scenes: {counts['pass']} passed, "
+    lines += [f"Fidelity `{fidelity}`, mode {mode}. {count(len(results), 'scene')}: {counts['pass']} passed, "
               f"{counts['known gap']} passed with known gaps, {counts['fail']} failed, {counts['error']} raised.", ""]
     if not_run:
-        lines += [f"**Partial report: the run was interrupted; {len(not_run)} scenes did not run:** "
+        lines += [f"**Partial report: the run was interrupted; {count(len(not_run), 'scene')} did not run:** "
                   + ", ".join(not_run), ""]
     unexpected = [(r, o) for r in results for o in r.outputs if o.status == "unexpected pass"]
     if unexpected:
@@ -499,17 +592,17 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
               "tolerance). Values are shown in engineering units; results.json and results.csv stay SI.", ""]
     lines += _md_table(("scene", "kind", "status", "checks", "worst error / tol", "wall time", "budget"), [
         (f"[{r.name}](#{r.name})", r.kind, status_word(s) + (" (interrupted)" if r.interrupted else ""),
-         f"{len([o for o in r.outputs if o.kind == 'accuracy'])}", _ratio_text(worst_ratio(r.outputs)),
+         f"{len([o for o in r.outputs if o.kind == 'accuracy'])}", worst_ratio_text(r.outputs),
          fmt_time(r.wall_time_s), _scene_budget_text(r)) for r, s in zip(results, data_status)])
     gaps = [(r, o) for r in results for o in r.outputs if o.known_gap is not None]
     lines += ["## Known gaps", ""]
     if gaps:
         lines += ["Published numbers this project does not reproduce, declared with their reason and evidence. "
-                  "They are checked and reported like any other check but do not fail the run (`--strict` makes "
-                  "them fail).", ""]
-        lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, f"{row(o).value} {row(o).unit}", f"{row(o).reference} {row(o).unit}", o.status,
-             o.known_gap.reason, o.known_gap.evidence) for r, o in gaps])
+                  "They are checked and reported like any other check" + (
+                      "; this `--strict` run counts them as failures." if strict else
+                      " but do not fail the run (`--strict` makes them fail)."), ""]
+        lines += _md_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
+                           known_gap_rows(gaps))
     else:
         lines += ["None in this run.", ""]
     lines += ["## Budgets (reported; they decide pass/fail only with `--strict-time`)", ""]
@@ -520,9 +613,10 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
-            budget_rows.append((r.name, o.quantity, f"{rr.value} {rr.unit}", f"{rr.reference} {rr.unit}",
+            budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit,
                                 "within budget" if o.passed else "**over budget**"))
-    lines += _md_table(("scene", "what", "measured", "budget", "result"), budget_rows)
+    lines += (_md_table(("scene", "what", "measured", "budget", "result"), budget_rows) if budget_rows
+              else [NO_BUDGET_ROWS, ""])
     if points:
         lines += ["## Which model for an error budget", "",
                   "Each point of the figure below is one (scene, model): its worst error as a multiple of its "
@@ -545,7 +639,7 @@ def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool =
             rows = [row(o) for o in outputs]
             lines += _md_table(("quantity", "value", "reference", "unit", "error", "tolerance", "error / tol",
                                 "status", "source"),
-                               [(x.quantity, x.value, x.reference, x.unit, x.error, x.tolerance, x.ratio,
+                               [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio,
                                  x.status if x.status == "pass" else f"**{x.status}**", x.source) for x in rows])
             notes = [f"- {x.quantity}: {x.note}" for x in rows if x.note]
             notes += [f"- {o.quantity}: known gap: {o.known_gap.reason} Evidence: {o.known_gap.evidence}"
@@ -621,7 +715,8 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              "<title>ballbench validation report</title>", f"<style>{_CSS}</style></head><body>",
              "<h1>ballbench validation report</h1>",
-             f'<div class="banner {"ok" if ok else "bad"}"><b>{len(results)} scenes</b>: {counts["pass"]} passed, '
+             f'<div class="banner {"ok" if ok else "bad"}"><b>{count(len(results), "scene")}</b>: '
+             f'{counts["pass"]} passed, '
              f'{counts["known gap"]} passed with known gaps, {counts["fail"]} failed, {counts["error"]} raised. '
              f'Fidelity <code>{html.escape(fidelity)}</code>'
              f'{", --strict" if strict else ""}{", --strict-time" if strict_time else ""}.</div>']
@@ -642,18 +737,18 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
                  "results.json and results.csv stay SI.</p>")
     parts.append(_table(("scene", "kind", "status", "checks", "worst error / tol", "wall time", "budget"), [
         ((f'<a href="#{html.escape(r.name)}">{html.escape(r.name)}</a>',), r.kind, s,
-         len([o for o in r.outputs if o.kind == "accuracy"]), _ratio_text(worst_ratio(r.outputs)),
+         len([o for o in r.outputs if o.kind == "accuracy"]), worst_ratio_text(r.outputs),
          fmt_time(r.wall_time_s), _scene_budget_text(r)) for r, s in zip(results, statuses)],
         numeric=(3, 4, 5), status_column=2))
     gaps = [(r, o) for r in results for o in r.outputs if o.known_gap is not None]
     parts.append('<h2 id="known-gaps">Known gaps</h2>')
     if gaps:
         parts.append("<p>Published numbers this project does not reproduce, declared with reason and evidence. "
-                     "Checked and reported like any other check; they do not fail the run (<code>--strict</code> "
-                     "makes them fail).</p>")
-        parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"), [
-            (r.name, o.quantity, f"{row(o).value} {row(o).unit}", f"{row(o).reference} {row(o).unit}", o.status,
-             o.known_gap.reason, o.known_gap.evidence) for r, o in gaps], status_column=4))
+                     "Checked and reported like any other check; " + (
+                         "this <code>--strict</code> run counts them as failures.</p>" if strict else
+                         "they do not fail the run (<code>--strict</code> makes them fail).</p>"))
+        parts.append(_table(("scene", "check", "value", "published", "status", "reason", "evidence"),
+                            known_gap_rows(gaps), status_column=4))
     else:
         parts.append("<p>None in this run.</p>")
     parts.append('<h2 id="budgets">Budgets</h2><p class="small">Reported; they decide pass/fail only with '
@@ -665,9 +760,9 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             rr = row(o)
-            budget_rows.append((r.name, o.quantity, f"{rr.value} {rr.unit}", f"{rr.reference} {rr.unit}", o.status))
+            budget_rows.append((r.name, o.quantity, rr.value_with_unit, rr.reference_with_unit, o.status))
     parts.append(_table(("scene", "what", "measured", "budget", "result"), budget_rows, numeric=(2, 3),
-                        status_column=4))
+                        status_column=4) if budget_rows else f"<p>{NO_BUDGET_ROWS}</p>")
     if points:
         parts.append('<h2 id="error-vs-time">Which model for an error budget</h2>'
                      "<p>Each point is one (scene, model): its worst error as a multiple of its tolerance at the "
@@ -693,8 +788,8 @@ def to_html(results: Sequence[SceneResult], fidelity: str, out_dir: Path, *, str
             rows = [row(o) for o in outputs]
             parts.append(_table(("quantity", "value", "reference", "unit", "error", "tolerance", "error / tol",
                                  "status", "source"),
-                                [(x.quantity, x.value, x.reference, x.unit, x.error, x.tolerance, x.ratio, x.status,
-                                  x.source) for x in rows], numeric=(1, 2, 4, 5, 6), status_column=7))
+                                [(x.quantity, x.value, x.reference, x.unit or "-", x.error, x.tolerance, x.ratio,
+                                  x.status, x.source) for x in rows], numeric=(1, 2, 4, 5, 6), status_column=7))
             notes = [f"{x.quantity}: {x.note}" for x in rows if x.note]
             notes += [f"{o.quantity}: known gap: {o.known_gap.reason} Evidence: {o.known_gap.evidence}"
                       for o in outputs if o.known_gap is not None]
@@ -738,7 +833,8 @@ def to_junit(results: Sequence[SceneResult], *, strict: bool = False, strict_tim
             ET.SubElement(case, "skipped", message="known gap: " + "; ".join(
                 f"{o.quantity}: {o.known_gap.reason}" for o in gaps))
         budget = f"wall time {fmt_time(r.wall_time_s)}, budget {_scene_budget_text(r)}"
-        ET.SubElement(case, "system-out").text = budget
+        checks = [f"{check_line(o)}: {o.status}" for o in r.outputs]
+        ET.SubElement(case, "system-out").text = "\n".join([budget, *checks])
     for name in not_run:
         case = ET.SubElement(suite, "testcase", classname="ballbench", name=name, time="0")
         ET.SubElement(case, "skipped", message="not run: the run was interrupted")

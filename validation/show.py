@@ -31,10 +31,18 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["show", "load_fields"]
+__all__ = ["show", "load_fields", "can_show", "against"]
 
 HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillion, solid
 FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue, dashed
+
+
+def can_show(scene_name: str) -> bool:
+    """True for the FE scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``)
+    and the two-ball modules ``fe-b2b-*``; the other FE scenes (e.g. ``sun2021-fe-bem``) save no fields to draw."""
+    from ballbench.validation.scenes import fe_hertz
+
+    return scene_name.startswith("fe-b2b-") or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES)
 
 
 def load_fields(directory: Path) -> tuple[dict, dict]:
@@ -67,6 +75,13 @@ def load_fields(directory: Path) -> tuple[dict, dict]:
             "body": np.asarray(mesh.cell_data_dict["body"][kind])}
     data.update({name: np.asarray(values) for name, values in mesh.point_data.items()})
     return data, meta
+
+
+def against(value: float, reference: float) -> str:
+    """``"+0.010 %"``: the signed relative difference of ``value`` from ``reference`` for a figure label."""
+    if not (math.isfinite(value) and math.isfinite(reference)) or reference == 0.0:
+        return "n/a"
+    return f"{100.0 * (value / reference - 1.0):+.3f} %"
 
 
 def _mirror_points(xy: np.ndarray, values: np.ndarray, mirror_x: bool, mirror_y: bool):
@@ -119,7 +134,8 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
     left.plot(*(_ellipse(a, b) * mm).T, **HERTZ_STYLE, label=f"Hertz ellipse a = {a * 1e6:.1f} um, "
                                                              f"b = {b * 1e6:.1f} um")
     left.plot(*(_ellipse(fe["a_m"], fe["b_m"]) * mm).T, **FE_STYLE,
-              label=f"fitted FE ellipse a = {fe['a_m'] * 1e6:.1f} um, b = {fe['b_m'] * 1e6:.1f} um")
+              label=f"fitted FE ellipse a = {fe['a_m'] * 1e6:.1f} um ({against(fe['a_m'], a)} against Hertz), "
+                    f"b = {fe['b_m'] * 1e6:.1f} um ({against(fe['b_m'], b)})")
     left.set_aspect("equal")
     left.set_xlabel("x [mm] (major semi-axis a)")
     left.set_ylabel("y [mm] (minor semi-axis b)")
@@ -139,7 +155,8 @@ def _pressure_figure(data: dict, meta: dict, path: Path) -> Path:
                label="FE nodes near the x axis (x / a)")
     right.plot(xy[band_x, 1] / b, pressure[band_x], "^", ms=3.5, color="#E69F00",
                label="FE nodes near the y axis (y / b)")
-    right.axhline(fe["p0_Pa"] / 1e6, **FE_STYLE, label=f"fitted FE p0 = {fe['p0_Pa'] / 1e6:.0f} MPa")
+    right.axhline(fe["p0_Pa"] / 1e6, **FE_STYLE, label=f"fitted FE p0 = {fe['p0_Pa'] / 1e6:.0f} MPa "
+                                                      f"({against(fe['p0_Pa'], hertz['p0_Pa'])})")
     right.set_xlabel("x / a or y / b [-]")
     right.set_ylabel("contact pressure [MPa]")
     right.set_ylim(bottom=0)
@@ -264,8 +281,17 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
     try:
         data, meta = load_fields(directory)
     except FileNotFoundError:
+        hint = ""
+        results = Path(out_dir) / "results.json"
+        if fidelity != "quick" and results.is_file():
+            try:
+                if json.loads(results.read_text()).get("fidelity") == "quick":
+                    hint = (f"; the report there is a --quick run, which saves no fields ('ballbench show "
+                            f"{scene_name} --quick' draws the quick level)")
+            except (OSError, ValueError):
+                pass
         print(f"ballbench: no saved fields in {directory}; solving the {fidelity} level of {scene_name} first "
-              f"(about {entry.cost_s:.0f} s)", file=sys.stderr, flush=True)
+              f"(about {entry.cost_s:.0f} s){hint}", file=sys.stderr, flush=True)
         fe_hertz.compute_fields(scene_name, fidelity, directory, show_progress=show_progress)
         data, meta = load_fields(directory)
     if not math.isfinite(meta["hertz"]["a_m"]):
