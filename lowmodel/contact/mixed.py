@@ -132,6 +132,8 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
     load = checks.positive("load", load, "N")
     share_tolerance = checks.bounded("share_tolerance", share_tolerance, 0.0, 1.0)
     smallest = checks.bounded("smallest_film_share", smallest_film_share, 0.0, 1.0)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
+    ehl_iterations = checks.count("ehl_iterations", ehl_iterations, 1)
     solves = {}
 
     def evaluate(film_load):
