@@ -99,6 +99,10 @@ class FitResult:
     confidence: float
 
 
+STATIONARITY = 1e-3  # largest Gauss-Newton step at an accepted fit, relative to max(|p|, x_scale) (scipy stops
+# ~1e-9 short of the optimum; a start many decades off stops ~1e100 short)
+
+
 def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_points: int,
                       confidence: float = 0.95, x_scale=None) -> FitResult:
     """Minimise ``sum residual(p)^2`` (scipy ``least_squares``, trust-region reflective).
@@ -111,20 +115,35 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     from scipy import optimize, stats
 
     confidence = checks.bounded("confidence", confidence, 0.0, 1.0, note="a probability such as 0.95")
-    p0 = np.asarray(p0, dtype=float)
+    p0 = np.reshape(checks.finite("p0", p0), -1)
+    n_points = checks.count("n_points", n_points, 1)
     if n_points <= p0.size:
-        raise ValueError(f"need more data points ({n_points}) than parameters ({p0.size}) for an uncertainty")
-    scale = np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None else x_scale
-    result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-    if not result.success:
-        raise ConvergenceError(f"least squares: {result.message}", residual=float(np.linalg.norm(result.fun)),
+        raise ValueError(f"n_points must exceed the number of parameters in p0 ({p0.size}) for an uncertainty, "
+                         f"got {n_points}")
+    scale = (np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None
+             else np.broadcast_to(checks.positive("x_scale", x_scale), p0.shape))
+    with np.errstate(all="ignore"):  # the trust region from a poor start (p0 ~ 1e-127) may under/overflow: judged below
+        result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15,
+                                        gtol=1e-15)
+    norm = float(np.linalg.norm(result.fun))
+    if not (result.success and np.all(np.isfinite(result.x)) and math.isfinite(norm)):
+        raise ConvergenceError(f"least squares: {result.message}", residual=norm if math.isfinite(norm) else math.inf,
                                iterations=int(result.nfev), tolerance=1e-15)
+    jac = result.jac
+    # at a minimum one more Gauss-Newton step moves p by a rounding error; scipy's tolerances are relative to
+    # x_scale, so a start p0 many decades off the solution (1e-127 for 1.7 with the default scale |p0|) can stop
+    # where it began
+    gauss_newton = np.linalg.lstsq(jac, -result.fun, rcond=None)[0]
+    if np.any(np.abs(gauss_newton) > STATIONARITY * np.maximum(np.abs(result.x), scale)):
+        raise ConvergenceError("least squares: stopped away from a minimum (a Gauss-Newton step still moves p): "
+                               "rescale p0 or x_scale", residual=norm, iterations=int(result.nfev),
+                               tolerance=STATIONARITY)
     dof = n_points - p0.size
     ssr = float(result.fun @ result.fun)
-    jac = result.jac
     _, singular, vt = np.linalg.svd(jac, full_matrices=False)
     if singular[-1] <= singular[0] * 1e-12:
-        raise ValueError("the data do not determine every parameter (singular Jacobian): widen the load range")
+        raise ValueError("residual: the data do not determine every parameter of p0 (singular Jacobian): widen the "
+                         "load range")
     covariance = (vt.T / singular**2) @ vt * (ssr / dof)
     std_error = np.sqrt(np.diag(covariance))
     half = float(stats.t.ppf(0.5 + 0.5 * confidence, dof)) * std_error
@@ -180,7 +199,9 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
     ``dF/dU = 3 s / (2 C + 3 C_b s)``.  With ``C_b < 0`` the law has a largest approach
     ``C s*^2 / 3`` at ``s* = 2 C / (3 |C_b|)`` (where it stops being monotone): ValueError beyond it.
     """
-    approach = np.asarray(approach, dtype=float)
+    approach = np.asarray(checks.finite("approach", approach, "m"))
+    tolerance = checks.positive("tolerance", tolerance)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
     c = np.broadcast_to(np.asarray(hertz_constant, dtype=float), approach.shape)
     c_b = np.broadcast_to(np.asarray(bulk_compliance, dtype=float), approach.shape)
     if np.any(c <= 0.0) or not np.all(np.isfinite(c)):
@@ -195,19 +216,23 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
     if np.any(too_far):
         raise ValueError(f"approach must be below C s*^2 / 3 (s* = 2 C / (3 |C_b|)) where the law with C_b < 0 "
                          f"is monotone, got {float(u[too_far][0])!r} m")
-    s = np.sqrt(u / c)                                     # Hertz root (C_b = 0)
-    for _ in range(max_iterations):
-        residual = c * s * s + c_b * s**3 - u
-        step = residual / np.where(loaded, 2.0 * c * s + 3.0 * c_b * s * s, 1.0)
-        s = np.where(loaded, s - step, 0.0)
-        if np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
-            break
-    else:
+    with np.errstate(over="ignore", invalid="ignore"):  # a force beyond the floating-point range: ValueError below
+        s = np.sqrt(u / c)                                     # Hertz root (C_b = 0)
+        for _ in range(max_iterations):
+            residual = c * s * s + c_b * s**3 - u
+            step = residual / np.where(loaded, 2.0 * c * s + 3.0 * c_b * s * s, 1.0)
+            s = np.where(loaded, s - step, 0.0)
+            if np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
+                break
+        force = s**3
+        slope = np.where(loaded, 3.0 * s / (2.0 * c + 3.0 * c_b * s), 0.0)
+    if not (np.all(np.isfinite(force)) and np.all(np.isfinite(slope))):
+        raise ValueError(f"approach up to {float(np.max(u))!r} m gives a force beyond the floating-point range "
+                         "(hertz_constant, bulk_compliance)")
+    if not np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
         raise ConvergenceError("law_force: Newton on C s^2 + C_b s^3 = U did not converge",
                                residual=float(np.max(np.abs(residual))), iterations=max_iterations,
                                tolerance=tolerance)
-    force = s**3
-    slope = np.where(loaded, 3.0 * s / (2.0 * c + 3.0 * c_b * s), 0.0)
     return force, slope
 
 
@@ -228,7 +253,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
     if forces.size != approaches.size:
         raise ValueError(f"forces and approaches must have the same length, got {forces.size} and {approaches.size}")
     if np.unique(forces).size < 3:
-        raise ValueError(f"need >= 3 distinct loads for C and C_b with an uncertainty, got {np.unique(forces).size}")
+        raise ValueError(f"forces: need >= 3 distinct loads for C and C_b with an uncertainty, "
+                         f"got {np.unique(forces).size}")
     f_scale = float(np.max(forces))
     u_scale = float(np.max(approaches))
     basis = np.column_stack([(forces / f_scale) ** (2.0 / 3.0), forces / f_scale])
@@ -273,6 +299,8 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
     if normal.size != friction.size:
         raise ValueError(f"normal_force and friction_force must have the same length, got {normal.size} and "
                          f"{friction.size}")
+    if normal.size < 2:
+        raise ValueError(f"normal_force and friction_force need >= 2 values for an uncertainty, got {normal.size}")
     ratio = friction / normal
     if speed is None:
         fit = fit_least_squares(lambda p: p[0] * normal - friction, [float(np.mean(ratio))], n_points=normal.size,
@@ -304,6 +332,8 @@ def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "",
     y = _data("y", y, "", positive=False)
     if x.size != y.size:
         raise ValueError(f"x and y must have the same length, got {x.size} and {y.size}")
+    if x.size < 2 or not float(x @ x) > 0.0:
+        raise ValueError(f"x must hold >= 2 values, not all zero (or so small that x . x underflows), got {x!r}")
     start = float(-(x @ y) / (x @ x))
     fit = fit_least_squares(lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
     return _constant(fit, 0, unit, source, x.size, fit.rms)
