@@ -363,21 +363,43 @@ def load(path: str | Path) -> Calibration:
         raise ValueError(f"{path}: not a calibration file (invalid JSON: {error})") from None
     if not isinstance(document, dict) or document.get("format") != FORMAT:
         raise ValueError(f"{path}: not a calibration file (format must be {FORMAT!r})")
-    if document.get("version") != VERSION:
+    if document.get("version") != VERSION or isinstance(document.get("version"), bool):
         raise ValueError(f"{path}: calibration version {document.get('version')!r} is not supported "
                          f"(this ballbench reads version {VERSION})")
+    notes = document.get("notes", [])
+    groups = document.get("constants", {})
+    if not isinstance(notes, list) or not all(isinstance(note, str) for note in notes):
+        raise ValueError(f"{path}: notes must be a list of strings")
+    if not isinstance(groups, dict) or not all(isinstance(items, dict) for items in groups.values()):
+        raise ValueError(f"{path}: constants must map each group to a mapping of constants")
+    constants = {group: {name: _constant_record(path, f"{group}/{name}", record) for name, record in items.items()}
+                 for group, items in groups.items()}
+    return Calibration(constants, tuple(notes))
+
+
+def _constant_record(path: Path, label: str, record) -> Constant:
+    """One constant of a calibration file, every field of its type (errors name the file and the constant)."""
     fields = set(Constant.__dataclass_fields__)
-    constants = {}
-    for group, items in document.get("constants", {}).items():
-        constants[group] = {}
-        for name, record in items.items():
-            missing = {"value", "std_error", "ci_low", "ci_high", "unit", "source"} - set(record)
-            if missing or set(record) - fields:
-                raise ValueError(f"{path}: constant {group}/{name} must have the fields {sorted(fields)}, "
-                                 f"missing {sorted(missing)}, unknown {sorted(set(record) - fields)}")
-            constant = Constant(**record)
-            if not all(math.isfinite(v) for v in (constant.value, constant.std_error, constant.ci_low,
-                                                   constant.ci_high)):
-                raise ValueError(f"{path}: constant {group}/{name} is not finite")
-            constants[group][name] = constant
-    return Calibration(constants, tuple(document.get("notes", ())))
+    required = {"value", "std_error", "ci_low", "ci_high", "unit", "source"}
+    if not isinstance(record, dict) or required - set(record) or set(record) - fields:
+        keys = set(record) if isinstance(record, dict) else set()
+        raise ValueError(f"{path}: constant {label} must have the fields {sorted(fields)}, "
+                         f"missing {sorted(required - keys)}, unknown {sorted(keys - fields)}")
+
+    def number(value):
+        return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+    bad = [name for name in ("value", "std_error", "ci_low", "ci_high", "rms_residual") if name in record
+           and not number(record[name])]
+    bad += [name for name in ("unit", "source") if not isinstance(record[name], str)]
+    if "confidence" in record and not (number(record["confidence"]) and 0.0 < record["confidence"] < 1.0):
+        bad.append("confidence")
+    if "n_points" in record and not (isinstance(record["n_points"], int) and not isinstance(record["n_points"], bool)
+                                     and record["n_points"] >= 0):
+        bad.append("n_points")
+    if record.get("reference") is not None and not number(record["reference"]):
+        bad.append("reference")
+    if bad:
+        raise ValueError(f"{path}: constant {label} has invalid {', '.join(bad)} (finite numbers, strings for unit "
+                         "and source, confidence in (0, 1), n_points an integer >= 0)")
+    return Constant(**record)
