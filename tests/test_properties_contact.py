@@ -262,8 +262,28 @@ def test_traction_patches(n_radial, n_angular, k, force, normal_scale, index):
         assert any(f": {name} " in str(error) for name in ("points", "normals", "forces")), error
         checked = None
     if checked is not None:
-        stacked = call(traction.stack_patches, [[checked]], 1, force, 1.0)
-        assert stacked is None or np.all(np.isfinite(stacked.load))
+        for reference in (force, 0.0, -1.0, 5e-324):
+            stacked = call(traction.stack_patches, [[checked], [checked]], 1, reference, 1.0)
+            if stacked is not None:
+                assert np.allclose(stacked.load, checked.forces[0] / reference)
+                assert stacked.ball.tolist() == [0] * k + [1] * k
+
+
+@SETTINGS
+@given(targets=st.lists(real(-10.0, 10.0), min_size=1, max_size=4), tolerance=st.one_of(positive(1e-14, 1e-6),
+       st.sampled_from([0.0, math.inf])), iterations=st.one_of(st.integers(0, 30), st.just(True)))
+def test_free_ball_starts(targets, tolerance, iterations):
+    """Each ball alone solves x_b^3 = t_b (one real root: Newton converges from 1 unless t_b = 0 stalls it)."""
+    target = np.asarray(targets)[:, None]
+
+    def evaluate(states, ball):
+        x = states[ball]
+        return x**3 - target[ball], np.diag(3.0 * x**2)
+
+    free = call(traction.free_ball_starts, evaluate, np.ones((len(targets), 1)), tolerance=tolerance,
+                max_iterations=iterations, what="ball")
+    if free is not None:
+        assert np.all(np.abs(free[0] ** 3 - target) <= tolerance)
 
 
 # --- calibration -----------------------------------------------------------------------------------------------
@@ -410,3 +430,41 @@ def test_solve_with_restarts(c, attempts):
         assert math.isfinite(error.residual)
         return
     assert x[0] >= 0.0 and abs(x[0] ** 2 - c) <= 1e-12
+
+
+json_value = st.recursive(st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.floats(), st.text(max_size=3)),
+                          lambda inner: st.one_of(st.lists(inner, max_size=2),
+                                                  st.dictionaries(st.text(max_size=3), inner, max_size=2)),
+                          max_leaves=4)
+
+
+@SETTINGS
+@given(where=st.sampled_from(["format", "version", "notes", "constants", "group", "record", "value", "unit",
+                              "confidence", "n_points", "extra"]), value=json_value)
+def test_calibration_file_with_one_wrong_field(where, value):
+    """load() of a file with one field replaced by any JSON value: a Calibration, or a ValueError naming the file."""
+    import json
+
+    cal = calibration.Calibration({"ball-ball": {"C": calibration.Constant(2.5e-7, 1e-9, 2.4e-7, 2.6e-7, "m N^-2/3",
+                                                                          "fe", 0.95, 4, 1e-9, 2.49e-7)}})
+    with tempfile.TemporaryDirectory() as folder:
+        path = calibration.save(cal, Path(folder) / "c.json")
+        document = json.loads(path.read_text())
+        record = document["constants"]["ball-ball"]["C"]
+        if where in ("format", "version", "notes", "constants"):
+            document[where] = value
+        elif where == "group":
+            document["constants"]["ball-ball"] = value
+        elif where == "record":
+            document["constants"]["ball-ball"]["C"] = value
+        else:
+            record[where] = value
+        path.write_text(json.dumps(document))
+        try:
+            loaded = calibration.load(path)
+        except ValueError as error:
+            assert str(path) in str(error), error
+            return
+        constant = loaded.constants["ball-ball"]["C"]
+        assert all(math.isfinite(v) for v in (constant.value, constant.std_error, constant.ci_low, constant.ci_high))
+        assert isinstance(constant.unit, str) and isinstance(constant.source, str)
