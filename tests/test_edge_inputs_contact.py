@@ -240,3 +240,9 @@ def test_calibration_file_fields_of_the_wrong_type(tmp_path, change):
     path.write_text(json.dumps(document))
     with pytest.raises(ValueError, match="c.json"):
         calibration.load(path)
+
+
+def test_screw_groove_that_conforms_names_its_inputs():
+    # lead 0.5 rad, axial profile: A = -0.63 1/m; the error named curvatures_1 and curvatures_2 only
+    with pytest.raises(ValueError, match="lead_angle 0.5 rad.*A = -0.634"):
+        hertz.ball_in_screw_groove(0.015625, 0.5625, 3 * 0.015625, 0.5, 0.5, "screw", profile_plane="axial")

@@ -5,7 +5,8 @@ ellipse_friction_offset}, the parts of hertz and ellipse_friction that tests/tes
 lowmodel.calibration, lowmodel.linear_bearing.b2b_traction and lowmodel.solvers.  Random finite inputs in the
 documented ranges and a little beyond (negative, zero, huge, tiny, grids of 1-2 cells) give finite outputs or a
 ValueError / ConvergenceError naming a parameter; never NaN, never a warning (property_support.call).
-Solves run on 1-32 cell grids under the SLOW settings.
+Solves run on 4-32 cell grids under the SLOW settings, drawn by ``one_bad``: all inputs in range, or one of
+them out of range, so that most draws reach the solve (1-3 cell grids: test_halfspace_grids).
 """
 from __future__ import annotations
 
@@ -386,8 +387,7 @@ def test_newton(c, x0, size, tolerance, iterations):
         return
     # never an unconverged point, never an accepted nonsense option
     assert 0.0 < tolerance < math.inf and iterations is not True and isinstance(iterations, int)
-    assert np.max(np.abs(x * x - c)) <= tolerance and count <= iterations
-    assert c >= 0.0 or np.max(np.abs(x * x - c)) > 0.0  # (c < 0 has no root: never here)
+    assert np.max(np.abs(x * x - c)) <= tolerance and count <= iterations  # (c < -tolerance: never here)
     assert np.all(np.isfinite(residual))
 
 

@@ -254,8 +254,15 @@ def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: fl
     kappa = _curvature("ball_radius", ball_radius)  # first: the geometry core divides by it
     kappa_1, kappa_2, _ = groove.groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
                                                            lead_angle, body, profile_plane)
-    return from_curvatures((kappa, kappa), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
-                           poisson_ratio=poisson_ratio)
+    try:
+        return from_curvatures((kappa, kappa), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
+                               poisson_ratio=poisson_ratio)
+    except ValueError as error:  # name this function's inputs (e.g. a profile that conforms: A <= 0)
+        if "curvatures_1" not in str(error):
+            raise
+        raise ValueError(f"ball_radius {ball_radius!r} m, conformity {conformity!r}, pitch_radius {pitch_radius!r} m, "
+                         f"contact_angle {contact_angle!r} rad, lead_angle {lead_angle!r} rad, {body} groove, "
+                         f"profile_plane {profile_plane!r}: {error}") from None
 
 
 # --------------------------------------------------------------------------
