@@ -141,7 +141,7 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     dof = n_points - p0.size
     ssr = float(result.fun @ result.fun)
     _, singular, vt = np.linalg.svd(jac, full_matrices=False)
-    if singular[-1] <= singular[0] * 1e-12:
+    if singular[-1] <= singular[0] * 1e-12 or not singular[-1] ** 2 > 0.0:  # (or the covariance overflows)
         raise ValueError("residual: the data do not determine every parameter of p0 (singular Jacobian): widen the "
                          "load range")
     covariance = (vt.T / singular**2) @ vt * (ssr / dof)
@@ -150,6 +150,14 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     params = result.x
     return FitResult(params, covariance, std_error, np.column_stack([params - half, params + half]),
                      math.sqrt(ssr / n_points), dof, confidence)
+
+
+def _fit(data: str, residual, p0, **options) -> FitResult:
+    """:func:`fit_least_squares`; its ValueErrors name the caller's ``data`` (e.g. ``"forces, approaches"``)."""
+    try:
+        return fit_least_squares(residual, p0, **options)
+    except ValueError as error:
+        raise ValueError(f"{data}: {error}") from None
 
 
 def _constant(fit: FitResult, k: int, unit: str, source: str, n: int, rms: float, reference=None) -> Constant:
@@ -210,9 +218,9 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
         raise ValueError("bulk_compliance must be finite [m/N]")
     loaded = approach > 0.0
     u = np.where(loaded, approach, 0.0)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # a tiny |C_b|: s* = inf, no limit in float range
         s_max = np.where(c_b < 0.0, 2.0 * c / (3.0 * np.abs(c_b)), np.inf)
-    too_far = loaded & (c_b < 0.0) & (u >= c * s_max**2 / 3.0)
+        too_far = loaded & (c_b < 0.0) & (u >= c * s_max**2 / 3.0)
     if np.any(too_far):
         raise ValueError(f"approach must be below C s*^2 / 3 (s* = 2 C / (3 |C_b|)) where the law with C_b < 0 "
                          f"is monotone, got {float(u[too_far][0])!r} m")
@@ -263,8 +271,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
     def residual(p):
         return basis @ p - approaches / u_scale  # lin2019 eq 53 + C_b F, scaled
 
-    fit = fit_least_squares(residual, guess, n_points=forces.size, confidence=confidence,
-                            x_scale=np.maximum(np.abs(guess), 1e-3))
+    fit = _fit("forces, approaches", residual, guess, n_points=forces.size, confidence=confidence,
+               x_scale=np.maximum(np.abs(guess), 1e-3))
     to_c = np.array([u_scale / f_scale ** (2.0 / 3.0), u_scale / f_scale])  # back to SI
     fit_si = FitResult(fit.params * to_c, fit.covariance * np.outer(to_c, to_c), fit.std_error * to_c,
                        fit.ci * to_c[:, None], fit.rms * u_scale, fit.dof, fit.confidence)
@@ -281,8 +289,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
         regressor = radius ** (1.0 / 3.0) * forces ** (1.0 / 3.0)  # lin2019 eq 15: a = Psi R^(1/3) F^(1/3)
         a_scale = float(np.max(axes))
         start = float(regressor @ axes / (regressor @ regressor))
-        fit_psi = fit_least_squares(lambda p: (p[0] * regressor - axes) / a_scale, [start], n_points=forces.size,
-                                    confidence=confidence)
+        fit_psi = _fit("forces, semi_axes", lambda p: (p[0] * regressor - axes) / a_scale, [start],
+                       n_points=forces.size, confidence=confidence)
         psi_constant = _constant(fit_psi, 0, "(m^2/N)^(1/3)", source, forces.size, fit_psi.rms * a_scale, psi)
     return ContactLaw(c, c_b, psi_constant)
 
@@ -299,12 +307,14 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
     if normal.size != friction.size:
         raise ValueError(f"normal_force and friction_force must have the same length, got {normal.size} and "
                          f"{friction.size}")
-    if normal.size < 2:
-        raise ValueError(f"normal_force and friction_force need >= 2 values for an uncertainty, got {normal.size}")
+    needed = 2 if speed is None else 3  # more rows than fitted parameters
+    if normal.size < needed:
+        raise ValueError(f"normal_force and friction_force need >= {needed} values for an uncertainty, "
+                         f"got {normal.size}")
     ratio = friction / normal
     if speed is None:
-        fit = fit_least_squares(lambda p: p[0] * normal - friction, [float(np.mean(ratio))], n_points=normal.size,
-                                confidence=confidence)
+        fit = _fit("normal_force, friction_force", lambda p: p[0] * normal - friction, [float(np.mean(ratio))],
+                   n_points=normal.size, confidence=confidence)
         return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms)}
     speed = _data("speed", speed, "m/s", positive=False)
     if speed.size != normal.size:
@@ -313,9 +323,9 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
         raise ValueError("a speed dependence needs at least two distinct speeds")
     guess, *_ = np.linalg.lstsq(np.column_stack([normal, normal * speed]), friction, rcond=None)
     v_scale = float(np.max(np.abs(speed)))
-    fit = fit_least_squares(lambda p: (p[0] + p[1] * speed / v_scale) * normal - friction,
-                            [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
-                            x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
+    fit = _fit("normal_force, friction_force, speed", lambda p: (p[0] + p[1] * speed / v_scale) * normal - friction,
+               [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
+               x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
     to_si = np.array([1.0, 1.0 / v_scale])
     fit = FitResult(fit.params * to_si, fit.covariance * np.outer(to_si, to_si), fit.std_error * to_si,
                     fit.ci * to_si[:, None], fit.rms, fit.dof, fit.confidence)
@@ -335,7 +345,7 @@ def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "",
     if x.size < 2 or not float(x @ x) > 0.0:
         raise ValueError(f"x must hold >= 2 values, not all zero (or so small that x . x underflows), got {x!r}")
     start = float(-(x @ y) / (x @ x))
-    fit = fit_least_squares(lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
+    fit = _fit("x, y", lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
     return _constant(fit, 0, unit, source, x.size, fit.rms)
 
 

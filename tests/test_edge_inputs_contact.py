@@ -246,3 +246,47 @@ def test_screw_groove_that_conforms_names_its_inputs():
     # lead 0.5 rad, axial profile: A = -0.63 1/m; the error named curvatures_1 and curvatures_2 only
     with pytest.raises(ValueError, match="lead_angle 0.5 rad.*A = -0.634"):
         hertz.ball_in_screw_groove(0.015625, 0.5625, 3 * 0.015625, 0.5, 0.5, "screw", profile_plane="axial")
+
+
+# --- found by a 300-example random run of the property tests ----------------------------------------------------
+def test_hertz_float_range_of_the_constant_and_p0():
+    # E* ~ 1e300 with R = 1e300: C^1.5 underflowed, the stiffness was 0/0 (RuntimeWarning)
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        hertz.ball_on_ball(1e300, youngs_modulus=1e300, poisson_ratio=0.4)
+    # a b underflows at E* = 1e300, F = 2e-299: p0 was inf (RuntimeWarning); now F / a / b in that order
+    geometry = hertz.from_curvatures((1.1, 1.1), (0.02, 0.02), youngs_modulus=1e300, poisson_ratio=0.4)
+    contact = hertz.solve_load(geometry, 2.2e-299)
+    expected = 3.0 * (2.2e-299 / float(contact.a)) / (2.0 * math.pi * float(contact.b))
+    assert math.isfinite(float(contact.p0)) and float(contact.p0) == pytest.approx(expected, rel=1e-12)
+    # B/A ~ 2e285: k^2 underflowed in the bracket of b/a, inf / inf (RuntimeWarning)
+    with pytest.raises(ValueError, match="curvatures_1"):
+        hertz.from_curvatures((5e-324, 1.1754943508222875e-38), (5e-324, 1.1754943508222875e-38))
+
+
+def test_more_float_range_edges():
+    with pytest.raises(ValueError, match="load"):  # mu = inf
+        ehl.friction_coefficient(0.0, -338.2, 2.225073858507203e-309, 0.2)
+    with pytest.raises(ValueError, match="dx"):  # dy / dx = inf: 0 * inf in the kernel (RuntimeWarning)
+        hs.influence_coefficients(8, 8, 5e-324, 1e-3)
+    force, _ = calibration.law_force([8.5e-4], 5.96e-8, -3.3e-186)  # s* overflowed (RuntimeWarning)
+    assert force[0] == pytest.approx((8.5e-4 / 5.96e-8) ** 1.5, rel=1e-12)
+    from ballbench.lowmodel.contact import ellipse_friction_offset as offset
+
+    with pytest.raises(ValueError, match="spin_velocity"):  # Jacobian ~ 1/|slip| overflowed (RuntimeWarning)
+        offset.friction_offset(-2.2e-311, 0.0, -2.2e-311, 0.02)
+
+
+def test_more_named_errors():
+    normal = np.array([1.0, 2.0])
+    with pytest.raises(ValueError, match="normal_force"):  # 2 rows for 2 parameters: named n_points, p0
+        calibration.fit_friction_coefficient(normal, 0.1 * normal, [0.0, 1.0])
+    tiny = np.array([8.6e-210, 1.7e-209])
+    with pytest.raises(ValueError, match="normal_force"):  # singular value^2 underflowed: divide by zero
+        calibration.fit_friction_coefficient(tiny, 0.0 * tiny)
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=2)
+    patches = [bt.hertz_patches(contacts, j, n_radial=2, n_angular=8) for j in range(2)]
+    with pytest.raises(ValueError, match="ball_radius"):  # r / 5e-324 overflowed (RuntimeWarning)
+        bt.solve(patches, ball_radius=5e-324, friction_coefficient=0.1, groove_velocity=0.01)
+    grid = hs.surface_grid(1e-4, 1e-4, 8, 8)
+    with pytest.raises(ValueError, match="heights"):  # named gap, not a parameter of asperity_contact
+        mixed.asperity_contact(np.full((8, 8), 1e-7), np.full((8, 8), 1e300), grid, 1e11)

@@ -347,7 +347,7 @@ def test_calibration_file_round_trip():
 # --- FE-informed B2B with sampled tractions ----------------------------------------------------------------------
 @SLOW
 @given(kw=one_bad(
-    dict(rho=real(-1.0, 1.0), ball=st.integers(0, 1), n_radial=st.integers(1, 6), n_angular=st.integers(4, 16),
+    dict(rho=real(-0.9, 0.9), ball=st.integers(0, 1), n_radial=st.integers(1, 6), n_angular=st.integers(4, 16),
          planar=st.booleans(), mu=real(0.01, 0.5), velocity=st.sampled_from([-0.5, 0.01, 2.0]),
          gap=st.one_of(real(0.0, 1e-4), st.none())),
     dict(ball=st.sampled_from([-1, 2, True]), n_radial=st.sampled_from([0, -1, True]), mu=st.sampled_from([0.0, -0.1]),
@@ -376,6 +376,9 @@ def _quadratic(c):
        tolerance=st.one_of(positive(1e-14, 1e-2), st.sampled_from([0.0, -1.0, math.nan, math.inf])),
        iterations=st.one_of(st.integers(0, 80), st.sampled_from([True, 2.5])))
 def test_newton(c, x0, size, tolerance, iterations):
+    # (known, not fixed here: x0 ~ -3.7e-87 for c = 10 makes a Levenberg-Marquardt trial step ~1e87 whose merit
+    # |r|^2 overflows with a RuntimeWarning in newton; the inf is rejected as designed.  solvers.py is open to
+    # input checks only in this change)
     try:
         x, residual, count = solvers.newton(_quadratic(c), np.full(size, x0), tolerance=tolerance,
                                             max_iterations=iterations, what="x^2 = c")
@@ -465,6 +468,7 @@ def test_calibration_file_with_one_wrong_field(where, value):
         except ValueError as error:
             assert str(path) in str(error), error
             return
-        constant = loaded.constants["ball-ball"]["C"]
-        assert all(math.isfinite(v) for v in (constant.value, constant.std_error, constant.ci_low, constant.ci_high))
-        assert isinstance(constant.unit, str) and isinstance(constant.source, str)
+        for constant in (c for group in loaded.constants.values() for c in group.values()):
+            values = (constant.value, constant.std_error, constant.ci_low, constant.ci_high)
+            assert all(math.isfinite(v) for v in values)
+            assert isinstance(constant.unit, str) and isinstance(constant.source, str)

@@ -541,4 +541,7 @@ def friction_coefficient(asperity_load: float, film_friction: float, load: float
     if q_a > q:
         raise ValueError(f"asperity_load must not exceed load {q!r} N, got {q_a!r}")
     mu_a = checks.non_negative("dry_friction", dry_friction)
-    return (mu_a * q_a + q_f) / q
+    mu = (mu_a * q_a + q_f) / q
+    if not math.isfinite(mu):  # a subnormal load
+        raise ValueError(f"load {q!r} N is too small for film_friction {q_f!r} N (mu overflows)")
+    return mu

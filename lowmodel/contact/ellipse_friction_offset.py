@@ -271,6 +271,9 @@ def _check(name, value) -> np.ndarray:
     return array
 
 
+SMALLEST_SLIP = 1e-300  # m/s: below, the Jacobian (~ 1/|slip| x 1/b_over_a x |centre|) leaves the float range
+
+
 def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: int = _LEVEL) -> OffsetFriction:
     """Friction of a Hertz ellipse with its velocity centre at ``(c, d)``, from the slip velocities.
 
@@ -299,6 +302,11 @@ def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: i
     w, un, um, beta = np.broadcast_arrays(w, un, um, beta)
     shape = w.shape
     w, un, um, beta = (np.ravel(v).astype(float) for v in (w, un, um, beta))
+    largest = np.maximum(np.maximum(np.abs(w), np.abs(un)), np.abs(um))
+    if np.any((largest > 0.0) & (largest < SMALLEST_SLIP)):  # the Jacobian ~ 1 / |slip| overflows
+        smallest = float(np.min(largest[largest > 0.0]))
+        raise ValueError(f"spin_velocity, slip_minor and slip_major must be 0 or at least {SMALLEST_SLIP:g} m/s in "
+                         f"magnitude (the Jacobian ~ 1/|slip| overflows below), got {smallest:.3g}")
     n = w.size
     force_major = np.zeros(n)
     force_minor = np.zeros(n)

@@ -171,6 +171,8 @@ def influence_coefficients(nx: int, ny: int, dx: float, dy: float) -> np.ndarray
     """
     nx, ny = _cell_count("nx", nx), _cell_count("ny", ny)
     dx, dy = _finite_positive("dx", dx, "m"), _finite_positive("dy", dy, "m")
+    if not (math.isfinite(dy / dx) and math.isfinite(dx / dy)):
+        raise ValueError(f"dx = {dx!r} m and dy = {dy!r} m: the cell's aspect ratio is beyond the floating-point range")
     # offsets are exact multiples of the cell size: compute in cell units and scale by dx
     xs = np.arange(-(nx - 1), nx, dtype=float)[:, None]
     ys = (np.arange(-(ny - 1), ny, dtype=float) * (dy / dx))[None, :]

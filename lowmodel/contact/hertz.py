@@ -137,7 +137,7 @@ def _axis_ratio(curvature_ratio: float) -> float:
     lo = -1.0
     while _ratio_of_k(math.exp(lo)) < curvature_ratio:
         lo *= 2.0
-        if lo < -700.0:
+        if math.exp(2.0 * lo) == 0.0:  # k^2 underflows (B/A beyond ~1e170): the ratio would be inf / inf
             raise ValueError(f"curvatures_1 and curvatures_2 give a curvature ratio B/A = {curvature_ratio:.3e} "
                              "beyond the range of Hertz theory")
     log_k = brentq(lambda t: math.log(_ratio_of_k(math.exp(t)) / curvature_ratio), lo, 0.0,
@@ -191,7 +191,7 @@ def from_curvatures(curvatures_1: tuple[float, float], curvatures_2: tuple[float
         unit = _unit_solution(geometry)
     except (ZeroDivisionError, OverflowError):
         unit = (math.nan,)
-    if not all(math.isfinite(v) and v > 0.0 for v in unit):  # e.g. E* A overflows
+    if not all(math.isfinite(v) and v > 0.0 for v in (*unit, unit[-1] ** 1.5)):  # e.g. E* A over-, C^1.5 underflows
         raise ValueError(f"youngs_modulus and curvatures_1, curvatures_2 (E* = {e_star:.6g} Pa, A = {A:.6g} 1/m, "
                          f"B = {B:.6g} 1/m) give a Hertz contact outside the floating-point range")
     return geometry
@@ -324,6 +324,8 @@ def _build(geometry: HertzGeometry, force: np.ndarray) -> HertzContact:
     b = k * a
     with np.errstate(invalid="ignore", divide="ignore"):
         p0 = np.where(force > 0.0, 3.0 * force / (2.0 * math.pi * np.where(a > 0, a * b, 1.0)), 0.0)
+        if not np.all(np.isfinite(p0)):  # a b underflows (E* ~ 1e300 and F ~ 1e-299): the same in another order
+            p0 = np.where(np.isfinite(p0), p0, 3.0 * (force / np.where(a > 0, a, 1.0)) / (2.0 * math.pi * b))
     delta = delta_unit * cube_root**2
     stiffness = 1.5 * np.sqrt(delta) / delta_unit**1.5  # dF/d(delta) of F = (delta/C)^(3/2)
     return HertzContact(force, a, b, p0, delta, stiffness, math.sqrt(max(0.0, 1.0 - k2)),

@@ -103,6 +103,9 @@ def asperity_contact(film: np.ndarray, heights: np.ndarray, grid: halfspace.Surf
         raise ValueError(f"film and heights must be finite arrays of shape {(grid.nx, grid.ny)}")
     if float(gap.min()) >= 0.0:
         return np.zeros_like(gap), 0.0, gap
+    if float(np.max(np.abs(gap))) > halfspace.LARGEST_LENGTH:
+        raise ValueError(f"film - heights must lie within +-{halfspace.LARGEST_LENGTH:g} m (halfspace.solve), got "
+                         f"{float(np.max(np.abs(gap)))!r} m")
     contact = halfspace.solve(gap, grid, contact_modulus, approach=0.0, tolerance=1e-6)
     return contact.pressure, contact.force, contact.separation
 

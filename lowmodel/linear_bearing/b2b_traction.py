@@ -179,8 +179,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     """
     check_solver_options(tolerance, max_iterations)
     radius = float(ball_radius)
-    if not math.isfinite(radius) or radius <= 0.0:
-        raise ValueError(f"ball_radius must be a finite number > 0 m, got {ball_radius!r}")
+    if not math.isfinite(radius) or radius <= 0.0 or not math.isfinite(1.0 / radius):
+        raise ValueError(f"ball_radius must be a finite number > 0 m with a finite inverse, got {ball_radius!r}")
     mu = float(friction_coefficient)
     if not math.isfinite(mu) or mu <= 0.0:
         raise ValueError(f"friction_coefficient must be a finite number > 0, got {friction_coefficient!r}")
