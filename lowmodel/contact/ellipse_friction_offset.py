@@ -289,7 +289,8 @@ def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: i
 
     Returns
     -------
-    OffsetFriction (normalisation in its docstring).  At zero slip
+    OffsetFriction (normalisation in its docstring).  Nonzero slips below ``SMALLEST_SLIP`` (1e-300 m/s)
+    are a ValueError (the Jacobian ~ 1/|slip| leaves the float range).  At zero slip
     (all three velocities 0) the friction is undefined; the pure-spin value
     (forces 0, moment ``(3/8) E(e)``, loss 0) is returned with a zero Jacobian.
     """
