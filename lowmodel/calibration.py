@@ -99,6 +99,10 @@ class FitResult:
     confidence: float
 
 
+STATIONARITY = 1e-3  # largest Gauss-Newton step at an accepted fit, relative to max(|p|, x_scale) (scipy stops
+# ~1e-9 short of the optimum; a start many decades off stops ~1e100 short)
+
+
 def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_points: int,
                       confidence: float = 0.95, x_scale=None) -> FitResult:
     """Minimise ``sum residual(p)^2`` (scipy ``least_squares``, trust-region reflective).
@@ -111,26 +115,49 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     from scipy import optimize, stats
 
     confidence = checks.bounded("confidence", confidence, 0.0, 1.0, note="a probability such as 0.95")
-    p0 = np.asarray(p0, dtype=float)
+    p0 = np.reshape(checks.finite("p0", p0), -1)
+    n_points = checks.count("n_points", n_points, 1)
     if n_points <= p0.size:
-        raise ValueError(f"need more data points ({n_points}) than parameters ({p0.size}) for an uncertainty")
-    scale = np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None else x_scale
-    result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-    if not result.success:
-        raise ConvergenceError(f"least squares: {result.message}", residual=float(np.linalg.norm(result.fun)),
+        raise ValueError(f"n_points must exceed the number of parameters in p0 ({p0.size}) for an uncertainty, "
+                         f"got {n_points}")
+    scale = (np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None
+             else np.broadcast_to(checks.positive("x_scale", x_scale), p0.shape))
+    with np.errstate(all="ignore"):  # the trust region from a poor start (p0 ~ 1e-127) may under/overflow: judged below
+        result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15,
+                                        gtol=1e-15)
+    norm = float(np.linalg.norm(result.fun))
+    if not (result.success and np.all(np.isfinite(result.x)) and math.isfinite(norm)):
+        raise ConvergenceError(f"least squares: {result.message}", residual=norm if math.isfinite(norm) else math.inf,
                                iterations=int(result.nfev), tolerance=1e-15)
+    jac = result.jac
+    # at a minimum one more Gauss-Newton step moves p by a rounding error; scipy's tolerances are relative to
+    # x_scale, so a start p0 many decades off the solution (1e-127 for 1.7 with the default scale |p0|) can stop
+    # where it began
+    gauss_newton = np.linalg.lstsq(jac, -result.fun, rcond=None)[0]
+    if np.any(np.abs(gauss_newton) > STATIONARITY * np.maximum(np.abs(result.x), scale)):
+        raise ConvergenceError("least squares: stopped away from a minimum (a Gauss-Newton step still moves p): "
+                               "rescale p0 or x_scale", residual=norm, iterations=int(result.nfev),
+                               tolerance=STATIONARITY)
     dof = n_points - p0.size
     ssr = float(result.fun @ result.fun)
-    jac = result.jac
     _, singular, vt = np.linalg.svd(jac, full_matrices=False)
-    if singular[-1] <= singular[0] * 1e-12:
-        raise ValueError("the data do not determine every parameter (singular Jacobian): widen the load range")
+    if singular[-1] <= singular[0] * 1e-12 or not singular[-1] ** 2 > 0.0:  # (or the covariance overflows)
+        raise ValueError("residual: the data do not determine every parameter of p0 (singular Jacobian): widen the "
+                         "load range")
     covariance = (vt.T / singular**2) @ vt * (ssr / dof)
     std_error = np.sqrt(np.diag(covariance))
     half = float(stats.t.ppf(0.5 + 0.5 * confidence, dof)) * std_error
     params = result.x
     return FitResult(params, covariance, std_error, np.column_stack([params - half, params + half]),
                      math.sqrt(ssr / n_points), dof, confidence)
+
+
+def _fit(data: str, residual, p0, **options) -> FitResult:
+    """:func:`fit_least_squares`; its ValueErrors name the caller's ``data`` (e.g. ``"forces, approaches"``)."""
+    try:
+        return fit_least_squares(residual, p0, **options)
+    except ValueError as error:
+        raise ValueError(f"{data}: {error}") from None
 
 
 def _constant(fit: FitResult, k: int, unit: str, source: str, n: int, rms: float, reference=None) -> Constant:
@@ -180,7 +207,9 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
     ``dF/dU = 3 s / (2 C + 3 C_b s)``.  With ``C_b < 0`` the law has a largest approach
     ``C s*^2 / 3`` at ``s* = 2 C / (3 |C_b|)`` (where it stops being monotone): ValueError beyond it.
     """
-    approach = np.asarray(approach, dtype=float)
+    approach = np.asarray(checks.finite("approach", approach, "m"))
+    tolerance = checks.positive("tolerance", tolerance)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
     c = np.broadcast_to(np.asarray(hertz_constant, dtype=float), approach.shape)
     c_b = np.broadcast_to(np.asarray(bulk_compliance, dtype=float), approach.shape)
     if np.any(c <= 0.0) or not np.all(np.isfinite(c)):
@@ -189,25 +218,29 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
         raise ValueError("bulk_compliance must be finite [m/N]")
     loaded = approach > 0.0
     u = np.where(loaded, approach, 0.0)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # a tiny |C_b|: s* = inf, no limit in float range
         s_max = np.where(c_b < 0.0, 2.0 * c / (3.0 * np.abs(c_b)), np.inf)
-    too_far = loaded & (c_b < 0.0) & (u >= c * s_max**2 / 3.0)
+        too_far = loaded & (c_b < 0.0) & (u >= c * s_max**2 / 3.0)
     if np.any(too_far):
         raise ValueError(f"approach must be below C s*^2 / 3 (s* = 2 C / (3 |C_b|)) where the law with C_b < 0 "
                          f"is monotone, got {float(u[too_far][0])!r} m")
-    s = np.sqrt(u / c)                                     # Hertz root (C_b = 0)
-    for _ in range(max_iterations):
-        residual = c * s * s + c_b * s**3 - u
-        step = residual / np.where(loaded, 2.0 * c * s + 3.0 * c_b * s * s, 1.0)
-        s = np.where(loaded, s - step, 0.0)
-        if np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
-            break
-    else:
+    with np.errstate(over="ignore", invalid="ignore"):  # a force beyond the floating-point range: ValueError below
+        s = np.sqrt(u / c)                                     # Hertz root (C_b = 0)
+        for _ in range(max_iterations):
+            residual = c * s * s + c_b * s**3 - u
+            step = residual / np.where(loaded, 2.0 * c * s + 3.0 * c_b * s * s, 1.0)
+            s = np.where(loaded, s - step, 0.0)
+            if np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
+                break
+        force = s**3
+        slope = np.where(loaded, 3.0 * s / (2.0 * c + 3.0 * c_b * s), 0.0)
+    if not (np.all(np.isfinite(force)) and np.all(np.isfinite(slope))):
+        raise ValueError(f"approach up to {float(np.max(u))!r} m gives a force beyond the floating-point range "
+                         "(hertz_constant, bulk_compliance)")
+    if not np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
         raise ConvergenceError("law_force: Newton on C s^2 + C_b s^3 = U did not converge",
                                residual=float(np.max(np.abs(residual))), iterations=max_iterations,
                                tolerance=tolerance)
-    force = s**3
-    slope = np.where(loaded, 3.0 * s / (2.0 * c + 3.0 * c_b * s), 0.0)
     return force, slope
 
 
@@ -228,7 +261,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
     if forces.size != approaches.size:
         raise ValueError(f"forces and approaches must have the same length, got {forces.size} and {approaches.size}")
     if np.unique(forces).size < 3:
-        raise ValueError(f"need >= 3 distinct loads for C and C_b with an uncertainty, got {np.unique(forces).size}")
+        raise ValueError(f"forces: need >= 3 distinct loads for C and C_b with an uncertainty, "
+                         f"got {np.unique(forces).size}")
     f_scale = float(np.max(forces))
     u_scale = float(np.max(approaches))
     basis = np.column_stack([(forces / f_scale) ** (2.0 / 3.0), forces / f_scale])
@@ -237,8 +271,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
     def residual(p):
         return basis @ p - approaches / u_scale  # lin2019 eq 53 + C_b F, scaled
 
-    fit = fit_least_squares(residual, guess, n_points=forces.size, confidence=confidence,
-                            x_scale=np.maximum(np.abs(guess), 1e-3))
+    fit = _fit("forces, approaches", residual, guess, n_points=forces.size, confidence=confidence,
+               x_scale=np.maximum(np.abs(guess), 1e-3))
     to_c = np.array([u_scale / f_scale ** (2.0 / 3.0), u_scale / f_scale])  # back to SI
     fit_si = FitResult(fit.params * to_c, fit.covariance * np.outer(to_c, to_c), fit.std_error * to_c,
                        fit.ci * to_c[:, None], fit.rms * u_scale, fit.dof, fit.confidence)
@@ -255,8 +289,8 @@ def fit_contact_law(forces, approaches, *, semi_axes=None, ball_radius: float | 
         regressor = radius ** (1.0 / 3.0) * forces ** (1.0 / 3.0)  # lin2019 eq 15: a = Psi R^(1/3) F^(1/3)
         a_scale = float(np.max(axes))
         start = float(regressor @ axes / (regressor @ regressor))
-        fit_psi = fit_least_squares(lambda p: (p[0] * regressor - axes) / a_scale, [start], n_points=forces.size,
-                                    confidence=confidence)
+        fit_psi = _fit("forces, semi_axes", lambda p: (p[0] * regressor - axes) / a_scale, [start],
+                       n_points=forces.size, confidence=confidence)
         psi_constant = _constant(fit_psi, 0, "(m^2/N)^(1/3)", source, forces.size, fit_psi.rms * a_scale, psi)
     return ContactLaw(c, c_b, psi_constant)
 
@@ -273,10 +307,14 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
     if normal.size != friction.size:
         raise ValueError(f"normal_force and friction_force must have the same length, got {normal.size} and "
                          f"{friction.size}")
+    needed = 2 if speed is None else 3  # more rows than fitted parameters
+    if normal.size < needed:
+        raise ValueError(f"normal_force and friction_force need >= {needed} values for an uncertainty, "
+                         f"got {normal.size}")
     ratio = friction / normal
     if speed is None:
-        fit = fit_least_squares(lambda p: p[0] * normal - friction, [float(np.mean(ratio))], n_points=normal.size,
-                                confidence=confidence)
+        fit = _fit("normal_force, friction_force", lambda p: p[0] * normal - friction, [float(np.mean(ratio))],
+                   n_points=normal.size, confidence=confidence)
         return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms)}
     speed = _data("speed", speed, "m/s", positive=False)
     if speed.size != normal.size:
@@ -285,9 +323,9 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
         raise ValueError("a speed dependence needs at least two distinct speeds")
     guess, *_ = np.linalg.lstsq(np.column_stack([normal, normal * speed]), friction, rcond=None)
     v_scale = float(np.max(np.abs(speed)))
-    fit = fit_least_squares(lambda p: (p[0] + p[1] * speed / v_scale) * normal - friction,
-                            [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
-                            x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
+    fit = _fit("normal_force, friction_force, speed", lambda p: (p[0] + p[1] * speed / v_scale) * normal - friction,
+               [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
+               x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
     to_si = np.array([1.0, 1.0 / v_scale])
     fit = FitResult(fit.params * to_si, fit.covariance * np.outer(to_si, to_si), fit.std_error * to_si,
                     fit.ci * to_si[:, None], fit.rms, fit.dof, fit.confidence)
@@ -304,8 +342,10 @@ def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "",
     y = _data("y", y, "", positive=False)
     if x.size != y.size:
         raise ValueError(f"x and y must have the same length, got {x.size} and {y.size}")
+    if x.size < 2 or not float(x @ x) > 0.0:
+        raise ValueError(f"x must hold >= 2 values, not all zero (or so small that x . x underflows), got {x!r}")
     start = float(-(x @ y) / (x @ x))
-    fit = fit_least_squares(lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
+    fit = _fit("x, y", lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
     return _constant(fit, 0, unit, source, x.size, fit.rms)
 
 
@@ -333,21 +373,43 @@ def load(path: str | Path) -> Calibration:
         raise ValueError(f"{path}: not a calibration file (invalid JSON: {error})") from None
     if not isinstance(document, dict) or document.get("format") != FORMAT:
         raise ValueError(f"{path}: not a calibration file (format must be {FORMAT!r})")
-    if document.get("version") != VERSION:
+    if document.get("version") != VERSION or isinstance(document.get("version"), bool):
         raise ValueError(f"{path}: calibration version {document.get('version')!r} is not supported "
                          f"(this ballbench reads version {VERSION})")
+    notes = document.get("notes", [])
+    groups = document.get("constants", {})
+    if not isinstance(notes, list) or not all(isinstance(note, str) for note in notes):
+        raise ValueError(f"{path}: notes must be a list of strings")
+    if not isinstance(groups, dict) or not all(isinstance(items, dict) for items in groups.values()):
+        raise ValueError(f"{path}: constants must map each group to a mapping of constants")
+    constants = {group: {name: _constant_record(path, f"{group}/{name}", record) for name, record in items.items()}
+                 for group, items in groups.items()}
+    return Calibration(constants, tuple(notes))
+
+
+def _constant_record(path: Path, label: str, record) -> Constant:
+    """One constant of a calibration file, every field of its type (errors name the file and the constant)."""
     fields = set(Constant.__dataclass_fields__)
-    constants = {}
-    for group, items in document.get("constants", {}).items():
-        constants[group] = {}
-        for name, record in items.items():
-            missing = {"value", "std_error", "ci_low", "ci_high", "unit", "source"} - set(record)
-            if missing or set(record) - fields:
-                raise ValueError(f"{path}: constant {group}/{name} must have the fields {sorted(fields)}, "
-                                 f"missing {sorted(missing)}, unknown {sorted(set(record) - fields)}")
-            constant = Constant(**record)
-            if not all(math.isfinite(v) for v in (constant.value, constant.std_error, constant.ci_low,
-                                                   constant.ci_high)):
-                raise ValueError(f"{path}: constant {group}/{name} is not finite")
-            constants[group][name] = constant
-    return Calibration(constants, tuple(document.get("notes", ())))
+    required = {"value", "std_error", "ci_low", "ci_high", "unit", "source"}
+    if not isinstance(record, dict) or required - set(record) or set(record) - fields:
+        keys = set(record) if isinstance(record, dict) else set()
+        raise ValueError(f"{path}: constant {label} must have the fields {sorted(fields)}, "
+                         f"missing {sorted(required - keys)}, unknown {sorted(keys - fields)}")
+
+    def number(value):
+        return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+    bad = [name for name in ("value", "std_error", "ci_low", "ci_high", "rms_residual") if name in record
+           and not number(record[name])]
+    bad += [name for name in ("unit", "source") if not isinstance(record[name], str)]
+    if "confidence" in record and not (number(record["confidence"]) and 0.0 < record["confidence"] < 1.0):
+        bad.append("confidence")
+    if "n_points" in record and not (isinstance(record["n_points"], int) and not isinstance(record["n_points"], bool)
+                                     and record["n_points"] >= 0):
+        bad.append("n_points")
+    if record.get("reference") is not None and not number(record["reference"]):
+        bad.append("reference")
+    if bad:
+        raise ValueError(f"{path}: constant {label} has invalid {', '.join(bad)} (finite numbers, strings for unit "
+                         "and source, confidence in (0, 1), n_points an integer >= 0)")
+    return Constant(**record)

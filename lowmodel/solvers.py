@@ -59,6 +59,7 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
     above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).  Returns
     ``(x, residual_vector, iterations)``; raises ConvergenceError with the residual otherwise.
     """
+    check_solver_options(tolerance, max_iterations)
     x = np.array(x0, dtype=float)
     residual, jacobian = function(x)
     norm = float(np.max(np.abs(residual))) if residual.size else 0.0
@@ -258,6 +259,8 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
     iterations)``; raises ConvergenceError (message ``what: rejection``,
     residual the last violation, reason ``rejection_reason``) when no run ends at an accepted point.
     """
+    check_solver_options(tolerance, max_iterations)
+    attempts = checks.count("attempts", attempts, 1)
     x = np.array(x0, dtype=float)
     total = 0
     violation = math.inf
@@ -296,6 +299,10 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
     ``"<that reason> beyond <name> = s"``.  Returns ``(x, residual_vector, path)`` with ``path`` a
     tuple of :class:`ContinuationStep` (``s = 0`` first, ``s = 1`` last).
     """
+    initial_step = checks.bounded("initial_step", initial_step, 0.0, 1.0, upper_closed=True)
+    min_step = checks.bounded("min_step", min_step, 0.0, initial_step, upper_closed=True,
+                              note="at most initial_step")
+    max_steps = checks.count("max_steps", max_steps, 1)
     x = np.array(x_start, dtype=float)
     previous = None  # (s, x) of the point before the last
     s = 0.0
@@ -333,6 +340,14 @@ def continuation(solve_at, x_start: np.ndarray, *, what: str, name: str = "s", i
             return x, residual, tuple(path)
         if iterations <= 6:
             step *= 2.0
+    else:  # max_steps used up before s = 1 (no break: the step never fell below min_step): not a fold
+        stopped = ConvergenceError(
+            f"{what}: continuation in {name} used all max_steps = {max_steps} and stopped at {name} = {s:.6g} of 1",
+            residual=float(np.max(np.abs(residual), initial=0.0)) if residual is not None else 0.0,
+            iterations=sum(p.iterations for p in path), tolerance=0.0, reason="max_steps reached",
+            last_converged=(name, s))
+        stopped.last_state = x
+        raise stopped
     residual_norm = last_error.residual if last_error is not None else math.inf
     if last_error is not None and last_error.reason:  # the branch goes on, but the model rejects it
         reason = f"{last_error.reason} beyond {name} = {s:.6g}"

@@ -64,7 +64,13 @@ def roelands_viscosity(pressure, viscosity_0: float):
     """
     eta0 = checks.positive("viscosity_0", viscosity_0, "Pa s")
     p = np.maximum(np.asarray(pressure, dtype=float), 0.0)
-    return eta0 * np.exp((math.log(eta0) - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PRESSURE) ** ROELANDS_Z - 1.0))
+    with np.errstate(over="ignore"):
+        eta = eta0 * np.exp((math.log(eta0) - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PRESSURE) ** ROELANDS_Z
+                                                                       - 1.0))
+    if np.any(np.isinf(eta)):  # only at pressures far beyond any contact's (~1e11 Pa for eta0 = 0.05 Pa s)
+        raise ValueError(f"pressure up to {float(np.max(p))!r} Pa gives a Roelands viscosity beyond the "
+                         f"floating-point range (viscosity_0 {eta0!r} Pa s)")
+    return eta
 
 
 def roelands_pressure_viscosity_coefficient(viscosity_0: float) -> float:
@@ -99,7 +105,16 @@ def eyring_shear_stress(viscosity, sliding_speed, film_thickness, eyring_stress:
     eta = checks.positive("viscosity", viscosity, "Pa s")
     h = checks.positive("film_thickness", film_thickness, "m")
     du = checks.finite("sliding_speed", sliding_speed, "m/s")
-    return tau0 * np.arcsinh(eta * du / (tau0 * h))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        tau = tau0 * np.arcsinh(eta * du / (tau0 * h))
+        beyond = ~np.isfinite(tau)
+        if np.any(beyond):  # the shear rate overflows (tau0 h ~ 0): asinh(x) = sign(x) ln(2 |x|) for |x| > 1e154
+            log_rate = math.log(2.0) + np.log(eta) + np.log(np.abs(du)) - math.log(tau0) - np.log(h)
+            tau = np.where(beyond, np.where(du == 0.0, 0.0, np.sign(du) * tau0 * log_rate), tau)
+    if not np.all(np.isfinite(tau)):
+        raise ValueError(f"eyring_stress {tau0!r} Pa, viscosity, sliding_speed and film_thickness give a shear "
+                         "stress beyond the floating-point range")
+    return tau
 
 
 def hamrock_dowson_film(entrainment_speed: float, load: float, radius_x: float, radius_y: float,
@@ -126,13 +141,21 @@ def hamrock_dowson_film(entrainment_speed: float, load: float, radius_x: float, 
     e_prime = checks.positive("reduced_modulus", reduced_modulus, "Pa")
     eta0 = checks.positive("viscosity_0", viscosity_0, "Pa s")
     alpha = checks.positive("pressure_viscosity", pressure_viscosity, "1/Pa")
-    U = eta0 * u / (e_prime * rx)
-    G = alpha * e_prime
-    W = load / (e_prime * rx * rx)
-    k = 1.0339 * (ry / rx) ** 0.636
-    h_c = rx * 2.69 * U**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * math.exp(-0.73 * k))
-    h_min = rx * 3.63 * U**0.68 * G**0.49 * W**-0.073 * (1.0 - math.exp(-0.68 * k))
-    return {"h_c": h_c, "h_min": h_min, "U": U, "G": G, "W": W, "k": k}
+    try:
+        U = eta0 * u / (e_prime * rx)
+        G = alpha * e_prime
+        W = load / (e_prime * rx * rx)
+        k = 1.0339 * (ry / rx) ** 0.636
+        h_c = rx * 2.69 * U**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * math.exp(-0.73 * k))
+        h_min = rx * 3.63 * U**0.68 * G**0.49 * W**-0.073 * (1.0 - math.exp(-0.68 * k))
+        groups = {"h_c": h_c, "h_min": h_min, "U": U, "G": G, "W": W, "k": k}
+    except (ZeroDivisionError, OverflowError):  # a group under- or overflows
+        groups = {}
+    if not groups or not all(math.isfinite(v) and v > 0.0 for v in groups.values()):
+        raise ValueError(f"entrainment_speed, load, radius_x, radius_y, reduced_modulus, viscosity_0 and "
+                         f"pressure_viscosity ({u!r}, {load!r}, {rx!r}, {ry!r}, {e_prime!r}, {eta0!r}, {alpha!r}) "
+                         f"give Hamrock-Dowson groups outside the floating-point range: {groups}")
+    return groups
 
 
 def wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_length, gamma, ridges):
@@ -140,20 +163,32 @@ def wm_parameters(fractal_dimension, roughness_scale, sample_length, cutoff_leng
     L_s < L, gamma > 1, M >= 1 (ValueError naming the parameter otherwise)."""
     D = checks.bounded("fractal_dimension", fractal_dimension, 2.0, 3.0)
     G = checks.positive("roughness_scale", roughness_scale, "m")
-    L = checks.positive("sample_length", sample_length, "m")
-    Ls = checks.positive("cutoff_length", cutoff_length, "m")
-    if not Ls < L:
-        raise ValueError(f"cutoff_length must be < sample_length {L!r} m, got {Ls!r}")
-    gamma = checks.positive("gamma", gamma)
-    if not gamma > 1.0:
-        raise ValueError(f"gamma must be > 1, got {gamma!r}")
+    L, Ls, gamma = _wm_lengths(sample_length, cutoff_length, gamma)
     M = checks.count("ridges", ridges, 1)
     return D, G, L, Ls, gamma, M
 
 
+def _wm_lengths(sample_length, cutoff_length, gamma) -> tuple[float, float, float]:
+    """Checked ``(L, L_s, gamma)``: L, L_s > 0 m, L_s < L, gamma > 1."""
+    L = checks.positive("sample_length", sample_length, "m")
+    Ls = checks.positive("cutoff_length", cutoff_length, "m")
+    if not Ls < L:
+        raise ValueError(f"cutoff_length must be < sample_length {L!r} m, got {Ls!r}")
+    if not math.isfinite(L / Ls):
+        raise ValueError(f"cutoff_length {Ls!r} m is too small against sample_length {L!r} m (L / L_s overflows)")
+    gamma = checks.positive("gamma", gamma)
+    if not gamma > 1.0:
+        raise ValueError(f"gamma must be > 1, got {gamma!r}")
+    return L, Ls, gamma
+
+
 def wm_top_level(sample_length: float, cutoff_length: float, gamma: float) -> int:
-    """``n_max = floor(ln(L / L_s) / ln gamma)`` of Yan & Komvopoulos eq 4 (the smallest wavelength L_s)."""
-    return int(math.floor(math.log(sample_length / cutoff_length) / math.log(gamma)))
+    """``n_max = floor(ln(L / L_s) / ln gamma)`` of Yan & Komvopoulos eq 4 (the smallest wavelength L_s).
+
+    ``sample_length`` L [m] > ``cutoff_length`` L_s [m] > 0, ``gamma`` > 1 (ValueError naming the parameter).
+    """
+    L, Ls, gamma = _wm_lengths(sample_length, cutoff_length, gamma)
+    return int(math.floor(math.log(L / Ls) / math.log(gamma)))
 
 
 def weierstrass_mandelbrot_surface(x, y, fractal_dimension: float, roughness_scale: float, sample_length: float,
@@ -273,11 +308,22 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
 
     # one BLAS thread: GMRES's many short vector operations stall (several times slower in wall time)
     # when a threaded BLAS competes for cores the machine shares
-    with threadpool_limits(limits=1, user_api="blas"):
-        return _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0,
-                                initial_film=initial_film, initial_pressure=initial_pressure,
-                                initial_h0=initial_h0, tolerance=tolerance, load_tolerance=load_tolerance,
-                                max_iterations=max_iterations, centre=centre, coarsest=coarsest)
+    tolerance = checks.positive("tolerance", tolerance)
+    load_tolerance = checks.positive("load_tolerance", load_tolerance)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
+    coarsest = checks.count("coarsest", coarsest, 4)  # coarse grids stay >= 4 cells across (halfspace)
+    # a floating-point overflow or invalid operation (an operating point the grid cannot resolve: a contact far
+    # below one cell, a film many decades thinner than initial_film) is a failed solve, not a NaN or a warning
+    with threadpool_limits(limits=1, user_api="blas"), np.errstate(over="raise", invalid="raise", divide="raise"):
+        try:
+            return _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0,
+                                    initial_film=initial_film, initial_pressure=initial_pressure,
+                                    initial_h0=initial_h0, tolerance=tolerance, load_tolerance=load_tolerance,
+                                    max_iterations=max_iterations, centre=centre, coarsest=coarsest)
+        except FloatingPointError as error:
+            raise ConvergenceError(f"EHL Reynolds solve: floating-point failure ({error}); load, entrainment_speed "
+                                   "or initial_film outside what the grid resolves", residual=math.inf,
+                                   iterations=0, tolerance=tolerance) from None
 
 
 def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,
@@ -495,4 +541,7 @@ def friction_coefficient(asperity_load: float, film_friction: float, load: float
     if q_a > q:
         raise ValueError(f"asperity_load must not exceed load {q!r} N, got {q_a!r}")
     mu_a = checks.non_negative("dry_friction", dry_friction)
-    return (mu_a * q_a + q_f) / q
+    mu = (mu_a * q_a + q_f) / q
+    if not math.isfinite(mu):  # a subnormal load
+        raise ValueError(f"load {q!r} N is too small for film_friction {q_f!r} N (mu overflows)")
+    return mu

@@ -614,9 +614,9 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     """
     from ballbench.lowmodel.cache import cache_dir, parameter_hash
 
-    for name, value, least in (("n_uniform", n_uniform, 9), ("n_cluster", n_cluster, 1), ("n_beta", n_beta, 4)):
-        if int(value) != value or value < least:
-            raise ValueError(f"{name} must be an integer >= {least}, got {value!r}")
+    n_uniform = checks.count("n_uniform", n_uniform, 9)  # integers, not bools or floats
+    n_cluster = checks.count("n_cluster", n_cluster, 1)
+    n_beta = checks.count("n_beta", n_beta, 4)
     params = {"n_uniform": n_uniform, "n_cluster": n_cluster, "n_beta": n_beta,
               "b_over_a_range": list(B_OVER_A_RANGE)}
     path = cache_dir("ellipse_friction") / f"map-{parameter_hash(params, _MAP_VERSION)}.npz"

@@ -271,6 +271,9 @@ def _check(name, value) -> np.ndarray:
     return array
 
 
+SMALLEST_SLIP = 1e-300  # m/s: below, the Jacobian (~ 1/|slip| x 1/b_over_a x |centre|) leaves the float range
+
+
 def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: int = _LEVEL) -> OffsetFriction:
     """Friction of a Hertz ellipse with its velocity centre at ``(c, d)``, from the slip velocities.
 
@@ -286,7 +289,8 @@ def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: i
 
     Returns
     -------
-    OffsetFriction (normalisation in its docstring).  At zero slip
+    OffsetFriction (normalisation in its docstring).  Nonzero slips below ``SMALLEST_SLIP`` (1e-300 m/s)
+    are a ValueError (the Jacobian ~ 1/|slip| leaves the float range).  At zero slip
     (all three velocities 0) the friction is undefined; the pure-spin value
     (forces 0, moment ``(3/8) E(e)``, loss 0) is returned with a zero Jacobian.
     """
@@ -299,6 +303,11 @@ def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: i
     w, un, um, beta = np.broadcast_arrays(w, un, um, beta)
     shape = w.shape
     w, un, um, beta = (np.ravel(v).astype(float) for v in (w, un, um, beta))
+    largest = np.maximum(np.maximum(np.abs(w), np.abs(un)), np.abs(um))
+    if np.any((largest > 0.0) & (largest < SMALLEST_SLIP)):  # the Jacobian ~ 1 / |slip| overflows
+        smallest = float(np.min(largest[largest > 0.0]))
+        raise ValueError(f"spin_velocity, slip_minor and slip_major must be 0 or at least {SMALLEST_SLIP:g} m/s in "
+                         f"magnitude (the Jacobian ~ 1/|slip| overflows below), got {smallest:.3g}")
     n = w.size
     force_major = np.zeros(n)
     force_minor = np.zeros(n)

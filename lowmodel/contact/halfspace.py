@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = [
@@ -53,17 +54,15 @@ __all__ = [
 ]
 
 
+LARGEST_LENGTH = 1e30  # m: gaps and deflections stay far inside float32 (the CG's increments, 3.4e38)
+
+
 def _finite_positive(name: str, value: float, unit: str) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0 {unit}, got {value!r}")
-    return value
+    return float(checks.positive(name, value, unit))
 
 
 def _cell_count(name: str, value: int) -> int:
-    if int(value) != value or not 4 <= int(value) <= 8192:
-        raise ValueError(f"{name} must be an integer in [4, 8192], got {value!r}")
-    return int(value)
+    return checks.count(name, value, 4, 8192)  # an integer, not a bool or float
 
 
 # --------------------------------------------------------------------------
@@ -83,6 +82,14 @@ class SurfaceGrid:
     dy: float
     x_centre: float = 0.0
     y_centre: float = 0.0
+
+    def __post_init__(self):
+        _cell_count("nx", self.nx)
+        _cell_count("ny", self.ny)
+        _finite_positive("dx", self.dx, "m")
+        _finite_positive("dy", self.dy, "m")
+        checks.finite("x_centre", self.x_centre, "m")
+        checks.finite("y_centre", self.y_centre, "m")
 
     @property
     def x(self) -> np.ndarray:
@@ -114,7 +121,9 @@ def surface_grid(half_width_x: float, half_width_y: float | None = None, nx: int
     cx, cy = (float(c) for c in centre)
     if not (math.isfinite(cx) and math.isfinite(cy)):
         raise ValueError(f"centre must be finite, got {centre!r}")
-    return SurfaceGrid(nx, ny, 2.0 * half_width_x / nx, 2.0 * half_width_y / ny, cx, cy)
+    dx = _finite_positive("cell size 2 half_width_x / nx", 2.0 * half_width_x / nx, "m")  # may underflow to 0
+    dy = _finite_positive("cell size 2 half_width_y / ny", 2.0 * half_width_y / ny, "m")
+    return SurfaceGrid(nx, ny, dx, dy, cx, cy)
 
 
 def hertz_surface_grid(a: float, b: float | None = None, n: int = 256, margin: float = 1.25,
@@ -131,9 +140,11 @@ def hertz_surface_grid(a: float, b: float | None = None, n: int = 256, margin: f
     if not (math.isfinite(margin) and margin > 1.0):
         raise ValueError(f"margin must be > 1 (the grid must hold the contact), got {margin!r}")
     n = _cell_count("n", n)
+    _finite_positive("margin * a", margin * a, "m")  # the half-widths, finite
+    _finite_positive("margin * b", margin * b, "m")
     if not square_cells:
         return surface_grid(margin * a, margin * b, n, n)
-    size = 2.0 * margin * max(a, b) / n
+    size = _finite_positive("cell size 2 margin max(a, b) / n", 2.0 * margin * max(a, b) / n, "m")
     nx = n if a >= b else 2 * math.ceil(margin * a / size)
     ny = n if b >= a else 2 * math.ceil(margin * b / size)
     return SurfaceGrid(max(nx, 4), max(ny, 4), size, size)
@@ -160,6 +171,8 @@ def influence_coefficients(nx: int, ny: int, dx: float, dy: float) -> np.ndarray
     """
     nx, ny = _cell_count("nx", nx), _cell_count("ny", ny)
     dx, dy = _finite_positive("dx", dx, "m"), _finite_positive("dy", dy, "m")
+    if not (math.isfinite(dy / dx) and math.isfinite(dx / dy)):
+        raise ValueError(f"dx = {dx!r} m and dy = {dy!r} m: the cell's aspect ratio is beyond the floating-point range")
     # offsets are exact multiples of the cell size: compute in cell units and scale by dx
     xs = np.arange(-(nx - 1), nx, dtype=float)[:, None]
     ys = (np.arange(-(ny - 1), ny, dtype=float) * (dy / dx))[None, :]
@@ -279,7 +292,12 @@ def deformation(pressure: np.ndarray, grid: SurfaceGrid, contact_modulus: float)
     if pressure.shape != (grid.nx, grid.ny):
         raise ValueError(f"pressure must have shape {(grid.nx, grid.ny)}, got {pressure.shape}")
     e_star = _finite_positive("contact_modulus", contact_modulus, "Pa")
-    return _convolve(_kernel_spectrum(grid.nx, grid.ny, grid.dx, grid.dy), pressure) / e_star
+    with np.errstate(over="ignore"):
+        deflection = _convolve(_kernel_spectrum(grid.nx, grid.ny, grid.dx, grid.dy), pressure) / e_star
+    if not np.all(np.isfinite(deflection)):
+        raise ValueError(f"pressure / contact_modulus ({contact_modulus!r} Pa) gives a deflection beyond the "
+                         "floating-point range")
+    return deflection
 
 
 # --------------------------------------------------------------------------
@@ -298,9 +316,14 @@ def quadratic_gap(grid: SurfaceGrid, A: float, B: float, angle: float = 0.0,
     X, Y = grid.coordinates()
     X = X - centre[0]
     Y = Y - centre[1]
+    angle = checks.finite("angle", angle, "rad")
     c, s = math.cos(angle), math.sin(angle)
     xr, yr = c * X + s * Y, -s * X + c * Y
-    return A * xr * xr + B * yr * yr
+    with np.errstate(over="ignore"):
+        gap = A * xr * xr + B * yr * yr
+    if not np.all(np.isfinite(gap)):
+        raise ValueError(f"A = {A!r} 1/m and B = {B!r} 1/m give a gap beyond the floating-point range on the grid")
+    return gap
 
 
 # --------------------------------------------------------------------------
@@ -575,16 +598,24 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         raise ValueError(f"gap must have shape {(grid.nx, grid.ny)}, got {gap.shape}")
     if not np.all(np.isfinite(gap)):
         raise ValueError("gap must be finite (got NaN or inf)")
+    if float(np.max(np.abs(gap))) > LARGEST_LENGTH:
+        raise ValueError(f"gap must lie within +-{LARGEST_LENGTH:g} m (the single-precision increments of the "
+                         f"conjugate gradient), got {float(np.max(np.abs(gap)))!r} m")
     e_star = _finite_positive("contact_modulus", contact_modulus, "Pa")
     if (force is None) == (approach is None):
         raise ValueError("give exactly one of force [N] (load control) or approach [m] (approach control)")
     load_control = force is not None
     if load_control:
         force = _finite_positive("force", force, "N")
+        if force > LARGEST_LENGTH * e_star * min(grid.dx, grid.dy):  # the deflection of the load on one cell
+            raise ValueError(f"force / (contact_modulus * cell size) must be <= {LARGEST_LENGTH:g} m (the "
+                             f"single-precision increments of the conjugate gradient), got {force!r} N")
     else:
         approach = float(approach)
         if not math.isfinite(approach):
             raise ValueError(f"approach must be finite [m], got {approach!r}")
+        if abs(approach) > LARGEST_LENGTH:
+            raise ValueError(f"approach must lie within +-{LARGEST_LENGTH:g} m, got {approach!r}")
         if approach <= float(gap.min()):
             raise ValueError(f"approach {approach!r} m does not exceed the smallest gap {float(gap.min())!r} m: "
                              "the surfaces do not touch")

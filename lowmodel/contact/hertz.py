@@ -137,8 +137,9 @@ def _axis_ratio(curvature_ratio: float) -> float:
     lo = -1.0
     while _ratio_of_k(math.exp(lo)) < curvature_ratio:
         lo *= 2.0
-        if lo < -700.0:
-            raise ValueError(f"curvature ratio B/A = {curvature_ratio:.3e} is beyond the range of Hertz theory")
+        if math.exp(2.0 * lo) == 0.0:  # k^2 underflows (B/A beyond ~1e170): the ratio would be inf / inf
+            raise ValueError(f"curvatures_1 and curvatures_2 give a curvature ratio B/A = {curvature_ratio:.3e} "
+                             "beyond the range of Hertz theory")
     log_k = brentq(lambda t: math.log(_ratio_of_k(math.exp(t)) / curvature_ratio), lo, 0.0,
                    xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
     return math.exp(log_k)
@@ -181,19 +182,33 @@ def from_curvatures(curvatures_1: tuple[float, float], curvatures_2: tuple[float
     A, B = float(eigenvalues[0]), float(eigenvalues[1])
     if not A > 0.0:
         raise ValueError(
-            f"relative curvatures A = {A:.6g} 1/m, B = {B:.6g} 1/m: both must be > 0 for Hertz point contact "
-            "(the surfaces conform or do not touch at a point)")
+            f"curvatures_1 and curvatures_2 give relative curvatures A = {A:.6g} 1/m, B = {B:.6g} 1/m: both must "
+            "be > 0 for Hertz point contact (the surfaces conform or do not touch at a point)")
     major_axis_angle = float(math.atan2(eigenvectors[1, 0], eigenvectors[0, 0]))
     reference_radius = 1.0 / float(np.max(np.abs(np.concatenate([k1, k2]))))  # > 0 since A > 0
-    return HertzGeometry(A, B, e_star, major_axis_angle, _axis_ratio(B / A), reference_radius)
+    geometry = HertzGeometry(A, B, e_star, major_axis_angle, _axis_ratio(B / A), reference_radius)
+    try:
+        unit = _unit_solution(geometry)
+    except (ZeroDivisionError, OverflowError):
+        unit = (math.nan,)
+    if not all(math.isfinite(v) and v > 0.0 for v in (*unit, unit[-1] ** 1.5)):  # e.g. E* A over-, C^1.5 underflows
+        raise ValueError(f"youngs_modulus and curvatures_1, curvatures_2 (E* = {e_star:.6g} Pa, A = {A:.6g} 1/m, "
+                         f"B = {B:.6g} 1/m) give a Hertz contact outside the floating-point range")
+    return geometry
+
+
+def _curvature(name: str, radius) -> float:
+    """``1 / radius`` [1/m] of a ball, checked: ``radius`` > 0 m with a finite inverse (not subnormal)."""
+    radius = checks.positive(name, radius, "m")
+    return checks.positive(f"1 / {name}", 1.0 / radius, "1/m")
 
 
 def ball_on_flat(ball_radius: float, *, youngs_modulus: float = STEEL_YOUNGS_MODULUS,
                  poisson_ratio: float = STEEL_POISSON_RATIO, youngs_modulus_2: float | None = None,
                  poisson_ratio_2: float | None = None) -> HertzGeometry:
     """A ball of radius ``ball_radius`` [m] on a flat."""
-    radius = checks.positive("ball_radius", ball_radius, "m")
-    return from_curvatures((1 / radius, 1 / radius), (0.0, 0.0), youngs_modulus=youngs_modulus,
+    kappa = _curvature("ball_radius", ball_radius)
+    return from_curvatures((kappa, kappa), (0.0, 0.0), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
                            poisson_ratio_2=poisson_ratio_2)
 
@@ -202,9 +217,9 @@ def ball_on_ball(ball_radius: float, other_radius: float | None = None, *,
                  youngs_modulus: float = STEEL_YOUNGS_MODULUS, poisson_ratio: float = STEEL_POISSON_RATIO,
                  youngs_modulus_2: float | None = None, poisson_ratio_2: float | None = None) -> HertzGeometry:
     """Two balls in contact (the ball-to-ball, B2B, contact of lin2019); radii [m]."""
-    r1 = checks.positive("ball_radius", ball_radius, "m")
-    r2 = r1 if other_radius is None else checks.positive("other_radius", other_radius, "m")
-    return from_curvatures((1 / r1, 1 / r1), (1 / r2, 1 / r2), youngs_modulus=youngs_modulus,
+    k1 = _curvature("ball_radius", ball_radius)
+    k2 = k1 if other_radius is None else _curvature("other_radius", other_radius)
+    return from_curvatures((k1, k1), (k2, k2), youngs_modulus=youngs_modulus,
                            poisson_ratio=poisson_ratio, youngs_modulus_2=youngs_modulus_2,
                            poisson_ratio_2=poisson_ratio_2)
 
@@ -217,9 +232,9 @@ def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: flo
     straight along its length.  x (major axis ``a``) lies across the groove in
     the cross-section, y along the groove (the rolling direction).
     """
-    radius = checks.positive("ball_radius", ball_radius, "m")
+    kappa = _curvature("ball_radius", ball_radius)
     # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0) from the geometry core
-    return from_curvatures((1 / radius, 1 / radius), groove.straight_groove_curvatures(radius, conformity),
+    return from_curvatures((kappa, kappa), groove.straight_groove_curvatures(ball_radius, conformity),
                            youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
 
 
@@ -236,11 +251,18 @@ def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: fl
     contact angle 45 deg, lead 20 mm).  Since the ball is a sphere, the
     ellipse axes follow the groove's principal directions.
     """
+    kappa = _curvature("ball_radius", ball_radius)  # first: the geometry core divides by it
     kappa_1, kappa_2, _ = groove.groove_curvatures_helical(ball_radius, conformity, pitch_radius, contact_angle,
                                                            lead_angle, body, profile_plane)
-    radius = float(ball_radius)
-    return from_curvatures((1 / radius, 1 / radius), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
-                           poisson_ratio=poisson_ratio)
+    try:
+        return from_curvatures((kappa, kappa), (kappa_1, kappa_2), youngs_modulus=youngs_modulus,
+                               poisson_ratio=poisson_ratio)
+    except ValueError as error:  # name this function's inputs (e.g. a profile that conforms: A <= 0)
+        if "curvatures_1" not in str(error):
+            raise
+        raise ValueError(f"ball_radius {ball_radius!r} m, conformity {conformity!r}, pitch_radius {pitch_radius!r} m, "
+                         f"contact_angle {contact_angle!r} rad, lead_angle {lead_angle!r} rad, {body} groove, "
+                         f"profile_plane {profile_plane!r}: {error}") from None
 
 
 # --------------------------------------------------------------------------
@@ -302,6 +324,8 @@ def _build(geometry: HertzGeometry, force: np.ndarray) -> HertzContact:
     b = k * a
     with np.errstate(invalid="ignore", divide="ignore"):
         p0 = np.where(force > 0.0, 3.0 * force / (2.0 * math.pi * np.where(a > 0, a * b, 1.0)), 0.0)
+        if not np.all(np.isfinite(p0)):  # a b underflows (E* ~ 1e300 and F ~ 1e-299): the same in another order
+            p0 = np.where(np.isfinite(p0), p0, 3.0 * (force / np.where(a > 0, a, 1.0)) / (2.0 * math.pi * b))
     delta = delta_unit * cube_root**2
     stiffness = 1.5 * np.sqrt(delta) / delta_unit**1.5  # dF/d(delta) of F = (delta/C)^(3/2)
     return HertzContact(force, a, b, p0, delta, stiffness, math.sqrt(max(0.0, 1.0 - k2)),

@@ -103,6 +103,9 @@ def asperity_contact(film: np.ndarray, heights: np.ndarray, grid: halfspace.Surf
         raise ValueError(f"film and heights must be finite arrays of shape {(grid.nx, grid.ny)}")
     if float(gap.min()) >= 0.0:
         return np.zeros_like(gap), 0.0, gap
+    if float(np.max(np.abs(gap))) > halfspace.LARGEST_LENGTH:
+        raise ValueError(f"film - heights must lie within +-{halfspace.LARGEST_LENGTH:g} m (halfspace.solve), got "
+                         f"{float(np.max(np.abs(gap)))!r} m")
     contact = halfspace.solve(gap, grid, contact_modulus, approach=0.0, tolerance=1e-6)
     return contact.pressure, contact.force, contact.separation
 
@@ -132,6 +135,8 @@ def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGri
     load = checks.positive("load", load, "N")
     share_tolerance = checks.bounded("share_tolerance", share_tolerance, 0.0, 1.0)
     smallest = checks.bounded("smallest_film_share", smallest_film_share, 0.0, 1.0)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
+    ehl_iterations = checks.count("ehl_iterations", ehl_iterations, 1)
     solves = {}
 
     def evaluate(film_load):

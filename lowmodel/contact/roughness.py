@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import ehl, halfspace
 
 __all__ = ["wm_amplitude", "wm_rms", "wm_line_spectrum", "RacewayRoughness", "raceway_roughness"]
@@ -39,8 +40,8 @@ def wm_amplitude(fractal_dimension: float, roughness_scale: float, sample_length
 
     The ridge ``m``, level ``n`` term has amplitude ``C gamma^((D-3) n)``.
     """
-    D, G, L, _, gamma, M = ehl.wm_parameters(fractal_dimension, roughness_scale, sample_length,
-                                             0.5 * sample_length, gamma, ridges)
+    half = checks.positive("sample_length / 2", 0.5 * checks.positive("sample_length", sample_length, "m"), "m")
+    D, G, L, _, gamma, M = ehl.wm_parameters(fractal_dimension, roughness_scale, sample_length, half, gamma, ridges)
     return L * (G / L) ** (D - 2.0) * math.sqrt(math.log(gamma) / M)
 
 

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.solvers import newton
 
 __all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb", "free_ball_starts", "StackedPatches",
@@ -214,13 +215,24 @@ class StackedPatches:
 
 
 def stack_patches(balls, n_patches: int, reference_force: float, moving_value: float) -> StackedPatches:
-    """Stack the ``TractionPatch`` samples of ``balls`` (a sequence of patch sequences), see StackedPatches."""
+    """Stack the ``TractionPatch`` samples of ``balls`` (a sequence of patch sequences), see StackedPatches.
+
+    ``n_patches`` >= 1 per ball, ``reference_force`` F_ref [N] > 0 with finite ``force / F_ref``, ``moving_value``
+    finite (ValueError naming the parameter otherwise).
+    """
+    n_patches = checks.count("n_patches", n_patches, 1)
+    reference_force = checks.positive("reference_force", reference_force, "N")
+    moving_value = checks.finite("moving_value", moving_value)
     rows = [(b * n_patches + p, b, patch) for b, patches in enumerate(balls) for p, patch in enumerate(patches)]
     count = [len(patch.forces) for _, _, patch in rows]
+    with np.errstate(over="ignore"):
+        load = np.concatenate([patch.forces / reference_force for _, _, patch in rows])
+    if not np.all(np.isfinite(load)):
+        raise ValueError(f"reference_force {reference_force!r} N is too small for the forces (force / F_ref overflows)")
     return StackedPatches(
         points=np.concatenate([patch.points for _, _, patch in rows]),
         normals=np.concatenate([patch.normals for _, _, patch in rows]),
-        load=np.concatenate([patch.forces / reference_force for _, _, patch in rows]),
+        load=load,
         moving=np.repeat([moving_value if patch.top else 0.0 for _, _, patch in rows], count),
         ball=np.repeat([b for _, b, _ in rows], count),
         patch=np.repeat([i for i, _, _ in rows], count))

@@ -58,6 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
@@ -137,6 +138,7 @@ def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, 
     ``R_B n_i`` with normal ``n_i`` (the low-order model's contact); ``False``: the same
     points projected radially onto the sphere, with the sphere's normal (a curved Hertz patch).
     """
+    ball = checks.count("ball", ball, 0, contacts.n_balls - 1)
     u, v, w = ellipse_samples(n_radial, n_angular)  # Gauss-Jacobi, weights sum to 1 (lowmodel.contact.traction)
     radius = contacts.ball_radius
     normals2 = contact_normals(contacts.contact_angles[ball])  # (4, 2)
@@ -177,8 +179,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     """
     check_solver_options(tolerance, max_iterations)
     radius = float(ball_radius)
-    if not math.isfinite(radius) or radius <= 0.0:
-        raise ValueError(f"ball_radius must be a finite number > 0 m, got {ball_radius!r}")
+    if not math.isfinite(radius) or radius <= 0.0 or not math.isfinite(1.0 / radius):
+        raise ValueError(f"ball_radius must be a finite number > 0 m with a finite inverse, got {ball_radius!r}")
     mu = float(friction_coefficient)
     if not math.isfinite(mu) or mu <= 0.0:
         raise ValueError(f"friction_coefficient must be a finite number > 0, got {friction_coefficient!r}")
