@@ -28,7 +28,7 @@ import numbers
 import numpy as np
 
 __all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
-           "choice", "count", "trailing_axis"]
+           "choice", "count", "trailing_axis", "finite_result", "power_of_two_scale"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -166,3 +166,27 @@ def trailing_axis(name: str, value, length: int, labels: str = "", unit: str = "
         raise ValueError(f"{name} must have a trailing axis of {length}{what}{_unit(unit and f'[{unit}]')}, "
                          f"got shape {array.shape}")
     return array
+
+
+def finite_result(names: str, value, unit: str = ""):
+    """A computed ``value`` as floats; ValueError naming the inputs ``names`` unless every element is finite.
+
+    For results that overflow double precision (or become NaN) at extreme but finite inputs: the message
+    names the inputs responsible, e.g. ``finite_result("pitch_radius, lead", curvature, "1/m")``.
+    """
+    array = np.asarray(value, dtype=float)
+    bad = ~np.isfinite(array)
+    if np.any(bad):
+        raise ValueError(f"{names}: the result overflows double precision{_unit(unit)} (got "
+                         f"{_shown(array, bad, value)}); use inputs of a physical size")
+    return _out(array)
+
+
+def power_of_two_scale(value) -> float:
+    """A power of two ``2**k`` near ``max |value|`` (1.0 for zeros): dividing lengths by it is exact in binary
+    floating point, so a computation on the scaled values gives bit-identical results wherever the unscaled one
+    neither overflows nor underflows (e.g. squares of 1e300 m or 1e-300 m)."""
+    peak = float(np.max(np.abs(np.asarray(value, dtype=float))))
+    if peak == 0.0 or not math.isfinite(peak):
+        return 1.0
+    return math.ldexp(1.0, math.frexp(peak)[1])

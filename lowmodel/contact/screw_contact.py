@@ -50,7 +50,9 @@ def preload_contact_load(preload: float, ball_count: int, lead_angle: float, con
     ball_count = checks.count("ball_count", ball_count, 2)
     lead_angle = checks.lead_angle("lead_angle", lead_angle)
     contact_angle = checks.contact_angle("contact_angle", contact_angle)
-    return preload / (ball_count / 2 * math.cos(lead_angle) * math.sin(contact_angle))  # sun2021 eq 1
+    with np.errstate(over="ignore"):
+        load = preload / np.float64(ball_count / 2 * math.cos(lead_angle) * math.sin(contact_angle))  # sun2021 eq 1
+    return checks.finite_result("preload, contact_angle", load, "N")
 
 
 def hertz_pressure(grid: halfspace.SurfaceGrid, a: float, b: float, p0: float, angle: float = 0.0,
@@ -58,12 +60,18 @@ def hertz_pressure(grid: halfspace.SurfaceGrid, a: float, b: float, p0: float, a
     """Hertz pressure ``p0 sqrt(1 - x'^2/a^2 - y'^2/b^2)`` [Pa] on the grid (sun2021 eq 13; Johnson eq 4.39).
 
     ``(x', y')`` the frame rotated by ``angle`` [rad] about ``centre`` [m]; shape ``(nx, ny)``.
+    Semi-axes ``a``, ``b`` [m] > 0, ``p0`` [Pa] >= 0.
     """
+    a, b = checks.positive("a", a, "m"), checks.positive("b", b, "m")
+    p0 = checks.non_negative("p0", p0, "Pa")
+    angle = checks.finite("angle", angle, "rad")
+    centre = checks.finite("centre", checks.trailing_axis("centre", centre, 2, "(x, y)", "m"), "m")
     X, Y = grid.coordinates()
     X, Y = X - centre[0], Y - centre[1]
     c, s = math.cos(angle), math.sin(angle)
     xr, yr = c * X + s * Y, -s * X + c * Y
-    return p0 * np.sqrt(np.maximum(1.0 - (xr / a) ** 2 - (yr / b) ** 2, 0.0))
+    with np.errstate(over="ignore"):  # far outside a tiny ellipse the squares overflow to inf: pressure 0
+        return p0 * np.sqrt(np.maximum(1.0 - (xr / a) ** 2 - (yr / b) ** 2, 0.0))
 
 
 @dataclass(frozen=True)

@@ -155,8 +155,13 @@ def fischer_burmeister(a, b):
     ``phi = a + b - sqrt(a^2 + b^2 + s^2)`` (``s`` a 1e-14 smoothing, differentiable at (0, 0));
     ``phi = 0`` is the complementarity.  Returns ``(phi, d phi / d a, d phi / d b)``, arrays like ``a``.
     """
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    root = np.sqrt(a * a + b * b + _FB_SMOOTHING**2)
+    a = np.asarray(checks.finite("a", a), dtype=float)
+    b = np.asarray(checks.finite("b", b), dtype=float)
+    with np.errstate(over="ignore"):
+        squared = a * a + b * b + _FB_SMOOTHING**2
+    root = np.sqrt(squared)
+    if not np.all(np.isfinite(root)):   # |a| or |b| beyond ~1e154: no overflow of the squares
+        root = np.where(np.isfinite(root), root, np.hypot(np.hypot(a, b), _FB_SMOOTHING))
     return a + b - root, 1.0 - a / root, 1.0 - b / root
 
 
