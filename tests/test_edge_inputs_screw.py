@@ -217,10 +217,13 @@ def test_load_distribution_checks_and_reports(table):
     assert soft[0] == pytest.approx(100.0, rel=1e-12) and abs(soft[1]) < 1e-12
     with pytest.raises(ConvergenceError):
         ld.distribute(*args, 2.1e11, tolerance=1e-300, max_iterations=1)
-    for error in (1e16, -1e-4):   # a nut whose lead is longer or shorter than the screw's
+    for error in (1e-5, -1e-5):   # a nut whose lead is shorter or longer than the screw's (-1e-5: was the bracket)
         loads = ld.distribute([0.0, 1.0, 2.0], 100.0, stiffness, sections, module.lead, 2.1e11, lead_error=error)
         assert loads.sum() == pytest.approx(100.0, rel=1e-9)
         assert np.all(loads >= -1e-12 * 100.0)   # pchip at its end node: rounding of 1e-15 N
+        assert (loads[0] > loads[2]) == (error > 0)   # a positive error unloads the far balls (docstring)
+    huge = ld.distribute([0.0, 1.0, 2.0], 100.0, stiffness, sections, module.lead, 2.1e11, lead_error=1e16)
+    assert huge[0] == pytest.approx(100.0, rel=1e-9)   # was scipy's bracket error: the first ball takes it all
 
 
 # --- one ball and the sampled-traction patches --------------------------------------------------------------
@@ -252,3 +255,46 @@ def test_ball_indices_are_checked(table):
         sb.profile_2d(contacts, 0, 4, 0.7)
     with pytest.raises(ValueError, match="axial_load"):
         sb.reference_force(contacts, 1.7e308)
+
+
+def test_nut_speed_range_and_gap_count():
+    """nut_speed = 1e-300 rad/s was accepted and the B2B solve warned (overflow of the friction Jacobian, which
+    scales like 1 / speed); check_gaps(None, 1.0) was a TypeError and (None, -1) numpy's 'negative dimensions'."""
+    with pytest.raises(ValueError, match="nut_speed must satisfy"):
+        sb.screw_module(nut_speed=1e-300)
+    assert sb.screw_module(nut_speed=-1e-100).nut_speed == -1e-100
+    for count in (1.0, -1, True):
+        with pytest.raises(ValueError, match="count"):
+            b2b.check_gaps(None, count)
+
+
+def test_screw_module_and_solves_refuse_what_breaks_the_model(table):
+    """mu = 1e300 was accepted (the solve 'converged' with a power balance off by 3e4 relative: residuals are
+    scaled by mu F); an axial load of 1e300 N overflowed (warning) in the solve; a conformity next to 0.5 failed
+    in Hertz naming its internal curvatures; saturation() of a state without loaded contacts: numpy's
+    'zero-size array' error."""
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        sb.screw_module(friction_coefficient=1e300)
+    contacts = sb.ball_contacts(table[0], 0.0)
+    with pytest.raises(ValueError, match="axial_load: its Hertz approach"):
+        sb.solve_balls(contacts, 1e300)
+    with pytest.raises(ValueError, match="module: no Hertz point contact"):
+        sb.ball_contacts(sb.screw_module(conformity=math.nextafter(0.5, 1.0)))
+    state = sb.solve_balls(contacts, 50.0)
+    empty = sb.ScrewBallState(**{**state.__dict__, "normal_force": np.zeros_like(state.normal_force)})
+    assert b2b.saturation(empty) == 0.0
+
+
+def test_distribute_refuses_positions_that_swamp_the_table(table):
+    """positions = [1e300] rad: scipy's 'f(a) and f(b) must have different signs' (the table's micrometre range
+    is lost beside offsets of 1e288 m)."""
+    module, stiffness, sections = table
+    with pytest.raises(ValueError, match="positions, lead, lead_error, youngs_modulus"):
+        ld.distribute([1e300], 1.0, stiffness, sections, 0.0625, 1e9)
+
+
+def test_groove_contact_names_the_grid_margin():
+    """A coarse BEM grid whose contact reaches the grid edge: halfspace's error named its own 'half_width'."""
+    with pytest.raises(ValueError, match="margin"):
+        sc.groove_contact(2.778e-3, 0.56, 16.5e-3, 20e-3, 0.785, 100.0, youngs_modulus=2.1e11, poisson_ratio=0.3,
+                          n=16, margin=1.0001)

@@ -126,6 +126,8 @@ def groove_contact(ball_radius: float, conformity: float, pitch_radius: float, l
     of ``n x n`` cells over ``margin`` times the full-tensor Hertz semi-axes.
     """
     force = checks.positive("force", force, "N")
+    n = checks.count("n", n, 8)
+    margin = checks.bounded("margin", margin, 1.0, 10.0, note="grid half-width over the Hertz semi-axes")
     groove = groove_geometry.helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank)
     frame = groove_geometry.contact_frame(groove)
     ball = (1.0 / groove.ball_radius, 1.0 / groove.ball_radius)
@@ -151,7 +153,13 @@ def groove_contact(ball_radius: float, conformity: float, pitch_radius: float, l
     gap = groove_geometry.pair_initial_gap(ball_radius, conformity, pitch_radius, lead, contact_angle, body,
                                            flank=flank)(X, Y)
     gap -= gap.min()  # first touch at the lowest cell centre (the exact gap is 0 at the origin, >= 0 nearby)
-    bem = halfspace.solve(gap, grid, full_geometry.contact_modulus, force=force)
+    try:
+        bem = halfspace.solve(gap, grid, full_geometry.contact_modulus, force=force)
+    except ValueError as error:
+        if "edge of the grid" not in str(error):
+            raise
+        raise ValueError(f"margin: the BEM contact on the exact gap reaches the edge of the grid of {margin!r} times "
+                         f"the Hertz semi-axes ({n} x {n} cells); increase margin or n") from None
     return GrooveContact(force=force, frame=frame, profile_direction=profile_direction, hertz=full,
                          hertz_angle=_wrap_half_turn(-profile_direction), bem=bem,
                          bem_angle=_wrap_half_turn(bem.ellipse_angle - profile_direction), forced=forced,

@@ -165,6 +165,11 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         shifted = sign * offset
         start = min(low - offset.max(), low + shifted.min())
         end = max(high + offset.max(), high + shifted.max())
+        f_start, f_end = mismatch(start), mismatch(end)
+        if f_start * f_end > 0.0:   # offsets so large that the table's range is lost: no sign change
+            raise ValueError(f"positions, lead, lead_error, youngs_modulus: the offsets of the balls (up to "
+                             f"{float(np.max(np.abs(offset)))!r} m) swamp the range of the ball's shift table "
+                             f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
         try:   # bisection may need ~1100 halvings where the offsets dwarf the table (absurd stiffness)
             u0 = brentq(mismatch, start, end, xtol=1e-16, maxiter=2000)
         except RuntimeError as error:

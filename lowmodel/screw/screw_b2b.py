@@ -166,7 +166,8 @@ def fischer_burmeister(a, b):
 
 
 def check_gaps(gaps, count: int) -> np.ndarray:
-    """Azimuth gaps (count,) [rad] >= 0 beyond touching; ``None`` is all touching (zeros)."""
+    """Azimuth gaps (count,) [rad] >= 0 beyond touching; ``None`` is all touching (zeros); ``count`` >= 0 pairs."""
+    count = checks.count("count", count, 0)
     if gaps is None:
         return np.zeros(count)
     gaps = np.asarray(checks.non_negative("gaps", gaps, "rad (azimuth gap between neighbouring balls)"),
@@ -225,12 +226,12 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
 
 
 def saturation(state: sb.ScrewBallState) -> float:
-    """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding)."""
+    """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding; 0 if none)."""
     loaded = state.normal_force > 0.0
     spin = np.abs(state.spin * state.semi_major)[loaded]
     slide = np.abs(state.slip_minor)[loaded]
     with np.errstate(divide="ignore"):
-        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf)))
+        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
 
 
 def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,

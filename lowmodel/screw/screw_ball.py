@@ -79,11 +79,14 @@ __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
     "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
     "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
-    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws",
+    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws", "NUT_SPEED_RANGE",
+    "FRICTION_COEFFICIENT_MAX",
 ]
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
 DEVIATION_READINGS = ("rotated", "tilted")
+FRICTION_COEFFICIENT_MAX = 2.0  # mu in (0, 2]: residuals are scaled by mu F (friction would swamp the normal forces)
+NUT_SPEED_RANGE = (1e-100, 1e100)  # |omega_N| [rad/s]: quasi-static, any speed; the floats set the range
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
 # tanh-sinh level of friction_offset: 3 where every b/a >= 0.2 (measured error < 3e-8 there, tests), else 4
 FRICTION_LEVEL = {"coarse": 3, "fine": 4, "coarse_min_b_over_a": 0.2}
@@ -149,9 +152,12 @@ def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pit
     lead = checks.non_negative("lead", lead, "m (right-handed screw)")
     nominal_angle = checks.contact_angle("nominal_angle", nominal_angle)
     nut_speed = checks.finite("nut_speed", nut_speed, "rad/s")
-    if nut_speed == 0.0:
-        raise ValueError("nut_speed must be nonzero rad/s (the ball motion is undetermined at rest)")
-    mu = checks.positive("friction_coefficient", friction_coefficient)
+    if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
+        raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
+                         f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
+                         f"like 1 / speed and leaves the float range near 1e-300), got {nut_speed!r}")
+    mu = checks.bounded("friction_coefficient", friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX, upper_closed=True,
+                        note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
     youngs_modulus = checks.positive("youngs_modulus", youngs_modulus, "Pa")
     poisson_ratio = checks.bounded("poisson_ratio", poisson_ratio, -1.0, 0.5)
     oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
@@ -319,7 +325,11 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     unit = np.empty((n, 4))
     ratio = np.empty((n, 4))
     for i in range(4):
-        constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
+        try:
+            constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
+        except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
+            raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
+                             f"{module.conformity!r} ({error})") from None
         for j in range(n):   # angles validated by flank_angles; the core's flank gives the arc centre
             flank = groove_core.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius,
                                               module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
@@ -719,7 +729,13 @@ def reference_force(contacts: BallContacts, axial_load: float) -> float:
     with np.errstate(over="ignore"):
         pair = abs(load) / np.float64(math.sin(module.nominal_angle) * math.cos(module.lead_angle))
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
-    return checks.finite_result("axial_load", max(pair, preload, 1e-3), "N")
+    force = checks.finite_result("axial_load", max(pair, preload, 1e-3), "N")
+    with np.errstate(over="ignore"):
+        approach = float(np.max(contacts.hertz_constant)) * np.float64(force) ** (2.0 / 3.0)  # lin2019 eq 53
+    if not approach < module.ball_radius:
+        raise ValueError(f"axial_load: its Hertz approach {approach!r} m (per loaded pair, {force!r} N) exceeds the "
+                         f"ball radius {module.ball_radius!r} m: no Hertz contact at this load, got {axial_load!r} N")
+    return force
 
 
 def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance: float, max_iterations: int):
