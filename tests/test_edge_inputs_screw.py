@@ -298,3 +298,23 @@ def test_groove_contact_names_the_grid_margin():
     with pytest.raises(ValueError, match="margin"):
         sc.groove_contact(2.778e-3, 0.56, 16.5e-3, 20e-3, 0.785, 100.0, youngs_modulus=2.1e11, poisson_ratio=0.3,
                           n=16, margin=1.0001)
+
+
+def test_b2b_solution_does_not_depend_on_the_speed_scale():
+    """Quasi-static: scaling the nut speed scales every velocity and leaves the forces.  At 2e-13 rad/s the B2B
+    slip floor (1e-14 R_B in m/s, absolute) bent the friction direction: the power balance was off by 1.3e-5;
+    the floor is now 1e-14 R_B |omega_N|."""
+    states = []
+    for speed in (2 * math.pi, 2e-13):
+        module = sb.screw_module(oversize=1e-6, nut_speed=speed)
+        states.append(b2b.solve(sb.ball_contacts(module, np.radians([0.0, 2.0])), 50.0))
+    for state in states:
+        assert abs(state.input_power - state.total_loss) <= 1e-8 * state.total_loss
+    assert states[1].b2b_force[0] == pytest.approx(states[0].b2b_force[0], rel=1e-6)
+    assert states[1].total_loss / 2e-13 == pytest.approx(states[0].total_loss / (2 * math.pi), rel=1e-6)
+
+
+def test_axial_stiffness_names_max_load(table):
+    """max_load = 1e16 N: the error named solve_balls' axial_load, not a parameter of axial_stiffness."""
+    with pytest.raises(ValueError, match="max_load: axial_load: its Hertz approach"):
+        ld.axial_stiffness(table[0], 1e16, 4)

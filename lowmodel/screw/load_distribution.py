@@ -101,12 +101,22 @@ def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *
     points = checks.count("points", points, 4)
     loads = np.linspace(0.0, max_load, points)
     contacts = sb.ball_contacts(module, 0.0, contact_law=contact_law)
+    try:   # the largest load of the table must still be a Hertz contact (screw_ball.reference_force)
+        sb.reference_force(contacts, max_load)
+    except ValueError as error:
+        raise ValueError(f"max_load: {error}") from None
     shifts = np.array([sb.solve_balls(contacts, float(q)).nut_shift for q in loads])
     steps = np.diff(shifts)
     if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
         raise ValueError("the ball's axial shift is not monotone in its load on [0, max_load]; "
                          "reduce max_load or increase the preload")
     return AxialStiffness(loads, shifts)
+
+
+def _swamped(offset, low, high):
+    raise ValueError(f"positions, lead, lead_error, youngs_modulus: the offsets of the balls (up to "
+                     f"{float(np.max(np.abs(offset)))!r} m) swamp the range of the ball's shift table "
+                     f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
 
 
 def distribute(positions, total_load: float, stiffness: AxialStiffness, sections: BarSections, lead: float,
@@ -165,17 +175,16 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         shifted = sign * offset
         start = min(low - offset.max(), low + shifted.min())
         end = max(high + offset.max(), high + shifted.max())
-        f_start, f_end = mismatch(start), mismatch(end)
-        if f_start * f_end > 0.0:   # offsets so large that the table's range is lost: no sign change
-            raise ValueError(f"positions, lead, lead_error, youngs_modulus: the offsets of the balls (up to "
-                             f"{float(np.max(np.abs(offset)))!r} m) swamp the range of the ball's shift table "
-                             f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
+        if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change
+            _swamped(offset, low, high)
         try:   # bisection may need ~1100 halvings where the offsets dwarf the table (absurd stiffness)
             u0 = brentq(mismatch, start, end, xtol=1e-16, maxiter=2000)
         except RuntimeError as error:
             raise ConvergenceError(f"distribute: the nut shift u_0 was not found ({error})", residual=math.inf,
                                    iterations=2000, tolerance=1e-16) from None
         new = stiffness.load(np.clip(u0 - sign * offset, low, high))
+        if abs(float(new.sum()) - total) > 1e-6 * total:   # the loads must carry the axial load (lost precision)
+            _swamped(offset, low, high)
         change = float(np.max(np.abs(new - loads)))
         if change <= tolerance * total:
             return new

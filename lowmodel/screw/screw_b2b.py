@@ -96,11 +96,12 @@ def _skew(v: np.ndarray) -> np.ndarray:
 
 
 def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius: float, mu: float,
-              pairs=None):
+              pairs=None, speed: float = 1.0):
     """B2B loads of touching pairs (eqs 57-59).
 
     spins (n, 3) rad/s in each ball's CS3; forces (p,) N (0 for open pairs); ``pairs``
-    (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``.
+    (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``; ``speed`` [rad/s] the motion's scale (e.g.
+    ``|omega_N|``): the slip floor of the friction direction is ``1e-14 R_B speed`` (scale-free).
     Returns (load (n, 6) [force N, moment N m] in each ball's CS3, d load / d spins (n, 6, n, 3),
     d load / d forces (n, 6, p), slip speeds (p,) m/s).
     """
@@ -121,7 +122,7 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     behind, ahead = pairs[:, 0], pairs[:, 1]
     slip = (spins[behind] + spins[ahead] @ rot.T) @ a_mat.T                 # (p, 3)
     speeds = np.sqrt(np.einsum("pi,pi->p", slip, slip))
-    norm = np.sqrt(speeds**2 + (_REGULARISATION * radius) ** 2)
+    norm = np.sqrt(speeds**2 + (_REGULARISATION * radius * speed) ** 2)
     direction = slip / norm[:, None]
     friction = -mu * forces[:, None] * direction                              # eq 58 on the ball behind
     force_behind = -forces[:, None] * pair.chord + friction
@@ -297,7 +298,8 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
             ball_residual = terms.residual.copy()
             if m:
                 loads_b2b, d_spin, d_force, _ = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair,
-                                                          module.ball_radius, module.friction_coefficient, pairs)
+                                                          module.ball_radius, module.friction_coefficient, pairs,
+                                                          abs(module.nut_speed))
                 for array in (loads_b2b, d_spin, d_force):
                     array[:, 3:] /= module.ball_radius
                 ball_residual += loads_b2b / scales.force
@@ -369,7 +371,7 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
     speeds = np.zeros(len(pairs))
     if len(pairs):
         speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
-                           module.friction_coefficient, pairs)[3]
+                           module.friction_coefficient, pairs, abs(module.nut_speed))[3]
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
     return sb.state_from(balls, shift * 1.0 if per_ball else shift[0], terms, scales, axial_load=total,
                          b2b_force=forces, b2b_loss=b2b_loss, iterations=iterations,

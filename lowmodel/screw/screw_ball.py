@@ -731,10 +731,11 @@ def reference_force(contacts: BallContacts, axial_load: float) -> float:
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
     force = checks.finite_result("axial_load", max(pair, preload, 1e-3), "N")
     with np.errstate(over="ignore"):
-        approach = float(np.max(contacts.hertz_constant)) * np.float64(force) ** (2.0 / 3.0)  # lin2019 eq 53
+        approach = float(float(np.max(contacts.hertz_constant)) * np.float64(force) ** (2.0 / 3.0))  # lin2019 eq 53
     if not approach < module.ball_radius:
-        raise ValueError(f"axial_load: its Hertz approach {approach!r} m (per loaded pair, {force!r} N) exceeds the "
-                         f"ball radius {module.ball_radius!r} m: no Hertz contact at this load, got {axial_load!r} N")
+        raise ValueError(f"axial_load: its Hertz approach {approach!r} m (per loaded pair, {float(force)!r} N) "
+                         f"exceeds the ball radius {module.ball_radius!r} m: no Hertz contact at this load, "
+                         f"got {axial_load!r} N")
     return force
 
 
