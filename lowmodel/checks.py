@@ -37,7 +37,7 @@ import numpy as np
 
 __all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
            "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
-           "rebuilt_through_init"]
+           "rebuilt_through_init", "finite_result", "power_of_two_scale"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -208,3 +208,27 @@ def rebuilt_through_init(instance) -> tuple:
     """``__reduce__`` of a frozen dataclass with :func:`freeze_arrays`: ``(type, field values)``, so that pickle
     and :mod:`copy` rebuild it through ``__init__`` (read-only arrays, no cached data carried over)."""
     return type(instance), tuple(getattr(instance, field.name) for field in dataclasses.fields(instance))
+
+
+def finite_result(names: str, value, unit: str = ""):
+    """A computed ``value`` as floats; ValueError naming the inputs ``names`` unless every element is finite.
+
+    For results that overflow double precision (or become NaN) at extreme but finite inputs: the message
+    names the inputs responsible, e.g. ``finite_result("pitch_radius, lead", curvature, "1/m")``.
+    """
+    array = np.asarray(value, dtype=float)
+    bad = ~np.isfinite(array)
+    if np.any(bad):
+        raise ValueError(f"{names}: the result overflows double precision{_unit(unit)} (got "
+                         f"{_shown(array, bad, value)}); use inputs of a physical size")
+    return _out(array)
+
+
+def power_of_two_scale(value) -> float:
+    """A power of two ``2**k`` near ``max |value|`` (1.0 for zeros): dividing lengths by it is exact in binary
+    floating point, so a computation on the scaled values gives bit-identical results wherever the unscaled one
+    neither overflows nor underflows (e.g. squares of 1e300 m or 1e-300 m)."""
+    peak = float(np.max(np.abs(np.asarray(value, dtype=float))))
+    if peak == 0.0 or not math.isfinite(peak):
+        return 1.0
+    return math.ldexp(1.0, math.frexp(peak)[1])

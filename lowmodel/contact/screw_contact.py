@@ -50,7 +50,9 @@ def preload_contact_load(preload: float, ball_count: int, lead_angle: float, con
     ball_count = checks.count("ball_count", ball_count, 2)
     lead_angle = checks.lead_angle("lead_angle", lead_angle)
     contact_angle = checks.contact_angle("contact_angle", contact_angle)
-    return preload / (ball_count / 2 * math.cos(lead_angle) * math.sin(contact_angle))  # sun2021 eq 1
+    with np.errstate(over="ignore"):
+        load = preload / np.float64(ball_count / 2 * math.cos(lead_angle) * math.sin(contact_angle))  # sun2021 eq 1
+    return checks.finite_result("preload, contact_angle", load, "N")
 
 
 def hertz_pressure(grid: halfspace.SurfaceGrid, a: float, b: float, p0: float, angle: float = 0.0,
@@ -58,12 +60,18 @@ def hertz_pressure(grid: halfspace.SurfaceGrid, a: float, b: float, p0: float, a
     """Hertz pressure ``p0 sqrt(1 - x'^2/a^2 - y'^2/b^2)`` [Pa] on the grid (sun2021 eq 13; Johnson eq 4.39).
 
     ``(x', y')`` the frame rotated by ``angle`` [rad] about ``centre`` [m]; shape ``(nx, ny)``.
+    Semi-axes ``a``, ``b`` [m] > 0, ``p0`` [Pa] >= 0.
     """
+    a, b = checks.positive("a", a, "m"), checks.positive("b", b, "m")
+    p0 = checks.non_negative("p0", p0, "Pa")
+    angle = checks.finite("angle", angle, "rad")
+    centre = checks.finite("centre", checks.trailing_axis("centre", centre, 2, "(x, y)", "m"), "m")
     X, Y = grid.coordinates()
     X, Y = X - centre[0], Y - centre[1]
     c, s = math.cos(angle), math.sin(angle)
     xr, yr = c * X + s * Y, -s * X + c * Y
-    return p0 * np.sqrt(np.maximum(1.0 - (xr / a) ** 2 - (yr / b) ** 2, 0.0))
+    with np.errstate(over="ignore"):  # far outside a tiny ellipse the squares overflow to inf: pressure 0
+        return p0 * np.sqrt(np.maximum(1.0 - (xr / a) ** 2 - (yr / b) ** 2, 0.0))
 
 
 @dataclass(frozen=True)
@@ -118,6 +126,8 @@ def groove_contact(ball_radius: float, conformity: float, pitch_radius: float, l
     of ``n x n`` cells over ``margin`` times the full-tensor Hertz semi-axes.
     """
     force = checks.positive("force", force, "N")
+    n = checks.count("n", n, 8)
+    margin = checks.bounded("margin", margin, 1.0, 10.0, note="grid half-width over the Hertz semi-axes")
     groove = groove_geometry.helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank)
     frame = groove_geometry.contact_frame(groove)
     ball = (1.0 / groove.ball_radius, 1.0 / groove.ball_radius)
@@ -143,7 +153,13 @@ def groove_contact(ball_radius: float, conformity: float, pitch_radius: float, l
     gap = groove_geometry.pair_initial_gap(ball_radius, conformity, pitch_radius, lead, contact_angle, body,
                                            flank=flank)(X, Y)
     gap -= gap.min()  # first touch at the lowest cell centre (the exact gap is 0 at the origin, >= 0 nearby)
-    bem = halfspace.solve(gap, grid, full_geometry.contact_modulus, force=force)
+    try:
+        bem = halfspace.solve(gap, grid, full_geometry.contact_modulus, force=force)
+    except ValueError as error:
+        if "edge of the grid" not in str(error):
+            raise
+        raise ValueError(f"margin: the BEM contact on the exact gap reaches the edge of the grid of {margin!r} times "
+                         f"the Hertz semi-axes ({n} x {n} cells); increase margin or n") from None
     return GrooveContact(force=force, frame=frame, profile_direction=profile_direction, hertz=full,
                          hertz_angle=_wrap_half_turn(-profile_direction), bem=bem,
                          bem_angle=_wrap_half_turn(bem.ellipse_angle - profile_direction), forced=forced,

@@ -82,8 +82,13 @@ MAX_DEVIATION = math.radians(15.0)  # largest contact angle deviation of a flank
 
 
 def groove_radius(ball_radius, conformity):
-    """Flank radius ``r_g = conformity * 2 R_B`` [m] (lin2019 Sec 2.3.1: ``conf = R_G / 2 R_B``)."""
-    return conformity * 2.0 * ball_radius
+    """Flank radius ``r_g = conformity * 2 R_B`` [m] (lin2019 Sec 2.3.1: ``conf = R_G / 2 R_B``).
+
+    ``ball_radius`` [m] > 0, ``conformity`` in (0.5, 1) (:func:`lowmodel.checks.conformity`).
+    """
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    with np.errstate(over="ignore"):
+        return checks.finite_result("ball_radius", checks.conformity("conformity", conformity) * 2.0 * radius, "m")
 
 
 # --------------------------------------------------------------------------
@@ -96,8 +101,9 @@ def straight_groove_curvatures(ball_radius: float, conformity: float) -> tuple[f
     (the major axis ``a`` of a ball's Hertz ellipse), ``along`` the groove.
     ``ball_radius`` [m] > 0, ``conformity`` in (0.5, 1).
     """
-    radius = checks.positive("ball_radius", ball_radius, "m")
-    return -1.0 / groove_radius(radius, checks.conformity("conformity", conformity)), 0.0
+    with np.errstate(over="ignore", divide="ignore"):
+        across = checks.finite_result("ball_radius", -1.0 / np.float64(groove_radius(ball_radius, conformity)), "1/m")
+    return across, 0.0
 
 
 @dataclass(frozen=True)
@@ -319,9 +325,13 @@ def helical_groove(ball_radius: float, conformity: float, pitch_radius: float, l
     body = checks.choice("body", body, BODIES)
     flank = checks.choice("flank", flank, FLANKS)
     profile_plane = checks.choice("profile_plane", profile_plane, PROFILE_PLANES)
-    if body == "screw" and pitch_radius <= groove_radius(ball_radius, conformity):
+    if pitch_radius <= groove_radius(ball_radius, conformity):
         raise ValueError(f"pitch_radius must exceed the groove radius 2 conformity ball_radius "
-                         f"= {groove_radius(ball_radius, conformity)!r} m for a screw groove, got {pitch_radius!r}")
+                         f"= {groove_radius(ball_radius, conformity)!r} m (the screw groove must not reach the axis; "
+                         f"a nut groove needs that screw), got {pitch_radius!r}")
+    if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
+        raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
+                         f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {lead!r}")
     return HelicalGroove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
 
 
@@ -353,6 +363,7 @@ class ContactFrame:
         return np.stack([self.major, self.minor, self.normal])
 
 
+@np.errstate(over="ignore", invalid="ignore", divide="ignore")  # overflow is detected and raised below
 def contact_frame(groove: HelicalGroove) -> ContactFrame:
     """Exact contact frame at the profile contact point (phi = 0) from the first and
     second fundamental forms of ``S(theta, phi)`` (module docstring): the one
@@ -379,6 +390,8 @@ def contact_frame(groove: HelicalGroove) -> ContactFrame:
         normal = -normal
     first = np.array([[s_t @ s_t, s_t @ s_p], [s_t @ s_p, s_p @ s_p]])
     second = np.array([[s_tt @ normal, s_tp @ normal], [s_tp @ normal, s_pp @ normal]])
+    if not (np.all(np.isfinite(first)) and np.all(np.isfinite(second)) and np.linalg.det(first) > 0.0):
+        _out_of_range(groove)
     # convex-positive curvature (seen from the ball) = -eigenvalues of I^-1 II
     values, vectors = np.linalg.eig(-np.linalg.solve(first, second))
     values, vectors = values.real, vectors.real
@@ -392,10 +405,18 @@ def contact_frame(groove: HelicalGroove) -> ContactFrame:
     if minor @ s_p < 0.0:
         minor = -minor
     major = np.cross(minor, normal)
+    if not all(np.all(np.isfinite(v)) for v in (values, normal, major, minor, point)):
+        _out_of_range(groove)
     angle = math.acos(min(1.0, abs(major @ profile_dir)))
     return ContactFrame(point=point, normal=normal, major=major, minor=minor,
                         curvature_major=float(values[i_major]), curvature_minor=float(values[1 - i_major]),
                         ball_centre=point + groove.ball_radius * normal, profile_angle=angle)
+
+
+def _out_of_range(groove: HelicalGroove):
+    raise ValueError(f"groove: the fundamental forms of this groove leave the float range (pitch_radius "
+                     f"{groove.pitch_radius!r} m, ball_radius {groove.ball_radius!r} m, lead {groove.lead!r} m); "
+                     f"use lengths of a physical size")
 
 
 def groove_curvatures_helical(ball_radius: float, conformity: float, pitch_radius: float, contact_angle: float,
@@ -435,8 +456,10 @@ def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndar
     Solves ``Q (S(theta, phi) - P) = (x, y, z)`` for ``(theta, phi, z)`` by Newton
     from the contact (theta_c, 0); valid over the groove flank around the contact.
     """
+    iterations = checks.count("iterations", iterations, 1)
     frame = contact_frame(groove)
-    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+    x, y = np.broadcast_arrays(np.asarray(checks.finite("x", x, "m"), dtype=float),
+                               np.asarray(checks.finite("y", y, "m"), dtype=float))
     shape = x.shape
     target = np.stack([x.ravel(), y.ravel()], 1)
     rotation = frame.rotation
@@ -493,7 +516,9 @@ def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> 
 
     Solves ``(X - H(phi)) . m(phi) = 0`` (m: the profile-plane normal) by Newton.
     """
-    points = np.atleast_2d(np.asarray(points, dtype=float))
+    iterations = checks.count("iterations", iterations, 1)
+    points = np.atleast_2d(np.asarray(checks.finite("points", checks.trailing_axis("points", points, 3, "(x, y, z)"),
+                                                    "m"), dtype=float))
     e1 = np.array([1.0, 0.0, 0.0])
     c = groove.plane_axis
     m0 = np.cross(e1, c)
@@ -521,6 +546,6 @@ def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> 
 def surface_residual(groove: HelicalGroove, points, radius: float | None = None) -> np.ndarray:
     """Signed in-plane distance [m] of world ``points`` (n, 3) from the helical arc
     surface of radius ``radius`` (default ``r_g``) about this flank's arc centre."""
+    r = groove.groove_radius if radius is None else checks.positive("radius", radius, "m")
     _, uw = profile_coordinates(groove, points)
-    r = groove.groove_radius if radius is None else radius
     return np.linalg.norm(uw - groove.arc_centre, axis=1) - r

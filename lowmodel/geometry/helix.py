@@ -85,21 +85,28 @@ def lead_from_angle(lead_angle, pitch_radius) -> np.ndarray:
     ``lead_angle`` [rad] in [0, pi/2), ``pitch_radius`` r_m [m] > 0.
     """
     angle = checks.lead_angle("lead_angle", lead_angle)
-    return 2.0 * np.pi * checks.positive("pitch_radius", pitch_radius, "m") * np.tan(angle)
+    with np.errstate(over="ignore"):
+        lead = 2.0 * np.pi * checks.positive("pitch_radius", pitch_radius, "m") * np.tan(angle)
+    return checks.finite_result("lead_angle, pitch_radius", lead, "m")
 
 
 def curvature(pitch_radius, lead) -> np.ndarray:
     """Curvature ``kappa = r_m / (r_m^2 + h^2)`` [1/m] of the ball-centre helix."""
-    radius = checks.positive("pitch_radius", pitch_radius, "m")
-    h = helix_parameter(lead)
-    return radius / (radius**2 + h**2)
+    return _over_squared_length(checks.positive("pitch_radius", pitch_radius, "m"), pitch_radius, lead)
 
 
 def torsion(pitch_radius, lead) -> np.ndarray:
     """Torsion ``tau = h / (r_m^2 + h^2)`` [1/m] of the ball-centre helix (> 0: right hand)."""
+    return _over_squared_length(helix_parameter(lead), pitch_radius, lead)
+
+
+def _over_squared_length(numerator, pitch_radius, lead) -> np.ndarray:
+    """``numerator / (r_m^2 + h^2)`` [1/m] as ``(numerator / s) / s`` with ``s = hypot(r_m, h)``: no overflow of
+    the squares at huge lengths; ValueError if the result itself leaves the float range (r_m, h ~ 1e-308 m)."""
     radius = checks.positive("pitch_radius", pitch_radius, "m")
-    h = helix_parameter(lead)
-    return h / (radius**2 + h**2)
+    size = np.hypot(radius, helix_parameter(lead))
+    with np.errstate(over="ignore"):
+        return checks.finite_result("pitch_radius, lead", np.float64(numerator) / size / size, "1/m")
 
 
 # --------------------------------------------------------------------------
@@ -116,7 +123,9 @@ def ball_centre(theta, pitch_radius, lead, screw_angle=0.0) -> np.ndarray:
     h = helix_parameter(lead)
     phi = checks.finite("screw_angle", screw_angle)
     theta, radius, h, phi = np.broadcast_arrays(theta, radius, h, phi)
-    return np.stack([radius * np.cos(theta), radius * np.sin(theta), h * (theta - phi)], axis=-1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        centre = np.stack([radius * np.cos(theta), radius * np.sin(theta), h * (theta - phi)], axis=-1)
+    return checks.finite_result("theta, pitch_radius, lead, screw_angle", centre, "m")
 
 
 def ball_centre_velocity(orbital_speed, screw_speed, pitch_radius, lead, lead_angle=None) -> np.ndarray:
@@ -134,11 +143,13 @@ def ball_centre_velocity(orbital_speed, screw_speed, pitch_radius, lead, lead_an
     h = helix_parameter(lead)
     psi = _lead_angle(lead, radius) if lead_angle is None else checks.lead_angle("lead_angle", lead_angle)
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
-    tangential = omega_m * radius
-    axial = (omega_m - omega) * h
-    return np.stack(np.broadcast_arrays(tangential * cos_psi + axial * sin_psi,
-                                        np.zeros_like(tangential + axial),
-                                        -tangential * sin_psi + axial * cos_psi), axis=-1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        tangential = omega_m * radius
+        axial = (omega_m - omega) * h
+        velocity = np.stack(np.broadcast_arrays(tangential * cos_psi + axial * sin_psi,
+                                                np.zeros_like(tangential + axial),
+                                                -tangential * sin_psi + axial * cos_psi), axis=-1)
+    return checks.finite_result("orbital_speed, screw_speed, pitch_radius, lead", velocity, "m/s")
 
 
 def frenet_frame(theta, lead_angle) -> np.ndarray:
@@ -159,8 +170,8 @@ def frenet_frame(theta, lead_angle) -> np.ndarray:
 
 
 def rotation_z(phi) -> np.ndarray:
-    """Rotation matrices ``rot_z(phi)`` about the screw axis, shape ``(..., 3, 3)`` (lin2019 eq 41)."""
-    phi = np.asarray(phi, dtype=float)
+    """Rotation matrices ``rot_z(phi)`` about the screw axis, shape ``(..., 3, 3)`` (lin2019 eq 41); ``phi`` [rad]."""
+    phi = np.asarray(checks.finite("phi", phi, "rad"), dtype=float)
     c, s = np.cos(phi), np.sin(phi)
     zero, one = np.zeros_like(phi), np.ones_like(phi)
     return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
@@ -198,12 +209,24 @@ def frame_angular_velocity(orbital_speed, lead_angle) -> np.ndarray:
 
 def to_global(frame, vector_frenet) -> np.ndarray:
     """Frenet components ``(t, n, b)`` -> CS0 components, ``frame @ v`` (wang2022 eq 7)."""
-    return np.einsum("...ij,...j->...i", frame, vector_frenet)
+    return _rotate("...ij,...j->...i", frame, "vector_frenet", vector_frenet)
 
 
 def to_frenet(frame, vector_global) -> np.ndarray:
     """CS0 components -> Frenet components, ``frame.T @ v`` (wang2022 eq 8)."""
-    return np.einsum("...ji,...j->...i", frame, vector_global)
+    return _rotate("...ji,...j->...i", frame, "vector_global", vector_global)
+
+
+def _rotate(subscripts: str, frame, name: str, vector) -> np.ndarray:
+    """``frame`` (..., 3, 3) applied to ``vector`` (..., 3) by ``subscripts``; ValueError naming the bad one."""
+    matrix = checks.real("frame", frame)
+    if matrix.ndim < 2 or matrix.shape[-2:] != (3, 3):
+        raise ValueError(f"frame must have shape (..., 3, 3) (rotation matrices), got shape {matrix.shape}")
+    vector = checks.trailing_axis(name, vector, 3, "(t, n, b) or (x, y, z)")
+    try:
+        return np.einsum(subscripts, matrix, vector)
+    except ValueError:
+        raise ValueError(f"frame of shape {matrix.shape} and {name} of shape {vector.shape} do not broadcast") from None
 
 
 def contact_offset(ball_radius, contact_angle, body: str) -> np.ndarray:
@@ -247,9 +270,14 @@ def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> fl
     p = float(helix_parameter(lead))
     spacing = checks.bounded("spacing", spacing, 0.0, 2.0 * pitch_radius, "m", upper_closed=True,
                              note="the chord between two ball centres, at most the pitch diameter")
+    # lengths over a power of two (exact: the same bits wherever the squares below stay in the float range)
+    unit = checks.power_of_two_scale(max(pitch_radius, p))
+    pitch_radius, p, spacing = pitch_radius / unit, p / unit, spacing / unit
     dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
     for iteration in range(50):
         chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
+        if chord2 == spacing**2:  # exact root (also where the step would be 0 / 0)
+            return dphi
         slope = 2 * pitch_radius**2 * math.sin(dphi) + 2 * p**2 * dphi
         step = (chord2 - spacing**2) / slope
         dphi -= step

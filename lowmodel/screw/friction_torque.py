@@ -34,7 +34,9 @@ __all__ = ["screw_angular_speed", "ContactSpeeds", "contact_speeds", "friction_t
 def screw_angular_speed(surface_speed, pitch_radius: float):
     """Screw angular speed omega [rad/s] from sun2021's screw speed ``Omega' = omega r`` [m/s]."""
     r = checks.positive("pitch_radius", pitch_radius, "m")
-    return checks.finite("surface_speed", surface_speed, "m/s") / r
+    speed = checks.finite("surface_speed", surface_speed, "m/s")
+    with np.errstate(over="ignore"):
+        return checks.finite_result("surface_speed, pitch_radius", np.divide(speed, r), "rad/s")
 
 
 @dataclass(frozen=True)
@@ -83,11 +85,16 @@ def friction_torque(friction_coefficient, load_B, sliding_B, *, ball_count: int,
     r = checks.positive("pitch_radius", pitch_radius, "m")
     r_b = checks.positive("ball_radius", ball_radius, "m")
     beta = checks.contact_angle("contact_angle_B", contact_angle_B)
-    sliding = checks.trailing_axis("sliding_B", sliding_B, 3, "tnb", "m/s")
+    sliding = checks.finite("sliding_B", checks.trailing_axis("sliding_B", sliding_B, 3, "tnb", "m/s"), "m/s")
+    # only its direction counts: each row over a power of two near its largest component (exact, the same
+    # direction to the bit) so that |sliding_B| neither overflows nor underflows
+    sliding = np.ldexp(sliding, -np.frexp(np.max(np.abs(sliding), axis=-1, keepdims=True))[1])
     speed = np.linalg.norm(sliding, axis=-1)
     if np.any(speed == 0.0):
         raise ValueError("sliding_B must be non-zero (it sets the direction of the friction force)")
-    force = (mu * q / speed)[..., None] * sliding  # friction force mu Q_B along the sliding velocity
-    lever = r + r_b * math.cos(beta)
-    torque = n_bb * (force[..., 0] * math.cos(alpha) + force[..., 2] * math.sin(alpha)) * lever  # sun2021 eq 20
+    with np.errstate(over="ignore", invalid="ignore"):
+        force = (mu * q / speed)[..., None] * sliding  # friction force mu Q_B along the sliding velocity
+        lever = r + r_b * math.cos(beta)
+        torque = n_bb * (force[..., 0] * math.cos(alpha) + force[..., 2] * math.sin(alpha)) * lever  # sun2021 eq 20
+    torque = checks.finite_result("friction_coefficient, load_B, pitch_radius, ball_radius", torque, "N m")
     return np.abs(torque) if np.ndim(torque) else abs(float(torque))

@@ -82,29 +82,61 @@ def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
     return np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + gamma))  # wang2022 eq 21
 
 
+def _radius_ratio(ball_radius, pitch_radius):
+    """gamma' = r_b / r_m of wang2022, with r_b, r_m [m] > 0 and r_b < r_m (ball inside the pitch circle)."""
+    r_b = checks.positive("ball_radius", ball_radius, "m")
+    r_m = checks.positive("pitch_radius", pitch_radius, "m")
+    if np.any(r_b >= r_m):
+        raise ValueError(f"ball_radius must be < pitch_radius (ball inside the pitch circle), "
+                         f"got ball_radius={ball_radius!r}, pitch_radius={pitch_radius!r}")
+    return r_b / r_m
+
+
 def orbital_speed(screw_speed, ball_radius, pitch_radius, contact_angle_nut, contact_angle_screw,
                   pitch_angle_rad) -> np.ndarray:
-    """Orbital angular speed omega_m = theta' [rad/s] of the ball (wang2022 eq 18)."""
-    omega = checks.finite("screw_speed", screw_speed)
-    gamma = ball_radius / pitch_radius
-    alpha_o, alpha_i, tan_beta = contact_angle_nut, contact_angle_screw, np.tan(pitch_angle_rad)
+    """Orbital angular speed omega_m = theta' [rad/s] of the ball (wang2022 eq 18).
+
+    ``screw_speed`` [rad/s]; radii [m] > 0 with ``ball_radius < pitch_radius``; contact angles and the
+    pitch angle beta (eq 21) [rad] in (0, pi/2).
+    """
+    omega = checks.finite("screw_speed", screw_speed, "rad/s")
+    gamma = _radius_ratio(ball_radius, pitch_radius)
+    alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
+    alpha_i = checks.contact_angle("contact_angle_screw", contact_angle_screw)
+    tan_beta = np.tan(checks.contact_angle("pitch_angle_rad", pitch_angle_rad))
     ratio = ((1.0 + gamma * np.cos(alpha_o)) * (np.cos(alpha_i) + tan_beta * np.sin(alpha_i))
              / ((1.0 - gamma * np.cos(alpha_i)) * (np.cos(alpha_o) + tan_beta * np.sin(alpha_o))))
-    return omega / (1.0 + ratio)  # wang2022 eq 18
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        speed = omega / (1.0 + ratio)  # wang2022 eq 18
+    return checks.finite_result("screw_speed, ball_radius, pitch_radius", speed, "rad/s")
 
 
 def ball_spin_speed(orbital_speed_rad_s, ball_radius, pitch_radius, contact_angle_nut, lead_angle,
                     pitch_angle_rad) -> np.ndarray:
-    """Ball spin speed omega_R [rad/s] about its own axis, relative to the Frenet frame (wang2022 eq 19)."""
-    gamma = ball_radius / pitch_radius
-    alpha_o, beta = contact_angle_nut, pitch_angle_rad
-    return (orbital_speed_rad_s * (1.0 + gamma * np.cos(alpha_o)) * np.cos(lead_angle)
-            / (gamma * (np.cos(beta) * np.cos(alpha_o) + np.sin(beta) * np.sin(alpha_o))))  # wang2022 eq 19
+    """Ball spin speed omega_R [rad/s] about its own axis, relative to the Frenet frame (wang2022 eq 19).
+
+    ``orbital_speed_rad_s`` [rad/s]; radii [m] > 0 with ``ball_radius < pitch_radius``; ``contact_angle_nut``
+    and the pitch angle [rad] in (0, pi/2), ``lead_angle`` [rad] in [0, pi/2).
+    """
+    omega_m = checks.finite("orbital_speed_rad_s", orbital_speed_rad_s, "rad/s")
+    gamma = _radius_ratio(ball_radius, pitch_radius)
+    alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
+    beta = checks.contact_angle("pitch_angle_rad", pitch_angle_rad)
+    psi = checks.lead_angle("lead_angle", lead_angle)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        spin = (omega_m * (1.0 + gamma * np.cos(alpha_o)) * np.cos(psi)
+                / (gamma * (np.cos(beta) * np.cos(alpha_o) + np.sin(beta) * np.sin(alpha_o))))  # wang2022 eq 19
+    return checks.finite_result("orbital_speed_rad_s, ball_radius, pitch_radius", spin, "rad/s")
 
 
 def ball_angular_velocity(spin_speed, pitch_angle_rad, yaw_angle=0.0) -> np.ndarray:
-    """Ball angular velocity vector (omega_t, omega_n, omega_b) [rad/s] in CS1 (wang2022 eq 20)."""
-    spin, beta, yaw = np.broadcast_arrays(spin_speed, pitch_angle_rad, yaw_angle)
+    """Ball angular velocity vector (omega_t, omega_n, omega_b) [rad/s] in CS1 (wang2022 eq 20).
+
+    ``spin_speed`` [rad/s], ``pitch_angle_rad`` and ``yaw_angle`` [rad], all finite.
+    """
+    spin, beta, yaw = np.broadcast_arrays(checks.finite("spin_speed", spin_speed, "rad/s"),
+                                          checks.finite("pitch_angle_rad", pitch_angle_rad, "rad"),
+                                          checks.finite("yaw_angle", yaw_angle, "rad"))
     return np.stack([spin * np.cos(beta) * np.sin(yaw), -spin * np.sin(beta),
                      -spin * np.cos(beta) * np.cos(yaw)], axis=-1)  # wang2022 eq 20
 
@@ -113,29 +145,51 @@ def centrifugal_force(ball_mass, pitch_radius, orbital_speed_rad_s) -> np.ndarra
     """Centrifugal force F_n = m r_m omega_m^2 [N] on the ball, along -n (wang2022 eq 22)."""
     mass = checks.positive("ball_mass", ball_mass, "kg")
     radius = checks.positive("pitch_radius", pitch_radius, "m")
-    return mass * radius * np.asarray(orbital_speed_rad_s, dtype=float) ** 2  # wang2022 eq 22
+    omega_m = np.asarray(checks.finite("orbital_speed_rad_s", orbital_speed_rad_s, "rad/s"), dtype=float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        force = mass * radius * omega_m ** 2  # wang2022 eq 22
+    return checks.finite_result("ball_mass, pitch_radius, orbital_speed_rad_s", force, "N")
 
 
 # --------------------------------------------------------------------------
 # entrainment and slide-roll ratio, wang2022 eqs 1-6
 # --------------------------------------------------------------------------
 def entrainment_velocity(velocity_1, velocity_2) -> np.ndarray:
-    """U = |v_1 + v_2| / 2 [m/s] of two surface velocities ``(..., 3)`` (wang2022 eqs 1-2)."""
-    return 0.5 * _norm(np.asarray(velocity_1) + np.asarray(velocity_2))
+    """U = |v_1 + v_2| / 2 [m/s] of two surface velocities ``(..., 3)`` [m/s] (wang2022 eqs 1-2)."""
+    v_1 = checks.finite("velocity_1", checks.trailing_axis("velocity_1", velocity_1, 3, "(t, n, b)", "m/s"), "m/s")
+    v_2 = checks.finite("velocity_2", checks.trailing_axis("velocity_2", velocity_2, 3, "(t, n, b)", "m/s"), "m/s")
+    with np.errstate(over="ignore"):
+        return checks.finite_result("velocity_1, velocity_2", 0.5 * _norm(v_1 + v_2), "m/s")
 
 
 def slide_roll_ratio(sliding_velocity, entrainment) -> np.ndarray:
-    """S = |V_S| / U (wang2022 eq 4) of a sliding velocity ``(..., 3)``; 0 where both are exactly zero."""
-    return slide_roll_ratio_magnitude(_norm(np.asarray(sliding_velocity)), entrainment)
+    """S = |V_S| / U (wang2022 eq 4) of a sliding velocity ``(..., 3)`` [m/s] and the entrainment U [m/s] >= 0;
+    0 where both are exactly zero; ValueError where U = 0 < |V_S| (no entrainment: S undefined)."""
+    sliding = checks.finite("sliding_velocity", checks.trailing_axis("sliding_velocity", sliding_velocity, 3,
+                                                                     "(t, n, b)", "m/s"), "m/s")
+    entrainment = checks.non_negative("entrainment", entrainment, "m/s")
+    return _slide_roll(_norm(sliding), entrainment, "sliding_velocity, entrainment")
 
 
 def slide_roll_ratio_magnitude(sliding_speed, entrainment) -> np.ndarray:
-    """S = |V_S| / U (wang2022 eq 4) from the sliding speed |V_S|; 0 where both are exactly zero (contact at rest)."""
-    sliding = np.asarray(sliding_speed, dtype=float)
+    """S = |V_S| / U (wang2022 eq 4) from the sliding speed |V_S| [m/s] >= 0 and the entrainment U [m/s] >= 0;
+    0 where both are exactly zero (contact at rest); ValueError where U = 0 < |V_S| (S undefined)."""
+    sliding = checks.non_negative("sliding_speed", sliding_speed, "m/s")
+    entrainment = checks.non_negative("entrainment", entrainment, "m/s")
+    return _slide_roll(sliding, entrainment, "sliding_speed, entrainment")
+
+
+def _slide_roll(sliding, entrainment, names: str) -> np.ndarray:
+    """wang2022 eq 4 on checked magnitudes; ValueError naming ``names`` where S is undefined or overflows."""
+    sliding = np.asarray(sliding, dtype=float)
     entrainment = np.asarray(entrainment, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ratio = sliding / entrainment
-    return np.where((sliding == 0.0) & (entrainment == 0.0), 0.0, ratio)
+    ratio = np.where((sliding == 0.0) & (entrainment == 0.0), 0.0, ratio)
+    if not np.all(np.isfinite(ratio)):
+        raise ValueError(f"{names}: the slide-roll ratio |V_S| / U is undefined or beyond the float range where "
+                         f"the entrainment U is 0 (or ~1e-308 times |V_S|) and the sliding is not")
+    return ratio
 
 
 def absolute_velocity_measures(raceway_velocity, ball_velocity, *, raceway_is_driver: bool):
@@ -147,11 +201,17 @@ def absolute_velocity_measures(raceway_velocity, ball_velocity, *, raceway_is_dr
     and ``raceway - ball`` at the screw (eq 6, ``raceway_is_driver=True``).
     Returns ``(U, V_S, S)``.
     """
-    raceway = np.asarray(raceway_velocity, dtype=float)
-    ball = np.asarray(ball_velocity, dtype=float)
-    entrainment = entrainment_velocity(raceway, ball)  # wang2022 eqs 1-2
-    sliding = raceway - ball if raceway_is_driver else ball - raceway  # wang2022 eqs 5-6
-    return entrainment, sliding, slide_roll_ratio(sliding, entrainment)  # wang2022 eq 4
+    raceway = checks.finite("raceway_velocity", checks.trailing_axis("raceway_velocity", raceway_velocity, 3,
+                                                                     "(t, n, b)", "m/s"), "m/s")
+    ball = checks.finite("ball_velocity", checks.trailing_axis("ball_velocity", ball_velocity, 3, "(t, n, b)", "m/s"),
+                         "m/s")
+    names = "raceway_velocity, ball_velocity"
+    with np.errstate(over="ignore", invalid="ignore"):
+        entrainment = checks.finite_result(names, 0.5 * _norm(raceway + ball), "m/s")  # wang2022 eqs 1-2
+        sliding = checks.finite_result(names, raceway - ball if raceway_is_driver else ball - raceway,
+                                       "m/s")  # wang2022 eqs 5-6
+        speed = checks.finite_result(names, _norm(sliding), "m/s")
+    return entrainment, sliding, _slide_roll(speed, entrainment, names)  # wang2022 eq 4
 
 
 # --------------------------------------------------------------------------
@@ -292,13 +352,13 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     u_a = 0.5 * _length(_add(nut_rel, ball_rel_a))  # wang2022 eq 1
     u_b = 0.5 * _length(_add(screw_rel, ball_rel_b))  # wang2022 eq 2
     slip_a, slip_b = _length(sliding_a), _length(sliding_b)
-    s_a = slide_roll_ratio_magnitude(slip_a, u_a)  # wang2022 eq 4
-    s_b = slide_roll_ratio_magnitude(slip_b, u_b)  # wang2022 eq 4
     if not all(np.all(np.isfinite(x)) for x in (slip_a, slip_b, u_a, u_b, _length(ball_a), _length(ball_b))):
         # every velocity is linear in omega: only a speed whose velocities exceed the float range gets here
         raise ValueError("screw_speed: the velocities overflow double precision (|screw_speed| * pitch_radius "
                          "must stay well below 1e308 m/s); got screw_speed up to "
                          f"{float(np.max(np.abs(omega)))!r} rad/s")
+    s_a = _slide_roll(slip_a, u_a, "screw_speed")  # wang2022 eq 4
+    s_b = _slide_roll(slip_b, u_b, "screw_speed")  # wang2022 eq 4
     (omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a, ball_rel_b,
      sliding_a, sliding_b) = (np.stack(v, axis=-1) for v in (
         omega_ball, nut, screw, ball_a, ball_b, convected_a, convected_b, nut_rel, screw_rel, ball_rel_a,

@@ -32,6 +32,7 @@ from functools import cached_property
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import screw_ball as sb
 
 __all__ = ["BarSections", "bar_sections", "AxialStiffness", "axial_stiffness", "distribute"]
@@ -54,7 +55,10 @@ def bar_sections(module: sb.ScrewModule, *, screw_radius: float | None = None,
     outer = 1.7 * module.pitch_radius if nut_outer_radius is None else nut_outer_radius
     screw_radius = checks.positive("screw_radius", screw_radius, "m")
     outer = checks.bounded("nut_outer_radius", outer, inner, math.inf, "m", note="beyond R_P + R_B")
-    return BarSections(math.pi * screw_radius**2, math.pi * (outer**2 - inner**2))
+    with np.errstate(over="ignore"):
+        screw_area = checks.finite_result("screw_radius", math.pi * np.float64(screw_radius) ** 2, "m^2")
+        nut_area = checks.finite_result("nut_outer_radius", math.pi * (np.float64(outer) ** 2 - inner**2), "m^2")
+    return BarSections(screw_area, nut_area)
 
 
 @dataclass(frozen=True)
@@ -107,12 +111,22 @@ def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *
     points = checks.count("points", points, 4)
     loads = np.linspace(0.0, max_load, points)
     contacts = sb.ball_contacts(module, 0.0, contact_law=contact_law)
+    try:   # the largest load of the table must still be a Hertz contact (screw_ball.reference_force)
+        sb.reference_force(contacts, max_load)
+    except ValueError as error:
+        raise ValueError(f"max_load: {error}") from None
     shifts = np.array([sb.solve_balls(contacts, float(q)).nut_shift for q in loads])
     steps = np.diff(shifts)
     if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
         raise ValueError("the ball's axial shift is not monotone in its load on [0, max_load]; "
                          "reduce max_load or increase the preload")
     return AxialStiffness(loads, shifts)
+
+
+def _swamped(offset, low, high):
+    raise ValueError(f"positions, lead, lead_error, youngs_modulus: the offsets of the balls (up to "
+                     f"{float(np.max(np.abs(offset)))!r} m) swamp the range of the ball's shift table "
+                     f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
 
 
 def distribute(positions, total_load: float, stiffness: AxialStiffness, sections: BarSections, lead: float,
@@ -128,19 +142,29 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
     """
     from scipy.optimize import brentq
 
+    from ballbench.lowmodel.solvers import check_solver_options
+
+    check_solver_options(tolerance, max_iterations)
     psi = np.asarray(checks.non_negative("positions", positions, "rad"), dtype=float).reshape(-1)
     total = checks.non_negative("total_load", total_load, "N")
+    lead = checks.non_negative("lead", lead, "m")
+    youngs_modulus = checks.positive("youngs_modulus", youngs_modulus, "Pa")
     n = psi.size
     if total == 0.0:
         return np.zeros(n)
     if total > n * stiffness.loads[-1]:
         raise ValueError(f"total_load must be at most n * max_load of the stiffness table = "
                          f"{n * stiffness.loads[-1]!r} N, got {total!r}")
-    z = lead * psi / (2.0 * math.pi)
-    geometric = checks.finite("lead_error", lead_error, "m per turn") * psi / (2.0 * math.pi)
+    with np.errstate(over="ignore", invalid="ignore"):
+        z = checks.finite_result("lead, positions", lead * psi / (2.0 * math.pi), "m")
+        geometric = checks.finite_result("lead_error, positions", checks.finite(
+            "lead_error", lead_error, "m per turn") * psi / (2.0 * math.pi), "m")
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        compliance_s = checks.finite_result("youngs_modulus", 1.0 / np.float64(youngs_modulus * sections.screw_area),
+                                            "1/N")
+        compliance_n = checks.finite_result("youngs_modulus", 1.0 / np.float64(youngs_modulus * sections.nut_area),
+                                            "1/N")
     order = np.argsort(z)
-    compliance_s = 1.0 / (youngs_modulus * sections.screw_area)
-    compliance_n = 1.0 / (youngs_modulus * sections.nut_area)
     loads = np.full(n, total / n)
     low, high = stiffness.shifts.min(), stiffness.shifts.max()
     for _ in range(max_iterations):
@@ -156,9 +180,24 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         def mismatch(u0):
             return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)
 
-        u0 = brentq(mismatch, low - offset.max(), high + offset.max(), xtol=1e-16)
+        # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
+        # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold
+        shifted = sign * offset
+        start = min(low - offset.max(), low + shifted.min())
+        end = max(high + offset.max(), high + shifted.max())
+        if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change
+            _swamped(offset, low, high)
+        try:   # bisection may need ~1100 halvings where the offsets dwarf the table (absurd stiffness)
+            u0 = brentq(mismatch, start, end, xtol=1e-16, maxiter=2000)
+        except RuntimeError as error:
+            raise ConvergenceError(f"distribute: the nut shift u_0 was not found ({error})", residual=math.inf,
+                                   iterations=2000, tolerance=1e-16) from None
         new = stiffness.load(np.clip(u0 - sign * offset, low, high))
-        if np.max(np.abs(new - loads)) <= tolerance * total:
+        if abs(float(new.sum()) - total) > 1e-6 * total:   # the loads must carry the axial load (lost precision)
+            _swamped(offset, low, high)
+        change = float(np.max(np.abs(new - loads)))
+        if change <= tolerance * total:
             return new
         loads = new
-    return loads
+    raise ConvergenceError("distribute: the fixed-point iteration of the ball loads did not converge",
+                           residual=change / total, iterations=max_iterations, tolerance=tolerance)

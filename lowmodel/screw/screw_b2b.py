@@ -105,11 +105,12 @@ def _skew(v: np.ndarray) -> np.ndarray:
 
 
 def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius: float, mu: float,
-              pairs=None):
+              pairs=None, speed: float = 1.0):
     """B2B loads of touching pairs (eqs 57-59).
 
     spins (n, 3) rad/s in each ball's CS3; forces (p,) N (0 for open pairs); ``pairs``
-    (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``.
+    (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``; ``speed`` [rad/s] the motion's scale (e.g.
+    ``|omega_N|``): the slip floor of the friction direction is ``1e-14 R_B speed`` (scale-free).
     Returns (load (n, 6) [force N, moment N m] in each ball's CS3, d load / d spins (n, 6, n, 3),
     d load / d forces (n, 6, p), slip speeds (p,) m/s).
     """
@@ -130,7 +131,7 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     behind, ahead = pairs[:, 0], pairs[:, 1]
     slip = (spins[behind] + spins[ahead] @ rot.T) @ a_mat.T                 # (p, 3)
     speeds = np.sqrt(np.einsum("pi,pi->p", slip, slip))
-    norm = np.sqrt(speeds**2 + (_REGULARISATION * radius) ** 2)
+    norm = np.sqrt(speeds**2 + (_REGULARISATION * radius * speed) ** 2)
     direction = slip / norm[:, None]
     friction = -mu * forces[:, None] * direction                              # eq 58 on the ball behind
     force_behind = -forces[:, None] * pair.chord + friction
@@ -164,13 +165,19 @@ def fischer_burmeister(a, b):
     ``phi = a + b - sqrt(a^2 + b^2 + s^2)`` (``s`` a 1e-14 smoothing, differentiable at (0, 0));
     ``phi = 0`` is the complementarity.  Returns ``(phi, d phi / d a, d phi / d b)``, arrays like ``a``.
     """
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    root = np.sqrt(a * a + b * b + _FB_SMOOTHING**2)
+    a = np.asarray(checks.finite("a", a), dtype=float)
+    b = np.asarray(checks.finite("b", b), dtype=float)
+    with np.errstate(over="ignore"):
+        squared = a * a + b * b + _FB_SMOOTHING**2
+    root = np.sqrt(squared)
+    if not np.all(np.isfinite(root)):   # |a| or |b| beyond ~1e154: no overflow of the squares
+        root = np.where(np.isfinite(root), root, np.hypot(np.hypot(a, b), _FB_SMOOTHING))
     return a + b - root, 1.0 - a / root, 1.0 - b / root
 
 
 def check_gaps(gaps, count: int) -> np.ndarray:
-    """Azimuth gaps (count,) [rad] >= 0 beyond touching; ``None`` is all touching (zeros)."""
+    """Azimuth gaps (count,) [rad] >= 0 beyond touching; ``None`` is all touching (zeros); ``count`` >= 0 pairs."""
+    count = checks.count("count", count, 0)
     if gaps is None:
         return np.zeros(count)
     gaps = np.asarray(checks.non_negative("gaps", gaps, "rad (azimuth gap between neighbouring balls)"),
@@ -229,12 +236,12 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
 
 
 def saturation(state: sb.ScrewBallState) -> float:
-    """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding)."""
+    """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding; 0 if none)."""
     loaded = state.normal_force > 0.0
     spin = np.abs(state.spin * state.semi_major)[loaded]
     slide = np.abs(state.slip_minor)[loaded]
     with np.errstate(divide="ignore"):
-        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf)))
+        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
 
 
 def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
@@ -300,7 +307,8 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
             ball_residual = terms.residual.copy()
             if m:
                 loads_b2b, d_spin, d_force, _ = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair,
-                                                          module.ball_radius, module.friction_coefficient, pairs)
+                                                          module.ball_radius, module.friction_coefficient, pairs,
+                                                          abs(module.nut_speed))
                 for array in (loads_b2b, d_spin, d_force):
                     array[:, 3:] /= module.ball_radius
                 ball_residual += loads_b2b / scales.force
@@ -372,7 +380,7 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
     speeds = np.zeros(len(pairs))
     if len(pairs):
         speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
-                           module.friction_coefficient, pairs)[3]
+                           module.friction_coefficient, pairs, abs(module.nut_speed))[3]
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
     return sb.state_from(balls, shift * 1.0 if per_ball else shift[0], terms, scales, axial_load=total,
                          b2b_force=forces, b2b_loss=b2b_loss, iterations=iterations,

@@ -63,6 +63,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
@@ -134,6 +135,10 @@ def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int
     ``False``: projected radially onto the sphere, with the sphere's normal (a curved Hertz patch).
     Unloaded contacts are left out.
     """
+    ball = checks.count("ball", ball, 0, contacts.n_balls - 1)
+    if state.normal_force.shape != contacts.contact_angles.shape:
+        raise ValueError(f"state must be a solution of contacts: normal_force of shape {state.normal_force.shape}, "
+                         f"contacts of {contacts.n_balls} balls")
     u, v, w = ellipse_samples(n_radial, n_angular)
     radius = contacts.module.ball_radius
     patches = []

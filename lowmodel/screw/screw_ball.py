@@ -79,11 +79,14 @@ __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
     "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
     "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
-    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws",
+    "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws", "NUT_SPEED_RANGE",
+    "FRICTION_COEFFICIENT_MAX",
 ]
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
 DEVIATION_READINGS = ("rotated", "tilted")
+FRICTION_COEFFICIENT_MAX = 2.0  # mu in (0, 2]: residuals are scaled by mu F (friction would swamp the normal forces)
+NUT_SPEED_RANGE = (1e-100, 1e100)  # |omega_N| [rad/s]: quasi-static, any speed; the floats set the range
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
 # tanh-sinh level of friction_offset: 3 where every b/a >= 0.2 (measured error < 3e-8 there, tests), else 4
 FRICTION_LEVEL = {"coarse": 3, "fine": 4, "coarse_min_b_over_a": 0.2}
@@ -149,9 +152,12 @@ def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pit
     lead = checks.non_negative("lead", lead, "m (right-handed screw)")
     nominal_angle = checks.contact_angle("nominal_angle", nominal_angle)
     nut_speed = checks.finite("nut_speed", nut_speed, "rad/s")
-    if nut_speed == 0.0:
-        raise ValueError("nut_speed must be nonzero rad/s (the ball motion is undetermined at rest)")
-    mu = checks.positive("friction_coefficient", friction_coefficient)
+    if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
+        raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
+                         f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
+                         f"like 1 / speed and leaves the float range near 1e-300), got {nut_speed!r}")
+    mu = checks.bounded("friction_coefficient", friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX, upper_closed=True,
+                        note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
     youngs_modulus = checks.positive("youngs_modulus", youngs_modulus, "Pa")
     poisson_ratio = checks.bounded("poisson_ratio", poisson_ratio, -1.0, 0.5)
     oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
@@ -159,6 +165,9 @@ def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pit
     if pitch_radius <= 2.0 * conformity * ball_radius:
         raise ValueError(f"pitch_radius must exceed the groove radius {2 * conformity * ball_radius!r} m, "
                          f"got {pitch_radius!r}")
+    if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
+        raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
+                         f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {lead!r}")
     return ScrewModule(ball_radius, conformity, pitch_radius, lead, nominal_angle, nut_speed, mu, youngs_modulus,
                        poisson_ratio, oversize)
 
@@ -316,11 +325,16 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     unit = np.empty((n, 4))
     ratio = np.empty((n, 4))
     for i in range(4):
-        constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
+        try:
+            constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
+        except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
+            raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
+                             f"{module.conformity!r} ({error})") from None
         for j in range(n):   # angles validated by flank_angles; the core's flank gives the arc centre
             flank = groove_core.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius,
                                               module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
             centres[j, i] = flank.arc_centre  # (u, w) = (x3, z3)
+    _check_axis_ratio(module, angles, ratio)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     bulk = None
     if contact_law is not None:
@@ -334,6 +348,18 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     return BallContacts(module, angles, centres, constant, unit, ratio, theta, bulk)
 
 
+def _check_axis_ratio(module: ScrewModule, angles: np.ndarray, ratio: np.ndarray) -> None:
+    """ValueError naming the module's conformity where a flank's Hertz b/a leaves the friction map's range."""
+    from ballbench.lowmodel.contact.ellipse_friction import B_OVER_A_RANGE
+
+    if np.min(ratio) < B_OVER_A_RANGE[0]:
+        worst = np.unravel_index(np.argmin(ratio), ratio.shape)
+        raise ValueError(f"module: conformity = {module.conformity!r} gives a Hertz axis ratio b/a = "
+                         f"{float(ratio[worst]):.4g} on flank {CONTACT_NAMES[worst[1]]} (contact angle "
+                         f"{float(angles[worst]):.4g} rad), below {B_OVER_A_RANGE[0]}, the range of the ellipse "
+                         f"friction map (lin2019 eqs A4-A7): raise the conformity (about 0.5007 or more)")
+
+
 def arc_profile(contacts: BallContacts, gamma, nut_shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Closed form of the flank profiles in ``(x3, z3)``: points and d/d gamma, shapes (n, 4, ..., 2).
 
@@ -342,7 +368,8 @@ def arc_profile(contacts: BallContacts, gamma, nut_shift: float = 0.0) -> tuple[
     the contact angle at the contact point.
     """
     module = contacts.module
-    gamma = np.asarray(gamma, dtype=float)
+    gamma = np.asarray(checks.finite("gamma", gamma, "rad"), dtype=float)
+    nut_shift = checks.finite("nut_shift", nut_shift, "m")
     r_g = module.groove_radius
     shape = (contacts.n_balls, 4) + (1,) * gamma.ndim
     su, sw = _SIGN_U.reshape((1, 4) + (1,) * gamma.ndim), _SIGN_W.reshape((1, 4) + (1,) * gamma.ndim)
@@ -364,10 +391,14 @@ def profile_2d(contacts: BallContacts, ball: int, contact: int, gamma, azimuth: 
     (:meth:`groove.HelicalGroove.surface`), not from :func:`arc_profile` (tests compare them).
     """
     module = contacts.module
+    ball = checks.count("ball", ball, 0, contacts.n_balls - 1)
+    contact = checks.count("contact", contact, 0, 3)
+    azimuth = checks.finite("azimuth", azimuth, "rad")
+    nut_shift = checks.finite("nut_shift", nut_shift, "m")
     flank = groove_core.helical_groove(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
                                        float(contacts.contact_angles[ball, contact]), _BODY[contact],
                                        _FLANK[contact])
-    gamma = np.asarray(gamma, dtype=float)
+    gamma = np.asarray(checks.finite("gamma", gamma, "rad"), dtype=float)
     direction = np.stack([_SIGN_U[contact] * np.cos(gamma), _SIGN_W[contact] * np.sin(gamma)], axis=-1)
     theta = np.arctan2(direction[..., 1], direction[..., 0])  # the core's arc angle
     surface = flank.surface(theta, azimuth)
@@ -694,9 +725,18 @@ def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float =
 def reference_force(contacts: BallContacts, axial_load: float) -> float:
     """Normal force scale [N]: the axial load over one loaded pair, at least the preload force."""
     module = contacts.module
-    pair = abs(axial_load) / (math.sin(module.nominal_angle) * math.cos(module.lead_angle))
+    load = checks.finite("axial_load", axial_load, "N")
+    with np.errstate(over="ignore"):
+        pair = abs(load) / np.float64(math.sin(module.nominal_angle) * math.cos(module.lead_angle))
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
-    return max(pair, preload, 1e-3)
+    force = checks.finite_result("axial_load", max(pair, preload, 1e-3), "N")
+    with np.errstate(over="ignore"):
+        approach = float(float(np.max(contacts.hertz_constant)) * np.float64(force) ** (2.0 / 3.0))  # lin2019 eq 53
+    if not approach < module.ball_radius:
+        raise ValueError(f"axial_load: its Hertz approach {approach!r} m (per loaded pair, {float(force)!r} N) "
+                         f"exceeds the ball radius {module.ball_radius!r} m: no Hertz contact at this load, "
+                         f"got {axial_load!r} N")
+    return force
 
 
 def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance: float, max_iterations: int):
@@ -726,7 +766,10 @@ def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance:
 def continuation_start(contacts: BallContacts, axial_load: float) -> float:
     """Oversize [m] where the preload continuation starts: twice the approach of the reference force,
     so that all four contacts stay loaded (well-conditioned four-point state)."""
-    return 2.0 * float(np.max(contacts.hertz_constant)) * reference_force(contacts, axial_load) ** (2.0 / 3.0)
+    with np.errstate(over="ignore"):
+        start = 2.0 * float(np.max(contacts.hertz_constant)) * np.float64(reference_force(contacts, axial_load)) ** (
+            2.0 / 3.0)
+    return checks.finite_result("axial_load", start, "m")
 
 
 def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
