@@ -118,7 +118,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             if finite and predicted > 0.0:
                 trial = x + step
                 trial_residual, trial_jacobian = function(trial)
-                trial_merit = float(trial_residual @ trial_residual)
+                with np.errstate(over="ignore", invalid="ignore"):  # a huge trial step: merit inf, rejected below
+                    trial_merit = float(trial_residual @ trial_residual)
                 gain = (merit - trial_merit) / predicted
                 if math.isfinite(trial_merit) and gain > 1e-4:
                     damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
@@ -244,7 +245,7 @@ def _normal_band_pattern(n: int, k: int):
     # N[a, a+1][p, q] sits at (a k + p, (a+1) k + q); its mirror (row (a+1) k + q, col a k + p) is stored
     index1 = ((k + q - p).reshape(-1)[None, :] * size + (base[:-1] + p.reshape(-1)[None, :]) * width).reshape(-1)
     index2 = ((2 * k + q - p).reshape(-1)[None, :] * size + (base[:-2] + p.reshape(-1)[None, :]) * width).reshape(-1)
-    return index0, index1, index2, source0
+    return tuple(checks.read_only(index) for index in (index0, index1, index2, source0))  # cached: shared
 
 
 def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, max_iterations: int, what: str,

@@ -290,3 +290,23 @@ def test_more_named_errors():
     grid = hs.surface_grid(1e-4, 1e-4, 8, 8)
     with pytest.raises(ValueError, match="heights"):  # named gap, not a parameter of asperity_contact
         mixed.asperity_contact(np.full((8, 8), 1e-7), np.full((8, 8), 1e300), grid, 1e11)
+
+
+def test_newton_huge_trial_step_is_rejected_without_a_warning():
+    """x^2 = 2 from x0 = -2.7e-112: the first Levenberg-Marquardt trial step is ~1e111 and its merit |r|^2
+    overflows (it was a RuntimeWarning).  newton rejects it and raises damping; x0 is a stationary point of |r|^2
+    to double precision (predicted decrease 1e-111 against a merit of 16), so it ends in a ConvergenceError
+    naming that, with no warning on the way."""
+    import warnings
+
+    import numpy as np
+
+    from ballbench.lowmodel import solvers
+
+    def quadratic(x):
+        return x * x - 2.0, np.diag(2.0 * x)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ConvergenceError, match="no descent step"):
+            solvers.newton(quadratic, np.full(4, -2.7e-112), tolerance=1e-12, max_iterations=200, what="x^2 = 2")

@@ -376,9 +376,6 @@ def _quadratic(c):
        tolerance=st.one_of(positive(1e-14, 1e-2), st.sampled_from([0.0, -1.0, math.nan, math.inf])),
        iterations=st.one_of(st.integers(0, 80), st.sampled_from([True, 2.5])))
 def test_newton(c, x0, size, tolerance, iterations):
-    # (known, not fixed here: x0 ~ -3.7e-87 for c = 10 makes a Levenberg-Marquardt trial step ~1e87 whose merit
-    # |r|^2 overflows with a RuntimeWarning in newton; the inf is rejected as designed.  solvers.py is open to
-    # input checks only in this change)
     try:
         x, residual, count = solvers.newton(_quadratic(c), np.full(size, x0), tolerance=tolerance,
                                             max_iterations=iterations, what="x^2 = c")

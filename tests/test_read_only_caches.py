@@ -164,3 +164,12 @@ def test_pickled_and_deep_copied_objects_keep_read_only_arrays(how):
     contacts = _instances()[0][0]
     twin = pickle.loads(pickle.dumps(contacts)) if how == "pickle" else copy.deepcopy(contacts)
     np.testing.assert_array_equal(bb.solve_ball(twin).friction_force, bb.solve_ball(contacts).friction_force)
+
+
+
+def test_cached_quadrature_rule_is_read_only():
+    """``tanh_sinh_rule`` returns lru_cache'd arrays shared by every caller (the friction map and the offset
+    friction integrals): an in-place edit (``nodes *= 2``) would silently change every later integral."""
+    for array in ef.tanh_sinh_rule(5):
+        with pytest.raises(ValueError, match="read-only"):
+            array *= 2.0

@@ -285,7 +285,7 @@ def _tanh_sinh(level: int) -> tuple[np.ndarray, np.ndarray]:
     x = 0.5 * (1.0 + np.tanh(arg))
     w = step * 0.25 * math.pi * np.cosh(t) / np.cosh(arg) ** 2
     keep = (x > 0.0) & (x < 1.0) & (w > 0.0)
-    return x[keep], w[keep]
+    return checks.read_only(x[keep]), checks.read_only(w[keep])  # cached: shared by every caller
 
 
 def tanh_sinh_rule(level: int) -> tuple[np.ndarray, np.ndarray]:
@@ -296,7 +296,7 @@ def tanh_sinh_rule(level: int) -> tuple[np.ndarray, np.ndarray]:
 @lru_cache(maxsize=8)
 def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
     x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w  # on [0, 1]
+    return checks.read_only(0.5 * (x + 1.0)), checks.read_only(0.5 * w)  # on [0, 1]; cached: shared
 
 
 def _radial(kappa, beta, phi):

@@ -72,6 +72,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.ellipse_friction import tanh_sinh_rule
 
 __all__ = ["OffsetFriction", "friction_offset", "friction_centre", "FAR_CENTRE"]
@@ -152,7 +153,7 @@ def _disc_rule(n_radial: int = 16, n_angular: int = 32):
     t = (radius[:, None] * np.cos(alpha)[None, :]).ravel()
     s = (radius[:, None] * np.sin(alpha)[None, :]).ravel()
     weights = (_PREFACTOR * weight_r[:, None] * (2.0 * math.pi / n_angular) * np.ones(n_angular)[None, :]).ravel()
-    return t, s, weights
+    return checks.read_only(t), checks.read_only(s), checks.read_only(weights)  # cached: shared by every caller
 
 
 # --------------------------------------------------------------------------
