@@ -318,3 +318,25 @@ def test_axial_stiffness_names_max_load(table):
     """max_load = 1e16 N: the error named solve_balls' axial_load, not a parameter of axial_stiffness."""
     with pytest.raises(ValueError, match="max_load: axial_load: its Hertz approach"):
         ld.axial_stiffness(table[0], 1e16, 4)
+
+
+def test_groove_newton_solves_say_when_they_do_not_converge():
+    """counter_height and profile_coordinates returned the last Newton iterate without a word when it had not
+    converged (a point 0.5 m off a 25 mm screw's flank gave a height 0.35 m off the surface); now
+    ConvergenceError with the residual [m]; converged points are unchanged."""
+    import numpy as np
+
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.lowmodel.geometry import groove
+
+    screw = groove.helical_groove(3.175e-3, 0.56, 25e-3, 10e-3, np.radians(45.0), "screw")
+    assert groove.counter_height(screw, [0.0], [0.0])[0] == pytest.approx(0.0, abs=1e-15)
+    with pytest.raises(ConvergenceError, match="counter_height") as error:
+        groove.counter_height(screw, [0.5], [0.0])
+    assert error.value.residual > 0.1
+    with pytest.raises(ConvergenceError, match="counter_height"):
+        groove.counter_height(screw, [1e-3], [0.0], iterations=1)
+    point = screw.surface(np.array([screw.contact_theta]), np.array([0.1]))
+    assert groove.profile_coordinates(screw, point)[0][0] == pytest.approx(0.1, abs=1e-12)
+    with pytest.raises(ConvergenceError, match="profile_coordinates"):
+        groove.profile_coordinates(screw, point, iterations=1)

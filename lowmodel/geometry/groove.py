@@ -66,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import fourpoint, helix
 
 __all__ = [
@@ -454,7 +455,8 @@ def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndar
     contact frame (:func:`contact_frame`; the pair's frame), arrays of any shape.
 
     Solves ``Q (S(theta, phi) - P) = (x, y, z)`` for ``(theta, phi, z)`` by Newton
-    from the contact (theta_c, 0); valid over the groove flank around the contact.
+    from the contact (theta_c, 0); valid over the groove flank around the contact.  ConvergenceError
+    (with the residual [m]) if a point is not matched to ``1e-9 r_g`` after ``iterations`` steps.
     """
     iterations = checks.count("iterations", iterations, 1)
     frame = contact_frame(groove)
@@ -479,9 +481,13 @@ def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndar
         step = np.linalg.solve(jac, residual[..., None])[..., 0]
         theta -= step[:, 0]
         phi -= step[:, 1]
-        if np.max(np.abs(step[:, 0]) * r_g + np.abs(step[:, 1]) * groove.pitch_radius) < 1e-16:
+        if np.max(np.abs(step[:, 0]) * r_g + np.abs(step[:, 1]) * groove.pitch_radius, initial=0.0) < 1e-16:
             break
     local = (groove.surface(theta, phi) - frame.point) @ rotation.T
+    miss = float(np.max(np.abs(local[:, :2] - target), initial=0.0)) if target.size else 0.0
+    if not miss <= 1e-9 * r_g:  # also NaN: the point lies off the flank that Newton can reach from the contact
+        raise ConvergenceError("counter_height: Newton did not reach the groove surface above (x, y)", residual=miss,
+                               iterations=iterations, tolerance=1e-9 * r_g)
     return local[:, 2].reshape(shape)
 
 
@@ -514,7 +520,8 @@ def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> 
     """Azimuth ``phi`` [rad] of the profile plane through each world point and the
     point's profile coordinates ``(u, w)`` [m] in it; ``points`` shape (n, 3).
 
-    Solves ``(X - H(phi)) . m(phi) = 0`` (m: the profile-plane normal) by Newton.
+    Solves ``(X - H(phi)) . m(phi) = 0`` (m: the profile-plane normal) by Newton; ConvergenceError (with the
+    residual [m]) if a point is not on its plane to ``1e-9 R_P`` after ``iterations`` steps.
     """
     iterations = checks.count("iterations", iterations, 1)
     points = np.atleast_2d(np.asarray(checks.finite("points", checks.trailing_axis("points", points, 3, "(x, y, z)"),
@@ -534,10 +541,14 @@ def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> 
         dg = -np.einsum("ij,ij->i", h_p, m) + np.einsum("ij,ij->i", offset, np.cross(z_hat, m))
         step = g / dg
         phi = phi - step
-        if np.max(np.abs(step)) < 1e-15:
+        if np.max(np.abs(step), initial=0.0) < 1e-15:
             break
     rot = helix.rotation_z(phi)
     offset = points - groove.helix(phi)
+    miss = float(np.max(np.abs(np.einsum("ij,ij->i", offset, rot @ m0)), initial=0.0))
+    if not miss <= 1e-9 * groove.pitch_radius:  # also NaN
+        raise ConvergenceError("profile_coordinates: Newton did not reach the profile plane of a point",
+                               residual=miss, iterations=iterations, tolerance=1e-9 * groove.pitch_radius)
     u = np.einsum("ij,ij->i", offset, rot @ e1)
     w = np.einsum("ij,ij->i", offset, rot @ c)
     return phi, np.stack([u, w], -1)
