@@ -345,6 +345,7 @@ def patch_figure(results, hertz_axes, *, ylabel: str = "e2 [mm]", xlim: float = 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
 
     pressures = [[np.clip(contact.nodal_pressure, 0.0, None) / 1e6 for contact in result.contacts]
                  for result in results]  # MPa
@@ -375,7 +376,9 @@ def patch_figure(results, hertz_axes, *, ylabel: str = "e2 [mm]", xlim: float = 
             ax.set_ylim(-ylim, ylim)
             ax.set_xlabel("e1 [mm]")
             ax.set_ylabel(ylabel)
-    fig.colorbar(image, ax=axes, label="FE contact pressure p [MPa]", shrink=0.9, pad=0.01)
+    bar = fig.colorbar(image, ax=axes, label="FE contact pressure p [MPa]", shrink=0.9, pad=0.01)
+    ticks = MaxNLocator(nbins=8).tick_values(0.0, levels[-1])
+    bar.set_ticks(ticks[ticks <= levels[-1]])  # round values, not the 15 contour levels
     handles = [Line2D([], [], color="w", lw=1.2), Line2D([], [], color="r", ls="--", lw=1.0)]
     legend = fig.legend(handles, [hertz_label, MOMENT_ELLIPSE_LABEL], loc="outside lower center", ncol=2,
                         fontsize=9, facecolor="0.35", labelcolor="w")
