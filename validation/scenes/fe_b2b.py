@@ -80,6 +80,9 @@ CASE_B_FE_NOTE = ("scale 4.01 N (case a); tolerance 1 %: zero holds by the pi-ro
                   "free-ball epsilon of both balls)")
 MODEL_LOW = "lowmodel.linear_bearing.b2b"
 MODEL_ANALYTICAL = "lowmodel.linear_bearing.b2b_analytical"
+# panels whose own peak lies below this share of the shared colour scale say so in their title
+FAINT_SHARE = 0.25
+MOMENT_ELLIPSE_LABEL = "FE moment ellipse (force and second moments of the FE pressure)"
 
 
 def fe_model_name(h_contact: float) -> str:
@@ -314,9 +317,9 @@ def _plot_patches(run, model, results, hertz_geometry) -> None:
     run.save_figure(_patch_figure(model, results, hertz_geometry), "pressure_patches.png")
 
 
-def _patch_figure(model, results, hertz_geometry):
+def _patch_figure(model, results, hertz_geometry, heading: str = "contact pressure"):
     """Pressure on the four contact patches of each ball with the Hertz ellipse (eq 36 force) and the
-    fitted FE ellipse, in the tangent plane of each contact (e1 across the groove, z along the rails)."""
+    FE moment ellipse, in the tangent plane of each contact (e1 across the groove, z along the rails)."""
     from ballbench.lowmodel import fourpoint as rigid
     from ballbench.lowmodel.contact import hertz
 
@@ -325,89 +328,149 @@ def _patch_figure(model, results, hertz_geometry):
         forces = rigid.normal_forces(result_side(ball), VERTICAL, np.asarray(model.geometry.contact_angles))
         ref = hertz.solve_load(hertz_geometry, forces)
         axes.append(np.column_stack([ref.a, ref.b]))
-    return patch_figure(results, axes, ylabel="z [mm]")
+    return patch_figure(results, axes, ylabel="z [mm]", heading=heading, hertz_label="Hertz ellipse (eq 36 force)")
 
 
-def patch_figure(results, hertz_axes, *, ylabel: str = "e2 [mm]", xlim: float = 0.6, ylim: float = 0.25):
+def patch_figure(results, hertz_axes, *, ylabel: str = "e2 [mm]", xlim: float = 0.6, ylim: float = 0.25,
+                 heading: str = "contact pressure", hertz_label: str = "Hertz ellipse"):
     """Figure: one row per solved module (``results``, :class:`fem.fourpoint.ModuleResult`), one panel per
-    contact: nodal pressure in the contact's tangent plane (e1 across the groove [mm], e2 along it), the Hertz
-    ellipse ``hertz_axes[row][i] = (a, b)`` [m] (white) and the fitted FE ellipse (red dashed)."""
+    contact: nodal pressure [MPa] in the contact's tangent plane (e1 across the groove [mm], e2 along it) on one
+    colour scale shared by all panels (0 to the largest FE pressure, one colour bar), the Hertz ellipse
+    ``hertz_axes[row][i] = (a, b)`` [m] (white, legend ``hertz_label``) and the FE moment ellipse
+    (``fem.postprocess.moment_ellipse``: the ellipse with the FE pressure's force and second moments; red dashed).
+    ``heading`` starts the figure title.  Each panel's title gives its force, loaded angle and peak pressure, and
+    says when that peak is below FAINT_SHARE of the shared scale."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
 
+    pressures = [[np.clip(contact.nodal_pressure, 0.0, None) / 1e6 for contact in result.contacts]
+                 for result in results]  # MPa
+    top = max(float(p.max(initial=0.0)) for row in pressures for p in row)
+    levels = np.linspace(0.0, top if top > 0.0 else 1.0, 15)
     n_contacts = len(results[0].contacts)
-    fig, axes = plt.subplots(len(results), n_contacts, figsize=(15, 3.25 * len(results)), squeeze=False)
+    fig, axes = plt.subplots(len(results), n_contacts, figsize=(15, 1.0 + 1.9 * len(results)), squeeze=False,
+                             layout="constrained")
     t = np.linspace(0.0, 2 * math.pi, 200)
+    image = None
     for ball, result in enumerate(results):
         for i, contact in enumerate(result.contacts):
             ax = axes[ball, i]
             xy = contact.local_nodes * 1e3
-            scatter = ax.tricontourf(xy[:, 0], xy[:, 1], np.clip(contact.nodal_pressure, 0.0, None) / 1e6, levels=14,
-                                     cmap="viridis")
-            fig.colorbar(scatter, ax=ax, label="p [MPa]")
+            image = ax.tricontourf(xy[:, 0], xy[:, 1], pressures[ball][i], levels=levels, cmap="viridis",
+                                   vmin=levels[0], vmax=levels[-1])
             a_h, b_h = hertz_axes[ball][i]
-            ax.plot(a_h * 1e3 * np.cos(t), b_h * 1e3 * np.sin(t), "w-", lw=1.2, label="Hertz")
+            ax.plot(a_h * 1e3 * np.cos(t), b_h * 1e3 * np.sin(t), "w-", lw=1.2)
             if contact.ellipse is not None:
                 e = contact.ellipse
-                ax.plot((e.x0 + e.a * np.cos(t)) * 1e3, (e.y0 + e.b * np.sin(t)) * 1e3, "r--", lw=1.0, label="FE fit")
+                ax.plot((e.x0 + e.a * np.cos(t)) * 1e3, (e.y0 + e.b * np.sin(t)) * 1e3, "r--", lw=1.0)
+            peak = float(pressures[ball][i].max(initial=0.0))
+            faint = f" (< {FAINT_SHARE:.0%} of the scale)" if peak < FAINT_SHARE * top else ""
             ax.set_title(f"ball {ball + 1} {contact.name}: {contact.normal_force:.1f} N, "
-                         f"{math.degrees(contact.contact_angle):.2f} deg", fontsize=9)
+                         f"{math.degrees(contact.contact_angle):.2f} deg\npeak {peak:.0f} MPa{faint}", fontsize=9)
             ax.set_aspect("equal")
             ax.set_xlim(-xlim, xlim)
             ax.set_ylim(-ylim, ylim)
             ax.set_xlabel("e1 [mm]")
             ax.set_ylabel(ylabel)
-    axes[0, 0].legend(fontsize=7)
-    fig.tight_layout()
+    bar = fig.colorbar(image, ax=axes, label="FE contact pressure p [MPa]", shrink=0.9, pad=0.01)
+    ticks = MaxNLocator(nbins=8).tick_values(0.0, levels[-1])
+    bar.set_ticks(ticks[ticks <= levels[-1]])  # round values, not the 15 contour levels
+    handles = [Line2D([], [], color="w", lw=1.2), Line2D([], [], color="r", ls="--", lw=1.0)]
+    legend = fig.legend(handles, [hertz_label, MOMENT_ELLIPSE_LABEL], loc="outside lower center", ncol=2,
+                        fontsize=9, facecolor="0.35", labelcolor="w")
+    legend.get_frame().set_edgecolor("0.35")
+    fig.suptitle(f"{heading}: one colour scale 0 - {top:.0f} MPa (the largest FE pressure); white: {hertz_label}, "
+                 "red dashed: FE moment ellipse", fontsize=11)
     return fig
 
 
-def stress_cut(model, result, path, *, normal, origin, title: str, view_up=None, materials=(E_STEEL, NU_STEEL)):
+def save_figure(fig, path):
+    """Write the matplotlib figure ``fig`` to the PNG ``path``, close it and return ``path``."""
+    import matplotlib.pyplot as plt
+
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def contact_summary(result) -> str:
+    """``"BL 42.90 deg 114.1 N, ..."``: loaded contact angle and normal force of each contact of a solved module."""
+    return ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
+                     for c in result.contacts)
+
+
+def stress_cut(model, result, path, *, normal, origin, title: str, view_up=None, axis_names=("x", "y"),
+               materials=(E_STEEL, NU_STEEL)):
     """PNG ``path`` of the von Mises stress [MPa] (:func:`fem.fourpoint.von_mises` of
     :func:`fem.fourpoint.full_displacement`) of a solved module on the plane through ``origin`` [m] with
-    ``normal``, seen along the normal; ``title`` printed on it."""
-    import pyvista as pv
-
+    ``normal``, seen along the normal (``view_up`` up, default y); ``title`` printed above it (:func:`cut_figure`)."""
     from ballbench.fem import fourpoint as fp
 
     u = fp.full_displacement(model, result)
     stress = fp.von_mises(model, u, materials) / 1e6
-    pair = model.pair
-    mm = 1e3
-    grid = pv.UnstructuredGrid({pv.CellType.TETRA: pair.tets}, pair.points * mm)
-    grid.cell_data["von Mises [MPa]"] = stress
-    grid.cell_data["body"] = pair.body
-    cut = grid.slice(normal=tuple(normal), origin=tuple(np.asarray(origin) * mm))
-    plotter = pv.Plotter(off_screen=True, window_size=(1300, 1000))
-    plotter.set_background("white")
-    plotter.add_mesh(cut, scalars="von Mises [MPa]", cmap="YlOrRd", clim=(0.0, float(np.percentile(stress, 99.9))),
-                     show_edges=False, scalar_bar_args={"title": "von Mises stress [MPa]", "vertical": False,
-                                                        "position_x": 0.25, "position_y": 0.04, "width": 0.5,
-                                                        "fmt": "%.0f", "color": "black"})
-    plotter.add_text(title, position="upper_left", font_size=8, color="black")
-    if view_up is None:
-        plotter.view_xy()
-    else:
-        plotter.view_vector(tuple(normal), viewup=tuple(view_up))
-    plotter.camera.zoom(1.25)
-    plotter.screenshot(str(path))
-    plotter.close()
-    return path
+    fig = cut_figure(model.pair.points, model.pair.tets, stress, normal=normal, origin=origin, title=title,
+                     view_up=view_up, axis_names=axis_names)
+    return save_figure(fig, path)
 
 
-def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
-    """``ballbench show fe-b2b-linear-a|b``: ``pressure.png`` (the four contact patches of both balls with the
-    Hertz ellipses of the low-order model and the fitted FE ellipses) and ``stress.png`` (von Mises stress of
-    ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and BR-TL are the two
-    pairs of opposite contacts), at the scene's level for ``fidelity``."""
-    from pathlib import Path
-
+def cut_figure(points, tets, stress, *, normal, origin, title: str, view_up=None, axis_names=("x", "y")):
+    """Figure of the element values ``stress`` [MPa] of the linear tetrahedra ``tets`` (m, 4) on ``points``
+    (n, 3) [m] on the plane through ``origin`` [m] with ``normal``, seen along the normal: the plane's
+    coordinates [mm] from ``origin`` along ``up x normal`` (to the right) and ``up`` (``view_up`` made normal to
+    ``normal``; default y), named ``axis_names``.  Each cut element keeps its own value, drawn flat in the colour
+    map's own colours (pyvista only cuts, matplotlib draws: no lighting, no VTK render window), framed to the
+    cut; the colour scale runs from 0 to the 99.9th percentile of ``stress`` (a few contact elements above it
+    show as the top colour, the colour bar says so and gives the maximum)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import pyvista as pv
+
+    normal = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    up = np.array([0.0, 1.0, 0.0]) if view_up is None else np.asarray(view_up, dtype=float)
+    up = up - (up @ normal) * normal
+    up /= np.linalg.norm(up)
+    right = np.cross(up, normal)  # pyvista's view_vector(normal, viewup=up): the same picture as before
+    mm = 1e3
+    stress = np.asarray(stress, dtype=float)
+    grid = pv.UnstructuredGrid({pv.CellType.TETRA: np.asarray(tets)}, np.asarray(points, dtype=float) * mm)
+    grid.cell_data["stress"] = stress
+    origin_mm = np.asarray(origin, dtype=float) * mm
+    cut = grid.slice(normal=tuple(normal), origin=tuple(origin_mm)).triangulate()
+    if cut.n_cells == 0:
+        raise ValueError(f"the plane through origin {tuple(origin)} m with normal {tuple(normal)} misses the mesh")
+    relative = np.asarray(cut.points) - origin_mm
+    u, v = relative @ right, relative @ up
+    faces = cut.faces.reshape(-1, 4)[:, 1:]
+    top = float(np.percentile(stress, 99.9))
+    width, height = float(np.ptp(u)), float(np.ptp(v))
+    fig, ax = plt.subplots(figsize=(9.0, float(np.clip(9.0 * height / width, 3.5, 11.0)) + 1.6), layout="constrained")
+    image = ax.tripcolor(u, v, faces, facecolors=np.asarray(cut.cell_data["stress"]), cmap="YlOrRd", vmin=0.0,
+                         vmax=top, shading="flat")
+    ax.set_facecolor("0.82")  # gaps between the bodies: grey, apart from the near-white low stress
+    ax.set_aspect("equal")
+    ax.set_xlim(u.min(), u.max())
+    ax.set_ylim(v.min(), v.max())
+    ax.set_xlabel(f"{axis_names[0]} [mm]")
+    ax.set_ylabel(f"{axis_names[1]} [mm]")
+    ax.set_title(title, fontsize=10)
+    fig.colorbar(image, ax=ax, location="bottom", shrink=0.8, aspect=40, extend="max",
+                 label=f"von Mises stress [MPa] (element means; scale 0 to the 99.9th percentile {top:.0f} MPa, "
+                       f"maximum {stress.max():.0f} MPa)")
+    return fig
+
+
+def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
+    """``ballbench show fe-b2b-linear-a|b``: ``pressure.png`` (the four contact patches of both balls with the
+    Hertz ellipses of the low-order model and the FE moment ellipses, :func:`patch_figure`) and ``stress.png``
+    (von Mises stress of ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and
+    BR-TL are the two pairs of opposite contacts, :func:`cut_figure`), at the scene's level for ``fidelity``."""
+    from pathlib import Path
 
     from ballbench.lowmodel.contact import hertz
 
@@ -421,18 +484,14 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     target = Path(out_dir) / scene_name
     target.mkdir(parents=True, exist_ok=True)
     geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
-    fig = _patch_figure(model, results, geometry)
-    fig.suptitle(f"{scene_name}: contact pressure, h = {h_contact * 1e6:.0f} um (white: Hertz, red: FE fit)")
-    pressure_path = target / "pressure.png"
-    fig.savefig(pressure_path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    pressure_path = save_figure(_patch_figure(model, results, geometry,
+                                              heading=f"{scene_name}, h = {h_contact * 1e6:.0f} um"),
+                                target / "pressure.png")
     # von Mises stress on z = 0, ball 1
     result = results[0]
-    angles = ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
-                       for c in result.contacts)
     stress_path = stress_cut(model, result, target / "stress.png", normal=(0, 0, 1), origin=(0, 0, 0),
                              title=f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), "
-                                   f"cut z = 0 through the four contacts [mm]\n{angles}")
+                                   f"cut z = 0 through the four contacts\n{contact_summary(result)}")
     return [pressure_path, stress_path]
 
 

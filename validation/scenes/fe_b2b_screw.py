@@ -389,12 +389,13 @@ def _run(run, case: str) -> None:
         _sensitivity(run, case, models, results, state, contacts)
 
 
-def _figure(models, results, contacts):
+def _figure(models, results, contacts, heading: str = "contact pressure"):
     from ballbench.validation.scenes.fe_b2b import patch_figure
 
     axes = [hertz_ellipse(contacts, ball, [c.normal_force for c in result.contacts])[:, :2]
             for ball, result in enumerate(results)]
-    return patch_figure(results, axes, ylabel="e2 along the groove [mm]", xlim=0.4, ylim=0.12)
+    return patch_figure(results, axes, ylabel="e2 along the groove [mm]", xlim=0.4, ylim=0.12, heading=heading,
+                        hertz_label="Hertz ellipse at the FE force")
 
 
 def _sensitivity(run, case, models, results, state, contacts) -> None:
@@ -450,14 +451,12 @@ def _sensitivity(run, case, models, results, state, contacts) -> None:
 
 def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     """``ballbench show fe-b2b-screw-a|b``: ``pressure.png`` (the four contact patches of both balls with the
-    low-order model's Hertz ellipses at the FE forces and the fitted FE ellipses) and ``stress.png`` (von Mises
-    stress of ball 2's module on the plane through the ball centre normal to the helix, x3-z3, which holds all
-    four contacts: SL-NR and SR-NL are the two pairs of opposite contacts)."""
+    low-order model's Hertz ellipses at the FE forces and the FE moment ellipses, ``fe_b2b.patch_figure``) and
+    ``stress.png`` (von Mises stress of ball 2's module on the plane through the ball centre normal to the helix,
+    x3-z3, which holds all four contacts: SL-NR and SR-NL are the two pairs of opposite contacts)."""
     from pathlib import Path
 
-    import matplotlib.pyplot as plt
-
-    from ballbench.validation.scenes.fe_b2b import stress_cut
+    from ballbench.validation.scenes.fe_b2b import contact_summary, save_figure, stress_cut
 
     cases = {"fe-b2b-screw-a": "a", "fe-b2b-screw-b": "b"}
     if scene_name not in cases:
@@ -470,20 +469,14 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     models, results, _ = solve_fe_level(case, h_contact, growth, fine_radius, h_max, axial_shares(contacts, state))
     target = Path(out_dir) / scene_name
     target.mkdir(parents=True, exist_ok=True)
-    fig = _figure(models, results, contacts)
-    fig.suptitle(f"{scene_name}: contact pressure, h = {h_contact * 1e6:.0f} um (white: Hertz at the FE force, "
-                 "red: FE fit)")
-    pressure_path = target / "pressure.png"
-    fig.savefig(pressure_path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    heading = f"{scene_name}, h = {h_contact * 1e6:.0f} um"
+    pressure_path = save_figure(_figure(models, results, contacts, heading=heading), target / "pressure.png")
     model, result = models[1], results[1]
     geometry = model.geometry
-    angles = ", ".join(f"{c.name} {math.degrees(c.contact_angle):.2f} deg {c.normal_force:.1f} N"
-                       for c in result.contacts)
     stress_path = stress_cut(model, result, target / "stress.png", normal=geometry.cs3[:, 1],
-                             origin=geometry.ball_centre, view_up=geometry.cs3[:, 2],
+                             origin=geometry.ball_centre, view_up=geometry.cs3[:, 2], axis_names=("-x3", "z3"),
                              title=f"{scene_name}, ball 2 (theta {math.degrees(PRINTED[case].theta):g} deg), cut "
-                                   f"x3-z3 through the ball centre and the four contacts [mm]\n{angles}")
+                                   f"x3-z3 through the ball centre and the four contacts\n{contact_summary(result)}")
     return [pressure_path, stress_path]
 
 
