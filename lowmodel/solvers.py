@@ -266,8 +266,16 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
     total = 0
     violation = math.inf
     for _ in range(attempts):
-        x, residual, iterations = newton(function, x, tolerance=tolerance, max_iterations=max_iterations - total,
-                                         what=what)
+        if total < max_iterations:
+            x, residual, iterations = newton(function, x, tolerance=tolerance, max_iterations=max_iterations - total,
+                                             what=what)
+        else:  # earlier runs used the whole budget: the restart point counts only if it solves the system as it is
+            residual = function(x)[0]
+            norm = float(np.max(np.abs(residual))) if residual.size else 0.0
+            if not norm <= tolerance:
+                raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=total,
+                                       tolerance=tolerance)
+            iterations = 0
         total += iterations
         verdict = restart(x)
         if verdict is None:

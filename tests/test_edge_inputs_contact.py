@@ -310,3 +310,31 @@ def test_newton_huge_trial_step_is_rejected_without_a_warning():
         warnings.simplefilter("error")
         with pytest.raises(ConvergenceError, match="no descent step"):
             solvers.newton(quadratic, np.full(4, -2.7e-112), tolerance=1e-12, max_iterations=200, what="x^2 = 2")
+
+
+def test_restarts_that_use_up_the_iteration_budget_end_in_a_convergence_error():
+    """solve_with_restarts shares max_iterations among its runs; when a restart came after the budget was used
+    up it called newton(max_iterations=0), which the input check refuses with a ValueError (the default
+    lin2019-stability run errored on it).  Now: ConvergenceError, or the restart point if it already solves."""
+    import numpy as np
+
+    from ballbench.lowmodel import solvers
+
+    def quadratic(x):
+        return x * x - 4.0, np.diag(2.0 * x)
+
+    _, _, needed = solvers.newton(quadratic, np.array([3.0]), tolerance=1e-12, max_iterations=50, what="x^2 = 4")
+
+    def away(x):  # reject the root +2 and restart from 3 (converges again, needing the same iterations)
+        return None if x[0] < 0 else (np.array([3.0]), 1.0)
+
+    with pytest.raises(ConvergenceError, match="did not converge"):
+        solvers.solve_with_restarts(quadratic, np.array([3.0]), away, tolerance=1e-12, max_iterations=needed,
+                                    what="x^2 = 4")
+
+    def to_the_other_root(x):  # reject +2 and restart at the root -2 itself: accepted with no further step
+        return None if x[0] < 0 else (np.array([-2.0]), 1.0)
+
+    x, _, total = solvers.solve_with_restarts(quadratic, np.array([3.0]), to_the_other_root, tolerance=1e-12,
+                                              max_iterations=needed, what="x^2 = 4")
+    assert x[0] == -2.0 and total == needed
