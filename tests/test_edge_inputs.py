@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -18,11 +17,7 @@ COMMON = dict(normal_load=100.0, friction_coefficient=0.1, ball_radius=RADIUS,
               psi=hertz.psi_constant(hertz.ball_in_groove(RADIUS, 0.56), RADIUS))
 
 
-@pytest.fixture(autouse=True)
-def _warnings_are_errors():
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        yield
+pytestmark = pytest.mark.filterwarnings("error")  # every warning fails the test
 
 
 # --- analytical model (lin2019 eqs 22, 30) ---------------------------------------------------------

@@ -4,7 +4,6 @@ or nonsense accepted), found by tests/test_properties_screw.py."""
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -24,11 +23,7 @@ TINY = 5e-324  # the smallest float
 TABLE4 = dict(pitch_radius=16.5e-3, lead=20e-3)  # lin2019 Table 4
 
 
-@pytest.fixture(autouse=True)
-def _warnings_are_errors():
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        yield
+pytestmark = pytest.mark.filterwarnings("error")  # every warning fails the test
 
 
 # --- helix ------------------------------------------------------------------------------------------------
