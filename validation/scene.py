@@ -56,6 +56,9 @@ from typing import Any, Callable, Iterable
 FIDELITIES = ("quick", "default", "fine")
 RELATIONS = ("eq", "ge", "le")
 KINDS = ("analytical", "low-order", "FE")
+# model families a check declares (``run.check(family=...)``); the report, the error-budget table and the fronts
+# of error_vs_time.png group by them (docs/validation.md, "Model identity")
+FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informed")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
 
@@ -104,6 +107,8 @@ class Output:
     scale: float = 0.0
     why: str = ""
     known_gap: KnownGap | None = None
+    family: str = ""
+    level: str = ""
 
     @property
     def status(self) -> str:
@@ -183,7 +188,8 @@ class Scene:
     the default fidelity on a 2-core machine [s] (shown by ``ballbench
     scenes``); ``budget_s``: wall-time budget per fidelity [s] (reported,
     decides only with ``--strict-time``); ``level``: the default mesh level
-    in words (FE scenes).
+    in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity) -> list[Path]``,
+    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``).
     """
 
     name: str
@@ -195,6 +201,7 @@ class Scene:
     cost_s: float = 1.0
     budget_s: dict | None = None
     level: str = ""
+    show: Callable[[Path, str], list[Path]] | None = None
 
     def budget_for(self, fidelity: str) -> float:
         if self.budget_s is None:
@@ -207,7 +214,8 @@ REGISTRY: dict[str, Scene] = {}
 
 
 def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True, kind: str = "low-order",
-          cost_s: float = 1.0, budget_s: dict | float | None = None, level: str = ""):
+          cost_s: float = 1.0, budget_s: dict | float | None = None, level: str = "",
+          show: Callable[[Path, str], list[Path]] | None = None):
     """Register the decorated function as the scene ``name`` (see :class:`Scene` for the keywords).
 
     ``default=False`` keeps the scene out of a bare ``ballbench validate``
@@ -226,7 +234,7 @@ def scene(name: str, description: str, *, tags: Iterable[str] = (), default: boo
         if name in REGISTRY and REGISTRY[name].function is not function:
             raise ValueError(f"scene {name!r} is registered twice")
         REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
-                                level)
+                                level, show)
         return function
 
     return register
@@ -302,6 +310,8 @@ class Run:
         note: str = "",
         why: str = "",
         known_gap: KnownGap | None = None,
+        family: str = "",
+        level: str = "",
     ) -> Output:
         """Record ``value`` of ``quantity`` (SI ``unit``) against ``reference``.
 
@@ -310,7 +320,11 @@ class Run:
         than ``|reference|`` with a tolerance above 0, is rejected (ValueError)
         unless ``why`` says why.
         ``known_gap`` declares the published number as not reproduced.
+        ``family`` (one of :data:`FAMILIES`) and ``level`` (the fidelity level within the family in words,
+        e.g. ``"h 30 um"``, ``"64 x 64 cells"``; empty for a model without levels) name the model as data.
         """
+        if family and family not in FAMILIES:
+            raise ValueError(f"family must be one of {FAMILIES}, got {family!r} ({quantity})")
         value = float(value)
         reference = float(reference)
         scale = float(scale)
@@ -330,7 +344,7 @@ class Run:
         passed = bool(math.isfinite(value) and rel_error <= tolerance)
         output = Output(model, quantity, unit, value, reference, source, float(rel_error),
                         float(tolerance), passed, float(time_s), relation, note, "accuracy", scale, why.strip(),
-                        known_gap)
+                        known_gap, family, level)
         self._outputs.append(output)
         return output
 
