@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from ballbench.validation import report
-from ballbench.validation.report import document, html, markdown
+from ballbench.validation.report import contents, document, html, markdown
 from ballbench.validation.report.figure import error_figure
 from ballbench.validation.report.records import tally
 from ballbench.validation.scene import FAMILIES, Output, SceneResult
@@ -64,7 +64,7 @@ def test_error_budget_table_groups_by_declared_family_and_names_undeclared():
         ("lowmodel.linear_bearing.b2b_traction", "FE-informed", "h 30 um"),
         ("lowmodel.linear_bearing.b2b", "low-order numerical", ""),
         ("lowmodel.linear_bearing.b2b_analytical", "analytical", ""), ("lowmodel.contact.hertz", "undeclared", "")}
-    rows = document.family_table(points)
+    rows = contents.family_table(points)
     assert [r[0] for r in rows] == ["analytical", "low-order numerical", "FE-informed", "undeclared"]
     assert rows[2][5] == "linear_bearing.b2b_traction (h 30 um)"
     text = report.to_markdown(results, "default", points=points)
@@ -94,7 +94,7 @@ def test_markdown_and_html_say_the_same_document(tmp_path):
     import html as html_module
 
     results = many_scenes(2)
-    built = document.build(results, "default", tally(results),
+    built = contents.build_document(results, "default", tally(results),
                            points=report.error_points(report.to_json(results, "default")))
     md, page = markdown.render(built).replace("\\|", "|"), html.render(built, tmp_path)
     texts = [s.title for s in built.sections if s.title]
@@ -111,7 +111,7 @@ def test_status_counts_are_those_of_the_one_tally():
     bad = _scene("zz-bad", _output("m", "FE", error=2.0))
     counted = tally([*results, bad])
     assert counted.counts == {"pass": len(results), "known gap": 0, "fail": 1, "error": 0}
-    built = document.build([*results, bad], "quick", counted)
+    built = contents.build_document([*results, bad], "quick", counted)
     assert [v.status for v in built.verdicts] == list(counted.statuses)
     assert report.to_json([*results, bad], "quick")["counts"] == counted.counts
 

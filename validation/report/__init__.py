@@ -2,8 +2,9 @@
 
 Modules: ``rows`` (a check in engineering units), ``records`` (statuses,
 ``results.json``, ``results.csv``), ``points`` (accuracy against cost),
-``figure`` and ``labels`` (``error_vs_time.png``), ``document`` (what the
-report says), ``markdown``, ``html`` and ``junit`` (how each format writes it).
+``figure`` and ``labels`` (``error_vs_time.png``), ``document`` (the
+document's dataclasses), ``contents`` (what the report says), ``markdown``,
+``html`` and ``junit`` (how each format writes it).
 
 ``results.json`` schema (stable; fields are added, never removed)::
 
@@ -30,7 +31,7 @@ import json
 from pathlib import Path
 from typing import Sequence
 
-from ballbench.validation.report import document
+from ballbench.validation.report import contents, document
 from ballbench.validation.report import html as html_page
 from ballbench.validation.report import junit as junit_xml
 from ballbench.validation.report import markdown as markdown_text
@@ -50,7 +51,7 @@ __all__ = ["write_report", "to_markdown", "to_html", "to_junit", "to_json", "wri
 def _document(results, fidelity, out_dir=None, *, strict=False, strict_time=False, not_run=(), points=(),
               figure=None) -> document.Document:
     counted = tally(results, strict=strict, strict_time=strict_time, not_run=not_run)
-    return document.build(results, fidelity, counted, points=points, figure=figure, out_dir=out_dir)
+    return contents.build_document(results, fidelity, counted, points=points, figure=figure, out_dir=out_dir)
 
 
 def to_markdown(results: Sequence[SceneResult], fidelity: str, *, strict: bool = False, strict_time: bool = False,
@@ -95,7 +96,7 @@ def write_report(results: Sequence[SceneResult], out_dir: Path, fidelity: str, *
     if results:
         paths["png"], paths["points"] = out_dir / "error_vs_time.png", out_dir / "error_vs_time.csv"
         points = plot_error_vs_time(data, paths["png"], out_dir)
-    built = document.build(results, fidelity, counted, points=points,
+    built = contents.build_document(results, fidelity, counted, points=points,
                            figure="error_vs_time.png" if points else None, out_dir=out_dir)
     paths["markdown"].write_text(markdown_text.render(built))
     paths["html"].write_text(html_page.render(built, out_dir))

@@ -202,7 +202,8 @@ def error_figure(data: dict, out_dir: Path | None = None):
     _summary(summary, legend_axes, points, [f for f in families if any(p["family"] == f for p in points)])
     renderer = canvas.get_renderer()
     for k, family in enumerate(families):
-        axes = figure.add_subplot(grid[1 + k // 2, k % 2])
+        last_alone = k == len(families) - 1 and k % 2 == 0  # an odd count: the last panel takes the whole row
+        axes = figure.add_subplot(grid[1 + k // 2, :] if last_alone else grid[1 + k // 2, k % 2])
         _family_panel(axes, family, [p for p in points if p["family"] == family],
                       [p for p in levels if p["family"] == family], renderer)
         if k % 2 == 0:
