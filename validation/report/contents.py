@@ -174,7 +174,7 @@ def _error_budget(points, figure: str | None) -> list[Section]:
                    Table(("scene", "family", "model", "level", "one evaluation", "worst error / tol"),
                          tuple(comparisons), numeric=(4, 5))]
     if figure:
-        blocks.append(Image(figure, "error_vs_time.png"))
+        blocks.append(Image(figure, "error against run time"))
     return [Section("Which model for an error budget", "error-vs-time", tuple(blocks))]
 
 

@@ -51,9 +51,10 @@ def _image(out_dir: Path, image: Image) -> str:
     if not path.exists():
         return f'<p class="small">Figure not written: {html.escape(image.path)}</p>'
     data = base64.b64encode(path.read_bytes()).decode("ascii")
-    alt = html.escape(image.alt)
-    return (f'<figure><img alt="{alt}" data-artifact="{alt}" src="data:image/png;base64,{data}">'
-            f"<figcaption>{alt}</figcaption></figure>")
+    alt, name = html.escape(image.alt), html.escape(image.path)
+    caption = alt if image.alt == image.path else f"{alt} ({name})"
+    return (f'<figure><img alt="{alt}" data-artifact="{name}" src="data:image/png;base64,{data}">'
+            f"<figcaption>{caption}</figcaption></figure>")
 
 
 def _table(table: Table) -> str:
