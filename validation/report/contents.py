@@ -64,7 +64,7 @@ def family_table(points: Sequence[dict]) -> list[tuple]:
         levels: dict[str, list[str]] = {}  # model -> its levels, fastest first
         for p in sorted(members, key=lambda p: p["time_s"]):
             known = levels.setdefault(p["model"].removeprefix("lowmodel."), [])
-            if p["level"] and p["level"] not in known:
+            if p["level"] and p["level"] not in known and not p["model"].endswith(f"({p['level']})"):
                 known.append(p["level"])
         models = [m + (f" ({', '.join(levels[m])})" if levels[m] else "") for m in sorted(levels)]
         rows.append((family, str(len(members)), f"{fmt_time(times[0])} - {fmt_time(times[-1])}",

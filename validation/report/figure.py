@@ -6,7 +6,8 @@ against cost.  Each family panel draws that family's points labelled by scene
 (placed so that no two labels collide, :mod:`.labels`), a line through each
 model's fidelity levels, as the work-precision diagrams of numerical-methods
 benchmarks do, and the FE mesh levels of the scenes' ``convergence.csv``.
-Built with matplotlib's object API (no pyplot, no global backend).
+Built with matplotlib's object API (no pyplot, no global backend); matplotlib
+is imported only when a figure is drawn.
 """
 from __future__ import annotations
 
@@ -59,6 +60,8 @@ def _scatter(axes, points, colour: str, size: float) -> None:
 
 def _frame(axes, *, notes: bool = True) -> list:
     """Log axes with the tolerance line, the marked floor and ceiling; returns the note texts."""
+    from matplotlib.ticker import NullFormatter
+
     axes.set_xscale("log")
     axes.set_yscale("log")
     axes.set_ylim(FLOOR / 5, CEILING * 5)
@@ -68,6 +71,7 @@ def _frame(axes, *, notes: bool = True) -> list:
     axes.grid(True, which="major", alpha=0.3)
     axes.set_xlabel("run time of one model evaluation [s]", fontsize=8)
     axes.tick_params(labelsize=8)
+    axes.xaxis.set_minor_formatter(NullFormatter())
     if not notes:
         return []
     return [axes.text(0.01, 0.012, "floor: error 0 (exact, or all bounds met) or below 1e-8",
@@ -77,14 +81,11 @@ def _frame(axes, *, notes: bool = True) -> list:
 
 
 def _time_limits(times) -> tuple[float, float]:
-    """Log time axis around ``times``: padded, and at least a decade wide (a narrower log axis labels its minor
-    ticks on top of each other)."""
+    """Log time axis around ``times`` from decade to decade, padded (room to the right for labels): at least a
+    decade wide with a labelled tick at each end (a narrower log axis labels its minor ticks on top of each
+    other)."""
     times = [t for t in times if t > 0 and math.isfinite(t)] or [1.0]
-    low, high = min(times) / 2.5, max(times) * 4.0  # room to the right for the labels
-    if high < 10.0 * low:
-        centre = math.sqrt(low * high)
-        low, high = centre / math.sqrt(10.0), centre * math.sqrt(10.0)
-    return low, high
+    return 10.0 ** math.floor(math.log10(min(times) / 1.5)), 10.0 ** math.ceil(math.log10(max(times) * 3.0))
 
 
 def _summary(axes, legend_axes, points, families) -> None:
@@ -158,7 +159,8 @@ def _family_panel(axes, family, points, levels, renderer) -> None:
     if len(sequences) == 1:
         notes.append(axes.text(0.99, 0.075, "levels, left to right: " + ", ".join(sequences.pop()),
                                transform=axes.transAxes, fontsize=7, ha="right", va="bottom", color="0.25"))
-    obstacles = [artist_boxes(notes, renderer)]
+    low, high = axes.get_xlim()
+    obstacles = [artist_boxes(notes, renderer), line_boxes(axes, [low, high], [1.0, 1.0])]  # the tolerance line
     for members in mesh.values():
         xs, ys = [p["time_s"] for p in members], [plotted(p["error"]) for p in members]
         axes.plot(xs, ys, "o-", color=MESH_COLOUR, ms=3, lw=0.8, zorder=2)
