@@ -190,26 +190,6 @@ def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, mo
     assert json.loads((tmp_path / "r" / "results.json").read_text())["scenes"][0]["outputs"][0]["unit"] == "1"
 
 
-@pytest.mark.parametrize("model, family", [
-    ("lowmodel.screw.screw_b2b", "low-order numerical"),        # was "analytical" (prefix lowmodel.screw)
-    ("lowmodel.screw.whole_screw", "low-order numerical"),      # was "analytical": a 5 s time simulation
-    ("lowmodel.contact.ehl", "low-order numerical"),            # was "other"
-    ("lowmodel.contact.halfspace", "low-order numerical"),      # was "other"
-    ("lowmodel.linear_bearing.b2b", "low-order numerical"),
-    ("lowmodel.linear_bearing.b2b (FE-informed)", "low-order numerical"),
-    ("lowmodel.linear_bearing.b2b_analytical", "analytical"),
-    ("lowmodel.screw.kinematics (Wei)", "analytical"),
-    ("lowmodel.contact.hertz.ball_in_groove", "analytical"),
-    ("lowmodel.fourpoint", "analytical"),
-    ("fem.mortar", "FE"),
-    ("lowmodel.calibration", "other"),
-])
-def test_model_families_of_the_error_budget_table(model, family):
-    from ballbench.validation.report import model_family
-
-    assert model_family(model) == family
-
-
 def test_known_gaps_table_states_a_shared_reason_once(tmp_path):
     from ballbench.validation.report import to_html, to_markdown
     from ballbench.validation.runner import run_scene
@@ -336,26 +316,6 @@ def test_a_vectorised_chunk_with_one_failing_case_stays_vectorised(tmp_path, mon
     singles = [size for size in helpers.CALLS if size == 1]
     # the whole chunk used to be recomputed one case at a time: 1 + 1024 calls
     assert len(singles) <= sweep.VECTOR_LEAF and len(helpers.CALLS) <= 2 * 10 + sweep.VECTOR_LEAF
-
-
-def test_error_figure_of_one_fe_scene_has_a_readable_time_axis(tmp_path, monkeypatch):
-    import matplotlib.pyplot as plt
-
-    from ballbench.validation.report import plot_error_vs_time
-
-    kept = []
-    monkeypatch.setattr(plt, "close", kept.append)
-    data = {"fidelity": "quick", "scenes": [{"name": "fe-hertz-groove-056", "artifacts": [], "outputs": [
-        {"model": "fem.contact", "kind": "accuracy", "quantity": "a", "rel_error": 0.001, "tolerance": 0.03,
-         "time_s": 23.9, "status": "pass"}]}]}
-    plot_error_vs_time(data, tmp_path / "e.png", tmp_path)
-    left, right = kept[0].axes[:2]
-    # a run of one FE scene gave the right panel 23.9 - 36 s, whose log axis printed its minor labels on each other
-    for axes in (left, right):
-        low, high = axes.get_xlim()
-        assert high >= 10 * low * (1 - 1e-9) and low <= 23.9 <= high
-    assert left.get_xlim() == right.get_xlim()
-    assert any("all bounds met" in t.get_text() for t in left.texts)
 
 
 def test_an_empty_budgets_section_says_so(tmp_path):
