@@ -19,6 +19,9 @@ rails, :mod:`fem.screw_module`: the ball screw's segments) one ``fields_ball<k>.
 
 The Hertz ellipse is the one of the FE's own contact force, so a picture compares shapes, not forces (the scenes'
 tables compare the forces).  Materials are one ``(E, nu)`` for all bodies, as the modules are solved.
+
+:func:`write_surface_fields` writes fields on a regular surface grid (the BEM and EHL solutions of
+``lowmodel.contact``) the same way: one VTU of quadrilaterals and one JSON.
 """
 from __future__ import annotations
 
@@ -28,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["FIELD_NAMES", "p2_nodes", "placement", "module_meta", "write_module_fields"]
+__all__ = ["FIELD_NAMES", "p2_nodes", "placement", "module_meta", "write_module_fields", "write_surface_fields"]
 
 FIELD_NAMES = {
     "displacement": "displacement_m",        # point data: the P2 displacement at all 10 nodes [m]
@@ -223,3 +226,33 @@ def write_module_fields(directory, models, results, *, materials, scene: str, fi
     meta_path = directory / "fields.json"
     meta_path.write_text(json.dumps(meta, indent=2))
     return paths + [meta_path]
+
+
+def write_surface_fields(directory, name: str, x, y, fields: dict, meta: dict) -> list[Path]:
+    """Write fields on a regular surface grid (a BEM or EHL solution) as ``surface_<name>.vtu`` (the cell centres
+    ``x`` (nx,) and ``y`` (ny,) [m] as points of quadrilaterals in the plane z = 0, each field (nx, ny) as point
+    data under its name, which carries its unit, e.g. ``pressure_Pa``, ``film_m``) and ``surface_<name>.json``
+    (``meta`` plus the kind, the file and the field names); returns the two paths."""
+    import meshio
+
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    if x.ndim != 1 or y.ndim != 1 or x.size < 2 or y.size < 2:
+        raise ValueError(f"x and y must be 1-D grids of at least 2 points, got shapes {x.shape} and {y.shape}")
+    data = {}
+    for key, values in fields.items():
+        values = np.asarray(values, dtype=float)
+        if values.shape != (x.size, y.size):
+            raise ValueError(f"field {key!r} has shape {values.shape}, the grid is {(x.size, y.size)}")
+        data[key] = values.ravel()  # point (i, j) -> i ny + j
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    points = np.column_stack([X.ravel(), Y.ravel(), np.zeros(X.size)])
+    index = np.arange(X.size).reshape(X.shape)
+    quads = np.column_stack([index[:-1, :-1].ravel(), index[1:, :-1].ravel(), index[1:, 1:].ravel(),
+                             index[:-1, 1:].ravel()])
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    vtu = directory / f"surface_{name}.vtu"
+    meshio.Mesh(points, [("quad", quads)], point_data=data).write(vtu)
+    meta_path = directory / f"surface_{name}.json"
+    meta_path.write_text(json.dumps({**meta, "kind": "surface", "file": vtu.name, "fields": list(fields)}, indent=2))
+    return [vtu, meta_path]

@@ -39,12 +39,17 @@ HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillio
 FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue, dashed
 
 
+# scenes that save BEM / EHL fields on a surface grid (validation.figures.render3d.surface_artifacts)
+SURFACE_SCENES = ("sun2021-dry-contact", "sun2021-ehl", "sun2021-fe-bem")
+
+
 def can_show(scene_name: str) -> bool:
-    """True for the FE scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``)
-    and the two-ball modules ``fe-b2b-*``; the other FE scenes (e.g. ``sun2021-fe-bem``) save no fields to draw."""
+    """True for the scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``),
+    the two-ball modules ``fe-b2b-*`` and the scenes that save surface fields (SURFACE_SCENES)."""
     from ballbench.validation.scenes import fe_hertz
 
-    return scene_name.startswith("fe-b2b-") or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES)
+    return (scene_name.startswith("fe-b2b-") or scene_name in SURFACE_SCENES
+            or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES))
 
 
 def load_fields(directory: Path) -> tuple[dict, dict]:
@@ -269,6 +274,11 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
     from ballbench.validation.figures import render3d
     from ballbench.validation.scenes import fe_hertz
 
+    if scene_name in SURFACE_SCENES:  # their BEM / EHL fields, saved by validate (3D screenshots only)
+        if not render3d.has_fields(Path(out_dir) / scene_name):
+            raise FileNotFoundError(f"no saved surface fields in {Path(out_dir) / scene_name}: run 'ballbench "
+                                    f"validate {scene_name} --out {out_dir}' first")
+        return render3d.render(Path(out_dir) / scene_name)
     if scene_name.startswith("fe-b2b-") and render3d.has_fields(Path(out_dir) / scene_name):
         return render3d.render(Path(out_dir) / scene_name)  # the modules' saved fields: 3D screenshots, no solve
     if scene_name.startswith("fe-b2b-screw-"):  # the ball-screw modules (validation/scenes/fe_b2b_screw.py)

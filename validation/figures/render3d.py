@@ -33,8 +33,8 @@ import numpy as np
 
 from ballbench.validation.figures import views3d as v
 
-__all__ = ["render", "artifacts", "module_artifacts", "has_fields", "pair_pictures", "module_pictures",
-           "PRESSURE_CMAP", "STRESS_CMAP"]
+__all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "surface_picture", "has_fields",
+           "pair_pictures", "module_pictures", "PRESSURE_CMAP", "STRESS_CMAP"]
 
 PRESSURE_CMAP = "viridis"
 STRESS_CMAP = "YlOrRd"
@@ -48,8 +48,10 @@ MM, MPA = v.MM, v.MPA
 
 # ----------------------------------------------------------------------------------------------- entry points
 def has_fields(scene_dir) -> bool:
-    """True when ``scene_dir`` holds saved fields :func:`render` can draw (``fields.json``)."""
-    return (Path(scene_dir) / "fields.json").is_file()
+    """True when ``scene_dir`` holds saved fields :func:`render` can draw (``fields.json`` or
+    ``surface_*.json``)."""
+    scene_dir = Path(scene_dir)
+    return (scene_dir / "fields.json").is_file() or any(scene_dir.glob("surface_*.json"))
 
 
 def render(scene_dir) -> list[Path]:
@@ -57,16 +59,22 @@ def render(scene_dir) -> list[Path]:
 
     FileNotFoundError when no fields are saved there, ValueError for a meta file of an unknown kind."""
     scene_dir = Path(scene_dir)
+    if not has_fields(scene_dir):
+        raise FileNotFoundError(f"no saved fields in {scene_dir} (fields.json or surface_*.json)")
+    paths = []
     meta_path = scene_dir / "fields.json"
-    if not meta_path.is_file():
-        raise FileNotFoundError(f"no saved fields in {scene_dir} (fields.json)")
-    meta = json.loads(meta_path.read_text())
-    kind = meta.get("kind", "pair")
-    if kind == "pair":
-        return pair_pictures(scene_dir, meta)
-    if kind == "module":
-        return module_pictures(scene_dir, meta)
-    raise ValueError(f"{meta_path}: unknown kind of fields {kind!r} (pair or module)")
+    if meta_path.is_file():
+        meta = json.loads(meta_path.read_text())
+        kind = meta.get("kind", "pair")
+        if kind == "pair":
+            paths += pair_pictures(scene_dir, meta)
+        elif kind == "module":
+            paths += module_pictures(scene_dir, meta)
+        else:
+            raise ValueError(f"{meta_path}: unknown kind of fields {kind!r} (pair or module)")
+    for surface_meta in sorted(scene_dir.glob("surface_*.json")):
+        paths.append(surface_picture(surface_meta))
+    return paths
 
 
 def artifacts(scene_dir, note) -> list[Path]:
@@ -93,6 +101,23 @@ def module_artifacts(run, models, results, *, materials, level: dict, case: str 
         run.add_artifact(path)
     for path in artifacts(directory, run.note):
         run.add_artifact(path)
+
+
+def surface_artifacts(run, name: str, x, y, fields: dict, *, title: str, axes=("x", "y")) -> None:
+    """For a scene run: write fields on a surface grid (``x`` (nx,), ``y`` (ny,) [m], each field (nx, ny) named
+    with its unit, ``pressure_Pa``, ``film_m``, ``separation_m``; :func:`ballbench.fem.fields.write_surface_fields`)
+    as ``surface_<name>``, draw them (:func:`surface_picture`) and register both as the run's artifacts.
+    ``title`` names the case, ``axes`` the directions of x and y in words."""
+    from ballbench.fem.fields import write_surface_fields
+
+    paths = write_surface_fields(run.path(""), name, x, y, fields, {
+        "scene": run.scene.name, "fidelity": run.fidelity, "title": title, "axes": list(axes)})
+    for path in paths:
+        run.add_artifact(path)
+    try:
+        run.add_artifact(surface_picture(paths[1]))
+    except Exception as error:  # the picture is an extra; the checks stand without it
+        run.note(f"3D screenshot of {paths[0].name} not drawn: {type(error).__name__}: {error}")
 
 
 def _hertz_maximum(a_m: float, b_m: float, p0_Pa: float, poisson_ratio: float) -> tuple[float, float]:
@@ -615,3 +640,63 @@ def _module_helix(grids, meta, heading, path: Path) -> Path:
     focal = np.mean(centres, axis=0)
     v.look_from(plot, centres[0] - 7.0 * radius * look + 1.8 * radius * up, focal, up, 32.0)
     return v.save(plot, path)
+
+
+# ----------------------------------------------------------------------------------------------- surfaces
+_UNITS = {"_Pa": ("MPa", MPA), "_m": ("um", 1e6)}  # field-name suffix -> picture unit
+
+
+def _surface_unit(name: str, values: np.ndarray) -> tuple[str, float, str]:
+    """``(unit, factor, quantity)`` of a field from its name's unit suffix; lengths below 1 um in nm."""
+    for suffix, (unit, factor) in _UNITS.items():
+        if name.endswith(suffix):
+            quantity = name[: -len(suffix)].replace("_", " ")
+            if unit == "um" and float(np.percentile(np.abs(values), 30)) < 1e-6:
+                return "nm", 1e9, quantity
+            return unit, factor, quantity
+    return "", 1.0, name.replace("_", " ")
+
+
+def surface_picture(meta_path) -> Path:
+    """``3d_<name>.png`` of the fields of ``surface_<name>.json`` (:func:`ballbench.fem.fields.write_surface_fields`):
+    each field a surface over the grid, raised by its value (the height scale stated) and coloured by it.  A length
+    field (a film, a separation) is capped at the 30th percentile of its positive values, about where it leaves
+    the contact, and says so."""
+    pv = v.pyvista()
+    meta_path = Path(meta_path)
+    meta = json.loads(meta_path.read_text())
+    source = pv.read(str(meta_path.parent / meta["file"]))
+    points = np.asarray(source.points) * MM
+    width = float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1]))
+    names = meta["fields"]
+    plot = v.plotter((1, len(names)), (900 * len(names), 720),
+                     f"{meta['scene']}: {meta['title']}, {meta['fidelity']} level\nthe fields on the contact plane "
+                     f"(x: {meta['axes'][0]}, y: {meta['axes'][1]}), each raised by its value")
+    for column, name in enumerate(names):
+        v.subplot(plot, 0, column)
+        values = np.asarray(source.point_data[name], dtype=float)
+        unit, factor, quantity = _surface_unit(name, values)
+        shown = values * factor
+        note = ""
+        if unit in ("um", "nm") and np.any(shown > 0.0):
+            cap = float(np.percentile(shown[shown > 0.0], 30))
+            note = f", capped at {cap:.3g} {unit}" if float(shown.max()) > cap else ""
+            shown = np.minimum(shown, cap)
+        top, n_labels = v.colour_scale(float(shown.max()))
+        height = 0.35 * max(width) / top
+        mesh = pv.PolyData(points.copy(), source.cells)
+        mesh.points[:, 2] = shown * height
+        mesh.point_data[quantity] = shown
+        plot.add_mesh(mesh, scalars=quantity, cmap=PRESSURE_CMAP if unit == "MPa" else "cividis", clim=(0.0, top),
+                      show_scalar_bar=False)
+        fmt = "%.0f" if top >= 10 else "%.2f"
+        plot.add_scalar_bar(title=f"{quantity} [{unit}]", n_labels=n_labels, fmt=fmt, title_font_size=15,
+                            label_font_size=14, color="black", vertical=True, position_x=0.87, position_y=0.12,
+                            width=0.05, height=0.7)
+        v.title(plot, f"{quantity} [{unit}]{note}; height: 1 {unit} = {height * 1e3:.3g} um")
+        v.scale_bar(plot, (points[:, 0].min(), points[:, 1].min() - 0.08 * width[1], 0.0), (1, 0, 0),
+                    v.nice(0.4 * width[0]))
+        v.frame_axes(plot)
+        centre = points.mean(axis=0) + [0.0, 0.0, 0.3 * top * height]
+        v.view(plot, centre, (0.45, 0.65, -0.75), (0, 0, 1), 0.42 * max(width))
+    return v.save(plot, meta_path.parent / f"3d_{meta_path.stem.removeprefix('surface_')}.png")
