@@ -39,8 +39,8 @@ __all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "surf
 PRESSURE_CMAP = "viridis"
 STRESS_CMAP = "YlOrRd"
 HERTZ_COLOUR, FE_COLOUR = "white", v.ORANGE
-ELLIPSE_NOTE = ("white (wide): the Hertz ellipse at the FE contact force, centred on the FE pressure; orange (narrow): "
-                "the FE moment ellipse\n(the force and second moments of the FE pressure); grey: no contact pressure")
+ELLIPSE_NOTE = ("white (wide): the Hertz ellipse at the FE contact force, centred on the FE pressure;\norange (narrow): "
+                "the FE moment ellipse (the force and second moments of the FE pressure);\ngrey: no contact pressure")
 
 FE_MAX_COLOUR, HERTZ_MAX_COLOUR = v.GREEN, v.SKY_BLUE
 MM, MPA = v.MM, v.MPA
@@ -179,12 +179,12 @@ def _displacement_scale(outer, reference_mm: float, share: float = 0.03) -> floa
 
 
 def _stress_view(plot, grid, centre, normal, right, up, half_width, half_height, top, n_labels, marks, *,
-                 bar: bool) -> list:
+                 bar: bool, face=None) -> list:
     """Von Mises stress (``vm_MPa``) on the cut of ``grid`` through ``centre`` with ``normal``, trimmed to the
     window (``right``, ``up``, half sizes [mm]), seen along ``normal``; the largest value of each body in the window
     (green dots) and the Hertz maxima ``marks`` ``[(point, ...)]`` (blue rings).  Returns ``([(body, value, point),
-    ...] of the FE maxima, the actor)``."""
-    face = v.cut(grid, centre, normal, right, up, half_width, half_height)
+    ...] of the FE maxima, the actor)``; ``face``: that cut, if already made."""
+    face = v.cut(grid, centre, normal, right, up, half_width, half_height) if face is None else face
     actor = plot.add_mesh(face, scalars="vm_MPa", cmap=STRESS_CMAP, clim=(0.0, top), show_scalar_bar=False,
                           lighting=False)
     if bar:
@@ -278,7 +278,7 @@ def _pair_pressure(full, meta, heading, path: Path) -> Path:
     scale = _displacement_scale(ball, zone)
     top, n_labels = v.colour_scale(max(float(np.max(ball.point_data["p_MPa"])), hertz["p0_Pa"] * MPA))
     ellipses = [(a, b, 0.0, 0.0, HERTZ_COLOUR, 6), (fe["a_m"] * MM, fe["b_m"] * MM, 0.0, 0.0, FE_COLOUR, 2.5)]
-    plot = v.plotter((1, 2), (1800, 760), f"{heading}\ncontact pressure on the deformed ball surface", caption=40)
+    plot = v.plotter((1, 2), (1800, 760), f"{heading}\ncontact pressure on the deformed ball surface", caption=62)
     for column, s in enumerate((scale, 1.0)):
         v.subplot(plot, 0, column)
         _pressure(plot, _warped(ball, s), top, n_labels, bar=column == 1)
@@ -492,9 +492,9 @@ def _module_pressure_overview(grids, meta, heading, path: Path) -> Path:
     balls = meta["balls"]
     top, n_labels = _pressure_top(grids, balls)
     rows = len(balls)
-    plot = v.plotter((rows, 2), (1800, 480 * rows), f"{heading}\ncontact pressure on the deformed ball surfaces, "
-                                                    "where the contacts sit; one colour scale for all patches",
-                     caption=74)
+    plot = v.plotter((rows, 2), (1800, 480 * rows), f"{heading}\ncontact pressure on the deformed ball surfaces: "
+                                                    "where the contacts sit; one colour scale",
+                     caption=62)
     for row, (grid, ball) in enumerate(zip(grids, balls)):
         outer = v.surface(grid, 0)
         radius = ball["ball_radius_m"] * MM
@@ -531,10 +531,10 @@ def _module_pressure_contacts(grids, meta, heading, path: Path) -> Path:
     top, n_labels = _pressure_top(grids, balls)
     rows, columns = len(balls), len(balls[0]["contacts"])
     width, height = 1900, 330 * rows
-    plot = v.plotter((rows, columns), (width, height), f"{heading}\ncontact pressure on the deformed ball surface, "
-                                                      "each contact seen along its normal from the flank (e1 across "
-                                                      "the groove, e2 up), true displacements; one colour scale",
-                     caption=74)
+    plot = v.plotter((rows, columns), (width, height), f"{heading}\ncontact pressure on the deformed ball surface (true "
+                                                      "scale), each contact seen along its normal from the flank (e1 "
+                                                      "across the groove, e2 up); one colour scale",
+                     caption=62)
     a_max = max(c["hertz"]["a_m"] for ball in balls for c in ball["contacts"]) * MM
     half_width = 1.2 * a_max
     half = half_width * (height / rows) / (width / columns)
@@ -586,13 +586,13 @@ def _module_stress(grids, meta, heading, path: Path) -> Path:
             depth, value = _hertz_maximum(hertz["a_m"], hertz["b_m"], hertz["p0_Pa"], nu)
             face = v.cut(grid, origin, look, np.cross(look, frame[2]), frame[2], half_width, half_height)
             tops += [value, float(np.max(face.cell_data["vm_MPa"]))]
-            plan.append((contact, origin, frame[2], depth, value))
+            plan.append((contact, origin, frame[2], depth, value, face))
         plans.append((centre, look, up, right, plan))
     top, n_labels = v.colour_scale(max(tops))
     plot = v.plotter((rows, columns), (width, height), f"{heading}\nvon Mises stress (element means of the P2 "
                                                        "stress) on the cut through the ball centre that holds the "
                                                        "contact normals: the e1-e3 plane of each contact",
-                     caption=74, column_weights=weights)
+                     caption=62, column_weights=weights)
     for row, (grid, ball, (centre, look, up, right, plan)) in enumerate(zip(grids, balls, plans)):
         v.subplot(plot, row, 0)
         radius = ball["ball_radius_m"] * MM
@@ -601,15 +601,15 @@ def _module_stress(grids, meta, heading, path: Path) -> Path:
                       lighting=False)
         v.title(plot, f"ball {row + 1}")
         v.view(plot, centre - 0.25 * radius * right, look, up, 1.75 * radius)
-        for column, (contact, origin, e3, depth, value) in enumerate(plan, start=1):
+        for column, (contact, origin, e3, depth, value, face) in enumerate(plan, start=1):
             v.subplot(plot, row, column)
             marks = [origin + depth * e3, origin - depth * e3]
             found, actor = _stress_view(plot, grid, origin, look, np.cross(look, e3), e3, half_width, half_height,
-                                        top, n_labels, marks, bar=False)
-            words = [f"FE max {peak:.0f} MPa in the {'ball' if body == 0 else ball['bodies'][body].replace('_', ' ')}, "
+                                        top, n_labels, marks, bar=False, face=face)
+            words = [f"FE, {'ball' if body == 0 else ball['bodies'][body].replace('_', ' ')}: {peak:.0f} MPa, "
                      f"{abs((where - origin) @ e3) * 1e3:.0f} um deep" for body, peak, where in found]
             v.title(plot, f"ball {row + 1} {contact['name']}, {contact['normal_force_N']:.1f} N (the ball above)\n"
-                          + "\n".join(words) + f"\nHertz max {value:.0f} MPa, {depth * 1e3:.0f} um deep")
+                          + "\n".join(words) + f"\nHertz: {value:.0f} MPa, {depth * 1e3:.0f} um deep")
     v.caption(plot, "green dots: the largest FE element mean of each body in the window;\nblue rings: the Hertz "
                     "subsurface maximum at the FE force (both bodies);\nelement means smooth the peak on coarse "
                     "meshes", bar=(actor, "von Mises stress [MPa]", n_labels))

@@ -79,15 +79,19 @@ def caption(plot, words: str, size: int = FONT, *, bar=None) -> None:
         actor, label, n_labels = bar[:3]
         scale = plot.add_scalar_bar(title=label, mapper=actor.mapper, n_labels=n_labels, fmt="%.0f",
                                     title_font_size=14, label_font_size=13, color="black", vertical=False,
-                                    position_x=0.62, position_y=0.04, width=0.34, height=0.92,
+                                    position_x=0.64, position_y=0.04, width=0.33, height=0.92,
                                     below_label=bar[3] if len(bar) > 3 else None)
         scale.SetTextPositionToPrecedeScalarBar()  # the labels below the bar, the title above it
 
 
 def save(plot, path: Path) -> Path:
-    """Write the screenshot of ``plot`` to the PNG ``path``, close it and return ``path``."""
-    plot.screenshot(str(path))
+    """Write the screenshot of ``plot`` to the PNG ``path`` (zlib level 4: a third of the default's encoding time
+    for 5-10 % more bytes), close it and return ``path``."""
+    from PIL import Image
+
+    image = plot.screenshot(return_img=True)
     plot.close()
+    Image.fromarray(image).save(path, compress_level=4)
     return Path(path)
 
 
