@@ -39,8 +39,9 @@ __all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "surf
 PRESSURE_CMAP = "viridis"
 STRESS_CMAP = "YlOrRd"
 HERTZ_COLOUR, FE_COLOUR = "white", v.ORANGE
-ELLIPSE_NOTE = ("white (wide): the Hertz ellipse at the FE contact force, centred on the FE pressure;\norange (narrow): "
-                "the FE moment ellipse (the force and second moments of the FE pressure);\ngrey: no contact pressure")
+ELLIPSE_NOTE = ("white (wide): the Hertz ellipse at the FE contact force, centred on the FE pressure;\n"
+                "orange (narrow): the FE moment ellipse (the force and second moments of the FE pressure);\n"
+                "grey: no contact pressure")
 
 FE_MAX_COLOUR, HERTZ_MAX_COLOUR = v.GREEN, v.SKY_BLUE
 MM, MPA = v.MM, v.MPA
@@ -531,9 +532,9 @@ def _module_pressure_contacts(grids, meta, heading, path: Path) -> Path:
     top, n_labels = _pressure_top(grids, balls)
     rows, columns = len(balls), len(balls[0]["contacts"])
     width, height = 1900, 330 * rows
-    plot = v.plotter((rows, columns), (width, height), f"{heading}\ncontact pressure on the deformed ball surface (true "
-                                                      "scale), each contact seen along its normal from the flank (e1 "
-                                                      "across the groove, e2 up); one colour scale",
+    plot = v.plotter((rows, columns), (width, height), f"{heading}\ncontact pressure on the deformed ball surface "
+                                                      "(true scale), each contact seen along its normal from the "
+                                                      "flank (e1 across the groove, e2 up); one colour scale",
                      caption=62)
     a_max = max(c["hertz"]["a_m"] for ball in balls for c in ball["contacts"]) * MM
     half_width = 1.2 * a_max
