@@ -12,7 +12,9 @@ rails, :mod:`fem.screw_module`: the ball screw's segments) one ``fields_ball<k>.
   zone holds the vertex, -1 elsewhere), and the cell data ``body`` (the module's volume index) and
   ``von_mises_stress_Pa`` (the element mean of the P2 stress, :func:`fem.fourpoint.von_mises`);
 * the JSON (:func:`module_meta`) names the bodies and for each ball its placement in the two-ball assembly
-  (:func:`placement`), its centre and radius, the load on the loaded body and, per contact, the undeformed
+  (:func:`placement`), its centre and radius, the load on the loaded body (the contact forces on it along its load
+  face's rigid motion: the rails' ``(N_x, -N_y)``, the nut's axial share; the held directions' reaction apart) and,
+  per contact, the undeformed
   contact point and frame ``(e1, e2, e3)`` (major axis, minor axis, normal into the ball), the FE normal force,
   loaded contact angle and approach, the FE moment ellipse (:func:`fem.postprocess.moment_ellipse`) and the
   Hertz ellipse at the FE force (:func:`lowmodel.contact.hertz.solve_load` on the contact's curvatures).
@@ -151,6 +153,12 @@ def module_meta(model, result, materials) -> dict:
             "fe_ellipse": None if fit is None else {"a_m": fit.a, "b_m": fit.b, "p0_Pa": fit.p0, "x0_m": fit.x0,
                                                     "y0_m": fit.y0},
         })
+    # the applied load: the part of the contact forces' balance along the load face's rigid motion (the rails'
+    # U_x, U_y; the nut's axial U); the rest is the reaction of the load face's other, held directions
+    motions = np.array([geometry.load_face_motion(unit) for unit in np.eye(len(geometry.rigid_names))])
+    motions = motions[np.linalg.norm(motions, axis=1) > 0.0]
+    free = np.linalg.svd(motions)[2][:np.linalg.matrix_rank(motions)]  # orthonormal rows spanning the motion
+    applied = free.T @ (free @ load)
     names = {index: name for name, index in geometry.volumes.items()}
     loaded = _body_of_surface(model.pair, geometry.load_face)
     clamped = [name for name in geometry.clamped if name != geometry.load_face]
@@ -159,7 +167,8 @@ def module_meta(model, result, materials) -> dict:
         "ball_radius_m": float(geometry.ball_radius),
         "bodies": [names[k] for k in sorted(names)],
         "loaded_body": names[loaded],
-        "load_N": load.tolist(),
+        "load_N": applied.tolist(),
+        "load_face_reaction_N": (load - applied).tolist(),
         "load_face": geometry.load_face,
         "load_point_m": model.pair.points[model.pair.nodes(geometry.load_face)].mean(axis=0).tolist(),
         "support_faces": clamped,

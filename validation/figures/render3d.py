@@ -152,7 +152,7 @@ def _pressure(plot, outer, top: float, n_labels: int, *, bar: bool = False, smoo
     changes along that iso-line of the piecewise-linear FE pressure.  Returns the actor."""
     actor = plot.add_mesh(outer, scalars="p_MPa", cmap=PRESSURE_CMAP, clim=(1e-4 * top, top),
                           below_color=v.ZERO_PRESSURE_COLOUR, show_scalar_bar=False, interpolate_before_map=True,
-                          smooth_shading=smooth)
+                          smooth_shading=smooth, ambient=0.35, diffuse=0.7)  # colours readable on a shaded ball
     if bar:
         v.scalar_bar(plot, "p [MPa]", n_labels, below="p = 0")
     return actor
@@ -251,8 +251,8 @@ def _pair_assembly(half, meta, heading, path: Path, *, cut: bool) -> Path:
             f"F = {meta['force_N']:.0f} N (the ball_load face moved rigidly)")
     v.text(plot, (0.5 * (xmin + xmax), centre_y, zmin), "counter_support clamped")
     v.frame_axes(plot)
-    v.view(plot, (0.5 * (xmin + xmax), centre_y, 0.5 * (zmin + zmax) + 0.1 * size), (0.5, 1.0, -0.4), (0, 0, 1),
-           0.64 * size)
+    v.view(plot, (0.5 * (xmin + xmax), centre_y, 0.5 * (zmin + zmax + 0.3 * size)), (0.5, 1.0, -0.4), (0, 0, 1),
+           0.5 * max(xmax - xmin, zmax - zmin + 0.3 * size) + 0.15 * size)
     v.subplot(plot, 0, 1)
     half_width = 1.15 * a * 1800 / 800
     if cut:
@@ -264,7 +264,7 @@ def _pair_assembly(half, meta, heading, path: Path, *, cut: bool) -> Path:
                   f"h = b / {meta['level']['n']:g} = {b / meta['level']['n'] * 1e3:.1f} um at the contact")
     plot.add_mesh(v.polyline([[-a, -1e-3 * a, 0.0], [a, -1e-3 * a, 0.0]]), color=v.VERMILLION, line_width=5)
     v.text(plot, (0.0, 0.0, -0.25 * a), "Hertz contact width 2a", colour=v.VERMILLION)
-    v.scale_bar(plot, (-1.55 * a, -1e-3 * a, -0.9 * a), (1, 0, 0), v.nice(0.5 * a))
+    v.scale_bar(plot, (-1.0 * a, -1e-3 * a, -0.85 * a), (1, 0, 0), v.nice(0.5 * a))
     v.view(plot, (0.0, 0.0, 0.05 * a), (0.0, 1.0, 0.0), (0, 0, 1), 1.05 * a)
     return v.save(plot, path)
 
@@ -290,7 +290,7 @@ def _pair_pressure(full, meta, heading, path: Path) -> Path:
     v.view(plot, (0.0, 0.0, 0.1 * zone), (0.45, 0.55, 0.7), (0, 0, 1), 0.55 * zone)
     v.subplot(plot, 0, 1)
     v.title(plot, f"seen along the contact normal, true displacements;\nHertz a = {a * 1e3:.1f} um, "
-                  f"b = {b * 1e3:.1f} um, p0 = {hertz['p0_Pa'] * MPA:.0f} MPa; FE moment ellipse a = "
+                  f"b = {b * 1e3:.1f} um, p0 = {hertz['p0_Pa'] * MPA:.0f} MPa;\nFE moment ellipse a = "
                   f"{fe['a_m'] * 1e6:.1f} um, b = {fe['b_m'] * 1e6:.1f} um, p0 = {fe['p0_Pa'] * MPA:.0f} MPa")
     half = max(1.35 * b, 0.62 * a)
     v.scale_bar(plot, (-1.05 * a, -0.85 * half, 0.0), (1, 0, 0), v.nice(0.5 * a))
