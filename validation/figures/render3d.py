@@ -670,7 +670,7 @@ def surface_picture(meta_path) -> Path:
     points = np.asarray(source.points) * MM
     width = float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1]))
     names = meta["fields"]
-    plot = v.plotter((1, len(names)), (900 * len(names), 720),
+    plot = v.plotter((1, len(names)), (max(900 * len(names), 1300), 720),
                      f"{meta['scene']}: {meta['title']}, {meta['fidelity']} level\nthe fields on the contact plane "
                      f"(x: {meta['axes'][0]}, y: {meta['axes'][1]}), each raised by its value")
     for column, name in enumerate(names):
