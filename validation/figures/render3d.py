@@ -15,35 +15,32 @@ Pictures (``3d_*.png``):
 * ``3d_stress.png`` - von Mises stress on cuts through the contact normal (the plane of the major axis; for pairs
   also of the minor one), the largest FE value of each body on the cut marked (green dot) with its value, and the
   Hertz subsurface maximum (``validation.references.hertz.axis_von_mises_maximum``, blue ring) beside it;
-* ``3d_helix.png`` (ball-screw modules) - the two-ball module seen along the helix.
+* ``3d_helix.png`` (ball-screw modules) - the two-ball module seen along the helix;
+* ``3d_<name>.png`` - fields on a surface grid (BEM, EHL; :mod:`validation.figures.surfaces3d`).
 
 Determinism (the image regression tests rely on it): fixed window sizes, anti-aliasing off, cameras computed
 from the saved geometry, the default light kit, no time stamps.  Colour maps are perceptually uniform and
-colour-blind safe (``viridis`` for pressure, ``inferno`` for stress); bodies and marks use the Okabe-Ito palette
+colour-blind safe (``viridis`` for pressure, ``YlOrRd`` for stress); bodies and marks use the Okabe-Ito palette
 (:mod:`validation.figures.views3d`).  Lengths are drawn in mm, stresses in MPa.
 """
 from __future__ import annotations
 
 import json
 import math
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
+from ballbench.validation.figures import surfaces3d
 from ballbench.validation.figures import views3d as v
 
-__all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "surface_picture", "has_fields",
+__all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "has_fields",
            "pair_pictures", "module_pictures", "PRESSURE_CMAP", "STRESS_CMAP"]
 
-PRESSURE_CMAP = "viridis"
-STRESS_CMAP = "YlOrRd"
-HERTZ_COLOUR, FE_COLOUR = "white", v.ORANGE
+PRESSURE_CMAP, STRESS_CMAP, HERTZ_COLOUR, FE_COLOUR = v.PRESSURE_CMAP, v.STRESS_CMAP, v.HERTZ_COLOUR, v.FE_COLOUR
 ELLIPSE_NOTE = ("white (wide): the Hertz ellipse at the FE contact force, centred on the FE pressure;\n"
                 "orange (narrow): the FE moment ellipse (the force and second moments of the FE pressure);\n"
                 "grey: no contact pressure")
-
-FE_MAX_COLOUR, HERTZ_MAX_COLOUR = v.GREEN, v.SKY_BLUE
 MM, MPA = v.MM, v.MPA
 
 
@@ -74,7 +71,7 @@ def render(scene_dir) -> list[Path]:
         else:
             raise ValueError(f"{meta_path}: unknown kind of fields {kind!r} (pair or module)")
     for surface_meta in sorted(scene_dir.glob("surface_*.json")):
-        paths.append(surface_picture(surface_meta))
+        paths.append(surfaces3d.surface_picture(surface_meta))
     return paths
 
 
@@ -107,8 +104,8 @@ def module_artifacts(run, models, results, *, materials, level: dict, case: str 
 def surface_artifacts(run, name: str, x, y, fields: dict, *, title: str, axes=("x", "y")) -> None:
     """For a scene run: write fields on a surface grid (``x`` (nx,), ``y`` (ny,) [m], each field (nx, ny) named
     with its unit, ``pressure_Pa``, ``film_m``, ``separation_m``; :func:`ballbench.fem.fields.write_surface_fields`)
-    as ``surface_<name>``, draw them (:func:`surface_picture`) and register both as the run's artifacts.
-    ``title`` names the case, ``axes`` the directions of x and y in words."""
+    as ``surface_<name>``, draw them (:func:`validation.figures.surfaces3d.surface_picture`) and register both as
+    the run's artifacts.  ``title`` names the case, ``axes`` the directions of x and y in words."""
     from ballbench.fem.fields import write_surface_fields
 
     paths = write_surface_fields(run.path(""), name, x, y, fields, {
@@ -116,24 +113,9 @@ def surface_artifacts(run, name: str, x, y, fields: dict, *, title: str, axes=("
     for path in paths:
         run.add_artifact(path)
     try:
-        run.add_artifact(surface_picture(paths[1]))
+        run.add_artifact(surfaces3d.surface_picture(paths[1]))
     except Exception as error:  # the picture is an extra; the checks stand without it
         run.note(f"3D screenshot of {paths[0].name} not drawn: {type(error).__name__}: {error}")
-
-
-def _hertz_maximum(a_m: float, b_m: float, p0_Pa: float, poisson_ratio: float) -> tuple[float, float]:
-    """Depth [mm] and value [MPa] of Hertz's largest von Mises stress on the contact axis
-    (``validation.references.hertz.axis_von_mises_maximum``), from the unit contact of the same ``a / b`` (the
-    Boussinesq integral is homogeneous: depths scale with b, stresses with p0), ``a / b`` to 5 digits."""
-    depth, value = _unit_maximum(float(f"{a_m / b_m:.5g}"), float(poisson_ratio))
-    return depth * b_m * MM, value * p0_Pa * MPA
-
-
-@lru_cache(maxsize=64)
-def _unit_maximum(ratio: float, poisson_ratio: float) -> tuple[float, float]:
-    from ballbench.validation.references.hertz import axis_von_mises_maximum
-
-    return axis_von_mises_maximum(ratio, 1.0, 1.0, poisson_ratio)
 
 
 def _level_text(meta: dict) -> str:
@@ -145,65 +127,6 @@ def _level_text(meta: dict) -> str:
     else:
         words = ", ".join(f"{k} {value}" for k, value in level.items())
     return f"{meta.get('fidelity', '?')} level ({words})"
-
-
-def _pressure(plot, outer, top: float, n_labels: int, *, bar: bool = False, smooth: bool = False):
-    """``outer`` coloured by ``p_MPa`` on the scale 0 - ``top``; below 1e-4 ``top`` (no contact) grey: the colour
-    changes along that iso-line of the piecewise-linear FE pressure.  Returns the actor."""
-    actor = plot.add_mesh(outer, scalars="p_MPa", cmap=PRESSURE_CMAP, clim=(1e-4 * top, top),
-                          below_color=v.ZERO_PRESSURE_COLOUR, show_scalar_bar=False, interpolate_before_map=True,
-                          smooth_shading=smooth, ambient=0.35, diffuse=0.7)  # colours readable on a shaded ball
-    if bar:
-        v.scalar_bar(plot, "p [MPa]", n_labels, below="p = 0")
-    return actor
-
-
-def _warped(outer, scale: float):
-    out = outer.copy()
-    out.points = np.asarray(outer.points) + scale * np.asarray(outer.point_data["u_mm"])
-    return out
-
-
-def _curves(plot, outer, origin, frame, ellipses, lift: float, scale: float) -> None:
-    """The ellipses ``[(a, b, x0, y0, colour, width), ...]`` [mm] of the tangent plane ``frame`` at ``origin`` as
-    curves on ``outer`` (displaced by ``scale`` u_mm), the widest first and lowest (each next one lifted more)."""
-    for k, (a, b, x0, y0, colour, width) in enumerate(sorted(ellipses, key=lambda e: -e[5])):
-        plane = v.ellipse((x0, y0, 0.0), (1, 0, 0), (0, 1, 0), a, b)[:, :2]
-        plot.add_mesh(v.polyline(v.on_surface(outer, plane, origin, frame, (1 + 2 * k) * lift, scale)),
-                      color=colour, line_width=width)
-
-
-def _displacement_scale(outer, reference_mm: float, share: float = 0.03) -> float:
-    """A 1-2-5 scale that makes the largest displacement of ``outer`` about ``share`` of ``reference_mm``."""
-    largest = float(np.max(np.linalg.norm(np.asarray(outer.point_data["u_mm"]), axis=1)))
-    return v.nice(share * reference_mm / largest) if largest > 0.0 else 1.0
-
-
-def _stress_view(plot, grid, centre, normal, right, up, half_width, half_height, top, n_labels, marks, *,
-                 bar: bool, face=None) -> list:
-    """Von Mises stress (``vm_MPa``) on the cut of ``grid`` through ``centre`` with ``normal``, trimmed to the
-    window (``right``, ``up``, half sizes [mm]), seen along ``normal``; the largest value of each body in the window
-    (green dots) and the Hertz maxima ``marks`` ``[(point, ...)]`` (blue rings).  Returns ``([(body, value, point),
-    ...] of the FE maxima, the actor)``; ``face``: that cut, if already made."""
-    face = v.cut(grid, centre, normal, right, up, half_width, half_height) if face is None else face
-    actor = plot.add_mesh(face, scalars="vm_MPa", cmap=STRESS_CMAP, clim=(0.0, top), show_scalar_bar=False,
-                          lighting=False)
-    if bar:
-        v.scalar_bar(plot, "von Mises [MPa]", n_labels)
-    towards = -np.asarray(normal, dtype=float) / np.linalg.norm(normal)
-    radius = 0.035 * half_height
-    found = []
-    for body in np.unique(np.asarray(face.cell_data["body"])):
-        where, value = v.maximum(face, "vm_MPa", int(body))
-        if where is not None:
-            v.dot(plot, where + 0.06 * half_height * towards, FE_MAX_COLOUR, radius, towards)
-            found.append((int(body), value, where))
-    for point in marks:
-        v.dot(plot, np.asarray(point) + 0.04 * half_height * towards, HERTZ_MAX_COLOUR, 1.6 * radius, towards,
-              ring=True)
-    view_half = 1.45 * half_height  # the window in the lower part, the titles above it
-    v.view(plot, np.asarray(centre) + 0.4 * half_height * np.asarray(up), -towards, up, view_half)
-    return found, actor
 
 
 # ----------------------------------------------------------------------------------------------- pairs
@@ -276,14 +199,14 @@ def _pair_pressure(full, meta, heading, path: Path) -> Path:
     near = v.surface(v.within(full, (-zone, zone, -zone, zone, -1.0, zone)), 0)
     near = near.extract_cells(np.flatnonzero(np.asarray(near.cell_centers().points)[:, 2] < 0.4 * zone))
     ball = near.extract_surface(algorithm="dataset_surface")
-    scale = _displacement_scale(ball, zone)
+    scale = v.displacement_scale(ball, zone)
     top, n_labels = v.colour_scale(max(float(np.max(ball.point_data["p_MPa"])), hertz["p0_Pa"] * MPA))
     ellipses = [(a, b, 0.0, 0.0, HERTZ_COLOUR, 6), (fe["a_m"] * MM, fe["b_m"] * MM, 0.0, 0.0, FE_COLOUR, 2.5)]
     plot = v.plotter((1, 2), (1800, 760), f"{heading}\ncontact pressure on the deformed ball surface", caption=62)
     for column, s in enumerate((scale, 1.0)):
         v.subplot(plot, 0, column)
-        _pressure(plot, _warped(ball, s), top, n_labels, bar=column == 1)
-        _curves(plot, ball, (0, 0, 0), np.eye(3), ellipses, 0.02 * b, s)
+        v.pressure_surface(plot, v.warped(ball, s), top, n_labels, bar=column == 1)
+        v.ellipse_curves(plot, ball, (0, 0, 0), np.eye(3), ellipses, 0.02 * b, s)
     v.subplot(plot, 0, 0)
     v.title(plot, f"the ball's surface about the contact, seen from the counter body's side;\ndisplacements x "
                   f"{scale:g}")
@@ -302,7 +225,7 @@ def _pair_pressure(full, meta, heading, path: Path) -> Path:
 def _pair_stress(grid, meta, heading, path: Path) -> Path:
     hertz = meta["hertz"]
     a, b = hertz["a_m"] * MM, hertz["b_m"] * MM
-    depth, value = _hertz_maximum(hertz["a_m"], hertz["b_m"], hertz["p0_Pa"], meta["poisson_ratio"])
+    depth, value = v.hertz_maximum(hertz["a_m"], hertz["b_m"], hertz["p0_Pa"], meta["poisson_ratio"])
     symmetry = meta["symmetry"]
     views = (("y = 0, the plane of the major axis a", 1, a, symmetry["x"]),
              ("x = 0, the plane of the minor axis b", 0, b, symmetry["y"]))
@@ -320,12 +243,12 @@ def _pair_stress(grid, meta, heading, path: Path) -> Path:
         v.subplot(plot, 0, column)
         right = np.eye(3)[1 - axis] * (1.0 if axis == 1 else -1.0)
         inside = 1e-6 * span * np.eye(3)[axis]  # a symmetry face is the cut itself: just inside it
-        found, _ = _stress_view(plot, local, inside, np.eye(3)[axis], right, (0, 0, 1), span, 0.62 * span, top,
+        found, _ = v.stress_window(plot, local, inside, np.eye(3)[axis], right, (0, 0, 1), span, 0.62 * span, top,
                              n_labels, marks, bar=column == 1)
         entries = [(f"FE maximum in the {('ball', 'counter body')[body]}: {peak:.0f} MPa at depth "
-                    f"{abs(where[2]) * 1e3:.0f} um", FE_MAX_COLOUR) for body, peak, where in found]
+                    f"{abs(where[2]) * 1e3:.0f} um", v.FE_MAX_COLOUR) for body, peak, where in found]
         entries.append((f"Hertz subsurface maximum: {value:.0f} MPa at depth {depth * 1e3:.0f} um",
-                        HERTZ_MAX_COLOUR))
+                        v.HERTZ_MAX_COLOUR))
         v.legend(plot, entries, size=(0.6, 0.13), loc="upper left")
         v.title(plot, f"the cut {words}")
     return v.save(plot, path)
@@ -499,18 +422,19 @@ def _module_pressure_overview(grids, meta, heading, path: Path) -> Path:
     for row, (grid, ball) in enumerate(zip(grids, balls)):
         outer = v.surface(grid, 0)
         radius = ball["ball_radius_m"] * MM
-        scale = _displacement_scale(outer, radius, 0.12)  # the flattened contacts visible on the whole ball
-        warped = _warped(outer, scale)
+        scale = v.displacement_scale(outer, radius, 0.12)  # the flattened contacts visible on the whole ball
+        warped = v.warped(outer, scale)
         centre, look, up, right = _module_frame(ball)
         for column, moving in enumerate((False, True)):
             v.subplot(plot, row, column)
-            actor = _pressure(plot, warped, top, n_labels, smooth=True)
+            actor = v.pressure_surface(plot, warped, top, n_labels, smooth=True)
             seen = [c for c in ball["contacts"] if c["moving"] == moving]
             points = []
             for contact in seen:
                 origin = np.asarray(contact["point_m"]) * MM
                 points.append(origin)
-                _curves(plot, outer, origin, contact["frame"], _ellipses(contact, 4.0, 2.0), 0.003 * radius, scale)
+                v.ellipse_curves(plot, outer, origin, contact["frame"], _ellipses(contact, 4.0, 2.0), 0.003 * radius,
+                                 scale)
                 v.text(plot, origin - 0.22 * radius * np.asarray(contact["frame"][2]),
                        f"{contact['name']} {contact['normal_force_N']:.1f} N")
             outward = -np.sum([np.asarray(c["frame"][2]) for c in seen], axis=0)
@@ -548,8 +472,8 @@ def _module_pressure_contacts(grids, meta, heading, path: Path) -> Path:
             frame = np.asarray(contact["frame"])
             near = outer.extract_cells(np.flatnonzero(np.linalg.norm(centres - origin, axis=1) <= 2.0 * a_max))
             near = near.extract_surface(algorithm="dataset_surface")
-            actor = _pressure(plot, near, top, n_labels)
-            _curves(plot, near, origin, frame, _ellipses(contact), 0.04 * contact["hertz"]["b_m"] * MM, 1.0)
+            actor = v.pressure_surface(plot, near, top, n_labels)
+            v.ellipse_curves(plot, near, origin, frame, _ellipses(contact), 0.04 * contact["hertz"]["b_m"] * MM, 1.0)
             fe = contact["fe_ellipse"]
             fe_words = "" if fe is None else f", FE {fe['p0_Pa'] * MPA:.0f}"
             v.title(plot, f"ball {row + 1} {contact['name']}: {contact['normal_force_N']:.1f} N, "
@@ -584,7 +508,7 @@ def _module_stress(grids, meta, heading, path: Path) -> Path:
             fe = contact["fe_ellipse"]
             origin = np.asarray(contact["point_m"]) * MM + (0.0 if fe is None else fe["x0_m"] * MM) * frame[0]
             hertz = contact["hertz"]
-            depth, value = _hertz_maximum(hertz["a_m"], hertz["b_m"], hertz["p0_Pa"], nu)
+            depth, value = v.hertz_maximum(hertz["a_m"], hertz["b_m"], hertz["p0_Pa"], nu)
             face = v.cut(grid, origin, look, np.cross(look, frame[2]), frame[2], half_width, half_height)
             tops += [value, float(np.max(face.cell_data["vm_MPa"]))]
             plan.append((contact, origin, frame[2], depth, value, face))
@@ -605,7 +529,7 @@ def _module_stress(grids, meta, heading, path: Path) -> Path:
         for column, (contact, origin, e3, depth, value, face) in enumerate(plan, start=1):
             v.subplot(plot, row, column)
             marks = [origin + depth * e3, origin - depth * e3]
-            found, actor = _stress_view(plot, grid, origin, look, np.cross(look, e3), e3, half_width, half_height,
+            found, actor = v.stress_window(plot, grid, origin, look, np.cross(look, e3), e3, half_width, half_height,
                                         top, n_labels, marks, bar=False, face=face)
             words = [f"FE, {'ball' if body == 0 else ball['bodies'][body].replace('_', ' ')}: {peak:.0f} MPa, "
                      f"{abs((where - origin) @ e3) * 1e3:.0f} um deep" for body, peak, where in found]
@@ -641,63 +565,3 @@ def _module_helix(grids, meta, heading, path: Path) -> Path:
     focal = np.mean(centres, axis=0)
     v.look_from(plot, centres[0] - 7.0 * radius * look + 1.8 * radius * up, focal, up, 32.0)
     return v.save(plot, path)
-
-
-# ----------------------------------------------------------------------------------------------- surfaces
-_UNITS = {"_Pa": ("MPa", MPA), "_m": ("um", 1e6)}  # field-name suffix -> picture unit
-
-
-def _surface_unit(name: str, values: np.ndarray) -> tuple[str, float, str]:
-    """``(unit, factor, quantity)`` of a field from its name's unit suffix; lengths below 1 um in nm."""
-    for suffix, (unit, factor) in _UNITS.items():
-        if name.endswith(suffix):
-            quantity = name[: -len(suffix)].replace("_", " ")
-            if unit == "um" and float(np.percentile(np.abs(values), 30)) < 1e-6:
-                return "nm", 1e9, quantity
-            return unit, factor, quantity
-    return "", 1.0, name.replace("_", " ")
-
-
-def surface_picture(meta_path) -> Path:
-    """``3d_<name>.png`` of the fields of ``surface_<name>.json`` (:func:`ballbench.fem.fields.write_surface_fields`):
-    each field a surface over the grid, raised by its value (the height scale stated) and coloured by it.  A length
-    field (a film, a separation) is capped at the 30th percentile of its positive values, about where it leaves
-    the contact, and says so."""
-    pv = v.pyvista()
-    meta_path = Path(meta_path)
-    meta = json.loads(meta_path.read_text())
-    source = pv.read(str(meta_path.parent / meta["file"]))
-    points = np.asarray(source.points) * MM
-    width = float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1]))
-    names = meta["fields"]
-    plot = v.plotter((1, len(names)), (max(900 * len(names), 1300), 720),
-                     f"{meta['scene']}: {meta['title']}, {meta['fidelity']} level\nthe fields on the contact plane "
-                     f"(x: {meta['axes'][0]}, y: {meta['axes'][1]}), each raised by its value")
-    for column, name in enumerate(names):
-        v.subplot(plot, 0, column)
-        values = np.asarray(source.point_data[name], dtype=float)
-        unit, factor, quantity = _surface_unit(name, values)
-        shown = values * factor
-        note = ""
-        if unit in ("um", "nm") and np.any(shown > 0.0):
-            cap = float(np.percentile(shown[shown > 0.0], 30))
-            note = f", capped at {cap:.3g} {unit}" if float(shown.max()) > cap else ""
-            shown = np.minimum(shown, cap)
-        top, n_labels = v.colour_scale(float(shown.max()))
-        height = 0.35 * max(width) / top
-        mesh = pv.PolyData(points.copy(), source.cells)
-        mesh.points[:, 2] = shown * height
-        mesh.point_data[quantity] = shown
-        plot.add_mesh(mesh, scalars=quantity, cmap=PRESSURE_CMAP if unit == "MPa" else "cividis", clim=(0.0, top),
-                      show_scalar_bar=False)
-        fmt = "%.0f" if top >= 10 else "%.2f"
-        plot.add_scalar_bar(title=f"{quantity} [{unit}]", n_labels=n_labels, fmt=fmt, title_font_size=15,
-                            label_font_size=14, color="black", vertical=True, position_x=0.87, position_y=0.12,
-                            width=0.05, height=0.7)
-        v.title(plot, f"{quantity} [{unit}]{note}; height: 1 {unit} = {height * 1e3:.3g} um")
-        v.scale_bar(plot, (points[:, 0].min(), points[:, 1].min() - 0.08 * width[1], 0.0), (1, 0, 0),
-                    v.nice(0.4 * width[0]))
-        v.frame_axes(plot)
-        centre = points.mean(axis=0) + [0.0, 0.0, 0.3 * top * height]
-        v.view(plot, centre, (0.45, 0.65, -0.75), (0, 0, 1), 0.42 * max(width))
-    return v.save(plot, meta_path.parent / f"3d_{meta_path.stem.removeprefix('surface_')}.png")

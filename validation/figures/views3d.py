@@ -1,5 +1,6 @@
 """Building blocks of the 3D screenshots (:mod:`validation.figures.render3d`): a deterministic off-screen plotter,
-parallel cameras, cuts with the mesh edges of a zone, curves on a surface, arrows, frames, markers, colour bars.
+parallel cameras, cuts with the mesh edges of a zone, curves on a surface, arrows, frames, markers, colour bars,
+the pressure surface, the stress window with its FE and Hertz maxima.
 
 Lengths in mm, stresses in MPa (the pictures' units).  pyvista is imported inside the functions; on Linux without
 ``DISPLAY`` VTK is pointed at its EGL render window (``VTK_DEFAULT_OPENGL_WINDOW``) before pyvista loads, so that
@@ -8,6 +9,7 @@ it does not first try an X server and print a warning.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +21,10 @@ BALL_COLOUR, FIXED_COLOUR, LOADED_COLOUR = "#DDDDDD", "#9CC9E6", "#F2C879"  # ba
 ZERO_PRESSURE_COLOUR = "#C8C8C8"  # the ball outside the contact patches
 AXIS_COLOURS = (VERMILLION, GREEN, BLUE)  # x, y, z (and e1, e2, e3)
 EDGE_COLOUR = "#303030"
+PRESSURE_CMAP = "viridis"  # perceptually uniform, colour-blind safe
+STRESS_CMAP = "YlOrRd"  # ColorBrewer sequential, colour-blind safe
+HERTZ_COLOUR, FE_COLOUR = "white", ORANGE  # the Hertz and the FE moment ellipse
+FE_MAX_COLOUR, HERTZ_MAX_COLOUR = GREEN, SKY_BLUE  # the FE and the Hertz stress maximum
 FONT = 10  # points, the viewport titles (text actors of a fixed size)
 MM, MPA = 1e3, 1e-6
 
@@ -431,3 +437,78 @@ def scale_bar(plot, start, right, length: float, *, font: int = 12) -> None:
     words = f"{length * 1e3:g} um" if length < 1.0 else f"{length:g} mm"
     plot.add_point_labels([start + 0.5 * length * right], [words], font_size=font, text_color="black", shape=None,
                           point_size=1, always_visible=True, show_points=False)
+
+
+# ----------------------------------------------------------------------------------------------- fields
+def hertz_maximum(a_m: float, b_m: float, p0_Pa: float, poisson_ratio: float) -> tuple[float, float]:
+    """Depth [mm] and value [MPa] of Hertz's largest von Mises stress on the contact axis
+    (``validation.references.hertz.axis_von_mises_maximum``), from the unit contact of the same ``a / b`` (the
+    Boussinesq integral is homogeneous: depths scale with b, stresses with p0), ``a / b`` to 5 digits."""
+    depth, value = _unit_maximum(float(f"{a_m / b_m:.5g}"), float(poisson_ratio))
+    return depth * b_m * MM, value * p0_Pa * MPA
+
+
+@lru_cache(maxsize=64)
+def _unit_maximum(ratio: float, poisson_ratio: float) -> tuple[float, float]:
+    from ballbench.validation.references.hertz import axis_von_mises_maximum
+
+    return axis_von_mises_maximum(ratio, 1.0, 1.0, poisson_ratio)
+
+
+def pressure_surface(plot, outer, top: float, n_labels: int, *, bar: bool = False, smooth: bool = False):
+    """``outer`` coloured by ``p_MPa`` on the scale 0 - ``top``; below 1e-4 ``top`` (no contact) grey: the colour
+    changes along that iso-line of the piecewise-linear FE pressure.  Returns the actor."""
+    actor = plot.add_mesh(outer, scalars="p_MPa", cmap=PRESSURE_CMAP, clim=(1e-4 * top, top),
+                          below_color=ZERO_PRESSURE_COLOUR, show_scalar_bar=False, interpolate_before_map=True,
+                          smooth_shading=smooth, ambient=0.35, diffuse=0.7)  # colours readable on a shaded ball
+    if bar:
+        scalar_bar(plot, "p [MPa]", n_labels, below="p = 0")
+    return actor
+
+
+def warped(outer, scale: float):
+    out = outer.copy()
+    out.points = np.asarray(outer.points) + scale * np.asarray(outer.point_data["u_mm"])
+    return out
+
+
+def ellipse_curves(plot, outer, origin, frame, ellipses, lift: float, scale: float) -> None:
+    """The ellipses ``[(a, b, x0, y0, colour, width), ...]`` [mm] of the tangent plane ``frame`` at ``origin`` as
+    curves on ``outer`` (displaced by ``scale`` u_mm), the widest first and lowest (each next one lifted more)."""
+    for k, (a, b, x0, y0, colour, width) in enumerate(sorted(ellipses, key=lambda e: -e[5])):
+        plane = ellipse((x0, y0, 0.0), (1, 0, 0), (0, 1, 0), a, b)[:, :2]
+        plot.add_mesh(polyline(on_surface(outer, plane, origin, frame, (1 + 2 * k) * lift, scale)),
+                      color=colour, line_width=width)
+
+
+def displacement_scale(outer, reference_mm: float, share: float = 0.03) -> float:
+    """A 1-2-5 scale that makes the largest displacement of ``outer`` about ``share`` of ``reference_mm``."""
+    largest = float(np.max(np.linalg.norm(np.asarray(outer.point_data["u_mm"]), axis=1)))
+    return nice(share * reference_mm / largest) if largest > 0.0 else 1.0
+
+
+def stress_window(plot, grid, centre, normal, right, up, half_width, half_height, top, n_labels, marks, *,
+                 bar: bool, face=None) -> list:
+    """Von Mises stress (``vm_MPa``) on the cut of ``grid`` through ``centre`` with ``normal``, trimmed to the
+    window (``right``, ``up``, half sizes [mm]), seen along ``normal``; the largest value of each body in the window
+    (green dots) and the Hertz maxima ``marks`` ``[(point, ...)]`` (blue rings).  Returns ``([(body, value, point),
+    ...] of the FE maxima, the actor)``; ``face``: that cut, if already made."""
+    face = cut(grid, centre, normal, right, up, half_width, half_height) if face is None else face
+    actor = plot.add_mesh(face, scalars="vm_MPa", cmap=STRESS_CMAP, clim=(0.0, top), show_scalar_bar=False,
+                          lighting=False)
+    if bar:
+        scalar_bar(plot, "von Mises [MPa]", n_labels)
+    towards = -np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    radius = 0.035 * half_height
+    found = []
+    for body in np.unique(np.asarray(face.cell_data["body"])):
+        where, value = maximum(face, "vm_MPa", int(body))
+        if where is not None:
+            dot(plot, where + 0.06 * half_height * towards, FE_MAX_COLOUR, radius, towards)
+            found.append((int(body), value, where))
+    for point in marks:
+        dot(plot, np.asarray(point) + 0.04 * half_height * towards, HERTZ_MAX_COLOUR, 1.6 * radius, towards,
+              ring=True)
+    view_half = 1.45 * half_height  # the window in the lower part, the titles above it
+    view(plot, np.asarray(centre) + 0.4 * half_height * np.asarray(up), -towards, up, view_half)
+    return found, actor
