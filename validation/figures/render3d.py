@@ -443,7 +443,7 @@ def _module_pressure_overview(grids, meta, heading, path: Path) -> Path:
             screen_up = np.cross(np.cross(direction, look), direction)
             if np.cross(direction, screen_up) @ (points[0] - centre) > 0.0:
                 screen_up = -screen_up
-            body = ball["loaded_body"] if moving else "the clamped body"
+            body = f"the {ball['loaded_body']}" if moving else "the clamped body"
             v.title(plot, f"ball {row + 1}: the contacts with {body.replace('_', ' ')}, seen from its side; "
                           f"displacements x {scale:g}")
             v.view(plot, np.mean(points, axis=0), direction, screen_up, 0.55 * radius)
