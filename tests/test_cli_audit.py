@@ -24,13 +24,12 @@ def test_misspelt_scene_name_suggests_the_close_ones(capsys, no_work, tmp_path):
     assert "did you mean 'fe-hertz-groove-056'" in line
 
 
-def test_show_of_an_fe_scene_without_fields_is_wrong_use_not_a_damaged_file(capsys, no_work, tmp_path):
-    # sun2021-fe-bem is an FE scene but saves no fields.vtu: 'show' used to start, fail with exit 1 and advise
+def test_show_of_a_scene_without_saved_fields_says_to_validate_first(capsys, tmp_path):
+    # sun2021-fe-bem saves only its BEM surfaces (no fields.vtu): 'show' on a folder without them used to advise
     # deleting a fields.vtu that never existed
-    line = one_error_line(capsys, cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]))
-    assert "saves no fields" in line and "fe-hertz-groove-056" in line and "fe-b2b-linear-a" in line
-    assert "sun2021-fe-bem," not in line.split("show draws:")[1]
-    assert not (tmp_path / "r").exists()
+    assert cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]) == 1
+    lines = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
+    assert len(lines) == 1 and "ballbench validate sun2021-fe-bem" in lines[0] and "delete" not in lines[0]
 
 
 def test_show_names_the_kind_with_the_right_article(capsys, no_work, tmp_path):

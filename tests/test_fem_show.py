@@ -8,9 +8,11 @@ import numpy as np
 import pytest
 
 from ballbench.validation import cli, show
+from ballbench.validation.figures import render3d
 from ballbench.validation.scenes import fe_hertz
 
 SCENE = "fe-hertz-ball-ball"
+THREE_D = ["3d_assembly.png", "3d_pressure.png", "3d_stress.png"]  # validation.figures.render3d
 
 
 @pytest.fixture(scope="module")
@@ -45,10 +47,11 @@ def test_show_reads_saved_fields_and_writes_into_the_scene_folder(saved, monkeyp
     monkeypatch.setattr(fe_hertz, "solve_level", _no_solve)
     monkeypatch.setattr(fe_hertz, "compute_fields", _no_solve)
     paths = show.show(SCENE, saved)
-    assert [p.name for p in paths] == ["pressure.png", "stress.png"]
+    assert [p.name for p in paths] == ["pressure.png", "stress.png"] + THREE_D
     for path in paths:
         assert path.parent == saved / SCENE
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for path in paths[:2]:
         assert 20_000 < path.stat().st_size < 300_000
     captured = capfd.readouterr()
     assert captured.err == "" and "vtk" not in captured.out.lower()
@@ -62,6 +65,7 @@ def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
         shutil.copytree(saved / SCENE, directory, dirs_exist_ok=True)
 
     monkeypatch.setattr(fe_hertz, "compute_fields", fake_compute)
+    monkeypatch.setattr(render3d, "render", lambda directory: [])  # the 3D screenshots: tests/test_render3d.py
     show.show(SCENE, tmp_path, fidelity="quick")
     show.show(SCENE, tmp_path, fidelity="quick")
     assert calls == [(SCENE, "quick")]
@@ -70,7 +74,8 @@ def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
 def test_cli_show(saved, monkeypatch, capsys):
     monkeypatch.setattr(fe_hertz, "solve_level", _no_solve)
     assert cli.main(["show", SCENE, "--out", str(saved)]) == 0
-    assert capsys.readouterr().out.split() == [str(saved / SCENE / "pressure.png"), str(saved / SCENE / "stress.png")]
+    assert capsys.readouterr().out.split() == [str(saved / SCENE / name) for name in
+                                               ["pressure.png", "stress.png"] + THREE_D]
 
 
 def test_show_refuses_other_scenes(tmp_path):
@@ -94,7 +99,8 @@ def test_damaged_fields_end_in_one_line(tmp_path, capsys):
 def test_show_fourpoint_module_writes_pngs(tmp_path):
     # FE four-point module at the quick level (111k DOFs) plus one solve for the displacement field
     paths = show.show("fe-b2b-linear-a", tmp_path, fidelity="quick")
-    assert [p.name for p in paths] == ["pressure.png", "stress.png"]
+    assert [p.name for p in paths] == ["pressure.png", "stress.png", "3d_assembly.png", "3d_pressure_overview.png",
+                                       "3d_pressure_contacts.png", "3d_stress.png"]
     for path in paths:
         assert path.exists() and path.stat().st_size > 10_000
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

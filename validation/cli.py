@@ -261,8 +261,9 @@ def _cmd_show(args) -> int:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except (OSError, ValueError, KeyError) as error:  # e.g. a damaged fields.vtu / fields.json
-        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error} (delete "
-              f"{out_dir / args.scene / 'fields.vtu'} to solve the fields again)", file=sys.stderr)
+        hint = "" if isinstance(error, FileNotFoundError) else (  # a missing file: the error says what to run
+            f" (delete {out_dir / args.scene / 'fields.vtu'} to solve the fields again)")
+        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error}{hint}", file=sys.stderr)
         return EXIT_FAILED
     for path in paths:
         print(path)

@@ -3,9 +3,11 @@
 Reads ``<out>/<scene>/fields.vtu`` and ``fields.json`` (written by the FE
 scenes, :func:`validation.scenes.fe_hertz.write_fields`); only when they are
 missing does it solve the scene's checked level first
-(:func:`validation.scenes.fe_hertz.compute_fields`).  Renders off-screen with
-matplotlib (no window, no X server, no VTK rendering; pyvista is used only to
-cut the mesh) and writes into the scene's report folder:
+(:func:`validation.scenes.fe_hertz.compute_fields`).  Draws off-screen with
+matplotlib (no window, no X server; pyvista cuts the mesh) and writes into the
+scene's report folder the two figures below, then the 3D screenshots of
+:func:`validation.figures.render3d.render` (``3d_*.png``, pyvista off-screen;
+for the four-point modules ``fe-b2b-*`` only those, from their saved fields):
 
 * ``pressure.png`` - the contact pressure [MPa] on the deformed contact
   surface of the ball (seen along the contact normal), the symmetry cut
@@ -37,12 +39,17 @@ HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillio
 FE_STYLE = {"color": "#56B4E9", "ls": "--", "lw": 2.2}      # Okabe-Ito sky blue, dashed
 
 
+# scenes that save BEM / EHL fields on a surface grid (validation.figures.render3d.surface_artifacts)
+SURFACE_SCENES = ("sun2021-dry-contact", "sun2021-ehl", "sun2021-fe-bem")
+
+
 def can_show(scene_name: str) -> bool:
-    """True for the FE scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``)
-    and the two-ball modules ``fe-b2b-*``; the other FE scenes (e.g. ``sun2021-fe-bem``) save no fields to draw."""
+    """True for the scenes :func:`show` draws: the FE Hertz scenes (``validation.scenes.fe_hertz.FE_SCENES``),
+    the two-ball modules ``fe-b2b-*`` and the scenes that save surface fields (SURFACE_SCENES)."""
     from ballbench.validation.scenes import fe_hertz
 
-    return scene_name.startswith("fe-b2b-") or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES)
+    return (scene_name.startswith("fe-b2b-") or scene_name in SURFACE_SCENES
+            or any(entry.name == scene_name for entry in fe_hertz.FE_SCENES))
 
 
 def load_fields(directory: Path) -> tuple[dict, dict]:
@@ -264,8 +271,16 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
     """
     import sys
 
+    from ballbench.validation.figures import render3d
     from ballbench.validation.scenes import fe_hertz
 
+    if scene_name in SURFACE_SCENES:  # their BEM / EHL fields, saved by validate (3D screenshots only)
+        if not render3d.has_fields(Path(out_dir) / scene_name):
+            raise FileNotFoundError(f"no saved surface fields in {Path(out_dir) / scene_name}: run 'ballbench "
+                                    f"validate {scene_name} --out {out_dir}' first")
+        return render3d.render(Path(out_dir) / scene_name)
+    if scene_name.startswith("fe-b2b-") and render3d.has_fields(Path(out_dir) / scene_name):
+        return render3d.render(Path(out_dir) / scene_name)  # the modules' saved fields: 3D screenshots, no solve
     if scene_name.startswith("fe-b2b-screw-"):  # the ball-screw modules (validation/scenes/fe_b2b_screw.py)
         from ballbench.validation.scenes import fe_b2b_screw
 
@@ -297,4 +312,4 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default", *, show_prog
     if not math.isfinite(meta["hertz"]["a_m"]):
         raise ValueError(f"{directory / 'fields.json'}: no Hertz reference")
     return [_pressure_figure(data, meta, directory / "pressure.png"),
-            _stress_figure(data, meta, directory / "stress.png")]
+            _stress_figure(data, meta, directory / "stress.png")] + render3d.render(directory)

@@ -26,6 +26,7 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
+from ballbench.validation.figures import render3d
 from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import scene
 
@@ -256,6 +257,8 @@ def _run(run, case: str) -> None:
              f"Per-contact FE results (force, loaded angle, fitted a, b, p0, approach) against eq 36 and Hertz: "
              f"contacts.csv.  Semi-axes at the {level}: {_ellipse_summary(contact_rows, h_contact)}.")
     _plot_patches(run, model, results, hertz_geometry)
+    render3d.module_artifacts(run, model, results, materials=(E_STEEL, NU_STEEL), case=f"theta {math.degrees(THETA):g} "
+                              f"deg, rho {RHO:g}", level={"h_contact_m": h_contact, "growth": levels[-1][1]})
     if run.fidelity != "quick":
         _sensitivity(run, case, model, results, low, contacts)
 
@@ -472,6 +475,7 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     BR-TL are the two pairs of opposite contacts, :func:`cut_figure`), at the scene's level for ``fidelity``."""
     from pathlib import Path
 
+    from ballbench.fem.fields import write_module_fields
     from ballbench.lowmodel.contact import hertz
 
     cases = {"fe-b2b-linear-a": "a", "fe-b2b-linear-b": "b"}
@@ -492,7 +496,9 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     stress_path = stress_cut(model, result, target / "stress.png", normal=(0, 0, 1), origin=(0, 0, 0),
                              title=f"{scene_name}, ball 1 (N_x = {result_side(0):.0f} N, N_y = {VERTICAL:.0f} N), "
                                    f"cut z = 0 through the four contacts\n{contact_summary(result)}")
-    return [pressure_path, stress_path]
+    write_module_fields(target, model, results, materials=(E_STEEL, NU_STEEL), scene=scene_name, fidelity=fidelity,
+                        level={"h_contact_m": h_contact, "growth": growth})
+    return [pressure_path, stress_path] + render3d.render(target)
 
 
 def _default_level() -> str:

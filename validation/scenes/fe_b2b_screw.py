@@ -30,6 +30,7 @@ import numpy as np
 
 from ballbench.lowmodel.screw import screw_b2b, screw_ball
 from ballbench.meshes.parts.groove_segment import BODY_DEPTH  # R_B from the pitch radius (the builder's default)
+from ballbench.validation.figures import render3d
 from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import KnownGap, scene
 from ballbench.validation.scenes import lin2019_screw
@@ -385,6 +386,9 @@ def _run(run, case: str) -> None:
              "FE per level: " + "; ".join(lines) + ".  Per contact (contacts.csv): FE force against the frictionless "
              "Hertz statics and the low-order model, loaded vs rigid angle, fitted a, b, p0 vs Hertz, approach.")
     run.save_figure(_figure(models, results, contacts), "pressure_patches.png")
+    render3d.module_artifacts(run, models, results, materials=(E_STEEL, NU_STEEL), case=f"theta 0 / "
+                              f"{math.degrees(printed.theta):g} deg, {AXIAL_LOAD:g} N",
+                              level={"h_contact_m": h_contact, "growth": LEVELS[run.fidelity][-1][1]})
     if run.fidelity != "quick":
         _sensitivity(run, case, models, results, state, contacts)
 
@@ -456,6 +460,7 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
     x3-z3, which holds all four contacts: SL-NR and SR-NL are the two pairs of opposite contacts)."""
     from pathlib import Path
 
+    from ballbench.fem.fields import write_module_fields
     from ballbench.validation.scenes.fe_b2b import contact_summary, save_figure, stress_cut
 
     cases = {"fe-b2b-screw-a": "a", "fe-b2b-screw-b": "b"}
@@ -477,7 +482,9 @@ def show(scene_name: str, out_dir, fidelity: str = "default") -> list:
                              origin=geometry.ball_centre, view_up=geometry.cs3[:, 2], axis_names=("-x3", "z3"),
                              title=f"{scene_name}, ball 2 (theta {math.degrees(PRINTED[case].theta):g} deg), cut "
                                    f"x3-z3 through the ball centre and the four contacts\n{contact_summary(result)}")
-    return [pressure_path, stress_path]
+    write_module_fields(target, models, results, materials=(E_STEEL, NU_STEEL), scene=scene_name, fidelity=fidelity,
+                        level={"h_contact_m": h_contact, "growth": growth})
+    return [pressure_path, stress_path] + render3d.render(target)
 
 
 def _default_level() -> str:

@@ -26,6 +26,7 @@ import numpy as np
 
 from ballbench.fem.hertz_case import LOAD_FACTORS
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.figures import render3d
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 from ballbench.validation.scene import scene
 
@@ -405,6 +406,8 @@ def _run(run, scene_name: str) -> None:
         start = time.perf_counter()
         for path in write_fields(result, ref, run.path(""), scene_name=scene_name, fidelity=run.fidelity,
                                  level=levels[-1]):
+            run.add_artifact(path)
+        for path in render3d.artifacts(run.path(""), run.note):  # 3D screenshots of those fields
             run.add_artifact(path)
         run.note(f"fields.vtu (quadratic tetrahedra: the P2 displacement at all nodes, contact pressure, von Mises "
                  f"and sigma_zz of the P2 stress; `ballbench show {scene_name}` draws them) took "

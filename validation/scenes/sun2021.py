@@ -12,6 +12,7 @@ import numpy as np
 
 from ballbench.lowmodel.contact import screw_contact
 from ballbench.lowmodel.geometry import helix
+from ballbench.validation.figures import render3d
 from ballbench.validation.papers import sun2021 as paper
 from ballbench.validation.scene import KnownGap, scene
 
@@ -158,6 +159,11 @@ def sun2021_dry_contact(run):
                                        "sun2021 Fig 8 analogue (point A)"), "fig8_point_A.png")
     run.save_figure(_difference_figure({k: v for k, v in results.items() if k[0] == HELIX_ANGLES_DEG[-1]},
                                        "sun2021 Fig 7 analogue (21.71 deg)"), "fig7_21deg.png")
+    for point in POINTS:  # the BEM fields of the Fig 7 analogue in 3D
+        bem = results[(last, point)].bem
+        render3d.surface_artifacts(run, f"bem_{point}_{last}deg", bem.grid.x, bem.grid.y, {
+            "pressure_Pa": bem.pressure, "separation_m": bem.separation}, axes=("major axis", "minor axis"),
+            title=f"dry BEM at {point}, helix {last} deg, {n} x {n}")
 
 
 ENTRAINMENT_SPEED = paper.ENTRAINMENT_SPEED
@@ -253,6 +259,9 @@ def sun2021_ehl(run):
             if angle == HELIX_ANGLES_DEG[-1] and point == "A":
                 run.save_figure(_ehl_figure(solution, f"sun2021 Fig 10 analogue: point A, helix {angle} deg"),
                                 "fig10_point_A.png")
+                render3d.surface_artifacts(run, f"ehl_A_{angle}deg", solution.grid.x, solution.grid.y, {
+                    "pressure_Pa": solution.pressure, "film_m": solution.film}, axes=("entrainment", "across"),
+                    title=f"EHL at A, helix {angle} deg, {2 * n} x {n // 2} (Fig 10 analogue)")
     first, last = HELIX_ANGLES_DEG[0], HELIX_ANGLES_DEG[-1]
     for point, published in (("A", "decreases"), ("B", "increases")):
         change = films[(last, point)] / films[(first, point)] - 1.0

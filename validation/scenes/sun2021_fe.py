@@ -29,6 +29,7 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.geometry import helix
+from ballbench.validation.figures import render3d
 from ballbench.validation.scene import scene
 from ballbench.validation.scenes import sun2021
 
@@ -158,6 +159,9 @@ def sun2021_fe_bem(run):
                      + ", ".join(f"{k} {v:.1f} s" for k, v in fe["timings"].items())
                      + f"; BEM {bem_time:.2f} s")
         results[point] = (bem, fe)
+        render3d.surface_artifacts(run, f"bem_{point}", bem.bem.grid.x, bem.bem.grid.y, {
+            "pressure_Pa": bem.bem.pressure}, axes=("major axis", "minor axis"),
+            title=f"dry BEM at {point}, helix {HELIX_ANGLE_DEG} deg, {BEM_CELLS} x {BEM_CELLS} (the FE's reference)")
     run.save_figure(_profile_figure(results), "fe_bem_profiles.png")
     run.note("The FE gets no gap from the BEM or from Hertz: its gap is that of the meshed sphere and the meshed "
              "helical groove (groove nodes snapped onto the exact surface). Both rotations are read by the same "

@@ -1,0 +1,65 @@
+"""Regenerate the small saved fields of tests/test_render3d.py (run from the repository root):
+
+    .venv/bin/python tests/data/render3d/regenerate.py
+
+Solves three coarse cases (about 30 s) and writes them as the scenes do, then shrinks them for the repository:
+the corner nodes of the quadratic tetrahedra only (linear tetrahedra, which render3d reads as well) and float32
+data.  A coarse mesh is enough: the tests judge the pictures, not the FE.
+
+* ``pair/``: the ball on a flat (fe-hertz-flat) at n = b/h 5, growth 2, 100 N (validation.scenes.fe_hertz);
+* ``module/``: lin2019's two-ball linear module, case (a), at h 90 um, growth 2 (validation.scenes.fe_b2b);
+* ``surface/``: the sun2021 dry BEM at A, 21.71 deg, 32 x 32 cells (validation.scenes.sun2021).
+
+After regenerating, reset the baseline images: ``BALLBENCH_RESET_BASELINES=1 .venv/bin/python -m pytest
+tests/test_render3d.py`` and look at them (tests/baseline_images/render3d/).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+
+
+def shrink(path: Path) -> None:
+    """Rewrite the VTU ``path`` with linear tetrahedra (the corner nodes) and float32 data."""
+    import meshio
+
+    mesh = meshio.read(path)
+    cells = mesh.cells_dict["tetra10"][:, :4]
+    used, local = np.unique(cells, return_inverse=True)
+    point_data = {k: np.asarray(v)[used].astype(np.float32) for k, v in mesh.point_data.items()
+                  if k != "sigma_zz_Pa"}
+    cell_data = {k: [np.asarray(v["tetra10"]).astype(np.int32 if k == "body" else np.float32)]
+                 for k, v in mesh.cell_data_dict.items()}
+    meshio.Mesh(mesh.points[used].astype(np.float32), [("tetra", local.reshape(-1, 4))], point_data=point_data,
+                cell_data=cell_data).write(path, compression="zlib")
+
+
+def main() -> None:
+    from ballbench.fem.fields import write_module_fields, write_surface_fields
+    from ballbench.validation.scenes import fe_b2b, fe_hertz, sun2021
+
+    case = fe_hertz.pair_case("fe-hertz-flat")
+    result, ref = fe_hertz.solve_level(case, 5.0, 2.0)
+    fe_hertz.write_fields(result, ref, HERE / "pair", scene_name="fe-hertz-flat", fidelity="test", level=(5.0, 2.0))
+    shrink(HERE / "pair" / "fields.vtu")
+
+    model, results, _ = fe_b2b.solve_fe_level("a", 9e-5, 2.0, 1.5e-4)
+    paths = write_module_fields(HERE / "module", model, results, materials=(fe_b2b.E_STEEL, fe_b2b.NU_STEEL),
+                                scene="fe-b2b-linear-a", fidelity="test", level={"h_contact_m": 9e-5, "growth": 2.0},
+                                case="theta 2 deg, rho -0.6")
+    for path in paths[:-1]:
+        shrink(path)
+
+    contact = sun2021.dry_contact(21.71, "A", 32)
+    bem = contact.bem
+    write_surface_fields(HERE / "surface", "bem_A", bem.grid.x, bem.grid.y,
+                         {"pressure_Pa": bem.pressure, "separation_m": bem.separation},
+                         {"scene": "sun2021-dry-contact", "fidelity": "test", "title": "dry BEM at A, 32 x 32",
+                          "axes": ["major axis", "minor axis"]})
+
+
+if __name__ == "__main__":
+    main()
