@@ -9,7 +9,8 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 
 from ballbench.lowmodel.contact import hertz
 
@@ -43,8 +44,8 @@ def test_two_ball_b2b_solve(benchmark):
 
 def test_single_ball_solve(benchmark):
     contacts = _contacts(n_balls=1)
-    bearing_ball.solve_ball(contacts)
-    state = benchmark(bearing_ball.solve_ball, contacts)
+    bearing_ball.solve(contacts)
+    state = benchmark(bearing_ball.solve, contacts)
     median = benchmark.stats.stats.median
     benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations)
     print(f"\nsingle-ball solve (eq 4): {median * 1e3:.2f} ms median, {state.iterations} Newton iterations")

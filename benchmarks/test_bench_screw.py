@@ -10,7 +10,9 @@ import time
 
 import numpy as np
 
-from ballbench.lowmodel.screw import load_distribution, screw_b2b, screw_ball, whole_screw
+from ballbench.lowmodel.screw import load_distribution, whole_screw
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
 
 OVERSIZE = 1.6848e-6  # m, fitted on lin2019 Table 5 case a (scene lin2019-table5-a)
 

@@ -1,4 +1,4 @@
-"""Speed of the FE-informed screw B2B model (lowmodel.screw.screw_b2b_traction, issue 12).
+"""Speed of the FE-informed screw B2B model (lowmodel.screw.b2b_traction, issue 12).
 
 Two-ball module of lin2019 Table 5 case (a) (Table 4 geometry, preload 1.6848 um, tilted deviation
 reading) from Hertz samples of the low-order state: 20 x 100 = 2000 points per contact (8000 per
@@ -12,8 +12,9 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
-from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
+from ballbench.lowmodel.screw import b2b_traction as sbt
 
 N_RADIAL, N_ANGULAR = 20, 100  # 2000 samples per contact
 

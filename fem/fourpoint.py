@@ -51,7 +51,7 @@ from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
 
 __all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
-           "exact_gap", "build_module_model", "solve_module",
+           "exact_gap", "build_module_model", "solve",
            "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
 CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
@@ -391,7 +391,7 @@ class ModuleResult:
     multipliers: np.ndarray
 
 
-def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *, tol: float = 1e-9,
+def solve(model: ModuleModel, side_force: float, vertical_force: float, *, tol: float = 1e-9,
                  fit: bool = True, geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
     """Solve the module under ``N_x = side_force`` [N] (along +x on the top rail) and
     ``N_y = vertical_force`` [N] > 0 (pressing the top rail down), lin2017 eq 35.
@@ -425,9 +425,9 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
 def solve_loaded(model: ModuleModel, load: np.ndarray, *, tol: float = 1e-9, fit: bool = True,
                  geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
     """Solve a module for the right-hand side ``r = load`` of ``G^T lam = r`` (one entry per rigid unknown
-    of ``model.geometry.rigid_names`` [N]; :func:`solve_module` for the linear bearing's loads,
-    :func:`fem.screw_module.solve_screw_module` for the ball screw's), with the geometric update of the
-    gap described in :func:`solve_module`."""
+    of ``model.geometry.rigid_names`` [N]; :func:`solve` for the linear bearing's loads,
+    :func:`fem.screw_module.solve` for the ball screw's), with the geometric update of the
+    gap described in :func:`solve`."""
     geometry = model.geometry
     n_contacts = len(model.patches)
     g0 = model.g0
@@ -489,7 +489,7 @@ def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
 
 
 def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, start: np.ndarray | None = None):
-    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve_module`.
+    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve`.
 
     With ``start`` (an active set, e.g. of the previous geometric update) the primal-dual active set
     iteration is tried first (it converges in a few steps near the solution); if it cycles or does not

@@ -81,7 +81,7 @@ def test_block_tridiagonal_products_equal_dense():
 def test_coupled_jacobian_equals_finite_differences():
     """The block Jacobian of b2b.coupled_system (7 balls, two open pairs) against central differences of its
     residual: catches a wrong coupling block (B2B moment, force columns, complementarity rows)."""
-    from ballbench.lowmodel.linear_bearing import bearing_ball
+    from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 
     contacts, _ = _chain(7)
     touching = np.array([0, 1, 3, 5])

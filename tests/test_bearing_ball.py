@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.linear_bearing import ball as bb
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
@@ -21,7 +21,7 @@ GEOMETRY = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=2.1e11, poiss
 
 
 def eq36(side, vertical, angles):
-    """lin2017 eq 36 (local reference for the tests; the library uses lowmodel.fourpoint)."""
+    """lin2017 eq 36 (local reference for the tests; the library uses lowmodel.linear_bearing.fourpoint)."""
     bl, br, tr, tl = np.moveaxis(np.asarray(angles, dtype=float), -1, 0)
     return np.stack([-(side * np.cos(br) - vertical * np.sin(br)) / np.sin(bl + br),
                      (side * np.cos(bl) + vertical * np.sin(bl)) / np.sin(bl + br),
@@ -49,7 +49,7 @@ def power_error(state):
 
 @pytest.mark.parametrize("rho", [-0.8, -0.3, 0.0, 0.5, 0.9])
 def test_theta_zero_rolls_at_half_speed(rho):
-    state = bb.solve_ball(make_contacts(case_angles(0.0), rho * VERTICAL))
+    state = bb.solve(make_contacts(case_angles(0.0), rho * VERTICAL))
     assert state.ball_velocity[0] == pytest.approx(SPEED / 2, rel=1e-12)
     assert power_error(state) < 1e-8
 
@@ -57,7 +57,7 @@ def test_theta_zero_rolls_at_half_speed(rho):
 @pytest.mark.parametrize("theta, rho, top", [(2.0, -0.6, (0, 0)), (3.0, 0.85, (0, 0)), (-2.5, 0.4, (1.0, -0.5)),
                                              (1.0, -0.9, (0, 0)), (0.3, 0.0, (-0.3, 0.3))])
 def test_power_balance_and_loss_identity(theta, rho, top):
-    state = bb.solve_ball(make_contacts(case_angles(theta, top), rho * VERTICAL))
+    state = bb.solve(make_contacts(case_angles(theta, top), rho * VERTICAL))
     assert state.residual <= 1e-12
     assert power_error(state) < 1e-8
     # the loss from the traction power equals the tabulated eq A6 to the map's accuracy
@@ -69,15 +69,15 @@ def test_power_balance_and_loss_identity(theta, rho, top):
 def test_table2_mitigation_gives_zero_deviation():
     """lin2019 eq 22 insight: Delta beta_TR = Delta beta_BL, Delta beta_TL = Delta beta_BR -> v_B = v/2."""
     for rho in (-0.6, 0.3):
-        state = bb.solve_ball(make_contacts(case_angles(2.0, top=(-2.0, 2.0)), rho * VERTICAL))
+        state = bb.solve(make_contacts(case_angles(2.0, top=(-2.0, 2.0)), rho * VERTICAL))
         assert state.velocity_deviation[0] == pytest.approx(0.0, abs=1e-12)
 
 
 def test_mirror_symmetry():
     """Mirror x -> -x: BL <-> BR, TR <-> TL, N_x -> -N_x; then v_B, omega_x stay and omega_y flips."""
     angles = np.radians([43.0, 46.5, 44.2, 45.7])
-    state = bb.solve_ball(make_contacts(angles, -35.0))
-    mirrored = bb.solve_ball(make_contacts(angles[[1, 0, 3, 2]], 35.0))
+    state = bb.solve(make_contacts(angles, -35.0))
+    mirrored = bb.solve(make_contacts(angles[[1, 0, 3, 2]], 35.0))
     assert mirrored.ball_velocity[0] == pytest.approx(state.ball_velocity[0], rel=1e-10)
     assert mirrored.omega[0, 0] == pytest.approx(state.omega[0, 0], rel=1e-10)
     assert mirrored.omega[0, 1] == pytest.approx(-state.omega[0, 1], rel=1e-8, abs=1e-10)
@@ -86,8 +86,8 @@ def test_mirror_symmetry():
 
 def test_reversed_groove_velocity_reverses_motion():
     contacts = make_contacts(case_angles(2.0), -60.0)
-    forward = bb.solve_ball(contacts)
-    backward = bb.solve_ball(make_contacts(case_angles(2.0), -60.0, speed=-SPEED))
+    forward = bb.solve(contacts)
+    backward = bb.solve(make_contacts(case_angles(2.0), -60.0, speed=-SPEED))
     assert backward.ball_velocity[0] == pytest.approx(-forward.ball_velocity[0], rel=1e-10)
     np.testing.assert_allclose(backward.friction_loss, forward.friction_loss, rtol=1e-9)
 
@@ -133,7 +133,7 @@ def test_approaching_four_point_limit_solves_or_fails_loudly():
     for margin in (0.2, 0.1, 0.05, 0.03, 0.01, 1e-3, 1e-6):
         contacts = make_contacts(case_angles(3.0), -(limit - margin) * VERTICAL)
         try:
-            state = bb.solve_ball(contacts)
+            state = bb.solve(contacts)
         except ConvergenceError as error:
             assert error.residual > 0.0 and "ball 0" in str(error)
             continue
@@ -144,13 +144,13 @@ def test_approaching_four_point_limit_solves_or_fails_loudly():
 
 
 def test_iterations_are_few():
-    state = bb.solve_ball(make_contacts(case_angles(2.0), -60.0))
+    state = bb.solve(make_contacts(case_angles(2.0), -60.0))
     assert 1 <= state.iterations <= 8
 
 
 def test_convergence_error_reports_residual():
     with pytest.raises(ConvergenceError) as info:
-        bb.solve_ball(make_contacts(case_angles(2.0), -60.0), max_iterations=1, tolerance=1e-15)
+        bb.solve(make_contacts(case_angles(2.0), -60.0), max_iterations=1, tolerance=1e-15)
     assert info.value.residual > 0.0 and info.value.iterations == 1
 
 
@@ -188,7 +188,7 @@ def test_solution_satisfies_eq4_with_exact_quadrature():
     from ballbench.lowmodel.contact.ellipse_friction import friction_exact
 
     contacts = make_contacts(case_angles(2.0, (0.5, -0.3)), -60.0)
-    state = bb.solve_ball(contacts)
+    state = bb.solve(contacts)
     exact = friction_exact(state.c_over_a[0], contacts.b_over_a[0])
     sign = np.sign(state.spin[0])
     mu_force = MU * contacts.normal_forces[0]
@@ -212,8 +212,8 @@ deviation = st.floats(min_value=-3.0, max_value=3.0)
 def test_random_balls_balance_power_and_mirror(dbl, dbr, dtr, dtl, rho):
     """Any deviations within +-3 deg and |rho| <= 0.5: converged, power balanced, mirror-symmetric."""
     angles = math.pi / 4 + np.radians([dbl, dbr, dtr, dtl])
-    state = bb.solve_ball(make_contacts(angles, rho * VERTICAL))
+    state = bb.solve(make_contacts(angles, rho * VERTICAL))
     assert state.residual <= 1e-12 and power_error(state) < 1e-8
-    mirrored = bb.solve_ball(make_contacts(angles[[1, 0, 3, 2]], -rho * VERTICAL))
+    mirrored = bb.solve(make_contacts(angles[[1, 0, 3, 2]], -rho * VERTICAL))
     assert mirrored.ball_velocity[0] == pytest.approx(state.ball_velocity[0], rel=1e-9)
     assert mirrored.omega[0, 1] == pytest.approx(-state.omega[0, 1], rel=1e-6, abs=1e-9 * abs(state.omega[0, 0]))

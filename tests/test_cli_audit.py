@@ -191,7 +191,7 @@ def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, mo
 
 
 @pytest.mark.parametrize("model, family", [
-    ("lowmodel.screw.screw_b2b", "low-order numerical"),        # was "analytical" (prefix lowmodel.screw)
+    ("lowmodel.screw.b2b", "low-order numerical"),        # was "analytical" (prefix lowmodel.screw)
     ("lowmodel.screw.whole_screw", "low-order numerical"),      # was "analytical": a 5 s time simulation
     ("lowmodel.contact.ehl", "low-order numerical"),            # was "other"
     ("lowmodel.contact.halfspace", "low-order numerical"),      # was "other"
@@ -200,7 +200,7 @@ def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, mo
     ("lowmodel.linear_bearing.b2b_analytical", "analytical"),
     ("lowmodel.screw.kinematics (Wei)", "analytical"),
     ("lowmodel.contact.hertz.ball_in_groove", "analytical"),
-    ("lowmodel.fourpoint", "analytical"),
+    ("lowmodel.linear_bearing.fourpoint", "analytical"),
     ("fem.mortar", "FE"),
     ("lowmodel.calibration", "other"),
 ])

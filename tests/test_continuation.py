@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.solvers import continuation
 
 
@@ -24,14 +25,14 @@ def _power_error(state) -> float:
 def test_issue_reproducer_converges_by_continuation():
     contacts = b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.6)
     assert np.min(bearing_ball.spin_capacity_ratio(contacts)) > 10.0
-    state = bearing_ball.solve_ball(contacts)
+    state = bearing_ball.solve(contacts)
     assert state.continuation, "the direct solve used to fail here: a path must be reported"
     path = state.continuation[0]
     assert path.steps[0].parameter == 0.0 and path.steps[-1].parameter == 1.0
     assert state.residual <= 1e-12
     assert _power_error(state) < 1e-8
     # the same ball a little heavier converges directly and is close (continuity in the load)
-    nearby = bearing_ball.solve_ball(b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.7))
+    nearby = bearing_ball.solve(b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.7))
     np.testing.assert_allclose(state.velocity_deviation, nearby.velocity_deviation, atol=5e-4)
 
 
@@ -47,12 +48,12 @@ def test_light_loads_converge(vertical_force):
 def test_light_load_tends_to_the_rigid_lin2017_state():
     """As N_y -> 0 the contact ellipses shrink and eq 4 tends to lin2017's rigid point contacts:
     epsilon of ball 1 tends to the rigid value of lin2017 (fourpoint.solve)."""
-    from ballbench.lowmodel import fourpoint
+    from ballbench.lowmodel.linear_bearing import fourpoint
 
     gaps = []
     for load in (1e-1, 1e-3, 1e-5):
         contacts = b2b.module_contacts(math.radians(2), -0.6, vertical_force=load, n_balls=1)
-        state = bearing_ball.solve_ball(contacts)
+        state = bearing_ball.solve(contacts)
         rigid = fourpoint.solve(contacts.contact_angles[0], -0.6 * load, load, ball_radius=5e-3,
                                 friction_coefficient=0.1, groove_velocity=0.01)
         gaps.append(abs(float(state.velocity_deviation[0]) - (2 * float(rigid.ball_velocity) / 0.01 - 1)))
@@ -64,7 +65,7 @@ def test_light_load_tends_to_the_rigid_lin2017_state():
 def test_theta_near_the_four_point_limit(theta_deg):
     """rho = 0.6: four-point contact up to theta = 14.04 deg (lin2017 eq 37); spin-capacity ratio ~11."""
     contacts = b2b.module_contacts(math.radians(theta_deg), 0.6, n_balls=1)
-    state = bearing_ball.solve_ball(contacts)
+    state = bearing_ball.solve(contacts)
     assert state.residual <= 1e-12 and _power_error(state) < 1e-8
 
 
@@ -89,7 +90,7 @@ def test_no_state_names_reason_and_last_converged_parameter():
     contacts = b2b.module_contacts(theta, low + 1e-6, n_balls=1)
     assert np.min(bearing_ball.spin_capacity_ratio(contacts)) < 1.0
     with pytest.raises(ConvergenceError, match="spin-capacity ratio") as error:
-        bearing_ball.solve_ball(contacts)
+        bearing_ball.solve(contacts)
     assert error.value.reason == "spin-capacity ratio < 1"
     assert error.value.residual > 0.0
 

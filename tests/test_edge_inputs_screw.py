@@ -15,9 +15,9 @@ from ballbench.lowmodel.geometry import groove, helix
 from ballbench.lowmodel.screw import friction_torque as ft
 from ballbench.lowmodel.screw import kinematics as kin
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b as b2b
-from ballbench.lowmodel.screw import screw_b2b_traction as traction
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as b2b
+from ballbench.lowmodel.screw import b2b_traction as traction
+from ballbench.lowmodel.screw import ball as sb
 
 TINY = 5e-324  # the smallest float
 TABLE4 = dict(pitch_radius=16.5e-3, lead=20e-3)  # lin2019 Table 4
@@ -240,7 +240,7 @@ def test_ball_indices_are_checked(table):
     """profile_2d and hertz_patches with ball 1 of a single ball raised IndexError; True was taken as ball 1."""
     module = table[0]
     contacts = sb.ball_contacts(module, 0.0)
-    state = sb.solve_balls(contacts, 50.0)
+    state = sb.solve(contacts, 50.0)
     for ball in (1, -1, True):
         with pytest.raises(ValueError, match="ball"):
             sb.profile_2d(contacts, ball, 0, 0.7)
@@ -272,10 +272,10 @@ def test_screw_module_and_solves_refuse_what_breaks_the_model(table):
         sb.screw_module(friction_coefficient=1e300)
     contacts = sb.ball_contacts(table[0], 0.0)
     with pytest.raises(ValueError, match="axial_load: its Hertz approach"):
-        sb.solve_balls(contacts, 1e300)
+        sb.solve(contacts, 1e300)
     with pytest.raises(ValueError, match="module: no Hertz point contact"):
         sb.ball_contacts(sb.screw_module(conformity=math.nextafter(0.5, 1.0)))
-    state = sb.solve_balls(contacts, 50.0)
+    state = sb.solve(contacts, 50.0)
     empty = sb.ScrewBallState(**{**state.__dict__, "normal_force": np.zeros_like(state.normal_force)})
     assert b2b.saturation(empty) == 0.0
 
@@ -310,7 +310,7 @@ def test_b2b_solution_does_not_depend_on_the_speed_scale():
 
 
 def test_axial_stiffness_names_max_load(table):
-    """max_load = 1e16 N: the error named solve_balls' axial_load, not a parameter of axial_stiffness."""
+    """max_load = 1e16 N: the error named solve' axial_load, not a parameter of axial_stiffness."""
     with pytest.raises(ValueError, match="max_load: axial_load: its Hertz approach"):
         ld.axial_stiffness(table[0], 1e16, 4)
 

@@ -240,7 +240,7 @@ def test_mixed(kw):
     e_star, grid, gap = _ehl_case(kw["n"])
     heights = kw["rough"] * np.cos(np.arange(grid.nx * grid.ny).reshape(grid.nx, grid.ny))
     call(mixed.asperity_contact, gap * 0.0 + 1e-7, heights, grid, e_star)
-    contact = call(mixed.solve_mixed, gap, heights, grid, e_star, kw["load"], kw["u"], kw["eta0"],
+    contact = call(mixed.solve, gap, heights, grid, e_star, kw["load"], kw["u"], kw["eta0"],
                    initial_film=kw["film"], coupled=kw["coupled"], max_iterations=4, ehl_iterations=30)
     if contact is not None:
         assert contact.film_load + contact.asperity_load == pytest.approx(kw["load"], rel=0.02)

@@ -22,9 +22,9 @@ from ballbench.lowmodel.geometry import groove, helix
 from ballbench.lowmodel.screw import friction_torque as ft
 from ballbench.lowmodel.screw import kinematics as kin
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b as b2b
-from ballbench.lowmodel.screw import screw_b2b_traction as traction
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as b2b
+from ballbench.lowmodel.screw import b2b_traction as traction
+from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import whole_screw
 from property_support import SETTINGS, SLOW, call, positive, real
 from test_properties import angle
@@ -211,7 +211,7 @@ def test_screw_ball(kwargs, spoiler, deviation, reading, gamma, index, load):
     single = call(sb.ball_contacts, module, deviation[0], reading)
     if single is None:
         return
-    state = call(sb.solve_balls, single, load, tolerance=1e-9, max_iterations=60)
+    state = call(sb.solve, single, load, tolerance=1e-9, max_iterations=60)
     if state is not None:   # the nut puts in what friction dissipates (lin2019 Sec 3.1 power balance)
         assert abs(state.input_power - state.total_loss) <= 1e-6 * abs(state.total_loss)
         call(b2b.saturation, state)

@@ -18,9 +18,10 @@ import pytest
 
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.linear_bearing import ball as bb
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
 
 RADIUS = 5e-3  # lin2019 Table 1
 ANGLES = math.pi / 4 + np.array([[-0.035, 0.035, 0.0, 0.0]])  # theta = 2 deg, (BL, BR, TR, TL)
@@ -56,10 +57,10 @@ def _fresh_linear(contacts):
                                                  ("contact_angles", (0, 0), 1.05), ("b_over_a", (0, 2), 0.9)])
 def test_linear_contacts_refuse_in_place_edits_and_replace_solves_fresh(name, index, factor):
     contacts = _linear_contacts()
-    before = bb.solve_ball(contacts)  # fills _geometry, _friction_at, _equilibrium and its scales
+    before = bb.solve(contacts)  # fills _geometry, _friction_at, _equilibrium and its scales
     edited, refused = _edited(contacts, name, index, factor)
-    state = bb.solve_ball(edited)
-    expected = bb.solve_ball(_fresh_linear(edited))
+    state = bb.solve(edited)
+    expected = bb.solve(_fresh_linear(edited))
     assert not np.allclose(expected.friction_force, before.friction_force, rtol=1e-6, atol=0.0)  # the edit matters
     for field in ("omega", "slide", "spin", "friction_force", "friction_moment", "friction_loss"):
         np.testing.assert_allclose(getattr(state, field), getattr(expected, field), rtol=1e-9, atol=1e-12 * np.max(
@@ -72,11 +73,11 @@ def test_linear_contacts_do_not_share_memory_with_the_caller():
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), FORCES)
     axes, ratio, angles = contact.a.copy(), contact.b / contact.a, ANGLES.copy()
     contacts = bb.BallContacts(angles, forces, axes, ratio, RADIUS, 0.1, 0.01)
-    before = bb.solve_ball(contacts)
+    before = bb.solve(contacts)
     for array in (angles, forces, axes, ratio):
         array *= 1.1  # the caller's arrays stay writable and theirs
     np.testing.assert_array_equal(contacts.normal_forces, FORCES)
-    np.testing.assert_array_equal(bb.solve_ball(contacts).friction_force, before.friction_force)
+    np.testing.assert_array_equal(bb.solve(contacts).friction_force, before.friction_force)
     single = contacts.ball(0)  # views of read-only arrays stay read-only
     assert not any(getattr(single, f.name).flags.writeable for f in dataclasses.fields(single)[:4])
 
@@ -141,7 +142,7 @@ def test_cached_pair_geometry_refuses_in_place_edits():
 def _instances():
     table = ef.friction_map()
     contacts = _linear_contacts()
-    bb.solve_ball(contacts)  # caches filled (its friction map is a closure: pickled as it was, this failed)
+    bb.solve(contacts)  # caches filled (its friction map is a closure: pickled as it was, this failed)
     return [(contacts, ("contact_angles", "normal_forces", "semi_major", "b_over_a")),
             (_stiffness(), ("loads", "shifts")),
             (ef.FrictionMap(table.phi, table.log_b_over_a, table.force, table.moment, table.loss_direction, 0.0,
@@ -163,7 +164,7 @@ def test_pickled_and_deep_copied_objects_keep_read_only_arrays(how):
             assert not getattr(twin, name).flags.writeable, f"{type(obj).__name__}.{name} after {how}"
     contacts = _instances()[0][0]
     twin = pickle.loads(pickle.dumps(contacts)) if how == "pickle" else copy.deepcopy(contacts)
-    np.testing.assert_array_equal(bb.solve_ball(twin).friction_force, bb.solve_ball(contacts).friction_force)
+    np.testing.assert_array_equal(bb.solve(twin).friction_force, bb.solve(contacts).friction_force)
 
 
 

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import screw_b2b as b2
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as b2
+from ballbench.lowmodel.screw import ball as sb
 
 DEG = math.pi / 180.0
 
@@ -36,7 +36,7 @@ def test_theta_zero_gives_no_b2b_and_equal_orbit_speeds(module):
     state = b2.solve(contacts, 50.0)
     assert state.b2b_force[0] < 1e-9     # identical balls: force and separation rate both zero (to the tolerance)
     assert state.orbit_speed[0] == pytest.approx(state.orbit_speed[1], rel=1e-10)
-    free = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    free = sb.solve(sb.ball_contacts(module, 0.0), 25.0)
     assert state.orbit_speed[0] == pytest.approx(free.orbit_speed[0], rel=1e-9)
     assert abs(state.input_power - state.total_loss) < 1e-8 * state.total_loss
 

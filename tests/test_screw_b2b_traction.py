@@ -1,4 +1,4 @@
-"""FE-informed screw B2B model (lowmodel.screw.screw_b2b_traction): Hertz limit, power, lead 0, theta 0, errors."""
+"""FE-informed screw B2B model (lowmodel.screw.b2b_traction): Hertz limit, power, lead 0, theta 0, errors."""
 import math
 from functools import lru_cache
 
@@ -8,8 +8,9 @@ import pytest
 from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
-from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
+from ballbench.lowmodel.screw import b2b_traction as sbt
 
 OVERSIZE = 1.6848e-6  # m, the preload fitted on Table 5 case a (docs/ball_screw.md)
 THETA = {"a": math.radians(2.0), "b": math.radians(3.0)}  # lin2019 Table 5: ball 2's deviation (ball 1: 0)

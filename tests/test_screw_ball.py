@@ -8,8 +8,8 @@ import pytest
 
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.screw import ball as sb
 
 DEG = math.pi / 180.0
 
@@ -18,7 +18,7 @@ DEG = math.pi / 180.0
 def preloaded():
     module = sb.screw_module(oversize=1e-6)
     contacts = sb.ball_contacts(module, 2.0 * DEG)
-    return module, contacts, sb.solve_balls(contacts, 25.0)
+    return module, contacts, sb.solve(contacts, 25.0)
 
 
 def test_profile_eq48_literal_equals_arc():
@@ -98,7 +98,7 @@ def test_eq55_conditions_and_eq54_matrix_hold_at_the_solution(preloaded):
                                                   (3e-6, -2.0 * DEG, 5.0)])
 def test_power_balance(oversize, theta, load):
     module = sb.screw_module(oversize=oversize)
-    state = sb.solve_balls(sb.ball_contacts(module, theta), load)
+    state = sb.solve(sb.ball_contacts(module, theta), load)
     assert state.groove_loss > 0.0
     assert abs(state.input_power - state.groove_loss) < 1e-8 * state.groove_loss
     # every contact dissipates (friction opposes the slip)
@@ -204,11 +204,11 @@ def test_linear_bearing_limit(monkeypatch):
         module = sb.screw_module(pitch_radius=ratio * radius, lead=0.0, nut_speed=speed / (ratio * radius),
                                  oversize=2e-6)
         contacts = sb.ball_contacts(module, 2.0 * DEG)
-        state = sb.solve_balls(contacts, 20.0)
+        state = sb.solve(contacts, 20.0)
         bearing = bb.contacts_from_forces(state.contact_angle, state.normal_force, state.semi_major,
                                           contacts.b_over_a, ball_radius=radius, friction_coefficient=0.1,
                                           groove_velocity=speed)
-        linear = bb.solve_ball(bearing)
+        linear = bb.solve(bearing)
         # frames: (x, y, z) of the bearing = (z3, x3, y3); BL, BR, TR, TL = SL, SR, NR, NL
         velocity = state.orbit_speed[0] * module.helix_radius
         omega = np.array([state.orbit_speed[0] + state.omega[0, 2], state.omega[0, 0]])
@@ -236,7 +236,7 @@ class _slip:
 def test_zero_preload_reaches_a_third_contact():
     """Exact fit (no preload): the axial load loads one diagonal and friction pushes the ball onto a third flank."""
     module = sb.screw_module(oversize=0.0)
-    state = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    state = sb.solve(sb.ball_contacts(module, 0.0), 25.0)
     loaded = state.normal_force[0] > 0
     assert loaded.sum() == 3
     assert abs(state.input_power - state.groove_loss) < 1e-8 * state.groove_loss
@@ -244,7 +244,7 @@ def test_zero_preload_reaches_a_third_contact():
 
 def test_deviation_slows_the_ball(preloaded):
     module, _, state_2 = preloaded
-    state_0 = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    state_0 = sb.solve(sb.ball_contacts(module, 0.0), 25.0)
     assert state_2.orbit_speed[0] < state_0.orbit_speed[0]
 
 
@@ -260,9 +260,9 @@ def test_bad_input():
     with pytest.raises(ValueError, match="deviation"):
         sb.ball_contacts(sb.screw_module(), math.radians(20))
     with pytest.raises(ValueError, match="axial_load"):
-        sb.solve_balls(sb.ball_contacts(sb.screw_module()), float("nan"))
+        sb.solve(sb.ball_contacts(sb.screw_module()), float("nan"))
     with pytest.raises(ConvergenceError):
-        sb.solve_balls(sb.ball_contacts(sb.screw_module(oversize=1e-6)), 25.0, max_iterations=1)
+        sb.solve(sb.ball_contacts(sb.screw_module(oversize=1e-6)), 25.0, max_iterations=1)
 
 
 def test_hertz_table_matches_direct_solution():

@@ -8,8 +8,8 @@ import pytest
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as sb
 
 DEG = math.pi / 180.0
 C_B = -1.7e-9  # m/N, the order the FE screw/nut fits give (docs/calibration.md)

@@ -46,13 +46,13 @@ FLOOR = 1e-8     # error / tolerance drawn at this floor when it is exactly 0 (o
 CEILING = 1e4    # ... and at this ceiling when infinite (a missed bound of tolerance 0, a non-finite value)
 # closed forms and explicit formulas (lin2017 rigid four-point, Hertz, the friction map, lin2019 eqs 22-33, wang2022)
 ANALYTICAL_MODELS = ("lowmodel.contact.hertz", "lowmodel.contact.ellipse_friction",
-                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw.kinematics", "lowmodel.screw.harris",
-                     "lowmodel.fourpoint")
+                     "lowmodel.linear_bearing.b2b_analytical", "lowmodel.screw.kinematics",
+                     "lowmodel.ball_bearing.harris", "lowmodel.linear_bearing.fourpoint")
 # numerical solutions of the low-order equations: Newton on the ball equilibria (lin2019 eqs 1-10, 54-61), the
 # whole screw in time, the load distribution, and the BEM / EHL / mixed-lubrication solvers (sun2021)
-LOW_ORDER_MODELS = ("lowmodel.linear_bearing.bearing_ball", "lowmodel.linear_bearing.b2b",
-                    "lowmodel.linear_bearing.b2b_traction", "lowmodel.screw.screw_ball", "lowmodel.screw.screw_b2b",
-                    "lowmodel.screw.screw_b2b_traction", "lowmodel.screw.load_distribution",
+LOW_ORDER_MODELS = ("lowmodel.linear_bearing.ball", "lowmodel.linear_bearing.b2b",
+                    "lowmodel.linear_bearing.b2b_traction", "lowmodel.screw.ball", "lowmodel.screw.b2b",
+                    "lowmodel.screw.b2b_traction", "lowmodel.screw.load_distribution",
                     "lowmodel.screw.whole_screw", "lowmodel.contact.halfspace", "lowmodel.contact.screw_contact",
                     "lowmodel.contact.ehl", "lowmodel.contact.mixed")
 

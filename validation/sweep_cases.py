@@ -13,7 +13,8 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
 
 __all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi",
@@ -50,7 +51,7 @@ def with_psi(contacts: bearing_ball.BallContacts, psi: float) -> bearing_ball.Ba
 
 
 def _two_ball(contacts: bearing_ball.BallContacts) -> dict:
-    free = bearing_ball.solve_ball(contacts)  # balls apart (lin2019 eq 4)
+    free = bearing_ball.solve(contacts)  # balls apart (lin2019 eq 4)
     state = b2b.solve(contacts, [0.0])  # balls touching (eqs 5-10)
     return {"epsilon_1": float(free.velocity_deviation[0]), "epsilon_2": float(free.velocity_deviation[1]),
             "b2b_force": float(state.b2b_force[0]),
@@ -144,7 +145,7 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     """Module (lin2019 Table 4, preload fitted on Table 5 a), contact laws and axial stiffness table, once per
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
-    from ballbench.lowmodel.screw import screw_ball
+    from ballbench.lowmodel.screw import ball as screw_ball
     from ballbench.validation.scenes import lin2019_screw
 
     laws = screw_ball.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None

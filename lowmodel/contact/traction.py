@@ -2,7 +2,7 @@
 
 Shared by the FE-informed ball-to-ball models of the linear bearing
 (:mod:`lowmodel.linear_bearing.b2b_traction`) and the ball screw
-(:mod:`lowmodel.screw.screw_b2b_traction`): one implementation of
+(:mod:`lowmodel.screw.b2b_traction`): one implementation of
 
 * :class:`TractionPatch`, one ball-to-groove contact given as sampled points of the
   (curved) contact surface, each with its unit normal and the normal force it carries

@@ -1,7 +1,7 @@
 """Ball-to-ball (B2B) contact of 2 to N balls in a four-point-contact linear ball bearing.
 
 lin2019 Sec 2.2, eqs 5-10 (low-order numerical model), built on the single-ball
-equilibrium of :mod:`lowmodel.linear_bearing.bearing_ball` (eq 4).
+equilibrium of :mod:`lowmodel.linear_bearing.ball` (eq 4).
 
 Balls ``j = 0 .. n-1`` are ordered along +z (ball 0 is "ball 1, behind" of
 lin2019 Fig 1).  Pair ``j`` is (ball j, ball j+1); ``gap_j = d_{j,j+1} - 2 R_B``.
@@ -47,7 +47,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing.bearing_ball import (
+from ballbench.lowmodel.linear_bearing import ball as single
+from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
     BallContacts,
     BallState,
@@ -55,7 +56,6 @@ from ballbench.lowmodel.linear_bearing.bearing_ball import (
     ball_state,
     ball_terms,
     initial_guess,
-    solve_ball,
     solve_branch,
     solve_free,
     solve_with_continuation,
@@ -188,7 +188,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     n = contacts.n_balls
     touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
     if n == 1 or touching.size == 0:
-        return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)
+        return single.solve(contacts, tolerance=tolerance, max_iterations=max_iterations)
     mu = contacts.friction_coefficient
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)

@@ -12,7 +12,7 @@ pressure times its quadrature area, or samples of Hertz's ellipse in tests):
 
 (:class:`~lowmodel.contact.traction.TractionPatch`; the pointwise friction below is
 :class:`~lowmodel.contact.traction.SampledCoulomb`, shared with the ball screw's
-:mod:`lowmodel.screw.screw_b2b_traction`.)
+:mod:`lowmodel.screw.b2b_traction`.)
 
 Full-slip Coulomb friction at every point, opposite to the rigid-body slip of
 the ball against its groove projected on the tangent plane of the contact
@@ -64,7 +64,7 @@ from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, 
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
-from ballbench.lowmodel.linear_bearing.bearing_ball import BallContacts
+from ballbench.lowmodel.linear_bearing.ball import BallContacts
 from ballbench.lowmodel.solvers import check_solver_options, newton
 
 __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]

@@ -7,7 +7,7 @@ frame, relative velocities, entrainment velocity (eqs 1-2), sliding velocity
 and centrifugal force (eq 22).  The same inputs also give Wei's measures
 (:func:`absolute_velocity_measures`, entrainment and slide-roll ratio from
 absolute velocities) and the Harris method of a ball bearing
-(:mod:`lowmodel.screw.harris`).
+(:mod:`lowmodel.ball_bearing.harris`).
 
 Geometry and frames come from :mod:`lowmodel.geometry.helix`: vectors are Frenet
 components ``(t, n, b)`` of the ball at azimuth ``theta = 0`` (wang2022

@@ -1,6 +1,6 @@
 """Scenes for the ball-screw B2B model (lin2019 Sec 3.1-3.3, Tables 4-5).
 
-Models: lowmodel.screw.screw_ball (eqs 34-55), lowmodel.screw.screw_b2b (eqs 56-61).
+Models: lowmodel.screw.ball (eqs 34-55), lowmodel.screw.b2b (eqs 56-61).
 Two-ball module of lin2019 Sec 3.3 (Table 4 parameters, the screw_module
 defaults): ball 1 (behind, ball 0 here) theta = 0, ball 2 theta = 2 deg (case a)
 or 3 deg (case b), 50 N axial load on the screw, balls touching.
@@ -25,11 +25,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
 from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import KnownGap, scene
 
-MODEL = "lowmodel.screw.screw_b2b"
+MODEL = "lowmodel.screw.b2b"
 AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw, lin2019 Sec 3.3
 PRINTED = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
 READING = "tilted"

@@ -1,6 +1,6 @@
 """Stability sweep of the single-ball and N-ball solvers of lin2019 (issue 10 item 2).
 
-Models: lowmodel.linear_bearing.bearing_ball (eqs 1-4), lowmodel.linear_bearing.b2b
+Models: lowmodel.linear_bearing.ball (eqs 1-4), lowmodel.linear_bearing.b2b
 (eqs 5-10).  Where a quasi-static state with full sliding exists (spin-capacity
 ratio >= 1.05, docs/b2b_bearing.md "validity") every solve must converge, by
 Newton from the cheap start or by continuation; with touching balls every
@@ -15,13 +15,14 @@ import time
 
 import numpy as np
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.papers import lin2019 as paper
 from ballbench.validation.scene import scene
 
-MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
+MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
 # lin2019 Table 1
 TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conformity,
@@ -196,7 +197,7 @@ def _spin_capacity_boundary(run) -> None:
         for _ in range(16):  # bisection in log(margin) on ball 1 alone
             mid = math.sqrt(ok * bad)
             try:
-                bearing_ball.solve_ball(_case(theta, float(low) + mid))
+                bearing_ball.solve(_case(theta, float(low) + mid))
                 ok = mid
             except ConvergenceError:
                 bad = mid

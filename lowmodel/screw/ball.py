@@ -77,7 +77,7 @@ from ballbench.lowmodel.geometry import helix
 
 __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
-    "ScrewBallState", "solve_balls", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
+    "ScrewBallState", "solve", "profile_2d", "arc_profile", "N_UNKNOWNS", "ball_terms",
     "free_rolling_guess", "scales_for", "solve_preloaded", "continuation_start", "reference_force",
     "state_from", "Scales", "BallTerms", "hertz_direct", "FRICTION_LEVEL", "GrooveContactLaws", "NUT_SPEED_RANGE",
     "FRICTION_COEFFICIENT_MAX",
@@ -704,7 +704,7 @@ def free_rolling_guess(contacts: BallContacts) -> np.ndarray:
     return guess
 
 
-def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10,
+def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10,
                 max_iterations: int = 80) -> ScrewBallState:
     """Each ball on its own (no ball-to-ball contact) under ``axial_load`` [N] per ball (lin2019 eqs 49-55).
 

@@ -1,6 +1,6 @@
 """FE-informed ball-to-ball (B2B) model of the ball screw: lin2019 eqs 54-61 with sampled contact tractions.
 
-The low-order model (:mod:`lowmodel.screw.screw_ball`, :mod:`lowmodel.screw.screw_b2b`)
+The low-order model (:mod:`lowmodel.screw.ball`, :mod:`lowmodel.screw.b2b`)
 integrates Coulomb friction over a planar Hertz ellipse in each contact plane (lin2019
 eqs 44-47, A9-A11).  Here each ball-to-groove contact is given as *sampled points* of
 the (curved) contact surface (:class:`lowmodel.contact.traction.TractionPatch`):
@@ -23,7 +23,7 @@ with ``omega_B`` the orbit speed and ``omega`` the spin relative to CS3 (the unk
 eq 55 without the ball centre: 4 per ball).  ``H`` is taken at the nominal ball centre
 plus ``r_k`` (as the low-order model does; the ball centre's micrometre offset is left
 out).  On a plane at ``R_B e_i`` this is exactly eq 47 and A9-A11 (the field of
-:func:`screw_ball.ball_terms`).  Full-slip Coulomb friction on the local tangent plane
+:func:`ball.ball_terms`).  Full-slip Coulomb friction on the local tangent plane
 (:class:`lowmodel.contact.traction.SampledCoulomb`):
 
     f_k = -mu F_k P_k s_k / |P_k s_k|,   P_k = I - N_k N_k^T
@@ -32,8 +32,8 @@ Equilibrium of each ball: the generalised forces conjugate to ``(omega_B, omega)
 ``sum_k f_k . H(r_k)`` and ``sum_k r_k x f_k`` (plus the B2B loads), i.e. the force
 along ``y3`` and the three moments of eq 54 (``F . H(c_0) + z_hat . M = (L/2 pi) F_y3
 + z_hat . M``).  The B2B loads are those of the low-order model (eqs 56-59,
-:func:`screw_b2b.b2b_loads` with the exact helix chord of :func:`screw_b2b.pair_geometry`)
-and so is the complementarity (eqs 60-61, :func:`screw_b2b.fischer_burmeister` on
+:func:`b2b.b2b_loads` with the exact helix chord of :func:`b2b.pair_geometry`)
+and so is the complementarity (eqs 60-61, :func:`b2b.fischer_burmeister` on
 ``F / (mu F_ref)`` and ``10 (omega_B,j+1 - omega_B,j) / |omega_N|``).  Newton with
 Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`): each ball alone first
 (its residual is minus the gradient of a convex dissipation, so its state is unique),
@@ -67,8 +67,8 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.screw import screw_b2b
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b
+from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.solvers import check_solver_options, newton
 
 __all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "POWER_BALANCE_TOLERANCE",
@@ -126,7 +126,7 @@ def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int
                   n_angular: int = 96, planar: bool = True) -> tuple[TractionPatch, ...]:
     """Samples of the Hertz pressure of the low-order model's loaded contacts of ``ball`` (SL, SR, NR, NL).
 
-    From the low-order ``state`` (:func:`screw_b2b.solve` or :func:`screw_ball.solve_balls` on
+    From the low-order ``state`` (:func:`b2b.solve` or :func:`ball.solve` on
     ``contacts``): each loaded contact's ellipse at the loaded contact angle, in the contact plane at
     ``R_B e_i`` (lin2019 eq 37), semi-axis ``a_i`` across the groove along ``n_i x y3`` and
     ``b_i = a_i (b/a)_i`` along ``y3`` (Sec 3.1: minor axis along the helix), Hertz's pressure
@@ -149,7 +149,7 @@ def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int
         beta = float(state.contact_angle[ball, i])
         sign_u, sign_w = (-1.0 if i < 2 else 1.0), (-1.0 if i in (0, 3) else 1.0)  # eq 37: SL, SR, NR, NL
         e = np.array([sign_u * math.cos(beta), 0.0, sign_w * math.sin(beta)])  # ball centre -> contact
-        major = np.array([-e[2], 0.0, e[0]])  # n_i x y3 with n_i = -e_i (screw_ball.ball_terms)
+        major = np.array([-e[2], 0.0, e[0]])  # n_i x y3 with n_i = -e_i (ball.ball_terms)
         a = float(state.semi_major[ball, i])
         b = a * float(contacts.b_over_a[ball, i])
         points = radius * e[None, :] + (a * u)[:, None] * major[None, :] + (b * v)[:, None] * np.array([0.0, 1.0, 0.0])
@@ -219,7 +219,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     balls : sequence of ``n`` sequences of :class:`TractionPatch` (each ball's contacts, points relative to
         its centre in its own CS3, module docstring; ``top`` = nut), balls ordered along the orbit
         (ball 0 behind, lin2019's "ball 1"), touching neighbours a helix chord ``2 R_B`` apart
-    module : :class:`screw_ball.ScrewModule` (ball radius, pitch radius, lead, nut speed, mu; the normal
+    module : :class:`ball.ScrewModule` (ball radius, pitch radius, lead, nut speed, mu; the normal
         loads come with the patches, so its preload and elastic constants are not used)
     gaps : (n-1,) rad, azimuth gaps beyond touching (default all touching); ``with_b2b=False``: no B2B contact
     tolerance : max residual (units ``mu F_ref``, F_ref the largest patch force; moments / R_B) and of eqs 60-61
@@ -230,7 +230,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     """
     check_solver_options(tolerance, max_iterations)
     if not isinstance(module, sb.ScrewModule):
-        raise ValueError(f"module must be a screw_ball.ScrewModule (screw_ball.screw_module), got {type(module)!r}")
+        raise ValueError(f"module must be a ball.ScrewModule (ball.screw_module), got {type(module)!r}")
     eps = float(regularisation)
     if not math.isfinite(eps) or not 0.0 < eps <= 1e-6:
         raise ValueError(f"regularisation must lie in (0, 1e-6], got {regularisation!r}")
@@ -242,7 +242,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     if not any(patch.top for patch in balls[0]) or not all(any(p.top for p in patches) for patches in balls):
         raise ValueError("balls: every ball needs a loaded nut patch (top=True): the nut drives the balls")
     pairs = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
-    gaps = screw_b2b.check_gaps(gaps, n - 1)
+    gaps = b2b.check_gaps(gaps, n - 1)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     reference_force = max(p.normal_force for patches in balls for p in patches)  # F_ref [N]
     samples = _Samples(balls, module, reference_force, eps)
@@ -266,7 +266,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         iterations += its
         states = z[:N_UNKNOWNS * n].reshape(n, N_UNKNOWNS)
         lam = z[N_UNKNOWNS * n:]
-        separation = screw_b2b.COMPLEMENTARITY_SCALE * (states[pairs[touching, 1], 0] - states[pairs[touching, 0], 0])
+        separation = b2b.COMPLEMENTARITY_SCALE * (states[pairs[touching, 1], 0] - states[pairs[touching, 0], 0])
         violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
         if violation > 10 * tolerance:
             raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
@@ -294,18 +294,18 @@ def _initial_guess(samples: _Samples, n: int) -> np.ndarray:
 def _coupled_system(ball_function, module: sb.ScrewModule, n: int, pairs: np.ndarray, reference_force: float):
     """Residual and Jacobian of all balls' equilibrium with the B2B loads of ``pairs`` and eqs 60-61."""
     k, m = N_UNKNOWNS, len(pairs)
-    pair = screw_b2b.pair_geometry(module)
+    pair = b2b.pair_geometry(module)
     rows = _b2b_rows(module)
     radius, mu = module.ball_radius, module.friction_coefficient
     spin_unit = abs(module.nut_speed) * module.helix_radius / radius  # rad/s per unit of the spin unknowns
     force_unit = mu * reference_force                                # N per unit of lam
-    gamma = screw_b2b.COMPLEMENTARITY_SCALE
+    gamma = b2b.COMPLEMENTARITY_SCALE
 
     def function(z):
         balls = z[:k * n].reshape(n, k)
         lam = z[k * n:]
         residual, jac_balls = ball_function(balls)
-        loads, d_spin, d_force, _ = screw_b2b.b2b_loads(balls[:, 1:] * spin_unit, lam * force_unit, pair, radius,
+        loads, d_spin, d_force, _ = b2b.b2b_loads(balls[:, 1:] * spin_unit, lam * force_unit, pair, radius,
                                                         mu, pairs)
         out = np.empty(k * n + m)
         jac = np.zeros((k * n + m, k * n + m))
@@ -317,7 +317,7 @@ def _coupled_system(ball_function, module: sb.ScrewModule, n: int, pairs: np.nda
         jac[:k * n, k * n:] = np.einsum("ra,iap->irp", rows, d_force).reshape(k * n, m)
         ahead, behind = pairs[:, 1], pairs[:, 0]
         separation = gamma * (balls[ahead, 0] - balls[behind, 0])
-        phi, d_lam, d_sep = screw_b2b.fischer_burmeister(lam, separation)  # eqs 60-61
+        phi, d_lam, d_sep = b2b.fischer_burmeister(lam, separation)  # eqs 60-61
         index = k * n + np.arange(m)
         out[index] = phi
         jac[index, index] = d_lam
@@ -346,10 +346,10 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
     loss = _patch_sum(samples, -np.einsum("ki,ki->k", force, slip) * force_unit * speed, n)
     input_power = float(np.einsum("ki,ki->k", force, samples.groove_slip).sum() * force_unit * speed)
     spin_unit = speed / module.ball_radius
-    pair = screw_b2b.pair_geometry(module)
+    pair = b2b.pair_geometry(module)
     b2b_slip = np.zeros(n - 1)
     if n > 1:
-        b2b_slip = screw_b2b.b2b_loads(states[:, 1:] * spin_unit, forces, pair, module.ball_radius,
+        b2b_slip = b2b.b2b_loads(states[:, 1:] * spin_unit, forces, pair, module.ball_radius,
                                        module.friction_coefficient)[3]
     b2b_loss = module.friction_coefficient * forces * b2b_slip  # lin2019 eq 58
     losses = float(loss.sum() + b2b_loss.sum())

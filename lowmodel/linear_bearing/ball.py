@@ -78,7 +78,7 @@ __all__ = [
     "BallTerms",
     "ball_contacts",
     "contacts_from_forces",
-    "solve_ball",
+    "solve",
     "ContinuationPath",
     "homotopy_paths",
     "solve_with_continuation",
@@ -297,11 +297,11 @@ def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: fl
     friction_coefficient : mu; groove_velocity : m/s (top groove)
     youngs_modulus [Pa], poisson_ratio : ball and groove (same material)
 
-    Normal forces from :func:`lowmodel.fourpoint.normal_forces` (lin2017 eq
+    Normal forces from :func:`lowmodel.linear_bearing.fourpoint.normal_forces` (lin2017 eq
     36; ValueError at loss of four-point contact), semi-axes from
     :func:`lowmodel.contact.hertz.ball_in_groove` / ``solve_load``.
     """
-    from ballbench.lowmodel import fourpoint
+    from ballbench.lowmodel.linear_bearing import fourpoint
     from ballbench.lowmodel.contact import hertz
 
     angles = _check_angles(contact_angles)
@@ -507,7 +507,7 @@ def ball_state(unknowns, terms: BallTerms, contacts: BallContacts, reference_for
 # --------------------------------------------------------------------------
 # solution (the damped Newton of lowmodel.solvers)
 # --------------------------------------------------------------------------
-def solve_ball(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 60) -> BallState:
+def solve(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: int = 60) -> BallState:
     """Solve lin2019 eq 4 for each ball independently (no ball-to-ball contact).
 
     Parameters

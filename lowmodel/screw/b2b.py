@@ -1,6 +1,6 @@
 """Ball-to-ball (B2B) contact of 2 to N balls in a ball screw (lin2019 Sec 3.2, eqs 56-61).
 
-Built on the single-ball equilibrium of :mod:`lowmodel.screw.screw_ball` (eq 54).
+Built on the single-ball equilibrium of :mod:`lowmodel.screw.ball` (eq 54).
 Balls ``j = 0 .. n-1`` are ordered along the helix in the direction of their
 orbit (``omega_B > 0``: increasing azimuth); ball 0 is lin2019's "ball 1"
 (behind).  All balls share one nut and one screw: a common nut shift ``u`` and
@@ -47,9 +47,9 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import ball as sb
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "solve_at", "COMPLEMENTARITY_SCALE",
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "COMPLEMENTARITY_SCALE",
            "LOAD_RAMP_START", "saturation", "fischer_burmeister", "check_gaps"]
 
 COMPLEMENTARITY_SCALE = 10.0
@@ -193,22 +193,22 @@ LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a l
 def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
           max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None,
           ramp_steps: int = 8) -> sb.ScrewBallState:
-    """:func:`solve_at` with fallbacks: a second start from the balls solved without B2B contact; and for
+    """:func:`_solve_attempt` with fallbacks: a second start from the balls solved without B2B contact; and for
     heavy loads, if that fails too with more than ``LOAD_RAMP_START``
     per ball, the load is ramped up geometrically from there in ``ramp_steps`` warm-started solves
     (continuation in the load; the preload continuation alone stalls where contacts open under kN loads).
-    Parameters as :func:`solve_at`."""
+    Parameters as :func:`_solve_attempt`."""
     try:
         try:
-            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            return _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=with_b2b, initial=initial)
         except ConvergenceError:
             if not with_b2b or contacts.n_balls < 2:
                 raise
             # second start: the balls without B2B contact, then the contact problem from there
-            free = solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            free = _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=False)
-            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            return _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=True, initial=free)
     except ConvergenceError as error:
         loads = np.asarray(axial_load, dtype=float)
@@ -218,7 +218,7 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
         state, reached = None, 0.0
         for factor in np.geomspace(LOAD_RAMP_START / per_ball, 1.0, ramp_steps):
             try:
-                state = solve_at(contacts, loads * factor, gaps, ring=ring, tolerance=tolerance,
+                state = _solve_attempt(contacts, loads * factor, gaps, ring=ring, tolerance=tolerance,
                                  max_iterations=max_iterations, with_b2b=with_b2b, initial=state)
                 reached = factor
             except ConvergenceError as ramp_error:
@@ -244,7 +244,7 @@ def saturation(state: sb.ScrewBallState) -> float:
         return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
 
 
-def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
+def _solve_attempt(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
              max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
              ) -> sb.ScrewBallState:
     """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
