@@ -72,7 +72,14 @@ def test_b2b_loads_derivatives_and_balance(module):
     rng = np.random.default_rng(2)
     spins = rng.normal(size=(3, 3)) * 20.0
     forces = np.array([1.5, 0.7])
-    load, d_spin, d_force, speeds = b2.b2b_loads(spins, forces, pair, module.ball_radius, 0.1)
+    load, d_pairs, d_pair_force, speeds = b2.b2b_loads(spins, forces, pair, module.ball_radius, 0.1)
+    # the pair blocks (p, 2, 2, 6, 3) and (p, 2, 6) summed into d load / d spins (n, 6, n, 3) and d load / d F
+    d_spin, d_force = np.zeros((3, 6, 3, 3)), np.zeros((3, 6, 2))
+    for j, (behind, ahead) in enumerate(((0, 1), (1, 2))):
+        for row, ball_row in enumerate((behind, ahead)):
+            d_force[ball_row, :, j] += d_pair_force[j, row]
+            for col, ball_col in enumerate((behind, ahead)):
+                d_spin[ball_row, :, ball_col] += d_pairs[j, row, col]
     step = 1e-6
     for ball in range(3):
         for axis in range(3):

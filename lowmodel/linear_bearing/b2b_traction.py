@@ -29,8 +29,9 @@ up to the quadrature (tests/test_b2b_traction.py).
 Ball equilibrium and the B2B conditions are those of the low-order model: the
 three rows of lin2019 eq 4 (z force, x and y moments about the ball centre),
 with the B2B loads of eqs 5-8 and the complementarity of eqs 9-10 from
-:func:`lowmodel.linear_bearing.b2b.coupled_system` (one implementation for
-both models).  Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
+:func:`lowmodel.linear_bearing.b2b.coupled_system` (the chain of
+:mod:`lowmodel.b2b_chain`: one implementation for all B2B models).
+Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
 The residual of one ball is ``-grad`` of the regularised dissipation
 ``sum_k mu F_k sqrt(|P_k s_k|^2 + eps^2)``, so its Jacobian is symmetric and
 negative semi-definite (a single ball has a unique state); Newton with
@@ -59,11 +60,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
-from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
+from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, coupled_system, touching_pairs
 from ballbench.lowmodel.linear_bearing.ball import BallContacts
 from ballbench.lowmodel.solvers import check_solver_options, newton
 
@@ -200,23 +202,23 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     samples = _Samples(balls, radius, reference_force, sign, eps)
     guess = _initial_guess(balls, sign)
 
-    def ball_function(states):
+    def ball_function(states, _extra=None):
         residual, jac, _, _ = samples.evaluate(states)
-        return residual, jac
+        return BallBlocks(residual, jac)
 
     free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
                                         max_iterations=max_iterations, what="FE-informed ball")
     if touching.size == 0:
         states, forces = free, np.zeros(n - 1)
-        residual_norm = float(np.max(np.abs(ball_function(states)[0])))
+        residual_norm = float(np.max(np.abs(ball_function(states).residual)))
     else:
-        function, _, pack = coupled_system(ball_function, n, N_UNKNOWNS, touching, mu)
-        z0 = pack(free)
+        layout = ChainLayout(n, N_UNKNOWNS, touching)
         what = f"FE-informed {n}-ball B2B contact"
-        z, residual, its = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations, what=what)
+        z, residual, its = newton(coupled_system(ball_function, layout, mu), layout.pack(free), tolerance=tolerance,
+                                  max_iterations=max_iterations, what=what)
         iterations += its
-        states, forces = complementarity_forces(z, n, N_UNKNOWNS, touching, tolerance=tolerance,
-                                                iterations=iterations, what=what)
+        states, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE,
+                                         tolerance=tolerance, iterations=iterations, what=what)
         residual_norm = float(np.max(np.abs(residual)))
     return _state(samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
                   residual_norm)

@@ -33,10 +33,10 @@ Equilibrium of each ball: the generalised forces conjugate to ``(omega_B, omega)
 along ``y3`` and the three moments of eq 54 (``F . H(c_0) + z_hat . M = (L/2 pi) F_y3
 + z_hat . M``).  The B2B loads are those of the low-order model (eqs 56-59,
 :func:`b2b.b2b_loads` with the exact helix chord of :func:`b2b.pair_geometry`)
-and so is the complementarity (eqs 60-61, :func:`b2b.fischer_burmeister` on
-``F / (mu F_ref)`` and ``10 (omega_B,j+1 - omega_B,j) / |omega_N|``).  Newton with
-Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`): each ball alone first
-(its residual is minus the gradient of a convex dissipation, so its state is unique),
+and so is the complementarity (eqs 60-61, the Fischer-Burmeister function of ``F / (mu F_ref)`` and
+``10 (omega_B,j+1 - omega_B,j) / |omega_N|`` in the chain of :mod:`lowmodel.b2b_chain`).
+Newton with Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`): each ball alone
+first (its residual is minus the gradient of a convex dissipation, so its state is unique),
 then the coupled system.
 
 Assumptions kept from lin2019's low-order model: full sliding at every point (no stick
@@ -64,6 +64,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
+    chain_system
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  free_ball_starts, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
@@ -241,37 +243,33 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         raise ValueError("balls must hold n >= 1 balls with >= 1 patch each")
     if not any(patch.top for patch in balls[0]) or not all(any(p.top for p in patches) for patches in balls):
         raise ValueError("balls: every ball needs a loaded nut patch (top=True): the nut drives the balls")
-    pairs = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
     gaps = b2b.check_gaps(gaps, n - 1)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     reference_force = max(p.normal_force for patches in balls for p in patches)  # F_ref [N]
     samples = _Samples(balls, module, reference_force, eps)
     guess = _initial_guess(samples, n)
 
-    def ball_function(states):
+    def ball_function(states, _extra=None):
         residual, jac, _, _ = samples.evaluate(states)
-        return residual, jac
+        return BallBlocks(residual, jac)
 
     free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
                                         max_iterations=max_iterations, what="FE-informed screw ball")
     forces = np.zeros(n - 1)
     if touching.size == 0:
         states = free
-        residual_norm = float(np.max(np.abs(ball_function(states)[0])))
+        residual_norm = float(np.max(np.abs(ball_function(states).residual)))
     else:
-        function = _coupled_system(ball_function, module, n, pairs[touching], reference_force)
-        z0 = np.concatenate([free.ravel(), np.zeros(touching.size)])
+        layout = ChainLayout(n, N_UNKNOWNS, touching)
         what = f"FE-informed {n}-ball screw B2B contact"
-        z, residual, its = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations, what=what)
+        function = chain_system(ball_function, _pair_function(module, layout, reference_force), layout,
+                                rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, complementarity="fischer-burmeister")
+        z, residual, its = newton(function, layout.pack(free), tolerance=tolerance, max_iterations=max_iterations,
+                                  what=what)
         iterations += its
-        states = z[:N_UNKNOWNS * n].reshape(n, N_UNKNOWNS)
-        lam = z[N_UNKNOWNS * n:]
-        separation = b2b.COMPLEMENTARITY_SCALE * (states[pairs[touching, 1], 0] - states[pairs[touching, 0], 0])
-        violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
-        if violation > 10 * tolerance:
-            raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                                   tolerance=tolerance)
-        forces[touching] = np.maximum(lam, 0.0) * module.friction_coefficient * reference_force
+        states, lam, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
+                                      iterations=iterations, what=what)
+        forces = lam * module.friction_coefficient * reference_force
         residual_norm = float(np.max(np.abs(residual)))
     return _state(samples, states, forces, balls, module, reference_force, iterations, residual_norm)
 
@@ -291,39 +289,23 @@ def _initial_guess(samples: _Samples, n: int) -> np.ndarray:
     return guess
 
 
-def _coupled_system(ball_function, module: sb.ScrewModule, n: int, pairs: np.ndarray, reference_force: float):
-    """Residual and Jacobian of all balls' equilibrium with the B2B loads of ``pairs`` and eqs 60-61."""
-    k, m = N_UNKNOWNS, len(pairs)
+def _pair_function(module: sb.ScrewModule, layout: ChainLayout, reference_force: float):
+    """The B2B loads of the chain's pairs (eqs 56-59) as generalised forces of the 4 unknowns per ball (units
+    ``mu F_ref``; force slots in units ``mu F_ref``): :class:`lowmodel.b2b_chain.PairBlocks`."""
+    k = N_UNKNOWNS
     pair = b2b.pair_geometry(module)
     rows = _b2b_rows(module)
     radius, mu = module.ball_radius, module.friction_coefficient
     spin_unit = abs(module.nut_speed) * module.helix_radius / radius  # rad/s per unit of the spin unknowns
-    force_unit = mu * reference_force                                # N per unit of lam
-    gamma = b2b.COMPLEMENTARITY_SCALE
+    force_unit = mu * reference_force                                # N per unit of the force slot
+    pairs = layout.pairs
 
-    def function(z):
-        balls = z[:k * n].reshape(n, k)
-        lam = z[k * n:]
-        residual, jac_balls = ball_function(balls)
-        loads, d_spin, d_force, _ = b2b.b2b_loads(balls[:, 1:] * spin_unit, lam * force_unit, pair, radius,
-                                                        mu, pairs)
-        out = np.empty(k * n + m)
-        jac = np.zeros((k * n + m, k * n + m))
-        out[:k * n] = (residual + loads @ rows.T / force_unit).ravel()
-        view = jac[:k * n, :k * n].reshape(n, k, n, k)
-        for b in range(n):
-            view[b, :, b, :] += jac_balls[b]
-        view[:, :, :, 1:] += np.einsum("ra,iajc->irjc", rows, d_spin) * (spin_unit / force_unit)
-        jac[:k * n, k * n:] = np.einsum("ra,iap->irp", rows, d_force).reshape(k * n, m)
-        ahead, behind = pairs[:, 1], pairs[:, 0]
-        separation = gamma * (balls[ahead, 0] - balls[behind, 0])
-        phi, d_lam, d_sep = b2b.fischer_burmeister(lam, separation)  # eqs 60-61
-        index = k * n + np.arange(m)
-        out[index] = phi
-        jac[index, index] = d_lam
-        np.add.at(jac, (index, k * ahead), gamma * d_sep)
-        np.add.at(jac, (index, k * behind), -gamma * d_sep)
-        return out, jac
+    def function(balls, forces):
+        loads, d_spin, d_force, slip = b2b.b2b_loads(balls[:, 1:] * spin_unit, forces * force_unit, pair, radius, mu,
+                                                     pairs, abs(module.nut_speed))
+        d_balls = np.zeros((len(pairs), 2, 2, k, k))
+        d_balls[..., 1:] = np.einsum("ra,psqac->psqrc", rows, d_spin) * (spin_unit / force_unit)
+        return PairBlocks(loads @ rows.T / force_unit, d_balls, d_force @ rows.T, slip)
 
     return function
 
