@@ -19,7 +19,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ballbench.lowmodel import calibration, solvers
+from ballbench.lowmodel import calibration, quadrature, solvers
 from ballbench.lowmodel.contact import ehl, hertz, mixed, roughness, traction
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import ellipse_friction_offset as offset
@@ -92,7 +92,7 @@ def test_ellipse_friction_rest(beta, stacked, level):
             call(at, np.full(np.shape(beta), 2.5))  # phi of the shape of b_over_a (its docstring)
     else:
         call(ef.friction_angle_at, beta, stacked=stacked)
-    call(ef.tanh_sinh_rule, level)
+    call(quadrature.tanh_sinh, level)
 
 
 @SLOW

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import quadrature
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import ball as bb
@@ -169,8 +170,8 @@ def test_pickled_and_deep_copied_objects_keep_read_only_arrays(how):
 
 
 def test_cached_quadrature_rule_is_read_only():
-    """``tanh_sinh_rule`` returns lru_cache'd arrays shared by every caller (the friction map and the offset
+    """``quadrature.tanh_sinh`` returns lru_cache'd arrays shared by every caller (the friction map and the offset
     friction integrals): an in-place edit (``nodes *= 2``) would silently change every later integral."""
-    for array in ef.tanh_sinh_rule(5):
+    for array in quadrature.tanh_sinh(5):
         with pytest.raises(ValueError, match="read-only"):
             array *= 2.0

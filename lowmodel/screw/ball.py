@@ -59,7 +59,7 @@ to the Newton tolerance in every solve (tests); the friction torque is
 
 Newton with the analytic Jacobian: every quantity carries its derivatives
 with respect to the ball's unknowns and ``u`` (forward-mode chain rule,
-:class:`_Dual`), through the Jacobian of ``friction_offset``; globalised by
+:class:`lowmodel.dual.Dual`), through the Jacobian of ``friction_offset``; globalised by
 the Levenberg-Marquardt ``newton`` of :mod:`lowmodel.solvers`.
 """
 from __future__ import annotations
@@ -71,6 +71,7 @@ from functools import lru_cache
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.dual import Dual, constant, cross, dot, variable
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
@@ -410,68 +411,6 @@ def profile_2d(contacts: BallContacts, ball: int, contact: int, gamma, azimuth: 
 
 
 # --------------------------------------------------------------------------
-# forward-mode derivatives
-# --------------------------------------------------------------------------
-class _Dual:
-    """Value ``v`` (shape (m,)) with its gradient ``g`` (shape (m, k)): exact chain rule."""
-
-    __slots__ = ("v", "g")
-
-    def __init__(self, v, g):
-        self.v = v
-        self.g = g
-
-    def __add__(self, other):
-        if isinstance(other, _Dual):
-            return _Dual(self.v + other.v, self.g + other.g)
-        return _Dual(self.v + other, self.g)
-
-    __radd__ = __add__
-
-    def __sub__(self, other):
-        if isinstance(other, _Dual):
-            return _Dual(self.v - other.v, self.g - other.g)
-        return _Dual(self.v - other, self.g)
-
-    def __rsub__(self, other):
-        return _Dual(other - self.v, -self.g)
-
-    def __neg__(self):
-        return _Dual(-self.v, -self.g)
-
-    def __mul__(self, other):
-        if isinstance(other, _Dual):
-            return _Dual(self.v * other.v, self.g * other.v[:, None] + other.g * self.v[:, None])
-        other = np.asarray(other, dtype=float)
-        return _Dual(self.v * other, self.g * (other[..., None] if other.ndim else other))
-
-    __rmul__ = __mul__
-
-    def __truediv__(self, other):
-        if isinstance(other, _Dual):
-            inv = 1.0 / other.v
-            return _Dual(self.v * inv, (self.g - other.g * (self.v * inv)[:, None]) * inv[:, None])
-        return self * (1.0 / np.asarray(other, dtype=float))
-
-    def sqrt(self):
-        root = np.sqrt(self.v)
-        return _Dual(root, self.g * (0.5 / root)[:, None])
-
-
-def _const(value, k: int) -> _Dual:
-    value = np.asarray(value, dtype=float)
-    return _Dual(value, np.zeros(value.shape + (k,)))
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-# --------------------------------------------------------------------------
 # residual of eq 54 for every ball, with its Jacobian
 # --------------------------------------------------------------------------
 @dataclass(frozen=True)
@@ -534,15 +473,12 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     z_hat = (0.0, s, c)
 
     def var(column, scale):
-        value = np.repeat(unknowns[:, column] * scale, 4)
-        grad = np.zeros((m, k))
-        grad[:, column] = scale
-        return _Dual(value, grad)
+        return variable(np.repeat(unknowns[:, column], 4), k, column, scale)
 
     x_b, z_b = var(0, scales.length), var(1, scales.length)
     orbit = var(2, scales.orbit)
     omega = (var(3, scales.spin), var(4, scales.spin), var(5, scales.spin))
-    shift = _Dual(np.repeat(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)) * scales.length, 4),
+    shift = Dual(np.repeat(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)) * scales.length, 4),
                   np.zeros((m, k)))
     shift.g[:, N_UNKNOWNS] = scales.length
     on_nut = np.tile(_ON_NUT, n)
@@ -559,33 +495,33 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     if contacts.bulk_compliance is None:
         ratio = np.where(loaded, approach.v, 0.0) / hertz_c
         force_v = ratio**1.5
-        force = _Dual(force_v, approach.g * (1.5 * np.sqrt(ratio) / hertz_c)[:, None])  # eq 53
+        force = Dual(force_v, approach.g * (1.5 * np.sqrt(ratio) / hertz_c)[:, None])  # eq 53
     else:  # calibrated law delta = C F^(2/3) + C_b F (eq 53 + finite-body compliance), lowmodel.calibration
         from ballbench.lowmodel.calibration import law_force
 
         force_v, slope = law_force(approach.v, hertz_c, contacts.bulk_compliance.reshape(m))
-        force = _Dual(force_v, approach.g * slope[:, None])
-    semi = _Dual(contacts.semi_major_unit.reshape(m) * np.cbrt(force_v), np.zeros((m, k)))
+        force = Dual(force_v, approach.g * slope[:, None])
+    semi = Dual(contacts.semi_major_unit.reshape(m) * np.cbrt(force_v), np.zeros((m, k)))
     with np.errstate(divide="ignore", invalid="ignore"):
         da_dF = np.where(loaded, semi.v / (3.0 * np.where(loaded, force_v, 1.0)), 0.0)
     semi.g = force.g * da_dF[:, None]
     # kinematics (module docstring): q = R_B e, W = (omega_B - Omega_g) z_hat + omega
     relative = orbit - module.nut_speed * on_nut
-    q = (ex * radius, _const(np.zeros(m), k), ez * radius)
+    q = (ex * radius, constant(np.zeros(m), k), ez * radius)
     helical = (q[2] * s, q[0] * c + module.helix_radius, q[0] * (-s))
     spin_vector = tuple(relative * z_hat[j] + omega[j] for j in range(3))
-    turn = _cross(omega, q)
+    turn = cross(omega, q)
     slip = tuple(relative * helical[j] + turn[j] for j in range(3))
-    inward = (-ex, _const(np.zeros(m), k), -ez)
-    major = (ez, _const(np.zeros(m), k), -ex)          # n_i x y3
-    spin = _dot(spin_vector, inward)                    # omega_i about the inward normal
+    inward = (-ex, constant(np.zeros(m), k), -ez)
+    major = (ez, constant(np.zeros(m), k), -ex)          # n_i x y3
+    spin = dot(spin_vector, inward)                    # omega_i about the inward normal
     spin_velocity = spin * semi
     slip_minor = slip[1]
-    slip_major = _dot(slip, major)
+    slip_major = dot(slip, major)
     mu = module.friction_coefficient
-    fr_force_major = _const(np.zeros(m), k)
-    fr_force_minor = _const(np.zeros(m), k)
-    fr_moment = _const(np.zeros(m), k)
+    fr_force_major = constant(np.zeros(m), k)
+    fr_force_minor = constant(np.zeros(m), k)
+    fr_moment = constant(np.zeros(m), k)
     loss_unit = np.zeros(m)
     idx = np.flatnonzero(loaded)
     if idx.size:
@@ -603,9 +539,9 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     friction = tuple(major[j] * f_major for j in range(3))
     friction = (friction[0], friction[1] + f_minor, friction[2])
     moment_mag = fr_moment * mu_force * semi              # about major x minor = -n_i = e_i
-    contact_moment = (ex * moment_mag, _const(np.zeros(m), k), ez * moment_mag)
-    arm_moment = _cross(q, friction)
-    normal = (ex * (-1.0) * force, _const(np.zeros(m), k), ez * (-1.0) * force)
+    contact_moment = (ex * moment_mag, constant(np.zeros(m), k), ez * moment_mag)
+    arm_moment = cross(q, friction)
+    normal = (ex * (-1.0) * force, constant(np.zeros(m), k), ez * (-1.0) * force)
     total_force = tuple(normal[j] + friction[j] for j in range(3))
     total_moment = tuple(arm_moment[j] + contact_moment[j] for j in range(3))
     rows = [total_force[0], total_force[1], total_force[2]] + [t * (1.0 / radius) for t in total_moment]
@@ -614,11 +550,11 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     for r, quantity in enumerate(rows):
         residual[:, r] = quantity.v.reshape(n, 4).sum(axis=1) / scales.force
         jacobian[:, r] = quantity.g.reshape(n, 4, k).sum(axis=1) / scales.force
-    axial_contrib = _dot(total_force, z_hat) * (1.0 - on_nut)
+    axial_contrib = dot(total_force, z_hat) * (1.0 - on_nut)
     axial = axial_contrib.v.reshape(n, 4).sum(axis=1) / scales.force
     axial_gradient = axial_contrib.g.reshape(n, 4, k).sum(axis=1) / scales.force
     # power put in by the nut (screw at rest): omega_N sum_nut (F_f . H + M . z_hat)
-    nut_power = (_dot(friction, helical).v + _dot(contact_moment, z_hat).v) * module.nut_speed * on_nut
+    nut_power = (dot(friction, helical).v + dot(contact_moment, z_hat).v) * module.nut_speed * on_nut
     loss = mu * force_v * loss_unit
     return BallTerms(residual, jacobian, axial, axial_gradient, force_v.reshape(n, 4),
                      np.stack([ex.v, ez.v], axis=-1).reshape(n, 4, 2), approach.v.reshape(n, 4),
