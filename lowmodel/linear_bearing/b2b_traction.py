@@ -68,6 +68,7 @@ from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, coupled_system, touching_pairs
 from ballbench.lowmodel.linear_bearing.ball import BallContacts
 from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
 
@@ -76,8 +77,9 @@ N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
 
 
 @dataclass(frozen=True)
-class TractionState:
-    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; patches in the given order).
+class TractionState(BallStateBase):
+    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; patches in the given order); the power, B2B
+    and loss fields of :class:`lowmodel.state.BallStateBase`:
 
     ball_velocity : (n,) m/s;  omega : (n, 2) rad/s ``(omega_x, omega_y)``
     velocity_deviation : (n,) ``2 v_B / v - 1`` (lin2019 eq 21)
@@ -95,19 +97,7 @@ class TractionState:
     velocity_deviation: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
-    input_power: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    b2b_slip: np.ndarray
     power_balance: float
-    iterations: int
-    residual: float
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
 class _Samples(SampledCoulomb):
@@ -257,5 +247,6 @@ def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, refer
                                tolerance=POWER_BALANCE_TOLERANCE)
     ball_velocity = states[:, 0] * speed
     return TractionState(ball_velocity, states[:, 1:3] * speed / radius, 2.0 * ball_velocity / velocity - 1.0,
-                         friction_force, friction_moment, loss, input_power, b2b_force, b2b_loss, b2b_slip,
-                         balance, iterations, residual_norm)
+                         friction_force, friction_moment, balance, friction_loss=loss, input_power=input_power,
+                         b2b_force=b2b_force, b2b_friction_loss=b2b_loss, b2b_slip=b2b_slip, iterations=iterations,
+                         residual=residual_norm)

@@ -71,6 +71,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
 from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options, continuation, solve_with_restarts
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = [
     "BallContacts",
@@ -183,8 +184,9 @@ class BallContacts:
 
 
 @dataclass(frozen=True)
-class BallState:
-    """Quasi-static solution for ``n`` balls (arrays have leading shape ``(n,)``).
+class BallState(BallStateBase):
+    """Quasi-static solution for ``n`` balls (arrays have leading shape ``(n,)``); the power, B2B and loss fields
+    of :class:`lowmodel.state.BallStateBase` with these units:
 
     ball_velocity : (n,) m/s, ``v_B``
     omega : (n, 2) rad/s, ``(omega_x, omega_y)``
@@ -213,25 +215,8 @@ class BallState:
     c_over_a: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
     friction_loss_table: np.ndarray
-    input_power: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    b2b_slip: np.ndarray
-    iterations: int
-    residual: float
     continuation: tuple = ()
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
-
-    @property
-    def groove_loss(self) -> float:
-        """Ball-to-groove friction loss [W]."""
-        return float(self.friction_loss.sum())
 
 
 @dataclass(frozen=True)
@@ -500,8 +485,9 @@ def ball_state(unknowns, terms: BallTerms, contacts: BallContacts, reference_for
         b2b_slip = np.zeros(n_pairs)
     b2b_loss = contacts.friction_coefficient * b2b_force * b2b_slip  # lin2019 eq 7
     return BallState(velocity, omega, 2.0 * velocity / contacts.groove_velocity - 1.0, spin, slide, c_over_a,
-                     force, moment, loss, terms.loss_table * mu_f * speed, input_power, b2b_force,
-                     b2b_loss, b2b_slip, iterations, residual)
+                     force, moment, terms.loss_table * mu_f * speed, friction_loss=loss, input_power=input_power,
+                     b2b_force=b2b_force, b2b_friction_loss=b2b_loss, b2b_slip=b2b_slip, iterations=iterations,
+                     residual=residual)
 
 
 # --------------------------------------------------------------------------

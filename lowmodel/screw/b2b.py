@@ -343,4 +343,4 @@ def _solve_attempt(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bo
                        pairs, abs(module.nut_speed))[3]
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
     return sb.state_from(balls, shift, terms, scales, axial_load=total, b2b_force=forces, b2b_loss=b2b_loss,
-                         iterations=iterations, residual=float(np.max(np.abs(residual))))
+                         b2b_slip=speeds, iterations=iterations, residual=float(np.max(np.abs(residual))))

@@ -72,6 +72,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "POWER_BALANCE_TOLERANCE",
            "N_UNKNOWNS", "RADIUS_TOLERANCE"]
@@ -82,8 +83,9 @@ RADIUS_TOLERANCE = 0.05  # sample points must lie within 5 % of R_B from the bal
 
 
 @dataclass(frozen=True)
-class ScrewTractionState:
-    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; ``p`` the most patches of a ball).
+class ScrewTractionState(BallStateBase):
+    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; ``p`` the most patches of a ball); the power,
+    B2B and loss fields of :class:`lowmodel.state.BallStateBase`:
 
     orbit_speed : (n,) rad/s ``omega_B``;  omega : (n, 3) rad/s, spin relative to CS3
     names : (n, p) the patch names ("" where a ball has fewer patches; their entries are 0)
@@ -103,25 +105,8 @@ class ScrewTractionState:
     contact_angle: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
     axial_force: np.ndarray
-    input_power: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    b2b_slip: np.ndarray
     power_balance: float
-    iterations: int
-    residual: float
-
-    @property
-    def groove_loss(self) -> float:
-        """Ball-to-groove friction loss [W]."""
-        return float(self.friction_loss.sum())
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
 def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int = 0, *, n_radial: int = 24,
@@ -355,8 +340,9 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
                 axial[b] += float(-(patch.forces @ patch.normals) @ z_hat + friction_force[b, i] @ z_hat)
     omega = states[:, 1:] * spin_unit
     return ScrewTractionState(states[:, 0] * abs(module.nut_speed), omega, tuple(names), normal_force, angle,
-                              friction_force, friction_moment, loss, axial, input_power, forces, b2b_loss, b2b_slip,
-                              balance, iterations, residual_norm)
+                              friction_force, friction_moment, axial, balance, friction_loss=loss,
+                              input_power=input_power, b2b_force=forces, b2b_friction_loss=b2b_loss,
+                              b2b_slip=b2b_slip, iterations=iterations, residual=residual_norm)
 
 
 @dataclass(frozen=True)

@@ -75,6 +75,7 @@ from ballbench.lowmodel.dual import Dual, constant, cross, dot, variable
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
@@ -569,8 +570,9 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
 # solution
 # --------------------------------------------------------------------------
 @dataclass(frozen=True)
-class ScrewBallState:
-    """Quasi-static state of ``n`` balls (leading shape (n,); contacts (SL, SR, NR, NL)).
+class ScrewBallState(BallStateBase):
+    """Quasi-static state of ``n`` balls (leading shape (n,); contacts (SL, SR, NR, NL)); the power, B2B and loss
+    fields of :class:`lowmodel.state.BallStateBase`:
 
     centre : (n, 2) m, ball centre ``(x_B3, z_B3)`` from the nominal helix
     orbit_speed : (n,) rad/s, ``omega_B``; omega : (n, 3) rad/s, spin relative to CS3
@@ -578,8 +580,9 @@ class ScrewBallState:
     normal_force : (n, 4) N; contact_angle : (n, 4) rad (actual); approach : (n, 4) m
     semi_major : (n, 4) m; spin : (n, 4) rad/s about the inward normal; slip_minor, slip_major : (n, 4) m/s
     friction_force : (n, 4, 3) N; friction_moment : (n, 4, 3) N m (CS3, on the ball)
-    friction_loss : (n, 4) W; input_power : W (by the nut); b2b_force : (n-1,) N;
-    b2b_friction_loss : (n-1,) W; iterations; residual (max scaled residual)
+    axial_load : N, force of the screw on the balls along +z
+    friction_loss : (n, 4) W; input_power : W (by the nut); b2b_force, b2b_friction_loss, b2b_slip : (pairs,) N, W,
+    m/s; iterations; residual (max scaled residual)
     """
 
     centre: np.ndarray
@@ -595,23 +598,7 @@ class ScrewBallState:
     slip_major: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
-    input_power: float
     axial_load: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    iterations: int
-    residual: float
-
-    @property
-    def groove_loss(self) -> float:
-        """Ball-to-groove friction loss [W]."""
-        return float(self.friction_loss.sum())
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
 def _contact_angles(direction: np.ndarray) -> np.ndarray:
@@ -763,19 +750,21 @@ def _single(contacts: BallContacts, index: int) -> BallContacts:
 
 
 def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scales, *, axial_load: float,
-               b2b_force=None, b2b_loss=None, iterations: int, residual: float) -> ScrewBallState:
-    """ScrewBallState from scaled unknowns (n, 6), the scaled nut shift and the terms at that point."""
+               b2b_force=None, b2b_loss=None, b2b_slip=None, iterations: int, residual: float) -> ScrewBallState:
+    """ScrewBallState from scaled unknowns (n, 6), the scaled nut shift and the terms at that point; the B2B
+    force [N], loss [W] and slip [m/s] of the pairs default to zeros (n - 1,)."""
     n = z_balls.shape[0]
     if b2b_force is None:
-        b2b_force, b2b_loss = np.zeros(max(n - 1, 0)), np.zeros(max(n - 1, 0))
+        b2b_force, b2b_loss, b2b_slip = (np.zeros(max(n - 1, 0)) for _ in range(3))
     shift = np.asarray(shift, dtype=float) * scales.length
     return ScrewBallState(z_balls[:, :2] * scales.length, z_balls[:, 2] * scales.orbit, z_balls[:, 3:6] * scales.spin,
                           float(shift) if shift.ndim == 0 else shift, terms.normal_force,
                           _contact_angles(terms.contact_direction),
                           terms.approach, terms.semi_major, terms.spin, terms.slip_minor, terms.slip_major,
-                          terms.friction_force, terms.friction_moment, terms.friction_loss,
-                          float(terms.input_power.sum()), axial_load, np.asarray(b2b_force, dtype=float),
-                          np.asarray(b2b_loss, dtype=float), iterations, residual)
+                          terms.friction_force, terms.friction_moment, axial_load, friction_loss=terms.friction_loss,
+                          input_power=float(terms.input_power.sum()), b2b_force=np.asarray(b2b_force, dtype=float),
+                          b2b_friction_loss=np.asarray(b2b_loss, dtype=float),
+                          b2b_slip=np.asarray(b2b_slip, dtype=float), iterations=iterations, residual=residual)
 
 
 def _stack(states, contacts: BallContacts) -> ScrewBallState:
@@ -794,7 +783,7 @@ def _stack(states, contacts: BallContacts) -> ScrewBallState:
     return ScrewBallState(cat("centre"), cat("orbit_speed"), cat("omega"),
                           float(np.mean([p.nut_shift for p in parts])), cat("normal_force"), cat("contact_angle"),
                           cat("approach"), cat("semi_major"), cat("spin"), cat("slip_minor"), cat("slip_major"),
-                          cat("friction_force"), cat("friction_moment"), cat("friction_loss"),
-                          float(sum(p.input_power for p in parts)), float(sum(p.axial_load for p in parts)),
-                          np.zeros(n - 1), np.zeros(n - 1), max(p.iterations for p in parts),
-                          max(p.residual for p in parts))
+                          cat("friction_force"), cat("friction_moment"), float(sum(p.axial_load for p in parts)),
+                          friction_loss=cat("friction_loss"), input_power=float(sum(p.input_power for p in parts)),
+                          b2b_force=np.zeros(n - 1), b2b_friction_loss=np.zeros(n - 1), b2b_slip=np.zeros(n - 1),
+                          iterations=max(p.iterations for p in parts), residual=max(p.residual for p in parts))
