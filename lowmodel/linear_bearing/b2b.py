@@ -221,7 +221,7 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
         mu_s = contacts_s.friction_coefficient
         if mu_s not in systems:
             systems[mu_s] = coupled_system(ball_function, layout, mu_s)
-        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
+        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, tolerance=tolerance,
                             max_iterations=max_iterations, what=label, with_balls=with_balls)
 
     def mu_at(s):  # the friction coefficient from mu / MU_PATH_START to mu, geometrically (B2B friction grows)

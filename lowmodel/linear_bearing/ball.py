@@ -537,7 +537,7 @@ def solve_free(contacts: BallContacts, reference_force: float, tolerance: float,
             def function(z):
                 terms = ball_terms(z[None, :], ball_contacts, reference_force)
                 return terms.residual[0], terms.jacobian[0]
-            return solve_branch(function, z0, lambda z: z[None, :], ball_contacts, reference_force,
+            return solve_branch(function, z0, lambda z: z[None, :], ball_contacts,
                                 tolerance=tolerance, max_iterations=max_iterations, what=what)
 
         try:
@@ -643,8 +643,8 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     raise failure from None
 
 
-def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force: float, *, tolerance: float,
-                 max_iterations: int, what: str, attempts: int = 4, with_balls=None):
+def solve_branch(function, z0, balls_of, contacts: BallContacts, *, tolerance: float, max_iterations: int, what: str,
+                 attempts: int = 4, with_balls=None):
     """Newton on the slip-angle formulation, then keep only the physical branch.
 
     ``slide_i cos phi_i = spin_i sin phi_i`` also holds for ``phi_i + pi``
@@ -652,8 +652,7 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, reference_force
     ``r_i < 0`` is such a spurious root and is restarted with ``phi_i + pi``
     (:func:`lowmodel.solvers.solve_with_restarts`).  ``balls_of(z)`` returns
     the (n, 7) ball unknowns of the state vector ``z`` and ``with_balls(z, balls)`` a copy of ``z``
-    with them replaced (default: ``z`` starts with the ball unknowns); ``reference_force`` [N]
-    is the force unit of ``function``'s residual.
+    with them replaced (default: ``z`` starts with the ball unknowns).
     """
     replace = _replace_balls if with_balls is None else with_balls
 

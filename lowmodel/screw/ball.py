@@ -642,7 +642,7 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
     check_solver_options(tolerance, max_iterations)
     load = checks.finite("axial_load", axial_load, "N")
     states = [_solve_one(contacts, j, load, tolerance, max_iterations) for j in range(contacts.n_balls)]
-    return _stack(states, contacts)
+    return _stack(states)
 
 
 def reference_force(contacts: BallContacts, axial_load: float) -> float:
@@ -767,7 +767,7 @@ def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scal
                           b2b_slip=np.asarray(b2b_slip, dtype=float), iterations=iterations, residual=residual)
 
 
-def _stack(states, contacts: BallContacts) -> ScrewBallState:
+def _stack(states) -> ScrewBallState:
     """Join single-ball solutions (each with its own nut shift) into one state."""
     if len(states) == 1:
         z, terms, scales, iterations, residual, load = states[0]
