@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import ball as screw_ball
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import b2b_traction as sbt
 
 N_RADIAL, N_ANGULAR = 20, 100  # 2000 samples per contact
@@ -21,8 +21,8 @@ N_RADIAL, N_ANGULAR = 20, 100  # 2000 samples per contact
 
 @pytest.fixture(scope="module")
 def case_a():
-    module = screw_ball.screw_module(oversize=1.6848e-6)
-    contacts = screw_ball.ball_contacts(module, np.array([0.0, math.radians(2.0)]), reading="tilted")
+    module = screw_contacts.screw_module(oversize=1.6848e-6)
+    contacts = screw_contacts.ball_contacts(module, np.array([0.0, math.radians(2.0)]), reading="tilted")
     low = screw_b2b.solve(contacts, 50.0)
     patches = [sbt.hertz_patches(low, contacts, j, n_radial=N_RADIAL, n_angular=N_ANGULAR) for j in range(2)]
     return module, patches, low

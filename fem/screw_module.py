@@ -185,7 +185,7 @@ def flank_angles_tilted(nominal_angle: float, theta: float) -> tuple:
     """Contact angles (SL, SR, NR, NL) [rad] of lin2019 Fig 17 as the low-order model reads it (docs/ball_screw.md,
     ``reading="tilted"``): both screw flanks at ``beta_0 + theta``, the nut's at ``beta_0``
     (:func:`lowmodel.screw.ball.flank_angles`)."""
-    from ballbench.lowmodel.screw.ball import flank_angles
+    from ballbench.lowmodel.screw.contacts import flank_angles
 
     return tuple(float(a) for a in flank_angles(nominal_angle, theta, "tilted")[0])
 

@@ -22,7 +22,7 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import ball as bb
 from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import ball as screw_ball
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 RADIUS = 5e-3  # lin2019 Table 1
 ANGLES = math.pi / 4 + np.array([[-0.035, 0.035, 0.0, 0.0]])  # theta = 2 deg, (BL, BR, TR, TL)
@@ -127,7 +127,7 @@ def test_short_lived_friction_maps_get_their_own_splines():
 
 
 def test_cached_pair_geometry_refuses_in_place_edits():
-    module = screw_ball.screw_module()
+    module = screw_contacts.screw_module()
     try:
         pair = screw_b2b.pair_geometry(module)  # lru_cache: every caller with this module shares it
         _, refused = _edited(pair, "chord", 0, 1.1)
@@ -148,7 +148,7 @@ def _instances():
             (_stiffness(), ("loads", "shifts")),
             (ef.FrictionMap(table.phi, table.log_b_over_a, table.force, table.moment, table.loss_direction, 0.0,
                             False), ("phi", "log_b_over_a", "force", "moment", "loss_direction")),
-            (screw_b2b.pair_geometry.__wrapped__(screw_ball.screw_module()), ("chord", "rotation"))]
+            (screw_b2b.pair_geometry.__wrapped__(screw_contacts.screw_module()), ("chord", "rotation"))]
 
 
 @pytest.mark.parametrize("how", ["pickle", "deepcopy"])

@@ -145,10 +145,10 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     """Module (lin2019 Table 4, preload fitted on Table 5 a), contact laws and axial stiffness table, once per
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
-    from ballbench.lowmodel.screw import ball as screw_ball
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.scenes import lin2019_screw
 
-    laws = screw_ball.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
+    laws = screw_contacts.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
     module = lin2019_screw.table4_module(lin2019_screw.fitted_oversize())
     stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)
     return module, laws, stiffness

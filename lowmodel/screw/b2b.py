@@ -51,6 +51,7 @@ from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, Chai
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START", "saturation",
            "check_gaps"]
@@ -84,7 +85,7 @@ class PairGeometry:
 
 
 @lru_cache(maxsize=64)
-def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
+def pair_geometry(module: screw_contacts.ScrewModule) -> PairGeometry:
     """Exact helix chord of two touching balls (geometry core: :func:`helix.ball_centre_azimuths`); cached."""
     step = helix.ball_centre_azimuths(module.pitch_radius, module.lead, 2.0 * module.ball_radius)
     frame_0 = helix.cs3_frame(0.0, module.lead_angle)
@@ -95,7 +96,7 @@ def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
     return PairGeometry(float(step), chord, frame_0.T @ frame_1, float(math.asin(-chord[0])))
 
 
-def b2b_angle_eq56(module: sb.ScrewModule) -> float:
+def b2b_angle_eq56(module: screw_contacts.ScrewModule) -> float:
     """lin2019 eq 56: ``beta_B2B = asin(2 pi R_B / L)`` [rad]."""
     big_l = 2.0 * math.pi * module.helix_radius
     return math.asin(2.0 * math.pi * module.ball_radius / big_l)
@@ -174,7 +175,7 @@ def check_gaps(gaps, count: int) -> np.ndarray:
 LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a load ramp from here
 
 
-def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
+def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
           max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None,
           ramp_steps: int = 8) -> sb.ScrewBallState:
     """:func:`_solve_attempt` with fallbacks: a second start from the balls solved without B2B contact; and for
@@ -228,8 +229,9 @@ def saturation(state: sb.ScrewBallState) -> float:
         return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
 
 
-def _solve_attempt(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
-                   max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
+def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False,
+                   tolerance: float = 1e-10, max_iterations: int = 80, with_b2b: bool = True,
+                   initial: sb.ScrewBallState | None = None
                    ) -> sb.ScrewBallState:
     """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
 

@@ -71,6 +71,7 @@ from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, 
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b
 from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.solvers import check_solver_options, newton
 from ballbench.lowmodel.state import BallStateBase
 
@@ -109,7 +110,7 @@ class ScrewTractionState(BallStateBase):
     power_balance: float
 
 
-def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int = 0, *, n_radial: int = 24,
+def hertz_patches(state: sb.ScrewBallState, contacts: screw_contacts.BallContacts, ball: int = 0, *, n_radial: int = 24,
                   n_angular: int = 96, planar: bool = True) -> tuple[TractionPatch, ...]:
     """Samples of the Hertz pressure of the low-order model's loaded contacts of ``ball`` (SL, SR, NR, NL).
 
@@ -129,7 +130,7 @@ def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int
     u, v, w = ellipse_samples(n_radial, n_angular)
     radius = contacts.module.ball_radius
     patches = []
-    for i, name in enumerate(sb.CONTACT_NAMES):
+    for i, name in enumerate(screw_contacts.CONTACT_NAMES):
         force = float(state.normal_force[ball, i])
         if force <= 0.0:
             continue
@@ -165,7 +166,7 @@ def _check_screw_patch(patch: TractionPatch, index: int, radius: float) -> Tract
 class _Samples(SampledCoulomb):
     """All points of all balls; slips in units ``|omega_N| L / 2 pi``, forces in units ``mu F_ref``."""
 
-    def __init__(self, balls, module: sb.ScrewModule, reference_force: float, eps: float):
+    def __init__(self, balls, module: screw_contacts.ScrewModule, reference_force: float, eps: float):
         self.n_patches = max(len(p) for p in balls)
         radius, ell = module.ball_radius, module.helix_radius
         s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
@@ -186,7 +187,7 @@ class _Samples(SampledCoulomb):
                          stacked.normals, stacked.load, len(balls), eps)
 
 
-def _b2b_rows(module: sb.ScrewModule) -> np.ndarray:
+def _b2b_rows(module: screw_contacts.ScrewModule) -> np.ndarray:
     """(4, 6): generalised forces (orbit / (L/2pi), moments / R_B) of a load (force, moment about the centre)."""
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     ell, radius = module.helix_radius, module.ball_radius
@@ -197,7 +198,7 @@ def _b2b_rows(module: sb.ScrewModule) -> np.ndarray:
     return rows
 
 
-def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, tolerance: float = 1e-11,
+def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: bool = True, tolerance: float = 1e-11,
           max_iterations: int = 100, regularisation: float = 1e-12) -> ScrewTractionState:
     """Quasi-static motion of ``n >= 1`` balls of a ball screw with sampled contact tractions and B2B contact.
 
@@ -216,7 +217,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     power balance misses POWER_BALANCE_TOLERANCE.
     """
     check_solver_options(tolerance, max_iterations)
-    if not isinstance(module, sb.ScrewModule):
+    if not isinstance(module, screw_contacts.ScrewModule):
         raise ValueError(f"module must be a ball.ScrewModule (ball.screw_module), got {type(module)!r}")
     eps = float(regularisation)
     if not math.isfinite(eps) or not 0.0 < eps <= 1e-6:
@@ -274,7 +275,7 @@ def _initial_guess(samples: _Samples, n: int) -> np.ndarray:
     return guess
 
 
-def _pair_function(module: sb.ScrewModule, layout: ChainLayout, reference_force: float):
+def _pair_function(module: screw_contacts.ScrewModule, layout: ChainLayout, reference_force: float):
     """The B2B loads of the chain's pairs (eqs 56-59) as generalised forces of the 4 unknowns per ball (units
     ``mu F_ref``; force slots in units ``mu F_ref``): :class:`lowmodel.b2b_chain.PairBlocks`."""
     k = N_UNKNOWNS
@@ -361,7 +362,7 @@ class ModuleB2B:
     power_balance: float
 
 
-def module_b2b(balls, module: sb.ScrewModule, *, free_balls=None, **options) -> ModuleB2B:
+def module_b2b(balls, module: screw_contacts.ScrewModule, *, free_balls=None, **options) -> ModuleB2B:
     """lin2019 Sec 3.3's two-ball module with sampled contacts: F_B2B, friction increase, power balance.
 
     ``balls``: per ball (ball 0 behind, lin2019's ball 1) its :class:`TractionPatch` sequence (e.g. the FE

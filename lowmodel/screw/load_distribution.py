@@ -34,6 +34,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["BarSections", "bar_sections", "AxialStiffness", "axial_stiffness", "distribute"]
 
@@ -46,7 +47,7 @@ class BarSections:
     nut_area: float
 
 
-def bar_sections(module: sb.ScrewModule, *, screw_radius: float | None = None,
+def bar_sections(module: screw_contacts.ScrewModule, *, screw_radius: float | None = None,
                  nut_outer_radius: float | None = None) -> BarSections:
     """Screw as a solid bar of radius ``R_P - R_B`` (default), nut as a tube from ``R_P + R_B`` to
     ``nut_outer_radius`` (default ``1.7 R_P``, an assumption: lin2019 Table 4 gives no nut size) [m]."""
@@ -100,8 +101,8 @@ class AxialStiffness:
         return out.reshape(np.shape(load)) if np.ndim(load) else float(out[0])
 
 
-def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *,
-                    contact_law: sb.GrooveContactLaws | None = None) -> AxialStiffness:
+def axial_stiffness(module: screw_contacts.ScrewModule, max_load: float, points: int = 13, *,
+                    contact_law: screw_contacts.GrooveContactLaws | None = None) -> AxialStiffness:
     """Solve the single-ball model (theta = 0) for ``points`` loads in ``[0, max_load]`` [N].
 
     ``contact_law``: calibrated contact laws of the screw and nut grooves (:class:`ball.GrooveContactLaws`,
@@ -110,7 +111,7 @@ def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *
     max_load = checks.positive("max_load", max_load, "N")
     points = checks.count("points", points, 4)
     loads = np.linspace(0.0, max_load, points)
-    contacts = sb.ball_contacts(module, 0.0, contact_law=contact_law)
+    contacts = screw_contacts.ball_contacts(module, 0.0, contact_law=contact_law)
     try:   # the largest load of the table must still be a Hertz contact (ball.reference_force)
         sb.reference_force(contacts, max_load)
     except ValueError as error:

@@ -34,7 +34,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import b2b
-from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["ScrewHistory", "simulate", "TRACK_TURNS"]
 
@@ -83,11 +83,12 @@ class ScrewHistory:
         return int(starts.sum())
 
 
-def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0, duration: float = 2.0,
-             steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4, reading: str = "tilted",
+def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0,
+             duration: float = 2.0, steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4,
+             reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
              lead_error: float = 0.0, progress=None, deviation=None,
-             contact_law: sb.GrooveContactLaws | None = None) -> ScrewHistory:
+             contact_law: screw_contacts.GrooveContactLaws | None = None) -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
     ``amplitude`` [rad] and ``cycles`` (over the two loaded turns) of the screw-side deviation,
@@ -134,7 +135,7 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
             theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
         else:
             theta = np.asarray(deviation(screw_azimuth), dtype=float)
-        contacts = sb.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
+        contacts = screw_contacts.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
                               module.youngs_modulus, lead_error=lead_error)
         touching_gaps = np.where(gaps <= 1e-12, 0.0, gaps)

@@ -238,19 +238,19 @@ WHOLE_SCREW_BALLS, WHOLE_SCREW_LOAD = 37, 1500.0  # lin2019 Sec 3.4 (validation.
 def calibrated_groove_laws():
     """Laws of the screw and nut grooves: from ``--calibration FILE`` when it has the groups ``screw-groove`` and
     ``nut-groove``, else fitted to FE load sweeps of ``fe-hertz-screw`` / ``fe-hertz-nut`` at the quick level.
-    Returns (:class:`screw_ball.GrooveContactLaws`, origin text)."""
-    from ballbench.lowmodel.screw import ball as screw_ball
+    Returns (:class:`screw_contacts.GrooveContactLaws`, origin text)."""
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.calibrate import active_calibration, fe_contact_law
 
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]
     if given is not None and all(g in given.constants and "psi" in given.constants[g] for g in groups):
-        return screw_ball.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
+        return screw_contacts.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
     laws, origin = {}, []
     for body, (_, fe_name) in SCREW_FE.items():
         laws[body], sweep = fe_contact_law(fe_name, SCREW_FE_FIDELITY)
         origin.append(f"{sweep['source']} in {sweep['wall_time_s']:.0f} s")
-    return screw_ball.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
+    return screw_contacts.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
 
 
 def whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BALLS,
@@ -273,7 +273,7 @@ def whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BA
 def calibration_effect_screw(run):
     import csv
 
-    from ballbench.lowmodel.screw import ball as screw_ball
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.papers import lin2019
     from ballbench.validation.scenes import lin2019_screw as ls
 
@@ -288,9 +288,9 @@ def calibration_effect_screw(run):
     worst = 0.0
     for i, body in enumerate(("screw", "screw", "nut", "nut")):
         law = getattr(laws, body)
-        c_hertz = screw_ball.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
-                                          module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
-                                          module.poisson_ratio)[0]
+        c_hertz = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                              module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
+                                              module.poisson_ratio)[0]
         c = law.hertz_constant.value * c_hertz / (law.hertz_constant.reference or c_hertz)
         force = float(state_c.normal_force[0, i])
         if force > 0.0:
@@ -352,9 +352,10 @@ def calibration_effect_screw(run):
     parts = []
     for body in ("screw", "nut"):
         law = getattr(laws, body)
-        c_hertz, a_unit, _ = screw_ball.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
-                                                     module.lead_angle, module.nominal_angle, body,
-                                                     module.youngs_modulus, module.poisson_ratio)
+        c_hertz, a_unit, _ = screw_contacts.hertz_direct(module.ball_radius, module.conformity,
+                                                         module.pitch_radius, module.lead_angle,
+                                                         module.nominal_angle, body, module.youngs_modulus,
+                                                         module.poisson_ratio)
         psi_hertz = a_unit / module.ball_radius ** (1 / 3)  # lin2019 eq 15
         parts.append(f"{body} groove: C {law.hertz_constant.value:.6g} m N^-2/3 (Hertz {c_hertz:.6g}, "
                      f"{100 * (law.hertz_constant.value / c_hertz - 1):+.2f} %), C_b {law.bulk_compliance.value:.4g} "

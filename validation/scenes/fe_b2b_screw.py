@@ -29,7 +29,7 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import ball as screw_ball
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.meshes.parts.groove_segment import BODY_DEPTH  # R_B from the pitch radius (the builder's default)
 from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import KnownGap, scene
@@ -115,7 +115,7 @@ def low_order(case: str, preload: float | None = None):
     """(contacts, free state, touching state) of the low-order model for Table 5 case ``case`` at the oversize
     ``preload`` [m] (default :func:`oversize`)."""
     preload = oversize() if preload is None else preload
-    contacts = screw_ball.ball_contacts(lin2019_screw.table4_module(preload),
+    contacts = screw_contacts.ball_contacts(lin2019_screw.table4_module(preload),
                                         np.array([0.0, PRINTED[case].theta]), reading=lin2019_screw.READING)
     free, state = lin2019_screw.two_ball(case, preload)
     return contacts, free, state
