@@ -8,6 +8,7 @@ import pytest
 
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
@@ -26,7 +27,7 @@ def module(theta_deg, rho, *, top=(0.0, 0.0), n_balls=2, sides=None, mu=MU, appr
     else:
         forces = eq36(np.asarray(sides, dtype=float), VERTICAL, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
-    return bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=mu, groove_velocity=SPEED)
 
 
@@ -86,8 +87,8 @@ def test_mirror_symmetry_two_balls():
     def build(a, s):
         forces = eq36(s, VERTICAL, a)
         c = hertz.solve_load(GEOMETRY, forces)
-        return bb.contacts_from_forces(a, forces, c.a, c.b / c.a, ball_radius=RADIUS, friction_coefficient=MU,
-                                       groove_velocity=SPEED)
+        return bearing_contacts.contacts_from_forces(a, forces, c.a, c.b / c.a, ball_radius=RADIUS,
+                                                     friction_coefficient=MU, groove_velocity=SPEED)
     state = b2b.solve(build(angles, sides), [0.0])
     mirrored = b2b.solve(build(angles[:, [1, 0, 3, 2]], -sides), [0.0])
     assert state.b2b_force[0] > 0.0
@@ -137,8 +138,9 @@ def random_chain(rng, n_balls, theta_max_deg=3.0, rho_max=0.6):
     forces = eq36(sides, VERTICAL, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
     mu = float(rng.uniform(0.01, 0.3))
-    contacts = bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
-                                       friction_coefficient=mu, groove_velocity=SPEED)
+    contacts = bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a,
+                                                     ball_radius=RADIUS, friction_coefficient=mu,
+                                                     groove_velocity=SPEED)
     gaps = np.where(rng.random(n_balls - 1) < 0.6, 0.0, rng.uniform(0.0, 0.1 * RADIUS, n_balls - 1))
     return contacts, gaps
 
@@ -205,10 +207,10 @@ def test_breakdown_near_four_point_limit_is_diagnosed():
     theta = math.radians(3.0)
     limit = math.tan(math.pi / 4 - theta)
     ok = module(3.0, -(limit - 0.05), n_balls=1)
-    assert bb.spin_capacity_ratio(ok)[0] > 1.0
+    assert bearing_contacts.spin_capacity_ratio(ok)[0] > 1.0
     bb.solve(ok)
     past = module(3.0, -(limit - 1e-3), n_balls=1)
-    assert bb.spin_capacity_ratio(past)[0] < 1.0
+    assert bearing_contacts.spin_capacity_ratio(past)[0] < 1.0
     with pytest.raises(ConvergenceError, match="spin-capacity ratio 0\\.[0-9]+ < 1") as info:
         bb.solve(past)
     assert info.value.residual > 1e-6

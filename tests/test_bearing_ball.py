@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
@@ -34,7 +35,7 @@ def make_contacts(angles, side, *, mu=MU, speed=SPEED, vertical=VERTICAL):
     side = np.broadcast_to(np.asarray(side, dtype=float), angles.shape[:1])
     forces = eq36(side, vertical, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
-    return bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=mu, groove_velocity=speed)
 
 
@@ -167,20 +168,20 @@ GOOD = dict(ball_radius=RADIUS, friction_coefficient=MU, groove_velocity=SPEED)
 def test_bad_scalar_inputs(override, name):
     kwargs = {**GOOD, **override}
     with pytest.raises(ValueError, match=name):
-        bb.contacts_from_forces(case_angles(1.0), 50.0, 1e-4, 0.2, **kwargs)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), 50.0, 1e-4, 0.2, **kwargs)
 
 
 @pytest.mark.parametrize("angles", [[0.0, 0.7, 0.7, 0.7], [0.7, 1.6, 0.7, 0.7], [0.7, float("nan"), 0.7, 0.7]])
 def test_bad_contact_angles(angles):
     with pytest.raises(ValueError, match="contact_angles"):
-        bb.contacts_from_forces(angles, 50.0, 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(angles, 50.0, 1e-4, 0.2, **GOOD)
 
 
 def test_loss_of_contact_is_an_error():
     with pytest.raises(ValueError, match="normal_forces.*four-point"):
-        bb.contacts_from_forces(case_angles(1.0), [50.0, 0.0, 50.0, 50.0], 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), [50.0, 0.0, 50.0, 50.0], 1e-4, 0.2, **GOOD)
     with pytest.raises(ValueError, match="normal_forces"):
-        bb.contacts_from_forces(case_angles(1.0), [50.0, float("nan"), 50.0, 50.0], 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), [50.0, float("nan"), 50.0, 50.0], 1e-4, 0.2, **GOOD)
 
 
 def test_solution_satisfies_eq4_with_exact_quadrature():

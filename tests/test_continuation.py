@@ -15,6 +15,7 @@ import pytest
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.solvers import continuation
 
 
@@ -24,7 +25,7 @@ def _power_error(state) -> float:
 
 def test_issue_reproducer_converges_by_continuation():
     contacts = b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.6)
-    assert np.min(bearing_ball.spin_capacity_ratio(contacts)) > 10.0
+    assert np.min(bearing_contacts.spin_capacity_ratio(contacts)) > 10.0
     state = bearing_ball.solve(contacts)
     assert state.continuation, "the direct solve used to fail here: a path must be reported"
     path = state.continuation[0]
@@ -76,7 +77,7 @@ def test_random_light_chains():
         n = int(rng.integers(2, 8))
         theta = np.radians(rng.uniform(-3, 3, (n, 2)))
         angles = math.pi / 4 + np.column_stack([-theta[:, 0], theta[:, 0], 0.3 * theta[:, 1], -0.3 * theta[:, 1]])
-        contacts = bearing_ball.ball_contacts(angles, rng.uniform(-0.6, 0.6, n) * 2.0, 2.0, ball_radius=5e-3,
+        contacts = bearing_contacts.ball_contacts(angles, rng.uniform(-0.6, 0.6, n) * 2.0, 2.0, ball_radius=5e-3,
                                               conformity=0.56, friction_coefficient=0.1, groove_velocity=0.01)
         state = b2b.solve(contacts, np.zeros(n - 1))
         assert state.residual <= 1e-12
@@ -88,7 +89,7 @@ def test_no_state_names_reason_and_last_converged_parameter():
     theta = math.radians(3.0)
     low = -math.tan(math.pi / 4 - theta)
     contacts = b2b.module_contacts(theta, low + 1e-6, n_balls=1)
-    assert np.min(bearing_ball.spin_capacity_ratio(contacts)) < 1.0
+    assert np.min(bearing_contacts.spin_capacity_ratio(contacts)) < 1.0
     with pytest.raises(ConvergenceError, match="spin-capacity ratio") as error:
         bearing_ball.solve(contacts)
     assert error.value.reason == "spin-capacity ratio < 1"

@@ -20,6 +20,7 @@ from ballbench.lowmodel import quadrature
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import contacts as screw_contacts
@@ -31,7 +32,7 @@ FORCES = np.array([[61.0, 80.0, 70.0, 71.0]])  # N, four-point contact
 
 def _linear_contacts():
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), FORCES)
-    return bb.contacts_from_forces(ANGLES, FORCES, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(ANGLES, FORCES, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=0.1, groove_velocity=0.01)
 
 
@@ -50,15 +51,16 @@ def _edited(obj, name: str, index, factor: float):
 
 
 def _fresh_linear(contacts):
-    return bb.BallContacts(*(np.array(getattr(contacts, f.name)) for f in dataclasses.fields(contacts)[:4]),
-                           contacts.ball_radius, contacts.friction_coefficient, contacts.groove_velocity)
+    arrays = (np.array(getattr(contacts, f.name)) for f in dataclasses.fields(contacts)[:4])
+    return bearing_contacts.BallContacts(*arrays, contacts.ball_radius, contacts.friction_coefficient,
+                                         contacts.groove_velocity)
 
 
 @pytest.mark.parametrize("name, index, factor", [("normal_forces", (0, 0), 1.3), ("semi_major", (0, 1), 1.3),
                                                  ("contact_angles", (0, 0), 1.05), ("b_over_a", (0, 2), 0.9)])
 def test_linear_contacts_refuse_in_place_edits_and_replace_solves_fresh(name, index, factor):
     contacts = _linear_contacts()
-    before = bb.solve(contacts)  # fills _geometry, _friction_at, _equilibrium and its scales
+    before = bb.solve(contacts)  # fills kinematics, friction_at, equilibrium and its scales
     edited, refused = _edited(contacts, name, index, factor)
     state = bb.solve(edited)
     expected = bb.solve(_fresh_linear(edited))
@@ -73,7 +75,7 @@ def test_linear_contacts_do_not_share_memory_with_the_caller():
     forces = FORCES.copy()
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), FORCES)
     axes, ratio, angles = contact.a.copy(), contact.b / contact.a, ANGLES.copy()
-    contacts = bb.BallContacts(angles, forces, axes, ratio, RADIUS, 0.1, 0.01)
+    contacts = bearing_contacts.BallContacts(angles, forces, axes, ratio, RADIUS, 0.1, 0.01)
     before = bb.solve(contacts)
     for array in (angles, forces, axes, ratio):
         array *= 1.1  # the caller's arrays stay writable and theirs

@@ -9,6 +9,7 @@ import pytest
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 
@@ -207,7 +208,7 @@ def test_linear_bearing_limit(monkeypatch):
                                  oversize=2e-6)
         contacts = screw_contacts.ball_contacts(module, 2.0 * DEG)
         state = sb.solve(contacts, 20.0)
-        bearing = bb.contacts_from_forces(state.contact_angle, state.normal_force, state.semi_major,
+        bearing = bearing_contacts.contacts_from_forces(state.contact_angle, state.normal_force, state.semi_major,
                                           contacts.b_over_a, ball_radius=radius, friction_coefficient=0.1,
                                           groove_velocity=speed)
         linear = bb.solve(bearing)

@@ -51,11 +51,10 @@ from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, Chai
     chain_system
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as single
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
 from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
-    BallContacts,
     BallState,
-    ball_contacts,
     ball_state,
     ball_terms,
     initial_guess,

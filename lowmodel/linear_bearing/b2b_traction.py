@@ -66,7 +66,7 @@ from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, 
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, coupled_system, touching_pairs
-from ballbench.lowmodel.linear_bearing.ball import BallContacts
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 from ballbench.lowmodel.solvers import check_solver_options, newton
 from ballbench.lowmodel.state import BallStateBase
 

@@ -283,7 +283,7 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
     """How F_B2B moves with the contact normal of the FE tractions, with the contact angle taken rigid
     (no geometric update) or under load, and with Hertz or FE ellipses (written to sensitivity.csv)."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+    from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 
     rows = [("low-order: Hertz ellipses on planes, rigid angles, eq 36 (lin2019)", float(low.b2b_force[0]))]
     hertz_planar = [b2b_traction.hertz_patches(contacts, j) for j in range(2)]
@@ -293,7 +293,7 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
         state = b2b_traction.solve(patches, ball_radius=RADIUS, friction_coefficient=MU, groove_velocity=SPEED)
         rows.append((label, float(state.b2b_force[0])))
     loaded = np.array([[c.contact_angle for c in r.contacts] for r in results])
-    loaded_contacts = bearing_ball.contacts_from_forces(loaded, contacts.normal_forces, contacts.semi_major,
+    loaded_contacts = bearing_contacts.contacts_from_forces(loaded, contacts.normal_forces, contacts.semi_major,
                                                         contacts.b_over_a, ball_radius=RADIUS,
                                                         friction_coefficient=MU, groove_velocity=SPEED)
     rows.append(("low-order with the FE loaded contact angles (Hertz ellipses)",

@@ -19,6 +19,7 @@ from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.validation.papers import lin2019 as paper
 from ballbench.validation.scene import scene
 
@@ -50,7 +51,7 @@ class _Tally:
         self.failures = []  # (family, n_balls, ratio, reason, last converged, mu)
 
     def solve(self, family, contacts, gaps=None):
-        ratio = float(np.min(bearing_ball.spin_capacity_ratio(contacts)))
+        ratio = float(np.min(bearing_contacts.spin_capacity_ratio(contacts)))
         coupled = contacts.n_balls > 1 and (gaps is None or bool(np.any(np.asarray(gaps) == 0.0)))
         self.coupled.append(coupled)
         try:
@@ -111,7 +112,7 @@ def stability(run):
             angles = math.pi / 4 + np.column_stack([-deviations[:, 0], deviations[:, 0], 0.3 * deviations[:, 1],
                                                     -0.3 * deviations[:, 1]])
             load = float(10 ** rng.uniform(-1.0, 3.0))
-            contacts = bearing_ball.ball_contacts(angles, rng.uniform(-0.6, 0.6, n_balls) * load, load,
+            contacts = bearing_contacts.ball_contacts(angles, rng.uniform(-0.6, 0.6, n_balls) * load, load,
                                                   ball_radius=TABLE1["ball_radius"], conformity=TABLE1["conformity"],
                                                   friction_coefficient=float(10 ** rng.uniform(-3.0, 0.0)),
                                                   groove_velocity=TABLE1["groove_velocity"])
@@ -201,7 +202,7 @@ def _spin_capacity_boundary(run) -> None:
                 ok = mid
             except ConvergenceError:
                 bad = mid
-        ratio = float(bearing_ball.spin_capacity_ratio(_case(theta, float(low) + ok))[0])
+        ratio = float(bearing_contacts.spin_capacity_ratio(_case(theta, float(low) + ok))[0])
         run.check(model=MODEL_BALL, quantity=f"spin-capacity ratio at the last converged rho, theta = {theta_deg:.0f} "
                   "deg", unit="1", value=ratio, reference=1.0, tolerance=0.03,
                   time_s=(time.perf_counter() - began) / 16,
