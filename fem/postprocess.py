@@ -7,13 +7,13 @@
   ``int p y^2 dA / int p dA = b^2 / 5``, so ``a = sqrt(5 <x^2>)``, ``b = sqrt(5 <y^2>)``,
   ``p0 = 3 F / (2 pi a b)``.  These are integrals of the pressure against smooth weights, the
   quantities a mortar multiplier converges in; a pointwise fit is pulled by the edge ring of the
-  multipliers (issue 12: on groove 0.56 at (8, 1.25) the least-squares fit gives b -0.24 %, -0.11 %
-  or +0.16 % of Hertz as the edge nodes are kept or dropped, the moments -0.02 %; docs/fem.md).
+  multipliers, which depends on which edge nodes are kept; the moments do not (measured in
+  docs/fem.md, the mesh-convergence study of groove f = 0.56).
 * :func:`fit_ellipse` - least-squares fit of the Hertz pressure field
   ``p = p0 sqrt(1 - x^2/a^2 - y^2/b^2)`` (Johnson 1985 eq 4.29 form) to the
   nodal pressures of all candidate nodes (zeros included).  Single nodal
-  pressures of node-to-surface contact scatter by ~10 % (issue 5 notes), the
-  fitted ``a, b, p0`` do not.
+  pressures of node-to-surface contact scatter (docs/fem.md), the fitted
+  ``a, b, p0`` do not.
 * :func:`approach_fit` - the bulk-compliance convention for the approach:
   the FE approach ``U(F)`` of the two reference faces (the ball's load face and
   the counter's support) is ``U = C_H F^(2/3) + C_b F``: the Hertz approach of

@@ -1,6 +1,6 @@
 """FE four-point contact module of a ball screw: one ball between a clamped screw groove segment and a
 nut groove segment that carries the ball's axial load, P2 elasticity, mortar contact at the four
-ball-to-groove contacts (lin2019 Sec 3, Table 4; issue 12).
+ball-to-groove contacts (lin2019 Sec 3, Table 4; docs/fe_b2b.md).
 
 The implementation is :mod:`fem.fourpoint`'s (assembly, condensation ``W = B K^-1 B^T``, the QP of
 Goldfarb-Idnani with polishing, the geometric update of the gap, the ellipse fit): this module gives it

@@ -164,6 +164,18 @@ def count(name: str, value, minimum: int = 0, maximum: int | None = None) -> int
     return int(value)
 
 
+def four_angles(name: str, value, labels: str) -> list[float]:
+    """``value`` as a list of four angles [rad], one per contact ``labels`` (e.g. "(BL, BR, TR, TL)"); ValueError
+    naming ``name`` otherwise (not a sequence of four numbers)."""
+    try:
+        angles = [float(v) for v in value]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}") from None
+    if len(angles) != 4:
+        raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}")
+    return angles
+
+
 def trailing_axis(name: str, value, length: int, labels: str = "", unit: str = "") -> np.ndarray:
     """``value`` as a float array with a trailing axis of ``length`` (e.g. the four contacts); ValueError otherwise.
 

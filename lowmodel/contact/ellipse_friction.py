@@ -60,6 +60,12 @@ including across ``omega = 0`` (pure sliding, ``kappa = +-inf``).  They are
 tabulated once on a ``(phi, log(b/a))`` grid, cached on disk
 (``lowmodel.cache``, kind ``ellipse_friction``) and interpolated by a bicubic
 spline (C2), whose analytic derivatives are returned for Newton's method.
+
+One concept in one file (about 800 lines): the three functions of eqs A4-A6, their
+closed forms near the ends, the exact quadrature and the table of that same
+quadrature that the solvers evaluate; the table is built from :func:`friction_exact`
+and checked against it (tests), so a change of the integrals and of their table
+belongs in one review.  The quadrature rules are :mod:`lowmodel.quadrature`'s.
 """
 from __future__ import annotations
 

@@ -64,7 +64,7 @@ from ballbench.lowmodel.linear_bearing.ball import (
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system", "pair_function",
            "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
@@ -272,9 +272,16 @@ def coupled_system(ball_function, layout: ChainLayout, mu: float):
     the eq 4 rows and the complementarity of eqs 9-10 is ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|)
     = 0``: the chain of :func:`lowmodel.b2b_chain.chain_system` (force slots in units of ``mu F_ref``).
     """
+    return chain_system(ball_function, pair_function(layout, mu), layout, rate_index=0,
+                        rate_scale=COMPLEMENTARITY_SCALE)
+
+
+def pair_function(layout: ChainLayout, mu: float):
+    """The B2B loads of eqs 5-8 (:func:`b2b_terms`, looked up at call time) as the pair blocks of the chain
+    :class:`lowmodel.b2b_chain.PairBlocks`: on rows 0-2 (eq 4) of balls with ``layout.n_unknowns`` unknowns each."""
     k = layout.n_unknowns
 
-    def pair_function(balls, forces):  # eqs 5-8 as the chain's pair blocks (b2b_terms looked up at call time)
+    def function(balls, forces):
         load, block, d_force, slip = b2b_terms(balls[:, :3], forces, mu)
         d_balls = np.zeros((len(forces), 2, 2, k, k))
         d_balls[:, :, :, 1:3, 1:3] = block[:, None, None]  # the B2B moment: rows and columns 1, 2 of both balls
@@ -282,7 +289,7 @@ def coupled_system(ball_function, layout: ChainLayout, mu: float):
         d_load_d_force[:, :, :3] = d_force.transpose(0, 2, 1)
         return PairBlocks(load, d_balls, d_load_d_force, slip)
 
-    return chain_system(ball_function, pair_function, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE)
+    return function
 
 
 @dataclass(frozen=True)

@@ -60,19 +60,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts, stack_patches)
+                                                 solve_chain, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
-from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, coupled_system, touching_pairs
+from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, pair_function, touching_pairs
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts
-from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
 
-POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
 
 
@@ -192,24 +191,10 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     samples = _Samples(balls, radius, reference_force, sign, eps)
     guess = _initial_guess(balls, sign)
 
-    def ball_function(states, _extra=None):
-        residual, jac, _, _ = samples.evaluate(states)
-        return BallBlocks(residual, jac)
-
-    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
-                                        max_iterations=max_iterations, what="FE-informed ball")
-    if touching.size == 0:
-        states, forces = free, np.zeros(n - 1)
-        residual_norm = float(np.max(np.abs(ball_function(states).residual)))
-    else:
-        layout = ChainLayout(n, N_UNKNOWNS, touching)
-        what = f"FE-informed {n}-ball B2B contact"
-        z, residual, its = newton(coupled_system(ball_function, layout, mu), layout.pack(free), tolerance=tolerance,
-                                  max_iterations=max_iterations, what=what)
-        iterations += its
-        states, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE,
-                                         tolerance=tolerance, iterations=iterations, what=what)
-        residual_norm = float(np.max(np.abs(residual)))
+    states, forces, iterations, residual_norm = solve_chain(
+        samples, guess, touching, lambda layout: pair_function(layout, mu), complementarity="min",
+        tolerance=tolerance, max_iterations=max_iterations, what_ball="FE-informed ball",
+        what_chain=f"FE-informed {n}-ball B2B contact")
     return _state(samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
                   residual_norm)
 

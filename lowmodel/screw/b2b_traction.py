@@ -64,21 +64,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
-    chain_system
+from ballbench.lowmodel.b2b_chain import ChainLayout, PairBlocks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts, stack_patches)
+                                                 solve_chain, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
-from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "POWER_BALANCE_TOLERANCE",
            "N_UNKNOWNS", "RADIUS_TOLERANCE"]
 
-POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 4  # per ball: omega_B / |omega_N|, (omega_x, omega_y, omega_z) R_B / (|omega_N| L / 2 pi)
 RADIUS_TOLERANCE = 0.05  # sample points must lie within 5 % of R_B from the ball centre (frame and unit check)
 
@@ -235,28 +234,11 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     samples = _Samples(balls, module, reference_force, eps)
     guess = _initial_guess(samples, n)
 
-    def ball_function(states, _extra=None):
-        residual, jac, _, _ = samples.evaluate(states)
-        return BallBlocks(residual, jac)
-
-    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
-                                        max_iterations=max_iterations, what="FE-informed screw ball")
-    forces = np.zeros(n - 1)
-    if touching.size == 0:
-        states = free
-        residual_norm = float(np.max(np.abs(ball_function(states).residual)))
-    else:
-        layout = ChainLayout(n, N_UNKNOWNS, touching)
-        what = f"FE-informed {n}-ball screw B2B contact"
-        function = chain_system(ball_function, _pair_function(module, layout, reference_force), layout,
-                                rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, complementarity="fischer-burmeister")
-        z, residual, its = newton(function, layout.pack(free), tolerance=tolerance, max_iterations=max_iterations,
-                                  what=what)
-        iterations += its
-        states, lam, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
-                                      iterations=iterations, what=what)
-        forces = lam * module.friction_coefficient * reference_force
-        residual_norm = float(np.max(np.abs(residual)))
+    states, lam, iterations, residual_norm = solve_chain(
+        samples, guess, touching, lambda layout: _pair_function(module, layout, reference_force),
+        complementarity="fischer-burmeister", tolerance=tolerance, max_iterations=max_iterations,
+        what_ball="FE-informed screw ball", what_chain=f"FE-informed {n}-ball screw B2B contact")
+    forces = lam * module.friction_coefficient * reference_force
     return _state(samples, states, forces, balls, module, reference_force, iterations, residual_norm)
 
 

@@ -231,7 +231,7 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "tilted") -> np
 
 @dataclass(frozen=True)
 class GrooveContactLaws:
-    """Calibrated contact laws of the screw and the nut groove (issue 13, docs/calibration.md).
+    """Calibrated contact laws of the screw and the nut groove (docs/calibration.md).
 
     ``screw``, ``nut``: :class:`lowmodel.calibration.ContactLaw` of each groove, ``delta = C F^(2/3) + C_b F``
     (lin2019 eq 53 plus the finite-body compliance ``C_b``) and ``a = Psi R_B^(1/3) F^(1/3)`` (eq 15), fitted
