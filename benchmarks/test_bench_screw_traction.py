@@ -3,7 +3,7 @@
 Two-ball module of lin2019 Table 5 case (a) (Table 4 geometry, preload 1.6848 um, tilted deviation
 reading) from Hertz samples of the low-order state: 20 x 100 = 2000 points per contact (8000 per
 ball, the size of an FE patch set), the touching solve alone and the module (touching + free balls,
-:func:`screw_b2b_traction.module_b2b`).  The FE module itself is timed by the scenes fe-b2b-screw-a/-b.
+:func:`lowmodel.screw.b2b_traction.module_b2b`).  The FE module itself is timed by the scenes fe-b2b-screw-a/-b.
 
 Run: python -m pytest benchmarks/test_bench_screw_traction.py
 """
