@@ -200,7 +200,7 @@ def test_linear_bearing_limit(monkeypatch):
                              np.stack([r.loss, np.full_like(r.loss, np.nan)], axis=-1)], axis=-2)
         return evaluate
 
-    monkeypatch.setattr(bb, "_friction_angle_function", exact)
+    monkeypatch.setattr(bearing_contacts, "_friction_angle_function", exact)
     speed, radius = 0.01, 2.778e-3
     errors = []
     for ratio in (1e6, 1e10):
