@@ -9,7 +9,9 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 
 from ballbench.lowmodel.contact import hertz
 
@@ -27,7 +29,7 @@ def _contacts(n_balls=2, theta_deg=2.0, rho=-0.6):
                        -(side * np.cos(tl) - 100.0 * np.sin(tl)) / np.sin(tl + tr),
                        (side * np.cos(tr) + 100.0 * np.sin(tr)) / np.sin(tl + tr)], axis=-1)  # lin2017 eq 36
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), forces)
-    return bearing_ball.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                              friction_coefficient=0.1, groove_velocity=0.01)
 
 
@@ -43,8 +45,8 @@ def test_two_ball_b2b_solve(benchmark):
 
 def test_single_ball_solve(benchmark):
     contacts = _contacts(n_balls=1)
-    bearing_ball.solve_ball(contacts)
-    state = benchmark(bearing_ball.solve_ball, contacts)
+    bearing_ball.solve(contacts)
+    state = benchmark(bearing_ball.solve, contacts)
     median = benchmark.stats.stats.median
     benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations)
     print(f"\nsingle-ball solve (eq 4): {median * 1e3:.2f} ms median, {state.iterations} Newton iterations")

@@ -6,7 +6,7 @@ python -m pytest benchmarks/test_bench_fourpoint.py
 """
 import numpy as np
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 
 N_CASES = 100_000
 

@@ -10,14 +10,16 @@ import time
 
 import numpy as np
 
-from ballbench.lowmodel.screw import load_distribution, screw_b2b, screw_ball, whole_screw
+from ballbench.lowmodel.screw import load_distribution, whole_screw
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 OVERSIZE = 1.6848e-6  # m, fitted on lin2019 Table 5 case a (scene lin2019-table5-a)
 
 
 def test_two_ball_b2b_solve(benchmark):
-    module = screw_ball.screw_module(oversize=OVERSIZE)
-    contacts = screw_ball.ball_contacts(module, np.radians([0.0, 2.0]), reading="tilted")
+    module = screw_contacts.screw_module(oversize=OVERSIZE)
+    contacts = screw_contacts.ball_contacts(module, np.radians([0.0, 2.0]), reading="tilted")
     screw_b2b.solve(contacts, 50.0)  # warm-up (Hertz tables)
     state = benchmark(screw_b2b.solve, contacts, 50.0)
     median = benchmark.stats.stats.median
@@ -27,7 +29,7 @@ def test_two_ball_b2b_solve(benchmark):
 
 
 def test_whole_screw_simulation(benchmark):
-    module = screw_ball.screw_module(oversize=OVERSIZE)
+    module = screw_contacts.screw_module(oversize=OVERSIZE)
     stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
 
     def run():

@@ -7,7 +7,7 @@ Run: python -m pytest benchmarks/test_bench_screw_kinematics.py
 """
 import numpy as np
 
-from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.ball_bearing import harris
 from ballbench.lowmodel.screw import kinematics as sk
 
 N_BALLS = 200_000

@@ -1,9 +1,9 @@
-"""Speed of the FE-informed screw B2B model (lowmodel.screw.screw_b2b_traction, issue 12).
+"""Speed of the FE-informed screw B2B model (lowmodel.screw.b2b_traction, issue 12).
 
 Two-ball module of lin2019 Table 5 case (a) (Table 4 geometry, preload 1.6848 um, tilted deviation
 reading) from Hertz samples of the low-order state: 20 x 100 = 2000 points per contact (8000 per
 ball, the size of an FE patch set), the touching solve alone and the module (touching + free balls,
-:func:`screw_b2b_traction.module_b2b`).  The FE module itself is timed by the scenes fe-b2b-screw-a/-b.
+:func:`lowmodel.screw.b2b_traction.module_b2b`).  The FE module itself is timed by the scenes fe-b2b-screw-a/-b.
 
 Run: python -m pytest benchmarks/test_bench_screw_traction.py
 """
@@ -12,16 +12,17 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
-from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw import b2b_traction as sbt
 
 N_RADIAL, N_ANGULAR = 20, 100  # 2000 samples per contact
 
 
 @pytest.fixture(scope="module")
 def case_a():
-    module = screw_ball.screw_module(oversize=1.6848e-6)
-    contacts = screw_ball.ball_contacts(module, np.array([0.0, math.radians(2.0)]), reading="tilted")
+    module = screw_contacts.screw_module(oversize=1.6848e-6)
+    contacts = screw_contacts.ball_contacts(module, np.array([0.0, math.radians(2.0)]), reading="tilted")
     low = screw_b2b.solve(contacts, 50.0)
     patches = [sbt.hertz_patches(low, contacts, j, n_radial=N_RADIAL, n_angular=N_ANGULAR) for j in range(2)]
     return module, patches, low

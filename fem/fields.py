@@ -66,7 +66,7 @@ def placement(geometry, ball: int, n_balls: int) -> dict:
     behind, lin2019 Fig 7), the rails cut halfway between the balls.  Ball screw
     (:class:`fem.screw_module.ScrewModuleGeometry`): ball ``k`` at the azimuth ``k dphi`` with ``dphi`` the
     helix chord of two touching balls (:func:`lowmodel.geometry.helix.ball_centre_azimuths`; ball 1 behind,
-    :mod:`lowmodel.screw.screw_b2b`), i.e. the module turned by ``k dphi`` about the screw axis and moved by
+    :mod:`lowmodel.screw.b2b`), i.e. the module turned by ``k dphi`` about the screw axis and moved by
     ``p k dphi`` along it (the screw symmetry of the helical grooves), cut by the planes normal to the helix
     halfway between the balls.
     """

@@ -28,8 +28,13 @@ problem is the mixed LCP
     g = g0 + W lam + G q >= 0,  lam >= 0,  lam . g = 0,   G^T lam = r,
 
 ``q = (X, Y, U_x, U_y)``, ``G_k = m_k (e3_x, e3_y, -e3_x [top], -e3_y [top])``,
-``r = (0, 0, -N_x, N_y)`` (ball free in x, y; top rail loaded), solved by a primal-dual
-active set method (Hintermueller, Ito & Kunisch 2002) as :mod:`fem.contact`.
+``r = (0, 0, -N_x, N_y)`` (ball free in x, y; top rail loaded).  It is the convex QP
+``min 1/2 lam W lam + g0 . lam``, ``lam >= 0``, ``G^T lam = r``, solved by the dual active-set
+method of Goldfarb & Idnani (1983, quadprog) and polished by one exact solve on its active set
+(:func:`solve`; ``W`` of P2 mortar contact is not an M-matrix, and the primal-dual active set
+method of :mod:`fem.contact` cycles on it from a cold start: it is kept only for warm starts
+during the geometric update of the gap).  The ball-screw module (:mod:`fem.screw_module`) is
+the same problem with its own geometry (the module protocol of :class:`ModuleGeometry`).
 """
 from __future__ import annotations
 
@@ -43,15 +48,17 @@ import scipy.sparse as sp
 from ballbench.fem import linsolve
 from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
+from ballbench.fem.module_lcp import solve_lcp
 from ballbench.fem.mortar import (edge_index, projected_quadrature, sub_triangle_points, surface_dofs,
                                   surface_shape, triangle_dofs, weighted_gaps)
 from ballbench.fem.postprocess import EllipseFit, moment_ellipse
+from ballbench.fem.surface import locate
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
 
 __all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
-           "exact_gap", "build_module_model", "solve_module",
+           "exact_gap", "build_module_model", "solve",
            "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
 CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
@@ -180,31 +187,6 @@ def _surface_dofs(basis, pair: PairMesh, name: str, edges: dict) -> np.ndarray:
     return np.unique(np.concatenate([surface_dofs(basis, pair, name, c, 2, edges) for c in range(3)]))
 
 
-def _locate(local_points: np.ndarray, triangles: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rows of ``triangles`` containing the points ``xy`` (n, 2) of the plane and their barycentric
-    coordinates (n, 3), in the projection on the first two coordinates of ``local_points``."""
-    from scipy.spatial import cKDTree
-
-    p = local_points[triangles][:, :, :2]
-    tree = cKDTree(p.mean(axis=1))
-    k = min(24, len(triangles))
-    _, near = tree.query(xy, k=k)
-    near = np.atleast_2d(near)
-    a, b, c = p[near, 0], p[near, 1], p[near, 2]  # (n, k, 2)
-    v0, v1, v2 = b - a, c - a, xy[:, None, :] - a
-    det = v0[..., 0] * v1[..., 1] - v0[..., 1] * v1[..., 0]
-    l1 = (v2[..., 0] * v1[..., 1] - v2[..., 1] * v1[..., 0]) / det
-    l2 = (v0[..., 0] * v2[..., 1] - v0[..., 1] * v2[..., 0]) / det
-    l0 = 1.0 - l1 - l2
-    worst = np.minimum(np.minimum(l0, l1), l2)
-    best = np.argmax(worst, axis=1)
-    rows = np.arange(len(xy))
-    if np.any(worst[rows, best] < -1e-6):
-        raise ValueError("a ball quadrature point projects outside its flank: enlarge the rails or lower gap_limit")
-    bary = np.clip(np.stack([l0[rows, best], l1[rows, best], l2[rows, best]], axis=1), 0.0, 1.0)
-    return near[rows, best], bary / bary.sum(axis=1, keepdims=True)
-
-
 @dataclass
 class _Patch:
     """Mortar data of one contact (local quadrature points, gap operator rows)."""
@@ -315,7 +297,10 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
         xq, wq, phi, mult = projected_quadrature(local[tris][:, :, :2], index[tris], bary)
         g0q, surface = geometry.gap(i, xq)
-        rail_rows, rail_bary = _locate(local, rail_tris, xq)
+        rail_rows, rail_bary, inside = locate(local, rail_tris, xq)  # along e3: the local z
+        if not inside.all():
+            raise ValueError(f"contact {name}: a ball quadrature point projects outside its flank: enlarge the "
+                             "rails or lower gap_limit")
         ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
         rail_dofs = [triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
         ball_shape = np.tile(shape, (len(tris), 1))
@@ -391,7 +376,7 @@ class ModuleResult:
     multipliers: np.ndarray
 
 
-def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *, tol: float = 1e-9,
+def solve(model: ModuleModel, side_force: float, vertical_force: float, *, tol: float = 1e-9,
                  fit: bool = True, geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
     """Solve the module under ``N_x = side_force`` [N] (along +x on the top rail) and
     ``N_y = vertical_force`` [N] > 0 (pressing the top rail down), lin2017 eq 35.
@@ -425,17 +410,17 @@ def solve_module(model: ModuleModel, side_force: float, vertical_force: float, *
 def solve_loaded(model: ModuleModel, load: np.ndarray, *, tol: float = 1e-9, fit: bool = True,
                  geometric_update: bool = True, max_updates: int = 20) -> ModuleResult:
     """Solve a module for the right-hand side ``r = load`` of ``G^T lam = r`` (one entry per rigid unknown
-    of ``model.geometry.rigid_names`` [N]; :func:`solve_module` for the linear bearing's loads,
-    :func:`fem.screw_module.solve_screw_module` for the ball screw's), with the geometric update of the
-    gap described in :func:`solve_module`."""
+    of ``model.geometry.rigid_names`` [N]; :func:`solve` for the linear bearing's loads,
+    :func:`fem.screw_module.solve` for the ball screw's), with the geometric update of the
+    gap described in :func:`solve`."""
     geometry = model.geometry
     n_contacts = len(model.patches)
     g0 = model.g0
     shifts = np.zeros(n_contacts)
     active = None
     iteration = 0
-    for update in range(max_updates + 1):
-        lam, q, active, iterations, residual = _solve_lcp(model, load, tol, g0, active)
+    for _ in range(max_updates + 1):
+        lam, q, active, iterations, residual = solve_lcp(model, load, tol, g0, active)
         iteration += iterations
         if not geometric_update:
             break
@@ -486,89 +471,6 @@ def _weighted_gap(model: ModuleModel, shifts: np.ndarray) -> np.ndarray:
         g0q, _ = model.geometry.gap(i, patch.xq, float(shifts[i]))
         g0 += weighted_gaps(patch.mult, patch.phi, patch.wq, g0q, model.n_multipliers)[0]
     return g0
-
-
-def _solve_lcp(model: ModuleModel, r: np.ndarray, tol: float, g0: np.ndarray, start: np.ndarray | None = None):
-    """``(lam, q, active, iterations, residual)`` of the mixed LCP of :func:`solve_module`.
-
-    With ``start`` (an active set, e.g. of the previous geometric update) the primal-dual active set
-    iteration is tried first (it converges in a few steps near the solution); if it cycles or does not
-    converge, or without ``start``, the QP is solved by quadprog.  Either way the answer is the exact
-    solve on the final active set, checked for complementarity."""
-    import quadprog
-
-    W, G = model.W, model.G
-    n = g0.size
-    n_rigid = G.shape[1]
-    n_contacts = len(model.patches)
-    names = model.geometry.contact_names
-    w_scale = float(np.median(np.diag(W)))
-    force_scale = float(np.max(np.abs(r)))
-    pressure_scale = force_scale / float(np.sum(model.weights)) * 50.0  # a typical peak pressure [Pa]
-    length_scale = 1e-6  # q in um
-    # x = lam / pressure_scale; objective / (pressure_scale^2 w_scale)
-    hessian = W / w_scale
-    linear = -g0 / (pressure_scale * w_scale)
-    coupling = G * (length_scale / (w_scale * pressure_scale))
-    equality = G * (pressure_scale / force_scale)
-
-    def on_active(active):
-        idx = np.flatnonzero(active)
-        m = idx.size
-        mat = np.zeros((m + n_rigid, m + n_rigid))
-        mat[:m, :m] = hessian[np.ix_(idx, idx)]
-        mat[:m, m:] = coupling[idx]
-        mat[m:, :m] = equality[idx].T
-        sol = np.linalg.solve(mat, np.concatenate([linear[idx], r / force_scale]))
-        x = np.zeros(n)
-        x[idx] = sol[:m]
-        gap = hessian @ x + coupling @ sol[m:] - linear  # scaled: gap / (pressure_scale w_scale)
-        return x, sol[m:], gap
-
-    def residual_of(x, q_scaled, gap, active):
-        lam_scale = float(np.mean(x[active]))
-        gap_scale = float(np.max(np.abs(q_scaled))) * length_scale * float(np.median(model.weights)) / (
-            pressure_scale * w_scale)
-        return float(np.max(np.abs(np.minimum(x / lam_scale, gap / gap_scale))))
-
-    iterations = 0
-    solution = None
-    if start is not None and start.any():
-        active = start.copy()
-        seen = set()
-        for _ in range(30):
-            iterations += 1
-            x, q_scaled, gap = on_active(active)
-            new = x - gap > 0.0  # lam - c g with c = 1 / median diag W, in scaled units
-            if np.array_equal(new, active):
-                if residual_of(x, q_scaled, gap, active) <= tol:
-                    solution = (x, q_scaled, gap, active)
-                break
-            if new.tobytes() in seen or not all(new[model.contact_of == i].any() for i in range(n_contacts)):
-                break
-            seen.add(active.tobytes())
-            active = new
-    if solution is None:
-        constraints = np.hstack([equality, np.eye(n)])
-        bounds = np.concatenate([r / force_scale, np.zeros(n)])
-        try:
-            x, _, _, (qp_iterations, _), _, _ = quadprog.solve_qp(hessian, linear, constraints, bounds, n_rigid)
-        except ValueError as error:  # quadprog: "constraints are inconsistent, no solution"
-            raise ConvergenceError(f"four-point module: QP failed ({error})", residual=float("inf"),
-                                   iterations=iterations, tolerance=tol) from None
-        iterations += int(qp_iterations)
-        active = x > 1e-12 * np.max(x)
-        for i in range(n_contacts):
-            if not active[model.contact_of == i].any():
-                raise ValueError(f"four-point module: contact {names[i]} lost (lin2017 eq 37)")
-        x, q_scaled, gap = on_active(active)  # exact solve on the QP's active set
-        solution = (x, q_scaled, gap, active)
-    x, q_scaled, gap, active = solution
-    residual = residual_of(x, q_scaled, gap, active)
-    if not residual <= tol:
-        raise ConvergenceError("four-point module: complementarity not met", residual=residual,
-                               iterations=iterations, tolerance=tol)
-    return x * pressure_scale, q_scaled * length_scale, active, iterations, residual
 
 
 def _fit(patch: _Patch, nodal: np.ndarray) -> EllipseFit | None:
@@ -644,18 +546,10 @@ def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
 
 
 def von_mises(model: ModuleModel, displacement: np.ndarray, materials=(2.1e11, 0.28)) -> np.ndarray:
-    """Element-mean von Mises stress (n_tets,) [Pa] of the displacement DOF vector (P2, 4-point rule)."""
-    from ballbench.fem.elasticity import lame
+    """Element-mean von Mises stress (n_tets,) [Pa] of the displacement DOF vector (P2, 4-point rule):
+    :func:`fem.elasticity.von_mises` of Hooke's law (:func:`fem.elasticity.stress`) at the quadrature points."""
+    from ballbench.fem import elasticity
 
-    lam, mu = lame(*materials)
-    grad = model.basis.interpolate(displacement).grad  # (3, 3, nel, nq)
-    strain = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
-    trace = strain[0, 0] + strain[1, 1] + strain[2, 2]
-    stress = 2.0 * mu * strain
-    for c in range(3):
-        stress[c, c] += lam * trace
-    deviator = stress.copy()
-    mean = trace * (lam + 2.0 * mu / 3.0)  # (1/3) tr(sigma)
-    for c in range(3):
-        deviator[c, c] -= mean
-    return np.sqrt(1.5 * np.einsum("ijeq,ijeq->eq", deviator, deviator)).mean(axis=1)
+    lam, mu = elasticity.lame(*materials)
+    sigma = elasticity.stress(model.basis.interpolate(displacement).grad, lam, mu)  # (3, 3, nel, nq)
+    return elasticity.von_mises(sigma).mean(axis=1)

@@ -7,13 +7,13 @@
   ``int p y^2 dA / int p dA = b^2 / 5``, so ``a = sqrt(5 <x^2>)``, ``b = sqrt(5 <y^2>)``,
   ``p0 = 3 F / (2 pi a b)``.  These are integrals of the pressure against smooth weights, the
   quantities a mortar multiplier converges in; a pointwise fit is pulled by the edge ring of the
-  multipliers (issue 12: on groove 0.56 at (8, 1.25) the least-squares fit gives b -0.24 %, -0.11 %
-  or +0.16 % of Hertz as the edge nodes are kept or dropped, the moments -0.02 %; docs/fem.md).
+  multipliers, which depends on which edge nodes are kept; the moments do not (measured in
+  docs/fem.md, the mesh-convergence study of groove f = 0.56).
 * :func:`fit_ellipse` - least-squares fit of the Hertz pressure field
   ``p = p0 sqrt(1 - x^2/a^2 - y^2/b^2)`` (Johnson 1985 eq 4.29 form) to the
   nodal pressures of all candidate nodes (zeros included).  Single nodal
-  pressures of node-to-surface contact scatter by ~10 % (issue 5 notes), the
-  fitted ``a, b, p0`` do not.
+  pressures of node-to-surface contact scatter (docs/fem.md), the fitted
+  ``a, b, p0`` do not.
 * :func:`approach_fit` - the bulk-compliance convention for the approach:
   the FE approach ``U(F)`` of the two reference faces (the ball's load face and
   the counter's support) is ``U = C_H F^(2/3) + C_b F``: the Hertz approach of
@@ -24,6 +24,8 @@
   least squares to a load sweep solved with the same condensed compliance;
   the FE contact approach is ``delta = C_H F^(2/3)``.  The next term of the
   expansion is of relative order ``(a / L)^3`` (L the body size).
+* :func:`nodal_stress` - von Mises stress and the normal stress along the contact normal at the
+  nodes, from Hooke's law of :mod:`fem.elasticity` (the fields of ``show``).
 """
 from __future__ import annotations
 
@@ -31,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["EllipseFit", "moment_ellipse", "fit_ellipse", "ApproachFit", "approach_fit", "mesh_check"]
+__all__ = ["EllipseFit", "moment_ellipse", "fit_ellipse", "ApproachFit", "approach_fit", "mesh_check", "nodal_stress"]
 
 
 @dataclass(frozen=True)
@@ -263,3 +265,28 @@ def fit_ellipse_forces(xq: np.ndarray, operator, forces: np.ndarray, *, symmetri
     rms = float(np.sqrt(np.mean(residual(sol.x) ** 2))) * f_max
     return EllipseFit(float(a), float(b), float(p0), 0.0 if symmetric_x else float(x0),
                       0.0 if symmetric_y else float(y0), rms, float(2.0 * np.pi * p0 * a * b / 3.0))
+
+
+def nodal_stress(basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, node_of: np.ndarray):
+    """Von Mises stress and sigma_zz [Pa] at the nodes ``node_of`` (k, n_elements) from the P2 solution ``u``.
+
+    Hooke's law (:func:`fem.elasticity.stress`) on the gradient of ``u`` at the quadrature points, the
+    volume-weighted mean over each element, then the volume-weighted mean of the elements that share a node;
+    von Mises (:func:`fem.elasticity.von_mises`) of the element-mean stress.
+    """
+    from ballbench.fem.elasticity import lame, stress, von_mises
+
+    lam, mu = lame(youngs_modulus, poisson_ratio)
+    sigma = stress(basis.interpolate(u).grad, lam, mu)    # (3, 3, n_elements, n_qp)
+    dx = basis.dx                                          # (n_elements, n_qp) [m^3]
+    volume = dx.sum(axis=1)
+    mean = (sigma * dx).sum(axis=-1) / volume              # (3, 3, n_elements)
+    count = int(node_of.max()) + 1
+    weight = np.zeros(count)
+    np.add.at(weight, node_of.ravel(), np.tile(volume, node_of.shape[0]))
+    out = []
+    for value in (von_mises(mean), mean[2, 2]):
+        total = np.zeros(count)
+        np.add.at(total, node_of.ravel(), np.tile(value * volume, node_of.shape[0]))
+        out.append(total / weight)
+    return out

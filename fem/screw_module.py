@@ -1,6 +1,6 @@
 """FE four-point contact module of a ball screw: one ball between a clamped screw groove segment and a
 nut groove segment that carries the ball's axial load, P2 elasticity, mortar contact at the four
-ball-to-groove contacts (lin2019 Sec 3, Table 4; issue 12).
+ball-to-groove contacts (lin2019 Sec 3, Table 4; docs/fe_b2b.md).
 
 The implementation is :mod:`fem.fourpoint`'s (assembly, condensation ``W = B K^-1 B^T``, the QP of
 Goldfarb-Idnani with polishing, the geometric update of the gap, the ellipse fit): this module gives it
@@ -33,7 +33,7 @@ lie in that plane, so the ball is free along ``y3``: its 3-2-1 nodes carry the r
 the nut's axial translation ``U`` along ``z`` (its load face ``nut_load`` moves rigidly; the screw's core
 ``screw_support`` is clamped).  Loads ``r = (0, 0, F_a)``: ball equilibrium in x3 and z3, and the nut
 carries ``F_a`` [N], the ball's axial share: the screw pushes the ball along ``+z`` with ``F_a``
-(screw_ball's sign: ``sum_screw (force on ball) . z_hat = axial_load``).  As in the low-order model the nut
+(lowmodel.screw.ball's sign: ``sum_screw (force on ball) . z_hat = axial_load``).  As in the low-order model the nut
 does not move radially (it is held by the other balls).  Four contact forces, three equations: unlike the
 linear module the forces are statically indeterminate and follow from the FE's compliance and the preload.
 """
@@ -51,7 +51,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
 
-__all__ = ["CONTACTS", "ScrewModuleGeometry", "screw_module_geometry", "build_screw_model", "solve_screw_module",
+__all__ = ["CONTACTS", "ScrewModuleGeometry", "screw_module_geometry", "build_screw_model", "solve",
            "flank_angles_tilted", "with_oversize"]
 
 CONTACTS = ("SL", "SR", "NR", "NL")  # lin2019 eq 54
@@ -184,8 +184,8 @@ def _contact_frame(geometry: ScrewModuleGeometry, i: int) -> groove_core.Contact
 def flank_angles_tilted(nominal_angle: float, theta: float) -> tuple:
     """Contact angles (SL, SR, NR, NL) [rad] of lin2019 Fig 17 as the low-order model reads it (docs/ball_screw.md,
     ``reading="tilted"``): both screw flanks at ``beta_0 + theta``, the nut's at ``beta_0``
-    (:func:`lowmodel.screw.screw_ball.flank_angles`)."""
-    from ballbench.lowmodel.screw.screw_ball import flank_angles
+    (:func:`lowmodel.screw.ball.flank_angles`)."""
+    from ballbench.lowmodel.screw.contacts import flank_angles
 
     return tuple(float(a) for a in flank_angles(nominal_angle, theta, "tilted")[0])
 
@@ -222,7 +222,7 @@ def build_screw_model(mesh, geometry: ScrewModuleGeometry, *, materials=(2.1e11,
     return fourpoint.build_module_model(mesh, geometry, materials=materials, gap_limit=gap_limit, method=method)
 
 
-def solve_screw_module(model: fourpoint.ModuleModel, axial_load: float, *, tol: float = 1e-9, fit: bool = True,
+def solve(model: fourpoint.ModuleModel, axial_load: float, *, tol: float = 1e-9, fit: bool = True,
                        geometric_update: bool = True, max_updates: int = 20) -> fourpoint.ModuleResult:
     """Solve the screw module with the nut carrying ``axial_load`` [N] > 0 (the screw pushes the ball along
     ``+z``); contacts (SL, SR, NR, NL) with normal force, loaded contact angle (lin2019 eq 37 convention),

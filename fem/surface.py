@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["lumped_area", "locate_along_z"]
+__all__ = ["lumped_area", "locate", "locate_along_z"]
 
 
 def lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray:
@@ -23,10 +23,18 @@ def lumped_area(points: np.ndarray, triangles: np.ndarray, n: int) -> np.ndarray
 
 def locate_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, tol: float = 1e-6):
     """Triangle (nodes (n, 3)), barycentric weights (n, 3) and ``inside`` (n,) bool of the z-projection of
-    ``xy`` (n, 2) [m] on the surface ``triangles``.
+    ``xy`` (n, 2) [m] on the surface ``triangles`` (:func:`locate`, whose rows index ``triangles``)."""
+    rows, weights, inside = locate(points, triangles, xy, tol)
+    return triangles[rows], weights, inside
+
+
+def locate(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, tol: float = 1e-6):
+    """Rows of ``triangles`` (n,), barycentric weights (n, 3) and ``inside`` (n,) bool of the z-projection of
+    ``xy`` (n, 2) [m] on the surface ``triangles`` (the projection on the first two coordinates of ``points``;
+    a contact frame's tangent-plane coordinates project along its normal).
 
     ``inside`` is False where ``xy`` lies outside the xy footprint of the surface (no barycentric
-    coordinate above ``-tol``); there the nodes and weights are those of the nearest triangle found
+    coordinate above ``-tol``); there the row and weights are those of the nearest triangle found
     (clipped weights) and must not be used as a projection.  The search takes the 32 triangles with
     the nearest centroids and, for the points not found among them (a large triangle next to small
     ones: its centroid lies far from the point), every triangle.
@@ -38,31 +46,34 @@ def locate_along_z(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, to
     a, e1, e2 = p[:, 0], p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
     det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
 
-    def barycentric(point, cand):
-        v = point - a[cand]
-        l1 = (v[:, 0] * e2[cand, 1] - v[:, 1] * e2[cand, 0]) / det[cand]
-        l2 = (e1[cand, 0] * v[:, 1] - e1[cand, 1] * v[:, 0]) / det[cand]
-        return np.column_stack([1.0 - l1 - l2, l1, l2])
+    def barycentric(point, cand):  # point (m, 2), cand (m, c) -> (m, c, 3)
+        v = point[:, None, :] - a[cand]
+        l1 = (v[..., 0] * e2[cand, 1] - v[..., 1] * e2[cand, 0]) / det[cand]
+        l2 = (e1[cand, 0] * v[..., 1] - e1[cand, 1] * v[..., 0]) / det[cand]
+        return np.stack([1.0 - l1 - l2, l1, l2], axis=-1)
 
-    tree = cKDTree(p.mean(axis=1))
-    k = min(32, len(triangles))
-    _, near = tree.query(xy, k=k)
-    near = np.asarray(near).reshape(len(xy), k)
-    every = np.arange(len(triangles))
-    nodes = np.empty((len(xy), 3), dtype=np.int64)
-    weights = np.empty((len(xy), 3))
-    inside = np.empty(len(xy), dtype=bool)
-    for i, (point, cand) in enumerate(zip(xy, near)):
+    def best_of(point, cand):
         bary = barycentric(point, cand)
-        worst = bary.min(axis=1)
-        if worst.max() < -tol:  # not among the nearest centroids: search every triangle
-            cand = every
-            bary = barycentric(point, cand)
-            worst = bary.min(axis=1)
-        best = int(np.argmax(worst))
-        inside[i] = worst[best] >= -tol
-        nodes[i] = triangles[cand[best]]
-        weights[i] = np.clip(bary[best], 0.0, 1.0)
-        weights[i] /= weights[i].sum()
-    return nodes, weights, inside
+        worst = bary.min(axis=-1)
+        best = np.argmax(worst, axis=1)
+        pick = np.arange(len(point))
+        return cand[pick, best], bary[pick, best], worst[pick, best]
 
+    k = min(32, len(triangles))
+    _, near = cKDTree(p.mean(axis=1)).query(xy, k=k)
+    near = np.asarray(near).reshape(len(xy), k)
+    rows = np.empty(len(xy), dtype=np.int64)
+    weights = np.empty((len(xy), 3))
+    worst = np.empty(len(xy))
+    for start in range(0, len(xy), 4096):  # bounded memory: (chunk, 32, 3)
+        chunk = slice(start, start + 4096)
+        rows[chunk], weights[chunk], worst[chunk] = best_of(xy[chunk], near[chunk])
+    missed = np.flatnonzero(worst < -tol)  # not among the nearest centroids: search every triangle
+    every = np.arange(len(triangles))
+    for index in missed:
+        rows[index], weights[index], worst[index] = (value[0] for value in best_of(xy[index:index + 1],
+                                                                                   every[None, :]))
+    inside = worst >= -tol
+    weights = np.clip(weights, 0.0, 1.0)
+    weights /= weights.sum(axis=1, keepdims=True)
+    return rows, weights, inside

@@ -4,21 +4,25 @@ numpy/scipy only; importing this package must stay light (no gmsh, pyvista,
 vtk or matplotlib at import time).  One module per model:
 
 - ``lowmodel.contact.hertz``: exact Hertz point contact (Johnson 1985; lin2019 eqs 15, 53)
-- ``lowmodel.fourpoint``: rigid four-point rolling/sliding (lin2017)
 - ``lowmodel.contact.ellipse_friction``: friction over a Hertz ellipse with an offset
   velocity centre (lin2019 Appendix A4-A7), tabulated and cached
-- ``lowmodel.linear_bearing.bearing_ball``: single-ball quasi-static friction solver (lin2019 eqs 1-4)
-- ``lowmodel.linear_bearing.b2b``: two- and N-ball ball-to-ball contact (lin2019 eqs 5-10)
-- ``lowmodel.linear_bearing.b2b_analytical``: analytical B2B model (lin2019 eqs 11-33)
+- ``lowmodel.linear_bearing``: ``fourpoint`` (rigid four-point rolling/sliding, lin2017),
+  ``contacts`` and ``ball`` (single-ball quasi-static friction, lin2019 eqs 1-4), ``b2b``
+  (two- and N-ball ball-to-ball contact, eqs 5-10), ``b2b_analytical`` (eqs 11-33),
+  ``b2b_traction`` (the B2B solve with sampled, e.g. FE, contact tractions)
+- ``lowmodel.screw``: ``kinematics`` (wang2022), ``contacts`` and ``ball`` (lin2019 eqs 34-55),
+  ``b2b`` (eqs 56-61), ``load_distribution``, ``whole_screw`` (Sec 3.4), ``b2b_traction``,
+  ``friction_torque`` (sun2021 eq 20)
+- ``lowmodel.ball_bearing.harris``: ball-bearing kinematics relative to the cage (Harris, wang2022 Table 1)
 - ``lowmodel.geometry``: the geometry core shared by models and mesh builders:
   ``helix`` (ball-centre helix, lead angle, Frenet frame CS1 and lin2019's CS3),
   ``groove`` (gothic-arch profiles, exact helical groove surface and its principal
   curvatures), ``fourpoint`` (lin2017 eq 1 contact normals/points, ``CONTACT_NAMES``)
-- ``lowmodel.screw.kinematics``: contact kinematics, slide-roll ratio,
-  entrainment velocity (wang2022), Wei's absolute-velocity measures
-- ``lowmodel.screw.harris``: ball-bearing kinematics relative to the cage (Harris)
 
-Shared: ``lowmodel.checks`` (input checks: one ValueError naming parameter, unit,
-range and value), ``lowmodel.solvers`` (damped Newton), ``lowmodel.errors``
-(ConvergenceError), ``lowmodel.cache``.
+Shared: ``lowmodel.b2b_chain`` (the B2B chain complementarity of every B2B model),
+``lowmodel.solvers`` (damped Newton, continuation), ``lowmodel.state`` (the fields every ball
+state shares), ``lowmodel.dual`` (forward-mode derivatives), ``lowmodel.quadrature``
+(tanh-sinh, Gauss-Legendre), ``lowmodel.checks`` (input checks: one ValueError naming
+parameter, unit, range and value), ``lowmodel.errors`` (ConvergenceError), ``lowmodel.cache``.
+docs/architecture.md maps papers, sections and equations to modules.
 """

@@ -46,7 +46,7 @@ def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
 
 
-def _shown(array: np.ndarray, bad: np.ndarray, value) -> str:
+def _shown(array: np.ndarray, bad: np.ndarray) -> str:
     """The offending value for a message: the value itself, or an array's first bad element."""
     if array.ndim == 0:
         return repr(float(array))
@@ -87,7 +87,7 @@ def finite(name: str, value, unit: str = "", *, note: str = ""):
     bad = ~np.isfinite(array)
     if np.any(bad):
         raise ValueError(f"{name} must be finite{_unit(unit)}, i.e. in (-inf, inf){_note(note)}; "
-                         f"got {_shown(array, bad, value)}")
+                         f"got {_shown(array, bad)}")
     return _out(array)
 
 
@@ -104,7 +104,7 @@ def bounded(name: str, value, lower: float, upper: float, unit: str = "", *, low
     bad = ~(np.isfinite(array) & above & below)
     if np.any(bad):
         interval = f"{'[' if lower_closed else '('}{_bound(lower)}, {_bound(upper)}{']' if upper_closed else ')'}"
-        raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{_note(note)}; got {_shown(array, bad, value)}")
+        raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{_note(note)}; got {_shown(array, bad)}")
     return _out(array)
 
 
@@ -114,7 +114,7 @@ def positive(name: str, value, unit: str = "", *, note: str = ""):
     bad = ~(np.isfinite(array) & (array > 0.0))
     if np.any(bad):
         raise ValueError(f"{name} must be finite and > 0{_unit(unit)}, i.e. in (0, inf){_unit(unit)}{_note(note)}; "
-                         f"got {_shown(array, bad, value)}")
+                         f"got {_shown(array, bad)}")
     return _out(array)
 
 
@@ -124,7 +124,7 @@ def non_negative(name: str, value, unit: str = "", *, note: str = ""):
     bad = ~(np.isfinite(array) & (array >= 0.0))
     if np.any(bad):
         raise ValueError(f"{name} must be finite and >= 0{_unit(unit)}, i.e. in [0, inf){_unit(unit)}{_note(note)}; "
-                         f"got {_shown(array, bad, value)}")
+                         f"got {_shown(array, bad)}")
     return _out(array)
 
 
@@ -162,6 +162,18 @@ def count(name: str, value, minimum: int = 0, maximum: int | None = None) -> int
         upper = "inf)" if maximum is None else f"{maximum}]"
         raise ValueError(f"{name} must be an integer in [{minimum}, {upper}, got {value!r}")
     return int(value)
+
+
+def four_angles(name: str, value, labels: str) -> list[float]:
+    """``value`` as a list of four angles [rad], one per contact ``labels`` (e.g. "(BL, BR, TR, TL)"); ValueError
+    naming ``name`` otherwise (not a sequence of four numbers)."""
+    try:
+        angles = [float(v) for v in value]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}") from None
+    if len(angles) != 4:
+        raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}")
+    return angles
 
 
 def trailing_axis(name: str, value, length: int, labels: str = "", unit: str = "") -> np.ndarray:
@@ -220,7 +232,7 @@ def finite_result(names: str, value, unit: str = ""):
     bad = ~np.isfinite(array)
     if np.any(bad):
         raise ValueError(f"{names}: the result overflows double precision{_unit(unit)} (got "
-                         f"{_shown(array, bad, value)}); use inputs of a physical size")
+                         f"{_shown(array, bad)}); use inputs of a physical size")
     return _out(array)
 
 

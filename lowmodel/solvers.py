@@ -17,7 +17,7 @@
 A solver that does not converge raises
 :class:`ballbench.lowmodel.errors.ConvergenceError` with its residual; it
 never returns an unconverged point.  Used by the linear-bearing ball models
-(:mod:`lowmodel.linear_bearing.bearing_ball`, :mod:`lowmodel.linear_bearing.b2b`)
+(:mod:`lowmodel.linear_bearing.ball`, :mod:`lowmodel.linear_bearing.b2b`)
 and meant for the ball-screw model.
 """
 from __future__ import annotations

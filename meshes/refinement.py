@@ -1,7 +1,7 @@
 """Mesh-size control of every builder in ``meshes/``: one growth law, its fine zones, the
 uniform fallback and the checks of their arguments.
 
-Growth law (the only size control when refining; issue 5 notes):
+Growth law (the only size control when refining; docs/meshes.md):
 
     h(d) = min(h_max, h_contact + (growth - 1) max(0, d - fine_radius))
 
@@ -205,7 +205,7 @@ def size_threshold(gmsh, distance_field: int, h_contact: float, growth: float, h
     with ``d`` the value [m] of the gmsh field ``distance_field``; returns the field tag.
 
     Turns off MeshSizeFromPoints/FromCurvature/ExtendFromBoundary so that the
-    field alone governs the size (issue 5 notes).
+    field alone governs the size (docs/meshes.md).
     """
     h_contact, growth, h_max, fine_radius = _check_law(h_contact, growth, h_max, fine_radius)
     field = gmsh.model.mesh.field

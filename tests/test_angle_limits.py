@@ -13,7 +13,7 @@ import warnings
 import numpy as np
 import pytest
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.linear_bearing import b2b_analytical as analytical
 
 PAPER = dict(ball_radius=5e-3, friction_coefficient=0.1, groove_velocity=0.01)

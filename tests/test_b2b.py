@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.linear_bearing import b2b
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
@@ -26,7 +27,7 @@ def module(theta_deg, rho, *, top=(0.0, 0.0), n_balls=2, sides=None, mu=MU, appr
     else:
         forces = eq36(np.asarray(sides, dtype=float), VERTICAL, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
-    return bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=mu, groove_velocity=SPEED)
 
 
@@ -42,7 +43,7 @@ def check_complementarity(state, gaps, tol=1e-10):
 
 def test_case_a_contact_force_and_power_balance():
     contacts = module(2.0, -0.6)
-    free = bb.solve_ball(contacts)
+    free = bb.solve(contacts)
     assert free.velocity_deviation[0] > free.velocity_deviation[1]  # ball 1 (behind) is faster
     state = b2b.solve(contacts, [0.0])
     assert state.b2b_force[0] > 0.0
@@ -74,7 +75,7 @@ def test_separating_balls_and_open_gap_have_zero_force():
     assert abs(state.b2b_force[0]) <= 1e-11 * MU * VERTICAL and state.ball_velocity[1] > state.ball_velocity[0]
     approaching = module(2.0, -0.6)
     open_state = b2b.solve(approaching, [1e-4])
-    free = bb.solve_ball(approaching)
+    free = bb.solve(approaching)
     assert open_state.b2b_force[0] == 0.0
     np.testing.assert_allclose(open_state.ball_velocity, free.ball_velocity, rtol=1e-12)
 
@@ -86,8 +87,8 @@ def test_mirror_symmetry_two_balls():
     def build(a, s):
         forces = eq36(s, VERTICAL, a)
         c = hertz.solve_load(GEOMETRY, forces)
-        return bb.contacts_from_forces(a, forces, c.a, c.b / c.a, ball_radius=RADIUS, friction_coefficient=MU,
-                                       groove_velocity=SPEED)
+        return bearing_contacts.contacts_from_forces(a, forces, c.a, c.b / c.a, ball_radius=RADIUS,
+                                                     friction_coefficient=MU, groove_velocity=SPEED)
     state = b2b.solve(build(angles, sides), [0.0])
     mirrored = b2b.solve(build(angles[:, [1, 0, 3, 2]], -sides), [0.0])
     assert state.b2b_force[0] > 0.0
@@ -122,7 +123,7 @@ def test_first_order_agreement_with_analytical_epsilon():
     slope_analytical = (1 - ratio ** (2 / 3)) / (1 + ratio ** (2 / 3)) / 2  # lin2019 eq 33 / theta
     slopes = []
     for theta_deg in (0.1, 0.05, 0.025):
-        state = bb.solve_ball(module(theta_deg, rho, approximate=True))
+        state = bb.solve(module(theta_deg, rho, approximate=True))
         slopes.append(state.velocity_deviation / math.radians(theta_deg))
     slopes = np.array(slopes)
     np.testing.assert_allclose(slopes[:, 0], -slopes[:, 1], rtol=1e-9)  # central symmetry of the loads
@@ -137,8 +138,9 @@ def random_chain(rng, n_balls, theta_max_deg=3.0, rho_max=0.6):
     forces = eq36(sides, VERTICAL, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
     mu = float(rng.uniform(0.01, 0.3))
-    contacts = bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
-                                       friction_coefficient=mu, groove_velocity=SPEED)
+    contacts = bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a,
+                                                     ball_radius=RADIUS, friction_coefficient=mu,
+                                                     groove_velocity=SPEED)
     gaps = np.where(rng.random(n_balls - 1) < 0.6, 0.0, rng.uniform(0.0, 0.1 * RADIUS, n_balls - 1))
     return contacts, gaps
 
@@ -161,7 +163,7 @@ def test_random_chains_are_consistent(n_balls, seed):
 
 def test_gap_history_two_balls():
     contacts = module(2.0, -0.6)
-    free = bb.solve_ball(contacts)
+    free = bb.solve(contacts)
     gap0 = 0.1 * RADIUS
     closing = free.ball_velocity[0] - free.ball_velocity[1]
     history = b2b.simulate_gaps(contacts, [gap0], 2.0 * gap0 / closing)
@@ -205,12 +207,12 @@ def test_breakdown_near_four_point_limit_is_diagnosed():
     theta = math.radians(3.0)
     limit = math.tan(math.pi / 4 - theta)
     ok = module(3.0, -(limit - 0.05), n_balls=1)
-    assert bb.spin_capacity_ratio(ok)[0] > 1.0
-    bb.solve_ball(ok)
+    assert bearing_contacts.spin_capacity_ratio(ok)[0] > 1.0
+    bb.solve(ok)
     past = module(3.0, -(limit - 1e-3), n_balls=1)
-    assert bb.spin_capacity_ratio(past)[0] < 1.0
+    assert bearing_contacts.spin_capacity_ratio(past)[0] < 1.0
     with pytest.raises(ConvergenceError, match="spin-capacity ratio 0\\.[0-9]+ < 1") as info:
-        bb.solve_ball(past)
+        bb.solve(past)
     assert info.value.residual > 1e-6
 
 
@@ -240,13 +242,13 @@ def test_bad_solver_options(kwargs, name):
     with pytest.raises(ValueError, match=name):
         b2b.solve(module(2.0, -0.6), [0.0], **kwargs)
     with pytest.raises(ValueError, match=name):
-        bb.solve_ball(module(2.0, -0.6), **kwargs)
+        bb.solve(module(2.0, -0.6), **kwargs)
 
 
 def test_gap_history_separation():
     """Touching balls whose complementarity solution separates them: the gap opens linearly."""
     contacts = module(2.0, 0.6)  # ball 1 (behind) slower
-    free = bb.solve_ball(contacts)
+    free = bb.solve(contacts)
     history = b2b.simulate_gaps(contacts, [0.0], 10.0)
     assert np.all(history.b2b_force == 0.0)
     assert history.gaps[-1, 0] == pytest.approx(10.0 * (free.ball_velocity[1] - free.ball_velocity[0]), rel=1e-9)

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 
 THETA = math.radians(2.0)
 
@@ -38,7 +39,7 @@ def test_hertz_samples_reproduce_low_order_b2b_force():
 
 def test_free_balls_reproduce_low_order_velocity_deviation():
     contacts = _contacts("a")
-    free = bearing_ball.solve_ball(contacts)
+    free = bearing_ball.solve(contacts)
     state = _solve(contacts, [bt.hertz_patches(contacts, j) for j in range(2)], gaps=[1e-4])
     assert np.all(state.b2b_force == 0.0)
     np.testing.assert_allclose(state.velocity_deviation, free.velocity_deviation, rtol=1e-2)

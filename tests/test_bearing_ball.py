@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
@@ -21,7 +22,7 @@ GEOMETRY = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=2.1e11, poiss
 
 
 def eq36(side, vertical, angles):
-    """lin2017 eq 36 (local reference for the tests; the library uses lowmodel.fourpoint)."""
+    """lin2017 eq 36 (local reference for the tests; the library uses lowmodel.linear_bearing.fourpoint)."""
     bl, br, tr, tl = np.moveaxis(np.asarray(angles, dtype=float), -1, 0)
     return np.stack([-(side * np.cos(br) - vertical * np.sin(br)) / np.sin(bl + br),
                      (side * np.cos(bl) + vertical * np.sin(bl)) / np.sin(bl + br),
@@ -34,7 +35,7 @@ def make_contacts(angles, side, *, mu=MU, speed=SPEED, vertical=VERTICAL):
     side = np.broadcast_to(np.asarray(side, dtype=float), angles.shape[:1])
     forces = eq36(side, vertical, angles)
     contact = hertz.solve_load(GEOMETRY, forces)
-    return bb.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(angles, forces, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=mu, groove_velocity=speed)
 
 
@@ -49,7 +50,7 @@ def power_error(state):
 
 @pytest.mark.parametrize("rho", [-0.8, -0.3, 0.0, 0.5, 0.9])
 def test_theta_zero_rolls_at_half_speed(rho):
-    state = bb.solve_ball(make_contacts(case_angles(0.0), rho * VERTICAL))
+    state = bb.solve(make_contacts(case_angles(0.0), rho * VERTICAL))
     assert state.ball_velocity[0] == pytest.approx(SPEED / 2, rel=1e-12)
     assert power_error(state) < 1e-8
 
@@ -57,7 +58,7 @@ def test_theta_zero_rolls_at_half_speed(rho):
 @pytest.mark.parametrize("theta, rho, top", [(2.0, -0.6, (0, 0)), (3.0, 0.85, (0, 0)), (-2.5, 0.4, (1.0, -0.5)),
                                              (1.0, -0.9, (0, 0)), (0.3, 0.0, (-0.3, 0.3))])
 def test_power_balance_and_loss_identity(theta, rho, top):
-    state = bb.solve_ball(make_contacts(case_angles(theta, top), rho * VERTICAL))
+    state = bb.solve(make_contacts(case_angles(theta, top), rho * VERTICAL))
     assert state.residual <= 1e-12
     assert power_error(state) < 1e-8
     # the loss from the traction power equals the tabulated eq A6 to the map's accuracy
@@ -69,15 +70,15 @@ def test_power_balance_and_loss_identity(theta, rho, top):
 def test_table2_mitigation_gives_zero_deviation():
     """lin2019 eq 22 insight: Delta beta_TR = Delta beta_BL, Delta beta_TL = Delta beta_BR -> v_B = v/2."""
     for rho in (-0.6, 0.3):
-        state = bb.solve_ball(make_contacts(case_angles(2.0, top=(-2.0, 2.0)), rho * VERTICAL))
+        state = bb.solve(make_contacts(case_angles(2.0, top=(-2.0, 2.0)), rho * VERTICAL))
         assert state.velocity_deviation[0] == pytest.approx(0.0, abs=1e-12)
 
 
 def test_mirror_symmetry():
     """Mirror x -> -x: BL <-> BR, TR <-> TL, N_x -> -N_x; then v_B, omega_x stay and omega_y flips."""
     angles = np.radians([43.0, 46.5, 44.2, 45.7])
-    state = bb.solve_ball(make_contacts(angles, -35.0))
-    mirrored = bb.solve_ball(make_contacts(angles[[1, 0, 3, 2]], 35.0))
+    state = bb.solve(make_contacts(angles, -35.0))
+    mirrored = bb.solve(make_contacts(angles[[1, 0, 3, 2]], 35.0))
     assert mirrored.ball_velocity[0] == pytest.approx(state.ball_velocity[0], rel=1e-10)
     assert mirrored.omega[0, 0] == pytest.approx(state.omega[0, 0], rel=1e-10)
     assert mirrored.omega[0, 1] == pytest.approx(-state.omega[0, 1], rel=1e-8, abs=1e-10)
@@ -86,8 +87,8 @@ def test_mirror_symmetry():
 
 def test_reversed_groove_velocity_reverses_motion():
     contacts = make_contacts(case_angles(2.0), -60.0)
-    forward = bb.solve_ball(contacts)
-    backward = bb.solve_ball(make_contacts(case_angles(2.0), -60.0, speed=-SPEED))
+    forward = bb.solve(contacts)
+    backward = bb.solve(make_contacts(case_angles(2.0), -60.0, speed=-SPEED))
     assert backward.ball_velocity[0] == pytest.approx(-forward.ball_velocity[0], rel=1e-10)
     np.testing.assert_allclose(backward.friction_loss, forward.friction_loss, rtol=1e-9)
 
@@ -133,7 +134,7 @@ def test_approaching_four_point_limit_solves_or_fails_loudly():
     for margin in (0.2, 0.1, 0.05, 0.03, 0.01, 1e-3, 1e-6):
         contacts = make_contacts(case_angles(3.0), -(limit - margin) * VERTICAL)
         try:
-            state = bb.solve_ball(contacts)
+            state = bb.solve(contacts)
         except ConvergenceError as error:
             assert error.residual > 0.0 and "ball 0" in str(error)
             continue
@@ -144,13 +145,13 @@ def test_approaching_four_point_limit_solves_or_fails_loudly():
 
 
 def test_iterations_are_few():
-    state = bb.solve_ball(make_contacts(case_angles(2.0), -60.0))
+    state = bb.solve(make_contacts(case_angles(2.0), -60.0))
     assert 1 <= state.iterations <= 8
 
 
 def test_convergence_error_reports_residual():
     with pytest.raises(ConvergenceError) as info:
-        bb.solve_ball(make_contacts(case_angles(2.0), -60.0), max_iterations=1, tolerance=1e-15)
+        bb.solve(make_contacts(case_angles(2.0), -60.0), max_iterations=1, tolerance=1e-15)
     assert info.value.residual > 0.0 and info.value.iterations == 1
 
 
@@ -167,20 +168,20 @@ GOOD = dict(ball_radius=RADIUS, friction_coefficient=MU, groove_velocity=SPEED)
 def test_bad_scalar_inputs(override, name):
     kwargs = {**GOOD, **override}
     with pytest.raises(ValueError, match=name):
-        bb.contacts_from_forces(case_angles(1.0), 50.0, 1e-4, 0.2, **kwargs)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), 50.0, 1e-4, 0.2, **kwargs)
 
 
 @pytest.mark.parametrize("angles", [[0.0, 0.7, 0.7, 0.7], [0.7, 1.6, 0.7, 0.7], [0.7, float("nan"), 0.7, 0.7]])
 def test_bad_contact_angles(angles):
     with pytest.raises(ValueError, match="contact_angles"):
-        bb.contacts_from_forces(angles, 50.0, 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(angles, 50.0, 1e-4, 0.2, **GOOD)
 
 
 def test_loss_of_contact_is_an_error():
     with pytest.raises(ValueError, match="normal_forces.*four-point"):
-        bb.contacts_from_forces(case_angles(1.0), [50.0, 0.0, 50.0, 50.0], 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), [50.0, 0.0, 50.0, 50.0], 1e-4, 0.2, **GOOD)
     with pytest.raises(ValueError, match="normal_forces"):
-        bb.contacts_from_forces(case_angles(1.0), [50.0, float("nan"), 50.0, 50.0], 1e-4, 0.2, **GOOD)
+        bearing_contacts.contacts_from_forces(case_angles(1.0), [50.0, float("nan"), 50.0, 50.0], 1e-4, 0.2, **GOOD)
 
 
 def test_solution_satisfies_eq4_with_exact_quadrature():
@@ -188,7 +189,7 @@ def test_solution_satisfies_eq4_with_exact_quadrature():
     from ballbench.lowmodel.contact.ellipse_friction import friction_exact
 
     contacts = make_contacts(case_angles(2.0, (0.5, -0.3)), -60.0)
-    state = bb.solve_ball(contacts)
+    state = bb.solve(contacts)
     exact = friction_exact(state.c_over_a[0], contacts.b_over_a[0])
     sign = np.sign(state.spin[0])
     mu_force = MU * contacts.normal_forces[0]
@@ -212,8 +213,8 @@ deviation = st.floats(min_value=-3.0, max_value=3.0)
 def test_random_balls_balance_power_and_mirror(dbl, dbr, dtr, dtl, rho):
     """Any deviations within +-3 deg and |rho| <= 0.5: converged, power balanced, mirror-symmetric."""
     angles = math.pi / 4 + np.radians([dbl, dbr, dtr, dtl])
-    state = bb.solve_ball(make_contacts(angles, rho * VERTICAL))
+    state = bb.solve(make_contacts(angles, rho * VERTICAL))
     assert state.residual <= 1e-12 and power_error(state) < 1e-8
-    mirrored = bb.solve_ball(make_contacts(angles[[1, 0, 3, 2]], -rho * VERTICAL))
+    mirrored = bb.solve(make_contacts(angles[[1, 0, 3, 2]], -rho * VERTICAL))
     assert mirrored.ball_velocity[0] == pytest.approx(state.ball_velocity[0], rel=1e-9)
     assert mirrored.omega[0, 1] == pytest.approx(-state.omega[0, 1], rel=1e-6, abs=1e-9 * abs(state.omega[0, 0]))

@@ -13,7 +13,9 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.solvers import continuation
 
 
@@ -23,15 +25,15 @@ def _power_error(state) -> float:
 
 def test_issue_reproducer_converges_by_continuation():
     contacts = b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.6)
-    assert np.min(bearing_ball.spin_capacity_ratio(contacts)) > 10.0
-    state = bearing_ball.solve_ball(contacts)
+    assert np.min(bearing_contacts.spin_capacity_ratio(contacts)) > 10.0
+    state = bearing_ball.solve(contacts)
     assert state.continuation, "the direct solve used to fail here: a path must be reported"
     path = state.continuation[0]
     assert path.steps[0].parameter == 0.0 and path.steps[-1].parameter == 1.0
     assert state.residual <= 1e-12
     assert _power_error(state) < 1e-8
     # the same ball a little heavier converges directly and is close (continuity in the load)
-    nearby = bearing_ball.solve_ball(b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.7))
+    nearby = bearing_ball.solve(b2b.module_contacts(math.radians(2), -0.6, vertical_force=4.7))
     np.testing.assert_allclose(state.velocity_deviation, nearby.velocity_deviation, atol=5e-4)
 
 
@@ -47,12 +49,12 @@ def test_light_loads_converge(vertical_force):
 def test_light_load_tends_to_the_rigid_lin2017_state():
     """As N_y -> 0 the contact ellipses shrink and eq 4 tends to lin2017's rigid point contacts:
     epsilon of ball 1 tends to the rigid value of lin2017 (fourpoint.solve)."""
-    from ballbench.lowmodel import fourpoint
+    from ballbench.lowmodel.linear_bearing import fourpoint
 
     gaps = []
     for load in (1e-1, 1e-3, 1e-5):
         contacts = b2b.module_contacts(math.radians(2), -0.6, vertical_force=load, n_balls=1)
-        state = bearing_ball.solve_ball(contacts)
+        state = bearing_ball.solve(contacts)
         rigid = fourpoint.solve(contacts.contact_angles[0], -0.6 * load, load, ball_radius=5e-3,
                                 friction_coefficient=0.1, groove_velocity=0.01)
         gaps.append(abs(float(state.velocity_deviation[0]) - (2 * float(rigid.ball_velocity) / 0.01 - 1)))
@@ -64,7 +66,7 @@ def test_light_load_tends_to_the_rigid_lin2017_state():
 def test_theta_near_the_four_point_limit(theta_deg):
     """rho = 0.6: four-point contact up to theta = 14.04 deg (lin2017 eq 37); spin-capacity ratio ~11."""
     contacts = b2b.module_contacts(math.radians(theta_deg), 0.6, n_balls=1)
-    state = bearing_ball.solve_ball(contacts)
+    state = bearing_ball.solve(contacts)
     assert state.residual <= 1e-12 and _power_error(state) < 1e-8
 
 
@@ -75,7 +77,7 @@ def test_random_light_chains():
         n = int(rng.integers(2, 8))
         theta = np.radians(rng.uniform(-3, 3, (n, 2)))
         angles = math.pi / 4 + np.column_stack([-theta[:, 0], theta[:, 0], 0.3 * theta[:, 1], -0.3 * theta[:, 1]])
-        contacts = bearing_ball.ball_contacts(angles, rng.uniform(-0.6, 0.6, n) * 2.0, 2.0, ball_radius=5e-3,
+        contacts = bearing_contacts.ball_contacts(angles, rng.uniform(-0.6, 0.6, n) * 2.0, 2.0, ball_radius=5e-3,
                                               conformity=0.56, friction_coefficient=0.1, groove_velocity=0.01)
         state = b2b.solve(contacts, np.zeros(n - 1))
         assert state.residual <= 1e-12
@@ -87,9 +89,9 @@ def test_no_state_names_reason_and_last_converged_parameter():
     theta = math.radians(3.0)
     low = -math.tan(math.pi / 4 - theta)
     contacts = b2b.module_contacts(theta, low + 1e-6, n_balls=1)
-    assert np.min(bearing_ball.spin_capacity_ratio(contacts)) < 1.0
+    assert np.min(bearing_contacts.spin_capacity_ratio(contacts)) < 1.0
     with pytest.raises(ConvergenceError, match="spin-capacity ratio") as error:
-        bearing_ball.solve_ball(contacts)
+        bearing_ball.solve(contacts)
     assert error.value.reason == "spin-capacity ratio < 1"
     assert error.value.residual > 0.0
 

@@ -8,7 +8,8 @@ import pytest
 
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.linear_bearing import b2b_analytical as analytical
 from ballbench.lowmodel.screw import kinematics as screw
 
@@ -85,13 +86,13 @@ def test_conformity_near_one_half_names_conformity():
     named an internal ``b_over_a`` before."""
     assert hertz.ball_in_groove(RADIUS, 0.5005).axis_ratio < ef.B_OVER_A_RANGE[0]
     with pytest.raises(ValueError, match="conformity") as error:
-        bearing_ball.ball_contacts(np.full(4, math.pi / 4), 0.0, 100.0, ball_radius=RADIUS, conformity=0.5005,
+        bearing_contacts.ball_contacts(np.full(4, math.pi / 4), 0.0, 100.0, ball_radius=RADIUS, conformity=0.5005,
                                    friction_coefficient=0.1, groove_velocity=0.01)
     assert "b_over_a must" not in str(error.value)
-    limit = bearing_ball.minimum_conformity()
+    limit = bearing_contacts.minimum_conformity()
     assert 0.5005 < limit < 0.501
     assert hertz.ball_in_groove(RADIUS, limit).axis_ratio == pytest.approx(ef.B_OVER_A_RANGE[0], rel=1e-9)
-    bearing_ball.ball_contacts(np.full(4, math.pi / 4), 0.0, 100.0, ball_radius=RADIUS, conformity=limit + 1e-9,
+    bearing_contacts.ball_contacts(np.full(4, math.pi / 4), 0.0, 100.0, ball_radius=RADIUS, conformity=limit + 1e-9,
                                friction_coefficient=0.1, groove_velocity=0.01)
 
 

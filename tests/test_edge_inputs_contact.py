@@ -101,7 +101,7 @@ def test_ehl_iteration_options_are_checked():
     with pytest.raises(ValueError, match="coarsest"):  # coarse grids of 2 cells failed naming nx
         ehl.solve_reynolds(gap, grid, e_star, 20.0, 1.0, 0.05, coarsest=1)
     with pytest.raises(ValueError, match="max_iterations"):
-        mixed.solve_mixed(gap, np.zeros_like(gap), grid, e_star, 20.0, 1.0, 0.05, max_iterations=True)
+        mixed.solve(gap, np.zeros_like(gap), grid, e_star, 20.0, 1.0, 0.05, max_iterations=True)
 
 
 # --- half-space grids and solve ----------------------------------------------------------------------------------

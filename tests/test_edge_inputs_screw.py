@@ -15,9 +15,11 @@ from ballbench.lowmodel.geometry import groove, helix
 from ballbench.lowmodel.screw import friction_torque as ft
 from ballbench.lowmodel.screw import kinematics as kin
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b as b2b
-from ballbench.lowmodel.screw import screw_b2b_traction as traction
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel import b2b_chain
+from ballbench.lowmodel.screw import b2b as b2b
+from ballbench.lowmodel.screw import b2b_traction as traction
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 TINY = 5e-324  # the smallest float
 TABLE4 = dict(pitch_radius=16.5e-3, lead=20e-3)  # lin2019 Table 4
@@ -179,17 +181,17 @@ def test_friction_torque_at_extreme_sliding_speeds():
 # --- ball-to-ball complementarity ----------------------------------------------------------------------------
 def test_fischer_burmeister_at_huge_arguments():
     """phi(0, 1e300) was -inf with an overflow warning; it is 0 (the complementarity holds)."""
-    phi, d_a, d_b = b2b.fischer_burmeister(0.0, 1e300)
+    phi, d_a, d_b = b2b_chain.fischer_burmeister(0.0, 1e300)
     assert float(phi) == 0.0 and float(d_a) == 1.0 and float(d_b) == 0.0
-    assert float(b2b.fischer_burmeister(-1e300, -1e300)[0]) < 0.0
+    assert float(b2b_chain.fischer_burmeister(-1e300, -1e300)[0]) < 0.0
     with pytest.raises(ValueError, match="a must be finite"):
-        b2b.fischer_burmeister(math.nan, 1.0)
+        b2b_chain.fischer_burmeister(math.nan, 1.0)
 
 
 # --- load distribution ----------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def table():
-    module = sb.screw_module(oversize=1e-6)
+    module = screw_contacts.screw_module(oversize=1e-6)
     return module, ld.axial_stiffness(module, 200.0, 5), ld.bar_sections(module)
 
 
@@ -225,29 +227,29 @@ def test_load_distribution_checks_and_reports(table):
 def test_screw_module_refuses_a_lead_angle_of_90_degrees():
     """lead = 1e300 m was accepted; ball_contacts then failed naming ``lead_angle``, not a parameter it has."""
     with pytest.raises(ValueError, match="lead must give a lead angle below pi/2"):
-        sb.screw_module(lead=1e300)
+        screw_contacts.screw_module(lead=1e300)
 
 
 def test_ball_contacts_name_the_conformity_below_the_friction_map():
     """conformity 0.5005 at 0.3 rad: the solves raised 'b_over_a must lie in [0.02, 1]' from inside the
     friction model, naming no parameter of theirs."""
-    module = sb.screw_module(conformity=0.5005, lead=0.0, nominal_angle=0.3)
+    module = screw_contacts.screw_module(conformity=0.5005, lead=0.0, nominal_angle=0.3)
     with pytest.raises(ValueError, match="module: conformity = 0.5005 gives a Hertz axis ratio"):
-        sb.ball_contacts(module)
+        screw_contacts.ball_contacts(module)
 
 
 def test_ball_indices_are_checked(table):
     """profile_2d and hertz_patches with ball 1 of a single ball raised IndexError; True was taken as ball 1."""
     module = table[0]
-    contacts = sb.ball_contacts(module, 0.0)
-    state = sb.solve_balls(contacts, 50.0)
+    contacts = screw_contacts.ball_contacts(module, 0.0)
+    state = sb.solve(contacts, 50.0)
     for ball in (1, -1, True):
         with pytest.raises(ValueError, match="ball"):
-            sb.profile_2d(contacts, ball, 0, 0.7)
+            screw_contacts.profile_2d(contacts, ball, 0, 0.7)
         with pytest.raises(ValueError, match="ball"):
             traction.hertz_patches(state, contacts, ball)
     with pytest.raises(ValueError, match="contact"):
-        sb.profile_2d(contacts, 0, 4, 0.7)
+        screw_contacts.profile_2d(contacts, 0, 4, 0.7)
     with pytest.raises(ValueError, match="axial_load"):
         sb.reference_force(contacts, 1.7e308)
 
@@ -256,8 +258,8 @@ def test_nut_speed_range_and_gap_count():
     """nut_speed = 1e-300 rad/s was accepted and the B2B solve warned (overflow of the friction Jacobian, which
     scales like 1 / speed); check_gaps(None, 1.0) was a TypeError and (None, -1) numpy's 'negative dimensions'."""
     with pytest.raises(ValueError, match="nut_speed must satisfy"):
-        sb.screw_module(nut_speed=1e-300)
-    assert sb.screw_module(nut_speed=-1e-100).nut_speed == -1e-100
+        screw_contacts.screw_module(nut_speed=1e-300)
+    assert screw_contacts.screw_module(nut_speed=-1e-100).nut_speed == -1e-100
     for count in (1.0, -1, True):
         with pytest.raises(ValueError, match="count"):
             b2b.check_gaps(None, count)
@@ -269,13 +271,13 @@ def test_screw_module_and_solves_refuse_what_breaks_the_model(table):
     in Hertz naming its internal curvatures; saturation() of a state without loaded contacts: numpy's
     'zero-size array' error."""
     with pytest.raises(ValueError, match="friction_coefficient"):
-        sb.screw_module(friction_coefficient=1e300)
-    contacts = sb.ball_contacts(table[0], 0.0)
+        screw_contacts.screw_module(friction_coefficient=1e300)
+    contacts = screw_contacts.ball_contacts(table[0], 0.0)
     with pytest.raises(ValueError, match="axial_load: its Hertz approach"):
-        sb.solve_balls(contacts, 1e300)
+        sb.solve(contacts, 1e300)
     with pytest.raises(ValueError, match="module: no Hertz point contact"):
-        sb.ball_contacts(sb.screw_module(conformity=math.nextafter(0.5, 1.0)))
-    state = sb.solve_balls(contacts, 50.0)
+        screw_contacts.ball_contacts(screw_contacts.screw_module(conformity=math.nextafter(0.5, 1.0)))
+    state = sb.solve(contacts, 50.0)
     empty = sb.ScrewBallState(**{**state.__dict__, "normal_force": np.zeros_like(state.normal_force)})
     assert b2b.saturation(empty) == 0.0
 
@@ -301,8 +303,8 @@ def test_b2b_solution_does_not_depend_on_the_speed_scale():
     the floor is now 1e-14 R_B |omega_N|."""
     states = []
     for speed in (2 * math.pi, 2e-13):
-        module = sb.screw_module(oversize=1e-6, nut_speed=speed)
-        states.append(b2b.solve(sb.ball_contacts(module, np.radians([0.0, 2.0])), 50.0))
+        module = screw_contacts.screw_module(oversize=1e-6, nut_speed=speed)
+        states.append(b2b.solve(screw_contacts.ball_contacts(module, np.radians([0.0, 2.0])), 50.0))
     for state in states:
         assert abs(state.input_power - state.total_loss) <= 1e-8 * state.total_loss
     assert states[1].b2b_force[0] == pytest.approx(states[0].b2b_force[0], rel=1e-6)
@@ -310,7 +312,7 @@ def test_b2b_solution_does_not_depend_on_the_speed_scale():
 
 
 def test_axial_stiffness_names_max_load(table):
-    """max_load = 1e16 N: the error named solve_balls' axial_load, not a parameter of axial_stiffness."""
+    """max_load = 1e16 N: the error named solve' axial_load, not a parameter of axial_stiffness."""
     with pytest.raises(ValueError, match="max_load: axial_load: its Hertz approach"):
         ld.axial_stiffness(table[0], 1e16, 4)
 

@@ -296,3 +296,27 @@ def _loaded(model, state):
     u = np.zeros(model.K.shape[0])
     u[model.load_dofs] = -state.approach
     return u
+
+
+def test_hookes_law_and_von_mises():
+    """fem.elasticity.stress and von_mises on closed forms: uniaxial stress (strain (s, -nu s, -nu s)/E gives
+    sigma = diag(s, 0, 0), von Mises |s|), pure shear (von Mises sqrt(3) tau) and a rotation (no stress).  Catches
+    lambda and mu swapped, a missing symmetrisation or a deviator without the mean stress."""
+    from ballbench.fem.elasticity import lame, stress, von_mises
+
+    lam, mu = lame(E, NU)
+    s = 3.0e8
+    uniaxial = np.diag([s, -NU * s, -NU * s]) / E
+    np.testing.assert_allclose(stress(uniaxial, lam, mu), np.diag([s, 0.0, 0.0]), atol=1e-6 * s)
+    assert von_mises(stress(uniaxial, lam, mu)) == pytest.approx(s, rel=1e-12)
+    tau = 1.0e8
+    shear = np.zeros((3, 3))
+    shear[0, 1] = tau / mu  # du_x/dy: engineering shear strain tau / G
+    sigma = stress(shear, lam, mu)
+    assert sigma[0, 1] == pytest.approx(tau, rel=1e-12) and sigma[1, 0] == pytest.approx(tau, rel=1e-12)
+    assert von_mises(sigma) == pytest.approx(np.sqrt(3.0) * tau, rel=1e-12)
+    rotation = np.array([[0.0, -1e-3, 0.0], [1e-3, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    np.testing.assert_array_equal(stress(rotation, lam, mu), np.zeros((3, 3)))
+    # arrays of gradients (3, 3, e, q) broadcast with per-element Lame parameters
+    grads = np.repeat(uniaxial[:, :, None, None], 2, axis=2).repeat(3, axis=3)
+    np.testing.assert_allclose(von_mises(stress(grads, np.full((2, 3), lam), np.full((2, 3), mu))), s, rtol=1e-12)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from ballbench.fem import fourpoint as fp
-from ballbench.lowmodel import fourpoint as rigid
+from ballbench.lowmodel.linear_bearing import fourpoint as rigid
 from ballbench.lowmodel.contact import hertz
 
 THETA = math.radians(2.0)
@@ -60,7 +60,7 @@ def test_module_statics_angles_and_b2b(coarse_module):
     from ballbench.lowmodel.linear_bearing import b2b_traction
 
     model = coarse_module
-    results = [fp.solve_module(model, side, 100.0) for side in (-60.0, 60.0)]
+    results = [fp.solve(model, side, 100.0) for side in (-60.0, 60.0)]
     for side, result in zip((-60.0, 60.0), results):
         forces = np.array([c.normal_force for c in result.contacts])
         # small deformation, fixed normals: ball and top rail statics give lin2017 eq 36 exactly

@@ -1,4 +1,4 @@
-"""lowmodel.fourpoint: rigid four-point rolling/sliding (lin2017).  Default-run budget 20 s.
+"""lowmodel.linear_bearing.fourpoint: rigid four-point rolling/sliding (lin2017).  Default-run budget 20 s.
 
 The closed forms of the paper (eqs 11, 13, 20, 23, 36, 39-41) appear here only as references.
 """
@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linprog
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 
 R_B = 5e-3
 MU = 0.1

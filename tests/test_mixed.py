@@ -25,7 +25,7 @@ def case(n=48):
 
 def test_smooth_raceway_is_full_film_and_equals_the_ehl_solve():
     grid, gap = case(64)
-    contact = mixed.solve_mixed(gap, np.zeros_like(gap), grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
+    contact = mixed.solve(gap, np.zeros_like(gap), grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
     direct = ehl.solve_reynolds(gap, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coarsest=16)
     assert contact.coupled and contact.asperity_load == 0.0 and contact.asperity_share == 0.0
     assert contact.central_asperity_pressure == 0.0
@@ -41,7 +41,7 @@ def test_rough_raceway_shares_the_load():
     X, Y = grid.coordinates()
     # a ridge across the track as high as the film: it must reach through and carry load
     heights = 1.5 * smooth.central_film * np.exp(-((X / (4 * grid.dx)) ** 2))
-    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
+    contact = mixed.solve(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
     assert not contact.coupled and contact.clearance < 0.0
     assert 0.0 < contact.asperity_share < 1.0
     # load sharing, sun2021 eq 21: film load + asperity load = Q to the share tolerance
@@ -61,8 +61,8 @@ def test_coupled_rough_film_flattens_long_waves():
     # a wave along the track, longer than the contact, as high as the smooth film: the rigid (decoupled)
     # film touches, the coupled film pressure flattens it and stays open
     heights = 1.2 * smooth.minimum_film * np.cos(2 * np.pi * X / (grid.nx * grid.dx))
-    decoupled = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
-    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
+    decoupled = mixed.solve(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL, coupled=False)
+    contact = mixed.solve(gap, heights, grid, E_STAR, 20.0, 1.0, ETA0, initial_film=INITIAL)
     assert decoupled.clearance < 0.0 < contact.clearance
     assert contact.coupled and contact.asperity_share == 0.0
     assert contact.film.force == pytest.approx(20.0, rel=1e-4)
@@ -73,7 +73,7 @@ def test_asperity_contact_is_zero_without_interference_and_rejects_bad_shapes():
     pressure, load, rough = mixed.asperity_contact(gap + 1e-7, np.zeros_like(gap), grid, E_STAR)
     assert load == 0.0 and not pressure.any() and np.array_equal(rough, gap + 1e-7)
     with pytest.raises(ValueError, match="heights"):
-        mixed.solve_mixed(gap, np.zeros((3, 3)), grid, E_STAR, 20.0, 1.0, ETA0)
+        mixed.solve(gap, np.zeros((3, 3)), grid, E_STAR, 20.0, 1.0, ETA0)
 
 
 def test_friction_torque_eq20_by_hand_and_speeds_follow_wang2022():

@@ -12,7 +12,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.contact import ehl, ellipse_friction, hertz, mixed
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.screw import kinematics

@@ -13,12 +13,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import b2b_analytical as analytical
-from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.ball_bearing import harris
 from ballbench.lowmodel.screw import kinematics as screw
 from property_support import SETTINGS, SLOW, call, positive, real
 
@@ -105,7 +106,7 @@ def test_numerical_b2b(theta, rho, load, mu, velocity, conformity, n_balls, gap)
                     groove_velocity=velocity, conformity=conformity)
     if contacts is None:
         return
-    state = call(bearing_ball.solve_ball, contacts, allow_inf=("c_over_a",))
+    state = call(bearing_ball.solve, contacts, allow_inf=("c_over_a",))
     if state is not None:
         assert abs(state.input_power - state.total_loss) <= 1e-8 * abs(state.input_power)
     gaps = np.where(np.arange(n_balls - 1) % 2 == 0, 0.0, gap)

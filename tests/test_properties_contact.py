@@ -19,7 +19,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ballbench.lowmodel import calibration, solvers
+from ballbench.lowmodel import calibration, quadrature, solvers
 from ballbench.lowmodel.contact import ehl, hertz, mixed, roughness, traction
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import ellipse_friction_offset as offset
@@ -92,7 +92,7 @@ def test_ellipse_friction_rest(beta, stacked, level):
             call(at, np.full(np.shape(beta), 2.5))  # phi of the shape of b_over_a (its docstring)
     else:
         call(ef.friction_angle_at, beta, stacked=stacked)
-    call(ef.tanh_sinh_rule, level)
+    call(quadrature.tanh_sinh, level)
 
 
 @SLOW
@@ -240,7 +240,7 @@ def test_mixed(kw):
     e_star, grid, gap = _ehl_case(kw["n"])
     heights = kw["rough"] * np.cos(np.arange(grid.nx * grid.ny).reshape(grid.nx, grid.ny))
     call(mixed.asperity_contact, gap * 0.0 + 1e-7, heights, grid, e_star)
-    contact = call(mixed.solve_mixed, gap, heights, grid, e_star, kw["load"], kw["u"], kw["eta0"],
+    contact = call(mixed.solve, gap, heights, grid, e_star, kw["load"], kw["u"], kw["eta0"],
                    initial_film=kw["film"], coupled=kw["coupled"], max_iterations=4, ehl_iterations=30)
     if contact is not None:
         assert contact.film_load + contact.asperity_load == pytest.approx(kw["load"], rel=0.02)

@@ -22,9 +22,11 @@ from ballbench.lowmodel.geometry import groove, helix
 from ballbench.lowmodel.screw import friction_torque as ft
 from ballbench.lowmodel.screw import kinematics as kin
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b as b2b
-from ballbench.lowmodel.screw import screw_b2b_traction as traction
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel import b2b_chain
+from ballbench.lowmodel.screw import b2b as b2b
+from ballbench.lowmodel.screw import b2b_traction as traction
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import whole_screw
 from property_support import SETTINGS, SLOW, call, positive, real
 from test_properties import angle
@@ -193,25 +195,25 @@ SPOILERS = [None] * 10 + [("ball_radius", v) for v in (0.0, 5e-324, 1e300, -1e-3
        reading=mostly(st.sampled_from(["tilted", "rotated"]), "sideways"), gamma=angle,
        index=mostly(st.integers(0, 3), -1, 4, True, 1.0), load=mostly(real(1.0, 500.0), -1.0, 0.0, 1e300))
 def test_screw_ball(kwargs, spoiler, deviation, reading, gamma, index, load):
-    module = call(sb.screw_module, **(kwargs if spoiler is None else {**kwargs, spoiler[0]: spoiler[1]}))
+    module = call(screw_contacts.screw_module, **(kwargs if spoiler is None else {**kwargs, spoiler[0]: spoiler[1]}))
     if module is None:
         return
-    call(sb.flank_angles, module.nominal_angle, deviation, reading)
-    contacts = call(sb.ball_contacts, module, deviation, reading)
+    call(screw_contacts.flank_angles, module.nominal_angle, deviation, reading)
+    contacts = call(screw_contacts.ball_contacts, module, deviation, reading)
     if contacts is None:
         return
-    call(sb.arc_profile, contacts, gamma, load * 1e-9)
-    call(sb.profile_2d, contacts, index, index, gamma, 0.1, load * 1e-9)
+    call(screw_contacts.arc_profile, contacts, gamma, load * 1e-9)
+    call(screw_contacts.profile_2d, contacts, index, index, gamma, 0.1, load * 1e-9)
     call(sb.reference_force, contacts, load)
     call(sb.continuation_start, contacts, load)
     call(sb.free_rolling_guess, contacts)
     call(b2b.pair_geometry, module)
     call(b2b.b2b_angle_eq56, module)
     call(b2b.check_gaps, [load * 1e-3] * index if isinstance(index, int) and 0 <= index < 50 else None, index)
-    single = call(sb.ball_contacts, module, deviation[0], reading)
+    single = call(screw_contacts.ball_contacts, module, deviation[0], reading)
     if single is None:
         return
-    state = call(sb.solve_balls, single, load, tolerance=1e-9, max_iterations=60)
+    state = call(sb.solve, single, load, tolerance=1e-9, max_iterations=60)
     if state is not None:   # the nut puts in what friction dissipates (lin2019 Sec 3.1 power balance)
         assert abs(state.input_power - state.total_loss) <= 1e-6 * abs(state.total_loss)
         call(b2b.saturation, state)
@@ -230,7 +232,7 @@ def test_screw_ball(kwargs, spoiler, deviation, reading, gamma, index, load):
 @SETTINGS
 @given(a=mostly(real(-1e3, 1e3), *EXTREME, -1e300), b=mostly(real(-1e3, 1e3), *EXTREME, -1e300))
 def test_fischer_burmeister(a, b):
-    result = call(b2b.fischer_burmeister, a, b)
+    result = call(b2b_chain.fischer_burmeister, a, b)
     if result is not None:   # phi = 0 only on the complementarity set (eqs 60-61): < 0 outside, > 0 inside
         phi = float(result[0])
         scale = 1e-13 * max(abs(a), abs(b), 1.0)
@@ -243,7 +245,7 @@ def test_fischer_burmeister(a, b):
 # --- load distribution and the whole screw ---------------------------------------------------------------
 @lru_cache(maxsize=1)
 def _stiffness():
-    module = sb.screw_module(oversize=1e-6)
+    module = screw_contacts.screw_module(oversize=1e-6)
     return module, ld.axial_stiffness(module, 200.0, 5), ld.bar_sections(module)
 
 

@@ -16,11 +16,14 @@ import math
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import quadrature
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
+from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 RADIUS = 5e-3  # lin2019 Table 1
 ANGLES = math.pi / 4 + np.array([[-0.035, 0.035, 0.0, 0.0]])  # theta = 2 deg, (BL, BR, TR, TL)
@@ -29,7 +32,7 @@ FORCES = np.array([[61.0, 80.0, 70.0, 71.0]])  # N, four-point contact
 
 def _linear_contacts():
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), FORCES)
-    return bb.contacts_from_forces(ANGLES, FORCES, contact.a, contact.b / contact.a, ball_radius=RADIUS,
+    return bearing_contacts.contacts_from_forces(ANGLES, FORCES, contact.a, contact.b / contact.a, ball_radius=RADIUS,
                                    friction_coefficient=0.1, groove_velocity=0.01)
 
 
@@ -48,18 +51,19 @@ def _edited(obj, name: str, index, factor: float):
 
 
 def _fresh_linear(contacts):
-    return bb.BallContacts(*(np.array(getattr(contacts, f.name)) for f in dataclasses.fields(contacts)[:4]),
-                           contacts.ball_radius, contacts.friction_coefficient, contacts.groove_velocity)
+    arrays = (np.array(getattr(contacts, f.name)) for f in dataclasses.fields(contacts)[:4])
+    return bearing_contacts.BallContacts(*arrays, contacts.ball_radius, contacts.friction_coefficient,
+                                         contacts.groove_velocity)
 
 
 @pytest.mark.parametrize("name, index, factor", [("normal_forces", (0, 0), 1.3), ("semi_major", (0, 1), 1.3),
                                                  ("contact_angles", (0, 0), 1.05), ("b_over_a", (0, 2), 0.9)])
 def test_linear_contacts_refuse_in_place_edits_and_replace_solves_fresh(name, index, factor):
     contacts = _linear_contacts()
-    before = bb.solve_ball(contacts)  # fills _geometry, _friction_at, _equilibrium and its scales
+    before = bb.solve(contacts)  # fills kinematics, friction_at, equilibrium and its scales
     edited, refused = _edited(contacts, name, index, factor)
-    state = bb.solve_ball(edited)
-    expected = bb.solve_ball(_fresh_linear(edited))
+    state = bb.solve(edited)
+    expected = bb.solve(_fresh_linear(edited))
     assert not np.allclose(expected.friction_force, before.friction_force, rtol=1e-6, atol=0.0)  # the edit matters
     for field in ("omega", "slide", "spin", "friction_force", "friction_moment", "friction_loss"):
         np.testing.assert_allclose(getattr(state, field), getattr(expected, field), rtol=1e-9, atol=1e-12 * np.max(
@@ -71,12 +75,12 @@ def test_linear_contacts_do_not_share_memory_with_the_caller():
     forces = FORCES.copy()
     contact = hertz.solve_load(hertz.ball_in_groove(RADIUS, 0.56), FORCES)
     axes, ratio, angles = contact.a.copy(), contact.b / contact.a, ANGLES.copy()
-    contacts = bb.BallContacts(angles, forces, axes, ratio, RADIUS, 0.1, 0.01)
-    before = bb.solve_ball(contacts)
+    contacts = bearing_contacts.BallContacts(angles, forces, axes, ratio, RADIUS, 0.1, 0.01)
+    before = bb.solve(contacts)
     for array in (angles, forces, axes, ratio):
         array *= 1.1  # the caller's arrays stay writable and theirs
     np.testing.assert_array_equal(contacts.normal_forces, FORCES)
-    np.testing.assert_array_equal(bb.solve_ball(contacts).friction_force, before.friction_force)
+    np.testing.assert_array_equal(bb.solve(contacts).friction_force, before.friction_force)
     single = contacts.ball(0)  # views of read-only arrays stay read-only
     assert not any(getattr(single, f.name).flags.writeable for f in dataclasses.fields(single)[:4])
 
@@ -125,7 +129,7 @@ def test_short_lived_friction_maps_get_their_own_splines():
 
 
 def test_cached_pair_geometry_refuses_in_place_edits():
-    module = screw_ball.screw_module()
+    module = screw_contacts.screw_module()
     try:
         pair = screw_b2b.pair_geometry(module)  # lru_cache: every caller with this module shares it
         _, refused = _edited(pair, "chord", 0, 1.1)
@@ -141,12 +145,12 @@ def test_cached_pair_geometry_refuses_in_place_edits():
 def _instances():
     table = ef.friction_map()
     contacts = _linear_contacts()
-    bb.solve_ball(contacts)  # caches filled (its friction map is a closure: pickled as it was, this failed)
+    bb.solve(contacts)  # caches filled (its friction map is a closure: pickled as it was, this failed)
     return [(contacts, ("contact_angles", "normal_forces", "semi_major", "b_over_a")),
             (_stiffness(), ("loads", "shifts")),
             (ef.FrictionMap(table.phi, table.log_b_over_a, table.force, table.moment, table.loss_direction, 0.0,
                             False), ("phi", "log_b_over_a", "force", "moment", "loss_direction")),
-            (screw_b2b.pair_geometry.__wrapped__(screw_ball.screw_module()), ("chord", "rotation"))]
+            (screw_b2b.pair_geometry.__wrapped__(screw_contacts.screw_module()), ("chord", "rotation"))]
 
 
 @pytest.mark.parametrize("how", ["pickle", "deepcopy"])
@@ -163,13 +167,13 @@ def test_pickled_and_deep_copied_objects_keep_read_only_arrays(how):
             assert not getattr(twin, name).flags.writeable, f"{type(obj).__name__}.{name} after {how}"
     contacts = _instances()[0][0]
     twin = pickle.loads(pickle.dumps(contacts)) if how == "pickle" else copy.deepcopy(contacts)
-    np.testing.assert_array_equal(bb.solve_ball(twin).friction_force, bb.solve_ball(contacts).friction_force)
+    np.testing.assert_array_equal(bb.solve(twin).friction_force, bb.solve(contacts).friction_force)
 
 
 
 def test_cached_quadrature_rule_is_read_only():
-    """``tanh_sinh_rule`` returns lru_cache'd arrays shared by every caller (the friction map and the offset
+    """``quadrature.tanh_sinh`` returns lru_cache'd arrays shared by every caller (the friction map and the offset
     friction integrals): an in-place edit (``nodes *= 2``) would silently change every later integral."""
-    for array in ef.tanh_sinh_rule(5):
+    for array in quadrature.tanh_sinh(5):
         with pytest.raises(ValueError, match="read-only"):
             array *= 2.0

@@ -6,15 +6,16 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import screw_b2b as b2
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as b2
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 DEG = math.pi / 180.0
 
 
 @pytest.fixture(scope="module")
 def module():
-    return sb.screw_module(oversize=1e-6)
+    return screw_contacts.screw_module(oversize=1e-6)
 
 
 def test_pair_geometry_is_the_helix_chord(module):
@@ -32,19 +33,19 @@ def test_pair_geometry_is_the_helix_chord(module):
 
 
 def test_theta_zero_gives_no_b2b_and_equal_orbit_speeds(module):
-    contacts = sb.ball_contacts(module, np.zeros(2))
+    contacts = screw_contacts.ball_contacts(module, np.zeros(2))
     state = b2.solve(contacts, 50.0)
     assert state.b2b_force[0] < 1e-9     # identical balls: force and separation rate both zero (to the tolerance)
     assert state.orbit_speed[0] == pytest.approx(state.orbit_speed[1], rel=1e-10)
-    free = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    free = sb.solve(screw_contacts.ball_contacts(module, 0.0), 25.0)
     assert state.orbit_speed[0] == pytest.approx(free.orbit_speed[0], rel=1e-9)
     assert abs(state.input_power - state.total_loss) < 1e-8 * state.total_loss
 
 
 @pytest.mark.parametrize("oversize, thetas", [(1e-6, (0.0, 2.0)), (0.0, (0.0, 3.0)), (1.7e-6, (0.0, 3.0, -1.0, 2.0))])
 def test_b2b_power_balance_and_complementarity(oversize, thetas):
-    module = sb.screw_module(oversize=oversize)
-    contacts = sb.ball_contacts(module, np.array(thetas) * DEG, reading="tilted")
+    module = screw_contacts.screw_module(oversize=oversize)
+    contacts = screw_contacts.ball_contacts(module, np.array(thetas) * DEG, reading="tilted")
     state = b2.solve(contacts, 25.0 * len(thetas))
     free = b2.solve(contacts, 25.0 * len(thetas), with_b2b=False)
     for result in (state, free):
@@ -61,7 +62,7 @@ def test_b2b_power_balance_and_complementarity(oversize, thetas):
 
 
 def test_open_gap_carries_no_force(module):
-    contacts = sb.ball_contacts(module, np.array([0.0, 2.0]) * DEG)
+    contacts = screw_contacts.ball_contacts(module, np.array([0.0, 2.0]) * DEG)
     state = b2.solve(contacts, 50.0, gaps=[0.01])
     assert state.b2b_force[0] == 0.0
     assert state.orbit_speed[0] > state.orbit_speed[1]
@@ -72,7 +73,14 @@ def test_b2b_loads_derivatives_and_balance(module):
     rng = np.random.default_rng(2)
     spins = rng.normal(size=(3, 3)) * 20.0
     forces = np.array([1.5, 0.7])
-    load, d_spin, d_force, speeds = b2.b2b_loads(spins, forces, pair, module.ball_radius, 0.1)
+    load, d_pairs, d_pair_force, speeds = b2.b2b_loads(spins, forces, pair, module.ball_radius, 0.1)
+    # the pair blocks (p, 2, 2, 6, 3) and (p, 2, 6) summed into d load / d spins (n, 6, n, 3) and d load / d F
+    d_spin, d_force = np.zeros((3, 6, 3, 3)), np.zeros((3, 6, 2))
+    for j, (behind, ahead) in enumerate(((0, 1), (1, 2))):
+        for row, ball_row in enumerate((behind, ahead)):
+            d_force[ball_row, :, j] += d_pair_force[j, row]
+            for col, ball_col in enumerate((behind, ahead)):
+                d_spin[ball_row, :, ball_col] += d_pairs[j, row, col]
     step = 1e-6
     for ball in range(3):
         for axis in range(3):
@@ -97,7 +105,7 @@ def test_b2b_loads_derivatives_and_balance(module):
 
 
 def test_bad_input(module):
-    contacts = sb.ball_contacts(module, np.zeros(2))
+    contacts = screw_contacts.ball_contacts(module, np.zeros(2))
     with pytest.raises(ValueError, match="gaps"):
         b2.solve(contacts, 50.0, gaps=[-0.1])
     with pytest.raises(ValueError, match="gaps"):

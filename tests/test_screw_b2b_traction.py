@@ -1,4 +1,4 @@
-"""FE-informed screw B2B model (lowmodel.screw.screw_b2b_traction): Hertz limit, power, lead 0, theta 0, errors."""
+"""FE-informed screw B2B model (lowmodel.screw.b2b_traction): Hertz limit, power, lead 0, theta 0, errors."""
 import math
 from functools import lru_cache
 
@@ -8,8 +8,9 @@ import pytest
 from ballbench.lowmodel.contact.traction import SampledCoulomb, TractionPatch
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
-from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw import b2b_traction as sbt
 
 OVERSIZE = 1.6848e-6  # m, the preload fitted on Table 5 case a (docs/ball_screw.md)
 THETA = {"a": math.radians(2.0), "b": math.radians(3.0)}  # lin2019 Table 5: ball 2's deviation (ball 1: 0)
@@ -17,13 +18,13 @@ AXIAL_LOAD = 50.0  # N on the screw, lin2019 Sec 3.3
 
 
 def _module(**kw):
-    return screw_ball.screw_module(oversize=OVERSIZE, **kw)  # lin2019 Table 4 defaults
+    return screw_contacts.screw_module(oversize=OVERSIZE, **kw)  # lin2019 Table 4 defaults
 
 
 @lru_cache(maxsize=4)
 def _low_order(case: str):
     """(contacts, free balls, touching balls) of the low-order model (screw_b2b), Table 5 case."""
-    contacts = screw_ball.ball_contacts(_module(), np.array([0.0, THETA[case]]), reading="tilted")
+    contacts = screw_contacts.ball_contacts(_module(), np.array([0.0, THETA[case]]), reading="tilted")
     return contacts, screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False), screw_b2b.solve(contacts, AXIAL_LOAD)
 
 
@@ -94,9 +95,10 @@ def test_lead_zero_is_the_linear_bearing_model():
     differences = []
     for ratio in (1e3, 1e5):
         pitch_radius = ratio * contacts.ball_radius
-        module = screw_ball.screw_module(ball_radius=contacts.ball_radius, conformity=0.56, pitch_radius=pitch_radius,
-                                         lead=0.0, nut_speed=contacts.groove_velocity / pitch_radius,
-                                         friction_coefficient=contacts.friction_coefficient)
+        module = screw_contacts.screw_module(ball_radius=contacts.ball_radius, conformity=0.56,
+                                             pitch_radius=pitch_radius, lead=0.0,
+                                             nut_speed=contacts.groove_velocity / pitch_radius,
+                                             friction_coefficient=contacts.friction_coefficient)
         state = sbt.solve(screw_patches, module)
         spin = state.omega + state.orbit_speed[:, None] * np.array([0.0, 0.0, 1.0])  # absolute, CS3
         difference = max(abs(state.b2b_force[0] / linear.b2b_force[0] - 1.0),
@@ -111,7 +113,7 @@ def test_lead_zero_is_the_linear_bearing_model():
 
 def test_no_b2b_force_at_theta_zero_or_with_the_faster_ball_ahead():
     module = _module()
-    same = screw_ball.ball_contacts(module, np.array([0.0, 0.0]), reading="tilted")
+    same = screw_contacts.ball_contacts(module, np.array([0.0, 0.0]), reading="tilted")
     free = screw_b2b.solve(same, AXIAL_LOAD, with_b2b=False)
     state = sbt.solve(_patches(free, same, n_radial=8, n_angular=32), module)
     assert state.b2b_force[0] == 0.0
@@ -194,7 +196,7 @@ def test_point_friction_is_tangent_full_slip_and_opposes_the_slip():
 def test_chains_reproduce_screw_b2b(degrees):
     # 3 and 4 balls (eqs 60-61 for every neighbouring pair): the touching and separating pairs and the B2B
     # forces of the low-order chain from its own Hertz patches (16 x 64 samples: quadrature error ~1e-4)
-    contacts = screw_ball.ball_contacts(_module(), np.radians(degrees), reading="tilted")
+    contacts = screw_contacts.ball_contacts(_module(), np.radians(degrees), reading="tilted")
     low = screw_b2b.solve(contacts, 25.0 * len(degrees))
     state = sbt.solve(_patches(low, contacts, n_radial=16, n_angular=64), contacts.module)
     np.testing.assert_array_equal(state.b2b_force > 0.0, low.b2b_force > 0.0)

@@ -8,34 +8,37 @@ import pytest
 
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import bearing_ball as bb
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.linear_bearing import ball as bb
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 DEG = math.pi / 180.0
 
 
 @pytest.fixture(scope="module")
 def preloaded():
-    module = sb.screw_module(oversize=1e-6)
-    contacts = sb.ball_contacts(module, 2.0 * DEG)
-    return module, contacts, sb.solve_balls(contacts, 25.0)
+    module = screw_contacts.screw_module(oversize=1e-6)
+    contacts = screw_contacts.ball_contacts(module, 2.0 * DEG)
+    return module, contacts, sb.solve(contacts, 25.0)
 
 
 def test_profile_eq48_literal_equals_arc():
     """eq 48 from the core's exact helical surface (projected into CS3) is the closed-form arc used by the solver."""
-    module = sb.screw_module()
-    contacts = sb.ball_contacts(module, np.array([0.0, 3.0 * DEG]))
+    module = screw_contacts.screw_module()
+    contacts = screw_contacts.ball_contacts(module, np.array([0.0, 3.0 * DEG]))
     gamma = np.linspace(20 * DEG, 70 * DEG, 7)
     for shift in (0.0, 3e-6):
-        arcs, tangents = sb.arc_profile(contacts, gamma, shift)
+        arcs, tangents = screw_contacts.arc_profile(contacts, gamma, shift)
         for ball in range(2):
             for contact in range(4):
                 for azimuth in (0.0, 1.3):
-                    literal = sb.profile_2d(contacts, ball, contact, gamma, azimuth=azimuth, nut_shift=shift)
+                    literal = screw_contacts.profile_2d(contacts, ball, contact, gamma, azimuth=azimuth,
+                                                        nut_shift=shift)
                     np.testing.assert_allclose(literal, arcs[ball, contact], atol=1e-15)
                 step = 1e-7
-                fd = (sb.profile_2d(contacts, ball, contact, gamma + step, nut_shift=shift)
-                      - sb.profile_2d(contacts, ball, contact, gamma - step, nut_shift=shift)) / (2 * step)
+                fd = (screw_contacts.profile_2d(contacts, ball, contact, gamma + step, nut_shift=shift)
+                      - screw_contacts.profile_2d(contacts, ball, contact, gamma - step, nut_shift=shift)) / (2 * step)
                 np.testing.assert_allclose(tangents[ball, contact], fd, atol=1e-10)
 
 
@@ -65,9 +68,9 @@ def test_eq55_conditions_and_eq54_matrix_hold_at_the_solution(preloaded):
     radius = module.ball_radius
     centre = state.centre[0]
     # eqs 49-52: contact point on the literal eq 48 profile at gamma = beta, normal through the ball centre
-    _, tangents = sb.arc_profile(contacts, beta, state.nut_shift)   # eq 52 (tested above); (1, 4, 4, 2)
+    _, tangents = screw_contacts.arc_profile(contacts, beta, state.nut_shift)   # eq 52 (tested above); (1, 4, 4, 2)
     for i in range(4):
-        point = sb.profile_2d(contacts, 0, i, beta[i], nut_shift=state.nut_shift)              # eq 49
+        point = screw_contacts.profile_2d(contacts, 0, i, beta[i], nut_shift=state.nut_shift)              # eq 49
         tangent = tangents[0, i, i]
         normal = (centre - point) / np.linalg.norm(centre - point)
         assert abs(normal @ tangent) / np.linalg.norm(tangent) < 1e-9                      # eq 50
@@ -97,8 +100,8 @@ def test_eq55_conditions_and_eq54_matrix_hold_at_the_solution(preloaded):
 @pytest.mark.parametrize("oversize, theta, load", [(1e-6, 0.0, 25.0), (1e-6, 3.0 * DEG, -25.0), (0.0, 2.0 * DEG, 25.0),
                                                   (3e-6, -2.0 * DEG, 5.0)])
 def test_power_balance(oversize, theta, load):
-    module = sb.screw_module(oversize=oversize)
-    state = sb.solve_balls(sb.ball_contacts(module, theta), load)
+    module = screw_contacts.screw_module(oversize=oversize)
+    state = sb.solve(screw_contacts.ball_contacts(module, theta), load)
     assert state.groove_loss > 0.0
     assert abs(state.input_power - state.groove_loss) < 1e-8 * state.groove_loss
     # every contact dissipates (friction opposes the slip)
@@ -133,8 +136,8 @@ def test_jacobian_against_finite_differences(preloaded):
 
 def test_slip_field_equals_eq44_and_A9_A11():
     """Centre slip and spin of every contact against the paper's printed velocity fields."""
-    module = sb.screw_module(oversize=1e-6)
-    contacts = sb.ball_contacts(module, 2.0 * DEG)
+    module = screw_contacts.screw_module(oversize=1e-6)
+    contacts = screw_contacts.ball_contacts(module, 2.0 * DEG)
     scales = sb.Scales(1e-6, 1.0, 1.0, 1.0)
     rng = np.random.default_rng(9)
     unknowns = np.concatenate([rng.normal(size=2) * 0.3, rng.normal(size=4) * [3.0, 20.0, 5.0, 20.0]])
@@ -197,18 +200,18 @@ def test_linear_bearing_limit(monkeypatch):
                              np.stack([r.loss, np.full_like(r.loss, np.nan)], axis=-1)], axis=-2)
         return evaluate
 
-    monkeypatch.setattr(bb, "_friction_angle_function", exact)
+    monkeypatch.setattr(bearing_contacts, "_friction_angle_function", exact)
     speed, radius = 0.01, 2.778e-3
     errors = []
     for ratio in (1e6, 1e10):
-        module = sb.screw_module(pitch_radius=ratio * radius, lead=0.0, nut_speed=speed / (ratio * radius),
+        module = screw_contacts.screw_module(pitch_radius=ratio * radius, lead=0.0, nut_speed=speed / (ratio * radius),
                                  oversize=2e-6)
-        contacts = sb.ball_contacts(module, 2.0 * DEG)
-        state = sb.solve_balls(contacts, 20.0)
-        bearing = bb.contacts_from_forces(state.contact_angle, state.normal_force, state.semi_major,
+        contacts = screw_contacts.ball_contacts(module, 2.0 * DEG)
+        state = sb.solve(contacts, 20.0)
+        bearing = bearing_contacts.contacts_from_forces(state.contact_angle, state.normal_force, state.semi_major,
                                           contacts.b_over_a, ball_radius=radius, friction_coefficient=0.1,
                                           groove_velocity=speed)
-        linear = bb.solve_ball(bearing)
+        linear = bb.solve(bearing)
         # frames: (x, y, z) of the bearing = (z3, x3, y3); BL, BR, TR, TL = SL, SR, NR, NL
         velocity = state.orbit_speed[0] * module.helix_radius
         omega = np.array([state.orbit_speed[0] + state.omega[0, 2], state.omega[0, 0]])
@@ -235,8 +238,8 @@ class _slip:
 
 def test_zero_preload_reaches_a_third_contact():
     """Exact fit (no preload): the axial load loads one diagonal and friction pushes the ball onto a third flank."""
-    module = sb.screw_module(oversize=0.0)
-    state = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    module = screw_contacts.screw_module(oversize=0.0)
+    state = sb.solve(screw_contacts.ball_contacts(module, 0.0), 25.0)
     loaded = state.normal_force[0] > 0
     assert loaded.sum() == 3
     assert abs(state.input_power - state.groove_loss) < 1e-8 * state.groove_loss
@@ -244,38 +247,39 @@ def test_zero_preload_reaches_a_third_contact():
 
 def test_deviation_slows_the_ball(preloaded):
     module, _, state_2 = preloaded
-    state_0 = sb.solve_balls(sb.ball_contacts(module, 0.0), 25.0)
+    state_0 = sb.solve(screw_contacts.ball_contacts(module, 0.0), 25.0)
     assert state_2.orbit_speed[0] < state_0.orbit_speed[0]
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="oversize"):
-        sb.screw_module(oversize=-1e-6)
+        screw_contacts.screw_module(oversize=-1e-6)
     with pytest.raises(ValueError, match="nut_speed"):
-        sb.screw_module(nut_speed=0.0)
+        screw_contacts.screw_module(nut_speed=0.0)
     with pytest.raises(ValueError, match="conformity"):
-        sb.screw_module(conformity=0.5)
+        screw_contacts.screw_module(conformity=0.5)
     with pytest.raises(ValueError, match="reading"):
-        sb.ball_contacts(sb.screw_module(), 0.01, reading="twisted")
+        screw_contacts.ball_contacts(screw_contacts.screw_module(), 0.01, reading="twisted")
     with pytest.raises(ValueError, match="deviation"):
-        sb.ball_contacts(sb.screw_module(), math.radians(20))
+        screw_contacts.ball_contacts(screw_contacts.screw_module(), math.radians(20))
     with pytest.raises(ValueError, match="axial_load"):
-        sb.solve_balls(sb.ball_contacts(sb.screw_module()), float("nan"))
+        sb.solve(screw_contacts.ball_contacts(screw_contacts.screw_module()), float("nan"))
     with pytest.raises(ConvergenceError):
-        sb.solve_balls(sb.ball_contacts(sb.screw_module(oversize=1e-6)), 25.0, max_iterations=1)
+        sb.solve(screw_contacts.ball_contacts(screw_contacts.screw_module(oversize=1e-6)), 25.0, max_iterations=1)
 
 
 def test_hertz_table_matches_direct_solution():
-    module = sb.screw_module()
+    module = screw_contacts.screw_module()
     angles = module.nominal_angle + np.radians([-14.9, -3.0, -0.1234, 0.0, 2.0, 3.0, 7.77, 14.9])
     for body in ("screw", "nut"):
-        contacts = sb.ball_contacts(module, angles - module.nominal_angle, reading="tilted")
+        contacts = screw_contacts.ball_contacts(module, angles - module.nominal_angle, reading="tilted")
         column = 0 if body == "screw" else 2
         for j, angle in enumerate(angles):
             if body == "nut":
                 angle = module.nominal_angle
-            direct = sb.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius, module.lead_angle,
-                                     float(angle), body, module.youngs_modulus, module.poisson_ratio)
+            direct = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                                 module.lead_angle, float(angle), body, module.youngs_modulus,
+                                                 module.poisson_ratio)
             got = (contacts.hertz_constant[j, column], contacts.semi_major_unit[j, column],
                    contacts.b_over_a[j, column])
             np.testing.assert_allclose(got, direct, rtol=1e-9)
@@ -305,8 +309,8 @@ def test_kinematics_agree_with_wang2022_frenet_velocities():
     omega = 2.0 * math.pi
     for lead, alpha in ((20e-3, 45 * DEG), (10e-3, 40 * DEG), (0.0, 45 * DEG)):
         wang = kinematics.kinematics(16.5e-3, 2.778e-3, lead, omega, alpha)
-        module = sb.screw_module(lead=lead, nominal_angle=alpha, nut_speed=-omega, oversize=1e-6)
-        contacts = sb.ball_contacts(module, 0.0)
+        module = screw_contacts.screw_module(lead=lead, nominal_angle=alpha, nut_speed=-omega, oversize=1e-6)
+        contacts = screw_contacts.ball_contacts(module, 0.0)
         scales = sb.Scales(1e-6, 1.0, 1.0, 1.0)
         spin_t, spin_n, spin_b = np.asarray(wang.ball_angular_velocity)
         unknowns = np.array([[0.0, 0.0, float(wang.orbital_speed) - omega, -spin_n, spin_t, spin_b]])

@@ -8,8 +8,8 @@ import pytest
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 DEG = math.pi / 180.0
 C_B = -1.7e-9  # m/N, the order the FE screw/nut fits give (docs/calibration.md)
@@ -23,11 +23,12 @@ def _laws(module, bulk=0.0, c_factor=1.0, psi_factor=1.0):
     """Laws of both grooves = Hertz of the module at beta_0 scaled by the factors, plus ``bulk`` [m/N]."""
     out = []
     for body in ("screw", "nut"):
-        c, a_unit, _ = sb.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius, module.lead_angle,
-                                       module.nominal_angle, body, module.youngs_modulus, module.poisson_ratio)
+        c, a_unit, _ = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                                   module.lead_angle, module.nominal_angle, body,
+                                                   module.youngs_modulus, module.poisson_ratio)
         psi = a_unit / module.ball_radius ** (1 / 3)  # lin2019 eq 15
         out.append(cal.ContactLaw(_constant(c * c_factor, c), _constant(bulk), _constant(psi * psi_factor, psi)))
-    return sb.GrooveContactLaws(*out)
+    return screw_contacts.GrooveContactLaws(*out)
 
 
 @pytest.mark.parametrize("bulk", [0.0, 2e-10, C_B])
@@ -56,14 +57,14 @@ def test_law_force_refuses_an_approach_beyond_the_monotone_range():
 
 @pytest.fixture(scope="module")
 def module():
-    return sb.screw_module(oversize=1.5e-6)
+    return screw_contacts.screw_module(oversize=1.5e-6)
 
 
 def test_hertz_equal_law_reproduces_the_hertz_model(module):
     """Catches a law applied with a wrong factor or to the wrong flanks: C_cal = C_H, C_b = 0 changes nothing."""
     thetas = np.array([0.0, 2.0 * DEG])
-    plain = screw_b2b.solve(sb.ball_contacts(module, thetas), 50.0)
-    same = screw_b2b.solve(sb.ball_contacts(module, thetas, contact_law=_laws(module)), 50.0)
+    plain = screw_b2b.solve(screw_contacts.ball_contacts(module, thetas), 50.0)
+    same = screw_b2b.solve(screw_contacts.ball_contacts(module, thetas, contact_law=_laws(module)), 50.0)
     assert same.b2b_force[0] == pytest.approx(plain.b2b_force[0], rel=1e-10)
     np.testing.assert_allclose(same.normal_force, plain.normal_force, rtol=1e-10)
 
@@ -73,9 +74,9 @@ def test_solved_contacts_obey_the_calibrated_law(module, bulk, c_factor, psi_fac
     """Every loaded contact of the B2B solve has delta = C F^(2/3) + C_b F and a = Psi R^(1/3) F^(1/3) of its groove
     (references from the law's constants, not the model); catches a law ignored or a C_b of the wrong sign."""
     laws = _laws(module, bulk, c_factor, psi_factor)
-    contacts = sb.ball_contacts(module, np.array([0.0, 2.0 * DEG]), contact_law=laws)
+    contacts = screw_contacts.ball_contacts(module, np.array([0.0, 2.0 * DEG]), contact_law=laws)
     state = screw_b2b.solve(contacts, 50.0)
-    plain = sb.ball_contacts(module, np.array([0.0, 2.0 * DEG]))
+    plain = screw_contacts.ball_contacts(module, np.array([0.0, 2.0 * DEG]))
     loaded = state.normal_force > 0
     force = state.normal_force
     expected = c_factor * plain.hertz_constant * force ** (2 / 3) + bulk * force
@@ -99,12 +100,12 @@ def test_stiffer_law_changes_the_axial_stiffness_and_keeps_the_load_sum(module):
 def test_laws_from_a_calibration_and_bad_factor(module):
     laws = _laws(module, C_B)
     calibration = cal.Calibration({"screw-groove": laws.screw.constants(), "nut-groove": laws.nut.constants()})
-    again = sb.GrooveContactLaws.from_calibration(calibration)
+    again = screw_contacts.GrooveContactLaws.from_calibration(calibration)
     assert again.nut.bulk_compliance.value == C_B and again.screw.psi.value == laws.screw.psi.value
     with pytest.raises(KeyError, match="no group"):
-        sb.GrooveContactLaws.from_calibration(cal.Calibration({}))
+        screw_contacts.GrooveContactLaws.from_calibration(cal.Calibration({}))
     with pytest.raises(ValueError, match="within a factor 2"):
-        sb.ball_contacts(module, 0.0, contact_law=_laws(module, 0.0, c_factor=3.0))
+        screw_contacts.ball_contacts(module, 0.0, contact_law=_laws(module, 0.0, c_factor=3.0))
 
 
 DATA = __import__("pathlib").Path(__file__).parent / "data"

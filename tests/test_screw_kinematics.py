@@ -1,8 +1,9 @@
-"""lowmodel.screw.kinematics and lowmodel.screw.harris against wang2022 (Tables 1-2, eqs 1-30, Sec 3.4 trends)."""
+"""lowmodel.screw.kinematics and lowmodel.ball_bearing.harris against wang2022 (Tables 1-2, eqs 1-30, Sec 3.4
+trends)."""
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.ball_bearing import harris
 
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import kinematics as sk

@@ -7,13 +7,14 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import whole_screw as ws
 
 
 @pytest.fixture(scope="module")
 def module():
-    return sb.screw_module(oversize=1.7e-6)
+    return screw_contacts.screw_module(oversize=1.7e-6)
 
 
 @pytest.fixture(scope="module")
@@ -22,7 +23,7 @@ def stiffness(module):
 
 
 def test_axial_stiffness_is_the_single_ball_model(module, stiffness):
-    state = sb.solve_balls(sb.ball_contacts(module, 0.0), 33.0)
+    state = sb.solve(screw_contacts.ball_contacts(module, 0.0), 33.0)
     assert stiffness.shift(33.0) == pytest.approx(state.nut_shift, rel=2e-3)   # pchip between 7 nodes
     assert stiffness.load(stiffness.shift(20.0)) == pytest.approx(20.0, rel=1e-9)
 

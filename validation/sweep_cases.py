@@ -13,7 +13,9 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
-from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
 
 __all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi",
@@ -36,21 +38,21 @@ def calibrated_psi(calibration: str, conformity: float) -> float:
     return _load(str(calibration)).value(f"ball-groove-{conformity:g}", "psi")
 
 
-def with_psi(contacts: bearing_ball.BallContacts, psi: float) -> bearing_ball.BallContacts:
+def with_psi(contacts: bearing_contacts.BallContacts, psi: float) -> bearing_contacts.BallContacts:
     """The same contacts with the semi-axes of ``a = psi R_B^(1/3) F^(1/3)`` (lin2019 eq 15) instead of Hertz's;
     the axis ratio b/a stays Hertz's."""
     if not (math.isfinite(psi) and psi > 0.0):
         raise ValueError(f"psi must be finite and > 0 (m^2/N)^(1/3), got {psi!r}")
     forces = contacts.normal_forces
-    return bearing_ball.contacts_from_forces(contacts.contact_angles, forces,
+    return bearing_contacts.contacts_from_forces(contacts.contact_angles, forces,
                                              psi * contacts.ball_radius ** (1 / 3) * forces ** (1 / 3),  # eq 15
                                              contacts.b_over_a, ball_radius=contacts.ball_radius,
                                              friction_coefficient=contacts.friction_coefficient,
                                              groove_velocity=contacts.groove_velocity)
 
 
-def _two_ball(contacts: bearing_ball.BallContacts) -> dict:
-    free = bearing_ball.solve_ball(contacts)  # balls apart (lin2019 eq 4)
+def _two_ball(contacts: bearing_contacts.BallContacts) -> dict:
+    free = bearing_ball.solve(contacts)  # balls apart (lin2019 eq 4)
     state = b2b.solve(contacts, [0.0])  # balls touching (eqs 5-10)
     return {"epsilon_1": float(free.velocity_deviation[0]), "epsilon_2": float(free.velocity_deviation[1]),
             "b2b_force": float(state.b2b_force[0]),
@@ -89,7 +91,7 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
     vertical = options.pop("vertical_force")
     angles = NOMINAL + np.array([[d1_bl, d1_br, d1_tr, d1_tl], [d2_bl, d2_br, d2_tr, d2_tl]], dtype=float)
     sides = np.array([rho, -rho]) * vertical
-    contacts = bearing_ball.ball_contacts(angles, sides, vertical, **options)
+    contacts = bearing_contacts.ball_contacts(angles, sides, vertical, **options)
     return _two_ball(contacts)
 
 
@@ -144,10 +146,10 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     """Module (lin2019 Table 4, preload fitted on Table 5 a), contact laws and axial stiffness table, once per
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
-    from ballbench.lowmodel.screw import screw_ball
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.scenes import lin2019_screw
 
-    laws = screw_ball.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
+    laws = screw_contacts.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
     module = lin2019_screw.table4_module(lin2019_screw.fitted_oversize())
     stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)
     return module, laws, stiffness

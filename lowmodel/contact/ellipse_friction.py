@@ -60,6 +60,12 @@ including across ``omega = 0`` (pure sliding, ``kappa = +-inf``).  They are
 tabulated once on a ``(phi, log(b/a))`` grid, cached on disk
 (``lowmodel.cache``, kind ``ellipse_friction``) and interpolated by a bicubic
 spline (C2), whose analytic derivatives are returned for Newton's method.
+
+One concept in one file (about 800 lines): the three functions of eqs A4-A6, their
+closed forms near the ends, the exact quadrature and the table of that same
+quadrature that the solvers evaluate; the table is built from :func:`friction_exact`
+and checked against it (tests), so a change of the integrals and of their table
+belongs in one review.  The quadrature rules are :mod:`lowmodel.quadrature`'s.
 """
 from __future__ import annotations
 
@@ -73,6 +79,7 @@ import numpy as np
 from scipy.special import ellipe, ellipkm1, elliprd
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.quadrature import gauss_legendre, tanh_sinh
 
 __all__ = [
     "EllipseFriction",
@@ -91,7 +98,6 @@ __all__ = [
     "friction_map",
     "FrictionMap",
     "B_OVER_A_RANGE",
-    "tanh_sinh_rule",
 ]
 
 B_OVER_A_RANGE = (0.02, 1.0)  # tabulated range of b/a (a >= b by convention)
@@ -243,7 +249,7 @@ def cubic_coefficient(b_over_a) -> np.ndarray:
     result[tiny] = 0.5  # limit b/a -> 0: E(1) = 1 and b^2 K ~ b^2 ln(4/b) -> 0
     far |= tiny
     if np.any(~far):  # near-circular: smooth integrand, 48-point Gauss-Legendre
-        x, w = _gauss(48)
+        x, w = gauss_legendre(48)
         psi = 0.5 * math.pi * x
         delta = np.sqrt(1.0 - m[~far, None] * np.sin(psi) ** 2)
         result[~far] = 0.5 * (0.5 * math.pi) * (np.cos(psi) ** 4 / delta**3) @ w
@@ -272,33 +278,6 @@ def friction_inside(c_over_a, b_over_a) -> EllipseFriction:
 # --------------------------------------------------------------------------
 # direct quadrature
 # --------------------------------------------------------------------------
-@lru_cache(maxsize=8)
-def _tanh_sinh(level: int) -> tuple[np.ndarray, np.ndarray]:
-    """Tanh-sinh nodes and weights on (0, 1): step ``h = 2^-level`` in ``t`` over [-4, 4].
-
-    ``x = (1 + tanh(pi/2 sinh t))/2``, ``w = h (pi/4) cosh t / cosh^2(pi/2 sinh t)``; exponential
-    convergence for integrands analytic inside (0, 1), also with algebraic endpoint singularities.
-    """
-    step = 2.0**-level
-    t = np.arange(-4.0, 4.0 + 0.5 * step, step)
-    arg = 0.5 * math.pi * np.sinh(t)
-    x = 0.5 * (1.0 + np.tanh(arg))
-    w = step * 0.25 * math.pi * np.cosh(t) / np.cosh(arg) ** 2
-    keep = (x > 0.0) & (x < 1.0) & (w > 0.0)
-    return checks.read_only(x[keep]), checks.read_only(w[keep])  # cached: shared by every caller
-
-
-def tanh_sinh_rule(level: int) -> tuple[np.ndarray, np.ndarray]:
-    """Tanh-sinh nodes and weights on (0, 1) (step ``2^-level``); shared with :mod:`ellipse_friction_offset`."""
-    return _tanh_sinh(level)
-
-
-@lru_cache(maxsize=8)
-def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
-    x, w = np.polynomial.legendre.leggauss(n)
-    return checks.read_only(0.5 * (x + 1.0)), checks.read_only(0.5 * w)  # on [0, 1]; cached: shared
-
-
 def _radial(kappa, beta, phi):
     """Radial integrals ``J_n = int rho^n sqrt(q(rho)) d rho`` (n = 0, 1, 2) along a ray, centre inside.
 
@@ -334,7 +313,7 @@ def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6):
     curvature = np.empty(kappa.shape)
     inside = np.abs(kappa) <= 1.0
     if np.any(inside):
-        x, w = _tanh_sinh(level)
+        x, w = tanh_sinh(level)
         # phi in [0, pi] (integrands are even in phi), split at pi/2 where smoothness is lost as |kappa| -> 1
         phi = np.concatenate([0.5 * math.pi * x, 0.5 * math.pi * (1.0 + x)])
         weights = np.concatenate([w, w]) * 0.5 * math.pi * 2.0  # factor 2: phi in [-pi, 0]
@@ -350,7 +329,7 @@ def _integrals(kappa: np.ndarray, beta: np.ndarray, level: int = 6):
         # rays from the centre that meet the ellipse: angle phi' from the direction -sign(kappa) with
         # tan(phi') = tau beta / sqrt(kappa^2 - 1), |tau| <= 1; along such a ray the whole chord lies at
         # rho > 0 and R^2 = cos(phi')^2 (1 - tau^2) / A^2 (no cancellation for large |kappa|)
-        x, w = _tanh_sinh(level)
+        x, w = tanh_sinh(level)
         k = kappa[outside][:, None]
         b = beta[outside][:, None]
         excess = (np.abs(k) - 1.0) * (np.abs(k) + 1.0)       # kappa^2 - 1 > 0
@@ -464,7 +443,7 @@ def k_f_least_squares(b_over_a, c_max: float = 0.5) -> np.ndarray:
     beta = _check_ratio(b_over_a, lower=1e-3)
     if c_max < 1e-3:  # the quadrature's absolute accuracy (~1e-16) would swamp c_max: the exact cubic instead
         return k_f_exact(beta) - 0.6 * c_max**2 * cubic_coefficient(beta)
-    x, w = _gauss(24)
+    x, w = gauss_legendre(24)
     kappa = c_max * x  # (0, c_max]; the integrand force*kappa is even
     shape = beta.shape
     b = beta.ravel()

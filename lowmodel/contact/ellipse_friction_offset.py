@@ -73,7 +73,7 @@ from functools import lru_cache
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.contact.ellipse_friction import tanh_sinh_rule
+from ballbench.lowmodel.quadrature import tanh_sinh
 
 __all__ = ["OffsetFriction", "friction_offset", "friction_centre", "FAR_CENTRE"]
 
@@ -117,7 +117,7 @@ def _inside_panels(cos_psi: np.ndarray, sin_psi: np.ndarray, level: int):
     """Angles th' (m, 4 N) and weights of tanh-sinh rules on the panels of [-pi/2, 3 pi/2) split where
     the rays graze the rim as R_c -> 1 (th' = +-pi/2) and at the two minor-axis directions (``_g_poles``):
     every near-singularity of the angular integrand sits at a panel end, where tanh-sinh clusters its nodes."""
-    x, w = tanh_sinh_rule(level)
+    x, w = tanh_sinh(level)
     m = cos_psi.size
     ends = np.concatenate([np.full((m, 1), -0.5 * math.pi), np.full((m, 1), 0.5 * math.pi),
                            _g_poles(cos_psi, sin_psi)], axis=1)
@@ -130,7 +130,7 @@ def _inside_panels(cos_psi: np.ndarray, sin_psi: np.ndarray, level: int):
 def _outside_panels(cos_psi: np.ndarray, sin_psi: np.ndarray, rc: np.ndarray, level: int):
     """x (m, 2 N) in (-pi/2, pi/2) (``sin th' = sin x / R_c``) and weights: two tanh-sinh panels split at the
     minor-axis direction if it lies inside the cone of rays that meet the disc, else at x = 0."""
-    t, w = tanh_sinh_rule(level)
+    t, w = tanh_sinh(level)
     poles = _g_poles(cos_psi, sin_psi)
     poles = np.where(poles > math.pi, poles - 2.0 * math.pi, poles)          # th' in (-pi, pi]
     half = np.arcsin(np.minimum(1.0, 1.0 / rc))                             # cone half-angle

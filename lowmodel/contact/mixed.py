@@ -49,7 +49,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import ehl, halfspace
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["MixedContact", "asperity_contact", "solve_mixed", "MixedFriction", "mixed_friction"]
+__all__ = ["MixedContact", "asperity_contact", "solve", "MixedFriction", "mixed_friction"]
 
 
 @dataclass(frozen=True)
@@ -110,7 +110,7 @@ def asperity_contact(film: np.ndarray, heights: np.ndarray, grid: halfspace.Surf
     return contact.pressure, contact.force, contact.separation
 
 
-def solve_mixed(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus: float,
+def solve(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus: float,
                 load: float, entrainment_speed: float, viscosity_0: float, density_0: float = 1.0, *,
                 initial_film: float = 1e-7, share_tolerance: float = 1e-2, max_iterations: int = 12,
                 smallest_film_share: float = 0.02, coarsest: int = 16, ehl_iterations: int = 400,

@@ -3,7 +3,7 @@
 sun2021 Sec 2.2 solves the ball-raceway contact by the minimum-excess principle
 (eqs 3-12, :mod:`.halfspace`) because the helix makes the contact region rotate
 (deflection angle theta_s) and its pressure differ from Hertz.  This module
-separates the effects (issue 14, item 3):
+separates the effects (docs/halfspace.md):
 
 1. **full-tensor Hertz**: the exact curvature tensor of the swept groove surface
    at the contact point (:func:`ballbench.lowmodel.geometry.groove.contact_frame`,

@@ -1,8 +1,9 @@
-"""Sampled contact tractions with pointwise full-slip Coulomb friction (issue 12, FE-informed B2B models).
+"""Sampled contact tractions with pointwise full-slip Coulomb friction (the FE-informed B2B models,
+docs/b2b_traction.md).
 
 Shared by the FE-informed ball-to-ball models of the linear bearing
 (:mod:`lowmodel.linear_bearing.b2b_traction`) and the ball screw
-(:mod:`lowmodel.screw.screw_b2b_traction`): one implementation of
+(:mod:`lowmodel.screw.b2b_traction`): one implementation of
 
 * :class:`TractionPatch`, one ball-to-groove contact given as sampled points of the
   (curved) contact surface, each with its unit normal and the normal force it carries
@@ -30,10 +31,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces, chain_system
 from ballbench.lowmodel.solvers import newton
 
 __all__ = ["TractionPatch", "check_patch", "ellipse_samples", "SampledCoulomb", "free_ball_starts", "StackedPatches",
-           "stack_patches"]
+           "stack_patches", "solve_chain"]
 
 
 @dataclass(frozen=True)
@@ -195,6 +197,36 @@ def free_ball_starts(evaluate, guess: np.ndarray, *, tolerance: float, max_itera
                                  what=f"{what} {b}")
         iterations = max(iterations, its)
     return free, iterations
+
+
+def solve_chain(samples: SampledCoulomb, guess: np.ndarray, touching: np.ndarray, pair_function_of, *,
+                complementarity: str, tolerance: float, max_iterations: int, what_ball: str, what_chain: str):
+    """The balls of ``samples`` with B2B contact of the ``touching`` pairs: every ball alone first
+    (:func:`free_ball_starts` from ``guess`` (n, k)), then the chain of :mod:`lowmodel.b2b_chain` (rate: unknown 0,
+    ``gamma`` = COMPLEMENTARITY_SCALE) with the pair loads ``pair_function_of(layout)`` (the model's B2B law).
+
+    Returns ``(states (n, k), forces (n-1,) in force-slot units (0 on open pairs), iterations, max residual)``;
+    ConvergenceError (:func:`lowmodel.solvers.newton`, :func:`lowmodel.b2b_chain.chain_forces`) naming
+    ``what_ball`` or ``what_chain``.
+    """
+    def ball_function(states, _extra=None):
+        residual, jac, _, _ = samples.evaluate(states)
+        return BallBlocks(residual, jac)
+
+    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance, max_iterations=max_iterations,
+                                        what=what_ball)
+    n = len(guess)
+    if touching.size == 0:
+        return free, np.zeros(n - 1), iterations, float(np.max(np.abs(ball_function(free).residual)))
+    layout = ChainLayout(n, guess.shape[1], touching)
+    function = chain_system(ball_function, pair_function_of(layout), layout, rate_index=0,
+                            rate_scale=COMPLEMENTARITY_SCALE, complementarity=complementarity)
+    z, residual, its = newton(function, layout.pack(free), tolerance=tolerance, max_iterations=max_iterations,
+                              what=what_chain)
+    iterations += its
+    states, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
+                                     iterations=iterations, what=what_chain)
+    return states, forces, iterations, float(np.max(np.abs(residual)))
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ and sits at ``R_B n_i`` with the outward unit normal (lin2017 eq 1)::
     n_BL = (-sin b, -cos b),  n_BR = (sin b, -cos b),
     n_TR = ( sin b,  cos b),  n_TL = (-sin b,  cos b)      (b = beta_i)
 
-The models (:mod:`lowmodel.fourpoint`, :mod:`lowmodel.linear_bearing.bearing_ball`)
+The models (:mod:`lowmodel.linear_bearing.fourpoint`, :mod:`lowmodel.linear_bearing.ball`)
 and the mesh builders take the normals and points from here.
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Ball-to-ball (B2B) contact of 2 to N balls in a four-point-contact linear ball bearing.
 
 lin2019 Sec 2.2, eqs 5-10 (low-order numerical model), built on the single-ball
-equilibrium of :mod:`lowmodel.linear_bearing.bearing_ball` (eq 4).
+equilibrium of :mod:`lowmodel.linear_bearing.ball` (eq 4).
 
 Balls ``j = 0 .. n-1`` are ordered along +z (ball 0 is "ball 1, behind" of
 lin2019 Fig 1).  Pair ``j`` is (ball j, ball j+1); ``gap_j = d_{j,j+1} - 2 R_B``.
@@ -28,9 +28,10 @@ Contact complementarity (eqs 9-10), for a pair that touches (gap <= 0)::
 
 and ``F_B2B = 0`` for an open pair.  Solved as one nonlinear complementarity
 problem by a semismooth Newton method on ``min(F_B2B/(mu F_ref),
-gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (the primal-dual active-set method; no
-enumeration of contact patterns).  Ball-to-groove normal forces are not
-changed by the B2B forces (lin2019 Sec 2.2, "decoupled").
+gamma (v_B,j+1 - v_B,j)/|v|) = 0`` with the equilibrium of all balls: the chain
+of :mod:`lowmodel.b2b_chain` (shared with the ball screw and the FE-informed
+models), with the B2B loads of :func:`b2b_terms`.  Ball-to-groove normal forces
+are not changed by the B2B forces (lin2019 Sec 2.2, "decoupled").
 
 Time evolution (:func:`simulate_gaps`, lin2019 Fig 10): between events the
 quasi-static velocities are constant, so gaps move linearly; events are a
@@ -46,28 +47,27 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
+    chain_system
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing.bearing_ball import (
+from ballbench.lowmodel.linear_bearing import ball as single
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
+from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
-    BallContacts,
     BallState,
-    ball_contacts,
     ball_state,
     ball_terms,
     initial_guess,
-    solve_ball,
     solve_branch,
     solve_free,
     solve_with_continuation,
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
-           "complementarity_forces", "touching_pairs", "COMPLEMENTARITY_SCALE", "SPARSE_BALLS",
-           "MU_PATH_START"]
+__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system", "pair_function",
+           "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
-COMPLEMENTARITY_SCALE = 10.0  # gamma: weighs velocity vs force in the min() function (path only)
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
 _IDENTITY_2 = np.eye(2)
 
@@ -188,37 +188,39 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     n = contacts.n_balls
     touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
     if n == 1 or touching.size == 0:
-        return solve_ball(contacts, tolerance=tolerance, max_iterations=max_iterations)
+        return single.solve(contacts, tolerance=tolerance, max_iterations=max_iterations)
     mu = contacts.friction_coefficient
     reference_force = float(contacts.normal_forces.max())
     speed = abs(contacts.groove_velocity)
     k = N_UNKNOWNS
     what = f"{n}-ball B2B contact"
-    ball_index, _ = _layout(n, k, touching)
+    layout = ChainLayout(n, k, touching)
     at = {}  # the contacts the coupled system is evaluated for (one system, built once per solve)
 
-    def ball_function(balls):
+    def ball_function(balls, _extra=None):
         terms = ball_terms(balls, at["contacts"], reference_force)
         at["last"] = (balls, at["contacts"], terms)  # the converged point's terms are the last ones evaluated
-        return terms.residual, terms.jacobian
+        return BallBlocks(terms.residual, terms.jacobian)
 
-    function, _, pack = coupled_system(ball_function, n, k, touching, mu)
-    systems = {mu: function}  # one coupled system per friction coefficient (the mu path below)
+    systems = {mu: coupled_system(ball_function, layout, mu)}  # one system per friction coefficient (mu path)
 
     def balls_of(z):
-        return z[ball_index]
+        return layout.unpack(z)[0]
 
     def with_balls(z, balls):
         z = z.copy()
-        z[ball_index] = balls
+        z[:n * (k + 1)].reshape(n, k + 1)[:, :k] = balls
         return z
+
+    def pack(balls):
+        return layout.pack(balls)
 
     def solve_at(contacts_s, z0, label=what):
         at["contacts"] = contacts_s
         mu_s = contacts_s.friction_coefficient
         if mu_s not in systems:
-            systems[mu_s] = coupled_system(ball_function, n, k, touching, mu_s)[0]
-        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, reference_force, tolerance=tolerance,
+            systems[mu_s] = coupled_system(ball_function, layout, mu_s)
+        return solve_branch(systems[mu_s], z0, balls_of, contacts_s, tolerance=tolerance,
                             max_iterations=max_iterations, what=label, with_balls=with_balls)
 
     def mu_at(s):  # the friction coefficient from mu / MU_PATH_START to mu, geometrically (B2B friction grows)
@@ -248,7 +250,8 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                                                                        what=what, balls_of=balls_of,
                                                                        extra_paths=(("mu", MU_PATH_START, mu_at),))
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
-    balls, forces = complementarity_forces(z, n, k, touching, tolerance=tolerance, iterations=iterations, what=what)
+    balls, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
+                                    iterations=iterations, what=what)
     last_balls, last_contacts, terms = at["last"]
     if last_contacts is not contacts or not np.array_equal(last_balls, balls):
         terms = ball_terms(balls, contacts, reference_force)
@@ -258,122 +261,35 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
 
 
-SPARSE_BALLS = 6  # chains of at least this many balls keep the block Jacobian (dense arrays are faster below)
+def coupled_system(ball_function, layout: ChainLayout, mu: float):
+    """Residual and Jacobian ``function(z)`` of the balls of ``layout`` with B2B contact (lin2019 eqs 4-10).
 
-
-def _layout(n: int, k: int, touching: np.ndarray):
-    """Positions of the unknowns in ``z``: ball j's ``k`` unknowns, then the force slot of pair j.
-
-    Every ball owns ``k + 1`` consecutive unknowns (a uniform block size): its own ``k`` and the force
-    ``F_B2B/(mu F_ref)`` of the pair (j, j+1).  The slot of an open pair (and of the last ball) is a
-    placeholder fixed at 0 by the residual row ``z = 0``.  The Jacobian is then block tridiagonal with
-    ``(k + 1)``-blocks (a ball couples only to its neighbours and to the forces between them).
-    Returns ``ball_index`` (n, k) and ``force_index`` (touching pairs,).
+    ``ball_function(balls, extra)`` -> :class:`lowmodel.b2b_chain.BallBlocks` of every ball on its own, with
+    ``balls`` (n, k) the per-ball unknowns: the first three are ``(v_B, omega_x R_B, omega_y R_B)/|v|``, the
+    first three residual rows eq 4 (z force, x and y moments / R_B) in units of ``mu F_ref``; the other
+    ``k - 3`` unknowns and rows are the model's own (slip angles of the low-order model; none for
+    :mod:`lowmodel.linear_bearing.b2b_traction`).  The B2B loads of eqs 5-8 (:func:`b2b_terms`) are added to
+    the eq 4 rows and the complementarity of eqs 9-10 is ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|)
+    = 0``: the chain of :func:`lowmodel.b2b_chain.chain_system` (force slots in units of ``mu F_ref``).
     """
-    start = (k + 1) * np.arange(n)
-    return start[:, None] + np.arange(k)[None, :], start[touching] + k
+    return chain_system(ball_function, pair_function(layout, mu), layout, rate_index=0,
+                        rate_scale=COMPLEMENTARITY_SCALE)
 
 
-def coupled_system(ball_function, n_balls: int, n_unknowns: int, touching: np.ndarray, mu: float):
-    """Residual and Jacobian of ``n_balls`` balls with B2B contact at the ``touching`` pairs (lin2019 eqs 4-10).
+def pair_function(layout: ChainLayout, mu: float):
+    """The B2B loads of eqs 5-8 (:func:`b2b_terms`, looked up at call time) as the pair blocks of the chain
+    :class:`lowmodel.b2b_chain.PairBlocks`: on rows 0-2 (eq 4) of balls with ``layout.n_unknowns`` unknowns each."""
+    k = layout.n_unknowns
 
-    ``ball_function(balls)`` -> ``(residual (n, k), jacobian (n, k, k))`` of every ball on its own, with
-    ``balls`` (n, k) the per-ball unknowns: the first three are ``(v_B, omega_x R_B, omega_y R_B)/|v|``,
-    the first three residual rows eq 4 (z force, x and y moments / R_B) in units of ``mu F_ref``; the
-    other ``k - 3`` unknowns and rows are the model's own (slip angles of the low-order model; none for
-    :mod:`lowmodel.linear_bearing.b2b_traction`).  The B2B loads (eqs 5-8, :func:`b2b_terms`) are added
-    to the eq 4 rows and the complementarity of eqs 9-10 is written as the semismooth
-    ``min(F_B2B/(mu F_ref), gamma (v_B,j+1 - v_B,j)/|v|) = 0`` (``gamma`` = COMPLEMENTARITY_SCALE).
+    def function(balls, forces):
+        load, block, d_force, slip = b2b_terms(balls[:, :3], forces, mu)
+        d_balls = np.zeros((len(forces), 2, 2, k, k))
+        d_balls[:, :, :, 1:3, 1:3] = block[:, None, None]  # the B2B moment: rows and columns 1, 2 of both balls
+        d_load_d_force = np.zeros((len(forces), 2, k))
+        d_load_d_force[:, :, :3] = d_force.transpose(0, 2, 1)
+        return PairBlocks(load, d_balls, d_load_d_force, slip)
 
-    The state ``z`` holds ``k + 1`` unknowns per ball (:func:`_layout`), so the Jacobian is block
-    tridiagonal and is assembled as its three block diagonals, a
-    :class:`lowmodel.solvers.BlockTridiagonal` for ``n >= SPARSE_BALLS`` (Newton's normal equations go
-    straight into band storage: cost linear in ``n``, no per-solve index pattern) and a dense array below.
-    Returns ``(function, unpack, pack)``: ``function(z) -> (residual, jacobian)``,
-    ``unpack(z) -> (balls (n, k), forces (n-1,))`` and ``pack(balls) -> z`` (touching forces 0).
-    """
-    from ballbench.lowmodel.solvers import BlockTridiagonal
-
-    n, k = n_balls, n_unknowns
-    gamma = COMPLEMENTARITY_SCALE
-    dense = n < SPARSE_BALLS
-    touches = np.zeros(n, dtype=bool)
-    touches[touching] = True  # slot of pair j (last ball: never)
-    placeholder = ~touches
-
-    def unpack(z):
-        blocks = z.reshape(n, k + 1)
-        return blocks[:, :k], np.where(touches[:-1], blocks[:-1, k], 0.0)
-
-    def pack(balls):
-        z = np.zeros((n, k + 1))
-        z[:, :k] = balls
-        return z.reshape(-1)
-
-    every_pair = bool(touches[:-1].all())
-    live = touches[:-1, None]
-
-    def function(z):
-        blocks = z.reshape(n, k + 1)
-        balls = blocks[:, :k]
-        slots = blocks[:, k]
-        lam = np.where(touches, slots, 0.0)  # (n,), the last one 0
-        forces = lam[:-1]
-        ball_residual, ball_jacobian = ball_function(balls)
-        load, block, d_force, _ = b2b_terms(balls[:, :3], forces, mu)
-        residual = np.empty((n, k + 1))
-        residual[:, :k] = ball_residual
-        residual[:, :3] += load  # lin2019 eq 8 for every ball
-        # eq 9/10 as min(F, gamma * separation rate) = 0 (semismooth); placeholders: z = 0
-        rate = np.zeros(n)  # gamma (v_B,j+1 - v_B,j)/|v|
-        np.subtract(balls[1:, 0], balls[:-1, 0], out=rate[:-1])
-        rate *= gamma
-        force_branch = lam <= rate
-        force_branch |= placeholder
-        residual[:, k] = np.where(force_branch, np.where(placeholder, slots, lam), rate)
-        jacobian = np.zeros((3, n, k + 1, k + 1))  # block diagonals: lower, diagonal, upper
-        lower, diagonal, upper = jacobian
-        diagonal[:, :k, :k] = ball_jacobian
-        # B2B moment: rows (1, 2) of balls (j, j+1) depend on columns (1, 2) of balls (j, j+1) alike
-        diagonal[:-1, 1:3, 1:3] += block
-        diagonal[1:, 1:3, 1:3] += block
-        upper[:-1, 1:3, 1:3] = block
-        lower[1:, 1:3, 1:3] = block
-        # force columns (slot k of ball j's block): rows 0..2 of ball j (diagonal) and ball j+1 (lower)
-        if every_pair:
-            diagonal[:-1, :3, k] = d_force[:, :, 0]
-            lower[1:, :3, k] = d_force[:, :, 1]
-        else:
-            diagonal[:-1, :3, k] = np.where(live, d_force[:, :, 0], 0.0)
-            lower[1:, :3, k] = np.where(live, d_force[:, :, 1], 0.0)
-        diagonal[:, k, k] = force_branch
-        velocity_branch = np.where(force_branch, 0.0, gamma)  # d (gamma separation rate) / d v_B of ball j+1
-        upper[:, k, 0] = velocity_branch
-        diagonal[:, k, 0] = -velocity_branch
-        jacobian = BlockTridiagonal(lower, diagonal, upper)
-        return residual.reshape(-1), (jacobian.toarray() if dense else jacobian)
-
-    return function, unpack, pack
-
-
-def complementarity_forces(z: np.ndarray, n_balls: int, n_unknowns: int, touching: np.ndarray, *,
-                           tolerance: float, iterations: int, what: str):
-    """Ball unknowns (n, k) and B2B forces (n-1,) [units mu F_ref] of a converged state of
-    :func:`coupled_system`; ConvergenceError if eqs 9-10 are violated by more than ``10 tolerance``.
-    Pairs on the ``F = 0`` branch of the min() function get exactly zero force."""
-    gamma = COMPLEMENTARITY_SCALE
-    ball_index, force_index = _layout(n_balls, n_unknowns, touching)
-    balls = z[ball_index]
-    forces = np.zeros(n_balls - 1)
-    forces[touching] = z[force_index]
-    separation = balls[touching + 1, 0] - balls[touching, 0]
-    violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
-    if violation > 10 * tolerance:
-        raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                               tolerance=tolerance)
-    forces = np.maximum(forces, 0.0)
-    forces[touching[z[force_index] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
-    return balls, forces
+    return function
 
 
 @dataclass(frozen=True)

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.fourpoint import contact_limits
+from ballbench.lowmodel.linear_bearing.fourpoint import contact_limits
 
 __all__ = [
     "K_F_PAPER",
@@ -298,7 +298,7 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     see :func:`contact_force`).  Validity: four-point contact of both balls at their
     actual contact angles ``beta_0 + (-theta, theta, Delta beta_TR, Delta beta_TL)``,
     i.e. each in (0, pi/2) and ``rho`` inside the lin2017 eq 37 range for ball 1 and
-    ``-rho`` for ball 2 (:func:`lowmodel.fourpoint.contact_limits`); ValueError otherwise.
+    ``-rho`` for ball 2 (:func:`lowmodel.linear_bearing.fourpoint.contact_limits`); ValueError otherwise.
 
     Parameters: ``theta`` [rad] and ``rho`` (broadcast), ``normal_load`` N_y [N],
     ``groove_velocity`` v [m/s], ``friction_coefficient`` mu, ``psi``
@@ -357,7 +357,7 @@ def _check_four_point(theta, rho, top_tr, top_tl, beta0) -> None:
     Ball 1 needs ``rho`` and ball 2 ``-rho`` inside the eq 37 range
     ``(-min(tan beta_BL, tan beta_TR), min(tan beta_BR, tan beta_TL))``; for the pair
     this is ``|rho| < tan(min_i beta_i)`` (tan rises on (0, pi/2)), the fast test used
-    here; the message quotes :func:`lowmodel.fourpoint.contact_limits`.
+    here; the message quotes :func:`lowmodel.linear_bearing.fourpoint.contact_limits`.
     """
     # worst case over the whole batch first (reductions only): the common case needs no elementwise tan
     theta_max = float(np.max(np.abs(theta)))

@@ -12,7 +12,7 @@ pressure times its quadrature area, or samples of Hertz's ellipse in tests):
 
 (:class:`~lowmodel.contact.traction.TractionPatch`; the pointwise friction below is
 :class:`~lowmodel.contact.traction.SampledCoulomb`, shared with the ball screw's
-:mod:`lowmodel.screw.screw_b2b_traction`.)
+:mod:`lowmodel.screw.b2b_traction`.)
 
 Full-slip Coulomb friction at every point, opposite to the rigid-body slip of
 the ball against its groove projected on the tangent plane of the contact
@@ -29,8 +29,9 @@ up to the quadrature (tests/test_b2b_traction.py).
 Ball equilibrium and the B2B conditions are those of the low-order model: the
 three rows of lin2019 eq 4 (z force, x and y moments about the ball centre),
 with the B2B loads of eqs 5-8 and the complementarity of eqs 9-10 from
-:func:`lowmodel.linear_bearing.b2b.coupled_system` (one implementation for
-both models).  Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
+:func:`lowmodel.linear_bearing.b2b.coupled_system` (the chain of
+:mod:`lowmodel.b2b_chain`: one implementation for all B2B models).
+Unknowns per ball: ``(v_B, omega_x R_B, omega_y R_B)/|v|``.
 The residual of one ball is ``-grad`` of the regularised dissipation
 ``sum_k mu F_k sqrt(|P_k s_k|^2 + eps^2)``, so its Jacobian is symmetric and
 negative semi-definite (a single ball has a unique state); Newton with
@@ -60,22 +61,24 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts, stack_patches)
+                                                 solve_chain, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
-from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, complementarity_forces, coupled_system, touching_pairs
-from ballbench.lowmodel.linear_bearing.bearing_ball import BallContacts
-from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.linear_bearing.b2b import b2b_terms, pair_function, touching_pairs
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts
+from ballbench.lowmodel.solvers import check_solver_options
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
 
-POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
 
 
 @dataclass(frozen=True)
-class TractionState:
-    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; patches in the given order).
+class TractionState(BallStateBase):
+    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; patches in the given order); the power, B2B
+    and loss fields of :class:`lowmodel.state.BallStateBase`:
 
     ball_velocity : (n,) m/s;  omega : (n, 2) rad/s ``(omega_x, omega_y)``
     velocity_deviation : (n,) ``2 v_B / v - 1`` (lin2019 eq 21)
@@ -93,19 +96,7 @@ class TractionState:
     velocity_deviation: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
-    input_power: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    b2b_slip: np.ndarray
     power_balance: float
-    iterations: int
-    residual: float
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
 class _Samples(SampledCoulomb):
@@ -200,24 +191,10 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     samples = _Samples(balls, radius, reference_force, sign, eps)
     guess = _initial_guess(balls, sign)
 
-    def ball_function(states):
-        residual, jac, _, _ = samples.evaluate(states)
-        return residual, jac
-
-    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
-                                        max_iterations=max_iterations, what="FE-informed ball")
-    if touching.size == 0:
-        states, forces = free, np.zeros(n - 1)
-        residual_norm = float(np.max(np.abs(ball_function(states)[0])))
-    else:
-        function, _, pack = coupled_system(ball_function, n, N_UNKNOWNS, touching, mu)
-        z0 = pack(free)
-        what = f"FE-informed {n}-ball B2B contact"
-        z, residual, its = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations, what=what)
-        iterations += its
-        states, forces = complementarity_forces(z, n, N_UNKNOWNS, touching, tolerance=tolerance,
-                                                iterations=iterations, what=what)
-        residual_norm = float(np.max(np.abs(residual)))
+    states, forces, iterations, residual_norm = solve_chain(
+        samples, guess, touching, lambda layout: pair_function(layout, mu), complementarity="min",
+        tolerance=tolerance, max_iterations=max_iterations, what_ball="FE-informed ball",
+        what_chain=f"FE-informed {n}-ball B2B contact")
     return _state(samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
                   residual_norm)
 
@@ -255,5 +232,6 @@ def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, refer
                                tolerance=POWER_BALANCE_TOLERANCE)
     ball_velocity = states[:, 0] * speed
     return TractionState(ball_velocity, states[:, 1:3] * speed / radius, 2.0 * ball_velocity / velocity - 1.0,
-                         friction_force, friction_moment, loss, input_power, b2b_force, b2b_loss, b2b_slip,
-                         balance, iterations, residual_norm)
+                         friction_force, friction_moment, balance, friction_loss=loss, input_power=input_power,
+                         b2b_force=b2b_force, b2b_friction_loss=b2b_loss, b2b_slip=b2b_slip, iterations=iterations,
+                         residual=residual_norm)

@@ -7,7 +7,7 @@ frame, relative velocities, entrainment velocity (eqs 1-2), sliding velocity
 and centrifugal force (eq 22).  The same inputs also give Wei's measures
 (:func:`absolute_velocity_measures`, entrainment and slide-roll ratio from
 absolute velocities) and the Harris method of a ball bearing
-(:mod:`lowmodel.screw.harris`).
+(:mod:`lowmodel.ball_bearing.harris`).
 
 Geometry and frames come from :mod:`lowmodel.geometry.helix`: vectors are Frenet
 components ``(t, n, b)`` of the ball at azimuth ``theta = 0`` (wang2022
@@ -25,16 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.dual import cross
 from ballbench.lowmodel.geometry import helix
 
 __all__ = ["ScrewKinematics", "kinematics", "pitch_angle", "orbital_speed", "ball_spin_speed",
            "ball_angular_velocity", "centrifugal_force", "absolute_velocity_measures", "entrainment_velocity",
            "slide_roll_ratio", "slide_roll_ratio_magnitude", "wei_ball_centre_kinematics", "WeiKinematics"]
-
-
-def _cross3(a, b):
-    """Cross product of two (t, n, b) component triples."""
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def _add(a, b):
@@ -68,8 +64,30 @@ def _norm(vector: np.ndarray) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------
-# ball motion, wang2022 eqs 18-22
+# ball motion, wang2022 eqs 18-22: unchecked kernels (shared by kinematics()) and checked public wrappers
 # --------------------------------------------------------------------------
+def _pitch_angle(cos_o, sin_o, gamma):
+    """wang2022 eq 21: ``tan beta = sin alpha_o / (cos alpha_o (1 + gamma'))``."""
+    return np.arctan2(sin_o, cos_o * (1.0 + gamma))
+
+
+def _orbital_speed(omega, gamma, cos_o, sin_o, cos_i, sin_i, tan_beta):
+    """wang2022 eq 18: ``omega_m = omega / (1 + ratio)``."""
+    ratio = ((1.0 + gamma * cos_o) * (cos_i + tan_beta * sin_i)
+             / ((1.0 - gamma * cos_i) * (cos_o + tan_beta * sin_o)))
+    return omega / (1.0 + ratio)
+
+
+def _spin_speed(omega_m, gamma, cos_o, sin_o, cos_psi, cos_beta, sin_beta):
+    """wang2022 eq 19: the ball's spin speed omega_R relative to the Frenet frame."""
+    return omega_m * (1.0 + gamma * cos_o) * cos_psi / (gamma * (cos_beta * cos_o + sin_beta * sin_o))
+
+
+def _angular_velocity(spin, cos_beta, sin_beta, yaw):
+    """wang2022 eq 20: ``(omega_t, omega_n, omega_b)`` as a component triple."""
+    return (spin * cos_beta * np.sin(yaw), -spin * sin_beta, -spin * cos_beta * np.cos(yaw))
+
+
 def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
     """Ball pitch angle beta [rad] relative to the Frenet frame (wang2022 eq 21).
 
@@ -79,7 +97,7 @@ def pitch_angle(contact_angle_nut, ball_radius, pitch_radius) -> np.ndarray:
     alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
     gamma = checks.positive("ball_radius", ball_radius, "m") / checks.positive(
         "pitch_radius", pitch_radius, "m")
-    return np.arctan2(np.sin(alpha_o), np.cos(alpha_o) * (1.0 + gamma))  # wang2022 eq 21
+    return _pitch_angle(np.cos(alpha_o), np.sin(alpha_o), gamma)
 
 
 def _radius_ratio(ball_radius, pitch_radius):
@@ -104,10 +122,9 @@ def orbital_speed(screw_speed, ball_radius, pitch_radius, contact_angle_nut, con
     alpha_o = checks.contact_angle("contact_angle_nut", contact_angle_nut)
     alpha_i = checks.contact_angle("contact_angle_screw", contact_angle_screw)
     tan_beta = np.tan(checks.contact_angle("pitch_angle_rad", pitch_angle_rad))
-    ratio = ((1.0 + gamma * np.cos(alpha_o)) * (np.cos(alpha_i) + tan_beta * np.sin(alpha_i))
-             / ((1.0 - gamma * np.cos(alpha_i)) * (np.cos(alpha_o) + tan_beta * np.sin(alpha_o))))
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        speed = omega / (1.0 + ratio)  # wang2022 eq 18
+        speed = _orbital_speed(omega, gamma, np.cos(alpha_o), np.sin(alpha_o), np.cos(alpha_i), np.sin(alpha_i),
+                               tan_beta)  # wang2022 eq 18
     return checks.finite_result("screw_speed, ball_radius, pitch_radius", speed, "rad/s")
 
 
@@ -124,8 +141,8 @@ def ball_spin_speed(orbital_speed_rad_s, ball_radius, pitch_radius, contact_angl
     beta = checks.contact_angle("pitch_angle_rad", pitch_angle_rad)
     psi = checks.lead_angle("lead_angle", lead_angle)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        spin = (omega_m * (1.0 + gamma * np.cos(alpha_o)) * np.cos(psi)
-                / (gamma * (np.cos(beta) * np.cos(alpha_o) + np.sin(beta) * np.sin(alpha_o))))  # wang2022 eq 19
+        spin = _spin_speed(omega_m, gamma, np.cos(alpha_o), np.sin(alpha_o), np.cos(psi), np.cos(beta),
+                           np.sin(beta))  # wang2022 eq 19
     return checks.finite_result("orbital_speed_rad_s, ball_radius, pitch_radius", spin, "rad/s")
 
 
@@ -137,8 +154,7 @@ def ball_angular_velocity(spin_speed, pitch_angle_rad, yaw_angle=0.0) -> np.ndar
     spin, beta, yaw = np.broadcast_arrays(checks.finite("spin_speed", spin_speed, "rad/s"),
                                           checks.finite("pitch_angle_rad", pitch_angle_rad, "rad"),
                                           checks.finite("yaw_angle", yaw_angle, "rad"))
-    return np.stack([spin * np.cos(beta) * np.sin(yaw), -spin * np.sin(beta),
-                     -spin * np.cos(beta) * np.cos(yaw)], axis=-1)  # wang2022 eq 20
+    return np.stack(_angular_velocity(spin, np.cos(beta), np.sin(beta), yaw), axis=-1)  # wang2022 eq 20
 
 
 def centrifugal_force(ball_mass, pitch_radius, orbital_speed_rad_s) -> np.ndarray:
@@ -312,21 +328,17 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
         r_m, r_b, lead_m, omega, alpha_o, alpha_i, psi, yaw)
     zero = np.zeros(r_m.shape)
 
-    # ball motion: trigonometric functions once (the eq-by-eq helpers above recompute them; same formulas)
+    # ball motion, wang2022 eqs 18-21 (the kernels of the public helpers above), trigonometric functions once:
+    # beta's sine and cosine from the right triangle of eq 21 rather than from beta
     cos_o, sin_o, cos_i, sin_i = np.cos(alpha_o), np.sin(alpha_o), np.cos(alpha_i), np.sin(alpha_i)
     gamma = r_b / r_m  # gamma' of wang2022
-    beta = np.arctan2(sin_o, cos_o * (1.0 + gamma))  # wang2022 eq 21
+    beta = _pitch_angle(cos_o, sin_o, gamma)  # wang2022 eq 21
     hypotenuse = np.sqrt(sin_o**2 + (cos_o * (1.0 + gamma)) ** 2)
     cos_beta, sin_beta = cos_o * (1.0 + gamma) / hypotenuse, sin_o / hypotenuse
-    tan_beta = sin_beta / cos_beta
-    ratio = ((1.0 + gamma * cos_o) * (cos_i + tan_beta * sin_i)
-             / ((1.0 - gamma * cos_i) * (cos_o + tan_beta * sin_o)))
-    omega_m = omega / (1.0 + ratio)  # wang2022 eq 18
-    omega_spin = (omega_m * (1.0 + gamma * cos_o) * np.cos(psi)
-                  / (gamma * (cos_beta * cos_o + sin_beta * sin_o)))  # wang2022 eq 19
+    omega_m = _orbital_speed(omega, gamma, cos_o, sin_o, cos_i, sin_i, sin_beta / cos_beta)  # wang2022 eq 18
+    omega_spin = _spin_speed(omega_m, gamma, cos_o, sin_o, np.cos(psi), cos_beta, sin_beta)  # wang2022 eq 19
     # vectors as (t, n, b) component triples inside (contiguous, fast); stacked to (..., 3) on output
-    omega_ball = (omega_spin * cos_beta * np.sin(yaw), -omega_spin * sin_beta,
-                  -omega_spin * cos_beta * np.cos(yaw))  # wang2022 eq 20
+    omega_ball = _angular_velocity(omega_spin, cos_beta, sin_beta, yaw)  # wang2022 eq 20
     # geometry and frame from the geometry core (lowmodel.geometry.helix), as component triples
     axis = _components(helix.axis_in_frenet(psi))  # k in CS1 (wang2022 eq 15)
     offset_a = _components(helix.contact_offset(r_b, alpha_o, "nut"))  # wang2022 eq 11
@@ -335,14 +347,14 @@ def kinematics(pitch_radius, ball_radius, lead, screw_speed, contact_angle_nut, 
     centre_b = (zero, offset_b[1] - r_m, offset_b[2])
 
     nut = _scale(-omega * helix.helix_parameter(lead_m), axis)  # wang2022 eq 16
-    screw = _scale(omega, _cross3(axis, centre_b))  # wang2022 eq 17
+    screw = _scale(omega, cross(axis, centre_b))  # wang2022 eq 17
     # convected velocity: ball-centre velocity + frame rotation omega_m k x R (wang2022 eqs 25-26)
     centre_velocity = _components(helix.ball_centre_velocity(omega_m, omega, r_m, lead_m, lead_angle=psi))
     frame_rate = _scale(omega_m, axis)  # helix.frame_angular_velocity: omega_m k
-    convected_a = _add(centre_velocity, _cross3(frame_rate, offset_a))  # wang2022 eq 25
-    convected_b = _add(centre_velocity, _cross3(frame_rate, offset_b))  # wang2022 eq 26
-    ball_rel_a = _cross3(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23 (= V_Ab^r, eq 28)
-    ball_rel_b = _cross3(omega_ball, offset_b)  # omega_R x R_O'B, wang2022 eq 24 (= V_Bb^r, eq 30)
+    convected_a = _add(centre_velocity, cross(frame_rate, offset_a))  # wang2022 eq 25
+    convected_b = _add(centre_velocity, cross(frame_rate, offset_b))  # wang2022 eq 26
+    ball_rel_a = cross(omega_ball, offset_a)  # omega_R x R_O'A, wang2022 eq 23 (= V_Ab^r, eq 28)
+    ball_rel_b = cross(omega_ball, offset_b)  # omega_R x R_O'B, wang2022 eq 24 (= V_Bb^r, eq 30)
     ball_a = _add(convected_a, ball_rel_a)  # wang2022 eq 23
     ball_b = _add(convected_b, ball_rel_b)  # wang2022 eq 24
     nut_rel = _sub(nut, convected_a)  # wang2022 eq 27

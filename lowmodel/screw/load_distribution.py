@@ -4,7 +4,7 @@ lin2019 Sec 3.4 takes the load of each ball from its ref [19] (a low-order model
 lateral deformation and geometric errors, not available here).  This module is a
 documented substitute with two ingredients:
 
-1. **Hertz contacts of one ball** (:mod:`lowmodel.screw.screw_ball`): the relative
+1. **Hertz contacts of one ball** (:mod:`lowmodel.screw.ball`): the relative
    axial shift ``u`` of nut and screw that makes a nominal ball (theta = 0, the
    module's preload) carry the axial load ``q``, ``u = U(q)``, tabulated by solving the
    single-ball model (friction included) on a grid of loads and interpolated
@@ -33,7 +33,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["BarSections", "bar_sections", "AxialStiffness", "axial_stiffness", "distribute"]
 
@@ -46,7 +47,7 @@ class BarSections:
     nut_area: float
 
 
-def bar_sections(module: sb.ScrewModule, *, screw_radius: float | None = None,
+def bar_sections(module: screw_contacts.ScrewModule, *, screw_radius: float | None = None,
                  nut_outer_radius: float | None = None) -> BarSections:
     """Screw as a solid bar of radius ``R_P - R_B`` (default), nut as a tube from ``R_P + R_B`` to
     ``nut_outer_radius`` (default ``1.7 R_P``, an assumption: lin2019 Table 4 gives no nut size) [m]."""
@@ -100,22 +101,22 @@ class AxialStiffness:
         return out.reshape(np.shape(load)) if np.ndim(load) else float(out[0])
 
 
-def axial_stiffness(module: sb.ScrewModule, max_load: float, points: int = 13, *,
-                    contact_law: sb.GrooveContactLaws | None = None) -> AxialStiffness:
+def axial_stiffness(module: screw_contacts.ScrewModule, max_load: float, points: int = 13, *,
+                    contact_law: screw_contacts.GrooveContactLaws | None = None) -> AxialStiffness:
     """Solve the single-ball model (theta = 0) for ``points`` loads in ``[0, max_load]`` [N].
 
-    ``contact_law``: calibrated contact laws of the screw and nut grooves (:class:`screw_ball.GrooveContactLaws`,
+    ``contact_law``: calibrated contact laws of the screw and nut grooves (:class:`ball.GrooveContactLaws`,
     ``delta = C F^(2/3) + C_b F``) in place of Hertz's ``delta = C F^(2/3)`` (lin2019 eq 53).
     """
     max_load = checks.positive("max_load", max_load, "N")
     points = checks.count("points", points, 4)
     loads = np.linspace(0.0, max_load, points)
-    contacts = sb.ball_contacts(module, 0.0, contact_law=contact_law)
-    try:   # the largest load of the table must still be a Hertz contact (screw_ball.reference_force)
+    contacts = screw_contacts.ball_contacts(module, 0.0, contact_law=contact_law)
+    try:   # the largest load of the table must still be a Hertz contact (ball.reference_force)
         sb.reference_force(contacts, max_load)
     except ValueError as error:
         raise ValueError(f"max_load: {error}") from None
-    shifts = np.array([sb.solve_balls(contacts, float(q)).nut_shift for q in loads])
+    shifts = np.array([sb.solve(contacts, float(q)).nut_shift for q in loads])
     steps = np.diff(shifts)
     if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
         raise ValueError("the ball's axial shift is not monotone in its load on [0, max_load]; "

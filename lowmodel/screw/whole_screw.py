@@ -6,7 +6,7 @@ taken as zero length (lin2019: "connecting the start and end of the return
 tube").  Ball ``j`` sits at nut azimuth ``psi_j`` (from the loaded end of the nut)
 and at screw azimuth ``phi_j = psi_j + omega_N t``; neighbours touch when
 their azimuth difference is the helix chord ``2 R_B``
-(:func:`screw_b2b.pair_geometry`), the gap being the excess.
+(:func:`b2b.pair_geometry`), the gap being the excess.
 
 Each time step:
 
@@ -15,7 +15,7 @@ Each time step:
    (lin2019 Fig 19 is missing; docs/ball_screw.md);
 2. the axial load of every ball from :mod:`lowmodel.screw.load_distribution`;
 3. the quasi-static state of all balls with B2B contact of the touching pairs
-   (:func:`screw_b2b.solve`, ring, per-ball loads, warm start);
+   (:func:`b2b.solve`, ring, per-ball loads, warm start);
 4. the balls advance with their orbit speeds for ``dt``; gaps follow
    ``d gap / dt = omega_B,ahead - omega_B,behind``; a gap that would become
    negative closes (set to 0) and the chain is rescaled to keep the track length
@@ -33,8 +33,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.screw import load_distribution as ld
-from ballbench.lowmodel.screw import screw_b2b
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["ScrewHistory", "simulate", "TRACK_TURNS"]
 
@@ -83,21 +83,22 @@ class ScrewHistory:
         return int(starts.sum())
 
 
-def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0, duration: float = 2.0,
-             steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4, reading: str = "tilted",
+def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0,
+             duration: float = 2.0, steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4,
+             reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
              lead_error: float = 0.0, progress=None, deviation=None,
-             contact_law: sb.GrooveContactLaws | None = None) -> ScrewHistory:
+             contact_law: screw_contacts.GrooveContactLaws | None = None) -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
     ``amplitude`` [rad] and ``cycles`` (over the two loaded turns) of the screw-side deviation,
-    ``reading`` as :func:`screw_ball.flank_angles`; ``sections``/``stiffness`` of the load
+    ``reading`` as :func:`ball.flank_angles`; ``sections``/``stiffness`` of the load
     distribution (defaults: :func:`load_distribution.bar_sections`, :func:`load_distribution.axial_stiffness`
     up to 3x the mean ball load); ``lead_error`` [m per turn] of the nut against the screw
     (:func:`load_distribution.distribute`); ``progress`` wraps the step iterator (e.g. a tqdm).
     ``deviation``: a function of the screw azimuth phi [rad] (array) giving theta [rad] in place of the
     sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep_cases);
-    ``contact_law``: calibrated contact laws of the grooves (:class:`screw_ball.GrooveContactLaws`) for the
+    ``contact_law``: calibrated contact laws of the grooves (:class:`ball.GrooveContactLaws`) for the
     balls and the default ``stiffness``; None: Hertz.
     """
     n = checks.count("n_balls", n_balls, 2)
@@ -107,7 +108,7 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
     amplitude = checks.bounded("amplitude", amplitude, 0.0, math.radians(10.0), "rad", lower_closed=True,
                                upper_closed=True, note="i.e. [0, 10] deg")
     cycles = checks.count("cycles", cycles, 0)
-    pair = screw_b2b.pair_geometry(module)
+    pair = b2b.pair_geometry(module)
     track = 2.0 * math.pi * TRACK_TURNS
     slack = track - n * pair.azimuth_step
     if slack < 0.0:
@@ -134,11 +135,11 @@ def simulate(module: sb.ScrewModule, *, n_balls: int = 37, axial_load: float = 1
             theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
         else:
             theta = np.asarray(deviation(screw_azimuth), dtype=float)
-        contacts = sb.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
+        contacts = screw_contacts.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
                               module.youngs_modulus, lead_error=lead_error)
         touching_gaps = np.where(gaps <= 1e-12, 0.0, gaps)
-        state = screw_b2b.solve(contacts, loads, touching_gaps, ring=True, initial=state)
+        state = b2b.solve(contacts, loads, touching_gaps, ring=True, initial=state)
         records["time"].append(time)
         records["positions"].append(positions)
         records["spacing"].append(gaps + pair.azimuth_step)

@@ -59,12 +59,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     smallest angle between contacts)``), ``ball{k}_B2B`` (two balls),
     ``ball{k}_free``.  Bodies share no nodes.
     """
-    try:
-        deviations = [float(d) for d in deviations]
-    except (TypeError, ValueError):
-        raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}") from None
-    if len(deviations) != 4:
-        raise ValueError(f"deviations must be four angles (SL, SR, NR, NL) [rad], got {deviations!r}")
+    deviations = checks.four_angles("deviations", deviations, "(SL, SR, NR, NL)")
     screw = segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "screw",
                             (deviations[0], deviations[1]), "normal")
     nut = segment_grooves(ball_radius, conformity, pitch_radius, lead, contact_angle, "nut",

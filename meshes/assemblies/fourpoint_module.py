@@ -67,12 +67,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     ``ball{k}_B2B`` (two balls: cap around the B2B point), ``ball{k}_free``.  Bodies share no nodes.
     """
     radius = checks.positive("ball_radius", ball_radius, "m")
-    try:
-        deviations = [float(d) for d in deviations]
-    except (TypeError, ValueError):
-        raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}") from None
-    if len(deviations) != 4:
-        raise ValueError(f"deviations must be four angles (BL, BR, TR, TL) [rad], got {deviations!r}")
+    deviations = checks.four_angles("deviations", deviations, "(BL, BR, TR, TL)")
     bottom = gothic_arch(radius, conformity, contact_angle, deviations[0], deviations[1], land_height)
     top = gothic_arch(radius, conformity, contact_angle, deviations[2], deviations[3], land_height)
     n_balls = checks.count("n_balls", n_balls, 1, 2)

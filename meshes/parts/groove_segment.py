@@ -26,10 +26,8 @@ __all__ = ["BODY_DEPTH", "MIN_CORE", "screw_groove_segment", "segment_grooves", 
 
 MESH_FORMAT_VERSION = "helical-1"
 # Default depth of the bodies [R_B from the pitch radius]: screw core at R_P - BODY_DEPTH R_B, nut outside at
-# R_P + BODY_DEPTH R_B, i.e. 5 R_B beyond the lands.  The validated FE ball-screw module (issue 12, docs/fe_b2b.md
-# "Depth of the FE bodies"): at the former 2 R_B the clamp and the rigid nut face sit 1.75 R_B below the lands and
-# the FE forces come out up to 5.5 % above the frictionless Hertz statics (F_B2B 2.003 N against 1.956 N), at
-# 5.25 R_B at most 1.2 % below them.
+# R_P + BODY_DEPTH R_B, i.e. 5 R_B beyond the lands: the depth of the validated FE ball-screw module (measured
+# against the shallower bodies in docs/fe_b2b.md, "Depth of the FE bodies").
 BODY_DEPTH = 5.25
 # A screw thinner than that keeps a core of MIN_CORE R_P (a clamp on the axis itself is singular; Table 4's deep
 # core is 0.116 R_P).

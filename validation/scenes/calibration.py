@@ -238,19 +238,19 @@ WHOLE_SCREW_BALLS, WHOLE_SCREW_LOAD = 37, 1500.0  # lin2019 Sec 3.4 (validation.
 def calibrated_groove_laws():
     """Laws of the screw and nut grooves: from ``--calibration FILE`` when it has the groups ``screw-groove`` and
     ``nut-groove``, else fitted to FE load sweeps of ``fe-hertz-screw`` / ``fe-hertz-nut`` at the quick level.
-    Returns (:class:`screw_ball.GrooveContactLaws`, origin text)."""
-    from ballbench.lowmodel.screw import screw_ball
+    Returns (:class:`screw_contacts.GrooveContactLaws`, origin text)."""
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.calibrate import active_calibration, fe_contact_law
 
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]
     if given is not None and all(g in given.constants and "psi" in given.constants[g] for g in groups):
-        return screw_ball.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
+        return screw_contacts.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
     laws, origin = {}, []
     for body, (_, fe_name) in SCREW_FE.items():
         laws[body], sweep = fe_contact_law(fe_name, SCREW_FE_FIDELITY)
         origin.append(f"{sweep['source']} in {sweep['wall_time_s']:.0f} s")
-    return screw_ball.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
+    return screw_contacts.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
 
 
 def whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BALLS,
@@ -273,7 +273,7 @@ def whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BA
 def calibration_effect_screw(run):
     import csv
 
-    from ballbench.lowmodel.screw import screw_ball
+    from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.validation.papers import lin2019
     from ballbench.validation.scenes import lin2019_screw as ls
 
@@ -288,15 +288,15 @@ def calibration_effect_screw(run):
     worst = 0.0
     for i, body in enumerate(("screw", "screw", "nut", "nut")):
         law = getattr(laws, body)
-        c_hertz = screw_ball.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
-                                          module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
-                                          module.poisson_ratio)[0]
+        c_hertz = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                              module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
+                                              module.poisson_ratio)[0]
         c = law.hertz_constant.value * c_hertz / (law.hertz_constant.reference or c_hertz)
         force = float(state_c.normal_force[0, i])
         if force > 0.0:
             expected = c * force ** (2 / 3) + law.bulk_compliance.value * force
             worst = max(worst, abs(float(state_c.approach[0, i]) / expected - 1.0))
-    run.check(model="lowmodel.screw.screw_ball", quantity="max relative misfit of delta = C F^(2/3) + C_b F over "
+    run.check(model="lowmodel.screw.ball", quantity="max relative misfit of delta = C F^(2/3) + C_b F over "
               "the loaded contacts of ball 1 (Table 5 a, calibrated)", unit="1", value=worst, reference=0.0,
               scale=1.0, tolerance=1e-9, source="the calibrated law of each groove", time_s=time_c,
               why="a relative misfit: zero judged on the scale 1")
@@ -314,16 +314,16 @@ def calibration_effect_screw(run):
                      ls.friction_increase(free_h, state_h), ls.friction_increase(free_c, state_c),
                      ls.friction_increase(free_r, state_r)))
         if case == "b":
-            run.check(model="lowmodel.screw.screw_b2b", quantity="F_B2B, case b, calibrated laws (preload refitted "
+            run.check(model="lowmodel.screw.b2b", quantity="F_B2B, case b, calibrated laws (preload refitted "
                       "on case a)", unit="N", value=float(state_r.b2b_force[0]), reference=printed.f_b2b_numerical,
                       source="lin2019 Table 5, low-order numerical", tolerance=0.05, time_s=time_r,
                       note="the tolerance of lin2019-table5-b's Hertz prediction")
-        run.check(model="lowmodel.screw.screw_b2b", quantity=f"friction increase by B2B, case {case}, calibrated "
+        run.check(model="lowmodel.screw.b2b", quantity=f"friction increase by B2B, case {case}, calibrated "
                   "laws (preload refitted on case a)", unit="%", value=ls.friction_increase(free_r, state_r),
                   reference=printed.friction_increase, source="lin2019 Sec 3.3",
                   tolerance=3.0 / printed.friction_increase, time_s=time_r,
                   note="tolerance 3 points, as lin2019-table5-a/b")
-    run.check(model="lowmodel.screw.screw_b2b", quantity="power balance |P_in - P_loss| / P_loss, calibrated laws",
+    run.check(model="lowmodel.screw.b2b", quantity="power balance |P_in - P_loss| / P_loss, calibrated laws",
               unit="1", value=balance, reference=0.0, scale=1.0, tolerance=1e-8, time_s=time_c,
               source="energy conservation (screw at rest, nut drives)", why=ls.POWER_WHY)
     # 3. load distribution over the balls of the nut
@@ -352,9 +352,10 @@ def calibration_effect_screw(run):
     parts = []
     for body in ("screw", "nut"):
         law = getattr(laws, body)
-        c_hertz, a_unit, _ = screw_ball.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
-                                                     module.lead_angle, module.nominal_angle, body,
-                                                     module.youngs_modulus, module.poisson_ratio)
+        c_hertz, a_unit, _ = screw_contacts.hertz_direct(module.ball_radius, module.conformity,
+                                                         module.pitch_radius, module.lead_angle,
+                                                         module.nominal_angle, body, module.youngs_modulus,
+                                                         module.poisson_ratio)
         psi_hertz = a_unit / module.ball_radius ** (1 / 3)  # lin2019 eq 15
         parts.append(f"{body} groove: C {law.hertz_constant.value:.6g} m N^-2/3 (Hertz {c_hertz:.6g}, "
                      f"{100 * (law.hertz_constant.value / c_hertz - 1):+.2f} %), C_b {law.bulk_compliance.value:.4g} "

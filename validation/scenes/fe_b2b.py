@@ -118,7 +118,7 @@ def solve_fe_level(case: str, h_contact: float, growth: float, fine_radius: floa
     timings.update(model.timings)
     start = time.perf_counter()
     # ball 1 (behind) carries N_x = rho N_y, ball 2 -rho N_y (lin2019 Fig 7; b2b.module_contacts)
-    results = [fp.solve_module(model, side * RHO * VERTICAL, VERTICAL) for side in (1.0, -1.0)]
+    results = [fp.solve(model, side * RHO * VERTICAL, VERTICAL) for side in (1.0, -1.0)]
     timings["contact_solve_s"] = time.perf_counter() - start
     return model, results, timings
 
@@ -128,7 +128,7 @@ def fine_ellipses(case: str) -> list | None:
     semi-axes (a, b, b) at the eq 36 forces of the rigid angles, the larger of the two balls (None: ball zones)."""
     if FINE_ELLIPSE is None:
         return None
-    from ballbench.lowmodel import fourpoint as rigid
+    from ballbench.lowmodel.linear_bearing import fourpoint as rigid
     from ballbench.lowmodel.contact import hertz
 
     geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
@@ -147,7 +147,7 @@ def fe_informed(model, results, *, normal: str = "mid"):
 
 
 def _run(run, case: str) -> None:
-    from ballbench.lowmodel import fourpoint as rigid
+    from ballbench.lowmodel.linear_bearing import fourpoint as rigid
     from ballbench.lowmodel.contact import hertz
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
@@ -286,7 +286,7 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
     """How F_B2B moves with the contact normal of the FE tractions, with the contact angle taken rigid
     (no geometric update) or under load, and with Hertz or FE ellipses (written to sensitivity.csv)."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.lowmodel.linear_bearing import bearing_ball
+    from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 
     rows = [("low-order: Hertz ellipses on planes, rigid angles, eq 36 (lin2019)", float(low.b2b_force[0]))]
     hertz_planar = [b2b_traction.hertz_patches(contacts, j) for j in range(2)]
@@ -296,7 +296,7 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
         state = b2b_traction.solve(patches, ball_radius=RADIUS, friction_coefficient=MU, groove_velocity=SPEED)
         rows.append((label, float(state.b2b_force[0])))
     loaded = np.array([[c.contact_angle for c in r.contacts] for r in results])
-    loaded_contacts = bearing_ball.contacts_from_forces(loaded, contacts.normal_forces, contacts.semi_major,
+    loaded_contacts = bearing_contacts.contacts_from_forces(loaded, contacts.normal_forces, contacts.semi_major,
                                                         contacts.b_over_a, ball_radius=RADIUS,
                                                         friction_coefficient=MU, groove_velocity=SPEED)
     rows.append(("low-order with the FE loaded contact angles (Hertz ellipses)",
@@ -304,7 +304,7 @@ def _sensitivity(run, case, model, results, low, contacts) -> None:
     for normal in ("mid", "sphere", "contact"):
         rows.append((f"FE tractions, loaded angles, normal '{normal}'",
                      float(fe_informed(model, results, normal=normal).b2b_force[0])))
-    rigid_results = [fp.solve_module(model, result_side(ball), VERTICAL, geometric_update=False) for ball in (0, 1)]
+    rigid_results = [fp.solve(model, result_side(ball), VERTICAL, geometric_update=False) for ball in (0, 1)]
     rows.append(("FE tractions, rigid contact angles (no geometric update)",
                  float(fe_informed(model, rigid_results).b2b_force[0])))
     with open(run.path("sensitivity.csv"), "w", newline="") as handle:
@@ -323,7 +323,7 @@ def _plot_patches(run, model, results, hertz_geometry) -> None:
 def _patch_figure(model, results, hertz_geometry, heading: str = "contact pressure"):
     """Pressure on the four contact patches of each ball with the Hertz ellipse (eq 36 force) and the
     FE moment ellipse, in the tangent plane of each contact (e1 across the groove, z along the rails)."""
-    from ballbench.lowmodel import fourpoint as rigid
+    from ballbench.lowmodel.linear_bearing import fourpoint as rigid
     from ballbench.lowmodel.contact import hertz
 
     axes = []

@@ -7,14 +7,14 @@ oversize 1.6848 um fitted on case (a)'s low-order force alone.
 
 Models:
 
-* ``lowmodel.screw.screw_b2b`` (low-order, Hertz ellipses, eqs 34-61) against Table 5;
+* ``lowmodel.screw.b2b`` (low-order, Hertz ellipses, eqs 34-61) against Table 5;
 * the FE screw module at each mesh level (``fem.screw_module``: one ball between a clamped screw segment and a
   nut segment carrying the ball's axial share, P2 elasticity, frictionless mortar contact on the exact sphere and
   helical flanks, the oversize as an interference fit, loaded contact angles by the geometric update), one module
   per ball (ball 1 and ball 2 differ in theta): per-contact forces against a frictionless Hertz statics reference
   (:func:`hertz_statics`) and against the low-order model, ellipses against the low-order model's Hertz ellipses at
   the FE's force;
-* FE-informed B2B (``lowmodel.screw.screw_b2b_traction``) at each mesh level, when that model is present.
+* FE-informed B2B (``lowmodel.screw.b2b_traction``) at each mesh level, when that model is present.
 
 The ball's axial share: the low-order touching state's force of the screw contacts on that ball along the screw
 axis (normal + friction; the two shares add up to the 50 N).
@@ -28,7 +28,8 @@ import time
 
 import numpy as np
 
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.meshes.parts.groove_segment import BODY_DEPTH  # R_B from the pitch radius (the builder's default)
 from ballbench.validation.figures import render3d
 from ballbench.validation.papers import lin2019
@@ -65,7 +66,7 @@ SCENE_BUDGET_S = {"quick": TIME_LIMIT_S["quick"], "default": TIME_LIMIT_S["defau
 # rough wall time at the default level on 2 cores [s] (two modules of 232k DOFs, meshes cached, with the
 # sensitivity study): measured 104-200 s per case on the shared machine, docs/fe_b2b.md
 SCENE_COST_S = 180.0
-MODEL_LOW = "lowmodel.screw.screw_b2b"
+MODEL_LOW = "lowmodel.screw.b2b"
 FRICTIONLESS_GAP = KnownGap(
     reason="The FE module is frictionless (the issue's decoupling: normal tractions from the FE, friction in the "
            "B2B model), while the low-order model's contact forces come from the ball's equilibrium with friction "
@@ -103,7 +104,7 @@ def fe_model_name(h_contact: float) -> str:
 
 
 def fe_informed_name(h_contact: float) -> str:
-    return f"FE-informed screw_b2b_traction (h {h_contact * 1e6:.0f} um)"
+    return f"FE-informed screw.b2b_traction (h {h_contact * 1e6:.0f} um)"
 
 
 def oversize() -> float:
@@ -115,7 +116,7 @@ def low_order(case: str, preload: float | None = None):
     """(contacts, free state, touching state) of the low-order model for Table 5 case ``case`` at the oversize
     ``preload`` [m] (default :func:`oversize`)."""
     preload = oversize() if preload is None else preload
-    contacts = screw_ball.ball_contacts(lin2019_screw.table4_module(preload),
+    contacts = screw_contacts.ball_contacts(lin2019_screw.table4_module(preload),
                                         np.array([0.0, PRINTED[case].theta]), reading=lin2019_screw.READING)
     free, state = lin2019_screw.two_ball(case, preload)
     return contacts, free, state
@@ -238,16 +239,16 @@ def solve_fe_level(case: str, h_contact: float, growth: float, fine_radius: floa
         timings["assembly_s"] += model.timings["assembly_s"]
         timings["condense_s"] += model.timings["condense_s"]
         start = time.perf_counter()
-        results.append(sm.solve_screw_module(model, float(shares[ball])))
+        results.append(sm.solve(model, float(shares[ball])))
         timings["contact_solve_s"] += time.perf_counter() - start
         models.append(model)
     return models, results, timings
 
 
 def fe_informed(models, results, *, normal: str = "mid", free_balls=None):
-    """FE-informed two-ball result (``screw_b2b_traction.module_b2b``) of the solved modules."""
+    """FE-informed two-ball result (``screw.b2b_traction.module_b2b``) of the solved modules."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+    from ballbench.lowmodel.screw import b2b_traction as sbt
 
     patches = [fp.traction_patches(model, result, normal=normal) for model, result in zip(models, results)]
     return sbt.module_b2b(patches, lin2019_screw.table4_module(oversize()), **(
@@ -354,7 +355,7 @@ def _run(run, case: str) -> None:
               note="rejects a deviation on ball 1's module or its nut flanks NR and NL swapped (docs/mutations.md)")
     run.check(model=name, quantity="contact forces, worst of 8: |F_FE/F_low-order - 1|", unit="1",
               value=worst("F", "F_low_order"), reference=0.0, scale=1.0, tolerance=0.02, time_s=wall,
-              source="lowmodel.screw.screw_b2b touching state (with friction, eq 54); issue 12: 2 %",
+              source="lowmodel.screw.b2b touching state (with friction, eq 54); issue 12: 2 %",
               why="the value is itself a relative force error: zero judged on the scale 1",
               known_gap=FRICTIONLESS_GAP)
     for key, what in (("a", "a"), ("b", "b"), ("p0", "p0")):
@@ -405,12 +406,12 @@ def _figure(models, results, contacts, heading: str = "contact pressure"):
 def _sensitivity(run, case, models, results, state, contacts) -> None:
     """F_B2B with Hertz or FE patches, rigid or loaded contact angles, and the friction-plane normal."""
     from ballbench.fem import screw_module as sm
-    from ballbench.lowmodel.screw import screw_b2b_traction as sbt
+    from ballbench.lowmodel.screw import b2b_traction as sbt
 
     module = lin2019_screw.table4_module(oversize())
-    rows = [("low-order: Hertz ellipses, eqs 34-61 (screw_b2b)", float(state.b2b_force[0]))]
+    rows = [("low-order: Hertz ellipses, eqs 34-61 (screw.b2b)", float(state.b2b_force[0]))]
     hertz = [sbt.hertz_patches(state, contacts, ball) for ball in range(2)]
-    rows.append(("Hertz samples on planes (screw_b2b_traction; quadrature check)",
+    rows.append(("Hertz samples on planes (screw.b2b_traction; quadrature check)",
                  float(sbt.module_b2b(hertz, module).b2b_force[0])))
     # the normal-force distribution: Hertz ellipses at other forces (frictionless ones: the decoupling)
     shares = axial_shares(contacts, state)
@@ -433,13 +434,13 @@ def _sensitivity(run, case, models, results, state, contacts) -> None:
     ansys_oversize = ansys_fitted_oversize()
     contacts_ansys, _, state_ansys = low_order(case, ansys_oversize)
     shares_ansys = axial_shares(contacts_ansys, state_ansys)
-    lowered = [sm.solve_screw_module(sm.with_oversize(model, ansys_oversize), float(shares_ansys[ball]))
+    lowered = [sm.solve(sm.with_oversize(model, ansys_oversize), float(shares_ansys[ball]))
                for ball, model in enumerate(models)]
     rows.append((f"low-order at the oversize fitted on ANSYS's case (a) 1.80 N ({ansys_oversize * 1e6:.4f} um)",
                  float(state_ansys.b2b_force[0])))
     rows.append((f"FE-informed at that oversize ({ansys_oversize * 1e6:.4f} um)",
                  float(fe_informed(models, lowered).b2b_force[0])))
-    rigid = [sm.solve_screw_module(model, float(shares[ball]), geometric_update=False)
+    rigid = [sm.solve(model, float(shares[ball]), geometric_update=False)
              for ball, model in enumerate(models)]
     rows.append(("FE tractions, rigid contact angles (no geometric update)",
                  float(fe_informed(models, rigid).b2b_force[0])))

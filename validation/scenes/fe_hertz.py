@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.fem.hertz_case import LOAD_FACTORS
+from ballbench.fem.postprocess import nodal_stress
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.figures import render3d
 from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
@@ -248,35 +249,6 @@ FIELD_NAMES = {
 }
 
 
-def nodal_stress(basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, node_of: np.ndarray):
-    """Von Mises stress and sigma_zz [Pa] at the nodes ``node_of`` (k, n_elements) from the P2 solution ``u``.
-
-    Hooke's law on the gradient of ``u`` at the quadrature points, the
-    volume-weighted mean over each element, then the volume-weighted mean of
-    the elements that share a node.
-    """
-    grad = basis.interpolate(u).grad                       # (3, 3, n_elements, n_qp): du_i / dx_j
-    strain = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
-    lam = youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio))
-    mu = youngs_modulus / (2 * (1 + poisson_ratio))
-    trace = strain[0, 0] + strain[1, 1] + strain[2, 2]
-    stress = 2 * mu * strain + lam * trace * np.eye(3)[:, :, None, None]
-    dx = basis.dx                                          # (n_elements, n_qp) [m^3]
-    volume = dx.sum(axis=1)
-    mean = (stress * dx).sum(axis=-1) / volume             # (3, 3, n_elements)
-    deviator = mean - np.eye(3)[:, :, None] * (mean[0, 0] + mean[1, 1] + mean[2, 2]) / 3
-    von_mises = np.sqrt(1.5 * np.einsum("ije,ije->e", deviator, deviator))
-    count = int(node_of.max()) + 1
-    weight = np.zeros(count)
-    np.add.at(weight, node_of.ravel(), np.tile(volume, node_of.shape[0]))
-    out = []
-    for value in (von_mises, mean[2, 2]):
-        total = np.zeros(count)
-        np.add.at(total, node_of.ravel(), np.tile(value * volume, node_of.shape[0]))
-        out.append(total / weight)
-    return out
-
-
 def write_fields(result, ref, directory, *, scene_name: str, fidelity: str, level: tuple[float, float]) -> list:
     """Write ``fields.vtu`` (quadratic tetrahedra carrying the P2 solution at all nodes; field names carry their
     units) and ``fields.json`` (what ``show`` needs).  One more sparse solve for the full displacement field,
@@ -307,7 +279,7 @@ def write_fields(result, ref, directory, *, scene_name: str, fidelity: str, leve
     pressure[model.candidates] = state.pressure
     candidate = np.zeros(len(points))
     candidate[model.candidates] = 1.0
-    von_mises, sigma_zz = nodal_stress(basis, u, E_STEEL, NU_STEEL, node_of)
+    von_mises, sigma_zz = nodal_stress(basis, u, E_STEEL, NU_STEEL, node_of)  # fem.postprocess
     vtk = meshio.Mesh(points, [("tetra10", node_of.T)],
                       point_data={FIELD_NAMES["displacement"]: displacement, FIELD_NAMES["pressure"]: pressure,
                                   FIELD_NAMES["von_mises"]: von_mises, FIELD_NAMES["sigma_zz"]: sigma_zz,

@@ -1,7 +1,7 @@
 """Scenes for the rigid four-point rolling/sliding model (lin2017 Secs 2-3, eqs 39-41, Figs 7, 8, 11, 12).
 
 The closed forms of eqs 38-41 appear here only as references; the model
-(lowmodel.fourpoint) works from the general contact geometry.
+(lowmodel.linear_bearing.fourpoint) works from the general contact geometry.
 """
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.validation.papers.lin2017 import CASES, case1_angles, case2_angles
 from ballbench.validation.scene import relative_error, scene
 
-MODEL = "lowmodel.fourpoint"
+MODEL = "lowmodel.linear_bearing.fourpoint"
 VERTICAL_FORCE = CASES.vertical_force           # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
 BALL_RADIUS = CASES.ball_radius                 # m (drops out of v_B and the loss; sets omega)
 MU = CASES.friction_coefficient                 # mu_k (drops out of the state; scales forces and loss)

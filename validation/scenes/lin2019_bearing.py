@@ -1,6 +1,6 @@
 """Scenes for the low-order numerical B2B model of a linear ball bearing (lin2019 Sec 2.1-2.2, 2.4-2.5).
 
-Models: lowmodel.linear_bearing.bearing_ball (eqs 1-4), lowmodel.linear_bearing.b2b (eqs 5-10); the
+Models: lowmodel.linear_bearing.ball (eqs 1-4), lowmodel.linear_bearing.b2b (eqs 5-10); the
 analytical model (lowmodel.linear_bearing.b2b_analytical, eqs 22, 30, 32, 33) for Fig 8 and
 as a second reference of the ANSYS value.  Parameters: lin2019 Table 1; the
 case study of Sec 2.4 (Fig 7): ``beta_0 = 45 deg``, ``beta_BL = beta_0 -
@@ -13,14 +13,15 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
 from ballbench.validation.scene import KnownGap, scene
 
-MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
+MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
 RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
 CONFORMITY = TABLE1.conformity
@@ -63,7 +64,7 @@ def _case(theta, rho, top=(0.0, 0.0), **overrides):
 
 def _two_ball(theta, rho, top=(0.0, 0.0)):
     contacts = _case(theta, rho, top)
-    free = bearing_ball.solve_ball(contacts)
+    free = bearing_ball.solve(contacts)
     state = b2b.solve(contacts, [0.0])
     return free, state
 
@@ -76,8 +77,8 @@ def _power_error(state) -> float:
        "low-order numerical model) and Fig 8 (epsilon_1 - epsilon_2 over rho and theta)", kind="low-order", cost_s=3.5)
 def table2_a(run):
     contacts = _case(THETA, RHO)
-    bearing_ball.solve_ball(contacts)  # warm-up: loads the friction map once
-    state, time_s = run.time(bearing_ball.solve_ball, contacts)
+    bearing_ball.solve(contacts)  # warm-up: loads the friction map once
+    state, time_s = run.time(bearing_ball.solve, contacts)
     eps = state.velocity_deviation * 100.0
     run.check(model=MODEL_BALL, quantity="epsilon_1", unit="%", value=float(eps[0]),
               reference=PRINTED.epsilon_1_numerical,
@@ -112,7 +113,7 @@ def _figure8(run):
                 continue
             inside[i, j] = True
             try:
-                eps = bearing_ball.solve_ball(_case(thetas[i], rho)).velocity_deviation
+                eps = bearing_ball.solve(_case(thetas[i], rho)).velocity_deviation
             except ConvergenceError:
                 failed += 1
                 continue
@@ -141,7 +142,7 @@ def _figure8(run):
        "history of Fig 10 (cases a and b, initial gap 0.1 R_B)", kind="low-order", cost_s=0.4)
 def table2_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
-    state, time_s = run.time(bearing_ball.solve_ball, contacts)
+    state, time_s = run.time(bearing_ball.solve, contacts)
     for k in range(2):
         run.check(model=MODEL_BALL, quantity=f"epsilon_{k + 1}", unit="%",
                   value=float(state.velocity_deviation[k] * 100.0), reference=0.0,
@@ -163,7 +164,7 @@ def table2_b(run):
               scale=gap0, tolerance=1e-9, source="lin2019 Fig 10(b): the balls keep their distance",
               why="zero change judged against the initial gap 0.1 R_B",
               time_s=sim_time)
-    free = bearing_ball.solve_ball(_case(THETA, RHO))
+    free = bearing_ball.solve(_case(THETA, RHO))
     closing = float(free.ball_velocity[0] - free.ball_velocity[1])
     run.check(model=MODEL_B2B, quantity="contact time, case a", unit="s", value=float(histories["a"].times[1]),
               reference=gap0 / closing, tolerance=1e-9, time_s=sim_time,

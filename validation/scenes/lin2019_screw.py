@@ -1,6 +1,6 @@
 """Scenes for the ball-screw B2B model (lin2019 Sec 3.1-3.3, Tables 4-5).
 
-Models: lowmodel.screw.screw_ball (eqs 34-55), lowmodel.screw.screw_b2b (eqs 56-61).
+Models: lowmodel.screw.ball (eqs 34-55), lowmodel.screw.b2b (eqs 56-61).
 Two-ball module of lin2019 Sec 3.3 (Table 4 parameters, the screw_module
 defaults): ball 1 (behind, ball 0 here) theta = 0, ball 2 theta = 2 deg (case a)
 or 3 deg (case b), 50 N axial load on the screw, balls touching.
@@ -25,11 +25,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from ballbench.lowmodel.screw import screw_b2b, screw_ball
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.papers import lin2019
 from ballbench.validation.scene import KnownGap, scene
 
-MODEL = "lowmodel.screw.screw_b2b"
+MODEL = "lowmodel.screw.b2b"
 AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw, lin2019 Sec 3.3
 PRINTED = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
 READING = "tilted"
@@ -45,10 +46,10 @@ TABLE5_LITERAL_GAP = KnownGap(
              "(preload reading, 'rotated' reading unable to reach 1.92 N at any preload).")
 
 
-def table4_module(oversize: float) -> screw_ball.ScrewModule:
+def table4_module(oversize: float) -> screw_contacts.ScrewModule:
     """lin2019 Table 4 (validation.papers) with the preload ``oversize`` [m]."""
     t4 = lin2019.TABLE4
-    return screw_ball.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
+    return screw_contacts.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
                                    pitch_radius=t4.pitch_radius, lead=t4.lead, nominal_angle=t4.nominal_angle,
                                    nut_speed=t4.nut_angular_velocity, friction_coefficient=t4.friction_coefficient,
                                    oversize=oversize, **t4.material)
@@ -56,9 +57,9 @@ def table4_module(oversize: float) -> screw_ball.ScrewModule:
 
 def two_ball(case: str, oversize: float, reading: str = READING, contact_law=None):
     """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]; ``contact_law``:
-    calibrated laws of the grooves (:class:`screw_ball.GrooveContactLaws`), None: Hertz."""
+    calibrated laws of the grooves (:class:`screw_contacts.GrooveContactLaws`), None: Hertz."""
     theta = PRINTED[case].theta
-    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading,
+    contacts = screw_contacts.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading,
                                         contact_law=contact_law)
     free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
     state = screw_b2b.solve(contacts, AXIAL_LOAD)
@@ -84,7 +85,7 @@ def _table5(run, case: str):
     printed = PRINTED[case]
     oversize = fitted_oversize()
     (free, state), time_s = run.time(two_ball, case, oversize)
-    contacts = screw_ball.ball_contacts(table4_module(oversize), np.array([0.0, printed.theta]), reading=READING)
+    contacts = screw_contacts.ball_contacts(table4_module(oversize), np.array([0.0, printed.theta]), reading=READING)
     _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
     force = float(state.b2b_force[0])
     increase = friction_increase(free, state)
@@ -296,8 +297,8 @@ def run_stability_case(case: dict):
     """Solve one case; returns the state (ConvergenceError / ValueError propagate)."""
     lead = 2.0 * math.pi * 16.5e-3 * math.tan(math.radians(case.get("lead_angle_deg", math.degrees(
         math.atan(20e-3 / (2 * math.pi * 16.5e-3))))))
-    module = screw_ball.screw_module(lead=lead, oversize=case["oversize"])
-    contacts = screw_ball.ball_contacts(module, np.radians(case["thetas"]), reading=case.get("reading", READING))
+    module = screw_contacts.screw_module(lead=lead, oversize=case["oversize"])
+    contacts = screw_contacts.ball_contacts(module, np.radians(case["thetas"]), reading=case.get("reading", READING))
     return screw_b2b.solve(contacts, case["load"] * len(case["thetas"]))
 
 

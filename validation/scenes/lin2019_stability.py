@@ -1,6 +1,6 @@
 """Stability sweep of the single-ball and N-ball solvers of lin2019 (issue 10 item 2).
 
-Models: lowmodel.linear_bearing.bearing_ball (eqs 1-4), lowmodel.linear_bearing.b2b
+Models: lowmodel.linear_bearing.ball (eqs 1-4), lowmodel.linear_bearing.b2b
 (eqs 5-10).  Where a quasi-static state with full sliding exists (spin-capacity
 ratio >= 1.05, docs/b2b_bearing.md "validity") every solve must converge, by
 Newton from the cheap start or by continuation; with touching balls every
@@ -15,13 +15,15 @@ import time
 
 import numpy as np
 
-from ballbench.lowmodel import fourpoint
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.validation.papers import lin2019 as paper
 from ballbench.validation.scene import scene
 
-MODEL_BALL = "lowmodel.linear_bearing.bearing_ball"
+MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
 # lin2019 Table 1
 TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conformity,
@@ -49,7 +51,7 @@ class _Tally:
         self.failures = []  # (family, n_balls, ratio, reason, last converged, mu)
 
     def solve(self, family, contacts, gaps=None):
-        ratio = float(np.min(bearing_ball.spin_capacity_ratio(contacts)))
+        ratio = float(np.min(bearing_contacts.spin_capacity_ratio(contacts)))
         coupled = contacts.n_balls > 1 and (gaps is None or bool(np.any(np.asarray(gaps) == 0.0)))
         self.coupled.append(coupled)
         try:
@@ -110,7 +112,7 @@ def stability(run):
             angles = math.pi / 4 + np.column_stack([-deviations[:, 0], deviations[:, 0], 0.3 * deviations[:, 1],
                                                     -0.3 * deviations[:, 1]])
             load = float(10 ** rng.uniform(-1.0, 3.0))
-            contacts = bearing_ball.ball_contacts(angles, rng.uniform(-0.6, 0.6, n_balls) * load, load,
+            contacts = bearing_contacts.ball_contacts(angles, rng.uniform(-0.6, 0.6, n_balls) * load, load,
                                                   ball_radius=TABLE1["ball_radius"], conformity=TABLE1["conformity"],
                                                   friction_coefficient=float(10 ** rng.uniform(-3.0, 0.0)),
                                                   groove_velocity=TABLE1["groove_velocity"])
@@ -196,11 +198,11 @@ def _spin_capacity_boundary(run) -> None:
         for _ in range(16):  # bisection in log(margin) on ball 1 alone
             mid = math.sqrt(ok * bad)
             try:
-                bearing_ball.solve_ball(_case(theta, float(low) + mid))
+                bearing_ball.solve(_case(theta, float(low) + mid))
                 ok = mid
             except ConvergenceError:
                 bad = mid
-        ratio = float(bearing_ball.spin_capacity_ratio(_case(theta, float(low) + ok))[0])
+        ratio = float(bearing_contacts.spin_capacity_ratio(_case(theta, float(low) + ok))[0])
         run.check(model=MODEL_BALL, quantity=f"spin-capacity ratio at the last converged rho, theta = {theta_deg:.0f} "
                   "deg", unit="1", value=ratio, reference=1.0, tolerance=0.03,
                   time_s=(time.perf_counter() - began) / 16,

@@ -65,7 +65,7 @@ def mixed_point(grid, gap, heights, surface_speed: float, point: str = "B", coup
     speeds = _speeds(surface_speed)
     u = float(speeds.entrainment_B if point == "B" else speeds.entrainment_A)
     sliding = speeds.sliding_B if point == "B" else speeds.sliding_A
-    contact = mixed.solve_mixed(gap, heights, grid, E_STAR, LOAD, u, T1.viscosity, T1.lubricant_density,
+    contact = mixed.solve(gap, heights, grid, E_STAR, LOAD, u, T1.viscosity, T1.lubricant_density,
                                 initial_film=8e-8, ehl_iterations=EHL_ITERATIONS, coarsest=COARSEST,
                                 coupled=coupled)
     friction = mixed.mixed_friction(contact, float(np.linalg.norm(sliding)), T1.viscosity, paper.EYRING_STRESS,

@@ -1,14 +1,14 @@
 """Scenes for ball-screw contact kinematics with the Frenet frame as a virtual cage (wang2022).
 
 Models: lowmodel.screw.kinematics (present model, Wei's absolute-velocity
-measures), lowmodel.screw.harris (ball bearing).  Inputs in the paper's units are
+measures), lowmodel.ball_bearing.harris (ball bearing).  Inputs in the paper's units are
 converted to SI here.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ballbench.lowmodel.screw import harris
+from ballbench.lowmodel.ball_bearing import harris
 from ballbench.lowmodel.screw import kinematics as sk
 from ballbench.validation.papers import wang2022 as papers
 from ballbench.validation.scene import scene
@@ -198,14 +198,14 @@ def wang2022_table1(run):
     for quantity, value, model, time_s in (
             ("U_A (outer)", present.entrainment_nut, MODEL, time_p),
             ("U_B (inner)", present.entrainment_screw, MODEL, time_p),
-            ("U_A (outer)", bearing.entrainment_outer, "lowmodel.screw.harris", time_h),
-            ("U_B (inner)", bearing.entrainment_inner, "lowmodel.screw.harris", time_h)):
+            ("U_A (outer)", bearing.entrainment_outer, "lowmodel.ball_bearing.harris", time_h),
+            ("U_B (inner)", bearing.entrainment_inner, "lowmodel.ball_bearing.harris", time_h)):
         _check_printed(run, model=model, quantity=quantity, unit="m/s", value=value, reference=TABLE1["present"],
                        source=source, time_s=time_s)
     for quantity, value, model, time_s in (
             ("S_A", present.slide_roll_nut, MODEL, time_p), ("S_B", present.slide_roll_screw, MODEL, time_p),
-            ("S_A", bearing.slide_roll_outer, "lowmodel.screw.harris", time_h),
-            ("S_B", bearing.slide_roll_inner, "lowmodel.screw.harris", time_h)):
+            ("S_A", bearing.slide_roll_outer, "lowmodel.ball_bearing.harris", time_h),
+            ("S_B", bearing.slide_roll_inner, "lowmodel.ball_bearing.harris", time_h)):
         run.check(model=model, quantity=quantity, unit="1", value=value, reference=0.0, scale=1.0,
                   why="S is a ratio of order 1: exact zero (lead 0) judged on the scale 1",
                   tolerance=1e-12, source=source + " (0.000); pure rolling", time_s=time_s,
@@ -215,7 +215,7 @@ def wang2022_table1(run):
             ("U_B present vs Harris", present.entrainment_screw, bearing.entrainment_inner),
             ("omega_m present vs Harris cage speed", present.orbital_speed, bearing.cage_speed)):
         run.check(model=MODEL, quantity=quantity, unit="m/s" if quantity[0] == "U" else "rad/s", value=value,
-                  reference=reference, source="lowmodel.screw.harris (Harris & Kotzalas 2006)", tolerance=1e-12,
+                  reference=reference, source="lowmodel.ball_bearing.harris (Harris & Kotzalas 2006)", tolerance=1e-12,
                   time_s=time_p, note="the two methods agree exactly at lead 0 (round-off only)")
 
     # ---- Wei's model -------------------------------------------------

@@ -1,6 +1,6 @@
 """FE-informed ball-to-ball (B2B) model of the ball screw: lin2019 eqs 54-61 with sampled contact tractions.
 
-The low-order model (:mod:`lowmodel.screw.screw_ball`, :mod:`lowmodel.screw.screw_b2b`)
+The low-order model (:mod:`lowmodel.screw.ball`, :mod:`lowmodel.screw.b2b`)
 integrates Coulomb friction over a planar Hertz ellipse in each contact plane (lin2019
 eqs 44-47, A9-A11).  Here each ball-to-groove contact is given as *sampled points* of
 the (curved) contact surface (:class:`lowmodel.contact.traction.TractionPatch`):
@@ -23,7 +23,7 @@ with ``omega_B`` the orbit speed and ``omega`` the spin relative to CS3 (the unk
 eq 55 without the ball centre: 4 per ball).  ``H`` is taken at the nominal ball centre
 plus ``r_k`` (as the low-order model does; the ball centre's micrometre offset is left
 out).  On a plane at ``R_B e_i`` this is exactly eq 47 and A9-A11 (the field of
-:func:`screw_ball.ball_terms`).  Full-slip Coulomb friction on the local tangent plane
+:func:`ball.ball_terms`).  Full-slip Coulomb friction on the local tangent plane
 (:class:`lowmodel.contact.traction.SampledCoulomb`):
 
     f_k = -mu F_k P_k s_k / |P_k s_k|,   P_k = I - N_k N_k^T
@@ -32,11 +32,11 @@ Equilibrium of each ball: the generalised forces conjugate to ``(omega_B, omega)
 ``sum_k f_k . H(r_k)`` and ``sum_k r_k x f_k`` (plus the B2B loads), i.e. the force
 along ``y3`` and the three moments of eq 54 (``F . H(c_0) + z_hat . M = (L/2 pi) F_y3
 + z_hat . M``).  The B2B loads are those of the low-order model (eqs 56-59,
-:func:`screw_b2b.b2b_loads` with the exact helix chord of :func:`screw_b2b.pair_geometry`)
-and so is the complementarity (eqs 60-61, :func:`screw_b2b.fischer_burmeister` on
-``F / (mu F_ref)`` and ``10 (omega_B,j+1 - omega_B,j) / |omega_N|``).  Newton with
-Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`): each ball alone first
-(its residual is minus the gradient of a convex dissipation, so its state is unique),
+:func:`b2b.b2b_loads` with the exact helix chord of :func:`b2b.pair_geometry`)
+and so is the complementarity (eqs 60-61, the Fischer-Burmeister function of ``F / (mu F_ref)`` and
+``10 (omega_B,j+1 - omega_B,j) / |omega_N|`` in the chain of :mod:`lowmodel.b2b_chain`).
+Newton with Levenberg-Marquardt damping (:func:`lowmodel.solvers.newton`): each ball alone
+first (its residual is minus the gradient of a convex dissipation, so its state is unique),
 then the coupled system.
 
 Assumptions kept from lin2019's low-order model: full sliding at every point (no stick
@@ -64,24 +64,28 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import ChainLayout, PairBlocks
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
-                                                 free_ball_starts, stack_patches)
+                                                 solve_chain, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.screw import screw_b2b
-from ballbench.lowmodel.screw import screw_ball as sb
-from ballbench.lowmodel.solvers import check_solver_options, newton
+from ballbench.lowmodel.screw import b2b
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.solvers import check_solver_options
+from ballbench.lowmodel.state import BallStateBase
 
 __all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "POWER_BALANCE_TOLERANCE",
            "N_UNKNOWNS", "RADIUS_TOLERANCE"]
 
-POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue 12)
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 4  # per ball: omega_B / |omega_N|, (omega_x, omega_y, omega_z) R_B / (|omega_N| L / 2 pi)
 RADIUS_TOLERANCE = 0.05  # sample points must lie within 5 % of R_B from the ball centre (frame and unit check)
 
 
 @dataclass(frozen=True)
-class ScrewTractionState:
-    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; ``p`` the most patches of a ball).
+class ScrewTractionState(BallStateBase):
+    """Quasi-static solution of ``n`` balls (leading shape ``(n,)``; ``p`` the most patches of a ball); the power,
+    B2B and loss fields of :class:`lowmodel.state.BallStateBase`:
 
     orbit_speed : (n,) rad/s ``omega_B``;  omega : (n, 3) rad/s, spin relative to CS3
     names : (n, p) the patch names ("" where a ball has fewer patches; their entries are 0)
@@ -101,32 +105,15 @@ class ScrewTractionState:
     contact_angle: np.ndarray
     friction_force: np.ndarray
     friction_moment: np.ndarray
-    friction_loss: np.ndarray
     axial_force: np.ndarray
-    input_power: float
-    b2b_force: np.ndarray
-    b2b_friction_loss: np.ndarray
-    b2b_slip: np.ndarray
     power_balance: float
-    iterations: int
-    residual: float
-
-    @property
-    def groove_loss(self) -> float:
-        """Ball-to-groove friction loss [W]."""
-        return float(self.friction_loss.sum())
-
-    @property
-    def total_loss(self) -> float:
-        """Ball-to-groove plus ball-to-ball friction loss [W]."""
-        return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
 
 
-def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int = 0, *, n_radial: int = 24,
+def hertz_patches(state: sb.ScrewBallState, contacts: screw_contacts.BallContacts, ball: int = 0, *, n_radial: int = 24,
                   n_angular: int = 96, planar: bool = True) -> tuple[TractionPatch, ...]:
     """Samples of the Hertz pressure of the low-order model's loaded contacts of ``ball`` (SL, SR, NR, NL).
 
-    From the low-order ``state`` (:func:`screw_b2b.solve` or :func:`screw_ball.solve_balls` on
+    From the low-order ``state`` (:func:`b2b.solve` or :func:`ball.solve` on
     ``contacts``): each loaded contact's ellipse at the loaded contact angle, in the contact plane at
     ``R_B e_i`` (lin2019 eq 37), semi-axis ``a_i`` across the groove along ``n_i x y3`` and
     ``b_i = a_i (b/a)_i`` along ``y3`` (Sec 3.1: minor axis along the helix), Hertz's pressure
@@ -142,14 +129,14 @@ def hertz_patches(state: sb.ScrewBallState, contacts: sb.BallContacts, ball: int
     u, v, w = ellipse_samples(n_radial, n_angular)
     radius = contacts.module.ball_radius
     patches = []
-    for i, name in enumerate(sb.CONTACT_NAMES):
+    for i, name in enumerate(screw_contacts.CONTACT_NAMES):
         force = float(state.normal_force[ball, i])
         if force <= 0.0:
             continue
         beta = float(state.contact_angle[ball, i])
         sign_u, sign_w = (-1.0 if i < 2 else 1.0), (-1.0 if i in (0, 3) else 1.0)  # eq 37: SL, SR, NR, NL
         e = np.array([sign_u * math.cos(beta), 0.0, sign_w * math.sin(beta)])  # ball centre -> contact
-        major = np.array([-e[2], 0.0, e[0]])  # n_i x y3 with n_i = -e_i (screw_ball.ball_terms)
+        major = np.array([-e[2], 0.0, e[0]])  # n_i x y3 with n_i = -e_i (ball.ball_terms)
         a = float(state.semi_major[ball, i])
         b = a * float(contacts.b_over_a[ball, i])
         points = radius * e[None, :] + (a * u)[:, None] * major[None, :] + (b * v)[:, None] * np.array([0.0, 1.0, 0.0])
@@ -178,7 +165,7 @@ def _check_screw_patch(patch: TractionPatch, index: int, radius: float) -> Tract
 class _Samples(SampledCoulomb):
     """All points of all balls; slips in units ``|omega_N| L / 2 pi``, forces in units ``mu F_ref``."""
 
-    def __init__(self, balls, module: sb.ScrewModule, reference_force: float, eps: float):
+    def __init__(self, balls, module: screw_contacts.ScrewModule, reference_force: float, eps: float):
         self.n_patches = max(len(p) for p in balls)
         radius, ell = module.ball_radius, module.helix_radius
         s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
@@ -199,7 +186,7 @@ class _Samples(SampledCoulomb):
                          stacked.normals, stacked.load, len(balls), eps)
 
 
-def _b2b_rows(module: sb.ScrewModule) -> np.ndarray:
+def _b2b_rows(module: screw_contacts.ScrewModule) -> np.ndarray:
     """(4, 6): generalised forces (orbit / (L/2pi), moments / R_B) of a load (force, moment about the centre)."""
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     ell, radius = module.helix_radius, module.ball_radius
@@ -210,7 +197,7 @@ def _b2b_rows(module: sb.ScrewModule) -> np.ndarray:
     return rows
 
 
-def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, tolerance: float = 1e-11,
+def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: bool = True, tolerance: float = 1e-11,
           max_iterations: int = 100, regularisation: float = 1e-12) -> ScrewTractionState:
     """Quasi-static motion of ``n >= 1`` balls of a ball screw with sampled contact tractions and B2B contact.
 
@@ -219,7 +206,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     balls : sequence of ``n`` sequences of :class:`TractionPatch` (each ball's contacts, points relative to
         its centre in its own CS3, module docstring; ``top`` = nut), balls ordered along the orbit
         (ball 0 behind, lin2019's "ball 1"), touching neighbours a helix chord ``2 R_B`` apart
-    module : :class:`screw_ball.ScrewModule` (ball radius, pitch radius, lead, nut speed, mu; the normal
+    module : :class:`ball.ScrewModule` (ball radius, pitch radius, lead, nut speed, mu; the normal
         loads come with the patches, so its preload and elastic constants are not used)
     gaps : (n-1,) rad, azimuth gaps beyond touching (default all touching); ``with_b2b=False``: no B2B contact
     tolerance : max residual (units ``mu F_ref``, F_ref the largest patch force; moments / R_B) and of eqs 60-61
@@ -229,8 +216,8 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
     power balance misses POWER_BALANCE_TOLERANCE.
     """
     check_solver_options(tolerance, max_iterations)
-    if not isinstance(module, sb.ScrewModule):
-        raise ValueError(f"module must be a screw_ball.ScrewModule (screw_ball.screw_module), got {type(module)!r}")
+    if not isinstance(module, screw_contacts.ScrewModule):
+        raise ValueError(f"module must be a ball.ScrewModule (ball.screw_module), got {type(module)!r}")
     eps = float(regularisation)
     if not math.isfinite(eps) or not 0.0 < eps <= 1e-6:
         raise ValueError(f"regularisation must lie in (0, 1e-6], got {regularisation!r}")
@@ -241,38 +228,17 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         raise ValueError("balls must hold n >= 1 balls with >= 1 patch each")
     if not any(patch.top for patch in balls[0]) or not all(any(p.top for p in patches) for patches in balls):
         raise ValueError("balls: every ball needs a loaded nut patch (top=True): the nut drives the balls")
-    pairs = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
-    gaps = screw_b2b.check_gaps(gaps, n - 1)
+    gaps = b2b.check_gaps(gaps, n - 1)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     reference_force = max(p.normal_force for patches in balls for p in patches)  # F_ref [N]
     samples = _Samples(balls, module, reference_force, eps)
     guess = _initial_guess(samples, n)
 
-    def ball_function(states):
-        residual, jac, _, _ = samples.evaluate(states)
-        return residual, jac
-
-    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
-                                        max_iterations=max_iterations, what="FE-informed screw ball")
-    forces = np.zeros(n - 1)
-    if touching.size == 0:
-        states = free
-        residual_norm = float(np.max(np.abs(ball_function(states)[0])))
-    else:
-        function = _coupled_system(ball_function, module, n, pairs[touching], reference_force)
-        z0 = np.concatenate([free.ravel(), np.zeros(touching.size)])
-        what = f"FE-informed {n}-ball screw B2B contact"
-        z, residual, its = newton(function, z0, tolerance=tolerance, max_iterations=max_iterations, what=what)
-        iterations += its
-        states = z[:N_UNKNOWNS * n].reshape(n, N_UNKNOWNS)
-        lam = z[N_UNKNOWNS * n:]
-        separation = screw_b2b.COMPLEMENTARITY_SCALE * (states[pairs[touching, 1], 0] - states[pairs[touching, 0], 0])
-        violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
-        if violation > 10 * tolerance:
-            raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                                   tolerance=tolerance)
-        forces[touching] = np.maximum(lam, 0.0) * module.friction_coefficient * reference_force
-        residual_norm = float(np.max(np.abs(residual)))
+    states, lam, iterations, residual_norm = solve_chain(
+        samples, guess, touching, lambda layout: _pair_function(module, layout, reference_force),
+        complementarity="fischer-burmeister", tolerance=tolerance, max_iterations=max_iterations,
+        what_ball="FE-informed screw ball", what_chain=f"FE-informed {n}-ball screw B2B contact")
+    forces = lam * module.friction_coefficient * reference_force
     return _state(samples, states, forces, balls, module, reference_force, iterations, residual_norm)
 
 
@@ -291,39 +257,23 @@ def _initial_guess(samples: _Samples, n: int) -> np.ndarray:
     return guess
 
 
-def _coupled_system(ball_function, module: sb.ScrewModule, n: int, pairs: np.ndarray, reference_force: float):
-    """Residual and Jacobian of all balls' equilibrium with the B2B loads of ``pairs`` and eqs 60-61."""
-    k, m = N_UNKNOWNS, len(pairs)
-    pair = screw_b2b.pair_geometry(module)
+def _pair_function(module: screw_contacts.ScrewModule, layout: ChainLayout, reference_force: float):
+    """The B2B loads of the chain's pairs (eqs 56-59) as generalised forces of the 4 unknowns per ball (units
+    ``mu F_ref``; force slots in units ``mu F_ref``): :class:`lowmodel.b2b_chain.PairBlocks`."""
+    k = N_UNKNOWNS
+    pair = b2b.pair_geometry(module)
     rows = _b2b_rows(module)
     radius, mu = module.ball_radius, module.friction_coefficient
     spin_unit = abs(module.nut_speed) * module.helix_radius / radius  # rad/s per unit of the spin unknowns
-    force_unit = mu * reference_force                                # N per unit of lam
-    gamma = screw_b2b.COMPLEMENTARITY_SCALE
+    force_unit = mu * reference_force                                # N per unit of the force slot
+    pairs = layout.pairs
 
-    def function(z):
-        balls = z[:k * n].reshape(n, k)
-        lam = z[k * n:]
-        residual, jac_balls = ball_function(balls)
-        loads, d_spin, d_force, _ = screw_b2b.b2b_loads(balls[:, 1:] * spin_unit, lam * force_unit, pair, radius,
-                                                        mu, pairs)
-        out = np.empty(k * n + m)
-        jac = np.zeros((k * n + m, k * n + m))
-        out[:k * n] = (residual + loads @ rows.T / force_unit).ravel()
-        view = jac[:k * n, :k * n].reshape(n, k, n, k)
-        for b in range(n):
-            view[b, :, b, :] += jac_balls[b]
-        view[:, :, :, 1:] += np.einsum("ra,iajc->irjc", rows, d_spin) * (spin_unit / force_unit)
-        jac[:k * n, k * n:] = np.einsum("ra,iap->irp", rows, d_force).reshape(k * n, m)
-        ahead, behind = pairs[:, 1], pairs[:, 0]
-        separation = gamma * (balls[ahead, 0] - balls[behind, 0])
-        phi, d_lam, d_sep = screw_b2b.fischer_burmeister(lam, separation)  # eqs 60-61
-        index = k * n + np.arange(m)
-        out[index] = phi
-        jac[index, index] = d_lam
-        np.add.at(jac, (index, k * ahead), gamma * d_sep)
-        np.add.at(jac, (index, k * behind), -gamma * d_sep)
-        return out, jac
+    def function(balls, forces):
+        loads, d_spin, d_force, slip = b2b.b2b_loads(balls[:, 1:] * spin_unit, forces * force_unit, pair, radius, mu,
+                                                     pairs, abs(module.nut_speed))
+        d_balls = np.zeros((len(pairs), 2, 2, k, k))
+        d_balls[..., 1:] = np.einsum("ra,psqac->psqrc", rows, d_spin) * (spin_unit / force_unit)
+        return PairBlocks(loads @ rows.T / force_unit, d_balls, d_force @ rows.T, slip)
 
     return function
 
@@ -346,10 +296,10 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
     loss = _patch_sum(samples, -np.einsum("ki,ki->k", force, slip) * force_unit * speed, n)
     input_power = float(np.einsum("ki,ki->k", force, samples.groove_slip).sum() * force_unit * speed)
     spin_unit = speed / module.ball_radius
-    pair = screw_b2b.pair_geometry(module)
+    pair = b2b.pair_geometry(module)
     b2b_slip = np.zeros(n - 1)
     if n > 1:
-        b2b_slip = screw_b2b.b2b_loads(states[:, 1:] * spin_unit, forces, pair, module.ball_radius,
+        b2b_slip = b2b.b2b_loads(states[:, 1:] * spin_unit, forces, pair, module.ball_radius,
                                        module.friction_coefficient)[3]
     b2b_loss = module.friction_coefficient * forces * b2b_slip  # lin2019 eq 58
     losses = float(loss.sum() + b2b_loss.sum())
@@ -373,8 +323,9 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
                 axial[b] += float(-(patch.forces @ patch.normals) @ z_hat + friction_force[b, i] @ z_hat)
     omega = states[:, 1:] * spin_unit
     return ScrewTractionState(states[:, 0] * abs(module.nut_speed), omega, tuple(names), normal_force, angle,
-                              friction_force, friction_moment, loss, axial, input_power, forces, b2b_loss, b2b_slip,
-                              balance, iterations, residual_norm)
+                              friction_force, friction_moment, axial, balance, friction_loss=loss,
+                              input_power=input_power, b2b_force=forces, b2b_friction_loss=b2b_loss,
+                              b2b_slip=b2b_slip, iterations=iterations, residual=residual_norm)
 
 
 @dataclass(frozen=True)
@@ -393,7 +344,7 @@ class ModuleB2B:
     power_balance: float
 
 
-def module_b2b(balls, module: sb.ScrewModule, *, free_balls=None, **options) -> ModuleB2B:
+def module_b2b(balls, module: screw_contacts.ScrewModule, *, free_balls=None, **options) -> ModuleB2B:
     """lin2019 Sec 3.3's two-ball module with sampled contacts: F_B2B, friction increase, power balance.
 
     ``balls``: per ball (ball 0 behind, lin2019's ball 1) its :class:`TractionPatch` sequence (e.g. the FE

@@ -1,6 +1,6 @@
 """Ball-to-ball (B2B) contact of 2 to N balls in a ball screw (lin2019 Sec 3.2, eqs 56-61).
 
-Built on the single-ball equilibrium of :mod:`lowmodel.screw.screw_ball` (eq 54).
+Built on the single-ball equilibrium of :mod:`lowmodel.screw.ball` (eq 54).
 Balls ``j = 0 .. n-1`` are ordered along the helix in the direction of their
 orbit (``omega_B > 0``: increasing azimuth); ball 0 is lin2019's "ball 1"
 (behind).  All balls share one nut and one screw: a common nut shift ``u`` and
@@ -30,10 +30,11 @@ Friction on ball j ``f = -mu F s/|s|`` (eq 58) at ``+R_B n``; normal force
 
 Complementarity (eqs 60-61) for a touching pair: ``F >= 0``,
 ``omega_B,j+1 - omega_B,j >= 0``, ``F (omega_B,j+1 - omega_B,j) = 0``; solved with
-the equilibrium of all balls and the axial balance by a semismooth Newton
-method on the Fischer-Burmeister function of ``F / (mu F_ref)`` and
-``gamma (omega_B,j+1 - omega_B,j)/|omega_N|`` (``a + b - sqrt(a^2 + b^2) = 0``; the ``min``
-form of :mod:`lowmodel.linear_bearing.b2b` stalled Levenberg-Marquardt on chains of 100 balls).
+the equilibrium of all balls and the axial balance by the semismooth Newton method of
+:mod:`lowmodel.b2b_chain` (one implementation with the linear bearing and the
+FE-informed models) on the Fischer-Burmeister function of ``F / (mu F_ref)`` and
+``gamma (omega_B,j+1 - omega_B,j)/|omega_N|`` (``a + b - sqrt(a^2 + b^2) = 0``; with the
+``min`` function of the linear bearing Levenberg-Marquardt stalls on chains of 100 balls).
 A pair with a positive gap carries no force.
 """
 from __future__ import annotations
@@ -45,15 +46,16 @@ from functools import lru_cache
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
+    chain_system
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
-from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "solve_at", "COMPLEMENTARITY_SCALE",
-           "LOAD_RAMP_START", "saturation", "fischer_burmeister", "check_gaps"]
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START", "saturation",
+           "check_gaps"]
 
-COMPLEMENTARITY_SCALE = 10.0
-_FB_SMOOTHING = 1e-14  # keeps the Fischer-Burmeister function differentiable at (0, 0)
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
 
@@ -83,7 +85,7 @@ class PairGeometry:
 
 
 @lru_cache(maxsize=64)
-def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
+def pair_geometry(module: screw_contacts.ScrewModule) -> PairGeometry:
     """Exact helix chord of two touching balls (geometry core: :func:`helix.ball_centre_azimuths`); cached."""
     step = helix.ball_centre_azimuths(module.pitch_radius, module.lead, 2.0 * module.ball_radius)
     frame_0 = helix.cs3_frame(0.0, module.lead_angle)
@@ -94,7 +96,7 @@ def pair_geometry(module: sb.ScrewModule) -> PairGeometry:
     return PairGeometry(float(step), chord, frame_0.T @ frame_1, float(math.asin(-chord[0])))
 
 
-def b2b_angle_eq56(module: sb.ScrewModule) -> float:
+def b2b_angle_eq56(module: screw_contacts.ScrewModule) -> float:
     """lin2019 eq 56: ``beta_B2B = asin(2 pi R_B / L)`` [rad]."""
     big_l = 2.0 * math.pi * module.helix_radius
     return math.asin(2.0 * math.pi * module.ball_radius / big_l)
@@ -111,8 +113,9 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     spins (n, 3) rad/s in each ball's CS3; forces (p,) N (0 for open pairs); ``pairs``
     (p, 2) indices (behind, ahead), default the chain ``(j, j+1)``; ``speed`` [rad/s] the motion's scale (e.g.
     ``|omega_N|``): the slip floor of the friction direction is ``1e-14 R_B speed`` (scale-free).
-    Returns (load (n, 6) [force N, moment N m] in each ball's CS3, d load / d spins (n, 6, n, 3),
-    d load / d forces (n, 6, p), slip speeds (p,) m/s).
+    Returns ``(load (n, 6) [force N, moment N m] on every ball in its CS3, d_spin (p, 2, 2, 6, 3) =
+    d (load on the ball behind, ahead) / d (spin behind, ahead) of each pair, d_force (p, 2, 6) =
+    d (load on the ball behind, ahead) / d F, slip speeds (p,) m/s)``.
     """
     n = spins.shape[0]
     if pairs is None:
@@ -120,8 +123,8 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     pairs = np.asarray(pairs, dtype=int).reshape(-1, 2)
     count = len(pairs)
     load = np.zeros((n, 6))
-    d_spin = np.zeros((n, 6, n, 3))
-    d_force = np.zeros((n, 6, count))
+    d_spin = np.zeros((count, 2, 2, 6, 3))
+    d_force = np.zeros((count, 2, 6))
     if count == 0:
         return load, d_spin, d_force, np.zeros(0)
     forces = np.asarray(forces, dtype=float)
@@ -144,35 +147,17 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     projector = np.eye(3)[None] - direction[:, :, None] * direction[:, None, :]
     dfric_dslip = (-mu * forces / norm)[:, None, None] * projector            # (p, 3, 3)
     d_behind = dfric_dslip @ a_mat                                            # d friction / d omega_behind
-    d_ahead = d_behind @ rot                                                  # d friction / d omega_ahead
-    for ball_index, d_fric in ((behind, d_behind), (ahead, d_ahead)):
-        np.add.at(d_spin, (behind, slice(0, 3), ball_index), d_fric)
-        np.add.at(d_spin, (behind, slice(3, 6), ball_index), b_mat @ d_fric)
-        np.add.at(d_spin, (ahead, slice(0, 3), ball_index), -rot.T @ d_fric)
-        np.add.at(d_spin, (ahead, slice(3, 6), ball_index), rot.T @ b_mat @ d_fric)
+    for side, d_fric in enumerate((d_behind, d_behind @ rot)):                # columns: spin behind, spin ahead
+        d_spin[:, 0, side, :3] = d_fric
+        d_spin[:, 0, side, 3:] = b_mat @ d_fric
+        d_spin[:, 1, side, :3] = -rot.T @ d_fric
+        d_spin[:, 1, side, 3:] = rot.T @ b_mat @ d_fric
     dfric_dforce = -mu * direction                                            # (p, 3)
-    index = np.arange(count)
-    d_force[behind, 0:3, index] = -pair.chord + dfric_dforce
-    d_force[behind, 3:6, index] = dfric_dforce @ b_mat.T
-    d_force[ahead, 0:3, index] = (pair.chord - dfric_dforce) @ rot
-    d_force[ahead, 3:6, index] = dfric_dforce @ b_mat.T @ rot
+    d_force[:, 0, :3] = -pair.chord + dfric_dforce
+    d_force[:, 0, 3:] = dfric_dforce @ b_mat.T
+    d_force[:, 1, :3] = (pair.chord - dfric_dforce) @ rot
+    d_force[:, 1, 3:] = dfric_dforce @ b_mat.T @ rot
     return load, d_spin, d_force, speeds
-
-
-def fischer_burmeister(a, b):
-    """Fischer-Burmeister function of the complementarity ``a >= 0, b >= 0, a b = 0`` (eqs 60-61).
-
-    ``phi = a + b - sqrt(a^2 + b^2 + s^2)`` (``s`` a 1e-14 smoothing, differentiable at (0, 0));
-    ``phi = 0`` is the complementarity.  Returns ``(phi, d phi / d a, d phi / d b)``, arrays like ``a``.
-    """
-    a = np.asarray(checks.finite("a", a), dtype=float)
-    b = np.asarray(checks.finite("b", b), dtype=float)
-    with np.errstate(over="ignore"):
-        squared = a * a + b * b + _FB_SMOOTHING**2
-    root = np.sqrt(squared)
-    if not np.all(np.isfinite(root)):   # |a| or |b| beyond ~1e154: no overflow of the squares
-        root = np.where(np.isfinite(root), root, np.hypot(np.hypot(a, b), _FB_SMOOTHING))
-    return a + b - root, 1.0 - a / root, 1.0 - b / root
 
 
 def check_gaps(gaps, count: int) -> np.ndarray:
@@ -190,25 +175,25 @@ def check_gaps(gaps, count: int) -> np.ndarray:
 LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a load ramp from here
 
 
-def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
+def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
           max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None,
           ramp_steps: int = 8) -> sb.ScrewBallState:
-    """:func:`solve_at` with fallbacks: a second start from the balls solved without B2B contact; and for
+    """:func:`_solve_attempt` with fallbacks: a second start from the balls solved without B2B contact; and for
     heavy loads, if that fails too with more than ``LOAD_RAMP_START``
     per ball, the load is ramped up geometrically from there in ``ramp_steps`` warm-started solves
     (continuation in the load; the preload continuation alone stalls where contacts open under kN loads).
-    Parameters as :func:`solve_at`."""
+    Parameters as :func:`_solve_attempt`."""
     try:
         try:
-            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            return _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=with_b2b, initial=initial)
         except ConvergenceError:
             if not with_b2b or contacts.n_balls < 2:
                 raise
             # second start: the balls without B2B contact, then the contact problem from there
-            free = solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            free = _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=False)
-            return solve_at(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
+            return _solve_attempt(contacts, axial_load, gaps, ring=ring, tolerance=tolerance,
                             max_iterations=max_iterations, with_b2b=True, initial=free)
     except ConvergenceError as error:
         loads = np.asarray(axial_load, dtype=float)
@@ -218,7 +203,7 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
         state, reached = None, 0.0
         for factor in np.geomspace(LOAD_RAMP_START / per_ball, 1.0, ramp_steps):
             try:
-                state = solve_at(contacts, loads * factor, gaps, ring=ring, tolerance=tolerance,
+                state = _solve_attempt(contacts, loads * factor, gaps, ring=ring, tolerance=tolerance,
                                  max_iterations=max_iterations, with_b2b=with_b2b, initial=state)
                 reached = factor
             except ConvergenceError as ramp_error:
@@ -244,9 +229,10 @@ def saturation(state: sb.ScrewBallState) -> float:
         return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
 
 
-def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
-             max_iterations: int = 80, with_b2b: bool = True, initial: sb.ScrewBallState | None = None
-             ) -> sb.ScrewBallState:
+def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False,
+                   tolerance: float = 1e-10, max_iterations: int = 80, with_b2b: bool = True,
+                   initial: sb.ScrewBallState | None = None
+                   ) -> sb.ScrewBallState:
     """Quasi-static motion of ``n >= 1`` balls sharing nut and screw, with B2B contact (lin2019 eqs 54-61).
 
     Parameters
@@ -260,10 +246,13 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
     with_b2b : False solves the same balls with B2B contact switched off (the "before contact" state)
     initial : a previous state of the same balls (warm start)
 
-    Returns ScrewBallState with ``b2b_force`` (pairs,) [N] and ``b2b_friction_loss`` [W].
+    The balls, their nut shifts and the B2B forces form the chain of :mod:`lowmodel.b2b_chain`: per ball
+    the 6 unknowns of eq 55 (and its own nut shift with the axial balance as its 7th row, for per-ball
+    loads), the force slot ``F / (mu F_ref)``; one global nut shift with the total axial balance otherwise.
+    Returns ScrewBallState with ``b2b_force`` (pairs,) [N], ``b2b_friction_loss`` [W] and ``b2b_slip`` [m/s].
     Raises ConvergenceError with its residual if the solve fails or complementarity is violated.
     """
-    from ballbench.lowmodel.solvers import check_solver_options
+    from ballbench.lowmodel.solvers import check_solver_options, newton
 
     check_solver_options(tolerance, max_iterations)
     n = contacts.n_balls
@@ -271,123 +260,89 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
     per_ball = loads.size > 1 or (n == 1 and np.ndim(axial_load) == 1)
     if per_ball and loads.shape != (n,):
         raise ValueError(f"axial_load must be a scalar (total) or have shape ({n},) (per ball), got {loads.shape}")
-    pairs = [(j, j + 1) for j in range(n - 1)] + ([(n - 1, 0)] if ring and n > 1 else [])
-    pairs = np.array(pairs, dtype=int).reshape(-1, 2)
-    gaps = check_gaps(gaps, len(pairs))
+    n_pairs = (n - 1) + (1 if ring and n > 1 else 0)
+    gaps = check_gaps(gaps, n_pairs)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     module = contacts.module
     total = float(loads.sum())
     reference = sb.reference_force(contacts, float(np.max(np.abs(loads))) if per_ball else total / n)
     scales = sb.scales_for(contacts, reference)
     pair = pair_geometry(module)
-    k = sb.N_UNKNOWNS
-    m = touching.size
-    n_shift = n if per_ball else 1
-    base = k * n + n_shift
-    size = base + m
-    gamma = COMPLEMENTARITY_SCALE
+    k = sb.N_UNKNOWNS + (1 if per_ball else 0)   # per-ball loads: the ball's own nut shift is its 7th unknown
+    layout = ChainLayout(n, k, touching, ring=ring and n > 1, n_global=0 if per_ball else 1)
+    pairs = layout.pairs
     targets = loads / scales.force
-    speed_factor = gamma * scales.orbit / abs(module.nut_speed)
-
-    def unpack(z):
-        balls = z[:k * n].reshape(n, k)
-        forces = np.zeros(len(pairs))
-        forces[touching] = z[base:] * scales.force
-        return balls, z[k * n:base], forces
-
+    rate_scale = COMPLEMENTARITY_SCALE * scales.orbit / abs(module.nut_speed)   # rate in units |omega_N| / gamma
+    spin_factor = scales.spin / scales.force
     last = {}
 
-    def make_function(oversize):
-        def function(z):
-            balls, shift, forces = unpack(z)
-            terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales, oversize=oversize)
-            last.update(z=z, terms=terms, oversize=oversize)
-            residual = np.empty(size)
-            jac = np.zeros((size, size))
-            ball_residual = terms.residual.copy()
-            if m:
-                loads_b2b, d_spin, d_force, _ = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair,
-                                                          module.ball_radius, module.friction_coefficient, pairs,
-                                                          abs(module.nut_speed))
-                for array in (loads_b2b, d_spin, d_force):
-                    array[:, 3:] /= module.ball_radius
-                ball_residual += loads_b2b / scales.force
-                block = d_spin * (scales.spin / scales.force)          # (n, 6, n, 3)
-                view = jac[:k * n, :k * n].reshape(n, k, n, k)     # a view: the square block of ball unknowns
-                view[:, :, :, 3:6] += block
-                jac[:k * n, base:] = d_force[:, :, touching].reshape(k * n, m)
-            residual[:k * n] = ball_residual.reshape(-1)
-            for ball in range(n):
-                rows = slice(k * ball, k * ball + k)
-                jac[rows, rows] += terms.jacobian[ball][:, :k]
-                jac[rows, k * n + (ball if per_ball else 0)] = terms.jacobian[ball][:, k]
-            if per_ball:
-                residual[k * n:base] = terms.axial - targets
-                for ball in range(n):
-                    jac[k * n + ball, k * ball:k * ball + k] = terms.axial_gradient[ball, :k]
-                    jac[k * n + ball, k * n + ball] = terms.axial_gradient[ball, k]
-            else:
-                residual[k * n] = terms.axial.sum() - targets[0]
-                jac[k * n, :k * n] = terms.axial_gradient[:, :k].reshape(-1)
-                jac[k * n, k * n] = terms.axial_gradient[:, k].sum()
-            if m:
-                lam = z[base:]
-                ahead, behind = pairs[touching, 1], pairs[touching, 0]
-                separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
-                rows = base + np.arange(m)
-                residual[rows], d_lam, d_sep = fischer_burmeister(lam, separation)
-                jac[rows, base + np.arange(m)] = d_lam
-                np.add.at(jac, (rows, k * ahead + 2), d_sep * speed_factor)
-                np.add.at(jac, (rows, k * behind + 2), -d_sep * speed_factor)
-            return residual, jac
-        return function
+    def pair_function(balls, forces):   # eqs 57-59 in the scaled unknowns (spins: columns 3-5; moments / R_B)
+        load, d_spin, d_force, slip = b2b_loads(balls[:, 3:6] * scales.spin, forces * scales.force, pair,
+                                                module.ball_radius, module.friction_coefficient, pairs,
+                                                abs(module.nut_speed))
+        for array in (load[:, 3:], d_spin[..., 3:, :], d_force[..., 3:]):
+            array /= module.ball_radius
+        d_balls = np.zeros((len(pairs), 2, 2, k, k))
+        d_balls[..., :6, 3:6] = d_spin * spin_factor
+        d_load_d_force = np.zeros((len(pairs), 2, k))
+        d_load_d_force[..., :6] = d_force
+        return PairBlocks(load / scales.force, d_balls, d_load_d_force, slip)
 
-    guess = np.zeros(size)
+    def make_function(oversize):
+        def ball_function(balls, extra):
+            shift = balls[:, sb.N_UNKNOWNS] if per_ball else extra[0]
+            terms = sb.ball_terms(balls[:, :sb.N_UNKNOWNS], shift, contacts, scales, oversize=oversize)
+            last.update(terms=terms, oversize=oversize, balls=balls, extra=extra)
+            if per_ball:   # eq 54 and the ball's axial balance
+                residual = np.concatenate([terms.residual, (terms.axial - targets)[:, None]], axis=1)
+                jacobian = np.concatenate([terms.jacobian, terms.axial_gradient[:, None, :]], axis=1)
+                return BallBlocks(residual, jacobian)
+            m = sb.N_UNKNOWNS   # one common nut shift: the global unknown, the total axial balance its row
+            return BallBlocks(terms.residual, terms.jacobian[:, :, :m], terms.jacobian[:, :, m:],
+                              np.array([terms.axial.sum() - targets[0]]), terms.axial_gradient[None, :, :m],
+                              np.array([[terms.axial_gradient[:, m].sum()]]))
+
+        return chain_system(ball_function, pair_function, layout, rate_index=2, rate_scale=rate_scale,
+                            complementarity="fischer-burmeister")
+
+    what = f"{n}-ball screw module"
+    guess = np.zeros((n, k))
+    extra = np.zeros(layout.n_global)
+    forces = None
     if initial is not None and initial.orbit_speed.shape == (n,):
-        balls0 = guess[:k * n].reshape(n, k)
-        balls0[:, :2] = initial.centre / scales.length
-        balls0[:, 2] = initial.orbit_speed / scales.orbit
-        balls0[:, 3:6] = initial.omega / scales.spin
-        shifts = np.broadcast_to(np.asarray(initial.nut_shift, dtype=float), (n,))
-        guess[k * n:base] = (shifts if per_ball else shifts.mean(keepdims=True)) / scales.length
+        guess[:, :2] = initial.centre / scales.length
+        guess[:, 2] = initial.orbit_speed / scales.orbit
+        guess[:, 3:6] = initial.omega / scales.spin
+        shifts = np.broadcast_to(np.asarray(initial.nut_shift, dtype=float), (n,)) / scales.length
+        if per_ball:
+            guess[:, sb.N_UNKNOWNS] = shifts
+        else:
+            extra[:] = shifts.mean()
         previous = np.asarray(initial.b2b_force, dtype=float)
-        if previous.shape == (len(pairs),):
-            guess[base:] = previous[touching] / scales.force
-        z, residual, iterations = _newton(make_function(module.oversize), guess, tolerance, max_iterations,
-                                          f"{n}-ball screw module (warm start)")
+        if previous.shape == (n_pairs,):
+            forces = previous / scales.force
+        z, residual, iterations = newton(make_function(module.oversize), layout.pack(guess, forces, extra),
+                                         tolerance=tolerance, max_iterations=max_iterations,
+                                         what=f"{what} (warm start)")
     else:
         rates = sb.free_rolling_guess(contacts)
-        guess[:k * n].reshape(n, k)[:, 2] = rates[:, 0] / scales.orbit
-        guess[:k * n].reshape(n, k)[:, 3:6] = rates[:, 1:] / scales.spin
-        z, residual, iterations = sb.solve_preloaded(make_function, guess, contacts,
+        guess[:, 2] = rates[:, 0] / scales.orbit
+        guess[:, 3:6] = rates[:, 1:] / scales.spin
+        z, residual, iterations = sb.solve_preloaded(make_function, layout.pack(guess, None, extra), contacts,
                                                      float(np.max(np.abs(loads))) if per_ball else total / n,
-                                                     tolerance=tolerance, max_iterations=max_iterations,
-                                                     what=f"{n}-ball screw module")
-    balls, shift, forces = unpack(z)
-    if m:
-        ahead, behind = pairs[touching, 1], pairs[touching, 0]
-        separation = speed_factor * (balls[ahead, 2] - balls[behind, 2])
-        lam = z[base:]
-        violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
-        if violation > 10 * tolerance:
-            raise ConvergenceError(f"{n}-ball screw module: complementarity violated", residual=violation,
-                                   iterations=iterations, tolerance=tolerance)
-        forces = np.maximum(forces, 0.0)
-    if last.get("z") is z and last.get("oversize") == module.oversize:   # the last evaluation was at the solution
+                                                     tolerance=tolerance, max_iterations=max_iterations, what=what)
+    balls, forces, extra = chain_forces(z, layout, rate_index=2, rate_scale=rate_scale, tolerance=tolerance,
+                                        iterations=iterations, what=what)
+    shift = balls[:, sb.N_UNKNOWNS] * 1.0 if per_ball else extra[0]
+    balls = balls[:, :sb.N_UNKNOWNS]
+    if (last.get("oversize") == module.oversize and np.array_equal(last["balls"][:, :sb.N_UNKNOWNS], balls)
+            and np.array_equal(last["extra"], extra)):   # the last evaluation was at the solution
         terms = last["terms"]
     else:
-        terms = sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales)
-    speeds = np.zeros(len(pairs))
-    if len(pairs):
-        speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius,
-                           module.friction_coefficient, pairs, abs(module.nut_speed))[3]
+        terms = sb.ball_terms(balls, shift, contacts, scales)
+    forces = forces * scales.force
+    speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius, module.friction_coefficient,
+                       pairs, abs(module.nut_speed))[3]
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
-    return sb.state_from(balls, shift * 1.0 if per_ball else shift[0], terms, scales, axial_load=total,
-                         b2b_force=forces, b2b_loss=b2b_loss, iterations=iterations,
-                         residual=float(np.max(np.abs(residual))))
-
-
-def _newton(function, guess, tolerance, max_iterations, what):
-    from ballbench.lowmodel.solvers import newton
-
-    return newton(function, guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+    return sb.state_from(balls, shift, terms, scales, axial_load=total, b2b_force=forces, b2b_loss=b2b_loss,
+                         b2b_slip=speeds, iterations=iterations, residual=float(np.max(np.abs(residual))))
