@@ -22,10 +22,12 @@ rectangles) or a condensed FE compliance (``W = B K^-1 B^T``, :class:`MatrixOper
 Solution: semismooth Newton on ``F(p) = p - Proj_g(p - c s(p)) = 0`` (``Proj_g`` projects each cell's
 traction onto the disc ``|p| <= g``; ``c = 1/max diag C``, so ``c s`` is a traction); its generalised
 Jacobian ``J = (I - D) + c D C`` with ``D = Proj_g'`` (identity in stick cells, ``(g/|z|)(I - z z^T/|z|^2)``
-in slip cells).  Each Newton system is solved by GMRES (right preconditioned) with the exact inverse of
-``J`` restricted to each grid line along the rolling direction (the steady-state operator's coupling is
-mostly along ``x``: the lateral neighbours carry 8-17 % of the diagonal); its products with ``C`` are
-dense below :data:`DENSE_CELLS` contact cells and zero-padded FFT convolutions (DC-FFT, exact) above.
+in slip cells).  Each Newton system is solved by dense LU up to :data:`DIRECT_CELLS` contact cells, above
+by GMRES (right preconditioned) with the exact inverse of ``J`` restricted to each grid line along the
+rolling direction (the steady-state operator's coupling is mostly along ``x``: the lateral neighbours carry
+8-17 % of the diagonal); the products with ``C`` are dense below :data:`DENSE_CELLS` contact cells and
+zero-padded FFT convolutions (DC-FFT, exact) above.  Newton starts from the local (FASTSIM-like) solution
+marched from the leading edge (:meth:`_Problem.marching_start`).
 Costs (docs/rolling_contact.md): one product ``O(n log n)`` (FFT) or ``O(n^2)`` (dense), the line inverses
 ``O(n_y n_x^3)`` per Newton step, 4 to 12 Newton steps with 2 to 8 GMRES steps each.
 
@@ -70,8 +72,9 @@ __all__ = [
 ]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
+DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
 CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g) (traction units)
-_FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton)
+_FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
 _RESTART = 30
 
 
@@ -140,6 +143,19 @@ class RollingContact:
 # --------------------------------------------------------------------------
 # operators: s = w + C p on the contact cells
 # --------------------------------------------------------------------------
+@functools.lru_cache(maxsize=1)
+def _blas_controller():
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
+
+
+def _one_blas_thread():
+    """One BLAS thread for the solve: its many small products stall (10x slower) in a threaded BLAS when the
+    machine's cores are shared (the same reason as lowmodel.contact.ehl)."""
+    return _blas_controller().limit(limits=1, user_api="blas")
+
+
 @functools.lru_cache(maxsize=1)
 def _ducc_fft():
     try:
@@ -351,8 +367,10 @@ def rigid_slip(grid: SurfaceGrid, creepage_rolling, creepage_lateral, spin, *,
     xi = checks.finite("creepage_rolling", creepage_rolling)
     eta = checks.finite("creepage_lateral", creepage_lateral)
     phi = checks.finite("spin", spin, "rad/m")
-    X, Y = grid.coordinates()
-    return np.stack([xi - phi * (Y - centre[1]), eta + phi * (X - centre[0])], axis=-1)
+    out = np.empty((grid.nx, grid.ny, 2))
+    out[..., 0] = xi - phi * (grid.y[None, :] - centre[1])
+    out[..., 1] = eta + phi * (grid.x[:, None] - centre[0])
+    return out
 
 
 def rigid_slip_field(grid: SurfaceGrid, sliding_velocity, angular_velocity, rolling_speed: float, *,
@@ -432,26 +450,41 @@ def _cells(cells) -> tuple[int, int]:
     return checks.count("cells[0] (n_rolling)", nx, 2, 4096), checks.count("cells[1] (n_lateral)", ny, 1, 4096)
 
 
-def hertz_pressure(grid: SurfaceGrid, semi_axis_rolling: float, semi_axis_lateral: float, normal_force: float,
+@functools.lru_cache(maxsize=32)
+def _gauss(order: int):
+    nodes, weights = np.polynomial.legendre.leggauss(order)
+    return checks.read_only(nodes), checks.read_only(0.5 * weights)
+
+
+@functools.lru_cache(maxsize=32)
+def _unit_pattern(x: tuple, y: tuple, order: int) -> np.ndarray:
+    # cell averages of sqrt(1 - u^2 - v^2) over cells centred at x (width x[1] - x[0]) and y, unit semi-axes
+    nodes, weights = _gauss(order)
+    xs, ys = np.asarray(x), np.asarray(y)
+    u = (xs[:, None] + 0.5 * (xs[1] - xs[0]) * nodes[None, :]).ravel()
+    if len(ys) == 1:
+        value = np.sqrt(np.maximum(1.0 - u * u, 0.0)).reshape(len(xs), order) @ weights
+        return checks.read_only(value[:, None])
+    v = (ys[:, None] + 0.5 * (ys[1] - ys[0]) * nodes[None, :]).ravel()
+    value = np.sqrt(np.maximum(1.0 - u[:, None] ** 2 - v[None, :] ** 2, 0.0)).reshape(len(xs), order, len(ys), order)
+    return checks.read_only(np.einsum("iajb,a,b->ij", value, weights, weights))
+
+
+def hertz_pressure(grid, semi_axis_rolling: float, semi_axis_lateral: float, normal_force: float,
                    *, order: int = 8) -> np.ndarray:
     """Cell averages of the Hertz pressure ``p0 sqrt(1 - x^2/a^2 - y^2/b^2)``, ``p0 = 3 F / (2 pi a b)``, on
     ``grid`` [Pa] (``order``-point Gauss-Legendre per cell and direction; the cells' total is ``F`` to
-    the rule's accuracy).  The grid need not be :func:`hertz_grid`'s."""
+    the rule's accuracy).  On a :class:`LineGrid` the strip ``p0 sqrt(1 - x^2/a^2)``, ``p0 = 2 F / (pi a)``
+    with ``F`` per unit length [N/m].  The grid need not be :func:`hertz_grid`'s."""
     a = checks.positive("semi_axis_rolling", semi_axis_rolling, "m")
     b = checks.positive("semi_axis_lateral", semi_axis_lateral, "m")
     force = checks.positive("normal_force", normal_force, "N")
-    p0 = 1.5 * force / (math.pi * a * b)
-    if isinstance(grid, LineGrid):  # line contact: p0 sqrt(1 - x^2/a^2), p0 = 2 F / (pi a), F per unit length
-        nodes, weights = np.polynomial.legendre.leggauss(order)
-        u = (grid.x[:, None] + 0.5 * grid.dx * nodes[None, :]) / a
-        value = np.sqrt(np.maximum(1.0 - u * u, 0.0)) @ (0.5 * weights)
-        return (2.0 * force / (math.pi * a * grid.dy)) * value[:, None]
-    nodes, weights = np.polynomial.legendre.leggauss(order)
-    u = ((grid.x[:, None] + 0.5 * grid.dx * nodes[None, :]) / a).ravel()
-    v = ((grid.y[:, None] + 0.5 * grid.dy * nodes[None, :]) / b).ravel()
-    value = np.sqrt(np.maximum(1.0 - u[:, None] ** 2 - v[None, :] ** 2, 0.0)).reshape(grid.nx, order, grid.ny, order)
-    w = 0.5 * weights
-    return p0 * np.einsum("iajb,a,b->ij", value, w, w)
+    order = checks.count("order", order, 1, 64)
+    x = tuple(float(v) for v in np.round(grid.x / a, 14))
+    if isinstance(grid, LineGrid):
+        return (2.0 * force / (math.pi * a * grid.dy)) * _unit_pattern(x, (0.0,), order)
+    y = tuple(float(v) for v in np.round(grid.y / b, 14))
+    return (1.5 * force / (math.pi * a * b)) * _unit_pattern(x, y, order)
 
 
 def spin_parameter(spin, semi_axis_lateral, friction_coefficient, central_pressure, shear_modulus) -> np.ndarray:
@@ -492,13 +525,17 @@ def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iteratio
         for j in range(m):
             total += 1
             w = matvec(precondition(basis[j]))
+            norm_before = math.sqrt(float(w @ w))
             h = basis[:j + 1] @ w
             w -= h @ basis[:j + 1]
-            correction = basis[:j + 1] @ w  # classical Gram-Schmidt, twice
-            w -= correction @ basis[:j + 1]
-            h += correction
+            norm_w = math.sqrt(float(w @ w))
+            if norm_w < 0.5 * norm_before:  # cancellation: classical Gram-Schmidt once more (Daniel et al. 1976)
+                correction = basis[:j + 1] @ w
+                w -= correction @ basis[:j + 1]
+                h += correction
+                norm_w = math.sqrt(float(w @ w))
             column = h.tolist()
-            column.append(math.sqrt(float(w @ w)))
+            column.append(norm_w)
             for i, (c, s_) in enumerate(rotations):
                 column[i], column[i + 1] = c * column[i] + s_ * column[i + 1], -s_ * column[i] + c * column[i + 1]
             radius = math.hypot(column[j], column[j + 1])
@@ -512,11 +549,7 @@ def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iteratio
             upper[:j + 1, j] = column[:j + 1]
             g.append(-s_ * g[j])
             g[j] *= c
-            done = abs(g[j + 1]) <= tolerance * norm_b
-            if column[j + 1] == 0.0 or done or w.size == 0:
-                break
-            norm_w = math.sqrt(float(w @ w))
-            if norm_w == 0.0:
+            if norm_w == 0.0 or abs(g[j + 1]) <= tolerance * norm_b:
                 break
             basis[j + 1] = w / norm_w
         if k:
@@ -551,6 +584,18 @@ class _Problem:
         self.flat = self.line_of * grid.nx + self.position
         self._inverse = None
         self._pattern = None
+        self._pairs = None
+
+    def _pair_index(self):
+        if self._pairs is None:  # kept on the operator per contact set, as its dense blocks
+            cache = self.operator.__dict__.setdefault("_pair_cache", {})
+            key = self.cells.tobytes()
+            if key not in cache:
+                if len(cache) >= 4:
+                    cache.pop(next(iter(cache)))
+                cache[key] = _pair_index_of(self)
+            self._pairs = cache[key]
+        return self._pairs
 
     def apply(self, v: np.ndarray) -> np.ndarray:
         """``C v`` on the contact cells, ``v`` (n, 2) -> (n, 2)."""
@@ -632,6 +677,11 @@ class _Problem:
             J.reshape(todo.size, nx, 2, nx, 2)[:, np.arange(nx), :, np.arange(nx), :] = diagonal
             inverse[todo] = np.linalg.inv(J.reshape(todo.size, 2 * nx, 2 * nx).astype(np.float32))
         flat = self.flat
+        if self.matrix is not None:  # dense problems: the line inverses as one (2n, 2n) matrix, one product
+            rows, cols, source = self._pair_index()
+            dense = np.zeros((2 * self.n, 2 * self.n))
+            dense[rows, cols] = inverse.reshape(-1)[source]
+            return dense.__matmul__
 
         def apply(v):
             field = np.zeros((n_lines * nx, 2), dtype=np.float32)
@@ -640,6 +690,26 @@ class _Problem:
             return out[flat].reshape(-1).astype(float)
 
         return apply
+
+
+def _pair_index_of(problem: "_Problem"):
+    # (row, column) in the (2n, 2n) problem and the flat index into the (lines, 2 nx, 2 nx) inverses of every
+    # pair of components of two contact cells on one line
+    nx = problem.shape[0]
+    rows, cols, source = [], [], []
+    for line in range(problem.lines.size):
+        members = np.flatnonzero(problem.line_of == line)
+        position = problem.position[members]
+        for a in range(2):
+            for b in range(2):
+                r = (2 * members + a)[:, None]
+                c = (2 * members + b)[None, :]
+                pr = (2 * position + a)[:, None]
+                pc = (2 * position + b)[None, :]
+                rows.append(np.broadcast_to(r, (members.size, members.size)).ravel())
+                cols.append(np.broadcast_to(c, (members.size, members.size)).ravel())
+                source.append((line * 2 * nx * 2 * nx + pr * 2 * nx + pc).ravel())
+    return np.concatenate(rows), np.concatenate(cols), np.concatenate(source)
 
 
 def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.ndarray) -> np.ndarray:
@@ -667,19 +737,30 @@ def _newton(problem: _Problem, tolerance: float, max_iterations: int, start: np.
         E[:, 1, 1] += 1.0
         cD = c * D
 
-        def matvec(v, cD=cD, E=E):
-            v = v.reshape(-1, 2)
-            Cv = problem.apply(v)
-            out = E[:, :, 0] * v[:, 0, None]
-            out += E[:, :, 1] * v[:, 1, None]
-            out += cD[:, :, 0] * Cv[:, 0, None]
-            out += cD[:, :, 1] * Cv[:, 1, None]
-            return out.reshape(-1)
+        if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
+            n = problem.n
+            rows = problem.matrix.reshape(n, 2, 2 * n)
+            jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
+            jacobian += cD[:, :, 1, None] * rows[:, None, 1, :]
+            jacobian.reshape(n, 2, n, 2)[np.arange(n), :, np.arange(n), :] += E
+            matvec = jacobian.reshape(2 * n, 2 * n).__matmul__
+        else:
+            def matvec(v, cD=cD, E=E):
+                v = v.reshape(-1, 2)
+                Cv = problem.apply(v)
+                out = E[:, :, 0] * v[:, 0, None]
+                out += E[:, :, 1] * v[:, 1, None]
+                out += cD[:, :, 0] * Cv[:, 0, None]
+                out += cD[:, :, 1] * Cv[:, 1, None]
+                return out.reshape(-1)
 
-        precondition = problem.preconditioner(D, sliding)
-        step, used = _gmres(matvec, precondition, -F.reshape(-1), min(_FORCING, residual), 200)
-        krylov += used
-        step = step.reshape(-1, 2)
+        if problem.matrix is not None and problem.n <= DIRECT_CELLS:
+            step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
+        else:
+            precondition = problem.preconditioner(D, sliding)
+            step, used = _gmres(matvec, precondition, -F.reshape(-1), min(_FORCING, residual), 200)
+            krylov += used
+            step = step.reshape(-1, 2)
         norm_F = float(np.sum(F * F))
         t = 1.0
         for _ in range(8):  # backtracking on |F|^2: the first step that decreases it
@@ -790,8 +871,9 @@ def solve(pressure, operator, friction_coefficient: float, rigid_slip_, *, rolli
     start = None
     if initial_traction is not None:
         start = _check_rigid(initial_traction, grid, "initial_traction").reshape(-1, 2)[problem.cells]
-    p, iterations, krylov, residual = _newton(problem, tolerance, max_iterations, start)
-    s, stick = _check_solution(problem, p, tolerance)
+    with _one_blas_thread():
+        p, iterations, krylov, residual = _newton(problem, tolerance, max_iterations, start)
+        s, stick = _check_solution(problem, p, tolerance)
     return _result(problem, grid, pressure, p, s, stick, rigid, mu, speed, iterations, krylov, residual)
 
 
@@ -803,9 +885,8 @@ def _result(problem, grid, pressure, p, s, stick, rigid, mu, speed, iterations, 
     stick_grid = np.zeros((grid.nx, grid.ny), dtype=bool)
     stick_grid.reshape(-1)[problem.cells] = stick
     area = grid.cell_area
-    X, Y = grid.coordinates()
     force = traction.reshape(-1, 2).sum(axis=0) * area
-    moment = float(np.sum(X * traction[..., 1] - Y * traction[..., 0])) * area
+    moment = float(np.sum(grid.x[:, None] * traction[..., 1] - grid.y[None, :] * traction[..., 0])) * area
     power = -speed * float(np.sum(p * s)) * area
     return RollingContact(grid, pressure, traction, slip, rigid, stick_grid, problem.contact.copy(), mu, speed,
                           float(force[0]), float(force[1]), moment, power, float(stick.sum()) / problem.n,
