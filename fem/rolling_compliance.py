@@ -47,7 +47,8 @@ from ballbench.lowmodel.contact.rolling import MatrixOperator
 
 __all__ = ["RollingCompliance", "condense", "to_mesh_xy"]
 
-_GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)  # 3 points, half-width 1, weights sum 1
+# 3-point Gauss-Legendre on [-1, 1] (nodes in half-widths), weights scaled to sum to 1
+_GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
 
 
 def to_mesh_xy(x_kalker: np.ndarray, y_kalker: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

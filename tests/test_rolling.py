@@ -253,3 +253,14 @@ def test_fastsim_is_close_to_the_exact_creep_curve_and_batches():
     one = fs.fastsim(a, b, force, G, NU, mu, creepages[2], 0.0, 0.0)
     assert float(one.force_rolling) == pytest.approx(batch.force_rolling[2], rel=1e-12)
     assert np.all(batch.frictional_power >= 0.0)
+
+
+def test_fastsim_with_the_hertz_bound_reaches_the_full_slip_maps():
+    a, b, force = 0.1e-3, 0.5e-3, 50.0
+    p0 = 1.5 * force / (math.pi * a * b)
+    for kappa in (0.0, 0.3, 1.0):
+        mapped = ef.friction(kappa, a / b)
+        phi = 1e4 * MU * p0 / (b * G)
+        result = fs.fastsim(a, b, force, G, NU, MU, kappa * phi * b, 0.0, phi, (20, 40), bound="elliptic")
+        assert float(result.force_rolling) / (MU * force) == pytest.approx(float(mapped.force), abs=2e-3)
+        assert -float(result.spin_moment) / (MU * force * b) == pytest.approx(float(mapped.moment), abs=2e-3)

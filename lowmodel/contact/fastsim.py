@@ -5,17 +5,21 @@ Kalker (1982) 'A fast algorithm for the simplified theory of rolling contact', V
 points), so the steady-state slip ``s = w - L dp/dx`` (rolling along ``+x``, material entering at the
 leading edge ``x = a(y)``) integrates along each strip ``y = const`` from the leading edge, where ``p = 0``::
 
-    p(x - dx) = Proj_g( p(x) - dx (xi/L1 - phi y/L3,  eta/L2 + phi x/L3) )
+    p(x - dx) = Proj_g( p(x) - dx (xi - phi y,  eta + phi x) / L )
 
-(stick while ``|p| < g``, else on the bound and opposite to the slip).  The three flexibilities make the
-no-slip limit reproduce Kalker's linear theory (:func:`flexibilities`)::
+(stick while ``|p| < g``, else on the bound and opposite to the slip).  Three flexibilities make the no-slip
+limit of each creepage reproduce Kalker's linear theory (:func:`flexibilities`)::
 
     L1 = 8 a / (3 C11 G),   L2 = 8 a / (3 C22 G),   L3 = pi a sqrt(a/b) / (4 C23 G)
+
+and FASTSIM uses their mean weighted by the creepages (Kalker 1982), ``L = (|xi| L1 + |eta| L2 + c |phi| L3)
+/ sqrt(xi^2 + eta^2 + c^2 phi^2)``, ``c = sqrt(a b)``: one flexibility keeps the slip direction of full slip
+that of the rigid slip.
 
 with the creepage coefficients ``C11, C22, C23`` of Kalker (1990) Table E.3 (:func:`kalker_coefficients`).
 The traction bound is Kalker's parabolic one, ``g = mu p0' (1 - x^2/a^2 - y^2/b^2)`` with ``p0'`` such that the
 elements' bounds sum to ``mu F`` (``2 F / (pi a b)`` in the continuum; with the parabola the simplified
-theory's creep curves come closer to the exact theory's).
+theory's creep curves come closer to the exact theory's), or the Hertz ellipse (``bound="elliptic"``).
 Conventions (axes, signs) are those of :mod:`lowmodel.contact.rolling`: ``x`` rolling, ``y`` lateral,
 ``z`` into body 1, forces on body 1.
 
@@ -153,12 +157,17 @@ class FastsimResult:
 
 
 def fastsim(semi_axis_rolling, semi_axis_lateral, normal_force, shear_modulus, poisson_ratio, friction_coefficient,
-            creepage_rolling, creepage_lateral, spin, cells=(20, 20), *, rolling_speed=1.0) -> FastsimResult:
+            creepage_rolling, creepage_lateral, spin, cells=(20, 20), *, rolling_speed=1.0,
+            bound: str = "parabolic") -> FastsimResult:
     """Kalker's FASTSIM for a batch of Hertz contacts; every argument broadcasts (one contact per element).
 
     Arguments as :func:`lowmodel.contact.rolling.steady_rolling` (SI; ``spin`` in rad/m); ``cells`` =
-    ``(n_x, n_y)`` elements per strip and strips.  Returns :class:`FastsimResult`.
+    ``(n_x, n_y)`` elements per strip and strips.  ``bound``: ``"parabolic"`` (Kalker's FASTSIM) or
+    ``"elliptic"`` (the Hertz pressure: the full-slip limit is then lin2019's eqs A4-A7, the ellipse-friction
+    maps; with the parabola it is not, 10-16 % lower in the spin moment of a ball-groove contact).
+    Returns :class:`FastsimResult`.
     """
+    checks.choice("bound", bound, ("parabolic", "elliptic"))
     a = np.asarray(checks.positive("semi_axis_rolling", semi_axis_rolling, "m"), dtype=float)
     b = np.asarray(checks.positive("semi_axis_lateral", semi_axis_lateral, "m"), dtype=float)
     force = np.asarray(checks.positive("normal_force", normal_force, "N"), dtype=float)
@@ -188,12 +197,23 @@ def fastsim(semi_axis_rolling, semi_axis_lateral, normal_force, shear_modulus, p
     # Kalker's parabolic bound mu p0' (1 - x^2/a^2 - y^2/b^2), p0' scaled so that the elements' bound sums to
     # mu F exactly (the midpoint sum of the parabola, 2 F/(pi a b), is 0.15 % off at 20 x 20)
     u = 1.0 - (2.0 * np.arange(nx) + 1.0) / nx
-    total = 4.0 / (nx * ny) * float(np.sum((1.0 - t * t) ** 1.5)) * float(np.sum(1.0 - u * u))
-    bound = mu * force / (a * b * total) * (1.0 - t * t)[None, :]
-    # the increments over one element: dx (xi/L1 - phi y/L3) and dx (eta/L2 + phi x/L3), x = a(y) u_i
-    step_x = dx * (xi / l1 - phi * y / l3)
-    step_y = dx * (eta / l2)
-    step_spin = dx * (phi / l3) * half
+    if bound == "parabolic":
+        across, along = 1.0 - t * t, 1.0 - u * u
+    else:  # elliptic: sqrt(1 - x^2/a^2 - y^2/b^2) = sqrt(1 - y^2/b^2) sqrt(1 - u^2)
+        across, along = np.sqrt(1.0 - t * t), np.sqrt(1.0 - u * u)
+    total = 4.0 / (nx * ny) * float(np.sum(np.sqrt(1.0 - t * t) * across)) * float(np.sum(along))
+    bound_0 = mu * force / (a * b * total) * across[None, :]
+    # Kalker's (1982) single flexibility, weighted by the creepages: L = (|xi| L1 + |eta| L2 + c |phi| L3) /
+    # sqrt(xi^2 + eta^2 + c^2 phi^2), c = sqrt(a b) (L1 without creepage); the slip direction in full slip is
+    # then the rigid slip's (w = (xi - phi y, eta + phi x))
+    c = np.sqrt(a * b)
+    weight = np.sqrt(xi * xi + eta * eta + (c * phi) ** 2)
+    flexibility = np.where(weight > 0.0, (np.abs(xi) * l1 + np.abs(eta) * l2 + c * np.abs(phi) * l3)
+                           / np.where(weight > 0.0, weight, 1.0), l1)
+    # the increments over one element: dx (xi - phi y) / L and dx (eta + phi x) / L, x = a(y) u_i
+    step_x = dx * (xi - phi * y) / flexibility
+    step_y = dx * eta / flexibility
+    step_spin = dx * phi / flexibility * half
     px = np.zeros_like(y)
     py = np.zeros_like(y)
     sum_x = np.zeros_like(y)
@@ -205,12 +225,12 @@ def fastsim(semi_axis_rolling, semi_axis_lateral, normal_force, shear_modulus, p
         u = 1.0 - (2.0 * i + 1.0) / nx  # x / a(y) at the element centre
         px -= step_x
         py -= step_y + u * step_spin
-        g = bound * (1.0 - u * u)
+        g = bound_0 * along[i]
         norm = np.hypot(px, py)
         sliding = norm > g
         scale = np.where(sliding, g / np.where(sliding, norm, 1.0), 1.0)
         # slip per unit rolling distance s = (L/dx)(p - p_trial), nonzero in slip elements only
-        dissipation += (1.0 - scale) * scale * (l1 * px * px + l2 * py * py)
+        dissipation += (1.0 - scale) * scale * (px * px + py * py)
         px *= scale
         py *= scale
         sum_x += px
@@ -221,6 +241,6 @@ def fastsim(semi_axis_rolling, semi_axis_lateral, normal_force, shear_modulus, p
     fy = np.sum(sum_y * area, axis=1)
     mz = np.sum((half * sum_xy - y * sum_x) * area, axis=1)
     stick = nx * ny - np.sum(slipping, axis=1)
-    power = np.sum(dissipation * area / dx, axis=1)
+    power = np.sum(dissipation * flexibility * area / dx, axis=1)
     return FastsimResult(fx.reshape(shape), fy.reshape(shape), mz.reshape(shape), (stick / (nx * ny)).reshape(shape),
                          (power * speed[:, 0]).reshape(shape))

@@ -126,6 +126,7 @@ def rolling_tractcurv(run):
     grid, pressure = _tractcurv_normal()
     operator = rolling.half_space_operator(grid, d["shear_modulus"], d["poisson_ratio"])
     n_fine = 32 if run.fidelity == "quick" else 64
+    curves = {"CONTACT's grid": [], "Hertz, " + _cells(n_fine): [], "FASTSIM": []}
     for creepage, published in zip(ref.TRACTCURV_CREEPAGES, ref.TRACTCURV_FX_OVER_MU_FN):
         w = rolling.rigid_slip(grid, creepage, 0.0, 0.0)
         result, time_s = run.time(rolling.solve, pressure, operator, mu, w, budget_s=0.0, max_repeat=1)
@@ -145,6 +146,25 @@ def rolling_tractcurv(run):
                   value=-float(simple.force_rolling) / (mu * force), reference=published,
                   source=ref.TRACTCURV_SOURCE, tolerance=0.05, time_s=simple_s, family="low-order numerical",
                   level="20 x 20 elements", note="FASTSIM (Kalker's simplified theory, parabolic bound)")
+        for curve, value in zip(curves.values(), (result.force_rolling, fine.force_rolling,
+                                                   float(simple.force_rolling))):
+            curve.append(-value / (mu * force))
+    _creep_figure(run, curves)
+
+
+def _creep_figure(run, curves):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    xi = np.array(ref.TRACTCURV_CREEPAGES) * 1e3
+    ax.plot(xi, ref.TRACTCURV_FX_OVER_MU_FN, "ko", label="CONTACT tractcurv.ref_out")
+    for (label, values), style in zip(curves.items(), ("-", "--", ":")):
+        ax.plot(xi, values, style, label=label)
+    ax.set_xlabel("creepage xi [1e-3]")
+    ax.set_ylabel("|F_x| / (mu F_N)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    run.save_figure(fig, "creep_curve.png")
 
 
 @scene("rolling-full-slip", "The full-slip limit: stick/slip forces and spin moment converge to the ellipse-friction "
@@ -250,3 +270,29 @@ def rolling_lin2019_contacts(run):
                      f"lateral/(mu F) {contact.lateral_force / force_scale:+.4f}")
     run.note("Per contact (Kalker's creepage and spin of the lin2019 case (a) state; stick/slip with Heathcote's "
              "slip, in brackets without it): " + " | ".join(lines))
+    _contacts_figure(run, results)
+
+
+def _contacts_figure(run, results):
+    """Traction bound use |p|/(mu p_n), stick cells and the traction arrows of the four contacts (Kalker's frame)."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 4, figsize=(12, 4.2), constrained_layout=True)
+    for ax, name, contact in zip(axes, NAMES, results):
+        solution = contact.solution
+        grid = solution.grid
+        X, Y = grid.coordinates()
+        bound = solution.traction_bound
+        magnitude = np.hypot(solution.traction[..., 0], solution.traction[..., 1])
+        use = np.where(bound > 0, magnitude / np.where(bound > 0, bound, 1.0), np.nan)
+        image = ax.pcolormesh(Y * 1e3, X * 1e3, use, vmin=0.0, vmax=1.0, cmap="viridis", shading="nearest")
+        ax.plot(Y[solution.stick] * 1e3, X[solution.stick] * 1e3, "w.", ms=2)
+        step = (slice(None, None, 2), slice(None, None, 4))
+        ax.quiver(Y[step] * 1e3, X[step] * 1e3, solution.traction[..., 1][step], solution.traction[..., 0][step],
+                  color="w", scale=None, width=0.004)
+        ax.set_title(f"{name}: Lambda {contact.spin_parameter:.0f}\nstick {solution.stick_fraction:.1%}")
+        ax.set_xlabel("y_K (lateral) [mm]")
+        ax.set_aspect("equal")
+    axes[0].set_ylabel("x_K (rolling; leading edge up) [mm]")
+    fig.colorbar(image, ax=axes, label="|p| / (mu p_n)  (white dots: stick)")
+    run.save_figure(fig, "contacts.png")
