@@ -296,3 +296,104 @@ def _contacts_figure(run, results):
     axes[0].set_ylabel("x_K (rolling; leading edge up) [mm]")
     fig.colorbar(image, ax=axes, label="|p| / (mu p_n)  (white dots: stick)")
     run.save_figure(fig, "contacts.png")
+
+
+# --------------------------------------------------------------------------
+# FE compliance (fem.rolling_compliance)
+# --------------------------------------------------------------------------
+FE_LEVELS = {"quick": (6, 1.0), "default": (8, 0.7), "fine": (12, 0.7)}  # cells across, h_contact / cell
+
+
+def _flat_like(cells: int, h_factor: float):
+    """Ball (R 10 mm) on a flat block, steel, 100 N: the contact is 0.19 mm across (R/a 53, depth 53 a)."""
+    from ballbench.fem import rolling_compliance
+    from ballbench.meshes.assemblies import contact_pairs
+
+    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    radius, force = 10e-3, 100.0
+    a = (3.0 * force * radius / (4.0 * e / (2.0 * (1.0 - nu * nu)))) ** (1.0 / 3.0)  # Hertz, Johnson eq 4.22
+    grid = rolling.hertz_grid(a, a, (cells, cells))
+    start = time.perf_counter()
+    path = contact_pairs.ball_on_flat_pair(radius, h_factor * grid.dx, 1.3, symmetry="full", element_order=2,
+                                           fine_ellipse=(1.2 * a + grid.dx, 1.2 * a + grid.dx, 0.5 * a))
+    compliance = rolling_compliance.condense(path, (e, nu), grid, order=2)
+    return a, force, grid, compliance, time.perf_counter() - start
+
+
+@scene("rolling-fe-compliance", "Rolling contact on an FE compliance (W = B K^-1 B^T condensed onto the grid) against "
+       "the half-space on a flat-like contact (ball R 10 mm on a block, 100 N); the lin2019 Table 1 contact BL in "
+       "the f = 0.56 and 0.52 grooves on FE compliance against the half-space", kind="FE", cost_s=400.0,
+       budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, level="8 x 8 cells, P2, h 0.7 cell")
+def rolling_fe_compliance(run):
+    cells, h_factor = FE_LEVELS[run.fidelity]
+    a, force, grid, compliance, build_s = _flat_like(cells, h_factor)
+    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    shear = e / (2.0 * (1.0 + nu))
+    level = f"{cells} x {cells} cells, P2, h {h_factor} cell, {compliance.ndofs} DOFs"
+    pressure = rolling.hertz_pressure(grid, a, a, force)
+    half_space = rolling.half_space_operator(grid, shear, nu)
+    fe = compliance.operator(coupling=False)
+    p0 = 1.5 * force / (math.pi * a * a)
+    cases = {"linear (xi 1e-9)": (1e-9, 0.0), "xi 0.3 mu p0 / G": (0.3 * MU * p0 / shear, 0.0),
+             "spin 0.5 mu p0 / (a G)": (0.0, 0.5 * MU * p0 / (a * shear))}
+    for name, (xi, phi) in cases.items():
+        w = rolling.rigid_slip(grid, xi, 0.0, phi)
+        reference, reference_s = run.time(rolling.solve, pressure, half_space, MU, w, budget_s=0.0, max_repeat=1)
+        value, value_s = run.time(rolling.solve, pressure, fe, MU, w)
+        quantity, attribute = ("F_y", "force_lateral") if phi else ("F_x", "force_rolling")
+        run.check(model="fem.rolling_compliance", quantity=f"{quantity}, {name}", unit="N",
+                  value=getattr(value, attribute), reference=getattr(reference, attribute), tolerance=0.02,
+                  time_s=value_s, source="the same solve on the half-space (lowmodel.contact.influence)",
+                  family="FE-informed", level=level,
+                  note=f"solve {value_s * 1e3:.1f} ms on the FE compliance, {reference_s * 1e3:.1f} ms on the "
+                  f"half-space; condensation {compliance.timings.get('condense_s', 0):.0f} s, mesh and assembly "
+                  f"{build_s - compliance.timings.get('condense_s', 0):.0f} s")
+        if phi:
+            run.check(model="fem.rolling_compliance", quantity=f"M_z, {name}", unit="N m", value=value.spin_moment,
+                      reference=reference.spin_moment, tolerance=0.02, time_s=value_s, family="FE-informed",
+                      level=level, source="the same solve on the half-space (lowmodel.contact.influence)")
+        run.budget(model="fem.rolling_compliance", quantity=f"solve time / half-space solve time, {name}", unit="1",
+                   value=value_s / max(reference_s, 1e-9), budget=10.0, source="issue: within 10x after condensation")
+    if run.fidelity == "quick":
+        return
+    _fe_grooves(run)
+
+
+def _fe_grooves(run):
+    """BL of lin2019 Table 1 case (a) (the most loaded contact) on FE compliance of the f = 0.56 and 0.52 grooves."""
+    from ballbench.fem import rolling_compliance
+    from ballbench.meshes.assemblies import contact_pairs
+
+    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    cells = (6, 24)
+    for conformity in (0.56, 0.52):
+        inputs = dict(TABLE1_INPUTS, conformity=conformity)
+        contacts = b2b.module_contacts(CASE.theta, CASE.side_force_ratio, **inputs).ball(0)
+        state = bearing_ball.solve_ball(contacts)
+        a_lin, b_lin = contacts.semi_major[0, 0], contacts.semi_major[0, 0] * contacts.b_over_a[0, 0]
+        grid = rolling.hertz_grid(b_lin, a_lin, cells)
+        start = time.perf_counter()
+        path = contact_pairs.ball_in_groove_pair(TABLE1.ball_radius, conformity, 0.8 * grid.dx, 1.3, symmetry="full",
+                                                 element_order=2,
+                                                 fine_ellipse=(a_lin + grid.dy, b_lin + grid.dx, 0.5 * b_lin))
+        compliance = rolling_compliance.condense(path, (e, nu), grid, order=2)
+        build_s = time.perf_counter() - start
+        material = dict(youngs_modulus=e, poisson_ratio=nu)
+        half = rolling_contacts.solve_contacts(contacts, state, conformity, cells=cells, **material)[0]
+        on_fe = rolling_contacts.solve_contacts(contacts, state, conformity, cells=cells,
+                                                operator_for=lambda g, m: compliance.operator(), **material)[0]
+        scale = contacts.friction_coefficient * contacts.normal_forces[0, 0]
+        moment_scale = scale * a_lin
+        level = f"{cells[0]} x {cells[1]} cells, P2, h 0.8 cell, {compliance.ndofs} DOFs"
+        for quantity, value, reference, unit_scale in (
+                ("f_BL/(mu F)", on_fe.friction_force, half.friction_force, scale),
+                ("M_BL/(mu F a)", on_fe.spin_moment, half.spin_moment, moment_scale),
+                ("lateral BL/(mu F)", on_fe.lateral_force, half.lateral_force, scale)):
+            run.check(model="fem.rolling_compliance", quantity=f"{quantity}, groove f = {conformity}", unit="1",
+                      value=value / unit_scale, reference=reference / unit_scale, scale=1.0, tolerance=0.05,
+                      time_s=build_s, family="FE-informed", level=level,
+                      source="the half-space (the difference is the conformal groove's own compliance)",
+                      why="judged against mu F (mu F a): the difference is what the FE rung adds",
+                      note=f"Lambda {half.spin_parameter:.1f}; stick {half.solution.stick_fraction:.4f} "
+                      f"(half-space), {on_fe.solution.stick_fraction:.4f} (FE); condensation "
+                      f"{compliance.timings['condense_s']:.0f} s")
