@@ -63,7 +63,7 @@ def rolling_carter(run):
        "stick radius", kind="low-order", cost_s=3.0)
 def rolling_cattaneo(run):
     a, force = 1e-3, 1000.0
-    n = 30 if run.fidelity == "quick" else 40 if run.fidelity == "default" else 60
+    n = 40 if run.fidelity == "quick" else 60 if run.fidelity == "default" else 80
     grid = rolling.hertz_grid(a, a, (n, n))
     pressure = rolling.hertz_pressure(grid, a, a, force)
     for ratio in (0.3, 0.7):
@@ -83,7 +83,7 @@ def rolling_cattaneo(run):
        "extrapolated over three grids, against Kalker (1990) Table E.3", kind="low-order", cost_s=6.0)
 def rolling_kalker(run):
     b, force, nu, tiny = 1e-3, 1000.0, 0.25, 1e-9
-    sizes = (12, 24, 48) if run.fidelity == "quick" else (16, 32, 64)
+    sizes = (24, 48, 96) if run.fidelity == "fine" else (16, 32, 64)  # 12, 24, 48: 12 is not yet asymptotic
     for aob, published in ref.KALKER_TABLE_E3_NU_025.items():
         a = aob * b
         c = math.sqrt(a * b)
