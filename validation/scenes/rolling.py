@@ -139,7 +139,7 @@ def rolling_tractcurv(run):
         run.check(model=MODEL, quantity=f"|FX|/(mu FN), xi = {creepage:.1e}, Hertz pressure", unit="1",
                   value=-fine.force_rolling / (mu * force), reference=published, source=ref.TRACTCURV_SOURCE,
                   tolerance=0.03, time_s=fine_s, family="BEM", level=_cells(n_fine),
-                  note="the grid-converged curve lies below CONTACT's 48 x 44 result (first-order discretisation)")
+                  note="the Hertz pressure on a finer grid: differs from CONTACT's 48 x 44 by the discretisation")
         simple, simple_s = run.time(fastsim.fastsim, d["semi_axis_rolling"], d["semi_axis_lateral"], force,
                                     d["shear_modulus"], d["poisson_ratio"], mu, creepage, 0.0, 0.0)
         run.check(model="lowmodel.contact.fastsim", quantity=f"|FX|/(mu FN), xi = {creepage:.1e}", unit="1",
@@ -274,27 +274,30 @@ def rolling_lin2019_contacts(run):
 
 
 def _contacts_figure(run, results):
-    """Traction bound use |p|/(mu p_n), stick cells and the traction arrows of the four contacts (Kalker's frame)."""
+    """Per contact (Kalker's frame, leading edge up): the angle between the traction and full slip's (-w/|w|),
+    the stick cells, the traction arrows."""
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 4, figsize=(12, 4.2), constrained_layout=True)
+    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), constrained_layout=True)
     for ax, name, contact in zip(axes, NAMES, results):
         solution = contact.solution
-        grid = solution.grid
-        X, Y = grid.coordinates()
-        bound = solution.traction_bound
-        magnitude = np.hypot(solution.traction[..., 0], solution.traction[..., 1])
-        use = np.where(bound > 0, magnitude / np.where(bound > 0, bound, 1.0), np.nan)
-        image = ax.pcolormesh(Y * 1e3, X * 1e3, use, vmin=0.0, vmax=1.0, cmap="viridis", shading="nearest")
-        ax.plot(Y[solution.stick] * 1e3, X[solution.stick] * 1e3, "w.", ms=2)
+        X, Y = solution.grid.coordinates()
+        p, w = solution.traction, solution.rigid_slip
+        cross = -(p[..., 0] * w[..., 1] - p[..., 1] * w[..., 0])
+        dot = -(p[..., 0] * w[..., 0] + p[..., 1] * w[..., 1])
+        angle = np.where(solution.contact, np.degrees(np.arctan2(cross, dot)), np.nan)
+        image = ax.pcolormesh(Y * 1e3, X * 1e3, angle, vmin=-10.0, vmax=10.0, cmap="RdBu_r", shading="nearest")
+        if solution.stick.any():
+            ax.plot(Y[solution.stick] * 1e3, X[solution.stick] * 1e3, "k.", ms=3)
         step = (slice(None, None, 2), slice(None, None, 4))
-        ax.quiver(Y[step] * 1e3, X[step] * 1e3, solution.traction[..., 1][step], solution.traction[..., 0][step],
-                  color="w", scale=None, width=0.004)
-        ax.set_title(f"{name}: Lambda {contact.spin_parameter:.0f}\nstick {solution.stick_fraction:.1%}")
-        ax.set_xlabel("y_K (lateral) [mm]")
+        ax.quiver(Y[step] * 1e3, X[step] * 1e3, p[..., 1][step], p[..., 0][step], color="k", width=0.002)
+        lateral = contact.lateral_force / (solution.friction_coefficient * contact.motion.normal_force)
+        ax.set_title(f"{name}: Lambda {contact.spin_parameter:.0f}, stick {solution.stick_fraction:.1%}, lateral "
+                     f"force {lateral:+.3f} mu F", fontsize=9)
         ax.set_aspect("equal")
-    axes[0].set_ylabel("x_K (rolling; leading edge up) [mm]")
-    fig.colorbar(image, ax=axes, label="|p| / (mu p_n)  (white dots: stick)")
+        ax.set_ylabel("x_K [mm]")
+    axes[-1].set_xlabel("y_K (lateral) [mm]; x_K rolling, leading edge up")
+    fig.colorbar(image, ax=axes, label="traction direction minus full slip's [deg]")
     run.save_figure(fig, "contacts.png")
 
 
