@@ -77,3 +77,39 @@ def test_bench_fastsim_throughput(benchmark):
     benchmark.extra_info["contacts_per_second"] = rate
     print(f"\nFASTSIM 20 x 20 elements, {count} contacts: {rate:.3g} contacts/s (median of 3; one run wall "
           f"{wall * 1e3:.0f} ms, CPU {cpu * 1e3:.0f} ms; target >= 1e4/s); load average {os.getloadavg()[0]:.1f}")
+
+
+def test_bench_fe_compliance_solve(benchmark):
+    """One rolling solve on a condensed FE compliance against the half-space solve of the same grid (target: within
+    10x); ball R 10 mm on a block, 100 N, 8 x 8 cells, P2, h one cell (the condensation, about a minute, is not
+    timed: it is reused by every solve on the grid)."""
+    import math
+
+    from ballbench.fem import rolling_compliance
+    from ballbench.meshes.assemblies import contact_pairs
+
+    e, nu, radius, force = 2.1e11, 0.28, 10e-3, 100.0
+    a = (3.0 * force * radius / (4.0 * e / (2.0 * (1.0 - nu * nu)))) ** (1.0 / 3.0)
+    grid = rolling.hertz_grid(a, a, (8, 8))
+    path = contact_pairs.ball_on_flat_pair(radius, grid.dx, 1.3, symmetry="full", element_order=2,
+                                           fine_ellipse=(1.2 * a + grid.dx, 1.2 * a + grid.dx, 0.5 * a))
+    start = time.perf_counter()
+    compliance = rolling_compliance.condense(path, (e, nu), grid, order=2)
+    condense_s = time.perf_counter() - start
+    shear = e / (2 * (1 + nu))
+    pressure = rolling.hertz_pressure(grid, a, a, force)
+    p0 = 1.5 * force / (math.pi * a * a)
+    w = rolling.rigid_slip(grid, 0.3 * MU * p0 / shear, 0.0, 0.5 * MU * p0 / (a * shear))
+    fe, half = compliance.operator(), rolling.half_space_operator(grid, shear, nu)
+    times = {}
+    for name, operator in (("FE", fe), ("half-space", half)):
+        rolling.solve(pressure, operator, MU, w)
+        cpu = time.process_time()
+        for _ in range(20):
+            rolling.solve(pressure, operator, MU, w)
+        times[name] = (time.process_time() - cpu) / 20
+    benchmark.pedantic(rolling.solve, args=(pressure, fe, MU, w), rounds=5, iterations=1)
+    print(f"\nFE-compliance rolling solve, 8 x 8 cells ({compliance.ndofs} DOFs, condensation {condense_s:.0f} s "
+          f"wall): CPU {times['FE'] * 1e3:.2f} ms per solve against {times['half-space'] * 1e3:.2f} ms on the "
+          f"half-space (ratio {times['FE'] / times['half-space']:.2f}, target <= 10); load average "
+          f"{os.getloadavg()[0]:.1f}")
