@@ -200,7 +200,7 @@ def test_bad_inputs_name_the_parameter():
     wide = rolling.hertz_pressure(grid, 0.6e-3, 1.2e-3, 100.0)  # an ellipse larger than the grid
     with pytest.raises(ValueError, match="does not cover the contact"):
         rolling.solve(wide, operator, MU, w)
-    with pytest.raises(ValueError, match="rigid_slip"):
+    with pytest.raises(ValueError, match="rigid slip"):
         rolling.solve(pressure, operator, MU, np.full_like(w, np.nan))
 
 
@@ -264,3 +264,17 @@ def test_fastsim_with_the_hertz_bound_reaches_the_full_slip_maps():
         result = fs.fastsim(a, b, force, G, NU, MU, kappa * phi * b, 0.0, phi, (20, 40), bound="elliptic")
         assert float(result.force_rolling) / (MU * force) == pytest.approx(float(mapped.force), abs=2e-3)
         assert -float(result.spin_moment) / (MU * force * b) == pytest.approx(float(mapped.moment), abs=2e-3)
+
+
+def test_dissimilar_coupling_enters_the_slip_and_flips_with_the_bodies():
+    shear, nu, k = influence.combined_material(80e9, 0.3, 40e9, 0.45)
+    grid = rolling.hertz_grid(0.5e-3, 0.5e-3, (12, 12))
+    pressure = rolling.hertz_pressure(grid, 0.5e-3, 0.5e-3, 200.0)
+    w = np.zeros((grid.nx, grid.ny, 2))
+    plain = rolling.solve(pressure, rolling.half_space_operator(grid, shear, nu), MU, w)
+    assert np.max(np.abs(plain.traction)) == 0.0
+    one = rolling.solve(pressure, rolling.half_space_operator(grid, shear, nu, coupling=k), MU, w)
+    other = rolling.solve(pressure, rolling.half_space_operator(grid, shear, nu, coupling=-k), MU, w)
+    assert np.max(np.abs(one.traction)) > 1e-3 * MU * pressure.max()
+    assert np.allclose(other.traction, -one.traction, rtol=0, atol=1e-9 * MU * pressure.max())
+    assert abs(one.force_lateral) < 1e-9 * 200.0  # symmetric about y = 0

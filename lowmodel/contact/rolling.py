@@ -69,6 +69,7 @@ __all__ = [
     "steady_rolling",
     "spin_parameter",
     "DENSE_CELLS",
+    "DIRECT_CELLS",
 ]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
@@ -494,9 +495,9 @@ def hertz_pressure(grid, semi_axis_rolling: float, semi_axis_lateral: float, nor
 
 
 def spin_parameter(spin, semi_axis_lateral, friction_coefficient, central_pressure, shear_modulus) -> np.ndarray:
-    """Kalker's spin parameter ``Lambda = |phi| b G / (mu p0)`` (issue text: ``phi a G / (mu p0)`` with ``a`` the
-    semi-axis across the rolling direction): the spin's elastic slip over the contact against the friction
-    bound; full slip holds for ``Lambda >> 1`` (docs/rolling_contact.md)."""
+    """The spin parameter ``Lambda = |phi| b G / (mu p0)``, ``b`` the semi-axis across the rolling direction
+    [m]: the spin's elastic slip over the contact against the friction bound; full slip holds for
+    ``Lambda >> 1`` (docs/rolling_contact.md, 'When each rung suffices')."""
     phi = checks.finite("spin", spin, "rad/m")
     b = checks.positive("semi_axis_lateral", semi_axis_lateral, "m")
     mu = checks.positive("friction_coefficient", friction_coefficient)
@@ -842,7 +843,7 @@ def _check_rigid(rigid, grid: SurfaceGrid, name: str) -> np.ndarray:
     return rigid
 
 
-def solve(pressure, operator, friction_coefficient: float, rigid_slip_, *, rolling_speed: float = 1.0,
+def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_speed: float = 1.0,
           tolerance: float = 1e-10, max_iterations: int = 60, dense: bool | None = None,
           initial_traction: np.ndarray | None = None) -> RollingContact:
     """Tangential tractions of a contact with stick and slip (module docstring).
@@ -853,7 +854,7 @@ def solve(pressure, operator, friction_coefficient: float, rigid_slip_, *, rolli
     operator : :class:`ConvolutionOperator` (:func:`half_space_operator`) or :class:`MatrixOperator`;
         steady rolling (slip per unit rolling distance) or a shift, as built
     friction_coefficient : mu > 0
-    rigid_slip_ : (nx, ny, 2) rigid slip ``w`` (:func:`rigid_slip`, :func:`rigid_slip_field`) [-] (a shift: [m])
+    rigid : (nx, ny, 2) the rigid slip ``w`` (:func:`rigid_slip`, :func:`rigid_slip_field`) [-] (a shift: [m])
     rolling_speed : V [m/s], scales the frictional power only
     tolerance : on ``max|F| / max(mu p_n)`` (traction units)
     dense : force dense (True) or FFT (False) products; default by :data:`DENSE_CELLS`
@@ -865,7 +866,7 @@ def solve(pressure, operator, friction_coefficient: float, rigid_slip_, *, rolli
     grid = operator.grid
     pressure = _check_pressure(pressure, grid)
     mu = checks.positive("friction_coefficient", friction_coefficient)
-    rigid = _check_rigid(rigid_slip_, grid, "rigid_slip")
+    rigid = _check_rigid(rigid, grid, "rigid (the rigid slip)")
     speed = checks.positive("rolling_speed", rolling_speed, "m/s")
     checks.positive("tolerance", tolerance)
     max_iterations = checks.count("max_iterations", max_iterations, 1)

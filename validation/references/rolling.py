@@ -6,7 +6,7 @@ Nothing here calls ``ballbench.lowmodel``.  Closed forms and published numbers:
   with ``kappa = xi G / (2 (1 - nu) mu p0)`` (``G``, ``nu`` combined, ``p0`` the Hertz peak) the stick zone
   ``[a - 2a', a]`` at the leading edge has ``a'/a = 1 - kappa``; ``Q/(mu P) = 1 - (a'/a)^2``; the traction
   ``q = -sign(xi) mu p0 (sqrt(1 - x^2/a^2) - (a'/a) sqrt(1 - (x - a + a')^2/a'^2))`` (second term in the stick
-  zone only); full slip for ``kappa >= 1``.  The issue's form ``xi R/(mu a) = 1 - sqrt(1 - Q/(mu P))`` is the
+  zone only); full slip for ``kappa >= 1``.  The form ``xi R/(mu a) = 1 - sqrt(1 - Q/(mu P))`` is the
   same with ``p0 = a G/(2 (1 - nu) R)`` (2D Hertz, quasi-identical bodies).
 * Cattaneo (1938) and Mindlin (1949), Johnson (1985) Sec 7.1 eqs 7.38-7.42: a Hertz circle shifted
   tangentially from the unloaded state; stick radius ``c = a (1 - Q/(mu P))^(1/3)``; shift of the bodies
