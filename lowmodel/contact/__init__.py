@@ -5,4 +5,6 @@ contact on an arbitrary gap by the boundary-element method (``halfspace``), a ba
 helical groove against Hertz (``screw_contact``), sampled contact tractions with pointwise
 Coulomb friction (``traction``, the FE-informed B2B models), the elastohydrodynamic point contact of
 sun2021 (``ehl``), its fractal raceway roughness (``roughness``) and mixed lubrication with the
-friction of sun2021 eqs 21-23 (``mixed``)."""
+friction of sun2021 eqs 21-23 (``mixed``); steady rolling with stick and slip (Kalker's exact theory on a grid,
+``rolling``; its tangential influence coefficients, ``influence``; Kalker's simplified theory FASTSIM,
+``fastsim``; docs/rolling_contact.md)."""

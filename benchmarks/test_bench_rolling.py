@@ -1,0 +1,115 @@
+"""Steady rolling contact with stick and slip: exact half-space solves, FASTSIM throughput.
+
+Targets (docs/rolling_contact.md, 'Costs'): one exact half-space solve on 35 x 35 cells <= 100 ms and on 11 x 11
+cells <= 2 ms; FASTSIM >= 1e4 contacts per second; the FE-compliance solve of one patch within 10x the
+half-space solve of the same grid (benchmarks/test_bench_fem_rolling.py, it needs a mesh).  CONTACT's own
+timing table (perfc_test/get_times.ref_out, 2016): 133 ms (35 x 35) and 1.6 ms (11 x 11) per case, normal and
+tangential problem, on grids whose contact spans mx - 4 cells (31 and 7 cells across).
+
+Two grids are timed per size: ``cells=(n, n)`` of :func:`steady_rolling` (n cells across the ellipse, plus one
+empty ring: the harder problem) and CONTACT's (the contact across n - 4 cells, ``cells=(n - 4, n - 4)``).
+Wall and CPU (process) times are printed with the load average and the cost of one small numpy call in
+this run (about 0.5 us on an idle machine): the machine is shared, and a solve of 11 x 11 cells is some
+thousand such calls.  Run: ``.venv/bin/python -m pytest benchmarks/test_bench_rolling.py -s``.
+"""
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.contact import fastsim, rolling
+
+A, B, FORCE, G, NU, MU = 6.304e-3, 12.61e-3, 106.7e3, 82e9, 0.28, 0.33  # CONTACT's tractcurv contact
+CASES = ((0.4e-3, 0.0, 0.0), (1.2e-3, 0.0, 0.0), (2.4e-3, 0.0, 0.0), (0.0, 0.0, 0.1), (1e-3, 0.5e-3, 1.0))
+
+
+def _call_overhead_us() -> float:
+    a = np.ones(200)
+    start = time.perf_counter()
+    for _ in range(2000):
+        np.add(a, a)
+    return (time.perf_counter() - start) / 2000 * 1e6
+
+
+def _solve_all(cells):
+    return [rolling.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells) for xi, eta, phi in CASES]
+
+
+@pytest.mark.parametrize("n, target_ms", [(11, 2.0), (35, 100.0)])
+def test_bench_exact_half_space(benchmark, n, target_ms):
+    for cells, label in (((n, n), f"{n} x {n} across the contact"), ((n - 4, n - 4), f"CONTACT's {n} x {n}")):
+        _solve_all(cells)  # the operator (kernels, spectra, dense blocks) is built once per grid
+        wall, cpu = time.perf_counter(), time.process_time()
+        rounds = 20 if n <= 11 else 3
+        for _ in range(rounds):
+            results = _solve_all(cells)
+        wall = (time.perf_counter() - wall) / (rounds * len(CASES)) * 1e3
+        cpu = (time.process_time() - cpu) / (rounds * len(CASES)) * 1e3
+        contact = int(results[0].contact.sum())
+        newton = sum(r.iterations for r in results) / len(results)
+        krylov = sum(r.krylov_iterations for r in results) / len(results)
+        print(f"\nexact half-space rolling, {label} ({contact} contact cells): wall {wall:.2f} ms, CPU {cpu:.2f} ms "
+              f"per solve (target <= {target_ms} ms), Newton {newton:.1f}, GMRES {krylov:.1f} per solve; "
+              f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, numpy call "
+              f"{_call_overhead_us():.2f} us")
+    benchmark.pedantic(_solve_all, args=((n, n),), rounds=3 if n <= 11 else 1, iterations=1)
+    benchmark.extra_info.update({"n": n, "cpu_ms": cpu, "wall_ms": wall})
+
+
+def test_bench_fastsim_throughput(benchmark):
+    rng = np.random.default_rng(0)
+    count = 10_000
+    xi, eta = rng.uniform(-3e-3, 3e-3, (2, count))
+    phi = rng.uniform(-2.0, 2.0, count)
+
+    def run():
+        return fastsim.fastsim(A, B, FORCE, G, NU, MU, xi, eta, phi, (20, 20))
+
+    run()
+    wall, cpu = time.perf_counter(), time.process_time()
+    run()
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    benchmark.pedantic(run, rounds=3, iterations=1)
+    rate = count / benchmark.stats.stats.median
+    benchmark.extra_info["contacts_per_second"] = rate
+    print(f"\nFASTSIM 20 x 20 elements, {count} contacts: {rate:.3g} contacts/s (median of 3; one run wall "
+          f"{wall * 1e3:.0f} ms, CPU {cpu * 1e3:.0f} ms; target >= 1e4/s); load average {os.getloadavg()[0]:.1f}")
+
+
+def test_bench_fe_compliance_solve(benchmark):
+    """One rolling solve on a condensed FE compliance against the half-space solve of the same grid (target: within
+    10x); ball R 10 mm on a block, 100 N, 8 x 8 cells, P2, h one cell (the condensation, about a minute, is not
+    timed: it is reused by every solve on the grid)."""
+    import math
+
+    from ballbench.fem import rolling_compliance
+    from ballbench.meshes.assemblies import contact_pairs
+
+    e, nu, radius, force = 2.1e11, 0.28, 10e-3, 100.0
+    a = (3.0 * force * radius / (4.0 * e / (2.0 * (1.0 - nu * nu)))) ** (1.0 / 3.0)
+    grid = rolling.hertz_grid(a, a, (8, 8))
+    path = contact_pairs.ball_on_flat_pair(radius, grid.dx, 1.3, symmetry="full", element_order=2,
+                                           fine_ellipse=(1.2 * a + grid.dx, 1.2 * a + grid.dx, 0.5 * a))
+    start = time.perf_counter()
+    compliance = rolling_compliance.condense(path, (e, nu), grid, order=2)
+    condense_s = time.perf_counter() - start
+    shear = e / (2 * (1 + nu))
+    pressure = rolling.hertz_pressure(grid, a, a, force)
+    p0 = 1.5 * force / (math.pi * a * a)
+    w = rolling.rigid_slip(grid, 0.3 * MU * p0 / shear, 0.0, 0.5 * MU * p0 / (a * shear))
+    fe, half = compliance.operator(), rolling.half_space_operator(grid, shear, nu)
+    times = {}
+    for name, operator in (("FE", fe), ("half-space", half)):
+        rolling.solve(pressure, operator, MU, w)
+        cpu = time.process_time()
+        for _ in range(20):
+            rolling.solve(pressure, operator, MU, w)
+        times[name] = (time.process_time() - cpu) / 20
+    benchmark.pedantic(rolling.solve, args=(pressure, fe, MU, w), rounds=5, iterations=1)
+    print(f"\nFE-compliance rolling solve, 8 x 8 cells ({compliance.ndofs} DOFs, condensation {condense_s:.0f} s "
+          f"wall): CPU {times['FE'] * 1e3:.2f} ms per solve against {times['half-space'] * 1e3:.2f} ms on the "
+          f"half-space (ratio {times['FE'] / times['half-space']:.2f}, target <= 10); load average "
+          f"{os.getloadavg()[0]:.1f}")
