@@ -1,6 +1,6 @@
 """The four ball-groove contacts of a linear-bearing ball as steady rolling contacts with stick and slip.
 
-From a quasi-static ball state (:mod:`lowmodel.linear_bearing.bearing_ball`: ball velocity ``v_B`` along ``z``,
+From a quasi-static ball state (:mod:`lowmodel.linear_bearing.ball`: ball velocity ``v_B`` along ``z``,
 angular velocity ``Omega = (omega_x, omega_y, 0)``; lin2019 eqs 1-4) this module derives, per contact, the
 rigid relative motion of the ball against the groove in Kalker's contact frame and solves the rolling
 contact (:mod:`lowmodel.contact.rolling`).  The full-slip model of lin2019 (eqs A4-A7) keeps only the slip
@@ -38,7 +38,8 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.contact.influence import combined_material
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
-from ballbench.lowmodel.linear_bearing.bearing_ball import BallContacts, BallState
+from ballbench.lowmodel.linear_bearing.ball import BallState
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 
 __all__ = ["ContactMotion", "contact_motions", "RollingBallContact", "solve_contacts", "deformed_radius"]
 

@@ -16,7 +16,8 @@ import numpy as np
 
 from ballbench.lowmodel.contact import ellipse_friction, fastsim, rolling
 from ballbench.lowmodel.contact import halfspace as hs
-from ballbench.lowmodel.linear_bearing import b2b, bearing_ball, rolling_contacts
+from ballbench.lowmodel.linear_bearing import b2b, rolling_contacts
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.papers.lin2019 import CASE, TABLE1
 from ballbench.validation.references import rolling as ref
 from ballbench.validation.scene import scene
@@ -218,13 +219,13 @@ NAMES = ("BL", "BR", "TR", "TL")
 def rolling_lin2019_contacts(run):
     cells = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}[run.fidelity]
     contacts = b2b.module_contacts(CASE.theta, CASE.side_force_ratio, **TABLE1_INPUTS).ball(0)
-    state = bearing_ball.solve_ball(contacts)
+    state = bearing_ball.solve(contacts)
     mu = contacts.friction_coefficient
     material = dict(youngs_modulus=TABLE1.youngs_modulus, poisson_ratio=TABLE1.poisson_ratio)
     # the mapping of frames and signs: at mu 1e-5 (Lambda ~ 6e5) without Heathcote's slip the stick/slip
     # solution is full slip and must give lin2019's forces and moments
     faint = dataclasses.replace(contacts, friction_coefficient=1e-5)
-    faint_state = bearing_ball.solve_ball(faint)
+    faint_state = bearing_ball.solve(faint)
     limit = rolling_contacts.solve_contacts(faint, faint_state, TABLE1.conformity, cells=cells, heathcote=False,
                                             **material)
     for i, contact in enumerate(limit):
@@ -232,7 +233,7 @@ def rolling_lin2019_contacts(run):
         run.check(model="lowmodel.linear_bearing.rolling_contacts", quantity=f"f_{NAMES[i]}/(mu F), Lambda "
                   f"{contact.spin_parameter:.0f}, no Heathcote", unit="1", value=contact.friction_force / scale,
                   reference=faint_state.friction_force[0, i] / scale, scale=1.0, tolerance=2e-3, time_s=0.0,
-                  source="lin2019 eq A4 (lowmodel.linear_bearing.bearing_ball, full slip)", family="BEM",
+                  source="lin2019 eq A4 (lowmodel.linear_bearing.ball, full slip)", family="BEM",
                   level=_cells(cells), why="judged against mu F")
     start = time.perf_counter()
     results = rolling_contacts.solve_contacts(contacts, state, TABLE1.conformity, cells=cells, **material)
@@ -373,7 +374,7 @@ def _fe_grooves(run):
     for conformity in (0.56, 0.52):
         inputs = dict(TABLE1_INPUTS, conformity=conformity)
         contacts = b2b.module_contacts(CASE.theta, CASE.side_force_ratio, **inputs).ball(0)
-        state = bearing_ball.solve_ball(contacts)
+        state = bearing_ball.solve(contacts)
         a_lin, b_lin = contacts.semi_major[0, 0], contacts.semi_major[0, 0] * contacts.b_over_a[0, 0]
         grid = rolling.hertz_grid(b_lin, a_lin, cells)
         start = time.perf_counter()
