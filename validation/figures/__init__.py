@@ -1,0 +1,7 @@
+"""Every drawing of the validation: functions that take plain arrays or results and return a
+:class:`matplotlib.figure.Figure` (matplotlib's object API: no pyplot state, no backend switch; a Figure draws
+with the Agg canvas when saved).  Scenes save them with ``Run.save_figure``, ``show`` hooks with
+:func:`.style.save`.  One module per family of pictures: :mod:`.fe_contact` (FE contact fields),
+:mod:`.fe_module` (pressure patches and stress cuts of the FE modules), :mod:`.hertz`, :mod:`.lin2017`,
+:mod:`.lin2019`, :mod:`.calibration`, :mod:`.sun2021`, :mod:`.wang2022`.
+"""
