@@ -40,7 +40,7 @@ def _solve(ratio, load, speed, n):
 @scene("ehl-hamrock-dowson",
        "EHL point contact (Roelands, Dowson-Higginson, DC-FFT, cavitation), smooth steel, six operating points "
        "(circular and ellipticity 2.5): central and minimum film against Hamrock-Dowson within 15 %; load balance",
-       kind="low-order", cost_s=7.0)  # cost: 7.5 s wall, CPU 84 % of wall (default, loaded machine)
+       kind="low-order", cost_s=7.0)
 def ehl_hamrock_dowson(run):
     n = {"quick": 64, "default": 96, "fine": 128}[run.fidelity]
     for ratio, load, speed in run.progress(OPERATING_POINTS, desc="operating points"):

@@ -37,7 +37,7 @@ def _quantities(contact, result):
 @scene("halfspace-hertz",
        "BEM (Love coefficients, DC-FFT, Polonsky-Keer CG) on the Hertz gap, 100 N, steel, 256 x 256: central "
        "pressure, fitted semi-axes and approach against exact Hertz; grid convergence of the groove f = 0.56",
-       kind="low-order", cost_s=3.0)  # cost: 3.6 s wall, CPU 85 % of wall (default, loaded machine)
+       kind="low-order", cost_s=3.0)
 def halfspace_hertz(run):
     n = 128 if run.fidelity == "quick" else 256
     for name, build in CASES.items():

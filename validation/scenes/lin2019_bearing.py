@@ -77,7 +77,8 @@ def _power_error(state) -> float:
 
 
 @scene("lin2019-table2-a", "Velocity deviations of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 2 case a, "
-       "low-order numerical model) and Fig 8 (epsilon_1 - epsilon_2 over rho and theta)", kind="low-order", cost_s=3.5)
+       "low-order numerical model) and Fig 8 (epsilon_1 - epsilon_2 over rho and theta)", kind="low-order", cost_s=3.5,
+       case=CASE)
 def table2_a(run):
     contacts = _case(THETA, RHO)
     bearing_ball.solve_ball(contacts)  # warm-up: loads the friction map once
@@ -129,7 +130,8 @@ def _figure8(run):
 
 
 @scene("lin2019-table2-b", "Velocity deviations with the mitigating top groove (lin2019 Table 2 case b) and the gap "
-       "history of Fig 10 (cases a and b, initial gap 0.1 R_B)", kind="low-order", cost_s=0.4)
+       "history of Fig 10 (cases a and b, initial gap 0.1 R_B)", kind="low-order", cost_s=0.4,
+       case=lin2019.TABLE3_B)
 def table2_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
     state, time_s = run.time(bearing_ball.solve_ball, contacts)
@@ -169,7 +171,7 @@ def table2_b(run):
 
 
 @scene("lin2019-table3-a", "B2B contact force of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 3 case a)",
-       kind="low-order", cost_s=0.3)
+       kind="low-order", cost_s=0.3, case=CASE)
 def table3_a(run):
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
@@ -203,7 +205,7 @@ def table3_a(run):
 
 
 @scene("lin2019-table3-b", "B2B contact force with the mitigating top groove (lin2019 Table 3 case b)",
-       kind="low-order", cost_s=0.2)
+       kind="low-order", cost_s=0.2, case=lin2019.TABLE3_B)
 def table3_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
     state, time_s = run.time(b2b.solve, contacts, [0.0])

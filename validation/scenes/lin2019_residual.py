@@ -29,7 +29,7 @@ THETA, RHO = CASE.theta, CASE.side_force_ratio
 
 @scene("lin2019-b2b-residual", "Numerical B2B model, lin2019 Table 3 case (a): F_B2B, groove friction, B2B friction "
        "and loss against an independent residual of eqs 1-8 (Legendre-form Hertz, adaptive quadrature of A4-A5)",
-       kind="low-order", cost_s=2.0)  # cost: 4.7 s wall, CPU 37 % of wall (default, loaded machine)
+       kind="low-order", cost_s=2.0, case=CASE)
 def b2b_residual(run):
     contacts = b2b.module_contacts(THETA, RHO, vertical_force=VERTICAL, **TABLE1)
     b2b.solve(contacts, [0.0])  # warm-up: loads the friction map outside the timing

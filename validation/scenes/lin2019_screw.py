@@ -96,13 +96,13 @@ def _table5(run, which: str):
 
 
 @scene("lin2019-table5-a", "Ball screw, two balls, theta = 0 / 2 deg: B2B force and friction increase (Table 5 a)",
-       tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=1.0)
+       tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=1.0, case=lin2019.TABLE5_A)
 def lin2019_table5_a(run):
     _table5(run, "a")
 
 
 @scene("lin2019-table5-b", "Ball screw, two balls, theta = 0 / 3 deg: predicted B2B force and friction increase "
-       "(Table 5 b)", tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=2.5)
+       "(Table 5 b)", tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=2.5, case=lin2019.TABLE5_B)
 def lin2019_table5_b(run):
     _table5(run, "b")
     force_a = two_ball(lin2019.TABLE5_A)[1].b2b_force[0]

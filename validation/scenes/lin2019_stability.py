@@ -74,7 +74,7 @@ class _Tally:
 @scene("lin2019-stability", "Solver sweep: rho and theta up to the lin2017 eq 37 limit, N_y 1e-3 to 1e5 N, mu 1e-6 "
        "to 1, chains of 1 to 200 balls with random gaps and deviations; 100 % convergence where the "
        "spin-capacity ratio >= 1.05, a reason for every failure; converged-region figure",
-       kind="low-order", cost_s=28.0)  # cost: 27.4 s CPU, 65 s wall at load average 5-10 (default level)
+       kind="low-order", cost_s=28.0)
 def stability(run):
     sizes = SIZES[run.fidelity]
     rng = np.random.default_rng(2019)

@@ -37,7 +37,7 @@ PRESSURE_GAP = KnownGap(
        "sun2021 Table 1 ball screw (preload 1500 N, eq 1 load), helix 5.68/13.97/21.71 deg, points A (screw) "
        "and B (nut): BEM on the exact helical gap against full-tensor Hertz (central pressure, rotation); "
        "Fig 9 trends; Figs 7-8 difference maps; which part of the difference is a misoriented Hertz",
-       kind="low-order", cost_s=7.0)  # cost: 7.4 s wall, CPU 99 % of wall (default, loaded machine)
+       kind="low-order", cost_s=7.0)
 def sun2021_dry_contact(run):
     n = {"quick": 96, "default": 192, "fine": 384}[run.fidelity]
     bem_model = dict(model=MODEL, family="BEM", level=f"{n} x {n}")
@@ -123,7 +123,7 @@ ENTRAINMENT_SPEED = case.ENTRAINMENT_SPEED
        "sun2021 Sec 4.3: EHL at A (screw) and B (nut), Table 1 ball screw, eq 1 load, u_s 1005.3 mm/s, domain "
        "+-277 um, exact helical gap, helix 5.68/13.97/21.71 deg: film against Hamrock-Dowson with the "
        "full-tensor radii, load balance, Fig 10 fields, Fig 11 trends (declared known gaps), Fig 12 trend",
-       kind="low-order", cost_s=35.0)  # cost: 182 s wall, 31 s CPU (default, load average 11 on 2 cores)
+       kind="low-order", cost_s=35.0)
 def sun2021_ehl(run):
     n = {"quick": 64, "default": 128, "fine": 256}[run.fidelity]  # grid 2n x n/2
     films, pressures, times, solutions = {}, {}, [], {}

@@ -77,7 +77,7 @@ TRANSITION_GAP = KnownGap(
        "sun2021 Sec 3.2, Fig 6: friction coefficient (eqs 21-23) and friction torque (eq 20) of the nut contact B "
        "against screw speed, wang2022 entrainment and sliding, WM raceway (G in pm): mixed-to-hydrodynamic "
        "transition against the published 502.65 mm/s",
-       kind="low-order", cost_s=25.0)  # cost: 24 s wall default at load average 3 (51 s at 7-9), quick 15 s
+       kind="low-order", cost_s=25.0)
 def sun2021_fig6(run):
     n = {"quick": 64, "default": 64, "fine": 128}[run.fidelity]  # grid 2n x n/2 (n >= 64 resolves L_s = 50 um)
     grid, gap, _ = study.ehl_domain(case.HELIX_ANGLES_DEG[0], "B", n)
@@ -207,7 +207,7 @@ ASPERITY_GAP = KnownGap(
        "sun2021 Sec 4.4, Fig 13 at 21.71 deg: asperity contact stress at A and B with the exact helical gap "
        "('non-Hertzian') against the helix-free gap ('Hertzian'), boundary limit on the same WM raceway: "
        "against the published 2.93 % and 3.01 %",
-       kind="low-order", cost_s=4.0)  # cost: 3.9 s wall default at load average 3 (14 s at 10), quick 0.5 s
+       kind="low-order", cost_s=4.0)
 def sun2021_fig13(run):
     n = {"quick": 64, "default": 96, "fine": 192}[run.fidelity]  # n >= 64 resolves L_s = 50 um
     angle = case.HELIX_ANGLES_DEG[-1]
@@ -261,7 +261,7 @@ def sun2021_fig13(run):
 @scene("sun2021-fig12",
        "sun2021 Sec 4.4, Fig 12: central EHL pressure at A (screw) and B (nut) against screw speed (wang2022 "
        "entrainment) and helix angle, exact helical gap ('non-Hertzian') against the helix-free gap ('Hertzian')",
-       kind="low-order", cost_s=5.0)  # cost: 4.5 s wall default at load average 3 (17 s at 10), quick 1.6 s
+       kind="low-order", cost_s=5.0)
 def sun2021_fig12(run):
     n = {"quick": 32, "default": 64, "fine": 128}[run.fidelity]  # grid 2n x n/2, smooth surfaces
     last, first = case.HELIX_ANGLES_DEG[-1], case.HELIX_ANGLES_DEG[0]
