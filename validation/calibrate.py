@@ -43,8 +43,8 @@ from ballbench.validation.cases import lin2019
 from ballbench.validation.specs import read_toml
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
-           "fe_contact_law", "fe_contact_scenes", "run_spec", "check_spec", "active_calibration", "CALIBRATION_ENV",
-           "CSV_UNITS"]
+           "contact_law", "fe_contact_law", "fe_contact_scenes", "run_spec", "check_spec", "active_calibration",
+           "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
 # quantity -> {unit: SI factor}
@@ -201,18 +201,31 @@ def _hertz_references(geometry, ball_radius):
     return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
 
 
+def contact_law(case, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
+                confidence: float = 0.95, label: str = "") -> tuple[cal.ContactLaw, dict]:
+    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of the
+    :class:`ContactCase` ``case`` at ``fidelity`` (studies.fe_contact.load_sweep), with the pair's Hertz C and Psi
+    as references; returns (law, sweep with its ``source`` text, which names ``label`` or the case)."""
+    from ballbench.validation.studies.fe_contact import load_sweep
+
+    sweep = load_sweep(case, fidelity, _check_load_factors(load_factors))
+    radius = sweep["ball_radius"]
+    reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
+    source = (f"FE {label or case.name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
+              f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
+              f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
+    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
+                              confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
+    return law, {**sweep, "source": source}
+
+
 def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
                    confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
-    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of a
-    scene's contact case (studies.calibration.contact_law), with the pair's Hertz C and Psi as references;
-    returns (law, sweep)."""
-    from ballbench.validation.studies.calibration import contact_law
-
+    """:func:`contact_law` of the contact case of scene ``scene_name`` (:func:`fe_contact_scenes`)."""
     cases = fe_contact_scenes()
     if scene_name not in cases:
         raise ValueError(f"fe_scene must be one of {sorted(cases)}, got {scene_name!r}")
-    return contact_law(cases[scene_name], fidelity, _check_load_factors(load_factors), confidence=confidence,
-                       label=scene_name)
+    return contact_law(cases[scene_name], fidelity, load_factors, confidence=confidence, label=scene_name)
 
 
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:

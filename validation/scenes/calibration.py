@@ -179,7 +179,7 @@ def _calibrated_groove_laws():
     ``nut-groove``, else fitted to FE load sweeps of the Table 4 screw and nut contacts at the quick level.
     Returns (:class:`screw_ball.GrooveContactLaws`, origin text)."""
     from ballbench.lowmodel.screw import screw_ball
-    from ballbench.validation.calibrate import active_calibration
+    from ballbench.validation.calibrate import active_calibration, contact_law
 
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]
@@ -187,7 +187,7 @@ def _calibrated_groove_laws():
         return screw_ball.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
     laws, origin = {}, []
     for body, (_, case) in SCREW_FE.items():
-        laws[body], sweep = study.contact_law(case, SCREW_FE_FIDELITY)
+        laws[body], sweep = contact_law(case, SCREW_FE_FIDELITY)
         origin.append(f"{sweep['source']} in {sweep['wall_time_s']:.0f} s")
     return screw_ball.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
 

@@ -3,8 +3,8 @@
 * :func:`synthetic_truth`, :func:`synthetic_fit`, :func:`coverage`: data drawn from known constants plus noise
   (the ``calibration-roundtrip`` scene and tests/test_calibration.py): the fits of lowmodel.calibration recover
   them within their intervals, as often as the intervals claim;
-* :func:`contact_law`: the law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load
-  sweep of a :class:`ContactCase` (studies.fe_contact.load_sweep), with its Hertz C and Psi as references.
+The contact laws calibrated on FE are ``validation.calibrate.contact_law`` (a case) and ``fe_contact_law`` (a
+scene's case).
 """
 from __future__ import annotations
 
@@ -15,9 +15,8 @@ import numpy as np
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases import lin2019
-from ballbench.validation.cases.case import ContactCase
 
-__all__ = ["synthetic_truth", "synthetic_fit", "coverage", "contact_law", "LOADS", "NOISE_U", "NOISE_A", "NOISE_F",
+__all__ = ["synthetic_truth", "synthetic_fit", "coverage", "LOADS", "NOISE_U", "NOISE_A", "NOISE_F",
            "BULK", "MU_0", "MU_V", "K_F"]
 
 # the synthetic truth: Hertz C and Psi of lin2019 Table 1's 0.56 groove, a bulk compliance of the order FE
@@ -79,22 +78,3 @@ def coverage(seeds, truth: dict, confidence: float = 0.95) -> dict:
         for name, constant in synthetic_fit(int(seed), truth, confidence=confidence).items():
             hits[name] += constant.covers(truth[name])
     return {name: count / len(seeds) for name, count in hits.items()}
-
-
-def contact_law(case: ContactCase, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
-                confidence: float = 0.95, label: str = "") -> tuple[cal.ContactLaw, dict]:
-    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of
-    ``case`` at ``fidelity``, with the pair's Hertz C and Psi as references; returns (law, sweep with its
-    ``source`` text, which names ``label`` or the case)."""
-    from ballbench.validation.studies.fe_contact import load_sweep
-
-    sweep = load_sweep(case, fidelity, load_factors)
-    radius = sweep["ball_radius"]
-    geometry = sweep["geometry"]
-    source = (f"FE {label or case.name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
-              f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
-              f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
-    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
-                              confidence=confidence, source=source, hertz_constant=hertz.hertz_constant(geometry),
-                              psi=hertz.psi_constant(geometry, radius))
-    return law, {**sweep, "source": source}
