@@ -46,7 +46,7 @@ def test_exact_data_recover_hertz():
 
 
 def test_intervals_cover_the_truth_in_at_least_90_percent_of_seeds():
-    from ballbench.validation.scenes.calibration import synthetic_truth, coverage
+    from ballbench.validation.studies.calibration import coverage, synthetic_truth
 
     shares = coverage(range(100), synthetic_truth())
     assert set(shares) == {"hertz_constant", "bulk_compliance", "psi", "mu", "mu_speed_slope", "k_f"}

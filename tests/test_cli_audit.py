@@ -173,7 +173,7 @@ def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, mo
     from ballbench.validation.scene import Scene
 
     def ratio_scene(run):
-        run.check(model="lowmodel.contact.mixed", quantity="relative change", unit="1", value=0.010156,
+        run.check(model="lowmodel.contact.mixed", family="EHL", quantity="relative change", unit="1", value=0.010156,
                   reference=0.0293, source="sun2021 Sec 4.4", tolerance=0.2, time_s=1e-3)
 
     result = run_scene(Scene("zz-ratio", "ratio", ratio_scene, default=False, kind="low-order", cost_s=0.1),
@@ -199,7 +199,8 @@ def test_known_gaps_table_states_a_shared_reason_once(tmp_path):
 
     def gaps(run):
         for quantity, gap in (("peak", shared), ("angle of the peak", shared), ("F_B2B", other)):
-            run.check(model="lowmodel.screw.whole_screw", quantity=quantity, unit="deg", value=100.0,
+            run.check(model="lowmodel.screw.whole_screw", family="low-order numerical",
+                      quantity=quantity, unit="deg", value=100.0,
                       reference=126.0, source="lin2019 Fig 21", tolerance=0.05, time_s=1.0, known_gap=gap)
 
     result = run_scene(Scene("zz-gaps", "gaps", gaps, default=False, kind="low-order", cost_s=0.1), "default",
@@ -216,7 +217,7 @@ def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys
     import json
 
     from ballbench.validation import show
-    from ballbench.validation.scenes import fe_hertz
+    from ballbench.validation.studies import fe_contact
 
     class Stop(Exception):
         pass
@@ -224,7 +225,7 @@ def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys
     def stop(*args, **kwargs):
         raise Stop
 
-    monkeypatch.setattr(fe_hertz, "compute_fields", stop)
+    monkeypatch.setattr(fe_contact, "compute_fields", stop)
     (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": []}))
     with pytest.raises(Stop):
         show.show("fe-hertz-groove-056", tmp_path, "default")
@@ -240,9 +241,9 @@ def test_junit_lists_every_check_of_a_scene(tmp_path):
     from ballbench.validation.scene import Scene
 
     def two_checks(run):
-        run.check(model="fem.mortar", quantity="a", unit="m", value=421.3e-6, reference=421.2e-6,
+        run.check(model="fem.mortar", family="FE", quantity="a", unit="m", value=421.3e-6, reference=421.2e-6,
                   source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
-        run.check(model="fem.mortar", quantity="p0", unit="Pa", value=1159e6, reference=1159.2e6,
+        run.check(model="fem.mortar", family="FE", quantity="p0", unit="Pa", value=1159e6, reference=1159.2e6,
                   source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
 
     result = run_scene(Scene("zz-fe", "fe", two_checks, default=False, kind="FE", cost_s=0.1), "default", tmp_path)
@@ -271,7 +272,7 @@ def test_a_scene_that_raises_points_to_its_traceback(tmp_path, capsys, monkeypat
 
 
 def test_show_labels_give_the_fe_error_against_hertz():
-    from ballbench.validation.show import against
+    from ballbench.validation.figures.style import against
 
     # pressure.png drew Hertz and FE ellipses 0.01 % apart with nothing but the two lengths to 0.1 um
     assert against(421.2844e-6, 421.2438e-6) == "+0.010 %"
@@ -323,7 +324,8 @@ def test_an_empty_budgets_section_says_so(tmp_path):
     from ballbench.validation.scene import Scene
 
     def quick(run):
-        run.check(model="lowmodel.contact.hertz", quantity="a", unit="m", value=1.0e-4, reference=1.0e-4,
+        run.check(model="lowmodel.contact.hertz", family="analytical",
+                  quantity="a", unit="m", value=1.0e-4, reference=1.0e-4,
                   source="Johnson (1985) eq 4.22", tolerance=1e-9, time_s=1e-5)
 
     result = run_scene(Scene("zz-quick", "quick", quick, default=False, kind="analytical", cost_s=0.1), "default",
@@ -341,7 +343,8 @@ def test_known_gaps_section_of_a_strict_run_says_they_fail(tmp_path):
     from ballbench.validation.scene import KnownGap, Scene
 
     def gap(run):
-        run.check(model="lowmodel.linear_bearing.b2b", quantity="increase", unit="%", value=150.4, reference=185.2,
+        run.check(model="lowmodel.linear_bearing.b2b", family="low-order numerical",
+                  quantity="increase", unit="%", value=150.4, reference=185.2,
                   relation="ge", tolerance=0.0, source="lin2019 Sec 2.4.1", time_s=0.01,
                   known_gap=KnownGap(reason="no full-sliding state", evidence="docs/b2b_bearing.md"))
 
@@ -359,11 +362,13 @@ def test_a_bound_that_holds_is_not_called_exact(tmp_path):
     from ballbench.validation.scene import Scene
 
     def bounds(run):
-        run.check(model="lowmodel.calibration", quantity="coverage of the 95 % interval", unit="1", value=0.9525,
+        run.check(model="lowmodel.calibration", family="low-order numerical",
+                  quantity="coverage of the 95 % interval", unit="1", value=0.9525,
                   reference=0.9, relation="ge", tolerance=0.0, source="issue 13", time_s=1e-3)
 
     def exact(run):
-        run.check(model="lowmodel.calibration", quantity="constants changed by save/load", unit="count", value=0.0,
+        run.check(model="lowmodel.calibration", family="low-order numerical",
+                  quantity="constants changed by save/load", unit="count", value=0.0,
                   reference=0.0, tolerance=0.0, scale=1.0, source="JSON round trip", time_s=1e-3,
                   why="a count: any change is one")
 

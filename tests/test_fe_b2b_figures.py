@@ -10,14 +10,11 @@ import itertools
 import math
 from types import SimpleNamespace
 
-import matplotlib
 import numpy as np
 import pytest
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from ballbench.validation.scenes.fe_b2b import FAINT_SHARE, cut_figure, patch_figure  # noqa: E402
+from ballbench.validation.figures.fe_module import FAINT_SHARE, cut_figure, patch_figure
 
 A, B = 0.3e-3, 0.08e-3  # m, semi-axes of the synthetic patches
 
@@ -44,8 +41,8 @@ PEAKS_MPA = [(1000.0, 400.0), (200.0, 700.0)]
 def figure():
     results = _results([[p * 1e6 for p in row] for row in PEAKS_MPA])
     fig = patch_figure(results, [[(A, B)] * 2] * 2, xlim=0.5, ylim=0.2, heading="synthetic")
-    yield fig
-    plt.close(fig)
+    assert isinstance(fig, Figure)  # the object API: no pyplot figure manager, no backend switch
+    return fig
 
 
 def test_pressure_panels_share_one_colour_scale_up_to_the_largest_pressure(figure):
@@ -86,17 +83,14 @@ def test_cut_draws_each_element_value_flat_and_frames_the_cut():
     points, tets = _cube()
     stress = np.array([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])  # MPa, one per tetrahedron
     fig = cut_figure(points, tets, stress, normal=(0, 0, 1), origin=(0, 0, 0.5e-3), title="cube")
-    try:
-        ax = fig.axes[0]
-        (mesh,) = ax.collections
-        drawn = np.asarray(mesh.get_array())
-        assert len(drawn) >= 6 and set(np.round(drawn, 12)) == set(stress)  # every tet crosses z = 0.5 mm
-        assert mesh.get_cmap().name == "YlOrRd"
-        assert mesh.norm.vmin == 0.0 and mesh.norm.vmax == pytest.approx(np.percentile(stress, 99.9))
-        assert ax.get_xlim() == pytest.approx((0.0, 1.0)) and ax.get_ylim() == pytest.approx((0.0, 1.0))
-        assert ax.get_title() == "cube"
-    finally:
-        plt.close(fig)
+    ax = fig.axes[0]
+    (mesh,) = ax.collections
+    drawn = np.asarray(mesh.get_array())
+    assert len(drawn) >= 6 and set(np.round(drawn, 12)) == set(stress)  # every tet crosses z = 0.5 mm
+    assert mesh.get_cmap().name == "YlOrRd"
+    assert mesh.norm.vmin == 0.0 and mesh.norm.vmax == pytest.approx(np.percentile(stress, 99.9))
+    assert ax.get_xlim() == pytest.approx((0.0, 1.0)) and ax.get_ylim() == pytest.approx((0.0, 1.0))
+    assert ax.get_title() == "cube"
 
 
 def test_cut_that_misses_the_mesh_says_so():

@@ -7,7 +7,11 @@ import pytest
 from ballbench.fem import screw_module as sm
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import helix
-from ballbench.validation.papers.lin2019 import TABLE4 as T4
+from ballbench.validation.cases import lin2019
+from ballbench.validation.references import screw_statics as statics
+from ballbench.validation.studies import fe_b2b_screw as study
+
+T4 = lin2019.SCREW
 
 THETA = math.radians(2.0)
 ANGLES = sm.flank_angles_tilted(T4.nominal_angle, THETA)
@@ -73,12 +77,10 @@ def test_bad_input():
 
 
 def test_hertz_statics_reference():
-    from ballbench.validation.scenes import fe_b2b_screw as scene
-
-    contacts, _, state = scene.low_order("a")
-    shares = scene.axial_shares(contacts, state)
+    contacts, _, state = study.low_order(lin2019.TABLE5_A)
+    shares = study.axial_shares(contacts, state)
     assert shares.sum() == pytest.approx(50.0, rel=1e-8)  # the touching state's 50 N on the screw
-    forces = scene.hertz_statics(contacts, 0, 25.0)
+    forces = statics.hertz_statics(contacts, 0, 25.0)
     # theta = 0 without friction: the half-turn about y3 maps SL <-> NR and SR <-> NL
     assert forces[0] == pytest.approx(forces[2], rel=1e-3) and forces[1] == pytest.approx(forces[3], rel=1e-3)
     # the axial load: screw contacts along z_hat (at the nominal angles; the ball's micrometre shift turns the
@@ -86,73 +88,68 @@ def test_hertz_statics_reference():
     angle = T4.nominal_angle
     axial = (forces[0] - forces[1]) * math.sin(angle) * math.cos(GEOMETRY.lead_angle)
     assert axial == pytest.approx(25.0, rel=1e-2)
-    assert scene.hertz_statics(contacts, 0, 30.0)[0] > forces[0]  # more load, more on the loaded diagonal
+    assert statics.hertz_statics(contacts, 0, 30.0)[0] > forces[0]  # more load, more on the loaded diagonal
 
 
 def test_hertz_statics_of_both_cases_converge():
     """Both balls of Table 4 cases (a) and (b) at their axial shares: balanced to the solver tolerance (MINPACK's
     "not making good progress" at a 4e-12 N residual, case b ball 1, was once taken for a failure)."""
-    from ballbench.validation.scenes import fe_b2b_screw as scene
-
     for case in ("a", "b"):
-        contacts, _, state = scene.low_order(case)
-        shares = scene.axial_shares(contacts, state)
+        contacts, _, state = study.low_order(lin2019.TABLE5[case])
+        shares = study.axial_shares(contacts, state)
         for ball in range(2):
-            forces = scene.hertz_statics(contacts, ball, shares[ball])
+            forces = statics.hertz_statics(contacts, ball, shares[ball])
             assert np.all(forces > 0.0)
-            residual = scene.statics_residual(contacts, ball, forces, shares[ball])
+            residual = statics.statics_residual(contacts, ball, forces, shares[ball])
             assert np.abs(residual).max() < 1e-2 * shares[ball]  # rigid-flank statics: the same balance, roughly
 
 
 def test_statics_checks_of_the_scene_reject_wrong_forces():
     # the scene's physics checks on a module's forces (ball 1, theta = 0: four flanks at one angle):
     # forces built from the frictionless statics by hand pass; the mutants of docs/mutations.md do not
-    from ballbench.validation.scenes import fe_b2b_screw as scene
-
-    contacts, _, _ = scene.low_order("a")
+    contacts, _, _ = study.low_order(lin2019.TABLE5_A)
     beta = contacts.contact_angles[0, 0]
     assert np.allclose(contacts.contact_angles[0], beta)
     share, preload = 24.7, 17.0
     light = preload
     heavy = light + share / (math.sin(beta) * math.cos(contacts.module.lead_angle))  # screw's push along z_hat
     forces = np.array([heavy, light, heavy, light])  # (SL, SR, NR, NL)
-    np.testing.assert_allclose(scene.statics_residual(contacts, 0, forces, share), 0.0, atol=1e-12 * share)
-    assert scene.half_turn_asymmetry(forces) == 0.0
+    np.testing.assert_allclose(statics.statics_residual(contacts, 0, forces, share), 0.0, atol=1e-12 * share)
+    assert statics.half_turn_asymmetry(forces) == 0.0
     wrong = {"load with the wrong sign": (forces[[1, 0, 3, 2]], share),
              "another ball's share": (forces, 1.03 * share),
              "nut contacts NR, NL swapped": (forces[[0, 1, 3, 2]], share),
              "screw and nut contacts swapped": (forces[[3, 2, 1, 0]], share)}
     for name, (f, s) in wrong.items():
-        assert np.abs(scene.statics_residual(contacts, 0, f, s)).max() > 1e-2 * share, name
-    assert scene.half_turn_asymmetry(forces[[0, 1, 3, 2]]) > 0.5
+        assert np.abs(statics.statics_residual(contacts, 0, f, s)).max() > 1e-2 * share, name
+    assert statics.half_turn_asymmetry(forces[[0, 1, 3, 2]]) > 0.5
     # ball 2 (theta 2 deg, screw flanks tilted): the same forces do not balance at its angles
-    assert np.abs(scene.statics_residual(contacts, 1, forces, share)).max() > 1e-2 * share
+    assert np.abs(statics.statics_residual(contacts, 1, forces, share)).max() > 1e-2 * share
 
 
 @pytest.fixture(scope="module")
 def quick_modules():
-    from ballbench.validation.scenes import fe_b2b_screw as scene
-
-    contacts, _, state = scene.low_order("a")
-    shares = scene.axial_shares(contacts, state)
-    models, results, _ = scene.solve_fe_level("a", *scene.LEVELS["quick"][0], shares)
-    return scene, contacts, state, shares, models, results
+    contacts, _, state = study.low_order(lin2019.TABLE5_A)
+    shares = study.axial_shares(contacts, state)
+    case = lin2019.TABLE5_A
+    models, results, _ = study.solve_fe_level(case, case.fe.levels["quick"][0], shares)
+    return case, contacts, state, shares, models, results
 
 
 @pytest.mark.slow
 def test_module_statics_and_fe_informed_b2b(quick_modules):
-    scene, contacts, state, shares, models, results = quick_modules
+    case, contacts, state, shares, models, results = quick_modules
     for ball, (model, result) in enumerate(zip(models, results)):
         forces = np.array([c.normal_force for c in result.contacts])
         on_ball = -(forces[:, None] * model.geometry.normals)
         np.testing.assert_allclose(on_ball.sum(axis=0), 0.0, atol=1e-9 * forces.max())  # ball equilibrium
         assert on_ball[:2, 2].sum() == pytest.approx(shares[ball], rel=1e-9)  # the screw's axial push
         # indeterminate, preloaded: near the frictionless Hertz statics (the scene reports the difference)
-        np.testing.assert_allclose(forces, scene.hertz_statics(contacts, ball, shares[ball]), rtol=0.08)
+        np.testing.assert_allclose(forces, statics.hertz_statics(contacts, ball, shares[ball]), rtol=0.08)
         assert result.pin_force < 1e-9
         shift = np.degrees([c.contact_angle for c in result.contacts]) - np.degrees(model.geometry.contact_angles)
         assert np.all(np.abs(shift) < 0.5)
-    informed = scene.fe_informed(models, results)
+    informed = study.fe_informed(case, models, results)
     assert informed.power_balance < 1e-6
     assert 1.6 < informed.b2b_force[0] < 2.3  # Table 5 (a): 1.80 N ANSYS, 1.92 N low-order
 

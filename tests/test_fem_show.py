@@ -8,10 +8,13 @@ import numpy as np
 import pytest
 
 from ballbench.validation import cli, show
+from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import render3d
-from ballbench.validation.scenes import fe_hertz
+from ballbench.validation.scene import registry
+from ballbench.validation.studies import fe_contact
 
 SCENE = "fe-hertz-ball-ball"
+CASE = lin2019.CONTACT_BALL
 THREE_D = ["3d_assembly.png", "3d_pressure.png", "3d_stress.png"]  # validation.figures.render3d
 
 
@@ -19,7 +22,8 @@ THREE_D = ["3d_assembly.png", "3d_pressure.png", "3d_stress.png"]  # validation.
 def saved(tmp_path_factory):
     """A report folder with the saved fields of the coarse level (one FE solve, about 10-20 s)."""
     out = tmp_path_factory.mktemp("report")
-    paths = fe_hertz.compute_fields(SCENE, "quick", out / SCENE)
+    assert registry()[SCENE].case is CASE
+    paths = fe_contact.compute_fields(CASE, SCENE, "quick", out / SCENE)
     assert [p.name for p in paths] == ["fields.vtu", "fields.json"]
     return out
 
@@ -30,7 +34,7 @@ def _no_solve(*args, **kwargs):
 
 def test_saved_fields_name_their_units(saved):
     meta = json.loads((saved / SCENE / "fields.json").read_text())
-    data, _ = show.load_fields(saved / SCENE)
+    data, _ = fe_contact.load_fields(saved / SCENE)
     for key, name in meta["fields"].items():
         assert name in data, name
         assert name.endswith(("_m", "_Pa")), name
@@ -44,8 +48,8 @@ def test_saved_fields_name_their_units(saved):
 
 
 def test_show_reads_saved_fields_and_writes_into_the_scene_folder(saved, monkeypatch, capfd):
-    monkeypatch.setattr(fe_hertz, "solve_level", _no_solve)
-    monkeypatch.setattr(fe_hertz, "compute_fields", _no_solve)
+    monkeypatch.setattr(fe_contact, "solve_level", _no_solve)
+    monkeypatch.setattr(fe_contact, "compute_fields", _no_solve)
     paths = show.show(SCENE, saved)
     assert [p.name for p in paths] == ["pressure.png", "stress.png"] + THREE_D
     for path in paths:
@@ -60,11 +64,12 @@ def test_show_reads_saved_fields_and_writes_into_the_scene_folder(saved, monkeyp
 def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
     calls = []
 
-    def fake_compute(scene_name, fidelity, directory, show_progress=False):
+    def fake_compute(case, scene_name, fidelity, directory, show_progress=False):
         calls.append((scene_name, fidelity))
+        assert case is CASE and not show_progress
         shutil.copytree(saved / SCENE, directory, dirs_exist_ok=True)
 
-    monkeypatch.setattr(fe_hertz, "compute_fields", fake_compute)
+    monkeypatch.setattr(fe_contact, "compute_fields", fake_compute)
     monkeypatch.setattr(render3d, "render", lambda directory: [])  # the 3D screenshots: tests/test_render3d.py
     show.show(SCENE, tmp_path, fidelity="quick")
     show.show(SCENE, tmp_path, fidelity="quick")
@@ -72,7 +77,7 @@ def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
 
 
 def test_cli_show(saved, monkeypatch, capsys):
-    monkeypatch.setattr(fe_hertz, "solve_level", _no_solve)
+    monkeypatch.setattr(fe_contact, "solve_level", _no_solve)
     assert cli.main(["show", SCENE, "--out", str(saved)]) == 0
     assert capsys.readouterr().out.split() == [str(saved / SCENE / name) for name in
                                                ["pressure.png", "stress.png"] + THREE_D]

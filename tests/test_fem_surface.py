@@ -63,15 +63,15 @@ def test_mortar_on_the_concave_nut_contact():
     from ballbench.lowmodel.contact import hertz
     from ballbench.lowmodel.geometry import groove, helix
     from ballbench.meshes.assemblies import screw_pair
-    from ballbench.validation.scenes import sun2021
+    from ballbench.validation.cases.sun2021 import SCREW as t1
+    from ballbench.validation.studies import sun2021
 
-    t1 = sun2021.T1
     lead = float(helix.lead_from_angle(math.radians(21.71), t1.pitch_radius))
-    args = (t1.ball_radius, t1.conformity, t1.pitch_radius, lead, t1.contact_angle, "nut")
+    args = (t1.ball_radius, t1.conformity, t1.pitch_radius, lead, t1.nominal_angle, "nut")
     frame = groove.contact_frame(groove.helical_groove(*args, "right"))
     curvature = 1.0 / t1.ball_radius
     geometry = hertz.from_curvatures((curvature, curvature), (frame.curvature_major, frame.curvature_minor),
-                                     youngs_modulus=t1.youngs_modulus, poisson_ratio=t1.poisson_ratio)
+                                     **t1.material.keywords)
     ref = hertz.solve_load(geometry, sun2021.contact_load())  # full-tensor Hertz of the exact nut surface
     a, b, delta = float(ref.a), float(ref.b), float(ref.delta)
     path = screw_pair.ball_in_screw_groove_pair(*args, h_contact=b / 3, growth=2.0, flank="right",
@@ -84,7 +84,7 @@ def test_mortar_on_the_concave_nut_contact():
     window = ball[pair.points[ball, 2] <= z_top]
     assert not locate_along_z(pair.points, counter, pair.points[window, :2])[2].all()
 
-    model = build_mortar_model(path, (t1.youngs_modulus, t1.poisson_ratio), 1.05 * delta, order=2)
+    model = build_mortar_model(path, t1.material.pair, 1.05 * delta, order=2)
     state = contact.solve_force(model, sun2021.contact_load(), tol=1e-10)
     assert state.force == pytest.approx(sun2021.contact_load(), rel=1e-9)
     fit = hertz_case.fit_contact_patch(model, state)

@@ -48,9 +48,9 @@ def _scene(function, name="demo", kind="low-order"):
 def test_checks_pass_and_fail(tmp_path):
     def body(run):
         value, time_s = run.time(lambda: 2.0)
-        run.check(model="m", quantity="q", unit="N", value=value, reference=2.0, source="s",
+        run.check(model="m", family="analytical", quantity="q", unit="N", value=value, reference=2.0, source="s",
                   tolerance=1e-12, time_s=time_s)
-        run.check(model="m", quantity="r", unit="N", value=1.1, reference=1.0, source="s",
+        run.check(model="m", family="analytical", quantity="r", unit="N", value=1.1, reference=1.0, source="s",
                   tolerance=0.05, time_s=time_s)
 
     result = run_scene(_scene(body), "quick", tmp_path)
@@ -75,7 +75,8 @@ def test_exception_and_empty_scene_fail(tmp_path):
 def test_guards_reject_checks_that_cannot_fail(tmp_path, tolerance, scale):
     """issue 10 item 5: a non-finite or >= 1 tolerance, or a scale above the reference, needs a reason."""
     def body(run, why=""):
-        run.check(model="m", quantity="q", unit="1", value=1.0, reference=2.0, source="s", tolerance=tolerance,
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="1", value=1.0, reference=2.0, source="s", tolerance=tolerance,
                   scale=scale, time_s=1e-3, why=why)
 
     result = run_scene(_scene(body), "quick", tmp_path)
@@ -87,7 +88,8 @@ def test_guards_reject_checks_that_cannot_fail(tmp_path, tolerance, scale):
 
 def test_zero_reference_needs_its_scale_explained(tmp_path):
     def body(run):
-        run.check(model="m", quantity="q", unit="N", value=0.0, reference=0.0, scale=4.0, source="s",
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="N", value=0.0, reference=0.0, scale=4.0, source="s",
                   tolerance=1e-9, time_s=1e-3)
 
     assert "why=" in run_scene(_scene(body), "quick", tmp_path).error
@@ -98,7 +100,8 @@ def test_zero_reference_needs_its_scale_explained(tmp_path):
 def test_exact_check_needs_no_scale_reason(tmp_path):
     """tolerance 0 demands exact agreement, so a unit scale on a zero reference makes nothing lax."""
     def body(run, value):
-        run.check(model="m", quantity="count", unit="count", value=value, reference=0.0, scale=1.0, source="s",
+        run.check(model="m", family="analytical",
+                  quantity="count", unit="count", value=value, reference=0.0, scale=1.0, source="s",
                   tolerance=0.0, time_s=1e-3)
 
     assert run_scene(_scene(lambda run: body(run, 0.0)), "quick", tmp_path).passed
@@ -108,7 +111,8 @@ def test_exact_check_needs_no_scale_reason(tmp_path):
 
 def test_known_gap_statuses(tmp_path):
     def gap(run, value):
-        run.check(model="m", quantity="increase", unit="%", value=value, reference=185.2, relation="ge",
+        run.check(model="m", family="analytical",
+                  quantity="increase", unit="%", value=value, reference=185.2, relation="ge",
                   tolerance=0.0, source="paper", time_s=1e-3, known_gap=GAP)
 
     missed = run_scene(_scene(lambda run: gap(run, 150.0)), "quick", tmp_path)
@@ -122,7 +126,8 @@ def test_known_gap_statuses(tmp_path):
 
 def test_budgets_never_decide_unless_strict_time(tmp_path):
     def body(run):
-        run.check(model="m", quantity="q", unit="N", value=1.0, reference=1.0, source="s", tolerance=1e-9,
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="N", value=1.0, reference=1.0, source="s", tolerance=1e-9,
                   time_s=1e-3)
         run.budget(quantity="wall time", unit="s", value=61.7, budget=60.0, source="issue 5 budget")
 
@@ -142,25 +147,30 @@ def _figure_scene(run):
     figure, axes = plt.subplots(figsize=(2, 2))
     axes.plot([0, 1], [0, 1])
     run.save_figure(figure, "line.png")
-    run.check(model="lowmodel.contact.hertz", quantity="a", unit="m", value=1.2e-4 * (1 + 1e-12), reference=1.2e-4,
+    run.check(model="lowmodel.contact.hertz", family="analytical",
+              quantity="a", unit="m", value=1.2e-4 * (1 + 1e-12), reference=1.2e-4,
               source="closed form", tolerance=1e-10, time_s=1e-3)
-    run.check(model="lowmodel.contact.hertz", quantity="p0", unit="Pa", value=1.1638e9, reference=1.1638e9 * 1.001,
+    run.check(model="lowmodel.contact.hertz", family="analytical",
+              quantity="p0", unit="Pa", value=1.1638e9, reference=1.1638e9 * 1.001,
               source="closed form", tolerance=0.01, time_s=2e-3, note="worst error at the slower evaluation")
     run.note("a note under the table")
 
 
 def _fail_scene(run):
-    run.check(model="fem.contact", quantity="F_B2B", unit="N", value=4.52, reference=4.01, source="lin2019 Table 3",
+    run.check(model="fem.contact", family="FE",
+              quantity="F_B2B", unit="N", value=4.52, reference=4.01, source="lin2019 Table 3",
               tolerance=0.03, time_s=0.5)
 
 
 def _gap_scene(run):
-    run.check(model="lowmodel.linear_bearing.b2b", quantity="largest friction increase", unit="%", value=150.4,
+    run.check(model="lowmodel.linear_bearing.b2b", family="low-order numerical",
+              quantity="largest friction increase", unit="%", value=150.4,
               reference=185.2, relation="ge", tolerance=0.0, source="lin2019 Sec 2.4.1", time_s=0.01, known_gap=GAP)
 
 
 def _over_budget_scene(run):
-    run.check(model="m", quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
+    run.check(model="m", family="analytical",
+              quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
     run.budget(quantity="wall_time", unit="s", value=2.0, budget=1.0, source="budget")
 
 
@@ -174,7 +184,8 @@ def _interrupt_scene(run):
 
 def _sigint_scene(run):
     os.kill(os.getpid(), signal.SIGINT)  # one Ctrl-C: the scene finishes, the next one does not start
-    run.check(model="m", quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
+    run.check(model="m", family="analytical",
+              quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
 
 
 FAKES = {"zz-a-pass": (_figure_scene, "analytical"), "zz-b-fail": (_fail_scene, "FE"),
@@ -413,7 +424,8 @@ def test_junit_xml_has_a_test_case_per_scene(fakes, tmp_path):
 
 def test_report_files_and_schema(tmp_path):
     def body(run):
-        run.check(model="m", quantity="q", unit="m", value=1.0, reference=1.0, source="s", tolerance=0.0,
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="m", value=1.0, reference=1.0, source="s", tolerance=0.0,
                   time_s=1e-3)
 
     results = [run_scene(_scene(body), "default", tmp_path)]
@@ -438,12 +450,12 @@ def test_cli_real_scenes_quick(tmp_path):
 def test_fig9_worst_is_a_declared_known_gap():
     import inspect
 
-    from ballbench.validation.scenes import lin2019_bearing
-
-    assert isinstance(lin2019_bearing.FIG9_GAP, KnownGap)
-    assert "spin-capacity" in lin2019_bearing.FIG9_GAP.reason
-    assert "docs/b2b_bearing.md" in lin2019_bearing.FIG9_GAP.evidence
-    assert "known_gap=FIG9_GAP" in inspect.getsource(lin2019_bearing.fig9_worst)
+    function = scene_module.registry()["lin2019-fig9-worst"].function  # through the registry, not an import
+    gap = function.__globals__["FIG9_GAP"]
+    assert isinstance(gap, KnownGap)
+    assert "spin-capacity" in gap.reason
+    assert "docs/b2b_bearing.md" in gap.evidence
+    assert "known_gap=FIG9_GAP" in inspect.getsource(function)
 
 
 def test_results_json_round_trip(fakes, tmp_path):
@@ -484,9 +496,10 @@ def test_mesh_levels_join_the_accuracy_cost_front(tmp_path):
         path = run.path("convergence.csv")
         path.write_text("n,growth,wall_s,err_a,err_p0\n5.5,1.4,10.0,0.02,-0.03\n8.0,1.2,80.0,0.001,0.002\n")
         run.add_artifact(path)
-        run.check(model="fem.contact", quantity="a", unit="m", value=1.001, reference=1.0, source="Hertz",
+        run.check(model="fem.contact", family="FE", quantity="a", unit="m", value=1.001, reference=1.0, source="Hertz",
                   tolerance=0.003, time_s=80.0)
-        run.check(model="fem.contact", quantity="p0", unit="Pa", value=1.002, reference=1.0, source="Hertz",
+        run.check(model="fem.contact", family="FE",
+                  quantity="p0", unit="Pa", value=1.002, reference=1.0, source="Hertz",
                   tolerance=0.005, time_s=80.0)
 
     result = run_scene(_scene(body, kind="FE"), "fine", tmp_path)

@@ -43,10 +43,10 @@ def test_bem_on_exact_gap_matches_full_tensor_hertz(helix_deg, body, flank):
 def test_sun2021_table1_as_data():
     import dataclasses
 
-    from ballbench.validation.papers import sun2021
+    from ballbench.validation.cases import sun2021
 
-    t1 = sun2021.TABLE_1
-    assert (t1.ball_radius, t1.groove_radius, t1.pitch_radius, t1.lead) == (2.9765e-3, 3.215e-3, 16e-3, 10e-3)
+    t1 = sun2021.SCREW
+    assert (t1.ball_radius, sun2021.GROOVE_RADIUS, t1.pitch_radius, t1.lead) == (2.9765e-3, 3.215e-3, 16e-3, 10e-3)
     # the convention "screw radius r = ball-centre radius" reproduces the printed helix angle 5.68 deg
     assert math.degrees(math.atan(t1.lead / (2 * math.pi * t1.pitch_radius))) == pytest.approx(5.68, abs=0.005)
     assert t1.conformity == pytest.approx(0.54006, abs=1e-5)

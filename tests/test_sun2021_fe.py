@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.contact import halfspace as hs
-from ballbench.validation.scenes import sun2021_fe
+from ballbench.validation.studies import sun2021
 
 
 @pytest.mark.parametrize("angle_deg", [-0.29, 0.0, 0.1, 30.0])
@@ -17,11 +17,11 @@ def test_second_moment_angle_of_a_rotated_hertz_field(angle_deg):
     c, s = math.cos(angle), math.sin(angle)
     xr, yr = c * X + s * Y, -s * X + c * Y
     pressure = np.sqrt(np.maximum(1.0 - (xr / 2.7e-4) ** 2 - (yr / 0.5e-4) ** 2, 0.0))
-    found = sun2021_fe.second_moment_angle(X.ravel(), Y.ravel(), pressure.ravel())
+    found = sun2021.second_moment_angle(X.ravel(), Y.ravel(), pressure.ravel())
     assert math.degrees(found) == pytest.approx(angle_deg, abs=0.01)  # grid staircase: 0.005 deg at 30 deg
     assert found == pytest.approx(hs.pressure_ellipse(pressure, grid)[2], abs=1e-9)
     with pytest.raises(ValueError, match="weight"):
-        sun2021_fe.second_moment_angle(X.ravel(), Y.ravel(), 0.0 * pressure.ravel())
+        sun2021.second_moment_angle(X.ravel(), Y.ravel(), 0.0 * pressure.ravel())
 
 
 @pytest.mark.slow

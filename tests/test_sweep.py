@@ -191,7 +191,7 @@ def test_sweep_equivalence_scene_passes(tmp_path):
 
 
 def test_example_specs_parse_and_match_the_scene():
-    from ballbench.validation.scenes.sweeps import EQUIVALENCE_SPEC
+    from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
 
     root = Path(__file__).resolve().parents[1] / "examples"
     specs = {p.stem: sweep.load_spec(p) for p in sorted(root.glob("*.toml")) if not p.stem.startswith("calibrate")}

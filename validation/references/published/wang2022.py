@@ -1,8 +1,6 @@
-"""Wang, Chen, Lu, Lv (2022), Machines 10, 203: Table A1 (inputs), Tables 1 and 2 (printed results), SI units.
+"""Wang, Chen, Lu, Lv (2022), Machines 10, 203: the printed results of Tables 1 and 2 and Table A1's lead angle.
 
-wang2022's nomenclature calls r_b and r_m "diameters"; its equations and
-Table 2 use them as radii (papers/README.md): ``pitch_radius = d_m / 2``,
-``ball_radius = d_b / 2``.
+Inputs: :mod:`ballbench.validation.cases.wang2022`.
 """
 from __future__ import annotations
 
@@ -10,30 +8,14 @@ import math
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 HALF_UNIT = 0.0005          # Tables 1-2 print 3 decimals
-
-
-@dataclass(frozen=True)
-class BallScrew:
-    """wang2022 Table A1: the double-cycle ball-screw mechanism of Wei (ref [1])."""
-
-    pitch_radius: float = 41.4e-3 / 2             # r_m [m]       printed d_m = 41.4 mm
-    ball_radius: float = 6.35e-3 / 2              # r_b [m]       printed d_b = 6.35 mm
-    lead: float = 20e-3                           # L [m]         printed 20 mm
-    screw_speed: float = 2000 * RPM               # omega [rad/s] printed 2000 rpm
-    contact_angle: float = math.radians(45.0)     # alpha [rad]   printed 45 deg
-    ball_mass: float = 1.05e-3                    # m [kg]        printed 1.05 g
-    loaded_balls: int = 52                        # N             printed 52
-    lead_angle: float = math.radians(8.74)        # psi [rad]     printed 8.74 deg (arctan(L / 2 pi r_m) = 8.742 deg)
+LEAD_ANGLE = math.radians(8.74)  # Table A1: psi [rad], printed 8.74 deg (arctan(L / 2 pi r_m) = 8.742 deg)
 
 
 @dataclass(frozen=True)
 class BearingTable1:
     """wang2022 Table 1: deep-groove ball bearing 61830, inner ring at 3600 rpm, lead 0 (printed results in m/s)."""
 
-    inner_ring_speed: float = 3600 * RPM          # [rad/s]  printed 3600 rpm
-    contact_angle: float = math.pi / 4            # alpha_i = alpha_o [rad] (Sec 3.1)
     present: float = 15.994                       # U_A = U_B of the present model and Harris [m/s]
     wei_U_A: float = 7.971                        # [m/s]
     wei_U_B: float = 22.740                       # [m/s]
@@ -81,6 +63,5 @@ class ScrewTable2:
     wei_scalars: MappingProxyType = field(default_factory=lambda: MappingProxyType(_wei_scalars()))
 
 
-TABLE_A1 = BallScrew()
 TABLE1 = BearingTable1()
 TABLE2 = ScrewTable2()
