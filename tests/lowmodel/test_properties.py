@@ -21,7 +21,7 @@ from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import b2b_analytical as analytical
 from ballbench.lowmodel.ball_bearing import harris
 from ballbench.lowmodel.screw import kinematics as screw
-from property_support import SETTINGS, SLOW, call, positive, real
+from tests.property_support import SETTINGS, SLOW, call, positive, real
 
 
 # --- contact ------------------------------------------------------------------------------------------

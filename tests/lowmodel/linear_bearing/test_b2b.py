@@ -12,7 +12,8 @@ from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
-from test_bearing_ball import GEOMETRY, MU, RADIUS, SPEED, VERTICAL, case_angles, eq36, power_error
+from tests.lowmodel.linear_bearing.test_ball import (GEOMETRY, MU, RADIUS, SPEED, VERTICAL, case_angles, eq36,
+                                                     power_error)
 
 
 def module(theta_deg, rho, *, top=(0.0, 0.0), n_balls=2, sides=None, mu=MU, approximate=False):

@@ -10,6 +10,7 @@ from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import contacts as screw_contacts
+from tests import paths
 
 DEG = math.pi / 180.0
 C_B = -1.7e-9  # m/N, the order the FE screw/nut fits give (docs/calibration.md)
@@ -108,7 +109,7 @@ def test_laws_from_a_calibration_and_bad_factor(module):
         screw_contacts.ball_contacts(module, 0.0, contact_law=_laws(module, 0.0, c_factor=3.0))
 
 
-DATA = __import__("pathlib").Path(__file__).parent / "data"
+DATA = paths.DATA
 
 
 def test_calibration_effect_screw_scene_from_cached_fe_sweeps(tmp_path, monkeypatch):

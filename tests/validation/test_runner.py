@@ -19,7 +19,7 @@ from html.parser import HTMLParser
 import pytest
 
 from ballbench.validation import cli
-from cli_support import one_error_line
+from tests.cli_support import one_error_line
 from ballbench.validation import scene as scene_module
 from ballbench.validation.report import error_points, write_report
 from ballbench.validation.runner import run_scene

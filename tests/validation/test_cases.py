@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import pytest
 
@@ -12,8 +11,9 @@ from ballbench.validation.cases import (BallScrew, ContactCase, ContactFe, Linea
                                         PairLevel, lin2017, lin2019, sun2021, wang2022)
 from ballbench.validation.references.published import lin2019 as printed_lin2019
 from ballbench.validation.references.published import wang2022 as printed_wang2022
+from tests import paths
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = paths.ROOT
 
 
 def test_lin2019_cases_in_si():

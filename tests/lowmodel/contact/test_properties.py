@@ -27,7 +27,7 @@ from ballbench.lowmodel.contact import halfspace as hs
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import b2b_traction as bt
-from property_support import SETTINGS, SLOW, call, positive, real
+from tests.property_support import SETTINGS, SLOW, call, positive, real
 
 # lengths [m] and counts: the documented range, a little beyond (zero, negative, huge, tiny) and a bool
 length = st.one_of(positive(1e-9, 1.0), st.sampled_from([0.0, -1e-3, 1e300, 5e-324]))

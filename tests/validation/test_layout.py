@@ -16,8 +16,9 @@ import re
 from pathlib import Path
 
 import pytest
+from tests import paths
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = paths.ROOT
 SCENES = ROOT / "validation" / "scenes"
 SCENE_MODULES = {f"ballbench.validation.scenes.{p.stem}" for p in SCENES.glob("*.py") if p.stem != "__init__"}
 

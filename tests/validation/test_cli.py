@@ -6,7 +6,8 @@ from pathlib import Path
 import pytest
 
 from ballbench.validation import cli
-from cli_support import helper_module, one_error_line
+from tests import paths
+from tests.cli_support import helper_module, one_error_line
 
 
 @pytest.fixture
@@ -105,7 +106,7 @@ def test_a_family_front_of_one_point_is_drawn_as_a_line_to_the_longest_time():
 
 
 # ---------------------------------------------------------------------------------------------- calibrate
-NUT_DATA = Path(__file__).parent / "data" / "fe_nut_quick.load_approach.csv"
+NUT_DATA = paths.DATA / "fe_nut_quick.load_approach.csv"
 
 
 def _calibrate_spec(tmp_path, body: str) -> Path:
@@ -145,7 +146,7 @@ def test_calibrate_spec_in_metres_still_runs(tmp_path, capsys):
 
 
 # ---------------------------------------------------------------------------------------------- README, help
-README = Path(__file__).parents[1] / "README.md"
+README = paths.ROOT / "README.md"
 
 
 def test_readme_calibrate_writes_the_file_the_next_command_reads():

@@ -22,9 +22,10 @@ import pytest
 pytest.importorskip("pyvista")
 
 from ballbench.validation.figures import render3d  # noqa: E402
+from tests import paths
 
-DATA = Path(__file__).parent / "data" / "render3d"
-BASELINES = Path(__file__).parent / "baseline_images" / "render3d"
+DATA = paths.DATA / "render3d"
+BASELINES = paths.BASELINE_IMAGES / "render3d"
 ERROR_TOLERANCE = 20.0  # vtkImageDifference's thresholded error (pytest-pyvista's default 500 misses one patch)
 PICTURES = {
     "pair": ("3d_assembly.png", "3d_pressure.png", "3d_stress.png"),

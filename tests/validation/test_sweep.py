@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from ballbench.validation import sweep
-from cli_support import helper_module
+from tests.cli_support import helper_module
+from tests import paths
 
 HELPERS = textwrap.dedent('''
     import math, os, time
@@ -193,7 +194,7 @@ def test_sweep_equivalence_scene_passes(tmp_path):
 def test_example_specs_parse_and_match_the_scene():
     from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
 
-    root = Path(__file__).resolve().parents[1] / "examples"
+    root = paths.ROOT / "examples"
     specs = {p.stem: sweep.load_spec(p) for p in sorted(root.glob("*.toml")) if not p.stem.startswith("calibrate")}
     assert specs["two_ball_monte_carlo"].n_cases == 100_000
     assert specs["lin2019_fig8_9"].grid_shape == (101, 101)
@@ -306,7 +307,7 @@ def test_jobqueue_example_builds_its_job_script(flag, lines):
     """The documented dask-jobqueue configuration (examples/jobqueue_sweep.py) builds and writes its batch job
     script without a batch system (--dry-run); submitting to Slurm/PBS is not tested (none here)."""
     pytest.importorskip("dask_jobqueue")
-    root = Path(__file__).resolve().parents[1]
+    root = paths.ROOT
     result = subprocess.run([sys.executable, str(root / "examples" / "jobqueue_sweep.py"),
                              str(root / "examples" / "two_ball_monte_carlo.toml"), "--dry-run", *flag],
                             capture_output=True, text=True, timeout=120)

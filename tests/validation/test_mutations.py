@@ -18,6 +18,7 @@ from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.screw import kinematics
 from ballbench.validation.runner import run_scene
 from ballbench.validation.scene import registry
+from tests import paths
 
 
 def _scaled_result(function, factor, *fields):
@@ -187,9 +188,8 @@ def test_mutant_is_rejected(label, monkeypatch, tmp_path, tmp_path_factory):
 
 
 def test_mutant_list_is_documented():
-    from pathlib import Path
 
-    text = (Path(__file__).resolve().parents[1] / "docs" / "mutations.md").read_text()
+    text = (paths.ROOT / "docs" / "mutations.md").read_text()
     for label, (_, names) in MUTANTS.items():
         assert label in text, label
         assert all(name in text for name in names), label

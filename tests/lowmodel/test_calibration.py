@@ -1,7 +1,6 @@
 """Calibration: fits with intervals (lowmodel/calibration.py), CSV input and the spec (validation/calibrate.py)."""
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,8 +8,9 @@ import pytest
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation import calibrate
+from tests import paths
 
-DATA = Path(__file__).resolve().parent / "data"
+DATA = paths.DATA
 FE_CSV = DATA / "fe_groove056_quick.load_approach.csv"
 
 

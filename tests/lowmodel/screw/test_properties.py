@@ -28,8 +28,8 @@ from ballbench.lowmodel.screw import b2b_traction as traction
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import whole_screw
-from property_support import SETTINGS, SLOW, call, positive, real
-from test_properties import angle
+from tests.property_support import SETTINGS, SLOW, call, positive, real
+from tests.lowmodel.test_properties import angle
 
 EXTREME = [0.0, 5e-324, 2.2250738585072014e-308, 1e-300, 1e-16, 1e16, 1e300, 1.7976931348623157e308, -1e-3, -1.0]
 angle_limits = (5e-324, 1e-16, math.nextafter(0.5 * math.pi, 0.0), 0.5 * math.pi, 0.0, -0.1, 2.0)

@@ -2,14 +2,14 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from ballbench.validation import sweep, sweep_cases
+from tests import paths
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "whole_screw_monte_carlo.toml"
+EXAMPLE = paths.ROOT / "examples" / "whole_screw_monte_carlo.toml"
 DEG = math.pi / 180.0
 
 
@@ -51,7 +51,7 @@ def test_calibration_file_reaches_the_whole_screw(tmp_path):
     """``calibration = FILE`` puts the FE screw/nut groove laws (cached quick-level sweeps) into every ball."""
     from ballbench.validation import calibrate
 
-    data = Path(__file__).parent / "data"
+    data = paths.DATA
     spec = tmp_path / "spec.toml"
     spec.write_text("\n".join(
         f'[contact."{group}"]\ndata = "{data / f"fe_{body}_quick.load_approach.csv"}"\nball_radius = 2.778e-3\n'
