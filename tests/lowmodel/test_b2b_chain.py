@@ -9,6 +9,8 @@ import pytest
 
 from ballbench.lowmodel import b2b_chain
 from ballbench.lowmodel.linear_bearing import b2b
+from hypothesis import given
+from tests.property_support import EXTREME, SETTINGS, call, mostly, real
 
 
 def _chain(n_balls, seed=3):
@@ -196,3 +198,34 @@ def test_chain_forces_checks_complementarity():
                                    what="toy")
     with pytest.raises(ValueError, match="complementarity"):
         b2b_chain.chain_system(None, None, layout, rate_index=0, rate_scale=1.0, complementarity="max")
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_fischer_burmeister_at_huge_arguments():
+    """phi(0, 1e300) was -inf with an overflow warning; it is 0 (the complementarity holds)."""
+    phi, d_a, d_b = b2b_chain.fischer_burmeister(0.0, 1e300)
+    assert float(phi) == 0.0 and float(d_a) == 1.0 and float(d_b) == 0.0
+    assert float(b2b_chain.fischer_burmeister(-1e300, -1e300)[0]) < 0.0
+    with pytest.raises(ValueError, match="a must be finite"):
+        b2b_chain.fischer_burmeister(math.nan, 1.0)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(a=mostly(real(-1e3, 1e3), *EXTREME, -1e300), b=mostly(real(-1e3, 1e3), *EXTREME, -1e300))
+def test_fischer_burmeister(a, b):
+    result = call(b2b_chain.fischer_burmeister, a, b)
+    if result is not None:   # phi = 0 only on the complementarity set (eqs 60-61): < 0 outside, > 0 inside
+        phi = float(result[0])
+        scale = 1e-13 * max(abs(a), abs(b), 1.0)
+        if min(a, b) < -scale:
+            assert phi < 0.0
+        elif min(a, b) > scale:
+            assert phi > 0.0

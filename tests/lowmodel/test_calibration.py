@@ -9,6 +9,12 @@ from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation import calibrate
 from tests import paths
+from ballbench.lowmodel import calibration
+from ballbench.lowmodel.errors import ConvergenceError
+from hypothesis import given, strategies as st
+from pathlib import Path
+from tests.property_support import SETTINGS, call, positive, real
+import tempfile
 
 DATA = paths.DATA
 FE_CSV = DATA / "fe_groove056_quick.load_approach.csv"
@@ -216,3 +222,184 @@ def test_sweep_cases_take_a_calibration_file(tmp_path):
     assert numerical["b2b_force"] != sweep_cases.two_ball_numerical(math.radians(2.0), -0.6)["b2b_force"]
     with pytest.raises(KeyError, match="ball-groove-0.6"):
         sweep_cases.two_ball_analytical(0.01, 0.1, calibration=str(path), conformity=0.6)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_fit_errors_name_their_parameters():
+    with pytest.raises(ValueError, match="forces"):
+        calibration.fit_contact_law([1.0, 1.0, 2.0], [1e-6, 1e-6, 1.6e-6])
+    with pytest.raises(ValueError, match="n_points"):
+        calibration.fit_least_squares(lambda p: p, [1.0, 2.0, 3.0], n_points=3)
+    with pytest.raises(ValueError, match="normal_force"):  # was RuntimeWarning "Mean of empty slice"
+        calibration.fit_friction_coefficient([], [])
+    with pytest.raises(ValueError, match="x must"):  # was a 0/0 RuntimeWarning
+        calibration.fit_line_through_origin([0.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+
+
+@pytest.mark.filterwarnings("error")
+def test_fit_from_a_start_decades_off_is_not_returned_as_the_fit():
+    t = np.linspace(0.0, 1.0, 8)
+
+    def residual(p):
+        return p[0] - np.exp(t)
+
+    with pytest.raises(ConvergenceError, match="away from a minimum"):  # returned p0 = -3.56e-127 as the fit
+        calibration.fit_least_squares(residual, [-3.56e-127], n_points=8)
+    fit = calibration.fit_least_squares(residual, [1.0], n_points=8)
+    assert fit.params[0] == pytest.approx(np.mean(np.exp(t)), rel=1e-12)
+
+
+@pytest.mark.filterwarnings("error")
+def test_law_force_options():
+    with pytest.raises(ValueError, match="max_iterations"):  # was UnboundLocalError
+        calibration.law_force([1e-6], 1e-6, 0.0, max_iterations=0)
+    with pytest.raises(ValueError, match="max_iterations"):  # True was taken as 1
+        calibration.law_force([1e-6], 1e-6, 0.0, max_iterations=True)
+    with pytest.raises(ValueError, match="approach"):  # overflow and NaN with RuntimeWarnings
+        calibration.law_force([1e300], 1e-9, 1e-6)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("change", [
+    lambda d: d["constants"]["g"].update(C=None),          # was TypeError: 'NoneType' object is not iterable
+    lambda d: d["constants"]["g"]["C"].update(value="1"),  # was TypeError in math.isfinite
+    lambda d: d["constants"]["g"]["C"].update(unit=5),     # was accepted
+    lambda d: d["constants"]["g"]["C"].update(n_points=True),  # was accepted
+    lambda d: d.update(version=True),                      # was accepted as version 1
+    lambda d: d.update(notes=3),                           # was TypeError: 'int' object is not iterable
+    lambda d: d.update(constants=[]),                      # was AttributeError
+])
+def test_calibration_file_fields_of_the_wrong_type(tmp_path, change):
+    import json
+
+    constant = calibration.Constant(2.5e-7, 1e-9, 2.4e-7, 2.6e-7, "m N^-2/3", "fe")
+    path = calibration.save(calibration.Calibration({"g": {"C": constant}}), tmp_path / "c.json")
+    assert calibration.load(path).constants["g"]["C"] == constant
+    document = json.loads(path.read_text())
+    change(document)
+    path.write_text(json.dumps(document))
+    with pytest.raises(ValueError, match="c.json"):
+        calibration.load(path)
+
+
+@pytest.mark.filterwarnings("error")
+def test_law_force_of_a_tiny_negative_bulk_compliance():
+    force, _ = calibration.law_force([8.5e-4], 5.96e-8, -3.3e-186)  # s* overflowed (RuntimeWarning)
+    assert force[0] == pytest.approx((8.5e-4 / 5.96e-8) ** 1.5, rel=1e-12)
+
+
+@pytest.mark.filterwarnings("error")
+def test_fit_friction_coefficient_names_normal_force():
+    normal = np.array([1.0, 2.0])
+    with pytest.raises(ValueError, match="normal_force"):  # 2 rows for 2 parameters: named n_points, p0
+        calibration.fit_friction_coefficient(normal, 0.1 * normal, [0.0, 1.0])
+    tiny = np.array([8.6e-210, 1.7e-209])
+    with pytest.raises(ValueError, match="normal_force"):  # singular value^2 underflowed: divide by zero
+        calibration.fit_friction_coefficient(tiny, 0.0 * tiny)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] and counts: the documented range, a little beyond (zero, negative, huge, tiny) and a bool
+length = st.one_of(positive(1e-9, 1.0), st.sampled_from([0.0, -1e-3, 1e300, 5e-324]))
+
+
+forces_list = st.lists(st.one_of(real(-1.0, 1e4), st.just(0.0)), min_size=0, max_size=8)
+
+
+json_value = st.recursive(st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.floats(), st.text(max_size=3)),
+                          lambda inner: st.one_of(st.lists(inner, max_size=2),
+                                                  st.dictionaries(st.text(max_size=3), inner, max_size=2)),
+                          max_leaves=4)
+
+
+@SETTINGS
+@given(forces=forces_list, c=positive(1e-9, 1e-5), cb=real(-1e-9, 1e-8), noise=real(0.0, 1e-9),
+       confidence=st.one_of(real(0.5, 0.999), st.sampled_from([0.0, 1.0, 1.5])), radius=st.one_of(st.none(), length))
+def test_fit_contact_law(forces, c, cb, noise, confidence, radius):
+    f = np.asarray(forces, dtype=float)
+    approaches = c * np.cbrt(np.abs(f)) ** 2 + cb * f + noise * np.cos(np.arange(f.size))
+    semi_axes = None if radius is None else 1e-4 * np.cbrt(np.abs(f))
+    call(calibration.fit_contact_law, f, approaches, semi_axes=semi_axes, ball_radius=radius, confidence=confidence)
+
+
+@SETTINGS
+@given(u=st.one_of(real(-1e-3, 1e-3), st.sampled_from([0.0, 1e300])), c=st.one_of(positive(1e-9, 1e-5), st.sampled_from(
+    [0.0, -1e-6])), cb=st.one_of(real(-1e-6, 1e-6), st.just(0.0)), tolerance=st.one_of(positive(1e-15, 1e-6),
+                                                                                      st.just(0.0)),
+       iterations=st.one_of(st.integers(0, 60), st.just(True)))
+def test_law_force(u, c, cb, tolerance, iterations):
+    call(calibration.law_force, [u, 0.5 * u], c, cb, tolerance=tolerance, max_iterations=iterations)
+
+
+@SETTINGS
+@given(normal=forces_list, mu=real(-0.1, 1.0), with_speed=st.booleans(), confidence=real(0.0, 1.2),
+       x=st.lists(real(-10.0, 10.0), max_size=6))
+def test_fit_friction(normal, mu, with_speed, confidence, x):
+    f = np.asarray(normal, dtype=float)
+    speeds = np.linspace(0.0, 1.0, f.size) if with_speed else None
+    call(calibration.fit_friction_coefficient, f, mu * f, speeds, confidence=confidence)
+    y = -0.8 * np.asarray(x) + 1e-3 * np.sin(np.arange(len(x)))
+    call(calibration.fit_line_through_origin, x, y, confidence=confidence)
+
+
+@SETTINGS
+@given(p0=st.lists(real(-10.0, 10.0), min_size=1, max_size=3), n=st.integers(-1, 8), confidence=real(0.0, 1.2),
+       scale=st.one_of(st.none(), st.sampled_from([-1.0, 0.0]), positive(1e-3, 1e3)))
+def test_fit_least_squares(p0, n, confidence, scale):
+    t = np.linspace(0.0, 1.0, max(n, 0))
+
+    def residual(p):
+        return sum(pi * t**i for i, pi in enumerate(p)) - np.exp(t)
+
+    call(calibration.fit_least_squares, residual, p0, n_points=n, confidence=confidence, x_scale=scale)
+
+
+def test_calibration_file_round_trip():
+    law = calibration.fit_contact_law([1.0, 2.0, 4.0, 8.0], [1e-6, 1.6e-6, 2.5e-6, 4.0e-6])
+    cal = calibration.Calibration({"ball-ball": {"C": law.hertz_constant}})
+    with tempfile.TemporaryDirectory() as folder:
+        path = calibration.save(cal, Path(folder) / "c.json")
+        assert calibration.load(path).constants["ball-ball"]["C"].value == law.hertz_constant.value
+        Path(folder, "bad.json").write_text("{not json")
+        with pytest.raises(ValueError, match="bad.json"):
+            calibration.load(Path(folder) / "bad.json")
+
+
+@SETTINGS
+@given(where=st.sampled_from(["format", "version", "notes", "constants", "group", "record", "value", "unit",
+                              "confidence", "n_points", "extra"]), value=json_value)
+def test_calibration_file_with_one_wrong_field(where, value):
+    """load() of a file with one field replaced by any JSON value: a Calibration, or a ValueError naming the file."""
+    import json
+
+    cal = calibration.Calibration({"ball-ball": {"C": calibration.Constant(2.5e-7, 1e-9, 2.4e-7, 2.6e-7, "m N^-2/3",
+                                                                          "fe", 0.95, 4, 1e-9, 2.49e-7)}})
+    with tempfile.TemporaryDirectory() as folder:
+        path = calibration.save(cal, Path(folder) / "c.json")
+        document = json.loads(path.read_text())
+        record = document["constants"]["ball-ball"]["C"]
+        if where in ("format", "version", "notes", "constants"):
+            document[where] = value
+        elif where == "group":
+            document["constants"]["ball-ball"] = value
+        elif where == "record":
+            document["constants"]["ball-ball"]["C"] = value
+        else:
+            record[where] = value
+        path.write_text(json.dumps(document))
+        try:
+            loaded = calibration.load(path)
+        except ValueError as error:
+            assert str(path) in str(error), error
+            return
+        for constant in (c for group in loaded.constants.values() for c in group.values()):
+            values = (constant.value, constant.std_error, constant.ci_low, constant.ci_high)
+            assert all(math.isfinite(v) for v in values)
+            assert isinstance(constant.unit, str) and isinstance(constant.source, str)

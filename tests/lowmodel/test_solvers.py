@@ -13,10 +13,11 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b
-from ballbench.lowmodel.linear_bearing import ball as bearing_ball
-from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+from ballbench.lowmodel.linear_bearing import b2b, ball as bearing_ball, contacts as bearing_contacts
 from ballbench.lowmodel.solvers import continuation
+from ballbench.lowmodel import solvers
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, positive, real
 
 
 def _power_error(state) -> float:
@@ -132,3 +133,163 @@ def test_touching_pair_ends_where_a_contact_stops_sliding():
     name, last = error.value.last_converged
     assert name == "s (mu)" and 0.46 < 0.5 * b2b.MU_PATH_START ** (last - 1.0) < 0.4676  # the mu reached
     assert error.value.min_slip_speed < 1e-2
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+def _square(c):
+    return lambda x: (x * x - c, np.diag(2.0 * x))
+
+
+@pytest.mark.filterwarnings("error")
+def test_newton_refuses_an_infinite_tolerance_and_bool_iterations():
+    with pytest.raises(ValueError, match="tolerance"):  # returned the start x0 = 1 of x^2 = 4 as converged
+        solvers.newton(_square(4.0), np.array([1.0]), tolerance=math.inf, max_iterations=20, what="x^2 = 4")
+    with pytest.raises(ValueError, match="max_iterations"):
+        solvers.newton(_square(4.0), np.array([1.0]), tolerance=1e-12, max_iterations=True, what="x^2 = 4")
+
+
+@pytest.mark.filterwarnings("error")
+def test_continuation_options_and_max_steps():
+    def solve_at(s, x0):
+        return solvers.newton(_square(1.0 + s), x0, tolerance=1e-12, max_iterations=30, what="x^2 = 1 + s")
+
+    with pytest.raises(ValueError, match="max_steps"):  # was ConvergenceError with an infinite residual
+        solvers.continuation(solve_at, np.array([1.0]), what="path", max_steps=0)
+    with pytest.raises(ValueError, match="initial_step"):
+        solvers.continuation(solve_at, np.array([1.0]), what="path", initial_step=math.nan)
+    with pytest.raises(ConvergenceError) as stopped:  # a path with no fold that runs out of steps
+        solvers.continuation(solve_at, np.array([1.0]), what="path", max_steps=1)
+    assert stopped.value.reason == "max_steps reached"  # was "continuation stopped (fold or no state beyond)"
+    assert math.isfinite(stopped.value.residual) and stopped.value.last_converged == ("s", 0.25)
+    x, _, _ = solvers.continuation(solve_at, np.array([1.0]), what="path")
+    assert x[0] == pytest.approx(math.sqrt(2.0), rel=1e-12)
+
+
+@pytest.mark.filterwarnings("error")
+def test_solve_with_restarts_needs_an_attempt():
+    with pytest.raises(ValueError, match="attempts"):  # was ConvergenceError with an infinite residual
+        solvers.solve_with_restarts(_square(4.0), np.array([1.0]), lambda x: None, tolerance=1e-12,
+                                    max_iterations=20, what="x^2 = 4", attempts=0)
+
+
+@pytest.mark.filterwarnings("error")
+def test_newton_huge_trial_step_is_rejected_without_a_warning():
+    """x^2 = 2 from x0 = -2.7e-112: the first Levenberg-Marquardt trial step is ~1e111 and its merit |r|^2
+    overflows (it was a RuntimeWarning).  newton rejects it and raises damping; x0 is a stationary point of |r|^2
+    to double precision (predicted decrease 1e-111 against a merit of 16), so it ends in a ConvergenceError
+    naming that, with no warning on the way."""
+    import warnings
+
+    import numpy as np
+
+    from ballbench.lowmodel import solvers
+
+    def quadratic(x):
+        return x * x - 2.0, np.diag(2.0 * x)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ConvergenceError, match="no descent step"):
+            solvers.newton(quadratic, np.full(4, -2.7e-112), tolerance=1e-12, max_iterations=200, what="x^2 = 2")
+
+
+@pytest.mark.filterwarnings("error")
+def test_restarts_that_use_up_the_iteration_budget_end_in_a_convergence_error():
+    """solve_with_restarts shares max_iterations among its runs; when a restart came after the budget was used
+    up it called newton(max_iterations=0), which the input check refuses with a ValueError (the default
+    lin2019-stability run errored on it).  Now: ConvergenceError, or the restart point if it already solves."""
+    import numpy as np
+
+    from ballbench.lowmodel import solvers
+
+    def quadratic(x):
+        return x * x - 4.0, np.diag(2.0 * x)
+
+    _, _, needed = solvers.newton(quadratic, np.array([3.0]), tolerance=1e-12, max_iterations=50, what="x^2 = 4")
+
+    def away(x):  # reject the root +2 and restart from 3 (converges again, needing the same iterations)
+        return None if x[0] < 0 else (np.array([3.0]), 1.0)
+
+    with pytest.raises(ConvergenceError, match="did not converge"):
+        solvers.solve_with_restarts(quadratic, np.array([3.0]), away, tolerance=1e-12, max_iterations=needed,
+                                    what="x^2 = 4")
+
+    def to_the_other_root(x):  # reject +2 and restart at the root -2 itself: accepted with no further step
+        return None if x[0] < 0 else (np.array([-2.0]), 1.0)
+
+    x, _, total = solvers.solve_with_restarts(quadratic, np.array([3.0]), to_the_other_root, tolerance=1e-12,
+                                              max_iterations=needed, what="x^2 = 4")
+    assert x[0] == -2.0 and total == needed
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+def _quadratic(c):
+    """x^2 = c: a root for c >= 0, none (a minimum of |r| at x = 0) for c < 0."""
+    return lambda x: (x * x - c, np.diag(2.0 * x))
+
+
+@SETTINGS
+@given(c=real(-10.0, 10.0), x0=real(-100.0, 100.0), size=st.integers(1, 4),
+       tolerance=st.one_of(positive(1e-14, 1e-2), st.sampled_from([0.0, -1.0, math.nan, math.inf])),
+       iterations=st.one_of(st.integers(0, 80), st.sampled_from([True, 2.5])))
+def test_newton(c, x0, size, tolerance, iterations):
+    try:
+        x, residual, count = solvers.newton(_quadratic(c), np.full(size, x0), tolerance=tolerance,
+                                            max_iterations=iterations, what="x^2 = c")
+    except ValueError as error:
+        assert "tolerance" in str(error) or "max_iterations" in str(error), error
+        return
+    except ConvergenceError as error:
+        assert math.isfinite(error.residual) and "x^2 = c" in str(error)
+        return
+    # never an unconverged point, never an accepted nonsense option
+    assert 0.0 < tolerance < math.inf and iterations is not True and isinstance(iterations, int)
+    assert np.max(np.abs(x * x - c)) <= tolerance and count <= iterations  # (c < -tolerance: never here)
+    assert np.all(np.isfinite(residual))
+
+
+@SETTINGS
+@given(fold=real(0.05, 2.0), initial=st.one_of(positive(1e-3, 1.0), st.sampled_from([0.0, -0.25, math.nan])),
+       min_step=st.one_of(positive(1e-6, 0.5), st.sampled_from([0.0, -1.0])),
+       max_steps=st.one_of(st.integers(0, 50), st.just(True)))
+def test_continuation(fold, initial, min_step, max_steps):
+    """Root of x^2 = 1 - s / fold from x = 1 at s = 0: exists up to s = fold (a fold there)."""
+    def solve_at(s, x0):
+        return solvers.newton(_quadratic(1.0 - s / fold), x0, tolerance=1e-12, max_iterations=30, what="fold")
+
+    try:
+        x, residual, path = solvers.continuation(solve_at, np.array([1.0]), what="fold", initial_step=initial,
+                                                 min_step=min_step, max_steps=max_steps)
+    except ValueError as error:
+        assert any(name in str(error) for name in ("initial_step", "min_step", "max_steps")), error
+        return
+    except ConvergenceError as error:
+        assert math.isfinite(error.residual) and error.last_converged is not None
+        assert error.last_converged[1] <= fold + 1e-12  # never beyond the fold
+        return
+    assert fold >= 1.0 and path[-1].parameter == 1.0 and abs(x[0] ** 2 - (1.0 - 1.0 / fold)) <= 1e-12
+
+
+@SETTINGS
+@given(c=real(0.0, 10.0), attempts=st.one_of(st.integers(-1, 4), st.just(True)))
+def test_solve_with_restarts(c, attempts):
+    """The positive root of x^2 = c: a converged negative root is rejected and restarted from -x."""
+    def restart(x):
+        return None if x[0] >= 0.0 else (-x, float(-x[0]))
+
+    try:
+        x, _, _ = solvers.solve_with_restarts(_quadratic(c), np.array([-3.0]), restart, tolerance=1e-12,
+                                              max_iterations=60, what="root", attempts=attempts)
+    except ValueError as error:
+        assert "attempts" in str(error), error
+        return
+    except ConvergenceError as error:
+        assert math.isfinite(error.residual)
+        return
+    assert x[0] >= 0.0 and abs(x[0] ** 2 - c) <= 1e-12

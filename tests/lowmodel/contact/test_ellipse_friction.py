@@ -9,6 +9,11 @@ from scipy import integrate
 from scipy.special import ellipe, ellipk
 
 from ballbench.lowmodel.contact import ellipse_friction as ef
+from hypothesis import given
+from tests.property_support import SETTINGS, SLOW, call, real
+from ballbench.lowmodel import quadrature
+from hypothesis import strategies as st
+from tests.property_support import one_bad
 
 
 # --------------------------------------------------------------------------
@@ -317,3 +322,107 @@ def test_friction_angle_at_stacked_slopes_are_derivatives():
     evaluate = ef.friction_angle_at(beta, stacked=True)
     numeric = (evaluate(phi + step)[..., 0] - evaluate(phi - step)[..., 0]) / (2 * step)
     np.testing.assert_allclose(table[..., 1], numeric, rtol=1e-6, atol=1e-6)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("c_over_a", [1e300, -1e300, 1e200, 1e8, 300.0, -250.0])
+def test_friction_exact_far_velocity_centre(c_over_a):
+    """c/a = 1e300 gave NaN (overflow); far out the identity moment = loss + (c/a) force cancels."""
+    beta = 0.3
+    result = ef.friction_exact(c_over_a, beta)
+    for name in ("force", "moment", "loss", "dforce_dc", "dmoment_dc", "dloss_dc"):
+        assert np.isfinite(getattr(result, name)), name
+    assert float(result.force) == pytest.approx(-math.copysign(1.0, c_over_a), rel=1e-6)
+    assert float(result.moment) == pytest.approx(beta**2 / (5 * abs(c_over_a)), rel=1e-4)  # leading term
+    assert float(result.loss) >= abs(c_over_a)
+
+
+@pytest.mark.filterwarnings("error")
+def test_friction_exact_series_meets_quadrature():
+    """Both sides of the switch at |c/a| = 200 (quadrature below, series above) against the two leading
+    terms of the far field, ``force = -1 + (b/a)^2 / (10 (c/a)^2)``, ``loss = c/a + (b/a)^2 / (10 c/a)``."""
+    beta = np.array([0.02, 0.3, 1.0])[:, None]
+    kappa = np.array([150.0, 199.0, 201.0, 250.0])[None, :]
+    exact = ef.friction_exact(kappa, beta)
+    np.testing.assert_allclose(exact.force, -1.0 + beta**2 / (10 * kappa**2), rtol=0, atol=5e-11)  # next: 0.011/k^4
+    np.testing.assert_allclose(exact.loss, kappa + beta**2 / (10 * kappa), rtol=1e-15, atol=5e-9)  # next: 0.004/k^3
+    np.testing.assert_allclose(-exact.dforce_dc, beta**2 / (5 * kappa**3), rtol=2e-4)
+
+
+@pytest.mark.filterwarnings("error")
+def test_cubic_coefficient_at_zero_ratio():
+    """b/a = 0 is inside the documented range; NaN before (0 * inf), the limit is E(1)/2 = 1/2."""
+    values = ef.cubic_coefficient([0.0, 1e-8, 1e-4])
+    assert np.all(np.isfinite(values))
+    np.testing.assert_allclose(values, 0.5, rtol=1e-6)
+
+
+@pytest.mark.filterwarnings("error")
+def test_friction_velocity_at_huge_velocities():
+    result = ef.friction_velocity(1e300, 3e300, 0.5)
+    reference = ef.friction_velocity(1.0, 3.0, 0.5)
+    assert float(result.force) == pytest.approx(float(reference.force), rel=1e-12)
+    assert float(result.loss) == pytest.approx(1e300 * float(reference.loss), rel=1e-12)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_bool_cluster_count_is_refused():
+    with pytest.raises(ValueError, match="n_cluster"):  # True was taken as 1
+        ef.friction_map(9, True, 4, use_cache=False)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(kappa=real(-1e300, 1e300), small=real(-3.0, 3.0), beta=real(-0.1, 1.2))
+def test_ellipse_friction(kappa, small, beta):
+    for c_over_a in (kappa, small):
+        call(ef.friction, c_over_a, beta, allow_inf=("loss",))
+        call(ef.friction_exact, c_over_a, beta, allow_inf=("loss",))
+        call(ef.friction_angle, c_over_a, beta)
+        call(ef.friction_inside, c_over_a, beta)
+    call(ef.friction_velocity, small, kappa, beta)
+    call(ef.k_f_exact, beta)
+    call(ef.cubic_coefficient, beta)
+    call(ef.spin_moment, beta)
+
+
+@SLOW
+@given(beta=real(0.0, 1.0), c_max=real(-0.5, 3.0))
+def test_k_f_least_squares(beta, c_max):
+    call(ef.k_f_least_squares, beta, c_max)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(beta=st.one_of(real(-0.1, 1.2), st.sampled_from([0.0, 0.02, 1.0, 5e-324])), stacked=st.booleans(),
+       level=st.one_of(st.integers(-1, 7), st.just(True)))
+def test_ellipse_friction_rest(beta, stacked, level):
+    if 0.0 < beta <= 1.0:  # a closure over the tabulated map; it is evaluated at slip angles
+        at = call(ef.friction_angle_at, beta, stacked=stacked)
+        if at is not None:
+            call(at, np.full(np.shape(beta), 2.5))  # phi of the shape of b_over_a (its docstring)
+    else:
+        call(ef.friction_angle_at, beta, stacked=stacked)
+    call(quadrature.tanh_sinh, level)
+
+
+@SLOW
+@given(kw=one_bad(dict(n_uniform=st.integers(9, 13), n_cluster=st.integers(1, 3), n_beta=st.integers(4, 6)),
+                  dict(n_uniform=st.sampled_from([8, -1, True, 9.0]), n_cluster=st.sampled_from([0, True]),
+                       n_beta=st.sampled_from([3, 4.0]))))
+def test_friction_map_small(kw):
+    call(ef.friction_map, kw["n_uniform"], kw["n_cluster"], kw["n_beta"], use_cache=False)

@@ -8,8 +8,10 @@ import pytest
 from scipy import integrate
 from scipy.special import ellipe
 
-from ballbench.lowmodel.contact import ellipse_friction as ef
-from ballbench.lowmodel.contact import ellipse_friction_offset as eo
+from ballbench.lowmodel.contact import (ellipse_friction as ef, ellipse_friction_offset as eo,
+                                        ellipse_friction_offset as offset)
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, call, real
 
 QUANTITIES = ("force_major", "force_minor", "moment", "loss")
 
@@ -175,3 +177,31 @@ def test_bad_input():
         eo.friction_offset(1.0, 0.0, 0.0, 1.5)
     with pytest.raises(ValueError, match="b_over_a"):
         eo.friction_offset(1.0, 0.0, 0.0, 0.01)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_friction_offset_of_a_subnormal_spin():
+    from ballbench.lowmodel.contact import ellipse_friction_offset as offset
+
+    with pytest.raises(ValueError, match="spin_velocity"):  # Jacobian ~ 1/|slip| overflowed (RuntimeWarning)
+        offset.friction_offset(-2.2e-311, 0.0, -2.2e-311, 0.02)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+speed = st.one_of(real(-10.0, 10.0), st.sampled_from([0.0, 1e-300, 1e300, -1e300]))
+
+
+@SETTINGS
+@given(spin=speed, minor=speed, major=speed, beta=st.one_of(real(-0.1, 1.2), st.sampled_from([0.02, 1.0, 0.0])),
+       level=st.one_of(st.integers(-1, 6), st.just(True)), c=real(-1e3, 1e3), d=real(-1e3, 1e3))
+def test_friction_offset(spin, minor, major, beta, level, c, d):
+    call(offset.friction_offset, spin, minor, major, beta, level=level)
+    call(offset.friction_offset, [spin, 0.0], [minor, 0.0], [major, 0.0], beta)
+    call(offset.friction_centre, c, d, beta, level=level)

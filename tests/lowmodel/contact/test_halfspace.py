@@ -4,9 +4,10 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.contact import halfspace as hs
-from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.contact import halfspace as hs, hertz
 from ballbench.lowmodel.errors import ConvergenceError
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, SLOW, call, one_bad, positive, real
 
 STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}
 LOAD = 100.0  # N
@@ -217,3 +218,87 @@ def test_contact_outside_the_coarse_box_is_found(monkeypatch):
     _full_grid_only(monkeypatch)
     full = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD, tolerance=1e-10)
     assert np.max(np.abs(result.pressure - full.pressure)) < 1e-5 * full.max_pressure
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_surface_grid_refuses_nonsense_cells():
+    for nx in (2, True, 8.0):  # 2 failed later naming nx in asperity_contact; 8.0 was accepted
+        with pytest.raises(ValueError, match="nx"):
+            hs.SurfaceGrid(nx, 8, 1e-6, 1e-6)
+    with pytest.raises(ValueError, match="dx"):
+        hs.SurfaceGrid(8, 8, 0.0, 1e-6)
+    with pytest.raises(ValueError, match="nx"):
+        hs.surface_grid(1e-3, nx=8.0)
+    with pytest.raises(ValueError, match="half_width_x"):  # the cell size underflowed to 0
+        hs.surface_grid(5e-324, nx=4)
+    with pytest.raises(ValueError, match="margin"):  # was ZeroDivisionError
+        hs.hertz_surface_grid(5e-324, n=4, square_cells=True)
+
+
+@pytest.mark.filterwarnings("error")
+def test_halfspace_float_range():
+    grid = hs.surface_grid(2e-4, 2e-4, 16, 16)
+    with pytest.raises(ValueError, match="contact_modulus"):  # was inf with a RuntimeWarning
+        hs.deformation(np.full((16, 16), 1e9), grid, 5e-324)
+    gap = hs.quadratic_gap(grid, 1e300, 5e3)
+    with pytest.raises(ValueError, match="gap"):  # overflowed the float32 CG increments (RuntimeWarning)
+        hs.solve(gap, grid, 1e11, force=1.0)
+    with pytest.raises(ValueError, match="force"):
+        hs.solve(hs.quadratic_gap(grid, 5e3, 5e3), grid, 5e-324, force=1.0)
+    with pytest.raises(ValueError, match="A = "):
+        hs.quadratic_gap(hs.surface_grid(1e200, 1e200, 4, 4), 1e300, 1.0)
+
+
+@pytest.mark.filterwarnings("error")
+def test_influence_coefficients_of_a_subnormal_cell():
+    with pytest.raises(ValueError, match="dx"):  # dy / dx = inf: 0 * inf in the kernel (RuntimeWarning)
+        hs.influence_coefficients(8, 8, 5e-324, 1e-3)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] and counts: the documented range, a little beyond (zero, negative, huge, tiny) and a bool
+length = st.one_of(positive(1e-9, 1.0), st.sampled_from([0.0, -1e-3, 1e300, 5e-324]))
+
+
+cells = st.one_of(st.integers(-1, 64), st.just(True))
+
+
+@SETTINGS
+@given(hx=length, hy=st.one_of(st.none(), length), nx=cells, ny=st.one_of(st.none(), cells),
+       a=length, b=st.one_of(st.none(), length), margin=real(-1.0, 5.0), square=st.booleans())
+def test_halfspace_grids(hx, hy, nx, ny, a, b, margin, square):
+    call(hs.surface_grid, hx, hy, nx, ny)
+    call(hs.hertz_surface_grid, a, b, nx, margin, square)
+    call(hs.SurfaceGrid, nx, 1 if ny is None else ny, hx, 1e-3 if hy is None else hy)
+    if isinstance(nx, int) and not isinstance(nx, bool) and 1 <= nx <= 16:
+        call(hs.influence_coefficients, nx, nx, hx, 1e-3 if hy is None else hy)
+
+
+@SLOW
+@given(kw=one_bad(
+    dict(n=st.sampled_from([4, 8, 16, 32]), A=positive(100.0, 1e4), B=positive(100.0, 1e4), angle=real(-3.2, 3.2),
+         e_star=positive(1e10, 1e12), force=positive(1e-3, 10.0), use_force=st.booleans(), pressure=real(0.0, 1e9)),
+    dict(A=st.sampled_from([0.0, -50.0, 1e300, 5e-324]), e_star=st.sampled_from([0.0, -1e11, 1e300, 5e-324]),
+         force=st.sampled_from([0.0, -1.0, 1e300, 5e-324]), pressure=st.sampled_from([-1e9, 1e300]))))
+def test_halfspace_solve(kw):
+    grid = hs.surface_grid(2e-4, 2e-4, kw["n"], kw["n"])
+    gap = call(hs.quadratic_gap, grid, kw["A"], kw["B"], kw["angle"])
+    field = np.full((grid.nx, grid.ny), kw["pressure"])
+    call(hs.deformation, field, grid, kw["e_star"])
+    call(hs.pressure_ellipse, np.abs(field), grid)
+    call(hs.pressure_ellipse, np.zeros_like(field), grid)
+    if gap is None:
+        return
+    control = {"force": kw["force"]} if kw["use_force"] else {"approach": kw["force"] * 1e-7}
+    result = call(hs.solve, gap, grid, kw["e_star"], max_iterations=300, **control)
+    if result is not None:
+        assert np.all(result.pressure >= 0.0)
+        if kw["use_force"]:
+            assert result.force == pytest.approx(kw["force"], rel=1e-6)

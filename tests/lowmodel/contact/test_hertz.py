@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove
 from ballbench.validation.references.hertz import ellipse_quadrature, sphere_closed_form
+from tests.property_support import SETTINGS, call, positive, real, one_bad
 
 E_STEEL, NU_STEEL = 2.1e11, 0.28
 
@@ -186,3 +187,136 @@ def test_screw_groove_curvature_by_surface_fit(body, plane):
 def test_bad_input_names_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+RADIUS = 5e-3  # lin2019 Table 1
+
+
+@pytest.mark.filterwarnings("error")
+def test_hertz_flags_semi_axes_beyond_its_validity():
+    contact = hertz.solve_load(hertz.ball_on_flat(1e-3), [1.0, 1e9])
+    assert contact.a[1] > 1e-3  # a semi-axis larger than the ball: returned, but flagged
+    np.testing.assert_array_equal(contact.within_validity, [True, False])
+    geometry = hertz.ball_in_groove(RADIUS, 0.56)
+    assert geometry.reference_radius == RADIUS
+    limit = (hertz.VALIDITY_RATIO * RADIUS / hertz.solve_load(geometry, 1.0).a) ** 3  # a ~ F^(1/3)
+    flags = hertz.solve_load(geometry, [0.99 * limit, 1.01 * limit]).within_validity
+    np.testing.assert_array_equal(flags, [True, False])
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_flat_on_flat_names_the_curvatures():
+    with pytest.raises(ValueError, match="curvatures_1 and curvatures_2"):
+        hertz.from_curvatures((0.0, 0.0), (0.0, 0.0))
+
+
+@pytest.mark.filterwarnings("error")
+def test_geometry_outside_the_float_range_is_refused_when_built():
+    # E* A overflows: the unit solution was 0 and solve_approach divided by it (ZeroDivisionError)
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        hertz.ball_on_ball(1e-9, youngs_modulus=1e300, poisson_ratio=0.0)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("build", [hertz.ball_on_flat, hertz.ball_on_ball,
+                                   lambda r: hertz.ball_in_groove(r, 0.56),
+                                   lambda r: hertz.ball_in_screw_groove(r, 0.56, 16.5e-3, 0.785, 0.19)])
+def test_subnormal_ball_radius_is_named(build):
+    # 1 / 5e-324 = inf: the error named curvatures_1 (or the geometry core warned)
+    with pytest.raises(ValueError, match="ball_radius"):
+        build(5e-324)
+
+
+@pytest.mark.filterwarnings("error")
+def test_screw_groove_that_conforms_names_its_inputs():
+    # lead 0.5 rad, axial profile: A = -0.63 1/m; the error named curvatures_1 and curvatures_2 only
+    with pytest.raises(ValueError, match="lead_angle 0.5 rad.*A = -0.634"):
+        hertz.ball_in_screw_groove(0.015625, 0.5625, 3 * 0.015625, 0.5, 0.5, "screw", profile_plane="axial")
+
+
+@pytest.mark.filterwarnings("error")
+def test_hertz_float_range_of_the_constant_and_p0():
+    # E* ~ 1e300 with R = 1e300: C^1.5 underflowed, the stiffness was 0/0 (RuntimeWarning)
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        hertz.ball_on_ball(1e300, youngs_modulus=1e300, poisson_ratio=0.4)
+    # a b underflows at E* = 1e300, F = 2e-299: p0 was inf (RuntimeWarning); now F / a / b in that order
+    geometry = hertz.from_curvatures((1.1, 1.1), (0.02, 0.02), youngs_modulus=1e300, poisson_ratio=0.4)
+    contact = hertz.solve_load(geometry, 2.2e-299)
+    expected = 3.0 * (2.2e-299 / float(contact.a)) / (2.0 * math.pi * float(contact.b))
+    assert math.isfinite(float(contact.p0)) and float(contact.p0) == pytest.approx(expected, rel=1e-12)
+    # B/A ~ 2e285: k^2 underflowed in the bracket of b/a, inf / inf (RuntimeWarning)
+    with pytest.raises(ValueError, match="curvatures_1"):
+        hertz.from_curvatures((5e-324, 1.1754943508222875e-38), (5e-324, 1.1754943508222875e-38))
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(radius=positive(1e-5, 1.0), conformity=real(0.45, 1.05), force=real(-1.0, 1e7),
+       modulus=positive(1e6, 1e13), poisson=real(-1.2, 0.6))
+def test_hertz(radius, conformity, force, modulus, poisson):
+    geometry = call(hertz.ball_in_groove, radius, conformity, youngs_modulus=modulus, poisson_ratio=poisson)
+    if geometry is not None:
+        call(hertz.solve_load, geometry, force)
+        call(hertz.psi_constant, geometry, radius)
+        call(hertz.hertz_constant, geometry)
+    for build in (hertz.ball_on_flat, hertz.ball_on_ball):
+        geometry = call(build, radius, youngs_modulus=modulus, poisson_ratio=poisson)
+        if geometry is not None:
+            call(hertz.solve_approach, geometry, abs(force) * 1e-12)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] and counts: the documented range, a little beyond (zero, negative, huge, tiny) and a bool
+length = st.one_of(positive(1e-9, 1.0), st.sampled_from([0.0, -1e-3, 1e300, 5e-324]))
+
+
+modulus = st.one_of(positive(1e6, 1e13), st.sampled_from([0.0, -1e11, 1e300]))
+
+
+@SETTINGS
+@given(e1=modulus, nu1=real(-1.2, 0.6), e2=st.one_of(st.none(), modulus), nu2=st.one_of(st.none(), real(-1.2, 0.6)),
+       k1=st.tuples(real(-1e6, 1e6), real(-1e6, 1e6)), k2=st.tuples(real(-1e6, 1e6), real(-1e6, 1e6)),
+       angle=real(-10.0, 10.0), radius=length, other=st.one_of(st.none(), length), delta=real(-1e-6, 1e-2))
+def test_hertz_curvatures(e1, nu1, e2, nu2, k1, k2, angle, radius, other, delta):
+    call(hertz.contact_modulus, e1, nu1, e2, nu2)
+    geometry = call(hertz.from_curvatures, k1, k2, angle=angle, youngs_modulus=e1, poisson_ratio=nu1,
+                    youngs_modulus_2=e2, poisson_ratio_2=nu2)
+    if geometry is not None:
+        call(hertz.solve_approach, geometry, delta)
+        call(hertz.solve_load, geometry, [0.0, abs(delta) * 1e9])
+        call(hertz.psi_constant, geometry, radius)
+        call(hertz.hertz_constant, geometry)
+    geometry = call(hertz.ball_on_ball, radius, other, youngs_modulus=e1, poisson_ratio=nu1, youngs_modulus_2=e2,
+                    poisson_ratio_2=nu2)
+    if geometry is not None:
+        call(hertz.solve_approach, geometry, delta)
+
+
+@SETTINGS
+@given(kw=one_bad(
+    dict(radius=positive(1e-4, 0.02), conformity=real(0.505, 0.6), pitch_ratio=real(3.0, 20.0), alpha=real(0.3, 1.2),
+         lead=real(0.0, 0.5), body=st.sampled_from(["screw", "nut"]), plane=st.sampled_from(["normal", "axial"])),
+    # (a radius or pitch radius of 1e300 m overflows in the geometry core, lowmodel.geometry.groove.contact_frame:
+    # another engineer's file, reported there; not drawn here)
+    dict(radius=st.sampled_from([0.0, -1e-3, 5e-324]), conformity=st.sampled_from([0.5, 0.45, 1.05]),
+         pitch_ratio=st.sampled_from([0.0, -1.0]), alpha=st.sampled_from([0.0, -0.2, 1.8]),
+         lead=st.sampled_from([-0.2, 1.6]), body=st.just("bolt"), plane=st.just("other"))))
+def test_hertz_screw_groove(kw):
+    geometry = call(hertz.ball_in_screw_groove, kw["radius"], kw["conformity"], kw["pitch_ratio"] * kw["radius"],
+                    kw["alpha"], kw["lead"], kw["body"], profile_plane=kw["plane"])
+    if geometry is not None:
+        call(hertz.solve_load, geometry, [0.0, 1.0, 1e4])

@@ -5,6 +5,9 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.contact import ehl, halfspace, roughness
+from ballbench.lowmodel.contact import halfspace as hs
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, call, positive, real
 
 D, G, L, LS = 2.47, 0.41e-9, 554e-6, 20e-6
 
@@ -68,3 +71,52 @@ def test_bad_inputs(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         roughness.wm_rms(**args)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_wm_amplitude_names_sample_length():
+    with pytest.raises(ValueError, match="sample_length"):  # named cutoff_length, not a parameter
+        roughness.wm_amplitude(2.5, 0.55, 5e-324)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] and counts: the documented range, a little beyond (zero, negative, huge, tiny) and a bool
+length = st.one_of(positive(1e-9, 1.0), st.sampled_from([0.0, -1e-3, 1e300, 5e-324]))
+
+
+small_cells = st.one_of(st.integers(1, 24), st.sampled_from([0, -2, True]))
+
+
+@SETTINGS
+@given(D=real(1.9, 3.1), G=length, L=length, Ls=length, gamma=real(0.5, 3.0),
+       ridges=st.one_of(st.integers(-1, 12), st.just(True)), seed=st.one_of(st.integers(0, 2**31), st.just(-1)))
+def test_roughness(D, G, L, Ls, gamma, ridges, seed):
+    call(roughness.wm_amplitude, D, G, L, gamma=gamma, ridges=ridges)
+    call(roughness.wm_rms, D, G, L, Ls, gamma=gamma)
+    call(roughness.wm_line_spectrum, D, G, L, Ls, gamma=gamma, ridges=ridges)
+    call(ehl.wm_parameters, D, G, L, Ls, gamma, ridges)
+    call(ehl.wm_top_level, L, Ls, gamma)
+    x = np.linspace(-1e-4, 1e-4, 5)
+    if L < 1.0 and Ls > 1e-7 * L:  # few enough levels to evaluate
+        call(ehl.weierstrass_mandelbrot_surface, x, x[::-1], D, G, L, cutoff_length=Ls, gamma=gamma, ridges=ridges,
+             seed=seed)
+
+
+@SETTINGS
+@given(n=small_cells, D=real(1.9, 3.1), G=length, L=st.one_of(st.none(), length), Ls=st.one_of(st.none(), length),
+       gamma=real(0.5, 3.0), ridges=st.one_of(st.integers(-1, 12), st.just(True)))
+def test_raceway_roughness(n, D, G, L, Ls, gamma, ridges):
+    grid = call(hs.surface_grid, 1e-4, 1e-4, n, n)
+    if grid is None or (L is not None and L > 1.0) or (Ls is not None and Ls < 1e-9):
+        return
+    result = call(roughness.raceway_roughness, grid, D, G, sample_length=L, cutoff_length=Ls, gamma=gamma,
+                  ridges=ridges)
+    if result is not None:
+        assert abs(float(np.mean(result.heights))) <= 1e-9 * max(float(np.abs(result.heights).max()), 1e-300)

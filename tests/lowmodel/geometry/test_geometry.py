@@ -13,6 +13,8 @@ import pytest
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry import fourpoint, groove, helix
+from hypothesis import given, strategies as st
+from tests.property_support import EXTREME, SLOW, angle, angle_limits, call, mostly, positive, real
 
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45)  # lin2019 Table 4
 
@@ -254,3 +256,118 @@ def test_checks_return_floats_for_scalars_and_arrays_for_arrays():
     assert checks.count("n", np.int64(3), 1) == 3 and type(checks.count("n", np.int64(3), 1)) is int
     assert checks.conformity("conformity", 0.56) == 0.56
     assert checks.choice("body", "nut", helix.BODIES) == "nut"
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+TINY = 5e-324  # the smallest float
+
+
+@pytest.mark.filterwarnings("error")
+def test_helical_groove_refuses_what_its_frames_cannot_build():
+    """A lead whose lead angle rounds to 90 deg was accepted (the groove failed later, naming ``lead_angle``); a
+    nut groove with R_P < R_B was accepted (contact_frame: numpy 'Singular matrix'); R_P / R_B = 1e312 overflowed
+    in the fundamental forms (warning)."""
+    with pytest.raises(ValueError, match="lead must give a lead angle below pi/2"):
+        groove.helical_groove(1e-3, 0.56, 16.5e-3, 1e300, 0.7)
+    with pytest.raises(ValueError, match="pitch_radius must exceed the groove radius"):
+        groove.helical_groove(1e6, 0.56, 1e-12, 0.02, 0.7, "nut")
+    with pytest.raises(ValueError, match="groove: the fundamental forms"):
+        groove.contact_frame(groove.helical_groove(1e-12, 0.56, 1e300, 0.0, 1e-16))
+
+
+@pytest.mark.filterwarnings("error")
+def test_groove_radius_and_straight_curvature_check_their_inputs():
+    """groove_radius(-1 m) returned -1.12 m; straight_groove_curvatures(5e-324 m) returned -inf."""
+    with pytest.raises(ValueError, match="ball_radius"):
+        groove.groove_radius(-1.0, 0.56)
+    with pytest.raises(ValueError, match="conformity"):
+        groove.groove_radius(1e-3, 0.4)
+    with pytest.raises(ValueError, match="ball_radius"):
+        groove.straight_groove_curvatures(TINY, 0.50001)
+    assert groove.straight_groove_curvatures(5e-3, 0.52) == (-1.0 / (0.52 * 2 * 5e-3), 0.0)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("iterations", [2.5, True, 0, -1])
+def test_groove_newton_iterations_are_counts(iterations):
+    """counter_height and profile_coordinates: 2.5 was a TypeError, True, 0 and -1 were accepted."""
+    flank = groove.helical_groove(2.778e-3, 0.56, 16.5e-3, 20e-3, 0.785)
+    with pytest.raises(ValueError, match="iterations"):
+        groove.counter_height(flank, 0.0, 0.0, iterations=iterations)
+    with pytest.raises(ValueError, match="iterations"):
+        groove.profile_coordinates(flank, [[0.016, 0.0, 0.0]], iterations=iterations)
+
+
+@pytest.mark.filterwarnings("error")
+def test_groove_newton_solves_say_when_they_do_not_converge():
+    """counter_height and profile_coordinates returned the last Newton iterate without a word when it had not
+    converged (a point 0.5 m off a 25 mm screw's flank gave a height 0.35 m off the surface); now
+    ConvergenceError with the residual [m]; converged points are unchanged."""
+    import numpy as np
+
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.lowmodel.geometry import groove
+
+    screw = groove.helical_groove(3.175e-3, 0.56, 25e-3, 10e-3, np.radians(45.0), "screw")
+    assert groove.counter_height(screw, [0.0], [0.0])[0] == pytest.approx(0.0, abs=1e-15)
+    with pytest.raises(ConvergenceError, match="counter_height") as error:
+        groove.counter_height(screw, [0.5], [0.0])
+    assert error.value.residual > 0.1
+    with pytest.raises(ConvergenceError, match="counter_height"):
+        groove.counter_height(screw, [1e-3], [0.0], iterations=1)
+    point = screw.surface(np.array([screw.contact_theta]), np.array([0.1]))
+    assert groove.profile_coordinates(screw, point)[0][0] == pytest.approx(0.1, abs=1e-12)
+    with pytest.raises(ConvergenceError, match="profile_coordinates"):
+        groove.profile_coordinates(screw, point, iterations=1)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
+# zero and negatives among the rest
+length = mostly(positive(1e-4, 0.1), *EXTREME)
+
+
+lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
+
+
+contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
+
+
+conformity = mostly(real(0.505, 0.7), 0.5, math.nextafter(0.5, 1.0), 0.5005, math.nextafter(1.0, 0.0), 1.0, 0.0)
+
+
+count = mostly(st.integers(1, 40), -1, 0, True, False, 2.0, 3.5)
+
+
+ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
+
+
+@SLOW
+@given(pitch_radius=length, fraction=ball_fraction, conf=conformity, lead=length, alpha=contact_angle, psi=lead_angle,
+       body=mostly(st.sampled_from(["screw", "nut"]), "ball"), plane=st.sampled_from(["normal", "axial"]),
+       deviation=mostly(real(-0.1, 0.1), -0.3, 0.3), iterations=count)
+def test_grooves(pitch_radius, fraction, conf, lead, alpha, psi, body, plane, deviation, iterations):
+    ball_radius = pitch_radius * fraction
+    call(groove.groove_radius, ball_radius, conf)
+    call(groove.straight_groove_curvatures, ball_radius, conf)
+    call(groove.gothic_arch, ball_radius, conf, alpha, deviation, -deviation)
+    call(groove.groove_curvatures_helical, ball_radius, conf, pitch_radius, alpha, psi, body, plane)
+    flank = call(groove.helical_groove, ball_radius, conf, pitch_radius, lead, alpha, body, "right", plane)
+    if flank is None:
+        return
+    frame = call(groove.contact_frame, flank)
+    if frame is not None:   # the exact frame is orthonormal and the ball centre lies R_B from the contact
+        np.testing.assert_allclose(frame.rotation @ frame.rotation.T, np.eye(3), atol=1e-9)
+    r = flank.ball_radius
+    call(groove.counter_height, flank, [0.0, 0.1 * r], [0.0, -0.1 * r], iterations=iterations)
+    points = call(flank.surface, [flank.contact_theta, flank.contact_theta + 0.05], [0.0, 0.01])
+    if points is not None:
+        call(groove.profile_coordinates, flank, points, iterations=iterations)
+        call(groove.surface_residual, flank, points)
+        call(groove.surface_residual, flank, points, radius=deviation)

@@ -3,6 +3,9 @@ import numpy as np
 import pytest
 
 from ballbench.lowmodel.geometry import helix
+import math
+from hypothesis import given, strategies as st
+from tests.property_support import EXTREME, SETTINGS, angle, angle_limits, call, mostly, positive, real
 
 R_M = 20.7e-3  # m, wang2022 Table A1 (d_m / 2)
 LEAD = 20e-3  # m
@@ -149,3 +152,128 @@ def test_broadcasting_balls_by_geometries():
     single = helix.contact_point(theta[2, 0], R_M, leads[3], R_B, np.radians(45), "screw")
     np.testing.assert_allclose(points[2, 3], single, rtol=1e-15)
     assert helix.frame_angular_velocity(np.ones((6, 1)), helix.lead_angle(leads, R_M)).shape == (6, 4, 3)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+TINY = 5e-324  # the smallest float
+
+
+TABLE4 = dict(pitch_radius=16.5e-3, lead=20e-3)  # lin2019 Table 4
+
+
+@pytest.mark.filterwarnings("error")
+def test_helix_curvature_and_torsion_at_extreme_radii():
+    """Were OverflowError (r_m = 1e300: r_m**2) and ZeroDivisionError (r_m = 5e-324: r_m**2 = 0)."""
+    assert helix.curvature(1e300, 0.0) == pytest.approx(1e-300, rel=1e-15)   # a circle: 1 / r_m
+    assert helix.torsion(1e300, 1e300) == pytest.approx(2 * math.pi / 1e300 / (1 + 4 * math.pi**2), rel=1e-14)
+    with pytest.raises(ValueError, match="pitch_radius"):
+        helix.curvature(TINY, 0.0)   # 1 / r_m beyond the float range
+    # the same numbers as r_m / (r_m^2 + h^2) for a real screw
+    h = TABLE4["lead"] / (2 * math.pi)
+    assert helix.curvature(**TABLE4) == pytest.approx(TABLE4["pitch_radius"] / (TABLE4["pitch_radius"] ** 2 + h**2),
+                                                      rel=1e-15)
+
+
+@pytest.mark.filterwarnings("error")
+def test_ball_centre_azimuths_is_scale_free():
+    """Were OverflowError (1e300 m) and ZeroDivisionError (5e-324 m); scaling every length by a power of two
+    gives the same bits (the FE meshes of meshes.assemblies use it: chaotic at the ulp level)."""
+    table4 = helix.ball_centre_azimuths(16.5e-3, 20e-3, 2 * 2.778e-3)
+    for scale in (2.0**900, 2.0**-900):
+        assert helix.ball_centre_azimuths(16.5e-3 * scale, 20e-3 * scale, 2 * 2.778e-3 * scale) == table4
+    assert helix.ball_centre_azimuths(1e300, 0.0, 1e300) == pytest.approx(2 * math.asin(0.5), rel=1e-14)
+    assert helix.ball_centre_azimuths(TINY, 0.0, TINY) == pytest.approx(2 * math.asin(0.5), rel=1e-14)
+
+
+@pytest.mark.filterwarnings("error")
+def test_helix_positions_and_velocities_that_overflow_raise():
+    """Were inf or NaN with an overflow warning."""
+    with pytest.raises(ValueError, match="theta, pitch_radius, lead"):
+        helix.ball_centre(1e300, TINY, 1e300, 1.0)
+    with pytest.raises(ValueError, match="theta, pitch_radius, lead"):
+        helix.contact_point(1e300, TINY, 1e300, 1e-3, 0.7, "nut")
+    with pytest.raises(ValueError, match="orbital_speed"):
+        helix.ball_centre_velocity(1e300, 1.0, 1e300, 1e300)
+    with pytest.raises(ValueError, match="lead_angle, pitch_radius"):
+        helix.lead_from_angle(math.nextafter(0.5 * math.pi, 0.0), 1e300)
+
+
+@pytest.mark.filterwarnings("error")
+def test_rotation_z_and_frame_products_check_their_inputs():
+    """rotation_z(inf) was NaN with a warning, rotation_z('x') a numpy error naming nothing; to_global and
+    to_frenet of a 2-vector failed in einsum."""
+    for bad in (math.inf, "x", None):
+        with pytest.raises(ValueError, match="phi"):
+            helix.rotation_z(bad)
+    with pytest.raises(ValueError, match="vector_frenet"):
+        helix.to_global(np.eye(3), [1.0, 2.0])
+    with pytest.raises(ValueError, match="frame"):
+        helix.to_frenet(np.eye(2), [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="frame .* and vector_global"):
+        helix.to_frenet(np.stack([np.eye(3)] * 2), np.zeros((3, 3)))
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
+# zero and negatives among the rest
+length = mostly(positive(1e-4, 0.1), *EXTREME)
+
+
+speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
+
+
+lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
+
+
+contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
+
+
+ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
+
+
+@SETTINGS
+@given(pitch_radius=length, lead=length, theta=mostly(real(-100.0, 100.0), *EXTREME), omega=speed,
+       fraction=ball_fraction, alpha=contact_angle, psi=lead_angle, spacing=mostly(real(0.0, 2.0), 2.0, 3.0))
+def test_helix(pitch_radius, lead, theta, omega, fraction, alpha, psi, spacing):
+    ball_radius = pitch_radius * fraction
+    spacing *= pitch_radius   # (0, 2 R_P], its end, and beyond
+    call(helix.helix_parameter, lead)
+    call(helix.lead_angle, lead, pitch_radius)
+    call(helix.lead_from_angle, psi, pitch_radius)
+    call(helix.curvature, pitch_radius, lead)
+    call(helix.torsion, pitch_radius, lead)
+    call(helix.ball_centre, theta, pitch_radius, lead, omega)
+    call(helix.ball_centre_velocity, omega, -omega, pitch_radius, lead)
+    call(helix.ball_centre_velocity, omega, 1.0, pitch_radius, lead, lead_angle=psi)
+    frame = call(helix.frenet_frame, theta, psi)
+    call(helix.cs3_frame, theta, psi)
+    call(helix.rotation_z, theta)
+    call(helix.axis_in_frenet, psi)
+    call(helix.frame_angular_velocity, omega, psi)
+    offset = call(helix.contact_offset, ball_radius, alpha, "nut")
+    if frame is not None and offset is not None:
+        assert np.allclose(call(helix.to_frenet, frame, call(helix.to_global, frame, offset)), offset,
+                           rtol=1e-12, atol=1e-12 * float(np.max(np.abs(offset))))
+    call(helix.contact_point, theta, pitch_radius, lead, ball_radius, alpha, "screw", omega)
+    step = call(helix.ball_centre_azimuths, pitch_radius, lead, spacing)
+    if step is not None:   # the chord of the returned azimuth step is the spacing
+        p = lead / (2.0 * math.pi)
+        chord = math.hypot(2.0 * pitch_radius * math.sin(0.5 * step), p * step)
+        assert chord == pytest.approx(spacing, rel=1e-9, abs=1e-300)
+
+
+@SETTINGS
+@given(bad=st.sampled_from([math.nan, math.inf, "x", None, True, [1.0, 2.0]]))
+def test_helix_rejects_non_numbers(bad):
+    """Non-finite, non-numeric and wrongly shaped inputs: a ValueError naming the parameter."""
+    scalar = bad if np.ndim(bad) == 0 else "x"
+    for function, args in ((helix.rotation_z, (scalar,)), (helix.to_global, (np.eye(3), bad)),
+                           (helix.to_frenet, (bad, [1.0, 0.0, 0.0])), (helix.lead_angle, (scalar, 1.0)),
+                           (helix.contact_offset, (1e-3, 0.5, bad))):
+        assert call(function, *args) is None   # call() returns None only after a ValueError naming a parameter

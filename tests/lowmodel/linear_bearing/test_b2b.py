@@ -6,14 +6,15 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.linear_bearing import b2b
-from ballbench.lowmodel.linear_bearing import ball as bb
-from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+from ballbench.lowmodel.linear_bearing import b2b, ball as bb, contacts as bearing_contacts
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 
 from tests.lowmodel.linear_bearing.test_ball import (GEOMETRY, MU, RADIUS, SPEED, VERTICAL, case_angles, eq36,
                                                      power_error)
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from hypothesis import given, strategies as st
+from tests.property_support import SLOW, call, real
 
 
 def module(theta_deg, rho, *, top=(0.0, 0.0), n_balls=2, sides=None, mu=MU, approximate=False):
@@ -253,3 +254,53 @@ def test_gap_history_separation():
     history = b2b.simulate_gaps(contacts, [0.0], 10.0)
     assert np.all(history.b2b_force == 0.0)
     assert history.gaps[-1, 0] == pytest.approx(10.0 * (free.ball_velocity[1] - free.ball_velocity[0]), rel=1e-9)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("top", [(0.0,), (0.0, 0.0, 1.0), ()])
+def test_top_deviations_must_be_a_pair(top):
+    """(0.0,) ended in IndexError, a 3-tuple was silently truncated."""
+    with pytest.raises(ValueError, match="top_deviations"):
+        b2b.module_contacts(0.01, 0.5, top_deviations=top)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("count", [True, False, 2.0, 0])
+def test_ball_count_is_an_integer(count):
+    with pytest.raises(ValueError, match="n_balls"):
+        b2b.module_contacts(0.01, 0.5, n_balls=count)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("tolerance", [float("nan"), -1e-9, float("inf")])
+def test_gap_tolerance_is_checked(tolerance):
+    """A NaN gap_tolerance switched B2B contact off silently (every gap <= NaN is False)."""
+    contacts = b2b.module_contacts(math.radians(0.1), -0.5)
+    with pytest.raises(ValueError, match="gap_tolerance"):
+        b2b.solve(contacts, gap_tolerance=tolerance)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SLOW
+@given(theta=real(-0.3, 0.3), rho=real(-1.0, 1.0), load=real(1e-3, 1e5), mu=real(1e-6, 1.0),
+       velocity=st.sampled_from([-0.5, 0.01, 2.0]), conformity=real(0.5005, 0.7), n_balls=st.integers(1, 4),
+       gap=real(0.0, 1e-4))
+def test_numerical_b2b(theta, rho, load, mu, velocity, conformity, n_balls, gap):
+    contacts = call(b2b.module_contacts, theta, rho, n_balls=n_balls, vertical_force=load, friction_coefficient=mu,
+                    groove_velocity=velocity, conformity=conformity)
+    if contacts is None:
+        return
+    state = call(bearing_ball.solve, contacts, allow_inf=("c_over_a",))
+    if state is not None:
+        assert abs(state.input_power - state.total_loss) <= 1e-8 * abs(state.input_power)
+    gaps = np.where(np.arange(n_balls - 1) % 2 == 0, 0.0, gap)
+    state = call(b2b.solve, contacts, gaps, allow_inf=("c_over_a",))
+    if state is not None:
+        assert abs(state.input_power - state.total_loss) <= 1e-8 * abs(state.input_power)

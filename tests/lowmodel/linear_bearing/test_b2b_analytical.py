@@ -8,6 +8,9 @@ import pytest
 
 from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.linear_bearing import b2b as numerical_b2b, b2b_analytical as analytical
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, angle, call, real
 
 BALL_RADIUS = 5e-3  # lin2019 Table 1
 MU = 0.1
@@ -209,3 +212,85 @@ def test_vectorised_shapes():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+RADIUS = 5e-3  # lin2019 Table 1
+
+
+COMMON = dict(normal_load=100.0, friction_coefficient=0.1, ball_radius=RADIUS,
+              psi=hertz.psi_constant(hertz.ball_in_groove(RADIUS, 0.56), RADIUS))
+
+
+@pytest.mark.filterwarnings("error")
+def test_analytical_honours_the_direction_of_motion():
+    """Groove moving along -z: ball 2 is behind; the pair that approached now separates and vice versa.
+
+    Mirror image z -> -z: (v, rho) and (-v, -rho) give the same force; the numerical model agrees."""
+    theta = math.radians(0.1)
+    forward = analytical.two_ball_case(theta, -0.5, groove_velocity=0.01, **COMMON)
+    backward = analytical.two_ball_case(theta, -0.5, groove_velocity=-0.01, **COMMON)
+    mirrored = analytical.two_ball_case(theta, 0.5, groove_velocity=-0.01, **COMMON)
+    assert float(forward.b2b_force) > 0.0
+    assert float(backward.b2b_force) == 0.0  # was 0.154 N: the balls move apart
+    assert float(mirrored.b2b_force) == pytest.approx(float(forward.b2b_force), rel=1e-14)
+    numerical = numerical_b2b.solve(numerical_b2b.module_contacts(theta, -0.5, groove_velocity=-0.01))
+    assert float(numerical.b2b_force[0]) == 0.0
+    # the approach rate (epsilon_1 - epsilon_2) v/2 decides, also in contact_force
+    forces = analytical.diagonal_forces(100.0, -50.0), analytical.diagonal_forces(100.0, 50.0)
+    args = dict(k_f=1.38, friction_coefficient=0.1, psi=COMMON["psi"], ball_radius=RADIUS)
+    assert float(analytical.contact_force(0.0, 0.01, *forces, groove_velocity=-1.0, **args)) > 0.0
+    assert float(analytical.contact_force(0.01, 0.0, *forces, groove_velocity=-1.0, **args)) == 0.0
+    assert float(analytical.contact_force(0.01, 0.0, *forces, groove_velocity=0.0, **args)) == 0.0
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("theta_deg, rho", [(20.0, -0.5), (20.0, 0.5), (13.0, 0.8), (46.0, 0.0)])
+def test_analytical_keeps_the_eq37_range(theta_deg, rho):
+    """theta = 20 deg, rho = 0.5: beta_BL = 25 deg, tan 25 deg = 0.466 < 0.5, no four-point contact (was 31-37 N)."""
+    with pytest.raises(ValueError, match="rho|contact angles"):
+        analytical.two_ball_case(math.radians(theta_deg), rho, groove_velocity=0.01, **COMMON)
+
+
+@pytest.mark.filterwarnings("error")
+def test_analytical_rejects_contact_angles_outside_0_90():
+    with pytest.raises(ValueError, match="contact angles"):
+        analytical.velocity_deviation([-1.0, 0.0, 0.0, 0.0], 10.0, 10.0)  # beta_BL = 45 - 57 deg < 0
+    with pytest.raises(ValueError, match="contact angles"):
+        analytical.two_ball_case(0.0, 0.0, groove_velocity=0.01, delta_beta_top=(1.0, 0.0), **COMMON)
+    with pytest.raises(ValueError, match="delta_beta_top"):
+        analytical.two_ball_case(0.0, 0.0, groove_velocity=0.01, delta_beta_top=(0.0,), **COMMON)
+
+
+@pytest.mark.filterwarnings("error")
+def test_analytical_common_velocity_is_finite_when_the_balls_separate():
+    separating = analytical.two_ball_case(math.radians(0.1), 0.5, groove_velocity=0.01, **COMMON)
+    assert float(separating.b2b_force) == 0.0
+    assert np.isfinite(separating.common_velocity)  # was NaN
+    assert float(separating.final_velocity_1) == float(separating.ball_velocity_1)  # free velocities
+    assert float(separating.final_velocity_2) == float(separating.ball_velocity_2)
+    pressed = analytical.two_ball_case(math.radians(0.1), -0.5, groove_velocity=0.01, **COMMON)
+    assert float(pressed.final_velocity_1) == float(pressed.final_velocity_2) == float(pressed.common_velocity)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(theta=real(-0.8, 0.8), rho=real(-1.2, 1.2), load=real(-1.0, 1e5), velocity=real(-1.0, 1.0),
+       mu=real(-0.1, 1.5), top=st.tuples(real(-0.2, 0.2), real(-0.2, 0.2)), beta0=angle,
+       k_f=real(-0.5, 2.0))
+def test_analytical(theta, rho, load, velocity, mu, top, beta0, k_f):
+    psi = 5.3e-4
+    call(analytical.two_ball_case, theta, rho, normal_load=load, groove_velocity=velocity, friction_coefficient=mu,
+         psi=psi, ball_radius=5e-3, k_f=k_f, delta_beta_top=top, nominal_contact_angle=beta0)
+    call(analytical.side_force_deviation, theta, rho)
+    call(analytical.diagonal_forces, load, rho * load, beta0)
+    call(analytical.velocity_deviation, [-theta, theta, top[0], top[1]], abs(load) + 1.0, abs(load) + 2.0, beta0)
+    call(analytical.contact_force, theta, -theta, (load, load + 1.0), (load + 2.0, load), k_f=k_f,
+         friction_coefficient=mu, psi=psi, ball_radius=5e-3, nominal_contact_angle=beta0, groove_velocity=velocity)
+    call(analytical.friction_loss, load, mu, velocity, beta0)

@@ -7,6 +7,8 @@ import pytest
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction as bt
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from hypothesis import given, strategies as st
+from tests.property_support import SLOW, call, one_bad, real
 
 THETA = math.radians(2.0)
 
@@ -102,3 +104,48 @@ def test_bad_input_and_non_convergence():
         _solve(contacts, patches, gaps=[-1.0])
     with pytest.raises(ConvergenceError):
         _solve(contacts, patches, max_iterations=1)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_bool_ball_index_is_refused():
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=2)
+    with pytest.raises(ValueError, match="ball"):  # was "setting an array element with a sequence"
+        bt.hertz_patches(contacts, True)
+    with pytest.raises(ValueError, match="ball"):
+        bt.hertz_patches(contacts, 2)
+
+
+@pytest.mark.filterwarnings("error")
+def test_traction_solve_of_a_subnormal_ball_radius():
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=2)
+    patches = [bt.hertz_patches(contacts, j, n_radial=2, n_angular=8) for j in range(2)]
+    with pytest.raises(ValueError, match="ball_radius"):  # r / 5e-324 overflowed (RuntimeWarning)
+        bt.solve(patches, ball_radius=5e-324, friction_coefficient=0.1, groove_velocity=0.01)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SLOW
+@given(kw=one_bad(
+    dict(rho=real(-0.9, 0.9), ball=st.integers(0, 1), n_radial=st.integers(1, 6), n_angular=st.integers(4, 16),
+         planar=st.booleans(), mu=real(0.01, 0.5), velocity=st.sampled_from([-0.5, 0.01, 2.0]),
+         gap=st.one_of(real(0.0, 1e-4), st.none())),
+    dict(ball=st.sampled_from([-1, 2, True]), n_radial=st.sampled_from([0, -1, True]), mu=st.sampled_from([0.0, -0.1]),
+         velocity=st.sampled_from([0.0, 1e300]), gap=st.sampled_from([-1e-4, 1e300]),
+         radius=st.sampled_from([0.0, -5e-3, 5e-324]))))
+def test_b2b_traction(kw):
+    contacts = b2b.module_contacts(math.radians(2.0), kw["rho"], n_balls=2, friction_coefficient=0.1)
+    patches = [call(bt.hertz_patches, contacts, j, n_radial=kw["n_radial"], n_angular=kw["n_angular"],
+                    planar=kw["planar"]) for j in (kw["ball"], 1 - kw["ball"] if kw["ball"] in (0, 1) else 0)]
+    if patches[0] is None or patches[1] is None:
+        return
+    state = call(bt.solve, patches, ball_radius=kw.get("radius", contacts.ball_radius), friction_coefficient=kw["mu"],
+                 groove_velocity=kw["velocity"], gaps=None if kw["gap"] is None else [kw["gap"]], max_iterations=60)
+    if state is not None:
+        assert abs(state.power_balance) <= bt.POWER_BALANCE_TOLERANCE

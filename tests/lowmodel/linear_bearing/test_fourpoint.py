@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 from ballbench.lowmodel.linear_bearing import fourpoint
+from tests.property_support import SETTINGS, angle, call, real
 
 R_B = 5e-3
 MU = 0.1
@@ -392,3 +393,20 @@ def test_broadcasting_shapes():
     assert single.ball_velocity.shape == () and single.friction_forces.shape == (4,)
     np.testing.assert_allclose(single.friction_forces, state.friction_forces[1, 1], rtol=1e-15)
     assert fourpoint.normal_forces(np.zeros(5), N_Y, case1(0.0)).shape == (5, 4)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+angles4 = st.lists(angle, min_size=4, max_size=4)
+
+
+@SETTINGS
+@given(angles=angles4, side=real(-1e4, 1e4), vertical=real(-10.0, 1e4), mu=real(-0.1, 1.5),
+       velocity=real(-1.0, 1.0))
+def test_fourpoint(angles, side, vertical, mu, velocity):
+    call(fourpoint.normal_forces, side, vertical, angles)
+    call(fourpoint.contact_limits, angles)
+    call(fourpoint.solve, angles, side, vertical, ball_radius=5e-3, friction_coefficient=mu,
+         groove_velocity=velocity)

@@ -6,9 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.screw import b2b as b2
-from ballbench.lowmodel.screw import ball as sb
-from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw import b2b as b2, ball as sb, contacts as screw_contacts, b2b as b2b
 
 DEG = math.pi / 180.0
 
@@ -112,3 +110,22 @@ def test_bad_input(module):
         b2.solve(contacts, 50.0, gaps=[0.0, 0.0])
     with pytest.raises(ValueError, match="axial_load"):
         b2.solve(contacts, float("inf"))
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_b2b_solution_does_not_depend_on_the_speed_scale():
+    """Quasi-static: scaling the nut speed scales every velocity and leaves the forces.  At 2e-13 rad/s the B2B
+    slip floor (1e-14 R_B in m/s, absolute) bent the friction direction: the power balance was off by 1.3e-5;
+    the floor is now 1e-14 R_B |omega_N|."""
+    states = []
+    for speed in (2 * math.pi, 2e-13):
+        module = screw_contacts.screw_module(oversize=1e-6, nut_speed=speed)
+        states.append(b2b.solve(screw_contacts.ball_contacts(module, np.radians([0.0, 2.0])), 50.0))
+    for state in states:
+        assert abs(state.input_power - state.total_loss) <= 1e-8 * state.total_loss
+    assert states[1].b2b_force[0] == pytest.approx(states[0].b2b_force[0], rel=1e-6)
+    assert states[1].total_loss / 2e-13 == pytest.approx(states[0].total_loss / (2 * math.pi), rel=1e-6)

@@ -8,10 +8,10 @@ import pytest
 
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import ball as bb
-from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
-from ballbench.lowmodel.screw import ball as sb
-from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.linear_bearing import ball as bb, contacts as bearing_contacts
+from ballbench.lowmodel.screw import ball as sb, contacts as screw_contacts, b2b as b2b, b2b_traction as traction
+from hypothesis import given, strategies as st
+from tests.property_support import SETTINGS, angle as any_angle, angle_limits, call, mostly, positive, real
 
 DEG = math.pi / 180.0
 
@@ -328,3 +328,60 @@ def test_kinematics_agree_with_wang2022_frenet_velocities():
         scale = omega * 16.5e-3
         np.testing.assert_allclose(slip_vector(2), to_cs3(wang.sliding_velocity_nut), atol=1e-12 * scale)
         np.testing.assert_allclose(slip_vector(0), -to_cs3(wang.sliding_velocity_screw), atol=1e-12 * scale)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+module_kwargs = st.fixed_dictionaries({
+    "ball_radius": positive(1e-3, 5e-3), "conformity": real(0.5005, 0.7), "lead": real(0.0, 0.05),
+    "nominal_angle": real(0.3, 1.2), "nut_speed": real(-20.0, 20.0), "friction_coefficient": real(1e-3, 0.5),
+    "oversize": real(0.0, 2e-6)})
+
+
+# one parameter of the module at a bad or extreme value, in about half the draws
+SPOILERS = [None] * 10 + [("ball_radius", v) for v in (0.0, 5e-324, 1e300, -1e-3)] + [
+    ("conformity", v) for v in (0.5, math.nextafter(0.5, 1.0), 1.0)] + [("lead", v) for v in (-1e-3, 1e300, 5e-324)] + [
+    ("nominal_angle", v) for v in angle_limits] + [("nut_speed", v) for v in (0.0, 1e-300, 1e300)] + [
+    ("friction_coefficient", v) for v in (0.0, -0.1, 1e300, 1e-300)] + [("oversize", v) for v in (-1e-9, 1.0)]
+
+
+@SETTINGS
+@given(kwargs=module_kwargs, spoiler=st.sampled_from(SPOILERS),
+       deviation=st.lists(mostly(real(-0.05, 0.05), -0.3, 0.3), min_size=1, max_size=3),
+       reading=mostly(st.sampled_from(["tilted", "rotated"]), "sideways"), gamma=any_angle,
+       index=mostly(st.integers(0, 3), -1, 4, True, 1.0), load=mostly(real(1.0, 500.0), -1.0, 0.0, 1e300))
+def test_screw_ball(kwargs, spoiler, deviation, reading, gamma, index, load):
+    module = call(screw_contacts.screw_module, **(kwargs if spoiler is None else {**kwargs, spoiler[0]: spoiler[1]}))
+    if module is None:
+        return
+    call(screw_contacts.flank_angles, module.nominal_angle, deviation, reading)
+    contacts = call(screw_contacts.ball_contacts, module, deviation, reading)
+    if contacts is None:
+        return
+    call(screw_contacts.arc_profile, contacts, gamma, load * 1e-9)
+    call(screw_contacts.profile_2d, contacts, index, index, gamma, 0.1, load * 1e-9)
+    call(sb.reference_force, contacts, load)
+    call(sb.continuation_start, contacts, load)
+    call(sb.free_rolling_guess, contacts)
+    call(b2b.pair_geometry, module)
+    call(b2b.b2b_angle_eq56, module)
+    call(b2b.check_gaps, [load * 1e-3] * index if isinstance(index, int) and 0 <= index < 50 else None, index)
+    single = call(screw_contacts.ball_contacts, module, deviation[0], reading)
+    if single is None:
+        return
+    state = call(sb.solve, single, load, tolerance=1e-9, max_iterations=60)
+    if state is not None:   # the nut puts in what friction dissipates (lin2019 Sec 3.1 power balance)
+        assert abs(state.input_power - state.total_loss) <= 1e-6 * abs(state.total_loss)
+        call(b2b.saturation, state)
+    state = call(b2b.solve, contacts, load * len(deviation), tolerance=1e-9, max_iterations=60)
+    if state is not None:
+        assert abs(state.input_power - state.total_loss) <= 1e-6 * abs(state.total_loss)
+        assert np.all(state.b2b_force >= 0.0)
+        patches = call(traction.hertz_patches, state, contacts, index if isinstance(index, int) else 0,
+                       n_radial=4, n_angular=8)
+        if patches is not None and any(p.top for p in patches):
+            free = call(traction.solve, [patches], module, max_iterations=60)
+            if free is not None:
+                assert free.power_balance <= traction.POWER_BALANCE_TOLERANCE

@@ -6,7 +6,13 @@ import pytest
 from ballbench.lowmodel.ball_bearing import harris
 
 from ballbench.lowmodel.geometry import helix
-from ballbench.lowmodel.screw import kinematics as sk
+from ballbench.lowmodel.screw import kinematics as sk, kinematics as screw
+import math
+from ballbench.lowmodel.screw import kinematics as kin
+from hypothesis import given
+from tests.property_support import SETTINGS, angle, call, positive, real
+from hypothesis import strategies as st
+from tests.property_support import EXTREME, angle_limits, mostly
 
 RPM = 2 * np.pi / 60
 # wang2022 Table A1 (d_m and d_b are diameters; r_m, r_b radii)
@@ -328,3 +334,120 @@ def test_bad_input_names_parameter(override, name):
 def test_bad_input_other_functions(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("error")
+def test_kinematics_at_huge_speed():
+    """1e300 rad/s gave NaN (overflowing squares); every velocity is linear in the speed, S is not."""
+    args = (16.5e-3, 2.778e-3, 20e-3)
+    huge = screw.kinematics(*args, 1e300, math.radians(45))
+    unit = screw.kinematics(*args, 1.0, math.radians(45))
+    for name in huge.__dataclass_fields__:
+        assert np.all(np.isfinite(getattr(huge, name))), name
+    assert float(huge.slide_roll_nut) == pytest.approx(float(unit.slide_roll_nut), rel=1e-12)
+    assert float(huge.entrainment_screw) == pytest.approx(1e300 * float(unit.entrainment_screw), rel=1e-12)
+    with pytest.raises(ValueError, match="screw_speed"):
+        screw.kinematics(*args, 1.7e308, math.radians(45))
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+TINY = 5e-324  # the smallest float
+
+
+@pytest.mark.filterwarnings("error")
+def test_kinematics_parts_check_their_inputs():
+    """ball_angular_velocity(True) was a TypeError; orbital_speed / ball_spin_speed with r_b <= 0 or
+    r_b / r_m = 0 raised ZeroDivisionError or returned inf / NaN; centrifugal_force overflowed to inf."""
+    with pytest.raises(ValueError, match="spin_speed"):
+        kin.ball_angular_velocity(True, -1.0)
+    with pytest.raises(ValueError, match="ball_radius"):
+        kin.orbital_speed(1.0, -1.0, 0.0, 0.7, 0.7, 0.3)
+    with pytest.raises(ValueError, match="ball_radius"):
+        kin.ball_spin_speed(1.0, 0.0, -1.0, 0.7, 0.1, 0.3)
+    with pytest.raises(ValueError, match="orbital_speed_rad_s, ball_radius"):
+        kin.ball_spin_speed(1.0, TINY, 1e6, 0.7, 0.1, 0.3)
+    with pytest.raises(ValueError, match="ball_mass, pitch_radius, orbital_speed"):
+        kin.centrifugal_force(1e300, 0.02, 1e6)
+    # the eq-by-eq helpers agree with kinematics() (wang2022 Table A1)
+    state = kin.kinematics(20.7e-3, 3.572e-3, 20e-3, 200.0, math.radians(45.0))
+    beta = kin.pitch_angle(math.radians(45.0), 3.572e-3, 20.7e-3)
+    orbit = kin.orbital_speed(200.0, 3.572e-3, 20.7e-3, math.radians(45.0), math.radians(45.0), beta)
+    assert orbit == pytest.approx(float(state.orbital_speed), rel=1e-14)
+    spin = kin.ball_spin_speed(orbit, 3.572e-3, 20.7e-3, math.radians(45.0), float(state.lead_angle), beta)
+    assert spin == pytest.approx(float(state.spin_speed), rel=1e-14)
+
+
+@pytest.mark.filterwarnings("error")
+def test_slide_roll_ratio_refuses_negative_speeds_and_no_entrainment():
+    """slide_roll_ratio_magnitude(-1, 0) was -inf, (1, 0) inf, (1, 5e-324) inf with an overflow warning;
+    absolute_velocity_measures of opposite velocities returned S = inf."""
+    with pytest.raises(ValueError, match="sliding_speed"):
+        kin.slide_roll_ratio_magnitude(-1.0, 1.0)
+    for entrainment in (0.0, TINY):
+        with pytest.raises(ValueError, match="sliding_speed, entrainment"):
+            kin.slide_roll_ratio_magnitude(1.0, entrainment)
+    assert kin.slide_roll_ratio_magnitude(0.0, 0.0) == 0.0   # a contact at rest
+    with pytest.raises(ValueError, match="raceway_velocity, ball_velocity"):
+        kin.absolute_velocity_measures([-1.0, 0, 0], [1.0, 0, 0], raceway_is_driver=True)
+    with pytest.raises(ValueError, match="velocity_2"):
+        kin.entrainment_velocity([1.0, 0, 0], [1.0, 0])
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+@SETTINGS
+@given(pitch=positive(1e-4, 10.0), ball=positive(1e-5, 1.0), lead=real(-0.01, 1.0), speed=real(-1e300, 1e300),
+       alpha=angle, alpha_i=angle)
+def test_screw_kinematics(pitch, ball, lead, speed, alpha, alpha_i):
+    call(screw.kinematics, pitch, ball, lead, speed, alpha, alpha_i)
+    call(screw.wei_ball_centre_kinematics, pitch, ball, lead, speed, alpha, alpha_i)
+    call(harris.kinematics, pitch, ball, speed, alpha)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
+# zero and negatives among the rest
+length = mostly(positive(1e-4, 0.1), *EXTREME)
+
+
+speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
+
+
+lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
+
+
+contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
+
+
+ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
+
+
+@SETTINGS
+@given(omega=speed, fraction=ball_fraction, pitch_radius=length, alpha_o=contact_angle, alpha_i=contact_angle,
+       psi=lead_angle, beta=contact_angle, sliding=speed, entrainment=speed, mass=length)
+def test_kinematics_parts(omega, fraction, pitch_radius, alpha_o, alpha_i, psi, beta, sliding, entrainment, mass):
+    ball_radius = pitch_radius * fraction
+    call(kin.pitch_angle, alpha_o, ball_radius, pitch_radius)
+    orbit = call(kin.orbital_speed, omega, ball_radius, pitch_radius, alpha_o, alpha_i, beta)
+    spin = call(kin.ball_spin_speed, omega, ball_radius, pitch_radius, alpha_o, psi, beta)
+    call(kin.ball_angular_velocity, omega, beta)
+    call(kin.ball_angular_velocity, True if spin is None else spin, beta, psi)
+    call(kin.centrifugal_force, mass, pitch_radius, omega if orbit is None else orbit)
+    call(kin.entrainment_velocity, [sliding, 0.0, entrainment], [entrainment, omega, 0.0])
+    ratio = call(kin.slide_roll_ratio_magnitude, sliding, entrainment)
+    if ratio is not None:
+        assert ratio >= 0.0
+    call(kin.slide_roll_ratio, [sliding, omega, 0.0], entrainment)
+    call(kin.absolute_velocity_measures, [sliding, 0.0, omega], [entrainment, 0.0, 0.0], raceway_is_driver=True)
