@@ -489,7 +489,7 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
     self_step = e_star / float(kernel[nx - 1, ny - 1])  # 1 / K_00: the pressure that moves its own cell by 1 m
     if max_iterations < 1:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=math.inf,
-                               iterations=0, tolerance=tolerance)
+                               iterations=0, tolerance=tolerance, reason="iteration limit")
 
     def apply(field, single=False):
         return _convolve(spectrum, field, spectrum_single if single else None)
@@ -568,7 +568,7 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
             factor = 1.0
         else:
             raise ConvergenceError("approach control lost all contact", residual=math.inf, iterations=iteration,
-                                   tolerance=tolerance)
+                                   tolerance=tolerance, reason="no contact left")
         if g_norm > 0.0:  # (t = 0 otherwise)
             # the step in double precision where it lies beyond the single-precision range of r_raw
             u -= tau * (r_raw if abs(tau) < _SINGLE_MAX else r_raw.astype(float))
@@ -583,7 +583,7 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
             break
     else:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=residual,
-                               iterations=max_iterations, tolerance=tolerance)
+                               iterations=max_iterations, tolerance=tolerance, reason="iteration limit")
     return p, iteration, residual
 
 
