@@ -252,6 +252,10 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "tilted") -> np
 
     The nut flanks keep ``beta_0``.
     """
+    shape = checks.real("deviation", deviation).shape
+    if len(shape) > 1 or 0 in shape:
+        raise ValueError(f"deviation must be one theta [rad] or a 1-D array of one per ball (at least one), got "
+                         f"shape {shape}")
     theta = np.atleast_1d(checks.bounded("deviation", deviation, -groove_core.MAX_DEVIATION,
                                          groove_core.MAX_DEVIATION, "rad", lower_closed=True, upper_closed=True,
                                          note="i.e. [-15, 15] deg"))
@@ -708,8 +712,9 @@ def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float =
                 max_iterations: int = 80) -> ScrewBallState:
     """Each ball on its own (no ball-to-ball contact) under ``axial_load`` [N] per ball (lin2019 eqs 49-55).
 
-    ``axial_load``: force of the screw on each ball along +z [N] (its sign picks the
-    loaded diagonal); the nut shift is solved for it, ball by ball.  ``tolerance``:
+    ``axial_load``: force of the screw on each ball along +z [N], one number (its sign picks the
+    loaded diagonal); the nut shift is solved for it, ball by ball: ``nut_shift`` of the result is
+    (n,), one per ball (a float for one ball).  ``tolerance``:
     max residual of eq 54 in units of ``mu F_ref`` (F_ref = |axial_load| / (sin beta_0 cos alpha) / 2
     for the loaded pair, forces and moments / R_B) and of the axial balance.
     Raises ConvergenceError with its residual if Newton fails.
@@ -717,7 +722,7 @@ def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float =
     from ballbench.lowmodel.solvers import check_solver_options
 
     check_solver_options(tolerance, max_iterations)
-    load = checks.finite("axial_load", axial_load, "N")
+    load = checks.scalar("axial_load", axial_load, "N", note="the load on each ball")
     states = [_solve_one(contacts, j, load, tolerance, max_iterations) for j in range(contacts.n_balls)]
     return _stack(states, contacts)
 
@@ -725,7 +730,7 @@ def solve_balls(contacts: BallContacts, axial_load: float, *, tolerance: float =
 def reference_force(contacts: BallContacts, axial_load: float) -> float:
     """Normal force scale [N]: the axial load over one loaded pair, at least the preload force."""
     module = contacts.module
-    load = checks.finite("axial_load", axial_load, "N")
+    load = checks.scalar("axial_load", axial_load, "N")
     with np.errstate(over="ignore"):
         pair = abs(load) / np.float64(math.sin(module.nominal_angle) * math.cos(module.lead_angle))
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
@@ -843,7 +848,7 @@ def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scal
 
 
 def _stack(states, contacts: BallContacts) -> ScrewBallState:
-    """Join single-ball solutions (each with its own nut shift) into one state."""
+    """Join single-ball solutions (each with its own nut shift: ``nut_shift`` (n,)) into one state."""
     if len(states) == 1:
         z, terms, scales, iterations, residual, load = states[0]
         return state_from(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], terms, scales, axial_load=load,
@@ -856,7 +861,7 @@ def _stack(states, contacts: BallContacts) -> ScrewBallState:
 
     n = len(parts)
     return ScrewBallState(cat("centre"), cat("orbit_speed"), cat("omega"),
-                          float(np.mean([p.nut_shift for p in parts])), cat("normal_force"), cat("contact_angle"),
+                          np.array([p.nut_shift for p in parts]), cat("normal_force"), cat("contact_angle"),
                           cat("approach"), cat("semi_major"), cat("spin"), cat("slip_minor"), cat("slip_major"),
                           cat("friction_force"), cat("friction_moment"), cat("friction_loss"),
                           float(sum(p.input_power for p in parts)), float(sum(p.axial_load for p in parts)),
