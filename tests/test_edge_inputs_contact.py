@@ -280,9 +280,13 @@ def test_more_named_errors():
     normal = np.array([1.0, 2.0])
     with pytest.raises(ValueError, match="normal_force"):  # 2 rows for 2 parameters: named n_points, p0
         calibration.fit_friction_coefficient(normal, 0.1 * normal, [0.0, 1.0])
-    tiny = np.array([8.6e-210, 1.7e-209])
-    with pytest.raises(ValueError, match="normal_force"):  # singular value^2 underflowed: divide by zero
-        calibration.fit_friction_coefficient(tiny, 0.0 * tiny)
+    tiny = np.array([8.6e-210, 1.7e-209, 3.1e-209])
+    # the singular value^2 underflowed (a divide by zero, then a ValueError naming normal_force); forces outside
+    # 1e-100..1e100 are now fitted divided by a power of two: the mu of the same data in N
+    scaled = tiny * 1e209
+    friction = np.array([0.1, 0.2, 0.31]) * scaled
+    fitted = calibration.fit_friction_coefficient(tiny, friction * 1e-209)["mu"]
+    assert fitted.value == pytest.approx(float(scaled @ friction / (scaled @ scaled)), rel=1e-9)  # least squares
     contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=2)
     patches = [bt.hertz_patches(contacts, j, n_radial=2, n_angular=8) for j in range(2)]
     with pytest.raises(ValueError, match="ball_radius"):  # r / 5e-324 overflowed (RuntimeWarning)
