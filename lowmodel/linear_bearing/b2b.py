@@ -370,7 +370,7 @@ def complementarity_forces(z: np.ndarray, n_balls: int, n_unknowns: int, touchin
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-gamma * separation, initial=0.0)))
     if violation > 10 * tolerance:
         raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                               tolerance=tolerance)
+                               tolerance=tolerance, reason="complementarity violated")
     forces = np.maximum(forces, 0.0)
     forces[touching[z[force_index] <= gamma * separation]] = 0.0  # active min() branch F = 0: exactly zero
     return balls, forces
@@ -452,6 +452,6 @@ def simulate_gaps(contacts: BallContacts, initial_gaps, t_end: float, *, max_eve
             break
     else:
         raise ConvergenceError("simulate_gaps: too many contact events", residual=t_end - time,
-                               iterations=max_events, tolerance=0.0)
+                               iterations=max_events, tolerance=0.0, reason="too many contact events")
     return GapHistory(np.array(times), np.array(history), np.array(velocities), np.array(forces),
                       np.array(counts))

@@ -696,7 +696,9 @@ def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts
               f"; spin-capacity ratio {ratio:.3f}")
     message = str(error).split(" (residual")[0] + reason
     return ConvergenceError(message, residual=error.residual, iterations=error.iterations,
-                            tolerance=error.tolerance)
+                            tolerance=error.tolerance,
+                            reason="spin-capacity ratio < 1" if ratio < 1.0 else error.reason,
+                            last_converged=error.last_converged)
 
 
 def _replace_balls(z: np.ndarray, balls: np.ndarray) -> np.ndarray:

@@ -48,6 +48,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import screw_ball as sb
+from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "solve_at", "COMPLEMENTARITY_SCALE",
            "LOAD_RAMP_START", "saturation", "fischer_burmeister", "check_gaps"]
@@ -231,17 +232,15 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
                               f"light contacts only like F (docs/ball_screw.md)")
                 raise ConvergenceError(f"no converged state: load ramp stopped at {100 * factor:.1f} % of the "
                                        f"load{reason}", residual=ramp_error.residual,
-                                       iterations=ramp_error.iterations, tolerance=tolerance) from error
+                                       iterations=ramp_error.iterations, tolerance=tolerance,
+                                       reason="load ramp stopped" + (": contacts near full sliding" if reason
+                                                                     else "")) from error
         return state
 
 
 def saturation(state: sb.ScrewBallState) -> float:
     """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding; 0 if none)."""
-    loaded = state.normal_force > 0.0
-    spin = np.abs(state.spin * state.semi_major)[loaded]
-    slide = np.abs(state.slip_minor)[loaded]
-    with np.errstate(divide="ignore"):
-        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
+    return sliding_ratio(state.normal_force, state.slip_minor, state.spin, state.semi_major)
 
 
 def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
@@ -342,6 +341,10 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
             return residual, jac
         return function
 
+    rows = row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                          groove_radius=module.groove_radius, ball_radius=module.ball_radius,
+                          approach=scales.length, balls=n, axial=n_shift, extra=m)
+    weights = row_weights(friction_coefficient=module.friction_coefficient, balls=n, axial=n_shift, extra=m)
     guess = np.zeros(size)
     if initial is not None and initial.orbit_speed.shape == (n,):
         balls0 = guess[:k * n].reshape(n, k)
@@ -354,15 +357,20 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
         if previous.shape == (len(pairs),):
             guess[base:] = previous[touching] / scales.force
         z, residual, iterations = _newton(make_function(module.oversize), guess, tolerance, max_iterations,
-                                          f"{n}-ball screw module (warm start)")
+                                          f"{n}-ball screw module (warm start)", rows, weights)
     else:
         rates = sb.free_rolling_guess(contacts)
         guess[:k * n].reshape(n, k)[:, 2] = rates[:, 0] / scales.orbit
         guess[:k * n].reshape(n, k)[:, 3:6] = rates[:, 1:] / scales.spin
+        def contacts_at(z, oversize):
+            balls, shift, _ = unpack(z)
+            return sb.ball_terms(balls, shift if per_ball else shift[0], contacts, scales, oversize=oversize)
+
         z, residual, iterations = sb.solve_preloaded(make_function, guess, contacts,
                                                      float(np.max(np.abs(loads))) if per_ball else total / n,
                                                      tolerance=tolerance, max_iterations=max_iterations,
-                                                     what=f"{n}-ball screw module")
+                                                     what=f"{n}-ball screw module", row_tolerance=rows,
+                                                     row_weight=weights, contacts_at=contacts_at)
     balls, shift, forces = unpack(z)
     if m:
         ahead, behind = pairs[touching, 1], pairs[touching, 0]
@@ -371,7 +379,7 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
         violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
         if violation > 10 * tolerance:
             raise ConvergenceError(f"{n}-ball screw module: complementarity violated", residual=violation,
-                                   iterations=iterations, tolerance=tolerance)
+                                   iterations=iterations, tolerance=tolerance, reason="complementarity violated")
         forces = np.maximum(forces, 0.0)
     if last.get("z") is z and last.get("oversize") == module.oversize:   # the last evaluation was at the solution
         terms = last["terms"]
@@ -387,7 +395,8 @@ def solve_at(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = F
                          residual=float(np.max(np.abs(residual))))
 
 
-def _newton(function, guess, tolerance, max_iterations, what):
+def _newton(function, guess, tolerance, max_iterations, what, row_tolerance=None, row_weight=None):
     from ballbench.lowmodel.solvers import newton
 
-    return newton(function, guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+    return newton(function, guess, tolerance=tolerance, max_iterations=max_iterations, what=what,
+                  row_tolerance=row_tolerance, row_weight=row_weight)

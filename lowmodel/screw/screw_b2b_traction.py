@@ -270,7 +270,7 @@ def solve(balls, module: sb.ScrewModule, *, gaps=None, with_b2b: bool = True, to
         violation = max(float(np.max(-lam, initial=0.0)), float(np.max(-separation, initial=0.0)))
         if violation > 10 * tolerance:
             raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                                   tolerance=tolerance)
+                                   tolerance=tolerance, reason="complementarity violated")
         forces[touching] = np.maximum(lam, 0.0) * module.friction_coefficient * reference_force
         residual_norm = float(np.max(np.abs(residual)))
     return _state(samples, states, forces, balls, module, reference_force, iterations, residual_norm)
@@ -356,7 +356,8 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
     balance = abs(input_power - losses) / max(abs(input_power), 1e-300)
     if not balance <= POWER_BALANCE_TOLERANCE:
         raise ConvergenceError("FE-informed screw B2B: power balance missed", residual=balance,
-                               iterations=iterations, tolerance=POWER_BALANCE_TOLERANCE)
+                               iterations=iterations, tolerance=POWER_BALANCE_TOLERANCE,
+                               reason="power balance missed")
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     z_hat = np.array([0.0, s, c])
     normal_force = np.zeros((n, p))

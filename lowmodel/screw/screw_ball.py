@@ -73,6 +73,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import groove as groove_core
+from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, stall_reason
 from ballbench.lowmodel.geometry import helix
 
 __all__ = [
@@ -762,8 +763,15 @@ def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance:
             return residual, jacobian
         return function
 
-    z, residual, iterations = solve_preloaded(make_function, guess, single, axial_load, tolerance=tolerance,
-                                              max_iterations=max_iterations, what=f"screw ball {index}")
+    rows = row_tolerances(tolerance, friction_coefficient=single.module.friction_coefficient,
+                          groove_radius=single.module.groove_radius, ball_radius=single.module.ball_radius,
+                          approach=scales.length, balls=1, axial=1)
+    z, residual, iterations = solve_preloaded(
+        make_function, guess, single, axial_load, tolerance=tolerance, max_iterations=max_iterations,
+        what=f"screw ball {index}", row_tolerance=rows,
+        row_weight=row_weights(friction_coefficient=single.module.friction_coefficient, balls=1, axial=1),
+        contacts_at=lambda z, oversize: ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales,
+                                                   oversize=oversize))
     terms = ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales)
     return z, terms, scales, iterations, float(np.max(np.abs(residual))), axial_load
 
@@ -779,7 +787,8 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
 
 def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
                     tolerance: float, max_iterations: int, what: str, steps: int = 6, max_halvings: int = 10,
-                    step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12):
+                    step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12,
+                    row_tolerance=None, row_weight=None, contacts_at=None):
     """Newton (:func:`lowmodel.solvers.newton`) on ``make_function(oversize)`` at the module's preload.
 
     Between ``direct_fraction`` and half of :func:`continuation_start` Newton is tried
@@ -787,10 +796,18 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
     contact, where Newton from free rolling wanders) or if that fails, the solve starts at that
     four-point preload and steps the oversize down to the module's value, each step
     from the previous solution (step grown 1.5x after a success, halved after a failure).
-    Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
+    ``row_tolerance``, ``row_weight``: per-row tolerances and step weights for :func:`lowmodel.solvers.newton`
+    (:func:`.convergence.row_tolerances`, :func:`.convergence.row_weights`);
+    ``contacts_at(z, oversize)``: the :class:`BallTerms` (or any object with ``normal_force``, ``slip_minor``,
+    ``spin``, ``semi_major``) at a converged point, from which a stall's reason is read
+    (:func:`.convergence.stall_reason`).  Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps
+    failing.
     """
+    from functools import partial
+
     from ballbench.lowmodel.solvers import newton
 
+    newton = partial(newton, row_tolerance=row_tolerance, row_weight=row_weight)
     target = contacts.module.oversize
     start = continuation_start(contacts, load_per_ball)
     if target >= 0.5 * start:
@@ -812,9 +829,15 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
         except ConvergenceError as error:
             halvings += 1
             if halvings > max_halvings:
+                reason, detail = "preload continuation stalled", ""
+                if contacts_at is not None:
+                    terms = contacts_at(z, current)
+                    reason, detail = stall_reason(terms.normal_force, terms.slip_minor, terms.spin, terms.semi_major,
+                                                  where=f"(oversize {current:.3e} m)")
+                    detail = f": {reason}: {detail}"
                 raise ConvergenceError(f"{what}: preload continuation stalled at oversize {current:.3e} m "
-                                       f"(target {target:.3e} m)", residual=error.residual, iterations=total,
-                                       tolerance=tolerance) from None
+                                       f"(target {target:.3e} m){detail}", residual=error.residual,
+                                       iterations=total, tolerance=tolerance, reason=reason) from None
             step *= 0.5
             continue
         z, current = z_new, trial
