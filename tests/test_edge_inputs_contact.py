@@ -342,3 +342,13 @@ def test_restarts_that_use_up_the_iteration_budget_end_in_a_convergence_error():
     x, _, total = solvers.solve_with_restarts(quadratic, np.array([3.0]), to_the_other_root, tolerance=1e-12,
                                               max_iterations=needed, what="x^2 = 4")
     assert x[0] == -2.0 and total == needed
+
+
+def test_k_f_exact_at_axis_ratios_whose_square_is_subnormal():
+    """b/a = 7.5e-156 (found by the property tests at 5x their examples): R_D(0, 1, beta^2) overflowed and k_f was
+    inf; the limit b/a -> 0 is 3/2, reached to double precision long before."""
+    from ballbench.lowmodel.contact import ellipse_friction as ef
+
+    for ratio in (1e-154, 7.5e-156, 1e-160):
+        assert float(ef.k_f_exact(ratio)) == 1.5
+    assert float(ef.k_f_exact(1e-150)) == pytest.approx(1.5, rel=1e-15)

@@ -234,7 +234,7 @@ def solve(contacts: sb.BallContacts, axial_load, gaps=None, *, ring: bool = Fals
                                        f"load{reason}", residual=ramp_error.residual,
                                        iterations=ramp_error.iterations, tolerance=tolerance,
                                        reason="load ramp stopped" + (": contacts near full sliding" if reason
-                                                                     else "")) from error
+                                                                     else f" ({ramp_error.reason})")) from error
         return state
 
 
