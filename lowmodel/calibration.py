@@ -122,22 +122,44 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
                          f"got {n_points}")
     scale = (np.where(np.abs(p0) > 0, np.abs(p0), 1.0) if x_scale is None
              else np.broadcast_to(checks.positive("x_scale", x_scale), p0.shape))
+    with np.errstate(all="ignore"):
+        start = np.asarray(residual(p0), dtype=float)
+    _check_residual(start, "at p0", ValueError)
+    non_finite = []  # the points where residual returned NaN or inf during the fit (the trust region avoids them)
+
+    def watched(p):
+        values = np.asarray(residual(p), dtype=float)
+        if not non_finite and not np.all(np.isfinite(values)):
+            non_finite.append(np.array(p))
+        return values
+
     with np.errstate(all="ignore"):  # the trust region from a poor start (p0 ~ 1e-127) may under/overflow: judged below
-        result = optimize.least_squares(residual, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15,
+        result = optimize.least_squares(watched, p0, x_scale=scale, method="trf", xtol=1e-15, ftol=1e-15,
                                         gtol=1e-15)
-    norm = float(np.linalg.norm(result.fun))
-    if not (result.success and np.all(np.isfinite(result.x)) and math.isfinite(norm)):
-        raise ConvergenceError(f"least squares: {result.message}", residual=norm if math.isfinite(norm) else math.inf,
-                               iterations=int(result.nfev), tolerance=1e-15)
+    seen = f"; residual returned NaN or inf at p = {non_finite[0]!r} on the way" if non_finite else ""
+    if not (result.success and np.all(np.isfinite(result.x))):
+        # (scipy's own message is not passed on: it may read as a success or name scipy's internals)
+        reason = "iteration limit" if result.status == 0 else "no minimum found"
+        raise ConvergenceError(f"least squares: {reason} (scipy.optimize.least_squares status {result.status} after "
+                               f"{result.nfev} evaluations of residual){seen}", residual=_norm(result.fun),
+                               iterations=int(result.nfev), tolerance=1e-15, reason=reason)
+    _check_residual(result.fun, f"at the fitted p = {result.x!r}", ConvergenceError, int(result.nfev))
+    norm = _norm(result.fun)
     jac = result.jac
-    # at a minimum one more Gauss-Newton step moves p by a rounding error; scipy's tolerances are relative to
-    # x_scale, so a start p0 many decades off the solution (1e-127 for 1.7 with the default scale |p0|) can stop
-    # where it began
+    if not np.all(np.isfinite(jac)):
+        raise ConvergenceError("least squares: the Jacobian of residual at the fitted p is not finite",
+                               residual=norm, iterations=int(result.nfev), tolerance=1e-15,
+                               reason="non-finite Jacobian")
+    # stationarity: at a minimum one more Gauss-Newton step moves p by a rounding error; scipy's tolerances are
+    # relative to x_scale, so a start p0 many decades off the solution (1e-127 for 1.7 with the default scale |p0|)
+    # can stop where it began
     gauss_newton = np.linalg.lstsq(jac, -result.fun, rcond=None)[0]
-    if np.any(np.abs(gauss_newton) > STATIONARITY * np.maximum(np.abs(result.x), scale)):
-        raise ConvergenceError("least squares: stopped away from a minimum (a Gauss-Newton step still moves p): "
-                               "rescale p0 or x_scale", residual=norm, iterations=int(result.nfev),
-                               tolerance=STATIONARITY)
+    moved = float(np.max(np.abs(gauss_newton) / np.maximum(np.abs(result.x), scale)))
+    if not moved <= STATIONARITY:
+        raise ConvergenceError(f"least squares: stopped away from a minimum (a Gauss-Newton step still moves p by "
+                               f"{moved:.3e} of its size > {STATIONARITY:g}): rescale p0 or x_scale{seen}",
+                               residual=norm, iterations=int(result.nfev), tolerance=STATIONARITY,
+                               reason="not stationary" + (" (non-finite residual nearby)" if non_finite else ""))
     dof = n_points - p0.size
     ssr = float(result.fun @ result.fun)
     _, singular, vt = np.linalg.svd(jac, full_matrices=False)
@@ -150,6 +172,40 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     params = result.x
     return FitResult(params, covariance, std_error, np.column_stack([params - half, params + half]),
                      math.sqrt(ssr / n_points), dof, confidence)
+
+
+def _norm(values) -> float:
+    """Euclidean norm without overflow (inf only when the norm itself is beyond the float range or not finite)."""
+    values = np.asarray(values, dtype=float)
+    if values.size == 0 or not np.all(np.isfinite(values)):
+        return math.inf if values.size else 0.0
+    peak = float(np.max(np.abs(values)))
+    if peak == 0.0:
+        return 0.0
+    with np.errstate(over="ignore"):
+        return float(peak * np.linalg.norm(values / peak))
+
+
+def _check_residual(values: np.ndarray, where: str, error, iterations: int = 0) -> None:
+    """``residual``'s values ``where``: a 1-D array, finite, with a sum of squares inside the float range."""
+    if values.ndim != 1 or values.size == 0:
+        raise ValueError(f"residual must return a 1-D array of residuals, got shape {values.shape} {where}")
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size or not _norm(values) < 1e150:  # (its square, the sum of squares, within the float range)
+        what = (f"{float(values[bad[0]])!r} at index {int(bad[0])} of {values.size}" if bad.size
+                else f"values up to {float(np.max(np.abs(values))):.3e}, whose sum of squares overflows")
+        message = f"residual returns {what} {where}: a fit needs finite residuals of a representable size"
+        if error is ValueError:
+            raise ValueError(message)
+        raise ConvergenceError(f"least squares: {message}", residual=math.inf, iterations=iterations,
+                               tolerance=1e-15, reason="non-finite residual")
+
+
+def _range_scale(values) -> float:
+    """1 for data inside [1e-100, 1e100] in size (fits run as given there), else a power of two near their largest
+    size: dividing by it is exact, and the fit's sums of squares stay inside the float range."""
+    peak = float(np.max(np.abs(values)))
+    return 1.0 if 1e-100 <= peak <= 1e100 or peak == 0.0 else checks.power_of_two_scale(values)
 
 
 def _fit(data: str, residual, p0, **options) -> FitResult:
@@ -240,7 +296,7 @@ def law_force(approach, hertz_constant, bulk_compliance, *, tolerance: float = 1
     if not np.all(np.abs(step) <= tolerance * np.maximum(s, 1e-300)):
         raise ConvergenceError("law_force: Newton on C s^2 + C_b s^3 = U did not converge",
                                residual=float(np.max(np.abs(residual))), iterations=max_iterations,
-                               tolerance=tolerance)
+                               tolerance=tolerance, reason="iteration limit")
     return force, slope
 
 
@@ -312,10 +368,13 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
         raise ValueError(f"normal_force and friction_force need >= {needed} values for an uncertainty, "
                          f"got {normal.size}")
     ratio = friction / normal
+    # forces of any size: both divided by one power of two (exact; mu is a ratio), the rms scaled back
+    force_scale = _range_scale(np.concatenate([normal, friction]))
+    normal, friction = normal / force_scale, friction / force_scale
     if speed is None:
         fit = _fit("normal_force, friction_force", lambda p: p[0] * normal - friction, [float(np.mean(ratio))],
                    n_points=normal.size, confidence=confidence)
-        return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms)}
+        return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms * force_scale)}
     speed = _data("speed", speed, "m/s", positive=False)
     if speed.size != normal.size:
         raise ValueError(f"speed must have one value per row, got {speed.size} and {normal.size}")
@@ -327,8 +386,12 @@ def fit_friction_coefficient(normal_force, friction_force, speed=None, *, confid
                [guess[0], guess[1] * v_scale], n_points=normal.size, confidence=confidence,
                x_scale=np.array([max(abs(guess[0]), 1e-3), max(abs(guess[1] * v_scale), 1e-3)]))
     to_si = np.array([1.0, 1.0 / v_scale])
-    fit = FitResult(fit.params * to_si, fit.covariance * np.outer(to_si, to_si), fit.std_error * to_si,
-                    fit.ci * to_si[:, None], fit.rms, fit.dof, fit.confidence)
+    with np.errstate(over="ignore"):
+        fit = FitResult(fit.params * to_si, fit.covariance * np.outer(to_si, to_si), fit.std_error * to_si,
+                        fit.ci * to_si[:, None], fit.rms * force_scale, fit.dof, fit.confidence)
+    if not all(np.all(np.isfinite(a)) for a in (fit.params, fit.covariance, fit.ci)):
+        raise ValueError(f"speed: the speeds (largest {v_scale!r} m/s) are too small for mu_speed_slope [s/m]: its "
+                         "value or covariance exceeds the floating-point range")
     return {"mu": _constant(fit, 0, "1", source, normal.size, fit.rms),
             "mu_speed_slope": _constant(fit, 1, "s/m", source, normal.size, fit.rms)}
 
@@ -342,10 +405,22 @@ def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "",
     y = _data("y", y, "", positive=False)
     if x.size != y.size:
         raise ValueError(f"x and y must have the same length, got {x.size} and {y.size}")
+    # x and y of any size: each divided by a power of two (exact), the slope and rms scaled back
+    x_scale, y_scale = _range_scale(x), _range_scale(y)
+    x, y = x / x_scale, y / y_scale
     if x.size < 2 or not float(x @ x) > 0.0:
         raise ValueError(f"x must hold >= 2 values, not all zero (or so small that x . x underflows), got {x!r}")
     start = float(-(x @ y) / (x @ x))
     fit = _fit("x, y", lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
+    with np.errstate(over="ignore", under="ignore"):
+        to_si = y_scale / x_scale
+        scaled, fit = fit, FitResult(fit.params * to_si, fit.covariance * to_si**2, fit.std_error * to_si,
+                                     fit.ci * to_si, fit.rms * y_scale, fit.dof, fit.confidence)
+    underflow = scaled.std_error[0] != 0.0 and not fit.std_error[0] >= np.finfo(float).tiny
+    if underflow or not all(np.all(np.isfinite(a)) for a in (fit.params, fit.covariance, fit.ci)) \
+            or not math.isfinite(fit.rms):
+        raise ValueError(f"x, y: the slope y / x (|x| up to {float(np.max(np.abs(x))) * x_scale:.3e}, |y| up to "
+                         f"{float(np.max(np.abs(y))) * y_scale:.3e}) or its variance is beyond the float range")
     return _constant(fit, 0, unit, source, x.size, fit.rms)
 
 

@@ -35,8 +35,8 @@ import numbers
 
 import numpy as np
 
-__all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
-           "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
+__all__ = ["real", "finite", "scalar", "positive", "non_negative", "bounded", "contact_angle", "lead_angle",
+           "conformity", "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
            "rebuilt_through_init", "finite_result", "power_of_two_scale"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
@@ -106,6 +106,15 @@ def bounded(name: str, value, lower: float, upper: float, unit: str = "", *, low
         interval = f"{'[' if lower_closed else '('}{_bound(lower)}, {_bound(upper)}{']' if upper_closed else ')'}"
         raise ValueError(f"{name} must lie in {interval}{_unit(unit)}{_note(note)}; got {_shown(array, bad)}")
     return _out(array)
+
+
+def scalar(name: str, value, unit: str = "", *, note: str = "") -> float:
+    """``value`` as a Python float; ValueError unless it is one finite number (a 0-d value, not an array)."""
+    array = real(name, value)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be a single number{f' [{unit}]' if unit else ''}{_note(note)}, not an array; "
+                         f"got shape {array.shape}")
+    return finite(name, array, unit, note=note)
 
 
 def positive(name: str, value, unit: str = "", *, note: str = ""):

@@ -33,7 +33,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["newton", "solve_with_restarts", "check_solver_options", "continuation", "ContinuationStep",
-           "SPARSE_SIZE", "BlockTridiagonal"]
+           "SPARSE_SIZE", "BlockTridiagonal", "equilibrium_tolerance", "ROUNDOFF_MARGIN"]
 
 SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 
@@ -46,7 +46,25 @@ def check_solver_options(tolerance, max_iterations) -> None:
     checks.count("max_iterations", max_iterations, 1)
 
 
-def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str):
+ROUNDOFF_MARGIN = 64.0  # times the round-off floor eps * lever of an equilibrium of contact forces (measured 0.3-2.7)
+
+
+def equilibrium_tolerance(tolerance: float, friction_coefficient: float, lever: float) -> float:
+    """Tolerance of a residual row in units of ``mu F_ref`` that sums contact forces of size ``F_ref``.
+
+    A contact force ``F = (delta / C)^(3/2)`` comes from an approach ``delta`` that is the small difference of
+    lengths of size ``L`` (arc-centre distance against groove radius minus ball radius), so it carries a
+    round-off of ``1.5 eps L / delta`` relative, ``lever = L / delta``; in units of ``mu F_ref`` that is
+    ``eps lever / mu``, which passes any fixed tolerance as ``mu -> 0`` (lin2019 Table 4, mu = 1e-4: 1e-9
+    against 1e-10).  Returns ``max(tolerance, ROUNDOFF_MARGIN eps lever / mu)``: the residual relative to
+    ``mu F_ref``, or to the loads themselves (``64 eps lever F_ref``) where that is the larger.
+    """
+    floor = ROUNDOFF_MARGIN * np.finfo(float).eps * float(lever) / float(friction_coefficient)
+    return max(float(tolerance), floor)
+
+
+def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str, row_tolerance=None,
+           row_weight=None):
     """Newton's method globalised by Levenberg-Marquardt on ``function(x) -> (residual, jacobian)``.
 
     Each iteration solves ``(J^T J + lam I) dx = -J^T r`` with the analytic
@@ -55,21 +73,39 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
     steps are short gradient-like steps (friction saturates: the residual is
     bounded and plain Newton steps can be huge), and near it ``lam -> 0``
     gives Newton steps and quadratic convergence.  Stops when
-    ``max|r| <= tolerance``.  ``jacobian`` may be a dense array (sparse normal equations
-    above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).  Returns
-    ``(x, residual_vector, iterations)``; raises ConvergenceError with the residual otherwise.
+    ``max|r| <= tolerance``, or with ``row_tolerance`` (an array like ``r``, e.g. from
+    :func:`equilibrium_tolerance`) when ``|r_i| <= row_tolerance_i`` for every row.  ``jacobian`` may be a dense
+    array (sparse normal equations above :data:`SPARSE_SIZE` unknowns) or a scipy sparse matrix (always sparse).
+    Returns ``(x, residual_vector, iterations)``; raises ConvergenceError with the residual and a ``reason``
+    (``"iteration limit"``, ``"non-finite residual"``, ``"stationary point of |residual|"``, ``"no descent
+    step"``) otherwise; a NaN residual never passes as converged.  ``row_weight`` (an array like ``r``, > 0):
+    the Levenberg-Marquardt steps minimise ``|W r|^2`` (rows equilibrated: the normal equations square the
+    condition of ``J``), the convergence test stays on ``r``; dense, scipy sparse and :class:`BlockTridiagonal`
+    Jacobians alike.
     """
     check_solver_options(tolerance, max_iterations)
+    limits = tolerance if row_tolerance is None else np.asarray(row_tolerance, dtype=float)
+    weight = 1.0  # the reported residual is the caller's (unweighted) one
+    if row_weight is not None:
+        weight = np.asarray(row_weight, dtype=float)
+        plain = function
+
+        def function(x):
+            residual_, jacobian_ = plain(x)
+            return residual_ * weight, _scaled_rows(jacobian_, weight)
+
+        limits = limits * weight
     x = np.array(x0, dtype=float)
     residual, jacobian = function(x)
-    norm = float(np.max(np.abs(residual))) if residual.size else 0.0
+    norm = float(np.max(np.abs(residual / weight))) if residual.size else 0.0
     iterations = 0
     damping = None
     growth = 2.0
-    while norm > tolerance:
+    while not bool(np.all(np.abs(residual) <= limits)):
         if iterations >= max_iterations or not np.isfinite(norm):
+            reason = "iteration limit" if np.isfinite(norm) else "non-finite residual"
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
-                                   tolerance=tolerance)
+                                   tolerance=tolerance, reason=reason)
         iterations += 1
         blocks = isinstance(jacobian, BlockTridiagonal)
         sparse = blocks or x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
@@ -127,15 +163,16 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
                     break
             elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
                 raise ConvergenceError(f"{what}: stationary point of |residual|", residual=norm,
-                                       iterations=iterations, tolerance=tolerance)
+                                       iterations=iterations, tolerance=tolerance,
+                                       reason="stationary point of |residual|")
             damping *= growth
             growth *= 2.0
             if not np.isfinite(damping) or damping > 1e30:
                 raise ConvergenceError(f"{what}: no descent step (damping diverged)", residual=norm,
-                                       iterations=iterations, tolerance=tolerance)
+                                       iterations=iterations, tolerance=tolerance, reason="no descent step")
         x, residual, jacobian = trial, trial_residual, trial_jacobian
-        norm = float(np.abs(residual).max())
-    return x, residual, iterations
+        norm = float(np.abs(residual / weight).max())
+    return x, residual / weight, iterations
 
 
 class _Band:
@@ -164,6 +201,18 @@ class _Band:
         storage[0] += damping
         _, step, info = dpbsv(storage, rhs, lower=1, overwrite_ab=1)
         return step if info == 0 else np.full(rhs.size, np.nan)
+
+
+def _scaled_rows(jacobian, weight: np.ndarray):
+    """``diag(weight) @ jacobian`` for a dense array, a scipy sparse matrix or a :class:`BlockTridiagonal`."""
+    if isinstance(jacobian, BlockTridiagonal):
+        rows = weight.reshape(jacobian.blocks, jacobian.block_size, 1)
+        return BlockTridiagonal(jacobian.lower * rows, jacobian.diagonal * rows, jacobian.upper * rows)
+    if isinstance(jacobian, np.ndarray):
+        return jacobian * weight[:, None]
+    from scipy import sparse as sp
+
+    return sp.csr_matrix(sp.diags(weight) @ jacobian)
 
 
 class BlockTridiagonal:
@@ -274,7 +323,7 @@ def solve_with_restarts(function, x0: np.ndarray, restart, *, tolerance: float, 
             norm = float(np.max(np.abs(residual))) if residual.size else 0.0
             if not norm <= tolerance:
                 raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=total,
-                                       tolerance=tolerance)
+                                       tolerance=tolerance, reason="iteration limit")
             iterations = 0
         total += iterations
         verdict = restart(x)

@@ -2,12 +2,14 @@
 
 ``call(function, ...)``: finite result, or a ValueError / ConvergenceError whose message names a parameter
 of the call; never NaN, never a warning.  Strategies ``real`` and ``positive`` draw finite floats.
+``BALLBENCH_PROPERTY_SCALE=k`` (environment) multiplies the examples of every property test by k.
 """
 from __future__ import annotations
 
 import dataclasses
 import inspect
 import math
+import os
 import warnings
 
 import numpy as np
@@ -19,8 +21,11 @@ from ballbench.lowmodel.errors import ConvergenceError
 __all__ = ["SETTINGS", "SLOW", "real", "positive", "call", "float_values", "angle", "EXTREME", "angle_limits", "mostly",
            "one_bad"]
 
-SETTINGS = settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
-SLOW = settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+# BALLBENCH_PROPERTY_SCALE=k runs k times the examples (still derandomized: fixed seeds), for a long stress run
+_SCALE = max(1, int(os.environ.get("BALLBENCH_PROPERTY_SCALE", "1")))
+SETTINGS = settings(max_examples=40 * _SCALE, deadline=None, derandomize=True,
+                    suppress_health_check=[HealthCheck.too_slow])
+SLOW = settings(max_examples=12 * _SCALE, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 
 
 def real(low, high):
@@ -45,6 +50,9 @@ def float_values(result):
     return []
 
 
+CALLS = {"returned": 0, "ValueError": 0, "ConvergenceError": 0}  # outcomes of call(), for a stress run's report
+
+
 def call(function, *args, allow_inf=(), **kwargs):
     """``function(*args, **kwargs)`` under the property: finite result, or an error naming a parameter."""
     names = set(inspect.signature(function).parameters)
@@ -53,12 +61,15 @@ def call(function, *args, allow_inf=(), **kwargs):
         try:
             result = function(*args, **kwargs)
         except ValueError as error:
+            CALLS["ValueError"] += 1
             assert any(name in str(error) for name in names), f"{function.__name__}: {error}"
             return None
         except ConvergenceError as error:
+            CALLS["ConvergenceError"] += 1
             assert math.isfinite(error.residual) or error.residual == math.inf
-            assert str(error)
+            assert str(error) and error.reason, f"{function.__name__}: ConvergenceError without a reason: {error}"
             return None
+    CALLS["returned"] += 1
     if dataclasses.is_dataclass(result):
         for field in dataclasses.fields(result):
             if field.name in allow_inf:

@@ -46,6 +46,7 @@ __all__ = [
     "weierstrass_mandelbrot_surface",
     "EHLSolution",
     "solve_reynolds",
+    "verify",
     "film_traction",
     "friction_coefficient",
 ]
@@ -259,6 +260,50 @@ class EHLSolution:
     residual: float
 
 
+LINE_SEARCH_HALVINGS = 14  # damping of the Newton step down to 2^-13
+
+
+def _stalled(grid, iteration, merit, tolerance, closed, film, start_film, wet) -> ConvergenceError:
+    # the line search found no step: why, from what it saw
+    where = f"EHL Reynolds solve on the {grid.nx} x {grid.ny} grid, Newton iteration {iteration}"
+    if closed == LINE_SEARCH_HALVINGS:
+        reason = "the film closes"
+        detail = (f"every damped Newton step (1 to 2^-{LINE_SEARCH_HALVINGS - 1}) makes the film non-positive; "
+                  f"minimum film {film:.3e} m, down from {start_film:.3e} m at the start, {wet} cells carry "
+                  "pressure: the grid does not resolve a film at this load and speed (refine the grid, or raise "
+                  "the entrainment speed or lower the load)")
+    else:
+        reason = "no descent step"
+        detail = (f"no damped Newton step (1 to 2^-{LINE_SEARCH_HALVINGS - 1}) lowers the Reynolds residual "
+                  f"({closed} of the {LINE_SEARCH_HALVINGS} trials close the film); minimum film {film:.3e} m")
+    return ConvergenceError(f"{where}: {reason}: {detail}", residual=merit, iterations=iteration, tolerance=tolerance,
+                            reason=reason)
+
+
+def _upwind(field: np.ndarray, dx: float) -> np.ndarray:
+    # second-order upwind d/dx along +x (first order in row 1, none in row 0: the inlet ghost copies row 0)
+    up1 = np.vstack([field[:1], field[:-1]])
+    up2 = np.vstack([field[:1], field[:1], field[:-2]])
+    derivative = (1.5 * field - 2.0 * up1 + 0.5 * up2) / dx
+    derivative[1] = (field[1] - field[0]) / dx
+    derivative[0] = 0.0
+    return derivative
+
+
+def _reynolds_terms(p, film, eta, rho, dx, dy, u_s):
+    # sun2021 eq 14 with eps = rho h^3 / (12 eta) and u_s = (u1 + u2)/2; p = 0 outside the grid (eq 18):
+    # the Poiseuille flow, the Couette term u_s d(rho h)/dx and the face values of eps (residual = flow - couette)
+    eps = rho * film**3 / (12.0 * eta)
+    padded = np.pad(eps, 1, mode="edge")
+    centre_ = padded[1:-1, 1:-1]
+    xp, xm = 0.5 * (centre_ + padded[2:, 1:-1]), 0.5 * (centre_ + padded[:-2, 1:-1])
+    yp, ym = 0.5 * (centre_ + padded[1:-1, 2:]), 0.5 * (centre_ + padded[1:-1, :-2])
+    pp = np.pad(p, 1)
+    flow = ((xp * (pp[2:, 1:-1] - p) - xm * (p - pp[:-2, 1:-1])) / dx**2
+            + (yp * (pp[1:-1, 2:] - p) - ym * (p - pp[1:-1, :-2])) / dy**2)
+    return flow, u_s * _upwind(rho * film, dx), (xp, xm, yp, ym)
+
+
 def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus: float, load: float,
                    entrainment_speed: float, viscosity_0: float, density_0: float = 1.0, *,
                    initial_film: float = 1e-7, initial_pressure: np.ndarray | None = None,
@@ -294,10 +339,17 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
     interpolated, is the start; the coarsest grid starts from the dry
     (non-Hertzian) pressure of :func:`~ballbench.lowmodel.contact.halfspace.solve`
     (sun2021 Sec 2.3) lifted to the film ``initial_film`` [m] (Hamrock-Dowson's
-    ``h_c`` is a good value).  Converged when the relative pressure change is
-    below ``tolerance`` and the load error below ``load_tolerance``; otherwise
-    ``ConvergenceError`` with the last change.  ``initial_pressure`` [Pa] and
-    ``initial_h0`` [m] give another start.
+    ``h_c`` is a good value).  Converged when a full (undamped) Newton step
+    changes the pressure by less than ``tolerance`` (relative) and the load error
+    is below ``load_tolerance``; the result is then checked from its pressure
+    alone (:func:`verify`: Reynolds with cavitation, positive film, load
+    balance).  ``ConvergenceError`` (with ``.reason``) when no damped step lowers
+    the residual (``"the film closes"``: every trial step makes the film
+    non-positive, the grid does not resolve the film at this load and speed;
+    ``"no descent step"`` otherwise: both stop at once instead of running to
+    ``max_iterations``), at ``max_iterations`` (``"iteration limit"``), on a
+    floating-point failure, or when the check fails.  ``initial_pressure`` [Pa]
+    and ``initial_h0`` [m] give another start.
 
     ``gap`` [m] (nx, ny) is the undeformed separation
     (geometry and roughness, ``x^2/(2R_x) + y^2/(2R_y) + ROU``); ``contact_modulus`` E* [Pa];
@@ -323,7 +375,7 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
         except FloatingPointError as error:
             raise ConvergenceError(f"EHL Reynolds solve: floating-point failure ({error}); load, entrainment_speed "
                                    "or initial_film outside what the grid resolves", residual=math.inf,
-                                   iterations=0, tolerance=tolerance) from None
+                                   iterations=0, tolerance=tolerance, reason="floating-point failure") from None
 
 
 def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,
@@ -379,13 +431,7 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
         return float(kernel[di + 4, dj + 4])
 
     def upwind(field):
-        # second-order upwind d/dx along +x (first order in row 1, none in row 0: the inlet ghost copies row 0)
-        up1 = np.vstack([field[:1], field[:-1]])
-        up2 = np.vstack([field[:1], field[:1], field[:-2]])
-        derivative = (1.5 * field - 2.0 * up1 + 0.5 * up2) / dx
-        derivative[1] = (field[1] - field[0]) / dx
-        derivative[0] = 0.0
-        return derivative
+        return _upwind(field, dx)
 
     def state(p, h0):
         film = h0 + gap + halfspace.deformation(p, grid, e_star)  # sun2021 eq 15
@@ -393,22 +439,12 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
         rho = dowson_higginson_density(p, rho0) / rho0  # eq 17 (rho0 cancels in eq 14)
         return film, eta, rho
 
-    def faces(eps):
-        padded = np.pad(eps, 1, mode="edge")
-        centre_ = padded[1:-1, 1:-1]
-        return (0.5 * (centre_ + padded[2:, 1:-1]), 0.5 * (centre_ + padded[:-2, 1:-1]),
-                0.5 * (centre_ + padded[1:-1, 2:]), 0.5 * (centre_ + padded[1:-1, :-2]))
-
     def residual(p, film, eta, rho):
-        # sun2021 eq 14 with eps = rho h^3 / (12 eta) and u_s = (u1 + u2)/2; p = 0 outside the grid (eq 18)
-        eps = rho * film**3 / (12.0 * eta)
-        xp, xm, yp, ym = faces(eps)
-        pp = np.pad(p, 1)
-        flow = ((xp * (pp[2:, 1:-1] - p) - xm * (p - pp[:-2, 1:-1])) / dx**2
-                + (yp * (pp[1:-1, 2:] - p) - ym * (p - pp[1:-1, :-2])) / dy**2)
-        return flow - u_s * upwind(rho * film), (xp, xm, yp, ym)
+        flow, couette, faces_ = _reynolds_terms(p, film, eta, rho, dx, dy, u_s)
+        return flow - couette, faces_
 
     film, eta, rho = state(p, h0)
+    start_film = float(film.min())
     change = math.inf
     load_error = math.inf
     for iteration in range(1, max_iterations + 1):
@@ -490,7 +526,8 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
 
         current = merit(res, p)
         omega = 1.0
-        for _ in range(14):
+        closed = 0  # trial steps whose film is not positive
+        for _ in range(LINE_SEARCH_HALVINGS):
             trial_p = np.maximum(p + omega * dp, 0.0)
             trial_h0 = h0 + omega * dh
             trial_state = state(trial_p, trial_h0)
@@ -498,21 +535,86 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
                 trial_res, _ = residual(trial_p, *trial_state)
                 if merit(trial_res, trial_p) <= current:
                     break
+            else:
+                closed += 1
             omega *= 0.5
+        else:
+            # no damped step lowers the residual: the iteration cannot go on (it used to take the last step anyway
+            # and crawl for max_iterations with a negative film); the evidence decides the reason
+            raise _stalled(grid, iteration, current, tolerance, closed, float(film.min()), start_film,
+                           int(np.count_nonzero(p > 0.0)))
         change = float(np.abs(trial_p - p).sum() / max(float(trial_p.sum()), 1e-300))
         p, h0 = trial_p, trial_h0
         film, eta, rho = trial_state
         load_error = abs(float(p.sum()) * area - load) / load
-        if change < tolerance and load_error < load_tolerance:
+        # converged on a full Newton step only: a damped step is small because it is damped (a film closing
+        # by halves used to pass as converged with a Reynolds residual 1e9 times that of the solution)
+        if omega == 1.0 and change < tolerance and load_error < load_tolerance:
             break
     else:
-        raise ConvergenceError("EHL Reynolds solve did not converge", residual=change, iterations=max_iterations,
-                               tolerance=tolerance)
+        raise ConvergenceError(f"EHL Reynolds solve on the {nx} x {ny} grid did not converge in max_iterations",
+                               residual=change, iterations=max_iterations, tolerance=tolerance,
+                               reason="iteration limit: the pressure still changes")
     X, Y = grid.coordinates()
     i, j = np.unravel_index(np.argmin((X - centre[0]) ** 2 + (Y - centre[1]) ** 2), X.shape)
-    return EHLSolution(grid=grid, pressure=p, film=film, h0=h0, central_film=float(film[i, j]),
-                       minimum_film=float(film.min()), central_pressure=float(p[i, j]), max_pressure=float(p.max()),
-                       force=float(p.sum()) * area, load_error=load_error, iterations=iteration, residual=change)
+    solution = EHLSolution(grid=grid, pressure=p, film=film, h0=h0, central_film=float(film[i, j]),
+                           minimum_film=float(film.min()), central_pressure=float(p[i, j]),
+                           max_pressure=float(p.max()), force=float(p.sum()) * area, load_error=load_error,
+                           iterations=iteration, residual=change)
+    verify(solution, gap, e_star, load, u_s, eta0, rho0, tolerance=tolerance, load_tolerance=load_tolerance)
+    return solution
+
+
+REYNOLDS_CHECK = 1e-6  # floor of the residual check (of the Couette term's norm): converged solves measure <= 1.2e-11
+
+
+def verify(solution: EHLSolution, gap: np.ndarray, contact_modulus: float, load: float, entrainment_speed: float,
+           viscosity_0: float, density_0: float = 1.0, *, tolerance: float = 1e-7,
+           load_tolerance: float = 1e-5) -> None:
+    """Check an EHL solution against the conditions that define it, from its pressure and ``h0`` alone.
+
+    The film ``h = h0 + gap + V(p)`` (eq 15, a fresh deflection), Roelands viscosity and Dowson-Higginson density
+    of ``p``, then:
+
+    * ``p >= 0`` and ``h > 0`` everywhere (cavitation keeps the pressure non-negative; a closed film is no EHL);
+    * Reynolds (eq 14) with cavitation: the residual ``R = flow - u_s d(rho h)/dx`` is zero where ``p > 0`` and
+      ``R <= 0`` where ``p = 0`` (the cell would go negative); ``|| where(p > 0, R, max(R, 0)) ||_2`` at most
+      ``max(10 tolerance, 1e-6)`` times ``|| u_s d(rho h)/dx ||_2`` (``tolerance``: the solve's, on the relative
+      pressure change);
+    * load balance (eq 19): ``|dA sum p - load| / load <= load_tolerance``.
+
+    Arguments as for :func:`solve_reynolds`.  Raises ConvergenceError naming the check, its value and tolerance.
+    """
+    grid, p = solution.grid, solution.pressure
+    e_star = checks.positive("contact_modulus", contact_modulus, "Pa")
+    limit = max(10.0 * checks.positive("tolerance", tolerance), REYNOLDS_CHECK)
+    film = solution.h0 + np.asarray(gap, dtype=float) + halfspace.deformation(p, grid, e_star)
+    failed = None
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(film))):
+        failed = ("finite pressure and film", math.inf, 0.0)
+    elif float(p.min()) < 0.0:
+        failed = ("p >= 0", -float(p.min()), 0.0)
+    elif not float(film.min()) > 0.0:
+        failed = ("positive film h > 0 [m]", -float(film.min()), 0.0)
+    else:
+        eta = roelands_viscosity(p, viscosity_0)
+        rho = dowson_higginson_density(p, density_0) / checks.positive("density_0", density_0, "kg/m^3")
+        flow, couette, _ = _reynolds_terms(p, film, eta, rho, grid.dx, grid.dy,
+                                           checks.positive("entrainment_speed", entrainment_speed, "m/s"))
+        balance = flow - couette
+        complementarity = np.where(p > 0.0, balance, np.maximum(balance, 0.0))
+        scale = float(np.linalg.norm(couette))
+        relative = float(np.linalg.norm(complementarity)) / scale if scale > 0.0 else math.inf
+        load_error = abs(float(p.sum()) * grid.cell_area - load) / load
+        if not relative <= limit:
+            failed = ("Reynolds with cavitation ||R|| / ||u_s d(rho h)/dx||", relative, limit)
+        elif not load_error <= load_tolerance:
+            failed = ("load balance |dA sum p - load| / load", load_error, load_tolerance)
+    if failed is not None:
+        check, value, limit = failed
+        raise ConvergenceError(f"EHL Reynolds solve on the {grid.nx} x {grid.ny} grid: the solution fails its check "
+                               f"of {check}: {value:.3e} > {limit:.3e}", residual=value,
+                               iterations=solution.iterations, tolerance=limit, reason=f"fails the check of {check}")
 
 
 def film_traction(solution: EHLSolution, sliding_speed: float, viscosity_0: float, eyring_stress: float) -> float:

@@ -220,9 +220,11 @@ def k_f_exact(b_over_a) -> np.ndarray:
     """
     beta = _check_ratio(b_over_a, lower=0.0)
     beta2 = beta**2
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         value = 0.5 * beta2 * elliprd(0.0, 1.0, beta2)
-    return np.where(beta2 > 0.0, value, 1.5)
+    # R_D(0, 1, beta^2) ~ 3 / beta^2 overflows below beta^2 ~ 1e-308; there k_f = 3/2 - O(beta^2 ln(1/beta)) is
+    # 3/2 to double precision (the limit b/a -> 0)
+    return np.where(beta2 > 1e-300, value, 1.5)
 
 
 def cubic_coefficient(b_over_a) -> np.ndarray:

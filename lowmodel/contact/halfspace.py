@@ -50,6 +50,7 @@ __all__ = [
     "deformation",
     "quadratic_gap",
     "solve",
+    "verify",
     "pressure_ellipse",
 ]
 
@@ -263,6 +264,7 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.einsum("i,i->", a, b))
 
 
+_SINGLE_MAX = 1e38  # below the largest float32 (3.4e38)
 _SPARSE_CELLS = 20  # a direct sum costs ~1 grid pass per cell, a single-precision convolution ~20-40
 
 
@@ -484,9 +486,10 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
     spectrum_single = spectrum.astype(np.float32)
     kernel = _box_kernel(grid.nx, grid.ny, grid.dx, grid.dy, nx, ny)
     area = grid.cell_area
+    self_step = e_star / float(kernel[nx - 1, ny - 1])  # 1 / K_00: the pressure that moves its own cell by 1 m
     if max_iterations < 1:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=math.inf,
-                               iterations=0, tolerance=tolerance)
+                               iterations=0, tolerance=tolerance, reason="iteration limit")
 
     def apply(field, single=False):
         return _convolve(spectrum, field, spectrum_single if single else None)
@@ -527,7 +530,21 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
         if load_control:
             r_c -= r_c.mean()
         denominator = _dot(r_c, t_c)
-        tau = _dot(g_c, t_c) / denominator if denominator != 0.0 else 0.0
+        if g_norm > 0.0 and not denominator > 0.0:
+            # K t underflowed in single precision (deflections near the bottom of its range): in double precision
+            r_raw = apply(t)
+            r_c = r_raw[in_contact]
+            if load_control:
+                r_c = r_c - r_c.mean()
+            denominator = _dot(r_c, t_c)
+        if g_norm > 0.0 and denominator > 0.0:
+            tau = _dot(g_c, t_c) / denominator
+        else:
+            # zero search direction: the gap is uniform on the contact set (a single cell, or cells placed
+            # symmetrically, e.g. the start on a grid whose centre lies on a cell or a cell corner), so ``p`` solves
+            # the problem restricted to that set; the cells that interpenetrate re-enter below with the step of
+            # their own stiffness, 1 / K_00 (a Jacobi step), instead of the CG step, which is 0 here
+            tau = self_step
         p_old = p
         trial = p - tau * t
         p = np.maximum(trial, 0.0)
@@ -551,8 +568,10 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
             factor = 1.0
         else:
             raise ConvergenceError("approach control lost all contact", residual=math.inf, iterations=iteration,
-                                   tolerance=tolerance)
-        u -= tau * r_raw
+                                   tolerance=tolerance, reason="no contact left")
+        if g_norm > 0.0:  # (t = 0 otherwise)
+            # the step in double precision where it lies beyond the single-precision range of r_raw
+            u -= tau * (r_raw if abs(tau) < _SINGLE_MAX else r_raw.astype(float))
         if cells.size:
             u += _apply_sparse(spectrum, kernel, cells, correction, p.shape, spectrum_single, 1.0 / e_star)
         u *= factor
@@ -564,8 +583,67 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
             break
     else:
         raise ConvergenceError("half-space contact (Polonsky-Keer CG) did not converge", residual=residual,
-                               iterations=max_iterations, tolerance=tolerance)
+                               iterations=max_iterations, tolerance=tolerance, reason="iteration limit")
     return p, iteration, residual
+
+
+PHYSICAL_MODULUS = (1e6, 1e14)  # Pa: E* from rubber to diamond
+PHYSICAL_CELL = (1e-9, 1.0)  # m
+GAP_CHECK_FLOOR = 1e-6  # of the interference: above the single-precision increments' floor (~1.3e-7 measured)
+
+
+def verify(gap: np.ndarray, pressure: np.ndarray, deformation: np.ndarray, approach: float, grid: SurfaceGrid,
+           force: float | None, tolerance: float, *, iterations: int = 0) -> None:
+    """Check a half-space solution against the conditions that define it (sun2021 eqs 5-8) on the full grid.
+
+    ``deformation`` must be computed from ``pressure`` independently of the iteration that produced it
+    (:func:`deformation`).  With the loaded gap ``c = gap + V - approach`` and the interference
+    ``d = approach - min(gap)`` (the rigid approach from first touch, the scale of every gap and deflection in
+    the contact), the checks and their tolerances are:
+
+    * no tension: ``p >= 0`` everywhere (exactly);
+    * closure in the contact: ``max |c|`` over the cells with ``p > 0`` at most ``(10 tolerance + 1e-6) d``
+      (plus the round-off of ``c``, 8 eps of the largest of ``|approach|`` and ``|gap|`` in the contact);
+    * no overlap outside it: ``-min c`` over the cells with ``p = 0`` at most the same;
+    * load balance (load control, ``force`` given): ``|dA sum p - force|`` at most
+      ``max(tolerance, cells * 2.2e-16) force``.
+
+    ``tolerance`` is the eq-12 tolerance of the solve: the measured closure of converged solutions is below
+    ``1.3 tolerance d`` plus the ``1.3e-7 d`` of the single-precision increments (docs/halfspace.md).
+    Raises ConvergenceError naming the check, its value and its tolerance.
+    """
+    loaded = gap + deformation - approach
+    in_contact = pressure > 0.0
+    failed = None
+    if not np.all(np.isfinite(pressure)) or not np.all(np.isfinite(loaded)):
+        failed = ("finite pressure and deflection", math.inf, 0.0, "")
+    elif float(pressure.min()) < 0.0:
+        failed = ("no tension (p >= 0)", -float(pressure.min()), 0.0, "Pa")
+    elif not in_contact.any():
+        failed = ("some contact (p > 0 somewhere)", 0.0, 0.0, "")
+    else:
+        # the interference may round to 0 against the gap values (a load whose deflection lies below their
+        # resolution): the round-off of gap + V - approach is the floor
+        interference = max(approach - float(gap.min()), 0.0)
+        roundoff = 8.0 * np.finfo(float).eps * max(abs(approach), float(np.max(np.abs(gap[in_contact]))))
+        gap_tolerance = (10.0 * tolerance + GAP_CHECK_FLOOR) * interference + roundoff
+        closure = float(np.max(np.abs(loaded[in_contact])))
+        overlap = -float(loaded[~in_contact].min()) if not in_contact.all() else 0.0
+        if closure > gap_tolerance:
+            failed = ("closure in the contact max |gap + V - approach|", closure, gap_tolerance, "m")
+        elif overlap > gap_tolerance:
+            failed = ("no overlap outside the contact -min(gap + V - approach)", overlap, gap_tolerance, "m")
+        elif force is not None:
+            imbalance = abs(float(pressure.sum()) * grid.cell_area - force)
+            load_tolerance = max(tolerance, pressure.size * 2.2e-16) * force
+            if imbalance > load_tolerance:
+                failed = ("load balance |dA sum p - force|", imbalance, load_tolerance, "N")
+    if failed is not None:
+        check, value, limit, unit = failed
+        unit = f" {unit}" if unit else ""
+        raise ConvergenceError(f"half-space contact: the solution fails its check of {check}: {value:.3e}{unit} "
+                               f"> {limit:.3e}{unit}", residual=value, iterations=iterations, tolerance=limit,
+                               reason=f"fails the check of {check}")
 
 
 def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,
@@ -591,7 +669,8 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
     ValueError
         bad input, or the contact reaches the grid edge (the grid is too small).
     ConvergenceError
-        no convergence in ``max_iterations``.
+        no convergence in ``max_iterations``, or a result that fails its own check on the full grid
+        (:func:`verify`: no tension, closure in the contact, no overlap outside it, load balance).
     """
     gap = np.asarray(gap, dtype=float)
     if gap.shape != (grid.nx, grid.ny):
@@ -624,10 +703,24 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations!r}")
     max_iterations = int(max_iterations)
     area = grid.cell_area
+    # Outside the physical range of moduli and cells the solve runs in pressures divided by ``scale``, a power of two
+    # near E* / (cell size), with the modulus E* / scale: the influence coefficients of the conjugate gradient's
+    # single-precision increments are then of order one (E* of 1e35 Pa underflowed them to zero and the solver
+    # returned its start).  The scaling is exact in binary floating point; inside the physical range the solve runs
+    # unscaled, as before (the scaled one differs there by round-off in the single-precision increments).
+    scale = 1.0
+    if not (PHYSICAL_MODULUS[0] <= e_star <= PHYSICAL_MODULUS[1]
+            and PHYSICAL_CELL[0] <= min(grid.dx, grid.dy) <= PHYSICAL_CELL[1]):
+        exponent = math.frexp(e_star)[1] - math.frexp(min(grid.dx, grid.dy))[1]
+        scale = math.ldexp(1.0, min(max(exponent, -1000), 1000))
+    user_force, e_star = force, e_star / scale
+    if load_control:
+        force = force / scale
     if initial_pressure is not None:
         p = np.array(initial_pressure, dtype=float)
         if p.shape != gap.shape or not np.all(np.isfinite(p)) or np.any(p < 0):
             raise ValueError("initial_pressure must be a finite, non-negative array of the grid's shape")
+        p /= scale
     else:
         p = None
     # the conjugate gradient runs on a box that holds the contact (from a solve on a 4x coarser grid): the
@@ -655,10 +748,17 @@ def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: 
         if not np.any((gap + u < approach) & outside):
             break
         box = _FULL  # a cell outside the box interpenetrates: the full grid, started from the box's solution
-    total = float(p.sum()) * area
     if in_contact[0, :].any() or in_contact[-1, :].any() or in_contact[:, 0].any() or in_contact[:, -1].any():
         raise ValueError("the contact reaches the edge of the grid: enlarge the grid (half_width) so that it "
                          "holds the whole contact")
+    with np.errstate(over="ignore", under="ignore"):
+        p = p * scale
+    peak = float(p.max())
+    if not (math.isfinite(peak) and peak * np.finfo(float).eps >= np.finfo(float).tiny):
+        raise ValueError(f"contact_modulus {contact_modulus!r} Pa with this {'force' if load_control else 'approach'} "
+                         f"gives pressures beyond the double-precision range (largest {peak!r} Pa)")
+    total = float(p.sum()) * area
+    verify(gap, p, u, float(approach), grid, user_force, tolerance, iterations=iterations)
     separation = np.maximum(gap + u - approach, 0.0)
     separation[in_contact] = 0.0
     a, b, angle, centroid = pressure_ellipse(p, grid)

@@ -197,7 +197,8 @@ def solve(gap: np.ndarray, heights: np.ndarray, grid: halfspace.SurfaceGrid, con
                 side = -1
         else:
             raise ConvergenceError("mixed lubrication load sharing did not converge", residual=min(
-                abs(f_lo), abs(f_hi)) / load, iterations=len(solves), tolerance=share_tolerance)
+                abs(f_lo), abs(f_hi)) / load, iterations=len(solves), tolerance=share_tolerance,
+                reason="iteration limit")
         best = min(solves, key=lambda w: abs(w + solves[w][2] - load))
     film, pressure, asperity, rough = solves[best]
     return MixedContact(film=film, smooth=smooth, coupled=False, heights=heights, rough_film=rough,

@@ -487,7 +487,7 @@ def counter_height(groove: HelicalGroove, x, y, iterations: int = 40) -> np.ndar
     miss = float(np.max(np.abs(local[:, :2] - target), initial=0.0)) if target.size else 0.0
     if not miss <= 1e-9 * r_g:  # also NaN: the point lies off the flank that Newton can reach from the contact
         raise ConvergenceError("counter_height: Newton did not reach the groove surface above (x, y)", residual=miss,
-                               iterations=iterations, tolerance=1e-9 * r_g)
+                               iterations=iterations, tolerance=1e-9 * r_g, reason="iteration limit")
     return local[:, 2].reshape(shape)
 
 
@@ -548,7 +548,8 @@ def profile_coordinates(groove: HelicalGroove, points, iterations: int = 30) -> 
     miss = float(np.max(np.abs(np.einsum("ij,ij->i", offset, rot @ m0)), initial=0.0))
     if not miss <= 1e-9 * groove.pitch_radius:  # also NaN
         raise ConvergenceError("profile_coordinates: Newton did not reach the profile plane of a point",
-                               residual=miss, iterations=iterations, tolerance=1e-9 * groove.pitch_radius)
+                               residual=miss, iterations=iterations, tolerance=1e-9 * groove.pitch_radius,
+                               reason="iteration limit")
     u = np.einsum("ij,ij->i", offset, rot @ e1)
     w = np.einsum("ij,ij->i", offset, rot @ c)
     return phi, np.stack([u, w], -1)

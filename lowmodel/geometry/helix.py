@@ -284,4 +284,4 @@ def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> fl
         if abs(step) < 1e-15 * dphi:
             return dphi
     raise ConvergenceError("ball_centre_azimuths: Newton did not converge", residual=abs(step),
-                           iterations=iteration + 1, tolerance=1e-15 * dphi)
+                           iterations=iteration + 1, tolerance=1e-15 * dphi, reason="iteration limit")

@@ -51,13 +51,17 @@ from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, Chai
     chain_system
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as single
+from ballbench.lowmodel.linear_bearing import branch_end
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
 from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
+    STICK_REASON,
     BallState,
+    ContinuationPath,
     ball_state,
     ball_terms,
     initial_guess,
+    slip_speeds,
     solve_branch,
     solve_free,
     solve_with_continuation,
@@ -245,10 +249,16 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
             iterations += free_iterations
         except ConvergenceError as error:  # ... else by continuation of the coupled problem
             paths = []
-            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, free_start,
-                                                                       error if error.iterations else first_error,
-                                                                       what=what, balls_of=balls_of,
-                                                                       extra_paths=(("mu", MU_PATH_START, mu_at),))
+            try:
+                (z, residual, iterations), taken = solve_with_continuation(
+                    contacts, solve_at, free_start, error if error.iterations else first_error, what=what,
+                    balls_of=balls_of, extra_paths=(("mu", MU_PATH_START, mu_at),))
+            except ConvergenceError as failure:  # ... else the evidence decides: end of a branch, or the solver
+                if failure.reason.startswith("spin-capacity ratio < 1"):
+                    raise
+                (z, residual, iterations), start_mu = _judged(failure, contacts, solve_at, start_guess, pack,
+                                                              balls_of, reference_force, tolerance, max_iterations)
+                taken = ContinuationPath((), "mu from a probe", start_mu / mu, ())
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
                                     iterations=iterations, what=what)
@@ -259,6 +269,33 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_force, tolerance, max_iterations):
+    """:func:`branch_end.judge` for the coupled solve of :func:`solve` (its closures passed in)."""
+    target = contacts.friction_coefficient
+    last_contacts = getattr(failure, "last_contacts", None)
+    on_mu_path = (last_contacts is not None and failure.last_converged is not None
+                  and failure.last_converged[0] == "s (mu)")
+    failure.last_mu = float(last_contacts.friction_coefficient) if on_mu_path else None
+
+    def at(mu_p):
+        return dataclasses.replace(contacts, friction_coefficient=mu_p)
+
+    def solve_from(mu_p, z0):
+        return solve_at(at(mu_p), z0)
+
+    def probe(mu_p):
+        try:
+            return solve_at(at(mu_p), start_guess(at(mu_p)))
+        except ConvergenceError:
+            return solve_at(at(mu_p), pack(solve_free(at(mu_p), reference_force, tolerance, max_iterations)[0]))
+
+    def slip_at(z, mu_p):
+        return float(np.min(slip_speeds(balls_of(z), at(mu_p))))
+
+    return branch_end.judge(failure, target, solve_from, probe, slip_at, stick_reason=STICK_REASON)
+
 
 
 def coupled_system(ball_function, layout: ChainLayout, mu: float):
@@ -368,6 +405,6 @@ def simulate_gaps(contacts: BallContacts, initial_gaps, t_end: float, *, max_eve
             break
     else:
         raise ConvergenceError("simulate_gaps: too many contact events", residual=t_end - time,
-                               iterations=max_events, tolerance=0.0)
+                               iterations=max_events, tolerance=0.0, reason="too many contact events")
     return GapHistory(np.array(times), np.array(history), np.array(velocities), np.array(forces),
                       np.array(counts))

@@ -229,7 +229,7 @@ def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, refer
     balance = abs(input_power - losses) / max(abs(input_power), 1e-300)
     if not balance <= POWER_BALANCE_TOLERANCE:
         raise ConvergenceError("FE-informed B2B: power balance missed", residual=balance, iterations=iterations,
-                               tolerance=POWER_BALANCE_TOLERANCE)
+                               tolerance=POWER_BALANCE_TOLERANCE, reason="power balance missed")
     ball_velocity = states[:, 0] * speed
     return TractionState(ball_velocity, states[:, 1:3] * speed / radius, 2.0 * ball_velocity / velocity - 1.0,
                          friction_force, friction_moment, balance, friction_loss=loss, input_power=input_power,

@@ -86,6 +86,7 @@ __all__ = [
     "solve_free",
     "solve_branch",
     "with_spin_capacity_diagnosis",
+    "slip_speeds",
     "N_UNKNOWNS",
     "STICK_REASON",
 ]
@@ -134,8 +135,10 @@ class ContinuationPath:
     """A continuation path taken by a solver (:func:`solve_with_continuation`).
 
     balls : indices of the balls solved along it; kind : ``"arm"`` (Hertz semi-axes scaled by
-    ``start_scale^(1 - s)``: the spin moments grow back from a larger arm to the target) or
-    ``"theta"`` (contact angles blended from their mean, the symmetric ball, to the target);
+    ``start_scale^(1 - s)``: the spin moments grow back from a larger arm to the target),
+    ``"theta"`` (contact angles blended from their mean, the symmetric ball, to the target),
+    ``"mu"`` (:func:`lowmodel.linear_bearing.b2b.solve`: mu from ``mu / start_scale``) or ``"mu from a probe"``
+    (:mod:`lowmodel.linear_bearing.branch_end`: mu from ``start_scale mu``, a state found beside the target);
     start_scale : the arm scale at ``s = 0`` (1 for ``"theta"``); steps : the converged
     :class:`lowmodel.solvers.ContinuationStep` (``s``, Newton iterations), ``s = 1`` last.
     """
@@ -228,6 +231,13 @@ def slip_kinematics(unknowns: np.ndarray, contacts: BallContacts):
     _, _, _, dslide, dspin, top = contacts.kinematics
     x = unknowns[:, :3]
     return np.einsum("nk,nik->ni", x, dslide) - top, np.einsum("nk,nik->ni", x, dspin)
+
+
+def slip_speeds(unknowns: np.ndarray, contacts: BallContacts) -> np.ndarray:
+    """Signed slip speed ``r_i = slide_i sin phi_i + spin_i cos phi_i`` [units |v|] of every contact, (n, 4), at the
+    ball unknowns (n, 7) (slip angles ``phi_i`` in columns 3-6): > 0 where friction opposes the slip."""
+    slide, spin = slip_kinematics(unknowns, contacts)
+    return slide * np.sin(unknowns[:, 3:]) + spin * np.cos(unknowns[:, 3:])
 
 
 def with_slip_angles(guess: np.ndarray, contacts: BallContacts) -> np.ndarray:
@@ -409,9 +419,7 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     last = furthest.last_converged if furthest is not None else None
     min_slip = math.nan
     if furthest is not None:  # how close the last converged point is to a contact that stops sliding
-        balls = balls_of(furthest.last_state)
-        slide, spin = slip_kinematics(balls, furthest_at(last[1]))
-        min_slip = float(np.min(slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])))
+        min_slip = float(np.min(slip_speeds(balls_of(furthest.last_state), furthest_at(last[1]))))
     where = (f"; continuation got to {last[0]} = {last[1]:.6g}, smallest contact slip speed there "
              f"{min_slip:.3g} |v|" if last is not None else "")
     diagnosed = with_spin_capacity_diagnosis(error, contacts)
@@ -419,6 +427,9 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
     failure = ConvergenceError(message, residual=error.residual, iterations=error.iterations,
                                tolerance=error.tolerance, reason=reason, last_converged=last)
     failure.min_slip_speed = min_slip
+    # the last converged point and its contacts, for a caller that judges the reason (linear_bearing.branch_end)
+    failure.last_state = furthest.last_state if furthest is not None else None
+    failure.last_contacts = furthest_at(last[1]) if furthest is not None else None
     raise failure from None
 
 
@@ -437,8 +448,7 @@ def solve_branch(function, z0, balls_of, contacts: BallContacts, *, tolerance: f
 
     def restart(z):
         balls = balls_of(z)
-        slide, spin = slip_kinematics(balls, contacts)
-        slip_speed = slide * np.sin(balls[:, 3:]) + spin * np.cos(balls[:, 3:])
+        slip_speed = slip_speeds(balls, contacts)
         wrong = slip_speed < -1e3 * tolerance
         if not np.any(wrong):
             return None
@@ -460,7 +470,9 @@ def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts
               f"; spin-capacity ratio {ratio:.3f}")
     message = str(error).split(" (residual")[0] + reason
     return ConvergenceError(message, residual=error.residual, iterations=error.iterations,
-                            tolerance=error.tolerance)
+                            tolerance=error.tolerance,
+                            reason="spin-capacity ratio < 1" if ratio < 1.0 else error.reason,
+                            last_converged=error.last_converged)
 
 
 def _replace_balls(z: np.ndarray, balls: np.ndarray) -> np.ndarray:

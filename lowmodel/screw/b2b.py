@@ -52,6 +52,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START", "saturation",
            "check_gaps"]
@@ -216,17 +217,15 @@ def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring:
                               f"light contacts only like F (docs/ball_screw.md)")
                 raise ConvergenceError(f"no converged state: load ramp stopped at {100 * factor:.1f} % of the "
                                        f"load{reason}", residual=ramp_error.residual,
-                                       iterations=ramp_error.iterations, tolerance=tolerance) from error
+                                       iterations=ramp_error.iterations, tolerance=tolerance,
+                                       reason="load ramp stopped" + (": contacts near full sliding" if reason
+                                                                     else f" ({ramp_error.reason})")) from error
         return state
 
 
 def saturation(state: sb.ScrewBallState) -> float:
     """Largest ``|c/a| = |slip_minor| / |spin a|`` over the loaded contacts (inf at pure sliding; 0 if none)."""
-    loaded = state.normal_force > 0.0
-    spin = np.abs(state.spin * state.semi_major)[loaded]
-    slide = np.abs(state.slip_minor)[loaded]
-    with np.errstate(divide="ignore"):
-        return float(np.max(np.where(spin > 0.0, slide / np.where(spin > 0.0, spin, 1.0), np.inf), initial=0.0))
+    return sliding_ratio(state.normal_force, state.slip_minor, state.spin, state.semi_major)
 
 
 def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False,
@@ -309,6 +308,19 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     guess = np.zeros((n, k))
     extra = np.zeros(layout.n_global)
     forces = None
+    # per-row tolerances and step weights (docs/ball_screw.md, small mu) in the chain's order: every ball's block
+    # (six eq 54 rows, its axial row when the nut shift is per ball, its pair's slot), then the global axial row
+    ball_rows = dict(balls=1, axial=1 if per_ball else 0, extra=1)
+    rows = np.concatenate([np.tile(row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                                  groove_radius=module.groove_radius,
+                                                  ball_radius=module.ball_radius, approach=scales.length,
+                                                  **ball_rows), n),
+                           row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                          groove_radius=module.groove_radius, ball_radius=module.ball_radius,
+                                          approach=scales.length, balls=0, axial=layout.n_global)])
+    weights = np.concatenate([np.tile(row_weights(friction_coefficient=module.friction_coefficient, **ball_rows), n),
+                              row_weights(friction_coefficient=module.friction_coefficient, balls=0,
+                                          axial=layout.n_global)])
     if initial is not None and initial.orbit_speed.shape == (n,):
         guess[:, :2] = initial.centre / scales.length
         guess[:, 2] = initial.orbit_speed / scales.orbit
@@ -323,14 +335,21 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
             forces = previous / scales.force
         z, residual, iterations = newton(make_function(module.oversize), layout.pack(guess, forces, extra),
                                          tolerance=tolerance, max_iterations=max_iterations,
-                                         what=f"{what} (warm start)")
+                                         what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
         rates = sb.free_rolling_guess(contacts)
         guess[:, 2] = rates[:, 0] / scales.orbit
         guess[:, 3:6] = rates[:, 1:] / scales.spin
+
+        def contacts_at(z, oversize):  # the contacts of a converged point, for a stall's reason
+            balls_z, _, extra_z = layout.unpack(z)
+            shift_z = balls_z[:, sb.N_UNKNOWNS] if per_ball else extra_z[0]
+            return sb.ball_terms(balls_z[:, :sb.N_UNKNOWNS], shift_z, contacts, scales, oversize=oversize)
+
         z, residual, iterations = sb.solve_preloaded(make_function, layout.pack(guess, None, extra), contacts,
                                                      float(np.max(np.abs(loads))) if per_ball else total / n,
-                                                     tolerance=tolerance, max_iterations=max_iterations, what=what)
+                                                     tolerance=tolerance, max_iterations=max_iterations, what=what,
+                                                     row_tolerance=rows, row_weight=weights, contacts_at=contacts_at)
     balls, forces, extra = chain_forces(z, layout, rate_index=2, rate_scale=rate_scale, tolerance=tolerance,
                                         iterations=iterations, what=what)
     shift = balls[:, sb.N_UNKNOWNS] * 1.0 if per_ball else extra[0]

@@ -306,7 +306,8 @@ def _state(samples: _Samples, states, forces, balls, module, reference_force, it
     balance = abs(input_power - losses) / max(abs(input_power), 1e-300)
     if not balance <= POWER_BALANCE_TOLERANCE:
         raise ConvergenceError("FE-informed screw B2B: power balance missed", residual=balance,
-                               iterations=iterations, tolerance=POWER_BALANCE_TOLERANCE)
+                               iterations=iterations, tolerance=POWER_BALANCE_TOLERANCE,
+                               reason="power balance missed")
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     z_hat = np.array([0.0, s, c])
     normal_force = np.zeros((n, p))

@@ -55,6 +55,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.dual import Dual, constant, cross, dot, variable
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw.contacts import ON_NUT, SIGN_U, SIGN_W, BallContacts
+from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, stall_reason
 from ballbench.lowmodel.state import BallStateBase
 
 __all__ = [
@@ -287,8 +288,9 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
                 max_iterations: int = 80) -> ScrewBallState:
     """Each ball on its own (no ball-to-ball contact) under ``axial_load`` [N] per ball (lin2019 eqs 49-55).
 
-    ``axial_load``: force of the screw on each ball along +z [N] (its sign picks the
-    loaded diagonal); the nut shift is solved for it, ball by ball.  ``tolerance``:
+    ``axial_load``: force of the screw on each ball along +z [N], one number (its sign picks the
+    loaded diagonal); the nut shift is solved for it, ball by ball: ``nut_shift`` of the result is
+    (n,), one per ball (a float for one ball).  ``tolerance``:
     max residual of eq 54 in units of ``mu F_ref`` (F_ref = |axial_load| / (sin beta_0 cos alpha) / 2
     for the loaded pair, forces and moments / R_B) and of the axial balance.
     Raises ConvergenceError with its residual if Newton fails.
@@ -296,7 +298,7 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
     from ballbench.lowmodel.solvers import check_solver_options
 
     check_solver_options(tolerance, max_iterations)
-    load = checks.finite("axial_load", axial_load, "N")
+    load = checks.scalar("axial_load", axial_load, "N", note="the load on each ball")
     states = [_solve_one(contacts, j, load, tolerance, max_iterations) for j in range(contacts.n_balls)]
     return _stack(states)
 
@@ -304,7 +306,7 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
 def reference_force(contacts: BallContacts, axial_load: float) -> float:
     """Normal force scale [N]: the axial load over one loaded pair, at least the preload force."""
     module = contacts.module
-    load = checks.finite("axial_load", axial_load, "N")
+    load = checks.scalar("axial_load", axial_load, "N")
     with np.errstate(over="ignore"):
         pair = abs(load) / np.float64(math.sin(module.nominal_angle) * math.cos(module.lead_angle))
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
@@ -336,8 +338,15 @@ def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance:
             return residual, jacobian
         return function
 
-    z, residual, iterations = solve_preloaded(make_function, guess, single, axial_load, tolerance=tolerance,
-                                              max_iterations=max_iterations, what=f"screw ball {index}")
+    rows = row_tolerances(tolerance, friction_coefficient=single.module.friction_coefficient,
+                          groove_radius=single.module.groove_radius, ball_radius=single.module.ball_radius,
+                          approach=scales.length, balls=1, axial=1)
+    z, residual, iterations = solve_preloaded(
+        make_function, guess, single, axial_load, tolerance=tolerance, max_iterations=max_iterations,
+        what=f"screw ball {index}", row_tolerance=rows,
+        row_weight=row_weights(friction_coefficient=single.module.friction_coefficient, balls=1, axial=1),
+        contacts_at=lambda z, oversize: ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales,
+                                                   oversize=oversize))
     terms = ball_terms(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], single, scales)
     return z, terms, scales, iterations, float(np.max(np.abs(residual))), axial_load
 
@@ -353,7 +362,8 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
 
 def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
                     tolerance: float, max_iterations: int, what: str, steps: int = 6, max_halvings: int = 10,
-                    step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12):
+                    step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12,
+                    row_tolerance=None, row_weight=None, contacts_at=None):
     """Newton (:func:`lowmodel.solvers.newton`) on ``make_function(oversize)`` at the module's preload.
 
     Between ``direct_fraction`` and half of :func:`continuation_start` Newton is tried
@@ -361,9 +371,18 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
     contact, where Newton from free rolling wanders) or if that fails, the solve starts at that
     four-point preload and steps the oversize down to the module's value, each step
     from the previous solution (step grown 1.5x after a success, halved after a failure).
-    Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
+    ``row_tolerance``, ``row_weight``: per-row tolerances and step weights for :func:`lowmodel.solvers.newton`
+    (:func:`.convergence.row_tolerances`, :func:`.convergence.row_weights`);
+    ``contacts_at(z, oversize)``: the :class:`BallTerms` (or any object with ``normal_force``, ``slip_minor``,
+    ``spin``, ``semi_major``) at a converged point, from which a stall's reason is read
+    (:func:`.convergence.stall_reason`).  Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps
+    failing.
     """
+    from functools import partial
+
     from ballbench.lowmodel.solvers import newton
+
+    newton = partial(newton, row_tolerance=row_tolerance, row_weight=row_weight)
 
     target = contacts.module.oversize
     start = continuation_start(contacts, load_per_ball)
@@ -386,9 +405,15 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
         except ConvergenceError as error:
             halvings += 1
             if halvings > max_halvings:
+                reason, detail = "preload continuation stalled", ""
+                if contacts_at is not None:
+                    terms = contacts_at(z, current)
+                    reason, detail = stall_reason(terms.normal_force, terms.slip_minor, terms.spin, terms.semi_major,
+                                                  where=f"(oversize {current:.3e} m)")
+                    detail = f": {reason}: {detail}"
                 raise ConvergenceError(f"{what}: preload continuation stalled at oversize {current:.3e} m "
-                                       f"(target {target:.3e} m)", residual=error.residual, iterations=total,
-                                       tolerance=tolerance) from None
+                                       f"(target {target:.3e} m){detail}", residual=error.residual,
+                                       iterations=total, tolerance=tolerance, reason=reason) from None
             step *= 0.5
             continue
         z, current = z_new, trial
@@ -416,7 +441,7 @@ def state_from(z_balls: np.ndarray, shift: float, terms: BallTerms, scales: Scal
 
 
 def _stack(states) -> ScrewBallState:
-    """Join single-ball solutions (each with its own nut shift) into one state."""
+    """Join single-ball solutions (each with its own nut shift: ``nut_shift`` (n,)) into one state."""
     if len(states) == 1:
         z, terms, scales, iterations, residual, load = states[0]
         return state_from(z[None, :N_UNKNOWNS], z[N_UNKNOWNS], terms, scales, axial_load=load,
@@ -429,7 +454,7 @@ def _stack(states) -> ScrewBallState:
 
     n = len(parts)
     return ScrewBallState(cat("centre"), cat("orbit_speed"), cat("omega"),
-                          float(np.mean([p.nut_shift for p in parts])), cat("normal_force"), cat("contact_angle"),
+                          np.array([p.nut_shift for p in parts]), cat("normal_force"), cat("contact_angle"),
                           cat("approach"), cat("semi_major"), cat("spin"), cat("slip_minor"), cat("slip_major"),
                           cat("friction_force"), cat("friction_moment"), float(sum(p.axial_load for p in parts)),
                           friction_loss=cat("friction_loss"), input_power=float(sum(p.input_power for p in parts)),

@@ -218,6 +218,10 @@ def flank_angles(nominal_angle: float, deviation, reading: str = "tilted") -> np
 
     The nut flanks keep ``beta_0``.
     """
+    shape = checks.real("deviation", deviation).shape
+    if len(shape) > 1 or 0 in shape:
+        raise ValueError(f"deviation must be one theta [rad] or a 1-D array of one per ball (at least one), got "
+                         f"shape {shape}")
     theta = np.atleast_1d(checks.bounded("deviation", deviation, -groove_core.MAX_DEVIATION,
                                          groove_core.MAX_DEVIATION, "rad", lower_closed=True, upper_closed=True,
                                          note="i.e. [-15, 15] deg"))

@@ -192,7 +192,7 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
             u0 = brentq(mismatch, start, end, xtol=1e-16, maxiter=2000)
         except RuntimeError as error:
             raise ConvergenceError(f"distribute: the nut shift u_0 was not found ({error})", residual=math.inf,
-                                   iterations=2000, tolerance=1e-16) from None
+                                   iterations=2000, tolerance=1e-16, reason="no root bracketed") from None
         new = stiffness.load(np.clip(u0 - sign * offset, low, high))
         if abs(float(new.sum()) - total) > 1e-6 * total:   # the loads must carry the axial load (lost precision)
             _swamped(offset, low, high)
@@ -201,4 +201,5 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
             return new
         loads = new
     raise ConvergenceError("distribute: the fixed-point iteration of the ball loads did not converge",
-                           residual=change / total, iterations=max_iterations, tolerance=tolerance)
+                           residual=change / total, iterations=max_iterations, tolerance=tolerance,
+                           reason="iteration limit")

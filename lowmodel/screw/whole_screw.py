@@ -83,6 +83,17 @@ class ScrewHistory:
         return int(starts.sum())
 
 
+def _deviation_of(deviation, screw_azimuth: np.ndarray) -> np.ndarray:
+    # theta [rad] of each ball from the caller's function: one per ball, or one number for all of them
+    theta = checks.real("deviation(phi)", deviation(screw_azimuth))
+    if theta.ndim == 0:
+        theta = np.full(screw_azimuth.shape, float(theta))
+    if theta.shape != screw_azimuth.shape:
+        raise ValueError(f"deviation(phi) must return theta [rad] of shape {screw_azimuth.shape} (one per ball) or "
+                         f"one number, got shape {theta.shape}")
+    return theta
+
+
 def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_load: float = 1500.0,
              duration: float = 2.0, steps: int = 200, amplitude: float = math.radians(3.0), cycles: int = 4,
              reading: str = "tilted",
@@ -108,6 +119,9 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
     amplitude = checks.bounded("amplitude", amplitude, 0.0, math.radians(10.0), "rad", lower_closed=True,
                                upper_closed=True, note="i.e. [0, 10] deg")
     cycles = checks.count("cycles", cycles, 0)
+    if deviation is not None and not callable(deviation):
+        raise ValueError(f"deviation must be a function of the screw azimuth phi [rad] giving theta [rad] (or None),"
+                         f" got {deviation!r}")
     pair = b2b.pair_geometry(module)
     track = 2.0 * math.pi * TRACK_TURNS
     slack = track - n * pair.azimuth_step
@@ -134,7 +148,7 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
         if deviation is None:
             theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
         else:
-            theta = np.asarray(deviation(screw_azimuth), dtype=float)
+            theta = _deviation_of(deviation, screw_azimuth)
         contacts = screw_contacts.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
                               module.youngs_modulus, lead_error=lead_error)

@@ -297,9 +297,13 @@ def test_fit_friction_coefficient_names_normal_force():
     normal = np.array([1.0, 2.0])
     with pytest.raises(ValueError, match="normal_force"):  # 2 rows for 2 parameters: named n_points, p0
         calibration.fit_friction_coefficient(normal, 0.1 * normal, [0.0, 1.0])
-    tiny = np.array([8.6e-210, 1.7e-209])
-    with pytest.raises(ValueError, match="normal_force"):  # singular value^2 underflowed: divide by zero
-        calibration.fit_friction_coefficient(tiny, 0.0 * tiny)
+    tiny = np.array([8.6e-210, 1.7e-209, 3.1e-209])
+    # the singular value^2 underflowed (a divide by zero, then a ValueError naming normal_force); forces outside
+    # 1e-100..1e100 are now fitted divided by a power of two: the mu of the same data in N
+    scaled = tiny * 1e209
+    friction = np.array([0.1, 0.2, 0.31]) * scaled
+    fitted = calibration.fit_friction_coefficient(tiny, friction * 1e-209)["mu"]
+    assert fitted.value == pytest.approx(float(scaled @ friction / (scaled @ scaled)), rel=1e-9)  # least squares
 
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
@@ -403,3 +407,49 @@ def test_calibration_file_with_one_wrong_field(where, value):
             values = (constant.value, constant.std_error, constant.ci_low, constant.ci_high)
             assert all(math.isfinite(v) for v in values)
             assert isinstance(constant.unit, str) and isinstance(constant.source, str)
+def _no_warning(function, *args, **kwargs):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return function(*args, **kwargs)
+
+
+def test_non_finite_residual_is_named_not_scipy_text():
+    # was scipy's "Residuals are not finite in the initial point."
+    with pytest.raises(ValueError, match=r"residual returns nan at index 1 of 3 at p0"):
+        _no_warning(cal.fit_least_squares, lambda p: np.array([p[0] - 1.0, np.nan, p[0]]), [1.0], n_points=3)
+    with pytest.raises(ValueError, match="sum of squares overflows"):  # was an OverflowWarning-free scipy failure
+        _no_warning(cal.fit_least_squares, lambda p: 1e200 * np.array([p[0] - 1.0, p[0] - 2.0]), [2.0], n_points=2)
+
+    # NaN only on the way to the minimum: the trust region steps around it, the fit stops short and says why
+    def residual(p):
+        return np.array([p[0] - 1.0, p[0] - 1.2, np.nan if p[0] < 1.15 else 0.0])
+
+    with pytest.raises(cal.ConvergenceError, match="NaN or inf at p") as caught:
+        _no_warning(cal.fit_least_squares, residual, [2.0], n_points=3)
+    assert caught.value.reason.startswith("not stationary")
+
+
+def test_friction_fit_of_forces_near_the_float_limit():
+    # forces of 1e300 N: the sum of squares overflowed and the ConvergenceError carried scipy's own message; the
+    # fit of f = mu F does not depend on the force unit, so 1e300 N gives the mu of the same data in N
+    normal = np.array([1.0, 2.0, 3.0, 4.0])
+    friction = np.array([0.1, 0.2, 0.31, 0.4])
+    plain = cal.fit_friction_coefficient(normal, friction)["mu"]
+    huge = _no_warning(cal.fit_friction_coefficient, 1e300 * normal, 1e300 * friction)["mu"]
+    assert huge.value == pytest.approx(plain.value, rel=1e-12)
+    assert huge.std_error == pytest.approx(plain.std_error, rel=1e-9)
+    assert huge.rms_residual == pytest.approx(1e300 * plain.rms_residual, rel=1e-9)
+    k = _no_warning(cal.fit_line_through_origin, 1e300 * normal, -1e300 * friction)
+    assert k.value == pytest.approx(cal.fit_line_through_origin(normal, -friction).value, rel=1e-12)
+
+
+def test_speed_fit_with_speeds_that_determine_no_slope():
+    # speeds [0, 1e-300, ...] m/s: warned of overflow and returned mu_v = -4.8e296 s/m with an infinite covariance
+    normal, friction = [1.0, 2.0, 3.0, 4.0], [0.1, 0.2, 0.31, 0.4]
+    for speeds in ([0.0, 1e-300, 2e-300, 3e-300], [0.0, 0.0, 0.0, 1e-300]):
+        with pytest.raises(ValueError, match="speed"):
+            _no_warning(cal.fit_friction_coefficient, normal, friction, speeds)
+    with pytest.raises(ValueError, match="x, y"):  # a slope below the float range (was 0 +- 0)
+        _no_warning(cal.fit_line_through_origin, [1e300, 2e300, 3e300], [-1e-300, -2e-300, -3.1e-300])

@@ -426,3 +426,13 @@ def test_ellipse_friction_rest(beta, stacked, level):
                        n_beta=st.sampled_from([3, 4.0]))))
 def test_friction_map_small(kw):
     call(ef.friction_map, kw["n_uniform"], kw["n_cluster"], kw["n_beta"], use_cache=False)
+
+
+def test_k_f_exact_at_axis_ratios_whose_square_is_subnormal():
+    """b/a = 7.5e-156 (found by the property tests at 5x their examples): R_D(0, 1, beta^2) overflowed and k_f was
+    inf; the limit b/a -> 0 is 3/2, reached to double precision long before."""
+    from ballbench.lowmodel.contact import ellipse_friction as ef
+
+    for ratio in (1e-154, 7.5e-156, 1e-160):
+        assert float(ef.k_f_exact(ratio)) == 1.5
+    assert float(ef.k_f_exact(1e-150)) == pytest.approx(1.5, rel=1e-15)

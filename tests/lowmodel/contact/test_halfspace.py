@@ -302,3 +302,90 @@ def test_halfspace_solve(kw):
         assert np.all(result.pressure >= 0.0)
         if kw["use_force"]:
             assert result.force == pytest.approx(kw["force"], rel=1e-6)
+def _hertz_field(grid, contact):
+    # the Hertz pressure at the cell centres, written out (Johnson eq 4.39), not through the BEM module
+    X, Y = grid.coordinates()
+    return float(contact.p0) * np.sqrt(np.maximum(1.0 - (X / float(contact.a)) ** 2 - (Y / float(contact.b)) ** 2,
+                                                  0.0))
+
+
+def _loaded_gap_direct(gap, pressure, grid, e_star, approach):
+    # gap + V - approach with V summed cell by cell from Love's coefficients (the reference of the DC-FFT test)
+    kernel = hs.influence_coefficients(grid.nx, grid.ny, grid.dx, grid.dy) / e_star
+    V = np.zeros_like(gap)
+    for k, m in zip(*np.nonzero(pressure)):
+        V += pressure[k, m] * kernel[grid.nx - 1 - k:2 * grid.nx - 1 - k, grid.ny - 1 - m:2 * grid.ny - 1 - m]
+    return gap + V - approach
+
+
+@pytest.mark.parametrize("n", [8, 9, 10, 11, 13, 14, 15])
+def test_load_control_from_a_uniform_gap_start_on_small_grids(n):
+    # The start of load control (the cells within 1 % of the gap range from the lowest) is a single cell (odd n) or
+    # four symmetric cells (n = 10, 14): the gap is uniform on it, the CG direction is zero, and the solver used to
+    # return its start after one iteration (n = 9: 27 times p0, surfaces overlapping by 4.5 Hertz approaches).
+    # With 6.4-12 cells across the contact, every cell within a/2 of the centre is within 1 % of p0 of Hertz.
+    geometry = GEOMETRIES["ball on flat"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), n=n)
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
+    result = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD)
+    X, Y = grid.coordinates()
+    inner = X**2 + Y**2 < (0.5 * float(contact.a)) ** 2
+    assert np.max(np.abs(result.pressure - _hertz_field(grid, contact))[inner]) < 0.01 * float(contact.p0)
+    loaded = _loaded_gap_direct(gap, result.pressure, grid, geometry.contact_modulus, result.approach)
+    assert np.min(loaded) > -1e-5 * float(contact.delta)  # no overlap anywhere
+    assert result.approach == pytest.approx(float(contact.delta), rel=0.01)
+
+
+@pytest.mark.parametrize("seed, margin", [(0, 1.5), (1, 1.5), (0, 2.0)])
+def test_load_control_on_a_fractal_raceway_with_one_lowest_cell(seed, margin):
+    # sun2021's raceway (D = 2.47) on a 32 x 32 grid: one cell lies within 1 % of the gap range of the lowest, and
+    # the solver used to put the whole load on it (134-238 times p0); now the load spreads over the asperities and
+    # the loaded gap (summed directly) is closed in the contact and open outside it
+    from ballbench.lowmodel.contact import roughness
+
+    geometry = GEOMETRIES["ball on flat"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), n=32, margin=margin)
+    heights = roughness.raceway_roughness(grid, 2.47, 0.41e-9, seed=seed).heights
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B) - heights
+    gap -= gap.min()
+    assert np.count_nonzero(gap <= 0.01 * np.ptp(gap)) == 1  # the degenerate start
+    result = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD)
+    in_contact = result.pressure > 0
+    assert np.count_nonzero(in_contact) > 100 and result.max_pressure < 5 * float(contact.p0)
+    assert result.pressure.sum() * grid.cell_area == pytest.approx(LOAD, rel=1e-12)
+    loaded = _loaded_gap_direct(gap, result.pressure, grid, geometry.contact_modulus, result.approach)
+    scale = result.approach
+    assert np.max(np.abs(loaded[in_contact])) < 1e-5 * scale and np.min(loaded[~in_contact]) > -1e-5 * scale
+
+
+def test_verify_rejects_a_wrong_answer_naming_the_check():
+    # the answer the solver used to return at n = 9: the whole load on the centre cell
+    geometry = GEOMETRIES["ball on flat"]
+    contact = hertz.solve_load(geometry, LOAD)
+    grid = hs.hertz_surface_grid(float(contact.a), n=9)
+    gap = hs.quadratic_gap(grid, geometry.A, geometry.B)
+    pressure = np.zeros_like(gap)
+    pressure[4, 4] = LOAD / grid.cell_area
+    V = hs.deformation(pressure, grid, geometry.contact_modulus)
+    with pytest.raises(ConvergenceError, match="overlap outside the contact") as caught:
+        hs.verify(gap, pressure, V, float(gap[4, 4] + V[4, 4]), grid, LOAD, 1e-8)
+    assert caught.value.reason and caught.value.residual > caught.value.tolerance > 0
+    # and a pressure that does not carry the load
+    result = hs.solve(gap, grid, geometry.contact_modulus, force=LOAD)
+    with pytest.raises(ConvergenceError, match="load balance"):
+        hs.verify(gap, result.pressure, result.deformation, result.approach, grid, 1.01 * LOAD, 1e-8)
+    with pytest.raises(ConvergenceError, match="no tension"):
+        hs.verify(gap, -result.pressure, result.deformation, result.approach, grid, None, 1e-8)
+
+
+@pytest.mark.parametrize("e_star", [1e25, 1e35, 1e300])
+def test_approach_control_is_independent_of_the_modulus_scale(e_star):
+    # under approach control p / E* does not depend on E*; the single-precision increments underflowed for large
+    # E* and the solver returned its start (p / E* 14 % off at 1e35 and 1e300 Pa, 2.5e-5 at 1e25)
+    grid = hs.surface_grid(2e-4, 2e-4, 32, 32)
+    gap = hs.quadratic_gap(grid, 1000.0, 500.0, 0.3)
+    reference = hs.solve(gap, grid, 1e11, approach=1e-7)
+    scaled = hs.solve(gap, grid, e_star, approach=1e-7)
+    assert np.max(np.abs(scaled.pressure / e_star - reference.pressure / 1e11)) < 1e-6 * reference.max_pressure / 1e11

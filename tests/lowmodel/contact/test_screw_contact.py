@@ -123,3 +123,12 @@ def test_screw_contact(preload, balls, psi, alpha, a, b, p0, rotation):
 def test_groove_contact(ball_radius, conf, lead, alpha, load, body):
     call(sc.groove_contact, ball_radius, conf, 6.0 * ball_radius, lead, alpha, load, body, youngs_modulus=2.1e11,
          poisson_ratio=0.3, n=16)
+
+
+@pytest.mark.parametrize("n", [9, 11])
+def test_groove_contact_on_small_odd_grids(n):
+    # the lowest cell of the exact gap is the only start cell on these grids: the BEM used to return it with the
+    # whole load (25 and 37 times the Hertz p0); now the central pressure is Hertz's to the discretisation error
+    result = screw_contact.groove_contact(R_B, R_G / (2 * R_B), R_P, 0.01, BETA, 27.77, n=n, **STEEL)
+    assert result.bem.central_pressure == pytest.approx(float(result.hertz.p0), rel=0.01)
+    assert result.bem.iterations > 1

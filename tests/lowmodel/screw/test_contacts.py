@@ -80,3 +80,14 @@ def test_screw_module_and_solves_refuse_what_breaks_the_model(table):
     state = sb.solve(contacts, 50.0)
     empty = sb.ScrewBallState(**{**state.__dict__, "normal_force": np.zeros_like(state.normal_force)})
     assert b2b.saturation(empty) == 0.0
+
+
+# --- shapes at the public entry points: a message naming the parameter, not numpy's --------------------------
+def test_ball_contacts_names_a_deviation_of_the_wrong_shape():
+    """Were numpy's 'zero-size array to reduction operation minimum' ([]) and 'operands could not be broadcast'
+    (a 2-D array)."""
+    module = screw_contacts.screw_module()
+    for bad in ([], np.zeros((2, 2))):
+        with pytest.raises(ValueError, match="deviation must be one theta"):
+            screw_contacts.ball_contacts(module, bad)
+    assert screw_contacts.ball_contacts(module, [0.0, 0.01]).n_balls == 2

@@ -203,3 +203,32 @@ def test_whole_screw(n_balls, load, duration, steps, amplitude, cycles, lead_err
                    amplitude=amplitude, cycles=cycles, lead_error=lead_error, stiffness=stiffness, sections=sections)
     if history is not None:
         assert np.allclose(history.axial_load.sum(axis=1), load, rtol=1e-6)
+
+
+def test_solve_takes_one_load_and_gives_one_nut_shift_per_ball():
+    """An array load was 'The truth value of an array ... is ambiguous'; two balls gave the mean of their nut
+    shifts, where the docs (docs/ball_screw.md) promise one per ball when each ball's load is prescribed."""
+    module = screw_contacts.screw_module(oversize=1.7e-6)
+    contacts = screw_contacts.ball_contacts(module, [0.0, 0.01])
+    with pytest.raises(ValueError, match="axial_load must be a single number"):
+        sb.solve(contacts, [25.0, 25.0])
+    both = sb.solve(contacts, 25.0)
+    singles = [sb.solve(screw_contacts.ball_contacts(module, theta), 25.0).nut_shift for theta in (0.0, 0.01)]
+    assert np.shape(both.nut_shift) == (2,)
+    assert both.nut_shift == pytest.approx(singles, rel=1e-12)
+    assert singles[0] != pytest.approx(singles[1], rel=1e-3)  # the deviation moves the ball: the mean was neither
+
+
+def test_whole_screw_takes_a_constant_deviation_function(table):
+    """A deviation function returning one number gave one ball's contacts for n balls, and the error blamed
+    axial_load ('must be a scalar (total) or have shape (1,)')."""
+    module, stiffness, sections = table
+    options = dict(n_balls=6, axial_load=150.0, steps=1, stiffness=stiffness, sections=sections)
+    constant = ws.simulate(module, deviation=lambda phi: 0.01, **options)
+    assert np.all(constant.deviation == 0.01)
+    same = ws.simulate(module, deviation=lambda phi: np.full(np.shape(phi), 0.01), **options)
+    assert np.array_equal(constant.b2b_force, same.b2b_force)
+    with pytest.raises(ValueError, match=r"deviation\(phi\) must return"):
+        ws.simulate(module, deviation=lambda phi: np.zeros(3), **options)
+    with pytest.raises(ValueError, match="deviation must be a function"):
+        ws.simulate(module, deviation=0.01, **options)
