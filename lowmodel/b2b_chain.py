@@ -335,7 +335,7 @@ def chain_forces(z: np.ndarray, layout: ChainLayout, *, rate_index: int, rate_sc
     violation = max(float(np.max(-forces[touching], initial=0.0)), float(np.max(-rate, initial=0.0)))
     if violation > 10 * tolerance:
         raise ConvergenceError(f"{what}: complementarity violated", residual=violation, iterations=iterations,
-                               tolerance=tolerance)
+                               tolerance=tolerance, reason="complementarity violated")
     on_force_branch = touching[forces[touching] <= rate]
     forces = np.maximum(forces, 0.0)
     forces[on_force_branch] = 0.0  # active min() branch F = 0: exactly zero
