@@ -51,6 +51,7 @@ from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, Chai
     chain_system
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as single
+from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
 from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
@@ -61,6 +62,7 @@ from ballbench.lowmodel.linear_bearing.ball import (
     solve_branch,
     solve_free,
     solve_with_continuation,
+    case_state,
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
@@ -195,6 +197,9 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     k = N_UNKNOWNS
     what = f"{n}-ball B2B contact"
     layout = ChainLayout(n, k, touching)
+    fast = _solve_compiled(contacts, layout, reference_force, tolerance, max_iterations)
+    if fast is not None:
+        return fast
     at = {}  # the contacts the coupled system is evaluated for (one system, built once per solve)
 
     def ball_function(balls, _extra=None):
@@ -259,6 +264,19 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def _solve_compiled(contacts: BallContacts, layout: ChainLayout, reference_force: float, tolerance: float,
+                    max_iterations: int):
+    """:func:`solve`'s first two attempts (the coupled Newton from rolling at v/2, then from every ball solved on
+    its own) and its complementarity check by the compiled kernels (:mod:`lowmodel.linear_bearing.ball_fast`);
+    None where the kernels are off or the attempts fail (then :func:`solve` runs its numpy path, with the
+    continuation, and names the failure)."""
+    states = ball_fast.solve_chains(contacts, layout.n_balls, layout.live, reference_force, tolerance=tolerance,
+                                    max_iterations=max_iterations)
+    if states is None or states.status[0]:
+        return None
+    return case_state(states, 0)
 
 
 def coupled_system(ball_function, layout: ChainLayout, mu: float):

@@ -83,6 +83,17 @@ class BallContacts:
         return _friction_angle_function(self.b_over_a)
 
     @cached_property
+    def friction_cells(self):
+        """The friction map's ``log(b/a)`` cells and offset powers of the contacts (n, 4) and (n, 4, 4)
+        (:func:`lowmodel.contact.ellipse_friction.log_ratio_cells`), for the compiled kernels."""
+        from ballbench.lowmodel.contact.ellipse_friction import log_ratio_cells
+
+        cells, powers = log_ratio_cells(self.b_over_a)
+        cells.setflags(write=False)
+        powers.setflags(write=False)
+        return cells, powers
+
+    @cached_property
     def equilibrium(self):
         """(n, 3, 8): the rows of lin2019 eq 4 as a matrix on ``(force_i, moment_i)`` (columns interleaved
         ``f_0, M_0, f_1, M_1, ...``), the same as (n, 4, 3, 2) (contact, row, force | moment), and the

@@ -1,0 +1,144 @@
+"""The compiled path of the linear-bearing ball and B2B solves: their data as flat arrays, and batches.
+
+:func:`solve_free` (balls alone, lin2019 eq 4) and :func:`solve_chains` (open B2B chains, eqs 4-10) run the
+kernels of :mod:`lowmodel.linear_bearing.ball_kernels` on many independent cases at once: a one-case solve of
+:mod:`lowmodel.linear_bearing.ball` or :mod:`lowmodel.linear_bearing.b2b` is a batch of one, a Monte Carlo chunk
+a batch of many, and both give the same numbers to the last bit.  Both return None where the kernels are
+not available (:func:`lowmodel.kernels.load`: no numba, or switched off); then the callers run their numpy
+code.  A case whose kernel solve fails (``status`` not 0) is solved again by the caller's numpy path, which
+has the continuation and names the failure.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts
+
+__all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS"]
+
+KERNELS = "linear_bearing.ball_kernels"
+_FIELDS = 12  # ball_kernels.FIELDS
+
+
+@dataclass(frozen=True)
+class CaseStates:
+    """Converged states of ``m`` cases of ``n`` balls from the kernels [SI] (the fields of
+    :class:`lowmodel.linear_bearing.ball.BallState`); cases with ``status != 0`` hold no state.
+
+    status, iterations, residual, input_power : (m,);  ball : (m, n, 4) v_B, omega_x, omega_y, epsilon;
+    contact : (m, n, 4, 7) spin, slide, c/a, friction force, friction moment, eq A6 loss, friction loss;
+    pair : (m, n - 1, 3) F_B2B, B2B slip, B2B loss (zeros for balls alone)
+    """
+
+    status: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    input_power: np.ndarray
+    ball: np.ndarray
+    contact: np.ndarray
+    pair: np.ndarray
+
+
+def compiled():
+    """The kernel module (:mod:`lowmodel.linear_bearing.ball_kernels`), or None (the numpy path runs)."""
+    return kernels.load(KERNELS)
+
+
+def geometry(contacts: BallContacts, reference_force) -> np.ndarray:
+    """(n, 4, FIELDS): per contact ``n_x, n_y, a_i/R_B``, the groove velocity sign of the contact, ``F_i /
+    F_ref`` (``reference_force`` [N], scalar or (n,) per ball), the friction map's ``log(b/a)`` cell and offset
+    powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of :mod:`lowmodel.linear_bearing.ball_kernels`)."""
+    nx, ny, arm, _, _, top = contacts.kinematics
+    cells, powers = contacts.friction_cells
+    reference = np.asarray(reference_force, dtype=float)
+    if reference.ndim:
+        reference = reference[:, None]
+    data = np.empty(nx.shape + (_FIELDS,))
+    data[..., 0] = nx
+    data[..., 1] = ny
+    data[..., 2] = arm
+    data[..., 3] = top
+    data[..., 4] = contacts.normal_forces / reference  # as ball_terms: load per reference force
+    data[..., 5] = cells
+    data[..., 6:10] = powers
+    data[..., 10] = contacts.semi_major
+    data[..., 11] = contacts.contact_angles
+    return data
+
+
+def _prepare(contacts: BallContacts, balls_per_case: int, reference_force):
+    b = int(balls_per_case)
+    m = contacts.n_balls // b
+    reference = np.broadcast_to(np.asarray(reference_force, dtype=float), (m,))
+    data = geometry(contacts, np.repeat(reference, b)).reshape(m, b, 4, _FIELDS)
+    scalars = np.empty((m, 4))
+    scalars[:, 0] = contacts.groove_velocity
+    scalars[:, 1] = contacts.ball_radius
+    scalars[:, 2] = contacts.friction_coefficient
+    scalars[:, 3] = reference
+    return m, b, data, scalars
+
+
+def _tables():
+    from ballbench.lowmodel.contact.ellipse_friction import patch_table
+
+    nodes_x, _, mid_x, mid_y, flat = patch_table()
+    return nodes_x, mid_x, mid_y.size, flat
+
+
+def _empty(m: int, b: int) -> CaseStates:
+    return CaseStates(np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.int64), np.zeros(m), np.zeros(m),
+                      np.zeros((m, b, 4)), np.zeros((m, b, 4, 7)), np.zeros((m, max(b - 1, 0), 3)))
+
+
+def solve_free(contacts: BallContacts, balls_per_case: int, reference_force, *, tolerance: float,
+               max_iterations: int) -> CaseStates | None:
+    """Cases of ``balls_per_case`` balls (balls ``c b .. c b + b - 1`` of ``contacts`` are case ``c``), every
+    ball alone (lin2019 eq 4, :func:`lowmodel.linear_bearing.ball.solve`); ``reference_force`` [N] the unit of
+    each case's force residuals (scalar or (m,)).  None without kernels."""
+    module = compiled()
+    if module is None:
+        return None
+    m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
+    out = _empty(m, b)
+    module.solve_free_cases(data, scalars, float(tolerance), int(max_iterations), *_tables(), out.status,
+                            out.iterations, out.residual, out.ball, out.contact, out.input_power)
+    return out
+
+
+def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_force, *, tolerance: float,
+                 max_iterations: int) -> CaseStates | None:
+    """Cases of open B2B chains of ``balls_per_case`` balls (lin2019 eqs 4-10; the first two attempts of
+    :func:`lowmodel.linear_bearing.b2b.solve`); ``live`` (m, b) or (b,) bool, pair (j, j+1) of the case touches.
+    None without kernels."""
+    module = compiled()
+    if module is None:
+        return None
+    m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
+    live = np.ascontiguousarray(np.broadcast_to(np.asarray(live, dtype=np.bool_), (m, b)))
+    out = _empty(m, b)
+    module.solve_chain_cases(data, live, scalars, COMPLEMENTARITY_SCALE, float(tolerance), int(max_iterations),
+                             *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
+                             out.input_power)
+    return out
+
+
+def warm_up(module) -> None:
+    """Compile (or load from the cache) the kernels for the argument types of :func:`solve_free` and
+    :func:`solve_chains`."""
+    from ballbench.lowmodel.linear_bearing.contacts import contacts_from_forces
+
+    contacts = contacts_from_forces(np.full((2, 4), np.pi / 4), 100.0, 4e-4, 0.2, ball_radius=5e-3,
+                                    friction_coefficient=0.1, groove_velocity=0.01)
+    m, b, data, scalars = _prepare(contacts, 2, 100.0)
+    out = _empty(m, b)
+    tables = _tables()
+    module.solve_free_cases(data, scalars, 1e-12, 2, *tables, out.status, out.iterations, out.residual, out.ball,
+                            out.contact, out.input_power)
+    module.solve_chain_cases(data, np.array([[True, False]]), scalars, COMPLEMENTARITY_SCALE, 1e-12, 2, *tables,
+                             out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
+                             out.input_power)
