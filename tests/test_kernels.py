@@ -113,3 +113,30 @@ def test_numpy_path_without_numba():
 def test_use_kernels_checks_its_argument():
     with pytest.raises(ValueError, match="enabled"):
         kernels.use_kernels("yes")
+
+
+@pytest.mark.parametrize("enabled", [True, False])
+def test_batched_cases_equal_one_case_solves(enabled):
+    # the vectorised Monte Carlo case function (one batch per chunk) gives each case's scalar call to the last bit,
+    # with the kernels and without them (then the batch is the one-case solves)
+    from ballbench.validation import sweep_cases
+
+    if enabled:
+        pytest.importorskip("numba")
+    kernels.use_kernels(enabled)
+    try:
+        draws = np.random.default_rng(5).normal(0.0, math.radians(1.0), (8, 12))
+        rho = np.linspace(-0.5, 0.5, 12)
+        batch = sweep_cases.two_ball_deviations(*draws, rho=rho)
+        for case in range(12):
+            one = sweep_cases.two_ball_deviations(*draws[:, case], rho=float(rho[case]))
+            for name, value in one.items():
+                assert batch[name][case] == value, (case, name)
+    finally:
+        kernels.use_kernels(None)
+
+
+def test_case_batches_check_their_size():
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=3)
+    with pytest.raises(ValueError, match="balls_per_case"):
+        b2b.solve_cases(contacts, 2)

@@ -66,8 +66,8 @@ from ballbench.lowmodel.linear_bearing.ball import (
 )
 from ballbench.lowmodel.solvers import check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system", "pair_function",
-           "touching_pairs", "MU_PATH_START"]
+__all__ = ["solve", "solve_cases", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
+           "pair_function", "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -264,6 +264,35 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def solve_cases(contacts: BallContacts, balls_per_case: int, gaps=None, *, tolerance: float = 1e-12,
+                max_iterations: int = 100, gap_tolerance: float | None = None):
+    """Many independent B2B cases at once: balls ``c b .. c b + b - 1`` of ``contacts`` (ordered along +z) are case
+    ``c`` (``b = balls_per_case``), every case with the same ``gaps`` (b-1,) m (default all touching).
+
+    Returns :class:`lowmodel.linear_bearing.ball_fast.CaseStates` (``pair``: F_B2B, slip, loss), case ``c``
+    equal to :func:`solve` of its contacts (:func:`lowmodel.linear_bearing.ball_fast.case_contacts`) to the last
+    bit: the compiled kernels solve the batch (one Newton per case, one batched call), and the cases they
+    cannot solve (all cases without kernels) are solved by :func:`solve` one by one, with its continuation.
+    Raises what :func:`solve` raises for the first case without a state.
+    """
+    check_solver_options(tolerance, max_iterations)
+    reference = ball_fast.case_reference_forces(contacts, balls_per_case)
+    touching = touching_pairs(gaps, balls_per_case, contacts.ball_radius, gap_tolerance)
+    if balls_per_case == 1 or touching.size == 0:
+        return single.solve_cases(contacts, balls_per_case, tolerance=tolerance, max_iterations=max_iterations)
+    layout = ChainLayout(balls_per_case, N_UNKNOWNS, touching)
+    states = ball_fast.solve_chains(contacts, balls_per_case, layout.live, reference, tolerance=tolerance,
+                                    max_iterations=max_iterations)
+    if states is None:
+        states = ball_fast.empty_states(reference.size, balls_per_case)
+        states.status[:] = -1
+    for case in np.flatnonzero(states.status):
+        state = solve(ball_fast.case_contacts(contacts, balls_per_case, case), gaps, tolerance=tolerance,
+                      max_iterations=max_iterations, gap_tolerance=gap_tolerance)
+        ball_fast.store_state(states, case, state)
+    return states
 
 
 def _solve_compiled(contacts: BallContacts, layout: ChainLayout, reference_force: float, tolerance: float,

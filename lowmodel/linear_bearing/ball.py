@@ -76,6 +76,7 @@ __all__ = [
     "BallState",
     "BallTerms",
     "solve",
+    "solve_cases",
     "ContinuationPath",
     "homotopy_paths",
     "solve_with_continuation",
@@ -220,7 +221,8 @@ def case_state(states, case: int) -> BallState:
     :class:`lowmodel.linear_bearing.ball_fast.CaseStates` (its arrays are views of the batch's)."""
     ball, contact, pair = states.ball[case], states.contact[case], states.pair[case]
     return BallState(ball[:, 0], ball[:, 1:3], ball[:, 3], contact[..., 0], contact[..., 1], contact[..., 2],
-                     contact[..., 3], contact[..., 4], contact[..., 5], friction_loss=contact[..., 6],
+                     contact[..., 3], contact[..., 4], contact[..., 5],
+                     friction_loss=np.ascontiguousarray(contact[..., 6]),  # its sum: that of a batch's (m, 8) rows
                      input_power=float(states.input_power[case]), b2b_force=pair[:, 0], b2b_friction_loss=pair[:, 2],
                      b2b_slip=pair[:, 1], iterations=int(states.iterations[case]),
                      residual=float(states.residual[case]))
@@ -313,6 +315,27 @@ def solve(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: i
     terms = ball_terms(unknowns, contacts, reference_force)
     state = ball_state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def solve_cases(contacts: BallContacts, balls_per_case: int, *, tolerance: float = 1e-12, max_iterations: int = 60):
+    """Many independent cases at once, every ball alone: balls ``c b .. c b + b - 1`` of ``contacts`` are case ``c``
+    (``b = balls_per_case``).  Returns :class:`lowmodel.linear_bearing.ball_fast.CaseStates`, case ``c`` equal
+    to :func:`solve` of its contacts (:func:`lowmodel.linear_bearing.ball_fast.case_contacts`) to the last bit:
+    the compiled kernels solve the batch, and the cases they cannot (all cases without kernels) are solved by
+    :func:`solve` one by one.  Raises what :func:`solve` raises for the first case without a state.
+    """
+    check_solver_options(tolerance, max_iterations)
+    reference = ball_fast.case_reference_forces(contacts, balls_per_case)
+    states = ball_fast.solve_free(contacts, balls_per_case, reference, tolerance=tolerance,
+                                  max_iterations=max_iterations)
+    if states is None:
+        states = ball_fast.empty_states(reference.size, balls_per_case)
+        states.status[:] = -1
+    for case in np.flatnonzero(states.status):
+        state = solve(ball_fast.case_contacts(contacts, balls_per_case, case), tolerance=tolerance,
+                      max_iterations=max_iterations)
+        ball_fast.store_state(states, case, state)
+    return states
 
 
 def solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int,

@@ -18,7 +18,8 @@ from ballbench.lowmodel import kernels
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 
-__all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS"]
+__all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS", "empty_states",
+           "store_state", "case_contacts", "case_reference_forces"]
 
 KERNELS = "linear_bearing.ball_kernels"
 _FIELDS = 12  # ball_kernels.FIELDS
@@ -90,7 +91,8 @@ def _tables():
     return nodes_x, mid_x, mid_y.size, flat
 
 
-def _empty(m: int, b: int) -> CaseStates:
+def empty_states(m: int, b: int) -> CaseStates:
+    """:class:`CaseStates` of ``m`` cases of ``b`` balls, all zero (status 0)."""
     return CaseStates(np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.int64), np.zeros(m), np.zeros(m),
                       np.zeros((m, b, 4)), np.zeros((m, b, 4, 7)), np.zeros((m, max(b - 1, 0), 3)))
 
@@ -104,7 +106,7 @@ def solve_free(contacts: BallContacts, balls_per_case: int, reference_force, *, 
     if module is None:
         return None
     m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
-    out = _empty(m, b)
+    out = empty_states(m, b)
     module.solve_free_cases(data, scalars, float(tolerance), int(max_iterations), *_tables(), out.status,
                             out.iterations, out.residual, out.ball, out.contact, out.input_power)
     return out
@@ -120,7 +122,7 @@ def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_fo
         return None
     m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
     live = np.ascontiguousarray(np.broadcast_to(np.asarray(live, dtype=np.bool_), (m, b)))
-    out = _empty(m, b)
+    out = empty_states(m, b)
     module.solve_chain_cases(data, live, scalars, COMPLEMENTARITY_SCALE, float(tolerance), int(max_iterations),
                              *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
                              out.input_power)
@@ -135,10 +137,46 @@ def warm_up(module) -> None:
     contacts = contacts_from_forces(np.full((2, 4), np.pi / 4), 100.0, 4e-4, 0.2, ball_radius=5e-3,
                                     friction_coefficient=0.1, groove_velocity=0.01)
     m, b, data, scalars = _prepare(contacts, 2, 100.0)
-    out = _empty(m, b)
+    out = empty_states(m, b)
     tables = _tables()
     module.solve_free_cases(data, scalars, 1e-12, 2, *tables, out.status, out.iterations, out.residual, out.ball,
                             out.contact, out.input_power)
     module.solve_chain_cases(data, np.array([[True, False]]), scalars, COMPLEMENTARITY_SCALE, 1e-12, 2, *tables,
                              out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
                              out.input_power)
+
+
+def store_state(states: CaseStates, case: int, state) -> None:
+    """Write the fields of ``state`` (a :class:`lowmodel.linear_bearing.ball.BallState`) into case ``case`` of
+    ``states`` and mark it solved (status 0)."""
+    states.status[case] = 0
+    states.iterations[case] = state.iterations
+    states.residual[case] = state.residual
+    states.input_power[case] = state.input_power
+    states.ball[case, :, 0] = state.ball_velocity
+    states.ball[case, :, 1:3] = state.omega
+    states.ball[case, :, 3] = state.velocity_deviation
+    for k, field in enumerate((state.spin, state.slide, state.c_over_a, state.friction_force, state.friction_moment,
+                               state.friction_loss_table, state.friction_loss)):
+        states.contact[case, :, :, k] = field
+    for k, field in enumerate((state.b2b_force, state.b2b_slip, state.b2b_friction_loss)):
+        states.pair[case, :, k] = field
+
+
+def case_contacts(contacts: BallContacts, balls_per_case: int, case: int) -> BallContacts:
+    """The contacts of case ``case`` alone: balls ``case b .. case b + b - 1``."""
+    part = slice(case * balls_per_case, (case + 1) * balls_per_case)
+    return BallContacts(contacts.contact_angles[part], contacts.normal_forces[part], contacts.semi_major[part],
+                        contacts.b_over_a[part], contacts.ball_radius, contacts.friction_coefficient,
+                        contacts.groove_velocity)
+
+
+def case_reference_forces(contacts: BallContacts, balls_per_case: int) -> np.ndarray:
+    """(m,) N: the largest normal force of each case, the unit of its force residuals (as a one-case solve);
+    ValueError unless ``balls_per_case`` divides the number of balls."""
+    from ballbench.lowmodel import checks
+
+    b = checks.count("balls_per_case", balls_per_case, 1)
+    if contacts.n_balls % b:
+        raise ValueError(f"balls_per_case = {b} must divide the number of balls, {contacts.n_balls}")
+    return contacts.normal_forces.reshape(contacts.n_balls // b, b * 4).max(axis=1)

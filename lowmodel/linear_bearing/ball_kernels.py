@@ -246,6 +246,24 @@ def _dense(diagonal, upper, lower, out):
 
 
 @_jit
+def _normal_dense(jacobian, normal, columns, values):
+    """``J^T J`` of a dense ``J``, summed row by row over its nonzero entries (a ball's Jacobian is mostly zeros)."""
+    size = jacobian.shape[1]
+    normal[:] = 0.0
+    for r in range(jacobian.shape[0]):
+        count = 0
+        for c in range(size):
+            if jacobian[r, c] != 0.0:
+                columns[count] = c
+                values[count] = jacobian[r, c]
+                count += 1
+        for u in range(count):
+            cu, vu = columns[u], values[u]
+            for v in range(count):
+                normal[cu, columns[v]] += vu * values[v]
+
+
+@_jit
 def _lu_solve(matrix, rhs, out):
     """``matrix^-1 rhs`` by LU with partial pivoting (``matrix`` overwritten); False where a pivot is 0."""
     size = rhs.size
@@ -427,6 +445,8 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         jacobian = np.empty((size, size))
         normal = np.empty((size, size))
         system = np.empty((size, size))
+        columns = np.empty(size, dtype=np.int64)
+        values = np.empty(size)
         band = np.empty((1, 1))
         factor = np.empty((1, 1))
         permuted = np.empty(1)
@@ -435,6 +455,8 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         jacobian = np.empty((1, 1))
         normal = np.empty((1, 1))
         system = np.empty((1, 1))
+        columns = np.empty(1, dtype=np.int64)
+        values = np.empty(1)
         band = np.empty((size, 2 * big_k + 2))
         factor = np.empty((size, 2 * big_k + 2))
         permuted = np.empty(size)
@@ -458,12 +480,7 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         iterations += 1
         if dense:
             _dense(diagonal, upper, lower, jacobian)
-            for a in range(size):
-                for b in range(size):
-                    total = 0.0
-                    for r in range(size):
-                        total += jacobian[r, a] * jacobian[r, b]
-                    normal[a, b] = total
+            _normal_dense(jacobian, normal, columns, values)
             diagonal_max = -np.inf
             for i in range(size):
                 diagonal_max = max(diagonal_max, normal[i, i])
