@@ -49,7 +49,9 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
     chain_system
+from ballbench.lowmodel.b2b_relaxation import Relaxation, relax
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
 from ballbench.lowmodel.linear_bearing import ball as single
 from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
@@ -58,16 +60,18 @@ from ballbench.lowmodel.linear_bearing.ball import (
     BallState,
     ball_state,
     ball_terms,
+    ContinuationPath,
     initial_guess,
+    with_slip_angles,
     solve_branch,
     solve_free,
     solve_with_continuation,
     case_state,
 )
-from ballbench.lowmodel.solvers import check_solver_options
+from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options
 
-__all__ = ["solve", "solve_cases", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system",
-           "pair_function", "touching_pairs", "MU_PATH_START"]
+__all__ = ["solve", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps", "GapHistory", "module_contacts",
+           "b2b_terms", "coupled_system", "pair_function", "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -250,10 +254,13 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
             iterations += free_iterations
         except ConvergenceError as error:  # ... else by continuation of the coupled problem
             paths = []
-            (z, residual, iterations), taken = solve_with_continuation(contacts, solve_at, free_start,
-                                                                       error if error.iterations else first_error,
-                                                                       what=what, balls_of=balls_of,
-                                                                       extra_paths=(("mu", MU_PATH_START, mu_at),))
+            try:
+                (z, residual, iterations), taken = solve_with_continuation(
+                    contacts, solve_at, free_start, error if error.iterations else first_error, what=what,
+                    balls_of=balls_of, extra_paths=(("mu", MU_PATH_START, mu_at),))
+            except ConvergenceError as failure:  # ... else the existence oracle: relax the balls in time
+                (z, residual, iterations), taken = _from_relaxation(contacts, layout, gaps, gap_tolerance, failure,
+                                                                    solve_at, what)
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
                                     iterations=iterations, what=what)
@@ -264,6 +271,89 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     state = ball_state(balls, terms, contacts, reference_force, b2b_force=forces * mu * reference_force,
                        b2b_slip=slip * speed, iterations=iterations, residual=float(np.max(np.abs(residual))))
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+RELAXATION_FAILED = "the relaxation settled, but Newton from its state did not converge"
+STEEL_DENSITY = 7850.0  # kg/m^3: the ball mass of the relaxation's time scale (lin2019 Table 1: steel)
+
+
+def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | None = None, start=None,
+                density: float = STEEL_DENSITY, **options) -> Relaxation:
+    """Relax the balls of ``contacts`` in time under the friction laws of :func:`solve` (the existence oracle,
+    :mod:`lowmodel.b2b_relaxation`): lin2019 eq 4 with the friction map's loads at the current slip directions,
+    the B2B loads of eqs 5-8 on touching pairs, their complementarity (eqs 9-10) at every time step.
+
+    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0`` (default: rolling at
+    v/2, the start of :func:`solve`); ``gaps`` as :func:`solve` (an open gap closing ends the run: a third
+    contact); ``density`` [kg/m^3] of the balls gives the time unit ``tau = m |v| / (mu F_ref)``.  ``options``
+    go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units ``mu F_ref`` (``F_ref`` the largest normal force).
+    """
+    n = contacts.n_balls
+    touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
+    live = np.zeros(n - 1, dtype=bool)
+    live[touching] = True
+    reference_force = float(contacts.normal_forces.max())
+    mu = contacts.friction_coefficient
+    _, _, _, dslide, dspin, _ = contacts.kinematics
+
+    def ball_loads(x):
+        unknowns = np.zeros((n, N_UNKNOWNS))
+        unknowns[:, :3] = x
+        unknowns = with_slip_angles(unknowns, contacts)  # friction along the current slip directions
+        terms = ball_terms(unknowns, contacts, reference_force)
+        squared = terms.slide ** 2 + terms.spin_velocity ** 2
+        safe = np.where(squared > 0.0, squared, 1.0)
+        d_phi = (terms.spin_velocity[..., None] * dslide - terms.slide[..., None] * dspin) / safe[..., None]
+        jacobian = np.matmul(terms.jacobian[:, :3, 3:], d_phi)  # d load / d phi . d phi / d x
+        return terms.residual[:, :3], jacobian, np.stack([terms.slide, terms.spin_velocity], axis=-1)
+
+    def pair_loads(x):
+        u, squared = _slip_squared(x)
+        unit = u / np.sqrt(squared + _REGULARISATION ** 2)[:, None]
+        direction = np.zeros((n - 1, 2, 3))
+        direction[:, 0, 0], direction[:, 1, 0] = -1.0, 1.0  # eq 8: the force on the ball behind, ahead
+        direction[:, :, 1:] = (-mu * unit)[:, None, :]  # its friction moment, the same on both (eq 8)
+        return direction
+
+    if start is None:
+        start = initial_guess(contacts)[:, :3]
+    mass = density * 4.0 / 3.0 * math.pi * contacts.ball_radius ** 3
+    speed = abs(contacts.groove_velocity)
+    tau = mass * speed / (mu * reference_force)
+    open_gaps = None if gaps is None else _check_gaps(gaps, n, contacts.ball_radius)
+    options.setdefault("contact_names", CONTACT_NAMES)
+    return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+
+
+def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, failure: ConvergenceError,
+                     solve_at, what: str):
+    """After the continuation failed with ``failure``: relax in time (:func:`relax_state`); a settled state is the
+    Newton start (``solve_at``), which must converge; otherwise ConvergenceError with the relaxation's reason
+    (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
+    relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
+    base = str(failure).split(" (residual")[0]
+    if relaxation.settled:
+        balls = np.zeros((layout.n_balls, N_UNKNOWNS))
+        balls[:, :3] = relaxation.velocities
+        start = layout.pack(with_slip_angles(balls, contacts), relaxation.forces)
+        try:
+            z, residual, iterations = solve_at(contacts, start, f"{what}, from the relaxed state")
+        except ConvergenceError as error:
+            stopped = ConvergenceError(f"{base}; {RELAXATION_FAILED} ({error})", residual=error.residual,
+                                       iterations=error.iterations, tolerance=error.tolerance,
+                                       reason=RELAXATION_FAILED, last_converged=failure.last_converged)
+            stopped.relaxation = relaxation
+            stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+            raise stopped from None
+        step = ContinuationStep(1.0, int(iterations))
+        return (z, residual, iterations), ContinuationPath((), "relaxation", 1.0, (step,))
+    met = f" (continuation: {failure.reason})" if failure.reason else ""
+    stopped = ConvergenceError(f"{base}{met}; {relaxation.reason}", residual=failure.residual,
+                               iterations=failure.iterations, tolerance=failure.tolerance, reason=relaxation.kind,
+                               last_converged=failure.last_converged)
+    stopped.relaxation = relaxation
+    stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+    raise stopped from None
 
 
 def solve_cases(contacts: BallContacts, balls_per_case: int, gaps=None, *, tolerance: float = 1e-12,
