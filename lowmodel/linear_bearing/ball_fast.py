@@ -18,7 +18,8 @@ from ballbench.lowmodel import kernels
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 
-__all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS", "empty_states",
+__all__ = ["compiled", "geometry", "build_geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS",
+           "empty_states",
            "store_state", "case_contacts", "case_reference_forces"]
 
 KERNELS = "linear_bearing.ball_kernels"
@@ -49,39 +50,40 @@ def compiled():
     return kernels.load(KERNELS)
 
 
-def geometry(contacts: BallContacts, reference_force) -> np.ndarray:
-    """(n, 4, FIELDS): per contact ``n_x, n_y, a_i/R_B``, the groove velocity sign of the contact, ``F_i /
-    F_ref`` (``reference_force`` [N], scalar or (n,) per ball), the friction map's ``log(b/a)`` cell and offset
-    powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of :mod:`lowmodel.linear_bearing.ball_kernels`)."""
+def geometry(contacts: BallContacts) -> np.ndarray:
+    """(n, 4, FIELDS), read-only, cached on ``contacts``: per contact ``n_x, n_y, a_i/R_B``, the groove velocity
+    sign of the contact, ``F_i`` [N] (the kernels divide by each case's reference force), the friction map's
+    ``log(b/a)`` cell and offset powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of
+    :mod:`lowmodel.linear_bearing.ball_kernels`)."""
+    return contacts.kernel_geometry
+
+
+def build_geometry(contacts: BallContacts) -> np.ndarray:
+    """:func:`geometry` computed (what :attr:`BallContacts.kernel_geometry` caches)."""
     nx, ny, arm, _, _, top = contacts.kinematics
     cells, powers = contacts.friction_cells
-    reference = np.asarray(reference_force, dtype=float)
-    if reference.ndim:
-        reference = reference[:, None]
     data = np.empty(nx.shape + (_FIELDS,))
     data[..., 0] = nx
     data[..., 1] = ny
     data[..., 2] = arm
     data[..., 3] = top
-    data[..., 4] = contacts.normal_forces / reference  # as ball_terms: load per reference force
+    data[..., 4] = contacts.normal_forces
     data[..., 5] = cells
     data[..., 6:10] = powers
     data[..., 10] = contacts.semi_major
     data[..., 11] = contacts.contact_angles
+    data.setflags(write=False)
     return data
 
 
-def _prepare(contacts: BallContacts, balls_per_case: int, reference_force):
-    b = int(balls_per_case)
-    m = contacts.n_balls // b
-    reference = np.broadcast_to(np.asarray(reference_force, dtype=float), (m,))
-    data = geometry(contacts, np.repeat(reference, b)).reshape(m, b, 4, _FIELDS)
-    scalars = np.empty((m, 4))
+def _scalars(contacts: BallContacts, reference) -> np.ndarray:
+    reference = np.atleast_1d(np.asarray(reference, dtype=float))
+    scalars = np.empty((reference.size, 4))
     scalars[:, 0] = contacts.groove_velocity
     scalars[:, 1] = contacts.ball_radius
     scalars[:, 2] = contacts.friction_coefficient
     scalars[:, 3] = reference
-    return m, b, data, scalars
+    return scalars
 
 
 def _tables():
@@ -101,30 +103,31 @@ def solve_free(contacts: BallContacts, balls_per_case: int, reference_force, *, 
                max_iterations: int) -> CaseStates | None:
     """Cases of ``balls_per_case`` balls (balls ``c b .. c b + b - 1`` of ``contacts`` are case ``c``), every
     ball alone (lin2019 eq 4, :func:`lowmodel.linear_bearing.ball.solve`); ``reference_force`` [N] the unit of
-    each case's force residuals (scalar or (m,)).  None without kernels."""
+    each case's force residuals, (m,) or a scalar for one case.  None without kernels."""
     module = compiled()
     if module is None:
         return None
-    m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
-    out = empty_states(m, b)
-    module.solve_free_cases(data, scalars, float(tolerance), int(max_iterations), *_tables(), out.status,
-                            out.iterations, out.residual, out.ball, out.contact, out.input_power)
+    scalars = _scalars(contacts, reference_force)
+    out = empty_states(scalars.shape[0], balls_per_case)
+    module.solve_free_cases(geometry(contacts), balls_per_case, scalars, float(tolerance), int(max_iterations),
+                            *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact,
+                            out.input_power)
     return out
 
 
 def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_force, *, tolerance: float,
                  max_iterations: int) -> CaseStates | None:
     """Cases of open B2B chains of ``balls_per_case`` balls (lin2019 eqs 4-10; the first two attempts of
-    :func:`lowmodel.linear_bearing.b2b.solve`); ``live`` (m, b) or (b,) bool, pair (j, j+1) of the case touches.
-    None without kernels."""
+    :func:`lowmodel.linear_bearing.b2b.solve`); ``live`` (b,) bool, pair (j, j+1) of every case touches;
+    ``reference_force`` as :func:`solve_free`.  None without kernels."""
     module = compiled()
     if module is None:
         return None
-    m, b, data, scalars = _prepare(contacts, balls_per_case, reference_force)
-    live = np.ascontiguousarray(np.broadcast_to(np.asarray(live, dtype=np.bool_), (m, b)))
-    out = empty_states(m, b)
-    module.solve_chain_cases(data, live, scalars, COMPLEMENTARITY_SCALE, float(tolerance), int(max_iterations),
-                             *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
+    scalars = _scalars(contacts, reference_force)
+    out = empty_states(scalars.shape[0], balls_per_case)
+    module.solve_chain_cases(geometry(contacts), balls_per_case, np.asarray(live, dtype=np.bool_),
+                             scalars, COMPLEMENTARITY_SCALE, float(tolerance), int(max_iterations), *_tables(),
+                             out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
                              out.input_power)
     return out
 
@@ -136,13 +139,12 @@ def warm_up(module) -> None:
 
     contacts = contacts_from_forces(np.full((2, 4), np.pi / 4), 100.0, 4e-4, 0.2, ball_radius=5e-3,
                                     friction_coefficient=0.1, groove_velocity=0.01)
-    m, b, data, scalars = _prepare(contacts, 2, 100.0)
-    out = empty_states(m, b)
-    tables = _tables()
-    module.solve_free_cases(data, scalars, 1e-12, 2, *tables, out.status, out.iterations, out.residual, out.ball,
-                            out.contact, out.input_power)
-    module.solve_chain_cases(data, np.array([[True, False]]), scalars, COMPLEMENTARITY_SCALE, 1e-12, 2, *tables,
-                             out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
+    scalars = _scalars(contacts, 100.0)
+    out = empty_states(1, 2)
+    module.solve_free_cases(geometry(contacts), 2, scalars, 1e-12, 2, *_tables(), out.status, out.iterations,
+                            out.residual, out.ball, out.contact, out.input_power)
+    module.solve_chain_cases(geometry(contacts), 2, np.array([True, False]), scalars, COMPLEMENTARITY_SCALE, 1e-12, 2,
+                             *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
                              out.input_power)
 
 

@@ -601,6 +601,17 @@ def solve_branch(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_
 
 
 @_jit
+def _case_geometry(geometry, case, n, reference, out):
+    """The data of case ``case`` (balls ``case n .. case n + n - 1`` of ``geometry``) into ``out`` (n, 4, FIELDS),
+    its normal forces per unit ``reference`` [N] (as ball_terms: ``F_i / F_ref``)."""
+    for j in range(n):
+        for i in range(4):
+            for f in range(FIELDS):
+                out[j, i, f] = geometry[case * n + j, i, f]
+            out[j, i, LOAD] = geometry[case * n + j, i, LOAD] / reference
+
+
+@_jit
 def _guess(n, geometry, velocity, x):
     """Rolling about x at v/2 with its slip angles, the start of every solve
     (:func:`lowmodel.linear_bearing.ball.initial_guess`), into ``x`` (n, 7)."""
@@ -676,42 +687,47 @@ def _free(n, x, geometry, scalars, nodes_x, mid_x, n_mid_y, flat, tolerance, max
 
 
 @_jit
-def solve_free_cases(geometry, scalars, tolerance, max_iterations, nodes_x, mid_x, n_mid_y, flat, status, iterations,
-                     residual, out_ball, out_contact, input_power):
+def solve_free_cases(geometry, balls_per_case, scalars, tolerance, max_iterations, nodes_x, mid_x, n_mid_y, flat,
+                     status, iterations, residual, out_ball, out_contact, input_power):
     """``m`` cases of ``n`` balls, every ball alone (lin2019 eq 4; :func:`lowmodel.linear_bearing.ball.solve`):
-    ``geometry`` (m, n, 4, FIELDS), ``scalars`` (m, 4) v, R_B, mu, F_ref; per case ``status``, largest
+    ``geometry`` (m n, 4, FIELDS) (field LOAD: the normal force [N]), ``scalars`` (m, 4) v, R_B, mu, F_ref; per case
+    ``status``, largest
     ``iterations`` and ``residual``, the state (:func:`_state`) and ``input_power`` (m,)."""
-    m, n = geometry.shape[0], geometry.shape[1]
+    m, n = geometry.shape[0] // balls_per_case, balls_per_case
     x = np.empty((n, 7))
+    g = np.empty((n, 4, FIELDS))
     for c in range(m):
-        _guess(n, geometry[c], scalars[c, 0], x)
-        status[c], iterations[c], residual[c] = _free(n, x, geometry[c], scalars[c], nodes_x, mid_x, n_mid_y, flat,
+        _case_geometry(geometry, c, n, scalars[c, 3], g)
+        _guess(n, g, scalars[c, 0], x)
+        status[c], iterations[c], residual[c] = _free(n, x, g, scalars[c], nodes_x, mid_x, n_mid_y, flat,
                                                       tolerance, max_iterations)
         if status[c] == CONVERGED:
-            input_power[c] = _state(n, x.reshape(-1), 7, geometry[c], scalars[c], nodes_x, mid_x, n_mid_y, flat,
+            input_power[c] = _state(n, x.reshape(-1), 7, g, scalars[c], nodes_x, mid_x, n_mid_y, flat,
                                     out_ball[c], out_contact[c])
 
 
 @_jit
-def solve_chain_cases(geometry, live, scalars, rate_scale, tolerance, max_iterations, nodes_x, mid_x, n_mid_y, flat,
-                      status, iterations, residual, out_ball, out_contact, out_pair, input_power):
+def solve_chain_cases(geometry, balls_per_case, live, scalars, rate_scale, tolerance, max_iterations, nodes_x, mid_x,
+                      n_mid_y, flat, status, iterations, residual, out_ball, out_contact, out_pair, input_power):
     """``m`` open B2B chains of ``n`` balls (:func:`lowmodel.linear_bearing.b2b.solve`'s first two attempts: the
-    coupled Newton from rolling at v/2, else from every ball solved alone), ``live`` (m, n) the touching pairs;
+    coupled Newton from rolling at v/2, else from every ball solved alone), ``live`` (n,) the touching pairs;
     the complementarity check of :func:`lowmodel.b2b_chain.chain_forces` (status :data:`VIOLATED`); per case
     the state (:func:`_state`), ``out_pair`` (m, n - 1, 3): F_B2B [N], B2B slip [m/s], B2B loss [W]."""
-    m, n = geometry.shape[0], geometry.shape[1]
+    m, n = geometry.shape[0] // balls_per_case, balls_per_case
     big_k = 8
     x = np.empty((n, 7))
     z = np.empty(n * big_k)
     chain_residual = np.empty(n * big_k)
+    g = np.empty((n, 4, FIELDS))
     for c in range(m):
-        g, scalar = geometry[c], scalars[c]
+        scalar = scalars[c]
+        _case_geometry(geometry, c, n, scalar[3], g)
         mu = scalar[2]
         _guess(n, g, scalar[0], x)
         for j in range(n):
             z[big_k * j:big_k * j + 7] = x[j]
             z[big_k * j + 7] = 0.0
-        state, count, norm = solve_branch(z, n, big_k, g, live[c], mu, rate_scale, nodes_x, mid_x, n_mid_y, flat,
+        state, count, norm = solve_branch(z, n, big_k, g, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat,
                                           tolerance, max_iterations, 4, chain_residual)
         if state != CONVERGED:  # from every ball solved on its own
             state, free_count, norm = _free(n, x, g, scalar, nodes_x, mid_x, n_mid_y, flat, tolerance,
@@ -720,7 +736,7 @@ def solve_chain_cases(geometry, live, scalars, rate_scale, tolerance, max_iterat
                 for j in range(n):
                     z[big_k * j:big_k * j + 7] = x[j]
                     z[big_k * j + 7] = 0.0
-                state, count, norm = solve_branch(z, n, big_k, g, live[c], mu, rate_scale, nodes_x, mid_x, n_mid_y,
+                state, count, norm = solve_branch(z, n, big_k, g, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
                                                   flat, tolerance, max_iterations, 4, chain_residual)
                 count += free_count
         status[c], iterations[c], residual[c] = state, count, norm
@@ -728,7 +744,7 @@ def solve_chain_cases(geometry, live, scalars, rate_scale, tolerance, max_iterat
             continue
         violation = 0.0  # eqs 9-10 at the converged point (touching pairs): F >= 0, separation rate >= 0
         for p in range(n - 1):
-            if live[c, p]:
+            if live[p]:
                 force = z[big_k * p + 7]
                 rate = (z[big_k * (p + 1)] - z[big_k * p]) * rate_scale
                 violation = max(violation, -force, -rate)
@@ -739,7 +755,7 @@ def solve_chain_cases(geometry, live, scalars, rate_scale, tolerance, max_iterat
         speed = abs(scalar[0])
         for p in range(n - 1):
             force = 0.0
-            if live[c, p]:
+            if live[p]:
                 force = z[big_k * p + 7]
                 rate = (z[big_k * (p + 1)] - z[big_k * p]) * rate_scale
                 if force <= rate:  # the F = 0 branch: exactly zero

@@ -94,6 +94,13 @@ class BallContacts:
         return cells, powers
 
     @cached_property
+    def kernel_geometry(self):
+        """The per-contact data of the compiled kernels (:func:`lowmodel.linear_bearing.ball_fast.geometry`)."""
+        from ballbench.lowmodel.linear_bearing.ball_fast import build_geometry
+
+        return build_geometry(self)
+
+    @cached_property
     def equilibrium(self):
         """(n, 3, 8): the rows of lin2019 eq 4 as a matrix on ``(force_i, moment_i)`` (columns interleaved
         ``f_0, M_0, f_1, M_1, ...``), the same as (n, 4, 3, 2) (contact, row, force | moment), and the
