@@ -18,12 +18,10 @@ from ballbench.lowmodel import kernels
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 
-__all__ = ["compiled", "geometry", "build_geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS",
-           "empty_states",
+__all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS", "empty_states",
            "store_state", "case_contacts", "case_reference_forces"]
 
 KERNELS = "linear_bearing.ball_kernels"
-_FIELDS = 12  # ball_kernels.FIELDS
 
 
 @dataclass(frozen=True)
@@ -51,29 +49,9 @@ def compiled():
 
 
 def geometry(contacts: BallContacts) -> np.ndarray:
-    """(n, 4, FIELDS), read-only, cached on ``contacts``: per contact ``n_x, n_y, a_i/R_B``, the groove velocity
-    sign of the contact, ``F_i`` [N] (the kernels divide by each case's reference force), the friction map's
-    ``log(b/a)`` cell and offset powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of
-    :mod:`lowmodel.linear_bearing.ball_kernels`)."""
+    """(n, 4, FIELDS), read-only, cached on ``contacts`` (:attr:`BallContacts.kernel_geometry`): the layout of
+    :mod:`lowmodel.linear_bearing.ball_kernels`."""
     return contacts.kernel_geometry
-
-
-def build_geometry(contacts: BallContacts) -> np.ndarray:
-    """:func:`geometry` computed (what :attr:`BallContacts.kernel_geometry` caches)."""
-    nx, ny, arm, _, _, top = contacts.kinematics
-    cells, powers = contacts.friction_cells
-    data = np.empty(nx.shape + (_FIELDS,))
-    data[..., 0] = nx
-    data[..., 1] = ny
-    data[..., 2] = arm
-    data[..., 3] = top
-    data[..., 4] = contacts.normal_forces
-    data[..., 5] = cells
-    data[..., 6:10] = powers
-    data[..., 10] = contacts.semi_major
-    data[..., 11] = contacts.contact_angles
-    data.setflags(write=False)
-    return data
 
 
 def _scalars(contacts: BallContacts, reference) -> np.ndarray:

@@ -95,10 +95,24 @@ class BallContacts:
 
     @cached_property
     def kernel_geometry(self):
-        """The per-contact data of the compiled kernels (:func:`lowmodel.linear_bearing.ball_fast.geometry`)."""
-        from ballbench.lowmodel.linear_bearing.ball_fast import build_geometry
-
-        return build_geometry(self)
+        """(n, 4, 12), read-only: the per-contact data of the compiled kernels, per contact ``n_x, n_y, a_i/R_B``,
+        the groove velocity sign of the contact, ``F_i`` [N] (the kernels divide by each case's reference force),
+        the friction map's ``log(b/a)`` cell and offset powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of
+        :mod:`lowmodel.linear_bearing.ball_kernels`, field ``FIELDS``)."""
+        nx, ny, arm, _, _, top = self.kinematics
+        cells, powers = self.friction_cells
+        data = np.empty(nx.shape + (12,))
+        data[..., 0] = nx
+        data[..., 1] = ny
+        data[..., 2] = arm
+        data[..., 3] = top
+        data[..., 4] = self.normal_forces
+        data[..., 5] = cells
+        data[..., 6:10] = powers
+        data[..., 10] = self.semi_major
+        data[..., 11] = self.contact_angles
+        data.setflags(write=False)
+        return data
 
     @cached_property
     def equilibrium(self):
