@@ -197,6 +197,6 @@ def test_monte_carlo(compiled, tmp_path):
     print(f"two-ball Monte Carlo, the example ({spec.n_cases} draws, chunks of {spec.chunk_size}) on "
           f"LocalCluster(2): {summary.throughput:.0f} cases/s (target >= 20,000), wall {summary.wall_time_s:.1f} s, "
           f"{summary.failed} failed; cluster start and warm-up {started:.1f} s before the clock; today's "
-          f"code: {old_rate:.0f} cases/s per core (260 cases/s on two idle workers, measured before the kernels); load average "
-          f"{os.getloadavg()[0]:.2f}")
+          f"code: {old_rate:.0f} cases/s per core (260 cases/s on two idle workers, measured before the kernels); "
+          f"load average {os.getloadavg()[0]:.2f}")
     assert summary.computed == spec.n_cases
