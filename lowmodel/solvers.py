@@ -40,6 +40,8 @@ SPARSE_SIZE = 60  # unknowns above which newton() uses sparse normal equations
 
 def check_solver_options(tolerance, max_iterations) -> None:
     """ValueError unless ``tolerance`` is finite and > 0 and ``max_iterations`` an integer >= 1 (not a bool)."""
+    if type(tolerance) is float and 0.0 < tolerance < math.inf and type(max_iterations) is int and max_iterations >= 1:
+        return  # the common case, without the array checks
     if isinstance(tolerance, (bool, np.bool_)) or not isinstance(tolerance, (int, float, np.floating, np.integer)):
         raise ValueError(f"tolerance must be a finite number > 0, got {tolerance!r}")
     checks.positive("tolerance", tolerance)

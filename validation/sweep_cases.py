@@ -98,13 +98,32 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
 
     Ball 1 (behind) carries ``N_x = rho N_y``, ball 2 ``-rho N_y`` (lin2019 Sec 2.4 loading); normal
     forces lin2017 eq 36.  Outputs as :func:`two_ball_numerical` (the tolerance Monte Carlo of docs/sweeps.md).
+    Vectorised: array inputs (broadcast) give array outputs, every case equal to its scalar call.
     """
     options = {**TABLE1, **table1}
     vertical = options.pop("vertical_force")
-    angles = NOMINAL + np.array([[d1_bl, d1_br, d1_tr, d1_tl], [d2_bl, d2_br, d2_tr, d2_tl]], dtype=float)
-    sides = np.array([rho, -rho]) * vertical
-    contacts = bearing_contacts.ball_contacts(angles, sides, vertical, **options)
-    return _two_ball(contacts)
+    deviations = [d1_bl, d1_br, d1_tr, d1_tl, d2_bl, d2_br, d2_tr, d2_tl]
+    if all(np.ndim(d) == 0 for d in (*deviations, rho)):
+        angles = NOMINAL + np.array([deviations[:4], deviations[4:]], dtype=float)
+        sides = np.array([rho, -rho]) * vertical
+        contacts = bearing_contacts.ball_contacts(angles, sides, vertical, **options)
+        return _two_ball(contacts)
+    # arrays (a vectorised sweep chunk): every case's two balls in one BallContacts, solved as one batch; each
+    # case equal to the scalar call to the last bit (b2b.solve_cases, ball.solve_cases)
+    *deviations, rho = np.broadcast_arrays(*(np.asarray(d, dtype=float) for d in (*deviations, rho)))
+    angles = NOMINAL + np.stack(deviations, axis=-1).reshape(-1, 2, 4)
+    sides = (np.stack([rho, -rho], axis=-1) * vertical).reshape(-1)
+    contacts = bearing_contacts.ball_contacts(angles.reshape(-1, 4), sides, vertical, **options)
+    free = bearing_ball.solve_cases(contacts, 2)  # balls apart (lin2019 eq 4)
+    touching = b2b.solve_cases(contacts, 2, [0.0])  # balls touching (eqs 5-10)
+    m = rho.size
+    baseline = np.ascontiguousarray(free.contact[..., 6]).reshape(m, 8).sum(axis=1)  # as BallState.groove_loss
+    total = np.ascontiguousarray(touching.contact[..., 6]).reshape(m, 8).sum(axis=1) + touching.pair[:, 0, 2]
+    shape = rho.shape
+    return {"epsilon_1": free.ball[:, 0, 3].reshape(shape), "epsilon_2": free.ball[:, 1, 3].reshape(shape),
+            "b2b_force": touching.pair[:, 0, 0].reshape(shape), "baseline_loss": baseline.reshape(shape),
+            "total_loss": total.reshape(shape), "friction_increase": (total / baseline - 1.0).reshape(shape),
+            "iterations": touching.iterations.astype(float).reshape(shape)}
 
 
 def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_analytical.K_F_PAPER,

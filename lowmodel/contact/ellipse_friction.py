@@ -87,6 +87,8 @@ __all__ = [
     "AngleFriction",
     "friction_angle",
     "friction_angle_at",
+    "patch_table",
+    "log_ratio_cells",
     "friction",
     "friction_exact",
     "friction_velocity",
@@ -655,6 +657,27 @@ def _evaluate(phi: np.ndarray, beta: np.ndarray):
                       (slope_x[:, :, None] * power_y[:, None, :]).reshape(-1, 16)], axis=2)  # (n, 16, 2)
     values = flat[i * mid_y.size + j] @ basis                                      # (n, 3, 2)
     return [values[:, q, d].reshape(shape) for q in range(3) for d in range(2)]
+
+
+def patch_table():
+    """The bicubic patches of the default map as plain arrays, for compiled kernels that evaluate them
+    (:mod:`lowmodel.linear_bearing.ball_kernels`): ``(phi nodes, log(b/a) nodes, cell centres in phi, cell
+    centres in log(b/a), coefficients (cells, 3, 16))``, cell ``(i, j)`` at row ``i * len(centres in log(b/a)) + j``,
+    coefficient ``4 p + q`` multiplying ``dphi^p dlog(b/a)^q`` of (force, moment, loss direction); read-only."""
+    return _active_patches()
+
+
+def log_ratio_cells(b_over_a):
+    """The ``log(b/a)`` cells of the map and the powers ``(1, dy, dy^2, dy^3)`` of the offset ``dy`` from their
+    centres, for axis ratios ``b_over_a`` (any shape, checked in ``[0.02, 1]``): ``(cells (shape), powers
+    (shape + (4,)))``, what :func:`friction_angle_at` computes once per set of axis ratios."""
+    beta = _check_ratio(b_over_a)
+    _, nodes_y, _, mid_y, _ = _active_patches()
+    y = np.log(beta.ravel())
+    j = np.clip(np.searchsorted(nodes_y, y) - 1, 0, mid_y.size - 1)
+    dy = y - mid_y[j]
+    powers = np.stack([np.ones_like(dy), dy, dy * dy, dy * dy * dy], axis=1)
+    return j.reshape(beta.shape), powers.reshape(beta.shape + (4,))
 
 
 def friction_angle_at(b_over_a, *, stacked: bool = False):

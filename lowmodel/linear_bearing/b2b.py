@@ -49,9 +49,12 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
     chain_system
+from ballbench.lowmodel.b2b_relaxation import Relaxation, relax
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
 from ballbench.lowmodel.linear_bearing import ball as single
 from ballbench.lowmodel.linear_bearing import branch_end
+from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
 from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
@@ -62,14 +65,16 @@ from ballbench.lowmodel.linear_bearing.ball import (
     ball_terms,
     initial_guess,
     slip_speeds,
+    with_slip_angles,
     solve_branch,
     solve_free,
     solve_with_continuation,
+    case_state,
 )
-from ballbench.lowmodel.solvers import check_solver_options
+from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options
 
-__all__ = ["solve", "simulate_gaps", "GapHistory", "module_contacts", "b2b_terms", "coupled_system", "pair_function",
-           "touching_pairs", "MU_PATH_START"]
+__all__ = ["solve", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps", "GapHistory", "module_contacts",
+           "b2b_terms", "coupled_system", "pair_function", "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
 _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) in four-point contact
@@ -114,6 +119,9 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:
     if gaps is None:
         return np.zeros(n_balls - 1)
+    if (type(gaps) is np.ndarray and gaps.dtype == np.float64 and gaps.shape == (n_balls - 1,)
+            and (gaps.size == 0 or (gaps.min() >= -1e-9 * radius and gaps.max() < math.inf))):
+        return gaps  # the common case, without the checks' array passes (NaN fails the min comparison)
     gaps = checks.real("gaps", gaps).reshape(-1)
     if gaps.shape != (n_balls - 1,):
         raise ValueError(f"gaps must have shape ({n_balls - 1},) (one per neighbouring pair), got {gaps.shape}")
@@ -199,6 +207,9 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
     k = N_UNKNOWNS
     what = f"{n}-ball B2B contact"
     layout = ChainLayout(n, k, touching)
+    fast = _solve_compiled(contacts, layout, reference_force, tolerance, max_iterations)
+    if fast is not None:
+        return fast
     at = {}  # the contacts the coupled system is evaluated for (one system, built once per solve)
 
     def ball_function(balls, _extra=None):
@@ -253,12 +264,17 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                 (z, residual, iterations), taken = solve_with_continuation(
                     contacts, solve_at, free_start, error if error.iterations else first_error, what=what,
                     balls_of=balls_of, extra_paths=(("mu", MU_PATH_START, mu_at),))
-            except ConvergenceError as failure:  # ... else the evidence decides: end of a branch, or the solver
-                if failure.reason.startswith("spin-capacity ratio < 1"):
+            except ConvergenceError as failure:  # ... else the evidence decides (end of a branch, a gap, or the
+                if failure.reason.startswith("spin-capacity ratio < 1"):  # solver), then the relaxation in time
                     raise
-                (z, residual, iterations), start_mu = _judged(failure, contacts, solve_at, start_guess, pack,
-                                                              balls_of, reference_force, tolerance, max_iterations)
-                taken = ContinuationPath((), "mu from a probe", start_mu / mu, ())
+                try:
+                    (z, residual, iterations), start_mu = _judged(failure, contacts, solve_at, start_guess, pack,
+                                                                  balls_of, reference_force, tolerance,
+                                                                  max_iterations)
+                    taken = ContinuationPath((), "mu from a probe", start_mu / mu, ())
+                except ConvergenceError as judged:
+                    (z, residual, iterations), taken = _from_relaxation(contacts, layout, gaps, gap_tolerance,
+                                                                        judged, solve_at, what)
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
     balls, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
                                     iterations=iterations, what=what)
@@ -296,6 +312,134 @@ def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_
 
     return branch_end.judge(failure, target, solve_from, probe, slip_at, stick_reason=STICK_REASON)
 
+
+RELAXATION_FAILED = "the relaxation settled, but Newton from its state did not converge"
+STEEL_DENSITY = 7850.0  # kg/m^3: the ball mass of the relaxation's time scale (lin2019 Table 1: steel)
+
+
+def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | None = None, start=None,
+                density: float = STEEL_DENSITY, **options) -> Relaxation:
+    """Relax the balls of ``contacts`` in time under the friction laws of :func:`solve` (the existence oracle,
+    :mod:`lowmodel.b2b_relaxation`): lin2019 eq 4 with the friction map's loads at the current slip directions,
+    the B2B loads of eqs 5-8 on touching pairs, their complementarity (eqs 9-10) at every time step.
+
+    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0`` (default: rolling at
+    v/2, the start of :func:`solve`); ``gaps`` as :func:`solve` (an open gap closing ends the run: a third
+    contact); ``density`` [kg/m^3] of the balls gives the time unit ``tau = m |v| / (mu F_ref)``.  ``options``
+    go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units ``mu F_ref`` (``F_ref`` the largest normal force).
+    """
+    n = contacts.n_balls
+    touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
+    live = np.zeros(n - 1, dtype=bool)
+    live[touching] = True
+    reference_force = float(contacts.normal_forces.max())
+    mu = contacts.friction_coefficient
+    _, _, _, dslide, dspin, _ = contacts.kinematics
+
+    def ball_loads(x):
+        unknowns = np.zeros((n, N_UNKNOWNS))
+        unknowns[:, :3] = x
+        unknowns = with_slip_angles(unknowns, contacts)  # friction along the current slip directions
+        terms = ball_terms(unknowns, contacts, reference_force)
+        squared = terms.slide ** 2 + terms.spin_velocity ** 2
+        safe = np.where(squared > 0.0, squared, 1.0)
+        d_phi = (terms.spin_velocity[..., None] * dslide - terms.slide[..., None] * dspin) / safe[..., None]
+        jacobian = np.matmul(terms.jacobian[:, :3, 3:], d_phi)  # d load / d phi . d phi / d x
+        return terms.residual[:, :3], jacobian, np.stack([terms.slide, terms.spin_velocity], axis=-1)
+
+    def pair_loads(x):
+        u, squared = _slip_squared(x)
+        unit = u / np.sqrt(squared + _REGULARISATION ** 2)[:, None]
+        direction = np.zeros((n - 1, 2, 3))
+        direction[:, 0, 0], direction[:, 1, 0] = -1.0, 1.0  # eq 8: the force on the ball behind, ahead
+        direction[:, :, 1:] = (-mu * unit)[:, None, :]  # its friction moment, the same on both (eq 8)
+        return direction
+
+    if start is None:
+        start = initial_guess(contacts)[:, :3]
+    mass = density * 4.0 / 3.0 * math.pi * contacts.ball_radius ** 3
+    speed = abs(contacts.groove_velocity)
+    tau = mass * speed / (mu * reference_force)
+    open_gaps = None if gaps is None else _check_gaps(gaps, n, contacts.ball_radius)
+    options.setdefault("contact_names", CONTACT_NAMES)
+    return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+
+
+def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, failure: ConvergenceError,
+                     solve_at, what: str):
+    """After the continuation and the walks of :func:`_judged` failed with ``failure``: relax in time
+    (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; otherwise
+    ConvergenceError with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else
+    the relaxation's (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
+    relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
+    base = str(failure).split(" (residual")[0]
+    if relaxation.settled:
+        balls = np.zeros((layout.n_balls, N_UNKNOWNS))
+        balls[:, :3] = relaxation.velocities
+        start = layout.pack(with_slip_angles(balls, contacts), relaxation.forces)
+        try:
+            z, residual, iterations = solve_at(contacts, start, f"{what}, from the relaxed state")
+        except ConvergenceError as error:
+            stopped = ConvergenceError(f"{base}; {RELAXATION_FAILED} ({error})", residual=error.residual,
+                                       iterations=error.iterations, tolerance=error.tolerance,
+                                       reason=RELAXATION_FAILED, last_converged=failure.last_converged)
+            stopped.relaxation = relaxation
+            stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+            raise stopped from None
+        step = ContinuationStep(1.0, int(iterations))
+        return (z, residual, iterations), ContinuationPath((), "relaxation", 1.0, (step,))
+    met = f" (continuation: {failure.reason})" if failure.reason else ""
+    # the reason: the branch's end or gap where the walks established it (lowmodel.linear_bearing.branch_end),
+    # else the relaxation's verdict; both accounts stay in the message
+    reason = failure.reason if failure.reason.startswith(STICK_REASON) else relaxation.kind
+    stopped = ConvergenceError(f"{base}{met}; {relaxation.reason}", residual=failure.residual,
+                               iterations=failure.iterations, tolerance=failure.tolerance, reason=reason,
+                               last_converged=failure.last_converged)
+    stopped.relaxation = relaxation
+    stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+    raise stopped from None
+
+
+def solve_cases(contacts: BallContacts, balls_per_case: int, gaps=None, *, tolerance: float = 1e-12,
+                max_iterations: int = 100, gap_tolerance: float | None = None):
+    """Many independent B2B cases at once: balls ``c b .. c b + b - 1`` of ``contacts`` (ordered along +z) are case
+    ``c`` (``b = balls_per_case``), every case with the same ``gaps`` (b-1,) m (default all touching).
+
+    Returns :class:`lowmodel.linear_bearing.ball_fast.CaseStates` (``pair``: F_B2B, slip, loss), case ``c``
+    equal to :func:`solve` of its contacts (:func:`lowmodel.linear_bearing.ball_fast.case_contacts`) to the last
+    bit: the compiled kernels solve the batch (one Newton per case, one batched call), and the cases they
+    cannot solve (all cases without kernels) are solved by :func:`solve` one by one, with its continuation.
+    Raises what :func:`solve` raises for the first case without a state.
+    """
+    check_solver_options(tolerance, max_iterations)
+    reference = ball_fast.case_reference_forces(contacts, balls_per_case)
+    touching = touching_pairs(gaps, balls_per_case, contacts.ball_radius, gap_tolerance)
+    if balls_per_case == 1 or touching.size == 0:
+        return single.solve_cases(contacts, balls_per_case, tolerance=tolerance, max_iterations=max_iterations)
+    layout = ChainLayout(balls_per_case, N_UNKNOWNS, touching)
+    states = ball_fast.solve_chains(contacts, balls_per_case, layout.live, reference, tolerance=tolerance,
+                                    max_iterations=max_iterations)
+    if states is None:
+        states = ball_fast.empty_states(reference.size, balls_per_case)
+        states.status[:] = -1
+    for case in np.flatnonzero(states.status):
+        state = solve(ball_fast.case_contacts(contacts, balls_per_case, case), gaps, tolerance=tolerance,
+                      max_iterations=max_iterations, gap_tolerance=gap_tolerance)
+        ball_fast.store_state(states, case, state)
+    return states
+
+
+def _solve_compiled(contacts: BallContacts, layout: ChainLayout, reference_force: float, tolerance: float,
+                    max_iterations: int):
+    """:func:`solve`'s first two attempts (the coupled Newton from rolling at v/2, then from every ball solved on
+    its own) and its complementarity check by the compiled kernels (:mod:`lowmodel.linear_bearing.ball_fast`);
+    None where the kernels are off or the attempts fail (then :func:`solve` runs its numpy path, with the
+    continuation, and names the failure)."""
+    states = ball_fast.solve_chains(contacts, layout.n_balls, layout.live, reference_force, tolerance=tolerance,
+                                    max_iterations=max_iterations)
+    if states is None or states.status[0]:
+        return None
+    return case_state(states, 0)
 
 
 def coupled_system(ball_function, layout: ChainLayout, mu: float):

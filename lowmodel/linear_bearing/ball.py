@@ -67,6 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.linear_bearing.contacts import TOP, BallContacts, spin_capacity_ratio
 from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options, continuation, solve_with_restarts
 from ballbench.lowmodel.state import BallStateBase
@@ -75,10 +76,12 @@ __all__ = [
     "BallState",
     "BallTerms",
     "solve",
+    "solve_cases",
     "ContinuationPath",
     "homotopy_paths",
     "solve_with_continuation",
     "ball_terms",
+    "case_state",
     "initial_guess",
     "with_slip_angles",
     "slip_kinematics",
@@ -216,6 +219,18 @@ def ball_terms(unknowns: np.ndarray, contacts: BallContacts, reference_force: fl
     return BallTerms(residual, jacobian, slide, spin_velocity, slip_speed, force, moment, loss_table)
 
 
+def case_state(states, case: int) -> BallState:
+    """The :class:`BallState` of case ``case`` of the compiled path's
+    :class:`lowmodel.linear_bearing.ball_fast.CaseStates` (its arrays are views of the batch's)."""
+    ball, contact, pair = states.ball[case], states.contact[case], states.pair[case]
+    return BallState(ball[:, 0], ball[:, 1:3], ball[:, 3], contact[..., 0], contact[..., 1], contact[..., 2],
+                     contact[..., 3], contact[..., 4], contact[..., 5],
+                     friction_loss=np.ascontiguousarray(contact[..., 6]),  # its sum: that of a batch's (m, 8) rows
+                     input_power=float(states.input_power[case]), b2b_force=pair[:, 0], b2b_friction_loss=pair[:, 2],
+                     b2b_slip=pair[:, 1], iterations=int(states.iterations[case]),
+                     residual=float(states.residual[case]))
+
+
 def initial_guess(contacts: BallContacts) -> np.ndarray:
     """Rolling about x with v_B = v/2 (the theta = 0 solution), and its slip angles."""
     direction = math.copysign(1.0, contacts.groove_velocity)
@@ -301,11 +316,36 @@ def solve(contacts: BallContacts, *, tolerance: float = 1e-12, max_iterations: i
     """
     check_solver_options(tolerance, max_iterations)
     reference_force = float(contacts.normal_forces.max())
+    fast = ball_fast.solve_free(contacts, contacts.n_balls, reference_force, tolerance=tolerance,
+                                max_iterations=max_iterations)
+    if fast is not None and fast.status[0] == 0:  # the compiled kernels solved every ball (else: the numpy path)
+        return case_state(fast, 0)
     paths = []
     unknowns, iterations, residual = solve_free(contacts, reference_force, tolerance, max_iterations, paths)
     terms = ball_terms(unknowns, contacts, reference_force)
     state = ball_state(unknowns, terms, contacts, reference_force, iterations=iterations, residual=residual)
     return dataclasses.replace(state, continuation=tuple(paths)) if paths else state
+
+
+def solve_cases(contacts: BallContacts, balls_per_case: int, *, tolerance: float = 1e-12, max_iterations: int = 60):
+    """Many independent cases at once, every ball alone: balls ``c b .. c b + b - 1`` of ``contacts`` are case ``c``
+    (``b = balls_per_case``).  Returns :class:`lowmodel.linear_bearing.ball_fast.CaseStates`, case ``c`` equal
+    to :func:`solve` of its contacts (:func:`lowmodel.linear_bearing.ball_fast.case_contacts`) to the last bit:
+    the compiled kernels solve the batch, and the cases they cannot (all cases without kernels) are solved by
+    :func:`solve` one by one.  Raises what :func:`solve` raises for the first case without a state.
+    """
+    check_solver_options(tolerance, max_iterations)
+    reference = ball_fast.case_reference_forces(contacts, balls_per_case)
+    states = ball_fast.solve_free(contacts, balls_per_case, reference, tolerance=tolerance,
+                                  max_iterations=max_iterations)
+    if states is None:
+        states = ball_fast.empty_states(reference.size, balls_per_case)
+        states.status[:] = -1
+    for case in np.flatnonzero(states.status):
+        state = solve(ball_fast.case_contacts(contacts, balls_per_case, case), tolerance=tolerance,
+                      max_iterations=max_iterations)
+        ball_fast.store_state(states, case, state)
+    return states
 
 
 def solve_free(contacts: BallContacts, reference_force: float, tolerance: float, max_iterations: int,

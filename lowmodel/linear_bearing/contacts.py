@@ -83,6 +83,38 @@ class BallContacts:
         return _friction_angle_function(self.b_over_a)
 
     @cached_property
+    def friction_cells(self):
+        """The friction map's ``log(b/a)`` cells and offset powers of the contacts (n, 4) and (n, 4, 4)
+        (:func:`lowmodel.contact.ellipse_friction.log_ratio_cells`), for the compiled kernels."""
+        from ballbench.lowmodel.contact.ellipse_friction import log_ratio_cells
+
+        cells, powers = log_ratio_cells(self.b_over_a)
+        cells.setflags(write=False)
+        powers.setflags(write=False)
+        return cells, powers
+
+    @cached_property
+    def kernel_geometry(self):
+        """(n, 4, 12), read-only: the per-contact data of the compiled kernels, per contact ``n_x, n_y, a_i/R_B``,
+        the groove velocity sign of the contact, ``F_i`` [N] (the kernels divide by each case's reference force),
+        the friction map's ``log(b/a)`` cell and offset powers, ``a_i`` [m], ``beta_i`` [rad] (the layout of
+        :mod:`lowmodel.linear_bearing.ball_kernels`, field ``FIELDS``)."""
+        nx, ny, arm, _, _, top = self.kinematics
+        cells, powers = self.friction_cells
+        data = np.empty(nx.shape + (12,))
+        data[..., 0] = nx
+        data[..., 1] = ny
+        data[..., 2] = arm
+        data[..., 3] = top
+        data[..., 4] = self.normal_forces
+        data[..., 5] = cells
+        data[..., 6:10] = powers
+        data[..., 10] = self.semi_major
+        data[..., 11] = self.contact_angles
+        data.setflags(write=False)
+        return data
+
+    @cached_property
     def equilibrium(self):
         """(n, 3, 8): the rows of lin2019 eq 4 as a matrix on ``(force_i, moment_i)`` (columns interleaved
         ``f_0, M_0, f_1, M_1, ...``), the same as (n, 4, 3, 2) (contact, row, force | moment), and the

@@ -15,7 +15,7 @@ import pytest
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, ball as bearing_ball, contacts as bearing_contacts
 from ballbench.lowmodel.solvers import continuation
-from ballbench.lowmodel import solvers
+from ballbench.lowmodel import b2b_relaxation, solvers
 from hypothesis import given, strategies as st
 from tests.property_support import SETTINGS, positive, real
 
@@ -129,7 +129,12 @@ def test_touching_pair_ends_where_a_contact_stops_sliding():
     assert np.min(slip) < 1e-3 < np.median(slip)  # one contact nearly stuck, the others slide
     with pytest.raises(ConvergenceError) as error:
         b2b.solve(b2b.module_contacts(theta, -0.7, n_balls=2, friction_coefficient=0.5), [0.0])
+    # the reason is the branch's end established by the walks (lowmodel.linear_bearing.branch_end); the relaxation
+    # in time (lowmodel.b2b_relaxation) agrees: a ball stalls at a contact
     assert error.value.reason.startswith(bearing_ball.STICK_REASON)
+    assert error.value.relaxation.kind == b2b_relaxation.STALL_REASON
+    assert bearing_ball.STICK_REASON in str(error.value)  # what the continuation met stays in the message
+    assert b2b_relaxation.STALL_REASON in str(error.value)  # and the relaxation's account
     name, last = error.value.last_converged
     assert name == "s (mu)" and 0.46 < 0.5 * b2b.MU_PATH_START ** (last - 1.0) < 0.4676  # the mu reached
     assert error.value.min_slip_speed < 1e-2

@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from ballbench.lowmodel import b2b_relaxation
 from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
@@ -48,7 +49,8 @@ class _Tally:
     def __init__(self):
         self.records = []  # (family, ratio, converged, reason, iterations, residual, continued, power error, finite)
         self.coupled = []  # whether the solve had touching balls (B2B forces)
-        self.failures = []  # (family, n_balls, ratio, reason, last converged, mu)
+        self.relaxed = []  # whether a failed solve carries the relaxation's account (lowmodel.b2b_relaxation)
+        self.failures = []  # (family, n_balls, ratio, reason, last converged, mu, min slip, relaxation's account)
 
     def solve(self, family, contacts, gaps=None):
         ratio = float(np.min(bearing_contacts.spin_capacity_ratio(contacts)))
@@ -57,11 +59,14 @@ class _Tally:
         try:
             state = b2b.solve(contacts, gaps)
         except ConvergenceError as error:
+            self.relaxed.append(getattr(error, "relaxation", None) is not None)
             self.records.append((family, ratio, False, error.reason, error.iterations, error.residual, False,
                                  math.nan, False))
             self.failures.append((family, contacts.n_balls, ratio, error.reason, error.last_converged,
-                                  float(contacts.friction_coefficient), getattr(error, "min_slip_speed", math.nan)))
+                                  float(contacts.friction_coefficient), getattr(error, "min_slip_speed", math.nan),
+                                  getattr(getattr(error, "relaxation", None), "reason", "no relaxation")))
             return None
+        self.relaxed.append(False)
         values = np.concatenate([state.ball_velocity, state.omega.ravel(), state.b2b_force,
                                  state.friction_loss.ravel()])
         power = abs(state.input_power - state.total_loss) / abs(state.input_power)
@@ -134,13 +139,21 @@ def stability(run):
               source="a state exists there (docs/b2b_bearing.md, validity)", time_s=per_solve)
     pairs = existing & coupled
     coupled_fraction = float(np.mean(converged[pairs])) if np.any(pairs) else 1.0
-    stick = np.array([reason.startswith(bearing_ball.STICK_REASON) for reason in reasons])
+    stick = np.array([reason.startswith((bearing_ball.STICK_REASON, b2b_relaxation.STALL_REASON))
+                      for reason in reasons])
     run.check(**B2B, quantity=f"touching balls, spin-capacity ratio >= {RATIO_FLOOR} ({int(pairs.sum())} "
               "solves): fraction converged or ended where a contact stops sliding", unit="1",
               value=float(np.mean((converged | stick)[pairs])) if np.any(pairs) else 1.0, reference=1.0,
               tolerance=0.0, time_s=per_solve,
               source="the end of the full-sliding branch (a contact's slip speed crosses 0, "
               "docs/b2b_bearing.md 'validity') is the existence bound for touching balls")
+    relaxed = np.array(tally.relaxed)
+    run.check(**B2B, quantity=f"failures with touching balls without a reason from the relaxation in time "
+              f"({int(np.sum(~converged & coupled))} failures with B2B contact)", unit="count",
+              value=float(np.sum(~converged & coupled & ~relaxed)), reference=0.0, scale=1.0, tolerance=0.0,
+              why="a count: tolerance 0, so a single failure without the relaxation's verdict fails; the scale is one "
+              "solve", source="existence oracle (lowmodel.b2b_relaxation): settled, a contact stops sliding, a third "
+              "contact, a cycle", time_s=per_solve)
     run.check(**B2B, quantity="failures without a reason", unit="count",
               value=float(np.sum(~converged & (reasons == ""))), reference=0.0, scale=1.0, tolerance=0.0,
               why="a count: tolerance 0, so a single failure without a reason fails; the scale is one solve",
@@ -176,10 +189,17 @@ def stability(run):
     run.note(f"Touching balls: {int(pairs.sum())} solves with B2B contact and every ball's spin-capacity "
              f"ratio >= {RATIO_FLOOR}, of which {100 * coupled_fraction:.1f} % converged; failures: "
              + ("; ".join(f"{f[0]}, {f[1]} balls, mu = {f[5]:.3g}, ratio {f[2]:.2f}: {f[3]} (last converged "
-                          f"{f[4]}, smallest slip speed there {f[6]:.2g} |v|)" for f in pair_failures) or "none")
+                          f"{f[4]}, smallest slip speed there {f[6]:.2g} |v|; {f[7]})" for f in pair_failures)
+                or "none")
              + ".  The single-ball ratio is not an existence bound for touching balls (the B2B force and its "
              "friction moment use friction capacity too); the bound is the end of the full-sliding branch, where "
              "a contact's slip speed reaches 0 (docs/b2b_bearing.md, 'validity').")
+    verdicts = {}
+    for record, is_coupled in zip(tally.records, tally.coupled):
+        if not record[2] and is_coupled:
+            verdicts[record[3]] = verdicts.get(record[3], 0) + 1
+    run.note("Relaxation in time of every failed solve with touching balls (lowmodel.b2b_relaxation): "
+             + (", ".join(f"{count} x {kind}" for kind, count in verdicts.items()) or "no such failure") + ".")
     run.note(f"{len(tally.records)} solves in {elapsed:.1f} s. {summary}. Failures by reason: {failures or 'none'} "
              f"(all at spin-capacity ratio < {RATIO_FLOOR}: "
              f"{bool(np.all(ratio[~converged] < RATIO_FLOOR)) if np.any(~converged) else 'no failures'}). "
@@ -226,7 +246,8 @@ def _stick_boundary(run, steps: int) -> None:
         failure = error
     run.check(**B2B, quantity=f"failure at mu = {target} (theta = 3 deg, rho = -0.7, two touching balls) "
               "names the stick boundary", unit="1",
-              value=float(failure is not None and failure.reason.startswith(bearing_ball.STICK_REASON)),
+              value=float(failure is not None and failure.reason.startswith((bearing_ball.STICK_REASON,
+                                                                             b2b_relaxation.STALL_REASON))),
               reference=1.0, tolerance=0.0, time_s=time.perf_counter() - began,
               source="docs/b2b_bearing.md: a failure is proven to be no-state, reason given")
     ok, bad = 0.4, target

@@ -1,0 +1,202 @@
+"""The compiled kernels against today's numpy path, in the same run: the targets of the speed work.
+
+Targets (docs/speed.md): two-ball linear-bearing solve <= 0.2 ms median; 1,000-ball chain <= 10 ms; the
+two-ball Monte Carlo (examples/two_ball_monte_carlo.toml, 100,000 draws, case setup included) >= 20,000 cases/s
+on this 2-core machine; ``import ballbench.lowmodel`` < 0.5 s without numba, gmsh, pyvista, vtk, matplotlib;
+the kernels' first-call cost (compile, or load from numba's disk cache) stated.  The screw targets are in
+benchmarks/test_bench_screw.py.
+
+The machine is shared: every figure is a median of CPU time (``time.process_time``) with the baseline (the numpy
+path, ``lowmodel.kernels.use_kernels(False)``: the code before the kernels) timed interleaved in the same run,
+and the load average printed beside it.  Time per solve is set against its arithmetic: the floating-point
+operations the kernel executes (:func:`arithmetic`, counted from the loops of
+lowmodel/linear_bearing/ball_kernels.py for the iterations the solve took) divided by the scalar rate this
+machine gives such loops now (:func:`scalar_rate`, a dense LU in the same compiled style): the ratio is the
+roofline-style figure of merit (1 = the solve is pure arithmetic at that rate).
+
+Run: python -m pytest benchmarks/test_bench_kernels.py -s
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+
+ROOT = Path(__file__).resolve().parents[1]
+KERNELS = "linear_bearing.ball_kernels"
+# flops per ball of the kernels' loops (ball_kernels.py): one evaluation of the chain (4 friction patches of 3 x 44
+# flops, slip kinematics, eq 4 rows, Jacobian entries, sin/cos counted as 20 each; the pair loads), the normal
+# equations summed over J's nonzeros, J x and J^T r, the banded Cholesky over a chain's envelope with its two
+# triangular solves (dense systems: LU, 2/3 size^3)
+EVALUATION, NORMAL, PRODUCTS, BAND = 900, 640, 240, 1100
+
+
+def arithmetic(n_balls: int, iterations: int, unknowns: int = 8) -> float:
+    """Floating-point operations of a kernel solve of ``n_balls`` balls in ``iterations`` Newton iterations (one
+    trial evaluation each; rejected steps are not counted, so this is a lower bound)."""
+    size = n_balls * unknowns
+    solve = (2.0 / 3.0) * size ** 3 if n_balls < 6 else BAND * n_balls
+    per_iteration = (EVALUATION + NORMAL + PRODUCTS) * n_balls + solve
+    return EVALUATION * n_balls + iterations * per_iteration
+
+
+def scalar_rate() -> float:
+    """flop/s of the kernels' compiled loop style on this machine now: the dense LU of ball_kernels on 48 x 48."""
+    module = kernels.load(KERNELS)
+    rng = np.random.default_rng(0)
+    matrix = rng.normal(size=(48, 48)) + 48 * np.eye(48)
+    rhs, out = rng.normal(size=48), np.empty(48)
+    module._lu_solve(matrix.copy(), rhs, out)
+    times = []
+    for _ in range(200):
+        work = matrix.copy()
+        start = time.process_time()
+        for _ in range(20):
+            work[:] = matrix
+            module._lu_solve(work, rhs, out)
+        times.append((time.process_time() - start) / 20)
+    return (2.0 / 3.0 * 48 ** 3 + 2 * 48 ** 2) / float(np.median(times))
+
+
+def _interleaved(function, repeats: int, block: int = 1):
+    """Median CPU seconds of ``function()`` with the kernels and without them: ``repeats`` alternating blocks of
+    ``block`` calls each (a block keeps one path's data in cache, as a loop of solves does), per call."""
+    new, old = [], []
+    for _ in range(repeats):
+        for enabled, into in ((True, new), (False, old)):
+            kernels.use_kernels(enabled)
+            function()
+            start = time.process_time()
+            for _ in range(block):
+                function()
+            into.append((time.process_time() - start) / block)
+    kernels.use_kernels(None)
+    return float(np.median(new)), float(np.median(old))
+
+
+@pytest.fixture(scope="module")
+def compiled():
+    pytest.importorskip("numba")
+    module = kernels.load(KERNELS)
+    assert module is not None, kernels.load_errors
+    return module
+
+
+def test_import_is_light():
+    code = ("import sys, time\nstart = time.perf_counter()\nimport ballbench.lowmodel\n"
+            "print(time.perf_counter() - start, sorted({n.split('.')[0] for n in sys.modules} & "
+            "{'numba', 'llvmlite', 'gmsh', 'pyvista', 'vtk', 'matplotlib'}))")
+    seconds = []
+    for _ in range(5):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+        value, heavy = out.split(" ", 1)
+        seconds.append(float(value))
+    print(f"\nimport ballbench.lowmodel: {1e3 * float(np.median(seconds)):.0f} ms median of 5 fresh processes "
+          f"(target < 500 ms), heavy modules loaded: {heavy.strip()}; load average {os.getloadavg()[0]:.2f}")
+    assert heavy.strip() == "[]"
+
+
+def test_first_call_cost(compiled):
+    """Cold: a fresh numba cache (every kernel compiled); warm: the cache of this run (loaded from disk)."""
+    code = ("import time\nfrom ballbench.lowmodel import kernels\nstart = time.perf_counter()\n"
+            "assert kernels.load('linear_bearing.ball_kernels') is not None, kernels.load_errors\n"
+            "print(time.perf_counter() - start)")
+    with tempfile.TemporaryDirectory() as cache:
+        environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        cold = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                                    env=environment).stdout)
+        warm = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                                    env=environment).stdout)
+    print(f"\nkernels' first call in a process: compile {cold:.1f} s with an empty numba cache, {warm:.2f} s from "
+          f"the disk cache (NUMBA_CACHE_DIR, default ~/.cache/ballbench/numba); load average "
+          f"{os.getloadavg()[0]:.2f}")
+
+
+def _two_ball():
+    return b2b.module_contacts(math.radians(2.0), -0.6)
+
+
+@pytest.mark.parametrize("n_balls", [1, 2, 50, 200, 1000])
+def test_one_case_solves(compiled, n_balls):
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=n_balls)
+    gaps = np.zeros(n_balls - 1)
+    if n_balls == 1:
+        def solve():
+            return bearing_ball.solve(contacts)
+    else:
+        def solve():
+            return b2b.solve(contacts, gaps)
+    state = solve()
+    repeats, block = {1: (41, 20), 2: (41, 20), 50: (31, 4), 200: (21, 2), 1000: (15, 1)}[n_balls]
+    new, old = _interleaved(solve, repeats, block)
+    rate = scalar_rate()
+    flops = arithmetic(n_balls, state.iterations, 7 if n_balls == 1 else 8)
+    target = {2: " (target <= 0.2 ms)", 1000: " (target <= 10 ms)"}.get(n_balls, "")
+    name = "single ball" if n_balls == 1 else f"{n_balls}-ball B2B chain"
+    print(f"\n{name}: compiled {1e3 * new:.3f} ms{target}, numpy path {1e3 * old:.3f} ms (x {old / new:.1f}); "
+          f"{state.iterations} iterations, {flops:.3g} flop = {flops / rate * 1e3:.3f} ms at the measured "
+          f"{rate / 1e9:.2f} Gflop/s of compiled loops: figure of merit {flops / rate / new:.2f} (1 = pure "
+          f"arithmetic); load average {os.getloadavg()[0]:.2f}")
+
+
+def _spec(draws: int, vectorised: bool, chunk: int):
+    from ballbench.validation import sweep
+
+    raw = dict(sweep.load_spec(ROOT / "examples" / "two_ball_monte_carlo.toml").source)
+    raw["random"] = {**raw["random"], "draws": draws}
+    raw["vectorised"] = vectorised
+    raw["chunk_size"] = chunk
+    return sweep.spec_from_dict(raw)
+
+
+def test_monte_carlo(compiled, tmp_path):
+    """Serial chunk rates of the new vectorised chunk (kernels, one batch per chunk) and of today's code (numpy
+    path, one case per call, chunks of 250) on the same draws; then the whole 100,000-draw example on a
+    LocalCluster of two workers (started before the clock; its start time printed)."""
+    from dask.distributed import Client, LocalCluster
+
+    from ballbench.validation import sweep
+
+    new_spec, old_spec = _spec(20000, True, 5000), _spec(20000, False, 250)
+    sweep.run_chunk(new_spec.source, 0, 8)  # imports, friction map, kernels
+    kernels.use_kernels(False)
+    sweep.run_chunk(old_spec.source, 0, 2)
+    start = time.process_time()
+    sweep.run_chunk(old_spec.source, 0, 300)
+    old_rate = 300 / (time.process_time() - start)
+    kernels.use_kernels(None)
+    start = time.process_time()
+    result = sweep.run_chunk(new_spec.source, 0, 20000)
+    new_rate = 20000 / (time.process_time() - start)
+    failed = sum(1 for error in result["error"] if error)
+    load = os.getloadavg()[0]
+    print(f"\ntwo-ball Monte Carlo, one process: vectorised chunk with kernels {new_rate:.0f} cases/s (20,000 "
+          f"draws, {failed} failed), today's code {old_rate:.0f} cases/s (300 draws, numpy path, one case per "
+          f"call): x {new_rate / old_rate:.0f}; load average {load:.2f}")
+    spec = sweep.load_spec(ROOT / "examples" / "two_ball_monte_carlo.toml")
+    began = time.perf_counter()
+    import dask
+
+    with dask.config.set(sweep.LOCAL_CLUSTER_CONFIG):
+        cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0",
+                               host="127.0.0.1")
+    with Client(cluster) as client:
+        client.run(sweep.run_chunk, spec.source, 0, 8)  # warm the workers: imports, friction map, kernels
+        started = time.perf_counter() - began
+        summary = sweep.run_sweep(spec, tmp_path / "mc", client=client, progress=False)
+    cluster.close()
+    print(f"two-ball Monte Carlo, the example ({spec.n_cases} draws, chunks of {spec.chunk_size}) on "
+          f"LocalCluster(2): {summary.throughput:.0f} cases/s (target >= 20,000), wall {summary.wall_time_s:.1f} s, "
+          f"{summary.failed} failed; cluster start and warm-up {started:.1f} s before the clock; today's "
+          f"code: {old_rate:.0f} cases/s per core (260 cases/s on two idle workers, measured before the kernels); "
+          f"load average {os.getloadavg()[0]:.2f}")
+    assert summary.computed == spec.n_cases

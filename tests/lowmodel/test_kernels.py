@@ -1,0 +1,142 @@
+"""The compiled kernels (lowmodel.kernels) against the numpy path they mirror: same states, same failures."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+
+FIELDS = ("ball_velocity", "omega", "velocity_deviation", "spin", "slide", "c_over_a", "friction_force",
+          "friction_moment", "friction_loss", "friction_loss_table", "b2b_force", "b2b_friction_loss", "b2b_slip")
+
+
+@pytest.fixture
+def compiled():
+    pytest.importorskip("numba")
+    kernels.use_kernels(True)
+    module = kernels.load("linear_bearing.ball_kernels")
+    assert module is not None, kernels.load_errors
+    yield module
+    kernels.use_kernels(None)
+
+
+def _both(function, *args, **kwargs):
+    kernels.use_kernels(False)
+    try:
+        reference = function(*args, **kwargs)
+    finally:
+        kernels.use_kernels(True)
+    return reference, function(*args, **kwargs)
+
+
+def _assert_same(reference, state, tolerance=1e-12):
+    # round-off of the converged unknowns (an ulp) is all that may differ: epsilon = 2 v_B / v - 1 is compared on
+    # the scale of 2 v_B / v (1), c/a = tan(phi) through phi
+    for name in FIELDS:
+        a, b = np.asarray(getattr(reference, name)), np.asarray(getattr(state, name))
+        if name == "velocity_deviation":
+            a, b = a + 1.0, b + 1.0
+        elif name == "c_over_a":
+            a, b = np.arctan(a), np.arctan(b)
+        assert a.shape == b.shape, name
+        finite = np.isfinite(a)
+        assert np.array_equal(finite, np.isfinite(b)), name
+        assert np.array_equal(a[~finite], b[~finite]), name  # +-inf c/a at pure sliding
+        scale = max(float(np.max(np.abs(a[finite]), initial=0.0)), 1e-300)
+        assert np.max(np.abs(a[finite] - b[finite]), initial=0.0) <= tolerance * scale, name
+    assert math.isclose(reference.input_power, state.input_power, rel_tol=tolerance)
+    assert math.isclose(reference.total_loss, state.total_loss, rel_tol=tolerance)
+    assert reference.iterations == state.iterations
+
+
+CASES = [(2.0, -0.6), (2.87, -0.5), (1.0, 0.3), (0.0, 0.0), (3.5, -0.2), (0.5, -0.9)]
+
+
+@pytest.mark.parametrize("theta_deg, rho", CASES)
+def test_two_ball_kernel_equals_numpy(compiled, theta_deg, rho):
+    contacts = b2b.module_contacts(math.radians(theta_deg), rho)
+    _assert_same(*_both(b2b.solve, contacts, [0.0]))
+    _assert_same(*_both(bearing_ball.solve, contacts))
+
+
+@pytest.mark.parametrize("n_balls, gaps", [(3, [0.0, 1e-4]), (7, None), (12, [0.0] * 5 + [1e-5] + [0.0] * 5)])
+def test_chain_kernel_equals_numpy(compiled, n_balls, gaps):
+    # 7 and 12 balls: the band path (banded Cholesky of the permuted normal equations)
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=n_balls)
+    _assert_same(*_both(b2b.solve, contacts, gaps))
+
+
+def test_failure_is_the_numpy_failure(compiled):
+    # beyond the spin-capacity limit the kernels fail and the numpy path names the failure, the same either way
+    contacts = b2b.module_contacts(math.radians(2.87), -0.9, vertical_force=128.0, friction_coefficient=0.6)
+    messages = []
+    for enabled in (False, True):
+        kernels.use_kernels(enabled)
+        with pytest.raises(ConvergenceError) as error:
+            b2b.solve(contacts, [0.0])
+        messages.append((str(error.value), error.value.reason))
+    assert messages[0] == messages[1]
+
+
+def test_switched_off_by_environment(monkeypatch):
+    monkeypatch.setenv(kernels.ENVIRONMENT_VARIABLE, "numpy")
+    kernels.use_kernels(None)
+    assert not kernels.kernels_enabled()
+    assert kernels.load("linear_bearing.ball_kernels") is None
+
+
+def test_numpy_path_without_numba():
+    # numba missing (an import that fails): the kernels are not loaded and the solve runs the numpy path
+    code = ("import sys, math\n"
+            "sys.modules['numba'] = None\n"
+            "from ballbench.lowmodel import kernels\n"
+            "from ballbench.lowmodel.linear_bearing import b2b\n"
+            "state = b2b.solve(b2b.module_contacts(math.radians(2.0), -0.6), [0.0])\n"
+            "print(kernels.load('linear_bearing.ball_kernels'), repr(float(state.b2b_force[0])),"
+            " 'numba' in kernels.load_errors.get('linear_bearing.ball_kernels', ''))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded, force, numba_missing = out.stdout.split()
+    assert loaded == "None" and numba_missing == "True"
+    kernels.use_kernels(False)
+    try:
+        reference = b2b.solve(b2b.module_contacts(math.radians(2.0), -0.6), [0.0])
+    finally:
+        kernels.use_kernels(None)
+    assert float(force) == float(reference.b2b_force[0])
+
+
+def test_use_kernels_checks_its_argument():
+    with pytest.raises(ValueError, match="enabled"):
+        kernels.use_kernels("yes")
+
+
+@pytest.mark.parametrize("enabled", [True, False])
+def test_batched_cases_equal_one_case_solves(enabled):
+    # the vectorised Monte Carlo case function (one batch per chunk) gives each case's scalar call to the last bit,
+    # with the kernels and without them (then the batch is the one-case solves)
+    from ballbench.validation import sweep_cases
+
+    if enabled:
+        pytest.importorskip("numba")
+    kernels.use_kernels(enabled)
+    try:
+        draws = np.random.default_rng(5).normal(0.0, math.radians(1.0), (8, 12))
+        rho = np.linspace(-0.5, 0.5, 12)
+        batch = sweep_cases.two_ball_deviations(*draws, rho=rho)
+        for case in range(12):
+            one = sweep_cases.two_ball_deviations(*draws[:, case], rho=float(rho[case]))
+            for name, value in one.items():
+                assert batch[name][case] == value, (case, name)
+    finally:
+        kernels.use_kernels(None)
+
+
+def test_case_batches_check_their_size():
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=3)
+    with pytest.raises(ValueError, match="balls_per_case"):
+        b2b.solve_cases(contacts, 2)
