@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 from tests import paths
+from tests.import_graph import imported_names
 
 ROOT = paths.ROOT
 SCENES = ROOT / "validation" / "scenes"
@@ -29,21 +30,7 @@ def _python_files():
 
 
 def _imported_modules(path: Path) -> set[str]:
-    tree = ast.parse(path.read_text(), filename=str(path))
-    names = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            names.update(alias.name for alias in node.names)
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:  # relative import: resolve against the file's package (installed as ballbench.*)
-                parts = path.relative_to(ROOT).parent.parts
-                parts = ("ballbench",) + parts[:len(parts) - (node.level - 1)]
-                module = ".".join(parts + ((node.module,) if node.module else ()))
-            else:
-                module = node.module
-            names.add(module)
-            names.update(f"{module}.{alias.name}" for alias in node.names)
-    return names
+    return imported_names(path, ROOT)
 
 
 def test_nothing_imports_a_scene_module():
