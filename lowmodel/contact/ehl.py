@@ -326,7 +326,7 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
                                    iterations=0, tolerance=tolerance) from None
 
 
-def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,
+def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,  # noqa: C901 - one algorithm: nested-grid Newton-Krylov with its cavitation set and line search
                      initial_film, initial_pressure, initial_h0, tolerance, load_tolerance, max_iterations,
                      centre, coarsest) -> EHLSolution:
     # the body of solve_reynolds (its docstring), with the nested coarse-grid solve
@@ -411,7 +411,7 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
     film, eta, rho = state(p, h0)
     change = math.inf
     load_error = math.inf
-    for iteration in range(1, max_iterations + 1):
+    for iteration in range(1, max_iterations + 1):  # noqa: B007 - the count is reported after the loop
         res, (xp, xm, yp, ym) = residual(p, film, eta, rho)
         rows, cols, values = [], [], []
         all_i, all_j = np.nonzero(np.ones((nx, ny), dtype=bool))

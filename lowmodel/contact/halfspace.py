@@ -28,6 +28,10 @@ Discretisation and solver (the standard tools, written here from the papers):
 Sign convention: ``gap`` is the separation of the undeformed surfaces [m]
 (>= 0 away from contact, e.g. ``A x^2 + B y^2``); ``approach`` is the rigid
 approach of distant points; in the contact set ``gap + V = approach``.
+
+One concept in one file (about 670 lines): the grid, Love's influence coefficients, their FFT convolution and the
+constrained conjugate gradient that applies them are one boundary-element solver of sun2021 eqs 3-12; the kernel
+layouts (full grid, coarse start, sparse cells, single-precision increments) are internal to that solve.
 """
 from __future__ import annotations
 
@@ -568,7 +572,7 @@ def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: fl
     return p, iteration, residual
 
 
-def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,
+def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,  # noqa: C901 - load or approach control, checks, coarse start: one Polonsky-Keer solve
           approach: float | None = None, centre: tuple[float, float] = (0.0, 0.0), tolerance: float = 1e-8,
           max_iterations: int = 2000, initial_pressure: np.ndarray | None = None) -> HalfSpaceContact:
     """Half-space contact on ``gap`` [m] by the Polonsky-Keer conjugate gradient (sun2021 eqs 3-12).

@@ -35,7 +35,7 @@ def _no_solve(*args, **kwargs):
 def test_saved_fields_name_their_units(saved):
     meta = json.loads((saved / SCENE / "fields.json").read_text())
     data, _ = fe_contact.load_fields(saved / SCENE)
-    for key, name in meta["fields"].items():
+    for name in meta["fields"].values():
         assert name in data, name
         assert name.endswith(("_m", "_Pa")), name
     assert data[meta["fields"]["displacement"]].shape == data["points"].shape
