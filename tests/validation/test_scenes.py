@@ -1,7 +1,7 @@
 """Every registered scene at its quick fidelity: it runs without an error and passes (known gaps allowed, an
 unexpected pass of a known gap fails), and each of its checks names its model family.
 
-Slow (``-m slow``): FE scenes and scenes that cost more than 30 s (tests/scene_support.py).  What a scene shows
+Slow (``-m slow``): FE scenes and scenes that cost more than 20 s (tests/scene_support.py).  What a scene shows
 beyond pass/fail is tested in tests/validation/scenes/, on the same run.
 """
 from __future__ import annotations
