@@ -125,7 +125,7 @@ class ModuleGeometry:
         """True for the contacts on the loaded (top) rail."""
         return i >= 2
 
-    def loaded_angle(self, i: int, centre: np.ndarray) -> float:
+    def loaded_angle(self, i: int, centre: np.ndarray) -> float:  # noqa: ARG002 - the contact-geometry interface: the screw's geometry reads i
         """Contact angle [rad] (lin2017 eq 1, from -y or +y) of the point ``centre`` (3,) on the ball."""
         return math.atan2(abs(centre[0]), abs(centre[1]))
 

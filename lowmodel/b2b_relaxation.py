@@ -88,7 +88,7 @@ def _net_load(load, pair_direction, forces, behind, ahead):
     return total
 
 
-def relax(ball_loads, pair_loads, x0, *, touching, ring: bool = False, gaps=None, gap_scale: float = 0.0,
+def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float = 0.0,  # noqa: C901 - one time integration: its Moreau step, active set and the stop tests
           mass=SOLID_SPHERE, settle_tolerance: float = 1e-10, stall_speed: float = 1e-7, stick_fraction: float = 0.1,
           window: int = 100, max_time: float = 1e4, max_steps: int = 5000, initial_step: float = 0.02,
           max_change: float = 0.05, contact_names=None) -> Relaxation:
@@ -101,7 +101,8 @@ def relax(ball_loads, pair_loads, x0, *, touching, ring: bool = False, gaps=None
         directions of ``x``), its derivative in ``x`` and the contacts' slip vectors (slide, spin) [|v|]
     pair_loads : ``x -> (p, 2, 3)``: load on the ball behind and on the ball ahead per unit normal force of each
         pair (the normal force and its friction, lin2019 eqs 5-8 / 56-59)
-    touching : bool (p,), the pairs in contact at the start (pairs ``(j, j+1)``, and ``(n-1, 0)`` in a ring)
+    touching : bool (p,), the pairs in contact at the start (pairs ``(j, j+1)``, and ``(n-1, 0)`` when ``p = n``:
+        a ring)
     gaps : (p,) gaps of the open pairs [m] (default: open pairs never close), ``gap_scale`` [m per |v| tau]
         turns the velocity difference into the change of a gap per unit time
     mass : the diagonal mass matrix per ball (default :data:`SOLID_SPHERE`)

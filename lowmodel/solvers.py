@@ -65,7 +65,7 @@ def equilibrium_tolerance(tolerance: float, friction_coefficient: float, lever: 
     return max(float(tolerance), floor)
 
 
-def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str, row_tolerance=None,
+def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, what: str, row_tolerance=None,  # noqa: C901 - one Levenberg-Marquardt loop over dense, banded and sparse steps
            row_weight=None):
     """Newton's method globalised by Levenberg-Marquardt on ``function(x) -> (residual, jacobian)``.
 

@@ -302,7 +302,7 @@ def _unknown_keys(where: str, table, allowed: set) -> None:
         raise ValueError(f"{where}: unknown key(s) {sorted(set(table) - allowed)}; allowed {sorted(allowed)}")
 
 
-def check_spec(spec: dict, spec_path: str | Path) -> None:
+def check_spec(spec: dict, spec_path: str | Path) -> None:  # noqa: C901 - one branch per key of the calibration spec, each naming its error
     """ValueError naming the key for any mistake in a calibrate spec, before any fit or FE sweep runs (so a typo
     in the last table does not surface after minutes of FE): keys, FE scene, fidelity, load factors, data files,
     ball radius [m] (a radius outside BALL_RADIUS_RANGE is most likely in mm), conformity, confidence, k_f."""

@@ -85,7 +85,7 @@ def _fmt_cost(seconds: float) -> str:
     return f"~{seconds / 60:.1f} min"
 
 
-def _cmd_scenes(args) -> int:
+def _cmd_scenes(args) -> int:  # noqa: ARG001 - every command takes the parsed arguments
     scenes = registry()
     width = max((len(n) for n in scenes), default=0)
     print(f"{'scene':<{width}}  {'kind':<10}  {'cost':>8}  {'default level':<22}  description")
@@ -159,7 +159,7 @@ class _Interrupt:
             self.previous = None
         return self
 
-    def _handle(self, signum, frame):
+    def _handle(self, signum, frame):  # noqa: ARG002 - the signal-handler signature
         if self.requested:
             raise KeyboardInterrupt
         self.requested = True

@@ -18,9 +18,11 @@ and the isothermal Reynolds solver (eqs 14, 15, 18, 19; :func:`solve_reynolds`)
 with the DC-FFT deformation of :mod:`.halfspace`.
 
 The film traction (eqs 22-23, :func:`film_traction`) and the mixed friction
-coefficient (eq 21, :func:`friction_coefficient`) are here; the asperity load
-Q_a needs a rough (mixed) EHL solve, and the friction torque (eq 20) the
-friction components in the Frenet frame: both not yet implemented.
+coefficient (eq 21, :func:`friction_coefficient`) are here; the rough (mixed)
+solve is :mod:`.mixed`, the friction torque of eq 20 :mod:`lowmodel.screw.friction_torque`.
+
+One concept in one file (about 650 lines): the smooth isothermal EHL point contact, the lubricant laws its
+Reynolds solve evaluates at every Newton step, that solve and the check of its answer (:func:`verify`).
 """
 from __future__ import annotations
 
@@ -378,7 +380,7 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
                                    iterations=0, tolerance=tolerance, reason="floating-point failure") from None
 
 
-def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,
+def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscosity_0, density_0, *,  # noqa: C901 - one algorithm: nested-grid Newton-Krylov with its cavitation set and line search
                      initial_film, initial_pressure, initial_h0, tolerance, load_tolerance, max_iterations,
                      centre, coarsest) -> EHLSolution:
     # the body of solve_reynolds (its docstring), with the nested coarse-grid solve
@@ -447,7 +449,7 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
     start_film = float(film.min())
     change = math.inf
     load_error = math.inf
-    for iteration in range(1, max_iterations + 1):
+    for iteration in range(1, max_iterations + 1):  # noqa: B007 - the count is reported after the loop
         res, (xp, xm, yp, ym) = residual(p, film, eta, rho)
         rows, cols, values = [], [], []
         all_i, all_j = np.nonzero(np.ones((nx, ny), dtype=bool))

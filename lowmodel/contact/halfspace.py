@@ -28,6 +28,11 @@ Discretisation and solver (the standard tools, written here from the papers):
 Sign convention: ``gap`` is the separation of the undeformed surfaces [m]
 (>= 0 away from contact, e.g. ``A x^2 + B y^2``); ``approach`` is the rigid
 approach of distant points; in the contact set ``gap + V = approach``.
+
+One concept in one file (about 780 lines): the grid, Love's influence coefficients, their FFT convolution, the
+constrained conjugate gradient that applies them and the check of its answer (:func:`verify`) are one
+boundary-element solver of sun2021 eqs 3-12; the kernel layouts (full grid, coarse start, sparse cells,
+single-precision increments) are internal to that solve.
 """
 from __future__ import annotations
 
@@ -475,7 +480,7 @@ def _fft_size(m: int) -> int:
     return m
 
 
-def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: float | None,
+def _constrained_cg(gap: np.ndarray, grid: SurfaceGrid, e_star: float, force: float | None,  # noqa: C901 - one Polonsky-Keer CG with its Jacobi re-entry and load/approach control
                     approach: float | None, p: np.ndarray | None, tolerance: float,
                     max_iterations: int) -> tuple[np.ndarray, int, float]:
     # Polonsky & Keer's constrained CG on ``gap``, a box of ``grid`` (or all of it), from the pressure ``p`` (None
@@ -646,7 +651,7 @@ def verify(gap: np.ndarray, pressure: np.ndarray, deformation: np.ndarray, appro
                                reason=f"fails the check of {check}")
 
 
-def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,
+def solve(gap: np.ndarray, grid: SurfaceGrid, contact_modulus: float, *, force: float | None = None,  # noqa: C901 - load or approach control, checks, coarse start: one Polonsky-Keer solve
           approach: float | None = None, centre: tuple[float, float] = (0.0, 0.0), tolerance: float = 1e-8,
           max_iterations: int = 2000, initial_pressure: np.ndarray | None = None) -> HalfSpaceContact:
     """Half-space contact on ``gap`` [m] by the Polonsky-Keer conjugate gradient (sun2021 eqs 3-12).

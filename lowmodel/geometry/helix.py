@@ -274,7 +274,7 @@ def ball_centre_azimuths(pitch_radius: float, lead: float, spacing: float) -> fl
     unit = checks.power_of_two_scale(max(pitch_radius, p))
     pitch_radius, p, spacing = pitch_radius / unit, p / unit, spacing / unit
     dphi = spacing / math.hypot(pitch_radius, p)  # arc-length guess
-    for iteration in range(50):
+    for iteration in range(50):  # noqa: B007 - the count is reported after the loop
         chord2 = (2 * pitch_radius * math.sin(dphi / 2)) ** 2 + (p * dphi) ** 2
         if chord2 == spacing**2:  # exact root (also where the step would be 0 / 0)
             return dphi

@@ -178,7 +178,7 @@ def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     return load, block, d_force, np.sqrt(squared)
 
 
-def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,
+def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,  # noqa: C901 - one solve: direct, free balls, continuation, the walks, the relaxation
           gap_tolerance: float | None = None) -> BallState:
     """Quasi-static motion of ``n >= 1`` balls with ball-to-ball contact (lin2019 eqs 4-10).
 

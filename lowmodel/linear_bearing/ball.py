@@ -364,9 +364,9 @@ def solve_free(contacts: BallContacts, reference_force: float, tolerance: float,
 
         def solve_at(ball_contacts, z0, what):
             def function(z):
-                terms = ball_terms(z[None, :], ball_contacts, reference_force)
+                terms = ball_terms(z[None, :], ball_contacts, reference_force)  # noqa: B023 - called within this iteration
                 return terms.residual[0], terms.jacobian[0]
-            return solve_branch(function, z0, lambda z: z[None, :], ball_contacts,
+            return solve_branch(function, z0, lambda z: z[None, :], ball_contacts,  # noqa: B023 - called within this iteration
                                 tolerance=tolerance, max_iterations=max_iterations, what=what)
 
         try:

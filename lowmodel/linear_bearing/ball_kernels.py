@@ -28,6 +28,9 @@ groove velocity of the contact (0 bottom, ``sign v`` top), ``F_i / F_ref``, the 
 Status codes of the solves:
 :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`STATIONARY`, :data:`NO_DESCENT`, :data:`REJECTED`
 (the numpy path names them in its ConvergenceError messages, and runs again where a kernel fails).
+
+One concept in one file (about 780 lines): the compiled twin of the ball and chain solves.  The kernels call
+one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
 
@@ -421,7 +424,7 @@ def _band_solve(band, damping, rhs, factor, out):
 
 
 @_jit
-def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,
+def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,  # noqa: C901 - one compiled Levenberg-Marquardt loop (numba: no closures)
            residual):
     """:func:`lowmodel.solvers.newton` on :func:`chain_terms` from ``z`` (overwritten with the last iterate);
     the residual at it into ``residual`` (n K,).  Returns ``(status, iterations, max |residual|)``."""

@@ -179,7 +179,7 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
 
         def mismatch(u0):
-            return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)
+            return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)  # noqa: B023 - called within this iteration
 
         # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
         # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold

@@ -38,7 +38,7 @@ MESH_FORMAT_VERSION = "fourpoint-1"
 CONTACTS = CONTACT_NAMES  # flank and cap group names: the contact order (BL, BR, TR, TL) of the geometry core
 
 
-def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0),
+def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float, deviations=(0.0, 0.0, 0.0, 0.0),  # noqa: C901 - one gmsh geometry; the branches are its options and their checks
                      n_balls: int = 1, *, spacing: float | None = None, land_height: float | None = None,
                      width: float | None = None, depth: float | None = None, length: float | None = None,
                      h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,

@@ -155,19 +155,6 @@ def test_module_statics_and_fe_informed_b2b(quick_modules):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["fe-b2b-screw-a", "fe-b2b-screw-b"])
-def test_fe_b2b_screw_scene_quick_level_passes(name, tmp_path):
-    # two FE modules (224k P2 DOFs in all) + FE-informed B2B: ~60-90 s each on the shared machine
-    from ballbench.validation.runner import run_scene
-    from ballbench.validation.scene import registry
-
-    result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
-    assert result.passed, [o for o in result.outputs if not o.passed] or result.error
-    assert {"F_B2B", "power balance (input - losses)/input", "friction increase by B2B"} <= {
-        o.quantity for o in result.outputs}
-
-
-@pytest.mark.slow
 def test_show_screw_module_writes_pngs(tmp_path):
     from ballbench.validation import show
 

@@ -1,4 +1,5 @@
-"""Calibration: fits with intervals (lowmodel/calibration.py), CSV input and the spec (validation/calibrate.py)."""
+"""lowmodel.calibration: fits with intervals, the contact law, the calibration file (``ballbench calibrate``'s spec and
+CSV input: tests/validation/test_calibrate.py)."""
 import json
 import math
 
@@ -7,17 +8,12 @@ import pytest
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
-from ballbench.validation import calibrate
-from tests import paths
 from ballbench.lowmodel import calibration
 from ballbench.lowmodel.errors import ConvergenceError
 from hypothesis import given, strategies as st
 from pathlib import Path
 from tests.property_support import SETTINGS, call, positive, real
 import tempfile
-
-DATA = paths.DATA
-FE_CSV = DATA / "fe_groove056_quick.load_approach.csv"
 
 
 def test_linear_fit_matches_ordinary_least_squares():
@@ -51,15 +47,6 @@ def test_exact_data_recover_hertz():
     assert law.psi.value == pytest.approx(hertz.psi_constant(geometry, 5e-3), rel=1e-12)
 
 
-def test_intervals_cover_the_truth_in_at_least_90_percent_of_seeds():
-    from ballbench.validation.studies.calibration import coverage, synthetic_truth
-
-    shares = coverage(range(100), synthetic_truth())
-    assert set(shares) == {"hertz_constant", "bulk_compliance", "psi", "mu", "mu_speed_slope", "k_f"}
-    for name, share in shares.items():
-        assert share >= 0.90, f"{name}: 95 % interval covers the truth in {100 * share:.0f} % of 100 seeds"
-
-
 def test_too_few_points_and_bad_input():
     with pytest.raises(ValueError, match=">= 3 distinct loads"):
         cal.fit_contact_law([1.0, 2.0], [1e-6, 2e-6])
@@ -71,42 +58,6 @@ def test_too_few_points_and_bad_input():
         cal.fit_friction_coefficient([1.0, 2.0, 3.0], [0.1, 0.2, 0.3], [1.0, 1.0, 1.0])
     with pytest.raises(ValueError, match="confidence"):
         cal.fit_friction_coefficient([1.0, 2.0, 3.0], [0.1, 0.2, 0.3], confidence=95)
-
-
-def _write(tmp_path, text, name="f.csv"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
-
-
-def test_friction_csv_units_and_torque(tmp_path):
-    path = _write(tmp_path, "# rig 3, 2026-11-20\nnormal_force [kN],friction_torque [N mm],lever_arm [mm],"
-                            "speed [mm/s]\n0.1,500,50,10\n0.2,1100,50,20\n")
-    data = calibrate.read_friction_csv(path)
-    np.testing.assert_allclose(data["normal_force"], [100.0, 200.0])
-    np.testing.assert_allclose(data["friction_force"], [10.0, 22.0])  # 0.5 N m / 0.05 m
-    np.testing.assert_allclose(data["speed"], [0.01, 0.02])
-
-
-@pytest.mark.parametrize("text, message", [
-    ("normal_force,friction_force [N]\n1,2\n", r"line 1, column 1: header 'normal_force' must be 'name \[unit\]'"),
-    ("normal_force [lbf],friction_force [N]\n1,2\n", r"line 1, column 1: unit 'lbf' of 'normal_force'"),
-    ("normal_force [N],friction_force [N]\n1,2\n3,x\n", r"line 3, column 2 \(friction_force\): 'x' is not a number"),
-    ("normal_force [N],friction_force [N]\n1,2\n3\n", r"line 3: 1 cells, the header has 2 columns"),
-    ("# c\nnormal_force [N],speed [m/s]\n1,2\n", "exactly one of the columns friction_force, friction_torque"),
-    ("friction_force [N]\n1\n", r"missing column\(s\) \['normal_force'\]"),
-    ("normal_force [N],colour [1]\n1,2\n", "unknown column 'colour'"),
-    ("normal_force [N],friction_force [N]\n1,nan\n", r"line 2, column 2: friction_force must be finite"),
-    ("normal_force [N],friction_force [N]\n", "no data rows"),
-    ("normal_force [N],friction_force [N]\n-1,0.1\n", r"line 2, column 1: normal_force must be finite and > 0 N"),
-    ("normal_force [N],friction_torque [N m],lever_arm [mm]\n1,0.1,5\n2,0.1,0\n",
-     r"line 3, column 3: lever_arm must be finite and > 0 mm"),
-])
-def test_bad_friction_csv_names_line_and_column(tmp_path, text, message):
-    path = _write(tmp_path, text)
-    with pytest.raises(ValueError, match=message) as error:
-        calibrate.read_friction_csv(path)
-    assert str(path) in str(error.value)
 
 
 def test_calibration_file_round_trip_and_errors(tmp_path):
@@ -126,102 +77,6 @@ def test_calibration_file_round_trip_and_errors(tmp_path):
         cal.load(tmp_path / "bad.json")
     with pytest.raises(ValueError, match="does not exist"):
         cal.load(tmp_path / "none.json")
-
-
-def test_kf_exact_and_least_squares():
-    from ballbench.lowmodel.contact import ellipse_friction as ef
-
-    constants = calibrate.kf_constants(0.56, 0.5)
-    exact, ls, ls_map = constants["exact"].value, constants["least_squares"].value, constants["least_squares_map"]
-    assert exact > ls  # the cubic term of the force bends the fitted slope below the tangent (lin2019 eq A8)
-    ratio = float(hertz.solve_load(hertz.ball_in_groove(5e-3, 0.56), 100.0).b
-                  / hertz.solve_load(hertz.ball_in_groove(5e-3, 0.56), 100.0).a)
-    g3 = float(ef.cubic_coefficient(ratio))
-    assert ls == pytest.approx(exact - 0.6 * 0.5**2 * g3, rel=1e-9)  # k_f - (3/5) c_max^2 g3
-    assert ls_map.covers(ls)  # the discrete fit on the tabulated map agrees with the continuous one
-    assert abs(ls - 1.38) / 1.38 < 0.01  # lin2019 Sec 2.3.2 reads 1.38 off Fig 5
-
-
-def test_calibrate_spec_from_cached_fe_data_and_validate_with_it(tmp_path, monkeypatch):
-    friction = _write(tmp_path, "normal_force [N],friction_force [N]\n50,5.1\n100,9.9\n150,15.05\n200,19.9\n",
-                      "friction.csv")
-    spec = _write(tmp_path, f'''
-output = "cal.json"
-[contact."ball-groove-0.56"]
-data = "{FE_CSV}"
-ball_radius = 5e-3
-conformity = 0.56
-[friction]
-data = "{friction.name}"
-[k_f]
-conformity = 0.56
-''', "spec.toml")
-    lines = []
-    path, calibration = calibrate.run_spec(spec, log=lines.append)
-    assert path == tmp_path / "cal.json" and path.is_file()
-    psi = calibration.get("ball-groove-0.56", "psi")
-    geometry = hertz.ball_in_groove(5e-3, 0.56)
-    assert psi.reference == pytest.approx(hertz.psi_constant(geometry, 5e-3))
-    assert abs(psi.value / psi.reference - 1) < 0.03  # the quick FE level's stated accuracy on a (3 %)
-    mu = calibration.get("friction", "mu")
-    assert mu.ci_low < 0.1 < mu.ci_high and math.isfinite(mu.std_error)
-    assert any("calibration written" in line for line in lines)
-
-    from ballbench.validation import cli
-
-    monkeypatch.setenv(calibrate.CALIBRATION_ENV, "")  # restored after the test
-    out = tmp_path / "report"
-    code = cli.main(["validate", "calibration-effect", "--calibration", str(path), "--out", str(out),
-                     "--no-progress"])
-    assert code == 0
-    report = json.loads((out / "results.json").read_text())
-    assert "the --calibration file" in json.dumps(report)
-
-
-def test_bad_spec_is_named(tmp_path):
-    spec = _write(tmp_path, '[contact.x]\nfe_scene = "fe-hertz-flat"\ndata = "a.csv"\n', "s.toml")
-    with pytest.raises(ValueError, match="exactly one of 'fe_scene'"):
-        calibrate.run_spec(spec, log=lambda _: None)
-    spec = _write(tmp_path, 'colour = 1\n', "t.toml")
-    with pytest.raises(ValueError, match="unknown key"):
-        calibrate.run_spec(spec, log=lambda _: None)
-
-
-@pytest.mark.slow
-def test_fe_sweep_reproduces_the_cached_data():
-    # the quick FE level of fe-hertz-groove-056 (about 10-60 s on the shared machine)
-    sweep = calibrate.fe_load_sweep("fe-hertz-groove-056", "quick")
-    cached = calibrate.read_load_approach_csv(FE_CSV)
-    for name in ("force", "approach", "a"):
-        np.testing.assert_allclose(sweep[name], cached[name], rtol=1e-6)
-
-
-def test_roundtrip_scene_passes(tmp_path):
-    from ballbench.validation.runner import run_scene
-    from ballbench.validation.scene import registry
-
-    result = run_scene(registry()["calibration-roundtrip"], "quick", tmp_path, show_progress=False)
-    assert result.passed, (result.error, [(o.quantity, o.value) for o in result.outputs if not o.passed])
-    assert len(result.outputs) == 13  # 6 constants, the file round trip, 6 coverages
-
-
-def test_sweep_cases_take_a_calibration_file(tmp_path):
-    from ballbench.lowmodel.linear_bearing import b2b
-    from ballbench.validation import sweep_cases
-
-    geometry = hertz.ball_in_groove(5e-3, 0.56)
-    psi_hertz = hertz.psi_constant(geometry, 5e-3)
-    contacts = b2b.module_contacts(math.radians(2.0), -0.6)
-    np.testing.assert_allclose(sweep_cases.with_psi(contacts, psi_hertz).semi_major, contacts.semi_major, rtol=1e-12)
-    constant = cal.Constant(1.01 * psi_hertz, 1e-6, 0.0, 1.0, "(m^2/N)^(1/3)", "test")
-    path = cal.save(cal.Calibration({"ball-groove-0.56": {"psi": constant}}), tmp_path / "c.json")
-    plain = sweep_cases.two_ball_analytical(math.radians(2.0), -0.6)
-    calibrated = sweep_cases.two_ball_analytical(math.radians(2.0), -0.6, calibration=str(path))
-    assert calibrated["b2b_force"] == pytest.approx(plain["b2b_force"] / 1.01, rel=1e-12)  # eq 30: 1/Psi
-    numerical = sweep_cases.two_ball_numerical(math.radians(2.0), -0.6, calibration=str(path))
-    assert numerical["b2b_force"] != sweep_cases.two_ball_numerical(math.radians(2.0), -0.6)["b2b_force"]
-    with pytest.raises(KeyError, match="ball-groove-0.6"):
-        sweep_cases.two_ball_analytical(0.01, 0.1, calibration=str(path), conformity=0.6)
 
 
 # --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,

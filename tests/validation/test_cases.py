@@ -110,7 +110,7 @@ def test_contact_scenes_run_their_case():
     assert cases["fe-hertz-groove-052"].conformity == 0.52
     assert cases["fe-hertz-nut"].screw is lin2019.SCREW
     assert {name for name, entry in registry().items() if isinstance(entry.case, ContactCase)} == set(cases)
-    for name, case in cases.items():
+    for name in cases:
         assert registry()[name].show is not None, name
     assert registry()["fe-b2b-screw-a"].case is lin2019.TABLE5_A
 

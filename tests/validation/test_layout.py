@@ -5,9 +5,9 @@ references apart, model identity as data.
   and studies);
 * a scene module holds only its ``@scene`` functions and private helpers;
 * ``show.py`` and ``calibrate.py`` name no scene;
-* every check declares its model family;
-* figures use matplotlib's object API: no ``matplotlib.use``, no pyplot in the library;
-* code cites papers, equations and docs pages, never an issue number.
+* every check declares its model family.
+
+The habits of the whole library (object-API figures, no issue numbers, file length): tests/test_habits.py.
 """
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 from tests import paths
+from tests.import_graph import imported_names
 
 ROOT = paths.ROOT
 SCENES = ROOT / "validation" / "scenes"
@@ -29,21 +30,7 @@ def _python_files():
 
 
 def _imported_modules(path: Path) -> set[str]:
-    tree = ast.parse(path.read_text(), filename=str(path))
-    names = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            names.update(alias.name for alias in node.names)
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:  # relative import: resolve against the file's package (installed as ballbench.*)
-                parts = path.relative_to(ROOT).parent.parts
-                parts = ("ballbench",) + parts[:len(parts) - (node.level - 1)]
-                module = ".".join(parts + ((node.module,) if node.module else ()))
-            else:
-                module = node.module
-            names.add(module)
-            names.update(f"{module}.{alias.name}" for alias in node.names)
-    return names
+    return imported_names(path, ROOT)
 
 
 def test_nothing_imports_a_scene_module():
@@ -106,24 +93,3 @@ def test_every_check_declares_its_family(tmp_path):
     assert (output.family, output.level) == ("FE-informed", "h 30 um") and "FE-informed" in FAMILIES
     source = "\n".join(p.read_text() for p in SCENES.glob("*.py"))
     assert 'family="FE-informed"' in source  # the fe-b2b-* scenes' FE-informed models
-
-
-def test_figures_use_the_object_api():
-    for path in (ROOT / "validation").rglob("*.py"):
-        text = path.read_text()
-        assert "matplotlib.use(" not in text, path.name
-        assert "import matplotlib.pyplot" not in text and "plt." not in text, path.name
-
-
-def test_code_cites_no_issue_number():
-    pattern = re.compile(r"\bissues? ?#?\d+", re.IGNORECASE)
-    for path in (ROOT / "validation").rglob("*.py"):
-        for number, line in enumerate(path.read_text().splitlines(), start=1):
-            assert not pattern.search(line), f"{path.relative_to(ROOT)}:{number}: {line.strip()}"
-
-
-def test_validation_files_stay_small():
-    for path in (ROOT / "validation").rglob("*.py"):
-        lines = path.read_text().count("\n")
-        doc = ast.get_docstring(ast.parse(path.read_text())) or ""
-        assert lines <= 600 or "one concept" in doc, f"{path.relative_to(ROOT)}: {lines} lines"

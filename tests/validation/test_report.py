@@ -16,6 +16,7 @@ from ballbench.validation.report import contents, document, html, markdown
 from ballbench.validation.report.figure import error_figure
 from ballbench.validation.report.records import tally
 from ballbench.validation.scene import FAMILIES, Output, SceneResult
+from ballbench.validation import cli
 
 
 def _output(model, family, level="", *, error=0.5, tolerance=0.03, time_s=1e-3, quantity="a"):
@@ -191,3 +192,151 @@ def test_csv_carries_family_and_level(tmp_path, family):
     report.write_csv([_scene("zz", _output("m", family, "h 30 um"))], tmp_path / "r.csv")
     text = (tmp_path / "r.csv").read_text().splitlines()
     assert text[0].endswith(",family,level") and text[1].endswith(f",{family},h 30 um")
+
+
+def test_a_family_front_of_one_point_is_drawn_as_a_line_to_the_longest_time():
+    from ballbench.validation.report import front_line
+
+    # the fastest point is also the most accurate: the front is that one point (in the --fast run: the
+    # low-order numerical and 'other' families), which a post-step line drew as nothing at all
+    family = [{"time_s": 1e-3, "error": 1e-6}, {"time_s": 1e-2, "error": 0.4}, {"time_s": 0.7, "error": 0.9}]
+    times, errors = front_line(family)
+    assert times == [1e-3, 0.7] and errors == [1e-6, 1e-6]
+    # a front of several points keeps its steps and ends at the family's longest time
+    family.append({"time_s": 0.1, "error": 1e-9})
+    times, errors = front_line(family)
+    assert times == [1e-3, 0.1, 0.7] and errors == [1e-6, 1e-8, 1e-8]  # 1e-9 drawn on the 1e-8 floor
+    # one point in all: a short stub, still a line
+    times, errors = front_line([{"time_s": 2.0, "error": 0.5}])
+    assert len(times) == 2 and times[1] > times[0] and errors == [0.5, 0.5]
+
+
+def test_a_dimensionless_number_is_shown_without_the_unit_1(tmp_path, capsys, monkeypatch):
+    from ballbench.validation import scene as scene_module
+    from ballbench.validation.report import failure_lines, row
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def ratio_scene(run):
+        run.check(model="lowmodel.contact.mixed", family="EHL", quantity="relative change", unit="1", value=0.010156,
+                  reference=0.0293, source="sun2021 Sec 4.4", tolerance=0.2, time_s=1e-3)
+
+    result = run_scene(Scene("zz-ratio", "ratio", ratio_scene, default=False, kind="low-order", cost_s=0.1),
+                       "default", tmp_path)
+    # "0.010156 1 vs reference 0.029300 1" read as a value with a unit called "1"
+    assert "0.010156 vs reference 0.029300 (" in failure_lines(result)[0]
+    assert row(result.outputs[0]).unit == ""
+    monkeypatch.setitem(scene_module.REGISTRY, "zz-ratio", Scene("zz-ratio", "ratio", ratio_scene, default=False,
+                                                                 kind="low-order", cost_s=0.1))
+    assert cli.main(["validate", "zz-ratio", "--out", str(tmp_path / "r")]) == 1
+    assert "| relative change | 0.010156 | 0.029300 | - |" in (tmp_path / "r" / "report.md").read_text()
+    import json
+    assert json.loads((tmp_path / "r" / "results.json").read_text())["scenes"][0]["outputs"][0]["unit"] == "1"
+
+
+def test_known_gaps_table_states_a_shared_reason_once(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import KnownGap, Scene
+
+    shared = KnownGap(reason="Fig 19 (the deviation along the screw) is not given.", evidence="docs/ball_screw.md")
+    other = KnownGap(reason="Table 4 gives no preload.", evidence="this scene")
+
+    def gaps(run):
+        for quantity, gap in (("peak", shared), ("angle of the peak", shared), ("F_B2B", other)):
+            run.check(model="lowmodel.screw.whole_screw", family="low-order numerical",
+                      quantity=quantity, unit="deg", value=100.0,
+                      reference=126.0, source="lin2019 Fig 21", tolerance=0.05, time_s=1.0, known_gap=gap)
+
+    result = run_scene(Scene("zz-gaps", "gaps", gaps, default=False, kind="low-order", cost_s=0.1), "default",
+                       tmp_path)
+    markdown = to_markdown([result], "default")
+    section = markdown.split("## Known gaps")[1].split("## Budgets")[0]
+    assert section.count(shared.reason) == 1 and section.count(other.reason) == 1  # was 2 and 1
+    assert "| as above | as above |" in section
+    page = to_html([result], "default", tmp_path)
+    assert page.split('id="known-gaps"')[1].split('id="budgets"')[0].count(shared.reason) == 1
+
+
+def test_junit_lists_every_check_of_a_scene(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    from ballbench.validation.report import to_junit
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def two_checks(run):
+        run.check(model="fem.mortar", family="FE", quantity="a", unit="m", value=421.3e-6, reference=421.2e-6,
+                  source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
+        run.check(model="fem.mortar", family="FE", quantity="p0", unit="Pa", value=1159e6, reference=1159.2e6,
+                  source="Hertz, Johnson (1985) eq 4.39", tolerance=0.03, time_s=26.0)
+
+    result = run_scene(Scene("zz-fe", "fe", two_checks, default=False, kind="FE", cost_s=0.1), "default", tmp_path)
+    case = ET.fromstring(to_junit([result])).find("testcase")
+    text = case.find("system-out").text
+    # a passing FE scene's JUnit case held only its wall time: a CI page showed no number of the check
+    assert "a [fem.mortar]: 421.30 um vs reference 421.20 um (Hertz, Johnson (1985) eq 4.39)" in text
+    assert "p0 [fem.mortar]: 1159.0 MPa" in text and text.count(": pass") == 2
+
+
+def test_an_empty_budgets_section_says_so(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def quick(run):
+        run.check(model="lowmodel.contact.hertz", family="analytical",
+                  quantity="a", unit="m", value=1.0e-4, reference=1.0e-4,
+                  source="Johnson (1985) eq 4.22", tolerance=1e-9, time_s=1e-5)
+
+    result = run_scene(Scene("zz-quick", "quick", quick, default=False, kind="analytical", cost_s=0.1), "default",
+                       tmp_path)
+    # the section showed a table header with no row under it
+    section = to_markdown([result], "default").split("## Budgets")[1].split("##")[0]
+    assert "None in this run" in section and "| scene | what |" not in section
+    page = to_html([result], "default", tmp_path).split('id="budgets"')[1].split("<h2")[0]
+    assert "None in this run" in page and "<table>" not in page
+
+
+def test_known_gaps_section_of_a_strict_run_says_they_fail(tmp_path):
+    from ballbench.validation.report import to_html, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import KnownGap, Scene
+
+    def gap(run):
+        run.check(model="lowmodel.linear_bearing.b2b", family="low-order numerical",
+                  quantity="increase", unit="%", value=150.4, reference=185.2,
+                  relation="ge", tolerance=0.0, source="lin2019 Sec 2.4.1", time_s=0.01,
+                  known_gap=KnownGap(reason="no full-sliding state", evidence="docs/b2b_bearing.md"))
+
+    result = run_scene(Scene("zz-gap", "gap", gap, default=False, kind="low-order", cost_s=0.1), "default", tmp_path)
+    # the --strict report failed the scene and said in the same page that known gaps "do not fail the run"
+    strict_md = to_markdown([result], "default", strict=True).split("## Known gaps")[1].split("## Budgets")[0]
+    assert "do not fail the run" not in strict_md and "counts them as failures" in strict_md
+    assert "do not fail the run" in to_markdown([result], "default")
+    assert "counts them as failures" in to_html([result], "default", tmp_path, strict=True)
+
+
+def test_a_bound_that_holds_is_not_called_exact(tmp_path):
+    from ballbench.validation.report import fmt_ratio, to_markdown
+    from ballbench.validation.runner import run_scene
+    from ballbench.validation.scene import Scene
+
+    def bounds(run):
+        run.check(model="lowmodel.calibration", family="low-order numerical",
+                  quantity="coverage of the 95 % interval", unit="1", value=0.9525,
+                  reference=0.9, relation="ge", tolerance=0.0, source="issue 13", time_s=1e-3)
+
+    def exact(run):
+        run.check(model="lowmodel.calibration", family="low-order numerical",
+                  quantity="constants changed by save/load", unit="count", value=0.0,
+                  reference=0.0, tolerance=0.0, scale=1.0, source="JSON round trip", time_s=1e-3,
+                  why="a count: any change is one")
+
+    results = [run_scene(Scene(name, name, f, default=False, kind="low-order", cost_s=0.1), "default", tmp_path)
+               for name, f in (("zz-bounds", bounds), ("zz-exact", exact))]
+    # calibration-roundtrip's coverage bounds read "0 (exact)" in the table and the summary
+    assert fmt_ratio(results[0].outputs[0]) == "0 (bound met)"
+    assert fmt_ratio(results[1].outputs[0]) == "0 (exact)"
+    summary = to_markdown(results, "default").split("## Summary")[1].split("## Known gaps")[0]
+    assert "| 1 | 0 (bounds met) |" in summary and "| 1 | 0 (exact) |" in summary

@@ -506,3 +506,20 @@ def test_mesh_levels_join_the_accuracy_cost_front(tmp_path):
     levels = mesh_level_points(to_json([result], "fine"), tmp_path)
     assert [p["time_s"] for p in levels] == [10.0, 80.0]
     assert [p["error"] for p in levels] == pytest.approx([max(0.02 / 0.003, 0.03 / 0.005), 0.4])
+
+
+def test_a_scene_that_raises_points_to_its_traceback(tmp_path, capsys, monkeypatch):
+    from ballbench.validation import scene as scene_module
+    from ballbench.validation.scene import Scene
+
+    def raises(run):
+        raise ValueError("conformity must lie in (0.5, 1); got 0.49")
+
+    scene_module.registry()
+    monkeypatch.setitem(scene_module.REGISTRY, "zz-raises",
+                        Scene("zz-raises", "raises", raises, default=False, kind="low-order", cost_s=0.1))
+    assert cli.main(["validate", "zz-raises", "--out", str(tmp_path / "r")]) == 1
+    err = capsys.readouterr().err
+    # the terminal said only "ERROR zz-raises (0.0 s): ValueError: ..." and the traceback sat in a file it never named
+    assert f"traceback: {tmp_path / 'r' / 'zz-raises' / 'error.txt'}" in err
+    assert (tmp_path / "r" / "zz-raises" / "error.txt").read_text().startswith("Traceback")

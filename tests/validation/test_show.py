@@ -35,7 +35,7 @@ def _no_solve(*args, **kwargs):
 def test_saved_fields_name_their_units(saved):
     meta = json.loads((saved / SCENE / "fields.json").read_text())
     data, _ = fe_contact.load_fields(saved / SCENE)
-    for key, name in meta["fields"].items():
+    for name in meta["fields"].values():
         assert name in data, name
         assert name.endswith(("_m", "_Pa")), name
     assert data[meta["fields"]["displacement"]].shape == data["points"].shape
@@ -109,3 +109,32 @@ def test_show_fourpoint_module_writes_pngs(tmp_path):
     for path in paths:
         assert path.exists() and path.stat().st_size > 10_000
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys):
+    import json
+
+    from ballbench.validation import show
+    from ballbench.validation.studies import fe_contact
+
+    class Stop(Exception):
+        pass
+
+    def stop(*args, **kwargs):
+        raise Stop
+
+    monkeypatch.setattr(fe_contact, "compute_fields", stop)
+    (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": []}))
+    with pytest.raises(Stop):
+        show.show("fe-hertz-groove-056", tmp_path, "default")
+    # the user ran 'validate --quick' then 'show' and saw the default level solved without a reason
+    assert "a --quick run, which saves no fields" in capsys.readouterr().err
+
+
+def test_show_labels_give_the_fe_error_against_hertz():
+    from ballbench.validation.figures.style import against
+
+    # pressure.png drew Hertz and FE ellipses 0.01 % apart with nothing but the two lengths to 0.1 um
+    assert against(421.2844e-6, 421.2438e-6) == "+0.010 %"
+    assert against(97.757e-6, 97.790e-6) == "-0.034 %"
+    assert against(1.0, 0.0) == "n/a"

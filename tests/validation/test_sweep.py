@@ -1,5 +1,4 @@
 """Sweep engine (validation/sweep/): spec checks, reproducible draws, failures, kill and resume, equivalence."""
-import math
 import os
 import signal
 import subprocess
@@ -14,6 +13,7 @@ import pytest
 from ballbench.validation import sweep
 from tests.cli_support import helper_module
 from tests import paths
+from ballbench.validation import cli
 
 HELPERS = textwrap.dedent('''
     import math, os, time
@@ -181,16 +181,6 @@ def test_killed_sweep_restarts_with_the_missing_cases_only(helpers, tmp_path):
     np.testing.assert_array_equal(result["value"], x_all ** 2)
 
 
-def test_sweep_equivalence_scene_passes(tmp_path):
-    # serial vs LocalCluster(2 workers) vs stopped-and-resumed (the only dask cluster of the default tests)
-    from ballbench.validation.runner import run_scene
-    from ballbench.validation.scene import registry
-
-    result = run_scene(registry()["sweep-equivalence"], "quick", tmp_path, show_progress=False)
-    assert result.passed, (result.error, [(o.quantity, o.value) for o in result.outputs if not o.passed])
-    assert math.isfinite(result.wall_time_s)
-
-
 def test_example_specs_parse_and_match_the_scene():
     from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
 
@@ -329,3 +319,100 @@ def test_the_spec_units_live_in_one_module():
     spec = sweep.spec_from_dict({"name": "u", "function": "math:hypot", "outputs": ["real"],
                                  "grid": {"x": {"values": [1.0, 2.0], "unit": "mm"}}})
     np.testing.assert_allclose(spec.grid["x"], [1e-3, 2e-3])
+
+
+SWEEP_HELPERS = '''
+def square(x, offset=0.0):
+    """x^2 + offset [-]; x < 0 raises."""
+    if x < 0:
+        raise ValueError(f"x must be >= 0, got {x}")
+    return {"value": x * x + offset}
+'''
+
+
+@pytest.fixture
+def sweep_helpers(tmp_path, monkeypatch):
+    return helper_module(tmp_path, monkeypatch, "audit_sweep_helpers", SWEEP_HELPERS)
+
+
+def _sweep_spec(tmp_path, fixed: str, values: str) -> str:
+    path = tmp_path / "spec.toml"
+    path.write_text(f'name = "audit"\nfunction = "audit_sweep_helpers:square"\nchunk_size = 2\noutputs = ["value"]\n'
+                    f'[fixed]\n{fixed}\n[grid]\nx = {{ values = {values} }}\n')
+    return str(path)
+
+
+VECTOR_HELPERS = '''
+import numpy as np
+
+CALLS = []
+
+
+def vector_square(x):
+    """x^2 [-]; raises for the whole batch when any x < 0 (as b2b_analytical does outside four-point contact)."""
+    x = np.asarray(x, dtype=float)
+    CALLS.append(x.size)
+    if np.any(x < 0):
+        raise ValueError("x must be >= 0")
+    return {"value": x * x}
+'''
+
+
+@pytest.mark.parametrize("fixed, expected", [
+    ("ofset = 1.0", "unexpected keyword argument 'ofset'"),  # a misspelt input
+    ("", None),                                               # fine: offset has a default
+])
+def test_sweep_input_names_are_checked_before_any_case_runs(sweep_helpers, tmp_path, capsys, fixed, expected):
+    spec = _sweep_spec(tmp_path, fixed, "[1.0, 2.0]")
+    out = tmp_path / "out"
+    if expected is None:
+        assert cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]) == 0
+        return
+    with pytest.raises(SystemExit) as stop:  # used to run every case, record a TypeError each and exit 0
+        cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"])
+    assert expected in str(stop.value) and "square(x, offset=0.0)" in str(stop.value)
+    assert not out.exists()
+
+
+def test_sweep_names_the_failure_reasons_and_fails_when_every_case_fails(sweep_helpers, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert cli.main(["sweep", _sweep_spec(tmp_path, "", "[-2.0, -1.0, 3.0]"), "--serial", "--out", str(out),
+                     "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "2 failed with ValueError; the first, case 0: ValueError: x must be >= 0, got -2.0" in printed
+    everything_fails = _sweep_spec(tmp_path, "", "[-2.0, -1.0]")
+    assert cli.main(["sweep", everything_fails, "--serial", "--out", str(tmp_path / "out2"), "--no-progress"]) == 1
+    assert "every case failed" in capsys.readouterr().err
+
+
+def test_a_vectorised_chunk_with_one_failing_case_stays_vectorised(tmp_path, monkeypatch):
+    import importlib
+
+    import numpy as np
+
+    from ballbench.validation import sweep
+
+    helper_module(tmp_path, monkeypatch, "audit_vector_helpers", VECTOR_HELPERS)
+    helpers = importlib.import_module("audit_vector_helpers")
+    values = [float(v) for v in range(1, 1025)]
+    values[700] = -1.0
+    spec = sweep.spec_from_dict({"name": "v", "function": "audit_vector_helpers:vector_square", "vectorised": True,
+                                 "chunk_size": 1024, "outputs": ["value"], "grid": {"x": {"values": values}}})
+    columns = sweep.run_chunk(spec.source, 0, 1024)
+    assert [bool(e) for e in columns["error"]].count(True) == 1 and columns["error"][700].startswith("ValueError")
+    ok = np.arange(1024) != 700
+    np.testing.assert_array_equal(columns["value"][ok], np.asarray(values)[ok] ** 2)
+    singles = [size for size in helpers.CALLS if size == 1]
+    # the whole chunk used to be recomputed one case at a time: 1 + 1024 calls
+    assert len(singles) <= sweep.VECTOR_LEAF and len(helpers.CALLS) <= 2 * 10 + sweep.VECTOR_LEAF
+
+
+def test_sweep_summary_of_a_serial_or_finished_run_names_no_workers(sweep_helpers, tmp_path, capsys):
+    spec = _sweep_spec(tmp_path, "", "[1.0, 2.0]")
+    argv = ["sweep", spec, "--serial", "--out", str(tmp_path / "out"), "--no-progress"]
+    assert cli.main(argv) == 0
+    first = capsys.readouterr().out
+    # "--serial" printed "workers computing 0 % of the time"; a resumed run with nothing left printed it too
+    assert "workers" not in first and "this process computing" in first
+    assert cli.main(argv) == 0
+    assert "computing" not in capsys.readouterr().out

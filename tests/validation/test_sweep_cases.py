@@ -8,6 +8,8 @@ import pytest
 
 from ballbench.validation import sweep, sweep_cases
 from tests import paths
+from ballbench.lowmodel import calibration as cal
+from ballbench.lowmodel.contact import hertz
 
 EXAMPLE = paths.ROOT / "examples" / "whole_screw_monte_carlo.toml"
 DEG = math.pi / 180.0
@@ -62,3 +64,22 @@ def test_calibration_file_reaches_the_whole_screw(tmp_path):
     _, laws, _ = sweep_cases._screw_setup(str(path), 37, 1500.0)
     assert laws is not None and laws.nut.bulk_compliance.value < 0
     assert calibrated["mean_groove_torque"] != pytest.approx(hertz["mean_groove_torque"], rel=1e-6)
+
+
+def test_sweep_cases_take_a_calibration_file(tmp_path):
+    from ballbench.lowmodel.linear_bearing import b2b
+    from ballbench.validation import sweep_cases
+
+    geometry = hertz.ball_in_groove(5e-3, 0.56)
+    psi_hertz = hertz.psi_constant(geometry, 5e-3)
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6)
+    np.testing.assert_allclose(sweep_cases.with_psi(contacts, psi_hertz).semi_major, contacts.semi_major, rtol=1e-12)
+    constant = cal.Constant(1.01 * psi_hertz, 1e-6, 0.0, 1.0, "(m^2/N)^(1/3)", "test")
+    path = cal.save(cal.Calibration({"ball-groove-0.56": {"psi": constant}}), tmp_path / "c.json")
+    plain = sweep_cases.two_ball_analytical(math.radians(2.0), -0.6)
+    calibrated = sweep_cases.two_ball_analytical(math.radians(2.0), -0.6, calibration=str(path))
+    assert calibrated["b2b_force"] == pytest.approx(plain["b2b_force"] / 1.01, rel=1e-12)  # eq 30: 1/Psi
+    numerical = sweep_cases.two_ball_numerical(math.radians(2.0), -0.6, calibration=str(path))
+    assert numerical["b2b_force"] != sweep_cases.two_ball_numerical(math.radians(2.0), -0.6)["b2b_force"]
+    with pytest.raises(KeyError, match="ball-groove-0.6"):
+        sweep_cases.two_ball_analytical(0.01, 0.1, calibration=str(path), conformity=0.6)

@@ -570,7 +570,7 @@ def _module_helix(grids, meta, heading, path: Path) -> Path:
                                           f"(the {balls[0]['loaded_body']} above, transparent)")
     v.subplot(plot, 0, 0)
     plot.enable_depth_peeling()
-    for k, (grid, rotation, translation) in enumerate(placed):
+    for k, (grid, rotation, _) in enumerate(placed):
         v.bodies(plot, grid, colours, opacity=opacity, smooth=True)
         v.text(plot, centres[k] + 1.05 * radius * (rotation @ up), f"ball {k + 1}")
     v.frame_axes(plot)

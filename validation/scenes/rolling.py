@@ -343,7 +343,7 @@ def _fe_grooves(run):
         material = dict(youngs_modulus=e, poisson_ratio=nu)
         half = rolling_contacts.solve_contacts(contacts, state, conformity, cells=cells, **material)[0]
         on_fe = rolling_contacts.solve_contacts(contacts, state, conformity, cells=cells,
-                                                operator_for=lambda g, m: compliance.operator(), **material)[0]
+                                                operator_for=lambda g, m: compliance.operator(), **material)[0]  # noqa: ARG005, B023 - the operator_for signature; called in this iteration
         scale = contacts.friction_coefficient * contacts.normal_forces[0, 0]
         moment_scale = scale * a_lin
         level = f"{cells[0]} x {cells[1]} cells, P2, h 0.8 cell, {compliance.ndofs} DOFs"

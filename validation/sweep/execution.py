@@ -74,7 +74,7 @@ def _progress_bar(total: int, initial: int, enabled: bool | None, name: str):
     return tqdm(total=total, initial=initial, desc=name, unit="case", file=sys.stderr)
 
 
-def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = None, workers: int = 2,
+def run_sweep(spec: SweepSpec, out_dir: str | Path, *, scheduler: str | None = None, workers: int = 2,  # noqa: C901 - the serial and the dask paths share resume, progress and storage
               serial: bool = False, client=None, progress: bool | None = None,
               max_chunks: int | None = None) -> SweepSummary:
     """Run the cases of ``spec`` that ``out_dir`` does not hold yet.

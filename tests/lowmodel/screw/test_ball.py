@@ -318,7 +318,7 @@ def test_kinematics_agree_with_wang2022_frenet_velocities():
         unknowns = np.array([[0.0, 0.0, float(wang.orbital_speed) - omega, -spin_n, spin_t, spin_b]])
         terms = sb.ball_terms(unknowns, 0.0, contacts, scales)
 
-        def slip_vector(i):
+        def slip_vector(i, terms=terms):
             e = terms.contact_direction[0, i]
             major = np.array([e[1], 0.0, -e[0]])
             return terms.slip_minor[0, i] * np.array([0.0, 1.0, 0.0]) + terms.slip_major[0, i] * major

@@ -132,16 +132,3 @@ def test_calibration_effect_screw_scene_from_cached_fe_sweeps(tmp_path, monkeypa
     assert "calibrated same oversize" in text and "Load distribution" in text
     rows = (tmp_path / "calibration-effect-screw" / "load_distribution.csv").read_text().splitlines()
     assert len(rows) == 38
-
-
-@pytest.mark.slow
-def test_calibration_effect_screw_scene_runs_fe(tmp_path, monkeypatch):
-    """Without a calibration file the scene fits the laws to FE load sweeps of both grooves (~4 min)."""
-    from ballbench.validation import calibrate
-    from ballbench.validation.runner import run_scene
-    from ballbench.validation.scene import registry
-
-    monkeypatch.delenv(calibrate.CALIBRATION_ENV, raising=False)
-    result = run_scene(registry()["calibration-effect-screw"], "quick", tmp_path)
-    assert result.passed, result.error
-    assert "fe-hertz-nut quick level" in " ".join(result.notes)

@@ -1,4 +1,4 @@
-"""sun2021-fe-bem: the rotation estimator shared by FE and BEM, and the scene at its quick level (slow: FE)."""
+"""validation.studies.sun2021: the rotation estimator shared by FE and BEM (scene sun2021-fe-bem: test_scenes.py)."""
 import math
 
 import numpy as np
@@ -22,14 +22,3 @@ def test_second_moment_angle_of_a_rotated_hertz_field(angle_deg):
     assert found == pytest.approx(hs.pressure_ellipse(pressure, grid)[2], abs=1e-9)
     with pytest.raises(ValueError, match="weight"):
         sun2021.second_moment_angle(X.ravel(), Y.ravel(), 0.0 * pressure.ravel())
-
-
-@pytest.mark.slow
-def test_scene_passes_quick(tmp_path):
-    # FE of the helical pair (~300k P2 DOFs, ~4 GB, 2-4 min)
-    from ballbench.validation.runner import run_scene
-    from ballbench.validation.scene import registry
-
-    result = run_scene(registry()["sun2021-fe-bem"], "quick", tmp_path)
-    assert not result.error, result.error
-    assert result.passed, [(o.quantity, o.rel_error) for o in result.outputs if o.status == "fail"]
