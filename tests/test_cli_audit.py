@@ -69,9 +69,9 @@ def test_sweep_input_names_are_checked_before_any_case_runs(sweep_helpers, tmp_p
     if expected is None:
         assert cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]) == 0
         return
-    with pytest.raises(SystemExit) as stop:  # used to run every case, record a TypeError each and exit 0
-        cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"])
-    assert expected in str(stop.value) and "square(x, offset=0.0)" in str(stop.value)
+    # used to run every case, record a TypeError each and exit 0; a wrong use: exit 2, one line
+    line = one_error_line(capsys, cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]))
+    assert expected in line and "square(x, offset=0.0)" in line
     assert not out.exists()
 
 
@@ -132,9 +132,8 @@ def test_calibrate_spec_mistakes_are_found_before_the_fe_sweep(tmp_path, monkeyp
     # a typo in the last table used to surface only after the FE load sweep of the first (minutes); a ball
     # radius in mm used to give a Psi 10x off without a word
     monkeypatch.setattr(calibrate, "fe_contact_law", lambda *a, **k: pytest.fail("FE started before the check"))
-    with pytest.raises(SystemExit) as stop:
-        cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))])
-    assert expected in str(stop.value)
+    line = one_error_line(capsys, cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))]))
+    assert expected in line
     assert not (tmp_path / "out").exists()
 
 

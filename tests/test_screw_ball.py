@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as bb
@@ -201,6 +202,8 @@ def test_linear_bearing_limit(monkeypatch):
         return evaluate
 
     monkeypatch.setattr(bearing_contacts, "_friction_angle_function", exact)
+    # the limit R_P -> inf lies beyond the plausible pitch radii of real screws (lowmodel.checks.PLAUSIBLE)
+    monkeypatch.setitem(checks.PLAUSIBLE, "pitch_radius", (1e-3, math.inf, "m", "a pitch radius", ""))
     speed, radius = 0.01, 2.778e-3
     errors = []
     for ratio in (1e6, 1e10):

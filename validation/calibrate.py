@@ -33,6 +33,7 @@ from __future__ import annotations
 import csv
 import os
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -413,10 +414,23 @@ def add_validate_option(parser) -> None:
 
 
 def main(args) -> int:
+    """``ballbench calibrate SPEC``: the spec and the output file are checked before any fit (UsageError, exit 2);
+    a fit that fails is exit 1."""
+    from ballbench.validation.usage import EXIT_FAILED, UsageError, check_writable_file
+
+    spec_path = Path(args.spec)
     try:
-        run_spec(args.spec, args.out)
+        spec = read_toml(spec_path)
+        check_spec(spec, spec_path)
     except ValueError as error:
-        raise SystemExit(f"ballbench calibrate: {error}") from None
+        raise UsageError(f"calibrate: {error}") from None
+    target = Path(args.out) if args.out else spec_path.parent / spec.get("output", "calibration.json")
+    check_writable_file(target, "--out" if args.out else "output")
+    try:
+        run_spec(spec_path, args.out)
+    except ValueError as error:
+        print(f"ballbench calibrate: {error}", file=sys.stderr)
+        return EXIT_FAILED
     return 0
 
 

@@ -18,9 +18,11 @@ from pathlib import Path
 from ballbench import __version__
 from ballbench.validation import calibrate, sweep
 from ballbench.validation.scene import registry
+from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
+
+__all__ = ["main", "build_parser", "UsageError", "EXIT_OK", "EXIT_FAILED", "EXIT_USAGE", "EXIT_INTERRUPTED"]
 
 MARKER = ".ballbench-report"  # written into every report folder; a re-run cleans only folders that carry it
-EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 DESCRIPTION = """Validate low-order friction models of ball bearings and ball screws against
 finite-element analysis and the numbers the source papers publish."""
@@ -33,10 +35,6 @@ EPILOG = """examples:
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
 
 exit codes: 0 passed (known gaps allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
-
-
-class UsageError(Exception):
-    """A wrong use of the command: reported as one line, exit code 2."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -163,8 +161,8 @@ class _Interrupt:
         if self.requested:
             raise KeyboardInterrupt
         self.requested = True
-        print("\nballbench: Ctrl-C: stopping after the current scene (Ctrl-C again to stop now)", file=sys.stderr,
-              flush=True)
+        print("\nballbench: Ctrl-C: stopping after the current scene, at its next step (Ctrl-C again to stop now)",
+              file=sys.stderr, flush=True)
 
     def __exit__(self, *exc):
         if self.previous is not None:
@@ -185,6 +183,7 @@ def _cmd_validate(args) -> int:
         _check_file_target(junit, "--junit")
     _clean(out_dir)
     show_progress = sys.stderr.isatty() and not args.no_progress
+    progress_lines = not sys.stderr.isatty() and not args.no_progress  # piped: one line per step
     options = dict(strict=args.strict, strict_time=args.strict_time)
 
     def on_result(result):
@@ -206,7 +205,7 @@ def _cmd_validate(args) -> int:
           flush=True)
     with _Interrupt() as interrupt:
         results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
-                                      should_stop=lambda: interrupt.requested)
+                                      should_stop=lambda: interrupt.requested, progress_lines=progress_lines)
     done = {r.name for r in results if not r.interrupted}
     not_run = [s.name for s in scenes if s.name not in done]
     results = [r for r in results if not r.interrupted]
