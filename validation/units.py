@@ -192,6 +192,8 @@ def quantity(value, dimension: str, where: str, *, bare_si: bool = False):
         return _scaled(f"{where}.value", _number_text(f"{where}.value", inner), unit_factor)
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise UnitError(f"{where}: expected a quantity such as {_example(dimension, 3)}, got {value!r}")
+    if not math.isfinite(value):
+        raise UnitError(f"{where} must be a finite number, got {value!r}")
     if dimension == "dimensionless" or bare_si:
         return _scaled(where, _number_text(where, value), "1")
     raise UnitError(f"{where} = {value!r} has no unit; write e.g. {_example(dimension, value)} "
