@@ -555,7 +555,8 @@ def template(kind: str) -> str:
                 notes.append(f"or {alt.name}")
             out.append(f"{line:<32} # {'; '.join(notes)}")
     if kind == "contact":
-        out += ["", "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",
+        out += ["",
+                "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",
                 "# friction_coefficient, nut_speed) as in 'ballbench init ball-screw'; conformity belongs to a groove."]
     out += ["", "# [fe] (optional): FE mesh levels; without it 'validate' chooses them from the contact ellipses."]
     return "\n".join(out) + "\n"
