@@ -219,7 +219,7 @@ def _run(run, which: str) -> None:
                                  xlim=0.4, ylim=0.12, hertz_label="Hertz ellipse at the FE force"),
                     "pressure_patches.png")
     render3d.module_artifacts(run, models, results, materials=case.screw.material.pair,
-                              case=f"theta 0 / {math.degrees(printed.theta):g} deg, {case.axial_load:g} N",
+                              case=f"theta 0 / {math.degrees(case.deviations[1]):g} deg, {case.axial_load:g} N",
                               level={"h_contact_m": h_contact, "growth": case.fe.levels[run.fidelity][-1].growth})
     if run.fidelity != "quick":
         variants = study.sensitivity(case, models, results, state, contacts, fit_case=lin2019.TABLE5_A,
