@@ -148,6 +148,7 @@ class SceneResult:
     budget_s: float = math.inf
     kind: str = "low-order"
     interrupted: bool = False
+    tables: tuple = ()  # ((title, header, rows), ...): results for the reader beside the checks (Run.table)
 
     def outputs_with(self, status: str) -> list[Output]:
         return [o for o in self.outputs if o.status == status]
@@ -277,6 +278,7 @@ class Run:
         self._outputs: list[Output] = []
         self._artifacts: list[str] = []
         self._notes: list[str] = []
+        self._tables: list[tuple] = []
 
     # -- timing -----------------------------------------------------------
     @staticmethod
@@ -402,6 +404,15 @@ class Run:
         """A sentence for the report under this scene's table (conventions, gaps)."""
         self._notes.append(text)
 
+    def table(self, title: str, header, rows) -> None:
+        """A table of results for the reader (loads, friction forces, ...) shown under the scene's checks; cells
+        are text, already in the units the header names."""
+        header = tuple(str(h) for h in header)
+        rows = tuple(tuple(str(c) for c in row) for row in rows)
+        if any(len(row) != len(header) for row in rows):
+            raise ValueError(f"table {title!r}: every row needs {len(header)} cells")
+        self._tables.append((str(title), header, rows))
+
     def checkpoint(self) -> None:
         """Raise KeyboardInterrupt when the user asked to stop (the first Ctrl-C of ``ballbench validate``): the
         scene ends at its next step instead of running to its end.  :meth:`progress` calls it before each step."""
@@ -439,7 +450,8 @@ class Run:
     def result(self, wall_time_s: float, error: str = "", interrupted: bool = False) -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
-                           wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted)
+                           wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
+                           tuple(self._tables))
 
 
 def registry() -> dict[str, Scene]:

@@ -191,3 +191,16 @@ def test_csv_carries_family_and_level(tmp_path, family):
     report.write_csv([_scene("zz", _output("m", family, "h 30 um"))], tmp_path / "r.csv")
     text = (tmp_path / "r.csv").read_text().splitlines()
     assert text[0].endswith(",family,level") and text[1].endswith(f",{family},h 30 um")
+
+
+def test_result_tables_reach_markdown_and_json_and_read_back():
+    from dataclasses import replace
+
+    from ballbench.validation.report.records import results_from_json, to_json
+
+    table = ("Friction of the balls", ("state", "friction force [N]"), (("balls touching", "1.269"),))
+    result = replace(_scene("case-balls", _output("m", "analytical")), tables=(table,))
+    text = report.to_markdown([result], "default")
+    assert "Friction of the balls" in text and "1.269" in text
+    data = json.loads(json.dumps(to_json([result], "default")))
+    assert results_from_json(data)[0].tables == (table,)
