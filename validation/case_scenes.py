@@ -331,8 +331,8 @@ def _contact(run, *, case, rungs, deadline) -> None:
                                            "one evaluation [s]"), _model_rows(models))
         return
     for model, family, level, values, wall in models:
-        if family == "FE" and len([m for m in models if m[1] == "FE"]) == 1 and source.startswith("FE"):
-            continue  # the single FE level is the reference itself
+        if values is reference:
+            continue  # the model that is the reference (one FE level, or the finest BEM grid): no check of itself
         tolerances = (ladder.FE_TOLERANCES[run.fidelity] if family == "FE" else
                       {q: ladder.BEM_TOLERANCE for q, _ in ladder.QUANTITIES} if family == "BEM"
                       else ladder.HERTZ_TOLERANCES)
