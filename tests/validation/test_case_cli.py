@@ -6,6 +6,8 @@ import json
 
 import pytest
 
+import ballbench
+
 from ballbench.validation import cli
 from tests.cli_support import one_error_line
 
@@ -59,3 +61,38 @@ def test_a_unit_mistake_in_a_case_file_is_named_before_any_work(tmp_path, capsys
     line = one_error_line(capsys, cli.main(["validate", str(path), "--out", "r"]))
     assert "screw.pitch_radius" in line and "line 10" in line
     assert not (tmp_path / "r").exists()
+
+
+def test_calibrate_takes_a_case_file(tmp_path, capsys, monkeypatch):
+    # [contact.<name>] fe_case = "g.toml": the FE load sweep of the case's most loaded contact, levels from its
+    # ellipse; a bad case file is named before any FE runs
+    import numpy as np
+
+    from ballbench.validation import calibrate
+    from ballbench.validation.studies import fe_contact
+
+    path = _init("linear-guide", tmp_path, capsys)
+    spec = tmp_path / "spec.toml"
+    spec.write_text(f'output = "{tmp_path / "out" / "calibration.json"}"\n[contact.mine]\nfe_case = "g.toml"\n')
+    seen = []
+
+    def sweep(case, fidelity, factors):  # Hertz itself stands in for the FE sweep: the plumbing is under test
+        from ballbench.lowmodel.contact import hertz
+
+        geometry = fe_contact.hertz_geometry(case)
+        forces = case.force * np.asarray(factors)
+        contact = hertz.solve_load(geometry, forces)
+        seen.append(case)
+        return dict(force=forces, approach=np.asarray(contact.delta), a=np.asarray(contact.a),
+                    ball_radius=case.ball_radius, geometry=geometry, level=(5.5, 1.4), ndofs=1, wall_time_s=0.0)
+
+    monkeypatch.setattr(fe_contact, "load_sweep", sweep)
+    assert cli.main(["calibrate", str(spec)]) == 0, capsys.readouterr().err
+    assert (tmp_path / "out" / "calibration.json").is_file()
+    (case,) = seen
+    assert case.fe is not None and case.pair == "groove" and case.conformity == 0.52
+    loads = ballbench.friction(ballbench.load_case(path)).contacts
+    assert case.force == max(c.normal_force for c in loads) == calibrate.case_contact(path).force
+    path.write_text(path.read_text().replace("conformity = 0.52", "conformity = 52"))
+    line = one_error_line(capsys, cli.main(["calibrate", str(spec)]))
+    assert "fe_case" in line and "guide.conformity" in line
