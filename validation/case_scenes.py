@@ -40,6 +40,9 @@ LOW_BUDGET_S = {"quick": 60.0, "default": 60.0, "fine": 60.0}   # of a generated
 REFERENCE_UNCERTAINTY = 0.01  # the extrapolated FE reference must be known to 1 % to judge models against it
 B2B_TOLERANCE = {"linear-guide": 0.07, "ball-screw": 0.10}  # lin2019's own claims, docs/fe_b2b.md
 POWER_TOLERANCE = 1e-6  # docs/fe_b2b.md: energy conservation incl. the B2B loss
+# a B2B force below this share of the friction scale mu N (N: the ball load) is "near zero" and judged on that
+# share instead of on itself (lin2019 Table 3 case (b): 0.13 % of case (a)); above it the relative error counts
+NEAR_ZERO_B2B = 0.05
 
 
 def slug(path: str | Path) -> str:
@@ -228,13 +231,13 @@ def _guide_analytical(run, case: LinearGuideCase, result, time_numerical: float)
                                   friction_coefficient=guide.friction_coefficient, psi=psi,
                                   ball_radius=guide.ball_radius, delta_beta_top=case.top_deviations)
     numerical = result.b2b_forces[0]
-    scale = guide.friction_coefficient * case.vertical_force
+    scale = NEAR_ZERO_B2B * guide.friction_coefficient * case.vertical_force
     run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical", quantity="F_B2B", unit="N",
               value=float(analytical.b2b_force), reference=numerical, scale=scale if numerical < scale else 0.0,
               tolerance=B2B_TOLERANCE["linear-guide"], time_s=time_a,
               source="the low-order numerical model (lowmodel.linear_bearing.b2b) of the same case",
               note="k_f = 1.38, Psi from Hertz; lin2019's own claim for eq 30: within 6-7 % of the numerical model",
-              why="" if numerical >= scale else "a B2B force near zero judged against mu N_y")
+              why="" if numerical >= scale else "a B2B force near zero judged against 5 % of mu N_y")
 
 
 def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
@@ -479,12 +482,15 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
     tolerance = B2B_TOLERANCE[kind]
     claim = "lin2019's own claim: within 7 % (docs/fe_b2b.md)" if kind == "linear-guide" else \
         "within 10 % (docs/fe_b2b.md)"
-    why = "" if abs(reference) >= scale else "a B2B force near zero judged against mu times the ball load"
+    scale = NEAR_ZERO_B2B * scale
+    why = "" if abs(reference) >= scale else "a B2B force near zero judged against 5 % of mu times the ball load"
     use_scale = scale if abs(reference) < scale else 0.0
     for model, family, value, time_s in low:
         run.check(model=model, family=family, quantity="F_B2B", unit="N", value=value, reference=reference,
                   scale=use_scale, source=source, tolerance=tolerance, time_s=time_s, note=claim, why=why)
-    for r in rows[:-1] if extrapolation is None else rows:
+    # the finest level is judged; the coarser ones are the convergence study, summarised by the uncertainty of
+    # the extrapolation below and listed with their errors in the levels table (_module_table)
+    for r in rows[-1:] if extrapolation is not None else ():
         words = f"h {r['h_contact_um']:.0f} um"
         run.check(model=f"FE-informed B2B ({words})", family="FE-informed", level=words, quantity="F_B2B", unit="N",
                   value=r["F_B2B"], reference=reference, scale=use_scale, source=source, tolerance=tolerance,
@@ -541,20 +547,25 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
               reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=rows[-1]["wall_s"],
               source="energy conservation incl. B2B loss (lin2019 eq 7; docs/fe_b2b.md: 1e-6)",
               why="the value is itself a relative power error: zero judged on the scale 1")
-    _module_table(run, rows, "friction_force_N", "friction force [N]", low_state, guide.groove_velocity)
+    _module_table(run, rows, "friction_force_N", "friction force [N]", low_state, guide.groove_velocity, reference)
     _write_csv(run, "levels.csv", rows)
     render3d.module_artifacts(run, kept["model"], kept["results"], materials=guide.material.pair,
                               case=case.name, level={"h_contact_m": kept["level"].h_contact,
                                                      "growth": kept["level"].growth})
 
 
-def _module_table(run, rows, key, label, low_state, speed) -> None:
-    table = [("low-order numerical", "-", "-", _f(float(low_state.b2b_force[0])),
-              _f(low_state.input_power / abs(speed)), "-")]
+def _module_table(run, rows, key, label, low_state, speed, reference) -> None:
+    def error(value):
+        return _f(100 * (value / reference - 1.0), 3) + " %" if reference else "-"
+
+    low = float(low_state.b2b_force[0])
+    table = [("low-order numerical", "-", "-", _f(low), error(low), _f(low_state.input_power / abs(speed)), "-")]
     table += [(f"FE-informed, h {r['h_contact_um']:.0f} um", str(r["ndofs"]), f"{r['wall_s']:.0f}", _f(r["F_B2B"]),
-               _f(r[key]), _f(100 * r["friction_increase"]) + " %") for r in rows]
-    run.table("B2B force and friction by model and mesh level", ("model", "DOFs", "wall [s]", "F_B2B [N]", label,
-                                                                 "friction increase"), table)
+               error(r["F_B2B"]), _f(r[key]), _f(100 * r["friction_increase"]) + " %") for r in rows]
+    table.append(("reference (" + ("h -> 0" if len(rows) >= 2 else "finest level") + ")", "", "", _f(reference), "",
+                  "", ""))
+    run.table("B2B force and friction by model and mesh level", ("model", "DOFs", "wall [s]", "F_B2B [N]",
+                                                                 "F_B2B error", label, "friction increase"), table)
 
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
@@ -586,7 +597,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
               reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=rows[-1]["wall_s"],
               source="energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)",
               why="the value is itself a relative power error: zero judged on the scale 1")
-    _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed)
+    _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed, reference)
     _write_csv(run, "levels.csv", rows)
     render3d.module_artifacts(run, kept["models"], kept["results"], materials=case.screw.material.pair,
                               case=case.name, level={"h_contact_m": kept["level"].h_contact,
