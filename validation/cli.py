@@ -218,6 +218,10 @@ def _cmd_validate(args) -> int:
     import time
 
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be at least 1, got {args.workers}")
+    if args.workers is not None and args.scheduler:
+        raise UsageError("give --workers (a local cluster) or --scheduler (an existing one), not both")
     if args.budget is not None and not args.budget > 0:
         raise UsageError(f"--budget must be a wall time > 0 s, got {args.budget:g}")
     deadline = time.monotonic() + args.budget if args.budget is not None else None
@@ -250,8 +254,18 @@ def _cmd_validate(args) -> int:
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
     with _Interrupt() as interrupt:
-        results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
-                                      should_stop=lambda: interrupt.requested, progress_lines=progress_lines)
+        if args.workers is not None or args.scheduler:
+            from ballbench.validation.runner import run_scenes_distributed
+
+            where = args.scheduler or f"a local cluster of {args.workers} workers"
+            print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
+            results, stopped = run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
+                                                      scheduler=args.scheduler, on_result=on_result,
+                                                      should_stop=lambda: interrupt.requested)
+        else:
+            results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
+                                          on_result=on_result, should_stop=lambda: interrupt.requested,
+                                          progress_lines=progress_lines)
     done = {r.name for r in results if not r.interrupted}
     not_run = [s.name for s in scenes if s.name not in done]
     results = [r for r in results if not r.interrupted]
@@ -392,6 +406,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--budget", type=float, metavar="SECONDS",
                    help="case files: stop refining a mesh study when its next level is predicted to end after "
                         "this wall time from the start")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="run the scenes as dask.distributed tasks on a local cluster of N single-threaded worker "
+                        "processes (results equal a serial run's, timings aside)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the scenes on an existing dask scheduler, e.g. tcp://127.0.0.1:8786 (workers started "
+                        "with --nthreads 1, sharing this file system)")
     calibrate.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
     p.set_defaults(func=_cmd_validate)
 
