@@ -569,10 +569,17 @@ def _module_table(run, rows, key, label, low_state, speed, reference) -> None:
 
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
+    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_screw as study
 
     (contacts, free, state), time_low = run.time(study.low_order, case)
+    lost = [f"ball {j + 1} {name}" for j, row in enumerate(np.asarray(state.normal_force))
+            for name, force in zip(CONTACT_NAMES, row) if not force > 0]
+    if lost:
+        raise ValueError(f"the FE screw module needs all four contacts of each ball loaded (lin2017 eq 37), but "
+                         f"{', '.join(lost)} carry no load at this axial load and oversize; raise the oversize "
+                         "(preload) or run --levels FE")
     low = [("lowmodel.screw.b2b", "low-order numerical", float(state.b2b_force[0]), time_low)]
     shares = study.axial_shares(contacts, state)
     kept = {}

@@ -225,7 +225,9 @@ def _cmd_validate(args) -> int:
     if args.budget is not None and not args.budget > 0:
         raise UsageError(f"--budget must be a wall time > 0 s, got {args.budget:g}")
     deadline = time.monotonic() + args.budget if args.budget is not None else None
-    scenes = _select(args.scenes, args.fast, args.levels, deadline)
+    if not any(_is_case_file(n) for n in args.scenes) and (args.levels is not None or deadline is not None):
+        raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
+    scenes = _select(args.scenes, args.fast, args.levels or "FE-informed", deadline)
     out_dir = Path(args.out)
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
@@ -400,7 +402,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")
-    p.add_argument("--levels", default="FE-informed", choices=RUNGS, metavar="RUNG",
+    p.add_argument("--levels", choices=RUNGS, metavar="RUNG",
                    help="case files: the highest rung of the ladder to run, one of " + ", ".join(RUNGS)
                         + " (default FE-informed: every rung that runs today)")
     p.add_argument("--budget", type=float, metavar="SECONDS",

@@ -46,6 +46,7 @@ def test_init_writes_a_template_that_validate_runs_up_to_the_bem(tmp_path, capsy
     (["validate", "{case}", "--budget", "-3"], "--budget"),
     (["show", "missing.toml"], "no such file"),
     (["init", "linear-bearing"], "invalid choice"),
+    (["validate", "hertz-ball-ball", "--levels", "BEM"], "apply to case files"),
 ])
 def test_wrong_use_is_one_line(args, words, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
