@@ -60,3 +60,15 @@ def test_screw_friction_torque(tmp_path):
     assert result.friction_torque == pytest.approx(result.power / abs(case.screw.nut_speed), rel=1e-12)
     assert result.friction_torque > 0 and len(result.b2b_forces) == len(case.deviations) - 1
     assert sum(result.axial_shares) == pytest.approx(case.axial_load, rel=1e-9)
+
+
+def test_ladder_of_a_contact_case_up_to_the_bem(tmp_path):
+    case = ballbench.load_case(_write(tmp_path, "contact"))
+    (result,) = ballbench.ladder(case, "quick", levels="BEM", name="mine")
+    assert result.name == "mine-contact" and not result.error
+    families = {o.family for o in result.outputs}
+    assert families == {"analytical", "BEM"}
+    # the reference is the finest BEM grid; it is not checked against itself, the coarser grid is
+    assert [o.level for o in result.outputs if o.family == "BEM"] == ["64 x 64"] * 4
+    with pytest.raises(ValueError, match="levels must be one of"):
+        ballbench.ladder(case, "quick", levels="FEM")
