@@ -71,11 +71,11 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
         "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"linear-guide"'),
              Key("name", "text", "a name for the report", check="text", example='"my linear guide"')),
         "guide": (
-            Key("ball_radius", "length", "R_B, ball radius (a 1/8-inch ball)", check="positive",
+            Key("ball_radius", "length", "R_B, ball radius (1.5875 mm: a 1/8-inch ball)", check="positive",
                 plausible="ball_radius", example='"1.5875 mm"'),
             Key("ball_diameter", "length", "or the ball diameter (1/8-inch ball: \"0.125 in\")", required=False,
                 check="positive", alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter, in (0.5, 1)", check="conformity",
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter", check="conformity",
                 example="0.52"),
             Key("nominal_angle", "angle", "beta_0, nominal contact angle of the four contacts",
                 check="contact angle", example='"45 deg"'),
