@@ -157,13 +157,7 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
     from ballbench.lowmodel.linear_bearing import b2b
 
     guide = case.guide
-    contacts = b2b.module_contacts(case.theta if case.deviations[0] == -case.deviations[1] else 0.0,
-                                   case.side_force_ratio, top_deviations=case.top_deviations, n_balls=case.n_balls,
-                                   nominal_angle=guide.nominal_angle, vertical_force=case.vertical_force,
-                                   ball_radius=guide.ball_radius, conformity=guide.conformity,
-                                   friction_coefficient=guide.friction_coefficient,
-                                   groove_velocity=guide.groove_velocity, **guide.material.keywords) \
-        if case.deviations[0] == -case.deviations[1] else _guide_contacts(case)
+    contacts = bearing_results.guide_contacts(case)
     model = "lowmodel.linear_bearing.b2b"
     touching, time_touching = run.time(b2b.solve, contacts, np.zeros(case.n_balls - 1))
     free, time_free = run.time(b2b.solve, contacts, np.full(case.n_balls - 1, 1e-3))
@@ -189,18 +183,6 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
     run.note(f"Friction force = power of the carriage's drive / speed ({_f(v * 1e3)} mm/s), for the {case.n_balls} "
              "balls of the case; free balls: epsilon > 0 on ball 1 (behind) and < 0 on ball 2 makes them touch "
              "(lin2019 Sec 2.4).")
-
-
-def _guide_contacts(case: LinearGuideCase):
-    from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
-
-    guide = case.guide
-    angles = np.tile(case.contact_angles, (case.n_balls, 1))
-    sides = np.array([case.side_force(j) for j in range(case.n_balls)])
-    return bearing_contacts.ball_contacts(angles, sides, case.vertical_force, ball_radius=guide.ball_radius,
-                                          conformity=guide.conformity,
-                                          friction_coefficient=guide.friction_coefficient,
-                                          groove_velocity=guide.groove_velocity, **guide.material.keywords)
 
 
 def _eq36_residual(case: LinearGuideCase, contacts) -> float:

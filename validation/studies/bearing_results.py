@@ -21,7 +21,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "guide_result", "screw_result"]
+__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "guide_contacts", "guide_result", "screw_result"]
 
 
 @dataclass(frozen=True)
@@ -117,20 +117,38 @@ class ScrewResult:
             "b2b_forces_N": list(self.b2b_forces)})
 
 
+def guide_contacts(case):
+    """The balls' contacts of a :class:`LinearGuideCase` (lowmodel.linear_bearing): ``b2b.module_contacts`` for the
+    bottom deviations ``(-theta, +theta)`` of lin2019 Sec 2.4, else ``contacts.ball_contacts`` with the case's
+    four deviations and alternating side forces (lin2017 eq 36 per ball)."""
+    from ballbench.lowmodel.linear_bearing import b2b
+    from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+
+    guide = case.guide
+    if case.deviations[0] == -case.deviations[1]:
+        return b2b.module_contacts(case.theta, case.side_force_ratio, top_deviations=case.top_deviations,
+                                   n_balls=case.n_balls, nominal_angle=guide.nominal_angle,
+                                   vertical_force=case.vertical_force, ball_radius=guide.ball_radius,
+                                   conformity=guide.conformity, friction_coefficient=guide.friction_coefficient,
+                                   groove_velocity=guide.groove_velocity, **guide.material.keywords)
+    angles = np.tile(case.contact_angles, (case.n_balls, 1))
+    sides = np.array([case.side_force(j) for j in range(case.n_balls)])
+    return bearing_contacts.ball_contacts(angles, sides, case.vertical_force, ball_radius=guide.ball_radius,
+                                          conformity=guide.conformity,
+                                          friction_coefficient=guide.friction_coefficient,
+                                          groove_velocity=guide.groove_velocity, **guide.material.keywords)
+
+
 def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
     """:class:`GuideResult` of a :class:`LinearGuideCase` by the low-order numerical model (solved here unless the
-    states are given: ``contacts`` of ``b2b.module_contacts``, ``touching`` and ``free`` of ``b2b.solve``)."""
+    states are given: ``contacts`` of :func:`guide_contacts`, ``touching`` and ``free`` of ``b2b.solve``)."""
     from ballbench.lowmodel.contact import hertz
     from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
     from ballbench.lowmodel.linear_bearing import b2b
 
     guide = case.guide
     if contacts is None:
-        contacts = b2b.module_contacts(case.theta, case.side_force_ratio, top_deviations=case.top_deviations,
-                                       n_balls=case.n_balls, nominal_angle=guide.nominal_angle,
-                                       vertical_force=case.vertical_force, ball_radius=guide.ball_radius,
-                                       conformity=guide.conformity, friction_coefficient=guide.friction_coefficient,
-                                       groove_velocity=guide.groove_velocity, **guide.material.keywords)
+        contacts = guide_contacts(case)
     gaps_touching = np.zeros(case.n_balls - 1)
     if touching is None:
         touching = b2b.solve(contacts, gaps_touching)
