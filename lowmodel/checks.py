@@ -33,6 +33,8 @@ edited object with fresh caches.  Their ``__reduce__`` is :func:`rebuilt_through
 from __future__ import annotations
 
 import dataclasses
+import contextlib
+import contextvars
 import math
 import numbers
 
@@ -40,7 +42,8 @@ import numpy as np
 
 __all__ = ["real", "finite", "positive", "non_negative", "bounded", "contact_angle", "lead_angle", "conformity",
            "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
-           "rebuilt_through_init", "finite_result", "power_of_two_scale", "PLAUSIBLE", "plausible"]
+           "rebuilt_through_init", "finite_result", "power_of_two_scale", "PLAUSIBLE", "plausible",
+           "beyond_plausible"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -264,10 +267,29 @@ PLAUSIBLE = {
 }
 
 
+# set by beyond_plausible(): a limit study (R_P -> infinity) that leaves the plausible ranges on purpose
+_LIMIT_STUDY = contextvars.ContextVar("ballbench_limit_study", default=False)
+
+
+@contextlib.contextmanager
+def beyond_plausible():
+    """Within this block :func:`plausible` checks only that values are finite: for limit studies that leave the
+    sizes of real bearings on purpose (a ball screw of pitch radius 1000 R_B tending to the linear bearing).  The
+    models' own range checks (positive radii, conformity, angles) stay."""
+    token = _LIMIT_STUDY.set(True)
+    try:
+        yield
+    finally:
+        _LIMIT_STUDY.reset(token)
+
+
 def plausible(name: str, value, kind: str | None = None):
     """``value`` as floats; ValueError naming ``name`` unless inside the plausible range of ``kind`` (default
-    ``name``; a key of :data:`PLAUSIBLE`), which says the SI unit expected and gives an example."""
+    ``name``; a key of :data:`PLAUSIBLE`), which says the SI unit expected and gives an example.  Inside
+    :func:`beyond_plausible` only finiteness is checked."""
     low, high, unit, what, example = PLAUSIBLE[kind or name]
+    if _LIMIT_STUDY.get():
+        return finite(name, value, unit)
     return bounded(name, value, low, high, unit, lower_closed=True, upper_closed=True,
                    note=f"the plausible range of {what}; outside it the value is most likely in another unit: "
                         f"SI units, {example}")

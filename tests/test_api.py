@@ -72,3 +72,16 @@ def test_ladder_of_a_contact_case_up_to_the_bem(tmp_path):
     assert [o.level for o in result.outputs if o.family == "BEM"] == ["64 x 64"] * 4
     with pytest.raises(ValueError, match="levels must be one of"):
         ballbench.ladder(case, "quick", levels="FEM")
+
+
+def test_a_limit_study_may_leave_the_plausible_ranges_on_purpose():
+    from ballbench.lowmodel import checks
+
+    with pytest.raises(ValueError, match="pitch_radius"):
+        checks.plausible("pitch_radius", 5.0)
+    with checks.beyond_plausible():
+        assert checks.plausible("pitch_radius", 5.0) == 5.0
+        with pytest.raises(ValueError, match="pitch_radius"):
+            checks.plausible("pitch_radius", float("nan"))
+    with pytest.raises(ValueError):
+        checks.plausible("pitch_radius", 5.0)
