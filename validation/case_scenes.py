@@ -413,17 +413,13 @@ def _show_contact(case, scene_dir, fidelity: str) -> list[Path]:
 # --------------------------------------------------------------------------
 # <stem>-b2b-fe: FE modules and the FE-informed B2B force
 # --------------------------------------------------------------------------
-def _module_case(case):
-    from ballbench.validation.studies import ladder
-
-    return ladder.module_fe(case)
-
-
 def _b2b_fe(run, *, case, deadline) -> None:
+    from ballbench.validation.studies.ladder import module_fe
+
     if isinstance(case, LinearGuideCase):
-        _guide_b2b_fe(run, _module_case(case), deadline)
+        _guide_b2b_fe(run, module_fe(case), deadline)
     else:
-        _screw_b2b_fe(run, _module_case(case), deadline)
+        _screw_b2b_fe(run, module_fe(case), deadline)
 
 
 def _levels(run, case, deadline, solve):
@@ -596,9 +592,9 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 def _show_module(case, scene_dir, fidelity: str) -> list[Path]:
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
+    from ballbench.validation.studies.ladder import module_fe
 
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
-    module = _module_case(case)
     show = fe_b2b_linear.show_module if isinstance(case, LinearGuideCase) else fe_b2b_screw.show_module
-    return show(module, scene_dir, "quick" if fidelity == "quick" else "default")
+    return show(module_fe(case), scene_dir, "quick" if fidelity == "quick" else "default")
