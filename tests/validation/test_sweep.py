@@ -222,7 +222,7 @@ def test_many_chunks_through_a_bounded_window(helpers, tmp_path):
 
 def test_cli_reports_spec_errors_as_messages(tmp_path, capsys):
     from ballbench.validation import cli
-    from cli_support import one_error_line
+    from tests.cli_support import one_error_line
 
     assert "no such file" in one_error_line(capsys, cli.main(["sweep", str(tmp_path / "missing.toml"), "--serial"]))
     bad = tmp_path / "bad.toml"
