@@ -19,6 +19,9 @@ Ranges used across the project, each defined once here:
   0.6 (lin2019 Tables 1 and 4: 0.56), and neither the papers nor the meshes
   (the gothic-arch flank must rise above the contact point) go beyond.
 * integers (``count``): Python or numpy integers; ``True``/``False`` are refused.
+* plausible ranges (:data:`PLAUSIBLE`, :func:`plausible`): where a unit mistake (mm for m, deg for rad, GPa for
+  Pa) puts an input orders of magnitude off, the entry points of the models and the case files refuse values
+  outside the sizes of real bearings, naming the parameter and the SI unit it expects.
 
 Frozen dataclasses that cache data derived from their arrays hold those arrays read-only
 (:func:`freeze_arrays` in ``__post_init__``): ``frozen=True`` stops rebinding a field but not
@@ -30,6 +33,8 @@ edited object with fresh caches.  Their ``__reduce__`` is :func:`rebuilt_through
 from __future__ import annotations
 
 import dataclasses
+import contextlib
+import contextvars
 import math
 import numbers
 
@@ -37,7 +42,8 @@ import numpy as np
 
 __all__ = ["real", "finite", "scalar", "positive", "non_negative", "bounded", "contact_angle", "lead_angle",
            "conformity", "choice", "count", "trailing_axis", "read_only", "freeze_arrays",
-           "rebuilt_through_init", "finite_result", "power_of_two_scale"]
+           "rebuilt_through_init", "finite_result", "power_of_two_scale", "PLAUSIBLE", "plausible",
+           "beyond_plausible"]
 
 CONFORMITY_RANGE = (0.5, 1.0)  # open range of f = r_g / (2 R_B), module docstring
 
@@ -253,3 +259,46 @@ def power_of_two_scale(value) -> float:
     if peak == 0.0 or not math.isfinite(peak):
         return 1.0
     return math.ldexp(1.0, math.frexp(peak)[1])
+
+
+# Plausible ranges of inputs that a unit mistake puts orders of magnitude off (mm for m, um for m, GPa for Pa, deg
+# for rad): (low, high, SI unit, what the range is, an example in SI).  Closed ranges.  Ball radii 0.1 mm to 100 mm
+# cover miniature guides to slewing rings; pitch radii 1 mm to 1 m; leads up to 0.5 m; an oversize (preload by
+# interference) up to 100 um; elastic moduli of polymers (1 GPa) to carbides (1 TPa); contact angle deviations up
+# to 20 deg (machining and assembly errors are a few degrees).
+PLAUSIBLE = {
+    "ball_radius": (1e-4, 0.1, "m", "a ball radius", "a 3.175 mm ball radius is 3.175e-3 m"),
+    "pitch_radius": (1e-3, 1.0, "m", "a ball-screw pitch radius", "a 20 mm pitch radius is 0.02 m"),
+    "lead": (0.0, 0.5, "m", "a ball-screw lead", "a 10 mm lead is 0.01 m"),
+    "oversize": (0.0, 1e-4, "m", "a ball oversize", "a 2 um oversize is 2e-6 m"),
+    "youngs_modulus": (1e9, 1e12, "Pa", "an elastic modulus", "210 GPa is 2.1e11 Pa"),
+    "deviation": (-0.35, 0.35, "rad", "a contact angle deviation (20 deg)", "2 deg is 0.0349 rad"),
+}
+
+
+# set by beyond_plausible(): a limit study (R_P -> infinity) that leaves the plausible ranges on purpose
+_LIMIT_STUDY = contextvars.ContextVar("ballbench_limit_study", default=False)
+
+
+@contextlib.contextmanager
+def beyond_plausible():
+    """Within this block :func:`plausible` checks only that values are finite: for limit studies that leave the
+    sizes of real bearings on purpose (a ball screw of pitch radius 1000 R_B tending to the linear bearing).  The
+    models' own range checks (positive radii, conformity, angles) stay."""
+    token = _LIMIT_STUDY.set(True)
+    try:
+        yield
+    finally:
+        _LIMIT_STUDY.reset(token)
+
+
+def plausible(name: str, value, kind: str | None = None):
+    """``value`` as floats; ValueError naming ``name`` unless inside the plausible range of ``kind`` (default
+    ``name``; a key of :data:`PLAUSIBLE`), which says the SI unit expected and gives an example.  Inside
+    :func:`beyond_plausible` only finiteness is checked."""
+    low, high, unit, what, example = PLAUSIBLE[kind or name]
+    if _LIMIT_STUDY.get():
+        return finite(name, value, unit)
+    return bounded(name, value, low, high, unit, lower_closed=True, upper_closed=True,
+                   note=f"the plausible range of {what}; outside it the value is most likely in another unit: "
+                        f"SI units, {example}")

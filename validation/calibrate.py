@@ -12,6 +12,7 @@ Spec (TOML; docs/calibration.md)::
 
     [contact.ball-groove-0.56]           # one table per contact type
     fe_scene = "<scene>"                 # FE load sweep of the contact case of that scene ...
+    # fe_case = "my_guide.toml"          # ... or of a case file's contact (its most loaded one), relative to the spec
     fidelity = "quick"                   # ... at this mesh level
     load_factors = [0.5, 0.75, 1.0, 1.25, 1.5]
     # data = "groove056.csv"             # ... or measured/cached: force [N], approach [m], a [m]
@@ -33,6 +34,7 @@ from __future__ import annotations
 import csv
 import os
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -43,8 +45,8 @@ from ballbench.validation.cases import lin2019
 from ballbench.validation.specs import read_toml
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
-           "contact_law", "fe_contact_law", "fe_contact_scenes", "run_spec", "check_spec", "active_calibration",
-           "CALIBRATION_ENV", "CSV_UNITS"]
+           "contact_law", "fe_contact_law", "fe_contact_scenes", "case_contact", "run_spec", "check_spec",
+           "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
 # quantity -> {unit: SI factor}
@@ -228,12 +230,26 @@ def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 
     return contact_law(cases[scene_name], fidelity, load_factors, confidence=confidence, label=scene_name)
 
 
+def case_contact(path: str | Path):
+    """The contact an ``fe_case`` of a spec names: the case file's own contact, or the most loaded contact of a
+    linear guide or ball screw, with the FE levels of its file or chosen from its Hertz ellipse
+    (studies.ladder.contact_fe; docs/cases.md)."""
+    from ballbench.validation.cases import case_file
+    from ballbench.validation.studies import ladder
+
+    return ladder.contact_fe(ladder.governing_contact(case_file.load(path)))
+
+
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
     reference_c = reference_psi = None
-    if "fe_scene" in table:
+    if "fe_scene" in table or "fe_case" in table:
         fidelity = table.get("fidelity", "quick")
-        law, sweep = fe_contact_law(table["fe_scene"], fidelity,
-                                    table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)), confidence=confidence)
+        factors = table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5))
+        if "fe_case" in table:
+            law, sweep = contact_law(case_contact(base / table["fe_case"]), fidelity, factors, confidence=confidence,
+                                     label=table["fe_case"])
+        else:
+            law, sweep = fe_contact_law(table["fe_scene"], fidelity, factors, confidence=confidence)
         radius, source = sweep["ball_radius"], sweep["source"]
         cache = write_load_approach_csv(out_dir / f"{name}.load_approach.csv", sweep["force"], sweep["approach"],
                                         sweep["a"], comment=f"ballbench calibrate: {source}\nball_radius {radius!r} m")
@@ -315,22 +331,32 @@ def check_spec(spec: dict, spec_path: str | Path) -> None:  # noqa: C901 - one b
     _unknown_keys("contact", contacts, set(contacts))
     for name, table in contacts.items():
         where = f"contact.{name}"
-        _unknown_keys(where, table, {"fe_scene", "fidelity", "load_factors", "data", "ball_radius", "conformity"})
-        if ("fe_scene" in table) == ("data" in table):
-            raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep) or 'data' (CSV file)")
-        if "fe_scene" in table:
-            scenes = fe_contact_scenes()
-            if table["fe_scene"] not in scenes:
+        _unknown_keys(where, table, {"fe_scene", "fe_case", "fidelity", "load_factors", "data", "ball_radius",
+                                     "conformity"})
+        if sum(key in table for key in ("fe_scene", "fe_case", "data")) != 1:
+            raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep of a scene's contact), "
+                             "'fe_case' (of a case file's contact) or 'data' (CSV file)")
+        if "fe_scene" in table or "fe_case" in table:
+            if "fe_case" in table:
+                from ballbench.validation.cases import case_file
+
+                if not isinstance(table["fe_case"], str):
+                    raise ValueError(f"{where}.fe_case must be the path of a case file, got {table['fe_case']!r}")
+                try:
+                    case_file.load(base / table["fe_case"])
+                except case_file.CaseFileError as error:
+                    raise ValueError(f"{where}.fe_case: {error}") from None
+            elif table["fe_scene"] not in (scenes := fe_contact_scenes()):
                 raise ValueError(f"{where}.fe_scene must be one of {sorted(scenes)}, got {table['fe_scene']!r}")
             if table.get("fidelity", "quick") not in FIDELITIES:
                 raise ValueError(f"{where}.fidelity must be quick, default or fine, got {table['fidelity']!r}")
             _check_load_factors(table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
             extra = set(table) & {"data", "ball_radius", "conformity"}
             if extra:
-                raise ValueError(f"{where}: {sorted(extra)} belong to a 'data' contact; the FE scene sets them")
+                raise ValueError(f"{where}: {sorted(extra)} belong to a 'data' contact; the FE case sets them")
         else:
             if set(table) & {"fidelity", "load_factors"}:
-                raise ValueError(f"{where}: fidelity and load_factors belong to an 'fe_scene' contact")
+                raise ValueError(f"{where}: fidelity and load_factors belong to an 'fe_scene' or 'fe_case' contact")
             if not (base / table["data"]).is_file():
                 raise ValueError(f"{where}.data: no such file {base / table['data']}")
             if "ball_radius" in table:
@@ -413,10 +439,23 @@ def add_validate_option(parser) -> None:
 
 
 def main(args) -> int:
+    """``ballbench calibrate SPEC``: the spec and the output file are checked before any fit (UsageError, exit 2);
+    a fit that fails is exit 1."""
+    from ballbench.validation.usage import EXIT_FAILED, UsageError, check_writable_file
+
+    spec_path = Path(args.spec)
     try:
-        run_spec(args.spec, args.out)
+        spec = read_toml(spec_path)
+        check_spec(spec, spec_path)
     except ValueError as error:
-        raise SystemExit(f"ballbench calibrate: {error}") from None
+        raise UsageError(f"calibrate: {error}") from None
+    target = Path(args.out) if args.out else spec_path.parent / spec.get("output", "calibration.json")
+    check_writable_file(target, "--out" if args.out else "output")
+    try:
+        run_spec(spec_path, args.out)
+    except ValueError as error:
+        print(f"ballbench calibrate: {error}", file=sys.stderr)
+        return EXIT_FAILED
     return 0
 
 

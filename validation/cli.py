@@ -17,10 +17,15 @@ from pathlib import Path
 
 from ballbench import __version__
 from ballbench.validation import calibrate, sweep
+from ballbench.validation.cases.case_file import KINDS as CASE_KINDS
 from ballbench.validation.scene import registry
+from ballbench.validation.studies.ladder import RUNGS
+
+from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
+
+__all__ = ["main", "build_parser", "UsageError", "EXIT_OK", "EXIT_FAILED", "EXIT_USAGE", "EXIT_INTERRUPTED"]
 
 MARKER = ".ballbench-report"  # written into every report folder; a re-run cleans only folders that carry it
-EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 DESCRIPTION = """Validate low-order friction models of ball bearings and ball screws against
 finite-element analysis and the numbers the source papers publish."""
@@ -31,12 +36,11 @@ EPILOG = """examples:
   ballbench validate --fast             a first look: the scenes that are not FE and cost at most 30 s each
   ballbench validate 'lin2019-*'        scenes by name or pattern
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
+  ballbench init linear-guide > g.toml  a commented case file of one's own bearing (docs/cases.md)
+  ballbench validate g.toml --quick     the validation ladder on that case (Hertz, BEM, FE study, ...)
+  ballbench show g.toml                 its pictures
 
 exit codes: 0 passed (known gaps allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
-
-
-class UsageError(Exception):
-    """A wrong use of the command: reported as one line, exit code 2."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -51,7 +55,42 @@ def _is_fast(scene) -> bool:
     return scene.kind != "FE" and scene.cost_s <= FAST_COST_S
 
 
-def _select(names: list[str], fast: bool = False):
+def _is_case_file(name: str) -> bool:
+    return name.endswith(".toml") or (Path(name).is_file() and not any(c in name for c in "*?["))
+
+
+def _load_case(name: str):
+    from ballbench.validation.cases import case_file
+
+    try:
+        return case_file.load(name)
+    except case_file.CaseFileError as error:
+        raise UsageError(str(error)) from None
+
+
+def _case_scenes(names: list[str], top: str, deadline: float | None):
+    """The generated scenes of the case files among ``names`` (validation.case_scenes); one stem per file."""
+    from ballbench.validation import case_scenes
+
+    chosen, stems = [], {}
+    for name in names:
+        stem = case_scenes.slug(name)
+        if stem in stems and stems[stem] != name:
+            raise UsageError(f"case files {stems[stem]} and {name} give the same scene names ({stem}-...); "
+                             "rename one")
+        stems[stem] = name
+        chosen += case_scenes.case_scenes(_load_case(name), stem, top=top, deadline=deadline)
+    return chosen
+
+
+def _select(names: list[str], fast: bool = False, top: str = "FE-informed", deadline: float | None = None):
+    files = [n for n in names if _is_case_file(n)]
+    names = [n for n in names if n not in files]
+    generated = _case_scenes(files, top, deadline) if files else []
+    if files and not names:
+        if fast:
+            generated = [s for s in generated if _is_fast(s)]
+        return generated
     scenes = registry()
     if not names:
         chosen = [s for s in scenes.values() if s.default]
@@ -163,8 +202,8 @@ class _Interrupt:
         if self.requested:
             raise KeyboardInterrupt
         self.requested = True
-        print("\nballbench: Ctrl-C: stopping after the current scene (Ctrl-C again to stop now)", file=sys.stderr,
-              flush=True)
+        print("\nballbench: Ctrl-C: stopping after the current scene, at its next step (Ctrl-C again to stop now)",
+              file=sys.stderr, flush=True)
 
     def __exit__(self, *exc):
         if self.previous is not None:
@@ -176,8 +215,19 @@ def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, row, status_word, write_report
     from ballbench.validation.runner import run_scenes
 
+    import time
+
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
-    scenes = _select(args.scenes, args.fast)
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be at least 1, got {args.workers}")
+    if args.workers is not None and args.scheduler:
+        raise UsageError("give --workers (a local cluster) or --scheduler (an existing one), not both")
+    if args.budget is not None and not args.budget > 0:
+        raise UsageError(f"--budget must be a wall time > 0 s, got {args.budget:g}")
+    deadline = time.monotonic() + args.budget if args.budget is not None else None
+    if not any(_is_case_file(n) for n in args.scenes) and (args.levels is not None or deadline is not None):
+        raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
+    scenes = _select(args.scenes, args.fast, args.levels or "FE-informed", deadline)
     out_dir = Path(args.out)
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
@@ -185,6 +235,7 @@ def _cmd_validate(args) -> int:
         _check_file_target(junit, "--junit")
     _clean(out_dir)
     show_progress = sys.stderr.isatty() and not args.no_progress
+    progress_lines = not sys.stderr.isatty() and not args.no_progress  # piped: one line per step
     options = dict(strict=args.strict, strict_time=args.strict_time)
 
     def on_result(result):
@@ -205,8 +256,18 @@ def _cmd_validate(args) -> int:
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
     with _Interrupt() as interrupt:
-        results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress, on_result=on_result,
-                                      should_stop=lambda: interrupt.requested)
+        if args.workers is not None or args.scheduler:
+            from ballbench.validation.runner import run_scenes_distributed
+
+            where = args.scheduler or f"a local cluster of {args.workers} workers"
+            print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
+            results, stopped = run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
+                                                      scheduler=args.scheduler, on_result=on_result,
+                                                      should_stop=lambda: interrupt.requested)
+        else:
+            results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
+                                          on_result=on_result, should_stop=lambda: interrupt.requested,
+                                          progress_lines=progress_lines)
     done = {r.name for r in results if not r.interrupted}
     not_run = [s.name for s in scenes if s.name not in done]
     results = [r for r in results if not r.interrupted]
@@ -229,6 +290,8 @@ def _cmd_validate(args) -> int:
 def _cmd_show(args) -> int:
     from ballbench.validation.show import can_show
 
+    if _is_case_file(args.scene):
+        return _show_case(args)
     scenes = registry()
     drawable = sorted(n for n in scenes if can_show(n))
     if args.scene not in scenes:
@@ -241,17 +304,7 @@ def _cmd_show(args) -> int:
         raise UsageError(f"show draws the saved fields of FE scenes; {args.scene!r} is {what} "
                          f"(show draws: {', '.join(drawable)})")
     out_dir = Path(args.out)
-    if out_dir.exists() and not out_dir.is_dir():
-        raise UsageError(f"--out {out_dir} is an existing file, not a folder")
-    try:
-        (out_dir / args.scene).mkdir(parents=True, exist_ok=True)
-        probe = out_dir / args.scene / f".write-test-{os.getpid()}"
-        probe.write_text("")
-        probe.unlink()
-    except OSError as error:
-        raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
-    if not (out_dir / MARKER).exists():
-        (out_dir / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
+    _show_out(out_dir, args.scene)
     from ballbench.validation import show
 
     fidelity = "quick" if args.quick else "default"
@@ -267,6 +320,50 @@ def _cmd_show(args) -> int:
         return EXIT_FAILED
     for path in paths:
         print(path)
+    return EXIT_OK
+
+
+def _show_out(out_dir: Path, name: str) -> None:
+    if out_dir.exists() and not out_dir.is_dir():
+        raise UsageError(f"--out {out_dir} is an existing file, not a folder")
+    try:
+        (out_dir / name).mkdir(parents=True, exist_ok=True)
+        probe = out_dir / name / f".write-test-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as error:
+        raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
+    if not (out_dir / MARKER).exists():
+        (out_dir / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
+
+
+def _show_case(args) -> int:
+    """``ballbench show my_case.toml``: the pictures of the case's generated FE scenes."""
+    from ballbench.validation import case_scenes
+
+    case = _load_case(args.scene)
+    stem = case_scenes.slug(args.scene)
+    out_dir = Path(args.out)
+    names = [s.name for s in case_scenes.case_scenes(case, stem) if s.show is not None]
+    for name in names:
+        _show_out(out_dir, name)
+    try:
+        paths = case_scenes.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default")
+    except KeyboardInterrupt:
+        print("ballbench: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except (OSError, ValueError, KeyError) as error:
+        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error}", file=sys.stderr)
+        return EXIT_FAILED
+    for path in paths:
+        print(path)
+    return EXIT_OK
+
+
+def _cmd_init(args) -> int:
+    from ballbench.validation.cases import case_file
+
+    sys.stdout.write(case_file.template(args.kind))
     return EXIT_OK
 
 
@@ -289,7 +386,8 @@ def build_parser() -> argparse.ArgumentParser:
                                    "allowed), 1 when a check fails, 130 when interrupted (Ctrl-C stops after the "
                                    "current scene and writes a partial report; twice stops at once).")
     p.add_argument("scenes", nargs="*", metavar="SCENE",
-                   help="scene names or shell patterns such as 'lin2019-*' (default: every default scene)")
+                   help="scene names or shell patterns such as 'lin2019-*' (default: every default scene), or "
+                        "case files (my_guide.toml: the validation ladder on that case, docs/cases.md)")
     p.add_argument("--out", default="ballbench-report", metavar="DIR",
                    help="report folder (default: ./ballbench-report)")
     level = p.add_mutually_exclusive_group()
@@ -304,6 +402,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")
+    p.add_argument("--levels", choices=RUNGS, metavar="RUNG",
+                   help="case files: the highest rung of the ladder to run, one of " + ", ".join(RUNGS)
+                        + " (default FE-informed: every rung that runs today)")
+    p.add_argument("--budget", type=float, metavar="SECONDS",
+                   help="case files: stop refining a mesh study when its next level is predicted to end after "
+                        "this wall time from the start")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="run the scenes as dask.distributed tasks on a local cluster of N single-threaded worker "
+                        "processes (results equal a serial run's, timings aside)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the scenes on an existing dask scheduler, e.g. tcp://127.0.0.1:8786 (workers started "
+                        "with --nthreads 1, sharing this file system)")
     calibrate.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
     p.set_defaults(func=_cmd_validate)
 
@@ -311,11 +421,17 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Draw the contact pressure and a stress cut of an FE scene from the fields "
                                    "that 'ballbench validate' saved in DIR/SCENE/ (solving them first only if "
                                    "they are missing) and write the PNG files there.")
-    p.add_argument("scene", metavar="SCENE", help="an FE scene, e.g. fe-hertz-groove-056")
+    p.add_argument("scene", metavar="SCENE", help="an FE scene, e.g. fe-hertz-groove-056, or a case file")
     p.add_argument("--out", default="ballbench-report", metavar="DIR",
                    help="report folder of the validate run (default: ./ballbench-report)")
     p.add_argument("--quick", action="store_true", help="coarsest mesh level when the fields must be solved")
     p.set_defaults(func=_cmd_show)
+
+    p = sub.add_parser("init", help="write a commented case file to stdout",
+                       description="Write a commented case file of the given kind to stdout: edit its values and "
+                                   "run 'ballbench validate FILE.toml' (docs/cases.md).")
+    p.add_argument("kind", choices=CASE_KINDS, metavar="KIND", help="one of " + ", ".join(CASE_KINDS))
+    p.set_defaults(func=_cmd_init)
 
     sweep.add_parser(sub)  # ballbench sweep SPEC.toml (docs/sweeps.md)
     calibrate.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)

@@ -10,14 +10,17 @@ from typing import Callable, Iterable
 from ballbench.validation.scene import Run, Scene, SceneResult
 
 
-def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = False) -> SceneResult:
+def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = False,
+              progress_lines: bool = False, should_stop: Callable[[], bool] | None = None) -> SceneResult:
     """Run one scene; an exception becomes a failed result carrying its message.
 
     The traceback of a failing scene goes to ``<out>/<scene>/error.txt`` (an
-    artifact of the report), not to the terminal.  Ctrl-C inside the scene
-    returns a result marked ``interrupted``.
+    artifact of the report), not to the terminal.  Ctrl-C inside the scene, or a stop request
+    (``should_stop()`` true at one of the scene's steps, :meth:`Run.checkpoint`), returns a result marked
+    ``interrupted``.  ``progress_lines``: one line per step on stderr when there is no bar.
     """
-    run = Run(scene, fidelity, out_dir, show_progress=show_progress)
+    run = Run(scene, fidelity, out_dir, show_progress=show_progress, progress_lines=progress_lines,
+              should_stop=should_stop)
     start = time.perf_counter()
     error = ""
     interrupted = False
@@ -42,12 +45,13 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
 
 def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_progress: bool = False,
                on_result: Callable[[SceneResult], None] | None = None,
-               should_stop: Callable[[], bool] = lambda: False) -> tuple[list[SceneResult], bool]:
+               should_stop: Callable[[], bool] = lambda: False,
+               progress_lines: bool = False) -> tuple[list[SceneResult], bool]:
     """Run ``scenes`` in order; returns ``(results, stopped)``.
 
     ``on_result`` is called after each scene (e.g. to print its status line);
-    the loop stops before the next scene when ``should_stop()`` is true or a
-    scene was interrupted (``stopped`` is then True).
+    a scene stops at its next step and the loop before the next scene when ``should_stop()`` is true or a
+    scene was interrupted (``stopped`` is then True, also when the request came during the last scene).
     """
     scenes = list(scenes)
     out_dir = Path(out_dir)
@@ -66,7 +70,11 @@ def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_pr
                 break
             if bar is not None:
                 bar.set_postfix_str(scene.name)
-            result = run_scene(scene, fidelity, out_dir, show_progress=show_progress)
+            if progress_lines and bar is None:
+                print(f"ballbench: scene {len(results) + 1} of {len(scenes)}: {scene.name}", file=sys.stderr,
+                      flush=True)
+            result = run_scene(scene, fidelity, out_dir, show_progress=show_progress, progress_lines=progress_lines,
+                               should_stop=should_stop)
             results.append(result)
             if bar is not None:
                 bar.update()
@@ -79,7 +87,64 @@ def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_pr
             if result.interrupted:
                 stopped = True
                 break
+        if should_stop():  # a stop requested while the last scene ran is still a stop (exit 130)
+            stopped = True
     finally:
         if bar is not None:
             bar.close()
     return results, stopped
+
+
+# dask settings of the LocalCluster that run_scenes_distributed starts (the sweep's: no statistical profiler)
+LOCAL_CLUSTER_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
+
+
+def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, workers: int = 2,
+                           scheduler: str | None = None,
+                           on_result: Callable[[SceneResult], None] | None = None,
+                           should_stop: Callable[[], bool] = lambda: False) -> tuple[list[SceneResult], bool]:
+    """Run ``scenes`` as dask.distributed tasks, one task per scene, on a LocalCluster of ``workers``
+    single-threaded worker processes or on the cluster of ``scheduler`` (an address such as
+    ``tcp://127.0.0.1:8786``; start its workers with ``--nthreads 1``, so that one worker never holds two
+    scenes' FE meshes at once); returns ``(results in the order of scenes, stopped)`` like :func:`run_scenes`.
+
+    Each scene runs in a worker exactly as :func:`run_scene` runs it serially (same code, same inputs, writing
+    into ``out_dir/<scene>/``, which must be reachable by the workers): the results equal a serial run's,
+    timings aside.  The most expensive scenes are submitted first.  A stop request (first Ctrl-C) cancels the
+    scenes not yet finished; their results are left out and ``stopped`` is True.
+    """
+    import dask
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    scenes = list(scenes)
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    cluster = None
+    with dask.config.set(LOCAL_CLUSTER_CONFIG):
+        if scheduler:
+            client = Client(scheduler)
+        else:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   dashboard_address="127.0.0.1:0", host="127.0.0.1")
+            client = Client(cluster)
+    results: dict[str, SceneResult] = {}
+    stopped = False
+    try:
+        order = sorted(scenes, key=lambda s: -s.cost_s)
+        futures = {client.submit(run_scene, scene, fidelity, out_dir, pure=False, key=f"scene-{scene.name}"): scene
+                   for scene in order}
+        running = as_completed(futures)
+        for future in running:
+            result = future.result()
+            results[result.name] = result
+            if on_result is not None:
+                on_result(result)
+            if should_stop():
+                stopped = True
+                client.cancel([f for f in futures if not f.done()])
+                break
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return [results[s.name] for s in scenes if s.name in results], stopped

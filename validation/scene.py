@@ -148,6 +148,7 @@ class SceneResult:
     budget_s: float = math.inf
     kind: str = "low-order"
     interrupted: bool = False
+    tables: tuple = ()  # ((title, header, rows), ...): results for the reader beside the checks (Run.table)
 
     def outputs_with(self, status: str) -> list[Output]:
         return [o for o in self.outputs if o.status == status]
@@ -264,16 +265,20 @@ def relative_error(value: float, reference: float, *, relation: str = "eq", scal
 class Run:
     """What a scene function gets: timing, checks, artifacts and progress."""
 
-    def __init__(self, scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = True):
+    def __init__(self, scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = True,
+                 progress_lines: bool = False, should_stop: Callable[[], bool] | None = None):
         if fidelity not in FIDELITIES:
             raise ValueError(f"fidelity must be one of {FIDELITIES}, got {fidelity!r}")
         self.scene = scene
         self.fidelity = fidelity
         self.out_dir = Path(out_dir)
         self.show_progress = show_progress
+        self.progress_lines = progress_lines and not show_progress
+        self.should_stop = should_stop or (lambda: False)
         self._outputs: list[Output] = []
         self._artifacts: list[str] = []
         self._notes: list[str] = []
+        self._tables: list[tuple] = []
 
     # -- timing -----------------------------------------------------------
     @staticmethod
@@ -399,13 +404,44 @@ class Run:
         """A sentence for the report under this scene's table (conventions, gaps)."""
         self._notes.append(text)
 
-    def progress(self, iterable: Iterable, *, total: int | None = None, desc: str = ""):
-        """Wrap a long loop in a progress bar (tqdm on stderr)."""
-        if not self.show_progress:
-            return iterable
-        from tqdm.auto import tqdm
+    def table(self, title: str, header, rows) -> None:
+        """A table of results for the reader (loads, friction forces, ...) shown under the scene's checks; cells
+        are text, already in the units the header names."""
+        header = tuple(str(h) for h in header)
+        rows = tuple(tuple(str(c) for c in row) for row in rows)
+        if any(len(row) != len(header) for row in rows):
+            raise ValueError(f"table {title!r}: every row needs {len(header)} cells")
+        self._tables.append((str(title), header, rows))
 
-        return tqdm(iterable, total=total, desc=desc or self.scene.name, leave=False)
+    def checkpoint(self) -> None:
+        """Raise KeyboardInterrupt when the user asked to stop (the first Ctrl-C of ``ballbench validate``): the
+        scene ends at its next step instead of running to its end.  :meth:`progress` calls it before each step."""
+        if self.should_stop():
+            raise KeyboardInterrupt
+
+    def progress(self, iterable: Iterable, *, total: int | None = None, desc: str = ""):
+        """Wrap a long loop: a progress bar (tqdm on stderr) on a terminal, else one line per step on stderr when
+        ``progress_lines`` (output piped to a file or a CI log); a stop request (:meth:`checkpoint`) ends the
+        scene before the next step."""
+        if total is None and hasattr(iterable, "__len__"):
+            total = len(iterable)
+        if self.show_progress:
+            from tqdm.auto import tqdm
+
+            iterable = tqdm(iterable, total=total, desc=desc or self.scene.name, leave=False)
+        return self._steps(iterable, total, desc or "steps")
+
+    def _steps(self, iterable: Iterable, total: int | None, label: str):
+        import sys
+
+        start = time.perf_counter()
+        for k, item in enumerate(iterable):
+            self.checkpoint()
+            if self.progress_lines:
+                print(f"ballbench: {self.scene.name}: {label}: step {k + 1} of {total if total else '?'} "
+                      f"({time.perf_counter() - start:.1f} s)", file=sys.stderr, flush=True)
+            yield item
+        self.checkpoint()
 
     @property
     def outputs(self) -> tuple[Output, ...]:
@@ -414,7 +450,8 @@ class Run:
     def result(self, wall_time_s: float, error: str = "", interrupted: bool = False) -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
-                           wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted)
+                           wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
+                           tuple(self._tables))
 
 
 def registry() -> dict[str, Scene]:

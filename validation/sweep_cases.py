@@ -91,6 +91,9 @@ def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl:
     return _two_ball(contacts)
 
 
+two_ball_numerical.keywords = tuple(TABLE1)  # what **table1 passes on (checked before a sweep runs)
+
+
 def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
                         d2_bl: float, d2_br: float, d2_tr: float, d2_tl: float, *, rho: float = 0.0,
                         **table1) -> dict:
@@ -124,6 +127,9 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
             "b2b_force": touching.pair[:, 0, 0].reshape(shape), "baseline_loss": baseline.reshape(shape),
             "total_loss": total.reshape(shape), "friction_increase": (total / baseline - 1.0).reshape(shape),
             "iterations": touching.iterations.astype(float).reshape(shape)}
+
+
+two_ball_deviations.keywords = tuple(TABLE1)
 
 
 def two_ball_analytical(theta, rho, *, top_tr=0.0, top_tl=0.0, k_f: float = b2b_analytical.K_F_PAPER,

@@ -230,9 +230,16 @@ def ball_in_groove(ball_radius: float, conformity: float, *, youngs_modulus: flo
 
     The groove radius is ``conformity * 2 * ball_radius``; the groove is
     straight along its length.  x (major axis ``a``) lies across the groove in
-    the cross-section, y along the groove (the rolling direction).
+    the cross-section, y along the groove (the rolling direction).  ``ball_radius`` [m] must be a plausible
+    ball radius (``checks.PLAUSIBLE``: 0.1 mm to 100 mm), so that a radius in mm is refused, not solved.
+
+    >>> from ballbench.lowmodel.contact import hertz
+    >>> contact = hertz.solve_load(hertz.ball_in_groove(3.175e-3, 0.52), 500.0)   # SI: m, -, N
+    >>> round(float(contact.a) * 1e3, 3), round(float(contact.b) * 1e3, 3)        # semi-axes [mm]
+    (0.954, 0.117)
     """
     kappa = _curvature("ball_radius", ball_radius)
+    checks.plausible("ball_radius", ball_radius)
     # body 1 = ball; body 2 = groove: (across, along) = (-1/r_groove, 0) from the geometry core
     return from_curvatures((kappa, kappa), groove.straight_groove_curvatures(ball_radius, conformity),
                            youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)

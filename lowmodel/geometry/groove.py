@@ -73,7 +73,7 @@ __all__ = [
     "BODIES", "FLANKS", "PROFILE_PLANES", "MAX_DEVIATION",
     "groove_radius", "straight_groove_curvatures", "GothicArch", "gothic_arch",
     "HelicalGroove", "helical_groove", "ContactFrame", "contact_frame", "groove_curvatures_helical",
-    "counter_height", "pair_initial_gap", "profile_coordinates", "surface_residual",
+    "counter_height", "pair_initial_gap", "straight_pair_initial_gap", "profile_coordinates", "surface_residual",
 ]
 
 BODIES = helix.BODIES  # ("nut", "screw"), one tuple for the geometry core
@@ -512,6 +512,30 @@ def pair_initial_gap(ball_radius: float, conformity: float, pitch_radius: float,
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         ball = radius - np.sqrt(np.maximum(radius**2 - x * x - y * y, 0.0))
         return ball - counter_height(groove, x, y)
+
+    return initial_gap
+
+
+def straight_pair_initial_gap(ball_radius: float, pair: str, conformity: float | None = None):
+    """Exact initial gap ``g0(x, y)`` [m] of a ball of radius ``ball_radius`` [m] touching a flat (``pair``
+    ``"flat"``), a ball of the same radius (``"ball"``) or a straight groove of ``conformity`` (``"groove"``), at the
+    point ``(x, y)`` of the contact plane: the ball's cap ``R_B - sqrt(R_B^2 - x^2 - y^2)``, plus the other ball's
+    cap, or minus the groove arc's depth across it, ``r_g - sqrt(r_g^2 - x^2)`` (x across the groove, the major
+    axis of :func:`straight_groove_curvatures`; y along it).  For small ``(x, y)`` it tends to Hertz's
+    ``A x^2 + B y^2``; beyond ``|x| = R_B`` the caps are continued flat at their rim (the BEM grid stays inside).
+    """
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    checks.choice("pair", pair, ("flat", "ball", "groove"))
+    r_g = groove_radius(radius, conformity) if pair == "groove" else None
+
+    def initial_gap(x, y):
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        cap = radius - np.sqrt(np.maximum(radius**2 - x * x - y * y, 0.0))
+        if pair == "flat":
+            return cap
+        if pair == "ball":
+            return 2.0 * cap
+        return cap - (r_g - np.sqrt(np.maximum(r_g**2 - x * x, 0.0)))
 
     return initial_gap
 

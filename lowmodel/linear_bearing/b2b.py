@@ -97,7 +97,12 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
     which only the analytical model uses).
     """
     n_balls = checks.count("n_balls", n_balls, 1)
-    theta = checks.finite("theta", theta, "rad")
+    nominal_angle = checks.contact_angle("nominal_angle", nominal_angle)
+    limit = min(nominal_angle, 0.5 * math.pi - nominal_angle)  # beta_0 -+ theta inside (0, 90) deg
+    theta = checks.bounded("theta", theta, -limit, limit, "rad",
+                           note=f"|theta| below {math.degrees(limit):.4g} deg keeps beta_0 -+ theta in (0, 90) deg; "
+                                "radians: 2 deg is 0.0349 rad")
+    checks.plausible("ball_radius", ball_radius)
     side_force_ratio = checks.finite("side_force_ratio", side_force_ratio)
     top = checks.finite("top_deviations", top_deviations, "rad")
     if np.shape(top) != (2,):

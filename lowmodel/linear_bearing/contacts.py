@@ -221,7 +221,9 @@ def _minimum_conformity() -> float:
     from ballbench.lowmodel.contact.ellipse_friction import B_OVER_A_RANGE
 
     def excess(f):
-        return hertz.ball_in_groove(1.0, f).axis_ratio - B_OVER_A_RANGE[0]
+        # b/a does not depend on the size; 1/16 m (a power of two: the curvatures scale exactly, so b/a is that
+        # of any radius to the last bit) lies inside the plausible ball radii that ball_in_groove accepts
+        return hertz.ball_in_groove(0.0625, f).axis_ratio - B_OVER_A_RANGE[0]
 
     return float(brentq(excess, 0.5 + 1e-9, 0.9, xtol=1e-12))
 

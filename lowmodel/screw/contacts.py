@@ -127,6 +127,9 @@ def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pit
     if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
         raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
                          f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {lead!r}")
+    for name, value in (("ball_radius", ball_radius), ("pitch_radius", pitch_radius), ("lead", lead),
+                        ("oversize", oversize), ("youngs_modulus", youngs_modulus)):
+        checks.plausible(name, value)  # a length in mm or a modulus in GPa is refused here, not in a solve
     return ScrewModule(ball_radius, conformity, pitch_radius, lead, nominal_angle, nut_speed, mu, youngs_modulus,
                        poisson_ratio, oversize)
 

@@ -8,6 +8,7 @@ import pytest
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation import calibrate, cli
 
+from tests.cli_support import one_error_line
 from tests import paths
 
 NUT_DATA = paths.DATA / "fe_nut_quick.load_approach.csv"
@@ -37,9 +38,8 @@ def test_calibrate_spec_mistakes_are_found_before_the_fe_sweep(tmp_path, monkeyp
     # a typo in the last table used to surface only after the FE load sweep of the first (minutes); a ball
     # radius in mm used to give a Psi 10x off without a word
     monkeypatch.setattr(calibrate, "fe_contact_law", lambda *a, **k: pytest.fail("FE started before the check"))
-    with pytest.raises(SystemExit) as stop:
-        cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))])
-    assert expected in str(stop.value)
+    line = one_error_line(capsys, cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))]))
+    assert expected in line
     assert not (tmp_path / "out").exists()
 
 

@@ -340,3 +340,16 @@ def test_a_bound_that_holds_is_not_called_exact(tmp_path):
     assert fmt_ratio(results[1].outputs[0]) == "0 (exact)"
     summary = to_markdown(results, "default").split("## Summary")[1].split("## Known gaps")[0]
     assert "| 1 | 0 (bounds met) |" in summary and "| 1 | 0 (exact) |" in summary
+
+
+def test_result_tables_reach_markdown_and_json_and_read_back():
+    from dataclasses import replace
+
+    from ballbench.validation.report.records import results_from_json, to_json
+
+    table = ("Friction of the balls", ("state", "friction force [N]"), (("balls touching", "1.269"),))
+    result = replace(_scene("case-balls", _output("m", "analytical")), tables=(table,))
+    text = report.to_markdown([result], "default")
+    assert "Friction of the balls" in text and "1.269" in text
+    data = json.loads(json.dumps(to_json([result], "default")))
+    assert results_from_json(data)[0].tables == (table,)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from ballbench.validation import sweep
+from tests.cli_support import one_error_line
 from tests.cli_support import helper_module
 from tests import paths
 from ballbench.validation import cli
@@ -184,8 +185,11 @@ def test_killed_sweep_restarts_with_the_missing_cases_only(helpers, tmp_path):
 def test_example_specs_parse_and_match_the_scene():
     from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
 
-    root = paths.ROOT / "examples"
-    specs = {p.stem: sweep.load_spec(p) for p in sorted(root.glob("*.toml")) if not p.stem.startswith("calibrate")}
+    from ballbench.validation.cases.case_file import kind_of
+
+    root = paths.ROOT / "examples"  # sweep specs beside calibrate specs and case files (a top-level kind)
+    specs = {p.stem: sweep.load_spec(p) for p in sorted(root.glob("*.toml"))
+             if not p.stem.startswith("calibrate") and kind_of(p) is None}
     assert specs["two_ball_monte_carlo"].n_cases == 100_000
     assert specs["lin2019_fig8_9"].grid_shape == (101, 101)
     assert specs["sweep_equivalence"].identity() == sweep.spec_from_dict(EQUIVALENCE_SPEC).identity()
@@ -207,15 +211,14 @@ def test_many_chunks_through_a_bounded_window(helpers, tmp_path):
     assert list(dask_result["error"]) == list(serial_result["error"])
 
 
-def test_cli_reports_spec_errors_as_messages(tmp_path):
+def test_cli_reports_spec_errors_as_messages(tmp_path, capsys):
     from ballbench.validation import cli
+    from tests.cli_support import one_error_line
 
-    with pytest.raises(SystemExit, match="no such file"):
-        cli.main(["sweep", str(tmp_path / "missing.toml"), "--serial"])
+    assert "no such file" in one_error_line(capsys, cli.main(["sweep", str(tmp_path / "missing.toml"), "--serial"]))
     bad = tmp_path / "bad.toml"
     bad.write_text('name = "b"\nfunction = "math:hypot"\noutputs = ["x"]\nchunk_size = 0\n')
-    with pytest.raises(SystemExit, match="chunk_size must be an integer >= 1"):
-        cli.main(["sweep", str(bad), "--serial"])
+    assert "chunk_size must be an integer >= 1" in one_error_line(capsys, cli.main(["sweep", str(bad), "--serial"]))
 
 
 def test_gridded_sweep_lands_in_a_zarr_dataset_and_resumes_the_missing_cases(helpers, tmp_path, monkeypatch):
@@ -368,9 +371,9 @@ def test_sweep_input_names_are_checked_before_any_case_runs(sweep_helpers, tmp_p
     if expected is None:
         assert cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]) == 0
         return
-    with pytest.raises(SystemExit) as stop:  # used to run every case, record a TypeError each and exit 0
-        cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"])
-    assert expected in str(stop.value) and "square(x, offset=0.0)" in str(stop.value)
+    # used to run every case, record a TypeError each and exit 0; a wrong use: exit 2, one line
+    line = one_error_line(capsys, cli.main(["sweep", spec, "--serial", "--out", str(out), "--no-progress"]))
+    assert expected in line and "square(x, offset=0.0)" in line
     assert not out.exists()
 
 

@@ -18,7 +18,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                               "source", "rel_error", "tolerance", "passed",
                               "time_s", "relation", "note", "kind", "scale",
                               "why", "status", "known_gap_reason",
-                              "known_gap_evidence", "family", "level"}]}]}
+                              "known_gap_evidence", "family", "level"}],
+                 "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
 ``family`` is one of ``scene.FAMILIES`` or ``""`` (undeclared), ``level`` the
 model's fidelity level in words (``""`` without levels).  JSON and CSV carry SI

@@ -190,6 +190,9 @@ def _scene(r: SceneResult, status: str, out_dir: Path | None) -> Section:
                    f"; wall time {fmt_time(r.wall_time_s)} (budget {scene_budget_text(r)})."))]
     if r.error:
         blocks.append(Paragraph((Span("Error:", "strong", status="error"), " ", Span(r.error, "code"))))
+    for title, header, rows in r.tables:  # results for the reader (loads, friction), before the checks
+        blocks.append(Paragraph(Span(title, "strong")))
+        blocks.append(Table(header, rows, numeric=tuple(range(1, len(header)))))
     for model, family, level, t, outputs in model_runs(r):
         blocks.append(Paragraph(_run_heading(model, family, level, t)))
         shown = [row(o) for o in outputs]

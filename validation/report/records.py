@@ -80,6 +80,8 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "artifacts": list(r.artifacts),
                 "notes": list(r.notes),
                 "outputs": [{k: json_number(v) for k, v in o.as_dict().items()} for o in r.outputs],
+                **({"tables": [{"title": t, "header": list(h), "rows": [list(x) for x in rows]}
+                               for t, h, rows in r.tables]} if r.tables else {}),
             }
             for r, status in zip(results, counted.statuses)
         ],
@@ -112,5 +114,7 @@ def results_from_json(data: dict) -> list[SceneResult]:
             outputs.append(Output(**values, known_gap=gap))
         results.append(SceneResult(s["name"], s["description"], data["fidelity"], tuple(outputs),
                                    tuple(s["artifacts"]), tuple(s["notes"]), s["wall_time_s"], s["error"],
-                                   json_float(s["budget_s"]), s["kind"], s["interrupted"]))
+                                   json_float(s["budget_s"]), s["kind"], s["interrupted"],
+                                   tuple((t["title"], tuple(t["header"]), tuple(tuple(x) for x in t["rows"]))
+                                         for t in s.get("tables", ()))))
     return results

@@ -21,7 +21,7 @@ from ballbench.fem.postprocess import nodal_stress
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases.case import ContactCase
 
-__all__ = ["PairModel", "pair_model", "solve_level", "write_fields", "compute_fields",
+__all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "write_fields", "compute_fields",
            "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
 
 FIELD_NAMES = {
@@ -76,6 +76,11 @@ def _pair_geometry(case: ContactCase) -> tuple[hertz.HertzGeometry, tuple, str]:
                                      **material)
     return (geometry, args, f"lowmodel.contact.hertz.from_curvatures of the exact helical {case.pair} frame "
                             f"({case.name}, {load})")
+
+
+def hertz_geometry(case: ContactCase) -> hertz.HertzGeometry:
+    """The Hertz geometry of the pair of ``case`` (the exact helical frame for screw and nut pairs)."""
+    return _pair_geometry(case)[0]
 
 
 def pair_model(case: ContactCase) -> PairModel:

@@ -11,6 +11,7 @@ A failed case is a result: its outputs are NaN and ``error`` holds
 """
 from __future__ import annotations
 
+import difflib
 import importlib
 import inspect
 import math
@@ -20,6 +21,7 @@ from typing import Callable
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.validation.sweep.spec import SweepSpec, spec_from_dict
 
 DRAW_BLOCK = 4096  # random draws per seeded block (fixed: changing it changes every draw)
@@ -85,6 +87,66 @@ def check_inputs(spec: SweepSpec, function: Callable | None = None) -> None:
     except TypeError as error:
         raise ValueError(f"the inputs of the spec ({', '.join(names) or 'none'}) do not fit {spec.function}"
                          f"{signature}: {error}") from None
+    forwarded = getattr(function, "keywords", None)  # the names a function's **keywords pass on (sweep_cases)
+    own = {p.name for p in signature.parameters.values() if p.kind is not p.VAR_KEYWORD}
+    if forwarded is not None:
+        for name in names:
+            if name not in own and name not in forwarded:
+                close = difflib.get_close_matches(name, sorted(own | set(forwarded)), n=2, cutoff=0.6)
+                hint = f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
+                raise ValueError(f"input {name!r} is not a parameter of {spec.function}{hint}; it takes "
+                                 f"{', '.join(sorted((own - {'calibration'}) | set(forwarded)))}")
+    check_values(spec)
+
+
+def _values(spec: SweepSpec, name: str) -> np.ndarray | None:
+    """Every value the spec gives input ``name`` (SI): the fixed one, the grid axis, or the bounds of a uniform
+    draw and the mean of a normal one; None for a non-numeric input."""
+    if name in spec.fixed:
+        value = spec.fixed[name]
+        if isinstance(value, bool) or not isinstance(value, (int, float, list)):
+            return None
+        try:
+            return np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            return None
+    if name in spec.grid:
+        return np.asarray(spec.grid[name], dtype=float)
+    distribution = spec.random.get(name)
+    if distribution is None or distribution.kind == "lognormal":
+        return None
+    if distribution.kind == "uniform":
+        return np.array([distribution.first, distribution.second]) * distribution.factor
+    return np.array([distribution.first]) * distribution.factor
+
+
+def check_values(spec: SweepSpec) -> None:
+    """ValueError naming the input for a value no case can use, before any case runs: NaN, a conformity outside
+    (0.5, 1), a load that is not > 0, a length or angle outside its plausible range (a radius in mm, an angle in
+    degrees given as a bare number; lowmodel.checks.PLAUSIBLE), for the inputs of the names the models share."""
+    for name in list(spec.fixed) + list(spec.input_names):
+        values = _values(spec, name)
+        if values is None:
+            continue
+        where = ("fixed." if name in spec.fixed else "grid." if name in spec.grid else "random.inputs.") + name
+        checks.finite(where, values)
+        kind = INPUT_KINDS.get(name)
+        if kind == "conformity":
+            checks.conformity(where, values)
+        elif kind == "load":
+            checks.positive(where, values, "N")
+        elif kind == "coefficient":
+            checks.non_negative(where, values)
+        elif kind is not None:
+            checks.plausible(where, values, kind)
+
+
+# input names the models share -> what their values must be (check_values)
+INPUT_KINDS = {"ball_radius": "ball_radius", "pitch_radius": "pitch_radius", "lead": "lead", "oversize": "oversize",
+               "youngs_modulus": "youngs_modulus", "conformity": "conformity", "vertical_force": "load",
+               "normal_load": "load", "axial_load": "load", "force": "load", "friction_coefficient": "coefficient",
+               "theta": "deviation", "top_tr": "deviation", "top_tl": "deviation",
+               **{f"d{ball}_{contact}": "deviation" for ball in (1, 2) for contact in ("bl", "br", "tr", "tl")}}
 
 
 _OUTPUT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")

@@ -10,7 +10,11 @@ from ballbench.validation.sweep.storage import DATASET_NAME
 
 
 def main(args) -> int:
-    """``ballbench sweep`` (registered in validation/cli.py)."""
+    """``ballbench sweep`` (registered in validation/cli.py): a mistake in the spec or the options is a wrong use
+    (UsageError, exit 2) found before the output folder is made; exit 1 when every case failed."""
+    from ballbench.validation.sweep.cases import check_inputs
+    from ballbench.validation.usage import UsageError, check_writable_folder
+
     try:
         spec = load_spec(args.spec)
         if args.chunk_size is not None:
@@ -19,12 +23,17 @@ def main(args) -> int:
             spec = spec_from_dict({**spec.source, "chunk_size": args.chunk_size})
         if args.workers < 1:
             raise ValueError(f"--workers must be >= 1, got {args.workers}")
-        out_dir = Path(args.out) if args.out else Path("ballbench-sweeps") / spec.name
-        progress = False if args.no_progress else None
+        check_inputs(spec)  # names and values of the inputs, before the output folder exists
+    except ValueError as error:
+        raise UsageError(f"sweep: {error}") from None
+    out_dir = Path(args.out) if args.out else Path("ballbench-sweeps") / spec.name
+    check_writable_folder(out_dir, "--out")
+    progress = False if args.no_progress else None
+    try:
         summary = run_sweep(spec, out_dir, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
                             progress=progress)
-    except ValueError as error:
-        raise SystemExit(f"ballbench sweep: {error}") from None
+    except ValueError as error:  # e.g. a different spec in the same folder
+        raise UsageError(f"sweep: {error}") from None
     who = "this process" if args.serial else "workers"
     busy = (f"; {who} computing {100 * summary.utilisation:.0f} % of the time, overhead "
             f"{1e3 * summary.overhead_per_case:.3f} ms per case" if summary.computed else "")

@@ -3,7 +3,8 @@
 A spec names a model function, its fixed inputs, the swept ones (grids and
 seeded random draws) and the outputs to keep; :func:`spec_from_dict` turns the
 TOML table into a :class:`SweepSpec` with every number in SI units (units
-through :mod:`.units`), or raises ValueError naming the key.
+through :mod:`ballbench.validation.units`, the parser case files and calibrate specs share), or raises
+ValueError naming the key.
 """
 from __future__ import annotations
 
@@ -17,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.validation.specs import read_toml
-from ballbench.validation.sweep.units import DIMENSIONLESS, si_factor
+from ballbench.validation.units import DIMENSIONLESS, dimension_of, quantity, si_factor, split
 
 DISTRIBUTIONS = {"normal": ("mean", "sigma"), "uniform": ("low", "high"), "lognormal": ("mean", "sigma")}
 _TOP_KEYS = {"name", "function", "vectorised", "chunk_size", "outputs", "fixed", "grid", "random", "description"}
@@ -92,7 +93,12 @@ def _fixed_value(name: str, value):
         if isinstance(inner, list):
             return [_number(f"fixed.{name}.value", v) * factor for v in inner]
         return _number(f"fixed.{name}.value", inner) * factor
-    return value  # numbers, strings, booleans and lists pass as they are
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"fixed.{name} must be a finite number, got {value!r}")
+    parts = split(value) if isinstance(value, str) else None
+    if parts and parts[1]:  # "3.175 mm": a quantity, converted to SI
+        return quantity(value, dimension_of(parts[1], f"fixed.{name}"), f"fixed.{name}")
+    return value  # numbers, other strings, booleans and lists pass as they are
 
 
 def _grid_axis(name: str, axis) -> np.ndarray:

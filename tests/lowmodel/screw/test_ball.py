@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import ellipse_friction_offset as eo
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import ball as bb, contacts as bearing_contacts
@@ -203,6 +204,8 @@ def test_linear_bearing_limit(monkeypatch):
     monkeypatch.setattr(bearing_contacts, "_friction_angle_function", exact)
     # the exact map replaces the numpy path's; the compiled kernels (lowmodel.kernels) use the tabulated map
     monkeypatch.setenv("BALLBENCH_KERNELS", "numpy")
+    # the limit R_P -> inf lies beyond the plausible pitch radii of real screws (lowmodel.checks.PLAUSIBLE)
+    monkeypatch.setitem(checks.PLAUSIBLE, "pitch_radius", (1e-3, math.inf, "m", "a pitch radius", ""))
     speed, radius = 0.01, 2.778e-3
     errors = []
     for ratio in (1e6, 1e10):

@@ -1,0 +1,61 @@
+"""Case files (validation/cases/case_file.py): templates load, every mistake is named before any work (file, line,
+key, range, did you mean), the paper cases shipped as files read back to the values lin2019 prints."""
+import math
+
+import pytest
+
+from ballbench.validation.cases import case_file, lin2019
+from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
+
+
+@pytest.mark.parametrize("kind, cls", [("linear-guide", LinearGuideCase), ("ball-screw", BallScrewCase),
+                                       ("contact", ContactCase)])
+def test_every_template_loads_as_its_case(kind, cls):
+    case = case_file.loads(case_file.template(kind), f"{kind}.toml")
+    assert isinstance(case, cls)
+
+
+def _guide(edit: str, new: str) -> str:
+    text = case_file.template("linear-guide")
+    assert edit in text
+    return text.replace(edit, new)
+
+
+def test_template_values_arrive_in_si():
+    case = case_file.loads(_guide('ball_radius = "1.5875 mm"', 'ball_radius = "3.175 mm"'))
+    assert case.guide.ball_radius == 3.175e-3
+    assert case.guide.nominal_angle == pytest.approx(math.pi / 4, rel=1e-15)
+    assert case.vertical_force == 50.0
+
+
+@pytest.mark.parametrize("edit, new, words", [
+    ('ball_radius = "1.5875 mm"', "ball_radius = 3.175", ["guide.ball_radius", "unit"]),       # unit missing
+    ('ball_radius = "1.5875 mm"', 'ball_radius = "3.175 m"', ["guide.ball_radius", "3.175e-3"]),  # mm for m
+    ('nominal_angle = "45 deg"', "nominal_angle = 45", ["guide.nominal_angle", "unit"]),
+    ("conformity = 0.52", "conformity = 0.5", ["guide.conformity"]),
+    ("conformity = 0.52", "conformaty = 0.52", ["conformaty", "did you mean 'conformity'"]),
+    ('vertical_force = "50 N"', 'vertical_force = "-50 N"', ["load.vertical_force"]),
+])
+def test_mistakes_name_file_line_and_key(edit, new, words):
+    with pytest.raises(case_file.CaseFileError) as error:
+        case_file.loads(_guide(edit, new), "g.toml")
+    message = str(error.value)
+    assert message.startswith("g.toml, line "), message
+    for word in words:
+        assert word in message, message
+
+
+def test_paper_cases_read_the_printed_values():
+    # the shipped files against lin2019's print (Table 1, Sec 2.4; Table 4, Sec 3.3), not against the loader
+    guide = case_file.load(lin2019.FILES / "lin2019-table3-a.toml")
+    assert (guide.guide.ball_radius, guide.guide.conformity, guide.guide.friction_coefficient) == (5e-3, 0.56, 0.1)
+    assert guide.guide.nominal_angle == pytest.approx(math.radians(45), rel=1e-15)
+    assert guide.guide.groove_velocity == pytest.approx(10e-3, rel=1e-15)
+    assert (guide.guide.material.youngs_modulus, guide.guide.material.poisson_ratio) == (2.1e11, 0.28)
+    assert (guide.vertical_force, guide.side_force_ratio) == (100.0, -0.6)
+    assert guide.theta == pytest.approx(math.radians(2), rel=1e-15)
+    screw = case_file.load(lin2019.FILES / "lin2019-table5-a.toml")
+    assert (screw.screw.ball_radius, screw.screw.pitch_radius, screw.screw.lead) == (2.778e-3, 16.5e-3, 20e-3)
+    assert screw.screw.nut_speed == pytest.approx(2 * math.pi, rel=1e-15)
+    assert screw.axial_load == 50.0
+    assert guide == lin2019.TABLE3_A and screw == lin2019.TABLE5_A  # what the paper scenes run

@@ -1,0 +1,99 @@
+"""``ballbench init``, ``validate CASE.toml`` and ``show CASE.toml``: one's own bearing through the command line
+(docs/cases.md); wrong use is one line and exit 2, before any work."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import ballbench
+
+from ballbench.validation import cli
+from tests.cli_support import one_error_line
+
+
+def _init(kind, tmp_path, capsys, name="g.toml"):
+    assert cli.main(["init", kind]) == 0
+    path = tmp_path / name
+    path.write_text(capsys.readouterr().out)
+    return path
+
+
+def test_init_writes_a_template_that_validate_runs_up_to_the_bem(tmp_path, capsys):
+    path = _init("linear-guide", tmp_path, capsys)
+    text = path.read_text().replace('vertical_force = "50 N"', 'vertical_force = "60 N"')
+    path.write_text(text)  # a user's edit
+    out = tmp_path / "report"
+    code = cli.main(["validate", str(path), "--quick", "--levels", "BEM", "--out", str(out)])
+    err = capsys.readouterr().err
+    data = json.loads((out / "results.json").read_text())
+    scenes = {s["name"]: s for s in data["scenes"]}
+    assert set(scenes) == {"g-balls", "g-contact"}, err
+    balls = scenes["g-balls"]
+    assert not balls["error"] and [t["title"] for t in balls["tables"]][1].startswith("Friction of the balls")
+    contact = scenes["g-contact"]
+    families = {o["family"] for o in contact["outputs"]}
+    assert families == {"analytical", "BEM"}, contact["outputs"]
+    assert all(o["time_s"] > 0 for o in contact["outputs"])
+    assert "Friction of the balls" in (out / "report.md").read_text()
+    assert code in (0, 1)  # 1 when a model misses its tolerance against the reference: a finding, not a crash
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("args, words", [
+    (["validate", "missing.toml"], "no such file"),
+    (["validate", "{case}", "--levels", "FEM"], "invalid choice"),
+    (["validate", "{case}", "--budget", "-3"], "--budget"),
+    (["show", "missing.toml"], "no such file"),
+    (["init", "linear-bearing"], "invalid choice"),
+    (["validate", "hertz-ball-ball", "--levels", "BEM"], "apply to case files"),
+])
+def test_wrong_use_is_one_line(args, words, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    case = _init("contact", tmp_path, capsys)
+    code = cli.main([a.replace("{case}", str(case)) for a in args])
+    assert words in one_error_line(capsys, code)
+
+
+def test_a_unit_mistake_in_a_case_file_is_named_before_any_work(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    path = _init("ball-screw", tmp_path, capsys)
+    path.write_text(path.read_text().replace('pitch_radius = "16.6 mm"', "pitch_radius = 20"))
+    line = one_error_line(capsys, cli.main(["validate", str(path), "--out", "r"]))
+    assert "screw.pitch_radius" in line and "line 10" in line
+    assert not (tmp_path / "r").exists()
+
+
+def test_calibrate_takes_a_case_file(tmp_path, capsys, monkeypatch):
+    # [contact.<name>] fe_case = "g.toml": the FE load sweep of the case's most loaded contact, levels from its
+    # ellipse; a bad case file is named before any FE runs
+    import numpy as np
+
+    from ballbench.validation import calibrate
+    from ballbench.validation.studies import fe_contact
+
+    path = _init("linear-guide", tmp_path, capsys)
+    spec = tmp_path / "spec.toml"
+    spec.write_text(f'output = "{tmp_path / "out" / "calibration.json"}"\n[contact.mine]\nfe_case = "g.toml"\n')
+    seen = []
+
+    def sweep(case, fidelity, factors):  # Hertz itself stands in for the FE sweep: the plumbing is under test
+        from ballbench.lowmodel.contact import hertz
+
+        geometry = fe_contact.hertz_geometry(case)
+        forces = case.force * np.asarray(factors)
+        contact = hertz.solve_load(geometry, forces)
+        seen.append(case)
+        return dict(force=forces, approach=np.asarray(contact.delta), a=np.asarray(contact.a),
+                    ball_radius=case.ball_radius, geometry=geometry, level=(5.5, 1.4), ndofs=1, wall_time_s=0.0)
+
+    monkeypatch.setattr(fe_contact, "load_sweep", sweep)
+    assert cli.main(["calibrate", str(spec)]) == 0, capsys.readouterr().err
+    assert (tmp_path / "out" / "calibration.json").is_file()
+    (case,) = seen
+    assert case.fe is not None and case.pair == "groove" and case.conformity == 0.52
+    loads = ballbench.friction(ballbench.load_case(path)).contacts
+    assert case.force == max(c.normal_force for c in loads) == calibrate.case_contact(path).force
+    path.write_text(path.read_text().replace("conformity = 0.52", "conformity = 52"))
+    line = one_error_line(capsys, cli.main(["calibrate", str(spec)]))
+    assert "fe_case" in line and "guide.conformity" in line

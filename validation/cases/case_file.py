@@ -1,0 +1,562 @@
+"""Case files: a linear guide, a ball screw or a single contact as TOML, read into the Case types (SI).
+
+Every quantity carries its unit (``"3.175 mm"``, ``"2 deg"``, ``"500 N"``, ``{ value = 3.175, unit = "mm" }``;
+validation.units).  The whole file is checked before any work: an unknown key (with "did you mean"), a missing
+one, a unit of the wrong dimension or a missing unit, a value outside its physical range (a conformity of 0.5, a
+negative load) or outside the plausible range of real bearings (a radius of metres, an elastic modulus of Pa:
+lowmodel.checks.PLAUSIBLE); a :class:`CaseFileError` names the file, the line, the key and the range.
+
+The keys of each kind are declared once (:data:`SCHEMA`); :func:`template` writes the commented file of
+``ballbench init`` from the same declarations, and :func:`load` reads it back.  docs/cases.md lists the keys.
+
+    >>> from ballbench.validation.cases import case_file
+    >>> case = case_file.loads(case_file.template("linear-guide"), "g.toml")
+    >>> case.guide.ball_radius, case.vertical_force                      # SI: m, N
+    (0.0015875, 50.0)
+"""
+from __future__ import annotations
+
+import difflib
+import re
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ballbench.lowmodel import checks
+from ballbench.validation import units
+from ballbench.validation.cases.case import (FINE_ZONES, PAIRS, READINGS, BallScrew, BallScrewCase, ContactCase,
+                                             ContactFe, Fit, LinearGuide, LinearGuideCase, Lubricant, Material,
+                                             MeshLevels, ModuleFe, ModuleLevel, PairLevel)
+
+__all__ = ["KINDS", "SCHEMA", "CaseFileError", "Key", "load", "loads", "template", "describe"]
+
+KINDS = ("linear-guide", "ball-screw", "contact")
+
+
+class CaseFileError(ValueError):
+    """A mistake in a case file: the message names the file, the line (where it can be found), the key and what
+    the key takes."""
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a case file: its dimension (validation.units), what it is, whether it is required, the check of
+    its value (``"positive"``, ``"non-negative"``, ``"conformity"``, ``"contact angle"``, ``"poisson"``,
+    ``"count"``, ``"choice"``, ``"deviation"``, ``"text"``, ``"fraction"``), the plausible range it must lie in
+    (a key of lowmodel.checks.PLAUSIBLE), its example value in the template, and alternatives (another key that
+    gives the same value, e.g. a diameter for a radius)."""
+
+    name: str
+    dimension: str
+    help: str
+    required: bool = True
+    check: str = ""
+    plausible: str = ""
+    example: str = ""
+    choices: tuple = ()
+    alternative_of: str = ""  # this key gives ``alternative_of`` (times ``scale``)
+    scale: float = 1.0
+    in_template: bool = True
+
+
+def _material_keys():
+    return (Key("youngs_modulus", "pressure", "E, elastic modulus of ball and raceways", check="positive",
+                plausible="youngs_modulus", example='"210 GPa"'),
+            Key("poisson_ratio", "dimensionless", "nu, Poisson's ratio", check="poisson", example="0.3"))
+
+
+# table -> keys, per kind; "" is the top level
+SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
+    "linear-guide": {
+        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"linear-guide"'),
+             Key("name", "text", "a name for the report", check="text", example='"my linear guide"')),
+        "guide": (
+            Key("ball_radius", "length", "R_B, ball radius (1.5875 mm: a 1/8-inch ball)", check="positive",
+                plausible="ball_radius", example='"1.5875 mm"'),
+            Key("ball_diameter", "length", "or the ball diameter (1/8-inch ball: \"0.125 in\")", required=False,
+                check="positive", alternative_of="ball_radius", scale=0.5, in_template=False),
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter", check="conformity",
+                example="0.52"),
+            Key("nominal_angle", "angle", "beta_0, nominal contact angle of the four contacts",
+                check="contact angle", example='"45 deg"'),
+            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact",
+                check="non-negative", example="0.1"),
+            Key("groove_velocity", "speed", "v, speed of the carriage (top groove) against the rail",
+                check="finite", example='"100 mm/s"')),
+        "material": _material_keys(),
+        "load": (
+            Key("vertical_force", "force", "N_y, vertical load on every ball", check="positive", example='"50 N"'),
+            Key("side_force_ratio", "dimensionless", "rho = N_x / N_y of ball 1 (ball 2: -rho, alternating)",
+                check="finite", example="-0.6"),
+            Key("n_balls", "count", "balls in a row (2: the two-ball module of lin2019 Sec 2.4)", required=False,
+                check="count", example="2")),
+        "deviations": (
+            Key("bottom_left", "angle", "BL, contact angle deviation from beta_0 (every ball)", check="deviation",
+                example='"-2 deg"'),
+            Key("bottom_right", "angle", "BR", check="deviation", example='"2 deg"'),
+            Key("top_right", "angle", "TR", check="deviation", example='"0 deg"'),
+            Key("top_left", "angle", "TL", check="deviation", example='"0 deg"')),
+        "fe": (
+            Key("gap_limit", "length", "candidate zone: initial gaps up to this", required=False, check="positive",
+                in_template=False),
+            Key("fine_ellipse", "list", "fine slab of each contact: (k1 a, k2 b, k3 b)", required=False,
+                in_template=False),
+            Key("quick", "levels", "module mesh levels: [{ h_contact, growth, fine_radius, h_max }, ...]",
+                required=False, in_template=False),
+            Key("default", "levels", "", required=False, in_template=False),
+            Key("fine", "levels", "", required=False, in_template=False)),
+    },
+    "ball-screw": {
+        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"ball-screw"'),
+             Key("name", "text", "a name for the report", check="text", example='"my ball screw"')),
+        "screw": (
+            Key("ball_radius", "length", "R_B, ball radius (a 6.35 mm ball)", check="positive",
+                plausible="ball_radius", example='"3.175 mm"'),
+            Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
+                alternative_of="ball_radius", scale=0.5, in_template=False),
+            Key("pitch_radius", "length", "R_P, radius of the ball-centre helix", check="positive",
+                plausible="pitch_radius", example='"16.6 mm"'),
+            Key("pitch_diameter", "length", "or the pitch (ball-centre) diameter", required=False, check="positive",
+                alternative_of="pitch_radius", scale=0.5, in_template=False),
+            Key("lead", "length", "L, axial advance per turn", check="non-negative", plausible="lead",
+                example='"10 mm"'),
+            Key("nominal_angle", "angle", "beta_0, nominal contact angle", check="contact angle",
+                example='"45 deg"'),
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter (screw and nut)",
+                check="conformity", example="0.55"),
+            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact",
+                check="non-negative", example="0.1"),
+            Key("nut_speed", "angular speed", "omega_N, nut speed (the nut drives, the screw is at rest)",
+                check="finite", example='"1 rev/s"'),
+            Key("oversize", "length", "ball oversize: preload by interference (every contact approaches by it)",
+                required=False, check="non-negative", plausible="oversize", example='"1.5 um"'),
+            Key("oversize_fit", "fit", "how the oversize was fitted: { target = \"...\", method = \"...\" }",
+                required=False, in_template=False),
+            Key("ball_count", "count", "loaded balls of the nut", required=False, check="count",
+                in_template=False),
+            Key("ball_mass", "mass", "mass of one ball", required=False, check="positive", in_template=False),
+            Key("preload", "force", "axial preload of a double nut", required=False, check="non-negative",
+                in_template=False),
+            Key("screw_speed", "angular speed", "omega, screw speed (screw driven)", required=False,
+                check="finite", in_template=False)),
+        "material": _material_keys(),
+        "load": (
+            Key("axial_load", "force", "axial load on the screw, shared by the balls", check="non-negative",
+                example='"200 N"'),
+            Key("deviations", "angle list", "theta of each ball: screw-side contact angle deviation",
+                check="deviation", example='["0 deg", "2 deg"]'),
+            Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
+                check="choice", choices=READINGS, example='"tilted"')),
+        "lubricant": (
+            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", in_template=False),
+            Key("density", "density", "rho_0", check="positive", in_template=False)),
+        "fe": (
+            Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
+            Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
+                required=False, check="positive", in_template=False),
+            Key("quick", "levels", "", required=False, in_template=False),
+            Key("default", "levels", "", required=False, in_template=False),
+            Key("fine", "levels", "", required=False, in_template=False)),
+    },
+    "contact": {
+        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"contact"'),
+             Key("name", "text", "a name for the report", check="text", example='"my ball in a groove"')),
+        "contact": (
+            Key("pair", "text", "the counter body: flat, ball (same radius), groove (straight), screw or nut "
+                "(the helical groove of [screw])", check="choice", choices=PAIRS, example='"groove"'),
+            Key("ball_radius", "length", "R_B, ball radius", check="positive", plausible="ball_radius",
+                example='"3.175 mm"'),
+            Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
+                alternative_of="ball_radius", scale=0.5, in_template=False),
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter (groove pair only)",
+                required=False, check="conformity", example="0.54"),
+            Key("force", "force", "normal force", check="positive", example='"200 N"')),
+        "material": _material_keys(),
+        "screw": None,  # the ball-screw table, for screw and nut pairs (filled below)
+        "fe": (
+            Key("fine_zone", "text", "capsule or ellipse", required=False, check="choice", choices=FINE_ZONES,
+                in_template=False),
+            Key("zone", "list", "fine-zone factors", required=False, in_template=False),
+            Key("gap_limit", "dimensionless", "candidate zone: initial gaps up to this times the Hertz approach",
+                required=False, check="positive", in_template=False),
+            Key("fine_targets", "targets", "tolerances of the finest level: { a = 0.002, ... }", required=False,
+                in_template=False),
+            Key("quick", "levels", "pair mesh levels: [{ n, growth }, ...]", required=False, in_template=False),
+            Key("default", "levels", "", required=False, in_template=False),
+            Key("fine", "levels", "", required=False, in_template=False)),
+    },
+}
+SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k.name != "ball_radius"
+                                   and k.name != "ball_diameter")
+OPTIONAL_TABLES = {"linear-guide": {"fe"}, "ball-screw": {"fe", "lubricant"}, "contact": {"fe", "screw"}}
+
+_HEADERS = {
+    "linear-guide": "A linear guide: balls between a rail (bottom groove) and a carriage (top groove), lin2019 Sec 2.",
+    "ball-screw": "A ball screw: two balls of one turn between screw and nut grooves, lin2019 Sec 3.",
+    "contact": "One ball against a counter body under a normal force (Hertz, BEM, FE).",
+}
+
+
+# --------------------------------------------------------------------------
+# reading
+# --------------------------------------------------------------------------
+def _lines(text: str) -> dict[tuple[str, str], int]:
+    """(table, key) -> 1-based line of its assignment, from a line scan of the TOML text (headers ``[a]``,
+    ``[a.b]``; ``key =`` and dotted ``a.key =`` assignments)."""
+    where: dict[tuple[str, str], int] = {}
+    table = ""
+    header = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\s*(#.*)?$")
+    assign = re.compile(r"^\s*([A-Za-z0-9_\-.\"']+)\s*=")
+    for number, line in enumerate(text.splitlines(), start=1):
+        match = header.match(line)
+        if match:
+            table = match.group(1).replace('"', "").replace("'", "").replace(" ", "")
+            where.setdefault((table, ""), number)
+            continue
+        match = assign.match(line)
+        if match:
+            key = match.group(1).replace('"', "").replace("'", "")
+            full = f"{table}.{key}" if table else key
+            head, _, last = full.rpartition(".")
+            where.setdefault((head, last), number)
+    return where
+
+
+class _Reader:
+    def __init__(self, text: str, path: str):
+        self.path = path
+        self.lines = _lines(text)
+
+    def error(self, table: str, key: str, message: str) -> CaseFileError:
+        line = self.lines.get((table, key)) or self.lines.get((table, ""))
+        return CaseFileError(f"{self.path}" + (f", line {line}" if line else "") + f": {message}")
+
+    def value(self, table: str, key: Key, raw):
+        where = f"{table}.{key.name}" if table else key.name
+        try:
+            return _convert(where, key, raw)
+        except ValueError as error:
+            raise self.error(table, key.name, str(error)) from None
+
+
+def _convert(where: str, key: Key, raw):  # noqa: C901 - one dispatch over the key kinds of the case schema
+    """The SI value of ``raw`` for ``key`` (ValueError naming ``where``)."""
+    if key.dimension == "text":
+        if not isinstance(raw, str) or not raw.strip():
+            raise ValueError(f"{where} must be text, got {raw!r}")
+        if key.check == "choice" and raw not in key.choices:
+            close = difflib.get_close_matches(raw, key.choices, n=1, cutoff=0.5)
+            raise ValueError(f"{where} must be one of {', '.join(repr(c) for c in key.choices)}, got {raw!r}"
+                             + (f" (did you mean {close[0]!r}?)" if close else ""))
+        return raw
+    if key.dimension == "count":
+        return checks.count(where, raw, 1)
+    if key.dimension == "fit":
+        if not (isinstance(raw, dict) and set(raw) == {"target", "method"}
+                and all(isinstance(v, str) for v in raw.values())):
+            raise ValueError(f'{where} must be {{ target = "...", method = "..." }}, got {raw!r}')
+        return Fit(raw["target"], raw["method"])
+    if key.dimension == "list":
+        if not (isinstance(raw, list) and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in raw)):
+            raise ValueError(f"{where} must be a list of numbers, got {raw!r}")
+        return tuple(float(checks.finite(where, v)) for v in raw)
+    if key.dimension == "targets":
+        if not (isinstance(raw, dict) and all(k in ("a", "b", "p0", "delta") for k in raw)):
+            raise ValueError(f"{where} must be a table of a, b, p0, delta tolerances, got {raw!r}")
+        return tuple((k, float(checks.bounded(f"{where}.{k}", v, 0.0, 1.0))) for k, v in raw.items())
+    if key.dimension == "levels":
+        return raw  # read with the fe table (it needs the kind)
+    if key.dimension == "angle list":
+        if not isinstance(raw, list) or not raw:
+            raise ValueError(f'{where} must be a list of angles, one per ball, e.g. ["0 deg", "2 deg"], got {raw!r}')
+        values = tuple(units.quantity(v, "angle", f"{where}[{k}]") for k, v in enumerate(raw))
+        for k, v in enumerate(values):
+            checks.plausible(f"{where}[{k}]", v, "deviation")
+        return values
+    value = units.quantity(raw, key.dimension, where)
+    if isinstance(value, list):
+        raise ValueError(f"{where} takes one value, got a list")
+    _check(where, key, value)
+    return value
+
+
+def _check(where: str, key: Key, value: float) -> None:
+    unit = units.SI_UNIT.get(key.dimension, "")
+    unit = "" if unit == "1" else unit
+    check = key.check
+    if check == "positive":
+        checks.positive(where, value, unit)
+    elif check == "non-negative":
+        checks.non_negative(where, value, unit)
+    elif check == "finite":
+        checks.finite(where, value, unit)
+    elif check == "conformity":
+        checks.conformity(where, value)
+    elif check == "contact angle":
+        checks.contact_angle(where, value)
+    elif check == "poisson":
+        checks.bounded(where, value, -1.0, 0.5)
+    elif check == "deviation":
+        checks.plausible(where, value, "deviation")
+    if key.plausible:
+        checks.plausible(where, value, key.plausible)
+
+
+def _table(reader: _Reader, data: dict, kind: str, table: str, *, required: bool) -> dict:
+    """The SI values of one table of a ``kind`` file: unknown keys, alternatives, missing keys."""
+    keys = SCHEMA[kind][table]
+    raw = data if table == "" else data.get(table)
+    if raw is None:
+        if required:
+            raise reader.error("", "", f"missing table [{table}] (a {kind} file has "
+                                       f"{', '.join(f'[{t}]' for t in SCHEMA[kind] if t)})")
+        return {}
+    if not isinstance(raw, dict):
+        raise reader.error("", table, f"{table} must be a table [{table}]")
+    names = {k.name: k for k in keys}
+    allowed = set(names) | ({t for t in SCHEMA[kind] if t} if table == "" else set())
+    for name in raw:
+        if name not in allowed:
+            close = difflib.get_close_matches(name, sorted(allowed), n=2, cutoff=0.6)
+            where = f"{table}.{name}" if table else name
+            raise reader.error(table, name, f"unknown key {where!r}" + (
+                f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else "") +
+                f"; [{table or 'top level'}] takes {', '.join(sorted(allowed))}")
+    values = {}
+    for name, value in raw.items():
+        if name in names:
+            values[name] = reader.value(table, names[name], value)
+    for key in keys:
+        if key.alternative_of and key.name in values:
+            if key.alternative_of in values:
+                raise reader.error(table, key.name, f"give {table}.{key.alternative_of} or {table}.{key.name}, "
+                                                    "not both")
+            target = names[key.alternative_of]
+            value = values.pop(key.name) * key.scale
+            try:
+                _check(f"{table}.{key.name} / 2", target, value)
+            except ValueError as error:
+                raise reader.error(table, key.name, str(error)) from None
+            values[key.alternative_of] = value
+    for key in keys:
+        if key.required and not key.alternative_of and key.name not in values:
+            others = [k.name for k in keys if k.alternative_of == key.name]
+            raise reader.error(table, "", f"missing key {table + '.' if table else ''}{key.name} ({key.help}"
+                                          + (f"; or {', '.join(others)}" if others else "") + ")")
+    return values
+
+
+def _material(values: dict) -> Material:
+    return Material(values["youngs_modulus"], values["poisson_ratio"])
+
+
+def _levels(reader: _Reader, table: dict, level_type: str) -> MeshLevels | None:
+    given = {f: table.get(f) for f in ("quick", "default", "fine")}
+    if all(v is None for v in given.values()):
+        return None
+    out = {}
+    for fidelity, raw in given.items():
+        where = f"fe.{fidelity}"
+        if not isinstance(raw, list) or not raw:
+            raise reader.error("fe", fidelity, f"{where} must list the mesh levels of every fidelity (quick, "
+                                               "default, fine), each a list of tables")
+        levels = []
+        for k, entry in enumerate(raw):
+            if not isinstance(entry, dict):
+                raise reader.error("fe", fidelity, f"{where}[{k}] must be a table, got {entry!r}")
+            try:
+                levels.append(_level(f"{where}[{k}]", entry, level_type))
+            except ValueError as error:
+                raise reader.error("fe", fidelity, str(error)) from None
+        out[fidelity] = tuple(levels)
+    return MeshLevels(**out)
+
+
+def _level(where: str, entry: dict, level_type: str):
+    if level_type == "pair":
+        allowed = {"n", "growth"}
+        if set(entry) != allowed:
+            raise ValueError(f"{where} must be {{ n = elements across b, growth = rate }}, got keys {sorted(entry)}")
+        return PairLevel(float(checks.positive(f"{where}.n", entry["n"])),
+                         float(checks.bounded(f"{where}.growth", entry["growth"], 1.0, 3.0, upper_closed=True)))
+    allowed = {"h_contact", "growth", "fine_radius", "h_max"}
+    if not set(entry) <= allowed or not {"h_contact", "growth"} <= set(entry):
+        raise ValueError(f"{where} must be {{ h_contact = \"30 um\", growth = 1.4 }} (optionally fine_radius, h_max), "
+                         f"got keys {sorted(entry)}")
+    h = units.quantity(entry["h_contact"], "length", f"{where}.h_contact")
+    checks.positive(f"{where}.h_contact", h, "m")
+    growth = float(checks.bounded(f"{where}.growth", entry["growth"], 1.0, 3.0, upper_closed=True))
+    fine = units.quantity(entry["fine_radius"], "length", f"{where}.fine_radius") if "fine_radius" in entry else None
+    h_max = units.quantity(entry["h_max"], "length", f"{where}.h_max") if "h_max" in entry else None
+    return ModuleLevel(h, growth, fine, h_max)
+
+
+def _screw(values: dict, material: Material, lubricant: Lubricant | None) -> BallScrew:
+    extra = {k: values[k] for k in ("oversize", "oversize_fit", "ball_count", "ball_mass", "preload", "screw_speed")
+             if k in values}
+    return BallScrew(ball_radius=values["ball_radius"], pitch_radius=values["pitch_radius"], lead=values["lead"],
+                     nominal_angle=values["nominal_angle"], conformity=values["conformity"], material=material,
+                     friction_coefficient=values["friction_coefficient"], nut_speed=values["nut_speed"],
+                     lubricant=lubricant, **extra)
+
+
+def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the three case kinds and their tables
+    kind = data.get("kind")
+    if kind not in KINDS:
+        close = difflib.get_close_matches(str(kind), KINDS, n=1, cutoff=0.5) if isinstance(kind, str) else []
+        raise reader.error("", "kind", f"kind must be one of {', '.join(repr(k) for k in KINDS)}"
+                                       + (f", got {kind!r}" if kind is not None else " (the first line of the file)")
+                                       + (f" (did you mean {close[0]!r}?)" if close else ""))
+    top = _table(reader, data, kind, "", required=True)
+    tables = {t: _table(reader, data, kind, t, required=t not in OPTIONAL_TABLES[kind]) for t in SCHEMA[kind] if t}
+    material = _material(tables["material"])
+    fe_raw = data.get("fe", {})
+    name = top["name"]
+    try:
+        if kind == "linear-guide":
+            g, load, dev = tables["guide"], tables["load"], tables["deviations"]
+            guide = LinearGuide(g["ball_radius"], g["conformity"], g["nominal_angle"], material,
+                                g["friction_coefficient"], g["groove_velocity"])
+            fe = None
+            levels = _levels(reader, fe_raw, "module")
+            if levels is not None:
+                f = tables["fe"]
+                fe = ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
+            return LinearGuideCase(name, guide, load["vertical_force"], load["side_force_ratio"],
+                                   (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
+                                   load.get("n_balls", 2), fe)
+        if kind == "ball-screw":
+            lub = tables.get("lubricant")
+            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"]) if lub
+                           else None)
+            load = tables["load"]
+            fe = None
+            levels = _levels(reader, fe_raw, "module")
+            if levels is not None:
+                f = tables["fe"]
+                fe = ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
+            return BallScrewCase(name, screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
+                                 fe)
+        c = tables["contact"]
+        pair = c["pair"]
+        if (pair == "groove") != ("conformity" in c):
+            raise reader.error("contact", "conformity", "contact.conformity is given for (and only for) pair = "
+                                                        "\"groove\"")
+        screw = None
+        if pair in ("screw", "nut"):
+            if not tables.get("screw"):
+                raise reader.error("contact", "pair", f"pair = {pair!r} needs a [screw] table (the helical groove)")
+            s = {**tables["screw"], "ball_radius": c["ball_radius"]}
+            for key in SCHEMA["contact"]["screw"]:
+                if key.required and not key.alternative_of and key.name not in s:
+                    raise reader.error("screw", "", f"missing key screw.{key.name} ({key.help})")
+            screw = _screw(s, material, None)
+        elif tables.get("screw"):
+            raise reader.error("screw", "", f"[screw] belongs to a screw or nut pair, not pair = {pair!r}")
+        fe = None
+        levels = _levels(reader, fe_raw, "pair")
+        if levels is not None:
+            f = tables["fe"]
+            if "fine_zone" not in f or "zone" not in f:
+                raise reader.error("fe", "", "explicit levels need fe.fine_zone and fe.zone")
+            fe = ContactFe(levels, f["fine_zone"], f["zone"], f.get("gap_limit", 1.05),
+                           fine_targets=f.get("fine_targets", ()))
+        return ContactCase(name, pair, c["ball_radius"], material, c["force"], c.get("conformity"), screw, fe)
+    except CaseFileError:
+        raise
+    except ValueError as error:  # a check across keys (e.g. a pitch radius inside the groove)
+        raise reader.error("", "", str(error)) from None
+
+
+def loads(text: str, path: str = "<case>"):
+    """The case of the TOML ``text`` (``path`` names it in errors): a LinearGuideCase, BallScrewCase or
+    ContactCase in SI units.  CaseFileError for any mistake, before any work."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise CaseFileError(f"{path}: not valid TOML: {error}") from None
+    return _build(_Reader(text, str(path)), data)
+
+
+def load(path: str | Path):
+    """The case of the TOML file ``path`` (see :func:`loads`)."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except FileNotFoundError:
+        raise CaseFileError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise CaseFileError(f"{path} is a folder; give a case file (ballbench init linear-guide > my.toml)") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise CaseFileError(f"{path}: cannot read: {getattr(error, 'strerror', None) or error}") from None
+    return loads(text, str(path))
+
+
+def kind_of(path: str | Path) -> str | None:
+    """The ``kind`` of a TOML file, or None when it is not a readable case file."""
+    try:
+        kind = tomllib.loads(Path(path).read_text()).get("kind")
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return None
+    return kind if kind in KINDS else None
+
+
+# --------------------------------------------------------------------------
+# writing
+# --------------------------------------------------------------------------
+def _range_text(key: Key) -> str:
+    if key.check == "conformity":
+        return "in (0.5, 1)"
+    if key.check == "contact angle":
+        return "in (0, 90) deg"
+    if key.check == "poisson":
+        return "in (-1, 0.5)"
+    if key.plausible:
+        low, high, unit, what, _ = checks.PLAUSIBLE[key.plausible]
+        shown = {"m": "mm", "Pa": "GPa", "rad": "deg"}.get(unit, unit)
+        shown = "um" if key.plausible == "oversize" else shown
+        scale = units.factor(shown)
+        return f"plausible {low / scale:.4g} to {high / scale:.4g} {shown}"
+    return {"positive": "> 0", "non-negative": ">= 0"}.get(key.check, "")
+
+
+def describe(kind: str) -> list[tuple[str, str, str, str]]:
+    """``(key, dimension, what, range)`` of every key of ``kind`` (docs/cases.md's table)."""
+    rows = []
+    for table, keys in SCHEMA[kind].items():
+        for key in keys or ():
+            rows.append((f"{table}.{key.name}" if table else key.name, key.dimension, key.help, _range_text(key)))
+    return rows
+
+
+def template(kind: str) -> str:
+    """The commented case file of ``ballbench init KIND``: every key a run needs, with an example value, its unit
+    and its range; it loads as it is (a compact guide with 1/8-inch balls, a 32 x 10 ball screw, a ball in a
+    groove)."""
+    checks.choice("kind", kind, KINDS)
+    units_line = "Quantities carry units: \"3.175 mm\", \"2 deg\", \"500 N\", \"210 GPa\", \"1 rev/s\" (SI inside)."
+    out = [f"# ballbench case file: {_HEADERS[kind]}",
+           f"# {units_line}",
+           "# Check and run it: ballbench validate THIS.toml; pictures: ballbench show THIS.toml (docs/cases.md).", ""]
+    for table, keys in SCHEMA[kind].items():
+        shown = [k for k in (keys or ()) if k.in_template and table not in OPTIONAL_TABLES[kind]]
+        if not shown:
+            continue
+        if table:
+            out += ["", f"[{table}]"]
+        for key in shown:
+            line = f"{key.name} = {key.example}"
+            notes = [key.help]
+            rng = _range_text(key)
+            if rng:
+                notes.append(rng)
+            alternatives = [k for k in keys if k.alternative_of == key.name]
+            for alt in alternatives:
+                notes.append(f"or {alt.name}")
+            out.append(f"{line:<32} # {'; '.join(notes)}")
+    if kind == "contact":
+        out += ["",
+                "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",
+                "# friction_coefficient, nut_speed) as in 'ballbench init ball-screw'; conformity belongs to a groove."]
+    out += ["", "# [fe] (optional): FE mesh levels; without it 'validate' chooses them from the contact ellipses."]
+    return "\n".join(out) + "\n"

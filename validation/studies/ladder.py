@@ -1,0 +1,199 @@
+"""The validation ladder of a case of one's own: every model that applies, from Hertz to FE, as functions of the
+case (docs/cases.md, "Validate your own bearing").
+
+Rungs, bottom to top (:data:`RUNGS`):
+
+* ``analytical``: exact Hertz of the most loaded contact (lowmodel.contact.hertz); the analytical B2B model of a
+  linear guide (lin2019 eq 30);
+* ``low-order``: the low-order numerical models of the balls (lowmodel.linear_bearing.b2b, lowmodel.screw.b2b):
+  loads, angles, ellipses, friction force or torque, B2B forces (studies.bearing_results);
+* ``BEM``: the half-space contact on the exact gap of the most loaded contact (lowmodel.contact.halfspace; the
+  helical grooves through lowmodel.contact.screw_contact), on grids of ``n x n`` cells;
+* ``FE``: the contact of the most loaded contact in FE (studies.fe_contact) on three or more meshes whose sizes
+  follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), and the Richardson extrapolation of the study
+  (references.richardson): the reference every model of the contact is judged against, with its uncertainty;
+* ``FE-informed``: the FE modules of the two balls (fem.fourpoint, fem.screw_module) on meshes sized from the
+  smallest ellipse of the module (:func:`module_fe`), their contact pressures fed to the B2B model
+  (studies.fe_b2b_linear, studies.fe_b2b_screw); the extrapolated FE-informed B2B force is the reference of the
+  analytical and low-order B2B forces;
+* ``stick-slip``: the rolling contact with stick and slip (lowmodel.contact.rolling) joins here when its
+  case-level study lands; :func:`rungs_up_to` knows the name, the factory runs nothing for it yet.
+
+The mesh levels of a case without an ``[fe]`` table are chosen here from its ellipses; a case file's ``[fe]``
+table (the paper cases) is used as it is.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
+                                             ModuleFe, ModuleLevel, PairLevel)
+
+__all__ = ["RUNGS", "rungs_up_to", "governing_contact", "contact_fe", "module_fe", "hertz_values", "bem_values",
+           "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time"]
+
+RUNGS = ("analytical", "low-order", "BEM", "FE", "FE-informed", "stick-slip")
+QUANTITIES = (("a", "m"), ("b", "m"), ("p0", "Pa"), ("delta", "m"))
+# n x n cells of the BEM per fidelity (coarse to fine; the finest is the BEM's reported level)
+BEM_GRIDS = {"quick": (64, 128), "default": (128, 256), "fine": (128, 256, 512)}
+# contact mesh levels n = b / h (a constant refinement ratio per study, for the extrapolation) and growth; the FE
+# post-processing needs >= 5 elements across b (fem.postprocess), the papers' contacts run at n = 5.5-8 (docs/fem.md)
+CONTACT_LEVELS = {"quick": ((5.5, 6.6, 7.92), 1.4), "default": ((5.5, 6.875, 8.59375), 1.35),
+                  "fine": ((5.5, 6.875, 8.59375, 10.7421875), 1.3)}
+# module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
+# for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
+# 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
+MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
+                 "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
+# What each model of the contact must reach against the extrapolated FE reference, with the source of the number:
+# the FE levels the accuracy docs/fem.md states for its levels (validation/scenes/fe_hertz.py checks the same
+# numbers against Hertz), Hertz and the BEM the agreement docs/fem.md and docs/halfspace.md show for the papers'
+# contacts at the default level.  A contact where Hertz misses is a contact outside Hertz's assumptions: the ladder
+# shows it, the tolerance is not widened.
+FE_TOLERANCES = {"quick": {"a": 0.03, "b": 0.03, "p0": 0.04, "delta": 0.03},
+                 "default": {"a": 0.005, "b": 0.005, "p0": 0.01, "delta": 0.005},
+                 "fine": {"a": 0.003, "b": 0.003, "p0": 0.005, "delta": 0.002}}
+HERTZ_TOLERANCES = {"a": 0.005, "b": 0.005, "p0": 0.01, "delta": 0.005}
+BEM_TOLERANCE = 0.005
+
+
+def rungs_up_to(top: str) -> tuple[str, ...]:
+    """The rungs from the bottom up to ``top`` (one of :data:`RUNGS`)."""
+    if top not in RUNGS:
+        raise ValueError(f"levels must be one of {', '.join(RUNGS)}, got {top!r}")
+    return RUNGS[:RUNGS.index(top) + 1]
+
+
+def predicted_time(times: list[float], sizes: list[float], next_size: float) -> float:
+    """Wall time [s] of the next mesh level from the last measured one: ``t (h / h_next)^3`` (the DOFs of a 3D
+    fine zone grow like ``h^-3``; the solve at least like the DOFs)."""
+    return times[-1] * (sizes[-1] / next_size) ** 3
+
+
+# --------------------------------------------------------------------------
+# the governing contact of a case
+# --------------------------------------------------------------------------
+def governing_contact(case, result=None) -> ContactCase:
+    """The most loaded contact of ``case`` as a :class:`ContactCase` (itself for a ContactCase): the largest normal
+    force of the low-order touching state (``result``: its studies.bearing_results result, computed when None)."""
+    if isinstance(case, ContactCase):
+        return case
+    from ballbench.validation.studies import bearing_results
+
+    if isinstance(case, LinearGuideCase):
+        result = result or bearing_results.guide_result(case)
+        worst = max(result.contacts, key=lambda c: c.normal_force)
+        guide = case.guide
+        return ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, "
+                           f"{worst.normal_force:.4g} N)", "groove", guide.ball_radius, guide.material,
+                           worst.normal_force, conformity=guide.conformity)
+    if isinstance(case, BallScrewCase):
+        result = result or bearing_results.screw_result(case)
+        worst = max(result.contacts, key=lambda c: c.normal_force)
+        screw = case.screw
+        pair = "screw" if worst.contact.startswith("S") else "nut"
+        return ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, {pair} groove, "
+                           f"{worst.normal_force:.4g} N)", pair, screw.ball_radius, screw.material,
+                           worst.normal_force, screw=screw)
+    raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
+
+
+# --------------------------------------------------------------------------
+# mesh levels from the ellipses
+# --------------------------------------------------------------------------
+def contact_fe(case: ContactCase) -> ContactCase:
+    """``case`` with FE settings: its own ``fe`` when given, else levels from its Hertz ellipse
+    (:data:`CONTACT_LEVELS`, ``h = b / n``), the elliptic fine zone (1.2 a, 1.3 b, 0.8 b) of a slender ellipse
+    (b/a < 0.5) of a straight groove, else the capsule of the papers' pairs (docs/fem.md, "Fine zones")."""
+    if case.fe is not None:
+        return case
+    from ballbench.validation.studies import fe_contact
+
+    geometry = fe_contact.hertz_geometry(case)
+    levels = MeshLevels(**{f: tuple(PairLevel(n, growth) for n in ns) for f, (ns, growth) in CONTACT_LEVELS.items()})
+    if case.pair == "groove" and geometry.axis_ratio < 0.5:
+        fe = ContactFe(levels, "ellipse", (1.2, 1.3, 0.8))
+    elif case.pair in ("screw", "nut"):
+        fe = ContactFe(levels, "capsule", (1.2, 1.0))
+    else:
+        fe = ContactFe(levels, "capsule", (1.3, 0.0 if geometry.axis_ratio > 0.8 else 1.1))
+    return replace(case, fe=fe)
+
+
+def module_fe(case, result=None):
+    """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
+    ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
+    (``result``), the candidate zone to twice the largest approach (plus the oversize), for a guide the elliptic
+    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max."""
+    if case.fe is not None:
+        return case
+    from ballbench.validation.studies import bearing_results
+
+    if isinstance(case, LinearGuideCase):
+        result = result or bearing_results.guide_result(case)
+    else:
+        result = result or bearing_results.screw_result(case)
+    loaded = [c for c in result.contacts if c.normal_force > 0]
+    b_max = max(c.b for c in loaded)
+    approach = max(c.approach for c in loaded)
+    if isinstance(case, LinearGuideCase):
+        levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
+                               for f, (ns, growth) in MODULE_LEVELS.items()})
+        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5)))
+    levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, 2.2 * b_max) for n in ns)
+                           for f, (ns, growth) in MODULE_LEVELS.items()})
+    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize))
+
+
+# --------------------------------------------------------------------------
+# Hertz and BEM of a contact
+# --------------------------------------------------------------------------
+def hertz_values(case: ContactCase) -> dict:
+    """Exact Hertz of ``case``: a, b [m], p0 [Pa], delta [m]."""
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.validation.studies import fe_contact
+
+    contact = hertz.solve_load(fe_contact.hertz_geometry(case), case.force)
+    return {q: float(getattr(contact, q)) for q, _ in QUANTITIES}
+
+
+def bem_values(case: ContactCase, n: int) -> dict:
+    """Half-space contact (BEM) of ``case`` on the exact gap of its bodies, ``n x n`` cells over 1.3 times the
+    Hertz semi-axes: a, b [m] (the Hertz field of the same pressure moments), p0 [Pa] (central pressure), delta [m]."""
+    from ballbench.lowmodel.contact import halfspace, hertz, screw_contact
+    from ballbench.lowmodel.geometry import groove
+    from ballbench.validation.studies import fe_contact
+
+    material = case.material.keywords
+    if case.pair in ("screw", "nut"):
+        s = case.screw
+        result = screw_contact.groove_contact(s.ball_radius, s.conformity, s.pitch_radius, s.lead, s.nominal_angle,
+                                              case.force, case.pair, n=n, **material).bem
+    else:
+        geometry = fe_contact.hertz_geometry(case)
+        contact = hertz.solve_load(geometry, case.force)
+        grid = halfspace.hertz_surface_grid(float(contact.a), float(contact.b), n, 1.3)
+        x, y = grid.coordinates()
+        gap = groove.straight_pair_initial_gap(case.ball_radius, case.pair, case.conformity)(x, y)
+        result = halfspace.solve(gap - gap.min(), grid, geometry.contact_modulus, force=case.force)
+    return {"a": result.semi_axis_a, "b": result.semi_axis_b, "p0": result.central_pressure,
+            "delta": result.approach}
+
+
+def timed(function, *args, **kwargs):
+    """``(function(*args, **kwargs), wall time [s])``."""
+    start = time.perf_counter()
+    value = function(*args, **kwargs)
+    return value, time.perf_counter() - start
+
+
+def relative(value: float, reference: float) -> float:
+    return value / reference - 1.0 if reference else math.inf
+
+
+def finite(values) -> bool:
+    return bool(np.all(np.isfinite(np.asarray(list(values), dtype=float))))
