@@ -193,16 +193,21 @@ def hertz_contact(name: str, top: bool, centre, normal, axis, semi_axis_along: f
                         operator=None if operator_for is None else operator_for(grid))
 
 
-def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: float | None = None) -> np.ndarray:
+def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: float | None = None, *,
+                     order: int = 4) -> np.ndarray:
     """A sampled pressure (e.g. an FE pressure at its quadrature points) as cell values on ``grid`` [Pa].
 
     ``x``, ``y`` (q,) [m]: the samples' coordinates in the grid's frame; ``pressure`` (q,) [Pa] >= 0; ``weights``
-    (q,) [m^2] their quadrature areas.  Each cell gets the weighted mean of the samples inside it (the cell
-    average of the sampled field: smooth where the quadrature straddles cell borders), then all cells are scaled
-    so that ``sum p dA`` is the samples' force ``sum pressure weights`` (or ``normal_force`` [N]).  Samples with
-    ``pressure > 0`` outside the grid's inner cells raise ValueError (the grid must cover the contact with one
-    empty cell on each side).
+    (q,) [m^2] their quadrature areas.  At ``order x order`` Gauss-Legendre points of each cell the field takes
+    the value of the nearest sample (scipy ``cKDTree``; zero farther than twice the samples' median spacing
+    from any sample), and the mean over a cell's points is the cell's value: a cell average of the sampled field
+    whatever the samples' distribution (the mean of the samples inside a cell is biased where their areas vary
+    across it); then all cells are scaled so that ``sum p dA`` is the samples' force ``sum pressure weights`` (or
+    ``normal_force`` [N]).  Samples with ``pressure > 0`` outside the grid's inner cells raise ValueError (the
+    grid must cover the contact with one empty cell on each side).
     """
+    from scipy.spatial import cKDTree
+
     x = np.asarray(checks.finite("x", x, "m"), dtype=float).reshape(-1)
     y = np.asarray(checks.finite("y", y, "m"), dtype=float).reshape(-1)
     p = np.asarray(checks.non_negative("pressure", pressure, "Pa"), dtype=float).reshape(-1)
@@ -210,18 +215,22 @@ def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: f
     if not (x.shape == y.shape == p.shape == w.shape):
         raise ValueError(f"x, y, pressure and weights must have one shape, got {x.shape}, {y.shape}, {p.shape}, "
                          f"{w.shape}")
+    order = checks.count("order", order, 1, 16)
     i = np.floor((x - grid.x[0]) / grid.dx + 0.5).astype(int)
     j = np.floor((y - grid.y[0]) / grid.dy + 0.5).astype(int)
-    loaded = p > 0.0
     inner = (i >= 1) & (i <= grid.nx - 2) & (j >= 1) & (j <= grid.ny - 2)
-    if np.any(loaded & ~inner):
+    if np.any((p > 0.0) & ~inner):
         raise ValueError("the grid does not cover the sampled contact: pressure > 0 outside its inner cells")
-    keep = inner & (w > 0.0)
-    flat = i[keep] * grid.ny + j[keep]
-    size = grid.nx * grid.ny
-    weight = np.bincount(flat, w[keep], minlength=size)
-    force = np.bincount(flat, (p * w)[keep], minlength=size)
-    cells = np.where(weight > 0.0, force / np.where(weight > 0.0, weight, 1.0), 0.0).reshape(grid.nx, grid.ny)
+    nodes, gauss_weights = np.polynomial.legendre.leggauss(order)
+    gx = (grid.x[1:-1, None] + 0.5 * grid.dx * nodes[None, :]).reshape(-1)
+    gy = (grid.y[1:-1, None] + 0.5 * grid.dy * nodes[None, :]).reshape(-1)
+    GX, GY = np.meshgrid(gx, gy, indexing="ij")
+    tree = cKDTree(np.column_stack([x, y]))
+    spacing = float(np.median(tree.query(np.column_stack([x, y]), k=2)[0][:, 1])) if x.size > 1 else math.inf
+    distance, nearest = tree.query(np.column_stack([GX.reshape(-1), GY.reshape(-1)]))
+    field = np.where(distance <= 2.0 * spacing, p[nearest], 0.0).reshape(grid.nx - 2, order, grid.ny - 2, order)
+    cells = np.zeros((grid.nx, grid.ny))
+    cells[1:-1, 1:-1] = 0.25 * np.einsum("iajb,a,b->ij", field, gauss_weights, gauss_weights)
     target = float((p * w).sum()) if normal_force is None else checks.positive("normal_force", normal_force, "N")
     total = float(cells.sum() * grid.cell_area)
     if not total > 0.0:

@@ -1,0 +1,424 @@
+"""The model ladder of the B2B force with stick/slip ball-to-groove contacts (docs/b2b_rolling.md): the runs
+behind the scenes of ``validation/scenes/rolling_b2b.py``.
+
+lin2019's two-ball modules (linear bearing Sec 2.4-2.5, Tables 1-3; ball screw Sec 3.3, Tables 4-5), every
+rung on the same case:
+
+* analytical (lin2019 eq 30, linear bearing) and the low-order full-slip models (eqs 4-10, 54-61);
+* stick/slip on two half-spaces with Hertz's pressure (``b2b_rolling``, grids of ``HERTZ_CELLS``) and its
+  full-slip limit on the same cells;
+* FE-informed full slip (``b2b_traction`` on the FE module's pressure, the ``fe-b2b-*`` scenes' model);
+* stick/slip with the FE pressure on two half-spaces, and on the FE compliance of a ball-in-groove pair
+  condensed onto one grid that holds every contact of the module (``fem.rolling_compliance``, cached on disk).
+
+Thin versions of what the ``fe-b2b-*`` scene modules and ``lin2019_screw`` hold today (the FE module runs, the
+screw's preload fit and axial shares; nothing may import a scene module): the same inputs
+(:mod:`validation.papers.lin2019`), the same mesh levels and constants, called through ``fem`` and ``lowmodel``
+directly.  To be unified with the shared run logic of ``validation/studies`` when it lands.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ballbench.lowmodel.contact import rolling
+from ballbench.lowmodel.linear_bearing import b2b as linear_b2b
+from ballbench.lowmodel.linear_bearing import b2b_rolling as linear_rolling
+from ballbench.lowmodel.linear_bearing import b2b_traction as linear_traction
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+from ballbench.lowmodel.screw import b2b_traction as screw_traction
+from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.validation.papers import lin2019
+
+T1, T4, CASE = lin2019.TABLE1, lin2019.TABLE4, lin2019.CASE
+PRINTED_LINEAR = lin2019.PRINTED
+PRINTED_SCREW = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
+AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw (lin2019 Sec 3.3)
+READING = "tilted"  # lin2019 Fig 17 as docs/ball_screw.md reads it
+
+# cells (along the groove, across it) of the per-contact grids of the half-space rungs
+HERTZ_CELLS = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}
+# The FE module levels of the fe-b2b scenes (validation/scenes/fe_b2b.py, fe_b2b_screw.py): (h_contact, growth,
+# fine_radius) [m] (linear, elliptic fine slabs FINE_ELLIPSE) and (h_contact, growth, fine_radius, h_max) (screw).
+LINEAR_FE = {"quick": (4.0e-5, 1.4, 1.5e-4), "default": (3.0e-5, 1.35, 1.5e-4), "fine": (3.0e-5, 1.35, 1.5e-4)}
+LINEAR_FINE_ELLIPSE = (0.6, 1.3, 0.5)
+LINEAR_GAP_LIMIT = 6e-6
+SCREW_FE = {"quick": (4.0e-5, 1.5, 1.5e-4, 1.0e-3), "default": (3.0e-5, 1.4, 1.5e-4, 1.0e-3),
+            "fine": (3.0e-5, 1.4, 1.5e-4, 1.0e-3)}
+SCREW_GAP_LIMIT = 5e-6
+# The FE compliance grids: one grid holds every contact of the module, (cells along, across, h_contact / cell);
+# the grid spans COVER times the largest Hertz semi-axes of the case (the FE pressure reaches about one element
+# beyond Hertz's ellipse).  The fine level condenses two grids (mesh convergence of the rung).
+COMPLIANCE_LEVELS = {"quick": [(6, 24, 1.0)], "default": [(8, 32, 0.8)], "fine": [(6, 24, 1.0), (8, 32, 0.8)]}
+COVER = (1.4, 1.15)  # (along, across)
+E_STEEL, NU_STEEL = T1.youngs_modulus, T1.poisson_ratio
+
+
+def level_name(cells) -> str:
+    return f"{cells[0]} x {cells[1]} cells"
+
+
+# --------------------------------------------------------------------------
+# linear bearing (lin2019 Sec 2.4-2.5, Table 1-3)
+# --------------------------------------------------------------------------
+def linear_deviations(case: str) -> tuple:
+    """(BL, BR, TR, TL) contact angle deviations [rad] of lin2019 Table 2 case ``case``."""
+    top = (0.0, 0.0) if case == "a" else (-CASE.theta, CASE.theta)
+    return (-CASE.theta, CASE.theta) + top
+
+
+def linear_contacts(case: str, *, friction_coefficient: float = T1.friction_coefficient, theta: float = CASE.theta,
+                    conformity: float = T1.conformity, vertical_force: float = T1.vertical_force,
+                    side_force_ratio: float = CASE.side_force_ratio):
+    top = (0.0, 0.0) if case == "a" else (-theta, theta)
+    return linear_b2b.module_contacts(theta, side_force_ratio, top_deviations=top, vertical_force=vertical_force,
+                                      ball_radius=T1.ball_radius, conformity=conformity,
+                                      friction_coefficient=friction_coefficient, groove_velocity=T1.groove_velocity,
+                                      youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+
+
+def linear_side(ball: int) -> float:
+    """N_x [N] of ball ``ball`` (0 behind: rho N_y; 1: -rho N_y; lin2019 Fig 7)."""
+    return (1.0 if ball == 0 else -1.0) * CASE.side_force_ratio * T1.vertical_force
+
+
+def linear_fe(case: str, level: str):
+    """The FE four-point module of ``case`` at ``level`` solved for both balls' loads: ``(model, results, seconds)``
+    (the run of validation/scenes/fe_b2b.py: one mesh and condensation, two contact solves)."""
+    from ballbench.fem import fourpoint as fp
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.lowmodel.linear_bearing import fourpoint as rigid
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
+
+    h_contact, growth, fine_radius = LINEAR_FE[level]
+    start = time.perf_counter()
+    deviations = linear_deviations(case)
+    angles = CASE.nominal_angle + np.asarray(deviations)
+    geometry = hertz.ball_in_groove(T1.ball_radius, T1.conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+    refs = [hertz.solve_load(geometry, rigid.normal_forces(linear_side(b), T1.vertical_force, angles)) for b in (0, 1)]
+    a = np.maximum(np.asarray(refs[0].a), np.asarray(refs[1].a))
+    b = np.maximum(np.asarray(refs[0].b), np.asarray(refs[1].b))
+    k1, k2, k3 = LINEAR_FINE_ELLIPSE
+    slabs = [(k1 * float(a_i), k2 * float(b_i), k3 * float(b_i)) for a_i, b_i in zip(a, b)]
+    path = fourpoint_module(T1.ball_radius, T1.conformity, CASE.nominal_angle, deviations, 1, h_contact=h_contact,
+                            growth=growth, fine_radius=fine_radius, fine_ellipses=slabs)
+    module_geometry = fp.ModuleGeometry(T1.ball_radius, T1.conformity, tuple(angles))
+    model = fp.build_module_model(path, module_geometry, materials=(E_STEEL, NU_STEEL), gap_limit=LINEAR_GAP_LIMIT)
+    results = [fp.solve(model, linear_side(b), T1.vertical_force) for b in (0, 1)]
+    return model, results, time.perf_counter() - start
+
+
+def pressure_samples(model, result) -> list:
+    """The solved FE contacts as ``(name, top, points (q, 3) [m], pressure (q,) [Pa], areas (q,) [m^2])`` in the
+    ball frame of the lowmodel (``model.geometry.to_ball_frame``: lin2019 Fig 2, or the ball's CS3)."""
+    geometry = model.geometry
+    return [(c.name, geometry.moving(i), geometry.to_ball_frame(c.points), np.clip(c.pressure, 0.0, None), c.areas)
+            for i, c in enumerate(result.contacts)]
+
+
+def fe_patches(model, results) -> list:
+    from ballbench.fem import fourpoint as fp
+
+    return [fp.traction_patches(model, r) for r in results]
+
+
+@lru_cache(maxsize=8)
+def compliance(product: str, cells_along: int, cells_across: int, h_factor: float):
+    """The FE compliance of a ball in a straight groove of the product's conformity (``"linear"``: lin2019
+    Table 1, ``"screw"``: Table 4) condensed onto the grid that holds every contact of the product's Table case:
+    ``(grid, RollingCompliance, seconds)`` (fem.rolling_compliance, disk-cached)."""
+    from ballbench.fem import rolling_compliance
+    from ballbench.meshes.assemblies import contact_pairs
+
+    along, across = largest_semi_axes(product)
+    grid = rolling.hertz_grid(COVER[0] * along, COVER[1] * across, (cells_along, cells_across))
+    radius = T1.ball_radius if product == "linear" else T4.ball_radius
+    conformity = T1.conformity if product == "linear" else T4.conformity
+    start = time.perf_counter()
+    # the pair mesh: x across the groove (Kalker's -y), y along it (Kalker's x); fine slab over the grid
+    path = contact_pairs.ball_in_groove_pair(radius, conformity, h_factor * min(grid.dx, grid.dy), 1.3,
+                                             symmetry="full", element_order=2,
+                                             fine_ellipse=(COVER[1] * across + grid.dy, COVER[0] * along + grid.dx,
+                                                           0.5 * along))
+    result = rolling_compliance.condense(path, (E_STEEL, NU_STEEL), grid, order=2, cache=True)
+    return grid, result, time.perf_counter() - start
+
+
+@lru_cache(maxsize=2)
+def largest_semi_axes(product: str) -> tuple[float, float]:
+    """(along, across) [m]: the largest Hertz semi-axes of the product's two cases (low-order contacts)."""
+    if product == "linear":
+        rows = [linear_contacts(case) for case in ("a", "b")]
+        along = max(float((c.semi_major * c.b_over_a).max()) for c in rows)
+        across = max(float(c.semi_major.max()) for c in rows)
+        return along, across
+    along = across = 0.0
+    for case in ("a", "b"):
+        contacts, _, state = screw_low_order(case)
+        along = max(along, float((state.semi_major * contacts.b_over_a).max()))
+        across = max(across, float(state.semi_major.max()))
+    return along, across
+
+
+# --------------------------------------------------------------------------
+# ball screw (lin2019 Sec 3.3, Tables 4-5)
+# --------------------------------------------------------------------------
+def table4_module(oversize: float, friction_coefficient: float = T4.friction_coefficient,
+                  conformity: float = T4.conformity) -> screw_contacts.ScrewModule:
+    """lin2019 Table 4 with the preload ``oversize`` [m] (validation/scenes/lin2019_screw.py's table4_module)."""
+    return screw_contacts.screw_module(ball_radius=T4.ball_radius, conformity=conformity, pitch_radius=T4.pitch_radius,
+                                       lead=T4.lead, nominal_angle=T4.nominal_angle, nut_speed=T4.nut_angular_velocity,
+                                       friction_coefficient=friction_coefficient, oversize=oversize, **T4.material)
+
+
+def screw_two_ball(theta: float, oversize: float, **module_options):
+    """(contacts, free, touching) low-order states of the two-ball module: ball 1 theta 0, ball 2 ``theta``."""
+    contacts = screw_contacts.ball_contacts(table4_module(oversize, **module_options), np.array([0.0, theta]),
+                                            reading=READING)
+    free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
+    return contacts, free, screw_b2b.solve(contacts, AXIAL_LOAD)
+
+
+@lru_cache(maxsize=1)
+def fitted_oversize() -> float:
+    """The preload of docs/ball_screw.md: the oversize [m] at which the low-order case (a) gives the paper's 1.92 N
+    (brentq, 1e-12 m; lin2019_screw.fitted_oversize)."""
+    from scipy.optimize import brentq
+
+    target = PRINTED_SCREW["a"].f_b2b_numerical
+    theta = PRINTED_SCREW["a"].theta
+    return float(brentq(lambda o: screw_two_ball(theta, o)[2].b2b_force[0] - target, 1.0e-6, 3.0e-6, xtol=1e-12))
+
+
+@lru_cache(maxsize=4)
+def screw_low_order(case: str):
+    """(contacts, free, touching) of Table 5 case ``case`` at the fitted preload."""
+    return screw_two_ball(PRINTED_SCREW[case].theta, fitted_oversize())
+
+
+def axial_shares(contacts, state) -> np.ndarray:
+    """(n,) N: each ball's axial load, the force of its screw contacts (normal + friction) along the screw axis."""
+    alpha = contacts.module.lead_angle
+    z_hat = np.array([0.0, math.sin(alpha), math.cos(alpha)])
+    angles = state.contact_angle[:, :2]
+    e = np.stack([-np.cos(angles), np.zeros_like(angles), np.array([-1.0, 1.0]) * np.sin(angles)], axis=-1)
+    normal = -state.normal_force[:, :2, None] * e
+    return ((normal + state.friction_force[:, :2]) @ z_hat).sum(axis=1)
+
+
+def screw_fe(case: str, level: str):
+    """One FE screw module per ball of Table 5 case ``case`` at ``level`` (ball 1 theta 0, ball 2 theta), each
+    carrying its low-order axial share: ``(models, results, seconds)`` (the run of fe_b2b_screw.py)."""
+    from ballbench.fem import screw_module as sm
+    from ballbench.meshes.assemblies.ball_screw_module import ball_screw_module
+    from ballbench.meshes.parts.groove_segment import BODY_DEPTH
+
+    contacts, _, state = screw_low_order(case)
+    shares = axial_shares(contacts, state)
+    h_contact, growth, fine_radius, h_max = SCREW_FE[level]
+    start = time.perf_counter()
+    models, results = [], []
+    for ball, theta in enumerate((0.0, PRINTED_SCREW[case].theta)):
+        path = ball_screw_module(T4.ball_radius, T4.conformity, T4.pitch_radius, T4.lead, T4.nominal_angle,
+                                 (theta, theta, 0.0, 0.0), 1, h_contact=h_contact, growth=growth,
+                                 fine_radius=fine_radius, h_max=h_max,
+                                 screw_back_radius=T4.pitch_radius - BODY_DEPTH * T4.ball_radius,
+                                 nut_back_radius=T4.pitch_radius + BODY_DEPTH * T4.ball_radius)
+        geometry = sm.screw_module_geometry(T4.ball_radius, T4.conformity, T4.pitch_radius, T4.lead,
+                                            sm.flank_angles_tilted(T4.nominal_angle, theta), fitted_oversize())
+        model = sm.build_screw_model(path, geometry, materials=(E_STEEL, NU_STEEL), gap_limit=SCREW_GAP_LIMIT)
+        results.append(sm.solve(model, float(shares[ball])))
+        models.append(model)
+    return models, results, time.perf_counter() - start
+
+
+# --------------------------------------------------------------------------
+# the ladder
+# --------------------------------------------------------------------------
+@dataclass
+class Rung:
+    """One model of the ladder: F_B2B [N], friction increase [%], wall time [s], per-contact rows, the state."""
+
+    model: str
+    family: str
+    level: str
+    b2b_force: float
+    friction_increase: float
+    time_s: float
+    full_slip_force: float = math.nan  # the full-slip limit on the same cells (stick/slip rungs)
+    full_slip_increase: float = math.nan
+    power_balance: float = 0.0
+    contacts: tuple = ()  # per ball the ContactSummary tuple of the touching stick/slip state
+    b2b_check: tuple = (math.nan, math.nan)
+
+
+def rolling_rung(model: str, family: str, level: str, result, seconds: float, b2b_check=(math.nan, math.nan)) -> Rung:
+    return Rung(model, family, level, float(result.b2b_force[0]), float(result.friction_increase), seconds,
+                float(result.full_slip.b2b_force[0]), float(result.full_slip_increase), float(result.power_balance),
+                result.touching.contacts, b2b_check)
+
+
+def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_fe: bool = True) -> list[Rung]:
+    """Every rung of the linear bearing's ladder for Table 2/3 case ``case`` at fidelity ``level``."""
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
+
+    rungs = []
+    contacts = linear_contacts(case)
+    linear_b2b.solve(contacts, [0.0])  # the friction map's disk cache, outside the timed calls
+    common = dict(ball_radius=T1.ball_radius, friction_coefficient=T1.friction_coefficient,
+                  groove_velocity=T1.groove_velocity)
+    if case == "a":
+        geometry = hertz.ball_in_groove(T1.ball_radius, T1.conformity, youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL)
+        start = time.perf_counter()
+        analytical = b2b_analytical.two_ball_case(CASE.theta, CASE.side_force_ratio, normal_load=T1.vertical_force,
+                                                  groove_velocity=T1.groove_velocity,
+                                                  friction_coefficient=T1.friction_coefficient,
+                                                  psi=hertz.psi_constant(geometry, T1.ball_radius),
+                                                  ball_radius=T1.ball_radius)
+        rungs.append(Rung("lowmodel.linear_bearing.b2b_analytical", "analytical", "", float(analytical.b2b_force),
+                          math.nan, time.perf_counter() - start))
+    start = time.perf_counter()
+    low = linear_b2b.solve(contacts, [0.0])
+    seconds = time.perf_counter() - start
+    free = linear_b2b.solve(contacts, [1e-3])
+    rungs.append(Rung("lowmodel.linear_bearing.b2b", "low-order numerical", "", float(low.b2b_force[0]),
+                      100.0 * (low.total_loss / free.total_loss - 1.0), seconds))
+    cells = HERTZ_CELLS[level]
+    start = time.perf_counter()
+    balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, conformity=T1.conformity, youngs_modulus=E_STEEL,
+                                           poisson_ratio=NU_STEEL) for j in range(2)]
+    result = linear_rolling.module_b2b(balls, **common)
+    seconds = time.perf_counter() - start
+    check = linear_rolling.b2b_contact_check(result.touching, ball_radius=T1.ball_radius,
+                                             friction_coefficient=T1.friction_coefficient, youngs_modulus=E_STEEL,
+                                             poisson_ratio=NU_STEEL)
+    rungs.append(rolling_rung("b2b_rolling stick/slip, Hertz + half-space", "BEM", level_name(cells), result, seconds,
+                              check))
+    if not with_fe:
+        return rungs
+    model, results, fe_s = linear_fe(case, level)
+    h_um = LINEAR_FE[level][0] * 1e6
+    start = time.perf_counter()
+    full = linear_traction.solve(fe_patches(model, results), **common)
+    free_full = linear_traction.solve(fe_patches(model, results), gaps=[1e-3], **common)
+    rungs.append(Rung("b2b_traction full slip, FE pressure", "FE-informed", f"h {h_um:.0f} um",
+                      float(full.b2b_force[0]), 100.0 * (full.total_loss / free_full.total_loss - 1.0),
+                      fe_s + time.perf_counter() - start, power_balance=float(full.power_balance)))
+    samples = [pressure_samples(model, r) for r in results]
+    start = time.perf_counter()
+    balls = [linear_rolling.sampled_contacts(s, ball_radius=T1.ball_radius, conformity=T1.conformity, cells=cells,
+                                             youngs_modulus=E_STEEL, poisson_ratio=NU_STEEL) for s in samples]
+    result = linear_rolling.module_b2b(balls, **common)
+    rungs.append(rolling_rung("b2b_rolling stick/slip, FE pressure + half-space", "FE-informed",
+                              f"h {h_um:.0f} um, {level_name(cells)}", result, fe_s + time.perf_counter() - start))
+    for along, across, h_factor in progress(COMPLIANCE_LEVELS[level], desc="FE compliance levels"):
+        grid, fe_compliance, condense_s = compliance("linear", along, across, h_factor)
+        operator = fe_compliance.operator()
+        start = time.perf_counter()
+        for label, op in (("FE compliance", operator), ("half-space, FE compliance grid", None)):
+            balls = [linear_rolling.sampled_contacts(s, ball_radius=T1.ball_radius, conformity=T1.conformity,
+                                                     grid=grid, operator=op, youngs_modulus=E_STEEL,
+                                                     poisson_ratio=NU_STEEL) for s in samples]
+            result = linear_rolling.module_b2b(balls, **common)
+            family = "FE-informed"
+            rungs.append(rolling_rung(f"b2b_rolling stick/slip, FE pressure + {label}", family,
+                                      f"h {h_um:.0f} um, {level_name((along, across))}, {fe_compliance.ndofs} DOFs",
+                                      result, fe_s + condense_s + time.perf_counter() - start))
+    return rungs
+
+
+def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_fe: bool = True) -> list[Rung]:
+    """Every rung of the ball screw's ladder for Table 5 case ``case`` at fidelity ``level``."""
+    rungs = []
+    start = time.perf_counter()
+    contacts, free, state = screw_low_order(case)
+    seconds = time.perf_counter() - start
+    module = table4_module(fitted_oversize())
+    rungs.append(Rung("lowmodel.screw.b2b", "low-order numerical", "", float(state.b2b_force[0]),
+                      100.0 * (state.total_loss / free.total_loss - 1.0), seconds))
+    cells = HERTZ_CELLS[level]
+    start = time.perf_counter()
+    balls = [screw_rolling.hertz_contacts(state, contacts, j, cells=cells) for j in range(2)]
+    result = screw_rolling.module_b2b(balls, module)
+    rungs.append(rolling_rung("b2b_rolling stick/slip, Hertz + half-space", "BEM", level_name(cells), result,
+                              time.perf_counter() - start))
+    if not with_fe:
+        return rungs
+    models, results, fe_s = screw_fe(case, level)
+    h_um = SCREW_FE[level][0] * 1e6
+    start = time.perf_counter()
+    full = screw_traction.module_b2b(fe_patches_screw(models, results), module)
+    rungs.append(Rung("screw.b2b_traction full slip, FE pressure", "FE-informed", f"h {h_um:.0f} um",
+                      float(full.b2b_force[0]), float(full.friction_increase), fe_s + time.perf_counter() - start,
+                      power_balance=float(full.power_balance)))
+    samples = [pressure_samples(m, r) for m, r in zip(models, results)]
+    start = time.perf_counter()
+    balls = [screw_rolling.sampled_contacts(s, module, cells=cells) for s in samples]
+    result = screw_rolling.module_b2b(balls, module)
+    rungs.append(rolling_rung("b2b_rolling stick/slip, FE pressure + half-space", "FE-informed",
+                              f"h {h_um:.0f} um, {level_name(cells)}", result, fe_s + time.perf_counter() - start))
+    for along, across, h_factor in progress(COMPLIANCE_LEVELS[level], desc="FE compliance levels"):
+        grid, fe_compliance, condense_s = compliance("screw", along, across, h_factor)
+        operator = fe_compliance.operator()
+        start = time.perf_counter()
+        for label, op in (("FE compliance", operator), ("half-space, FE compliance grid", None)):
+            balls = [screw_rolling.sampled_contacts(s, module, grid=grid, operator=op) for s in samples]
+            result = screw_rolling.module_b2b(balls, module)
+            rungs.append(rolling_rung(f"b2b_rolling stick/slip, FE pressure + {label}", "FE-informed",
+                                      f"h {h_um:.0f} um, {level_name((along, across))}, {fe_compliance.ndofs} DOFs",
+                                      result, fe_s + condense_s + time.perf_counter() - start))
+    return rungs
+
+
+def fe_patches_screw(models, results) -> list:
+    from ballbench.fem import fourpoint as fp
+
+    return [fp.traction_patches(m, r) for m, r in zip(models, results)]
+
+
+def write_rungs(path, rungs: list[Rung]) -> None:
+    """ladder.csv: one row per rung."""
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["model", "family", "level", "F_B2B_N", "friction_increase_pct", "full_slip_same_cells_N",
+                         "full_slip_increase_pct", "stick_slip_minus_full_slip_pct", "power_balance", "time_s",
+                         "b2b_contact_F_over_muF", "b2b_contact_creepage_parameter"])
+        for r in rungs:
+            diff = 100.0 * (r.b2b_force / r.full_slip_force - 1.0) if r.full_slip_force > 0 else math.nan
+            writer.writerow([r.model, r.family, r.level, f"{r.b2b_force:.5f}", f"{r.friction_increase:.3f}",
+                             f"{r.full_slip_force:.5f}", f"{r.full_slip_increase:.3f}", f"{diff:.4f}",
+                             f"{r.power_balance:.2e}", f"{r.time_s:.2f}", f"{r.b2b_check[0]:.7f}",
+                             f"{r.b2b_check[1]:.4g}"])
+
+
+def write_contacts(path, rungs: list[Rung]) -> None:
+    """contacts.csv: every contact of every stick/slip rung (touching state)."""
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["model", "level", "ball", "contact", "F_N", "Lambda", "creepage_parameter", "stick_fraction",
+                         "along_groove_over_muF", "lateral_over_muF", "spin_moment_Nm", "rigid_power_W"])
+        for r in rungs:
+            for ball, row in enumerate(r.contacts):
+                for c in row:
+                    scale = T1.friction_coefficient * c.normal_force
+                    writer.writerow([r.model, r.level, ball + 1, c.name, f"{c.normal_force:.3f}",
+                                     f"{c.spin_parameter:.2f}", f"{c.creepage:.3f}", f"{c.stick_fraction:.4f}",
+                                     f"{c.along_groove / scale:+.5f}", f"{c.lateral / scale:+.5f}",
+                                     f"{c.spin_moment:+.5e}", f"{c.rigid_power:.5e}"])
+
+
+def contact_note(rung: Rung) -> str:
+    """Per contact of ball 1 and 2: Lambda and stick fraction, e.g. ``BL 57/0.000``."""
+    parts = []
+    for ball, row in enumerate(rung.contacts):
+        parts.append(f"ball {ball + 1}: " + ", ".join(f"{c.name} Lambda {c.spin_parameter:.0f} stick "
+                                                       f"{c.stick_fraction:.3f}" for c in row))
+    return "; ".join(parts)
+
