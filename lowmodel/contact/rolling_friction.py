@@ -194,7 +194,7 @@ def hertz_contact(name: str, top: bool, centre, normal, axis, semi_axis_along: f
 
 
 def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: float | None = None, *,
-                     order: int = 4) -> np.ndarray:
+                     order: int = 4, outside: float = 0.0) -> np.ndarray:
     """A sampled pressure (e.g. an FE pressure at its quadrature points) as cell values on ``grid`` [Pa].
 
     ``x``, ``y`` (q,) [m]: the samples' coordinates in the grid's frame; ``pressure`` (q,) [Pa] >= 0; ``weights``
@@ -204,7 +204,9 @@ def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: f
     whatever the samples' distribution (the mean of the samples inside a cell is biased where their areas vary
     across it); then all cells are scaled so that ``sum p dA`` is the samples' force ``sum pressure weights`` (or
     ``normal_force`` [N]).  Samples with ``pressure > 0`` outside the grid's inner cells raise ValueError (the
-    grid must cover the contact with one empty cell on each side).
+    grid must cover the contact with one empty cell on each side) unless they carry at most the share
+    ``outside`` of the force (a fixed grid, e.g. an FE compliance's, and an FE pressure whose piecewise-linear
+    tail reaches one element beyond the contact): those are dropped and their force restored by the scaling.
     """
     from scipy.spatial import cKDTree
 
@@ -219,8 +221,11 @@ def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: f
     i = np.floor((x - grid.x[0]) / grid.dx + 0.5).astype(int)
     j = np.floor((y - grid.y[0]) / grid.dy + 0.5).astype(int)
     inner = (i >= 1) & (i <= grid.nx - 2) & (j >= 1) & (j <= grid.ny - 2)
-    if np.any((p > 0.0) & ~inner):
-        raise ValueError("the grid does not cover the sampled contact: pressure > 0 outside its inner cells")
+    share = float((p * w)[~inner].sum() / max((p * w).sum(), 1e-300))
+    if share > checks.non_negative("outside", outside):
+        raise ValueError(f"the grid does not cover the sampled contact: pressure > 0 outside its inner cells "
+                         f"(a share {share:.3g} of the force, allowed {outside:g})")
+    p = np.where(inner, p, 0.0)
     nodes, gauss_weights = np.polynomial.legendre.leggauss(order)
     gx = (grid.x[1:-1, None] + 0.5 * grid.dx * nodes[None, :]).reshape(-1)
     gy = (grid.y[1:-1, None] + 0.5 * grid.dy * nodes[None, :]).reshape(-1)
@@ -449,8 +454,8 @@ def _full_slip(pressure: np.ndarray, mu: float, w: np.ndarray, speed: float, gri
 
 
 def sampled_contact(name: str, top: bool, points, pressure, areas, axis, *, cells=None, grid: SurfaceGrid | None = None,
-                    lateral_curvature: float, shear_modulus: float, poisson_ratio: float,
-                    operator=None) -> GridContact:
+                    lateral_curvature: float, shear_modulus: float, poisson_ratio: float, operator=None,
+                    outside: float = 0.0) -> GridContact:
     """A contact from a sampled pressure on the ball's surface (e.g. an FE pressure at its quadrature points).
 
     ``points`` (q, 3) [m] relative to the ball centre, ``pressure`` (q,) [Pa], ``areas`` (q,) [m^2]; ``axis`` (3,)
@@ -458,7 +463,8 @@ def sampled_contact(name: str, top: bool, points, pressure, areas, axis, *, cell
     their mean radius (a point of the ball's surface), the normal its radial direction; the samples' coordinates
     in the tangent plane give the cell pressure (:func:`sampled_pressure`).  ``cells = (n_along, n_across)``: a
     grid of that many cells over the pressure's support (one empty cell on each side); or a given ``grid``
-    centred on the contact centre (e.g. the grid of an FE compliance, ``operator``).
+    centred on the contact centre (e.g. the grid of an FE compliance, ``operator``; ``outside``: the share of the
+    force that may lie beyond its inner cells, :func:`sampled_pressure`).
     """
     points = np.asarray(checks.finite("points", points, "m"), dtype=float).reshape(-1, 3)
     p = np.asarray(checks.non_negative("pressure", pressure, "Pa"), dtype=float).reshape(-1)
@@ -480,7 +486,7 @@ def sampled_contact(name: str, top: bool, points, pressure, areas, axis, *, cell
         margin = 1.0 + 1e-6
         grid = rolling.hertz_grid(margin * float(np.abs(X[loaded]).max()), margin * float(np.abs(Y[loaded]).max()),
                                   cells)
-    cell_pressure = sampled_pressure(grid, X, Y, p, w)
+    cell_pressure = sampled_pressure(grid, X, Y, p, w, outside=outside)
     return grid_contact(name, top, grid, cell_pressure, centre, n, t, lateral_curvature=lateral_curvature,
                         shear_modulus=shear_modulus, poisson_ratio=poisson_ratio, operator=operator)
 

@@ -112,16 +112,17 @@ def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), con
 
 def sampled_contacts(samples, *, ball_radius: float, conformity: float, cells=None, grid=None,
                      youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28, heathcote: bool = True,
-                     operator=None) -> tuple:
+                     operator=None, outside: float = 0.0) -> tuple:
     """The contacts of one ball from sampled pressures (e.g. the FE module's, ``fem.fourpoint``): ``samples`` a
     sequence of ``(name, top, points (q, 3) [m], pressure (q,) [Pa], areas (q,) [m^2])`` in lin2019's frame
     (points on the ball relative to its centre); each on a grid of ``cells`` over its pressure, or on the given
-    ``grid`` with ``operator`` (an FE compliance) (:func:`lowmodel.contact.rolling_friction.sampled_contact`)."""
+    ``grid`` with ``operator`` (an FE compliance; ``outside`` the share of the force allowed beyond its inner cells)
+    (:func:`lowmodel.contact.rolling_friction.sampled_contact`)."""
     shear, nu = _material(youngs_modulus, poisson_ratio)
     curvature = 1.0 / deformed_radius(ball_radius, conformity) if heathcote else 0.0
     return tuple(rf.sampled_contact(name, top, points, pressure, areas, AXIS, cells=cells, grid=grid,
                                     lateral_curvature=curvature, shear_modulus=shear, poisson_ratio=nu,
-                                    operator=operator)
+                                    operator=operator, outside=outside)
                  for name, top, points, pressure, areas in samples)
 
 

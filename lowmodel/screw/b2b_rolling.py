@@ -116,15 +116,17 @@ def hertz_contacts(state: sb.ScrewBallState, contacts: screw_contacts.BallContac
 
 
 def sampled_contacts(samples, module: screw_contacts.ScrewModule, *, cells=None, grid=None, heathcote: bool = True,
-                     operator=None) -> tuple:
+                     operator=None, outside: float = 0.0) -> tuple:
     """The contacts of one ball from sampled pressures (e.g. the FE screw module's): ``samples`` a sequence of
     ``(name, top, points (q, 3) [m], pressure (q,) [Pa], areas (q,) [m^2])``, points on the ball relative to its
-    centre in its CS3; a grid of ``cells`` over each pressure, or the given ``grid`` with ``operator``."""
+    centre in its CS3; a grid of ``cells`` over each pressure, or the given ``grid`` with ``operator`` (``outside``:
+    the share of the force allowed beyond its inner cells, :func:`lowmodel.contact.rolling_friction.sampled_pressure`).
+    """
     shear, nu = _material(module)
     curvature = 1.0 / deformed_radius(module) if heathcote else 0.0
     return tuple(rf.sampled_contact(name, top, points, pressure, areas, AXIS, cells=cells, grid=grid,
                                     lateral_curvature=curvature, shear_modulus=shear, poisson_ratio=nu,
-                                    operator=operator)
+                                    operator=operator, outside=outside)
                  for name, top, points, pressure, areas in samples)
 
 

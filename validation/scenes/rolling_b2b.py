@@ -1,0 +1,40 @@
+"""Scenes of the B2B force with stick/slip ball-to-groove contacts (docs/b2b_rolling.md).
+
+The model ladder of lin2019's two-ball modules side by side: analytical, low-order full slip, FE-informed full
+slip, stick/slip on two half-spaces (Hertz and FE pressure) and on the FE compliance, against ANSYS (lin2019
+Tables 3 and 5) and the paper's low-order numbers; and where full slip is worst within the models' domain.
+The runs live in :mod:`validation.rolling_b2b_study` and :mod:`lowmodel.full_slip_validity`.
+"""
+from __future__ import annotations
+
+from ballbench.validation import rolling_b2b_study as study
+from ballbench.validation.scene import scene
+
+_BUDGET = study.TIME_BUDGET_S
+_LEVEL = "FE module h 30 um; stick/slip on 20 x 80 cells per contact; FE compliance 8 x 32 cells, P2, h 0.8 cell"
+
+
+@scene("rolling-b2b-linear-a", "B2B force of lin2019's linear-bearing module, case (a), with stick/slip ball-to-groove "
+       "contacts: the ladder from the analytical model to stick/slip on the FE compliance against ANSYS 3.96 N",
+       kind="FE", cost_s=240.0, budget_s=_BUDGET, level=_LEVEL)
+def rolling_b2b_linear_a(run):
+    study.record_ladder(run, "linear", "a")
+
+
+@scene("rolling-b2b-linear-b", "B2B force of lin2019's linear-bearing module, case (b) (mitigating top groove), with "
+       "stick/slip contacts: zero at every rung", kind="FE", cost_s=240.0, budget_s=_BUDGET, level=_LEVEL)
+def rolling_b2b_linear_b(run):
+    study.record_ladder(run, "linear", "b")
+
+
+@scene("rolling-b2b-screw-a", "B2B force of lin2019's ball-screw module, Table 5 case (a), with stick/slip "
+       "ball-to-groove contacts: the ladder from the low-order model to stick/slip on the FE compliance against "
+       "ANSYS 1.80 N", kind="FE", cost_s=300.0, budget_s=_BUDGET, level=_LEVEL)
+def rolling_b2b_screw_a(run):
+    study.record_ladder(run, "screw", "a")
+
+
+@scene("rolling-b2b-screw-b", "B2B force of lin2019's ball-screw module, Table 5 case (b), with stick/slip contacts: "
+       "the ladder against ANSYS 2.71 N", kind="FE", cost_s=300.0, budget_s=_BUDGET, level=_LEVEL)
+def rolling_b2b_screw_b(run):
+    study.record_ladder(run, "screw", "b")
