@@ -521,3 +521,118 @@ def record_ladder(run, product: str, case: str) -> list[Rung]:
         + ("" if math.isnan(r.friction_increase) else f", increase {r.friction_increase:.2f} %")
         + f", {r.time_s:.1f} s" for r in rungs))
     return rungs
+
+
+# --------------------------------------------------------------------------
+# the validity map of full slip (lowmodel.full_slip_validity)
+# --------------------------------------------------------------------------
+MAP_GRID = {
+    "quick": dict(mu=(0.1, 0.5), conformity=(0.52, 0.6), theta_deg=(3.0,), linear_load=(100.0,), screw_load=(50.0,)),
+    "default": dict(mu=(0.05, 0.1, 0.2, 0.3, 0.4, 0.5), conformity=(0.51, 0.52, 0.54, 0.56, 0.58, 0.6),
+                    theta_deg=(1.0, 3.0), linear_load=(10.0, 100.0, 1000.0), screw_load=(10.0, 50.0, 200.0)),
+}
+MAP_GRID["fine"] = MAP_GRID["default"]
+MAP_CELLS = (8, 32)
+
+
+def validity_points(level: str, progress=None) -> list:
+    """The map's points of both products at ``level`` (MAP_GRID; Hertz contacts of MAP_CELLS)."""
+    from ballbench.lowmodel import full_slip_validity as fsv
+
+    grid = MAP_GRID[level]
+    thetas = [math.radians(t) for t in grid["theta_deg"]]
+    points = fsv.validity_map("linear", grid["mu"], grid["conformity"], thetas, grid["linear_load"],
+                              progress=progress, cells=MAP_CELLS)
+    points += fsv.validity_map("screw", grid["mu"], grid["conformity"], thetas, grid["screw_load"],
+                               progress=progress, cells=MAP_CELLS, oversize=fitted_oversize())
+    return points
+
+
+def write_points(path, points) -> None:
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["product", "mu", "conformity", "theta_deg", "load_N", "Lambda_min", "creepage_parameter_min",
+                         "stick_fraction_max", "F_B2B_stick_slip_N", "F_B2B_full_slip_N", "b2b_difference_pct",
+                         "friction_difference_pct", "friction_increase_pct", "friction_increase_full_slip_pct",
+                         "time_s", "error"])
+        for p in points:
+            q = p.parameters
+            writer.writerow([p.product, q["mu"], q["conformity"], f"{math.degrees(q['theta']):g}", q["load"],
+                             f"{p.spin_parameter:.3f}", f"{p.creepage_parameter:.3f}", f"{p.stick_fraction:.4f}",
+                             f"{p.b2b_force:.5f}", f"{p.b2b_force_full_slip:.5f}", f"{100 * p.b2b_difference:+.4f}",
+                             f"{100 * p.friction_difference:.4f}", f"{p.friction_increase:.3f}",
+                             f"{p.friction_increase_full_slip:.3f}", f"{p.time_s:.2f}", p.error[:200]])
+
+
+def map_figure(points):
+    """Per product, the largest difference over deviation and load at each (mu, conformity): B2B force and a free
+    ball's friction, with the 1 % and 5 % contours; and every point's difference against Lambda."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 5, figsize=(22, 4.4), layout="constrained")
+    products = ("linear bearing", "ball screw")
+    panels = [(p, key) for p in products for key in ("b2b_difference", "friction_difference")]
+    for ax, (product, key) in zip(axes[:4], panels):
+        rows = [p for p in points if p.product == product and not p.error]
+        mus = sorted({p.parameters["mu"] for p in rows})
+        fs = sorted({p.parameters["conformity"] for p in rows})
+        value = np.full((len(fs), len(mus)), np.nan)
+        for p in rows:
+            i, j = fs.index(p.parameters["conformity"]), mus.index(p.parameters["mu"])
+            value[i, j] = np.nanmax([value[i, j], 100.0 * abs(getattr(p, key))])
+        image = ax.pcolormesh(mus, fs, value, shading="nearest", cmap="viridis", vmin=0.0,
+                              vmax=max(5.0, float(np.nanmax(value))))
+        if len(mus) > 1 and len(fs) > 1:
+            lines = ax.contour(mus, fs, value, levels=[1.0, 5.0], colors=["w", "r"], linewidths=1.5)
+            ax.clabel(lines, fmt="%g %%", fontsize=8)
+        fig.colorbar(image, ax=ax, label="|full slip / stick-slip - 1| [%]")
+        what = "B2B force" if key == "b2b_difference" else "free ball's friction"
+        ax.set_title(f"{product}: {what}\n(largest over theta and load)", fontsize=10)
+        ax.set_xlabel("friction coefficient mu")
+        ax.set_ylabel("conformity")
+    ax = axes[4]
+    for product, marker in zip(products, ("o", "s")):
+        rows = [p for p in points if p.product == product and not p.error]
+        ax.semilogx([p.spin_parameter for p in rows], [100 * abs(p.b2b_difference) for p in rows], marker,
+                    mfc="none", label=f"{product}: B2B force")
+        ax.semilogx([p.spin_parameter for p in rows], [100 * p.friction_difference for p in rows], marker,
+                    ms=3, label=f"{product}: free ball's friction")
+    ax.axhline(1.0, color="k", lw=0.8, ls="--")
+    ax.axhline(5.0, color="r", lw=0.8, ls="--")
+    ax.set_xlabel("smallest spin parameter Lambda of the contacts")
+    ax.set_ylabel("|full slip / stick-slip - 1| [%]")
+    ax.legend(fontsize=7)
+    ax.set_title("every case against Lambda", fontsize=10)
+    return fig
+
+
+def record_map(run) -> list:
+    """The map's points, map.csv, map.png and the checks of the scene ``full-slip-validity-map``."""
+    level = "quick" if run.fidelity == "quick" else "default"
+    start = time.perf_counter()
+    points = validity_points(level, progress=lambda it: run.progress(it, desc="validity map"))
+    wall = time.perf_counter() - start
+    write_points(run.path("map.csv"), points)
+    run.add_artifact(run.path("map.csv"))
+    run.save_figure(map_figure(points), "map.png")
+    solved = [p for p in points if not p.error]
+    failed = len(points) - len(solved)
+    for product in ("linear bearing", "ball screw"):
+        rows = [p for p in solved if p.product == product]
+        worst = max(rows, key=lambda p: p.worst)
+        q = worst.parameters
+        run.check(model="lowmodel.full_slip_validity", quantity=f"{product}: largest |full slip / stick-slip - 1| "
+                  "(B2B force or a free ball's friction)", unit="1", value=worst.worst, reference=0.0, scale=1.0,
+                  relation="le", tolerance=0.05, time_s=wall, family="BEM", level=level_name(MAP_CELLS),
+                  source="the issue's 5 % contour: where full slip is off by more, the low-order model's docs say so",
+                  why="an upper bound on a relative difference (zero judged on the scale 1)",
+                  note=f"at mu {q['mu']:g}, conformity {q['conformity']:g}, theta {math.degrees(q['theta']):g} deg, "
+                       f"load {q['load']:g} N: B2B {100 * worst.b2b_difference:+.2f} %, friction "
+                       f"{100 * worst.friction_difference:.2f} %, Lambda {worst.spin_parameter:.1f}; {len(rows)} "
+                       f"cases solved")
+    run.note(f"{len(points)} cases, {failed} without a quasi-static state of either law (map.csv, column error: "
+             "light loads and high mu, where lin2019's full-sliding model has no state either).")
+    return points

@@ -38,3 +38,11 @@ def rolling_b2b_screw_a(run):
        "the ladder against ANSYS 2.71 N", kind="FE", cost_s=300.0, budget_s=_BUDGET, level=_LEVEL)
 def rolling_b2b_screw_b(run):
     study.record_ladder(run, "screw", "b")
+
+
+@scene("full-slip-validity-map", "Where lin2019's full slip holds: stick/slip against full slip (B2B force, a free "
+       "ball's friction) over mu 0.05-0.5, conformity 0.51-0.6, theta 1-3 deg and three loads, linear bearing and "
+       "ball screw (the docs' map)", kind="low-order", default=False, cost_s=3600.0,
+       budget_s={"quick": 300.0, "default": 7200.0, "fine": 7200.0})
+def full_slip_validity_map(run):
+    study.record_map(run)
