@@ -184,9 +184,10 @@ def hertz_contact(name: str, top: bool, centre, normal, axis, semi_axis_along: f
                   normal_force: float, cells, *, lateral_curvature: float, shear_modulus: float, poisson_ratio: float,
                   operator_for=None) -> GridContact:
     """A Hertz contact (semi-axes [m] along and across the groove, force [N]) on the grid of
-    :func:`lowmodel.contact.rolling.hertz_grid` with ``cells = (n_along, n_across)``; ``operator_for(grid)`` gives
-    the operator (default the half-space)."""
-    grid = rolling.hertz_grid(semi_axis_along, semi_axis_across, cells)
+    :func:`lowmodel.contact.rolling.hertz_grid` with ``cells = (n_along, n_across)``, or on ``cells`` itself if it is
+    a :class:`SurfaceGrid` (a fixed grid, e.g. an FE compliance's); ``operator_for(grid)`` gives the operator
+    (default the half-space)."""
+    grid = cells if isinstance(cells, SurfaceGrid) else rolling.hertz_grid(semi_axis_along, semi_axis_across, cells)
     pressure = rolling.hertz_pressure(grid, semi_axis_along, semi_axis_across, normal_force)
     return grid_contact(name, top, grid, pressure, centre, normal, axis, lateral_curvature=lateral_curvature,
                         shear_modulus=shear_modulus, poisson_ratio=poisson_ratio,

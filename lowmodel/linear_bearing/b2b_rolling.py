@@ -92,9 +92,10 @@ def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), con
                    operator_for=None) -> tuple:
     """The four contacts (BL, BR, TR, TL) of ``ball`` of the low-order model as :class:`GridContact` with Hertz's
     pressure: at ``R_B n_i`` (rigid contact angles, lin2019 Fig 2), semi-axes ``b_i`` along the rails and ``a_i``
-    across, ``cells = (n_along, n_across)`` across the ellipse.  ``conformity``: of the grooves, for the curvature
-    of the contact surface (``heathcote=False``: planar, lin2019's slip field eq 3); ``youngs_modulus`` [Pa],
-    ``poisson_ratio``: ball and grooves; ``operator_for(grid)`` the operator (default the half-space)."""
+    across, ``cells = (n_along, n_across)`` across the ellipse (or one fixed ``SurfaceGrid`` for every contact).
+    ``conformity``: of the grooves, for the curvature of the contact surface (``heathcote=False``: planar,
+    lin2019's slip field eq 3); ``youngs_modulus`` [Pa], ``poisson_ratio``: ball and grooves; ``operator_for(grid)``
+    the operator (default the half-space)."""
     index = checks.count("ball", ball, 0, contacts.n_balls - 1)
     shear, nu = _material(youngs_modulus, poisson_ratio)
     radius = contacts.ball_radius

@@ -94,8 +94,9 @@ def hertz_contacts(state: sb.ScrewBallState, contacts: screw_contacts.BallContac
     on ``contacts``) as :class:`GridContact` with Hertz's pressure (the ellipses of
     :func:`lowmodel.screw.b2b_traction.hertz_patches`): at ``R_B e_i`` at the loaded contact angle, semi-axis
     ``b_i`` along ``y3`` and ``a_i`` across, the state's force; CS3 of the ball.  ``cells = (n_along,
-    n_across)``; ``heathcote=False``: planar contact surfaces; ``operator_for(grid)``: the operator (default the
-    half-space of the module's material).  Unloaded contacts are left out."""
+    n_across)`` (or one fixed ``SurfaceGrid``); ``heathcote=False``: planar contact surfaces;
+    ``operator_for(grid)``: the operator (default the half-space of the module's material).  Unloaded contacts are
+    left out."""
     index = checks.count("ball", ball, 0, contacts.n_balls - 1)
     module = contacts.module
     shear, nu = _material(module)

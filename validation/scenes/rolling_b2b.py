@@ -46,3 +46,10 @@ def rolling_b2b_screw_b(run):
        budget_s={"quick": 300.0, "default": 7200.0, "fine": 7200.0})
 def full_slip_validity_map(run):
     study.record_map(run)
+
+
+@scene("full-slip-validity", "Where lin2019's full slip is worst within the models' domain (the validity map's worst "
+       "case): stick/slip against full slip on refined grids, and stick/slip on the FE compliance there",
+       kind="FE", cost_s=150.0, budget_s={"quick": 120.0, "default": 600.0, "fine": 3000.0})
+def full_slip_validity(run):
+    study.record_worst(run)
