@@ -540,8 +540,8 @@ def record_ladder(run, product: str, case: str) -> list[Rung]:
 # --------------------------------------------------------------------------
 MAP_GRID = {
     "quick": dict(mu=(0.1, 0.5), conformity=(0.52, 0.6), theta_deg=(3.0,), linear_load=(100.0,), screw_load=(50.0,)),
-    "default": dict(mu=(0.05, 0.1, 0.2, 0.3, 0.4, 0.5), conformity=(0.51, 0.52, 0.54, 0.56, 0.58, 0.6),
-                    theta_deg=(1.0, 3.0), linear_load=(10.0, 100.0, 1000.0), screw_load=(10.0, 50.0, 200.0)),
+    "default": dict(mu=(0.05, 0.1, 0.2, 0.35, 0.5), conformity=(0.51, 0.53, 0.56, 0.6), theta_deg=(1.0, 3.0),
+                    linear_load=(10.0, 100.0, 1000.0), screw_load=(10.0, 50.0, 200.0)),
 }
 MAP_GRID["fine"] = MAP_GRID["default"]
 MAP_CELLS = (8, 32)
