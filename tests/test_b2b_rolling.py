@@ -240,3 +240,24 @@ def test_power_balance_check_rejects_a_wrong_loss(case_a, monkeypatch):
     monkeypatch.setattr(rf.StickSlipFriction, "_summary", off)
     with pytest.raises(ConvergenceError, match="power balance"):
         b2b_rolling.solve(balls, **COMMON)
+
+
+def test_grid_contacts_reproduce_the_rolling_contacts_of_a_ball_state():
+    """The engine's frames, rolling direction and slip field against lowmodel.linear_bearing.rolling_contacts, which
+    derives each contact's Kalker frame, creepages and spin on its own (docs/rolling_contact.md): at the low-order
+    free-ball state both solve the same rolling problems."""
+    from ballbench.lowmodel.linear_bearing import ball, rolling_contacts
+
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6).ball(0)
+    state = ball.solve(contacts)
+    reference = rolling_contacts.solve_contacts(contacts, state, 0.56, youngs_modulus=2.1e11, poisson_ratio=0.28,
+                                                cells=(10, 40), tolerance=1e-12)
+    grid_contacts = [b2b_rolling.hertz_contacts(contacts, 0, cells=(10, 40))]
+    friction = rf.StickSlipFriction(grid_contacts, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, 100.0, 1.0, V)
+    x = np.array([[state.ball_velocity[0] / V, *(state.omega[0] * R_B / V)]])
+    for mine, theirs in zip(friction.summaries(x)[0], reference):
+        scale = MU * theirs.motion.normal_force
+        assert mine.along_groove == pytest.approx(theirs.friction_force, abs=1e-9 * scale)
+        assert mine.lateral == pytest.approx(theirs.lateral_force, abs=1e-9 * scale)
+        assert mine.spin_moment == pytest.approx(theirs.spin_moment, abs=1e-9 * scale * 1e-3)
+        assert mine.spin_parameter == pytest.approx(theirs.spin_parameter, rel=0.02)  # moment axes vs Hertz's
