@@ -8,4 +8,5 @@ sun2021 (``ehl``), its fractal raceway roughness (``roughness``) and mixed lubri
 friction of sun2021 eqs 21-23 (``mixed``); steady rolling with stick and slip (Kalker's exact theory on a grid,
 ``rolling``, with its input ``rolling_input``, operators ``rolling_operators`` and solver ``rolling_newton``;
 its tangential influence coefficients, ``influence``; Kalker's simplified theory FASTSIM, ``fastsim``;
-docs/rolling_contact.md)."""
+docs/rolling_contact.md); ball-groove contacts on rolling grids with the rolling solve as a ball's friction law
+(``rolling_friction``, docs/b2b_rolling.md)."""
