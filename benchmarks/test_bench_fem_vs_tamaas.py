@@ -1,13 +1,13 @@
-"""FE Hertz benchmark side by side with a half-space BEM code (issue 12 item 6).
+"""FE Hertz benchmark side by side with a half-space BEM code (docs/fem.md, "Profile of one level").
 
-``fe-hertz-groove-056`` at its default level (the scene's own mesh level and solve:
-``validation.scenes.fe_hertz.solve_level``) against tamaas at 256 x 256 on the same Hertz
+``fe-hertz-groove-056``'s case (cases.lin2019.CONTACT_GROOVE_056) at its default level (the scene's own mesh level
+and solve: ``validation.studies.fe_contact.solve_level``) against tamaas at 256 x 256 on the same Hertz
 problem (ball in a straight groove, conformity 0.56, R_B 5 mm, 100 N, steel; Hertz's
 quadratic gap), tamaas on one thread (``OMP_NUM_THREADS=1``, in a child process so that its
 OpenMP runtime starts with it), measured in one run.  Both errors in a, b and p0 against
 ``lowmodel.contact.hertz`` and both times (wall and CPU) are printed.
 
-Target (issue 12): ours within 8x tamaas's time, the accuracy class kept (a, b 0.5 %, p0 1 %).
+Target (docs/fem.md): ours within 8x tamaas's time, the accuracy class kept (a, b 0.5 %, p0 1 %).
 The FE level is timed as the scene checks it (assembly + condensation + load sweep + fit,
 the mesh cached; the mesh build is timed separately, uncached, and printed too).
 
@@ -21,8 +21,9 @@ import pytest
 from tamaas_support import hertz_groove_in_child, timed
 
 from ballbench.lowmodel.contact import hertz
+from ballbench.validation.cases import lin2019
 
-SCENE = "fe-hertz-groove-056"
+CASE = lin2019.CONTACT_GROOVE_056
 GRID = 256
 TOLERANCE = 1e-8  # tamaas's Polonsky-Keer relative tolerance, as benchmarks/test_bench_halfspace.py
 TARGET_RATIO = 8.0
@@ -32,24 +33,21 @@ def _tamaas(conformity):
     """tamaas on the groove's Hertz problem, in a child process with ``OMP_NUM_THREADS=1``
     (:func:`tamaas_support.hertz_groove_in_child`); its own wall and CPU time of model set-up and solve."""
     pytest.importorskip("tamaas")
-    from ballbench.validation.scenes import fe_hertz
-
-    return hertz_groove_in_child(fe_hertz.BALL_RADIUS, conformity, fe_hertz.E_STEEL, fe_hertz.NU_STEEL, fe_hertz.LOAD,
-                                 GRID, TOLERANCE)
+    return hertz_groove_in_child(CASE.ball_radius, conformity, CASE.material.youngs_modulus,
+                                 CASE.material.poisson_ratio, CASE.force, GRID, TOLERANCE)
 
 
 def test_bench_fe_vs_tamaas(benchmark, tmp_path, monkeypatch):
-    from ballbench.validation.scenes import fe_hertz
+    from ballbench.validation.studies import fe_contact
 
-    entry = fe_hertz.fe_scene(SCENE)
-    case = fe_hertz.pair_case(SCENE)
-    n, growth = case.level_list("default")[-1]
+    case = fe_contact.pair_model(CASE)
+    n, growth = CASE.fe.levels.checked("default")
     ref = hertz.solve_load(case.geometry, case.force)
-    theirs = _tamaas(entry.conformity)
+    theirs = _tamaas(CASE.conformity)
 
     monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))  # the mesh build, uncached: what a first run pays
     _, mesh_wall, mesh_cpu = timed(lambda: case.builder(float(ref.b) / n, growth))
-    measured = benchmark.pedantic(timed, args=(lambda: fe_hertz.solve_level(case, n, growth),), rounds=1,
+    measured = benchmark.pedantic(timed, args=(lambda: fe_contact.solve_level(case, (n, growth)),), rounds=1,
                                   iterations=1)  # the benchmark's own statistic is the FE level's wall time
     (result, _), wall, cpu = measured
     ours = dict(a=result.a, b=result.b, p0=result.p0)
@@ -64,7 +62,7 @@ def test_bench_fe_vs_tamaas(benchmark, tmp_path, monkeypatch):
     def line(who):
         return ", ".join(f"{q} {100 * e:+.3f} %" for q, e in errors[who].items())
 
-    print(f"\n{SCENE} default level (n = b/h {n:g}, growth {growth:g}, {result.ndofs} DOFs) vs tamaas "
+    print(f"\n{CASE.name} default level (n = b/h {n:g}, growth {growth:g}, {result.ndofs} DOFs) vs tamaas "
           f"{theirs['version']} {GRID} x {GRID} (PolonskyKeerRey, dcfft, tolerance {TOLERANCE:g}, one thread); "
           f"load average {os.getloadavg()[0]:.1f}\n"
           f"  ours:   wall {wall:.2f} s, CPU {cpu:.2f} s (+ mesh build {mesh_wall:.2f} s wall, {mesh_cpu:.2f} s CPU, "

@@ -9,9 +9,7 @@ def quick_scene(tmp_path):
     def run(name: str):
         from ballbench.validation.runner import run_scene
         from ballbench.validation.scene import registry
-        from ballbench.validation.scenes import load_all
 
-        load_all()
         result = run_scene(registry()[name], "quick", tmp_path, show_progress=False)
         assert result.error in (None, ""), result.error
         assert result.passed, [o.quantity for o in result.outputs if not o.passed]

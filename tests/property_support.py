@@ -1,4 +1,4 @@
-"""Shared pieces of the property-based tests of lowmodel's public API (issue 10 item 8, hypothesis).
+"""Shared pieces of the property-based tests of lowmodel's public API (hypothesis).
 
 ``call(function, ...)``: finite result, or a ValueError / ConvergenceError whose message names a parameter
 of the call; never NaN, never a warning.  Strategies ``real`` and ``positive`` draw finite floats.
@@ -16,7 +16,8 @@ from hypothesis import strategies as st
 
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["SETTINGS", "SLOW", "real", "positive", "call", "float_values"]
+__all__ = ["SETTINGS", "SLOW", "real", "positive", "call", "float_values", "angle", "EXTREME", "angle_limits", "mostly",
+           "one_bad"]
 
 SETTINGS = settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 SLOW = settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
@@ -68,3 +69,30 @@ def call(function, *args, allow_inf=(), **kwargs):
         for array in float_values(result):
             assert np.all(np.isfinite(array)), f"{function.__name__} not finite"
     return result
+
+
+# contact angles: the whole of (0, pi/2) rad, with the last 1e-3 rad at either end (where lin2017 eqs 23, 36 and
+# lin2019 eqs 30, 32 divide by sin or cos of them) drawn as often as the rest, the extreme floats near 0 and pi/2,
+# and outside (0, pi/2) for the errors
+angle = st.one_of(real(1e-3, 0.5 * math.pi - 1e-3), real(0.0, 1e-3), real(0.5 * math.pi - 1e-3, 0.5 * math.pi),
+                  st.sampled_from([5e-324, 2.2250738585072014e-308, 1e-200, 1e-16, math.nextafter(0.5 * math.pi, 0.0),
+                                   0.5 * math.pi * (1.0 - 1e-12)]),
+                  real(-0.2, 0.0), real(0.5 * math.pi, 1.8))
+
+# the extreme floats, zero and negatives; angles at and beyond the ends of [0, pi/2]
+EXTREME = [0.0, 5e-324, 2.2250738585072014e-308, 1e-300, 1e-16, 1e16, 1e300, 1.7976931348623157e308, -1e-3, -1.0]
+angle_limits = (5e-324, 1e-16, math.nextafter(0.5 * math.pi, 0.0), 0.5 * math.pi, 0.0, -0.1, 2.0)
+
+
+def mostly(valid, *invalid):
+    """``valid`` draws with about one in eight from ``invalid`` (bad or extreme values): most calls get through
+    the input checks to the computation, and every check still sees its bad inputs."""
+    return st.integers(0, 7).flatmap(lambda i: st.sampled_from(invalid) if i == 7 else valid)
+
+
+def one_bad(valid: dict, bad: dict):
+    """Keyword dicts: every value drawn from ``valid`` (the documented ranges), and in half the cases one of them
+    replaced by a draw from ``bad`` (zero, negative, huge, tiny, a bool count), so that the solves run often."""
+    keys = sorted(bad)
+    return st.fixed_dictionaries(valid).flatmap(lambda kw: st.sampled_from([None] * len(keys) + keys).flatmap(
+        lambda key: st.just(kw) if key is None else bad[key].map(lambda value: {**kw, key: value})))

@@ -1,7 +1,7 @@
 """``ballbench calibrate SPEC``: fit the low-order constants from FE results and measurements.
 
 The fits and the file live in :mod:`ballbench.lowmodel.calibration`; this
-module reads data (FE load sweeps of the ``fe-hertz-*`` pairs, CSV files),
+module reads data (FE load sweeps of the contact case of a scene, CSV files),
 runs the fits named in a spec, writes the calibration file and registers the
 ``calibrate`` command and the ``--calibration FILE`` option of ``validate``.
 
@@ -11,7 +11,7 @@ Spec (TOML; docs/calibration.md)::
     confidence = 0.95
 
     [contact.ball-groove-0.56]           # one table per contact type
-    fe_scene = "fe-hertz-groove-056"     # FE load sweep of that pair ...
+    fe_scene = "<scene>"                 # FE load sweep of the contact case of that scene ...
     fidelity = "quick"                   # ... at this mesh level
     load_factors = [0.5, 0.75, 1.0, 1.25, 1.5]
     # data = "groove056.csv"             # ... or measured/cached: force [N], approach [m], a [m]
@@ -39,12 +39,12 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel import checks
+from ballbench.validation.cases import lin2019
 from ballbench.validation.specs import read_toml
-from ballbench.validation.papers.lin2019 import TABLE1, TABLE4
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
-           "fe_contact_law",
-           "FE_CONTACTS", "run_spec", "check_spec", "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
+           "contact_law", "fe_contact_law", "fe_contact_scenes", "run_spec", "check_spec", "active_calibration",
+           "CALIBRATION_ENV", "CSV_UNITS"]
 
 CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
 # quantity -> {unit: SI factor}
@@ -56,13 +56,6 @@ CSV_UNITS = {
 }
 COLUMNS = {"normal_force": "force", "friction_force": "force", "friction_torque": "torque", "lever_arm": "length",
            "speed": "speed", "force": "force", "approach": "length", "a": "length"}
-# contact type -> (fe-hertz scene, ball radius [m]) of the pairs the FE benchmark meshes (fe_hertz.pair_case)
-FE_CONTACTS = {
-    "fe-hertz-groove-052": TABLE1.ball_radius, "fe-hertz-groove-056": TABLE1.ball_radius,
-    "fe-hertz-groove-060": TABLE1.ball_radius, "fe-hertz-ball-ball": TABLE1.ball_radius,
-    "fe-hertz-flat": TABLE1.ball_radius, "fe-hertz-screw": TABLE4.ball_radius,  # lin2019 Tables 1, 4
-    "fe-hertz-nut": TABLE4.ball_radius,
-}
 # a ball radius [m] outside this range is most likely given in mm (0.2 mm to 200 mm ball diameter)
 BALL_RADIUS_RANGE = (1e-4, 0.1)
 FIDELITIES = ("quick", "default", "fine")
@@ -173,38 +166,30 @@ def _check_load_factors(load_factors) -> np.ndarray:
     return factors
 
 
-def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
-    """FE load sweep of an ``fe-hertz-*`` pair: ``force`` [N], ``approach`` [m], ``a`` [m] at every load.
+def fe_contact_scenes() -> dict:
+    """The registered scenes that run a single contact with FE settings: ``{scene name: ContactCase}`` (the
+    scene's own ``case``; what ``fe_scene`` of a spec may name)."""
+    from ballbench.validation.cases import ContactCase
+    from ballbench.validation.scene import registry
 
-    One mesh and one condensation (the checked level of the scene at ``fidelity``),
+    return {name: entry.case for name, entry in registry().items()
+            if isinstance(entry.case, ContactCase) and entry.case.fe is not None}
+
+
+def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
+    """FE load sweep of the contact case of scene ``scene_name`` (:func:`fe_contact_scenes`):
+    ``force`` [N], ``approach`` [m], ``a`` [m] at every load (studies.fe_contact.load_sweep).
+
+    One mesh and one condensation (the checked level of the case at ``fidelity``),
     then a contact solve and a Hertz-field fit per load.  Returns also
     ``ball_radius`` [m], the Hertz ``geometry`` and the wall time [s].
     """
-    import time
+    from ballbench.validation.studies import fe_contact
 
-    from ballbench.fem import contact, hertz_case, postprocess
-    from ballbench.validation.scenes import fe_hertz
-
-    if scene_name not in FE_CONTACTS:
-        raise ValueError(f"fe_scene must be one of {sorted(FE_CONTACTS)}, got {scene_name!r}")
-    factors = _check_load_factors(load_factors)
-    start = time.perf_counter()
-    case = fe_hertz.pair_case(scene_name)
-    n, growth = case.level_list(fidelity)[-1]
-    result, _ = fe_hertz.solve_level(case, n, growth)  # mesh, condensation, the scene's own load sweep
-    model = result.model
-    operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"], model.candidates)
-    forces, approaches, semi_axes = [], [], []
-    state = None
-    for factor in np.sort(factors):
-        state = contact.solve_force(model, factor * case.force, start=state)
-        fit = hertz_case.fit_contact_patch(model, state, operator)  # the fit solve_case makes at the nominal load
-        forces.append(state.force)
-        approaches.append(state.approach)
-        semi_axes.append(fit.a)
-    return {"force": np.array(forces), "approach": np.array(approaches), "a": np.array(semi_axes),
-            "ball_radius": FE_CONTACTS[scene_name], "geometry": case.geometry, "level": (n, growth),
-            "ndofs": result.ndofs, "wall_time_s": time.perf_counter() - start}
+    cases = fe_contact_scenes()
+    if scene_name not in cases:
+        raise ValueError(f"fe_scene must be one of {sorted(cases)}, got {scene_name!r}")
+    return fe_contact.load_sweep(cases[scene_name], fidelity, _check_load_factors(load_factors))
 
 
 # --------------------------------------------------------------------------
@@ -216,20 +201,31 @@ def _hertz_references(geometry, ball_radius):
     return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
 
 
-def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
-                   confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
-    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of an
-    ``fe-hertz-*`` pair (:func:`fe_load_sweep`), with the pair's Hertz C and Psi as references;
-    returns (law, sweep)."""
-    sweep = fe_load_sweep(scene_name, fidelity, load_factors)
+def contact_law(case, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
+                confidence: float = 0.95, label: str = "") -> tuple[cal.ContactLaw, dict]:
+    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of the
+    :class:`ContactCase` ``case`` at ``fidelity`` (studies.fe_contact.load_sweep), with the pair's Hertz C and Psi
+    as references; returns (law, sweep with its ``source`` text, which names ``label`` or the case)."""
+    from ballbench.validation.studies.fe_contact import load_sweep
+
+    sweep = load_sweep(case, fidelity, _check_load_factors(load_factors))
     radius = sweep["ball_radius"]
     reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
-    source = (f"FE {scene_name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
+    source = (f"FE {label or case.name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
               f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
               f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
     law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
                               confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
     return law, {**sweep, "source": source}
+
+
+def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
+                   confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
+    """:func:`contact_law` of the contact case of scene ``scene_name`` (:func:`fe_contact_scenes`)."""
+    cases = fe_contact_scenes()
+    if scene_name not in cases:
+        raise ValueError(f"fe_scene must be one of {sorted(cases)}, got {scene_name!r}")
+    return contact_law(cases[scene_name], fidelity, load_factors, confidence=confidence, label=scene_name)
 
 
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
@@ -277,8 +273,9 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
 
     if not (0.0 < fit_range):
         raise ValueError(f"k_f.fit_range must be > 0, got {fit_range!r}")
-    contact = hertz.solve_load(hertz.ball_in_groove(TABLE1.ball_radius, conformity, **TABLE1.material),
-                               TABLE1.vertical_force)
+    guide = lin2019.GUIDE
+    contact = hertz.solve_load(hertz.ball_in_groove(guide.ball_radius, conformity, **guide.material.keywords),
+                               lin2019.VERTICAL_FORCE)
     ratio = float(contact.b / contact.a)
     exact = float(ef.k_f_exact(ratio))
     continuous = float(ef.k_f_least_squares(ratio, fit_range))
@@ -322,8 +319,9 @@ def check_spec(spec: dict, spec_path: str | Path) -> None:
         if ("fe_scene" in table) == ("data" in table):
             raise ValueError(f"{where}: give exactly one of 'fe_scene' (FE load sweep) or 'data' (CSV file)")
         if "fe_scene" in table:
-            if table["fe_scene"] not in FE_CONTACTS:
-                raise ValueError(f"{where}.fe_scene must be one of {sorted(FE_CONTACTS)}, got {table['fe_scene']!r}")
+            scenes = fe_contact_scenes()
+            if table["fe_scene"] not in scenes:
+                raise ValueError(f"{where}.fe_scene must be one of {sorted(scenes)}, got {table['fe_scene']!r}")
             if table.get("fidelity", "quick") not in FIDELITIES:
                 raise ValueError(f"{where}.fidelity must be quick, default or fine, got {table['fidelity']!r}")
             _check_load_factors(table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))

@@ -256,7 +256,7 @@ def _cmd_show(args) -> int:
 
     fidelity = "quick" if args.quick else "default"
     try:
-        paths = show.show(args.scene, out_dir, fidelity=fidelity, show_progress=sys.stderr.isatty())
+        paths = show.show(args.scene, out_dir, fidelity=fidelity)
     except KeyboardInterrupt:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -304,7 +304,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")
-    calibrate.add_validate_option(p)  # --calibration FILE (issue 13)
+    calibrate.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
     p.set_defaults(func=_cmd_validate)
 
     p = sub.add_parser("show", help="pictures of an FE scene's saved fields",

@@ -28,7 +28,7 @@ Error convention (kept stable, see docs/validation.md):
 
 A check passes when ``rel_error <= tolerance`` and the value is finite.
 
-Guards (issue 10): ``tolerance`` must be finite and below 1, and ``scale``
+Guards (docs/validation.md, "Error convention"): ``tolerance`` must be finite and below 1, and ``scale``
 must not exceed ``|reference|`` (a zero reference always needs one), unless
 the check says why in ``why=`` (the sentence goes into the report).
 
@@ -189,7 +189,9 @@ class Scene:
     scenes``); ``budget_s``: wall-time budget per fidelity [s] (reported,
     decides only with ``--strict-time``); ``level``: the default mesh level
     in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity) -> list[Path]``,
-    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``).
+    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``);
+    ``case``: the case the scene runs (:mod:`ballbench.validation.cases`), read by ``calibrate`` (FE load
+    sweeps of a scene's contact) and the report; None for a scene of many cases.
     """
 
     name: str
@@ -202,6 +204,7 @@ class Scene:
     budget_s: dict | None = None
     level: str = ""
     show: Callable[[Path, str], list[Path]] | None = None
+    case: Any = None
 
     def budget_for(self, fidelity: str) -> float:
         if self.budget_s is None:
@@ -215,7 +218,7 @@ REGISTRY: dict[str, Scene] = {}
 
 def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True, kind: str = "low-order",
           cost_s: float = 1.0, budget_s: dict | float | None = None, level: str = "",
-          show: Callable[[Path, str], list[Path]] | None = None):
+          show: Callable[[Path, str], list[Path]] | None = None, case: Any = None):
     """Register the decorated function as the scene ``name`` (see :class:`Scene` for the keywords).
 
     ``default=False`` keeps the scene out of a bare ``ballbench validate``
@@ -234,7 +237,7 @@ def scene(name: str, description: str, *, tags: Iterable[str] = (), default: boo
         if name in REGISTRY and REGISTRY[name].function is not function:
             raise ValueError(f"scene {name!r} is registered twice")
         REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
-                                level, show)
+                                level, show, case)
         return function
 
     return register
@@ -310,7 +313,7 @@ class Run:
         note: str = "",
         why: str = "",
         known_gap: KnownGap | None = None,
-        family: str = "",
+        family: str,
         level: str = "",
     ) -> Output:
         """Record ``value`` of ``quantity`` (SI ``unit``) against ``reference``.
@@ -320,10 +323,10 @@ class Run:
         than ``|reference|`` with a tolerance above 0, is rejected (ValueError)
         unless ``why`` says why.
         ``known_gap`` declares the published number as not reproduced.
-        ``family`` (one of :data:`FAMILIES`) and ``level`` (the fidelity level within the family in words,
+        ``family`` (one of :data:`FAMILIES`, required) and ``level`` (the fidelity level within the family in words,
         e.g. ``"h 30 um"``, ``"64 x 64 cells"``; empty for a model without levels) name the model as data.
         """
-        if family and family not in FAMILIES:
+        if family not in FAMILIES:
             raise ValueError(f"family must be one of {FAMILIES}, got {family!r} ({quantity})")
         value = float(value)
         reference = float(reference)
@@ -349,11 +352,15 @@ class Run:
         return output
 
     def budget(self, *, quantity: str, unit: str, value: float, budget: float, source: str, relation: str = "le",
-               model: str = "", time_s: float | None = None, note: str = "") -> Output:
+               model: str = "", time_s: float | None = None, note: str = "", family: str = "",
+               level: str = "") -> Output:
         """Record a wall time (``relation="le"``: at most ``budget``) or a throughput (``"ge"``: at least).
 
-        Reported as within or over budget; it decides pass/fail only with ``--strict-time``.
+        Reported as within or over budget; it decides pass/fail only with ``--strict-time``.  ``family`` and
+        ``level``: the model's, as in :meth:`check` (optional: a budget row is not a point of a front).
         """
+        if family and family not in FAMILIES:
+            raise ValueError(f"family must be one of {FAMILIES}, got {family!r} ({quantity})")
         if relation not in ("le", "ge"):
             raise ValueError(f"a budget's relation is 'le' (time) or 'ge' (throughput), got {relation!r}")
         value, budget = float(value), float(budget)
@@ -362,7 +369,8 @@ class Run:
         rel_error = relative_error(value, budget, relation=relation)
         output = Output(model or self.scene.name, quantity, unit, value, budget, source, float(rel_error), 0.0,
                         bool(math.isfinite(value) and rel_error == 0.0),
-                        float(value if time_s is None else time_s), relation, note, "budget")
+                        float(value if time_s is None else time_s), relation, note, "budget", family=family,
+                        level=level)
         self._outputs.append(output)
         return output
 
@@ -374,12 +382,9 @@ class Run:
         return directory / filename
 
     def save_figure(self, figure, filename: str) -> Path:
-        """Save a matplotlib figure as PNG next to the report and close it."""
-        import matplotlib.pyplot as plt
-
+        """Save a :class:`matplotlib.figure.Figure` (validation.figures) as PNG next to the report."""
         target = self.path(filename)
         figure.savefig(target, dpi=120, bbox_inches="tight")
-        plt.close(figure)
         self.add_artifact(target)
         return target
 

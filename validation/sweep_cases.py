@@ -16,16 +16,28 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
-from ballbench.validation.papers.lin2019 import CASE, TABLE1 as LIN2019_TABLE1
+from ballbench.validation.cases import lin2019
 
 __all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi",
-           "whole_screw_fourier", "fourier_deviation", "FOURIER_HARMONICS"]
+           "whole_screw_fourier", "fourier_deviation", "FOURIER_HARMONICS", "EQUIVALENCE_SPEC"]
 
-TABLE1 = dict(ball_radius=LIN2019_TABLE1.ball_radius, conformity=LIN2019_TABLE1.conformity,
-              vertical_force=LIN2019_TABLE1.vertical_force, groove_velocity=LIN2019_TABLE1.groove_velocity,
-              friction_coefficient=LIN2019_TABLE1.friction_coefficient,
-              **LIN2019_TABLE1.material)  # keyword defaults of the case functions (lin2019 Table 1)
-NOMINAL = CASE.nominal_angle  # beta_0 [rad], lin2019 Sec 2.4
+# keyword defaults of the case functions (lin2019 Table 1, cases.lin2019)
+TABLE1 = dict(vertical_force=lin2019.VERTICAL_FORCE, **lin2019.GUIDE.keywords)
+NOMINAL = lin2019.GUIDE.nominal_angle  # beta_0 [rad], lin2019 Sec 2.4
+
+# the spec of the sweep-equivalence scene: lin2019 Sec 2.4 two-ball case by the low-order numerical model, a grid
+# in (theta, rho) that reaches past the four-point limit (those cases fail with their reason) times seeded random
+# top-groove deviations
+EQUIVALENCE_SPEC = {
+    "name": "sweep-equivalence",
+    "function": "ballbench.validation.sweep_cases:two_ball_numerical",
+    "chunk_size": 7,  # does not divide the case count: a short last chunk
+    "outputs": ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"],
+    "grid": {"theta": {"linspace": [-3.0, 3.0, 3], "unit": "deg"}, "rho": {"values": [-0.95, -0.6, 0.3]}},
+    "random": {"draws": 5, "seed": 13, "inputs": {
+        "top_tr": {"distribution": "normal", "mean": 0.0, "sigma": 0.5, "unit": "deg"},
+        "top_tl": {"distribution": "uniform", "low": -1.0, "high": 1.0, "unit": "deg"}}},
+}
 
 
 @functools.lru_cache(maxsize=8)
@@ -85,7 +97,7 @@ def two_ball_deviations(d1_bl: float, d1_br: float, d1_tr: float, d1_tl: float,
     """Two touching balls whose four contact angles each deviate by ``dj_<contact>`` [rad] from 45 deg.
 
     Ball 1 (behind) carries ``N_x = rho N_y``, ball 2 ``-rho N_y`` (lin2019 Sec 2.4 loading); normal
-    forces lin2017 eq 36.  Outputs as :func:`two_ball_numerical` (the tolerance Monte Carlo of issue 13).
+    forces lin2017 eq 36.  Outputs as :func:`two_ball_numerical` (the tolerance Monte Carlo of docs/sweeps.md).
     """
     options = {**TABLE1, **table1}
     vertical = options.pop("vertical_force")
@@ -147,17 +159,18 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
     from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.scenes import lin2019_screw
+    from ballbench.validation.studies.screw_two_ball import screw_module
 
     laws = screw_contacts.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
-    module = lin2019_screw.table4_module(lin2019_screw.fitted_oversize())
+    module = screw_module(lin2019.SCREW)
     stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)
     return module, laws, stiffness
 
 
 def whole_screw_fourier(a1: float = 0.0, b1: float = 0.0, a2: float = 0.0, b2: float = 0.0, a3: float = 0.0,
-                        b3: float = 0.0, a4: float = 0.0, b4: float = 0.0, *, n_balls: int = 37,
-                        axial_load: float = 1500.0, duration: float = 2.0, steps: int = 50,
+                        b3: float = 0.0, a4: float = 0.0, b4: float = 0.0, *,
+                        n_balls: int = lin2019.WHOLE_SCREW_BALLS, axial_load: float = lin2019.WHOLE_SCREW_AXIAL_LOAD,
+                        duration: float = lin2019.WHOLE_SCREW_DURATION, steps: int = 50,
                         calibration: str | None = None) -> dict:
     """One ball screw of lin2019 Sec 3.4 (37 balls, 1500 N, 2 s = two nut turns; lowmodel.screw.whole_screw) whose
     screw groove deviates by theta(phi) = sum_k a_k cos(k phi/2) + b_k sin(k phi/2) [rad], k = 1..4

@@ -75,6 +75,18 @@ def render(scene_dir) -> list[Path]:
     return paths
 
 
+def show_saved(scene_dir, fidelity: str) -> list[Path]:
+    """The ``show`` hook of a scene whose pictures are only the 3D screenshots of fields it saved during
+    ``ballbench validate`` (the BEM / EHL surfaces): :func:`render`, or FileNotFoundError saying to validate
+    first.  ``fidelity`` is not used: the saved fields are those of the run that wrote them."""
+    del fidelity  # the hook signature; the saved fields fix the level
+    scene_dir = Path(scene_dir)
+    if not has_fields(scene_dir):
+        raise FileNotFoundError(f"no saved surface fields in {scene_dir}: run 'ballbench validate {scene_dir.name} "
+                                f"--out {scene_dir.parent}' first")
+    return render(scene_dir)
+
+
 def artifacts(scene_dir, note) -> list[Path]:
     """:func:`render` for a scene run: the PNG paths, or none and a sentence through ``note`` (e.g. ``Run.note``)
     when the pictures cannot be drawn here (no OpenGL context, damaged fields), so that a validation run never

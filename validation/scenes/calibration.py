@@ -19,142 +19,94 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
-from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
+from ballbench.validation.cases import lin2019
+from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import scene
+from ballbench.validation.studies import calibration as study
+from ballbench.validation.studies import screw_two_ball
 
 MODEL = "lowmodel.calibration"
-RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
-CONFORMITY = TABLE1.conformity
-GROUP = f"ball-groove-{CONFORMITY:g}"
-# the synthetic truth: Hertz C and Psi of the Table 1 groove, a bulk compliance of the order FE finds, and a
-# friction coefficient with a speed dependence
-BULK = 2e-11  # m/N
-MU_0, MU_V = 0.1, 0.5  # 1, s/m
-K_F = PRINTED.k_f  # lin2019 Sec 2.3.2
-LOADS = np.linspace(25.0, 150.0, 9)  # N
-NOISE_U = 2e-9  # m (0.07 % of U at 150 N)
-NOISE_A = 0.003  # relative, contact size
-NOISE_F = 0.02  # N, friction force
+CAL = dict(model=MODEL, family="low-order numerical")
+GUIDE = lin2019.GUIDE
+GROUP = f"ball-groove-{GUIDE.conformity:g}"
 SEEDS = {"quick": 100, "default": 400, "fine": 2000}
-
-
-def synthetic_truth() -> dict:
-    """The constants the synthetic data are drawn from (SI units)."""
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
-    return {"hertz_constant": hertz.hertz_constant(geometry), "bulk_compliance": BULK,
-            "psi": hertz.psi_constant(geometry, RADIUS), "mu": MU_0, "mu_speed_slope": MU_V, "k_f": K_F}
-
-
-def synthetic_fit(seed: int, truth: dict, work: Path | None = None, confidence: float = 0.95) -> dict:
-    """Fit every constant to synthetic data of ``seed``; returns ``{name: Constant}``.
-
-    With ``work`` the friction data go through a CSV file (units N and mm/s, read back by
-    :func:`validation.calibrate.read_friction_csv`).
-    """
-    rng = np.random.default_rng(seed)
-    approach = truth["hertz_constant"] * LOADS ** (2 / 3) + truth["bulk_compliance"] * LOADS  # lin2019 eq 53 + C_b F
-    approach = approach + rng.normal(0.0, NOISE_U, LOADS.size)
-    semi_axis = truth["psi"] * RADIUS ** (1 / 3) * LOADS ** (1 / 3) * (1 + rng.normal(0.0, NOISE_A, LOADS.size))
-    law = cal.fit_contact_law(LOADS, approach, semi_axes=semi_axis, ball_radius=RADIUS, confidence=confidence,
-                              source=f"synthetic, seed {seed}")
-    normal = np.repeat([20.0, 60.0, 120.0, 200.0], 3)  # N
-    speed = np.tile([0.01, 0.05, 0.1], 4)  # m/s
-    friction = (truth["mu"] + truth["mu_speed_slope"] * speed) * normal + rng.normal(0.0, NOISE_F, normal.size)
-    if work is not None:
-        from ballbench.validation.calibrate import read_friction_csv
-
-        path = work / f"friction-{seed}.csv"
-        lines = ["# synthetic friction data (calibration-roundtrip)",
-                 "normal_force [N],friction_force [N],speed [mm/s]"]
-        lines += [f"{float(n)!r},{float(f)!r},{float(v) * 1e3!r}" for n, f, v in zip(normal, friction, speed)]
-        path.write_text("\n".join(lines) + "\n")
-        data = read_friction_csv(path)
-        normal, friction, speed = data["normal_force"], data["friction_force"], data["speed"]
-    mu = cal.fit_friction_coefficient(normal, friction, speed, confidence=confidence)
-    kappa = np.linspace(-0.5, 0.5, 21)
-    k_f = cal.fit_line_through_origin(kappa, -truth["k_f"] * kappa + rng.normal(0.0, 0.01, kappa.size),
-                                      confidence=confidence)
-    return {**law.constants(), **mu, "k_f": k_f}
-
-
-def coverage(seeds, truth: dict, confidence: float = 0.95) -> dict:
-    """Share of ``seeds`` whose interval covers the truth, per constant."""
-    hits = {name: 0 for name in truth}
-    for seed in seeds:
-        for name, constant in synthetic_fit(int(seed), truth, confidence=confidence).items():
-            hits[name] += constant.covers(truth[name])
-    return {name: count / len(seeds) for name, count in hits.items()}
+SCREW_B2B = dict(model="lowmodel.screw.b2b", family="low-order numerical")
+SCREW_BALL = dict(model="lowmodel.screw.ball", family="low-order numerical")
+DISTRIBUTION = dict(model="lowmodel.screw.load_distribution", family="low-order numerical")
+POWER_WHY = "the value is itself a relative power error |P_in - P_loss| / P_loss: zero judged on the scale 1"
 
 
 @scene("calibration-roundtrip", "Calibration round trip: synthetic load-approach, contact-size, friction (CSV) and "
        "k_f data from known constants plus noise; the fits recover them within their 95 % intervals; coverage "
        "over many seeds", kind="low-order", cost_s=8.0)
 def calibration_roundtrip(run):
-    truth = synthetic_truth()
+    truth = study.synthetic_truth()
     with tempfile.TemporaryDirectory() as work:
-        fitted, time_s = run.time(synthetic_fit, 2019, truth, Path(work), budget_s=0.05, max_repeat=3)
+        fitted, time_s = run.time(study.synthetic_fit, 2019, truth, Path(work), budget_s=0.05, max_repeat=3)
         path = cal.save(cal.Calibration({"roundtrip": fitted}), Path(work) / "calibration.json")
         loaded = cal.load(path)
     for name, constant in fitted.items():
         half = 0.5 * (constant.ci_high - constant.ci_low)
-        run.check(model=MODEL, quantity=f"abs({name} - truth) / half-width of its 95 % interval (seed 2019)", unit="1",
+        run.check(**CAL, quantity=f"abs({name} - truth) / half-width of its 95 % interval (seed 2019)", unit="1",
                   value=abs(constant.value - truth[name]) / half, reference=1.0, relation="le", tolerance=0.0,
                   source=f"synthetic truth {truth[name]:.6g} {constant.unit}", time_s=time_s,
                   note=f"fit {constant.value:.6g} +- {constant.std_error:.2g} (1 SE)")
     same = all(loaded.get("roundtrip", n) == c for n, c in fitted.items())
-    run.check(model=MODEL, quantity="constants that change through save/load of the calibration file", unit="count",
+    run.check(**CAL, quantity="constants that change through save/load of the calibration file", unit="count",
               value=float(not same), reference=0.0, scale=1.0, tolerance=0.0, source="JSON round trip",
               time_s=time_s)
     seeds = np.arange(SEEDS[run.fidelity])
     start = time.perf_counter()
-    shares = coverage(seeds, truth)
+    shares = study.coverage(seeds, truth)
     elapsed = (time.perf_counter() - start) / seeds.size
     for name, share in shares.items():
-        run.check(model=MODEL, quantity=f"coverage of the 95 % interval of {name} over {seeds.size} seeds", unit="1",
+        run.check(**CAL, quantity=f"coverage of the 95 % interval of {name} over {seeds.size} seeds", unit="1",
                   value=share, reference=0.90, relation="ge", tolerance=0.0, time_s=elapsed,
-                  source="issue 13: >= 90 % of seeded trials",
+                  source="docs/calibration.md: >= 90 % of seeded trials",
                   note=f"binomial sd of the share at 95 %: {math.sqrt(0.95 * 0.05 / seeds.size):.3f}")
     run.note(f"Truth: C = {truth['hertz_constant']:.6g} m N^-2/3 and Psi = {truth['psi']:.6g} (m^2/N)^(1/3) (Hertz, "
-             f"conformity 0.56, R_B 5 mm), C_b = {BULK:g} m/N, mu = {MU_0} + {MU_V} s/m * v, k_f = {K_F}. Noise: "
-             f"approach {NOISE_U:g} m, contact size {100 * NOISE_A:g} %, friction {NOISE_F} N; {LOADS.size} loads "
-             f"{LOADS[0]:g}-{LOADS[-1]:g} N, 12 friction rows (4 loads x 3 speeds, CSV in N and mm/s). Intervals: "
+             f"conformity 0.56, R_B 5 mm), C_b = {study.BULK:g} m/N, mu = {study.MU_0} + {study.MU_V} s/m * v, "
+             f"k_f = {study.K_F}. Noise: approach {study.NOISE_U:g} m, contact size {100 * study.NOISE_A:g} %, "
+             f"friction {study.NOISE_F} N; {study.LOADS.size} loads {study.LOADS[0]:g}-{study.LOADS[-1]:g} N, "
+             "12 friction rows (4 loads x 3 speeds, CSV in N and mm/s). Intervals: "
              "scipy least_squares, covariance s^2 (J^T J)^-1, Student t.")
 
 
 # --------------------------------------------------------------------------
 # effect of the calibrated contact law
 # --------------------------------------------------------------------------
-def calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
+def _calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
     """The contact law of the 0.56 groove: from ``--calibration FILE`` when it has one, else FE at the run's level."""
-    from ballbench.validation.calibrate import active_calibration, fe_load_sweep
+    from ballbench.validation.calibrate import active_calibration
+    from ballbench.validation.studies.fe_contact import load_sweep
 
     given = active_calibration()
     if given is not None and GROUP in given.constants and "psi" in given.constants[GROUP]:
         return given, "the --calibration file"
-    sweep = fe_load_sweep("fe-hertz-groove-056", run.fidelity)
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
-    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=RADIUS,
-                              source=f"FE fe-hertz-groove-056 {run.fidelity} level",
-                              hertz_constant=hertz.hertz_constant(geometry), psi=hertz.psi_constant(geometry, RADIUS))
-    return cal.Calibration({GROUP: law.constants()}), (f"FE fe-hertz-groove-056, {run.fidelity} level "
+    case = lin2019.CONTACT_GROOVE_056
+    sweep = load_sweep(case, run.fidelity)
+    geometry = sweep["geometry"]
+    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=case.ball_radius,
+                              source=f"FE {case.name} {run.fidelity} level",
+                              hertz_constant=hertz.hertz_constant(geometry),
+                              psi=hertz.psi_constant(geometry, case.ball_radius))
+    return cal.Calibration({GROUP: law.constants()}), (f"FE {case.name}, {run.fidelity} level "
                                                       f"({sweep['ndofs']} DOFs, {sweep['wall_time_s']:.0f} s)")
 
 
-def b2b_force_with_psi(psi: float, theta: float, rho: float) -> tuple[float, float]:
-    """F_B2B [N] of lin2019 Table 3 case (a) with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (eq 15):
-    (analytical eq 30, low-order numerical eqs 4-10); Table 1 otherwise."""
+def _b2b_force_with_psi(psi: float, case) -> tuple[float, float]:
+    """F_B2B [N] of the linear-guide ``case`` with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (lin2019 eq 15):
+    (analytical eq 30, low-order numerical eqs 4-10)."""
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
     from ballbench.validation.sweep_cases import with_psi
 
-    analytical = b2b_analytical.two_ball_case(theta, rho, normal_load=TABLE1.vertical_force,
-                                              groove_velocity=TABLE1.groove_velocity,
-                                              friction_coefficient=TABLE1.friction_coefficient, psi=psi,
-                                              ball_radius=RADIUS)
-    contacts = with_psi(b2b.module_contacts(theta, rho, ball_radius=RADIUS, conformity=CONFORMITY,
-                                            vertical_force=TABLE1.vertical_force,
-                                            groove_velocity=TABLE1.groove_velocity,
-                                            friction_coefficient=TABLE1.friction_coefficient, **TABLE1.material),
-                        psi)  # lin2017 eq 36 forces
+    guide = case.guide
+    analytical = b2b_analytical.two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,
+                                              groove_velocity=guide.groove_velocity,
+                                              friction_coefficient=guide.friction_coefficient, psi=psi,
+                                              ball_radius=guide.ball_radius)
+    contacts = with_psi(b2b.module_contacts(case.theta, case.side_force_ratio, vertical_force=case.vertical_force,
+                                            **guide.keywords), psi)  # lin2017 eq 36 forces
     return float(analytical.b2b_force), float(b2b.solve(contacts, [0.0]).b2b_force[0])
 
 
@@ -163,28 +115,30 @@ def b2b_force_with_psi(psi: float, theta: float, rho: float) -> tuple[float, flo
        kind="low-order", cost_s=29.0)
 def calibration_effect(run):
     start = time.perf_counter()
-    calibration, origin = calibrated_contact_law(run)
+    calibration, origin = _calibrated_contact_law(run)
     fit_time = time.perf_counter() - start
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
-    c_hertz, psi_hertz = hertz.hertz_constant(geometry), hertz.psi_constant(geometry, RADIUS)
+    geometry = hertz.ball_in_groove(GUIDE.ball_radius, GUIDE.conformity, **GUIDE.material.keywords)
+    c_hertz, psi_hertz = hertz.hertz_constant(geometry), hertz.psi_constant(geometry, GUIDE.ball_radius)
     psi = calibration.get(GROUP, "psi")
     c = calibration.get(GROUP, "hertz_constant")
     c_b = calibration.get(GROUP, "bulk_compliance")
-    theta, rho = CASE.theta, CASE.side_force_ratio
-    (hertz_analytical, hertz_numerical), time_h = run.time(b2b_force_with_psi, psi_hertz, theta, rho)
-    (cal_analytical, cal_numerical), time_c = run.time(b2b_force_with_psi, psi.value, theta, rho)
-    run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B ratio calibrated / Hertz Psi, eq 30",
-              unit="1", value=cal_analytical / hertz_analytical, reference=psi_hertz / psi.value, tolerance=1e-12,
+    case = lin2019.TABLE3_A
+    (hertz_analytical, hertz_numerical), time_h = run.time(_b2b_force_with_psi, psi_hertz, case)
+    (cal_analytical, cal_numerical), time_c = run.time(_b2b_force_with_psi, psi.value, case)
+    run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical",
+              quantity="F_B2B ratio calibrated / Hertz Psi, eq 30", unit="1", value=cal_analytical / hertz_analytical,
+              reference=psi_hertz / psi.value, tolerance=1e-12,
               source="lin2019 eq 30: F_B2B proportional to 1/Psi", time_s=time_c)
-    run.check(model="lowmodel.linear_bearing.b2b", quantity="F_B2B, calibrated Psi, numerical model", unit="N",
-              value=cal_numerical, reference=PRINTED.f_b2b_ansys, tolerance=0.07, time_s=time_c,
+    run.check(model="lowmodel.linear_bearing.b2b", family="low-order numerical",
+              quantity="F_B2B, calibrated Psi, numerical model", unit="N",
+              value=cal_numerical, reference=published.PRINTED.f_b2b_ansys, tolerance=0.07, time_s=time_c,
               source="lin2019 Table 3 case (a), ANSYS FEA",
               note=f"Hertz Psi: {hertz_numerical:.4f} N; tolerance: the paper's own claim (within 6-7 %)")
     law = cal.ContactLaw(c, c_b, psi)
-    load = TABLE1.vertical_force
+    load = case.vertical_force
     approach_cal = float(law.approach(load))
     approach_hertz = c_hertz * load ** (2 / 3)  # lin2019 eq 53
-    run.check(model=MODEL, quantity="calibrated approach U(100 N) against C F^(2/3) + C_b F", unit="m",
+    run.check(**CAL, quantity="calibrated approach U(100 N) against C F^(2/3) + C_b F", unit="m",
               value=approach_cal, reference=c.value * load ** (2 / 3) + c_b.value * load, tolerance=1e-12,
               source="the fitted law", time_s=fit_time)
     rows = [("Psi [(m^2/N)^(1/3)]", psi_hertz, psi.value, f"[{psi.ci_low:.5g}, {psi.ci_high:.5g}]"),
@@ -206,54 +160,39 @@ def calibration_effect(run):
                  "fitted C; docs/calibration.md.")
     run.note("Load distribution: in the linear bearing the four normal forces of a ball are statically determinate "
              "(lin2017 eq 36) and do not depend on the contact stiffness; the calibrated stiffness changes the load "
-             "distribution over the balls of a screw, which needs the ball-screw model (issue 11): not done here.")
-    _figure(run, law, c_hertz)
+             "distribution over the balls of a screw: calibration-effect-screw.")
+    from ballbench.validation.figures.calibration import approach_law
 
-
-def _figure(run, law: cal.ContactLaw, c_hertz: float) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    force = np.linspace(1.0, 200.0, 200)
-    figure, ax = plt.subplots(figsize=(6, 4))
-    ax.plot(force, 1e6 * c_hertz * force ** (2 / 3), label="Hertz, C F^(2/3) (lin2019 eq 53)")
-    ax.plot(force, 1e6 * law.approach(force), "--", label="calibrated, C F^(2/3) + C_b F")
-    ax.set_xlabel("F [N]")
-    ax.set_ylabel("approach [um]")
-    ax.legend()
-    ax.set_title("ball in a 0.56 groove, R_B 5 mm")
-    run.save_figure(figure, "approach_law.png")
+    run.save_figure(approach_law(law, c_hertz), "approach_law.png")
 
 
 # --------------------------------------------------------------------------
 # effect of the calibrated screw and nut groove laws on the ball screw
 # --------------------------------------------------------------------------
-SCREW_FE = {"screw": ("screw-groove", "fe-hertz-screw"), "nut": ("nut-groove", "fe-hertz-nut")}
+SCREW_FE = {"screw": ("screw-groove", lin2019.CONTACT_SCREW), "nut": ("nut-groove", lin2019.CONTACT_NUT)}
 SCREW_FE_FIDELITY = "quick"  # the full helical pairs: ~240k P2 DOFs, 1.5-2.5 min each at the quick level
-WHOLE_SCREW_BALLS, WHOLE_SCREW_LOAD = 37, 1500.0  # lin2019 Sec 3.4 (validation.papers.lin2019.WHOLE_SCREW)
+WHOLE_SCREW_BALLS, WHOLE_SCREW_LOAD = lin2019.WHOLE_SCREW_BALLS, lin2019.WHOLE_SCREW_AXIAL_LOAD  # Sec 3.4
 
 
-def calibrated_groove_laws():
+def _calibrated_groove_laws():
     """Laws of the screw and nut grooves: from ``--calibration FILE`` when it has the groups ``screw-groove`` and
-    ``nut-groove``, else fitted to FE load sweeps of ``fe-hertz-screw`` / ``fe-hertz-nut`` at the quick level.
+    ``nut-groove``, else fitted to FE load sweeps of the Table 4 screw and nut contacts at the quick level.
     Returns (:class:`screw_contacts.GrooveContactLaws`, origin text)."""
     from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.calibrate import active_calibration, fe_contact_law
+    from ballbench.validation.calibrate import active_calibration, contact_law
 
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]
     if given is not None and all(g in given.constants and "psi" in given.constants[g] for g in groups):
         return screw_contacts.GrooveContactLaws.from_calibration(given, *groups), "the --calibration file"
     laws, origin = {}, []
-    for body, (_, fe_name) in SCREW_FE.items():
-        laws[body], sweep = fe_contact_law(fe_name, SCREW_FE_FIDELITY)
+    for body, (_, case) in SCREW_FE.items():
+        laws[body], sweep = contact_law(case, SCREW_FE_FIDELITY)
         origin.append(f"{sweep['source']} in {sweep['wall_time_s']:.0f} s")
     return screw_contacts.GrooveContactLaws(laws["screw"], laws["nut"]), "; ".join(origin)
 
 
-def whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BALLS,
+def _whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_BALLS,
                       total: float = WHOLE_SCREW_LOAD) -> tuple[np.ndarray, np.ndarray, object]:
     """Axial load [N] of ``n_balls`` evenly spaced over the two loaded turns (nut azimuth
     ``psi_j = (j + 1/2) 4 pi / n``) under ``total`` [N] (lowmodel.screw.load_distribution, bar model);
@@ -274,70 +213,70 @@ def calibration_effect_screw(run):
     import csv
 
     from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.papers import lin2019
-    from ballbench.validation.scenes import lin2019_screw as ls
 
+    case_a, printed_a = lin2019.TABLE5_A, published.TABLE5_A
     start = time.perf_counter()
-    laws, origin = calibrated_groove_laws()
+    laws, origin = _calibrated_groove_laws()
     fit_time = time.perf_counter() - start
-    hertz_oversize = ls.fitted_oversize()
-    module = ls.table4_module(hertz_oversize)
+    hertz_oversize = lin2019.SCREW.oversize
+    module = screw_two_ball.screw_module(lin2019.SCREW)
     # 1. the laws as the model uses them: every loaded contact of ball 1 (theta = 0, flanks at beta_0) obeys
     #    delta = C F^(2/3) + C_b F of its groove (reference from the calibrated constants and Hertz, not the model)
-    (free_c, state_c), time_c = run.time(ls.two_ball, "a", hertz_oversize, ls.READING, laws)
+    (free_c, state_c), time_c = run.time(screw_two_ball.two_ball, case_a, None, None, laws)
     worst = 0.0
     for i, body in enumerate(("screw", "screw", "nut", "nut")):
         law = getattr(laws, body)
         c_hertz = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
-                                              module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
-                                              module.poisson_ratio)[0]
+                                          module.lead_angle, module.nominal_angle, body, module.youngs_modulus,
+                                          module.poisson_ratio)[0]
         c = law.hertz_constant.value * c_hertz / (law.hertz_constant.reference or c_hertz)
         force = float(state_c.normal_force[0, i])
         if force > 0.0:
             expected = c * force ** (2 / 3) + law.bulk_compliance.value * force
             worst = max(worst, abs(float(state_c.approach[0, i]) / expected - 1.0))
-    run.check(model="lowmodel.screw.ball", quantity="max relative misfit of delta = C F^(2/3) + C_b F over "
+    run.check(**SCREW_BALL, quantity="max relative misfit of delta = C F^(2/3) + C_b F over "
               "the loaded contacts of ball 1 (Table 5 a, calibrated)", unit="1", value=worst, reference=0.0,
               scale=1.0, tolerance=1e-9, source="the calibrated law of each groove", time_s=time_c,
               why="a relative misfit: zero judged on the scale 1")
     # 2. Table 5 at the same oversize (geometric preload fitted with Hertz) and with the oversize refitted
-    refit_oversize = ls.fitted_oversize(ls.READING, laws)
+    refit_oversize = screw_two_ball.fit_oversize(case_a, printed_a.f_b2b_numerical, None, laws)
     rows, balance = [], 0.0
+    friction_increase, two_ball = screw_two_ball.friction_increase, screw_two_ball.two_ball
     for case in ("a", "b"):
-        printed = ls.PRINTED[case]
-        (free_h, state_h), _ = run.time(ls.two_ball, case, hertz_oversize)
-        (free_c, state_c), time_c = run.time(ls.two_ball, case, hertz_oversize, ls.READING, laws)
-        (free_r, state_r), time_r = run.time(ls.two_ball, case, refit_oversize, ls.READING, laws)
+        printed, screw_case = published.TABLE5[case], lin2019.TABLE5[case]
+        (free_h, state_h), _ = run.time(two_ball, screw_case)
+        (free_c, state_c), time_c = run.time(two_ball, screw_case, None, None, laws)
+        (free_r, state_r), time_r = run.time(two_ball, screw_case, refit_oversize, None, laws)
         balance = max([balance] + [abs(s.input_power - s.total_loss) / s.total_loss
                                    for s in (free_c, state_c, free_r, state_r)])
         rows.append((case, float(state_h.b2b_force[0]), float(state_c.b2b_force[0]), float(state_r.b2b_force[0]),
-                     ls.friction_increase(free_h, state_h), ls.friction_increase(free_c, state_c),
-                     ls.friction_increase(free_r, state_r)))
+                     friction_increase(free_h, state_h), friction_increase(free_c, state_c),
+                     friction_increase(free_r, state_r)))
         if case == "b":
-            run.check(model="lowmodel.screw.b2b", quantity="F_B2B, case b, calibrated laws (preload refitted "
+            run.check(**SCREW_B2B, quantity="F_B2B, case b, calibrated laws (preload refitted "
                       "on case a)", unit="N", value=float(state_r.b2b_force[0]), reference=printed.f_b2b_numerical,
                       source="lin2019 Table 5, low-order numerical", tolerance=0.05, time_s=time_r,
                       note="the tolerance of lin2019-table5-b's Hertz prediction")
-        run.check(model="lowmodel.screw.b2b", quantity=f"friction increase by B2B, case {case}, calibrated "
-                  "laws (preload refitted on case a)", unit="%", value=ls.friction_increase(free_r, state_r),
+        run.check(**SCREW_B2B, quantity=f"friction increase by B2B, case {case}, calibrated "
+                  "laws (preload refitted on case a)", unit="%", value=friction_increase(free_r, state_r),
                   reference=printed.friction_increase, source="lin2019 Sec 3.3",
                   tolerance=3.0 / printed.friction_increase, time_s=time_r,
                   note="tolerance 3 points, as lin2019-table5-a/b")
-    run.check(model="lowmodel.screw.b2b", quantity="power balance |P_in - P_loss| / P_loss, calibrated laws",
+    run.check(**SCREW_B2B, quantity="power balance |P_in - P_loss| / P_loss, calibrated laws",
               unit="1", value=balance, reference=0.0, scale=1.0, tolerance=1e-8, time_s=time_c,
-              source="energy conservation (screw at rest, nut drives)", why=ls.POWER_WHY)
+              source="energy conservation (screw at rest, nut drives)", why=POWER_WHY)
     # 3. load distribution over the balls of the nut
-    (psi, loads_h, table_h), time_h = run.time(whole_screw_loads, module)
-    (_, loads_c, table_c), time_l = run.time(whole_screw_loads, module, laws)
+    (psi, loads_h, table_h), time_h = run.time(_whole_screw_loads, module)
+    (_, loads_c, table_c), time_l = run.time(_whole_screw_loads, module, laws)
     for name, loads, t in (("Hertz", loads_h, time_h), ("calibrated", loads_c, time_l)):
-        run.check(model="lowmodel.screw.load_distribution", quantity=f"sum of the ball loads, {name} contacts",
+        run.check(**DISTRIBUTION, quantity=f"sum of the ball loads, {name} contacts",
                   unit="N", value=float(loads.sum()), reference=WHOLE_SCREW_LOAD, tolerance=1e-9, time_s=t,
                   source="axial equilibrium of the nut")
     mean = WHOLE_SCREW_LOAD / WHOLE_SCREW_BALLS
     shift_h, shift_c = float(table_h.shift(mean)), float(table_c.shift(mean))
     spread_h, spread_c = loads_h.max() / loads_h.min(), loads_c.max() / loads_c.min()
     stiffer = abs(shift_c) < abs(shift_h)
-    run.check(model="lowmodel.screw.load_distribution", quantity="load spread max/min, calibrated over Hertz "
+    run.check(**DISTRIBUTION, quantity="load spread max/min, calibrated over Hertz "
               f"({'>= 1: stiffer' if stiffer else '<= 1: softer'} calibrated ball contacts)", unit="1",
               value=float(spread_c / spread_h), reference=1.0, relation="ge" if stiffer else "le", tolerance=0.0,
               time_s=time_l, source="bar model: stiffer balls against the same screw and nut bars spread the load "
@@ -352,10 +291,9 @@ def calibration_effect_screw(run):
     parts = []
     for body in ("screw", "nut"):
         law = getattr(laws, body)
-        c_hertz, a_unit, _ = screw_contacts.hertz_direct(module.ball_radius, module.conformity,
-                                                         module.pitch_radius, module.lead_angle,
-                                                         module.nominal_angle, body, module.youngs_modulus,
-                                                         module.poisson_ratio)
+        c_hertz, a_unit, _ = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                                     module.lead_angle, module.nominal_angle, body,
+                                                     module.youngs_modulus, module.poisson_ratio)
         psi_hertz = a_unit / module.ball_radius ** (1 / 3)  # lin2019 eq 15
         parts.append(f"{body} groove: C {law.hertz_constant.value:.6g} m N^-2/3 (Hertz {c_hertz:.6g}, "
                      f"{100 * (law.hertz_constant.value / c_hertz - 1):+.2f} %), C_b {law.bulk_compliance.value:.4g} "
@@ -367,9 +305,10 @@ def calibration_effect_screw(run):
         f"case {case}: F_B2B Hertz {fh:.4f} N, calibrated same oversize {fc:.4f} N ({100 * (fc / fh - 1):+.2f} %), "
         f"calibrated refitted oversize {fr:.4f} N ({100 * (fr / fh - 1):+.2f} %); friction increase Hertz "
         f"{ih:.2f} %, calibrated {ic:.2f} % / {ir:.2f} %" for case, fh, fc, fr, ih, ic, ir in rows)
-    run.note(f"lin2019 Table 5 (50 N, {ls.READING} reading): oversize fitted with Hertz {hertz_oversize * 1e6:.4f} um, "
-             f"refitted with the calibrated laws {refit_oversize * 1e6:.4f} um. {table}.  At the same oversize the "
-             "stiffer calibrated contacts carry more preload and press the balls together harder.")
+    run.note(f"lin2019 Table 5 (50 N, {case_a.reading} reading): oversize fitted with Hertz "
+             f"{hertz_oversize * 1e6:.4f} um, refitted with the calibrated laws {refit_oversize * 1e6:.4f} um. "
+             f"{table}.  At the same oversize the stiffer calibrated contacts carry more preload and press the "
+             "balls together harder.")
     run.note(f"Load distribution, {WHOLE_SCREW_BALLS} balls evenly over 2 turns, {WHOLE_SCREW_LOAD:g} N "
              f"(lowmodel.screw.load_distribution, preload {hertz_oversize * 1e6:.4f} um): ball 1 (loaded end) "
              f"Hertz {loads_h[0]:.3f} N, calibrated {loads_c[0]:.3f} N ({change[0]:+.3f} %); ball "
@@ -377,4 +316,4 @@ def calibration_effect_screw(run):
              f"{change.min():+.3f} to {change.max():+.3f} % (load_distribution.csv); max/min {spread_h:.4f} (Hertz), "
              f"{spread_c:.4f} (calibrated). Axial shift of one ball at the mean load {mean:.2f} N: Hertz "
              f"{shift_h * 1e6:.4f} um, calibrated {shift_c * 1e6:.4f} um. lin2019 Table 5 printed "
-             f"{lin2019.TABLE5_A.f_b2b_numerical} / {lin2019.TABLE5_B.f_b2b_numerical} N.")
+             f"{published.TABLE5_A.f_b2b_numerical} / {published.TABLE5_B.f_b2b_numerical} N.")

@@ -10,10 +10,12 @@ import math
 import numpy as np
 
 from ballbench.lowmodel.linear_bearing import fourpoint
-from ballbench.validation.papers.lin2017 import CASES, case1_angles, case2_angles
+from ballbench.validation.cases.lin2017 import CASES, case1_angles, case2_angles
+from ballbench.validation.figures import lin2017 as figures
 from ballbench.validation.scene import relative_error, scene
 
 MODEL = "lowmodel.linear_bearing.fourpoint"
+RIGID = dict(model=MODEL, family="analytical")
 VERTICAL_FORCE = CASES.vertical_force           # N_y [N]; the maps are normalised by it (lin2017: "a fixed N_y")
 BALL_RADIUS = CASES.ball_radius                 # m (drops out of v_B and the loss; sets omega)
 MU = CASES.friction_coefficient                 # mu_k (drops out of the state; scales forces and loss)
@@ -51,52 +53,6 @@ def _map(angles_of, angle_values, rho_values):
     return labels, loss, inside, (lower, upper)
 
 
-def _state_figure(angle_values, rho_values, labels, limits, lines, xlabel, title):
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap
-    from matplotlib.patches import Patch
-
-    present = sorted({label for label in labels.ravel() if label}, key=lambda s: (s.count("+"), s))
-    palette = plt.get_cmap("tab10").colors
-    codes = np.full(labels.shape, np.nan)
-    for k, label in enumerate(present):
-        codes[labels == label] = k
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    degrees = np.degrees(angle_values)
-    ax.pcolormesh(degrees, rho_values, codes.T, cmap=ListedColormap(palette[:len(present)]), vmin=-0.5,
-                  vmax=len(present) - 0.5, shading="nearest")
-    off = np.where(labels == "", 1.0, np.nan)
-    ax.pcolormesh(degrees, rho_values, off.T, cmap=ListedColormap(["0.75"]), shading="nearest")
-    ax.plot(degrees, limits[0][:, 0], "k:", degrees, limits[1][:, 0], "k:")
-    for (values, color, text) in lines:
-        ax.plot(degrees, values, color=color, lw=2.5, ls="--", label=text)
-    handles = [Patch(color=palette[k], label=label) for k, label in enumerate(present)]
-    handles.append(Patch(color="0.75", label="loss of contact (eq 37)"))
-    ax.legend(handles=handles + ax.get_legend_handles_labels()[0], fontsize=7, loc="upper left",
-              bbox_to_anchor=(1.01, 1.0))
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(r"$\rho = N_x / N_y$")
-    ax.set_ylim(rho_values[0], rho_values[-1])
-    ax.set_title(title, fontsize=9)
-    return fig
-
-
-def _loss_figure(angle_values, rho_values, loss, xlabel, title):
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6.0, 4.6))
-    image = ax.pcolormesh(np.degrees(angle_values), rho_values, loss.T, shading="nearest", cmap="viridis")
-    top = float(np.nanmax(loss))
-    if top > 0:
-        ax.contour(np.degrees(angle_values), rho_values, loss.T, colors="w", linewidths=0.5,
-                   levels=np.linspace(0.1, 0.9, 9) * top)
-    fig.colorbar(image, ax=ax, label=r"$P_f / (\mu_k v N_y)$")
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(r"$\rho = N_x / N_y$")
-    ax.set_title(title, fontsize=9)
-    return fig
-
-
 def _worst(values, references, scale=0.0):
     errors = [relative_error(float(v), float(r), scale=scale) for v, r in zip(values, references)]
     k = int(np.argmax(errors))
@@ -132,7 +88,7 @@ def lin2017_eq39(run):
     eq39 = -(1 + np.sin(thetas) - np.cos(thetas)) / (1 + np.sin(thetas) + np.cos(thetas))  # lin2017 eq 39
     blue, time_s = run.time(fourpoint.two_point_sliding_ratio, case1_angles(thetas), "TR", "BR")
     value, reference, k = _worst(blue, eq39, scale=1.0)
-    run.check(model=MODEL, quantity=f"rho on the K_TR = K_BR line (blue), worst of theta in [0, 5] deg "
+    run.check(**RIGID, quantity=f"rho on the K_TR = K_BR line (blue), worst of theta in [0, 5] deg "
                                     f"(theta = {math.degrees(thetas[k]):.2f} deg)", unit="1", value=value,
               reference=reference, source="lin2017 eq 39", tolerance=1e-9, scale=1.0, time_s=time_s,
               why="rho is of order 1 (|rho| < 1.1 in Fig 7) and the line passes rho = 0 at theta = 0",
@@ -140,7 +96,7 @@ def lin2017_eq39(run):
     red, time_s = run.time(fourpoint.two_point_sliding_ratio, case1_angles(-thetas), "BL", "TL")
     value, reference, k = _worst(red, -(1 - np.sin(thetas) - np.cos(thetas)) / (1 - np.sin(thetas) + np.cos(thetas)),
                                  scale=1.0)
-    run.check(model=MODEL, quantity=f"rho on the K_BL = K_TL line (red), worst of theta in [-5, 0] deg "
+    run.check(**RIGID, quantity=f"rho on the K_BL = K_TL line (red), worst of theta in [-5, 0] deg "
                                     f"(theta = {-math.degrees(thetas[k]):.2f} deg)", unit="1", value=value,
               reference=reference, source="lin2017 eq 39 (theta < 0)", tolerance=1e-9, scale=1.0, time_s=time_s,
               why="rho is of order 1 (|rho| < 1.1 in Fig 7) and the line passes rho = 0 at theta = 0")
@@ -154,7 +110,7 @@ def lin2017_eq39(run):
     expected = (np.all(on.sliding == [False, True, True, False], axis=-1)
                 & np.all(above.sliding == [False, False, True, False], axis=-1)
                 & np.all(below.sliding == [False, True, False, False], axis=-1))
-    run.check(model=MODEL, quantity="fraction of theta in (0, 5] deg with BR+TR sliding on the line, TR above, "
+    run.check(**RIGID, quantity="fraction of theta in (0, 5] deg with BR+TR sliding on the line, TR above, "
                                     "BR below (rho +- 1e-7)", unit="1", value=float(np.mean(expected)), reference=1.0,
               source="lin2017 Sec 3.2 (Fig 7: four one-point regions, two-point lines)", tolerance=0.0,
               time_s=time_states)
@@ -166,26 +122,26 @@ def lin2017_eq39(run):
     mirrored = np.vectorize(lambda s: "+".join(sorted((MIRROR.get(c, c) for c in s.split("+")),
                                                       key=lambda c: fourpoint.CONTACT_NAMES.index(c)))
                             if s not in ("", "rolling") else s, otypes=[object])(labels[::-1, ::-1])
-    run.check(model=MODEL, quantity="fraction of Fig 7 grid points whose state equals the left/right mirror of "
+    run.check(**RIGID, quantity="fraction of Fig 7 grid points whose state equals the left/right mirror of "
                                     "the state at (-theta, -rho)", unit="1", value=float(np.mean(labels == mirrored)),
               reference=1.0, source="lin2017 Sec 3.2 ('symmetric about the origin')", tolerance=0.0, time_s=time_map)
     zero = n_theta // 2
     rolling = labels[zero][inside[zero]] == "rolling"
-    run.check(model=MODEL, quantity="fraction of rho with pure rolling at theta = 0", unit="1",
+    run.check(**RIGID, quantity="fraction of rho with pure rolling at theta = 0", unit="1",
               value=float(np.mean(rolling)), reference=1.0, source="lin2017 Sec 3.2 ('At theta = 0, pure rolling')",
               tolerance=0.0, time_s=time_map)
-    run.check(model=MODEL, quantity="max friction loss at theta = 0", unit="W",
+    run.check(**RIGID, quantity="max friction loss at theta = 0", unit="W",
               value=float(np.nanmax(loss[zero]) * MU * GROOVE_VELOCITY * VERTICAL_FORCE), reference=0.0,
               source="lin2017 Sec 2.2 (pure rolling: no loss)", tolerance=1e-12,
               scale=MU * GROOVE_VELOCITY * VERTICAL_FORCE, time_s=time_map,
               why="pure rolling loses nothing: zero judged against the loss scale mu v N_y")
     one_point = {label for label in labels[inside] if label and "+" not in label and label != "rolling"}
-    run.check(model=MODEL, quantity="number of one-point sliding regions in Fig 7", unit="1",
+    run.check(**RIGID, quantity="number of one-point sliding regions in Fig 7", unit="1",
               value=float(len(one_point)), reference=4.0, source="lin2017 Sec 3.2 ('The four regions')",
               tolerance=0.0, time_s=time_map)
     blue_line = fourpoint.two_point_sliding_ratio(case1_angles(theta_values), "TR", "BR")
     red_line = fourpoint.two_point_sliding_ratio(case1_angles(theta_values), "BL", "TL")
-    fig = _state_figure(theta_values, rho_values, labels, limits,
+    fig = figures.state_figure(theta_values, rho_values, labels, limits,
                         [(np.where(theta_values >= 0, blue_line, np.nan), "navy", "K_TR = K_BR (model)"),
                          (np.where(theta_values <= 0, red_line, np.nan), "darkred", "K_BL = K_TL (model)")],
                         r"angular misalignment $\theta$ [deg]",
@@ -203,25 +159,25 @@ def lin2017_eq41(run):
     v = GROOVE_VELOCITY
     eq41 = v / (1 + np.cos(thetas) + np.sin(thetas))                      # lin2017 eq 41
     value, reference, k = _worst(state.ball_velocity, eq41)
-    run.check(model=MODEL, quantity=f"v_B, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
+    run.check(**RIGID, quantity=f"v_B, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
               unit="m/s", value=value, reference=reference, source="lin2017 eq 41", tolerance=1e-9, time_s=time_s)
     value, reference, k = _worst(state.omega[:, 0], eq41 * math.sqrt(2) / BALL_RADIUS)
-    run.check(model=MODEL,
+    run.check(**RIGID,
               quantity=f"omega_x, worst of theta in [0, 5] deg (theta = {math.degrees(thetas[k]):.2f} deg)",
               unit="rad/s", value=value, reference=reference, source="lin2017 eq 41", tolerance=1e-9, time_s=time_s)
     scale = v / BALL_RADIUS
     worst = int(np.argmax(np.abs(state.omega[:, 1])))
-    run.check(model=MODEL, quantity="omega_y, largest |value| over theta in [0, 5] deg", unit="rad/s",
+    run.check(**RIGID, quantity="omega_y, largest |value| over theta in [0, 5] deg", unit="rad/s",
               value=float(state.omega[worst, 1]), reference=0.0, source="lin2017 eq 41", tolerance=1e-9,
               scale=scale, time_s=time_s, note="scale v / R_B",
               why="omega_y = 0 judged against the rolling speed scale v / R_B")
     tr_only = np.all(state.sliding[1:] == [False, False, True, False], axis=-1)
-    run.check(model=MODEL, quantity="fraction of theta in (0, 5] deg with TR sliding alone", unit="1",
+    run.check(**RIGID, quantity="fraction of theta in (0, 5] deg with TR sliding alone", unit="1",
               value=float(np.mean(tr_only)), reference=1.0, source="lin2017 Sec 3.2 ('the TR contact point will be "
               "sliding')", tolerance=0.0, time_s=time_s)
-    run.check(model=MODEL, quantity="v_B at theta = 0 (pure rolling)", unit="m/s", value=float(state.ball_velocity[0]),
+    run.check(**RIGID, quantity="v_B at theta = 0 (pure rolling)", unit="m/s", value=float(state.ball_velocity[0]),
               reference=v / 2, source="lin2017 eq 11 / Sec 3.2 ('translates at v/2')", tolerance=1e-12, time_s=time_s)
-    run.check(model=MODEL, quantity="largest increase of v_B between neighbouring theta (decreasing)", unit="m/s",
+    run.check(**RIGID, quantity="largest increase of v_B between neighbouring theta (decreasing)", unit="m/s",
               value=float(np.max(np.diff(state.ball_velocity))), reference=0.0, relation="le", scale=v,
               why="a bound at zero judged against the groove speed v",
               source="lin2017 Sec 3.2 ('translational and rotational velocities decrease')", tolerance=0.0,
@@ -245,7 +201,7 @@ def lin2017_eq40(run):
     eq40 = k_sliding * 2 * GROOVE_VELOCITY * MU * np.abs(np.sin(theta_grid[inside]))            # eq 40
     scale = MU * GROOVE_VELOCITY * VERTICAL_FORCE
     value, reference, k = _worst(state.friction_loss, eq40, scale=1e-12 * scale)
-    run.check(model=MODEL, quantity=f"friction loss, worst of {int(inside.sum())} grid points (theta = "
+    run.check(**RIGID, quantity=f"friction loss, worst of {int(inside.sum())} grid points (theta = "
                                     f"{math.degrees(theta_grid[inside][k]):.2f} deg, rho = {rho_grid[inside][k]:.3f})",
               unit="W", value=value, reference=reference, source="lin2017 eq 40 with K_X of eq 38 (smallest)",
               tolerance=1e-9, scale=1e-12 * scale, time_s=time_s,
@@ -253,7 +209,7 @@ def lin2017_eq40(run):
               note="reference 0 at theta = 0 judged against 1e-12 mu v N_y")
     groove = GROOVE_VELOCITY * (state.friction_forces[:, 2] + state.friction_forces[:, 3])
     value, reference, k = _worst(state.friction_loss, groove, scale=1e-12 * scale)
-    run.check(model=MODEL, quantity="friction loss vs v (f_TR + f_TL), worst grid point", unit="W", value=value,
+    run.check(**RIGID, quantity="friction loss vs v (f_TR + f_TL), worst grid point", unit="W", value=value,
               reference=reference, source="power balance (work of the groove drive)", tolerance=1e-9,
               scale=1e-12 * scale, why="the loss is 0 at theta = 0: judged there against 1e-12 mu v N_y", time_s=time_s)
 
@@ -264,17 +220,17 @@ def lin2017_eq40(run):
     half = n_theta // 2
     rising = np.concatenate([np.diff(loss[half:, band], axis=0).ravel(),
                              np.diff(loss[half::-1, band], axis=0).ravel()])
-    run.check(model=MODEL, quantity="fraction of steps in |theta| (|rho| <= 0.5) where the loss rises", unit="1",
+    run.check(**RIGID, quantity="fraction of steps in |theta| (|rho| <= 0.5) where the loss rises", unit="1",
               value=float(np.mean(rising > 0)), reference=1.0, tolerance=0.0, time_s=time_s,
               source="lin2017 Sec 3.2 ('friction loss increases with increasing angular misalignment')")
     rows = [i for i in range(n_theta) if i != half]
     line = fourpoint.two_point_sliding_ratio(case1_angles(theta_values[rows]), "TR", "BR")
-    run.check(model=MODEL, quantity="fraction of theta != 0 whose loss over rho peaks at the two-point line "
+    run.check(**RIGID, quantity="fraction of theta != 0 whose loss over rho peaks at the two-point line "
                                     "(|rho| <= tan 2.5 deg) and falls on both sides", unit="1",
               value=_unimodal_rows(loss[rows], rho_values, line) / len(rows), reference=1.0, tolerance=0.0,
               time_s=time_s,
               source="lin2017 Sec 3.2 ('smaller side load generally gives rise to more friction loss')")
-    fig = _loss_figure(theta_values, rho_values, loss, r"angular misalignment $\theta$ [deg]",
+    fig = figures.loss_figure(theta_values, rho_values, loss, r"angular misalignment $\theta$ [deg]",
                        "lin2017 Fig 8: relative friction loss, case 1")
     run.save_figure(fig, "fig8_relative_loss.png")
     run.note("Relative loss P_f / (mu_k v N_y); the loss-of-contact region (eq 37) is left blank.")
@@ -290,7 +246,7 @@ def lin2017_case2(run):
     alpha_grid, rho_grid = np.meshgrid(alpha_values, rho_values, indexing="ij")
     state = _solve(case2_angles(alpha_grid[inside]), rho_grid[inside])
     value, reference, k = _worst(state.K[:, 0], state.K[:, 2])
-    run.check(model=MODEL, quantity="K_BL against K_TR, worst grid point", unit="N", value=value, reference=reference,
+    run.check(**RIGID, quantity="K_BL against K_TR, worst grid point", unit="N", value=value, reference=reference,
               source="lin2017 Sec 3.3 ('K_BL = K_TR')", tolerance=1e-12, time_s=time_map)
     half = n_alpha // 2
     nonzero = [i for i in range(n_alpha) if i != half]
@@ -299,22 +255,22 @@ def lin2017_case2(run):
     line = np.array([fourpoint.two_point_sliding_ratio(case2_angles(a), "BL", o)
                      for a, o in zip(alpha_values[nonzero], other)])
     mask = (rho_grid[nonzero] > line[:, None] + 1e-9) & inside[nonzero]
-    run.check(model=MODEL, quantity="fraction of contact points above the three-point line with BL+TR sliding",
+    run.check(**RIGID, quantity="fraction of contact points above the three-point line with BL+TR sliding",
               unit="1", value=float(np.mean(labels[nonzero][mask] == "BL+TR")), reference=1.0, tolerance=0.0,
               time_s=time_map, source="lin2017 Sec 3.3 ('two-point sliding (BL and TR) ... for a wide range of "
                                       "positive rho')")
     on = _solve(case2_angles(alpha_values[nonzero]), line)
     expected = np.where((alpha_values[nonzero] > 0)[:, None], [True, True, True, False], [True, False, True, True])
-    run.check(model=MODEL, quantity="fraction of alpha != 0 with three-point sliding on the boundary line", unit="1",
+    run.check(**RIGID, quantity="fraction of alpha != 0 with three-point sliding on the boundary line", unit="1",
               value=float(np.mean(np.all(on.sliding == expected, axis=-1))), reference=1.0, tolerance=0.0,
               time_s=time_map, source="lin2017 Sec 3.3 ('Three-point sliding happens at the intersection')")
     band = np.abs(rho_values) <= 0.5
     rising = np.concatenate([np.diff(loss[half:, band], axis=0).ravel(),
                              np.diff(loss[half::-1, band], axis=0).ravel()])
-    run.check(model=MODEL, quantity="fraction of steps in |alpha| (|rho| <= 0.5) where the loss rises", unit="1",
+    run.check(**RIGID, quantity="fraction of steps in |alpha| (|rho| <= 0.5) where the loss rises", unit="1",
               value=float(np.mean(rising > 0)), reference=1.0, tolerance=0.0, time_s=time_map,
               source="lin2017 Sec 3.3 ('friction loss increases with increasing contact angle deviation')")
-    run.check(model=MODEL, quantity="fraction of alpha != 0 whose loss over rho peaks at the three-point line "
+    run.check(**RIGID, quantity="fraction of alpha != 0 whose loss over rho peaks at the three-point line "
                                     "(small |rho|) and falls on both sides", unit="1",
               value=_unimodal_rows(loss[nonzero], rho_values, line) / len(nonzero), reference=1.0, tolerance=0.0,
               time_s=time_map, source="lin2017 Sec 3.3 ('smaller side load generally gives rise to more friction "
@@ -323,11 +279,12 @@ def lin2017_case2(run):
                        np.nan), "navy", "BL+BR+TR (model)"),
              (np.where(alpha_values < 0, fourpoint.two_point_sliding_ratio(case2_angles(alpha_values), "BL", "TL"),
                        np.nan), "black", "BL+TR+TL (model)")]
-    fig = _state_figure(alpha_values, rho_values, labels, limits, lines, r"TR contact angle deviation $\alpha$ [deg]",
-                        "lin2017 Fig 11: sliding contact(s), case 2 (TR deviation alpha)")
+    fig = figures.state_figure(alpha_values, rho_values, labels, limits, lines,
+                               r"TR contact angle deviation $\alpha$ [deg]",
+                               "lin2017 Fig 11: sliding contact(s), case 2 (TR deviation alpha)")
     run.save_figure(fig, "fig11_sliding_states.png")
-    fig = _loss_figure(alpha_values, rho_values, loss, r"TR contact angle deviation $\alpha$ [deg]",
-                       "lin2017 Fig 12: relative friction loss, case 2")
+    fig = figures.loss_figure(alpha_values, rho_values, loss, r"TR contact angle deviation $\alpha$ [deg]",
+                              "lin2017 Fig 12: relative friction loss, case 2")
     run.save_figure(fig, "fig12_relative_loss.png")
     run.note("On a tie of K the friction forces and loss are unique, the ball motion is not (lin2017 eq 30); "
              "the model reports the centroid of the admissible motions.")

@@ -6,15 +6,17 @@ import warnings
 import numpy as np
 
 from ballbench.lowmodel.contact import hertz
-from ballbench.validation.papers.lin2019 import TABLE1
+from ballbench.validation.cases import lin2019
 from ballbench.validation.references.hertz import (contact_modulus, ellipse_quadrature, groove_half_curvatures,
                                                    sphere_closed_form)
+from ballbench.validation.references.published.lin2019 import PSI
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.hertz"
-STEEL = TABLE1.material  # lin2019 Table 1
-BALL_RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
-LOAD = TABLE1.vertical_force  # N, lin2019 Table 1 (N_y)
+HERTZ = dict(model=MODEL, family="analytical")
+STEEL = lin2019.STEEL.keywords  # lin2019 Table 1
+BALL_RADIUS = lin2019.GUIDE.ball_radius  # m, lin2019 Table 1
+LOAD = lin2019.VERTICAL_FORCE  # N, lin2019 Table 1 (N_y)
 
 
 def _check_sphere(run, geometry, equivalent_radius: float, source: str) -> None:
@@ -22,9 +24,9 @@ def _check_sphere(run, geometry, equivalent_radius: float, source: str) -> None:
     reference = sphere_closed_form(LOAD, equivalent_radius, contact_modulus(**STEEL))  # raw E, nu only
     units = {"a": "m", "b": "m", "delta": "m", "p0": "Pa"}
     for quantity, unit in units.items():
-        run.check(model=MODEL, quantity=quantity, unit=unit, value=float(getattr(contact, quantity)),
+        run.check(**HERTZ, quantity=quantity, unit=unit, value=float(getattr(contact, quantity)),
                   reference=reference[quantity], source=source, tolerance=1e-10, time_s=time_s)
-    run.check(model=MODEL, quantity="stiffness", unit="N/m", value=float(contact.stiffness),
+    run.check(**HERTZ, quantity="stiffness", unit="N/m", value=float(contact.stiffness),
               reference=1.5 * LOAD / reference["delta"], source=source + "; dF/d(delta) = 3F/(2 delta)",
               tolerance=1e-10, time_s=time_s)
 
@@ -80,50 +82,41 @@ def hertz_groove_conformity(run):
               "(validation/references/hertz.py)")
     for quantity, label in (("A", "curvature A across groove"), ("B", "curvature B along groove"),
                             ("delta", "approach delta"), ("force", "load 2 pi a b p0 / 3")):
-        run.check(model=MODEL, quantity=f"worst rel. error of {label} over sweep", unit="1",
+        run.check(**HERTZ, quantity=f"worst rel. error of {label} over sweep", unit="1",
                   value=worst[quantity], reference=0.0, scale=1.0, source=source, tolerance=1e-9,
                   why="the value is itself a relative error: zero judged on the scale 1",
                   time_s=time_s, note="value is itself the worst relative error; reference 0 on scale 1")
     semi_a, semi_b = np.array(semi_a), np.array(semi_b)
     non_monotone = int(np.sum(np.diff(semi_a) >= 0) + np.sum(np.diff(semi_b) <= 0))
     non_finite = int(np.sum(~np.isfinite(semi_a)) + np.sum(~np.isfinite(semi_b)))
-    run.check(model=MODEL, quantity="non-monotone steps of a (falling) and b (rising)", unit="count",
+    run.check(**HERTZ, quantity="non-monotone steps of a (falling) and b (rising)", unit="count",
               value=non_monotone, reference=0.0, scale=1.0, source="Hertz theory: a falls, b rises with conformity",
               why="a count: zero judged on the scale of one",
               tolerance=0.0, time_s=time_s)
-    run.check(model=MODEL, quantity="warnings + non-finite values", unit="count",
-              value=caught_warnings + non_finite, reference=0.0, scale=1.0, source="stability requirement (issue 2)",
+    run.check(**HERTZ, quantity="warnings + non-finite values", unit="count",
+              value=caught_warnings + non_finite, reference=0.0, scale=1.0,
+              source="stability requirement (docs/hertz.md)",
               why="a count: zero judged on the scale of one",
               tolerance=0.0, time_s=time_s)
     run.note(f"Sweep: {count} conformities geometrically spaced from 0.5005 to 0.6, R_B = 5 mm, F = 100 N, "
              f"E = 210 GPa, nu = 0.28; b/a from {semi_b[0] / semi_a[0]:.4f} to {semi_b[-1] / semi_a[-1]:.4f}.")
-    import matplotlib
+    from ballbench.validation.figures.hertz import semi_axes_vs_conformity
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(6, 4))
-    axes.semilogy(conformity, semi_a / BALL_RADIUS, label="a / R_B (across groove)")
-    axes.semilogy(conformity, semi_b / BALL_RADIUS, label="b / R_B (along groove)")
-    axes.set_xlabel("conformity [-]")
-    axes.set_ylabel("semi-axis / ball radius [-]")
-    axes.set_title("Hertz ellipse, R_B = 5 mm, F = 100 N")
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend()
-    run.save_figure(figure, "semi_axes_vs_conformity.png")
+    run.save_figure(semi_axes_vs_conformity(conformity, semi_a / BALL_RADIUS, semi_b / BALL_RADIUS),
+                    "semi_axes_vs_conformity.png")
 
 
 @scene("lin2019-table1-psi", "Psi of lin2019 eq 15 recomputed from Hertz theory for the Table 1 geometry",
        kind="analytical", cost_s=0.1)
 def lin2019_table1_psi(run):
     def model():
-        geometry = hertz.ball_in_groove(BALL_RADIUS, TABLE1.conformity, **STEEL)
+        geometry = hertz.ball_in_groove(BALL_RADIUS, lin2019.GUIDE.conformity, **STEEL)
         return hertz.psi_constant(geometry, BALL_RADIUS)
 
     psi, time_s = run.time(model)
-    printed = TABLE1.psi
+    printed = PSI
     half_unit = 0.0005e-4 / printed  # the table prints 4 significant figures
-    run.check(model=MODEL, quantity="Psi", unit="(m^2/N)^(1/3)", value=psi, reference=printed,
+    run.check(**HERTZ, quantity="Psi", unit="(m^2/N)^(1/3)", value=psi, reference=printed,
               source="lin2019 Table 1", tolerance=half_unit, time_s=time_s,
               note="tolerance = half a unit of the last printed digit")
     run.note("The paper's Psi is the major semi-axis constant of the ball/groove contact "

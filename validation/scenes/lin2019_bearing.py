@@ -13,26 +13,30 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.linear_bearing import b2b
-from ballbench.lowmodel.linear_bearing import ball as bearing_ball
-
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.validation.papers.lin2019 import CASE, PRINTED, TABLE1
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import lin2019 as figures
+from ballbench.validation.references.published.lin2019 import PRINTED
 from ballbench.validation.scene import KnownGap, scene
 
 MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
-RADIUS = TABLE1.ball_radius  # m, lin2019 Table 1
-CONFORMITY = TABLE1.conformity
-VERTICAL = TABLE1.vertical_force  # N, N_y
-SPEED = TABLE1.groove_velocity  # m/s, v
-MU = TABLE1.friction_coefficient
+BALL = dict(model=MODEL_BALL, family="low-order numerical")
+B2B = dict(model=MODEL_B2B, family="low-order numerical")
+CASE = lin2019.TABLE3_A  # lin2019 Table 1 guide, Tables 2-3 case (a)
+GUIDE = CASE.guide
+RADIUS = GUIDE.ball_radius  # m, lin2019 Table 1
+CONFORMITY = GUIDE.conformity
+VERTICAL = CASE.vertical_force  # N, N_y
+SPEED = GUIDE.groove_velocity  # m/s, v
+MU = GUIDE.friction_coefficient
 THETA = CASE.theta  # Table 2/3 cases
 RHO = CASE.side_force_ratio
 # keyword arguments of b2b.module_contacts (lin2019 Table 1)
-TABLE1_INPUTS = dict(ball_radius=RADIUS, conformity=CONFORMITY, vertical_force=VERTICAL, groove_velocity=SPEED,
-                     friction_coefficient=MU, nominal_angle=CASE.nominal_angle, **TABLE1.material)
+TABLE1_INPUTS = dict(vertical_force=VERTICAL, nominal_angle=GUIDE.nominal_angle, **GUIDE.keywords)
 GRID = {"quick": (9, 9), "default": (25, 25), "fine": (49, 49)}  # (rho, theta) points of Figs 8 and 9
 EDGE_MARGINS = {"quick": (0.02, 0.005), "default": (0.04, 0.02, 0.01, 0.003, 0.001),
                 "fine": (0.05, 0.04, 0.03, 0.02, 0.01, 0.003, 0.001, 1e-4)}  # extra rho near the eq 37 limit
@@ -51,7 +55,7 @@ FIG9_GAP = KnownGap(
 
 def _four_point_limit(theta: float) -> tuple[float, float]:
     """Admissible rho of both balls (lin2017 eq 37 for N_x = +rho N_y and -rho N_y), top groove exact."""
-    b0 = CASE.nominal_angle
+    b0 = GUIDE.nominal_angle
     tan_bl, tan_br, tan_top = math.tan(b0 - theta), math.tan(b0 + theta), math.tan(b0)
     # ball 1: -min(tan BL, tan TR) <= rho <= min(tan BR, tan TL); ball 2 the same for -rho
     upper = min(min(tan_br, tan_top), min(tan_bl, tan_top))
@@ -74,17 +78,18 @@ def _power_error(state) -> float:
 
 
 @scene("lin2019-table2-a", "Velocity deviations of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 2 case a, "
-       "low-order numerical model) and Fig 8 (epsilon_1 - epsilon_2 over rho and theta)", kind="low-order", cost_s=3.5)
+       "low-order numerical model) and Fig 8 (epsilon_1 - epsilon_2 over rho and theta)", kind="low-order", cost_s=3.5,
+       case=CASE)
 def table2_a(run):
     contacts = _case(THETA, RHO)
     bearing_ball.solve(contacts)  # warm-up: loads the friction map once
     state, time_s = run.time(bearing_ball.solve, contacts)
     eps = state.velocity_deviation * 100.0
-    run.check(model=MODEL_BALL, quantity="epsilon_1", unit="%", value=float(eps[0]),
+    run.check(**BALL, quantity="epsilon_1", unit="%", value=float(eps[0]),
               reference=PRINTED.epsilon_1_numerical,
               source="lin2019 Table 2 case (a), low-order numerical model", tolerance=0.006, time_s=time_s,
               note="tolerance = half a unit of the published last digit")
-    run.check(model=MODEL_BALL, quantity="power balance (input - losses)/input", unit="1",
+    run.check(**BALL, quantity="power balance (input - losses)/input", unit="1",
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
               why="the value is itself a relative power error: zero judged on the scale 1",
               source="energy conservation (quasi-static)", time_s=time_s)
@@ -96,8 +101,6 @@ def table2_a(run):
 
 
 def _figure8(run):
-    import matplotlib.pyplot as plt
-
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     n_rho, n_theta = GRID[run.fidelity]
@@ -122,37 +125,25 @@ def _figure8(run):
     analytical = (b2b_analytical.side_force_deviation(theta_grid, rho_grid)
                   - b2b_analytical.side_force_deviation(theta_grid, -rho_grid))
     analytical = np.where(inside, analytical, np.nan)
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
-    vmax = float(np.nanmax(np.abs(analytical))) * 100
-    for ax, values, title in ((axes[0], numerical, "(a) low-order numerical"), (axes[1], analytical,
-                                                                                "(b) analytical, eq 33")):
-        mesh = ax.pcolormesh(rhos, np.degrees(thetas), values * 100, shading="nearest", cmap="RdBu_r",
-                             vmin=-vmax, vmax=vmax)
-        ax.set_xlabel("side force ratio rho = N_x / N_y")
-        ax.set_title(title)
-    axes[0].set_ylabel("contact angle deviation theta [deg]")
-    fig.colorbar(mesh, ax=axes, label="epsilon_1 - epsilon_2 [%]")
-    run.save_figure(fig, "fig8.png")
-    plt.close(fig)
+    run.save_figure(figures.velocity_deviation_maps(rhos, np.degrees(thetas), numerical, analytical), "fig8.png")
     run.note(f"Fig 8 grid: {n_rho} x {n_theta} points, rho in [-0.95, 0.95], theta in [-3, 3] deg; white: outside "
              f"four-point contact (lin2017 eq 37) or no full-sliding state ({failed} points, see lin2019-stability).")
 
 
 @scene("lin2019-table2-b", "Velocity deviations with the mitigating top groove (lin2019 Table 2 case b) and the gap "
-       "history of Fig 10 (cases a and b, initial gap 0.1 R_B)", kind="low-order", cost_s=0.4)
+       "history of Fig 10 (cases a and b, initial gap 0.1 R_B)", kind="low-order", cost_s=0.4,
+       case=lin2019.TABLE3_B)
 def table2_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
     state, time_s = run.time(bearing_ball.solve, contacts)
     for k in range(2):
-        run.check(model=MODEL_BALL, quantity=f"epsilon_{k + 1}", unit="%",
+        run.check(**BALL, quantity=f"epsilon_{k + 1}", unit="%",
                   value=float(state.velocity_deviation[k] * 100.0), reference=0.0,
                   scale=PRINTED.epsilon_1_numerical, tolerance=1e-9,
                   why="zero deviation judged against the case (a) deviation 0.87 %",
                   source="lin2019 Table 2 case (b)", time_s=time_s,
                   note="scale: the case (a) deviation 0.87 %")
     # Fig 10
-    import matplotlib.pyplot as plt
-
     gap0 = 0.1 * RADIUS
     t_end = 20.0
     histories = {}
@@ -160,59 +151,48 @@ def table2_b(run):
         histories[label], sim_time = run.time(b2b.simulate_gaps, _case(THETA, RHO, top), [gap0], t_end,
                                               budget_s=0.05, max_repeat=3)
     change = float(np.max(np.abs(histories["b"].gaps[:, 0] - gap0)))
-    run.check(model=MODEL_B2B, quantity="gap change over 20 s, case b", unit="m", value=change, reference=0.0,
+    run.check(**B2B, quantity="gap change over 20 s, case b", unit="m", value=change, reference=0.0,
               scale=gap0, tolerance=1e-9, source="lin2019 Fig 10(b): the balls keep their distance",
               why="zero change judged against the initial gap 0.1 R_B",
               time_s=sim_time)
     free = bearing_ball.solve(_case(THETA, RHO))
     closing = float(free.ball_velocity[0] - free.ball_velocity[1])
-    run.check(model=MODEL_B2B, quantity="contact time, case a", unit="s", value=float(histories["a"].times[1]),
+    run.check(**B2B, quantity="contact time, case a", unit="s", value=float(histories["a"].times[1]),
               reference=gap0 / closing, tolerance=1e-9, time_s=sim_time,
               source="gap0 / (v_B,1 - v_B,2) of the free balls (kinematics of Fig 10(a))")
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for label, history in histories.items():
-        ax.plot(history.times, history.gaps[:, 0] / RADIUS, marker="o", ms=3,
-                label=f"case ({label})" + (" mitigated top groove" if label == "b" else ""))
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     eps_1 = b2b_analytical.side_force_deviation(THETA, RHO)  # lin2019 eq 33, as the paper's Fig 10(a)
     eps_2 = b2b_analytical.side_force_deviation(THETA, -RHO)
     t_contact = gap0 / ((eps_1 - eps_2) * SPEED / 2)
-    ax.plot([0.0, t_contact, t_end], [0.1, 0.0, 0.0], ls="--", c="grey", label="case (a), analytical eq 33")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("gap between the balls / R_B")
-    ax.set_ylim(bottom=-0.005)
-    ax.legend()
-    ax.set_title("lin2019 Fig 10: theta = 2 deg, rho = -0.6, low-order numerical velocities")
-    run.save_figure(fig, "fig10.png")
-    plt.close(fig)
+    run.save_figure(figures.gap_histories(histories, RADIUS, (0.0, t_contact, t_end)), "fig10.png")
     run.note(f"Fig 10(a) uses the low-order numerical velocities (the paper plots the analytical ones): the gap "
              f"closes at {histories['a'].times[1]:.2f} s, then the balls move together with "
              f"F_B2B = {histories['a'].b2b_force[-1, 0]:.3f} N.")
 
 
 @scene("lin2019-table3-a", "B2B contact force of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 3 case a)",
-       kind="low-order", cost_s=0.3)
+       kind="low-order", cost_s=0.3, case=CASE)
 def table3_a(run):
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     contacts = _case(THETA, RHO)
     state, time_s = run.time(b2b.solve, contacts, [0.0])
     force = float(state.b2b_force[0])
-    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_numerical,
+    run.check(**B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_numerical,
               source="lin2019 Table 3 case (a), low-order numerical model", tolerance=0.03, time_s=time_s)
-    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_ansys,
+    run.check(**B2B, quantity="F_B2B", unit="N", value=force, reference=PRINTED.f_b2b_ansys,
               source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07, time_s=time_s,
               note="tolerance: the paper's own claim for its models against ANSYS (within 6-7 %)")
-    run.check(model=MODEL_B2B, quantity="power balance (input - losses)/input", unit="1",
+    run.check(**B2B, quantity="power balance (input - losses)/input", unit="1",
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
               why="the value is itself a relative power error: zero judged on the scale 1",
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=time_s)
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **TABLE1.material)
+    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **GUIDE.material.keywords)
     psi = hertz.psi_constant(geometry, RADIUS)
     analytical, time_a = run.time(b2b_analytical.two_ball_case, THETA, RHO, normal_load=VERTICAL,
                                   groove_velocity=SPEED, friction_coefficient=MU, psi=psi, ball_radius=RADIUS)
-    run.check(model="lowmodel.linear_bearing.b2b_analytical", quantity="F_B2B", unit="N",
+    run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical", quantity="F_B2B", unit="N",
               value=float(analytical.b2b_force),
               reference=PRINTED.f_b2b_ansys, source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07,
               time_s=time_a,
@@ -220,22 +200,22 @@ def table3_a(run):
     run.note(f"Numerical model: F_B2B = {force:.3f} N, common velocity eps = "
              f"{state.velocity_deviation[0] * 100:.3f} %, "
              f"B2B slip {state.b2b_slip[0] * 1e3:.3f} mm/s (eq 31 approximation v/cos(beta_0) = "
-             f"{SPEED / math.cos(CASE.nominal_angle) * 1e3:.3f} mm/s), Newton iterations {state.iterations}. "
+             f"{SPEED / math.cos(GUIDE.nominal_angle) * 1e3:.3f} mm/s), Newton iterations {state.iterations}. "
              f"Normal forces: lin2017 eq 36 with beta_BL = 45 - theta, beta_BR = 45 + theta (the sqrt(2)/2 (N_y -+ "
              f"N_x) forces of Sec 2.4.1 give a different value, see docs/b2b_bearing.md).")
 
 
 @scene("lin2019-table3-b", "B2B contact force with the mitigating top groove (lin2019 Table 3 case b)",
-       kind="low-order", cost_s=0.2)
+       kind="low-order", cost_s=0.2, case=lin2019.TABLE3_B)
 def table3_b(run):
     contacts = _case(THETA, RHO, top=(-THETA, THETA))
     state, time_s = run.time(b2b.solve, contacts, [0.0])
-    run.check(model=MODEL_B2B, quantity="F_B2B", unit="N", value=float(state.b2b_force[0]), reference=0.0,
+    run.check(**B2B, quantity="F_B2B", unit="N", value=float(state.b2b_force[0]), reference=0.0,
               scale=PRINTED.f_b2b_numerical, tolerance=1e-9, source="lin2019 Table 3 case (b) (all three models: 0)",
               why="zero force judged against the case (a) force 4.01 N",
               time_s=time_s,
               note="scale: the case (a) force 4.01 N")
-    run.check(model=MODEL_B2B, quantity="power balance (input - losses)/input", unit="1",
+    run.check(**B2B, quantity="power balance (input - losses)/input", unit="1",
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
               why="the value is itself a relative power error: zero judged on the scale 1",
               source="energy conservation (quasi-static)", time_s=time_s)
@@ -244,8 +224,6 @@ def table3_b(run):
 @scene("lin2019-fig9-worst", "Largest friction increase by B2B contact over the Fig 9 grid (rho, theta) up to the "
        "four-point limit; Fig 9 maps of F_B2B and total/baseline loss", kind="low-order", cost_s=15.0)
 def fig9_worst(run):
-    import matplotlib.pyplot as plt
-
     n_rho, n_theta = GRID[run.fidelity]
     edge = EDGE_MARGINS[run.fidelity]
     thetas = np.radians(np.linspace(-3.0, 3.0, n_theta))
@@ -273,7 +251,7 @@ def fig9_worst(run):
     increase, (theta_w, rho_w, force_w) = worst
     contacts = _case(math.radians(theta_w), rho_w)
     _, time_s = run.time(b2b.solve, contacts, [0.0])
-    run.check(model=MODEL_B2B, quantity="largest friction increase (total/baseline - 1)", unit="%",
+    run.check(**B2B, quantity="largest friction increase (total/baseline - 1)", unit="%",
               value=100.0 * increase, reference=PRINTED.worst_friction_increase, relation="ge", tolerance=0.0,
               time_s=time_s,
               source="lin2019 Sec 2.4.1 / Fig 9(c): 'more than 185.2 %'",
@@ -287,20 +265,5 @@ def fig9_worst(run):
              f"contact (there the lightly loaded contacts of ball 1 already slide with |c/a| > 20 and cannot "
              f"carry more; docs/b2b_bearing.md 'validity').  The largest increase on the converged part of the "
              f"grid is {100 * increase:.1f} %, short of the paper's 185.2 %.")
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    rho_grid = np.array(rho_all)
     theta_grid = np.repeat(np.degrees(thetas)[:, None], n_points, axis=1)
-    for ax, values, title, label in ((axes[0], force, "(a) F_B2B, low-order numerical", "F_B2B [N]"),
-                                     (axes[1], ratio, "(c) total / baseline friction loss", "ratio [-]")):
-        mesh = ax.scatter(rho_grid.ravel(), theta_grid.ravel(), c=values.ravel(), s=18, cmap="viridis",
-                          marker="s")
-        bad = np.isnan(values.ravel())
-        ax.scatter(rho_grid.ravel()[bad], theta_grid.ravel()[bad], s=10, marker="x", c="red",
-                   label="no converged full-sliding state")
-        ax.legend(loc="lower center", fontsize=7)
-        fig.colorbar(mesh, ax=ax, label=label)
-        ax.set_xlabel("rho = N_x / N_y")
-        ax.set_title(title)
-    axes[0].set_ylabel("theta [deg]")
-    run.save_figure(fig, "fig9.png")
-    plt.close(fig)
+    run.save_figure(figures.b2b_maps(np.array(rho_all), theta_grid, force, ratio), "fig9.png")

@@ -1,15 +1,14 @@
 """Scenes for the ball-screw B2B model (lin2019 Sec 3.1-3.3, Tables 4-5).
 
-Models: lowmodel.screw.ball (eqs 34-55), lowmodel.screw.b2b (eqs 56-61).
-Two-ball module of lin2019 Sec 3.3 (Table 4 parameters, the screw_module
-defaults): ball 1 (behind, ball 0 here) theta = 0, ball 2 theta = 2 deg (case a)
-or 3 deg (case b), 50 N axial load on the screw, balls touching.
+Models: lowmodel.screw.ball (eqs 34-55), lowmodel.screw.b2b (eqs 56-61), through
+studies.screw_two_ball.  Two-ball module of lin2019 Sec 3.3 (cases.lin2019.TABLE5): ball 1 (behind, ball 0
+here) theta = 0, ball 2 theta = 2 deg (case a) or 3 deg (case b), 50 N axial load on the screw, balls touching.
 
 Two readings the paper leaves open (docs/ball_screw.md):
 
-* preload: Table 4 gives none.  ``oversize`` (the approach of every contact of a
-  centred ball) is fitted on case (a)'s low-order B2B force alone; case (b) and
-  both friction increases are then predictions.
+* preload: Table 4 gives none.  The screw's ``oversize`` (the approach of every contact of a
+  centred ball) is fitted on case (a)'s low-order B2B force alone (cases.lin2019.OVERSIZE_FIT); case (b)
+  and both friction increases are then predictions.
 * deviation (Fig 17 is missing): ``tilted`` (both screw flanks at beta_0 + theta)
   reproduces the paper; ``rotated`` (the screw profile turned by theta) cannot
   reach 1.92 N at any preload (its B2B force falls with preload from 1.0 N).
@@ -21,19 +20,19 @@ numbers of Fig 21 that depend on the missing Fig 19 (``FIG21_GAP``).
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
 
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import contacts as screw_contacts
-from ballbench.validation.papers import lin2019
+from ballbench.validation.cases import lin2019
+from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import KnownGap, scene
+from ballbench.validation.studies.screw_two_ball import ball_contacts, friction_increase, two_ball
 
 MODEL = "lowmodel.screw.b2b"
-AXIAL_LOAD = lin2019.WHOLE_SCREW.axial_load_two_ball  # N on the screw, lin2019 Sec 3.3
-PRINTED = {"a": lin2019.TABLE5_A, "b": lin2019.TABLE5_B}
-READING = "tilted"
+LOW = dict(model=MODEL, family="low-order numerical")
+PRINTED = published.TABLE5
 POWER_WHY = "the value is itself a relative power error |P_in - P_loss| / P_loss: zero judged on the scale 1"
 TABLE5_LITERAL_GAP = KnownGap(
     reason="Table 4 gives no preload.  Without one the 50 N load leaves the diagonal SR-NL unloaded except for the "
@@ -46,78 +45,44 @@ TABLE5_LITERAL_GAP = KnownGap(
              "(preload reading, 'rotated' reading unable to reach 1.92 N at any preload).")
 
 
-def table4_module(oversize: float) -> screw_contacts.ScrewModule:
-    """lin2019 Table 4 (validation.papers) with the preload ``oversize`` [m]."""
-    t4 = lin2019.TABLE4
-    return screw_contacts.screw_module(ball_radius=t4.ball_radius, conformity=t4.conformity,
-                                   pitch_radius=t4.pitch_radius, lead=t4.lead, nominal_angle=t4.nominal_angle,
-                                   nut_speed=t4.nut_angular_velocity, friction_coefficient=t4.friction_coefficient,
-                                   oversize=oversize, **t4.material)
-
-
-def two_ball(case: str, oversize: float, reading: str = READING, contact_law=None):
-    """(free balls, touching balls) of Table 5 case ``case`` at preload ``oversize`` [m]; ``contact_law``:
-    calibrated laws of the grooves (:class:`screw_contacts.GrooveContactLaws`), None: Hertz."""
-    theta = PRINTED[case].theta
-    contacts = screw_contacts.ball_contacts(table4_module(oversize), np.array([0.0, theta]), reading=reading,
-                                        contact_law=contact_law)
-    free = screw_b2b.solve(contacts, AXIAL_LOAD, with_b2b=False)
-    state = screw_b2b.solve(contacts, AXIAL_LOAD)
-    return free, state
-
-
-def friction_increase(free, state) -> float:
-    """Friction increase by B2B contact [%]: total loss of the touching balls over the free balls' loss."""
-    return 100.0 * (state.total_loss / free.total_loss - 1.0)
-
-
-@lru_cache(maxsize=4)
-def fitted_oversize(reading: str = READING, contact_law=None) -> float:
-    """Preload (oversize [m]) at which case (a)'s B2B force is the paper's 1.92 N (brentq, 1e-12 m)."""
-    from scipy.optimize import brentq
-
-    target = PRINTED["a"].f_b2b_numerical
-    return float(brentq(lambda oversize: two_ball("a", oversize, reading, contact_law)[1].b2b_force[0] - target,
-                        1.0e-6, 3.0e-6, xtol=1e-12))
-
-
-def _table5(run, case: str):
-    printed = PRINTED[case]
-    oversize = fitted_oversize()
-    (free, state), time_s = run.time(two_ball, case, oversize)
-    contacts = screw_contacts.ball_contacts(table4_module(oversize), np.array([0.0, printed.theta]), reading=READING)
-    _, solve_s = run.time(screw_b2b.solve, contacts, AXIAL_LOAD)
+def _table5(run, which: str):
+    case = lin2019.TABLE5[which]
+    printed = PRINTED[which]
+    oversize = case.screw.oversize
+    (free, state), time_s = run.time(two_ball, case)
+    contacts = ball_contacts(case)
+    _, solve_s = run.time(screw_b2b.solve, contacts, case.axial_load)
     force = float(state.b2b_force[0])
     increase = friction_increase(free, state)
     balance = max(abs(s.input_power - s.total_loss) / s.total_loss for s in (free, state))
-    fitted = "fitted on this case" if case == "a" else "prediction (preload fitted on case a)"
-    if case == "b":
-        run.check(model=MODEL, quantity="F_B2B, case b", unit="N", value=force, reference=printed.f_b2b_numerical,
+    fitted = "fitted on this case" if which == "a" else "prediction (preload fitted on case a)"
+    if which == "b":
+        run.check(**LOW, quantity="F_B2B, case b", unit="N", value=force, reference=printed.f_b2b_numerical,
                   source="lin2019 Table 5, low-order numerical", tolerance=0.05, time_s=solve_s, note=fitted)
-    run.check(model=MODEL, quantity=f"F_B2B, case {case}", unit="N", value=force, reference=printed.f_b2b_ansys,
+    run.check(**LOW, quantity=f"F_B2B, case {which}", unit="N", value=force, reference=printed.f_b2b_ansys,
               source="lin2019 Table 5, ANSYS FEA", tolerance=0.07, time_s=solve_s,
               note="the paper's own model is 6.7 % off ANSYS")
-    run.check(model=MODEL, quantity=f"friction increase by B2B, case {case}", unit="%", value=increase,
+    run.check(**LOW, quantity=f"friction increase by B2B, case {which}", unit="%", value=increase,
               reference=printed.friction_increase, source="lin2019 Sec 3.3",
               tolerance=3.0 / printed.friction_increase,
               time_s=time_s, note="prediction (the fit uses the force only); tolerance 3 points")
-    run.check(model=MODEL, quantity="power balance |P_in - P_loss| / P_loss", unit="1", value=balance,
+    run.check(**LOW, quantity="power balance |P_in - P_loss| / P_loss", unit="1", value=balance,
               reference=0.0, scale=1.0, source="energy conservation (screw at rest, nut drives)",
               tolerance=1e-8, time_s=time_s, why=POWER_WHY)
     # literal reading: no preload (Table 4 gives none); the deviation reading does not matter there
     (free_0, state_0), time_0 = run.time(two_ball, case, 0.0)
     force_0, increase_0 = float(state_0.b2b_force[0]), friction_increase(free_0, state_0)
-    run.check(model=MODEL, quantity=f"F_B2B, case {case}, literal reading (no preload)", unit="N", value=force_0,
+    run.check(**LOW, quantity=f"F_B2B, case {which}, literal reading (no preload)", unit="N", value=force_0,
               reference=printed.f_b2b_numerical, source="lin2019 Table 5, low-order numerical", tolerance=0.05,
               time_s=time_0, known_gap=TABLE5_LITERAL_GAP, note="the tolerance of the fitted-preload prediction")
-    run.check(model=MODEL, quantity=f"friction increase by B2B, case {case}, literal reading (no preload)",
+    run.check(**LOW, quantity=f"friction increase by B2B, case {which}, literal reading (no preload)",
               unit="%", value=increase_0, reference=printed.friction_increase, source="lin2019 Sec 3.3",
               tolerance=3.0 / printed.friction_increase, time_s=time_0,
-              known_gap=TABLE5_LITERAL_GAP if case == "b" else None,
+              known_gap=TABLE5_LITERAL_GAP if which == "b" else None,
               note="tolerance 3 points, as for the fitted-preload prediction"
-                   + ("; met in case a although the force is not" if case == "a" else ""))
+                   + ("; met in case a although the force is not" if which == "a" else ""))
     run.note(f"Preload fitted on case a: oversize {oversize * 1e6:.4f} um (every contact of a centred ball "
-             f"approaches by this much; {READING} deviation reading, beta_SL = beta_SR = 45 deg + theta).  "
+             f"approaches by this much; {case.reading} deviation reading, beta_SL = beta_SR = 45 deg + theta).  "
              f"Normal forces (SL, SR, NR, NL) of ball 2: {np.round(state.normal_force[1], 2).tolist()} N; "
              f"orbit speeds before contact {np.round(free.orbit_speed / (2 * math.pi), 5).tolist()} rev/s, "
              f"together {state.orbit_speed[0] / (2 * math.pi):.5f} rev/s; B2B loss "
@@ -125,27 +90,26 @@ def _table5(run, case: str):
     run.note(f"Literal reading (no preload, known gap): F_B2B = {force_0:.3f} N against the paper's "
              f"{printed.f_b2b_numerical} N ({100 * (force_0 / printed.f_b2b_numerical - 1):+.1f} %), friction "
              f"increase {increase_0:.1f} % against {printed.friction_increase} %.  Without preload the "
-             f"{AXIAL_LOAD:g} N load leaves the diagonal SR-NL unloaded except for the third contact NL that "
+             f"{case.axial_load:g} N load leaves the diagonal SR-NL unloaded except for the third contact NL that "
              f"friction pushes each ball onto (forces {np.round(state_0.normal_force[1], 2).tolist()} N), and "
              f"F_B2B no longer scales with theta as the paper's (ratio of the cases = ratio of the deviations, "
              f"3 deg / 2 deg) does (docs/ball_screw.md).")
 
 
 @scene("lin2019-table5-a", "Ball screw, two balls, theta = 0 / 2 deg: B2B force and friction increase (Table 5 a)",
-       tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=1.0)
+       tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=1.0, case=lin2019.TABLE5_A)
 def lin2019_table5_a(run):
     _table5(run, "a")
 
 
 @scene("lin2019-table5-b", "Ball screw, two balls, theta = 0 / 3 deg: predicted B2B force and friction increase "
-       "(Table 5 b)", tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=2.5)
+       "(Table 5 b)", tags=("lowmodel", "screw", "b2b"), kind="low-order", cost_s=2.5, case=lin2019.TABLE5_B)
 def lin2019_table5_b(run):
     _table5(run, "b")
-    oversize = fitted_oversize()
-    force_a = two_ball("a", oversize)[1].b2b_force[0]
-    force_b = two_ball("b", oversize)[1].b2b_force[0]
-    force_a0 = two_ball("a", 0.0)[1].b2b_force[0]
-    force_b0 = two_ball("b", 0.0)[1].b2b_force[0]
+    force_a = two_ball(lin2019.TABLE5_A)[1].b2b_force[0]
+    force_b = two_ball(lin2019.TABLE5_B)[1].b2b_force[0]
+    force_a0 = two_ball(lin2019.TABLE5_A, 0.0)[1].b2b_force[0]
+    force_b0 = two_ball(lin2019.TABLE5_B, 0.0)[1].b2b_force[0]
     ratio = PRINTED["b"].f_b2b_numerical / PRINTED["a"].f_b2b_numerical
     run.note(f"F_B2B(b)/F_B2B(a): {force_b / force_a:.4f} with the fitted preload, {force_b0 / force_a0:.4f} "
              f"without (paper {ratio:.4f}).")
@@ -154,11 +118,14 @@ def lin2019_table5_b(run):
 # --------------------------------------------------------------------------
 # whole screw (lin2019 Sec 3.4, Figs 19-21)
 # --------------------------------------------------------------------------
-FIG21 = lin2019.WHOLE_SCREW
+FIG21 = published.WHOLE_SCREW
+WHOLE = dict(model="lowmodel.screw.whole_screw", family="low-order numerical")
 FIG21_AMPLITUDE = math.radians(3.0)  # rad, deviation amplitude (Fig 19 missing): the largest Table 5 value
+READING = lin2019.TABLE5_A.reading  # the deviation reading of the Table 5 fit (docs/ball_screw.md)
 # the paper's 200 steps at every level: 50 steps resolve the gap history differently (5 groups instead of 4)
 # and save only about 1 s of the scene's ~12 s
-FIG21_STEPS = {"quick": FIG21.steps, "default": FIG21.steps, "fine": FIG21.steps}
+FIG21_STEPS = {"quick": lin2019.WHOLE_SCREW_STEPS, "default": lin2019.WHOLE_SCREW_STEPS,
+               "fine": lin2019.WHOLE_SCREW_STEPS}
 FIG21_ANGLE_TOLERANCE = 10.0  # deg of nut angle on the printed angles (Fig 21 is read to a few degrees)
 FIG21_GAP = KnownGap(
     reason="Fig 19 (the deviation theta along the screw: amplitude and phase) is missing and the static load "
@@ -173,17 +140,18 @@ FIG21_GAP = KnownGap(
              "but not its angle; fig20.png / fig21.png of this scene.")
 
 
-def whole_screw(steps: int, progress=None):
+def _whole_screw(steps: int, progress=None):
     """History of lin2019 Sec 3.4 with the Table 5 preload fit and the tilted deviation reading."""
     from ballbench.lowmodel.screw import whole_screw as ws
+    from ballbench.validation.studies.screw_two_ball import screw_module
 
-    module = table4_module(fitted_oversize())
-    return ws.simulate(module, n_balls=FIG21.n_balls, axial_load=FIG21.axial_load, duration=FIG21.duration,
-                       steps=steps, amplitude=FIG21_AMPLITUDE, cycles=FIG21.theta_cycles, reading=READING,
-                       progress=progress)
+    return ws.simulate(screw_module(lin2019.SCREW), n_balls=lin2019.WHOLE_SCREW_BALLS,
+                       axial_load=lin2019.WHOLE_SCREW_AXIAL_LOAD, duration=lin2019.WHOLE_SCREW_DURATION,
+                       steps=steps, amplitude=FIG21_AMPLITUDE, cycles=lin2019.WHOLE_SCREW_THETA_CYCLES,
+                       reading=READING, progress=progress)
 
 
-def fig21_summary(history) -> dict:
+def _fig21_summary(history) -> dict:
     """Groups, peak extra torque [%] and its nut angle [deg], the first nut angle after the peak with no B2B."""
     ratio = history.b2b_torque / history.groove_torque
     degrees = np.degrees(history.nut_angle)
@@ -201,31 +169,29 @@ def fig21_summary(history) -> dict:
 def lin2019_fig21(run):
     import time
 
-    import matplotlib.pyplot as plt
-
     steps = FIG21_STEPS[run.fidelity]
     start = time.perf_counter()
-    history = whole_screw(steps, progress=lambda it: run.progress(it, desc="whole screw steps"))
+    history = _whole_screw(steps, progress=lambda it: run.progress(it, desc="whole screw steps"))
     elapsed = time.perf_counter() - start
-    summary = fig21_summary(history)
-    run.check(model="lowmodel.screw.whole_screw", quantity="power balance, worst step", unit="1",
+    summary = _fig21_summary(history)
+    run.check(**WHOLE, quantity="power balance, worst step", unit="1",
               value=float(history.power_error.max()), reference=0.0, scale=1.0, tolerance=1e-8, time_s=elapsed,
               source="energy conservation (screw at rest, nut drives)", why=POWER_WHY)
-    run.check(model="lowmodel.screw.whole_screw", quantity="number of B2B groups", unit="1",
+    run.check(**WHOLE, quantity="number of B2B groups", unit="1",
               value=summary["groups"], reference=FIG21.groups, tolerance=0.0, time_s=elapsed,
               source="lin2019 Sec 3.4 / Fig 20: four groups", note="most groups at any step")
-    run.check(model="lowmodel.screw.whole_screw", quantity="B2B torque / groove torque after the peak, minimum",
+    run.check(**WHOLE, quantity="B2B torque / groove torque after the peak, minimum",
               unit="1", value=summary["min_after_peak"], reference=0.0, scale=1.0, tolerance=0.0, time_s=elapsed,
               source="lin2019 Sec 3.4 / Fig 21: the groups dissolve (zero B2B torque at 306 deg)")
-    run.check(model="lowmodel.screw.whole_screw", quantity="peak extra friction torque by B2B", unit="%",
+    run.check(**WHOLE, quantity="peak extra friction torque by B2B", unit="%",
               value=summary["peak_increase"], reference=FIG21.peak_increase, tolerance=0.1, time_s=elapsed,
               source="lin2019 Sec 3.4 / Fig 21: 49.6 %", known_gap=FIG21_GAP, note="tolerance 10 % of the peak")
     peak_deg, zero_deg = math.degrees(FIG21.peak_angle), math.degrees(FIG21.zero_angle)
-    run.check(model="lowmodel.screw.whole_screw", quantity="nut angle of the peak extra torque", unit="deg",
+    run.check(**WHOLE, quantity="nut angle of the peak extra torque", unit="deg",
               value=summary["peak_angle_deg"], reference=peak_deg, tolerance=FIG21_ANGLE_TOLERANCE / peak_deg,
               time_s=elapsed, source="lin2019 Sec 3.4 / Fig 21: 126 deg", known_gap=FIG21_GAP,
               note=f"tolerance {FIG21_ANGLE_TOLERANCE:g} deg")
-    run.check(model="lowmodel.screw.whole_screw", quantity="first nut angle after the peak without B2B", unit="deg",
+    run.check(**WHOLE, quantity="first nut angle after the peak without B2B", unit="deg",
               value=summary["zero_angle_deg"], reference=zero_deg, tolerance=FIG21_ANGLE_TOLERANCE / zero_deg,
               time_s=elapsed, source="lin2019 Sec 3.4 / Fig 21: 306 deg", known_gap=FIG21_GAP,
               note=f"tolerance {FIG21_ANGLE_TOLERANCE:g} deg")
@@ -238,38 +204,21 @@ def lin2019_fig21(run):
              f"is 18 % at 2 deg and 53 % at 2.7 deg), the phase of theta along the screw, the load distribution "
              f"(ref [19] unavailable; lowmodel.screw.load_distribution) and the preload (fitted on Table 5 a); "
              f"docs/ball_screw.md.")
-    run.note(f"{steps} steps over {FIG21.duration} s ({run.fidelity}); {int(history.iterations.sum())} Newton "
-             f"iterations in {elapsed:.1f} s; axial loads per ball {history.axial_load.min():.1f} .. "
+    run.note(f"{steps} steps over {lin2019.WHOLE_SCREW_DURATION} s ({run.fidelity}); "
+             f"{int(history.iterations.sum())} Newton iterations in {elapsed:.1f} s; axial loads per ball "
+             f"{history.axial_load.min():.1f} .. "
              f"{history.axial_load.max():.1f} N; friction torque ball-to-groove "
              f"{1e3 * history.groove_torque.mean():.1f} mN m (mean).")
-    degrees = np.degrees(history.nut_angle)
-    fig, ax = plt.subplots(figsize=(9, 4.5))
-    spacing = np.degrees(history.spacing)
-    for ball in range(spacing.shape[1]):
-        ax.plot(degrees, spacing[:, ball], color="0.75", lw=0.6)
-    touching = history.b2b_force > 0.0
-    steps_idx, balls_idx = np.nonzero(touching)
-    ax.scatter(degrees[steps_idx], spacing[steps_idx, balls_idx], s=4, color="k", label="B2B contact")
-    ax.set_xlabel("nut rotation angle [deg]")
-    ax.set_ylabel("angular distance to the next ball [deg]")
-    ax.set_title("lin2019 Fig 20: angular distance between neighbouring balls")
-    ax.legend(loc="upper right")
-    run.save_figure(fig, "fig20.png")
-    fig, ax = plt.subplots(figsize=(9, 4.5))
-    ax.plot(degrees, 1e3 * history.total_torque, "k", label="total")
-    ax.plot(degrees, 1e3 * history.groove_torque, "b--", label="ball-to-groove")
-    ax.plot(degrees, 1e3 * history.b2b_torque, "r", label="ball-to-ball")
-    ax.set_xlabel("nut rotation angle [deg]")
-    ax.set_ylabel("friction torque [mN m]")
-    ax.set_title("lin2019 Fig 21: friction torque")
-    ax.legend()
-    run.save_figure(fig, "fig21.png")
+    from ballbench.validation.figures import lin2019 as figures
+
+    run.save_figure(figures.whole_screw_spacing(history), "fig20.png")
+    run.save_figure(figures.whole_screw_torque(history), "fig21.png")
 
 
 # --------------------------------------------------------------------------
 # robustness of the screw solvers
 # --------------------------------------------------------------------------
-def stability_cases(fidelity: str) -> list[dict]:
+def _stability_cases(fidelity: str) -> list[dict]:
     """Cases of ``lin2019-screw-stability``: lead angle, preload, deviation, number of balls, load."""
     quick = fidelity == "quick"
     cases = []
@@ -293,10 +242,11 @@ def stability_cases(fidelity: str) -> list[dict]:
     return cases
 
 
-def run_stability_case(case: dict):
+def _run_stability_case(case: dict):
     """Solve one case; returns the state (ConvergenceError / ValueError propagate)."""
-    lead = 2.0 * math.pi * 16.5e-3 * math.tan(math.radians(case.get("lead_angle_deg", math.degrees(
-        math.atan(20e-3 / (2 * math.pi * 16.5e-3))))))
+    pitch_radius = lin2019.SCREW.pitch_radius
+    lead = 2.0 * math.pi * pitch_radius * math.tan(math.radians(case.get("lead_angle_deg", math.degrees(
+        math.atan(lin2019.SCREW.lead / (2 * math.pi * pitch_radius))))))
     module = screw_contacts.screw_module(lead=lead, oversize=case["oversize"])
     contacts = screw_contacts.ball_contacts(module, np.radians(case["thetas"]), reading=case.get("reading", READING))
     return screw_b2b.solve(contacts, case["load"] * len(case["thetas"]))
@@ -309,12 +259,12 @@ def lin2019_screw_stability(run):
 
     from ballbench.lowmodel.errors import ConvergenceError
 
-    cases = stability_cases(run.fidelity)
+    cases = _stability_cases(run.fidelity)
     converged, failures, no_state, worst_power, nan_count = 0, [], [], 0.0, 0
     start = time.perf_counter()
     for case in run.progress(cases, desc="stability cases"):
         try:
-            state = run_stability_case(case)
+            state = _run_stability_case(case)
         except (ConvergenceError, ValueError) as error:
             if "no full-sliding state" in str(error):
                 no_state.append(f"{case['what']}: {error}")
@@ -327,13 +277,13 @@ def lin2019_screw_stability(run):
         converged += 1
     elapsed = time.perf_counter() - start
     exists = len(cases) - len(no_state)
-    run.check(model=MODEL, quantity="converged cases / cases with a state", unit="1", value=converged / exists,
+    run.check(**LOW, quantity="converged cases / cases with a state", unit="1", value=converged / exists,
               reference=1.0, tolerance=0.0, time_s=elapsed / len(cases),
-              source="issue 11: 100 % converged where a state exists",
+              source="docs/ball_screw.md (robustness): 100 % converged where a state exists",
               note=f"{len(cases)} cases, {len(no_state)} without a full-sliding state (reasons below)")
-    run.check(model=MODEL, quantity="non-finite outputs", unit="1", value=nan_count, reference=0.0, scale=1.0,
-              tolerance=0.0, time_s=elapsed / len(cases), source="issue 11: no NaN")
-    run.check(model=MODEL, quantity="power balance, worst case", unit="1", value=worst_power, reference=0.0,
+    run.check(**LOW, quantity="non-finite outputs", unit="1", value=nan_count, reference=0.0, scale=1.0,
+              tolerance=0.0, time_s=elapsed / len(cases), source="docs/ball_screw.md (robustness): no NaN")
+    run.check(**LOW, quantity="power balance, worst case", unit="1", value=worst_power, reference=0.0,
               scale=1.0, tolerance=1e-8, time_s=elapsed / len(cases), source="energy conservation", why=POWER_WHY)
     run.note("Cases: " + "; ".join(case["what"] for case in cases) + ".")
     if no_state:

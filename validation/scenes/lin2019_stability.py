@@ -1,4 +1,4 @@
-"""Stability sweep of the single-ball and N-ball solvers of lin2019 (issue 10 item 2).
+"""Stability sweep of the single-ball and N-ball solvers of lin2019 (docs/b2b_bearing.md, "Robustness").
 
 Models: lowmodel.linear_bearing.ball (eqs 1-4), lowmodel.linear_bearing.b2b
 (eqs 5-10).  Where a quasi-static state with full sliding exists (spin-capacity
@@ -20,15 +20,15 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
-from ballbench.validation.papers import lin2019 as paper
+from ballbench.validation.cases import lin2019
 from ballbench.validation.scene import scene
 
 MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
+BALL = dict(model=MODEL_BALL, family="low-order numerical")
+B2B = dict(model=MODEL_B2B, family="low-order numerical")
 # lin2019 Table 1
-TABLE1 = dict(ball_radius=paper.TABLE1.ball_radius, conformity=paper.TABLE1.conformity,
-              vertical_force=paper.TABLE1.vertical_force, groove_velocity=paper.TABLE1.groove_velocity,
-              friction_coefficient=paper.TABLE1.friction_coefficient, **paper.TABLE1.material)
+TABLE1 = dict(vertical_force=lin2019.VERTICAL_FORCE, **lin2019.GUIDE.keywords)
 RATIO_FLOOR = 1.05  # spin-capacity ratio above which a state exists and must be found
 SIZES = {"quick": dict(grid=(9, 7), margins=(1e-3, 1e-2, 3e-2), loads=9, mus=5, chains=(1, 2, 5, 20, 200),
                        repeats=2, stick_steps=3),
@@ -76,7 +76,7 @@ class _Tally:
 @scene("lin2019-stability", "Solver sweep: rho and theta up to the lin2017 eq 37 limit, N_y 1e-3 to 1e5 N, mu 1e-6 "
        "to 1, chains of 1 to 200 balls with random gaps and deviations; 100 % convergence where the "
        "spin-capacity ratio >= 1.05, a reason for every failure; converged-region figure",
-       kind="low-order", cost_s=28.0)  # cost: 27.4 s CPU, 65 s wall at load average 5-10 (default level)
+       kind="low-order", cost_s=28.0)
 def stability(run):
     sizes = SIZES[run.fidelity]
     rng = np.random.default_rng(2019)
@@ -128,35 +128,35 @@ def stability(run):
     existing = ratio >= RATIO_FLOOR
     coupled = np.array(tally.coupled)
     single = existing & ~coupled
-    run.check(model=MODEL_B2B, quantity=f"converged fraction of free balls where the spin-capacity ratio >= "
+    run.check(**B2B, quantity=f"converged fraction of free balls where the spin-capacity ratio >= "
               f"{RATIO_FLOOR} ({int(single.sum())} of {len(ratio)} solves)", unit="1",
               value=float(np.mean(converged[single])), reference=1.0, tolerance=0.0,
-              source="issue 10: a state exists there (docs/b2b_bearing.md, validity)", time_s=per_solve)
+              source="a state exists there (docs/b2b_bearing.md, validity)", time_s=per_solve)
     pairs = existing & coupled
     coupled_fraction = float(np.mean(converged[pairs])) if np.any(pairs) else 1.0
     stick = np.array([reason.startswith(bearing_ball.STICK_REASON) for reason in reasons])
-    run.check(model=MODEL_B2B, quantity=f"touching balls, spin-capacity ratio >= {RATIO_FLOOR} ({int(pairs.sum())} "
+    run.check(**B2B, quantity=f"touching balls, spin-capacity ratio >= {RATIO_FLOOR} ({int(pairs.sum())} "
               "solves): fraction converged or ended where a contact stops sliding", unit="1",
               value=float(np.mean((converged | stick)[pairs])) if np.any(pairs) else 1.0, reference=1.0,
               tolerance=0.0, time_s=per_solve,
-              source="issue 10: the end of the full-sliding branch (a contact's slip speed crosses 0, "
+              source="the end of the full-sliding branch (a contact's slip speed crosses 0, "
               "docs/b2b_bearing.md 'validity') is the existence bound for touching balls")
-    run.check(model=MODEL_B2B, quantity="failures without a reason", unit="count",
+    run.check(**B2B, quantity="failures without a reason", unit="count",
               value=float(np.sum(~converged & (reasons == ""))), reference=0.0, scale=1.0, tolerance=0.0,
               why="a count: tolerance 0, so a single failure without a reason fails; the scale is one solve",
-              source="issue 10: ConvergenceError names the reason", time_s=per_solve)
+              source="docs/b2b_bearing.md: ConvergenceError names the reason", time_s=per_solve)
     finite = tally.column(8).astype(bool)
-    run.check(model=MODEL_B2B, quantity="converged solves returning NaN", unit="count",
+    run.check(**B2B, quantity="converged solves returning NaN", unit="count",
               value=float(np.sum(converged & ~finite)), reference=0.0, scale=1.0, tolerance=0.0,
               why="a count: tolerance 0, so a single NaN fails; the scale is one solve",
-              source="stability requirement (issues 3, 10)", time_s=per_solve)
+              source="stability requirement (docs/b2b_bearing.md)", time_s=per_solve)
     power = tally.column(7)
-    run.check(model=MODEL_B2B, quantity="worst power balance error, converged solves", unit="1",
+    run.check(**B2B, quantity="worst power balance error, converged solves", unit="1",
               value=float(np.nanmax(power[converged])), reference=0.0, scale=1.0, tolerance=1e-8,
               why="the value is itself a relative power error (per unit input power): zero judged on the scale 1",
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=per_solve)
     iterations, residuals = tally.column(4), tally.column(5)
-    run.check(model=MODEL_B2B, quantity="worst final residual, converged solves (units mu max F and v)", unit="1",
+    run.check(**B2B, quantity="worst final residual, converged solves (units mu max F and v)", unit="1",
               value=float(np.max(residuals[converged])), reference=1e-12, relation="le", tolerance=0.0,
               source="solver tolerance 1e-12", time_s=per_solve)
     _spin_capacity_boundary(run)
@@ -203,7 +203,7 @@ def _spin_capacity_boundary(run) -> None:
             except ConvergenceError:
                 bad = mid
         ratio = float(bearing_contacts.spin_capacity_ratio(_case(theta, float(low) + ok))[0])
-        run.check(model=MODEL_BALL, quantity=f"spin-capacity ratio at the last converged rho, theta = {theta_deg:.0f} "
+        run.check(**BALL, quantity=f"spin-capacity ratio at the last converged rho, theta = {theta_deg:.0f} "
                   "deg", unit="1", value=ratio, reference=1.0, tolerance=0.03,
                   time_s=(time.perf_counter() - began) / 16,
                   source="moment balance along the loaded diagonal (docs/b2b_bearing.md, validity)",
@@ -224,11 +224,11 @@ def _stick_boundary(run, steps: int) -> None:
         failure = None
     except ConvergenceError as error:
         failure = error
-    run.check(model=MODEL_B2B, quantity=f"failure at mu = {target} (theta = 3 deg, rho = -0.7, two touching balls) "
+    run.check(**B2B, quantity=f"failure at mu = {target} (theta = 3 deg, rho = -0.7, two touching balls) "
               "names the stick boundary", unit="1",
               value=float(failure is not None and failure.reason.startswith(bearing_ball.STICK_REASON)),
               reference=1.0, tolerance=0.0, time_s=time.perf_counter() - began,
-              source="issue 10: a failure is proven to be no-state, reason given")
+              source="docs/b2b_bearing.md: a failure is proven to be no-state, reason given")
     ok, bad = 0.4, target
     if failure is not None and failure.last_converged and failure.last_converged[0] == "s (mu)":
         s_last = failure.last_converged[1]
@@ -245,7 +245,7 @@ def _stick_boundary(run, steps: int) -> None:
         except ConvergenceError:
             bad = mid
     slip = np.hypot(ok_state.slide, ok_state.spin * _case(theta, -0.7, 2).semi_major) / TABLE1["groove_velocity"]
-    run.check(model=MODEL_B2B, quantity=f"smallest contact slip speed / v at the last converged mu = {ok:.6f} "
+    run.check(**B2B, quantity=f"smallest contact slip speed / v at the last converged mu = {ok:.6f} "
               f"(next failing {bad:.6f}; theta = 3 deg, rho = -0.7, two touching balls)", unit="1",
               value=float(np.min(slip)), reference=0.0, scale=1.0, tolerance=1e-3,
               time_s=(time.perf_counter() - began) / (solves + 1),
@@ -266,36 +266,16 @@ def _loss_of_contact(run) -> None:
             inside = mid
         except ValueError:
             outside = mid
-    run.check(model=MODEL_B2B, quantity="rho at which ValueError (loss of four-point contact) starts", unit="1",
+    run.check(**B2B, quantity="rho at which ValueError (loss of four-point contact) starts", unit="1",
               value=outside, reference=low, tolerance=1e-12, source="lin2017 eq 37: rho >= -min(tan beta_BL, "
               "tan beta_TR), theta = 3 deg", time_s=setup_time)
 
 
 def _figure(run, grid, n_theta, n_rho) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from ballbench.validation.figures.lin2019 import converged_region
 
     theta = np.array([g[0] for g in grid]).reshape(n_theta, n_rho)
     rho = np.array([g[1] for g in grid]).reshape(n_theta, n_rho)
     ratio = np.array([g[3] for g in grid]).reshape(n_theta, n_rho)
     converged = np.array([g[4] for g in grid]).reshape(n_theta, n_rho)
-    figure, axes = plt.subplots(figsize=(7, 5), layout="constrained")
-    axes.scatter(rho[converged], theta[converged], s=8, c="tab:green", marker="s", label="converged")
-    axes.scatter(rho[~converged], theta[~converged], s=22, c="tab:red", marker="x", label="ConvergenceError")
-    axes.plot([], [], "k-", label="spin-capacity ratio 1")
-    axes.plot([], [], "--", c="grey", label=f"spin-capacity ratio {RATIO_FLOOR}")
-    contour = axes.contour(rho, theta, ratio, levels=[1.0, RATIO_FLOOR], colors=["k", "grey"],
-                           linestyles=["-", "--"])
-    axes.clabel(contour, fmt={1.0: "ratio 1", RATIO_FLOOR: f"{RATIO_FLOOR}"}, fontsize=7)
-    thetas = np.radians(np.linspace(0.0, 40.0, 200))
-    # lin2017 eq 37 for ball 1 with beta_BL = 45 - theta, beta_BR = 45 + theta, top at 45 deg
-    axes.plot(-np.tan(math.pi / 4 - thetas), np.degrees(thetas), "b:", label="four-point limit (lin2017 eq 37)")
-    axes.plot(np.ones_like(thetas), np.degrees(thetas), "b:")
-    axes.set_xlabel("rho = N_x / N_y (ball 1)")
-    axes.set_ylabel("theta [deg] (beta_BL = 45 - theta, beta_BR = 45 + theta)")
-    axes.set_title("Single ball, lin2019 Table 1: converged region and spin-capacity boundary")
-    axes.legend(fontsize=7, loc="upper left")
-    run.save_figure(figure, "converged_region.png")
-    plt.close(figure)
+    run.save_figure(converged_region(rho, theta, ratio, converged, RATIO_FLOOR), "converged_region.png")

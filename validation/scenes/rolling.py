@@ -18,7 +18,8 @@ from ballbench.lowmodel.contact import ellipse_friction, fastsim, rolling
 from ballbench.lowmodel.contact import halfspace as hs
 from ballbench.lowmodel.linear_bearing import b2b, rolling_contacts
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
-from ballbench.validation.papers.lin2019 import CASE, TABLE1
+from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import rolling as figures
 from ballbench.validation.references import rolling as ref
 from ballbench.validation.scene import scene
 
@@ -150,22 +151,8 @@ def rolling_tractcurv(run):
         for curve, value in zip(curves.values(), (result.force_rolling, fine.force_rolling,
                                                    float(simple.force_rolling))):
             curve.append(-value / (mu * force))
-    _creep_figure(run, curves)
-
-
-def _creep_figure(run, curves):
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    xi = np.array(ref.TRACTCURV_CREEPAGES) * 1e3
-    ax.plot(xi, ref.TRACTCURV_FX_OVER_MU_FN, "ko", label="CONTACT tractcurv.ref_out")
-    for (label, values), style in zip(curves.items(), ("-", "--", ":")):
-        ax.plot(xi, values, style, label=label)
-    ax.set_xlabel("creepage xi [1e-3]")
-    ax.set_ylabel("|F_x| / (mu F_N)")
-    ax.legend()
-    ax.grid(alpha=0.3)
-    run.save_figure(fig, "creep_curve.png")
+    run.save_figure(figures.creep_figure(ref.TRACTCURV_CREEPAGES, ref.TRACTCURV_FX_OVER_MU_FN, curves),
+                    "creep_curve.png")
 
 
 @scene("rolling-full-slip", "The full-slip limit: stick/slip forces and spin moment converge to the ellipse-friction "
@@ -206,10 +193,8 @@ def rolling_full_slip(run):
               level="48 x 48 cells")
 
 
-TABLE1_INPUTS = dict(ball_radius=TABLE1.ball_radius, conformity=TABLE1.conformity,
-                     vertical_force=TABLE1.vertical_force, groove_velocity=TABLE1.groove_velocity,
-                     friction_coefficient=TABLE1.friction_coefficient, nominal_angle=CASE.nominal_angle,
-                     **TABLE1.material)
+TABLE1_INPUTS = dict(vertical_force=lin2019.VERTICAL_FORCE, nominal_angle=lin2019.GUIDE.nominal_angle,
+                     **lin2019.GUIDE.keywords)
 NAMES = ("BL", "BR", "TR", "TL")
 
 
@@ -218,15 +203,15 @@ NAMES = ("BL", "BR", "TR", "TL")
        "lin2019's full slip", kind="low-order", cost_s=4.0)
 def rolling_lin2019_contacts(run):
     cells = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}[run.fidelity]
-    contacts = b2b.module_contacts(CASE.theta, CASE.side_force_ratio, **TABLE1_INPUTS).ball(0)
+    contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **TABLE1_INPUTS).ball(0)
     state = bearing_ball.solve(contacts)
     mu = contacts.friction_coefficient
-    material = dict(youngs_modulus=TABLE1.youngs_modulus, poisson_ratio=TABLE1.poisson_ratio)
+    material = lin2019.GUIDE.material.keywords
     # the mapping of frames and signs: at mu 1e-5 (Lambda ~ 6e5) without Heathcote's slip the stick/slip
     # solution is full slip and must give lin2019's forces and moments
     faint = dataclasses.replace(contacts, friction_coefficient=1e-5)
     faint_state = bearing_ball.solve(faint)
-    limit = rolling_contacts.solve_contacts(faint, faint_state, TABLE1.conformity, cells=cells, heathcote=False,
+    limit = rolling_contacts.solve_contacts(faint, faint_state, lin2019.GUIDE.conformity, cells=cells, heathcote=False,
                                             **material)
     for i, contact in enumerate(limit):
         scale = 1e-5 * faint.normal_forces[0, i]
@@ -236,9 +221,9 @@ def rolling_lin2019_contacts(run):
                   source="lin2019 eq A4 (lowmodel.linear_bearing.ball, full slip)", family="BEM",
                   level=_cells(cells), why="judged against mu F")
     start = time.perf_counter()
-    results = rolling_contacts.solve_contacts(contacts, state, TABLE1.conformity, cells=cells, **material)
+    results = rolling_contacts.solve_contacts(contacts, state, lin2019.GUIDE.conformity, cells=cells, **material)
     time_s = (time.perf_counter() - start) / 4
-    plain = rolling_contacts.solve_contacts(contacts, state, TABLE1.conformity, cells=cells, heathcote=False,
+    plain = rolling_contacts.solve_contacts(contacts, state, lin2019.GUIDE.conformity, cells=cells, heathcote=False,
                                             **material)
     lines = []
     for i, (contact, centre_only) in enumerate(zip(results, plain)):
@@ -271,35 +256,7 @@ def rolling_lin2019_contacts(run):
                      f"lateral/(mu F) {contact.lateral_force / force_scale:+.4f}")
     run.note("Per contact (Kalker's creepage and spin of the lin2019 case (a) state; stick/slip with Heathcote's "
              "slip, in brackets without it): " + " | ".join(lines))
-    _contacts_figure(run, results)
-
-
-def _contacts_figure(run, results):
-    """Per contact (Kalker's frame, leading edge up): the angle between the traction and full slip's (-w/|w|),
-    the stick cells, the traction arrows."""
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), constrained_layout=True)
-    for ax, name, contact in zip(axes, NAMES, results):
-        solution = contact.solution
-        X, Y = solution.grid.coordinates()
-        p, w = solution.traction, solution.rigid_slip
-        cross = -(p[..., 0] * w[..., 1] - p[..., 1] * w[..., 0])
-        dot = -(p[..., 0] * w[..., 0] + p[..., 1] * w[..., 1])
-        angle = np.where(solution.contact, np.degrees(np.arctan2(cross, dot)), np.nan)
-        image = ax.pcolormesh(Y * 1e3, X * 1e3, angle, vmin=-10.0, vmax=10.0, cmap="RdBu_r", shading="nearest")
-        if solution.stick.any():
-            ax.plot(Y[solution.stick] * 1e3, X[solution.stick] * 1e3, "k.", ms=3)
-        step = (slice(None, None, 2), slice(None, None, 4))
-        ax.quiver(Y[step] * 1e3, X[step] * 1e3, p[..., 1][step], p[..., 0][step], color="k", width=0.002)
-        lateral = contact.lateral_force / (solution.friction_coefficient * contact.motion.normal_force)
-        ax.set_title(f"{name}: Lambda {contact.spin_parameter:.0f}, stick {solution.stick_fraction:.1%}, lateral "
-                     f"force {lateral:+.3f} mu F", fontsize=9)
-        ax.set_aspect("equal")
-        ax.set_ylabel("x_K [mm]")
-    axes[-1].set_xlabel("y_K (lateral) [mm]; x_K rolling, leading edge up")
-    fig.colorbar(image, ax=axes, label="traction direction minus full slip's [deg]")
-    run.save_figure(fig, "contacts.png")
+    run.save_figure(figures.contacts_figure(NAMES, results), "contacts.png")
 
 
 # --------------------------------------------------------------------------
@@ -313,7 +270,7 @@ def _flat_like(cells: int, h_factor: float):
     from ballbench.fem import rolling_compliance
     from ballbench.meshes.assemblies import contact_pairs
 
-    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    e, nu = lin2019.GUIDE.material.pair
     radius, force = 10e-3, 100.0
     a = (3.0 * force * radius / (4.0 * e / (2.0 * (1.0 - nu * nu)))) ** (1.0 / 3.0)  # Hertz, Johnson eq 4.22
     grid = rolling.hertz_grid(a, a, (cells, cells))
@@ -331,7 +288,7 @@ def _flat_like(cells: int, h_factor: float):
 def rolling_fe_compliance(run):
     cells, h_factor = FE_LEVELS[run.fidelity]
     a, force, grid, compliance, build_s = _flat_like(cells, h_factor)
-    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    e, nu = lin2019.GUIDE.material.pair
     shear = e / (2.0 * (1.0 + nu))
     level = f"{cells} x {cells} cells, P2, h {h_factor} cell, {compliance.ndofs} DOFs"
     pressure = rolling.hertz_pressure(grid, a, a, force)
@@ -371,17 +328,17 @@ def _fe_grooves(run):
     from ballbench.fem import rolling_compliance
     from ballbench.meshes.assemblies import contact_pairs
 
-    e, nu = TABLE1.youngs_modulus, TABLE1.poisson_ratio
+    e, nu = lin2019.GUIDE.material.pair
     cells = (6, 24)
     for conformity in (0.56, 0.52):
         inputs = dict(TABLE1_INPUTS, conformity=conformity)
-        contacts = b2b.module_contacts(CASE.theta, CASE.side_force_ratio, **inputs).ball(0)
+        contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **inputs).ball(0)
         state = bearing_ball.solve(contacts)
         a_lin, b_lin = contacts.semi_major[0, 0], contacts.semi_major[0, 0] * contacts.b_over_a[0, 0]
         grid = rolling.hertz_grid(b_lin, a_lin, cells)
         start = time.perf_counter()
-        path = contact_pairs.ball_in_groove_pair(TABLE1.ball_radius, conformity, 0.8 * grid.dx, 1.3, symmetry="full",
-                                                 element_order=2,
+        path = contact_pairs.ball_in_groove_pair(lin2019.GUIDE.ball_radius, conformity, 0.8 * grid.dx, 1.3,
+                                                 symmetry="full", element_order=2,
                                                  fine_ellipse=(a_lin + grid.dy, b_lin + grid.dx, 0.5 * b_lin))
         compliance = rolling_compliance.condense(path, (e, nu), grid, order=2, cache=True)
         build_s = time.perf_counter() - start

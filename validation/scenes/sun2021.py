@@ -1,8 +1,8 @@
 """Scenes for the dry non-Hertzian contact of sun2021 (Sec 2.2, Sec 4.1-4.2, Figs 7-9).
 
 Model: lowmodel.contact.screw_contact (BEM of lowmodel.contact.halfspace on the exact
-helical gap of the geometry core, against full-tensor, profile-frame and helix-free Hertz).
-Inputs: validation/papers/sun2021.py (SI, declared once).
+helical gap of the geometry core, against full-tensor, profile-frame and helix-free Hertz), and the EHL of
+lowmodel.contact.ehl on the same gap, through studies.sun2021.  Inputs: cases.sun2021 (SI, declared once).
 """
 from __future__ import annotations
 
@@ -10,17 +10,14 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.contact import screw_contact
-from ballbench.lowmodel.geometry import helix
+from ballbench.validation.cases import sun2021 as case
 from ballbench.validation.figures import render3d
-from ballbench.validation.papers import sun2021 as paper
+from ballbench.validation.figures import sun2021 as figures
 from ballbench.validation.scene import KnownGap, scene
+from ballbench.validation.studies.sun2021 import POINTS, contact_load, dry_contact, ehl_case
 
 MODEL = "lowmodel.contact.screw_contact"
-
-T1 = paper.TABLE_1
-HELIX_ANGLES_DEG = paper.HELIX_ANGLES_DEG
-POINTS = {"A": ("screw", "left"), "B": ("nut", "right")}  # A on the screw, B diametrically opposite on the nut
+HELIX_ANGLES_DEG = case.HELIX_ANGLES_DEG
 SIGN_TEST = "sign test: tolerance 0, so any value of the wrong sign fails; the scale only names the unit"
 # sun2021 Fig 11 trends that the solver (matched to Hamrock-Dowson in the same scene) does not give
 FILM_GAP = KnownGap(
@@ -37,55 +34,14 @@ PRESSURE_GAP = KnownGap(
              "1017 MPa at 128 x 32)")
 
 
-def contact_load() -> float:
-    """Normal ball load Q_A = Q_B [N] of the sun2021 scenes (eq 1, Table 1)."""
-    # sun2021 eq 1 at the Table 1 helix angle, held for the parameter study (the paper's Hertz central
-    # pressure "does not change with the helix angle", Sec 4.2: the load is fixed)
-    return screw_contact.preload_contact_load(T1.preload, T1.ball_count, T1.helix_angle,
-                                              T1.contact_angle)
-
-
-def dry_contact(helix_angle_deg: float, point: str, n: int):
-    """BEM (n x n) and Hertz models of the Table 1 contact at ``point`` "A" (screw) or "B" (nut), helix angle [deg]."""
-    body, flank = POINTS[point]
-    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), T1.pitch_radius))
-    return screw_contact.groove_contact(T1.ball_radius, T1.conformity, T1.pitch_radius, lead,
-                                        T1.contact_angle, contact_load(), body, flank,
-                                        youngs_modulus=T1.youngs_modulus,
-                                        poisson_ratio=T1.poisson_ratio, n=n)
-
-
-def _difference_figure(results, filename_title):
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(2, len(results), figsize=(4.2 * len(results), 7.5), squeeze=False)
-    for column, ((angle, point), contact) in enumerate(results.items()):
-        grid = contact.bem.grid
-        extent = [grid.y[0] * 1e6, grid.y[-1] * 1e6, grid.x[0] * 1e6, grid.x[-1] * 1e6]
-        top = axes[0, column].imshow(contact.bem.pressure / 1e6, origin="lower", extent=extent, aspect="equal")
-        axes[0, column].set_title(f"{point}, helix {angle} deg: BEM p [MPa]\ntheta_s = "
-                                  f"{math.degrees(contact.bem_angle):.3f} deg")
-        figure.colorbar(top, ax=axes[0, column], shrink=0.8)
-        difference = (contact.bem.pressure - contact.hertz_field("flat_helix")) / 1e6
-        bound = float(np.max(np.abs(difference)))
-        bottom = axes[1, column].imshow(difference, origin="lower", extent=extent, aspect="equal", cmap="RdBu_r",
-                                        vmin=-bound, vmax=bound)
-        axes[1, column].set_title("BEM - helix-free Hertz [MPa]")
-        figure.colorbar(bottom, ax=axes[1, column], shrink=0.8)
-        for row in range(2):
-            axes[row, column].set_xlabel("y, along the track [um]")
-            axes[row, column].set_ylabel("x, across the groove [um]")
-    figure.suptitle(filename_title)
-    return figure
-
-
 @scene("sun2021-dry-contact",
        "sun2021 Table 1 ball screw (preload 1500 N, eq 1 load), helix 5.68/13.97/21.71 deg, points A (screw) "
        "and B (nut): BEM on the exact helical gap against full-tensor Hertz (central pressure, rotation); "
        "Fig 9 trends; Figs 7-8 difference maps; which part of the difference is a misoriented Hertz",
-       kind="low-order", cost_s=7.0)  # cost: 7.4 s wall, CPU 99 % of wall (default, loaded machine)
+       kind="low-order", cost_s=7.0, show=render3d.show_saved)
 def sun2021_dry_contact(run):
     n = {"quick": 96, "default": 192, "fine": 384}[run.fidelity]
+    bem_model = dict(model=MODEL, family="BEM", level=f"{n} x {n}")
     results = {}
     times = []
     for angle in run.progress(HELIX_ANGLES_DEG, desc="helix angles"):
@@ -94,39 +50,39 @@ def sun2021_dry_contact(run):
             results[(angle, point)] = contact
             times.append(time_s)
             label = f"{point}, helix {angle} deg"
-            run.check(model=MODEL, quantity=f"central pressure {label}", unit="Pa",
+            run.check(**bem_model, quantity=f"central pressure {label}", unit="Pa",
                       value=contact.bem.central_pressure, reference=float(contact.hertz.p0),
                       source="full-tensor Hertz (exact curvatures of the swept groove, lowmodel.geometry.groove)",
                       tolerance=5e-3, time_s=time_s,
                       note="BEM on the exact gap; the higher-order gap terms are all that separates the two")
-            run.check(model=MODEL, quantity=f"ellipse rotation theta_s {label}", unit="deg",
+            run.check(**bem_model, quantity=f"ellipse rotation theta_s {label}", unit="deg",
                       value=math.degrees(contact.bem_angle), reference=math.degrees(contact.hertz_angle),
                       tolerance=1e-3, time_s=time_s,
-                      source="principal directions of the exact curvature tensor (issue 14: to 0.01 deg)",
+                      source="principal directions of the exact curvature tensor (docs/halfspace.md: to 0.01 deg)",
                       note="angle of the major axis from the profile tangent toward the track; relative to the "
-                           "rotation itself: 0.1 % is 8e-5 deg at 5.68 deg, 3e-4 deg at 21.71 deg, within issue "
-                           "14's 0.01 deg (an absolute 0.01 deg would be 12 % of the 0.083 deg rotation)")
+                           "rotation itself: 0.1 % is 8e-5 deg at 5.68 deg, 3e-4 deg at 21.71 deg, within the "
+                           "target 0.01 deg (an absolute 0.01 deg would be 12 % of the 0.083 deg rotation)")
     first, last = HELIX_ANGLES_DEG[0], HELIX_ANGLES_DEG[-1]
     total_s = float(sum(times))
     pressure = {k: v.bem.central_pressure for k, v in results.items()}
-    run.check(model=MODEL, quantity="Fig 9a: central pressure at A falls with helix angle, p(21.71) - p(5.68)",
+    run.check(**bem_model, quantity="Fig 9a: central pressure at A falls with helix angle, p(21.71) - p(5.68)",
               unit="Pa", value=pressure[(last, "A")] - pressure[(first, "A")], reference=0.0, relation="le",
               scale=1e6, tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9a (trend)")
-    run.check(model=MODEL, quantity="Fig 9b: central pressure at B rises with helix angle, p(21.71) - p(5.68)",
+    run.check(**bem_model, quantity="Fig 9b: central pressure at B rises with helix angle, p(21.71) - p(5.68)",
               unit="Pa", value=pressure[(last, "B")] - pressure[(first, "B")], reference=0.0, relation="ge",
               scale=1e6, tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9b (trend)")
     errors = {k: v.bem.central_pressure / float(v.flat_helix.p0) - 1.0 for k, v in results.items()}
-    run.check(model=MODEL, quantity="Fig 9c: |error of A| - |error of B| against helix-free Hertz at 21.71 deg",
+    run.check(**bem_model, quantity="Fig 9c: |error of A| - |error of B| against helix-free Hertz at 21.71 deg",
               unit="1", value=abs(errors[(last, "A")]) - abs(errors[(last, "B")]), reference=0.0,
               relation="ge", scale=1.0, tolerance=0.0, why=SIGN_TEST, time_s=total_s,
               source="sun2021 Sec 4.2, Fig 9c (error of A larger)")
     for point in POINTS:
-        run.check(model=MODEL, quantity=f"Fig 9c: error at {point} grows, |e(21.71)| - |e(5.68)|", unit="1",
+        run.check(**bem_model, quantity=f"Fig 9c: error at {point} grows, |e(21.71)| - |e(5.68)|", unit="1",
                   value=abs(errors[(last, point)]) - abs(errors[(first, point)]), reference=0.0, relation="ge",
                   scale=1.0, tolerance=0.0, why=SIGN_TEST, time_s=total_s,
                   source="sun2021 Sec 4.2, Fig 9c (errors increase)")
         angles = [abs(results[(a, point)].bem_angle) for a in HELIX_ANGLES_DEG]
-        run.check(model=MODEL, quantity=f"Fig 9d: theta_s at {point} grows with helix angle (smallest step)",
+        run.check(**bem_model, quantity=f"Fig 9d: theta_s at {point} grows with helix angle (smallest step)",
                   unit="deg", value=math.degrees(min(np.diff(angles))), reference=0.0, relation="ge", scale=1.0,
                   tolerance=0.0, why=SIGN_TEST, time_s=total_s, source="sun2021 Sec 4.2, Fig 9d (trend)")
     lines = []
@@ -155,10 +111,10 @@ def sun2021_dry_contact(run):
              "the load grows by 1/cos(alpha) (+6.6 % at 21.71 deg) and both central pressures rise.")
     run.note("sun2021 gives no number for Figs 7-9 in the text (figures missing); the trends are checked, the "
              "magnitudes are not comparable (no published number, hence nothing to declare as a known gap).")
-    run.save_figure(_difference_figure({k: v for k, v in results.items() if k[1] == "A"},
-                                       "sun2021 Fig 8 analogue (point A)"), "fig8_point_A.png")
-    run.save_figure(_difference_figure({k: v for k, v in results.items() if k[0] == HELIX_ANGLES_DEG[-1]},
-                                       "sun2021 Fig 7 analogue (21.71 deg)"), "fig7_21deg.png")
+    run.save_figure(figures.difference_figure({k: v for k, v in results.items() if k[1] == "A"},
+                                              "sun2021 Fig 8 analogue (point A)"), "fig8_point_A.png")
+    run.save_figure(figures.difference_figure({k: v for k, v in results.items() if k[0] == HELIX_ANGLES_DEG[-1]},
+                                              "sun2021 Fig 7 analogue (21.71 deg)"), "fig7_21deg.png")
     for point in POINTS:  # the BEM fields of the Fig 7 analogue in 3D
         bem = results[(last, point)].bem
         render3d.surface_artifacts(run, f"bem_{point}_{last}deg", bem.grid.x, bem.grid.y, {
@@ -166,98 +122,34 @@ def sun2021_dry_contact(run):
             title=f"dry BEM at {point}, helix {last} deg, {n} x {n}")
 
 
-ENTRAINMENT_SPEED = paper.ENTRAINMENT_SPEED
-EHL_HALF_WIDTH = paper.EHL_HALF_WIDTH
-
-
-def _contact_semi_axis(frame) -> float:
-    from ballbench.lowmodel.contact import hertz
-
-    ball = (1.0 / T1.ball_radius, 1.0 / T1.ball_radius)
-    geometry = hertz.from_curvatures(ball, (frame.curvature_major, frame.curvature_minor),
-                                     youngs_modulus=T1.youngs_modulus, poisson_ratio=T1.poisson_ratio)
-    return float(hertz.solve_load(geometry, contact_load()).a)
-
-
-def _ehl_case(helix_angle_deg: float, point: str, n: int, speed: float = ENTRAINMENT_SPEED):
-    from ballbench.lowmodel.contact import ehl, halfspace
-    from ballbench.lowmodel.geometry import groove
-
-    body, flank = POINTS[point]
-    lead = float(helix.lead_from_angle(math.radians(helix_angle_deg), T1.pitch_radius))
-    args = (T1.ball_radius, T1.conformity, T1.pitch_radius, lead, T1.contact_angle, body)
-    frame = groove.contact_frame(groove.helical_groove(*args, flank))
-    exact_gap = groove.pair_initial_gap(*args, flank=flank)
-    # across the groove the paper's +-277 um does not hold the contact (a ~ 275 um at A): widened to 1.3 a
-    across = _contact_semi_axis(frame)
-    # the contact is ~7 times longer across than along the track: 4 times as many cells along x as along y
-    grid = halfspace.surface_grid(EHL_HALF_WIDTH, max(EHL_HALF_WIDTH, 1.3 * across), 2 * n, n // 2)
-    X, Y = grid.coordinates()
-    # EHL x = entrainment = the track (contact-frame minor direction), y = across the groove (major)
-    gap = exact_gap(Y, X)
-    gap -= gap.min()
-    e_star = T1.youngs_modulus / (2.0 * (1.0 - T1.poisson_ratio ** 2))
-    radius_x = 1.0 / (1.0 / T1.ball_radius + frame.curvature_minor)  # along the track
-    radius_y = 1.0 / (1.0 / T1.ball_radius + frame.curvature_major)  # across the groove
-    alpha = ehl.roelands_pressure_viscosity_coefficient(T1.viscosity)
-    reference = ehl.hamrock_dowson_film(speed, contact_load(), radius_x, radius_y, 2 * e_star,
-                                        T1.viscosity, alpha)
-    solution = ehl.solve_reynolds(gap, grid, e_star, contact_load(), speed, T1.viscosity,
-                                  T1.lubricant_density, initial_film=reference["h_c"], coarsest=16)
-    return solution, reference
-
-
-def _ehl_figure(solution, title):
-    import matplotlib.pyplot as plt
-
-    grid = solution.grid
-    figure, axes = plt.subplots(1, 3, figsize=(14, 4.2))
-    extent = [grid.y[0] * 1e6, grid.y[-1] * 1e6, grid.x[0] * 1e6, grid.x[-1] * 1e6]
-    image = axes[0].imshow(solution.pressure / 1e6, origin="lower", extent=extent, aspect="auto")
-    axes[0].set_title("EHL pressure [MPa]")
-    figure.colorbar(image, ax=axes[0])
-    image = axes[1].imshow(solution.film * 1e9, origin="lower", extent=extent, aspect="auto",
-                           vmax=float(np.percentile(solution.film, 30)) * 1e9)
-    axes[1].set_title("film h [nm]")
-    figure.colorbar(image, ax=axes[1])
-    for axis in axes[:2]:
-        axis.set_xlabel("y, across the groove [um]")
-        axis.set_ylabel("x, entrainment (track) [um]")
-    j = grid.ny // 2
-    axes[2].plot(grid.x * 1e6, solution.pressure[:, j] / 1e6, label="p [MPa]")
-    twin = axes[2].twinx()
-    twin.plot(grid.x * 1e6, solution.film[:, j] * 1e9, "r", label="h [nm]")
-    twin.set_ylim(0, 4 * solution.central_film * 1e9)
-    axes[2].set_xlabel("x, entrainment [um] (y = 0)")
-    axes[2].set_title("centre line: pressure (blue), film (red)")
-    figure.suptitle(title)
-    return figure
+ENTRAINMENT_SPEED = case.ENTRAINMENT_SPEED
 
 
 @scene("sun2021-ehl",
        "sun2021 Sec 4.3: EHL at A (screw) and B (nut), Table 1 ball screw, eq 1 load, u_s 1005.3 mm/s, domain "
        "+-277 um, exact helical gap, helix 5.68/13.97/21.71 deg: film against Hamrock-Dowson with the "
        "full-tensor radii, load balance, Fig 10 fields, Fig 11 trends (declared known gaps), Fig 12 trend",
-       kind="low-order", cost_s=35.0)  # cost: 182 s wall, 31 s CPU (default, load average 11 on 2 cores)
+       kind="low-order", cost_s=35.0, show=render3d.show_saved)
 def sun2021_ehl(run):
     n = {"quick": 64, "default": 128, "fine": 256}[run.fidelity]  # grid 2n x n/2
     films, pressures, times, solutions = {}, {}, [], {}
+    ehl_model = dict(model="lowmodel.contact.ehl", family="EHL", level=f"{2 * n} x {n // 2}")
     for angle in run.progress(HELIX_ANGLES_DEG, desc="helix angles"):
         for point in POINTS:
-            (solution, reference), time_s = run.time(_ehl_case, angle, point, n, budget_s=0.0, max_repeat=1)
+            (solution, reference), time_s = run.time(ehl_case, angle, point, n, budget_s=0.0, max_repeat=1)
             times.append(time_s)
             label = f"{point}, helix {angle} deg, {2 * n} x {n // 2}"
-            run.check(model="lowmodel.contact.ehl", quantity=f"central film h_c {label}", unit="m",
+            run.check(**ehl_model, quantity=f"central film h_c {label}", unit="m",
                       value=solution.central_film, reference=reference["h_c"], tolerance=0.15, time_s=time_s,
                       source="Hamrock-Dowson (1977) with the full-tensor radii R_x (track), R_y (across)")
-            run.check(model="lowmodel.contact.ehl", quantity=f"load balance (eq 19) {label}", unit="N",
+            run.check(**ehl_model, quantity=f"load balance (eq 19) {label}", unit="N",
                       value=solution.force, reference=contact_load(), tolerance=1e-4, time_s=time_s,
                       source="sun2021 eq 1 load")
             films[(angle, point)] = solution.central_film
             solutions[(angle, point)] = solution
             pressures[(angle, point)] = solution.central_pressure
             if angle == HELIX_ANGLES_DEG[-1] and point == "A":
-                run.save_figure(_ehl_figure(solution, f"sun2021 Fig 10 analogue: point A, helix {angle} deg"),
+                run.save_figure(figures.ehl_figure(solution, f"sun2021 Fig 10 analogue: point A, helix {angle} deg"),
                                 "fig10_point_A.png")
                 render3d.surface_artifacts(run, f"ehl_A_{angle}deg", solution.grid.x, solution.grid.y, {
                     "pressure_Pa": solution.pressure, "film_m": solution.film}, axes=("entrainment", "across"),
@@ -267,7 +159,7 @@ def sun2021_ehl(run):
         change = films[(last, point)] / films[(first, point)] - 1.0
         found = "decreases" if change < 0 else "increases"
         figure = "11c" if point == "A" else "11d"
-        run.check(model="lowmodel.contact.ehl",
+        run.check(**ehl_model,
                   quantity=f"Fig {figure}: central film at {point} {published} with the helix angle, "
                            f"h_c({last}) / h_c({first}) - 1",
                   unit="1", value=change, reference=0.0, relation="le" if published == "decreases" else "ge",
@@ -279,8 +171,8 @@ def sun2021_ehl(run):
     for point in POINTS:
         # the nominal speed was solved above; the others start from scratch
         central = [solutions[(last, point)].central_pressure if speed == ENTRAINMENT_SPEED
-                   else _ehl_case(last, point, n, speed)[0].central_pressure for speed in speeds]
-        run.check(model="lowmodel.contact.ehl",
+                   else ehl_case(last, point, n, speed)[0].central_pressure for speed in speeds]
+        run.check(**ehl_model,
                   quantity=f"Fig 12: central EHL pressure at {point}, {last} deg, falls with speed (largest step)",
                   unit="Pa", value=float(max(np.diff(central))), reference=0.0, relation="le", scale=1e6,
                   tolerance=0.0, why=SIGN_TEST, time_s=float(np.mean(times)), source="sun2021 Sec 4.4, Fig 12 (trend)",
@@ -288,7 +180,7 @@ def sun2021_ehl(run):
                        + ", ".join(f"{p / 1e6:.1f}" for p in central) + " MPa")
     dry = {key: dry_contact(key[0], key[1], 96).bem.central_pressure for key in pressures}
     excess = min(pressures[k] / dry[k] - 1.0 for k in dry)
-    run.check(model="lowmodel.contact.ehl",
+    run.check(**ehl_model,
               quantity="Fig 11a,b: central EHL pressure exceeds the dry one, smallest p_EHL / p_dry - 1 over A, B "
                        "and the three helix angles",
               unit="1", value=excess, reference=0.0, relation="ge", scale=1.0, tolerance=0.0, why=SIGN_TEST,

@@ -10,21 +10,10 @@ import numpy as np
 
 from ballbench.validation import sweep
 from ballbench.validation.scene import scene
+from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
 
 MODEL = "validation.sweep"
-
-# lin2019 Sec 2.4 two-ball case by the low-order numerical model: a grid in (theta, rho) that reaches past the
-# four-point limit (those cases fail with their reason) times seeded random top-groove deviations
-EQUIVALENCE_SPEC = {
-    "name": "sweep-equivalence",
-    "function": "ballbench.validation.sweep_cases:two_ball_numerical",
-    "chunk_size": 7,  # does not divide the case count: a short last chunk
-    "outputs": ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"],
-    "grid": {"theta": {"linspace": [-3.0, 3.0, 3], "unit": "deg"}, "rho": {"values": [-0.95, -0.6, 0.3]}},
-    "random": {"draws": 5, "seed": 13, "inputs": {
-        "top_tr": {"distribution": "normal", "mean": 0.0, "sigma": 0.5, "unit": "deg"},
-        "top_tl": {"distribution": "uniform", "low": -1.0, "high": 1.0, "unit": "deg"}}},
-}
+SWEEP = dict(model=MODEL, family="low-order numerical")  # the sweep runs the low-order two-ball model
 
 
 def _difference(first: dict, second: dict) -> tuple[float, int]:
@@ -60,22 +49,22 @@ def sweep_equivalence(run):
     finally:
         shutil.rmtree(work, ignore_errors=True)
     worst, errors = _difference(reference, distributed)
-    run.check(model=MODEL, quantity="max abs(serial - LocalCluster(2 workers)) over all inputs and outputs",
+    run.check(**SWEEP, quantity="max abs(serial - LocalCluster(2 workers)) over all inputs and outputs",
               unit="mixed",
               value=worst, reference=0.0, scale=1.0, tolerance=0.0, time_s=cluster.wall_time_s,
               source="determinism: inputs depend only on the spec and the case number",
               note=f"{spec.n_cases} cases in chunks of {spec.chunk_size}; time: cluster run incl. start-up")
-    run.check(model=MODEL, quantity="cases whose failure text differs (serial vs cluster)", unit="count",
+    run.check(**SWEEP, quantity="cases whose failure text differs (serial vs cluster)", unit="count",
               value=float(errors), reference=0.0, scale=1.0, tolerance=0.0, time_s=cluster.wall_time_s,
               source="failures are results: recorded per case with their reason")
-    run.check(model=MODEL, quantity="cases in the cluster run", unit="count", value=float(distributed["case"].size),
+    run.check(**SWEEP, quantity="cases in the cluster run", unit="count", value=float(distributed["case"].size),
               reference=float(spec.n_cases), tolerance=0.0, time_s=cluster.wall_time_s,
               source="every case recorded, failed or not")
     worst_resumed, errors_resumed = _difference(reference, resumed)
-    run.check(model=MODEL, quantity="max abs(serial - stopped after 3 chunks + resumed)", unit="mixed",
+    run.check(**SWEEP, quantity="max abs(serial - stopped after 3 chunks + resumed)", unit="mixed",
               value=worst_resumed + errors_resumed, reference=0.0, scale=1.0, tolerance=0.0,
               time_s=first.wall_time_s + second.wall_time_s, source="resume from the Parquet parts")
-    run.check(model=MODEL, quantity="cases computed by the resumed run", unit="count", value=float(second.computed),
+    run.check(**SWEEP, quantity="cases computed by the resumed run", unit="count", value=float(second.computed),
               reference=float(spec.n_cases - first.computed), tolerance=0.0, time_s=second.wall_time_s,
               source="a restart computes only the missing cases")
     failed = int(sum(bool(e) for e in reference["error"]))

@@ -10,29 +10,31 @@ import numpy as np
 
 from ballbench.lowmodel.ball_bearing import harris
 from ballbench.lowmodel.screw import kinematics as sk
-from ballbench.validation.papers import wang2022 as papers
+from ballbench.validation.cases import wang2022 as case
+from ballbench.validation.figures import wang2022 as figures
+from ballbench.validation.references.published import wang2022 as published
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.screw.kinematics"
-RPM = papers.RPM  # rad/s per rpm
-HALF_UNIT = papers.HALF_UNIT  # wang2022 Tables 1-2 print 3 decimals
+RPM = case.RPM  # rad/s per rpm
+HALF_UNIT = published.HALF_UNIT  # wang2022 Tables 1-2 print 3 decimals
 
 # wang2022 Table A1 as keyword arguments of lowmodel.screw.kinematics (r_m = d_m/2, r_b = d_b/2; papers/README.md)
-TABLE_A1 = dict(pitch_radius=papers.TABLE_A1.pitch_radius, ball_radius=papers.TABLE_A1.ball_radius,
-                lead=papers.TABLE_A1.lead, screw_speed=papers.TABLE_A1.screw_speed,
-                contact_angle_nut=papers.TABLE_A1.contact_angle)
-BALL_MASS = papers.TABLE_A1.ball_mass  # kg, Table A1
-PRINTED_LEAD_ANGLE = papers.TABLE_A1.lead_angle  # Table A1
+TABLE_A1 = dict(pitch_radius=case.SCREW.pitch_radius, ball_radius=case.SCREW.ball_radius, lead=case.SCREW.lead,
+                screw_speed=case.SCREW.screw_speed, contact_angle_nut=case.SCREW.nominal_angle)
+BALL_MASS = case.SCREW.ball_mass  # kg, Table A1
+PRINTED_LEAD_ANGLE = published.LEAD_ANGLE  # Table A1
 
 # wang2022 Table 2, present model (Frenet components t, n, b) and Wei's model
-TABLE2_PRESENT_VECTORS = papers.TABLE2.present_vectors
-TABLE2_PRESENT_SCALARS = papers.TABLE2.present_scalars
-TABLE2_WEI_VECTORS = papers.TABLE2.wei_vectors
-TABLE2_WEI_SCALARS = papers.TABLE2.wei_scalars
+TABLE2_PRESENT_VECTORS = published.TABLE2.present_vectors
+TABLE2_PRESENT_SCALARS = published.TABLE2.present_scalars
+TABLE2_WEI_VECTORS = published.TABLE2.wei_vectors
+TABLE2_WEI_SCALARS = published.TABLE2.wei_scalars
 # wang2022 Table 1 (61830 deep-groove ball bearing, inner ring at 3600 rpm)
-TABLE1 = {"present": papers.TABLE1.present, "wei_U_A": papers.TABLE1.wei_U_A, "wei_U_B": papers.TABLE1.wei_U_B,
-          "wei_S_A": papers.TABLE1.wei_S_A, "wei_S_B": papers.TABLE1.wei_S_B}
-BEARING_SPEED = papers.TABLE1.inner_ring_speed
+TABLE1 = {"present": published.TABLE1.present, "wei_U_A": published.TABLE1.wei_U_A,
+          "wei_U_B": published.TABLE1.wei_U_B, "wei_S_A": published.TABLE1.wei_S_A,
+          "wei_S_B": published.TABLE1.wei_S_B}
+BEARING_SPEED = case.BEARING_INNER_RING_SPEED
 COMPONENTS = ("t", "n", "b")
 PRINTED_WHY = "printed to 3 decimals: half a unit (0.0005) is an absolute tolerance, judged on the scale 1"
 
@@ -45,8 +47,8 @@ def _printed_tolerance(reference: float) -> tuple[float, float]:
 
 def _check_printed(run, *, quantity, unit, value, reference, source, time_s, model=MODEL, note=""):
     tolerance, scale = _printed_tolerance(reference)
-    run.check(model=model, quantity=quantity, unit=unit, value=value, reference=reference, source=source,
-              tolerance=tolerance, scale=scale, time_s=time_s, note=note, why=PRINTED_WHY)
+    run.check(model=model, family="analytical", quantity=quantity, unit=unit, value=value, reference=reference,
+              source=source, tolerance=tolerance, scale=scale, time_s=time_s, note=note, why=PRINTED_WHY)
 
 
 def _wei_measures(vectors: dict[str, np.ndarray]) -> dict[str, float]:
@@ -101,7 +103,8 @@ def wang2022_table2(run):
         worst = max(worst, float(np.max(np.abs(getattr(printed_psi, attribute) - printed))))
     for (_, attribute, _), printed in TABLE2_PRESENT_SCALARS.items():
         worst = max(worst, abs(float(getattr(printed_psi, attribute)) - printed))
-    run.check(model=MODEL, quantity="worst |deviation| from Table 2 (present) with psi = 8.74 deg as printed",
+    run.check(model=MODEL, family="analytical",
+              quantity="worst |deviation| from Table 2 (present) with psi = 8.74 deg as printed",
               unit="m/s or 1", value=worst, reference=HALF_UNIT, relation="le", source="wang2022 Table 2, A1",
               tolerance=0.0, time_s=time_s, note="upper bound: half a unit of the printed 3rd decimal")
 
@@ -138,7 +141,8 @@ def wang2022_table2(run):
     for name, reference in printed.items():
         unit = "1" if name.startswith("S_") else "m/s"
         scale = 1.0
-        run.check(model=MODEL + " (Wei measures)", quantity=f"Wei {name} from the table's own vectors", unit=unit,
+        run.check(model=MODEL + " (Wei measures)", family="analytical",
+                  quantity=f"Wei {name} from the table's own vectors", unit=unit,
                   value=measures[name], reference=reference, source=source_w + "; eqs 1-6 on its V^a vectors",
                   tolerance=bound[name] / max(abs(reference), scale), scale=scale, time_s=measure_time, why=PRINTED_WHY,
                   note=f"tolerance: first-order rounding bound of the printed inputs + half a unit "
@@ -164,7 +168,7 @@ def wang2022_table2(run):
        "Deep-groove ball bearing 61830 (lead 0) at 3600 rpm: present model = Harris = 15.994 m/s, S = 0; "
        "Wei's model as far as its equations define it (wang2022 Table 1)", kind="analytical", cost_s=0.1)
 def wang2022_table1(run):
-    alpha = papers.TABLE1.contact_angle  # wang2022 Sec 3.1: alpha_i = alpha_o = pi/4
+    alpha = case.BEARING_CONTACT_ANGLE  # wang2022 Sec 3.1: alpha_i = alpha_o = pi/4
     # Geometry implied by Table 1 itself (the 61830 data of ref [21] are not given):
     #   present U = omega r_m (1 - gamma^2) / 2 and, in Wei's model with a ball velocity along t,
     #   U_A + U_B = omega r_m (1 - gamma) (the ball term cancels), gamma = r_b cos(alpha) / r_m.
@@ -182,12 +186,14 @@ def wang2022_table1(run):
     r_m_bound = max(abs(c[0] - implied_r_m) for c in corners)
     r_b_bound = max(abs(c[1] - implied_r_b) for c in corners)
     pitch_radius, ball_radius = 0.085, 0.005  # d_m = (150 + 190)/2 = 170 mm (61830 bore/OD), D = 10 mm
-    run.check(model="Table 1 geometry", quantity="d_m implied by Table 1", unit="m", value=2 * implied_r_m,
+    run.check(model="Table 1 geometry", family="analytical",
+              quantity="d_m implied by Table 1", unit="m", value=2 * implied_r_m,
               reference=2 * pitch_radius, source="61830: (bore 150 mm + OD 190 mm) / 2",
               tolerance=r_m_bound / pitch_radius, time_s=0.0,
               note=f"from U (present) and U_A + U_B (Wei); tolerance: the rounding interval of Table 1, "
                    f"+-{2e3 * r_m_bound:.3f} mm")
-    run.check(model="Table 1 geometry", quantity="d_b implied by Table 1 (alpha = 45 deg)", unit="m",
+    run.check(model="Table 1 geometry", family="analytical",
+              quantity="d_b implied by Table 1 (alpha = 45 deg)", unit="m",
               value=2 * implied_r_b, reference=2 * ball_radius, source="10 mm ball chosen for the 61830",
               tolerance=r_b_bound / ball_radius, time_s=0.0,
               note=f"tolerance: the rounding interval of Table 1, +-{2e3 * r_b_bound:.3f} mm")
@@ -206,7 +212,7 @@ def wang2022_table1(run):
             ("S_A", present.slide_roll_nut, MODEL, time_p), ("S_B", present.slide_roll_screw, MODEL, time_p),
             ("S_A", bearing.slide_roll_outer, "lowmodel.ball_bearing.harris", time_h),
             ("S_B", bearing.slide_roll_inner, "lowmodel.ball_bearing.harris", time_h)):
-        run.check(model=model, quantity=quantity, unit="1", value=value, reference=0.0, scale=1.0,
+        run.check(model=model, family="analytical", quantity=quantity, unit="1", value=value, reference=0.0, scale=1.0,
                   why="S is a ratio of order 1: exact zero (lead 0) judged on the scale 1",
                   tolerance=1e-12, source=source + " (0.000); pure rolling", time_s=time_s,
                   note="exact zero expected (lead 0); tolerance 1e-12 on scale 1 for round-off")
@@ -214,13 +220,14 @@ def wang2022_table1(run):
             ("U_A present vs Harris", present.entrainment_nut, bearing.entrainment_outer),
             ("U_B present vs Harris", present.entrainment_screw, bearing.entrainment_inner),
             ("omega_m present vs Harris cage speed", present.orbital_speed, bearing.cage_speed)):
-        run.check(model=MODEL, quantity=quantity, unit="m/s" if quantity[0] == "U" else "rad/s", value=value,
+        run.check(model=MODEL, family="analytical",
+                  quantity=quantity, unit="m/s" if quantity[0] == "U" else "rad/s", value=value,
                   reference=reference, source="lowmodel.ball_bearing.harris (Harris & Kotzalas 2006)", tolerance=1e-12,
                   time_s=time_p, note="the two methods agree exactly at lead 0 (round-off only)")
 
     # ---- Wei's model -------------------------------------------------
     wei, time_w = run.time(sk.wei_ball_centre_kinematics, pitch_radius, ball_radius, 0.0, BEARING_SPEED, alpha)
-    run.check(model=MODEL + " (Wei)", quantity="Wei S_A", unit="1", value=wei.slide_roll_nut,
+    run.check(model=MODEL + " (Wei)", family="analytical", quantity="Wei S_A", unit="1", value=wei.slide_roll_nut,
               reference=TABLE1["wei_S_A"], source=source + "; eqs 1, 4, 5 with the outer ring at rest",
               tolerance=_printed_tolerance(2.0)[0], scale=1.0, time_s=time_w,
               note="= 2 for any ball velocity: |V_Ab| / (|V_Ab| / 2)")
@@ -257,7 +264,8 @@ def wang2022_centrifugal(run):
         return state.centrifugal_force(BALL_MASS, TABLE_A1["pitch_radius"])
 
     value, time_s = run.time(force, 3000.0, np.radians(45.0))
-    run.check(model=MODEL, quantity="F_n / 27 N at 3000 rpm", unit="1", value=float(value) / 27.0, reference=0.02,
+    run.check(model=MODEL, family="analytical",
+              quantity="F_n / 27 N at 3000 rpm", unit="1", value=float(value) / 27.0, reference=0.02,
               source="wang2022 Sec 3.3 ('only about 2 %')", tolerance=0.25, time_s=time_s,
               note="'about 2 %' read as one significant digit: [1.5, 2.5) %, i.e. 25 % of 2 %")
     angles = np.radians(np.linspace(35.0, 55.0, 21))
@@ -266,13 +274,15 @@ def wang2022_centrifugal(run):
     # with alpha_i = alpha_o the tan(beta) terms of eq 18 cancel: omega_m = omega (1 - gamma cos alpha) / 2
     gamma = TABLE_A1["ball_radius"] / TABLE_A1["pitch_radius"]
     closed = BALL_MASS * TABLE_A1["pitch_radius"] * (3000 * RPM * (1 - gamma * np.cos(angles)) / 2) ** 2
-    run.check(model=MODEL, quantity="worst rel. deviation of F_n(alpha) from m r_m (omega (1 - gamma cos alpha)/2)^2",
+    run.check(model=MODEL, family="analytical",
+              quantity="worst rel. deviation of F_n(alpha) from m r_m (omega (1 - gamma cos alpha)/2)^2",
               unit="1", value=float(np.max(np.abs(spread_forces / closed - 1))), reference=0.0, scale=1.0,
               why="the value is itself a relative deviation: zero judged on the scale 1",
               tolerance=1e-12, source="wang2022 eqs 18, 22 with alpha_i = alpha_o (closed form)", time_s=time_s,
               note="value is itself the worst relative deviation over alpha = 35-55 deg")
     ratio = float(force(3000.0, np.radians(45.0)) / force(1000.0, np.radians(45.0)))
-    run.check(model=MODEL, quantity="F_n(3000 rpm) / F_n(1000 rpm)", unit="1", value=ratio, reference=9.0,
+    run.check(model=MODEL, family="analytical",
+              quantity="F_n(3000 rpm) / F_n(1000 rpm)", unit="1", value=ratio, reference=9.0,
               tolerance=1e-12, source="wang2022 Sec 3.3 (speed 'greatly increases' F_n); eq 22: F_n ~ omega^2",
               time_s=time_s)
     run.note(f"Contact-angle effect (Fig 4, 'nearly constant'): F_n changes by {100 * spread:.1f} % over alpha = "
@@ -282,77 +292,9 @@ def wang2022_centrifugal(run):
     run.note(f"F_n = m r_m omega_m^2 (eq 22) with m = 1.05 g, r_m = 20.7 mm, omega_m = eq 18: "
              f"{float(value):.4f} N at 3000 rpm = {100 * float(value) / 27:.2f} % of 27 N.")
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     speeds = np.linspace(0.0, 5000.0, 51)
-    figure, axes = plt.subplots(figsize=(6, 4))
-    for degrees in (35, 40, 45, 50, 55):
-        axes.plot(speeds, force(speeds, np.radians(degrees)), label=f"alpha = {degrees} deg")
-    axes.set_xlabel("screw speed [rpm]")
-    axes.set_ylabel("centrifugal force F_n [N]")
-    axes.set_title("wang2022 Fig 4: ball centrifugal force (Table A1)")
-    axes.grid(True, alpha=0.3)
-    axes.legend()
-    run.save_figure(figure, "fig4_centrifugal_force.png")
-
-
-def _trend_figure(run, values, x_label, results, filename, title, x_scale=1.0, nominal=None):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
-    x = values * x_scale
-    left.plot(x, results.slide_roll_nut, label="S_A (nut)")
-    left.plot(x, results.slide_roll_screw, "--", label="S_B (screw)")
-    left.set_ylabel("slide-roll ratio [-]")
-    right.plot(x, results.entrainment_nut, label="U_A (nut)")
-    right.plot(x, results.entrainment_screw, "--", label="U_B (screw)")
-    right.set_ylabel("entrainment velocity [m/s]")
-    for axes in (left, right):
-        if nominal is not None:
-            axes.axvline(nominal * x_scale, color="0.6", lw=0.8, ls=":", label="Table A1")
-        axes.set_xlabel(x_label)
-        axes.grid(True, alpha=0.3)
-        axes.legend()
-    figure.suptitle(title)
-    run.save_figure(figure, filename)
-
-
-def _methods_figure(run, count):
-    """U and S of the three methods against the lead (Table A1 otherwise); Harris exists at lead 0 only."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    leads = np.linspace(0.0, 40e-3, count)
-    present = sk.kinematics(**{**TABLE_A1, "lead": leads})
-    wei = sk.wei_ball_centre_kinematics(**{**TABLE_A1, "lead": leads})
-    bearing = harris.kinematics(TABLE_A1["pitch_radius"], TABLE_A1["ball_radius"], TABLE_A1["screw_speed"],
-                                TABLE_A1["contact_angle_nut"])
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
-    x = leads * 1e3
-    for state, name, style in ((present, "present", "-"), (wei, "Wei (ball at centre velocity)", ":")):
-        left.plot(x, state.slide_roll_nut, style, color="C0", label=f"S_A {name}")
-        left.plot(x, state.slide_roll_screw, style, color="C1", label=f"S_B {name}")
-        right.plot(x, state.entrainment_nut, style, color="C0", label=f"U_A {name}")
-        right.plot(x, state.entrainment_screw, style, color="C1", label=f"U_B {name}")
-    left.plot([0.0], [float(bearing.slide_roll_outer)], "k*", ms=9, label="Harris (lead 0)")
-    right.plot([0.0, 0.0], [float(bearing.entrainment_outer), float(bearing.entrainment_inner)], "k*", ms=9,
-               label="Harris (lead 0)")
-    left.set_ylabel("slide-roll ratio [-]")
-    right.set_ylabel("entrainment velocity [m/s]")
-    for axes in (left, right):
-        axes.set_xlabel("lead [mm]")
-        axes.grid(True, alpha=0.3)
-        axes.legend(fontsize=7)
-    figure.suptitle("Three methods on the same inputs (Table A1, lead varied)")
-    run.save_figure(figure, "methods_vs_lead.png")
+    curves = {degrees: force(speeds, np.radians(degrees)) for degrees in (35, 40, 45, 50, 55)}
+    run.save_figure(figures.centrifugal_force(speeds, curves), "fig4_centrifugal_force.png")
 
 
 def _steps_against(values, sign) -> int:
@@ -381,16 +323,18 @@ def wang2022_trends(run):
     for parameter, values, label, scale, filename, title in run.progress(studies, desc="Figs 5-9"):
         state, time_s = run.time(sk.kinematics, **{**TABLE_A1, parameter: values})
         results[parameter] = (values, state, time_s)
-        _trend_figure(run, values, label, state, filename, f"wang2022 {title} (Table A1 otherwise)", scale,
-                      nominal=TABLE_A1[parameter])
+        run.save_figure(figures.trend_figure(values, label, state, f"wang2022 {title} (Table A1 otherwise)",
+                                             scale, nominal=TABLE_A1[parameter]), filename)
 
     def count_check(quantity, value, statement, time_s):
-        run.check(model=MODEL, quantity=quantity, unit="count", value=value, reference=0.0, scale=1.0,
+        run.check(model=MODEL, family="analytical",
+                  quantity=quantity, unit="count", value=value, reference=0.0, scale=1.0,
                   why="a count: zero judged on the scale of one",
                   tolerance=0.0, source=f"{source}: {statement}", time_s=time_s)
 
     def spread_check(quantity, array, statement, time_s):
-        run.check(model=MODEL, quantity=quantity, unit="1", value=float(np.ptp(array) / np.mean(np.abs(array))),
+        run.check(model=MODEL, family="analytical",
+                  quantity=quantity, unit="1", value=float(np.ptp(array) / np.mean(np.abs(array))),
                   reference=0.0, scale=1.0, tolerance=1e-12, source=f"{source}: {statement}", time_s=time_s,
                   why="a relative spread: zero judged on the scale 1",
                   note="relative spread; exact zero up to round-off")
@@ -411,10 +355,10 @@ def wang2022_trends(run):
                 _steps_against(state.slide_roll_screw, -1) + _steps_against(state.slide_roll_nut, +1)
                 + _steps_against(state.entrainment_nut, +1) + _steps_against(state.entrainment_screw, +1),
                 "contact angle (Fig 6)", time_s)
-    run.check(model=MODEL, quantity="range of S_A / range of S_B over alpha 30-60 deg", unit="1",
+    run.check(model=MODEL, family="analytical", quantity="range of S_A / range of S_B over alpha 30-60 deg", unit="1",
               value=float(np.ptp(state.slide_roll_nut) / np.ptp(state.slide_roll_screw)), reference=1.0,
               relation="le", tolerance=0.0, source=f"{source}: S_A 'increases even less' (Fig 6)", time_s=time_s)
-    run.check(model=MODEL, quantity="relative range of U_B over alpha 30-60 deg", unit="1",
+    run.check(model=MODEL, family="analytical", quantity="relative range of U_B over alpha 30-60 deg", unit="1",
               value=float(np.ptp(state.entrainment_screw) / np.mean(state.entrainment_screw)), reference=0.05,
               relation="le", tolerance=0.0, source=f"{source}: 'essentially negligible' (Fig 6)", time_s=time_s,
               note="'negligible' read as below 5 %")
@@ -424,13 +368,13 @@ def wang2022_trends(run):
                 _steps_against(state.slide_roll_nut, +1) + _steps_against(state.slide_roll_screw, +1)
                 + _steps_against(state.entrainment_screw, +1) + _steps_against(state.entrainment_nut, -1),
                 "lead (Fig 7)", time_s)
-    run.check(model=MODEL, quantity="relative range of U_A, U_B over lead 2-40 mm (max)", unit="1",
+    run.check(model=MODEL, family="analytical", quantity="relative range of U_A, U_B over lead 2-40 mm (max)", unit="1",
               value=float(max(np.ptp(state.entrainment_nut) / np.mean(state.entrainment_nut),
                               np.ptp(state.entrainment_screw) / np.mean(state.entrainment_screw))),
               reference=0.05, relation="le", tolerance=0.0,
               source=f"{source}: lead has a 'negligible influence on entrainment velocity' (Fig 7)", time_s=time_s,
               note="'negligible' read as below 5 %")
-    run.check(model=MODEL, quantity="S_B(lead 40 mm) / S_B(lead 2 mm)", unit="1",
+    run.check(model=MODEL, family="analytical", quantity="S_B(lead 40 mm) / S_B(lead 2 mm)", unit="1",
               value=float(state.slide_roll_screw[-1] / state.slide_roll_screw[0]), reference=10.0, relation="ge",
               tolerance=0.0, source=f"{source}: S 'increases dramatically' with lead (Fig 7)", time_s=time_s,
               note="'dramatically' read as at least tenfold over a twentyfold lead")
@@ -446,11 +390,16 @@ def wang2022_trends(run):
                 _steps_against(state.entrainment_nut, -1) + _steps_against(state.entrainment_screw, -1)
                 + _steps_against(state.slide_roll_nut, +1) + _steps_against(state.slide_roll_screw, +1),
                 "ball diameter (Fig 9)", time_s)
-    run.check(model=MODEL, quantity="relative range of U_A over d_b 3-10 mm", unit="1",
+    run.check(model=MODEL, family="analytical", quantity="relative range of U_A over d_b 3-10 mm", unit="1",
               value=float(np.ptp(state.entrainment_nut) / np.mean(state.entrainment_nut)), reference=0.05,
               relation="le", tolerance=0.0, source=f"{source}: U 'reduces slightly' with ball diameter (Fig 9)",
               time_s=time_s, note="'slightly' read as below 5 %")
-    _methods_figure(run, count)
+    leads = np.linspace(0.0, 40e-3, count)
+    bearing = harris.kinematics(TABLE_A1["pitch_radius"], TABLE_A1["ball_radius"], TABLE_A1["screw_speed"],
+                                TABLE_A1["contact_angle_nut"])
+    run.save_figure(figures.methods_figure(leads, sk.kinematics(**{**TABLE_A1, "lead": leads}),
+                                           sk.wei_ball_centre_kinematics(**{**TABLE_A1, "lead": leads}), bearing),
+                    "methods_vs_lead.png")
     run.note("Sweep ranges are chosen here (the figures are missing from the text): speed 100-5000 rpm, "
              "alpha 30-60 deg, lead 2-40 mm, d_m 24-100 mm, d_b 3-10 mm, all other inputs Table A1. Verbal "
              "bounds ('negligible', 'dramatically') are read as stated in each row's note.")

@@ -6,9 +6,9 @@ Solves three coarse cases (about 30 s) and writes them as the scenes do, then sh
 the corner nodes of the quadratic tetrahedra only (linear tetrahedra, which render3d reads as well) and float32
 data.  A coarse mesh is enough: the tests judge the pictures, not the FE.
 
-* ``pair/``: the ball on a flat (fe-hertz-flat) at n = b/h 5, growth 2, 100 N (validation.scenes.fe_hertz);
-* ``module/``: lin2019's two-ball linear module, case (a), at h 90 um, growth 2 (validation.scenes.fe_b2b);
-* ``surface/``: the sun2021 dry BEM at A, 21.71 deg, 32 x 32 cells (validation.scenes.sun2021).
+* ``pair/``: the ball on a flat (fe-hertz-flat) at n = b/h 5, growth 2, 100 N (validation.studies.fe_contact);
+* ``module/``: lin2019's two-ball linear module, case (a), at h 90 um, growth 2 (validation.studies.fe_b2b_linear);
+* ``surface/``: the sun2021 dry BEM at A, 21.71 deg, 32 x 32 cells (validation.studies.sun2021).
 
 After regenerating, reset the baseline images: ``BALLBENCH_RESET_BASELINES=1 .venv/bin/python -m pytest
 tests/test_render3d.py`` and look at them (tests/baseline_images/render3d/).
@@ -39,15 +39,20 @@ def shrink(path: Path) -> None:
 
 def main() -> None:
     from ballbench.fem.fields import write_module_fields, write_surface_fields
-    from ballbench.validation.scenes import fe_b2b, fe_hertz, sun2021
+    from ballbench.validation.cases import lin2019
+    from ballbench.validation.cases.case import ModuleLevel, PairLevel
+    from ballbench.validation.studies import fe_b2b_linear, fe_contact, sun2021
 
-    case = fe_hertz.pair_case("fe-hertz-flat")
-    result, ref = fe_hertz.solve_level(case, 5.0, 2.0)
-    fe_hertz.write_fields(result, ref, HERE / "pair", scene_name="fe-hertz-flat", fidelity="test", level=(5.0, 2.0))
+    case = lin2019.CONTACT_FLAT
+    level = PairLevel(5.0, 2.0)
+    result, ref = fe_contact.solve_level(fe_contact.pair_model(case), level)
+    fe_contact.write_fields(result, ref, HERE / "pair", scene_name="fe-hertz-flat", fidelity="test", level=level,
+                            material=case.material)
     shrink(HERE / "pair" / "fields.vtu")
 
-    model, results, _ = fe_b2b.solve_fe_level("a", 9e-5, 2.0, 1.5e-4)
-    paths = write_module_fields(HERE / "module", model, results, materials=(fe_b2b.E_STEEL, fe_b2b.NU_STEEL),
+    guide = lin2019.TABLE3_A
+    model, results, _ = fe_b2b_linear.solve_fe_level(guide, ModuleLevel(9e-5, 2.0, None))
+    paths = write_module_fields(HERE / "module", model, results, materials=guide.guide.material.pair,
                                 scene="fe-b2b-linear-a", fidelity="test", level={"h_contact_m": 9e-5, "growth": 2.0},
                                 case="theta 2 deg, rho -0.6")
     for path in paths[:-1]:

@@ -1,0 +1,82 @@
+"""lowmodel.screw.contacts: the ball-screw module and the contacts of its balls (lin2019 Sec 3.1), bad input."""
+import math
+
+import numpy as np
+import pytest
+from ballbench.lowmodel.screw import b2b as b2b
+from ballbench.lowmodel.screw import b2b_traction as traction
+from ballbench.lowmodel.screw import ball as sb
+from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw import load_distribution as ld
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def table():
+    module = screw_contacts.screw_module(oversize=1e-6)
+    return module, ld.axial_stiffness(module, 200.0, 5), ld.bar_sections(module)
+
+
+@pytest.mark.filterwarnings("error")
+def test_screw_module_refuses_a_lead_angle_of_90_degrees():
+    """lead = 1e300 m was accepted; ball_contacts then failed naming ``lead_angle``, not a parameter it has."""
+    with pytest.raises(ValueError, match="lead must give a lead angle below pi/2"):
+        screw_contacts.screw_module(lead=1e300)
+
+
+@pytest.mark.filterwarnings("error")
+def test_ball_contacts_name_the_conformity_below_the_friction_map():
+    """conformity 0.5005 at 0.3 rad: the solves raised 'b_over_a must lie in [0.02, 1]' from inside the
+    friction model, naming no parameter of theirs."""
+    module = screw_contacts.screw_module(conformity=0.5005, lead=0.0, nominal_angle=0.3)
+    with pytest.raises(ValueError, match="module: conformity = 0.5005 gives a Hertz axis ratio"):
+        screw_contacts.ball_contacts(module)
+
+
+@pytest.mark.filterwarnings("error")
+def test_ball_indices_are_checked(table):
+    """profile_2d and hertz_patches with ball 1 of a single ball raised IndexError; True was taken as ball 1."""
+    module = table[0]
+    contacts = screw_contacts.ball_contacts(module, 0.0)
+    state = sb.solve(contacts, 50.0)
+    for ball in (1, -1, True):
+        with pytest.raises(ValueError, match="ball"):
+            screw_contacts.profile_2d(contacts, ball, 0, 0.7)
+        with pytest.raises(ValueError, match="ball"):
+            traction.hertz_patches(state, contacts, ball)
+    with pytest.raises(ValueError, match="contact"):
+        screw_contacts.profile_2d(contacts, 0, 4, 0.7)
+    with pytest.raises(ValueError, match="axial_load"):
+        sb.reference_force(contacts, 1.7e308)
+
+
+@pytest.mark.filterwarnings("error")
+def test_nut_speed_range_and_gap_count():
+    """nut_speed = 1e-300 rad/s was accepted and the B2B solve warned (overflow of the friction Jacobian, which
+    scales like 1 / speed); check_gaps(None, 1.0) was a TypeError and (None, -1) numpy's 'negative dimensions'."""
+    with pytest.raises(ValueError, match="nut_speed must satisfy"):
+        screw_contacts.screw_module(nut_speed=1e-300)
+    assert screw_contacts.screw_module(nut_speed=-1e-100).nut_speed == -1e-100
+    for count in (1.0, -1, True):
+        with pytest.raises(ValueError, match="count"):
+            b2b.check_gaps(None, count)
+
+
+@pytest.mark.filterwarnings("error")
+def test_screw_module_and_solves_refuse_what_breaks_the_model(table):
+    """mu = 1e300 was accepted (the solve 'converged' with a power balance off by 3e4 relative: residuals are
+    scaled by mu F); an axial load of 1e300 N overflowed (warning) in the solve; a conformity next to 0.5 failed
+    in Hertz naming its internal curvatures; saturation() of a state without loaded contacts: numpy's
+    'zero-size array' error."""
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        screw_contacts.screw_module(friction_coefficient=1e300)
+    contacts = screw_contacts.ball_contacts(table[0], 0.0)
+    with pytest.raises(ValueError, match="axial_load: its Hertz approach"):
+        sb.solve(contacts, 1e300)
+    with pytest.raises(ValueError, match="module: no Hertz point contact"):
+        screw_contacts.ball_contacts(screw_contacts.screw_module(conformity=math.nextafter(0.5, 1.0)))
+    state = sb.solve(contacts, 50.0)
+    empty = sb.ScrewBallState(**{**state.__dict__, "normal_force": np.zeros_like(state.normal_force)})
+    assert b2b.saturation(empty) == 0.0

@@ -1,0 +1,205 @@
+"""Static load distribution and the whole-screw simulation (lin2019 Sec 3.4)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.screw import load_distribution as ld, ball as sb, contacts as screw_contacts, whole_screw as ws
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.screw import whole_screw
+from functools import lru_cache
+from hypothesis import given, strategies as st
+from tests.property_support import EXTREME, SETTINGS, SLOW, call, mostly, positive, real
+
+
+@pytest.fixture(scope="module")
+def module():
+    return screw_contacts.screw_module(oversize=1.7e-6)
+
+
+@pytest.fixture(scope="module")
+def stiffness(module):
+    return ld.axial_stiffness(module, 60.0, points=7)
+
+
+def test_axial_stiffness_is_the_single_ball_model(module, stiffness):
+    state = sb.solve(screw_contacts.ball_contacts(module, 0.0), 33.0)
+    assert stiffness.shift(33.0) == pytest.approx(state.nut_shift, rel=2e-3)   # pchip between 7 nodes
+    assert stiffness.load(stiffness.shift(20.0)) == pytest.approx(20.0, rel=1e-9)
+
+
+def test_distribution_compatibility_and_balance(module, stiffness):
+    sections = ld.bar_sections(module)
+    psi = np.sort(np.random.default_rng(1).uniform(0.0, 4 * math.pi, 12))
+    loads = ld.distribute(psi, 400.0, stiffness, sections, module.lead, module.youngs_modulus)
+    assert loads.sum() == pytest.approx(400.0, rel=1e-10)
+    assert np.all(np.diff(loads) < 0.0)          # the balls nearest the loaded end carry most
+    # compatibility, recomputed by a plain loop: shift difference = bar shortening between the balls
+    z = module.lead * psi / (2 * math.pi)
+    e = module.youngs_modulus
+    handed = 0.0
+    for j in range(1, len(psi)):
+        handed += loads[j - 1]
+        strain = (400.0 - handed) / (e * sections.screw_area) + handed / (e * sections.nut_area)
+        expected = stiffness.shift(loads[j]) - stiffness.shift(loads[j - 1])
+        assert expected == pytest.approx(strain * (z[j] - z[j - 1]), rel=1e-6)
+    stiff_bars = ld.BarSections(1e6, 1e6)
+    equal = ld.distribute(psi, 400.0, stiffness, stiff_bars, module.lead, module.youngs_modulus)
+    np.testing.assert_allclose(equal, 400.0 / 12, rtol=1e-6)
+
+
+def test_lead_error_shifts_the_load_to_the_loaded_end(module, stiffness):
+    sections = ld.bar_sections(module)
+    psi = np.linspace(0.2, 12.0, 10)
+    base = ld.distribute(psi, 300.0, stiffness, sections, module.lead, module.youngs_modulus)
+    error = ld.distribute(psi, 300.0, stiffness, sections, module.lead, module.youngs_modulus, lead_error=2e-7)
+    assert error.sum() == pytest.approx(300.0, rel=1e-10)
+    assert error[0] > base[0] and error[-1] < base[-1]
+    # compatibility with the lead error, recomputed by a plain loop (as in the test above)
+    z = module.lead * psi / (2 * math.pi)
+    e = module.youngs_modulus
+    handed = 0.0
+    for j in range(1, len(psi)):
+        handed += error[j - 1]
+        strain = (300.0 - handed) / (e * sections.screw_area) + handed / (e * sections.nut_area)
+        expected = strain * (z[j] - z[j - 1]) + 2e-7 * (psi[j] - psi[j - 1]) / (2 * math.pi)
+        got = stiffness.shift(error[j]) - stiffness.shift(error[j - 1])
+        assert got == pytest.approx(expected, rel=1e-6)
+
+
+def test_short_simulation(module, stiffness):
+    history = ws.simulate(module, n_balls=12, axial_load=300.0, duration=0.05, steps=5, stiffness=stiffness)
+    assert history.time.shape == (6,)
+    assert np.all(history.power_error < 1e-8)
+    assert np.all(history.b2b_force >= 0.0)
+    np.testing.assert_allclose(history.spacing.sum(axis=1), 4 * math.pi, rtol=1e-12)
+    assert np.all(history.spacing >= history.contact_spacing * (1 - 1e-12))
+    assert np.all(history.groove_torque > 0.0)
+    # touching pairs have (numerically) equal orbit speeds
+    touching = history.b2b_force > 0.0
+    ahead = np.roll(history.orbit_speed, -1, axis=1)
+    assert np.all(np.abs((ahead - history.orbit_speed)[touching]) < 1e-8 * module.nut_speed)
+
+
+def test_bad_input(module, stiffness):
+    with pytest.raises(ValueError, match="n_balls"):
+        ws.simulate(module, n_balls=50, steps=1, stiffness=stiffness)
+    with pytest.raises(ValueError, match="total_load"):
+        ld.distribute([0.1, 0.2], 1e4, stiffness, ld.bar_sections(module), module.lead, module.youngs_modulus)
+    with pytest.raises(ValueError, match="nut_outer_radius"):
+        ld.bar_sections(module, nut_outer_radius=0.01)
+
+
+# --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
+# nonsense accepted); every warning is an error -----------------------------------------------------------------------
+
+
+TINY = 5e-324  # the smallest float
+
+
+@pytest.fixture(scope="module")
+def table():
+    module = screw_contacts.screw_module(oversize=1e-6)
+    return module, ld.axial_stiffness(module, 200.0, 5), ld.bar_sections(module)
+
+
+@pytest.mark.filterwarnings("error")
+def test_load_distribution_checks_and_reports(table):
+    """bar_sections(nut_outer_radius=1e300) raised OverflowError; distribute with E = 5e-324 Pa raised
+    ZeroDivisionError, with E = 1e-300 Pa scipy's RuntimeError (brentq out of iterations), with
+    lead_error = 1e16 m scipy's 'f(a) and f(b) must have different signs' (bracket); a non-converged fixed
+    point was returned silently; max_iterations=True and a negative lead were accepted."""
+    module, stiffness, sections = table
+    with pytest.raises(ValueError, match="nut_outer_radius"):
+        ld.bar_sections(module, nut_outer_radius=1e300)
+    args = ([0.0, 1.0], 100.0, stiffness, sections, module.lead)
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        ld.distribute(*args, TINY)
+    with pytest.raises(ValueError, match="max_iterations"):
+        ld.distribute(*args, 2.1e11, max_iterations=True)
+    with pytest.raises(ValueError, match="lead"):
+        ld.distribute([0.0, 1.0], 100.0, stiffness, sections, -1e-3, 2.1e11)
+    soft = ld.distribute(*args, 1e-300)   # bars of no stiffness: the ball at the loaded end carries everything
+    assert soft[0] == pytest.approx(100.0, rel=1e-12) and abs(soft[1]) < 1e-12
+    with pytest.raises(ConvergenceError):
+        ld.distribute(*args, 2.1e11, tolerance=1e-300, max_iterations=1)
+    for error in (1e-5, -1e-5):   # a nut whose lead is shorter or longer than the screw's (-1e-5: was the bracket)
+        loads = ld.distribute([0.0, 1.0, 2.0], 100.0, stiffness, sections, module.lead, 2.1e11, lead_error=error)
+        assert loads.sum() == pytest.approx(100.0, rel=1e-9)
+        assert np.all(loads >= -1e-12 * 100.0)   # pchip at its end node: rounding of 1e-15 N
+        assert (loads[0] > loads[2]) == (error > 0)   # a positive error unloads the far balls (docstring)
+    huge = ld.distribute([0.0, 1.0, 2.0], 100.0, stiffness, sections, module.lead, 2.1e11, lead_error=1e16)
+    assert huge[0] == pytest.approx(100.0, rel=1e-9)   # was scipy's bracket error: the first ball takes it all
+
+
+@pytest.mark.filterwarnings("error")
+def test_distribute_refuses_positions_that_swamp_the_table(table):
+    """positions = [1e300] rad: scipy's 'f(a) and f(b) must have different signs' (the table's micrometre range
+    is lost beside offsets of 1e288 m)."""
+    module, stiffness, sections = table
+    with pytest.raises(ValueError, match="positions, lead, lead_error, youngs_modulus"):
+        ld.distribute([1e300], 1.0, stiffness, sections, 0.0625, 1e9)
+
+
+@pytest.mark.filterwarnings("error")
+def test_axial_stiffness_names_max_load(table):
+    """max_load = 1e16 N: the error named solve' axial_load, not a parameter of axial_stiffness."""
+    with pytest.raises(ValueError, match="max_load: axial_load: its Hertz approach"):
+        ld.axial_stiffness(table[0], 1e16, 4)
+
+
+# --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
+# over the documented ranges and a little beyond ----------------------------------------------------------------------
+
+
+# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
+# zero and negatives among the rest
+length = mostly(positive(1e-4, 0.1), *EXTREME)
+
+
+@lru_cache(maxsize=1)
+def _stiffness():
+    module = screw_contacts.screw_module(oversize=1e-6)
+    return module, ld.axial_stiffness(module, 200.0, 5), ld.bar_sections(module)
+
+
+@SETTINGS
+@given(positions=st.lists(mostly(real(0.0, 4.0 * math.pi), *EXTREME), min_size=0, max_size=8),
+       total=mostly(real(0.0, 500.0), *EXTREME), lead=length, modulus=mostly(positive(1e9, 1e12), *EXTREME),
+       lead_error=mostly(real(-1e-5, 1e-5), *EXTREME), tolerance=mostly(st.just(1e-10), 0.0, -1.0, 1e-300),
+       iterations=mostly(st.just(50), -1, 0, 1, True, 2.0), screw_radius=length, outer=mostly(real(0.03, 0.1),
+                                                                                              *EXTREME))
+def test_load_distribution(positions, total, lead, modulus, lead_error, tolerance, iterations, screw_radius, outer):
+    module, stiffness, sections = _stiffness()
+    call(ld.bar_sections, module, screw_radius=screw_radius, nut_outer_radius=outer)
+    call(stiffness.load, stiffness.shifts.mean())
+    loads = call(ld.distribute, positions, total, stiffness, sections, lead, modulus, lead_error=lead_error,
+                 tolerance=tolerance, max_iterations=iterations)
+    if loads is not None:   # the balls carry the axial load between them
+        assert loads.shape == (len(positions),)
+        assert math.isclose(float(np.sum(loads)), total, rel_tol=1e-6, abs_tol=1e-9)
+
+
+@SLOW
+@given(max_load=mostly(real(1.0, 500.0), *EXTREME), points=mostly(st.integers(4, 8), -1, 0, 3, True, 4.0))
+def test_axial_stiffness(max_load, points):
+    module = _stiffness()[0]
+    table = call(ld.axial_stiffness, module, max_load, points)
+    if table is not None:
+        assert np.all(np.diff(table.shifts) > 0.0) or np.all(np.diff(table.shifts) < 0.0)
+
+
+@pytest.mark.slow
+@SLOW
+@given(n_balls=mostly(st.integers(2, 12), -1, 0, 1, True, 2.0, 100), load=mostly(real(0.0, 1000.0), *EXTREME),
+       duration=mostly(real(0.01, 2.0), *EXTREME), steps=mostly(st.integers(1, 3), 0, True),
+       amplitude=mostly(real(0.0, 0.05), -0.01, 0.2), cycles=mostly(st.integers(0, 6), -1, True),
+       lead_error=mostly(real(-1e-5, 1e-5), *EXTREME))
+def test_whole_screw(n_balls, load, duration, steps, amplitude, cycles, lead_error):
+    module, stiffness, sections = _stiffness()
+    history = call(whole_screw.simulate, module, n_balls=n_balls, axial_load=load, duration=duration, steps=steps,
+                   amplitude=amplitude, cycles=cycles, lead_error=lead_error, stiffness=stiffness, sections=sections)
+    if history is not None:
+        assert np.allclose(history.axial_load.sum(axis=1), load, rtol=1e-6)

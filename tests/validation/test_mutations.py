@@ -1,0 +1,195 @@
+"""Mutation check (issue 10 item 4): physically meaningful wrong models must fail the validation scenes.
+
+Each mutant replaces one model function (monkeypatch) by a wrong variant; the
+scenes listed for it are run in-process at ``quick`` fidelity and at least one
+must fail.  The unmutated scenes must pass (else a failure proves nothing).
+The list, and the scene that catches each mutant, is docs/mutations.md.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.linear_bearing import fourpoint
+from ballbench.lowmodel.contact import ehl, ellipse_friction, hertz, mixed
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+from ballbench.lowmodel.screw import kinematics
+from ballbench.validation.runner import run_scene
+from ballbench.validation.scene import registry
+from tests import paths
+
+
+def _scaled_result(function, factor, *fields):
+    """``function`` whose dataclass result has ``fields`` multiplied by ``factor``."""
+    def mutant(*args, **kwargs):
+        result = function(*args, **kwargs)
+        return dataclasses.replace(result, **{name: getattr(result, name) * factor for name in fields})
+    return mutant
+
+
+def _scaled_value(function, factor):
+    def mutant(*args, **kwargs):
+        return function(*args, **kwargs) * factor
+    return mutant
+
+
+def _psi(monkeypatch):  # lin2019 eq 15 constant 0.1 % off
+    monkeypatch.setattr(hertz, "psi_constant", _scaled_value(hertz.psi_constant, 1.001))
+
+
+def _k_f_analytical(monkeypatch):  # eq 14 slope 1 % off in the analytical model
+    original = b2b_analytical.two_ball_case
+
+    def mutant(*args, k_f=b2b_analytical.K_F_PAPER, **kwargs):
+        return original(*args, k_f=1.01 * k_f, **kwargs)
+    monkeypatch.setattr(b2b_analytical, "two_ball_case", mutant)
+
+
+def _k_f_exact(monkeypatch):  # eq 14 slope of the friction integrals 1 % off
+    monkeypatch.setattr(ellipse_friction, "k_f_exact", _scaled_value(ellipse_friction.k_f_exact, 1.01))
+
+
+def _no_b2b_friction(monkeypatch):  # eqs 6, 8 without the B2B friction (normal force kept)
+    original = b2b.b2b_terms
+    monkeypatch.setattr(b2b, "b2b_terms", lambda scaled, forces, mu: original(scaled, forces, 0.0 * mu))
+
+
+def _b2b_moment_sign(monkeypatch):  # B2B friction moment on the ball in front with the wrong sign
+    original = b2b.b2b_terms
+
+    def mutant(scaled, forces, mu):
+        load, block, d_force, slip = original(scaled, forces, mu)
+        if scaled.shape[0] == 2:  # the front ball gets pair 0's moment only; its Jacobian rows stay as they were
+            load = load.copy()
+            load[1, 1:] *= -1.0
+        return load, block, d_force, slip
+    monkeypatch.setattr(b2b, "b2b_terms", mutant)
+
+
+def _hamrock_brewe(monkeypatch):  # b/a = 1 / (1.0339 (B/A)^0.636) instead of the exact ratio
+    original = hertz.solve_load
+
+    def mutant(geometry, force):
+        contact = original(geometry, force)
+        ratio = 1.0 / (1.0339 * (geometry.B / geometry.A) ** 0.636)
+        return dataclasses.replace(contact, b=np.minimum(contact.a * ratio, contact.a))
+    monkeypatch.setattr(hertz, "solve_load", mutant)
+
+
+def _contact_modulus(monkeypatch):  # E* x 1.5
+    monkeypatch.setattr(hertz, "contact_modulus", _scaled_value(hertz.contact_modulus, 1.5))
+
+
+def _groove_radius(monkeypatch):  # groove radius x 1.01 (conformity x 1.01)
+    original = hertz.ball_in_groove
+    monkeypatch.setattr(hertz, "ball_in_groove", lambda radius, conformity, **kw: original(radius, 1.01 * conformity,
+                                                                                             **kw))
+
+
+def _eq30(monkeypatch):  # lin2019 eq 30 x 1.02
+    monkeypatch.setattr(b2b_analytical, "_force", _scaled_value(b2b_analytical._force, 1.02))
+
+
+def _lin2017_loss(monkeypatch):  # lin2017 friction loss x (1 + 1e-6)
+    monkeypatch.setattr(fourpoint, "solve", _scaled_result(fourpoint.solve, 1.0 + 1e-6, "friction_loss"))
+
+
+def _wang2022_u_a(monkeypatch):  # wang2022 eq 1 entrainment at the nut x 1.001
+    monkeypatch.setattr(kinematics, "kinematics", _scaled_result(kinematics.kinematics, 1.001, "entrainment_nut"))
+
+
+def _approach(monkeypatch):  # Hertz approach delta x 1.01 (lin2019 eq 53 constant)
+    monkeypatch.setattr(hertz, "solve_load", _scaled_result(hertz.solve_load, 1.01, "delta"))
+
+
+def _spin_moment(monkeypatch):  # lin2019 eq 11 spin moment (3/8) E(e) x 1.01
+    monkeypatch.setattr(ellipse_friction, "spin_moment", _scaled_value(ellipse_friction.spin_moment, 1.01))
+
+
+def _eq22_sign(monkeypatch):  # lin2019 eq 22 with the top-groove deviations entering with the wrong sign
+    original = b2b_analytical._weighted
+    monkeypatch.setattr(b2b_analytical, "_weighted", lambda bl, br, tr, tl, up, down:
+                        original(bl, br, -tr, -tl, up, down))
+
+
+def _normal_forces(monkeypatch):  # lin2017 eq 36 with the bottom pair swapped
+    original = fourpoint.normal_forces
+    monkeypatch.setattr(fourpoint, "normal_forces", lambda *args: original(*args)[..., [1, 0, 2, 3]])
+
+
+def _wm_dimension(monkeypatch):  # sun2021 Sec 2.3 WM raceway with D + 0.1
+    original = ehl.weierstrass_mandelbrot_surface
+    monkeypatch.setattr(ehl, "weierstrass_mandelbrot_surface",
+                        lambda x, y, fractal_dimension, *args, **kwargs: original(x, y, fractal_dimension + 0.1,
+                                                                                  *args, **kwargs))
+
+
+def _smooth_film_shear(monkeypatch):  # sun2021 eqs 22-23 with the smooth film instead of the rough one
+    original = mixed.mixed_friction
+    monkeypatch.setattr(mixed, "mixed_friction", lambda contact, *args, **kwargs: original(
+        dataclasses.replace(contact, rough_film=contact.smooth.film), *args, **kwargs))
+
+
+# mutant -> (what it is, scenes expected to reject it)
+MUTANTS = {
+    "Psi x 1.001": (_psi, ["lin2019-table1-psi"]),
+    "k_f x 1.01 (analytical eq 30)": (_k_f_analytical, ["lin2019-analytical"]),
+    "k_f x 1.01 (exact slope of eq A4)": (_k_f_exact, ["lin2019-kf"]),
+    "B2B friction removed": (_no_b2b_friction, ["lin2019-table3-a", "lin2019-b2b-residual"]),
+    "B2B friction moment, wrong sign on the front ball": (_b2b_moment_sign, ["lin2019-b2b-residual"]),
+    "Hamrock-Brewe b/a instead of the exact ratio": (_hamrock_brewe, ["lin2019-b2b-residual"]),
+    "E* x 1.5": (_contact_modulus, ["hertz-sphere-flat"]),
+    "groove radius x 1.01": (_groove_radius, ["lin2019-table1-psi"]),
+    "eq 30 x 1.02": (_eq30, ["lin2019-analytical"]),
+    "lin2017 loss x (1 + 1e-6)": (_lin2017_loss, ["lin2017-eq40"]),
+    "wang2022 U_A x 1.001": (_wang2022_u_a, ["wang2022-table2"]),
+    "Hertz approach x 1.01": (_approach, ["hertz-sphere-flat"]),
+    "eq 11 spin moment x 1.01": (_spin_moment, ["lin2019-kf"]),
+    "eq 22 top deviations with the wrong sign": (_eq22_sign, ["lin2019-analytical"]),
+    "lin2017 eq 36 bottom forces swapped": (_normal_forces, ["lin2019-table2-a"]),
+    "WM fractal dimension + 0.1": (_wm_dimension, ["sun2021-roughness"]),
+    "Eyring shear on the smooth film": (_smooth_film_shear, ["sun2021-fig6"]),
+}
+SCENES = sorted({name for _, names in MUTANTS.values() for name in names})
+CHEAP = {"hertz-sphere-flat", "lin2019-table1-psi", "lin2019-table3-a", "wang2022-table2"}  # < 1 s each at quick
+_BASELINE: dict = {}
+
+
+def _run(names, directory):
+    scenes = registry()
+    return {name: run_scene(scenes[name], "quick", directory / name, show_progress=False) for name in names}
+
+
+def _baseline(names, tmp_path_factory):
+    missing = [name for name in names if name not in _BASELINE]
+    if missing:
+        _BASELINE.update(_run(missing, tmp_path_factory.mktemp("baseline")))
+    return {name: _BASELINE[name] for name in names}
+
+
+def _cases():
+    for label, (_, names) in MUTANTS.items():
+        marks = () if set(names) <= CHEAP else (pytest.mark.slow,)
+        yield pytest.param(label, marks=marks, id=label)
+
+
+@pytest.mark.parametrize("label", list(_cases()))
+def test_mutant_is_rejected(label, monkeypatch, tmp_path, tmp_path_factory):
+    mutate, names = MUTANTS[label]
+    baseline = _baseline(names, tmp_path_factory)
+    failed = {name: (result.error, [o.quantity for o in result.outputs if not o.passed])
+              for name, result in baseline.items() if not result.passed}
+    assert not failed, f"unmutated scenes must pass first: {failed}"
+    mutate(monkeypatch)
+    results = _run(names, tmp_path)
+    assert any(not result.passed for result in results.values()), f"{label} passes {names}"
+
+
+def test_mutant_list_is_documented():
+
+    text = (paths.ROOT / "docs" / "mutations.md").read_text()
+    for label, (_, names) in MUTANTS.items():
+        assert label in text, label
+        assert all(name in text for name in names), label

@@ -1,0 +1,508 @@
+"""The validation harness: error convention, guards, known gaps, budgets, report files, CLI exit codes.
+
+Fake scenes (names ``zz-*``) are registered for each test and removed after it,
+so the CLI is exercised end to end in seconds without the slow scenes.
+"""
+from __future__ import annotations
+
+import csv
+import html
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from html.parser import HTMLParser
+
+import pytest
+
+from ballbench.validation import cli
+from tests.cli_support import one_error_line
+from ballbench.validation import scene as scene_module
+from ballbench.validation.report import error_points, write_report
+from ballbench.validation.runner import run_scene
+from ballbench.validation.scene import KnownGap, Scene, relative_error
+
+GAP = KnownGap(reason="the paper's state does not exist in this model", evidence="docs/x.md, section y")
+
+
+def test_relative_error_conventions():
+    assert relative_error(1.01, 1.0) == pytest.approx(0.01)
+    assert relative_error(0.2, 0.0, scale=2.0) == pytest.approx(0.1)
+    assert relative_error(190.0, 185.2, relation="ge") == 0.0
+    assert relative_error(180.0, 185.2, relation="ge") == pytest.approx(5.2 / 185.2)
+    assert relative_error(3.0, 2.0, relation="le") == pytest.approx(0.5)
+    assert relative_error(float("nan"), 1.0) == math.inf
+    with pytest.raises(ValueError, match="scale"):
+        relative_error(0.1, 0.0)
+    with pytest.raises(ValueError, match="relation"):
+        relative_error(1.0, 1.0, relation="approx")
+
+
+def _scene(function, name="demo", kind="low-order"):
+    return Scene(name, "demo scene", function, kind=kind)
+
+
+def test_checks_pass_and_fail(tmp_path):
+    def body(run):
+        value, time_s = run.time(lambda: 2.0)
+        run.check(model="m", family="analytical", quantity="q", unit="N", value=value, reference=2.0, source="s",
+                  tolerance=1e-12, time_s=time_s)
+        run.check(model="m", family="analytical", quantity="r", unit="N", value=1.1, reference=1.0, source="s",
+                  tolerance=0.05, time_s=time_s)
+
+    result = run_scene(_scene(body), "quick", tmp_path)
+    assert [o.status for o in result.outputs] == ["pass", "fail"]
+    assert not result.passed and result.status() == "fail"
+    assert result.outputs[0].time_s > 0
+
+
+def test_exception_and_empty_scene_fail(tmp_path):
+    def boom(run):
+        raise ValueError("conformity must be > 0.5")
+
+    result = run_scene(_scene(boom), "quick", tmp_path)
+    assert result.status() == "error" and "conformity" in result.error
+    assert "demo/error.txt" in result.artifacts  # the traceback goes to a file, not the terminal
+    assert "Traceback" in (tmp_path / "demo" / "error.txt").read_text()
+    result = run_scene(_scene(lambda run: None), "quick", tmp_path)
+    assert not result.passed and "no checked output" in result.error
+
+
+@pytest.mark.parametrize("tolerance, scale", [(math.inf, 0.0), (1.0, 0.0), (2.5, 0.0), (0.01, 5.0), (0.01, 1e300)])
+def test_guards_reject_checks_that_cannot_fail(tmp_path, tolerance, scale):
+    """issue 10 item 5: a non-finite or >= 1 tolerance, or a scale above the reference, needs a reason."""
+    def body(run, why=""):
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="1", value=1.0, reference=2.0, source="s", tolerance=tolerance,
+                  scale=scale, time_s=1e-3, why=why)
+
+    result = run_scene(_scene(body), "quick", tmp_path)
+    assert result.status() == "error" and "why=" in result.error
+    result = run_scene(_scene(lambda run: body(run, why="stated reason")), "quick", tmp_path)
+    assert result.status() != "error"
+    assert result.outputs[0].why == "stated reason"
+
+
+def test_zero_reference_needs_its_scale_explained(tmp_path):
+    def body(run):
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="N", value=0.0, reference=0.0, scale=4.0, source="s",
+                  tolerance=1e-9, time_s=1e-3)
+
+    assert "why=" in run_scene(_scene(body), "quick", tmp_path).error
+    with pytest.raises(ValueError, match="reason"):
+        KnownGap(reason=" ", evidence="x")
+
+
+def test_exact_check_needs_no_scale_reason(tmp_path):
+    """tolerance 0 demands exact agreement, so a unit scale on a zero reference makes nothing lax."""
+    def body(run, value):
+        run.check(model="m", family="analytical",
+                  quantity="count", unit="count", value=value, reference=0.0, scale=1.0, source="s",
+                  tolerance=0.0, time_s=1e-3)
+
+    assert run_scene(_scene(lambda run: body(run, 0.0)), "quick", tmp_path).passed
+    failed = run_scene(_scene(lambda run: body(run, 1e-300)), "quick", tmp_path)
+    assert not failed.error and not failed.passed
+
+
+def test_known_gap_statuses(tmp_path):
+    def gap(run, value):
+        run.check(model="m", family="analytical",
+                  quantity="increase", unit="%", value=value, reference=185.2, relation="ge",
+                  tolerance=0.0, source="paper", time_s=1e-3, known_gap=GAP)
+
+    missed = run_scene(_scene(lambda run: gap(run, 150.0)), "quick", tmp_path)
+    assert missed.outputs[0].status == "known gap"
+    assert missed.status() == "known gap" and missed.passed
+    assert missed.status(strict=True) == "fail"
+    reached = run_scene(_scene(lambda run: gap(run, 190.0)), "quick", tmp_path)
+    assert reached.outputs[0].status == "unexpected pass"
+    assert reached.status() == "fail" and not reached.passed  # loud: the declaration must go
+
+
+def test_budgets_never_decide_unless_strict_time(tmp_path):
+    def body(run):
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="N", value=1.0, reference=1.0, source="s", tolerance=1e-9,
+                  time_s=1e-3)
+        run.budget(quantity="wall time", unit="s", value=61.7, budget=60.0, source="issue 5 budget")
+
+    result = run_scene(_scene(body), "quick", tmp_path)
+    assert result.outputs[1].status == "over budget"
+    assert result.passed and result.over_budget
+    assert result.status(strict_time=True) == "fail"
+
+
+# --------------------------------------------------------------------------------------------- CLI
+def _figure_scene(run):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(2, 2))
+    axes.plot([0, 1], [0, 1])
+    run.save_figure(figure, "line.png")
+    run.check(model="lowmodel.contact.hertz", family="analytical",
+              quantity="a", unit="m", value=1.2e-4 * (1 + 1e-12), reference=1.2e-4,
+              source="closed form", tolerance=1e-10, time_s=1e-3)
+    run.check(model="lowmodel.contact.hertz", family="analytical",
+              quantity="p0", unit="Pa", value=1.1638e9, reference=1.1638e9 * 1.001,
+              source="closed form", tolerance=0.01, time_s=2e-3, note="worst error at the slower evaluation")
+    run.note("a note under the table")
+
+
+def _fail_scene(run):
+    run.check(model="fem.contact", family="FE",
+              quantity="F_B2B", unit="N", value=4.52, reference=4.01, source="lin2019 Table 3",
+              tolerance=0.03, time_s=0.5)
+
+
+def _gap_scene(run):
+    run.check(model="lowmodel.linear_bearing.b2b", family="low-order numerical",
+              quantity="largest friction increase", unit="%", value=150.4,
+              reference=185.2, relation="ge", tolerance=0.0, source="lin2019 Sec 2.4.1", time_s=0.01, known_gap=GAP)
+
+
+def _over_budget_scene(run):
+    run.check(model="m", family="analytical",
+              quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
+    run.budget(quantity="wall_time", unit="s", value=2.0, budget=1.0, source="budget")
+
+
+def _raise_scene(run):
+    raise ValueError("conformity must be in (0.5, 1)")
+
+
+def _interrupt_scene(run):
+    raise KeyboardInterrupt
+
+
+def _sigint_scene(run):
+    os.kill(os.getpid(), signal.SIGINT)  # one Ctrl-C: the scene finishes, the next one does not start
+    run.check(model="m", family="analytical",
+              quantity="q", unit="1", value=1.0, reference=1.0, source="s", tolerance=1e-9, time_s=1e-3)
+
+
+FAKES = {"zz-a-pass": (_figure_scene, "analytical"), "zz-b-fail": (_fail_scene, "FE"),
+         "zz-c-gap": (_gap_scene, "low-order"), "zz-d-budget": (_over_budget_scene, "low-order"),
+         "zz-e-raise": (_raise_scene, "low-order"), "zz-f-interrupt": (_interrupt_scene, "low-order"),
+         "zz-g-sigint": (_sigint_scene, "low-order"), "zz-h-after": (_figure_scene, "analytical")}
+
+
+@pytest.fixture
+def fakes(monkeypatch):
+    scene_module.registry()  # load the real scenes first
+    for name, (function, kind) in FAKES.items():
+        monkeypatch.setitem(scene_module.REGISTRY, name,
+                            Scene(name, f"fake scene {name}", function, default=False, kind=kind, cost_s=0.1))
+    return FAKES
+
+
+def _validate(tmp_path, *names, extra=()):
+    out = tmp_path / "report"
+    code = cli.main(["validate", *names, "--out", str(out), *extra])
+    return code, out
+
+
+@pytest.mark.parametrize("names, extra, code", [
+    (("zz-a-pass",), (), 0),
+    (("zz-a-pass", "zz-b-fail"), (), 1),
+    (("zz-c-gap",), (), 0),
+    (("zz-c-gap",), ("--strict",), 1),
+    (("zz-d-budget",), (), 0),
+    (("zz-d-budget",), ("--strict-time",), 1),
+    (("zz-e-raise",), (), 1),
+])
+def test_cli_exit_codes(fakes, tmp_path, capsys, names, extra, code):
+    assert _validate(tmp_path, *names, extra=extra)[0] == code
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+
+
+def test_fail_line_names_check_value_reference_and_error(fakes, tmp_path, capsys):
+    _validate(tmp_path, "zz-b-fail")
+    err = capsys.readouterr().err
+    line = next(x for x in err.splitlines() if "F_B2B" in x)
+    assert "4.52" in line and "4.01" in line and "12.7 %" in line and "tolerance 3 %" in line
+
+
+@pytest.mark.parametrize("argv, expected", [
+    (["validate", "no-such-scene"], "no scene matches"),
+    (["validate", "--bogus"], "unrecognized arguments"),
+    (["validate", "--quick", "--fine"], "not allowed with"),
+    ([], "required"),
+    (["frobnicate"], "invalid choice"),
+    (["validate", "--fast", "fe-hertz-flat"], "--fast leaves no scene"),
+    (["show", "hertz-sphere-flat"], "FE scenes"),
+    (["show", "no-such-scene"], "no scene"),
+    (["show"], "required"),
+])
+def test_cli_wrong_use_is_one_line_and_exit_2(fakes, capsys, monkeypatch, argv, expected):
+    from ballbench.validation import runner
+
+    monkeypatch.setattr(runner, "run_scenes", lambda *a, **k: pytest.fail("work started before the check"))
+    assert expected in one_error_line(capsys, cli.main(argv))
+
+
+def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
+    from ballbench.validation import runner
+
+    monkeypatch.setattr(runner, "run_scenes", lambda *a, **k: pytest.fail("work started before the check"))
+    a_file = tmp_path / "file.txt"
+    a_file.write_text("x")
+    other = tmp_path / "notes"
+    other.mkdir()
+    (other / "mine.txt").write_text("keep me")
+    cases = [(["--out", str(a_file)], "existing file"),
+             (["--out", str(a_file / "sub")], "cannot write"),
+             (["--out", "/proc/ballbench-cannot-write-here"], "cannot write"),
+             (["--out", str(other)], "not a ballbench report"),
+             (["--out", str(tmp_path / "r"), "--junit", str(tmp_path)], "--junit"),
+             (["--out", str(tmp_path / "r"), "--junit", str(tmp_path / "missing" / "j.xml")], "does not exist")]
+    for extra, expected in cases:
+        assert expected in one_error_line(capsys, cli.main(["validate", "zz-a-pass", *extra]))
+    assert (other / "mine.txt").read_text() == "keep me"
+    assert "existing file" in one_error_line(capsys, cli.main(["show", "fe-hertz-flat", "--out", str(a_file)]))
+
+
+def test_rerun_into_same_out_starts_clean(fakes, tmp_path):
+    code, out = _validate(tmp_path, "zz-a-pass")
+    assert code == 0 and (out / "zz-a-pass" / "line.png").exists()
+    (out / "zz-a-pass" / "stale.png").write_bytes(b"old")
+    (out / "old-scene").mkdir()
+    code, out = _validate(tmp_path, "zz-h-after")
+    assert code == 0
+    assert not (out / "zz-a-pass").exists() and not (out / "old-scene").exists()
+    assert (out / "zz-h-after" / "line.png").exists()
+
+
+def test_ctrl_c_inside_a_scene_writes_partial_report(fakes, tmp_path, capsys):
+    code, out = _validate(tmp_path, "zz-a-pass", "zz-f-interrupt", "zz-h-after")
+    assert code == 130
+    data = json.loads((out / "results.json").read_text())
+    assert [s["name"] for s in data["scenes"]] == ["zz-a-pass"]
+    assert data["complete"] is False and data["not_run"] == ["zz-f-interrupt", "zz-h-after"]
+    assert "interrupted" in capsys.readouterr().err.splitlines()[-1]
+    assert "Partial report" in (out / "report.md").read_text()
+
+
+def test_first_ctrl_c_stops_after_the_current_scene(fakes, tmp_path, capsys):
+    code, out = _validate(tmp_path, "zz-a-pass", "zz-g-sigint", "zz-h-after")
+    assert code == 130
+    data = json.loads((out / "results.json").read_text())
+    assert [s["name"] for s in data["scenes"]] == ["zz-a-pass", "zz-g-sigint"]
+    assert data["not_run"] == ["zz-h-after"]
+    err = capsys.readouterr().err
+    assert "stopping after the current scene" in err and "Traceback" not in err
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_broken_pipe_is_quiet():
+    command = f"'{sys.executable}' -m ballbench scenes | head -n 1"
+    done = subprocess.run(["bash", "-c", command], capture_output=True, text=True, timeout=120)
+    assert done.stdout.startswith("scene")
+    assert done.stderr == "", done.stderr
+
+
+def test_version_and_plain_help(capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["--version"])
+    assert exit_info.value.code == 0
+    assert capsys.readouterr().out.startswith("ballbench ")
+    for argv in (["--help"], ["validate", "--help"], ["show", "--help"]):
+        with pytest.raises(SystemExit):
+            cli.main(argv)
+        text = capsys.readouterr().out
+        assert "``" not in text and "usage:" in text
+
+
+def test_scenes_lists_kind_cost_and_level(capsys):
+    assert cli.main(["scenes"]) == 0
+    out = capsys.readouterr().out
+    flat = next(line for line in out.splitlines() if line.startswith("fe-hertz-flat"))
+    assert " FE " in flat and "n = b/h" in flat and "s " in flat
+    assert any(line.startswith("lin2019-table3-a") and "low-order" in line for line in out.splitlines())
+    assert "default run:" in out and "--fast:" in out
+
+
+def test_progress_bars_only_on_a_terminal(fakes, tmp_path, capsys):
+    _validate(tmp_path, "zz-a-pass")
+    assert "\r" not in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------------------------- reports
+class _Collect(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.sections, self.images, self.external = [], [], []
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "section":
+            self.sections.append(attrs.get("data-scene"))
+        if tag == "img":
+            self.images.append((attrs.get("data-artifact"), attrs.get("src", "")))
+        for key in ("src", "href"):
+            if str(attrs.get(key, "")).startswith(("http:", "https:", "//")):
+                self.external.append(attrs[key])
+        if tag in ("script", "link"):
+            self.external.append(tag)
+
+
+def test_report_html_is_self_contained_with_every_scene_and_figure(fakes, tmp_path):
+    code, out = _validate(tmp_path, "zz-a-pass", "zz-b-fail", "zz-c-gap", "zz-d-budget")
+    assert code == 1
+    data = json.loads((out / "results.json").read_text())
+    parser = _Collect()
+    parser.feed((out / "report.html").read_text())
+    assert parser.sections == [s["name"] for s in data["scenes"]]
+    figures = {a for s in data["scenes"] for a in s["artifacts"] if a.endswith(".png")} | {"error_vs_time.png"}
+    assert {name for name, _ in parser.images} == figures
+    assert all(src.startswith("data:image/png;base64,") for _, src in parser.images)
+    assert parser.external == []
+    text = (out / "report.html").read_text()
+    assert "Known gaps" in text and html.escape(GAP.reason) in text and html.escape(GAP.evidence) in text
+
+
+def test_report_markdown_summary_first_engineering_units(fakes, tmp_path):
+    _, out = _validate(tmp_path, "zz-a-pass", "zz-c-gap")
+    md = (out / "report.md").read_text()
+    assert md.index("## Summary") < md.index("## Known gaps") < md.index("## zz-a-pass")
+    assert "| a | 120.00 | 120.00 | um |" in md
+    assert "| p0 | 1163.8 | 1165.0 | MPa |" in md
+    assert md.count("one evaluation 1 ms") == 1 and md.count("one evaluation 2 ms") == 1  # time once per run
+    data = json.loads((out / "results.json").read_text())
+    assert data["scenes"][0]["outputs"][0]["unit"] == "m"  # JSON stays SI
+    with open(out / "results.csv") as handle:
+        assert next(csv.DictReader(handle))["unit"] == "m"
+
+
+def test_plotted_times_are_one_evaluation_per_scene_and_model(fakes, tmp_path):
+    """error_vs_time: one point per (scene, model) at the time of the evaluation of its worst error."""
+    _, out = _validate(tmp_path, "zz-a-pass", "zz-b-fail", "zz-c-gap", "zz-d-budget", "zz-h-after")
+    data = json.loads((out / "results.json").read_text())
+    with open(out / "error_vs_time.csv") as handle:
+        plotted = {(r["scene"], r["model"]): r for r in csv.DictReader(handle)}
+    expected = {}
+    for s in data["scenes"]:
+        for o in s["outputs"]:
+            if o["kind"] != "accuracy":
+                continue
+            tolerance = float(o["tolerance"])
+            ratio = float(o["rel_error"]) / tolerance if tolerance else (0.0 if o["rel_error"] == 0 else math.inf)
+            key = (s["name"], o["model"])
+            if key not in expected or ratio > expected[key][0]:
+                expected[key] = (ratio, float(o["time_s"]))
+    assert set(plotted) == set(expected)
+    for key, (ratio, time_s) in expected.items():
+        assert float(plotted[key]["time_s"]) == time_s
+        assert float(plotted[key]["error_over_tolerance"]) == pytest.approx(ratio)
+    assert float(plotted[("zz-a-pass", "lowmodel.contact.hertz")]["time_s"]) == 2e-3  # not the 3e-3 sum
+    assert plotted[("zz-c-gap", "lowmodel.linear_bearing.b2b")]["status"] == "known gap"
+    assert [p["time_s"] for p in error_points(data)] == [float(r["time_s"]) for r in plotted.values()]
+
+
+def test_junit_xml_has_a_test_case_per_scene(fakes, tmp_path):
+    junit = tmp_path / "junit.xml"
+    code, _ = _validate(tmp_path, "zz-a-pass", "zz-b-fail", "zz-c-gap", "zz-e-raise", extra=("--junit", str(junit)))
+    assert code == 1
+    suite = ET.parse(junit).getroot()
+    cases = {c.get("name"): c for c in suite.iter("testcase")}
+    assert set(cases) == {"zz-a-pass", "zz-b-fail", "zz-c-gap", "zz-e-raise"}
+    assert cases["zz-a-pass"].find("failure") is None and cases["zz-a-pass"].find("skipped") is None
+    assert "F_B2B" in cases["zz-b-fail"].find("failure").get("message")
+    assert cases["zz-c-gap"].find("skipped").get("message").startswith("known gap")
+    assert cases["zz-e-raise"].find("error") is not None
+    counts = (suite.get("tests"), suite.get("failures"), suite.get("errors"), suite.get("skipped"))
+    assert counts == ("4", "1", "1", "1")
+
+
+def test_report_files_and_schema(tmp_path):
+    def body(run):
+        run.check(model="m", family="analytical",
+                  quantity="q", unit="m", value=1.0, reference=1.0, source="s", tolerance=0.0,
+                  time_s=1e-3)
+
+    results = [run_scene(_scene(body), "default", tmp_path)]
+    paths = write_report(results, tmp_path, "default")
+    for path in paths.values():
+        assert path.exists() and path.stat().st_size > 0
+    data = json.loads(paths["json"].read_text())
+    output = data["scenes"][0]["outputs"][0]
+    for key in ("model", "quantity", "unit", "value", "reference", "source", "rel_error", "tolerance",
+                "passed", "time_s", "status", "kind", "known_gap_reason"):
+        assert key in output
+    assert data["scenes"][0]["passed"] is True and data["scenes"][0]["status"] == "pass"
+
+
+def test_cli_real_scenes_quick(tmp_path):
+    assert cli.main(["validate", "hertz-sphere-flat", "lin2019-table1-psi", "--out", str(tmp_path),
+                     "--quick", "--no-progress"]) == 0
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert {s["name"] for s in data["scenes"]} == {"hertz-sphere-flat", "lin2019-table1-psi"}
+
+
+def test_fig9_worst_is_a_declared_known_gap():
+    import inspect
+
+    function = scene_module.registry()["lin2019-fig9-worst"].function  # through the registry, not an import
+    gap = function.__globals__["FIG9_GAP"]
+    assert isinstance(gap, KnownGap)
+    assert "spin-capacity" in gap.reason
+    assert "docs/b2b_bearing.md" in gap.evidence
+    assert "known_gap=FIG9_GAP" in inspect.getsource(function)
+
+
+def test_results_json_round_trip(fakes, tmp_path):
+    from ballbench.validation.report import results_from_json, to_json
+
+    _, out = _validate(tmp_path, "zz-a-pass", "zz-c-gap", "zz-d-budget")
+    data = json.loads((out / "results.json").read_text())
+    again = to_json(results_from_json(data), data["fidelity"])
+    assert json.loads(json.dumps(again)) == data
+
+
+def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
+    out = tmp_path / "report"
+    out.mkdir()
+    for name in ("report.md", "results.json", "error_vs_time.png"):
+        (out / name).write_text("old")
+    assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
+    assert (out / ".ballbench-report").exists() and (out / "zz-a-pass").is_dir()
+    assert json.loads((out / "results.json").read_text())["scenes"][0]["name"] == "zz-a-pass"
+
+
+def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):
+    """Done-when of issue 9 at the quick level: the gap is listed, the run passes; --strict fails it."""
+    out = tmp_path / "report"
+    assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--out", str(out)]) == 0
+    scene_data = json.loads((out / "results.json").read_text())["scenes"][0]
+    assert scene_data["status"] == "known gap"
+    assert scene_data["outputs"][0]["known_gap_reason"]
+    assert "known gap" in capsys.readouterr().err
+    assert "lin2019-fig9-worst" in (out / "report.md").read_text().split("## Known gaps")[1].split("## Budgets")[0]
+    assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--strict", "--out", str(out)]) == 1
+
+
+def test_mesh_levels_join_the_accuracy_cost_front(tmp_path):
+    from ballbench.validation.report import mesh_level_points, to_json
+
+    def body(run):
+        path = run.path("convergence.csv")
+        path.write_text("n,growth,wall_s,err_a,err_p0\n5.5,1.4,10.0,0.02,-0.03\n8.0,1.2,80.0,0.001,0.002\n")
+        run.add_artifact(path)
+        run.check(model="fem.contact", family="FE", quantity="a", unit="m", value=1.001, reference=1.0, source="Hertz",
+                  tolerance=0.003, time_s=80.0)
+        run.check(model="fem.contact", family="FE",
+                  quantity="p0", unit="Pa", value=1.002, reference=1.0, source="Hertz",
+                  tolerance=0.005, time_s=80.0)
+
+    result = run_scene(_scene(body, kind="FE"), "fine", tmp_path)
+    levels = mesh_level_points(to_json([result], "fine"), tmp_path)
+    assert [p["time_s"] for p in levels] == [10.0, 80.0]
+    assert [p["error"] for p in levels] == pytest.approx([max(0.02 / 0.003, 0.03 / 0.005), 0.4])

@@ -1,0 +1,14 @@
+"""The papers' setups as data: geometry, materials, loads, deviations, fitted values and FE levels (SI).
+
+:mod:`.case` defines what a case is (frozen dataclasses: :class:`ContactCase`, :class:`LinearGuideCase`,
+:class:`BallScrewCase` and their parts); one module per paper (:mod:`.lin2017`, :mod:`.lin2019`, :mod:`.sun2021`,
+:mod:`.wang2022`) declares its cases once, with the printed value and unit beside each field.  Scenes, studies,
+sweeps and ``calibrate`` read these objects; none re-declares a paper's input.  Printed results are references
+(:mod:`ballbench.validation.references.published`).  docs/cases.md describes the fields.
+"""
+from ballbench.validation.cases.case import (FIDELITIES, BallScrew, BallScrewCase, ContactCase, ContactFe, Fit,
+                                             LinearGuide, LinearGuideCase, Lubricant, Material, MeshLevels,
+                                             ModuleFe, ModuleLevel, PairLevel)
+
+__all__ = ["FIDELITIES", "BallScrew", "BallScrewCase", "ContactCase", "ContactFe", "Fit", "LinearGuide",
+           "LinearGuideCase", "Lubricant", "Material", "MeshLevels", "ModuleFe", "ModuleLevel", "PairLevel"]

@@ -1,0 +1,308 @@
+"""FE contact of one ball against its counter body (a :class:`ContactCase`) against exact Hertz.
+
+The FE rung of the ladder for a single contact: mesh the pair of the case (meshes.assemblies.contact_pairs, or
+the helical pair of meshes.assemblies.screw_pair), solve the frictionless contact (fem.hertz_case: P2
+tetrahedra, mortar contact with Hertz's quadratic initial gap, condensed compliance, primal-dual active set)
+over a load sweep, and fit a, b, p0 and the contact approach delta (bulk compliance removed).  Mesh levels:
+``n`` elements across the Hertz minor semi-axis b (``h_contact = b / n``) and the growth rate away from the
+fine zone (the case's :class:`ContactFe`).  The ``fe-hertz-*`` scenes, ``ballbench calibrate`` and ``show``
+use it.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ballbench.fem.postprocess import nodal_stress
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.cases.case import ContactCase
+
+__all__ = ["PairModel", "pair_model", "solve_level", "write_fields", "compute_fields",
+           "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
+
+FIELD_NAMES = {
+    "displacement": "displacement_m",          # the P2 solution at all 10 nodes of each quadratic tetrahedron [m]
+    "pressure": "contact_pressure_Pa",         # nodal contact pressure of the ball's candidate vertices [Pa]
+    "von_mises": "von_mises_stress_Pa",        # element mean of the P2 stress, averaged at the nodes [Pa]
+    "sigma_zz": "sigma_zz_Pa",                 # normal stress along the contact normal z, the same way [Pa]
+}
+
+
+@dataclass(frozen=True)
+class PairModel:
+    """What an FE level solves: the case, a mesh builder of ``(h_contact [m], growth)``, the Hertz geometry of
+    the pair and the source text of the Hertz reference."""
+
+    case: ContactCase
+    builder: object
+    geometry: hertz.HertzGeometry
+    source: str
+
+    @property
+    def force(self) -> float:
+        return self.case.force
+
+
+def _fe(case: ContactCase):
+    if case.fe is None:
+        raise ValueError(f"case {case.name!r} has no FE settings (ContactCase.fe)")
+    return case.fe
+
+
+def _pair_geometry(case: ContactCase) -> tuple[hertz.HertzGeometry, tuple, str]:
+    """Hertz geometry, the helical groove's arguments (screw pairs) and the source text of the reference."""
+    radius, material = case.ball_radius, case.material.keywords
+    load = f"{case.force:g} N"
+    if case.pair == "flat":
+        return (hertz.ball_on_flat(radius, **material), (),
+                f"lowmodel.contact.hertz.ball_on_flat (R_B {radius * 1e3:g} mm, {load})")
+    if case.pair == "ball":
+        return (hertz.ball_on_ball(radius, **material), (),
+                f"lowmodel.contact.hertz.ball_on_ball (R_B {radius * 1e3:g} mm each, {load})")
+    if case.pair == "groove":
+        return (hertz.ball_in_groove(radius, case.conformity, **material), (),
+                f"lowmodel.contact.hertz.ball_in_groove (conformity {case.conformity}, R_B {radius * 1e3:g} mm, "
+                f"{load})")
+    from ballbench.lowmodel.geometry import groove
+
+    screw = case.screw
+    args = (screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead, screw.nominal_angle, case.pair)
+    frame = groove.contact_frame(groove.helical_groove(*args))
+    geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
+                                     **material)
+    return (geometry, args, f"lowmodel.contact.hertz.from_curvatures of the exact helical {case.pair} frame "
+                            f"({case.name}, {load})")
+
+
+def pair_model(case: ContactCase) -> PairModel:
+    """The FE pair of ``case``: its mesh builder with the fine zone of ``case.fe`` about the Hertz ellipse at
+    the case's force."""
+    from ballbench.meshes.assemblies import contact_pairs, screw_pair
+
+    fe = _fe(case)
+    geometry, args, source = _pair_geometry(case)
+    ref = hertz.solve_load(geometry, case.force)
+    radius = case.ball_radius
+    if fe.fine_zone == "ellipse":
+        a, b = float(ref.a), float(ref.b)
+        ellipse = (fe.zone[0] * a, fe.zone[1] * b, fe.zone[2] * b)
+        zone = {"fine_ellipse": ellipse}
+    else:
+        zone = {"fine_radius": fe.zone[0] * ref.b}
+        if fe.zone[1]:
+            zone["fine_half_length"] = fe.zone[1] * ref.a
+    if case.pair == "flat":
+        def build(h, growth):
+            return contact_pairs.ball_on_flat_pair(radius, h, growth, **zone)
+    elif case.pair == "ball":
+        def build(h, growth):
+            return contact_pairs.ball_on_ball_pair(radius, h, growth, **zone)
+    elif case.pair == "groove":
+        def build(h, growth):
+            return contact_pairs.ball_in_groove_pair(radius, case.conformity, h, growth, **zone)
+    else:
+        def build(h, growth):
+            return screw_pair.ball_in_screw_groove_pair(*args, h_contact=h, growth=growth, **zone)
+    return PairModel(case, build, geometry, source)
+
+
+def solve_level(pair: PairModel, level):
+    """FE result (fem.hertz_case.CaseResult) and Hertz reference at the mesh level ``(n = b/h, growth)``."""
+    from ballbench.fem import hertz_case
+
+    n, growth = level
+    fe = _fe(pair.case)
+    ref = hertz.solve_load(pair.geometry, pair.force)
+    geometry = pair.geometry
+
+    def hertz_gap(x, y):  # Hertz's separation of the undeformed surfaces (Johnson 1985 eq 4.1)
+        return geometry.A * x * x + geometry.B * y * y
+
+    result = hertz_case.solve_case(lambda: pair.builder(ref.b / n, growth), pair.force, pair.case.material.pair,
+                                   gap_limit=fe.gap_limit * float(ref.delta), initial_gap=hertz_gap,
+                                   formulation=fe.formulation, order=fe.order)
+    return result, ref
+
+
+def write_fields(result, ref, directory, *, scene_name: str, fidelity: str, level, material) -> list:
+    """Write ``fields.vtu`` (quadratic tetrahedra carrying the P2 solution at all nodes; field names carry their
+    units) and ``fields.json`` (what ``show`` needs).  One more sparse solve for the full displacement field,
+    with the factor the condensation kept (no second factorisation).  ``material``: the case's
+    :class:`Material`.  Returns the two paths.
+    """
+    import meshio
+
+    from ballbench.fem.contact import full_solution
+
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    model, state = result.model, result.state
+    pair, basis = model.pair, model.basis
+    mesh = basis.mesh
+    if basis.edge_dofs.size == 0 or not np.allclose(mesh.p.T, pair.points):
+        raise ValueError("write_fields needs the P2 model of the pair's own vertices")
+    u = full_solution(model, state)
+    n_vertices = mesh.p.shape[1]
+    # VTK's quadratic tetrahedron: 4 vertices, then the edges 0-1, 1-2, 0-2, 0-3, 1-3, 2-3 (scikit-fem's t2e order)
+    node_of = np.vstack([mesh.t, n_vertices + mesh.t2e])                     # (10, n_elements)
+    points = np.vstack([mesh.p.T, mesh.p[:, mesh.edges].mean(axis=1).T])
+    displacement = np.vstack([u[basis.nodal_dofs].T, u[basis.edge_dofs].T])
+    pressure = np.zeros(len(points))
+    pressure[model.candidates] = state.pressure
+    candidate = np.zeros(len(points))
+    candidate[model.candidates] = 1.0
+    von_mises, sigma_zz = nodal_stress(basis, u, material.youngs_modulus, material.poisson_ratio, node_of)
+    vtk = meshio.Mesh(points, [("tetra10", node_of.T)],
+                      point_data={FIELD_NAMES["displacement"]: displacement, FIELD_NAMES["pressure"]: pressure,
+                                  FIELD_NAMES["von_mises"]: von_mises, FIELD_NAMES["sigma_zz"]: sigma_zz,
+                                  "contact_candidate": candidate},
+                      cell_data={"body": [np.asarray(pair.body)]})
+    vtu = directory / "fields.vtu"
+    vtk.write(vtu)
+    meta = {
+        "scene": scene_name, "fidelity": fidelity, "level": {"n": level[0], "growth": level[1]},
+        "force_N": float(result.force_sum), "youngs_modulus_Pa": material.youngs_modulus,
+        "poisson_ratio": material.poisson_ratio,
+        "hertz": {"a_m": float(ref.a), "b_m": float(ref.b), "p0_Pa": float(ref.p0), "delta_m": float(ref.delta)},
+        "fe": {"a_m": float(result.a), "b_m": float(result.b), "p0_Pa": float(result.p0),
+               "delta_m": float(result.delta)},
+        "symmetry": {"x": "symmetry_x" in pair.surfaces, "y": "symmetry_y" in pair.surfaces},
+        "fields": FIELD_NAMES,
+        "cells": "tetra10 (P2 at vertices and edge midpoints)",
+        "frame": "contact point at the origin, normal +z from the counter body into the ball, a along x, b along y",
+    }
+    meta_path = directory / "fields.json"
+    meta_path.write_text(json.dumps(meta, indent=2))
+    return [vtu, meta_path]
+
+
+def compute_fields(case: ContactCase, scene_name: str, fidelity: str, directory, *,
+                   show_progress: bool = False) -> list:
+    """Solve the checked level of ``case`` at ``fidelity`` and write its fields into ``directory`` (named
+    ``scene_name`` in ``fields.json``).  What ``ballbench show`` runs when ``validate`` left no fields behind.
+    Returns the written paths."""
+    fe = _fe(case)
+    level = fe.levels.checked(fidelity)
+    pair = pair_model(case)
+    steps = ["solve", "fields"]
+    if show_progress:
+        from tqdm.auto import tqdm
+
+        steps = tqdm(steps, desc=f"{scene_name}: solve, then write fields", leave=False)
+    paths = []
+    for step in steps:
+        if step == "solve":
+            result, ref = solve_level(pair, level)
+        else:
+            paths = write_fields(result, ref, directory, scene_name=scene_name, fidelity=fidelity, level=level,
+                                 material=case.material)
+    return paths
+
+
+def load_sweep(case: ContactCase, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
+    """FE load sweep of ``case``'s pair: ``force`` [N], ``approach`` [m], ``a`` [m] at every load factor
+    (times the case's force; sorted).
+
+    One mesh and one condensation (the checked level at ``fidelity``), then a contact solve and a Hertz-field
+    fit per load.  Returns also ``ball_radius`` [m], the Hertz ``geometry``, the ``level``, ``ndofs`` and the
+    wall time [s].
+    """
+    import time
+
+    from ballbench.fem import contact, hertz_case, postprocess
+
+    start = time.perf_counter()
+    pair = pair_model(case)
+    n, growth = _fe(case).levels.checked(fidelity)
+    result, _ = solve_level(pair, (n, growth))  # mesh, condensation, the case's own load sweep
+    model = result.model
+    operator = postprocess.force_operator(model.pair.points, model.pair.surfaces["ball_contact"], model.candidates)
+    forces, approaches, semi_axes = [], [], []
+    state = None
+    for factor in np.sort(np.asarray(load_factors, dtype=float)):
+        state = contact.solve_force(model, factor * case.force, start=state)
+        fit = hertz_case.fit_contact_patch(model, state, operator)  # the fit solve_case makes at the nominal load
+        forces.append(state.force)
+        approaches.append(state.approach)
+        semi_axes.append(fit.a)
+    return {"force": np.array(forces), "approach": np.array(approaches), "a": np.array(semi_axes),
+            "ball_radius": case.ball_radius, "geometry": pair.geometry, "level": (n, growth),
+            "ndofs": result.ndofs, "wall_time_s": time.perf_counter() - start}
+
+
+def load_fields(directory) -> tuple[dict, dict]:
+    """The fields :func:`write_fields` saved in ``directory``: ``(mesh, meta)``; FileNotFoundError if missing,
+    ValueError naming the file if damaged.
+
+    ``mesh``: ``points`` (n, 3) [m], ``tets`` (m, 10) quadratic tetrahedra (VTK node order) or (m, 4),
+    ``body`` (m,) and the point fields by their names in ``meta["fields"]``.
+    """
+    import contextlib
+    import io
+
+    import meshio
+
+    directory = Path(directory)
+    vtu, meta_path = directory / "fields.vtu", directory / "fields.json"
+    if not (vtu.exists() and meta_path.exists()):
+        raise FileNotFoundError(f"no saved fields in {directory} (fields.vtu, fields.json)")
+    meta = json.loads(meta_path.read_text())
+    messages = io.StringIO()
+    try:  # meshio prints and calls sys.exit on a file it cannot read
+        with contextlib.redirect_stdout(messages), contextlib.redirect_stderr(messages):
+            mesh = meshio.read(vtu, file_format="vtu")
+    except (SystemExit, Exception) as error:
+        reason = " ".join(messages.getvalue().split()) or str(error)
+        raise ValueError(f"cannot read {vtu}: {reason}") from None
+    for key in ("fields", "hertz", "fe", "symmetry", "level"):
+        if key not in meta:
+            raise ValueError(f"{meta_path} lacks {key!r}")
+    kind = "tetra10" if "tetra10" in mesh.cells_dict else "tetra"
+    if kind not in mesh.cells_dict:
+        raise ValueError(f"{vtu} holds no tetrahedra")
+    data = {"points": np.asarray(mesh.points, dtype=float), "tets": np.asarray(mesh.cells_dict[kind]),
+            "body": np.asarray(mesh.cell_data_dict["body"][kind])}
+    data.update({name: np.asarray(values) for name, values in mesh.point_data.items()})
+    return data, meta
+
+
+def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 0.0) -> list[Path]:
+    """The ``show`` hook of an FE contact scene: ``pressure.png`` and ``stress.png`` (figures.fe_contact) drawn
+    from the fields saved in ``scene_dir`` (named after the scene); only when none are saved does it solve the
+    checked level at ``fidelity`` first (about ``cost_s`` [s]), saying so on stderr."""
+    import sys
+
+    from ballbench.validation.figures import fe_contact as figures
+    from ballbench.validation.figures.style import save
+
+    levels = _fe(case).levels
+    if fidelity not in levels:
+        raise ValueError(f"fidelity must be one of {('quick', 'default', 'fine')}, got {fidelity!r}")
+    directory = Path(scene_dir)
+    scene_name = directory.name
+    try:
+        data, meta = load_fields(directory)
+    except FileNotFoundError:
+        hint = ""
+        results = directory.parent / "results.json"
+        if fidelity != "quick" and results.is_file():
+            try:
+                if json.loads(results.read_text()).get("fidelity") == "quick":
+                    hint = (f"; the report there is a --quick run, which saves no fields ('ballbench show "
+                            f"{scene_name} --quick' draws the quick level)")
+            except (OSError, ValueError):
+                pass
+        print(f"ballbench: no saved fields in {directory}; solving the {fidelity} level of {scene_name} first "
+              f"(about {cost_s:.0f} s){hint}", file=sys.stderr, flush=True)
+        compute_fields(case, scene_name, fidelity, directory, show_progress=sys.stderr.isatty())
+        data, meta = load_fields(directory)
+    if not math.isfinite(meta["hertz"]["a_m"]):
+        raise ValueError(f"{directory / 'fields.json'}: no Hertz reference")
+    from ballbench.validation.figures import render3d
+
+    return [save(figures.pressure_figure(data, meta), directory / "pressure.png", dpi=100, tight=True),
+            save(figures.stress_figure(data, meta), directory / "stress.png", dpi=100)] + render3d.render(directory)
