@@ -1,4 +1,4 @@
-"""Where full slip holds (lowmodel.full_slip_validity) and the stick/slip B2B scenes (scenes/rolling_b2b.py)."""
+"""Where full slip holds: stick/slip against full slip per case, the rung a case needs (lowmodel.full_slip_validity)."""
 from __future__ import annotations
 
 import dataclasses
@@ -39,17 +39,3 @@ def test_required_rung_refuses_a_point_without_a_state(table1_point):
         fsv.required_rung(table1_point, tolerance=-0.01)
     with pytest.raises(ValueError, match="product"):
         fsv.validity_map("bearing", [0.1], [0.56], [0.03], [100.0])
-
-
-@pytest.mark.slow
-def test_full_slip_validity_scene_quick(quick_scene):
-    result = quick_scene("full-slip-validity")
-    assert all(o.family for o in result.outputs if o.kind == "accuracy")
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["rolling-b2b-linear-a", "rolling-b2b-linear-b"])
-def test_rolling_b2b_scene_quick(quick_scene, name):
-    result = quick_scene(name)
-    families = {o.family for o in result.outputs if o.kind == "accuracy"}
-    assert {"BEM", "FE-informed", "low-order numerical"} <= families

@@ -1,5 +1,5 @@
-"""B2B solves with stick/slip ball-to-groove contacts (lowmodel.contact.rolling_friction, linear_bearing.b2b_rolling,
-screw.b2b_rolling; docs/b2b_rolling.md)."""
+"""lin2019's linear-bearing B2B solve with stick/slip ball-to-groove contacts (lowmodel.linear_bearing.b2b_rolling
+over lowmodel.contact.rolling_friction; docs/b2b_rolling.md)."""
 from __future__ import annotations
 
 import dataclasses
@@ -12,9 +12,6 @@ from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.contact import rolling_friction as rf
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling, b2b_traction
-from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
-from ballbench.lowmodel.screw import contacts as screw_contacts
 
 CELLS = (8, 32)
 R_B, MU, V = 5e-3, 0.1, 0.01
@@ -145,23 +142,6 @@ def test_b2b_contact_slides_fully(case_a):
     assert creepage > 1e3
 
 
-def test_sampled_pressure_of_hertz_samples_is_the_hertz_pressure():
-    """Samples on a fine lattice (as FE quadrature points: equal areas) give Hertz's cell averages."""
-    a, b, force = 0.1e-3, 0.4e-3, 50.0
-    p0 = 1.5 * force / (math.pi * a * b)
-    x, y = np.meshgrid((np.arange(100) + 0.5) / 50 - 1.0, (np.arange(400) + 0.5) / 200 - 1.0, indexing="ij")
-    pressure = p0 * np.sqrt(np.clip(1.0 - x * x - y * y, 0.0, None))
-    weights = np.full(x.shape, (2 * a / 100) * (2 * b / 400))
-    grid = rolling.hertz_grid(a, b, (10, 40))
-    cells = rf.sampled_pressure(grid, a * x, b * y, pressure, weights)
-    assert cells.sum() * grid.cell_area == pytest.approx(float((pressure * weights).sum()), rel=1e-12)
-    hertz = rolling.hertz_pressure(grid, a, b, force)
-    assert np.max(np.abs(cells - hertz)) < 0.02 * p0  # nearest samples: 1.4e-2 p0 at an edge cell
-    assert np.abs(cells - hertz).sum() < 2e-3 * hertz.sum()
-    with pytest.raises(ValueError, match="does not cover"):
-        rf.sampled_pressure(rolling.hertz_grid(0.5 * a, b, (10, 40)), a * x, b * y, pressure, weights)
-
-
 def test_sampled_contact_rebuilds_a_hertz_contact():
     """Hertz samples on the sphere as an FE pressure would come: the stick/slip module reproduces the Hertz grid's."""
     contacts, balls = linear_balls(cells=(12, 48))
@@ -182,22 +162,6 @@ def test_sampled_contact_rebuilds_a_hertz_contact():
     first = b2b_rolling.solve(balls, **COMMON)
     second = b2b_rolling.solve(sampled, **COMMON)
     assert second.b2b_force[0] == pytest.approx(first.b2b_force[0], rel=0.01)
-
-
-def test_screw_theta_zero_gives_no_b2b_and_the_table5_case_balances_power():
-    module = screw_contacts.screw_module(oversize=1.6848e-6)
-    for theta, expect_force in ((0.0, False), (math.radians(2.0), True)):
-        contacts = screw_contacts.ball_contacts(module, [0.0, theta], reading="tilted")
-        low = screw_b2b.solve(contacts, 50.0)
-        balls = [screw_rolling.hertz_contacts(low, contacts, j, cells=CELLS) for j in range(2)]
-        result = screw_rolling.module_b2b(balls, module)
-        assert result.power_balance < 1e-6
-        if expect_force:
-            assert result.b2b_force[0] == pytest.approx(low.b2b_force[0], rel=0.01)
-            assert result.b2b_force[0] == pytest.approx(result.full_slip.b2b_force[0], rel=0.01)
-        else:
-            assert result.b2b_force[0] < 1e-9 * low.normal_force.max()
-            assert result.touching.orbit_speed[0] == pytest.approx(result.touching.orbit_speed[1], rel=1e-9)
 
 
 def test_bad_input_names_the_parameter(case_a):
