@@ -91,7 +91,7 @@ class WorstCase:
     compliance: dict
 
 
-WORST = WorstCase(product="linear", mu=0.5, conformity=0.6, theta_deg=1.0, load=100.0,
+WORST = WorstCase(product="linear", mu=0.5, conformity=0.6, theta_deg=1.0, load=1000.0,
                   cells={"quick": ((8, 32),), "default": ((8, 32), (16, 64)),
                          "fine": ((8, 32), (16, 64), (24, 96))},
                   compliance={"quick": (), "default": (ComplianceLevel(8, 32, 0.8),),
