@@ -19,11 +19,12 @@ import time
 from dataclasses import dataclass
 from functools import lru_cache
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.linear_bearing import b2b as linear_b2b
 from ballbench.lowmodel.linear_bearing import b2b_rolling as linear_rolling
 from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
-from ballbench.validation.cases import lin2019, stick_slip
+from ballbench.validation.cases import FIDELITIES, lin2019, stick_slip
 from ballbench.validation.references.published import lin2019 as printed
 from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw, screw_two_ball
 
@@ -129,6 +130,7 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
     from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     rungs = []
+    case, level = checks.choice("case", case, tuple(lin2019.TABLE3)), checks.choice("level", level, FIDELITIES)
     module_case, guide, levels = lin2019.TABLE3[case], lin2019.GUIDE, stick_slip.LINEAR
     contacts = fe_b2b_linear.low_order_contacts(module_case)
     linear_b2b.solve(contacts, [0.0])  # the friction map's disk cache, outside the timed calls
@@ -201,6 +203,7 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
 def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_fe: bool = True) -> list[Rung]:
     """Every rung of the ball screw's ladder for Table 5 case ``case`` at fidelity ``level``."""
     rungs = []
+    case, level = checks.choice("case", case, tuple(lin2019.TABLE5)), checks.choice("level", level, FIDELITIES)
     module_case, levels = lin2019.TABLE5[case], stick_slip.SCREW
     start = time.perf_counter()
     contacts, free, state = fe_b2b_screw.low_order(module_case)
@@ -302,6 +305,7 @@ def record_ladder(run, product: str, case: str) -> list[Rung]:
     """Run the ladder of ``product`` ("linear" or "screw") for ``case`` at ``run.fidelity`` and record its checks,
     ladder.csv, contacts.csv and the notes."""
     level = run.fidelity
+    product = checks.choice("product", product, ("linear", "screw"))
     start = time.perf_counter()
     ladder = linear_ladder if product == "linear" else screw_ladder
     rungs = ladder(case, level, progress=lambda it, desc="": run.progress(it, desc=desc))

@@ -27,3 +27,10 @@ def test_levels_refuse_a_bad_cover_or_tail_share():
         stick_slip.StickSlipLevels(hertz, compliance, cover=(1.4, -1.0))
     with pytest.raises(ValueError, match="outside"):
         stick_slip.StickSlipLevels(hertz, compliance, cover=(1.4, 1.2), outside=0.5)
+
+
+def test_ladders_refuse_an_unknown_case_or_level():
+    with pytest.raises(ValueError, match="case"):
+        rolling_b2b.linear_ladder("c", "quick", with_fe=False)
+    with pytest.raises(ValueError, match="level"):
+        rolling_b2b.screw_ladder("a", "coarse", with_fe=False)
