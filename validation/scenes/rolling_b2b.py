@@ -19,14 +19,14 @@ _LEVEL = "FE module h 30 um; stick/slip on 20 x 80 cells per contact; FE complia
 
 @scene("rolling-b2b-linear-a", "B2B force of lin2019's linear-bearing module, case (a), with stick/slip ball-to-groove "
        "contacts: the ladder from the analytical model to stick/slip on the FE compliance against ANSYS 3.96 N",
-       kind="FE", cost_s=240.0, budget_s=_BUDGET, level=_LEVEL,
+       kind="FE", cost_s=375.0, budget_s=_BUDGET, level=_LEVEL,
        case=lin2019.TABLE3_A)
 def rolling_b2b_linear_a(run):
     study.record_ladder(run, "linear", "a")
 
 
 @scene("rolling-b2b-linear-b", "B2B force of lin2019's linear-bearing module, case (b) (mitigating top groove), with "
-       "stick/slip contacts: zero at every rung", kind="FE", cost_s=240.0, budget_s=_BUDGET, level=_LEVEL,
+       "stick/slip contacts: zero at every rung", kind="FE", cost_s=375.0, budget_s=_BUDGET, level=_LEVEL,
        case=lin2019.TABLE3_B)
 def rolling_b2b_linear_b(run):
     study.record_ladder(run, "linear", "b")
@@ -34,14 +34,14 @@ def rolling_b2b_linear_b(run):
 
 @scene("rolling-b2b-screw-a", "B2B force of lin2019's ball-screw module, Table 5 case (a), with stick/slip "
        "ball-to-groove contacts: the ladder from the low-order model to stick/slip on the FE compliance against "
-       "ANSYS 1.80 N", kind="FE", cost_s=300.0, budget_s=_BUDGET, level=_LEVEL,
+       "ANSYS 1.80 N", kind="FE", cost_s=440.0, budget_s=_BUDGET, level=_LEVEL,
        case=lin2019.TABLE5_A)
 def rolling_b2b_screw_a(run):
     study.record_ladder(run, "screw", "a")
 
 
 @scene("rolling-b2b-screw-b", "B2B force of lin2019's ball-screw module, Table 5 case (b), with stick/slip contacts: "
-       "the ladder against ANSYS 2.71 N", kind="FE", cost_s=300.0, budget_s=_BUDGET, level=_LEVEL,
+       "the ladder against ANSYS 2.71 N", kind="FE", cost_s=440.0, budget_s=_BUDGET, level=_LEVEL,
        case=lin2019.TABLE5_B)
 def rolling_b2b_screw_b(run):
     study.record_ladder(run, "screw", "b")
@@ -57,6 +57,6 @@ def full_slip_validity_map(run):
 
 @scene("full-slip-validity", "Where lin2019's full slip is worst within the models' domain (the validity map's worst "
        "case): stick/slip against full slip on refined grids, and stick/slip on the FE compliance there",
-       kind="FE", cost_s=150.0, budget_s={"quick": 120.0, "default": 600.0, "fine": 3000.0})
+       kind="FE", cost_s=300.0, budget_s={"quick": 120.0, "default": 600.0, "fine": 3000.0})
 def full_slip_validity(run):
     validity.record_worst(run)

@@ -116,6 +116,7 @@ class Rung:
     power_balance: float = 0.0
     contacts: tuple = ()  # per ball the ContactSummary tuple of the touching stick/slip state
     b2b_check: tuple = (math.nan, math.nan)
+    h_contact: float = math.nan  # the FE module's element size [m] (FE rungs)
 
 
 def rolling_rung(model: str, family: str, level: str, result, seconds: float, b2b_check=(math.nan, math.nan)) -> Rung:
@@ -229,7 +230,7 @@ def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_f
     full = fe_b2b_screw.fe_informed(module_case, models, results)
     rungs.append(Rung("screw.b2b_traction full slip, FE pressure", "FE-informed", f"h {h_um:.0f} um",
                       float(full.b2b_force[0]), float(full.friction_increase), fe_s + time.perf_counter() - start,
-                      power_balance=float(full.power_balance)))
+                      power_balance=float(full.power_balance), h_contact=fe_level.h_contact))
     samples = [pressure_samples(m, r) for m, r in zip(models, results)]
     start = time.perf_counter()
     balls = [screw_rolling.sampled_contacts(s, module, cells=cells) for s in samples]
@@ -338,8 +339,13 @@ def record_ladder(run, product: str, case: str) -> list[Rung]:
             note += (f"; full slip on the same cells {rung.full_slip_force:.4f} N (stick/slip {diff:+.3f} %); Lambda "
                      f"{min(lam):.0f}-{max(lam):.0f}, stick fraction up to {max(stick):.4f}")
         if ansys > 0.0:
+            # the fe-b2b-screw scenes' model at its own mesh level: the same declared gap
+            gap = (fe_b2b_screw.ANSYS_GAP if product == "screw" and rung.model.startswith("screw.b2b_traction")
+                   and any(case == c and abs(rung.h_contact - h) < 1e-9 for c, h in fe_b2b_screw.ANSYS_GAP_LEVELS)
+                   else None)
             run.check(model=rung.model, quantity="F_B2B", unit="N", value=rung.b2b_force, reference=ansys,
                       source=source, tolerance=tolerance, time_s=rung.time_s, family=rung.family, level=rung.level,
+                      known_gap=gap,
                       note=note + f"; lin2019's own low-order model is within {100 * tolerance:g} % (its claim)")
         else:
             run.check(model=rung.model, quantity="F_B2B", unit="N", value=rung.b2b_force, reference=0.0, scale=scale,
