@@ -26,14 +26,21 @@ Frames: the contact-pair mesh has the contact at the origin, ``+z`` into the bal
 
 Reuse: ``W`` depends on the mesh, the materials and the grid only; one condensation serves every load
 case, creepage and spin on that grid (a creep curve, a B2B iteration), and the pressure enters only through
-the traction bound.  Costs (docs/rolling_contact.md): one factorisation of ``K`` with ``m`` Schur rows
+the traction bound.  ``condense(..., cache=True)`` keeps ``W`` on disk (``lowmodel.cache.cache_dir
+("rolling_compliance")``), keyed by the mesh file's content, the materials, the grid, the element order, the
+method, the evaluation depth and :data:`CONDENSATION_VERSION` (raise it when the assembly or the condensation
+changes): a second run of a scene with the same mesh and grid loads it instead of condensing again.
+
+Costs (docs/rolling_contact.md): one factorisation of ``K`` with ``m`` Schur rows
 (``m = 3 (2 n_x + 1) n_y``), then each rolling solve costs what a half-space solve with dense products costs.
 The full model is meshed (tangential loads break the contact pair's symmetries).
 """
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,7 +52,9 @@ from ballbench.fem.surface import locate_along_z
 from ballbench.lowmodel.contact.halfspace import SurfaceGrid
 from ballbench.lowmodel.contact.rolling import MatrixOperator
 
-__all__ = ["RollingCompliance", "condense", "to_mesh_xy"]
+__all__ = ["RollingCompliance", "condense", "to_mesh_xy", "CONDENSATION_VERSION"]
+
+CONDENSATION_VERSION = "rolling-compliance-1"  # the disk cache's format and code version (module docstring)
 
 # 3-point Gauss-Legendre on [-1, 1] (nodes in half-widths), weights scaled to sum to 1
 _GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
@@ -123,14 +132,50 @@ def _kalker_rows(matrix: sp.csr_matrix, n: int) -> sp.csr_matrix:
 
 
 def condense(mesh, materials, grid: SurfaceGrid, *, order: int = 2, depth: float | None = None,
-             method: str = "augmented") -> RollingCompliance:
+             method: str = "augmented", cache: bool = False) -> RollingCompliance:
     """Condense a full contact-pair mesh's compliance onto the rolling ``grid`` (module docstring).
 
     ``mesh``: path of the ``.msh`` or a :class:`~fem.elasticity.PairMesh` (``symmetry="full"``: no cuts);
     ``materials``: ``(E, nu)`` or one pair per body; ``grid``: the rolling grid in Kalker's frame (cells
     centred on the contact point, :func:`lowmodel.contact.rolling.hertz_grid`); ``order``: P1 or P2;
     ``depth`` [m]: how far inside each surface the displacements are read (default 1e-6 of the cell size).
+    ``cache``: load ``W`` from / store it in the disk cache (a mesh given as a path only; module docstring);
+    a loaded compliance has ``timings["cached_s"]`` (the load time) in place of the assembly and condensation.
     """
+    path = None
+    if cache and not isinstance(mesh, PairMesh):
+        path = _cache_path(mesh, materials, grid, order, depth, method)
+        if path.exists():
+            start = time.perf_counter()
+            try:
+                with np.load(path) as data:
+                    W, ndofs = np.array(data["W"]), int(data["ndofs"])
+                return RollingCompliance(grid, W, ndofs, {"cached_s": time.perf_counter() - start})
+            except (OSError, KeyError, ValueError):
+                pass  # unreadable entry: condense again below
+    result = _condense(mesh, materials, grid, order=order, depth=depth, method=method)
+    if path is not None:
+        tmp = path.with_name(f"{path.stem}.{os.getpid()}.tmp.npz")  # unique per process, then atomic rename
+        np.savez(tmp, W=result.W, ndofs=result.ndofs)
+        tmp.replace(path)
+    return result
+
+
+def _cache_path(mesh, materials, grid: SurfaceGrid, order, depth, method):
+    import hashlib
+
+    from ballbench.lowmodel.cache import cache_dir, parameter_hash
+
+    digest = hashlib.sha256(Path(mesh).read_bytes()).hexdigest()
+    params = {"mesh": digest, "materials": np.asarray(materials, dtype=float).tolist(),
+              "grid": [grid.nx, grid.ny, repr(float(grid.dx)), repr(float(grid.dy)), repr(float(grid.x_centre)),
+                       repr(float(grid.y_centre))], "order": int(order), "depth": None if depth is None else
+              repr(float(depth)), "method": str(method)}
+    return cache_dir("rolling_compliance") / f"W-{parameter_hash(params, CONDENSATION_VERSION)}.npz"
+
+
+def _condense(mesh, materials, grid: SurfaceGrid, *, order: int, depth: float | None,
+              method: str) -> RollingCompliance:
     timings = {}
     start = time.perf_counter()
     pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)

@@ -69,7 +69,8 @@ from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
 
-__all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "POWER_BALANCE_TOLERANCE"]
+__all__ = ["TractionPatch", "TractionState", "hertz_patches", "solve", "slip_field", "POWER_BALANCE_TOLERANCE",
+           "N_UNKNOWNS"]
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 3  # per ball: (v_B, omega_x R_B, omega_y R_B)/|v|
@@ -107,15 +108,25 @@ class _Samples(SampledCoulomb):
         stacked = stack_patches(balls, self.n_patches, reference_force, velocity_sign)
         self.r = stacked.points
         self.patch = stacked.patch
-        rx, ry, rz = self.r.T / radius
-        zero, one = np.zeros_like(rx), np.ones_like(rx)
-        # D[k, :, j] = d s_k / d x_j, x = (v_B, omega_x R_B, omega_y R_B)/|v|; also the moment rows (D^T f)
-        slip_matrix = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
-                                np.stack([rz, zero, -rx], 1)], axis=2)
-        groove = np.zeros((len(rx), 3))
-        groove[:, 2] = stacked.moving  # groove velocity along +z (units |v|)
+        slip_matrix, groove = slip_field(self.r, radius, stacked.moving)
         super().__init__(stacked.ball, slip_matrix, groove, stacked.normals, stacked.load,
                          len(balls), eps)
+
+
+def slip_field(points: np.ndarray, radius: float, moving: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The rigid slip of the ball against its groove at ``points`` (k, 3) [m] (relative to the ball centre,
+    lin2019 Fig 2 frame), ``s_k = D_k x - g_k`` in units of ``|v|`` (lin2019 eqs 1, A1-A3 as a field):
+    ``D`` (k, 3, 3) = d s / d x for the unknowns ``x = (v_B, omega_x R_B, omega_y R_B)/|v|`` (column 0 the ball
+    centre's velocity, the carrier of the contact points), ``g`` (k, 3) the groove's velocity ``moving e_z``
+    (``moving`` (k,): ``sign(v)`` on the top groove, 0 on the bottom one)."""
+    rx, ry, rz = np.asarray(points, dtype=float).T / radius
+    zero, one = np.zeros_like(rx), np.ones_like(rx)
+    # D[k, :, j] = d s_k / d x_j; also the moment rows (D^T f)
+    slip_matrix = np.stack([np.stack([zero, zero, one], 1), np.stack([zero, -rz, ry], 1),
+                            np.stack([rz, zero, -rx], 1)], axis=2)
+    groove = np.zeros((len(rx), 3))
+    groove[:, 2] = moving  # groove velocity along +z (units |v|)
+    return slip_matrix, groove
 
 
 def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, n_angular: int = 96,

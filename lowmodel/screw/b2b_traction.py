@@ -74,8 +74,8 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
 
-__all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "POWER_BALANCE_TOLERANCE",
-           "N_UNKNOWNS", "RADIUS_TOLERANCE"]
+__all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "slip_field", "pair_function",
+           "POWER_BALANCE_TOLERANCE", "N_UNKNOWNS", "RADIUS_TOLERANCE"]
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_traction.md)
 N_UNKNOWNS = 4  # per ball: omega_B / |omega_N|, (omega_x, omega_y, omega_z) R_B / (|omega_N| L / 2 pi)
@@ -167,23 +167,33 @@ class _Samples(SampledCoulomb):
 
     def __init__(self, balls, module: screw_contacts.ScrewModule, reference_force: float, eps: float):
         self.n_patches = max(len(p) for p in balls)
-        radius, ell = module.ball_radius, module.helix_radius
-        s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
         sign = math.copysign(1.0, module.nut_speed)
         stacked = stack_patches(balls, self.n_patches, reference_force, sign)
         self.r = stacked.points
         self.patch = stacked.patch
-        rx, ry, rz = self.r.T
-        # helical field at the nominal ball centre + r, in units of L / 2 pi (lin2019 eqs 36, 43)
-        self.helical = np.stack([s * rz - c * ry, ell + c * rx, -s * rx], axis=1) / ell
-        x, y, z = self.r.T / radius
-        zero = np.zeros_like(x)
-        # D[k, :, j] = d s_k / d x_j: orbit (H), then e_j x (r / R_B) for the spin (omega x r)
-        slip_matrix = np.stack([self.helical, np.stack([zero, -z, y], 1), np.stack([z, zero, -x], 1),
-                                np.stack([-y, x, zero], 1)], axis=2)
+        slip_matrix, groove = slip_field(self.r, module, stacked.moving)
+        self.helical = slip_matrix[:, :, 0]
         self.on_nut = stacked.moving
-        super().__init__(stacked.ball, slip_matrix, self.on_nut[:, None] * self.helical,
-                         stacked.normals, stacked.load, len(balls), eps)
+        super().__init__(stacked.ball, slip_matrix, groove, stacked.normals, stacked.load, len(balls), eps)
+
+
+def slip_field(points: np.ndarray, module: screw_contacts.ScrewModule, moving: np.ndarray):
+    """The rigid slip of the ball against its groove at ``points`` (k, 3) [m] (relative to the ball centre, in its
+    CS3), ``s_k = D_k x - g_k`` in units of ``|omega_N| L / 2 pi`` (lin2019 eqs 36, 43-47 as a field, module
+    docstring): ``D`` (k, 3, 4) = d s / d x for the unknowns ``x`` of :data:`N_UNKNOWNS` (column 0 the helical
+    field ``H`` of the orbit, the carrier of the contact points; then ``e_j x r / R_B`` for the spin), ``g`` (k, 3)
+    the groove's velocity ``moving H`` (``moving`` (k,): ``sign(omega_N)`` on the nut, 0 on the screw)."""
+    radius, ell = module.ball_radius, module.helix_radius
+    s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
+    rx, ry, rz = np.asarray(points, dtype=float).T
+    # helical field at the nominal ball centre + r, in units of L / 2 pi (lin2019 eqs 36, 43)
+    helical = np.stack([s * rz - c * ry, ell + c * rx, -s * rx], axis=1) / ell
+    x, y, z = np.asarray(points, dtype=float).T / radius
+    zero = np.zeros_like(x)
+    # D[k, :, j] = d s_k / d x_j: orbit (H), then e_j x (r / R_B) for the spin (omega x r)
+    slip_matrix = np.stack([helical, np.stack([zero, -z, y], 1), np.stack([z, zero, -x], 1),
+                            np.stack([-y, x, zero], 1)], axis=2)
+    return slip_matrix, np.asarray(moving, dtype=float)[:, None] * helical
 
 
 def _b2b_rows(module: screw_contacts.ScrewModule) -> np.ndarray:
@@ -235,7 +245,7 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     guess = _initial_guess(samples, n)
 
     states, lam, iterations, residual_norm = solve_chain(
-        samples, guess, touching, lambda layout: _pair_function(module, layout, reference_force),
+        samples, guess, touching, lambda layout: pair_function(module, layout, reference_force),
         complementarity="fischer-burmeister", tolerance=tolerance, max_iterations=max_iterations,
         what_ball="FE-informed screw ball", what_chain=f"FE-informed {n}-ball screw B2B contact")
     forces = lam * module.friction_coefficient * reference_force
@@ -257,7 +267,7 @@ def _initial_guess(samples: _Samples, n: int) -> np.ndarray:
     return guess
 
 
-def _pair_function(module: screw_contacts.ScrewModule, layout: ChainLayout, reference_force: float):
+def pair_function(module: screw_contacts.ScrewModule, layout: ChainLayout, reference_force: float):
     """The B2B loads of the chain's pairs (eqs 56-59) as generalised forces of the 4 unknowns per ball (units
     ``mu F_ref``; force slots in units ``mu F_ref``): :class:`lowmodel.b2b_chain.PairBlocks`."""
     k = N_UNKNOWNS

@@ -46,17 +46,6 @@ FRICTIONLESS_GAP = KnownGap(
     evidence="this scene: the FE forces against the frictionless Hertz statics of the same geometry, preload and "
              "axial share (hertz_statics, checked at 2 %); contacts.csv (F_FE, F_hertz_statics, F_low_order).")
 
-# (case, h_contact [m]) where the FE-informed F_B2B misses ANSYS's value by more than 10 % (measured)
-ANSYS_GAP_LEVELS = {("b", 4.0e-5)}
-ANSYS_GAP = KnownGap(
-    reason="Case (b) at the 40 um level: F_B2B 2.9815 N, +10.02 % of ANSYS's 2.71 N (the target 10 % is 2.981 N).  "
-           "The 40 um level's discretisation error: the same module at the default 30 um gives 2.957 N (+9.1 %), "
-           "i.e. the 40 um level lies 0.8 % above it (case a: 1.956 / 1.962 N at 40 / 30 um, -0.3 %; with the "
-           "shallow segments 2.003 / 2.001 / 1.986 N at 40 / 30 / 22 um).  The preload is fitted on the paper's "
-           "low-order value of case (a), not on ANSYS, and is not refitted here.",
-    evidence="levels.csv of `ballbench validate fe-b2b-screw-b --quick` and of the default level (F_B2B per mesh "
-             "level); docs/fe_b2b.md (screw half, depth table and results).")
-
 # the FE's rigid equations hold to the QP's tolerance (solve tol 1e-9; measured in docs/fe_b2b.md)
 STATICS_TOL = 1e-9
 
@@ -125,7 +114,8 @@ def _run(run, which: str) -> None:
                   note=f"within 10 % (docs/fe_b2b.md); {row['ndofs']} DOFs in two modules; mesh + assembly + "
                        "condensation + 2 contact solves + B2B solves; preload fitted on the paper's low-order 1.92 N, "
                        "not on ANSYS",
-                  known_gap=ANSYS_GAP if any(which == c and abs(h_contact - h) < 1e-9 for c, h in ANSYS_GAP_LEVELS)
+                  known_gap=study.ANSYS_GAP if any(which == c and abs(h_contact - h) < 1e-9
+                                               for c, h in study.ANSYS_GAP_LEVELS)
                   else None)
         run.check(**fe_informed, quantity="friction increase by B2B", unit="%",
                   value=float(informed.friction_increase), reference=printed.friction_increase,

@@ -16,10 +16,22 @@ import time
 import numpy as np
 
 from ballbench.validation.cases.case import BallScrewCase
+from ballbench.validation.scene import KnownGap
 from ballbench.validation.studies import screw_two_ball
 
-__all__ = ["low_order", "axial_shares", "hertz_ellipse", "solve_fe_level", "fe_informed", "sensitivity", "patch_axes",
-           "show_module"]
+# (Table 5 case, h_contact [m]) where the FE-informed F_B2B misses ANSYS's value by more than 10 % (measured)
+ANSYS_GAP_LEVELS = {("b", 4.0e-5)}
+ANSYS_GAP = KnownGap(
+    reason="Case (b) at the 40 um level: F_B2B 2.9815 N, +10.02 % of ANSYS's 2.71 N (the target 10 % is 2.981 N).  "
+           "The 40 um level's discretisation error: the same module at the default 30 um gives 2.957 N (+9.1 %), "
+           "i.e. the 40 um level lies 0.8 % above it (case a: 1.956 / 1.962 N at 40 / 30 um, -0.3 %; with the "
+           "shallow segments 2.003 / 2.001 / 1.986 N at 40 / 30 / 22 um).  The preload is fitted on the paper's "
+           "low-order value of case (a), not on ANSYS, and is not refitted here.",
+    evidence="levels.csv of `ballbench validate fe-b2b-screw-b --quick` and of the default level (F_B2B per mesh "
+             "level); docs/fe_b2b.md (screw half, depth table and results).")
+
+__all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "axial_shares", "hertz_ellipse", "solve_fe_level",
+           "fe_informed", "sensitivity", "patch_axes", "show_module"]
 
 
 def low_order(case: BallScrewCase, oversize: float | None = None):

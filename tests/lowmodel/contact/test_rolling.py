@@ -15,7 +15,7 @@ from scipy import integrate
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import fastsim as fs
 from ballbench.lowmodel.contact import halfspace as hs
-from ballbench.lowmodel.contact import influence, rolling
+from ballbench.lowmodel.contact import influence, rolling, rolling_newton
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.references import rolling as ref
 
@@ -211,13 +211,13 @@ def test_non_convergence_raises_with_the_residual():
 
 
 def test_a_wrong_traction_fails_its_defining_check(monkeypatch):
-    original = rolling._newton
+    original = rolling_newton.semismooth_newton
 
     def off(problem, tolerance, max_iterations, start):
         p, iterations, krylov, residual = original(problem, tolerance, max_iterations, start)
         return p * 1.01, iterations, krylov, residual  # a slightly wrong answer claiming convergence
 
-    monkeypatch.setattr(rolling, "_newton", off)
+    monkeypatch.setattr(rolling_newton, "semismooth_newton", off)
     with pytest.raises(ConvergenceError, match="check failed"):
         rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 3e-4, 0.0, 0.0, 12)
 

@@ -1,0 +1,52 @@
+"""Speed of the B2B solve with stick/slip ball-to-groove contacts (lowmodel.linear_bearing.b2b_rolling,
+lowmodel.screw.b2b_rolling; docs/b2b_rolling.md).
+
+Touching two-ball solve of lin2019 Table 3 case (a) and Table 5 case (a) (fitted preload) on Hertz contacts and two
+half-spaces: the full-slip start and the stick/slip Newton (forward-difference Jacobian, warm-started rolling solves);
+the number of rolling solves beside the time.  The FE rungs are timed by the rolling-b2b-* scenes (ladder.csv).
+
+Run: python -m pytest benchmarks/test_bench_b2b_rolling.py
+"""
+import math
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+from ballbench.lowmodel.screw import contacts as screw_contacts
+
+
+@pytest.mark.parametrize("cells", [(12, 48), (20, 80)])
+def test_linear_two_ball_stick_slip_solve(benchmark, cells):
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6)
+    balls = [b2b_rolling.hertz_contacts(contacts, j, cells=cells) for j in range(2)]
+
+    def solve():
+        return b2b_rolling.solve(balls, ball_radius=5e-3, friction_coefficient=0.1, groove_velocity=0.01)
+
+    state = benchmark.pedantic(solve, rounds=3, iterations=1)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_s=median, rolling_solves=state.rolling_solves, f_b2b=float(state.b2b_force[0]))
+    print(f"\nlinear stick/slip two-ball solve, {cells[0]} x {cells[1]} cells per contact: {median:.2f} s median, "
+          f"{state.iterations} Newton iterations, {state.rolling_solves} rolling solves, "
+          f"F_B2B {state.b2b_force[0]:.4f} N")
+
+
+@pytest.mark.parametrize("cells", [(12, 48), (20, 80)])
+def test_screw_two_ball_stick_slip_solve(benchmark, cells):
+    module = screw_contacts.screw_module(oversize=1.6848e-6)
+    contacts = screw_contacts.ball_contacts(module, np.radians([0.0, 2.0]), reading="tilted")
+    low = screw_b2b.solve(contacts, 50.0)
+    balls = [screw_rolling.hertz_contacts(low, contacts, j, cells=cells) for j in range(2)]
+
+    def solve():
+        return screw_rolling.solve(balls, module)
+
+    state = benchmark.pedantic(solve, rounds=3, iterations=1)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_s=median, rolling_solves=state.rolling_solves, f_b2b=float(state.b2b_force[0]))
+    print(f"\nscrew stick/slip two-ball solve, {cells[0]} x {cells[1]} cells per contact: {median:.2f} s median, "
+          f"{state.iterations} Newton iterations, {state.rolling_solves} rolling solves, "
+          f"F_B2B {state.b2b_force[0]:.4f} N")

@@ -1,0 +1,339 @@
+"""The semismooth Newton solver of the discrete tangential problem (docs/rolling_contact.md, 'Solver').
+
+On the contact cells of a grid with traction bound ``g = mu p_n``, rigid slip ``w`` and an operator ``C``
+(:mod:`lowmodel.contact.rolling_operators`), find ``p`` with ``F(p) = p - Proj_g(p - c s(p)) = 0``, ``s = w + C p``
+(``Proj_g`` projects each cell's traction onto the disc ``|p| <= g``; ``c = 1/max diag C``, so ``c s`` is a
+traction).  Generalised Jacobian ``J = (I - D) + c D C`` with ``D = Proj_g'`` (identity in stick cells,
+``(g/|z|)(I - z z^T/|z|^2)`` in slip cells).  Each Newton system is solved by dense LU up to
+:data:`DIRECT_CELLS` contact cells, above by GMRES (right preconditioned, Saad 2003 Alg 9.5) with the exact
+inverse of ``J`` restricted to each grid line along the rolling direction (the steady-state operator's
+coupling is mostly along ``x``: the lateral neighbours carry 8-17 % of the diagonal); products with ``C`` are
+dense below :data:`DENSE_CELLS` contact cells and FFT convolutions above.  Newton starts from the local
+(FASTSIM-like) solution marched from the leading edge (:meth:`TangentialProblem.marching_start`).
+
+:func:`check_solution` re-evaluates the slip from a traction alone and checks the conditions that define the
+answer (Coulomb bound, zero slip in stick cells, traction opposite to the slip in slip cells, non-negative
+dissipation in every cell), raising ConvergenceError naming the first that fails.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ballbench.lowmodel.errors import ConvergenceError
+
+__all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "DENSE_CELLS", "DIRECT_CELLS",
+           "CHECK_TOLERANCE"]
+
+DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
+DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
+CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g) (traction units)
+_FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
+_RESTART = 30
+
+
+def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iterations: int):
+    """Right-preconditioned restarted GMRES (Saad 2003, Alg 9.5); returns ``(x, iterations)``."""
+    n = rhs.size
+    x = np.zeros(n)
+    norm_b = math.sqrt(float(rhs @ rhs))
+    if norm_b == 0.0:
+        return x, 0
+    residual = rhs
+    total = 0
+    while True:
+        beta = math.sqrt(float(residual @ residual))
+        m = min(_RESTART, max_iterations - total)
+        if m <= 0 or beta <= tolerance * norm_b:
+            return x, total
+        basis = np.empty((m + 1, n))
+        upper = np.zeros((m, m))
+        rotations = []
+        g = [beta]
+        basis[0] = residual / beta
+        k = 0
+        for j in range(m):
+            total += 1
+            w = matvec(precondition(basis[j]))
+            norm_before = math.sqrt(float(w @ w))
+            h = basis[:j + 1] @ w
+            w -= h @ basis[:j + 1]
+            norm_w = math.sqrt(float(w @ w))
+            if norm_w < 0.5 * norm_before:  # cancellation: classical Gram-Schmidt once more (Daniel et al. 1976)
+                correction = basis[:j + 1] @ w
+                w -= correction @ basis[:j + 1]
+                h += correction
+                norm_w = math.sqrt(float(w @ w))
+            column = h.tolist()
+            column.append(norm_w)
+            for i, (c, s_) in enumerate(rotations):
+                column[i], column[i + 1] = c * column[i] + s_ * column[i + 1], -s_ * column[i] + c * column[i + 1]
+            radius = math.hypot(column[j], column[j + 1])
+            k = j + 1
+            if radius == 0.0:
+                k = j
+                break
+            c, s_ = column[j] / radius, column[j + 1] / radius
+            rotations.append((c, s_))
+            column[j] = radius
+            upper[:j + 1, j] = column[:j + 1]
+            g.append(-s_ * g[j])
+            g[j] *= c
+            if norm_w == 0.0 or abs(g[j + 1]) <= tolerance * norm_b:
+                break
+            basis[j + 1] = w / norm_w
+        if k:
+            y = np.linalg.solve(upper[:k, :k], np.asarray(g[:k]))
+            x += precondition(y @ basis[:k])
+        if abs(g[k]) <= tolerance * norm_b or total >= max_iterations or k == 0:
+            return x, total
+        residual = rhs - matvec(x)
+
+
+class TangentialProblem:
+    """The discrete tangential problem on the contact cells of a grid (shared by Newton and the checks)."""
+
+    def __init__(self, operator, bound: np.ndarray, rigid: np.ndarray, dense: bool | None):
+        grid = operator.grid
+        self.operator = operator
+        self.shape = (grid.nx, grid.ny)
+        self.contact = bound > 0.0
+        self.cells = np.flatnonzero(self.contact)
+        self.n = self.cells.size
+        self.g = bound.reshape(-1)[self.cells]
+        self.w = rigid.reshape(-1, 2)[self.cells]
+        self.gmax = float(self.g.max())
+        self.c = 1.0 / float(np.max(operator.diagonal))
+        if not (math.isfinite(self.c) and self.c > 0.0):
+            raise ValueError("the operator's self-influence must be positive (a compliance)")
+        self.dense = self.n <= DENSE_CELLS if dense is None else bool(dense)
+        self.matrix = operator.dense(self.cells) if self.dense else None
+        i, j = np.divmod(self.cells, grid.ny)
+        self.lines, self.line_of = np.unique(j, return_inverse=True)
+        self.position = i  # index along the line
+        self.flat = self.line_of * grid.nx + self.position
+        self._inverse = None
+        self._pattern = None
+        self._pairs = None
+
+    def _pair_index(self):
+        if self._pairs is None:  # kept on the operator per contact set, as its dense blocks
+            cache = self.operator.__dict__.setdefault("_pair_cache", {})
+            key = self.cells.tobytes()
+            if key not in cache:
+                if len(cache) >= 4:
+                    cache.pop(next(iter(cache)))
+                cache[key] = _pair_index_of(self)
+            self._pairs = cache[key]
+        return self._pairs
+
+    def apply(self, v: np.ndarray) -> np.ndarray:
+        """``C v`` on the contact cells, ``v`` (n, 2) -> (n, 2)."""
+        if self.matrix is not None:
+            return (self.matrix @ v.reshape(-1)).reshape(-1, 2)
+        field = np.zeros(self.shape + (2,))
+        field.reshape(-1, 2)[self.cells] = v
+        return self.operator.apply(field).reshape(-1, 2)[self.cells]
+
+    def slip(self, p: np.ndarray) -> np.ndarray:
+        return self.w + self.apply(p)
+
+    def residual(self, p: np.ndarray):
+        """``F(p)``, ``z = p - c s``, its norm, the slip mask and ``min(1, g/|z|)``."""
+        z = p - self.c * self.slip(p)
+        norm = np.hypot(z[:, 0], z[:, 1])
+        sliding = norm > self.g
+        scale = np.where(sliding, self.g / np.where(sliding, norm, 1.0), 1.0)
+        return p - z * scale[:, None], z, norm, sliding, scale
+
+    def marching_start(self) -> np.ndarray:
+        """A start for Newton: the local (FASTSIM-like) solution ``s = w + L (p_i - p_upstream) / dx = 0`` marched
+        from the leading edge with the traction bound, ``L`` the flexibility that makes a unit traction ramp
+        along each line give the operator's mean slip (one product with ``C``)."""
+        nx, n_lines = self.shape[0], self.lines.size
+        ramp = np.zeros((n_lines, nx))
+        ramp[self.line_of, self.position] = 1.0
+        ramp = np.cumsum(ramp[:, ::-1], axis=1)[:, ::-1] * (ramp > 0)  # contact cells upstream, incl. itself
+        test = np.repeat(ramp[self.line_of, self.position][:, None], 2, axis=1)
+        response = self.apply(test)
+        flexibility = float(np.median(response[test[:, 0] > 1.5]) if np.any(test[:, 0] > 1.5) else
+                            np.median(response))  # L / dx
+        if not (math.isfinite(flexibility) and flexibility > 0.0):
+            return np.zeros((self.n, 2))
+        w = np.zeros((n_lines, nx, 2))
+        w[self.line_of, self.position] = self.w / flexibility
+        g = np.zeros((n_lines, nx))
+        g[self.line_of, self.position] = self.g
+        p = np.zeros((n_lines, nx, 2))
+        upstream = np.zeros((n_lines, 2))
+        for i in range(nx - 1, -1, -1):
+            trial = upstream - w[:, i]
+            norm = np.hypot(trial[:, 0], trial[:, 1])
+            limit = g[:, i]
+            trial *= np.where(norm > limit, limit / np.where(norm > 0.0, norm, 1.0), 1.0)[:, None]
+            p[:, i] = upstream = trial
+        return p[self.line_of, self.position]
+
+    def preconditioner(self, D: np.ndarray, sliding: np.ndarray):
+        """The inverse of ``J`` restricted to each grid line along ``x`` (line blocks; others identity).
+
+        A line's inverse is rebuilt only when the stick/slip pattern of its cells changed since it was
+        built (a stale slip direction only costs GMRES steps); single precision (a preconditioner).
+        """
+        nx = self.shape[0]
+        n_lines = self.lines.size
+        pattern = np.zeros((n_lines, nx), dtype=bool)
+        pattern.reshape(-1)[self.flat] = sliding
+        if self._inverse is None:
+            self._inverse = np.empty((n_lines, 2 * nx, 2 * nx), dtype=np.float32)
+            todo = np.arange(n_lines)
+        else:
+            todo = np.flatnonzero(np.any(pattern != self._pattern, axis=1))
+        self._pattern = pattern
+        inverse = self._inverse
+        if todo.size:
+            full_D = np.zeros((n_lines * nx, 2, 2))
+            full_D[self.flat] = D
+            full_D = full_D.reshape(n_lines, nx, 2, 2)[todo]
+            blocks = self.operator.line_blocks(self.lines)
+            blocks = np.broadcast_to(blocks[0], (todo.size,) + blocks.shape[1:]) if blocks.strides[0] == 0 \
+                else blocks[todo]
+            rows = blocks.reshape(todo.size, nx, 2, 2 * nx)
+            J = self.c * (full_D[..., 0, None] * rows[:, :, None, 0, :] + full_D[..., 1, None] * rows[:, :, None, 1, :])
+            diagonal = J.reshape(todo.size, nx, 2, nx, 2)[:, np.arange(nx), :, np.arange(nx), :]  # (nx, lines, 2, 2)
+            diagonal -= full_D.transpose(1, 0, 2, 3)
+            diagonal[..., 0, 0] += 1.0
+            diagonal[..., 1, 1] += 1.0
+            J.reshape(todo.size, nx, 2, nx, 2)[:, np.arange(nx), :, np.arange(nx), :] = diagonal
+            inverse[todo] = np.linalg.inv(J.reshape(todo.size, 2 * nx, 2 * nx).astype(np.float32))
+        flat = self.flat
+        if self.matrix is not None:  # dense problems: the line inverses as one (2n, 2n) matrix, one product
+            rows, cols, source = self._pair_index()
+            dense = np.zeros((2 * self.n, 2 * self.n))
+            dense[rows, cols] = inverse.reshape(-1)[source]
+            return dense.__matmul__
+
+        def apply(v):
+            field = np.zeros((n_lines * nx, 2), dtype=np.float32)
+            field[flat] = v.reshape(-1, 2)
+            out = np.matmul(inverse, field.reshape(n_lines, 2 * nx, 1)).reshape(n_lines * nx, 2)
+            return out[flat].reshape(-1).astype(float)
+
+        return apply
+
+
+def _pair_index_of(problem: "TangentialProblem"):
+    # (row, column) in the (2n, 2n) problem and the flat index into the (lines, 2 nx, 2 nx) inverses of every
+    # pair of components of two contact cells on one line
+    nx = problem.shape[0]
+    rows, cols, source = [], [], []
+    for line in range(problem.lines.size):
+        members = np.flatnonzero(problem.line_of == line)
+        position = problem.position[members]
+        for a in range(2):
+            for b in range(2):
+                r = (2 * members + a)[:, None]
+                c = (2 * members + b)[None, :]
+                pr = (2 * position + a)[:, None]
+                pc = (2 * position + b)[None, :]
+                rows.append(np.broadcast_to(r, (members.size, members.size)).ravel())
+                cols.append(np.broadcast_to(c, (members.size, members.size)).ravel())
+                source.append((line * 2 * nx * 2 * nx + pr * 2 * nx + pc).ravel())
+    return np.concatenate(rows), np.concatenate(cols), np.concatenate(source)
+
+
+def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    # Proj_g'(z): identity in stick cells, (g/|z|)(I - zz^T/|z|^2) in slip cells; (n, 2, 2)
+    unit = z / np.where(sliding, norm, np.inf)[:, None]
+    D = np.empty((z.shape[0], 2, 2))
+    D[:, 0, 0] = scale * (1.0 - unit[:, 0] ** 2)
+    D[:, 1, 1] = scale * (1.0 - unit[:, 1] ** 2)
+    D[:, 0, 1] = D[:, 1, 0] = -scale * unit[:, 0] * unit[:, 1]
+    return D
+
+
+def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start: np.ndarray | None):
+    p = problem.marching_start() if start is None else start.copy()
+    F, z, norm, sliding, scale = problem.residual(p)
+    residual = float(np.max(np.abs(F))) / problem.gmax
+    krylov = 0
+    c = problem.c
+    for iteration in range(1, max_iterations + 1):
+        if residual <= tolerance:
+            return p, iteration - 1, krylov, residual
+        D = _derivative(z, norm, sliding, scale)
+        E = -D
+        E[:, 0, 0] += 1.0
+        E[:, 1, 1] += 1.0
+        cD = c * D
+
+        if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
+            n = problem.n
+            rows = problem.matrix.reshape(n, 2, 2 * n)
+            jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
+            jacobian += cD[:, :, 1, None] * rows[:, None, 1, :]
+            jacobian.reshape(n, 2, n, 2)[np.arange(n), :, np.arange(n), :] += E
+            matvec = jacobian.reshape(2 * n, 2 * n).__matmul__
+        else:
+            def matvec(v, cD=cD, E=E):
+                v = v.reshape(-1, 2)
+                Cv = problem.apply(v)
+                out = E[:, :, 0] * v[:, 0, None]
+                out += E[:, :, 1] * v[:, 1, None]
+                out += cD[:, :, 0] * Cv[:, 0, None]
+                out += cD[:, :, 1] * Cv[:, 1, None]
+                return out.reshape(-1)
+
+        if problem.matrix is not None and problem.n <= DIRECT_CELLS:
+            step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
+        else:
+            precondition = problem.preconditioner(D, sliding)
+            step, used = _gmres(matvec, precondition, -F.reshape(-1), min(_FORCING, residual), 200)
+            krylov += used
+            step = step.reshape(-1, 2)
+        norm_F = float(np.sum(F * F))
+        t = 1.0
+        for _ in range(8):  # backtracking on |F|^2: the first step that decreases it
+            trial = p + t * step
+            result = problem.residual(trial)
+            if float(np.sum(result[0] ** 2)) <= (1.0 - 1e-4 * t) * norm_F:
+                break
+            t *= 0.5
+        p = trial
+        F, z, norm, sliding, scale = result
+        residual = float(np.max(np.abs(F))) / problem.gmax
+    if residual <= tolerance:
+        return p, max_iterations, krylov, residual
+    raise ConvergenceError("rolling contact (semismooth Newton) did not converge: max|p - Proj(p - c s)| / max(g)",
+                           residual=residual, iterations=max_iterations, tolerance=tolerance, reason="iteration limit")
+
+
+def check_solution(problem: TangentialProblem, p: np.ndarray, tolerance: float):
+    """The defining conditions, re-evaluated from ``p`` alone; ConvergenceError naming the first that fails."""
+    s = problem.slip(p)
+    g, gmax, c = problem.g, problem.gmax, problem.c
+    magnitude = np.hypot(p[:, 0], p[:, 1])
+    slip_norm = np.hypot(s[:, 0], s[:, 1])
+    z = p - c * s
+    sliding = np.hypot(z[:, 0], z[:, 1]) > g
+    limit = max(tolerance, CHECK_TOLERANCE)
+    checks_ = []
+    checks_.append(("Coulomb bound max(|p| - mu p_n) / max(mu p_n)", float(np.max(magnitude - g)) / gmax))
+    stick_slip = c * slip_norm[~sliding]
+    checks_.append(("stick condition max(c |s|) / max(mu p_n) in stick cells",
+                    float(stick_slip.max()) / gmax if stick_slip.size else 0.0))
+    moving = sliding & (c * slip_norm > limit * gmax)
+    if np.any(moving):
+        direction = p[moving] + g[moving, None] * s[moving] / slip_norm[moving, None]
+        checks_.append(("slip direction max|p + mu p_n s/|s|| / max(mu p_n) in slip cells",
+                        float(np.max(np.hypot(direction[:, 0], direction[:, 1]))) / gmax))
+    work = -(p[:, 0] * s[:, 0] + p[:, 1] * s[:, 1]) * c
+    checks_.append(("dissipation -min(c p . s) / max(mu p_n)^2 (no cell does negative work)",
+                    max(0.0, -float(work.min())) / gmax ** 2))
+    for name, value in checks_:
+        if not (value <= limit):
+            raise ConvergenceError(f"rolling contact: check failed, {name} = {value:.3e}", residual=value,
+                                   iterations=0, tolerance=limit, reason=f"fails the check of {name}")
+    return s, ~sliding
+

@@ -1,0 +1,230 @@
+"""lin2019's linear-bearing B2B solve with stick/slip ball-to-groove contacts (lowmodel.linear_bearing.b2b_rolling
+over lowmodel.contact.rolling_friction; docs/b2b_rolling.md)."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.contact import rolling
+from ballbench.lowmodel.contact import rolling_friction as rf
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling, b2b_traction
+
+CELLS = (8, 32)
+R_B, MU, V = 5e-3, 0.1, 0.01
+COMMON = dict(ball_radius=R_B, friction_coefficient=MU, groove_velocity=V)
+
+
+THETA = math.radians(2.0)  # lin2019 Tables 2-3
+
+
+def linear_balls(theta=THETA, rho=-0.6, top=(0.0, 0.0), cells=CELLS, mu=MU, **options):
+    contacts = b2b.module_contacts(theta, rho, top_deviations=top, friction_coefficient=mu)
+    return contacts, [b2b_rolling.hertz_contacts(contacts, j, cells=cells, **options) for j in range(2)]
+
+
+@pytest.fixture(scope="module")
+def case_a():
+    contacts, balls = linear_balls()
+    return contacts, balls, b2b_rolling.module_b2b(balls, **COMMON)
+
+
+def test_linear_case_a_power_balance_and_the_full_slip_limit_on_the_same_cells(case_a):
+    contacts, balls, result = case_a
+    for state in (result.touching, result.free, result.full_slip, result.full_slip_free):
+        assert state.power_balance < 1e-6
+    low = b2b.solve(contacts, [0.0])
+    # near full slip (Lambda ~ 60, no stick): the stick/slip force is within 1 % of full slip on the same cells,
+    # which is within 1 % of lin2019's low-order model (Heathcote's slip and the grid)
+    assert result.b2b_force[0] == pytest.approx(result.full_slip.b2b_force[0], rel=0.01)
+    assert result.full_slip.b2b_force[0] == pytest.approx(low.b2b_force[0], rel=0.01)
+    assert result.b2b_force[0] != result.full_slip.b2b_force[0]
+    lam = [c.spin_parameter for row in result.touching.contacts for c in row]
+    assert 40.0 < min(lam) and max(lam) < 90.0
+    # the slower ball behind is pushed: complementarity, equal velocities
+    assert result.touching.ball_velocity[0] == pytest.approx(result.touching.ball_velocity[1], rel=1e-9)
+    assert result.free.ball_velocity[0] > result.free.ball_velocity[1]
+
+
+def test_full_slip_law_of_the_evaluator_is_the_sampled_coulomb_model(case_a):
+    """The evaluator with the full-slip law has zero residual at the b2b_traction solution of the same cells."""
+    _, balls, result = case_a
+    patches = [[c.patch() for c in row] for row in balls]
+    free = b2b_traction.solve(patches, gaps=[R_B], **COMMON)
+    reference = max(p.normal_force for row in patches for p in row)
+    friction = rf.StickSlipFriction(balls, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, reference, 1.0, V,
+                                    law="full-slip")
+    states = np.column_stack([free.ball_velocity / V, free.omega * R_B / V])
+    residual = friction.evaluate(states, jacobian=False)[0]
+    assert np.max(np.abs(residual)) < 1e-8
+    # and the stick/slip law is not: the two differ by stick/slip and elastic creep
+    stick = rf.StickSlipFriction(balls, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, reference, 1.0, V)
+    assert np.max(np.abs(stick.evaluate(states, jacobian=False)[0])) > 1e-4
+
+
+def test_finite_difference_jacobian_matches_central_differences(case_a):
+    _, balls, result = case_a
+    reference = max(c.normal_force for row in balls for c in row)
+    friction = rf.StickSlipFriction(balls, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, reference, 1.0, V)
+    x = np.column_stack([result.free.ball_velocity / V, result.free.omega * R_B / V])
+    _, jac, _, _ = friction.evaluate(x, ball=0)
+    h = 1e-5
+    for j in range(3):
+        up, down = x.copy(), x.copy()
+        up[0, j] += h
+        down[0, j] -= h
+        central = (friction.evaluate(up, jacobian=False, ball=0)[0] - friction.evaluate(down, jacobian=False,
+                                                                                           ball=0)[0]) / (2 * h)
+        assert jac[:, j] == pytest.approx(central, rel=1e-3, abs=1e-4 * np.abs(jac).max())
+
+
+def test_theta_zero_gives_no_b2b_force():
+    _, balls = linear_balls(theta=0.0)
+    result = b2b_rolling.module_b2b(balls, **COMMON)
+    assert result.b2b_force[0] == 0.0 and result.full_slip.b2b_force[0] == 0.0
+    assert result.free.velocity_deviation == pytest.approx([0.0, 0.0], abs=1e-10)
+    assert result.power_balance < 1e-6
+
+
+def test_case_b_mitigating_top_groove_gives_no_b2b_force():
+    _, balls = linear_balls(top=(-math.radians(2.0), math.radians(2.0)))
+    result = b2b_rolling.module_b2b(balls, **COMMON)
+    assert result.b2b_force[0] < 1e-9 * MU * 100.0  # round-off: the two balls roll at v/2 exactly
+    assert abs(result.free.velocity_deviation).max() < 1e-9
+
+
+def test_stick_slip_tends_to_full_slip_as_lambda_grows():
+    """Lambda = |phi| b G / (mu p0) ~ 1 / mu: each contact's friction approaches full slip on the same cells, and
+    so does the B2B force (whose difference to full slip is below 0.3 % already at Lambda ~ 14 for this case:
+    measured -0.2 .. +0.2 % over grids of 8 x 32 to 20 x 80 cells, docs/b2b_rolling.md)."""
+    lambdas, forces, contacts_ = [], [], []
+    for mu in (0.4, 0.1, 0.025, 0.00625):
+        contacts, balls = linear_balls(mu=mu)
+        result = b2b_rolling.module_b2b(balls, ball_radius=R_B, friction_coefficient=mu, groove_velocity=V)
+        lambdas.append(min(c.spin_parameter for row in result.touching.contacts for c in row))
+        forces.append(abs(result.b2b_force[0] / result.full_slip.b2b_force[0] - 1.0))
+        contacts_.append(max(abs(s.along_groove - f.along_groove) / (mu * s.normal_force)
+                             for row, full_row in zip(result.free.contacts, result.full_slip_free.contacts)
+                             for s, f in zip(row, full_row)))
+    assert lambdas == sorted(lambdas) and lambdas[-1] > 60 * lambdas[0]
+    # over the decades of Lambda (between Lambda 14 and 58 the light contacts' creepage moves too)
+    assert contacts_[2] < 0.5 * min(contacts_[:2]) and contacts_[3] < 0.5 * contacts_[2]
+    assert min(contacts_[:2]) > 3e-3 and contacts_[-1] < 3e-4
+    assert max(forces) < 3e-3 and forces[-1] < 5e-4
+
+
+def test_reversed_groove_velocity_mirrors_the_state(case_a):
+    _, balls, result = case_a
+    reverse = b2b_rolling.solve(balls, ball_radius=R_B, friction_coefficient=MU, groove_velocity=-V, gaps=[R_B])
+    assert reverse.ball_velocity == pytest.approx(-result.free.ball_velocity, rel=1e-7)
+    assert reverse.total_loss == pytest.approx(result.free.total_loss, rel=1e-7)
+
+
+def test_a_dense_operator_gives_the_half_space_result():
+    """The MatrixOperator path (an FE compliance) with the half-space's own matrix: the same state."""
+    contacts, _ = linear_balls(cells=(6, 24))
+
+    def dense(grid):
+        operator = rolling.half_space_operator(grid, 2.1e11 / (2 * 1.28), 0.28)
+        cells = np.arange(grid.nx * grid.ny)
+        return rolling.MatrixOperator(grid, operator.dense(cells))
+
+    balls = [b2b_rolling.hertz_contacts(contacts, j, cells=(6, 24)) for j in range(2)]
+    matrix = [b2b_rolling.hertz_contacts(contacts, j, cells=(6, 24), operator_for=dense) for j in range(2)]
+    first = b2b_rolling.solve(balls, **COMMON)
+    second = b2b_rolling.solve(matrix, **COMMON)
+    assert second.b2b_force[0] == pytest.approx(first.b2b_force[0], rel=1e-8)
+
+
+def test_b2b_contact_slides_fully(case_a):
+    ratio, creepage = b2b_rolling.b2b_contact_check(case_a[2].touching, ball_radius=R_B, friction_coefficient=MU)
+    assert ratio == pytest.approx(1.0, abs=1e-4)
+    assert creepage > 1e3
+
+
+def test_sampled_contact_rebuilds_a_hertz_contact():
+    """Hertz samples on the sphere as an FE pressure would come: the stick/slip module reproduces the Hertz grid's."""
+    contacts, balls = linear_balls(cells=(12, 48))
+    sampled = []
+    for j in range(2):
+        rows = []
+        for patch in b2b_traction.hertz_patches(contacts, j, n_radial=48, n_angular=192, planar=False):
+            normal = patch.centre / np.linalg.norm(patch.centre)
+            local = patch.points - patch.centre
+            # the area of a sample: its force over Hertz's pressure at it
+            i = ["BL", "BR", "TR", "TL"].index(patch.name)
+            a, b_ = contacts.semi_major[j, i], contacts.semi_major[j, i] * contacts.b_over_a[j, i]
+            e1 = np.cross(normal, [0.0, 0.0, 1.0])
+            rho2 = (local @ e1 / a) ** 2 + (local[:, 2] / b_) ** 2
+            p = 1.5 * patch.normal_force / (math.pi * a * b_) * np.sqrt(np.clip(1.0 - rho2, 1e-12, None))
+            rows.append((patch.name, patch.top, patch.points, p, patch.forces / p))
+        sampled.append(b2b_rolling.sampled_contacts(rows, ball_radius=R_B, conformity=0.56, cells=(12, 48)))
+    first = b2b_rolling.solve(balls, **COMMON)
+    second = b2b_rolling.solve(sampled, **COMMON)
+    assert second.b2b_force[0] == pytest.approx(first.b2b_force[0], rel=0.01)
+
+
+def test_bad_input_names_the_parameter(case_a):
+    contacts, balls, _ = case_a
+    with pytest.raises(ValueError, match="law"):
+        b2b_rolling.solve(balls, law="partial", **COMMON)
+    with pytest.raises(ValueError, match="groove_velocity"):
+        b2b_rolling.solve(balls, ball_radius=R_B, friction_coefficient=MU, groove_velocity=0.0)
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        b2b_rolling.solve(balls, ball_radius=R_B, friction_coefficient=-0.1, groove_velocity=V)
+    contact = balls[0][0]
+    with pytest.raises(ValueError, match="does not cover"):
+        rf.grid_contact("BL", False, contact.grid, np.ones((contact.grid.nx, contact.grid.ny)), contact.centre,
+                        contact.normal, contact.axis, lateral_curvature=0.0, shear_modulus=8e10, poisson_ratio=0.28)
+    other = rolling.hertz_grid(1e-4, 4e-4, (4, 8))
+    with pytest.raises(ValueError, match="operator's grid"):
+        rf.grid_contact("BL", False, contact.grid, contact.pressure, contact.centre, contact.normal, contact.axis,
+                        lateral_curvature=0.0, shear_modulus=8e10, poisson_ratio=0.28,
+                        operator=rolling.half_space_operator(other, 8e10, 0.28))
+    with pytest.raises(ValueError, match="axis"):
+        rf.contact_frame([0.0, 0.0, 1.0], [0.0, 0.0, 2.0])
+
+
+def test_a_non_converged_solve_raises_with_its_residual(case_a):
+    _, balls, _ = case_a
+    with pytest.raises(ConvergenceError) as info:
+        b2b_rolling.solve(balls, max_iterations=1, tolerance=1e-14, **COMMON)
+    assert info.value.residual > info.value.tolerance
+
+
+def test_power_balance_check_rejects_a_wrong_loss(case_a, monkeypatch):
+    """A contact loss off by 1e-4 (a wrong rigid power) is caught by the solve's own check."""
+    _, balls, _ = case_a
+    original = rf.StickSlipFriction._summary
+
+    def off(self, *args):
+        summary = original(self, *args)
+        return dataclasses.replace(summary, rigid_power=summary.rigid_power * (1 + 1e-4))
+
+    monkeypatch.setattr(rf.StickSlipFriction, "_summary", off)
+    with pytest.raises(ConvergenceError, match="power balance"):
+        b2b_rolling.solve(balls, **COMMON)
+
+
+def test_grid_contacts_reproduce_the_rolling_contacts_of_a_ball_state():
+    """The engine's frames, rolling direction and slip field against lowmodel.linear_bearing.rolling_contacts, which
+    derives each contact's Kalker frame, creepages and spin on its own (docs/rolling_contact.md): at the low-order
+    free-ball state both solve the same rolling problems."""
+    from ballbench.lowmodel.linear_bearing import ball, rolling_contacts
+
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6).ball(0)
+    state = ball.solve(contacts)
+    reference = rolling_contacts.solve_contacts(contacts, state, 0.56, youngs_modulus=2.1e11, poisson_ratio=0.28,
+                                                cells=(10, 40), tolerance=1e-12)
+    grid_contacts = [b2b_rolling.hertz_contacts(contacts, 0, cells=(10, 40))]
+    friction = rf.StickSlipFriction(grid_contacts, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, 100.0, 1.0, V)
+    x = np.array([[state.ball_velocity[0] / V, *(state.omega[0] * R_B / V)]])
+    for mine, theirs in zip(friction.summaries(x)[0], reference):
+        scale = MU * theirs.motion.normal_force
+        assert mine.along_groove == pytest.approx(theirs.friction_force, abs=1e-9 * scale)
+        assert mine.lateral == pytest.approx(theirs.lateral_force, abs=1e-9 * scale)
+        assert mine.spin_moment == pytest.approx(theirs.spin_moment, abs=1e-9 * scale * 1e-3)
+        assert mine.spin_parameter == pytest.approx(theirs.spin_parameter, rel=0.02)  # moment axes vs Hertz's
