@@ -58,6 +58,7 @@ from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.linear_bearing.contacts import BallContacts, ball_contacts
 from ballbench.lowmodel.linear_bearing.ball import (
     N_UNKNOWNS,
+    SPIN_CAPACITY_REASON,
     STICK_REASON,
     BallState,
     ContinuationPath,
@@ -270,14 +271,16 @@ def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_it
                     contacts, solve_at, free_start, error if error.iterations else first_error, what=what,
                     balls_of=balls_of, extra_paths=(("mu", MU_PATH_START, mu_at),))
             except ConvergenceError as failure:  # ... else the evidence decides (end of a branch, a gap, or the
-                if failure.reason.startswith("spin-capacity ratio < 1"):  # solver), then the relaxation in time
-                    raise
-                try:
-                    (z, residual, iterations), start_mu = _judged(failure, contacts, solve_at, start_guess, pack,
-                                                                  balls_of, reference_force, tolerance,
-                                                                  max_iterations)
-                    taken = ContinuationPath((), "mu from a probe", start_mu / mu, ())
-                except ConvergenceError as judged:
+                judged = failure  # solver; not where the spin-capacity bound already says why), then the relaxation
+                if not failure.reason.startswith(SPIN_CAPACITY_REASON):
+                    try:
+                        (z, residual, iterations), start_mu = _judged(failure, contacts, solve_at, start_guess, pack,
+                                                                      balls_of, reference_force, tolerance,
+                                                                      max_iterations)
+                        taken, judged = ContinuationPath((), "mu from a probe", start_mu / mu, ()), None
+                    except ConvergenceError as error:
+                        judged = error
+                if judged is not None:
                     (z, residual, iterations), taken = _from_relaxation(contacts, layout, gaps, gap_tolerance,
                                                                         judged, solve_at, what)
             paths.append(dataclasses.replace(taken, balls=tuple(range(n))))
@@ -396,7 +399,7 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
     met = f" (continuation: {failure.reason})" if failure.reason else ""
     # the reason: the branch's end or gap where the walks established it (lowmodel.linear_bearing.branch_end),
     # else the relaxation's verdict; both accounts stay in the message
-    reason = failure.reason if failure.reason.startswith(STICK_REASON) else relaxation.kind
+    reason = failure.reason if failure.reason.startswith((STICK_REASON, SPIN_CAPACITY_REASON)) else relaxation.kind
     stopped = ConvergenceError(f"{base}{met}; {relaxation.reason}", residual=failure.residual,
                                iterations=failure.iterations, tolerance=failure.tolerance, reason=reason,
                                last_converged=failure.last_converged)

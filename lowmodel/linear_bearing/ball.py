@@ -92,8 +92,10 @@ __all__ = [
     "slip_speeds",
     "N_UNKNOWNS",
     "STICK_REASON",
+    "SPIN_CAPACITY_REASON",
 ]
 
+SPIN_CAPACITY_REASON = "spin-capacity ratio < 1"  # no full-sliding state of a free ball (docs/b2b_bearing.md)
 STICK_REASON = "a contact stops sliding (full-sliding branch ends: its continuation slips against its friction)"
 
 
@@ -454,7 +456,7 @@ def solve_with_continuation(contacts: BallContacts, solve_at, start_guess, error
         steps = (ContinuationStep(0.0, iterations0),) + steps[1:]
         return (z, residual, sum(p.iterations for p in steps)), ContinuationPath((), kind, scale, steps)
     ratio = float(np.min(spin_capacity_ratio(contacts)))
-    reason = ("spin-capacity ratio < 1" if ratio < 1.0 else
+    reason = (SPIN_CAPACITY_REASON if ratio < 1.0 else
               furthest.reason if furthest is not None else "no continuation path could start")
     last = furthest.last_converged if furthest is not None else None
     min_slip = math.nan
@@ -511,7 +513,7 @@ def with_spin_capacity_diagnosis(error: ConvergenceError, contacts: BallContacts
     message = str(error).split(" (residual")[0] + reason
     return ConvergenceError(message, residual=error.residual, iterations=error.iterations,
                             tolerance=error.tolerance,
-                            reason="spin-capacity ratio < 1" if ratio < 1.0 else error.reason,
+                            reason=SPIN_CAPACITY_REASON if ratio < 1.0 else error.reason,
                             last_converged=error.last_converged)
 
 
