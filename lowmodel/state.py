@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BallStateBase"]
+__all__ = ["BallStateBase", "friction_increase"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -45,3 +45,10 @@ class BallStateBase:
     def total_loss(self) -> float:
         """Ball-to-groove plus ball-to-ball friction loss [W]."""
         return float(self.friction_loss.sum() + self.b2b_friction_loss.sum())
+
+
+def friction_increase(touching, free) -> float:
+    """lin2019's friction increase by B2B contact (Sec 2.4, Table 3; Sec 3.3, Table 5) as a fraction [-]: the total
+    loss of the balls touching over that of the same balls free, less one (``x 100`` for the printed %).  Any two
+    states with a ``total_loss`` [W] (every model's state, full-slip or stick/slip)."""
+    return touching.total_loss / free.total_loss - 1.0

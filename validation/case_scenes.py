@@ -32,6 +32,7 @@ import numpy as np
 
 from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
 from ballbench.validation.scene import Scene
+from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["case_scenes", "scene_names", "show_case", "slug"]
 
@@ -512,7 +513,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
         return dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=model.ndofs,
                     F_B2B=float(state.b2b_force[0]), friction_force_N=state.input_power / v,
                     friction_force_free_N=free.input_power / v,
-                    friction_increase=state.total_loss / free.total_loss - 1.0,
+                    friction_increase=friction_increase(state, free),
                     power_balance=float(state.power_balance), **{k: float(x) for k, x in timings.items()})
 
     rows = _levels(run, case, deadline, solve)

@@ -48,6 +48,7 @@ from ballbench.lowmodel.linear_bearing.contacts import BallContacts
 from ballbench.lowmodel.linear_bearing.rolling_contacts import deformed_radius
 from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
+from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "sampled_contacts", "solve", "module_b2b",
            "b2b_contact_check", "POWER_BALANCE_TOLERANCE", "AXIS"]
@@ -240,13 +241,10 @@ def module_b2b(balls, *, ball_radius: float, friction_coefficient: float, groove
         states[key] = solve(balls, gaps=gaps, full_slip=limit, **common)
         states["full-slip " + key] = solve(balls, gaps=gaps, law="full-slip", full_slip=limit, **common)
 
-    def increase(touching, free):
-        return 100.0 * (touching.total_loss / free.total_loss - 1.0)
-
     return RollingModuleB2B(states["touching"], states["free"], states["full-slip touching"],
                             states["full-slip free"], states["touching"].b2b_force,
-                            increase(states["touching"], states["free"]),
-                            increase(states["full-slip touching"], states["full-slip free"]),
+                            100.0 * friction_increase(states["touching"], states["free"]),
+                            100.0 * friction_increase(states["full-slip touching"], states["full-slip free"]),
                             max(s.power_balance for s in states.values()))
 
 

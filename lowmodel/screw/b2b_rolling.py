@@ -46,6 +46,7 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
+from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["ScrewRollingState", "ScrewRollingModule", "hertz_contacts", "sampled_contacts", "solve", "module_b2b",
            "deformed_radius", "POWER_BALANCE_TOLERANCE", "AXIS"]
@@ -236,11 +237,8 @@ def module_b2b(balls, module: screw_contacts.ScrewModule, **options) -> ScrewRol
         states["full-slip " + key] = solve(balls, module, with_b2b=with_b2b, law="full-slip", full_slip=limit,
                                            **options)
 
-    def increase(touching, free):
-        return 100.0 * (touching.total_loss / free.total_loss - 1.0)
-
     return ScrewRollingModule(states["touching"], states["free"], states["full-slip touching"],
                               states["full-slip free"], states["touching"].b2b_force,
-                              increase(states["touching"], states["free"]),
-                              increase(states["full-slip touching"], states["full-slip free"]),
+                              100.0 * friction_increase(states["touching"], states["free"]),
+                              100.0 * friction_increase(states["full-slip touching"], states["full-slip free"]),
                               max(s.power_balance for s in states.values()))

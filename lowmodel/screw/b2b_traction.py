@@ -73,6 +73,7 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
+from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["ScrewTractionState", "ModuleB2B", "hertz_patches", "solve", "module_b2b", "slip_field", "pair_function",
            "POWER_BALANCE_TOLERANCE", "N_UNKNOWNS", "RADIUS_TOLERANCE"]
@@ -365,5 +366,5 @@ def module_b2b(balls, module: screw_contacts.ScrewModule, *, free_balls=None, **
     """
     touching = solve(balls, module, **options)
     free = solve(balls if free_balls is None else free_balls, module, with_b2b=False, **options)
-    increase = 100.0 * (touching.total_loss / free.total_loss - 1.0)
+    increase = 100.0 * friction_increase(touching, free)
     return ModuleB2B(touching, free, touching.b2b_force, increase, max(touching.power_balance, free.power_balance))

@@ -26,6 +26,7 @@ from ballbench.validation.figures import render3d
 from ballbench.validation.references.published.lin2019 import PRINTED
 from ballbench.validation.scene import scene
 from ballbench.validation.studies import fe_b2b_linear as study
+from ballbench.lowmodel.state import friction_increase
 
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # per scene at its level (docs/fe_b2b.md)
 # wall-time budget of each scene per fidelity [s] (reported; decides only with --strict-time): the time limits,
@@ -120,7 +121,7 @@ def _run(run, which: str) -> None:
         free = study.fe_informed(case, model, results, gaps=[1e-3])
         rows.append(dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=model.ndofs,
                          multipliers=model.n_multipliers, F_B2B=float(state.b2b_force[0]),
-                         friction_increase=state.total_loss / free.total_loss - 1.0,
+                         friction_increase=friction_increase(state, free),
                          epsilon_free_1=float(free.velocity_deviation[0]),
                          epsilon_free_2=float(free.velocity_deviation[1]), wall_s=wall,
                          **{k: float(v) for k, v in timings.items()}))
@@ -162,7 +163,7 @@ def _run(run, which: str) -> None:
             writer.writeheader()
             writer.writerows(table)
         run.add_artifact(run.path(filename))
-    increase_low = low.total_loss / free_low.total_loss - 1.0
+    increase_low = friction_increase(low, free_low)
     lines = [f"{r['h_contact_um']:.0f} um: F_B2B {r['F_B2B']:.3f} N, increase {100 * r['friction_increase']:.1f} %, "
              f"free-ball epsilon {100 * r['epsilon_free_1']:.4f} / {100 * r['epsilon_free_2']:.4f} %, "
              f"{r['ndofs']} DOFs, {r['wall_s']:.0f} s" for r in rows]

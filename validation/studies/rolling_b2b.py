@@ -27,6 +27,7 @@ from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
 from ballbench.validation.cases import FIDELITIES, lin2019, stick_slip
 from ballbench.validation.references.published import lin2019 as printed
 from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw, screw_two_ball
+from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["Rung", "linear_ladder", "screw_ladder", "record_ladder", "pair_compliance", "compliance",
            "largest_semi_axes", "pressure_samples", "level_name", "TIME_BUDGET_S"]
@@ -153,7 +154,7 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
     seconds = time.perf_counter() - start
     free = linear_b2b.solve(contacts, [1e-3])
     rungs.append(Rung("lowmodel.linear_bearing.b2b", "low-order numerical", "", float(low.b2b_force[0]),
-                      100.0 * (low.total_loss / free.total_loss - 1.0), seconds))
+                      100.0 * friction_increase(low, free), seconds))
     cells = levels.hertz_cells.checked(level)
     start = time.perf_counter()
     balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity, **STEEL.keywords)
@@ -175,7 +176,7 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
     full = fe_b2b_linear.fe_informed(module_case, model, results)
     free_full = fe_b2b_linear.fe_informed(module_case, model, results, gaps=[1e-3])
     rungs.append(Rung("b2b_traction full slip, FE pressure", "FE-informed", f"h {h_um:.0f} um",
-                      float(full.b2b_force[0]), 100.0 * (full.total_loss / free_full.total_loss - 1.0),
+                      float(full.b2b_force[0]), 100.0 * friction_increase(full, free_full),
                       fe_s + time.perf_counter() - start, power_balance=float(full.power_balance)))
     samples = [pressure_samples(model, r) for r in results]
     start = time.perf_counter()
@@ -211,7 +212,7 @@ def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_f
     seconds = time.perf_counter() - start
     module = screw_two_ball.screw_module(module_case.screw)
     rungs.append(Rung("lowmodel.screw.b2b", "low-order numerical", "", float(state.b2b_force[0]),
-                      100.0 * (state.total_loss / free.total_loss - 1.0), seconds))
+                      100.0 * friction_increase(state, free), seconds))
     cells = levels.hertz_cells.checked(level)
     start = time.perf_counter()
     balls = [screw_rolling.hertz_contacts(state, contacts, j, cells=cells) for j in range(2)]

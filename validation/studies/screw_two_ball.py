@@ -14,6 +14,7 @@ import numpy as np
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases.case import BallScrew, BallScrewCase
+from ballbench.lowmodel.state import friction_increase as increase_fraction
 
 __all__ = ["screw_module", "ball_contacts", "two_ball", "friction_increase", "fit_oversize"]
 
@@ -48,7 +49,7 @@ def two_ball(case: BallScrewCase, oversize: float | None = None, reading: str | 
 
 def friction_increase(free, state) -> float:
     """Friction increase by B2B contact [%]: total loss of the touching balls over the free balls' loss."""
-    return 100.0 * (state.total_loss / free.total_loss - 1.0)
+    return 100.0 * increase_fraction(state, free)
 
 
 @lru_cache(maxsize=8)
