@@ -21,7 +21,6 @@ stops refining a mesh study when the next level's predicted time would pass it.
 """
 from __future__ import annotations
 
-import csv
 import functools
 import math
 import re
@@ -115,23 +114,12 @@ def _f(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
 
 
-def _write_csv(run, filename: str, rows: list[dict]) -> None:
-    if not rows:
-        return
-    path = run.path(filename)
-    with open(path, "w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    run.add_artifact(path)
-
-
 def _contact_table(run, result, what: str) -> None:
     run.table(f"Per ball and contact ({what}, {result.model})",
               ("ball", "contact", "F [N]", "angle [deg]", "a [mm]", "b [mm]", "p0 [MPa]", "approach [um]"),
               [(c.ball, c.contact, _f(c.normal_force), _f(math.degrees(c.contact_angle)), _f(c.a * 1e3),
                 _f(c.b * 1e3), _f(c.p0 / 1e6), _f(c.approach * 1e6)) for c in result.contacts])
-    _write_csv(run, "contacts.csv", result.table())
+    run.write_csv("contacts.csv", result.table())
 
 
 # --------------------------------------------------------------------------
@@ -340,7 +328,7 @@ def _contact(run, *, case, rungs, deadline) -> None:
                       source="grid convergence index (references.richardson; Roache 1994)",
                       note="the reference must be known better than the tolerances it judges; a larger value asks "
                            "for finer levels (--fine)")
-        _write_csv(run, "levels.csv", fe_rows)
+        run.write_csv("levels.csv", fe_rows)
         _fields(run, contact, finest, fe_levels[-1])
     run.table("Contact by each rung (reference: " + source + ")",
               ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]", "one evaluation [s]"),
@@ -527,7 +515,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
               source="energy conservation incl. B2B loss (lin2019 eq 7; docs/fe_b2b.md: 1e-6)",
               why="the value is itself a relative power error: zero judged on the scale 1")
     _module_table(run, rows, "friction_force_N", "friction force [N]", low_state, guide.groove_velocity, reference)
-    _write_csv(run, "levels.csv", rows)
+    run.write_csv("levels.csv", rows)
     render3d.module_artifacts(run, kept["model"], kept["results"], materials=guide.material.pair,
                               case=case.name, level={"h_contact_m": kept["level"].h_contact,
                                                      "growth": kept["level"].growth})
@@ -584,7 +572,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
               source="energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)",
               why="the value is itself a relative power error: zero judged on the scale 1")
     _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed, reference)
-    _write_csv(run, "levels.csv", rows)
+    run.write_csv("levels.csv", rows)
     render3d.module_artifacts(run, kept["models"], kept["results"], materials=case.screw.material.pair,
                               case=case.name, level={"h_contact_m": kept["level"].h_contact,
                                                      "growth": kept["level"].growth})

@@ -393,6 +393,21 @@ class Run:
         self.add_artifact(target)
         return target
 
+    def write_csv(self, filename: str, rows: list[dict]) -> Path | None:
+        """A table (rows of one set of keys, the first row's order) as ``filename`` in the scene's folder, listed
+        as an artifact; nothing for no rows."""
+        import csv
+
+        if not rows:
+            return None
+        path = self.path(filename)
+        with open(path, "w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+        self.add_artifact(path)
+        return path
+
     def add_artifact(self, path: Path | str) -> None:
         path = Path(path)
         try:

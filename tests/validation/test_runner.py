@@ -523,3 +523,21 @@ def test_a_scene_that_raises_points_to_its_traceback(tmp_path, capsys, monkeypat
     # the terminal said only "ERROR zz-raises (0.0 s): ValueError: ..." and the traceback sat in a file it never named
     assert f"traceback: {tmp_path / 'r' / 'zz-raises' / 'error.txt'}" in err
     assert (tmp_path / "r" / "zz-raises" / "error.txt").read_text().startswith("Traceback")
+
+
+def test_a_table_is_written_as_csv_and_listed_as_an_artifact(tmp_path):
+    rows = [{"h_um": 30, "F_N": 4.1}, {"h_um": 20, "F_N": 4.05}]
+
+    def table_scene(run):
+        assert run.write_csv("empty.csv", []) is None  # no rows: no file
+        run.write_csv("levels.csv", rows)
+        run.check(model="m", family="analytical", quantity="q", unit="1", value=1.0, reference=1.0, tolerance=0.1,
+                  source="s", time_s=0.0)
+
+    result = run_scene(Scene("zz-table", "table", table_scene, default=False, kind="low-order", cost_s=0.1),
+                       "default", tmp_path)
+    written = [name for name in result.artifacts if name.endswith(".csv")]
+    assert len(written) == 1 and written[0].endswith("levels.csv")
+    with open(tmp_path / written[0], newline="") as handle:
+        assert list(csv.DictReader(handle)) == [{"h_um": "30", "F_N": "4.1"}, {"h_um": "20", "F_N": "4.05"}]
+    assert not any(name.endswith("empty.csv") for name in result.artifacts)

@@ -13,7 +13,6 @@ level is its own model (family FE-informed, its level in words), so error_vs_tim
 """
 from __future__ import annotations
 
-import csv
 import functools
 import math
 import time
@@ -158,11 +157,7 @@ def _run(run, which: str) -> None:
                    budget=TIME_LIMIT_S[run.fidelity], time_s=wall,
                    source=f"docs/fe_b2b.md time budget at the {run.fidelity} level (a cached mesh costs nothing)")
     for filename, table in (("levels.csv", rows), ("contacts.csv", contact_rows)):
-        with open(run.path(filename), "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=list(table[0]))
-            writer.writeheader()
-            writer.writerows(table)
-        run.add_artifact(run.path(filename))
+        run.write_csv(filename, table)
     increase_low = friction_increase(low, free_low)
     lines = [f"{r['h_contact_um']:.0f} um: F_B2B {r['F_B2B']:.3f} N, increase {100 * r['friction_increase']:.1f} %, "
              f"free-ball epsilon {100 * r['epsilon_free_1']:.4f} / {100 * r['epsilon_free_2']:.4f} %, "
@@ -182,13 +177,10 @@ def _run(run, which: str) -> None:
                               level={"h_contact_m": h_contact, "growth": levels[-1].growth})
     if run.fidelity != "quick":
         variants = study.sensitivity(case, model, results, low, contacts)
-        with open(run.path("sensitivity.csv"), "w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(["variant", "F_B2B_N", "vs_ANSYS_3.96"])
-            for label, value in variants:
-                writer.writerow([label, f"{value:.4f}",
-                                 f"{value / PRINTED.f_b2b_ansys - 1:+.4f}" if which == "a" else ""])
-        run.add_artifact(run.path("sensitivity.csv"))
+        run.write_csv("sensitivity.csv", [
+            {"variant": label, "F_B2B_N": f"{value:.4f}",
+             "vs_ANSYS_3.96": f"{value / PRINTED.f_b2b_ansys - 1:+.4f}" if which == "a" else ""}
+            for label, value in variants])
         run.note("Sensitivity (sensitivity.csv): " + "; ".join(f"{label}: {value:.3f} N" for label, value in variants))
 
 

@@ -15,7 +15,6 @@ Models:
 """
 from __future__ import annotations
 
-import csv
 import functools
 import math
 import time
@@ -192,11 +191,7 @@ def _run(run, which: str) -> None:
                    budget=TIME_LIMIT_S[run.fidelity], time_s=wall,
                    source=f"docs/fe_b2b.md time budget at the {run.fidelity} level (a cached mesh costs nothing)")
     for filename, table in (("levels.csv", rows), ("contacts.csv", contact_rows)):
-        with open(run.path(filename), "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=list(table[0]))
-            writer.writeheader()
-            writer.writerows(table)
-        run.add_artifact(run.path(filename))
+        run.write_csv(filename, table)
     lines = [f"{r['h_contact_um']:.0f} um: {r['ndofs']} DOFs, {r['wall_s']:.0f} s, F_B2B {r['F_B2B']:.3f} N, "
              f"increase {r['friction_increase_pct']:.1f} %" for r in rows]
     run.note(f"Preload: oversize {oversize * 1e6:.4f} um (interference fit); axial shares {shares[0]:.3f} / "
@@ -215,12 +210,9 @@ def _run(run, which: str) -> None:
         variants = study.sensitivity(case, models, results, state, contacts, fit_case=lin2019.TABLE5_A,
                                      fit_force=PRINTED["a"].f_b2b_ansys)
         ansys = printed.f_b2b_ansys
-        with open(run.path("sensitivity.csv"), "w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(["variant", "F_B2B_N", f"vs_ANSYS_{ansys}"])
-            for label, value in variants:
-                writer.writerow([label, f"{value:.4f}", f"{value / ansys - 1:+.4f}"])
-        run.add_artifact(run.path("sensitivity.csv"))
+        run.write_csv("sensitivity.csv", [{"variant": label, "F_B2B_N": f"{value:.4f}",
+                                           f"vs_ANSYS_{ansys}": f"{value / ansys - 1:+.4f}"}
+                                          for label, value in variants])
         run.note("Sensitivity (sensitivity.csv): " + "; ".join(f"{label}: {value:.3f} N" for label, value in variants))
 
 

@@ -9,7 +9,6 @@ whole chain with its own, stated tolerance (3 %, p0 4 %).
 """
 from __future__ import annotations
 
-import csv
 import functools
 import time
 
@@ -91,11 +90,7 @@ def _run(run, case) -> None:
              f"(FE approach of the reference faces {result.approach:.4e} m = delta + C_b F; rms residual of "
              f"U = C_H F^(2/3) + C_b F over the sweep F x {LOAD_FACTORS}: "
              f"{result.approach_fit.rms / result.delta:.1e} delta)")
-    with open(run.path("convergence.csv"), "w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    run.add_artifact(run.path("convergence.csv"))
+    run.write_csv("convergence.csv", rows)
     if run.fidelity != "quick":  # one more solve with the kept factor; CI skips it
         start = time.perf_counter()
         for path in fe_contact.write_fields(result, ref, run.path(""), scene_name=run.scene.name,
