@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast as stiffness
+from ballbench.fem.elasticity import PairMesh, contact_pair, stiffness_fast as stiffness
 from ballbench.fem import linsolve
 from ballbench.fem.surface import locate_along_z, lumped_area
 from ballbench.lowmodel.errors import ConvergenceError
@@ -285,10 +285,7 @@ def load_and_assemble(mesh, materials, *, order: int, gap_limit: float):
         raise ValueError(f"gap_limit must be a finite length > 0 m, got {gap_limit!r}")
     timings = {}
     t0 = time.perf_counter()
-    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
-    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
-        if name not in pair.surfaces:
-            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    pair = contact_pair(mesh)
     timings["load_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     K, basis = stiffness(pair, materials, order=order)

@@ -27,7 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["PairMesh", "load_pair", "lame", "stress", "von_mises", "stiffness", "stiffness_fast", "vector_basis"]
+__all__ = ["PairMesh", "load_pair", "contact_pair", "CONTACT_PAIR_SURFACES", "lame", "stress", "von_mises", "stiffness",
+           "stiffness_fast", "vector_basis"]
 
 
 @dataclass(frozen=True)
@@ -112,6 +113,20 @@ def load_pair(path: Path | str, volumes: dict[str, int] | None = None) -> PairMe
     flip = vol < 0
     tets[flip] = tets[flip][:, [0, 2, 1, 3]]
     return PairMesh(points, tets, body, surf, str(path))
+
+
+
+CONTACT_PAIR_SURFACES = ("ball_contact", "counter_contact", "ball_load", "counter_support")  # meshes.assemblies
+
+
+def contact_pair(mesh) -> PairMesh:
+    """A contact pair's :class:`PairMesh` (``mesh`` one already, or the path of its ``.msh``) with the named surfaces
+    every contact solve needs (:data:`CONTACT_PAIR_SURFACES`); ValueError naming a missing one."""
+    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
+    for name in CONTACT_PAIR_SURFACES:
+        if name not in pair.surfaces:
+            raise ValueError(f"mesh {pair.path}: physical surface {name!r} missing")
+    return pair
 
 
 def lame(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:

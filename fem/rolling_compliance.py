@@ -46,7 +46,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ballbench.fem import linsolve
-from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
+from ballbench.fem.elasticity import PairMesh, contact_pair, stiffness_fast
 from ballbench.fem.mortar import edge_index, surface_dofs
 from ballbench.fem.surface import locate_along_z
 from ballbench.lowmodel.contact.halfspace import SurfaceGrid
@@ -178,10 +178,7 @@ def _condense(mesh, materials, grid: SurfaceGrid, *, order: int, depth: float | 
               method: str) -> RollingCompliance:
     timings = {}
     start = time.perf_counter()
-    pair = mesh if isinstance(mesh, PairMesh) else load_pair(mesh)
-    for name in ("ball_contact", "counter_contact", "ball_load", "counter_support"):
-        if name not in pair.surfaces:
-            raise ValueError(f"mesh: physical surface {name!r} missing")
+    pair = contact_pair(mesh)
     if "symmetry_x" in pair.surfaces or "symmetry_y" in pair.surfaces:
         raise ValueError("the mesh has symmetry cuts: tangential loads need the full model (symmetry='full')")
     timings["load_s"] = time.perf_counter() - start

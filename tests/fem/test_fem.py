@@ -321,3 +321,17 @@ def test_hookes_law_and_von_mises():
     # arrays of gradients (3, 3, e, q) broadcast with per-element Lame parameters
     grads = np.repeat(uniaxial[:, :, None, None], 2, axis=2).repeat(3, axis=3)
     np.testing.assert_allclose(von_mises(stress(grads, np.full((2, 3), lam), np.full((2, 3), mu))), s, rtol=1e-12)
+
+
+def test_a_contact_pair_without_a_named_surface_is_refused():
+    import dataclasses
+
+    from ballbench.fem import elasticity
+    from ballbench.meshes.assemblies import contact_pairs
+
+    path = contact_pairs.ball_on_flat_pair(10e-3, 4e-4, 1.6)
+    pair = elasticity.contact_pair(path)  # the mesh of meshes.assemblies has every surface a contact solve needs
+    assert {"ball_contact", "counter_contact", "ball_load", "counter_support"} <= set(pair.surfaces)
+    surfaces = {name: faces for name, faces in pair.surfaces.items() if name != "counter_support"}
+    with pytest.raises(ValueError, match="'counter_support' missing"):
+        elasticity.contact_pair(dataclasses.replace(pair, surfaces=surfaces))
