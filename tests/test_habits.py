@@ -16,7 +16,7 @@ from tests import paths
 LIBRARY = ("lowmodel", "fem", "meshes", "validation", "src")
 LONGEST = 600
 # being split into smaller modules on its own branch; remove the entry when that lands
-SPLIT_PENDING = {"lowmodel/contact/rolling.py"}
+SPLIT_PENDING: set[str] = set()  # files over the limit whose split is on its way (none)
 ISSUE_NUMBER = re.compile(r"\bissues? ?#?\d+", re.IGNORECASE)
 PYPLOT = re.compile(r"matplotlib\.use\(|import matplotlib\.pyplot|from matplotlib import pyplot|\bplt\.")
 
