@@ -49,7 +49,7 @@ class _Tally:
     def __init__(self):
         self.records = []  # (family, ratio, converged, reason, iterations, residual, continued, power error, finite)
         self.coupled = []  # whether the solve had touching balls (B2B forces)
-        self.relaxed = []  # whether a failed solve carries the relaxation's account (lowmodel.b2b_relaxation)
+        self.relaxed = []  # the relaxation's verdict on a failed solve (lowmodel.b2b_relaxation), "" if none
         self.failures = []  # (family, n_balls, ratio, reason, last converged, mu, min slip, relaxation's account)
 
     def solve(self, family, contacts, gaps=None):
@@ -59,14 +59,15 @@ class _Tally:
         try:
             state = b2b.solve(contacts, gaps)
         except ConvergenceError as error:
-            self.relaxed.append(getattr(error, "relaxation", None) is not None)
+            relaxation = getattr(error, "relaxation", None)
+            self.relaxed.append("" if relaxation is None else relaxation.kind or "settled, Newton from it failed")
             self.records.append((family, ratio, False, error.reason, error.iterations, error.residual, False,
                                  math.nan, False))
             self.failures.append((family, contacts.n_balls, ratio, error.reason, error.last_converged,
                                   float(contacts.friction_coefficient), getattr(error, "min_slip_speed", math.nan),
                                   getattr(getattr(error, "relaxation", None), "reason", "no relaxation")))
             return None
-        self.relaxed.append(False)
+        self.relaxed.append("")
         values = np.concatenate([state.ball_velocity, state.omega.ravel(), state.b2b_force,
                                  state.friction_loss.ravel()])
         power = abs(state.input_power - state.total_loss) / abs(state.input_power)
@@ -147,7 +148,7 @@ def stability(run):
               tolerance=0.0, time_s=per_solve,
               source="the end of the full-sliding branch (a contact's slip speed crosses 0, "
               "docs/b2b_bearing.md 'validity') is the existence bound for touching balls")
-    relaxed = np.array(tally.relaxed)
+    relaxed = np.array([bool(verdict) for verdict in tally.relaxed])
     run.check(**B2B, quantity=f"failures with touching balls without a reason from the relaxation in time "
               f"({int(np.sum(~converged & coupled))} failures with B2B contact)", unit="count",
               value=float(np.sum(~converged & coupled & ~relaxed)), reference=0.0, scale=1.0, tolerance=0.0,
@@ -195,9 +196,9 @@ def stability(run):
              "friction moment use friction capacity too); the bound is the end of the full-sliding branch, where "
              "a contact's slip speed reaches 0 (docs/b2b_bearing.md, 'validity').")
     verdicts = {}
-    for record, is_coupled in zip(tally.records, tally.coupled):
+    for record, is_coupled, verdict in zip(tally.records, tally.coupled, tally.relaxed):
         if not record[2] and is_coupled:
-            verdicts[record[3]] = verdicts.get(record[3], 0) + 1
+            verdicts[verdict] = verdicts.get(verdict, 0) + 1
     run.note("Relaxation in time of every failed solve with touching balls (lowmodel.b2b_relaxation): "
              + (", ".join(f"{count} x {kind}" for kind, count in verdicts.items()) or "no such failure") + ".")
     run.note(f"{len(tally.records)} solves in {elapsed:.1f} s. {summary}. Failures by reason: {failures or 'none'} "
