@@ -191,16 +191,10 @@ def _eq36_residual(case: LinearGuideCase, contacts) -> float:
 
 
 def _guide_analytical(run, case: LinearGuideCase, result) -> None:
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
+    from ballbench.validation.studies import fe_b2b_linear
 
     guide = case.guide
-    psi = hertz.psi_constant(hertz.ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords),
-                             guide.ball_radius)
-    analytical, time_a = run.time(b2b_analytical.two_ball_case, case.theta, case.side_force_ratio,
-                                  normal_load=case.vertical_force, groove_velocity=guide.groove_velocity,
-                                  friction_coefficient=guide.friction_coefficient, psi=psi,
-                                  ball_radius=guide.ball_radius, delta_beta_top=case.top_deviations)
+    analytical, time_a = run.time(fe_b2b_linear.analytical, case)
     numerical = result.b2b_forces[0]
     scale = NEAR_ZERO_B2B * guide.friction_coefficient * case.vertical_force
     run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical", quantity="F_B2B", unit="N",
@@ -473,8 +467,7 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
 
 
 def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear as study
 
@@ -483,12 +476,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
     b2b.solve(contacts, [0.0])  # loads the friction map outside the timed call
     low_state, time_low = run.time(b2b.solve, contacts, [0.0])
     low = [("lowmodel.linear_bearing.b2b", "low-order numerical", float(low_state.b2b_force[0]), time_low)]
-    psi = hertz.psi_constant(hertz.ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords),
-                             guide.ball_radius)
-    analytical, time_a = run.time(b2b_analytical.two_ball_case, case.theta, case.side_force_ratio,
-                                  normal_load=case.vertical_force, groove_velocity=guide.groove_velocity,
-                                  friction_coefficient=guide.friction_coefficient, psi=psi,
-                                  ball_radius=guide.ball_radius, delta_beta_top=case.top_deviations)
+    analytical, time_a = run.time(study.analytical, case)
     low.append(("lowmodel.linear_bearing.b2b_analytical", "analytical", float(analytical.b2b_force), time_a))
     kept = {}
 

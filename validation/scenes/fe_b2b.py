@@ -64,11 +64,7 @@ def _ellipse_summary(rows, h_contact) -> str:
 
 
 def _run(run, which: str) -> None:
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
     case = lin2019.TABLE3[which]
-    guide = case.guide
     contacts = study.low_order_contacts(case)
     source = f"lin2019 Table 3 case ({which}), ANSYS FEA" + ("" if which == "a" else " (no B2B contact)")
 
@@ -90,12 +86,7 @@ def _run(run, which: str) -> None:
     low, time_low = run.time(b2b.solve, contacts, [0.0])
     check_force(MODEL_LOW, float(low.b2b_force[0]), time_low)
     if which == "a":
-        geometry = hertz.ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords)
-        analytical, time_a = run.time(b2b_analytical.two_ball_case, case.theta, case.side_force_ratio,
-                                      normal_load=case.vertical_force, groove_velocity=guide.groove_velocity,
-                                      friction_coefficient=guide.friction_coefficient,
-                                      psi=hertz.psi_constant(geometry, guide.ball_radius),
-                                      ball_radius=guide.ball_radius)
+        analytical, time_a = run.time(study.analytical, case)
         check_force(MODEL_ANALYTICAL, float(analytical.b2b_force), time_a,
                     "k_f = 1.38, Psi from Hertz; lin2019's own claim: within 6-7 %")
     free_low = b2b.solve(contacts, [1e-3])

@@ -16,7 +16,7 @@ import numpy as np
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
 from ballbench.validation.cases.case import LinearGuideCase
 
-__all__ = ["low_order_contacts", "fine_ellipses", "eq36_hertz", "solve_fe_level", "traction_patches",
+__all__ = ["low_order_contacts", "analytical", "fine_ellipses", "eq36_hertz", "solve_fe_level", "traction_patches",
            "fe_informed", "full_stress", "hertz_axes", "sensitivity", "show_module"]
 
 
@@ -27,6 +27,23 @@ def low_order_contacts(case: LinearGuideCase):
                                vertical_force=case.vertical_force, ball_radius=guide.ball_radius,
                                conformity=guide.conformity, friction_coefficient=guide.friction_coefficient,
                                groove_velocity=guide.groove_velocity, **guide.material.keywords)
+
+
+def analytical(case: LinearGuideCase):
+    """lin2019's analytical two-ball model (eqs 15-33; eq 30 for F_B2B) of ``case``: ``Psi`` (eq 15) from the exact
+    Hertz contact of its groove, the paper's ``k_f`` = 1.38, the case's top deviations and nominal contact angle.
+    The analytical rung of every ladder of a linear guide
+    (:class:`lowmodel.linear_bearing.b2b_analytical.TwoBallCase`)."""
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
+
+    guide = case.guide
+    return b2b_analytical.two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,
+                                        groove_velocity=guide.groove_velocity,
+                                        friction_coefficient=guide.friction_coefficient,
+                                        psi=hertz.psi_constant(_groove_geometry(case), guide.ball_radius),
+                                        ball_radius=guide.ball_radius, delta_beta_top=case.top_deviations,
+                                        nominal_contact_angle=guide.nominal_angle)
 
 
 def _groove_geometry(case: LinearGuideCase):

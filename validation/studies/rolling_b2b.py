@@ -128,9 +128,6 @@ def rolling_rung(model: str, family: str, level: str, result, seconds: float, b2
 
 def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_fe: bool = True) -> list[Rung]:  # noqa: ARG005 - Run.progress's signature
     """Every rung of the linear bearing's ladder for Table 2/3 case ``case`` at fidelity ``level``."""
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
     rungs = []
     case, level = checks.choice("case", case, tuple(lin2019.TABLE3)), checks.choice("level", level, FIDELITIES)
     module_case, guide, levels = lin2019.TABLE3[case], lin2019.GUIDE, stick_slip.LINEAR
@@ -139,14 +136,8 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
     common = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
                   groove_velocity=guide.groove_velocity)
     if case == "a":
-        geometry = hertz.ball_in_groove(guide.ball_radius, guide.conformity, **STEEL.keywords)
         start = time.perf_counter()
-        analytical = b2b_analytical.two_ball_case(module_case.theta, module_case.side_force_ratio,
-                                                  normal_load=module_case.vertical_force,
-                                                  groove_velocity=guide.groove_velocity,
-                                                  friction_coefficient=guide.friction_coefficient,
-                                                  psi=hertz.psi_constant(geometry, guide.ball_radius),
-                                                  ball_radius=guide.ball_radius)
+        analytical = fe_b2b_linear.analytical(module_case)
         rungs.append(Rung("lowmodel.linear_bearing.b2b_analytical", "analytical", "", float(analytical.b2b_force),
                           math.nan, time.perf_counter() - start))
     start = time.perf_counter()
