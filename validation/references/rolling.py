@@ -94,10 +94,3 @@ def mindlin_force_ratio(shift: float, normal_force: float, radius: float, shear_
     scale = 3.0 * friction_coefficient * normal_force * (2.0 - poisson_ratio) / (8.0 * shear_modulus * radius)
     fraction = min(abs(shift) / scale, 1.0)
     return 1.0 - (1.0 - fraction) ** 1.5
-
-
-def richardson(values, sizes, order: float) -> float:
-    """Extrapolation to zero cell size from the last two ``values`` at cell ``sizes``, error ``~ h^order``."""
-    (v1, v2), (h1, h2) = values[-2:], sizes[-2:]
-    r = (h1 / h2) ** order
-    return (r * v2 - v1) / (r - 1.0)

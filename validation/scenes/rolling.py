@@ -21,6 +21,7 @@ from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import rolling as figures
 from ballbench.validation.references import rolling as ref
+from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.scene import scene
 
 MODEL = "lowmodel.contact.rolling"
@@ -55,7 +56,7 @@ def rolling_carter(run):
                   scale=1.0, relation="le", source="Carter's traction (Johnson 1985 eq 8.29)", tolerance=0.03,
                   time_s=time_s, family="BEM", level=f"{levels[-1]} cells",
                   why="the traction error is judged against the traction bound mu p0 (scale 1)")
-        extrapolated = ref.richardson(values, [1.0 / n for n in levels], 1.0)
+        extrapolated = extrapolate([1.0 / n for n in levels[-2:]], values[-2:], formal_order=1.0).value
         run.check(model=MODEL, quantity=f"Q/(mu P), kappa {kappa}, extrapolated (first order)", unit="1",
                   value=extrapolated, reference=reference, source="Carter (1926)", tolerance=2e-4, time_s=0.0,
                   family="BEM", level="extrapolated")
@@ -101,13 +102,12 @@ def rolling_kalker(run):
         time_s = time.perf_counter() - start
         for index, name in enumerate(values):
             v = values[name]
-            order = math.log2(abs((v[0] - v[1]) / (v[1] - v[2])))
-            extrapolated = ref.richardson(v, [1.0 / n for n in sizes], order)
+            study = extrapolate([1.0 / n for n in sizes], v)
+            extrapolated = study.value
             run.check(model=MODEL, quantity=f"{name}, a/b = {aob}, nu = {nu}", unit="1", value=extrapolated,
                       reference=published[index], source=ref.KALKER_SOURCE, tolerance=0.02, time_s=time_s,
                       family="BEM", level="extrapolated from " + ", ".join(_cells(n) for n in sizes),
-                      note="grids " + ", ".join(f"{n}: {x:.4f}" for n, x in zip(sizes, v)) + f"; observed order "
-                      f"{order:.2f}")
+                      note="grids " + ", ".join(f"{n}: {x:.4f}" for n, x in zip(sizes, v)) + f"; {study.note}")
 
 
 def _tractcurv_normal():

@@ -102,28 +102,6 @@ def test_cattaneo_mindlin_shift(ratio):
     assert abs(result.force_lateral) < 1e-9 * force
 
 
-def test_kalker_c11_c22_c23_after_grid_extrapolation():
-    b, force, nu = 1e-3, 1000.0, 0.25
-    aob = 0.5
-    a = aob * b
-    c = math.sqrt(a * b)
-    sizes = (16, 32, 64)
-    values = {"C11": [], "C22": [], "C23": []}
-    for n in sizes:
-        tiny = 1e-9
-        values["C11"].append(-rolling.steady_rolling(a, b, force, G, nu, MU, tiny, 0, 0, n).force_rolling
-                             / (G * c * c * tiny))
-        values["C22"].append(-rolling.steady_rolling(a, b, force, G, nu, MU, 0, tiny, 0, n).force_lateral
-                             / (G * c * c * tiny))
-        values["C23"].append(-rolling.steady_rolling(a, b, force, G, nu, MU, 0, 0, tiny / c, n).force_lateral
-                             / (G * c * c * tiny))
-    for index, name in enumerate(("C11", "C22", "C23")):
-        v = values[name]
-        order = math.log2(abs((v[0] - v[1]) / (v[1] - v[2])))
-        extrapolated = ref.richardson(v, [1.0 / n for n in sizes], order)
-        assert extrapolated == pytest.approx(ref.KALKER_TABLE_E3_NU_025[aob][index], rel=0.02)
-
-
 def test_tractcurv_on_contacts_grid_and_pressure():
     d = ref.TRACTCURV_INPUT
     grid = hs.SurfaceGrid(*d["grid"], *d["cell"])
