@@ -64,7 +64,8 @@ def test_fifty_ball_chain(benchmark):
 
 def test_chain_cost_per_ball(benchmark):
     """Chains of 50 to 1000 touching balls: targets 200 balls <= 40 ms, 1000 balls <= 250 ms, time per ball
-    constant within 30 % from 50 to 1000 balls (issue 10; sparse block-tridiagonal Jacobian, banded Cholesky).
+    constant within 30 % from 50 to 1000 balls (docs/b2b_bearing.md; sparse block-tridiagonal Jacobian, banded
+    Cholesky).
 
     The machine is shared: median CPU time (``time.process_time``) and median wall time of many solves, the
     least CPU time beside them, and the least-squares line ``time = fixed + n * per_ball`` through the median

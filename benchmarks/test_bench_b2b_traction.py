@@ -1,4 +1,4 @@
-"""Speed of the FE-informed B2B model (lowmodel.linear_bearing.b2b_traction, issue 12).
+"""Speed of the FE-informed B2B model (lowmodel.linear_bearing.b2b_traction; docs/b2b_traction.md).
 
 Two-ball solve of lin2019 Table 3 case (a) from Hertz samples (the size of the FE input at the
 default level is about 4000 points per ball); the FE module itself is timed by the scenes

@@ -1,6 +1,6 @@
 """EHL point contact (lowmodel.contact.ehl.solve_reynolds): time of one operating point.
 
-Targets (issue 14): 129 x 129 under 20 s, 257 x 257 under 2 min on this machine
+Targets (docs/ehl.md): 129 x 129 under 20 s, 257 x 257 under 2 min on this machine
 (here 128 x 128 and 256 x 256: the nested grids need even cell counts).
 Circular steel contact, R = 10 mm, 8 N, u_s = 1 m/s, eta0 = 0.05 Pa s (Moes M = 20.5, L = 13.7).
 Run: ``.venv/bin/python -m pytest benchmarks/test_bench_ehl.py -s``.

@@ -1,6 +1,6 @@
 """Half-space contact (BEM) speed, and side by side with tamaas on the same Hertz problem and grid.
 
-Targets (issue 14): 256 x 256 under 0.5 s, 1024 x 1024 under 10 s; our time at
+Targets (docs/halfspace.md): 256 x 256 under 0.5 s, 1024 x 1024 under 10 s; our time at
 most 1.5 x tamaas's at 512 x 512 (tamaas with its non-periodic DC-FFT operator,
 the same Polonsky-Keer algorithm, the same grid and the same tolerance).
 Run: ``.venv/bin/python -m pytest benchmarks/test_bench_halfspace.py -s``.

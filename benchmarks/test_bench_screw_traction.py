@@ -1,4 +1,4 @@
-"""Speed of the FE-informed screw B2B model (lowmodel.screw.b2b_traction, issue 12).
+"""Speed of the FE-informed screw B2B model (lowmodel.screw.b2b_traction; docs/b2b_traction.md).
 
 Two-ball module of lin2019 Table 5 case (a) (Table 4 geometry, preload 1.6848 um, tilted deviation
 reading) from Hertz samples of the low-order state: 20 x 100 = 2000 points per contact (8000 per

@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["SETTINGS", "SLOW", "real", "positive", "call", "float_values", "angle", "EXTREME", "angle_limits", "mostly",
-           "one_bad"]
+           "one_bad", "length", "speed", "force", "lead_angle", "contact_angle", "ball_fraction", "count"]
 
 # BALLBENCH_PROPERTY_SCALE=k runs k times the examples (still derandomized: fixed seeds), for a long stress run
 _SCALE = max(1, int(os.environ.get("BALLBENCH_PROPERTY_SCALE", "1")))
@@ -107,3 +107,15 @@ def one_bad(valid: dict, bad: dict):
     keys = sorted(bad)
     return st.fixed_dictionaries(valid).flatmap(lambda kw: st.sampled_from([None] * len(keys) + keys).flatmap(
         lambda key: st.just(kw) if key is None else bad[key].map(lambda value: {**kw, key: value})))
+
+
+# draws of the screw-scale inputs shared by the geometry, contact and screw property tests: lengths [m] (real
+# screws: mm), speeds [rad/s or m/s], forces [N] as physical draws with the extreme floats, zero and negatives
+# among the rest; angles [rad] over [0, pi/2) and beyond; ball radius / pitch radius; counts with bools and floats
+length = mostly(positive(1e-4, 0.1), *EXTREME)
+speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
+force = mostly(real(0.0, 1e4), *EXTREME)
+lead_angle = mostly(real(0.0, 1.4), *angle_limits)  # [0, pi/2)
+contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)  # (0, pi/2)
+ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)
+count = mostly(st.integers(1, 40), -1, 0, True, False, 2.0, 3.5)

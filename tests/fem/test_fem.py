@@ -271,7 +271,7 @@ def test_kept_factor_solves_with_the_same_matrix():
 
 
 def test_full_solution_reuses_the_condensation_factor(mortar_flat, monkeypatch):
-    """The VTU's full displacement field needs no second factorisation of K (issue 12 item 6) and equals
+    """The VTU's full displacement field needs no second factorisation of K (docs/fem.md, kept factor) and equals
     the one of a fresh factorisation; with the factor freed it factorises once more."""
     model, ref = mortar_flat
     state = contact.solve_force(model, 100.0)

@@ -1,5 +1,5 @@
 """fem.surface.locate_along_z (the z-projection on the counter surface) and the mortar model of a concave nut
-contact, whose z window holds ball nodes beside the counter block (issue 14, point B of sun2021)."""
+contact, whose z window holds ball nodes beside the counter block (point B of sun2021; docs/fem.md)."""
 import math
 
 import numpy as np

@@ -25,6 +25,7 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from tests.property_support import CALLS, SETTINGS, SLOW, real
 
+
 def solved(function, *args, **kwargs):
     """``function(...)``, or None on a ConvergenceError that names its reason (ValueError is not expected here:
     every input is valid)."""

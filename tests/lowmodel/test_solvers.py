@@ -1,4 +1,4 @@
-"""Globalised solves (issue 10 item 1): continuation where Newton from the cheap start fails.
+"""Globalised solves (docs/b2b_bearing.md, 'Solver'): continuation where Newton from the cheap start fails.
 
 Each case below raised ConvergenceError before (the issue's reproducer, light loads,
 theta close to the eq 37 limit, random 2 N chains) although a state exists
@@ -122,7 +122,8 @@ def test_continuation_stops_at_a_fold():
 def test_touching_pair_ends_where_a_contact_stops_sliding():
     """Two touching balls at theta = 3 deg, rho = -0.7 (spin-capacity ratio 4.2): the B2B force grows with mu until
     the BL contact of ball 0 stops sliding near mu = 0.4675; beyond, the continued branch slips against its friction
-    and the solver says so (issue 10: the single-ball ratio is no existence bound for touching balls)."""
+    and the solver says so (docs/b2b_bearing.md, 'validity': the single-ball ratio is no existence bound for touching
+    balls)."""
     theta = math.radians(3.0)
     below = b2b.solve(b2b.module_contacts(theta, -0.7, n_balls=2, friction_coefficient=0.467), [0.0])
     slip = np.hypot(below.slide, below.spin * b2b.module_contacts(theta, -0.7, n_balls=2).semi_major) / 0.01

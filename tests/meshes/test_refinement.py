@@ -1,4 +1,4 @@
-"""meshes.refinement: the fine zone shaped as the contact ellipse (``fine_ellipse``, issue 12 item 6).
+"""meshes.refinement: the fine zone shaped as the contact ellipse (``fine_ellipse``, docs/fem.md).
 
 The distance field is checked against the exact distance from the elliptic slab (dense sampling of
 the ellipse), and a meshed groove pair is checked for the size it produces: fine over the ellipse,

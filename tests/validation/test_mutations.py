@@ -1,4 +1,4 @@
-"""Mutation check (issue 10 item 4): physically meaningful wrong models must fail the validation scenes.
+"""Mutation check (docs/mutations.md): physically meaningful wrong models must fail the validation scenes.
 
 Each mutant replaces one model function (monkeypatch) by a wrong variant; the
 scenes listed for it are run in-process at ``quick`` fidelity and at least one

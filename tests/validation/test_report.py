@@ -325,7 +325,7 @@ def test_a_bound_that_holds_is_not_called_exact(tmp_path):
     def bounds(run):
         run.check(model="lowmodel.calibration", family="low-order numerical",
                   quantity="coverage of the 95 % interval", unit="1", value=0.9525,
-                  reference=0.9, relation="ge", tolerance=0.0, source="issue 13", time_s=1e-3)
+                  reference=0.9, relation="ge", tolerance=0.0, source="docs/sweeps.md", time_s=1e-3)
 
     def exact(run):
         run.check(model="lowmodel.calibration", family="low-order numerical",

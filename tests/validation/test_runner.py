@@ -73,7 +73,7 @@ def test_exception_and_empty_scene_fail(tmp_path):
 
 @pytest.mark.parametrize("tolerance, scale", [(math.inf, 0.0), (1.0, 0.0), (2.5, 0.0), (0.01, 5.0), (0.01, 1e300)])
 def test_guards_reject_checks_that_cannot_fail(tmp_path, tolerance, scale):
-    """issue 10 item 5: a non-finite or >= 1 tolerance, or a scale above the reference, needs a reason."""
+    """docs/validation.md: a non-finite or >= 1 tolerance, or a scale above the reference, needs a reason."""
     def body(run, why=""):
         run.check(model="m", family="analytical",
                   quantity="q", unit="1", value=1.0, reference=2.0, source="s", tolerance=tolerance,
@@ -129,7 +129,7 @@ def test_budgets_never_decide_unless_strict_time(tmp_path):
         run.check(model="m", family="analytical",
                   quantity="q", unit="N", value=1.0, reference=1.0, source="s", tolerance=1e-9,
                   time_s=1e-3)
-        run.budget(quantity="wall time", unit="s", value=61.7, budget=60.0, source="issue 5 budget")
+        run.budget(quantity="wall time", unit="s", value=61.7, budget=60.0, source="docs/validation.md budget")
 
     result = run_scene(_scene(body), "quick", tmp_path)
     assert result.outputs[1].status == "over budget"
@@ -478,7 +478,7 @@ def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
 
 
 def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):
-    """Done-when of issue 9 at the quick level: the gap is listed, the run passes; --strict fails it."""
+    """Declared known gaps at the quick level: the gap is listed, the run passes; --strict fails it."""
     out = tmp_path / "report"
     assert cli.main(["validate", "lin2019-fig9-worst", "--quick", "--out", str(out)]) == 0
     scene_data = json.loads((out / "results.json").read_text())["scenes"][0]

@@ -1,4 +1,4 @@
-"""The whole-screw Monte Carlo case function and its example spec (issue 13)."""
+"""The whole-screw Monte Carlo case function and its example spec (docs/sweeps.md)."""
 from __future__ import annotations
 
 import math

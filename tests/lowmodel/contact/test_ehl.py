@@ -10,6 +10,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.contact import mixed
 from hypothesis import given, strategies as st
 from tests.property_support import SETTINGS, SLOW, call, one_bad, positive, real
+from tests.lowmodel.contact.ehl_support import EHL_BAD, EHL_VALID, ehl_case_rx
 
 E, NU, ETA0, RHO0, RX = 2.1e11, 0.3, 0.05, 970.0, 0.01  # steel; sun2021 Table 1 oil (eta0, rho0)
 # (R_y / R_x, load [N], entrainment speed [m/s]): Moes M 12-51, L 11-16, ellipticity 1.03 and 2.5
@@ -160,26 +161,6 @@ modulus = st.one_of(positive(1e6, 1e13), st.sampled_from([0.0, -1e11, 1e300]))
 speed = st.one_of(real(-10.0, 10.0), st.sampled_from([0.0, 1e-300, 1e300, -1e300]))
 
 
-RX = 0.01  # a 20 N point contact of R = 10 mm (tests/test_mixed.py's case), on 16-32 cell grids
-
-
-def _ehl_case_rx(n):
-    geometry = hertz.from_curvatures((1 / RX, 1 / RX), (0.0, 0.0), youngs_modulus=2.1e11, poisson_ratio=0.3)
-    a = float(hertz.solve_load(geometry, 20.0).a)
-    grid = hs.SurfaceGrid(n, n, 5.5 * a / n, 5.0 * a / n, -1.25 * a, 0.0)
-    X, Y = grid.coordinates()
-    return geometry.contact_modulus, grid, (X**2 + Y**2) / (2 * RX)
-
-
-EHL_VALID = dict(n=st.sampled_from([16, 24, 32]), load=real(5.0, 25.0), u=real(0.5, 2.0), eta0=real(0.02, 0.1),
-                 film=real(1e-7, 5e-7), du=real(-1.0, 1.0), tau0=positive(1e6, 1e8))
-
-
-EHL_BAD = dict(load=st.sampled_from([0.0, -1.0, 1e-17, 1e6]), u=st.sampled_from([0.0, -1.0, 1e-300, 1e300]),
-               eta0=st.sampled_from([0.0, 1e300, 1e-300]), film=st.sampled_from([0.0, 1e-300, 1.0]),
-               du=st.sampled_from([0.0, 1e300]), tau0=st.sampled_from([0.0, 1e-300]))
-
-
 @SETTINGS
 @given(p=st.one_of(real(-1e10, 1e12), st.just(1e300)), eta0=st.one_of(positive(1e-6, 1e3), st.sampled_from(
     [0.0, -0.05, 1e-300, 1e300])), rho0=st.one_of(positive(1.0, 1e4), st.just(-1.0)), du=speed,
@@ -208,7 +189,7 @@ def test_ehl_friction_coefficient(qa, qf, q, mu_a):
 @SLOW
 @given(kw=one_bad(EHL_VALID, EHL_BAD))
 def test_ehl_solve(kw):
-    e_star, grid, gap = _ehl_case_rx(kw["n"])
+    e_star, grid, gap = ehl_case_rx(kw["n"])
     solution = call(ehl.solve_reynolds, gap, grid, e_star, kw["load"], kw["u"], kw["eta0"], initial_film=kw["film"],
                     max_iterations=40)
     if solution is not None:

@@ -8,14 +8,15 @@ from ballbench.lowmodel.contact import ehl, halfspace, hertz, mixed
 from ballbench.lowmodel.screw import friction_torque, kinematics
 from ballbench.lowmodel.contact import halfspace as hs
 from hypothesis import given, strategies as st
-from tests.property_support import SLOW, call, one_bad, positive, real
+from tests.property_support import SLOW, call, one_bad, real
+from tests.lowmodel.contact.ehl_support import EHL_BAD, EHL_VALID, ehl_case_rx
 
 E, NU, ETA0 = 2.1e11, 0.3, 0.05
 E_STAR = E / (2 * (1 - NU**2))
 INITIAL = 2.5e-7
 
 
-RX = 0.01  # as tests/test_ehl.py (a point that converges at 64 x 64): R_x = R_y = 10 mm, 20 N, 1 m/s
+RX = 0.01  # as tests/lowmodel/contact/test_ehl.py (a point that converges at 64 x 64): R_x = R_y = 10 mm, 20 N, 1 m/s
 
 
 def case(n=48):
@@ -117,28 +118,11 @@ def test_asperity_contact_names_heights():
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
 
 
-def _ehl_case_rx(n):
-    geometry = hertz.from_curvatures((1 / RX, 1 / RX), (0.0, 0.0), youngs_modulus=2.1e11, poisson_ratio=0.3)
-    a = float(hertz.solve_load(geometry, 20.0).a)
-    grid = hs.SurfaceGrid(n, n, 5.5 * a / n, 5.0 * a / n, -1.25 * a, 0.0)
-    X, Y = grid.coordinates()
-    return geometry.contact_modulus, grid, (X**2 + Y**2) / (2 * RX)
-
-
-EHL_VALID = dict(n=st.sampled_from([16, 24, 32]), load=real(5.0, 25.0), u=real(0.5, 2.0), eta0=real(0.02, 0.1),
-                 film=real(1e-7, 5e-7), du=real(-1.0, 1.0), tau0=positive(1e6, 1e8))
-
-
-EHL_BAD = dict(load=st.sampled_from([0.0, -1.0, 1e-17, 1e6]), u=st.sampled_from([0.0, -1.0, 1e-300, 1e300]),
-               eta0=st.sampled_from([0.0, 1e300, 1e-300]), film=st.sampled_from([0.0, 1e-300, 1.0]),
-               du=st.sampled_from([0.0, 1e300]), tau0=st.sampled_from([0.0, 1e-300]))
-
-
 @SLOW
 @given(kw=one_bad(dict(EHL_VALID, rough=real(0.0, 1e-6), coupled=st.booleans(), mu_a=real(0.0, 0.3)),
                   dict(EHL_BAD, rough=st.sampled_from([1e300, -1.0]), mu_a=st.sampled_from([-0.1, 1e300]))))
 def test_mixed(kw):
-    e_star, grid, gap = _ehl_case_rx(kw["n"])
+    e_star, grid, gap = ehl_case_rx(kw["n"])
     heights = kw["rough"] * np.cos(np.arange(grid.nx * grid.ny).reshape(grid.nx, grid.ny))
     call(mixed.asperity_contact, gap * 0.0 + 1e-7, heights, grid, e_star)
     contact = call(mixed.solve, gap, heights, grid, e_star, kw["load"], kw["u"], kw["eta0"],

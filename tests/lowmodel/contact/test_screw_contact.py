@@ -8,7 +8,8 @@ from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.contact import halfspace, screw_contact as sc
 import numpy as np
 from hypothesis import given, strategies as st
-from tests.property_support import EXTREME, SETTINGS, angle, angle_limits, call, mostly, positive, real
+from tests.property_support import EXTREME, SETTINGS, angle_limits, call, mostly, positive, real
+from tests.property_support import length, force, lead_angle, contact_angle, count
 
 R_B, R_G, R_P, BETA = 2.9765e-3, 3.215e-3, 16e-3, math.radians(40.26)  # sun2021 Table 1
 STEEL = {"youngs_modulus": 200e9, "poisson_ratio": 0.3}
@@ -86,23 +87,6 @@ def test_groove_contact_names_the_grid_margin():
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
-
-
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
-
-
-force = mostly(real(0.0, 1e4), *EXTREME)
-
-
-lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
-
-
-contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
-
-
-count = mostly(st.integers(1, 40), -1, 0, True, False, 2.0, 3.5)
 
 
 @SETTINGS

@@ -14,7 +14,8 @@ import pytest
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry import fourpoint, groove, helix
 from hypothesis import given, strategies as st
-from tests.property_support import EXTREME, SLOW, angle, angle_limits, call, mostly, positive, real
+from tests.property_support import SLOW, call, mostly, real
+from tests.property_support import length, lead_angle, contact_angle, ball_fraction, count
 
 R_B, CONF, R_P, LEAD, BETA = 2.778e-3, 0.56, 16.5e-3, 20e-3, math.radians(45)  # lin2019 Table 4
 
@@ -328,24 +329,7 @@ def test_groove_newton_solves_say_when_they_do_not_converge():
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
 
 
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
-
-
-lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
-
-
-contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
-
-
 conformity = mostly(real(0.505, 0.7), 0.5, math.nextafter(0.5, 1.0), 0.5005, math.nextafter(1.0, 0.0), 1.0, 0.0)
-
-
-count = mostly(st.integers(1, 40), -1, 0, True, False, 2.0, 3.5)
-
-
-ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
 
 
 @SLOW

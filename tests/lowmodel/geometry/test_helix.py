@@ -5,7 +5,8 @@ import pytest
 from ballbench.lowmodel.geometry import helix
 import math
 from hypothesis import given, strategies as st
-from tests.property_support import EXTREME, SETTINGS, angle, angle_limits, call, mostly, positive, real
+from tests.property_support import EXTREME, SETTINGS, call, mostly, real
+from tests.property_support import length, speed, lead_angle, contact_angle, ball_fraction
 
 R_M = 20.7e-3  # m, wang2022 Table A1 (d_m / 2)
 LEAD = 20e-3  # m
@@ -218,23 +219,6 @@ def test_rotation_z_and_frame_products_check_their_inputs():
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
-
-
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
-
-
-speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
-
-
-lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
-
-
-contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
-
-
-ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
 
 
 @SETTINGS

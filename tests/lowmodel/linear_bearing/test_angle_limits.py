@@ -1,4 +1,5 @@
-"""Contact angles within 1e-3 rad of 0 or 90 deg (issue 10): finite results, or a ValueError naming the parameter.
+"""Contact angles within 1e-3 rad of 0 or 90 deg (docs/b2b_bearing.md): finite results, or a ValueError naming the
+parameter.
 
 lin2017 eqs 23, 36 and lin2019 eqs 30, 32 divide by sines and cosines of the contact angles.  The null vector
 of lin2017 eq 19 (the denominators of eq 23) is written as products of half-angle sines (no cancellation when a

@@ -1,4 +1,4 @@
-"""The calibrated contact law ``delta = C F^(2/3) + C_b F`` in the ball-screw models (issue 13)."""
+"""The calibrated contact law ``delta = C F^(2/3) + C_b F`` in the ball-screw models (docs/calibration.md)."""
 from __future__ import annotations
 
 import math

@@ -6,7 +6,8 @@ from ballbench.lowmodel.screw import friction_torque as ft
 from hypothesis import given
 from hypothesis import strategies as st
 
-from tests.property_support import EXTREME, SETTINGS, angle, angle_limits, call, mostly, positive, real
+from tests.property_support import SETTINGS, call, mostly, real
+from tests.property_support import length, speed, force, lead_angle, contact_angle, ball_fraction, count
 
 # --- edge inputs: each case failed before its fix (a NaN or inf, a warning, an error naming no parameter,
 # nonsense accepted); every warning is an error -----------------------------------------------------------------------
@@ -32,29 +33,6 @@ def test_friction_torque_at_extreme_sliding_speeds():
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
-
-
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
-
-
-speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
-
-
-force = mostly(real(0.0, 1e4), *EXTREME)
-
-
-lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
-
-
-contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
-
-
-count = mostly(st.integers(1, 40), -1, 0, True, False, 2.0, 3.5)
-
-
-ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
 
 
 @SETTINGS

@@ -11,8 +11,7 @@ import math
 from ballbench.lowmodel.screw import kinematics as kin
 from hypothesis import given
 from tests.property_support import SETTINGS, angle, call, positive, real
-from hypothesis import strategies as st
-from tests.property_support import EXTREME, angle_limits, mostly
+from tests.property_support import length, speed, lead_angle, contact_angle, ball_fraction
 
 RPM = 2 * np.pi / 60
 # wang2022 Table A1 (d_m and d_b are diameters; r_m, r_b radii)
@@ -415,23 +414,6 @@ def test_screw_kinematics(pitch, ball, lead, speed, alpha, alpha_i):
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
-
-
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
-
-
-speed = mostly(real(-1e3, 1e3), *EXTREME, -1e300)
-
-
-lead_angle = mostly(real(0.0, 1.4), *angle_limits)   # [0, pi/2)
-
-
-contact_angle = st.one_of(mostly(real(0.2, 1.3), *angle_limits), angle)   # (0, pi/2); angle: property_support
-
-
-ball_fraction = mostly(real(0.05, 0.3), 0.5, 1.0, 2.0, 1e300, 1e-300)   # ball radius / pitch radius
 
 
 @SETTINGS

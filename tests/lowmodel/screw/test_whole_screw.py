@@ -12,6 +12,7 @@ from ballbench.lowmodel.screw import whole_screw
 from functools import lru_cache
 from hypothesis import given, strategies as st
 from tests.property_support import EXTREME, SETTINGS, SLOW, call, mostly, positive, real
+from tests.property_support import length
 
 
 @pytest.fixture(scope="module")
@@ -152,11 +153,6 @@ def test_axial_stiffness_names_max_load(table):
 
 # --- properties (hypothesis, tests/property_support.py): finite results or an error naming a parameter,
 # over the documented ranges and a little beyond ----------------------------------------------------------------------
-
-
-# lengths [m] (real screws: mm), speeds [rad/s or m/s], forces [N]: physical draws, the extreme floats,
-# zero and negatives among the rest
-length = mostly(positive(1e-4, 0.1), *EXTREME)
 
 
 @lru_cache(maxsize=1)

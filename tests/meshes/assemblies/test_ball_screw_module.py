@@ -95,7 +95,7 @@ def test_screw_module_balls_touch_each_other(screw_module_mesh):
 
 def test_screw_module_default_bodies_are_the_deep_validated_ones(screw_module_mesh):
     """By default the screw core and the nut's outside lie at R_P -+ 5.25 R_B, the depth of the validated FE module
-    (issue 12, docs/fe_b2b.md "Depth of the FE bodies": at the former 2 R_B the FE forces were up to 5.5 % above the
+    (docs/fe_b2b.md "Depth of the FE bodies": at the former 2 R_B the FE forces were up to 5.5 % above the
     frictionless Hertz statics).  The default h_max R_B/3 (0.93 mm) lies within 0.1 % of the 1 mm the scenes take."""
     for group, radius in (("screw_support", R_P - 5.25 * R_B), ("nut_load", R_P + 5.25 * R_B)):
         np.testing.assert_allclose(radii(screw_module_mesh, group), radius, rtol=1e-12)
