@@ -21,6 +21,16 @@ def test_import_and_results_stay_light(tmp_path):
     assert out.stdout.split() == []
 
 
+def test_version_is_read_on_first_use():
+    # importlib.metadata was most of the import time; the version is read when asked for, and is the installed one
+    from importlib.metadata import version
+
+    assert ballbench.__version__ == version("ballbench")
+    out = subprocess.run([sys.executable, "-c", "import sys, ballbench; print('importlib.metadata' in sys.modules)"],
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False"]
+
+
 def test_models_one_attribute_deep_take_si_and_refuse_mm():
     geometry = ballbench.hertz.ball_in_groove(3.175e-3, 0.52)
     assert ballbench.hertz.solve_load(geometry, 500.0).a > 0

@@ -19,13 +19,6 @@ pyvista, vtk or matplotlib)::
     results = ballbench.ladder(case, "quick", levels="BEM")   # the validation ladder: SceneResult per scene
     ballbench.hertz.ball_in_groove(3.175e-3, 0.52)  # the models, one attribute deep (SI floats)
 """
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("ballbench")
-except PackageNotFoundError:  # running from a source tree that was never installed
-    __version__ = "0+unknown"
-
 __all__ = ["load_case", "template", "friction", "contact", "ladder", "hertz", "halfspace", "b2b",
            "b2b_analytical", "screw", "__version__"]
 
@@ -39,7 +32,18 @@ _MODULES = {
 }
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("ballbench")
+    except PackageNotFoundError:  # running from a source tree that was never installed
+        return "0+unknown"
+
+
 def __getattr__(name):
+    if name == "__version__":  # read on first use: importlib.metadata is most of this package's import time
+        return _version()
     if name in _MODULES:
         import importlib
 
