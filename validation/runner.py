@@ -9,10 +9,38 @@ from typing import Callable, Iterable
 
 from ballbench.validation.scene import Run, Scene, SceneResult
 
+GB = 1e9  # bytes
+
+
+def reset_peak_memory() -> bool:
+    """Reset this process's peak resident memory (Linux: ``/proc/self/clear_refs``); False where it cannot."""
+    try:
+        with open("/proc/self/clear_refs", "w") as handle:
+            handle.write("5")
+    except OSError:
+        return False
+    return True
+
+
+def peak_memory_gb() -> float:
+    """This process's peak resident memory since the last :func:`reset_peak_memory` [GB] (Linux ``VmHWM``);
+    0.0 where the system does not say."""
+    try:
+        with open("/proc/self/status") as handle:
+            for line in handle:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024 / GB
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0.0
+
 
 def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = False,
               progress_lines: bool = False, should_stop: Callable[[], bool] | None = None) -> SceneResult:
     """Run one scene; an exception becomes a failed result carrying its message.
+
+    The result carries the process's peak resident memory while the scene ran (``peak_memory_gb``; the
+    interpreter and what earlier scenes left loaded included, so it bounds what the scene needs).
 
     The traceback of a failing scene goes to ``<out>/<scene>/error.txt`` (an
     artifact of the report), not to the terminal.  Ctrl-C inside the scene, or a stop request
@@ -21,6 +49,7 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
     """
     run = Run(scene, fidelity, out_dir, show_progress=show_progress, progress_lines=progress_lines,
               should_stop=should_stop)
+    measured = reset_peak_memory()
     start = time.perf_counter()
     error = ""
     interrupted = False
@@ -40,7 +69,7 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
     wall = time.perf_counter() - start
     if not error and not run.outputs:
         error = "scene recorded no checked output"
-    return run.result(wall, error, interrupted)
+    return run.result(wall, error, interrupted, peak_memory_gb() if measured else 0.0)
 
 
 def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_progress: bool = False,
@@ -112,6 +141,13 @@ def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path
     into ``out_dir/<scene>/``, which must be reachable by the workers): the results equal a serial run's,
     timings aside.  The most expensive scenes are submitted first.  A stop request (first Ctrl-C) cancels the
     scenes not yet finished; their results are left out and ``stopped`` is True.
+
+    Memory: each scene reserves the resident memory it declares (:meth:`Scene.memory_for`) as the dask
+    resource ``memory`` [bytes], so that a worker never runs scenes whose declared memory together exceeds
+    its own.  The local cluster's workers each declare the machine's memory over ``workers``; the workers of
+    an external cluster declare theirs at start (``dask worker ADDRESS --nthreads 1 --resources
+    memory=24e9``), and where none does, the scenes run unreserved (said on stderr).  A scene that declares
+    more than the largest worker has reserves that worker whole (said on stderr).
     """
     import dask
     from dask.distributed import Client, LocalCluster, as_completed
@@ -125,14 +161,22 @@ def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path
             client = Client(scheduler)
         else:
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address="127.0.0.1:0", host="127.0.0.1")
+                                   dashboard_address="127.0.0.1:0", host="127.0.0.1",
+                                   resources={"memory": machine_memory_bytes() / workers})
             client = Client(cluster)
     results: dict[str, SceneResult] = {}
     stopped = False
     try:
+        capacity = worker_memory_bytes(client)
+        if capacity <= 0:
+            print("ballbench: the workers declare no memory resource, the scenes run unreserved (start each "
+                  "worker with --resources memory=BYTES)", file=sys.stderr, flush=True)
         order = sorted(scenes, key=lambda s: -s.cost_s)
-        futures = {client.submit(run_scene, scene, fidelity, out_dir, pure=False, key=f"scene-{scene.name}"): scene
-                   for scene in order}
+        futures = {}
+        for scene in order:
+            reserve = memory_reservation(scene, fidelity, capacity)
+            futures[client.submit(run_scene, scene, fidelity, out_dir, pure=False, key=f"scene-{scene.name}",
+                                  resources=reserve)] = scene
         running = as_completed(futures)
         for future in running:
             result = future.result()
@@ -148,3 +192,29 @@ def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path
         if cluster is not None:
             cluster.close()
     return [results[s.name] for s in scenes if s.name in results], stopped
+
+
+def machine_memory_bytes() -> float:
+    """The machine's physical memory [bytes] (psutil, which dask.distributed installs)."""
+    import psutil
+
+    return float(psutil.virtual_memory().total)
+
+
+def worker_memory_bytes(client) -> float:
+    """The largest ``memory`` resource a worker of ``client``'s cluster declares [bytes]; 0 if none does."""
+    workers = client.scheduler_info().get("workers", {})
+    return max((float(w.get("resources", {}).get("memory", 0.0)) for w in workers.values()), default=0.0)
+
+
+def memory_reservation(scene: Scene, fidelity: str, capacity: float) -> dict | None:
+    """The dask ``resources`` of ``scene``'s task: its declared memory [bytes], at most ``capacity`` (the
+    largest worker's, then the scene takes that worker whole); None when no worker declares memory."""
+    need = scene.memory_for(fidelity) * GB
+    if capacity <= 0:
+        return None
+    if need > capacity:
+        print(f"ballbench: {scene.name} declares {need / GB:.1f} GB, more than the largest worker's "
+              f"{capacity / GB:.1f} GB: it takes that worker whole", file=sys.stderr, flush=True)
+        need = capacity
+    return {"memory": need}

@@ -61,6 +61,10 @@ KINDS = ("analytical", "low-order", "FE")
 FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informed")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
+# the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): the FE
+# figure is the largest peak measured at the default fidelity, the others cover the interpreter, the friction
+# maps and the kernels
+DEFAULT_MEMORY_GB = {"analytical": 0.5, "low-order": 1.5, "FE": 12.0}
 
 
 @dataclass(frozen=True)
@@ -149,6 +153,7 @@ class SceneResult:
     kind: str = "low-order"
     interrupted: bool = False
     tables: tuple = ()  # ((title, header, rows), ...): results for the reader beside the checks (Run.table)
+    peak_memory_gb: float = 0.0  # the process's peak resident memory while the scene ran [GB]; 0 = not measured
 
     def outputs_with(self, status: str) -> list[Output]:
         return [o for o in self.outputs if o.status == status]
@@ -192,7 +197,9 @@ class Scene:
     in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity) -> list[Path]``,
     which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``);
     ``case``: the case the scene runs (:mod:`ballbench.validation.cases`), read by ``calibrate`` (FE load
-    sweeps of a scene's contact) and the report; None for a scene of many cases.
+    sweeps of a scene's contact) and the report; None for a scene of many cases; ``memory_gb``: the peak
+    resident memory the scene needs at the default fidelity [GB] (:meth:`memory_for`; the distributed runner
+    reserves it on a worker), None for its kind's :data:`DEFAULT_MEMORY_GB`.
     """
 
     name: str
@@ -206,6 +213,13 @@ class Scene:
     level: str = ""
     show: Callable[[Path, str], list[Path]] | None = None
     case: Any = None
+    memory_gb: float | None = None
+
+    def memory_for(self, fidelity: str) -> float:
+        """The resident memory the scene declares at ``fidelity`` [GB]: its ``memory_gb`` (else its kind's
+        :data:`DEFAULT_MEMORY_GB`), twice that at ``fine``; the distributed runner reserves it on a worker."""
+        declared = DEFAULT_MEMORY_GB[self.kind] if self.memory_gb is None else self.memory_gb
+        return declared * (2.0 if fidelity == "fine" else 1.0)
 
     def budget_for(self, fidelity: str) -> float:
         if self.budget_s is None:
@@ -219,7 +233,7 @@ REGISTRY: dict[str, Scene] = {}
 
 def scene(name: str, description: str, *, tags: Iterable[str] = (), default: bool = True, kind: str = "low-order",
           cost_s: float = 1.0, budget_s: dict | float | None = None, level: str = "",
-          show: Callable[[Path, str], list[Path]] | None = None, case: Any = None):
+          show: Callable[[Path, str], list[Path]] | None = None, case: Any = None, memory_gb: float | None = None):
     """Register the decorated function as the scene ``name`` (see :class:`Scene` for the keywords).
 
     ``default=False`` keeps the scene out of a bare ``ballbench validate``
@@ -233,12 +247,14 @@ def scene(name: str, description: str, *, tags: Iterable[str] = (), default: boo
         budget_s = {f: float(budget_s) for f in FIDELITIES}
     if budget_s is not None and set(budget_s) != set(FIDELITIES):
         raise ValueError(f"budget_s must give a time for each of {FIDELITIES}, got {budget_s!r}")
+    if memory_gb is not None and not (isinstance(memory_gb, (int, float)) and 0 < memory_gb < 1e4):
+        raise ValueError(f"memory_gb must be a resident memory in (0, 1e4) GB, got {memory_gb!r}")
 
     def register(function: Callable[["Run"], None]) -> Callable[["Run"], None]:
         if name in REGISTRY and REGISTRY[name].function is not function:
             raise ValueError(f"scene {name!r} is registered twice")
         REGISTRY[name] = Scene(name, description, function, tuple(tags), default, kind, float(cost_s), budget_s,
-                                level, show, case)
+                                level, show, case, None if memory_gb is None else float(memory_gb))
         return function
 
     return register
@@ -462,11 +478,12 @@ class Run:
     def outputs(self) -> tuple[Output, ...]:
         return tuple(self._outputs)
 
-    def result(self, wall_time_s: float, error: str = "", interrupted: bool = False) -> SceneResult:
+    def result(self, wall_time_s: float, error: str = "", interrupted: bool = False,
+               peak_memory_gb: float = 0.0) -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
                            wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
-                           tuple(self._tables))
+                           tuple(self._tables), peak_memory_gb)
 
 
 def registry() -> dict[str, Scene]:

@@ -12,7 +12,7 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
      "complete": bool, "not_run": [str],
      "counts": {"pass", "known gap", "fail", "error"},
      "scenes": [{"name", "description", "kind", "status", "passed", "error",
-                 "wall_time_s", "budget_s", "over_budget", "interrupted",
+                 "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
                  "artifacts": [str], "notes": [str],
                  "outputs": [{"model", "quantity", "unit", "value", "reference",
                               "source", "rel_error", "tolerance", "passed",
@@ -21,7 +21,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                               "known_gap_evidence", "family", "level"}],
                  "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
-``family`` is one of ``scene.FAMILIES`` or ``""`` (undeclared), ``level`` the
+``peak_memory_gb`` is the process's peak resident memory while the scene ran
+(0 where not measured).  ``family`` is one of ``scene.FAMILIES`` or ``""`` (undeclared), ``level`` the
 model's fidelity level in words (``""`` without levels).  JSON and CSV carry SI
 values; report.md and report.html show engineering units (mm, um, MPa, mN,
 ...) and errors in percent and as a multiple of the tolerance.

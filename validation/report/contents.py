@@ -125,11 +125,13 @@ def _summary(results, counted: Tally) -> Section:
         rows.append((Span(r.name, link=f"#{r.name}"), r.kind, ", ".join(families) or "-",
                      Span(status_word(s) + (" (interrupted)" if r.interrupted else ""), status=s),
                      str(len([o for o in r.outputs if o.kind == "accuracy"])), worst_ratio_text(r.outputs),
-                     fmt_time(r.wall_time_s), scene_budget_text(r)))
+                     fmt_time(r.wall_time_s), scene_budget_text(r),
+                     f"{r.peak_memory_gb:.1f} GB" if r.peak_memory_gb > 0 else "-"))
     return Section("Summary", "summary", (
         Paragraph(ERROR_NOTE, small=True),
-        Table(("scene", "kind", "model families", "status", "checks", "worst error / tol", "wall time", "budget"),
-              tuple(rows), numeric=(4, 5, 6))))
+        Table(("scene", "kind", "model families", "status", "checks", "worst error / tol", "wall time", "budget",
+               "peak memory"),
+              tuple(rows), numeric=(4, 5, 6, 8))))
 
 
 def _known_gaps(results, counted: Tally) -> Section:

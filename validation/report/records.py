@@ -77,6 +77,7 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "budget_s": json_number(r.budget_s),
                 "over_budget": r.over_budget,
                 "interrupted": r.interrupted,
+                "peak_memory_gb": r.peak_memory_gb,
                 "artifacts": list(r.artifacts),
                 "notes": list(r.notes),
                 "outputs": [{k: json_number(v) for k, v in o.as_dict().items()} for o in r.outputs],
@@ -103,7 +104,7 @@ def write_csv(results: Sequence[SceneResult], path: Path) -> None:
 def results_from_json(data: dict) -> list[SceneResult]:
     """Scene results back from ``results.json`` data (to re-render a report without running the scenes).
 
-    Keys an older version did not write (``family``, ``level``) take their defaults."""
+    Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``) take their defaults."""
     fields = set(Output.__dataclass_fields__) - {"known_gap"}
     results = []
     for s in data["scenes"]:
@@ -116,5 +117,6 @@ def results_from_json(data: dict) -> list[SceneResult]:
                                    tuple(s["artifacts"]), tuple(s["notes"]), s["wall_time_s"], s["error"],
                                    json_float(s["budget_s"]), s["kind"], s["interrupted"],
                                    tuple((t["title"], tuple(t["header"]), tuple(tuple(x) for x in t["rows"]))
-                                         for t in s.get("tables", ()))))
+                                         for t in s.get("tables", ())),
+                                   s.get("peak_memory_gb", 0.0)))
     return results
