@@ -17,6 +17,7 @@ dissipation in every cell), raising ConvergenceError naming the first that fails
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -116,6 +117,25 @@ class TangentialProblem:
         self._inverse = None
         self._pattern = None
         self._pairs = None
+        self._flexibility = None
+        self._bound_lines = None
+
+    def with_rigid(self, rigid_cells: np.ndarray) -> "TangentialProblem":
+        """The same contact (cells, bound, operator and what is derived from them) with another rigid slip ``w``
+        on the contact cells, (n, 2): a sweep over creepages reuses everything but ``w``."""
+        problem = copy.copy(self)
+        problem.w = rigid_cells
+        problem._inverse = problem._pattern = None  # the preconditioner's state belongs to one solve
+        return problem
+
+    def prepare(self) -> "TangentialProblem":
+        """Build now what every solve on this contact derives from the cells alone (the marching start's
+        flexibility, the dense preconditioner's index), so that :meth:`with_rigid` copies carry it."""
+        self.flexibility()
+        self._line_bound()
+        if self.matrix is not None and self.n > DIRECT_CELLS:
+            self._pair_index()
+        return self
 
     def _pair_index(self):
         if self._pairs is None:  # kept on the operator per contact set, as its dense blocks
@@ -147,24 +167,39 @@ class TangentialProblem:
         scale = np.where(sliding, self.g / np.where(sliding, norm, 1.0), 1.0)
         return p - z * scale[:, None], z, norm, sliding, scale
 
+    def flexibility(self) -> float:
+        """``L / dx`` of :meth:`marching_start`: the mean slip of a unit traction ramp along each line (one
+        product with ``C``; it depends on the contact cells only, so it is kept)."""
+        if self._flexibility is None:
+            nx, n_lines = self.shape[0], self.lines.size
+            ramp = np.zeros((n_lines, nx))
+            ramp[self.line_of, self.position] = 1.0
+            ramp = np.cumsum(ramp[:, ::-1], axis=1)[:, ::-1] * (ramp > 0)  # contact cells upstream, incl. itself
+            test = np.repeat(ramp[self.line_of, self.position][:, None], 2, axis=1)
+            response = self.apply(test)
+            self._flexibility = float(np.median(response[test[:, 0] > 1.5]) if np.any(test[:, 0] > 1.5) else
+                                      np.median(response))
+        return self._flexibility
+
+    def _line_bound(self) -> np.ndarray:
+        if self._bound_lines is None:  # g on (lines, nx), zero off the contact
+            g = np.zeros((self.lines.size, self.shape[0]))
+            g[self.line_of, self.position] = self.g
+            g.setflags(write=False)
+            self._bound_lines = g
+        return self._bound_lines
+
     def marching_start(self) -> np.ndarray:
         """A start for Newton: the local (FASTSIM-like) solution ``s = w + L (p_i - p_upstream) / dx = 0`` marched
         from the leading edge with the traction bound, ``L`` the flexibility that makes a unit traction ramp
-        along each line give the operator's mean slip (one product with ``C``)."""
+        along each line give the operator's mean slip (:meth:`flexibility`)."""
         nx, n_lines = self.shape[0], self.lines.size
-        ramp = np.zeros((n_lines, nx))
-        ramp[self.line_of, self.position] = 1.0
-        ramp = np.cumsum(ramp[:, ::-1], axis=1)[:, ::-1] * (ramp > 0)  # contact cells upstream, incl. itself
-        test = np.repeat(ramp[self.line_of, self.position][:, None], 2, axis=1)
-        response = self.apply(test)
-        flexibility = float(np.median(response[test[:, 0] > 1.5]) if np.any(test[:, 0] > 1.5) else
-                            np.median(response))  # L / dx
+        flexibility = self.flexibility()  # L / dx
         if not (math.isfinite(flexibility) and flexibility > 0.0):
             return np.zeros((self.n, 2))
         w = np.zeros((n_lines, nx, 2))
         w[self.line_of, self.position] = self.w / flexibility
-        g = np.zeros((n_lines, nx))
-        g[self.line_of, self.position] = self.g
+        g = self._line_bound()
         p = np.zeros((n_lines, nx, 2))
         upstream = np.zeros((n_lines, 2))
         for i in range(nx - 1, -1, -1):
