@@ -25,10 +25,11 @@ import numpy as np
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "DENSE_CELLS", "DIRECT_CELLS",
-           "CHECK_TOLERANCE"]
+           "WOODBURY_SLIP", "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
+WOODBURY_SLIP = 0.75  # prepared dense problems: Newton steps by Woodbury's identity up to this share of slip cells
 CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g) (traction units)
 _FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
 _RESTART = 30
@@ -119,6 +120,7 @@ class TangentialProblem:
         self._pairs = None
         self._flexibility = None
         self._bound_lines = None
+        self._stick_inverse = None
 
     def with_rigid(self, rigid_cells: np.ndarray) -> "TangentialProblem":
         """The same contact (cells, bound, operator and what is derived from them) with another rigid slip ``w``
@@ -135,7 +137,17 @@ class TangentialProblem:
         self._line_bound()
         if self.matrix is not None and self.n > DIRECT_CELLS:
             self._pair_index()
+        if self.matrix is not None and self.n <= DIRECT_CELLS:
+            inverse = np.linalg.inv(self.c * self.matrix)  # (c C)^-1: J of an all-stick contact, inverted once
+            if np.all(np.isfinite(inverse)):
+                inverse.setflags(write=False)
+                self._stick_inverse = inverse
         return self
+
+    def stick_inverse(self) -> np.ndarray | None:
+        """``(c C)^-1`` on the contact cells, (2n, 2n), when :meth:`prepare` built it (dense problems up to
+        :data:`DIRECT_CELLS` cells), else None; with it the Newton steps use Woodbury's identity."""
+        return self._stick_inverse
 
     def _pair_index(self):
         if self._pairs is None:  # kept on the operator per contact set, as its dense blocks
@@ -288,6 +300,35 @@ def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.
     return D
 
 
+def _woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np.ndarray) -> np.ndarray:
+    """The Newton step ``J dp = -F`` from ``A^-1 = (c C)^-1`` (the Jacobian of an all-stick contact) by the
+    Sherman-Morrison-Woodbury identity (Golub & Van Loan 2013, Sec 2.1.4).
+
+    ``J = E + c D C`` differs from ``A`` only in the rows of the ``m`` slip cells ``S``, where ``D - I = -E``:
+    ``J = A + U W`` with ``U`` the unit columns of ``S`` and ``W = E_S (I_S - A_S)``, so ``W A^-1 = E_S
+    (A^-1_S - I_S)`` and ``J^-1 b = x0 - A^-1 U (I + E_S (A^-1_SS - I))^-1 E_S (x0_S - b_S)``, ``x0 = A^-1 b``:
+    one LU of ``2m`` unknowns instead of ``2n``.
+    """
+    b = -F.reshape(-1)
+    x0 = inverse @ b
+    slip = np.flatnonzero(sliding)
+    if slip.size == 0:
+        return x0.reshape(-1, 2)
+    rows = (2 * slip[:, None] + np.arange(2)).reshape(-1)
+    k = rows.size
+    E = E[slip]
+    X = inverse[np.ix_(rows, rows)]
+    X[np.arange(k), np.arange(k)] -= 1.0
+    X = X.reshape(slip.size, 2, k)
+    capacitance = E[:, :, 0, None] * X[:, None, 0, :]
+    capacitance += E[:, :, 1, None] * X[:, None, 1, :]
+    capacitance = capacitance.reshape(k, k)
+    capacitance[np.arange(k), np.arange(k)] += 1.0
+    d = (x0[rows] - b[rows]).reshape(-1, 2)
+    y = np.linalg.solve(capacitance, np.einsum("kab,kb->ka", E, d).reshape(-1))
+    return (x0 - inverse[:, rows] @ y).reshape(-1, 2)
+
+
 def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start: np.ndarray | None):
     p = problem.marching_start() if start is None else start.copy()
     F, z, norm, sliding, scale = problem.residual(p)
@@ -303,7 +344,11 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
         E[:, 1, 1] += 1.0
         cD = c * D
 
-        if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
+        inverse = problem.stick_inverse()
+        woodbury = inverse is not None and np.count_nonzero(sliding) <= WOODBURY_SLIP * problem.n
+        if woodbury:
+            pass
+        elif problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
             n = problem.n
             rows = problem.matrix.reshape(n, 2, 2 * n)
             jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
@@ -320,7 +365,9 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
                 out += cD[:, :, 1] * Cv[:, 1, None]
                 return out.reshape(-1)
 
-        if problem.matrix is not None and problem.n <= DIRECT_CELLS:
+        if woodbury:
+            step = _woodbury_step(inverse, F, E, sliding)
+        elif problem.matrix is not None and problem.n <= DIRECT_CELLS:
             step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
         else:
             precondition = problem.preconditioner(D, sliding)
