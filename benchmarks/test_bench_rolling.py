@@ -101,9 +101,10 @@ def test_bench_exact_half_space(benchmark, previous, n, target_ms):
             paths["before"] = lambda cells=cells: _solve_all(cells, previous)
         for run in paths.values():
             results = run()  # the operators (kernels, spectra, dense blocks) are built once per grid
-        if previous is not None:  # the same numbers as the code before, to the last bit
+        if previous is not None:  # the same answers as the code before (Woodbury's steps: round-off apart)
             for old, new in zip(_solve_all(cells, previous), _solve_all(cells)):
-                assert np.array_equal(old.traction, new.traction) and old.iterations == new.iterations
+                assert np.max(np.abs(old.traction - new.traction)) <= 1e-12 * MU * np.max(old.pressure)
+                assert old.iterations == new.iterations and np.array_equal(old.stick, new.stick)
         wall = time.perf_counter()
         cpu = _cpu_per_solve(paths, 21 if n <= 11 else 3)
         wall = (time.perf_counter() - wall) / ((21 if n <= 11 else 3) * len(paths) * len(CASES)) * 1e3
