@@ -25,11 +25,10 @@ import numpy as np
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "DENSE_CELLS", "DIRECT_CELLS",
-           "WOODBURY_SLIP", "CHECK_TOLERANCE"]
+           "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
-WOODBURY_SLIP = 0.75  # prepared dense problems: Newton steps by Woodbury's identity up to this share of slip cells
 CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g) (traction units)
 _FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
 _RESTART = 30
@@ -300,6 +299,52 @@ def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.
     return D
 
 
+def _low_rank_step(matrix, c, inverse, F, E, z, norm, sliding, scale) -> np.ndarray:
+    """The Newton step ``J dp = -F`` of a prepared dense problem through the smaller of two low-rank forms of
+    ``J`` (Sherman-Morrison-Woodbury, Golub & Van Loan 2013, Sec 2.1.4): around ``c C`` (rank ``2 m``, ``m``
+    slip cells; :func:`_woodbury_step`) or around ``I`` (rank ``2 (n - m) + m``; :func:`_identity_step`)."""
+    slipping = int(np.count_nonzero(sliding))
+    if 2 * slipping <= 2 * (F.shape[0] - slipping) + slipping:
+        return _woodbury_step(inverse, F, E, sliding)
+    return _identity_step(matrix, c, F, z, norm, sliding, scale)
+
+
+def _identity_step(matrix, c, F, z, norm, sliding, scale) -> np.ndarray:
+    """The Newton step ``J dp = -F`` with ``J = I + U W`` (Woodbury around the identity).
+
+    A stick cell's rows of ``J - I`` are those of ``c C - I``; a slip cell's are ``D (c C - I)`` with ``D = s t t^T``
+    (``t`` normal to ``z``, ``s = g/|z|``; ``E - I = -D``), rank one.  So ``U`` has the unit columns of the stick
+    components and ``t`` for each slip cell, ``W`` the matching rows, and ``J^-1 b = b - U (I + W U)^-1 W b``:
+    one LU of two unknowns per stick cell and one per slip cell.
+    """
+    n = F.shape[0]
+    b = -F.reshape(-1)
+    stick, slip = np.flatnonzero(~sliding), np.flatnonzero(sliding)
+    t0, t1 = -z[slip, 1] / norm[slip], z[slip, 0] / norm[slip]
+    s = scale[slip]
+    rows = (2 * stick[:, None] + np.arange(2)).reshape(-1)
+    k = rows.size
+    m = k + slip.size
+    W = np.empty((m, 2 * n))
+    np.multiply(c, matrix[rows], out=W[:k])
+    W[np.arange(k), rows] -= 1.0
+    pair = matrix.reshape(n, 2, 2 * n)[slip]
+    np.multiply((c * s * t0)[:, None], pair[:, 0], out=W[k:])
+    W[k:] += (c * s * t1)[:, None] * pair[:, 1]
+    W[np.arange(k, m), 2 * slip] -= s * t0
+    W[np.arange(k, m), 2 * slip + 1] -= s * t1
+    capacitance = np.empty((m, m))
+    capacitance[:, :k] = W[:, rows]
+    np.multiply(W[:, 2 * slip], t0, out=capacitance[:, k:])
+    capacitance[:, k:] += W[:, 2 * slip + 1] * t1
+    capacitance[np.arange(m), np.arange(m)] += 1.0
+    y = np.linalg.solve(capacitance, W @ b)
+    b[rows] -= y[:k]
+    b[2 * slip] -= t0 * y[k:]
+    b[2 * slip + 1] -= t1 * y[k:]
+    return b.reshape(-1, 2)
+
+
 def _woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np.ndarray) -> np.ndarray:
     """The Newton step ``J dp = -F`` from ``A^-1 = (c C)^-1`` (the Jacobian of an all-stick contact) by the
     Sherman-Morrison-Woodbury identity (Golub & Van Loan 2013, Sec 2.1.4).
@@ -345,7 +390,7 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
         cD = c * D
 
         inverse = problem.stick_inverse()
-        woodbury = inverse is not None and np.count_nonzero(sliding) <= WOODBURY_SLIP * problem.n
+        woodbury = inverse is not None  # prepared dense problems: a low-rank form of J (_low_rank_step)
         if woodbury:
             pass
         elif problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
@@ -366,7 +411,7 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
                 return out.reshape(-1)
 
         if woodbury:
-            step = _woodbury_step(inverse, F, E, sliding)
+            step = _low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale)
         elif problem.matrix is not None and problem.n <= DIRECT_CELLS:
             step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
         else:

@@ -29,14 +29,18 @@ def _unprepared(cells, xi, eta, phi):
 
 @pytest.mark.parametrize("cells", [(7, 7), (11, 11), (14, 16)])  # dense LU and Woodbury; 14 x 16: GMRES
 def test_prepared_solves_equal_the_unprepared_solver(cells, monkeypatch):
-    woodbury = []
-    original = rolling_newton._woodbury_step
+    low_rank = {"_woodbury_step": 0, "_identity_step": 0}  # the two low-rank forms of the Newton step
 
-    def counted(*args):
-        woodbury.append(1)
-        return original(*args)
+    def counted(name):
+        original = getattr(rolling_newton, name)
 
-    monkeypatch.setattr(rolling_newton, "_woodbury_step", counted)
+        def step(*args):
+            low_rank[name] += 1
+            return original(*args)
+        return step
+
+    for name in low_rank:
+        monkeypatch.setattr(rolling_newton, name, counted(name))
     prepared = rolling.prepare_rolling(A, B, FORCE, G, NU, MU, cells)
     for xi, eta, phi in CASES:
         reference = _unprepared(cells, xi, eta, phi)
@@ -53,7 +57,8 @@ def test_prepared_solves_equal_the_unprepared_solver(cells, monkeypatch):
         # steady_rolling goes through the same prepared contact: to the last bit
         again = rolling.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells)
         assert np.array_equal(again.traction, result.traction)
-    assert bool(woodbury) == (int(result.contact.sum()) <= rolling.DIRECT_CELLS)  # dense LU grids: Woodbury's steps
+    dense = int(result.contact.sum()) <= rolling.DIRECT_CELLS  # the dense LU grids take both low-rank forms
+    assert all(bool(count) == dense for count in low_rank.values()), low_rank
 
 
 def test_prepared_contact_is_frozen_and_carries_the_speed():
