@@ -5,8 +5,9 @@ On the contact cells of a grid with traction bound ``g = mu p_n``, rigid slip ``
 (``Proj_g`` projects each cell's traction onto the disc ``|p| <= g``; ``c = 1/max diag C``, so ``c s`` is a
 traction).  Generalised Jacobian ``J = (I - D) + c D C`` with ``D = Proj_g'`` (identity in stick cells,
 ``(g/|z|)(I - z z^T/|z|^2)`` in slip cells).  Each Newton system is solved by dense LU up to
-:data:`DIRECT_CELLS` contact cells, above by GMRES (right preconditioned, Saad 2003 Alg 9.5) with the exact
-inverse of ``J`` restricted to each grid line along the rolling direction (the steady-state operator's
+:data:`DIRECT_CELLS` contact cells (a prepared problem, :meth:`TangentialProblem.prepare`: through the smaller of
+two low-rank forms of ``J``, :func:`low_rank_step`), above by GMRES (right preconditioned, Saad 2003 Alg 9.5)
+with the exact inverse of ``J`` restricted to each grid line along the rolling direction (the steady-state operator's
 coupling is mostly along ``x``: the lateral neighbours carry 8-17 % of the diagonal); products with ``C`` are
 dense below :data:`DENSE_CELLS` contact cells and FFT convolutions above.  Newton starts from the local
 (FASTSIM-like) solution marched from the leading edge (:meth:`TangentialProblem.marching_start`).
@@ -24,8 +25,8 @@ import numpy as np
 
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "DENSE_CELLS", "DIRECT_CELLS",
-           "CHECK_TOLERANCE"]
+__all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "low_rank_step", "woodbury_step",
+           "identity_step", "DENSE_CELLS", "DIRECT_CELLS", "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
@@ -299,17 +300,17 @@ def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.
     return D
 
 
-def _low_rank_step(matrix, c, inverse, F, E, z, norm, sliding, scale) -> np.ndarray:
+def low_rank_step(matrix, c, inverse, F, E, z, norm, sliding, scale) -> np.ndarray:
     """The Newton step ``J dp = -F`` of a prepared dense problem through the smaller of two low-rank forms of
     ``J`` (Sherman-Morrison-Woodbury, Golub & Van Loan 2013, Sec 2.1.4): around ``c C`` (rank ``2 m``, ``m``
-    slip cells; :func:`_woodbury_step`) or around ``I`` (rank ``2 (n - m) + m``; :func:`_identity_step`)."""
+    slip cells; :func:`woodbury_step`) or around ``I`` (rank ``2 (n - m) + m``; :func:`identity_step`)."""
     slipping = int(np.count_nonzero(sliding))
     if 2 * slipping <= 2 * (F.shape[0] - slipping) + slipping:
-        return _woodbury_step(inverse, F, E, sliding)
-    return _identity_step(matrix, c, F, z, norm, sliding, scale)
+        return woodbury_step(inverse, F, E, sliding)
+    return identity_step(matrix, c, F, z, norm, sliding, scale)
 
 
-def _identity_step(matrix, c, F, z, norm, sliding, scale) -> np.ndarray:
+def identity_step(matrix, c, F, z, norm, sliding, scale) -> np.ndarray:
     """The Newton step ``J dp = -F`` with ``J = I + U W`` (Woodbury around the identity).
 
     A stick cell's rows of ``J - I`` are those of ``c C - I``; a slip cell's are ``D (c C - I)`` with ``D = s t t^T``
@@ -345,7 +346,7 @@ def _identity_step(matrix, c, F, z, norm, sliding, scale) -> np.ndarray:
     return b.reshape(-1, 2)
 
 
-def _woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np.ndarray) -> np.ndarray:
+def woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np.ndarray) -> np.ndarray:
     """The Newton step ``J dp = -F`` from ``A^-1 = (c C)^-1`` (the Jacobian of an all-stick contact) by the
     Sherman-Morrison-Woodbury identity (Golub & Van Loan 2013, Sec 2.1.4).
 
@@ -390,7 +391,7 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
         cD = c * D
 
         inverse = problem.stick_inverse()
-        woodbury = inverse is not None  # prepared dense problems: a low-rank form of J (_low_rank_step)
+        woodbury = inverse is not None  # prepared dense problems: a low-rank form of J (low_rank_step)
         if woodbury:
             pass
         elif problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
@@ -411,7 +412,7 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
                 return out.reshape(-1)
 
         if woodbury:
-            step = _low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale)
+            step = low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale)
         elif problem.matrix is not None and problem.n <= DIRECT_CELLS:
             step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
         else:

@@ -29,7 +29,7 @@ def _unprepared(cells, xi, eta, phi):
 
 @pytest.mark.parametrize("cells", [(7, 7), (11, 11), (14, 16)])  # dense LU and Woodbury; 14 x 16: GMRES
 def test_prepared_solves_equal_the_unprepared_solver(cells, monkeypatch):
-    low_rank = {"_woodbury_step": 0, "_identity_step": 0}  # the two low-rank forms of the Newton step
+    low_rank = {"woodbury_step": 0, "identity_step": 0}  # the two low-rank forms of the Newton step
 
     def counted(name):
         original = getattr(rolling_newton, name)
