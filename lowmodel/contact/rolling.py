@@ -252,13 +252,19 @@ def shift(pressure, grid: SurfaceGrid, shear_modulus: float, poisson_ratio: floa
                  max_iterations=max_iterations)
 
 
-_PLAIN = (float, int, np.float64)  # scalar types checked in a few nanoseconds; others go through lowmodel.checks
+def _plain(value) -> float | None:
+    # a float, numpy float or modest int as a finite Python float in a few hundred nanoseconds, else None
+    kind = type(value)
+    if (kind is float or kind is np.float64) and math.isfinite(value):
+        return float(value)
+    if kind is int and -(1 << 1000) < value < (1 << 1000):
+        return float(value)
+    return None
 
 
 def _finite_scalar(name: str, value, unit: str = "") -> float:
-    if type(value) in _PLAIN and math.isfinite(value):
-        return float(value)
-    return checks.scalar(name, value, unit)  # converts, or raises naming the parameter
+    plain = _plain(value)
+    return checks.scalar(name, value, unit) if plain is None else plain  # converts, or raises naming the parameter
 
 
 @dataclass(frozen=True, eq=False)
@@ -266,9 +272,11 @@ class PreparedRolling:
     """A Hertz contact on its grid, ready for many steady-rolling solves (:func:`prepare_rolling`).
 
     Everything that depends on the contact alone is built and checked once: the grid, the Hertz pressure,
-    the half-space operator, the contact cells and their dense ``C`` block, the marching start's flexibility.
-    A solve (:meth:`solve`) builds the rigid slip of its creepages and spin, runs the semismooth Newton and
-    checks the defining conditions, as :func:`steady_rolling`, with equal results.
+    the half-space operator, the contact cells and their dense ``C`` block, the marching start's flexibility and,
+    up to :data:`DIRECT_CELLS` contact cells, ``(c C)^-1`` for the low-rank Newton steps
+    (:func:`lowmodel.contact.rolling_newton.low_rank_step`).  A solve (:meth:`solve`) builds the rigid slip of its
+    creepages and spin, runs the semismooth Newton and checks the defining conditions as :func:`solve` does; its
+    answer equals :func:`solve`'s on the same input to round-off (docs/rolling_contact.md, 'Solver').
 
     grid, pressure : as :class:`RollingContact`; operator : the :func:`half_space_operator` on ``grid``
     friction_coefficient, tolerance, max_iterations : as :func:`steady_rolling`
@@ -296,8 +304,9 @@ class PreparedRolling:
         xi = _finite_scalar("creepage_rolling", creepage_rolling)
         eta = _finite_scalar("creepage_lateral", creepage_lateral)
         phi = _finite_scalar("spin", spin, "rad/m")
-        speed = rolling_speed if type(rolling_speed) in _PLAIN and 0.0 < rolling_speed < math.inf else \
-            checks.positive("rolling_speed", rolling_speed, "m/s")
+        speed = _plain(rolling_speed)
+        if speed is None or not speed > 0.0:
+            speed = checks.positive("rolling_speed", rolling_speed, "m/s")
         grid = self.grid
         w = np.empty((grid.nx, grid.ny, 2))  # rigid_slip's field, centre (0, 0)
         w[..., 0] = xi - phi * self._y[None, :]
@@ -325,7 +334,8 @@ def prepare_rolling(semi_axis_rolling: float, semi_axis_lateral: float, normal_f
     mu = checks.positive("friction_coefficient", friction_coefficient)
     checks.positive("tolerance", tolerance)
     max_iterations = checks.count("max_iterations", max_iterations, 1)
-    problem = TangentialProblem(operator, mu * pressure, np.zeros((grid.nx, grid.ny, 2)), None).prepare()
+    with one_blas_thread():  # prepare() inverts c C on dense grids
+        problem = TangentialProblem(operator, mu * pressure, np.zeros((grid.nx, grid.ny, 2)), None).prepare()
     return PreparedRolling(grid, pressure, operator, mu, float(tolerance), max_iterations,
                            float(pressure.sum()) * grid.cell_area, problem, grid.x, grid.y)
 
