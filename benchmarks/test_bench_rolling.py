@@ -11,10 +11,20 @@ empty ring: the harder problem) and CONTACT's (the contact across n - 4 cells, `
 Wall and CPU (process) times are printed with the load average and the cost of one small numpy call in
 this run (about 0.5 us on an idle machine): the machine is shared, and a solve of 11 x 11 cells is some
 thousand such calls.  Run: ``.venv/bin/python -m pytest benchmarks/test_bench_rolling.py -s``.
+
+The previous path is timed beside the current one in the same run: the rolling modules of commit
+:data:`BEFORE` (before ``prepare_rolling``; every call rebuilt the grid, pressure, checks and contact data) are
+read with ``git show`` into a temporary package and called with the same inputs (skipped without git).  Three
+figures per grid: that code, today's ``steady_rolling`` (which keeps its prepared contacts) and
+``prepare_rolling(...).solve`` (the sweep's path); median CPU time of alternating blocks of solves.
 """
 from __future__ import annotations
 
+import importlib
 import os
+import pathlib
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -34,29 +44,83 @@ def _call_overhead_us() -> float:
     return (time.perf_counter() - start) / 2000 * 1e6
 
 
-def _solve_all(cells):
-    return [rolling.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells) for xi, eta, phi in CASES]
+BEFORE = "2ef4ec3764e10dce631759b403a4b8da6e6dc6be"  # the rolling modules before prepare_rolling
+_MODULES = ("rolling", "rolling_input", "rolling_operators", "rolling_newton")
+
+
+def _previous_rolling(tmp_path_factory):
+    """``lowmodel.contact.rolling`` as of :data:`BEFORE`, imported from a temporary package (None without git)."""
+    root = pathlib.Path(__file__).resolve().parents[1]
+    package = tmp_path_factory.mktemp("before") / "ballbench_rolling_before"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    for name in _MODULES:
+        try:
+            text = subprocess.run(["git", "-C", str(root), "show", f"{BEFORE}:lowmodel/contact/{name}.py"],
+                                  check=True, capture_output=True, text=True).stdout
+        except (OSError, subprocess.CalledProcessError):
+            return None
+        text = text.replace("from ballbench.lowmodel.contact import rolling_newton",
+                            "from ballbench_rolling_before import rolling_newton")
+        (package / f"{name}.py").write_text(text.replace("ballbench.lowmodel.contact.rolling",
+                                                         "ballbench_rolling_before.rolling"))
+    sys.path.insert(0, str(package.parent))
+    try:
+        return importlib.import_module("ballbench_rolling_before.rolling")
+    finally:
+        sys.path.remove(str(package.parent))
+
+
+@pytest.fixture(scope="module")
+def previous(tmp_path_factory):
+    return _previous_rolling(tmp_path_factory)
+
+
+def _solve_all(cells, module=rolling):
+    return [module.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells) for xi, eta, phi in CASES]
+
+
+def _cpu_per_solve(paths, rounds):
+    """CPU [ms] per solve of each path (name -> callable solving CASES), alternating blocks: ``{name: (median,
+    min)}`` over the blocks (the minimum is the figure least disturbed by the other jobs on the machine)."""
+    times = {name: [] for name in paths}
+    for _ in range(rounds):
+        for name, run in paths.items():
+            cpu = time.process_time()
+            run()
+            times[name].append((time.process_time() - cpu) / len(CASES) * 1e3)
+    return {name: (float(np.median(values)), float(np.min(values))) for name, values in times.items()}
 
 
 @pytest.mark.parametrize("n, target_ms", [(11, 2.0), (35, 100.0)])
-def test_bench_exact_half_space(benchmark, n, target_ms):
+def test_bench_exact_half_space(benchmark, previous, n, target_ms):
     for cells, label in (((n, n), f"{n} x {n} across the contact"), ((n - 4, n - 4), f"CONTACT's {n} x {n}")):
-        _solve_all(cells)  # the operator (kernels, spectra, dense blocks) is built once per grid
-        wall, cpu = time.perf_counter(), time.process_time()
-        rounds = 20 if n <= 11 else 3
-        for _ in range(rounds):
-            results = _solve_all(cells)
-        wall = (time.perf_counter() - wall) / (rounds * len(CASES)) * 1e3
-        cpu = (time.process_time() - cpu) / (rounds * len(CASES)) * 1e3
+        prepared = rolling.prepare_rolling(A, B, FORCE, G, NU, MU, cells)
+        paths = {"steady_rolling": lambda cells=cells: _solve_all(cells),
+                 "prepared": lambda prepared=prepared: [prepared.solve(*case) for case in CASES]}
+        if previous is not None:
+            paths["before"] = lambda cells=cells: _solve_all(cells, previous)
+        for run in paths.values():
+            results = run()  # the operators (kernels, spectra, dense blocks) are built once per grid
+        if previous is not None:  # the same answers as the code before (Woodbury's steps: round-off apart)
+            for old, new in zip(_solve_all(cells, previous), _solve_all(cells)):
+                assert np.max(np.abs(old.traction - new.traction)) <= 1e-12 * MU * np.max(old.pressure)
+                assert old.iterations == new.iterations and np.array_equal(old.stick, new.stick)
+        wall = time.perf_counter()
+        cpu = _cpu_per_solve(paths, 21 if n <= 11 else 3)
+        wall = (time.perf_counter() - wall) / ((21 if n <= 11 else 3) * len(paths) * len(CASES)) * 1e3
         contact = int(results[0].contact.sum())
         newton = sum(r.iterations for r in results) / len(results)
         krylov = sum(r.krylov_iterations for r in results) / len(results)
-        print(f"\nexact half-space rolling, {label} ({contact} contact cells): wall {wall:.2f} ms, CPU {cpu:.2f} ms "
-              f"per solve (target <= {target_ms} ms), Newton {newton:.1f}, GMRES {krylov:.1f} per solve; "
-              f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, numpy call "
-              f"{_call_overhead_us():.2f} us")
+        shown = {name: f"{median:.2f} ({low:.2f})" for name, (median, low) in cpu.items()}
+        before = f"{shown['before']} ms before ({BEFORE[:7]}), " if previous is not None else "(before: no git), "
+        print(f"\nexact half-space rolling, {label} ({contact} contact cells): CPU per solve, median (min) of "
+              f"the blocks: {before}{shown['steady_rolling']} ms steady_rolling, {shown['prepared']} ms prepared "
+              f"(target <= {target_ms} ms); wall {wall:.2f} ms (mean of all paths); Newton {newton:.1f}, "
+              f"GMRES {krylov:.1f} per solve; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, "
+              f"numpy call {_call_overhead_us():.2f} us")
     benchmark.pedantic(_solve_all, args=((n, n),), rounds=3 if n <= 11 else 1, iterations=1)
-    benchmark.extra_info.update({"n": n, "cpu_ms": cpu, "wall_ms": wall})
+    benchmark.extra_info.update({"n": n, "cpu_ms": cpu})
 
 
 def test_bench_fastsim_throughput(benchmark):

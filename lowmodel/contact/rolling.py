@@ -41,7 +41,8 @@ centre, ``eta`` likewise, ``phi = (omega_1 - omega_2)_z / V`` [rad/m].  With the
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -69,6 +70,8 @@ __all__ = [
     "solve",
     "shift",
     "steady_rolling",
+    "prepare_rolling",
+    "PreparedRolling",
     "spin_parameter",
     "DENSE_CELLS",
     "DIRECT_CELLS",
@@ -203,13 +206,20 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
     start = None
     if initial_traction is not None:
         start = _check_rigid(initial_traction, grid, "initial_traction").reshape(-1, 2)[problem.cells]
+    p, s, stick, iterations, krylov, residual = _newton(problem, tolerance, max_iterations, start)
+    return _result(problem, grid, grid.x, grid.y, pressure, float(pressure.sum()) * grid.cell_area, p, s, stick,
+                   rigid, mu, speed, iterations, krylov, residual)
+
+
+def _newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start):
     with one_blas_thread():
         p, iterations, krylov, residual = rolling_newton.semismooth_newton(problem, tolerance, max_iterations, start)
         s, stick = rolling_newton.check_solution(problem, p, tolerance)
-    return _result(problem, grid, pressure, p, s, stick, rigid, mu, speed, iterations, krylov, residual)
+    return p, s, stick, iterations, krylov, residual
 
 
-def _result(problem, grid, pressure, p, s, stick, rigid, mu, speed, iterations, krylov, residual) -> RollingContact:
+def _result(problem, grid, x, y, pressure, normal_force, p, s, stick, rigid, mu, speed, iterations, krylov,
+            residual) -> RollingContact:
     traction = np.zeros((grid.nx, grid.ny, 2))
     slip = np.zeros((grid.nx, grid.ny, 2))
     traction.reshape(-1, 2)[problem.cells] = p
@@ -218,12 +228,12 @@ def _result(problem, grid, pressure, p, s, stick, rigid, mu, speed, iterations, 
     stick_grid.reshape(-1)[problem.cells] = stick
     area = grid.cell_area
     force = traction.reshape(-1, 2).sum(axis=0) * area
-    moment = float(np.sum(grid.x[:, None] * traction[..., 1] - grid.y[None, :] * traction[..., 0])) * area
+    moment = float(np.sum(x[:, None] * traction[..., 1] - y[None, :] * traction[..., 0])) * area
     power = -speed * float(np.sum(p * s)) * area
     rigid_power = -speed * float(np.sum(p * rigid.reshape(-1, 2)[problem.cells])) * area
-    return RollingContact(grid, pressure, traction, slip, rigid, stick_grid, problem.contact.copy(), mu, speed,
+    return RollingContact(grid, pressure, traction, slip, rigid, stick_grid, problem.contact, mu, speed,
                           float(force[0]), float(force[1]), moment, power, rigid_power, float(stick.sum()) / problem.n,
-                          float(pressure.sum()) * area, iterations, krylov, residual)
+                          normal_force, iterations, krylov, residual)
 
 
 def shift(pressure, grid: SurfaceGrid, shear_modulus: float, poisson_ratio: float, friction_coefficient: float,
@@ -240,6 +250,119 @@ def shift(pressure, grid: SurfaceGrid, shear_modulus: float, poisson_ratio: floa
         value = np.broadcast_to(value, (grid.nx, grid.ny, 2))
     return solve(pressure, operator, friction_coefficient, value, tolerance=tolerance,
                  max_iterations=max_iterations)
+
+
+def _plain(value) -> float | None:
+    # a float, numpy float or modest int as a finite Python float in a few hundred nanoseconds, else None
+    kind = type(value)
+    if (kind is float or kind is np.float64) and math.isfinite(value):
+        return float(value)
+    if kind is int and -(1 << 1000) < value < (1 << 1000):
+        return float(value)
+    return None
+
+
+def _finite_scalar(name: str, value, unit: str = "") -> float:
+    plain = _plain(value)
+    return checks.scalar(name, value, unit) if plain is None else plain  # converts, or raises naming the parameter
+
+
+@dataclass(frozen=True, eq=False)
+class PreparedRolling:
+    """A Hertz contact on its grid, ready for many steady-rolling solves (:func:`prepare_rolling`).
+
+    Everything that depends on the contact alone is built and checked once: the grid, the Hertz pressure,
+    the half-space operator, the contact cells and their dense ``C`` block, the marching start's flexibility and,
+    up to :data:`DIRECT_CELLS` contact cells, ``(c C)^-1`` for the low-rank Newton steps
+    (:func:`lowmodel.contact.rolling_newton.low_rank_step`).  A solve (:meth:`solve`) builds the rigid slip of its
+    creepages and spin, runs the semismooth Newton and checks the defining conditions as :func:`solve` does; its
+    answer equals :func:`solve`'s on the same input to round-off (docs/rolling_contact.md, 'Solver').
+
+    grid, pressure : as :class:`RollingContact`; operator : the :func:`half_space_operator` on ``grid``
+    friction_coefficient, tolerance, max_iterations : as :func:`steady_rolling`
+    normal_force : ``sum p_n dA`` [N]
+    """
+
+    grid: SurfaceGrid
+    pressure: np.ndarray
+    operator: ConvolutionOperator
+    friction_coefficient: float
+    tolerance: float
+    max_iterations: int
+    normal_force: float
+    _problem: TangentialProblem = field(repr=False)
+    _x: np.ndarray = field(repr=False)
+    _y: np.ndarray = field(repr=False)
+
+    def __post_init__(self):
+        checks.freeze_arrays(self, "pressure", "_x", "_y")
+
+    def solve(self, creepage_rolling: float, creepage_lateral: float, spin: float, *,
+              rolling_speed: float = 1.0) -> RollingContact:
+        """Steady rolling at creepages ``xi, eta`` [-] and spin ``phi`` [rad/m] (Kalker's signs, module
+        docstring); ``rolling_speed`` V [m/s] for the frictional power.  Returns a :class:`RollingContact`."""
+        xi = _finite_scalar("creepage_rolling", creepage_rolling)
+        eta = _finite_scalar("creepage_lateral", creepage_lateral)
+        phi = _finite_scalar("spin", spin, "rad/m")
+        speed = _plain(rolling_speed)
+        if speed is None or not speed > 0.0:
+            speed = checks.positive("rolling_speed", rolling_speed, "m/s")
+        grid = self.grid
+        w = np.empty((grid.nx, grid.ny, 2))  # rigid_slip's field, centre (0, 0)
+        w[..., 0] = xi - phi * self._y[None, :]
+        w[..., 1] = eta + phi * self._x[:, None]
+        problem = self._problem.with_rigid(w.reshape(-1, 2)[self._problem.cells])
+        p, s, stick, iterations, krylov, residual = _newton(problem, self.tolerance, self.max_iterations, None)
+        return _result(problem, grid, self._x, self._y, self.pressure, self.normal_force, p, s, stick, w,
+                       self.friction_coefficient, float(speed), iterations, krylov, residual)
+
+
+def prepare_rolling(semi_axis_rolling: float, semi_axis_lateral: float, normal_force: float, shear_modulus: float,
+                    poisson_ratio: float, friction_coefficient: float, cells=(35, 35), *, tolerance: float = 1e-10,
+                    max_iterations: int = 60) -> PreparedRolling:
+    """A Hertz contact prepared for many :meth:`PreparedRolling.solve` calls (a creep curve, a sweep over spin).
+
+    Parameters as :func:`steady_rolling` (SI), all checked here once.  ``prepare_rolling(a, b, F, G, nu, mu,
+    cells).solve(xi, eta, phi)`` equals ``steady_rolling(a, b, F, G, nu, mu, xi, eta, phi, cells)`` to the last
+    bit; :func:`steady_rolling` itself keeps the last few prepared contacts.
+    """
+    grid = hertz_grid(semi_axis_rolling, semi_axis_lateral, cells)
+    pressure = hertz_pressure(grid, semi_axis_rolling, semi_axis_lateral, normal_force)
+    shear, nu, _ = combined_material(shear_modulus, poisson_ratio)
+    operator = half_space_operator(grid, shear, nu)
+    pressure = _check_pressure(pressure, grid)
+    mu = checks.positive("friction_coefficient", friction_coefficient)
+    checks.positive("tolerance", tolerance)
+    max_iterations = checks.count("max_iterations", max_iterations, 1)
+    with one_blas_thread():  # prepare() inverts c C on dense grids
+        problem = TangentialProblem(operator, mu * pressure, np.zeros((grid.nx, grid.ny, 2)), None).prepare()
+    return PreparedRolling(grid, pressure, operator, mu, float(tolerance), max_iterations,
+                           float(pressure.sum()) * grid.cell_area, problem, grid.x, grid.y)
+
+
+_PREPARED: dict = {}  # the last prepared contacts of steady_rolling, oldest first
+_PREPARED_KEPT = 8
+
+
+def _typed(value):
+    # a cache key that tells 1 from 1.0 and True (a bool is refused where a number is checked)
+    if isinstance(value, tuple):
+        return tuple(_typed(v) for v in value)
+    return type(value), value
+
+
+def _prepared(args: tuple, cells, tolerance, max_iterations) -> PreparedRolling:
+    key = (_typed(args), _typed(cells), _typed(tolerance), _typed(max_iterations))
+    try:
+        prepared = _PREPARED.pop(key, None)
+    except TypeError:  # arrays and other unhashable inputs: prepared (and checked) for this call only
+        return prepare_rolling(*args, cells, tolerance=tolerance, max_iterations=max_iterations)
+    if prepared is None:
+        prepared = prepare_rolling(*args, cells, tolerance=tolerance, max_iterations=max_iterations)
+        while len(_PREPARED) >= _PREPARED_KEPT:
+            _PREPARED.pop(next(iter(_PREPARED)))
+    _PREPARED[key] = prepared  # the most recent last
+    return prepared
 
 
 def steady_rolling(semi_axis_rolling: float, semi_axis_lateral: float, normal_force: float, shear_modulus: float,
@@ -265,14 +388,14 @@ def steady_rolling(semi_axis_rolling: float, semi_axis_lateral: float, normal_fo
     -------
     :class:`RollingContact`: ``force_rolling``, ``force_lateral`` [N], ``spin_moment`` [N m] (about the
     contact centre), ``stick_fraction``, ``frictional_power`` [W], the traction, slip and stick fields.
+
+    The contact (everything but the creepages, spin and speed) is prepared by :func:`prepare_rolling` and the
+    last eight are kept, keyed on the inputs and their types (a value is checked when its contact is prepared);
+    a sweep over creepages may call :func:`prepare_rolling` itself and :meth:`PreparedRolling.solve`.
     """
-    grid = hertz_grid(semi_axis_rolling, semi_axis_lateral, cells)
-    pressure = hertz_pressure(grid, semi_axis_rolling, semi_axis_lateral, normal_force)
-    shear, nu, _ = combined_material(shear_modulus, poisson_ratio)
-    operator = half_space_operator(grid, shear, nu)
-    w = rigid_slip(grid, creepage_rolling, creepage_lateral, spin)
-    return solve(pressure, operator, friction_coefficient, w, rolling_speed=rolling_speed, tolerance=tolerance,
-                 max_iterations=max_iterations)
+    prepared = _prepared((semi_axis_rolling, semi_axis_lateral, normal_force, shear_modulus, poisson_ratio,
+                          friction_coefficient), cells, tolerance, max_iterations)
+    return prepared.solve(creepage_rolling, creepage_lateral, spin, rolling_speed=rolling_speed)
 
 
 def steady_rolling_line(semi_width: float, normal_load: float, shear_modulus: float, poisson_ratio: float,

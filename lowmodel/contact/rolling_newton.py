@@ -5,8 +5,9 @@ On the contact cells of a grid with traction bound ``g = mu p_n``, rigid slip ``
 (``Proj_g`` projects each cell's traction onto the disc ``|p| <= g``; ``c = 1/max diag C``, so ``c s`` is a
 traction).  Generalised Jacobian ``J = (I - D) + c D C`` with ``D = Proj_g'`` (identity in stick cells,
 ``(g/|z|)(I - z z^T/|z|^2)`` in slip cells).  Each Newton system is solved by dense LU up to
-:data:`DIRECT_CELLS` contact cells, above by GMRES (right preconditioned, Saad 2003 Alg 9.5) with the exact
-inverse of ``J`` restricted to each grid line along the rolling direction (the steady-state operator's
+:data:`DIRECT_CELLS` contact cells (a prepared problem, :meth:`TangentialProblem.prepare`: through the smaller of
+two low-rank forms of ``J``, :func:`low_rank_step`), above by GMRES (right preconditioned, Saad 2003 Alg 9.5)
+with the exact inverse of ``J`` restricted to each grid line along the rolling direction (the steady-state operator's
 coupling is mostly along ``x``: the lateral neighbours carry 8-17 % of the diagonal); products with ``C`` are
 dense below :data:`DENSE_CELLS` contact cells and FFT convolutions above.  Newton starts from the local
 (FASTSIM-like) solution marched from the leading edge (:meth:`TangentialProblem.marching_start`).
@@ -17,14 +18,15 @@ dissipation in every cell), raising ConvergenceError naming the first that fails
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
 
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "DENSE_CELLS", "DIRECT_CELLS",
-           "CHECK_TOLERANCE"]
+__all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "low_rank_step", "woodbury_step",
+           "identity_step", "DENSE_CELLS", "DIRECT_CELLS", "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
@@ -116,6 +118,36 @@ class TangentialProblem:
         self._inverse = None
         self._pattern = None
         self._pairs = None
+        self._flexibility = None
+        self._bound_lines = None
+        self._stick_inverse = None
+
+    def with_rigid(self, rigid_cells: np.ndarray) -> "TangentialProblem":
+        """The same contact (cells, bound, operator and what is derived from them) with another rigid slip ``w``
+        on the contact cells, (n, 2): a sweep over creepages reuses everything but ``w``."""
+        problem = copy.copy(self)
+        problem.w = rigid_cells
+        problem._inverse = problem._pattern = None  # the preconditioner's state belongs to one solve
+        return problem
+
+    def prepare(self) -> "TangentialProblem":
+        """Build now what every solve on this contact derives from the cells alone (the marching start's
+        flexibility, the dense preconditioner's index), so that :meth:`with_rigid` copies carry it."""
+        self.flexibility()
+        self._line_bound()
+        if self.matrix is not None and self.n > DIRECT_CELLS:
+            self._pair_index()
+        if self.matrix is not None and self.n <= DIRECT_CELLS:
+            inverse = np.linalg.inv(self.c * self.matrix)  # (c C)^-1: J of an all-stick contact, inverted once
+            if np.all(np.isfinite(inverse)):
+                inverse.setflags(write=False)
+                self._stick_inverse = inverse
+        return self
+
+    def stick_inverse(self) -> np.ndarray | None:
+        """``(c C)^-1`` on the contact cells, (2n, 2n), when :meth:`prepare` built it (dense problems up to
+        :data:`DIRECT_CELLS` cells), else None; with it the Newton steps use Woodbury's identity."""
+        return self._stick_inverse
 
     def _pair_index(self):
         if self._pairs is None:  # kept on the operator per contact set, as its dense blocks
@@ -147,24 +179,39 @@ class TangentialProblem:
         scale = np.where(sliding, self.g / np.where(sliding, norm, 1.0), 1.0)
         return p - z * scale[:, None], z, norm, sliding, scale
 
+    def flexibility(self) -> float:
+        """``L / dx`` of :meth:`marching_start`: the mean slip of a unit traction ramp along each line (one
+        product with ``C``; it depends on the contact cells only, so it is kept)."""
+        if self._flexibility is None:
+            nx, n_lines = self.shape[0], self.lines.size
+            ramp = np.zeros((n_lines, nx))
+            ramp[self.line_of, self.position] = 1.0
+            ramp = np.cumsum(ramp[:, ::-1], axis=1)[:, ::-1] * (ramp > 0)  # contact cells upstream, incl. itself
+            test = np.repeat(ramp[self.line_of, self.position][:, None], 2, axis=1)
+            response = self.apply(test)
+            self._flexibility = float(np.median(response[test[:, 0] > 1.5]) if np.any(test[:, 0] > 1.5) else
+                                      np.median(response))
+        return self._flexibility
+
+    def _line_bound(self) -> np.ndarray:
+        if self._bound_lines is None:  # g on (lines, nx), zero off the contact
+            g = np.zeros((self.lines.size, self.shape[0]))
+            g[self.line_of, self.position] = self.g
+            g.setflags(write=False)
+            self._bound_lines = g
+        return self._bound_lines
+
     def marching_start(self) -> np.ndarray:
         """A start for Newton: the local (FASTSIM-like) solution ``s = w + L (p_i - p_upstream) / dx = 0`` marched
         from the leading edge with the traction bound, ``L`` the flexibility that makes a unit traction ramp
-        along each line give the operator's mean slip (one product with ``C``)."""
+        along each line give the operator's mean slip (:meth:`flexibility`)."""
         nx, n_lines = self.shape[0], self.lines.size
-        ramp = np.zeros((n_lines, nx))
-        ramp[self.line_of, self.position] = 1.0
-        ramp = np.cumsum(ramp[:, ::-1], axis=1)[:, ::-1] * (ramp > 0)  # contact cells upstream, incl. itself
-        test = np.repeat(ramp[self.line_of, self.position][:, None], 2, axis=1)
-        response = self.apply(test)
-        flexibility = float(np.median(response[test[:, 0] > 1.5]) if np.any(test[:, 0] > 1.5) else
-                            np.median(response))  # L / dx
+        flexibility = self.flexibility()  # L / dx
         if not (math.isfinite(flexibility) and flexibility > 0.0):
             return np.zeros((self.n, 2))
         w = np.zeros((n_lines, nx, 2))
         w[self.line_of, self.position] = self.w / flexibility
-        g = np.zeros((n_lines, nx))
-        g[self.line_of, self.position] = self.g
+        g = self._line_bound()
         p = np.zeros((n_lines, nx, 2))
         upstream = np.zeros((n_lines, 2))
         for i in range(nx - 1, -1, -1):
@@ -253,6 +300,81 @@ def _derivative(z: np.ndarray, norm: np.ndarray, sliding: np.ndarray, scale: np.
     return D
 
 
+def low_rank_step(matrix, c, inverse, F, E, z, norm, sliding, scale) -> np.ndarray:
+    """The Newton step ``J dp = -F`` of a prepared dense problem through the smaller of two low-rank forms of
+    ``J`` (Sherman-Morrison-Woodbury, Golub & Van Loan 2013, Sec 2.1.4): around ``c C`` (rank ``2 m``, ``m``
+    slip cells; :func:`woodbury_step`) or around ``I`` (rank ``2 (n - m) + m``; :func:`identity_step`)."""
+    slipping = int(np.count_nonzero(sliding))
+    if 2 * slipping <= 2 * (F.shape[0] - slipping) + slipping:
+        return woodbury_step(inverse, F, E, sliding)
+    return identity_step(matrix, c, F, z, norm, sliding, scale)
+
+
+def identity_step(matrix, c, F, z, norm, sliding, scale) -> np.ndarray:
+    """The Newton step ``J dp = -F`` with ``J = I + U W`` (Woodbury around the identity).
+
+    A stick cell's rows of ``J - I`` are those of ``c C - I``; a slip cell's are ``D (c C - I)`` with ``D = s t t^T``
+    (``t`` normal to ``z``, ``s = g/|z|``; ``E - I = -D``), rank one.  So ``U`` has the unit columns of the stick
+    components and ``t`` for each slip cell, ``W`` the matching rows, and ``J^-1 b = b - U (I + W U)^-1 W b``:
+    one LU of two unknowns per stick cell and one per slip cell.
+    """
+    n = F.shape[0]
+    b = -F.reshape(-1)
+    stick, slip = np.flatnonzero(~sliding), np.flatnonzero(sliding)
+    t0, t1 = -z[slip, 1] / norm[slip], z[slip, 0] / norm[slip]
+    s = scale[slip]
+    rows = (2 * stick[:, None] + np.arange(2)).reshape(-1)
+    k = rows.size
+    m = k + slip.size
+    W = np.empty((m, 2 * n))
+    np.multiply(c, matrix[rows], out=W[:k])
+    W[np.arange(k), rows] -= 1.0
+    pair = matrix.reshape(n, 2, 2 * n)[slip]
+    np.multiply((c * s * t0)[:, None], pair[:, 0], out=W[k:])
+    W[k:] += (c * s * t1)[:, None] * pair[:, 1]
+    W[np.arange(k, m), 2 * slip] -= s * t0
+    W[np.arange(k, m), 2 * slip + 1] -= s * t1
+    capacitance = np.empty((m, m))
+    capacitance[:, :k] = W[:, rows]
+    np.multiply(W[:, 2 * slip], t0, out=capacitance[:, k:])
+    capacitance[:, k:] += W[:, 2 * slip + 1] * t1
+    capacitance[np.arange(m), np.arange(m)] += 1.0
+    y = np.linalg.solve(capacitance, W @ b)
+    b[rows] -= y[:k]
+    b[2 * slip] -= t0 * y[k:]
+    b[2 * slip + 1] -= t1 * y[k:]
+    return b.reshape(-1, 2)
+
+
+def woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np.ndarray) -> np.ndarray:
+    """The Newton step ``J dp = -F`` from ``A^-1 = (c C)^-1`` (the Jacobian of an all-stick contact) by the
+    Sherman-Morrison-Woodbury identity (Golub & Van Loan 2013, Sec 2.1.4).
+
+    ``J = E + c D C`` differs from ``A`` only in the rows of the ``m`` slip cells ``S``, where ``D - I = -E``:
+    ``J = A + U W`` with ``U`` the unit columns of ``S`` and ``W = E_S (I_S - A_S)``, so ``W A^-1 = E_S
+    (A^-1_S - I_S)`` and ``J^-1 b = x0 - A^-1 U (I + E_S (A^-1_SS - I))^-1 E_S (x0_S - b_S)``, ``x0 = A^-1 b``:
+    one LU of ``2m`` unknowns instead of ``2n``.
+    """
+    b = -F.reshape(-1)
+    x0 = inverse @ b
+    slip = np.flatnonzero(sliding)
+    if slip.size == 0:
+        return x0.reshape(-1, 2)
+    rows = (2 * slip[:, None] + np.arange(2)).reshape(-1)
+    k = rows.size
+    E = E[slip]
+    X = inverse[np.ix_(rows, rows)]
+    X[np.arange(k), np.arange(k)] -= 1.0
+    X = X.reshape(slip.size, 2, k)
+    capacitance = E[:, :, 0, None] * X[:, None, 0, :]
+    capacitance += E[:, :, 1, None] * X[:, None, 1, :]
+    capacitance = capacitance.reshape(k, k)
+    capacitance[np.arange(k), np.arange(k)] += 1.0
+    d = (x0[rows] - b[rows]).reshape(-1, 2)
+    y = np.linalg.solve(capacitance, np.einsum("kab,kb->ka", E, d).reshape(-1))
+    return (x0 - inverse[:, rows] @ y).reshape(-1, 2)
+
+
 def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start: np.ndarray | None):
     p = problem.marching_start() if start is None else start.copy()
     F, z, norm, sliding, scale = problem.residual(p)
@@ -268,7 +390,11 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
         E[:, 1, 1] += 1.0
         cD = c * D
 
-        if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
+        inverse = problem.stick_inverse()
+        woodbury = inverse is not None  # prepared dense problems: a low-rank form of J (low_rank_step)
+        if woodbury:
+            pass
+        elif problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
             n = problem.n
             rows = problem.matrix.reshape(n, 2, 2 * n)
             jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
@@ -285,7 +411,9 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
                 out += cD[:, :, 1] * Cv[:, 1, None]
                 return out.reshape(-1)
 
-        if problem.matrix is not None and problem.n <= DIRECT_CELLS:
+        if woodbury:
+            step = low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale)
+        elif problem.matrix is not None and problem.n <= DIRECT_CELLS:
             step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
         else:
             precondition = problem.preconditioner(D, sliding)
