@@ -16,6 +16,11 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
   low-order B2B forces; the modules' fields and screenshots.
 
+Every model judged against a higher rung is a *finding* check (``run.check(finding=True)``): a miss says the model is
+outside its declared accuracy on this geometry (status ``outside accuracy``; docs/your_own_bearing.md, "Reading the
+verdict"), not that the software failed; the solvers' own checks (power balance, statics, load balance) and the
+uncertainty of the extrapolated reference stay pass/fail.
+
 ``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
 stops refining a mesh study when the next level's predicted time would pass it.
 """
@@ -202,7 +207,7 @@ def _guide_analytical(run, case: LinearGuideCase, result) -> None:
               tolerance=B2B_TOLERANCE["linear-guide"], time_s=time_a,
               source="the low-order numerical model (lowmodel.linear_bearing.b2b) of the same case",
               note="k_f = 1.38, Psi from Hertz; lin2019's own claim for eq 30: within 6-7 % of the numerical model",
-              why="" if numerical >= scale else "a B2B force near zero judged against 5 % of mu N_y")
+              why="" if numerical >= scale else "a B2B force near zero judged against 5 % of mu N_y", finding=True)
 
 
 def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
@@ -256,7 +261,7 @@ def _contact(run, *, case, rungs, deadline) -> None:
     radius = geometry.reference_radius
     run.check(model=hertz_model, family="analytical", quantity="a / R (Hertz's small-contact assumption)", unit="1",
               value=ref_hertz["a"] / radius, reference=hertz.VALIDITY_RATIO, relation="le", tolerance=0.0,
-              time_s=time_h, source="lowmodel.contact.hertz.VALIDITY_RATIO (docs/hertz.md, validity)")
+              time_s=time_h, source="lowmodel.contact.hertz.VALIDITY_RATIO (docs/hertz.md, validity)", finding=True)
     if "BEM" in rungs:
         for n in ladder.BEM_GRIDS[run.fidelity]:
             run.checkpoint()
@@ -307,7 +312,7 @@ def _contact(run, *, case, rungs, deadline) -> None:
         for quantity, unit in ladder.QUANTITIES:
             run.check(model=model, family=family, level=level, quantity=quantity, unit=unit, value=values[quantity],
                       reference=reference[quantity], source=source, tolerance=tolerances[quantity], time_s=wall,
-                      note=_tolerance_note(family, run.fidelity))
+                      note=_tolerance_note(family, run.fidelity), finding=True)
     if fe_results:
         finest = fe_results[-1]
         run.check(model="fem.contact", family="FE", level=models[-1][2], quantity="force_sum", unit="N",
@@ -448,14 +453,15 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
     use_scale = scale if abs(reference) < scale else 0.0
     for model, family, value, time_s in low:
         run.check(model=model, family=family, quantity="F_B2B", unit="N", value=value, reference=reference,
-                  scale=use_scale, source=source, tolerance=tolerance, time_s=time_s, note=claim, why=why)
+                  scale=use_scale, source=source, tolerance=tolerance, time_s=time_s, note=claim, why=why,
+                  finding=True)
     # the finest level is judged; the coarser ones are the convergence study, summarised by the uncertainty of
     # the extrapolation below and listed with their errors in the levels table (_module_table)
     for r in rows[-1:] if extrapolation is not None else ():
         words = f"h {r['h_contact_um']:.0f} um"
         run.check(model=f"FE-informed B2B ({words})", family="FE-informed", level=words, quantity="F_B2B", unit="N",
                   value=r["F_B2B"], reference=reference, scale=use_scale, source=source, tolerance=tolerance,
-                  time_s=r["wall_s"], note=claim, why=why)
+                  time_s=r["wall_s"], note=claim, why=why, finding=True)
     if extrapolation is not None:
         run.check(model="Richardson extrapolation of the FE-informed levels", family="FE-informed", level="h -> 0",
                   quantity="relative uncertainty of the F_B2B reference", unit="1",
