@@ -8,7 +8,9 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
   without B2B contact, the friction increase, the B2B forces (studies.bearing_results); power balance and statics
   checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
-* ``<stem>-contact``: the most loaded contact (or the case's own contact) up the ladder: exact Hertz, the BEM on
+* ``<stem>-contact``: each distinct contact geometry at its largest load (studies.ladder.distinct_contacts: one for
+  a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
+  contact) up the ladder: exact Hertz, the BEM on
   the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
   extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
   time; its fields (fields.vtu) and 3D screenshots;
@@ -83,12 +85,13 @@ def case_scenes(case, stem: str, *, top: str = "FE-informed", deadline: float | 
                             "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
                             functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
-    scenes.append(Scene(f"{stem}-contact", f"{case.name}: the most loaded contact up the ladder ("
+    n_contacts = 2 if kind == "ball-screw" else 1  # studies.ladder.distinct_contacts: the screw and the nut side
+    scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("
                         + ", ".join(r for r in rungs if r in ("analytical", "BEM", "FE")) + ")",
                         functools.partial(contact_scene, case=case, rungs=rungs, deadline=deadline), tags=("case",),
-                        kind="FE" if fe else "low-order", cost_s=120.0 if fe else 5.0,
-                        budget_s=BUDGET_S if fe else LOW_BUDGET_S, case=case,
-                        show=functools.partial(show_contact, case) if fe else None))
+                        kind="FE" if fe else "low-order", cost_s=(120.0 if fe else 5.0) * n_contacts,
+                        budget_s=({f: t * n_contacts for f, t in BUDGET_S.items()} if fe else LOW_BUDGET_S),
+                        case=case, show=functools.partial(show_contact, case) if fe else None))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "
                             "force per mesh level, extrapolated: the reference of the analytical and low-order models",

@@ -189,18 +189,20 @@ def scene_budget_text(r: SceneResult) -> str:
     return f"{fmt_time(r.budget_s)} ({'over' if r.wall_time_s > r.budget_s else 'under'})"
 
 
-def check_line(o: Output) -> str:
-    """One check as a line: quantity, model, value and reference with unit, source, error and tolerance."""
+def check_line(o: Output, *, level: bool = False) -> str:
+    """One check as a line: quantity, model (``level``: and its level), value and reference with unit, source, error
+    and tolerance."""
     r = row(o)
     tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
-    return (f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
+    model = f"{o.model}, {o.level}" if level and o.level else o.model
+    return (f"  {o.quantity} [{model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
             f"error {r.error or '0 %'}, {tolerance}")
 
 
 def passing_lines(result: SceneResult, status: str) -> list[str]:
     """What a passing scene with findings or known gaps adds under its status line on the terminal."""
     if status == "findings":
-        return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o)}: outside accuracy"
+        return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o, level=True)}: outside accuracy"
                                                       for o in result.outputs_with("outside accuracy")]
     if status == "known gap":
         return [f"  known gap (declared, see the report): {o.quantity}: {row(o).value_with_unit} vs published "

@@ -1,0 +1,43 @@
+"""studies.ladder.distinct_contacts: the contact geometries of a case the ``-contact`` scene runs
+(docs/your_own_bearing.md, "The ladder")."""
+from __future__ import annotations
+
+import json
+
+from ballbench.validation import cli
+from ballbench.validation.cases import case_file
+from ballbench.validation.studies import bearing_results, ladder
+from tests import paths
+
+
+def test_a_guide_has_one_contact_geometry_run_at_its_largest_load():
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    (only,) = ladder.distinct_contacts(case)
+    result = bearing_results.guide_result(case)
+    assert only.label == "groove" and len(only.members) == len(result.contacts)
+    assert only.contact.force == max(c.normal_force for c in result.contacts)
+    assert only.contact.conformity == case.guide.conformity
+
+
+def test_a_screw_has_a_screw_side_and_a_nut_side_each_at_its_largest_load():
+    case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
+    distinct = ladder.distinct_contacts(case)
+    result = bearing_results.screw_result(case)
+    assert {d.label for d in distinct} == {"screw side", "nut side"}
+    for d in distinct:
+        side = [c for c in result.contacts if c.contact[0] == d.contact.pair[0].upper()]
+        assert d.contact.force == max(c.normal_force for c in side) and len(d.members) == len(side)
+    assert distinct[0].contact.force >= distinct[1].contact.force  # the most loaded first: its fields are saved
+    assert distinct[0].contact.force == ladder.governing_contact(case).force
+
+
+def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
+    out = tmp_path / "report"
+    cli.main(["validate", str(paths.ROOT / "examples" / "ball_screw_32x10.toml"), "--quick", "--no-progress",
+              "--levels", "BEM", "--out", str(out)])
+    assert "Traceback" not in capsys.readouterr().err
+    scene = next(s for s in json.loads((out / "results.json").read_text())["scenes"] if s["name"].endswith("-contact"))
+    hertz = [o for o in scene["outputs"] if o["model"] == "lowmodel.contact.hertz" and o["quantity"] == "a"]
+    assert sorted(o["level"] for o in hertz) == ["nut side", "screw side"]
+    assert hertz[0]["value"] != hertz[1]["value"]
+    assert scene["tables"][0]["title"].startswith("Contacts run") and len(scene["tables"][0]["rows"]) == 2
