@@ -229,7 +229,7 @@ def _cmd_validate(args) -> int:
     deadline = time.monotonic() + args.budget if args.budget is not None else None
     if not any(_is_case_file(n) for n in args.scenes) and (args.levels is not None or deadline is not None):
         raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
-    scenes = _select(args.scenes, args.fast, args.levels or "FE-informed", deadline)
+    scenes = _select(args.scenes, args.fast, args.levels or RUNGS[-1], deadline)
     out_dir = Path(args.out)
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
@@ -408,7 +408,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="no progress bars (they are shown only when stderr is a terminal)")
     p.add_argument("--levels", choices=RUNGS, metavar="RUNG",
                    help="case files: the highest rung of the ladder to run, one of " + ", ".join(RUNGS)
-                        + " (default FE-informed: every rung that runs today)")
+                        + f" (default {RUNGS[-1]}: every rung)")
     p.add_argument("--budget", type=float, metavar="SECONDS",
                    help="case files: stop refining a mesh study when its next level is predicted to end after "
                         "this wall time from the start")

@@ -14,6 +14,8 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
   extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
   time; its fields (fields.vtu) and 3D screenshots;
+* ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
+  full slip on the same cells (studies.case_stick_slip);
 * ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
   their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
   low-order B2B forces; the modules' fields and screenshots.
@@ -26,7 +28,8 @@ uncertainty of the extrapolated reference stay pass/fail.
 ``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
 stops refining a mesh study when the next level's predicted time would pass it.
 
-Modules: ``balls`` (``<stem>-balls``), ``contact`` (``<stem>-contact``), ``b2b_fe`` (``<stem>-b2b-fe``), ``common``
+Modules: ``balls`` (``<stem>-balls``), ``contact`` (``<stem>-contact``), ``b2b_fe`` (``<stem>-b2b-fe``),
+``stick_slip`` (``<stem>-stick-slip``), ``common``
 (tolerances, tables and checks they share); this file names the scenes of a case and builds them.
 """
 from __future__ import annotations
@@ -38,6 +41,7 @@ from pathlib import Path
 from ballbench.validation.case_scenes.b2b_fe import b2b_fe_scene, show_module
 from ballbench.validation.case_scenes.balls import balls_scene
 from ballbench.validation.case_scenes.contact import contact_scene, show_contact
+from ballbench.validation.case_scenes.stick_slip import stick_slip_scene
 from ballbench.validation.cases.case import ContactCase, LinearGuideCase
 from ballbench.validation.scene import Scene
 
@@ -58,7 +62,7 @@ def _kind(case) -> str:
             else "ball-screw")
 
 
-def scene_names(case, stem: str, top: str = "FE-informed") -> list[str]:
+def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
     from ballbench.validation.studies.ladder import rungs_up_to
 
@@ -67,10 +71,12 @@ def scene_names(case, stem: str, top: str = "FE-informed") -> list[str]:
     names.append(f"{stem}-contact")
     if "FE-informed" in rungs and not isinstance(case, ContactCase):
         names.append(f"{stem}-b2b-fe")
+    if "stick-slip" in rungs and not isinstance(case, ContactCase):
+        names.append(f"{stem}-stick-slip")
     return names
 
 
-def case_scenes(case, stem: str, *, top: str = "FE-informed", deadline: float | None = None) -> list[Scene]:
+def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | None = None) -> list[Scene]:
     """The scenes of ``case`` (a LinearGuideCase, BallScrewCase or ContactCase) named ``<stem>-...``, up to the
     rung ``top`` (studies.ladder.RUNGS)."""
     from ballbench.validation.studies.ladder import rungs_up_to
@@ -97,6 +103,11 @@ def case_scenes(case, stem: str, *, top: str = "FE-informed", deadline: float | 
                             "force per mesh level, extrapolated: the reference of the analytical and low-order models",
                             functools.partial(b2b_fe_scene, case=case, deadline=deadline), tags=("case",), kind="FE",
                             cost_s=300.0, budget_s=BUDGET_S, case=case, show=functools.partial(show_module, case)))
+    if "stick-slip" in rungs and kind != "contact":
+        scenes.append(Scene(f"{stem}-stick-slip", f"{case.name}: the balls with stick/slip contacts against full "
+                            "slip on the same cells (Lambda, stick fraction, forces, spin moments, B2B force)",
+                            functools.partial(stick_slip_scene, case=case), tags=("case",), kind="low-order",
+                            cost_s=60.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case))
     return scenes
 
 

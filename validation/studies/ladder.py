@@ -16,8 +16,9 @@ Rungs, bottom to top (:data:`RUNGS`):
   smallest ellipse of the module (:func:`module_fe`), their contact pressures fed to the B2B model
   (studies.fe_b2b_linear, studies.fe_b2b_screw); the extrapolated FE-informed B2B force is the reference of the
   analytical and low-order B2B forces;
-* ``stick-slip``: the rolling contact with stick and slip (lowmodel.contact.rolling) joins here when its
-  case-level study lands; :func:`rungs_up_to` knows the name, the factory runs nothing for it yet.
+* ``stick-slip``: the case's balls with stick/slip ball-to-groove contacts (lowmodel.contact.rolling_friction on
+  two half-spaces) against lin2019's full slip on the same cells (studies.case_stick_slip): whether full slip holds
+  on the case, at its declared accuracy (docs/b2b_rolling.md, 'Validity of full slip').
 
 The mesh levels of a case without an ``[fe]`` table are chosen here from its ellipses; a case file's ``[fe]``
 table (the paper cases) is used as it is.

@@ -41,3 +41,27 @@ def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
     assert sorted(o["level"] for o in hertz) == ["nut side", "screw side"]
     assert hertz[0]["value"] != hertz[1]["value"]
     assert scene["tables"][0]["title"].startswith("Contacts run") and len(scene["tables"][0]["rows"]) == 2
+
+
+def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accuracy(tmp_path):
+    # the balls of one's own guide with stick/slip contacts against full slip on the same cells: the B2B force at
+    # full slip's 2.5 % (docs/b2b_rolling.md), the friction at 1 %, a power balance per solve, a row per contact
+    from ballbench.validation import case_scenes
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies.rolling_b2b import FULL_SLIP_TOLERANCE
+
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    scenes = [s for s in case_scenes.case_scenes(case, "g", top="stick-slip") if s.name == "g-stick-slip"]
+    assert scenes and "g-stick-slip" in case_scenes.scene_names(case, "g", top="stick-slip")
+    assert "g-stick-slip" not in case_scenes.scene_names(case, "g", top="FE-informed")
+    (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    checks = {o.quantity: o for o in result.outputs}
+    b2b = checks["F_B2B"]
+    assert b2b.tolerance == FULL_SLIP_TOLERANCE and b2b.finding and b2b.value > 0 and b2b.reference > 0
+    assert b2b.value != b2b.reference  # two laws, not one model against itself
+    assert checks["power balance |P_in - P_loss| / P_in, worst of the four solves"].status == "pass"
+    (title, header, rows), _ = result.tables
+    assert title.startswith("Per contact") and len(rows) == 4 * case.n_balls
+    lam = header.index("Lambda")
+    assert all(float(r[lam]) > 1.0 for r in rows)
