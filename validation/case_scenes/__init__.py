@@ -91,12 +91,14 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
                             functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
-    n_contacts = 2 if kind == "ball-screw" else 1  # studies.ladder.distinct_contacts: the screw and the nut side
+    # studies.ladder.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
+    n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("
                         + ", ".join(r for r in rungs if r in ("analytical", "BEM", "FE")) + ")",
                         functools.partial(contact_scene, case=case, rungs=rungs, deadline=deadline), tags=("case",),
                         kind="FE" if fe else "low-order", cost_s=(120.0 if fe else 5.0) * n_contacts,
-                        budget_s=({f: t * n_contacts for f, t in BUDGET_S.items()} if fe else LOW_BUDGET_S),
+                        budget_s=({f: t * (1 if f == "quick" else n_contacts) for f, t in BUDGET_S.items()} if fe
+                                  else LOW_BUDGET_S),
                         case=case, show=functools.partial(show_contact, case) if fe else None))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "

@@ -21,12 +21,21 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     from ballbench.validation.studies import ladder
 
     distinct = ladder.distinct_contacts(case)
+    # the quick level keeps the cost of one FE study: the FE of a helical screw pair's quick ladder is about 10 min
+    # and 12 GB (docs/your_own_bearing.md, "Measured"); the default and fine levels run it on every contact
+    fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
+    ran = [", ".join(r for r in rungs if r in ("analytical", "BEM", "FE") and (r != "FE" or on)) for on in fe_on]
     run.table("Contacts run (each distinct geometry at its largest load)",
-              ("contact", "pair", "F [N]", "stands for", "why"),
-              [(d.label, d.contact.pair, fmt(d.contact.force), ", ".join(d.members), d.why) for d in distinct])
+              ("contact", "pair", "F [N]", "rungs", "stands for", "why"),
+              [(d.label, d.contact.pair, fmt(d.contact.force), r, ", ".join(d.members), d.why)
+               for d, r in zip(distinct, ran)])
+    if not all(fe_on) and "FE" in rungs:
+        run.note("--quick: the FE study runs on the most loaded contact only; the other contacts up to the BEM "
+                 "(the default level runs the FE on every contact).")
     for index, d in enumerate(distinct):
         tag = d.label if len(distinct) > 1 else ""
-        _one_contact(run, ladder.contact_fe(d.contact), rungs, deadline, tag, fields=index == 0)
+        chosen = rungs if fe_on[index] else tuple(r for r in rungs if r != "FE")
+        _one_contact(run, ladder.contact_fe(d.contact), chosen, deadline, tag, fields=index == 0)
 
 
 def _head(tag: str) -> str:

@@ -65,3 +65,21 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     assert title.startswith("Per contact") and len(rows) == 4 * case.n_balls
     lam = header.index("Lambda")
     assert all(float(r[lam]) > 1.0 for r in rows)
+
+
+def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
+    # --budget already passed: the FE rung of the screw side starts no level and says so; at quick the nut side has
+    # no FE rung at all (one FE study per scene at quick, every contact at the default level)
+    from ballbench.validation import case_scenes
+    from ballbench.validation.cases import case_file as files
+    from ballbench.validation.runner import run_scenes
+
+    case = files.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-table5-a.toml")
+    (scene,) = [s for s in case_scenes.case_scenes(case, "m", top="FE", deadline=0.0) if s.name == "m-contact"]
+    (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
+    title, header, rows = result.tables[0]
+    rungs = {row[0]: row[header.index("rungs")] for row in rows}
+    assert rungs == {"screw side": "analytical, BEM, FE", "nut side": "analytical, BEM"}, rows
+    assert any("no FE level run" in n for n in result.notes) and any("most loaded contact only" in n
+                                                                         for n in result.notes)
+    assert not [o for o in result.outputs if o.family == "FE"]
