@@ -1,8 +1,9 @@
 """The ``ballbench`` command line.
 
-Exit codes: 0 every scene passed (known gaps allowed), 1 a check failed or a
-scene raised, 2 wrong use (one line on stderr naming the problem), 130
-interrupted by Ctrl-C (a partial report is written).
+Exit codes: 0 every scene passed (known gaps and findings allowed: a model outside
+its declared accuracy on a case's own geometry), 1 a check failed or a scene raised,
+2 wrong use (one line on stderr naming the problem), 130 interrupted by Ctrl-C (a
+partial report is written).
 """
 from __future__ import annotations
 
@@ -40,7 +41,7 @@ EPILOG = """examples:
   ballbench validate g.toml --quick     the validation ladder on that case (Hertz, BEM, FE study, ...)
   ballbench show g.toml                 its pictures
 
-exit codes: 0 passed (known gaps allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
+exit codes: 0 passed (known gaps and findings allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -212,7 +213,8 @@ class _Interrupt:
 
 
 def _cmd_validate(args) -> int:
-    from ballbench.validation.report import count, failure_lines, row, status_word, write_report
+    from ballbench.validation.report import count, failure_lines, status_word, write_report
+    from ballbench.validation.report.rows import passing_lines
     from ballbench.validation.runner import run_scenes
 
     import time
@@ -227,7 +229,7 @@ def _cmd_validate(args) -> int:
     deadline = time.monotonic() + args.budget if args.budget is not None else None
     if not any(_is_case_file(n) for n in args.scenes) and (args.levels is not None or deadline is not None):
         raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
-    scenes = _select(args.scenes, args.fast, args.levels or "FE-informed", deadline)
+    scenes = _select(args.scenes, args.fast, args.levels or RUNGS[-1], deadline)
     out_dir = Path(args.out)
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
@@ -247,11 +249,8 @@ def _cmd_validate(args) -> int:
         traceback = [a for a in result.artifacts if a.endswith("error.txt")]
         if traceback:
             print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
-        if status == "known gap":
-            for o in result.outputs_with("known gap"):
-                r = row(o)
-                print(f"  known gap (declared, see the report): {o.quantity}: {r.value_with_unit} vs published "
-                      f"{r.reference_with_unit}", file=sys.stderr)
+        for line in passing_lines(result, status):
+            print(line, file=sys.stderr)
 
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
@@ -278,9 +277,11 @@ def _cmd_validate(args) -> int:
               f"{paths['markdown']}", file=sys.stderr)
         return EXIT_INTERRUPTED
     failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
-    gaps = statuses.count("known gap")
+    gaps, findings = statuses.count("known gap"), statuses.count("findings")
     print(f"{len(results) - len(failed)} of {len(results)} scenes passed"
-          + (f" ({gaps} with known gaps)" if gaps else "") + f"; report: {paths['markdown']} and {paths['html']}")
+          + (f" ({gaps} with known gaps)" if gaps else "")
+          + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
+          + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
         return EXIT_FAILED
@@ -383,8 +384,9 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Run scenes and write report.md, report.html, results.json, results.csv and "
                                    "error_vs_time.png into the output folder (emptied first if it holds an "
                                    "earlier report). Exit code 0 when every scene passes (declared known gaps "
-                                   "allowed), 1 when a check fails, 130 when interrupted (Ctrl-C stops after the "
-                                   "current scene and writes a partial report; twice stops at once).")
+                                   "and findings, models outside their declared accuracy on a case file's "
+                                   "geometry, allowed), 1 when a check fails, 130 when interrupted (Ctrl-C "
+                                   "stops after the current scene and writes a partial report; twice stops at once).")
     p.add_argument("scenes", nargs="*", metavar="SCENE",
                    help="scene names or shell patterns such as 'lin2019-*' (default: every default scene), or "
                         "case files (my_guide.toml: the validation ladder on that case, docs/cases.md)")
@@ -395,7 +397,9 @@ def build_parser() -> argparse.ArgumentParser:
     level.add_argument("--fine", action="store_true", help="finest level: FE mesh-convergence studies (slow)")
     p.add_argument("--fast", action="store_true",
                    help="a first look: leave out the FE scenes and those costing over 30 s")
-    p.add_argument("--strict", action="store_true", help="declared known gaps fail the run too")
+    p.add_argument("--strict", action="store_true",
+                   help="declared known gaps and findings (models outside their accuracy on a case file's geometry) "
+                        "fail the run too")
     p.add_argument("--strict-time", action="store_true",
                    help="a scene over its wall-time budget fails (by default budgets are only reported, "
                         "since run time depends on the machine's load)")
@@ -404,7 +408,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="no progress bars (they are shown only when stderr is a terminal)")
     p.add_argument("--levels", choices=RUNGS, metavar="RUNG",
                    help="case files: the highest rung of the ladder to run, one of " + ", ".join(RUNGS)
-                        + " (default FE-informed: every rung that runs today)")
+                        + f" (default {RUNGS[-1]}: every rung)")
     p.add_argument("--budget", type=float, metavar="SECONDS",
                    help="case files: stop refining a mesh study when its next level is predicted to end after "
                         "this wall time from the start")

@@ -39,6 +39,12 @@ listed in its own section, and does not fail the run; if it starts to pass it
 is reported loudly as an *unexpected pass* (and fails the run, so that the
 declaration is removed).  ``--strict`` makes known gaps fail.
 
+Findings: ``run.check(..., finding=True)`` marks a check whose miss is a result of the validation, not a failure
+of the software: a model judged against its declared accuracy on a user's own geometry (the case scenes,
+docs/your_own_bearing.md, "Reading the verdict").  A missed finding check is reported as *outside accuracy*, its
+scene as *findings*; it does not fail the run (``--strict`` makes it fail).  Self-checks of a solver (equilibrium,
+power balance) are never findings.
+
 Budgets: ``run.budget(...)`` records a wall time or a throughput against its
 target.  Budgets are reported (budget, measured, over or under) and never
 decide pass or fail unless ``--strict-time`` is given; so is every scene's own
@@ -59,6 +65,8 @@ KINDS = ("analytical", "low-order", "FE")
 # model families a check declares (``run.check(family=...)``); the report, the error-budget table and the fronts
 # of error_vs_time.png group by them (docs/validation.md, "Model identity")
 FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informed")
+# scene statuses that pass a run without --strict (SceneResult.status)
+PASSING = ("pass", "known gap", "findings")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
 # the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): the FE
@@ -113,14 +121,18 @@ class Output:
     known_gap: KnownGap | None = None
     family: str = ""
     level: str = ""
+    finding: bool = False  # a miss is a finding (a model outside its accuracy here), not a failure
 
     @property
     def status(self) -> str:
-        """``pass``, ``fail``, ``known gap``, ``unexpected pass``, ``within budget`` or ``over budget``."""
+        """``pass``, ``fail``, ``outside accuracy``, ``known gap``, ``unexpected pass``, ``within budget`` or
+        ``over budget``."""
         if self.kind == "budget":
             return "within budget" if self.passed else "over budget"
         if self.known_gap is not None:
             return "unexpected pass" if self.passed else "known gap"
+        if self.finding and not self.passed:
+            return "outside accuracy"
         return "pass" if self.passed else "fail"
 
     @property
@@ -133,6 +145,7 @@ class Output:
     def as_dict(self) -> dict[str, Any]:
         data = asdict(self)
         data["status"] = self.status
+        del data["finding"]  # the status carries it ("outside accuracy"); the keys of results.json stay as documented
         gap = data.pop("known_gap")
         data["known_gap_reason"] = gap["reason"] if gap else ""
         data["known_gap_evidence"] = gap["evidence"] if gap else ""
@@ -164,9 +177,10 @@ class SceneResult:
         return self.wall_time_s > self.budget_s or bool(self.outputs_with("over budget"))
 
     def status(self, *, strict: bool = False, strict_time: bool = False) -> str:
-        """``error``, ``fail``, ``known gap`` (passes, with declared gaps) or ``pass``.
+        """``error``, ``fail``, ``findings`` (passes, with models outside their accuracy), ``known gap`` (passes,
+        with declared gaps) or ``pass``.
 
-        ``strict``: known gaps fail; ``strict_time``: a budget overrun fails.
+        ``strict``: findings and known gaps fail; ``strict_time``: a budget overrun fails.
         An unexpected pass of a known gap always fails (remove the declaration).
         """
         if self.error or not self.outputs:
@@ -175,14 +189,16 @@ class SceneResult:
             return "fail"
         if strict_time and self.over_budget:
             return "fail"
+        if self.outputs_with("outside accuracy"):
+            return "fail" if strict else "findings"
         if self.outputs_with("known gap"):
             return "fail" if strict else "known gap"
         return "pass"
 
     @property
     def passed(self) -> bool:
-        """Passes the default run (known gaps allowed, budgets reported only)."""
-        return self.status() in ("pass", "known gap")
+        """Passes the default run (findings and known gaps allowed, budgets reported only)."""
+        return self.status() in PASSING
 
 
 @dataclass(frozen=True)
@@ -336,6 +352,7 @@ class Run:
         known_gap: KnownGap | None = None,
         family: str,
         level: str = "",
+        finding: bool = False,
     ) -> Output:
         """Record ``value`` of ``quantity`` (SI ``unit``) against ``reference``.
 
@@ -343,7 +360,8 @@ class Run:
         A tolerance that is not finite or not below 1, or a ``scale`` larger
         than ``|reference|`` with a tolerance above 0, is rejected (ValueError)
         unless ``why`` says why.
-        ``known_gap`` declares the published number as not reproduced.
+        ``known_gap`` declares the published number as not reproduced.  ``finding=True``: a miss is a finding of
+        the validation (status ``outside accuracy``), not a failure (module docstring, "Findings").
         ``family`` (one of :data:`FAMILIES`, required) and ``level`` (the fidelity level within the family in words,
         e.g. ``"h 30 um"``, ``"64 x 64 cells"``; empty for a model without levels) name the model as data.
         """
@@ -364,11 +382,13 @@ class Run:
                                  "pass why= to name the magnitude the error is judged against")
         if known_gap is not None and not isinstance(known_gap, KnownGap):
             raise TypeError("known_gap must be a KnownGap(reason, evidence)")
+        if finding and known_gap is not None:
+            raise ValueError(f"{quantity!r}: a check is a finding or a known gap, not both")
         rel_error = relative_error(value, reference, relation=relation, scale=scale)
         passed = bool(math.isfinite(value) and rel_error <= tolerance)
         output = Output(model, quantity, unit, value, reference, source, float(rel_error),
                         float(tolerance), passed, float(time_s), relation, note, "accuracy", scale, why.strip(),
-                        known_gap, family, level)
+                        known_gap, family, level, bool(finding))
         self._outputs.append(output)
         return output
 

@@ -94,7 +94,7 @@ def contact(case):
     return _hertz.solve_load(fe_contact.hertz_geometry(governing), governing.force)
 
 
-def ladder(case, fidelity: str = "quick", *, levels: str = "FE-informed", out_dir=None, budget_s=None,
+def ladder(case, fidelity: str = "quick", *, levels: str = "stick-slip", out_dir=None, budget_s=None,
            name: str = "case"):
     """Run the validation ladder on ``case`` (validation.case_scenes) up to the rung ``levels`` (one of
     validation.studies.ladder.RUNGS) at ``fidelity`` ("quick", "default" or "fine"); returns the SceneResult of

@@ -193,3 +193,63 @@ def test_mutant_list_is_documented():
     for label, (_, names) in MUTANTS.items():
         assert label in text, label
         assert all(name in text for name in names), label
+
+
+# --------------------------------------------------------------------------
+# the case scenes (validation.case_scenes): a wrong model is rejected when a check of the scene leaves "pass" (a model
+# outside its accuracy is a finding there, not a failure: docs/validation.md, "Findings")
+# --------------------------------------------------------------------------
+def _nut_bem_on_screw_groove(monkeypatch):  # the BEM of a nut-side contact on the screw's groove
+    from ballbench.lowmodel.contact import screw_contact
+
+    original = screw_contact.groove_contact
+
+    def mutant(ball_radius, conformity, pitch_radius, lead, contact_angle, force, body="screw", *args, **kwargs):
+        return original(ball_radius, conformity, pitch_radius, lead, contact_angle, force, "screw", *args, **kwargs)
+    monkeypatch.setattr(screw_contact, "groove_contact", mutant)
+
+
+def _soft_half_space(monkeypatch):  # stick/slip on a half-space of a tenth of the steel's shear modulus
+    from ballbench.lowmodel.linear_bearing import b2b_rolling
+
+    original = b2b_rolling._material
+    monkeypatch.setattr(b2b_rolling, "_material", lambda e, nu: (0.1 * original(e, nu)[0], original(e, nu)[1]))
+
+
+# mutant -> (what it is, case file, rung, scene suffix, the checks (level, quantity) expected to leave "pass")
+CASE_MUTANTS = {
+    "nut-side BEM on the screw's groove": (_nut_bem_on_screw_groove, "validation/cases/files/lin2019-table5-a.toml",
+                                           "BEM", "contact", [("nut side", "b"), ("nut side", "p0")]),
+    "stick/slip half-space shear modulus x 0.1": (_soft_half_space, "examples/compact_linear_guide.toml",
+                                                  "stick-slip", "stick-slip",
+                                                  [("8 x 32 cells", "friction force, balls apart")]),
+}
+
+
+def _case_scene(path, rung, suffix, directory):
+    from ballbench.validation import case_scenes
+    from ballbench.validation.cases import case_file
+    from ballbench.validation.runner import run_scenes
+
+    (scene,) = [s for s in case_scenes.case_scenes(case_file.load(paths.ROOT / path), "m", top=rung)
+                if s.name == f"m-{suffix}"]
+    (result,), _ = run_scenes([scene], "quick", directory, show_progress=False)
+    return {(o.level, o.quantity): o.status for o in result.outputs}, result.error
+
+
+@pytest.mark.parametrize("label", [pytest.param(k, marks=(pytest.mark.slow,) if v[2] == "stick-slip" else (), id=k)
+                                   for k, v in CASE_MUTANTS.items()])
+def test_case_scene_mutant_is_rejected(label, monkeypatch, tmp_path):
+    mutate, path, rung, suffix, rejecting = CASE_MUTANTS[label]
+    statuses, error = _case_scene(path, rung, suffix, tmp_path / "baseline")
+    assert not error and all(s == "pass" for s in statuses.values()), f"unmutated checks must pass first: {statuses}"
+    mutate(monkeypatch)
+    statuses, error = _case_scene(path, rung, suffix, tmp_path / "mutant")
+    assert not error, error
+    assert all(statuses[key] != "pass" for key in rejecting), f"{label} passes: {statuses}"
+
+
+def test_case_mutant_list_is_documented():
+    text = (paths.ROOT / "docs" / "mutations.md").read_text()
+    for label in CASE_MUTANTS:
+        assert label in text, label

@@ -111,10 +111,34 @@ def test_status_counts_are_those_of_the_one_tally():
     results = many_scenes(1)
     bad = _scene("zz-bad", _output("m", "FE", error=2.0))
     counted = tally([*results, bad])
-    assert counted.counts == {"pass": len(results), "known gap": 0, "fail": 1, "error": 0}
+    assert counted.counts == {"pass": len(results), "known gap": 0, "findings": 0, "fail": 1, "error": 0}
     built = contents.build_document([*results, bad], "quick", counted)
     assert [v.status for v in built.verdicts] == list(counted.statuses)
     assert report.to_json([*results, bad], "quick")["counts"] == counted.counts
+
+
+def _finding(error, **kw):
+    from dataclasses import replace
+
+    return replace(_output("model.analytical", "analytical", error=error, **kw), finding=True)
+
+
+def test_a_missed_finding_passes_the_run_a_failed_self_check_does_not(tmp_path):
+    # a model outside its declared accuracy on a case's geometry is a finding (passes, --strict fails); a failed
+    # self-check beside it (power balance, equilibrium: no finding) still fails the scene
+    found = _scene("zz-found", _finding(2.0), _output("model.low", "low-order numerical"))
+    broken = _scene("zz-broken", _finding(2.0), _output("model.low", "low-order numerical", error=2.0))
+    fine = _scene("zz-fine", _finding(0.5))
+    assert [o.status for o in found.outputs] == ["outside accuracy", "pass"]
+    assert fine.outputs[0].status == "pass"
+    assert (found.status(), found.status(strict=True), found.passed) == ("findings", "fail", True)
+    assert (broken.status(), broken.passed) == ("fail", False)
+    counted = tally([found, broken, fine])
+    assert counted.counts == {"pass": 1, "known gap": 0, "findings": 1, "fail": 1, "error": 0}
+    assert not counted.passed and tally([found, fine]).passed and not tally([found], strict=True).passed
+    report.write_report([found, fine], tmp_path, "quick")
+    text = (tmp_path / "report.md").read_text()
+    assert "1 passed with findings" in text and "Findings: models outside their accuracy" in text
 
 
 def test_figure_labels_do_not_collide_at_fifty_scenes(tmp_path):

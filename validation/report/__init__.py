@@ -10,7 +10,7 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
     {"fidelity": str, "passed": bool, "strict": bool, "strict_time": bool,
      "complete": bool, "not_run": [str],
-     "counts": {"pass", "known gap", "fail", "error"},
+     "counts": {"pass", "known gap", "findings", "fail", "error"},
      "scenes": [{"name", "description", "kind", "status", "passed", "error",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
                  "artifacts": [str], "notes": [str],
@@ -21,8 +21,11 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                               "known_gap_evidence", "family", "level"}],
                  "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
-``peak_memory_gb`` is the process's peak resident memory while the scene ran
-(0 where not measured).  ``family`` is one of ``scene.FAMILIES`` or ``""`` (undeclared), ``level`` the
+``peak_memory_gb`` is the process's peak resident memory while the scene ran (0 where not measured).
+A scene's ``status`` is one of ``counts``' keys; an output's is ``pass``, ``fail``, ``outside accuracy`` (a
+finding: a model outside its declared accuracy on a case's own geometry, docs/validation.md), ``known gap``,
+``unexpected pass``, ``within budget`` or ``over budget``.
+``family`` is one of ``scene.FAMILIES`` or ``""`` (undeclared), ``level`` the
 model's fidelity level in words (``""`` without levels).  JSON and CSV carry SI
 values; report.md and report.html show engineering units (mm, um, MPa, mN,
 ...) and errors in percent and as a multiple of the tolerance.

@@ -1,7 +1,7 @@
 """What the report says, decided once: the :class:`~.document.Document` of a run.
 
-The opening banner (counts under the run's options), unexpected passes, the
-summary (one row per scene with its model families), known gaps, budgets,
+The opening banner (counts under the run's options), unexpected passes, findings (models outside their declared
+accuracy on a case's own geometry), the summary (one row per scene with its model families), known gaps, budgets,
 "which model for an error budget" (per declared model family), then one
 section per scene with a table per model run (its family, level and run time).
 """
@@ -14,8 +14,8 @@ from ballbench.validation.report.document import (Block, Bullets, Document, File
                                                   Span, Table, Text, Verdict)
 from ballbench.validation.report.points import family_order
 from ballbench.validation.report.records import Tally
-from ballbench.validation.report.rows import (check_line, count, failure_lines, family_of, fmt_time, ratio_text, row,
-                                              scene_budget_text, status_word, worst_ratio_text)
+from ballbench.validation.report.rows import (FINDINGS_MEANING, check_line, count, failure_lines, family_of, fmt_time,
+                                              ratio_text, row, scene_budget_text, status_word, worst_ratio_text)
 from ballbench.validation.scene import Output, SceneResult
 
 
@@ -98,9 +98,11 @@ def _head(results, fidelity, counted: Tally) -> list[Block]:
     c = counted.counts
     mode = ", ".join(m for m, on in (("--strict", counted.strict), ("--strict-time", counted.strict_time)) if on)
     ok = c["fail"] == 0 and c["error"] == 0 and not counted.not_run
+    findings = f"{c['findings']} passed with findings, " if c["findings"] else ""
     blocks = [Paragraph(("Fidelity ", Span(fidelity, "code"), f", mode {mode or 'default'}. "
                          f"{count(len(results), 'scene')}: {c['pass']} passed, {c['known gap']} passed with known "
-                         f"gaps, {c['fail']} failed, {c['error']} raised."), tone="ok" if ok else "bad")]
+                         f"gaps, {findings}{c['fail']} failed, {c['error']} raised."),
+                        tone=("warn" if c["findings"] else "ok") if ok else "bad")]
     if counted.not_run:
         blocks.append(Paragraph((Span(f"Partial report: the run was interrupted; "
                                       f"{count(len(counted.not_run), 'scene')} did not run:", "strong"),
@@ -116,6 +118,27 @@ def _unexpected(results) -> list[Section]:
         Paragraph(("Remove the ", Span("known_gap=", "code"), " declaration of each; the run fails until then.")),
         Table(("scene", "check", "value", "reference"),
               tuple((r.name, o.quantity, row(o).value, row(o).reference) for r, o in unexpected))), loud=True)]
+
+
+def _findings(results, counted: Tally) -> list[Section]:
+    """Models outside their declared accuracy on a case's own geometry: what each missed and what to conclude."""
+    found = [(r, o) for r in results for o in r.outputs_with("outside accuracy")]
+    if not found:
+        return []
+    consequence = ("; this ", Span("--strict", "code"), " run counts them as failures.") if counted.strict else (
+        "; they do not fail the run (", Span("--strict", "code"), " makes them fail).")
+    rows = []
+    for r, o in found:
+        shown = row(o)
+        rows.append((r.name, o.model + (f" ({o.level})" if o.level else ""), o.quantity, shown.value_with_unit,
+                     shown.reference_with_unit, shown.error, shown.tolerance, Span(o.status, status=o.status),
+                     o.source))
+    return [Section("Findings: models outside their accuracy on this geometry", "findings", (
+        Paragraph(("Each row is ", FINDINGS_MEANING, consequence, " A model of a lower rung that misses its "
+                   "declared accuracy against a higher one here is not to be trusted to that accuracy on this "
+                   "bearing (docs/your_own_bearing.md, 'Reading the verdict').")),
+        Table(("scene", "model", "quantity", "value", "reference", "error", "tolerance", "status", "reference from"),
+              tuple(rows), numeric=(3, 4, 5, 6))))]
 
 
 def _summary(results, counted: Tally) -> Section:
@@ -228,6 +251,7 @@ def build_document(results: Sequence[SceneResult], fidelity: str, counted: Tally
     verdicts = tuple(_verdict(r, s, counted) for r, s in zip(results, counted.statuses))
     sections = [Section("", "", tuple(_head(results, fidelity, counted)))]
     sections += _unexpected(results)
+    sections += _findings(results, counted)
     sections += [_summary(results, counted), _known_gaps(results, counted), _budgets(results)]
     sections += _error_budget(points, figure)
     sections += [_scene(r, s, out_dir) for r, s in zip(results, counted.statuses)]

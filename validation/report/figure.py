@@ -32,7 +32,8 @@ FAMILY_STYLE = {
     "undeclared": ("#999999", ":"),
 }
 STATUS_MARKER = {"pass": ("o", "passed"), "known gap": ("s", "known gap"), "fail": ("X", "failed"),
-                 "unexpected pass": ("D", "known gap that now passes")}
+                 "unexpected pass": ("D", "known gap that now passes"),
+                 "outside accuracy": ("P", "outside its accuracy (a finding)")}
 FAIL_EDGE = "#D55E00"
 MESH_COLOUR = "0.45"
 PANEL_WIDTH_IN, PANEL_HEIGHT_IN, SUMMARY_HEIGHT_IN = 6.5, 4.7, 5.2

@@ -18,6 +18,7 @@ table{border-collapse:collapse;margin:.5em 0 1em;font-size:13px}
 th,td{border:1px solid #ccc;padding:3px 6px;vertical-align:top;text-align:left}
 th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .pass{color:#0072B2}.fail,.error,.unexpected{color:#D55E00;font-weight:bold}.gap{color:#9a6b00;font-weight:bold}
+.finding{color:#7b3294;font-weight:bold}
 .banner{padding:.6em 1em;border-radius:4px;margin:.5em 0}.banner.ok{background:#e6f0fa}
 .banner.bad{background:#fde3d6}.banner.warn{background:#fff1d0}
 blockquote{margin:.4em 0 .4em 1em;padding-left:.8em;border-left:3px solid #ccc;color:#444;font-size:13px}
@@ -26,7 +27,8 @@ h2{border-bottom:1px solid #ddd;padding-bottom:.2em;margin-top:1.6em}nav a{margi
 .small{font-size:12px;color:#555}
 """
 STATUS_CLASS = {"pass": "pass", "within budget": "pass", "known gap": "gap", "fail": "fail", "error": "error",
-                "unexpected pass": "unexpected", "over budget": "gap"}
+                "unexpected pass": "unexpected", "over budget": "gap", "outside accuracy": "finding",
+                "findings": "finding"}
 _TAGS = {"strong": "b", "code": "code", "em": "i"}
 
 

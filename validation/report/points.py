@@ -19,7 +19,8 @@ from ballbench.validation.scene import FAMILIES
 
 FLOOR = 1e-8     # error / tolerance drawn at this floor when it is exactly 0 (or below it)
 CEILING = 1e4    # ... and at this ceiling when infinite (a missed bound of tolerance 0, a non-finite value)
-STATUS_ORDER = ("pass", "known gap", "unexpected pass", "fail")  # the worst status of a point's checks wins
+# the worst status of a point's checks wins
+STATUS_ORDER = ("pass", "known gap", "outside accuracy", "unexpected pass", "fail")
 
 
 def family_order(families: Iterable[str]) -> list[str]:
@@ -50,7 +51,7 @@ def error_points(data: dict) -> list[dict]:
     on a tie); budget rows are not accuracy and are left out, and so are
     checks timed at 0 s (consistency checks of a paper's data, no model run).
     ``status`` is the worst status of the checks (fail > unexpected pass >
-    known gap > pass).  A check without a declared family is ``undeclared``.
+    outside accuracy > known gap > pass).  A check without a declared family is ``undeclared``.
     """
     points = []
     for index, s in enumerate(data["scenes"]):

@@ -11,12 +11,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from ballbench.validation.scene import KnownGap, Output, SceneResult
+from ballbench.validation.scene import PASSING, KnownGap, Output, SceneResult
 
 CSV_FIELDS = ("scene", "model", "quantity", "unit", "value", "reference", "source", "rel_error", "tolerance",
               "passed", "status", "time_s", "relation", "kind", "scale", "note", "why", "known_gap_reason",
               "known_gap_evidence", "family", "level")
-SCENE_STATUSES = ("pass", "known gap", "fail", "error")
+SCENE_STATUSES = ("pass", "known gap", "findings", "fail", "error")
 _NUMBERS = ("value", "reference", "rel_error", "tolerance", "time_s", "scale")
 
 
@@ -33,12 +33,13 @@ class Tally:
     @property
     def passed(self) -> bool:
         """No scene failed or raised and none was left out by an interruption."""
-        return all(s in ("pass", "known gap") for s in self.statuses) and not self.not_run
+        return all(s in PASSING for s in self.statuses) and not self.not_run
 
 
 def tally(results: Sequence[SceneResult], *, strict: bool = False, strict_time: bool = False,
           not_run: Sequence[str] = ()) -> Tally:
-    """The :class:`Tally` of ``results`` (``strict``: known gaps fail; ``strict_time``: budget overruns fail)."""
+    """The :class:`Tally` of ``results`` (``strict``: findings and known gaps fail; ``strict_time``: budget overruns
+    fail)."""
     statuses = tuple(r.status(strict=strict, strict_time=strict_time) for r in results)
     return Tally(statuses, {k: statuses.count(k) for k in SCENE_STATUSES}, strict, strict_time, tuple(not_run))
 
@@ -71,7 +72,7 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "description": r.description,
                 "kind": r.kind,
                 "status": status,
-                "passed": status in ("pass", "known gap"),
+                "passed": status in PASSING,
                 "error": r.error,
                 "wall_time_s": r.wall_time_s,
                 "budget_s": json_number(r.budget_s),
@@ -104,15 +105,16 @@ def write_csv(results: Sequence[SceneResult], path: Path) -> None:
 def results_from_json(data: dict) -> list[SceneResult]:
     """Scene results back from ``results.json`` data (to re-render a report without running the scenes).
 
-    Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``) take their defaults."""
-    fields = set(Output.__dataclass_fields__) - {"known_gap"}
+    Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``) take their defaults; a
+    finding check that missed is known by its status (``outside accuracy``)."""
+    fields = set(Output.__dataclass_fields__) - {"known_gap", "finding"}
     results = []
     for s in data["scenes"]:
         outputs = []
         for o in s["outputs"]:
             values = {k: (json_float(v) if k in _NUMBERS else v) for k, v in o.items() if k in fields}
             gap = KnownGap(o["known_gap_reason"], o["known_gap_evidence"]) if o.get("known_gap_reason") else None
-            outputs.append(Output(**values, known_gap=gap))
+            outputs.append(Output(**values, known_gap=gap, finding=o.get("status") == "outside accuracy"))
         results.append(SceneResult(s["name"], s["description"], data["fidelity"], tuple(outputs),
                                    tuple(s["artifacts"]), tuple(s["notes"]), s["wall_time_s"], s["error"],
                                    json_float(s["budget_s"]), s["kind"], s["interrupted"],

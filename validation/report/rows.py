@@ -23,7 +23,13 @@ _ENGINEERING = {
 }
 DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "-" in a unit column
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
-STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)", "fail": "FAIL", "error": "ERROR"}
+STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)",
+                "findings": "PASS, FINDINGS (models outside their accuracy here)", "fail": "FAIL", "error": "ERROR"}
+
+
+# what a finding means for the reader (report.md/html and the CLI; docs/your_own_bearing.md, "Reading the verdict")
+FINDINGS_MEANING = ("a model outside its declared accuracy on this geometry: a result of the validation, not a "
+                    "failure of the software; where it matters, use the higher rung it was judged against")
 
 
 def engineering(unit: str, *numbers: float) -> tuple[float, str]:
@@ -183,22 +189,37 @@ def scene_budget_text(r: SceneResult) -> str:
     return f"{fmt_time(r.budget_s)} ({'over' if r.wall_time_s > r.budget_s else 'under'})"
 
 
-def check_line(o: Output) -> str:
-    """One check as a line: quantity, model, value and reference with unit, source, error and tolerance."""
+def check_line(o: Output, *, level: bool = False) -> str:
+    """One check as a line: quantity, model (``level``: and its level), value and reference with unit, source, error
+    and tolerance."""
     r = row(o)
     tolerance = f"tolerance {r.tolerance}" if o.kind == "accuracy" else "budget"
-    return (f"  {o.quantity} [{o.model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
+    model = f"{o.model}, {o.level}" if level and o.level else o.model
+    return (f"  {o.quantity} [{model}]: {r.value_with_unit} vs reference {r.reference_with_unit} ({o.source}): "
             f"error {r.error or '0 %'}, {tolerance}")
+
+
+def passing_lines(result: SceneResult, status: str) -> list[str]:
+    """What a passing scene with findings or known gaps adds under its status line on the terminal."""
+    if status == "findings":
+        return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o, level=True)}: outside accuracy"
+                                                      for o in result.outputs_with("outside accuracy")]
+    if status == "known gap":
+        return [f"  known gap (declared, see the report): {o.quantity}: {row(o).value_with_unit} vs published "
+                f"{row(o).reference_with_unit}" for o in result.outputs_with("known gap")]
+    return []
 
 
 def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: bool = False, limit: int = 5) -> list[str]:
     """One line per failed check: quantity, model, value, reference, error and tolerance."""
-    bad = [o for o in result.outputs if o.status in ("fail", "unexpected pass")
-           or (strict and o.status == "known gap") or (strict_time and o.status == "over budget")]
+    strict_fails = ("known gap", "outside accuracy") if strict else ()
+    bad = [o for o in result.outputs if o.status in ("fail", "unexpected pass", *strict_fails)
+           or (strict_time and o.status == "over budget")]
     lines = []
     for o in bad[:limit]:
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
-                "known gap": "known gap (--strict)", "over budget": "over budget (--strict-time)"}.get(o.status, "")
+                "known gap": "known gap (--strict)", "outside accuracy": "outside accuracy (--strict)",
+                "over budget": "over budget (--strict-time)"}.get(o.status, "")
         lines.append(check_line(o) + (f"; {what}" if what else ""))
     if strict_time and result.wall_time_s > result.budget_s:
         lines.append(f"  scene wall time {fmt_time(result.wall_time_s)} over its budget {fmt_time(result.budget_s)} "

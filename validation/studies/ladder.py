@@ -16,8 +16,9 @@ Rungs, bottom to top (:data:`RUNGS`):
   smallest ellipse of the module (:func:`module_fe`), their contact pressures fed to the B2B model
   (studies.fe_b2b_linear, studies.fe_b2b_screw); the extrapolated FE-informed B2B force is the reference of the
   analytical and low-order B2B forces;
-* ``stick-slip``: the rolling contact with stick and slip (lowmodel.contact.rolling) joins here when its
-  case-level study lands; :func:`rungs_up_to` knows the name, the factory runs nothing for it yet.
+* ``stick-slip``: the case's balls with stick/slip ball-to-groove contacts (lowmodel.contact.rolling_friction on
+  two half-spaces) against lin2019's full slip on the same cells (studies.case_stick_slip): whether full slip holds
+  on the case, at its declared accuracy (docs/b2b_rolling.md, 'Validity of full slip').
 
 The mesh levels of a case without an ``[fe]`` table are chosen here from its ellipses; a case file's ``[fe]``
 table (the paper cases) is used as it is.
@@ -26,14 +27,15 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
                                              ModuleFe, ModuleLevel, PairLevel)
 
-__all__ = ["RUNGS", "rungs_up_to", "governing_contact", "contact_fe", "module_fe", "hertz_values", "bem_values",
+__all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
+            "module_fe", "hertz_values", "bem_values",
            "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time"]
 
 RUNGS = ("analytical", "low-order", "BEM", "FE", "FE-informed", "stick-slip")
@@ -99,6 +101,65 @@ def governing_contact(case, result=None) -> ContactCase:
         return ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, {pair} groove, "
                            f"{worst.normal_force:.4g} N)", pair, screw.ball_radius, screw.material,
                            worst.normal_force, screw=screw)
+    raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
+
+
+@dataclass(frozen=True)
+class DistinctContact:
+    """One contact geometry of a case, run at the load of its most loaded contact.
+
+    ``label``: what it is in words (``"groove"``, ``"screw side"``, ``"nut side"``, ``"contact"``); ``contact``:
+    the :class:`ContactCase` at that load; ``members``: the contacts of the low-order state with this geometry
+    (``"ball 1 BL"``, ...); ``why``: why those share it (the reader's table of the ``-contact`` scene)."""
+
+    label: str
+    contact: ContactCase
+    members: tuple[str, ...]
+    why: str
+
+
+def distinct_contacts(case, result=None) -> tuple[DistinctContact, ...]:
+    """The distinct contact geometries of ``case``, each at the largest normal force among its contacts, the most
+    loaded first.
+
+    A contact's geometry is the ball radius, the groove's conformity and, for a helical groove, the side: a linear
+    guide has one conformity for the rail (BL, BR) and the carriage (TL, TR) grooves (docs/fourpoint.md; the case's
+    ``conformity``), so its four contacts are one geometry; in a ball screw the screw-side contacts (S*) touch a
+    groove cut in the shaft and the nut-side ones (N*) a groove cut in the bore: their curvatures along the helix
+    differ (docs/ball_screw.md, helical groove curvatures), two geometries.  A ContactCase is its own one."""
+    if isinstance(case, ContactCase):
+        return (DistinctContact("contact", case, (case.name,), "the case file's own contact"),)
+    from ballbench.validation.studies import bearing_results
+
+    if isinstance(case, LinearGuideCase):
+        result = result or bearing_results.guide_result(case)
+        guide = case.guide
+        worst = max(result.contacts, key=lambda c: c.normal_force)
+        contact = ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, "
+                              f"{worst.normal_force:.4g} N)", "groove", guide.ball_radius, guide.material,
+                              worst.normal_force, conformity=guide.conformity)
+        members = tuple(f"ball {c.ball} {c.contact}" for c in result.contacts)
+        return (DistinctContact("groove", contact, members,
+                                f"rail (BL, BR) and carriage (TL, TR) grooves have the one conformity "
+                                f"{guide.conformity:g} and ball radius of the case: one contact geometry, run at the "
+                                "largest load"),)
+    if isinstance(case, BallScrewCase):
+        result = result or bearing_results.screw_result(case)
+        screw = case.screw
+        found = []
+        for pair, prefix in (("screw", "S"), ("nut", "N")):
+            side = [c for c in result.contacts if c.contact.startswith(prefix)]
+            worst = max(side, key=lambda c: c.normal_force)
+            if not worst.normal_force > 0:
+                continue  # no loaded contact on this side: nothing to run
+            contact = ContactCase(f"{case.name}: most loaded {pair}-side contact (ball {worst.ball} {worst.contact},"
+                                  f" {worst.normal_force:.4g} N)", pair, screw.ball_radius, screw.material,
+                                  worst.normal_force, screw=screw)
+            found.append(DistinctContact(f"{pair} side", contact, tuple(f"ball {c.ball} {c.contact}" for c in side),
+                                         f"the {pair}-side contacts share the {pair} groove's curvatures (the "
+                                         f"screw's conformity, pitch radius {screw.pitch_radius * 1e3:.4g} mm); "
+                                         "run at the largest load of the side"))
+        return tuple(sorted(found, key=lambda d: -d.contact.force))
     raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
 
 

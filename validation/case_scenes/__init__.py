@@ -1,0 +1,123 @@
+"""Scenes generated from a case file: ``ballbench validate my_guide.toml`` runs the validation ladder on one's own
+bearing (studies.ladder) with the same harness, report, ``show`` pictures and VTU as the paper scenes.
+
+This package is a factory, not a scene module: it builds :class:`~ballbench.validation.scene.Scene` objects from a
+case (they are not registered; the CLI runs them beside or instead of the registered scenes).  A case file gives:
+
+* ``<stem>-balls`` (linear guide, ball screw): the low-order numerical model of the balls, touching and free:
+  loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
+  without B2B contact, the friction increase, the B2B forces (studies.bearing_results); power balance and statics
+  checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
+* ``<stem>-contact``: each distinct contact geometry at its largest load (studies.ladder.distinct_contacts: one for
+  a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
+  contact) up the ladder: exact Hertz, the BEM on
+  the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
+  extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
+  time; its fields (fields.vtu) and 3D screenshots;
+* ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
+  full slip on the same cells (studies.case_stick_slip);
+* ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
+  their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
+  low-order B2B forces; the modules' fields and screenshots.
+
+Every model judged against a higher rung is a *finding* check (``run.check(finding=True)``): a miss says the model is
+outside its declared accuracy on this geometry (status ``outside accuracy``; docs/your_own_bearing.md, "Reading the
+verdict"), not that the software failed; the solvers' own checks (power balance, statics, load balance) and the
+uncertainty of the extrapolated reference stay pass/fail.
+
+``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
+stops refining a mesh study when the next level's predicted time would pass it.
+
+Modules: ``balls`` (``<stem>-balls``), ``contact`` (``<stem>-contact``), ``b2b_fe`` (``<stem>-b2b-fe``),
+``stick_slip`` (``<stem>-stick-slip``), ``common``
+(tolerances, tables and checks they share); this file names the scenes of a case and builds them.
+"""
+from __future__ import annotations
+
+import functools
+import re
+from pathlib import Path
+
+from ballbench.validation.case_scenes.b2b_fe import b2b_fe_scene, show_module
+from ballbench.validation.case_scenes.balls import balls_scene
+from ballbench.validation.case_scenes.contact import contact_scene, show_contact
+from ballbench.validation.case_scenes.stick_slip import stick_slip_scene
+from ballbench.validation.cases.case import ContactCase, LinearGuideCase
+from ballbench.validation.scene import Scene
+
+__all__ = ["case_scenes", "scene_names", "show_case", "slug"]
+
+BUDGET_S = {"quick": 900.0, "default": 1800.0, "fine": 7200.0}  # wall-time budget of a generated FE scene [s]
+LOW_BUDGET_S = {"quick": 60.0, "default": 60.0, "fine": 60.0}   # of a generated scene without FE [s]
+
+
+def slug(path: str | Path) -> str:
+    """The scene-name prefix of a case file: its stem in lower case, letters, digits and '-'."""
+    text = re.sub(r"[^a-z0-9]+", "-", Path(path).stem.lower()).strip("-")
+    return text or "case"
+
+
+def _kind(case) -> str:
+    return ("contact" if isinstance(case, ContactCase) else "linear-guide" if isinstance(case, LinearGuideCase)
+            else "ball-screw")
+
+
+def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
+    """The names of the scenes :func:`case_scenes` builds."""
+    from ballbench.validation.studies.ladder import rungs_up_to
+
+    rungs = rungs_up_to(top)
+    names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
+    names.append(f"{stem}-contact")
+    if "FE-informed" in rungs and not isinstance(case, ContactCase):
+        names.append(f"{stem}-b2b-fe")
+    if "stick-slip" in rungs and not isinstance(case, ContactCase):
+        names.append(f"{stem}-stick-slip")
+    return names
+
+
+def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | None = None) -> list[Scene]:
+    """The scenes of ``case`` (a LinearGuideCase, BallScrewCase or ContactCase) named ``<stem>-...``, up to the
+    rung ``top`` (studies.ladder.RUNGS)."""
+    from ballbench.validation.studies.ladder import rungs_up_to
+
+    rungs = rungs_up_to(top)
+    kind = _kind(case)
+    fe = "FE" in rungs
+    scenes = []
+    if kind != "contact":
+        what = "linear guide" if kind == "linear-guide" else "ball screw"
+        scenes.append(Scene(f"{stem}-balls", f"{case.name}: the balls of the {what} by the low-order numerical model "
+                            "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
+                            functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
+                            cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
+    # studies.ladder.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
+    n_contacts = 2 if kind == "ball-screw" else 1
+    scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("
+                        + ", ".join(r for r in rungs if r in ("analytical", "BEM", "FE")) + ")",
+                        functools.partial(contact_scene, case=case, rungs=rungs, deadline=deadline), tags=("case",),
+                        kind="FE" if fe else "low-order", cost_s=(120.0 if fe else 5.0) * n_contacts,
+                        budget_s=({f: t * (1 if f == "quick" else n_contacts) for f, t in BUDGET_S.items()} if fe
+                                  else LOW_BUDGET_S),
+                        case=case, show=functools.partial(show_contact, case) if fe else None))
+    if "FE-informed" in rungs and kind != "contact":
+        scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "
+                            "force per mesh level, extrapolated: the reference of the analytical and low-order models",
+                            functools.partial(b2b_fe_scene, case=case, deadline=deadline), tags=("case",), kind="FE",
+                            cost_s=300.0, budget_s=BUDGET_S, case=case, show=functools.partial(show_module, case)))
+    if "stick-slip" in rungs and kind != "contact":
+        scenes.append(Scene(f"{stem}-stick-slip", f"{case.name}: the balls with stick/slip contacts against full "
+                            "slip on the same cells (Lambda, stick fraction, forces, spin moments, B2B force)",
+                            functools.partial(stick_slip_scene, case=case), tags=("case",), kind="low-order",
+                            cost_s=60.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case))
+    return scenes
+
+
+def show_case(case, stem: str, out_dir: Path, fidelity: str = "default") -> list[Path]:
+    """``ballbench show my_case.toml``: the pictures of every generated scene that has them, drawn from the fields
+    ``validate`` saved in ``out_dir/<scene>/`` (solved first only where none are saved)."""
+    paths = []
+    for scene in case_scenes(case, stem):
+        if scene.show is not None:
+            paths += scene.show(Path(out_dir) / scene.name, fidelity)
+    return paths

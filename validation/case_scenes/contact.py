@@ -1,0 +1,219 @@
+"""``<stem>-contact``: the most loaded contact of a case (or the case's own contact) up the ladder: exact Hertz,
+the BEM on the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the
+Richardson extrapolation of the FE study with its uncertainty as the reference, every model's error against it and
+its run time; its fields (fields.vtu) and 3D screenshots."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from ballbench.validation.case_scenes.common import REFERENCE_UNCERTAINTY, fmt
+from ballbench.validation.cases.case import ContactCase
+
+__all__ = ["contact_scene", "show_contact"]
+
+
+def contact_scene(run, *, case, rungs, deadline) -> None:
+    """The scene function of ``<stem>-contact``: every distinct contact geometry of ``case`` at its largest load
+    (studies.ladder.distinct_contacts: one for a guide or a contact, the screw and the nut side of a screw) up the
+    ladder; ``rungs`` those to run, ``deadline`` a ``time.monotonic()`` value (``--budget``) past which no further FE
+    level starts.  The fields and pictures are those of the most loaded contact."""
+    from ballbench.validation.studies import ladder
+
+    distinct = ladder.distinct_contacts(case)
+    # the quick level keeps the cost of one FE study: the FE of a helical screw pair's quick ladder is about 10 min
+    # and 12 GB (docs/your_own_bearing.md, "Measured"); the default and fine levels run it on every contact
+    fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
+    ran = [", ".join(r for r in rungs if r in ("analytical", "BEM", "FE") and (r != "FE" or on)) for on in fe_on]
+    run.table("Contacts run (each distinct geometry at its largest load)",
+              ("contact", "pair", "F [N]", "rungs", "stands for", "why"),
+              [(d.label, d.contact.pair, fmt(d.contact.force), r, ", ".join(d.members), d.why)
+               for d, r in zip(distinct, ran)])
+    if not all(fe_on) and "FE" in rungs:
+        run.note("--quick: the FE study runs on the most loaded contact only; the other contacts up to the BEM "
+                 "(the default level runs the FE on every contact).")
+    for index, d in enumerate(distinct):
+        tag = d.label if len(distinct) > 1 else ""
+        chosen = rungs if fe_on[index] else tuple(r for r in rungs if r != "FE")
+        _one_contact(run, ladder.contact_fe(d.contact), chosen, deadline, tag, fields=index == 0)
+
+
+def _head(tag: str) -> str:
+    """The start of a note about one of several contacts."""
+    return f"{tag}: " if tag else ""
+
+
+def _tagged(level: str, tag: str) -> str:
+    """The level of a check with the contact it belongs to when the scene runs more than one."""
+    return ", ".join(x for x in (tag, level) if x)
+
+
+def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields: bool) -> None:
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.validation.references.richardson import extrapolate
+    from ballbench.validation.studies import fe_contact, ladder
+
+    run.note(_head(tag) + f"Contact: {contact.name}; pair {contact.pair}, R_B "
+             f"{fmt(contact.ball_radius * 1e3)} mm" + (f", conformity {contact.conformity:g}" if contact.conformity
+                                                       else "") + f", F {fmt(contact.force)} N.")
+    models = []  # (model, family, level, values, time)
+    hertz_model = "lowmodel.contact.hertz"
+    ref_hertz, time_h = run.time(ladder.hertz_values, contact)
+    models.append((hertz_model, "analytical", "", ref_hertz, time_h))
+    geometry = fe_contact.hertz_geometry(contact)
+    radius = geometry.reference_radius
+    run.check(model=hertz_model, family="analytical", level=tag, quantity="a / R (Hertz's small-contact assumption)",
+              unit="1", value=ref_hertz["a"] / radius, reference=hertz.VALIDITY_RATIO, relation="le", tolerance=0.0,
+              time_s=time_h, source="lowmodel.contact.hertz.VALIDITY_RATIO (docs/hertz.md, validity)", finding=True)
+    if "BEM" in rungs:
+        for n in ladder.BEM_GRIDS[run.fidelity]:
+            run.checkpoint()
+            values, wall = ladder.timed(ladder.bem_values, contact, n)
+            models.append(("lowmodel.contact.halfspace (exact gap)", "BEM", f"{n} x {n}", values, wall))
+    fe_rows, fe_results, fe_levels = (_fe_study(run, contact, ref_hertz["b"], deadline, tag, models) if "FE" in rungs
+                                      else ([], [], []))
+    reference, source, uncertainty = _contact_reference(run, models, fe_rows, extrapolate, tag)
+    suffix = f" ({tag})" if tag else ""
+    if reference is None:
+        run.table("Contact by each rung" + suffix, ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]",
+                                                    "one evaluation [s]"), _model_rows(models))
+        return
+    for model, family, level, values, wall in models:
+        if values is reference:
+            continue  # the model that is the reference (one FE level, or the finest BEM grid): no check of itself
+        tolerances = (ladder.FE_TOLERANCES[run.fidelity] if family == "FE" else
+                      {q: ladder.BEM_TOLERANCE for q, _ in ladder.QUANTITIES} if family == "BEM"
+                      else ladder.HERTZ_TOLERANCES)
+        for quantity, unit in ladder.QUANTITIES:
+            run.check(model=model, family=family, level=_tagged(level, tag), quantity=quantity, unit=unit,
+                      value=values[quantity], reference=reference[quantity], source=source,
+                      tolerance=tolerances[quantity], time_s=wall,
+                      note=_tolerance_note(family, run.fidelity), finding=True)
+    if fe_results:
+        finest = fe_results[-1]
+        run.check(model="fem.contact", family="FE", level=_tagged(models[-1][2], tag), quantity="force_sum",
+                  unit="N", value=finest.force_sum, reference=contact.force, tolerance=1e-9, time_s=models[-1][4],
+                  source="load equilibrium (sum of contact forces)")
+        if uncertainty is not None:
+            worst = max(uncertainty.values())
+            run.check(model="Richardson extrapolation of the FE study", family="FE", level=_tagged("h -> 0", tag),
+                      quantity="relative uncertainty of the reference, worst of a, b, p0, delta", unit="1",
+                      value=worst, reference=REFERENCE_UNCERTAINTY, relation="le", tolerance=0.0,
+                      time_s=sum(m[4] for m in models if m[1] == "FE"),
+                      source="grid convergence index (references.richardson; Roache 1994)",
+                      note="the reference must be known better than the tolerances it judges; a larger value asks "
+                           "for finer levels (--fine)")
+        run.write_csv("levels.csv" if not tag else f"levels-{tag.replace(' ', '-')}.csv", fe_rows)
+        if fields:
+            _fields(run, contact, finest, fe_levels[-1])
+    run.table("Contact by each rung" + suffix + " (reference: " + source + ")",
+              ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]", "one evaluation [s]"),
+              _model_rows(models) + [("reference", "h -> 0" if uncertainty else "", fmt(reference["a"] * 1e3),
+                                      fmt(reference["b"] * 1e3), fmt(reference["p0"] / 1e6),
+                                      fmt(reference["delta"] * 1e6), "")])
+
+
+def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: list):
+    """The FE levels of ``contact`` (sizes ``h = b / n`` from its Hertz semi-axis ``b``), stopped where ``--budget``
+    would be passed; appends each level to ``models``; returns (rows, results, levels)."""
+    from ballbench.validation.studies import fe_contact, ladder
+
+    fe_rows, fe_results, fe_levels = [], [], []
+    pair = fe_contact.pair_model(contact)
+    levels = contact.fe.levels[run.fidelity]
+    sizes, times = [], []
+    for level in run.progress(levels, desc=f"{run.scene.name} FE mesh levels" + (f" ({tag})" if tag else "")):
+        size = b / level.n
+        if deadline is not None and not times and time.monotonic() > deadline:
+            run.note(_head(tag) + "--budget: passed before this contact's FE study; no FE level run")
+            break
+        if deadline is not None and times:
+            predicted = ladder.predicted_time(times, sizes, size)
+            if time.monotonic() + predicted > deadline:
+                run.note(_head(tag) + f"--budget: FE levels from n = b/h {level.n:g} on not run (predicted "
+                         f"{predicted:.0f} s beyond the budget)")
+                break
+        start = time.perf_counter()
+        result, ref = fe_contact.solve_level(pair, level)
+        wall = time.perf_counter() - start
+        sizes.append(size)
+        times.append(wall)
+        values = {q: float(getattr(result, q)) for q, _ in ladder.QUANTITIES}
+        words = f"n = b/h {level.n:g}, growth {level.growth:g}"
+        models.append(("fem.contact", "FE", words, values, wall))
+        fe_rows.append(dict(n=level.n, growth=level.growth, h_contact=result.h_contact, ndofs=result.ndofs,
+                            iterations=result.iterations, residual=result.residual, wall_s=wall,
+                            force_sum=result.force_sum, **{f"{q}": v for q, v in values.items()}))
+        if fe_results and fe_results[-1].model.factor is not None:
+            fe_results[-1].model.factor.free()  # only the finest level's factor is kept (for the fields)
+        fe_results.append(result)
+        fe_levels.append(level)
+        if deadline is not None and time.monotonic() > deadline:
+            run.note("--budget reached after this level")
+            break
+    return fe_rows, fe_results, fe_levels
+
+
+def _model_rows(models) -> list[tuple]:
+    return [(m, level or "-", fmt(v["a"] * 1e3), fmt(v["b"] * 1e3), fmt(v["p0"] / 1e6), fmt(v["delta"] * 1e6),
+             f"{t:.3g}") for m, _, level, v, t in models]
+
+
+def _tolerance_note(family: str, fidelity: str) -> str:
+    if family == "FE":
+        return f"tolerance: the {fidelity} level's stated accuracy (docs/fem.md)"
+    if family == "BEM":
+        return "tolerance: the BEM's stated accuracy at its grids (docs/halfspace.md: 0.5 %)"
+    return "tolerance: FE and Hertz agree within it for the papers' contacts (docs/fem.md); a miss flags a contact " \
+           "outside Hertz's assumptions"
+
+
+def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
+    """(reference values, source text, relative uncertainties or None): the extrapolated FE study (>= 2 levels),
+    the one FE level, or the finest BEM grid; None when only Hertz ran."""
+    from ballbench.validation.studies import ladder
+
+    fe = [m for m in models if m[1] == "FE"]
+    if len(fe) >= 2:
+        sizes = [r["h_contact"] for r in fe_rows]
+        reference, uncertainty, notes = {}, {}, []
+        for quantity, _ in ladder.QUANTITIES:
+            e = extrapolate(sizes, [r[quantity] for r in fe_rows])
+            reference[quantity] = e.value
+            uncertainty[quantity] = e.relative_uncertainty
+            notes.append(f"{quantity}: {e.note}, U = {100 * e.relative_uncertainty:.2g} %")
+        run.note(_head(tag) + "Reference: Richardson extrapolation of the FE levels (" + "; ".join(notes) + ").")
+        return reference, f"FE extrapolated to h -> 0 from {len(fe)} levels (references.richardson)", uncertainty
+    if len(fe) == 1:
+        run.note(_head(tag) + "Reference: the one FE level that ran (no extrapolation, its uncertainty unknown).")
+        return fe[0][3], f"FE, {fe[0][2]} (one level)", None
+    bem = [m for m in models if m[1] == "BEM"]
+    if bem:
+        run.note(_head(tag) + "Reference: the finest BEM grid (no FE rung in this run).")
+        return bem[-1][3], f"BEM {bem[-1][2]} (finest grid)", None
+    run.note(_head(tag) + "Hertz only (--levels analytical): no reference to judge it against.")
+    return None, "", None
+
+
+def _fields(run, contact: ContactCase, result, level) -> None:
+    """fields.vtu and fields.json of the finest FE level that ran (studies.fe_contact.write_fields) and their 3D
+    screenshots (figures.render3d), as artifacts of the scene."""
+    from ballbench.lowmodel.contact import hertz
+    from ballbench.validation.figures import render3d
+    from ballbench.validation.studies import fe_contact
+
+    ref = hertz.solve_load(fe_contact.hertz_geometry(contact), contact.force)
+    for path in fe_contact.write_fields(result, ref, run.path(""), scene_name=run.scene.name, fidelity=run.fidelity,
+                                        level=level, material=contact.material):
+        run.add_artifact(path)
+    for path in render3d.artifacts(run.path(""), run.note):
+        run.add_artifact(path)
+
+
+def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
+    """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (solved at
+    ``fidelity`` if none)."""
+    from ballbench.validation.studies import fe_contact, ladder
+
+    governing = ladder.distinct_contacts(case)[0].contact
+    return fe_contact.show_fields(ladder.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)
