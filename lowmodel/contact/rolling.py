@@ -213,6 +213,9 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
 
 def _newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start):
     with one_blas_thread():
+        compiled = rolling_newton.compiled_solve(problem, tolerance, max_iterations, start)
+        if compiled is not None:
+            return compiled
         p, iterations, krylov, residual = rolling_newton.semismooth_newton(problem, tolerance, max_iterations, start)
         s, stick = rolling_newton.check_solution(problem, p, tolerance)
     return p, s, stick, iterations, krylov, residual

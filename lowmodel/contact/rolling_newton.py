@@ -23,14 +23,16 @@ import math
 
 import numpy as np
 
+from ballbench.lowmodel import kernels
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "low_rank_step", "woodbury_step",
-           "identity_step", "DENSE_CELLS", "DIRECT_CELLS", "CHECK_TOLERANCE"]
+           "identity_step", "compiled_solve", "KERNELS", "DENSE_CELLS", "DIRECT_CELLS", "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
 CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g) (traction units)
+KERNELS = "contact.rolling_kernels"  # the compiled twin of the prepared dense solve (lowmodel.kernels.load)
 _FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
 _RESTART = 30
 
@@ -459,9 +461,53 @@ def check_solution(problem: TangentialProblem, p: np.ndarray, tolerance: float):
     work = -(p[:, 0] * s[:, 0] + p[:, 1] * s[:, 1]) * c
     checks_.append(("dissipation -min(c p . s) / max(mu p_n)^2 (no cell does negative work)",
                     max(0.0, -float(work.min())) / gmax ** 2))
+    _raise_failed(checks_, limit)
+    return s, ~sliding
+
+
+_CHECK_NAMES = ("Coulomb bound max(|p| - mu p_n) / max(mu p_n)",
+                "stick condition max(c |s|) / max(mu p_n) in stick cells",
+                "slip direction max|p + mu p_n s/|s|| / max(mu p_n) in slip cells",
+                "dissipation -min(c p . s) / max(mu p_n)^2 (no cell does negative work)")
+
+
+def _raise_failed(checks_, limit: float) -> None:
     for name, value in checks_:
         if not (value <= limit):
             raise ConvergenceError(f"rolling contact: check failed, {name} = {value:.3e}", residual=value,
                                    iterations=0, tolerance=limit, reason=f"fails the check of {name}")
-    return s, ~sliding
+
+
+def compiled_solve(problem: TangentialProblem, tolerance: float, max_iterations: int, start: np.ndarray | None):
+    """:func:`semismooth_newton` and :func:`check_solution` of a prepared dense problem (``(c C)^-1`` built,
+    :meth:`TangentialProblem.prepare`) by the compiled kernels of :mod:`lowmodel.contact.rolling_kernels`: the
+    same steps as loops, the same answer to round-off.  Returns ``(p, s, stick, iterations, 0, residual)``, or
+    None where the kernels are off or missing or the problem is not prepared dense (then the numpy path runs;
+    it also runs again where the kernel's Newton does not converge, and names the failure)."""
+    inverse = problem.stick_inverse()
+    if inverse is None or problem.matrix is None:
+        return None
+    module = kernels.load(KERNELS)
+    if module is None:
+        return None
+    w = np.ascontiguousarray(problem.w, dtype=float)
+    g = problem.g
+    if start is not None:
+        p = np.array(start, dtype=float)
+    else:
+        flexibility = problem.flexibility()
+        if not (math.isfinite(flexibility) and flexibility > 0.0):
+            p = np.zeros((problem.n, 2))
+        else:
+            p = module.marching_start(w, flexibility, problem._line_bound(), problem.line_of, problem.position)
+    p, iterations, residual, status = module.newton(problem.matrix, inverse, problem.c, g, w, problem.gmax,
+                                                    float(tolerance), int(max_iterations), p)
+    if status != module.CONVERGED:
+        return None
+    limit = max(tolerance, CHECK_TOLERANCE)
+    s, stick, values = module.check_values(problem.matrix, problem.c, g, w, problem.gmax, p, limit)
+    named = list(zip(_CHECK_NAMES, values.tolist()))
+    if not all(value <= limit for _, value in named):
+        _raise_failed(named, limit)
+    return p, s, stick, iterations, 0, residual
 
