@@ -195,9 +195,30 @@ def test_a_wrong_traction_fails_its_defining_check(monkeypatch):
         p, iterations, krylov, residual = original(problem, tolerance, max_iterations, start)
         return p * 1.01, iterations, krylov, residual  # a slightly wrong answer claiming convergence
 
+    monkeypatch.setenv("BALLBENCH_KERNELS", "numpy")  # the numpy path; the compiled one: the test below
     monkeypatch.setattr(rolling_newton, "semismooth_newton", off)
     with pytest.raises(ConvergenceError, match="check failed"):
         rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 3e-4, 0.0, 0.0, 12)
+
+
+def test_a_wrong_traction_fails_its_defining_check_on_the_compiled_path(monkeypatch):
+    pytest.importorskip("numba")
+    from ballbench.lowmodel import kernels
+
+    monkeypatch.setenv("BALLBENCH_KERNELS", "1")
+    module = kernels.load(rolling_newton.KERNELS)
+    assert module is not None, kernels.load_errors
+    original = module.newton
+
+    def off(*args):
+        p, iterations, residual, status = original(*args)
+        return p * 1.01, iterations, residual, status  # a slightly wrong answer claiming convergence
+
+    monkeypatch.setattr(module, "newton", off)
+    with pytest.raises(ConvergenceError, match="check failed"):
+        rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 3e-4, 0.0, 0.0, 12)
+    monkeypatch.setattr(module, "newton", original)  # and the right answer passes the same checks
+    assert rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 3e-4, 0.0, 0.0, 12).iterations >= 1
 
 
 # --- FASTSIM ----------------------------------------------------------------------------------------------------------

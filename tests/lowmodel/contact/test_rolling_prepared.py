@@ -2,7 +2,8 @@
 
 Reference: the general entry ``rolling.solve`` on a pressure, operator and rigid slip built here, which
 prepares nothing (full LU per Newton step, no kept inverse, no cache): the prepared path must give the same
-answer to round-off, with the same Newton steps and stick set.
+answer to round-off, with the same Newton steps and stick set, on its numpy path and on its compiled one
+(lowmodel.contact.rolling_kernels; skipped without numba).
 """
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import kernels
 from ballbench.lowmodel.contact import rolling, rolling_newton
 
 pytestmark = pytest.mark.filterwarnings("error")
@@ -27,9 +29,29 @@ def _unprepared(cells, xi, eta, phi):
     return rolling.solve(pressure, operator, MU, rolling.rigid_slip(grid, xi, eta, phi))
 
 
+@pytest.fixture(params=["numpy", "compiled"])
+def path(request):
+    """The numpy path (kernels off) or the compiled one (skipped without numba); kernels back to the environment."""
+    if request.param == "compiled":
+        pytest.importorskip("numba")
+    kernels.use_kernels(request.param == "compiled")
+    if request.param == "compiled" and kernels.load(rolling_newton.KERNELS) is None:
+        pytest.fail(f"the rolling kernels did not load: {kernels.load_errors}")
+    yield request.param
+    kernels.use_kernels(None)
+
+
 @pytest.mark.parametrize("cells", [(7, 7), (11, 11), (14, 16)])  # dense LU and Woodbury; 14 x 16: GMRES
-def test_prepared_solves_equal_the_unprepared_solver(cells, monkeypatch):
+def test_prepared_solves_equal_the_unprepared_solver(cells, path, monkeypatch):
     low_rank = {"woodbury_step": 0, "identity_step": 0}  # the two low-rank forms of the Newton step
+    compiled = []
+    original_compiled = rolling_newton.compiled_solve
+
+    def counted_compiled(*args):
+        answer = original_compiled(*args)
+        compiled.append(answer is not None)
+        return answer
+    monkeypatch.setattr(rolling_newton, "compiled_solve", counted_compiled)
 
     def counted(name):
         original = getattr(rolling_newton, name)
@@ -58,7 +80,11 @@ def test_prepared_solves_equal_the_unprepared_solver(cells, monkeypatch):
         again = rolling.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells)
         assert np.array_equal(again.traction, result.traction)
     dense = int(result.contact.sum()) <= rolling.DIRECT_CELLS  # the dense LU grids take both low-rank forms
-    assert all(bool(count) == dense for count in low_rank.values()), low_rank
+    if path == "compiled":  # the kernel solves every prepared dense case (the reference runs numpy: no inverse)
+        assert sum(compiled) == (2 * len(CASES) if dense else 0) and not any(low_rank.values()), (compiled, low_rank)
+    else:
+        assert not any(compiled)
+        assert all(bool(count) == dense for count in low_rank.values()), low_rank
 
 
 def test_prepared_contact_is_frozen_and_carries_the_speed():
