@@ -16,7 +16,10 @@ The previous path is timed beside the current one in the same run: the rolling m
 :data:`BEFORE` (before ``prepare_rolling``; every call rebuilt the grid, pressure, checks and contact data) are
 read with ``git show`` into a temporary package and called with the same inputs (skipped without git).  Three
 figures per grid: that code, today's ``steady_rolling`` (which keeps its prepared contacts) and
-``prepare_rolling(...).solve`` (the sweep's path); median CPU time of alternating blocks of solves.
+``prepare_rolling(...).solve`` (the sweep's path), the last on its numpy path and on its compiled one
+(:mod:`lowmodel.contact.rolling_kernels`, where numba is installed: prepared grids up to ``DIRECT_CELLS`` contact
+cells); median CPU time of alternating blocks of solves.  The kernels' first-use cost is printed too: compiling
+into an empty numba cache and loading from it, each in a fresh process.
 """
 from __future__ import annotations
 
@@ -30,7 +33,8 @@ import time
 import numpy as np
 import pytest
 
-from ballbench.lowmodel.contact import fastsim, rolling
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.contact import fastsim, rolling, rolling_newton
 
 A, B, FORCE, G, NU, MU = 6.304e-3, 12.61e-3, 106.7e3, 82e9, 0.28, 0.33  # CONTACT's tractcurv contact
 CASES = ((0.4e-3, 0.0, 0.0), (1.2e-3, 0.0, 0.0), (2.4e-3, 0.0, 0.0), (0.0, 0.0, 0.1), (1e-3, 0.5e-3, 1.0))
@@ -80,6 +84,36 @@ def _solve_all(cells, module=rolling):
     return [module.steady_rolling(A, B, FORCE, G, NU, MU, xi, eta, phi, cells) for xi, eta, phi in CASES]
 
 
+def _with_kernels(enabled, run):
+    def switched():
+        kernels.use_kernels(enabled)
+        try:
+            return run()
+        finally:
+            kernels.use_kernels(None)
+    return switched
+
+
+@pytest.fixture(scope="module")
+def compile_seconds(tmp_path_factory):
+    """Wall seconds of the rolling kernels' first load in a fresh process: into an empty numba cache (compile), then
+    from that cache; None without numba."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return None
+    cache = tmp_path_factory.mktemp("numba_cache")
+    code = ("from ballbench.lowmodel import kernels; from ballbench.lowmodel.contact import rolling_newton as r; "
+            "m = kernels.load(r.KERNELS); print(kernels.load_seconds(r.KERNELS) if m is not None else 'nan')")
+    seconds = []
+    for _ in range(2):
+        out = subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(cache),
+                                                                "BALLBENCH_KERNELS": "1"},
+                             capture_output=True, text=True, check=True).stdout
+        seconds.append(float(out.split()[-1]))
+    return tuple(seconds)
+
+
 def _cpu_per_solve(paths, rounds):
     """CPU [ms] per solve of each path (name -> callable solving CASES), alternating blocks: ``{name: (median,
     min)}`` over the blocks (the minimum is the figure least disturbed by the other jobs on the machine)."""
@@ -93,11 +127,25 @@ def _cpu_per_solve(paths, rounds):
 
 
 @pytest.mark.parametrize("n, target_ms", [(11, 2.0), (35, 100.0)])
-def test_bench_exact_half_space(benchmark, previous, n, target_ms):
+def test_bench_exact_half_space(benchmark, previous, compile_seconds, n, target_ms):
+    compiled = kernels.load(rolling_newton.KERNELS) is not None
+    if compile_seconds is not None and n <= 11:
+        print(f"\nrolling kernels' first load in a fresh process: {compile_seconds[0]:.1f} s compiling into an empty "
+              f"numba cache, {compile_seconds[1]:.2f} s from the cache (wall; load average {os.getloadavg()[0]:.1f})")
     for cells, label in (((n, n), f"{n} x {n} across the contact"), ((n - 4, n - 4), f"CONTACT's {n} x {n}")):
         prepared = rolling.prepare_rolling(A, B, FORCE, G, NU, MU, cells)
+
+        def solve_prepared(prepared=prepared):
+            return [prepared.solve(*case) for case in CASES]
         paths = {"steady_rolling": lambda cells=cells: _solve_all(cells),
-                 "prepared": lambda prepared=prepared: [prepared.solve(*case) for case in CASES]}
+                 "prepared": _with_kernels(False, solve_prepared)}
+        if compiled:
+            paths["compiled"] = _with_kernels(True, solve_prepared)
+            for numpy_result, kernel_result in zip(paths["prepared"](), paths["compiled"]()):
+                assert (np.max(np.abs(numpy_result.traction - kernel_result.traction))
+                        <= 1e-12 * MU * np.max(numpy_result.pressure))
+                assert numpy_result.iterations == kernel_result.iterations
+                assert np.array_equal(numpy_result.stick, kernel_result.stick)
         if previous is not None:
             paths["before"] = lambda cells=cells: _solve_all(cells, previous)
         for run in paths.values():
@@ -114,11 +162,13 @@ def test_bench_exact_half_space(benchmark, previous, n, target_ms):
         krylov = sum(r.krylov_iterations for r in results) / len(results)
         shown = {name: f"{median:.2f} ({low:.2f})" for name, (median, low) in cpu.items()}
         before = f"{shown['before']} ms before ({BEFORE[:7]}), " if previous is not None else "(before: no git), "
+        state = "on" if compiled else "off"
         print(f"\nexact half-space rolling, {label} ({contact} contact cells): CPU per solve, median (min) of "
-              f"the blocks: {before}{shown['steady_rolling']} ms steady_rolling, {shown['prepared']} ms prepared "
-              f"(target <= {target_ms} ms); wall {wall:.2f} ms (mean of all paths); Newton {newton:.1f}, "
-              f"GMRES {krylov:.1f} per solve; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, "
-              f"numpy call {_call_overhead_us():.2f} us")
+              f"the blocks: {before}{shown['steady_rolling']} ms steady_rolling (kernels {state}), "
+              f"{shown['prepared']} ms prepared (numpy), {shown.get('compiled', '(no numba)')} ms prepared "
+              f"(compiled) (target <= {target_ms} ms); wall {wall:.2f} ms (mean of all paths); Newton "
+              f"{newton:.1f}, GMRES {krylov:.1f} per solve; load average {os.getloadavg()[0]:.1f} on "
+              f"{os.cpu_count()} cores, numpy call {_call_overhead_us():.2f} us")
     benchmark.pedantic(_solve_all, args=((n, n),), rounds=3 if n <= 11 else 1, iterations=1)
     benchmark.extra_info.update({"n": n, "cpu_ms": cpu})
 
