@@ -101,7 +101,7 @@ def _max_abs(F):
 
 
 @_jit
-def _woodbury_step(inverse, F, z, norm, sliding, scale, slip):
+def _woodbury_step(inverse, F, z, norm, scale, slip):
     # lowmodel.contact.rolling_newton.woodbury_step: J = c C + U W changed in the slip cells' rows only
     n = F.shape[0]
     b = -F.reshape(-1)
@@ -148,7 +148,7 @@ def _woodbury_step(inverse, F, z, norm, sliding, scale, slip):
 
 
 @_jit
-def _identity_step(matrix, c, F, z, norm, sliding, scale, slip, stick):
+def _identity_step(matrix, c, F, z, norm, scale, slip, stick):
     # lowmodel.contact.rolling_newton.identity_step: J = I + U W, two columns per stick cell, one per slip cell
     n = F.shape[0]
     b = -F.reshape(-1)
@@ -233,9 +233,9 @@ def newton(matrix, inverse, c, g, w, gmax, tolerance, max_iterations, p):
             else:
                 stick[cell - a] = cell
         if 2 * slipping <= 2 * (n - slipping) + slipping:
-            step = _woodbury_step(inverse, F, z, norm, sliding, scale, slip)
+            step = _woodbury_step(inverse, F, z, norm, scale, slip)
         else:
-            step = _identity_step(matrix, c, F, z, norm, sliding, scale, slip, stick)
+            step = _identity_step(matrix, c, F, z, norm, scale, slip, stick)
         t = 1.0
         trial_F = 0.0
         for _ in range(8):  # backtracking on |F|^2: the first step that decreases it
