@@ -127,3 +127,29 @@ def test_steady_rolling_cache_does_not_let_bad_input_through():
     kept = rolling.steady_rolling(*args, 0.3, 1e-4, 0.0, 0.0, (8, 8))
     listed = rolling.steady_rolling(*args, np.array(0.3), 1e-4, 0.0, 0.0, [8, 8])
     assert np.array_equal(kept.traction, listed.traction)
+
+
+def test_prepared_solve_without_numba_runs_the_numpy_path():
+    # numba missing (an import that fails): the rolling kernels are not loaded, the answer is the numpy path's
+    import os
+    import subprocess
+    import sys
+
+    code = ("import sys\n"
+            "sys.modules['numba'] = None\n"
+            "from ballbench.lowmodel import kernels\n"
+            "from ballbench.lowmodel.contact import rolling, rolling_newton\n"
+            f"result = rolling.prepare_rolling({A!r}, {B!r}, {FORCE!r}, {G!r}, {NU!r}, {MU!r}, (7, 7))"
+            ".solve(1.2e-3, 0.0, 0.1)\n"
+            "print(kernels.load(rolling_newton.KERNELS), repr(result.force_rolling),"
+            " 'numba' in kernels.load_errors.get(rolling_newton.KERNELS, ''))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env={**os.environ, "BALLBENCH_KERNELS": "1"})
+    loaded, force, numba_missing = out.stdout.split()
+    assert loaded == "None" and numba_missing == "True"
+    kernels.use_kernels(False)
+    try:
+        reference = rolling.prepare_rolling(A, B, FORCE, G, NU, MU, (7, 7)).solve(1.2e-3, 0.0, 0.1)
+    finally:
+        kernels.use_kernels(None)
+    assert float(force) == reference.force_rolling
