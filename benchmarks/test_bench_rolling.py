@@ -24,6 +24,7 @@ into an empty numba cache and loading from it, each in a fresh process.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import os
 import pathlib
 import subprocess
@@ -98,9 +99,7 @@ def _with_kernels(enabled, run):
 def compile_seconds(tmp_path_factory):
     """Wall seconds of the rolling kernels' first load in a fresh process: into an empty numba cache (compile), then
     from that cache; None without numba."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
+    if importlib.util.find_spec("numba") is None:
         return None
     cache = tmp_path_factory.mktemp("numba_cache")
     code = ("from ballbench.lowmodel import kernels; from ballbench.lowmodel.contact import rolling_newton as r; "
