@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -159,6 +159,18 @@ class BallContacts:
     @property
     def n_balls(self) -> int:
         return self.contact_angles.shape[0]
+
+    @cached_property
+    def kernel_geometry(self) -> np.ndarray:
+        """(n, 4, 6), read-only, cached: per contact the arc centre ``(x3, z3)`` [m], Hertz ``C``, ``a / F^(1/3)``,
+        b/a and 1 on the nut (the layout of :mod:`lowmodel.screw.ball_kernels`)."""
+        data = np.empty(self.contact_angles.shape + (6,))
+        data[..., 0:2] = self.arc_centres
+        data[..., 2] = self.hertz_constant
+        data[..., 3] = self.semi_major_unit
+        data[..., 4] = self.b_over_a
+        data[..., 5] = ON_NUT
+        return checks.read_only(data)
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
