@@ -15,7 +15,12 @@ nothing allocates per array operation (loaded by :func:`lowmodel.kernels.load`; 
 A status other than :data:`CONVERGED` (a contact at rest, a slip outside the float range of the friction
 Jacobian, a non-finite input) hands the evaluation back to the numpy code, which names the problem.
 The caller is :func:`lowmodel.screw.ball.ball_terms`; the data layout (``geometry`` (n, 4, FIELDS),
-``scalars``, the ``contact`` fields) is built and read there.
+``scalars``, the ``contact`` fields) is built and read there.  :func:`chain_function` and :func:`newton` are the
+B2B chain of :mod:`lowmodel.screw.b2b` (eqs 56-61) and :func:`lowmodel.solvers.newton` for chains of fewer than
+:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, called by ``b2b.solve``.
+
+One concept in one file (about 650 lines): the compiled twin of the screw ball and its small chains.  The kernels
+call one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
 
