@@ -1,46 +1,124 @@
 """Speed of the ball-screw models (lin2019 Sec 3): two-ball B2B solve and the whole-screw simulation.
 
 Targets (docs/speed.md): two-ball solve <= 1 ms median (first target 30 ms; paper: 15.3 s in MATLAB); whole
-screw (37 balls, 200 steps) <= 0.5 s (first target 10 s).  The screw has no compiled path yet: these are the numpy
-path's times, printed with the load average (the machine is shared).  Table 4 parameters, the Table 5 preload
-fit (oversize 1.6848 um, tilted reading).
+screw (37 balls, 200 steps) <= 0.5 s (first target 10 s).  Table 4 parameters, the Table 5 preload fit
+(oversize 1.6848 um, tilted reading).
 
-Run: python -m pytest benchmarks/test_bench_screw.py
+Every figure is printed beside the code before the compiled path, timed in the same run: the numpy path
+(``lowmodel.kernels.use_kernels(False)``), interleaved with the compiled one (CPU time, ``time.process_time``, the
+machine is shared; the load average beside it).  The two-ball solve is also set against its arithmetic: the flops
+of the kernel's loops (:func:`arithmetic`) at the rate of compiled loops on this machine now
+(``test_bench_kernels.scalar_rate``); the kernels' first-call cost (compile with an empty numba cache, load from
+the disk cache) is printed.
+
+Run: python -m pytest benchmarks/test_bench_screw.py -s
 """
 import math
 import os
+import subprocess
+import sys
+import tempfile
 import time
 
 import numpy as np
+import pytest
 
-from ballbench.lowmodel.screw import load_distribution, whole_screw
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.quadrature import tanh_sinh
 from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import ball as screw_ball
 from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.screw import load_distribution, whole_screw
 
 OVERSIZE = 1.6848e-6  # m, fitted on lin2019 Table 5 case a (scene lin2019-table5-a)
+# flops of lowmodel/screw/ball_kernels.py: one tanh-sinh node of the friction integrals (cos, sin, atan2 and sqrt
+# counted as 20 each, ~45 arithmetic), the dual-number algebra of one contact (~65 operations on 8 numbers), and
+# per pair the B2B loads with their derivatives
+NODE, CONTACT, PAIR = 125, 520, 400
 
 
-def test_two_ball_b2b_solve(benchmark):
+def arithmetic(n_balls: int, evaluations: int, iterations: int, size: int) -> float:
+    """Floating-point operations of a compiled screw chain solve: ``evaluations`` of the chain (four contacts per
+    ball on the 4-panel tanh-sinh rule of level 3, every pair) and per Newton iteration the dense normal equations
+    (``2 size^3``) and the LU (``2/3 size^3``)."""
+    nodes = 4 * tanh_sinh(screw_ball.FRICTION_LEVEL["coarse"])[0].size
+    evaluation = n_balls * 4 * (nodes * NODE + CONTACT) + (n_balls - 1) * PAIR
+    return evaluations * evaluation + iterations * (2.0 + 2.0 / 3.0) * size ** 3
+
+
+def _interleaved(function, repeats: int, block: int = 1):
+    """Median CPU seconds per call of ``function()`` with the kernels and without them (alternating blocks)."""
+    new, old = [], []
+    for _ in range(repeats):
+        for enabled, into in ((True, new), (False, old)):
+            kernels.use_kernels(enabled)
+            function()
+            start = time.process_time()
+            for _ in range(block):
+                function()
+            into.append((time.process_time() - start) / block)
+    kernels.use_kernels(None)
+    return float(np.median(new)), float(np.median(old))
+
+
+@pytest.fixture(scope="module")
+def compiled():
+    pytest.importorskip("numba")
+    module = kernels.load(screw_ball.KERNELS)
+    assert module is not None, kernels.load_errors
+    return module
+
+
+def test_first_call_cost(compiled):
+    """Cold: a fresh numba cache (every screw kernel compiled); warm: the cache of this run (loaded from disk)."""
+    code = ("import time\nfrom ballbench.lowmodel import kernels\nstart = time.perf_counter()\n"
+            f"assert kernels.load({screw_ball.KERNELS!r}) is not None, kernels.load_errors\n"
+            "print(time.perf_counter() - start)")
+    with tempfile.TemporaryDirectory() as cache:
+        environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        cold = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                                    env=environment).stdout)
+        warm = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                                    env=environment).stdout)
+    print(f"\nscrew kernels' first call in a process: compile {cold:.1f} s with an empty numba cache, {warm:.2f} s "
+          f"from the disk cache; load average {os.getloadavg()[0]:.2f}")
+
+
+def test_two_ball_b2b_solve(compiled):
+    from test_bench_kernels import scalar_rate
+
     module = screw_contacts.screw_module(oversize=OVERSIZE)
     contacts = screw_contacts.ball_contacts(module, np.radians([0.0, 2.0]), reading="tilted")
-    screw_b2b.solve(contacts, 50.0)  # warm-up (Hertz tables)
-    state = benchmark(screw_b2b.solve, contacts, 50.0)
-    median = benchmark.stats.stats.median
-    benchmark.extra_info.update(median_ms=median * 1e3, iterations=state.iterations, f_b2b=float(state.b2b_force[0]))
-    print(f"\nscrew two-ball B2B solve: {median * 1e3:.1f} ms median (target 1 ms), {state.iterations} iterations, "
-          f"F_B2B = {state.b2b_force[0]:.3f} N; load average {os.getloadavg()[0]:.2f}")
+
+    def solve():
+        return screw_b2b.solve(contacts, 50.0)
+
+    state = solve()
+    new, old = _interleaved(solve, 31, 10)
+    rate = scalar_rate()
+    size = 2 * (screw_ball.N_UNKNOWNS + 1) + 1
+    flops = arithmetic(2, state.iterations + 1, state.iterations, size)
+    print(f"\nscrew two-ball B2B solve: compiled {new * 1e3:.2f} ms (target 1 ms), numpy path {old * 1e3:.2f} ms "
+          f"(x {old / new:.1f}); {state.iterations} iterations, F_B2B = {state.b2b_force[0]:.3f} N; "
+          f"{flops:.3g} flop = {flops / rate * 1e3:.3f} ms at the measured {rate / 1e9:.2f} Gflop/s of compiled "
+          f"loops: figure of merit {flops / rate / new:.2f} (1 = pure arithmetic); load average "
+          f"{os.getloadavg()[0]:.2f}")
 
 
-def test_whole_screw_simulation(benchmark):
+def test_whole_screw_simulation(compiled):
     module = screw_contacts.screw_module(oversize=OVERSIZE)
     stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
 
     def run():
         return whole_screw.simulate(module, amplitude=math.radians(3.0), stiffness=stiffness)
 
-    start = time.perf_counter()
-    history = benchmark.pedantic(run, rounds=1, iterations=1)
-    elapsed = time.perf_counter() - start
-    benchmark.extra_info.update(seconds=elapsed, iterations=int(history.iterations.sum()))
-    print(f"\nwhole screw, 37 balls, 200 steps: {elapsed:.1f} s (target 0.5 s), "
-          f"{int(history.iterations.sum())} Newton iterations; load average {os.getloadavg()[0]:.2f}")
+    seconds = {}
+    for enabled in (True, False):
+        kernels.use_kernels(enabled)
+        start = time.process_time()
+        history = run()
+        seconds[enabled] = time.process_time() - start
+    kernels.use_kernels(None)
+    print(f"\nwhole screw, 37 balls, 200 steps: with the kernels {seconds[True]:.1f} s CPU (target 0.5 s), numpy "
+          f"path {seconds[False]:.1f} s (x {seconds[False] / seconds[True]:.1f}); {int(history.iterations.sum())} "
+          f"Newton iterations; load average {os.getloadavg()[0]:.2f}")

@@ -57,9 +57,11 @@ The seams, so that other physics and a faster solver plug in without touching th
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.solvers import BlockTridiagonal
 
@@ -86,12 +88,12 @@ class ChainLayout:
     ring: bool = False
     n_global: int = 0
 
-    @property
+    @cached_property
     def pairs(self) -> np.ndarray:
-        """(p, 2) the pairs (behind, ahead): (j, j+1), and (n-1, 0) in a ring."""
+        """(p, 2) the pairs (behind, ahead): (j, j+1), and (n-1, 0) in a ring (read-only, cached)."""
         n = self.n_balls
         behind = np.arange(n if self.ring and n > 1 else n - 1)
-        return np.stack([behind, (behind + 1) % n], axis=1)
+        return checks.read_only(np.stack([behind, (behind + 1) % n], axis=1))
 
     @property
     def block(self) -> int:

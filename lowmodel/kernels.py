@@ -4,7 +4,9 @@ The low-order models are numpy code whose cost for a small system (a two-ball st
 per-call overhead of small array operations, not arithmetic (docs/performance.md).  Where a kernel
 compiled with numba beats that by a wide margin, a module holds it beside the numpy code it mirrors
 (:mod:`lowmodel.linear_bearing.ball_kernels`: the ball equilibrium of lin2019 eq 4, the B2B chain of
-eqs 5-10 and the damped Newton of :func:`lowmodel.solvers.newton`, as loops).  The rules:
+eqs 5-10 and the damped Newton of :func:`lowmodel.solvers.newton`, as loops; :mod:`lowmodel.screw.ball_kernels`:
+the ball-screw ball of eqs 36-54 with the offset-ellipse friction of A4-A11, the screw B2B chain of eqs 56-61
+and the same Newton).  The rules:
 
 * ``import ballbench.lowmodel`` never imports numba (a test checks it): a kernel module is imported by
   :func:`load` at the first solve that uses it.

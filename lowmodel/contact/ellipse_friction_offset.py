@@ -75,7 +75,7 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.quadrature import tanh_sinh
 
-__all__ = ["OffsetFriction", "friction_offset", "friction_centre", "FAR_CENTRE"]
+__all__ = ["OffsetFriction", "friction_offset", "friction_centre", "FAR_CENTRE", "disc_rule"]
 
 _PREFACTOR = 3.0 / (2.0 * math.pi)  # lin2019 eq A7: p0 a b / F
 FAR_CENTRE = 100.0  # R_c above which the disc quadrature of the velocities is used
@@ -154,6 +154,12 @@ def _disc_rule(n_radial: int = 16, n_angular: int = 32):
     s = (radius[:, None] * np.sin(alpha)[None, :]).ravel()
     weights = (_PREFACTOR * weight_r[:, None] * (2.0 * math.pi / n_angular) * np.ones(n_angular)[None, :]).ravel()
     return checks.read_only(t), checks.read_only(s), checks.read_only(weights)  # cached: shared by every caller
+
+
+def disc_rule() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The disc rule of the far-centre quadrature: nodes ``t``, ``s`` and weights (read-only; the compiled
+    twin :mod:`lowmodel.screw.ball_kernels` sums over the same nodes)."""
+    return _disc_rule()
 
 
 # --------------------------------------------------------------------------

@@ -55,7 +55,7 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START", "saturation",
-           "check_gaps"]
+           "check_gaps", "warm_up_kernel"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
@@ -301,10 +301,15 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
                               np.array([terms.axial.sum() - targets[0]]), terms.axial_gradient[None, :, :m],
                               np.array([[terms.axial_gradient[:, m].sum()]]))
 
-        return chain_system(ball_function, pair_function, layout, rate_index=2, rate_scale=rate_scale,
-                            complementarity="fischer-burmeister")
+        function = chain_system(ball_function, pair_function, layout, rate_index=2, rate_scale=rate_scale,
+                                complementarity="fischer-burmeister")
+        function.oversize = oversize   # what the compiled solver (_compiled_solver) needs to solve the same system
+        return function
 
     what = f"{n}-ball screw module"
+    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale)
+    if solver is not None:
+        newton = solver
     guess = np.zeros((n, k))
     extra = np.zeros(layout.n_global)
     forces = None
@@ -349,7 +354,8 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         z, residual, iterations = sb.solve_preloaded(make_function, layout.pack(guess, None, extra), contacts,
                                                      float(np.max(np.abs(loads))) if per_ball else total / n,
                                                      tolerance=tolerance, max_iterations=max_iterations, what=what,
-                                                     row_tolerance=rows, row_weight=weights, contacts_at=contacts_at)
+                                                     row_tolerance=rows, row_weight=weights, contacts_at=contacts_at,
+                                                     solver=solver)
     balls, forces, extra = chain_forces(z, layout, rate_index=2, rate_scale=rate_scale, tolerance=tolerance,
                                         iterations=iterations, what=what)
     shift = balls[:, sb.N_UNKNOWNS] * 1.0 if per_ball else extra[0]
@@ -365,3 +371,73 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
     return sb.state_from(balls, shift, terms, scales, axial_load=total, b2b_force=forces, b2b_loss=b2b_loss,
                          b2b_slip=speeds, iterations=iterations, residual=float(np.max(np.abs(residual))))
+
+
+def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout, per_ball: bool, targets, scales,
+                     pair: PairGeometry, rate_scale: float, compiled=None):
+    """A solver with the signature of :func:`lowmodel.solvers.newton` that runs the same Levenberg-Marquardt
+    iterations on the same chain in :mod:`lowmodel.screw.ball_kernels` (docs/speed.md), for the dense chains
+    (fewer than :data:`lowmodel.b2b_chain.SPARSE_BALLS` balls) of Hertz contacts; None where it does not apply or
+    the kernels are off.  It solves the system of ``function.oversize``; where the kernel hands an evaluation back
+    (a contact at rest), the numpy ``newton`` runs ``function`` itself.  Failures raise the ConvergenceError of
+    :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations)."""
+    from ballbench.lowmodel import kernels
+    from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
+    from ballbench.lowmodel.solvers import newton
+
+    if layout.n_balls >= SPARSE_BALLS or contacts.bulk_compliance is not None:
+        return None
+    compiled = compiled or kernels.load(sb.KERNELS)
+    if compiled is None:
+        return None
+    module = contacts.module
+    base = np.array(sb.kernel_scalars(scales, module, None))
+    live = np.ascontiguousarray(layout.live)
+    pair_scalars = np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale])
+    targets = np.ascontiguousarray(targets, dtype=float)
+    failures = {compiled.NOT_CONVERGED: ("Newton did not converge", "iteration limit"),
+                compiled.NON_FINITE: ("Newton did not converge", "non-finite residual"),
+                compiled.STATIONARY: ("stationary point of |residual|", "stationary point of |residual|"),
+                compiled.NO_DESCENT: ("no descent step (damping diverged)", "no descent step")}
+
+    def solver(function, x0, *, tolerance, max_iterations, what, row_tolerance=None, row_weight=None):
+        scalars = base.copy()
+        scalars[9] = function.oversize
+        size = layout.size
+        rows = np.full(size, float(tolerance)) if row_tolerance is None else np.asarray(row_tolerance, dtype=float)
+        weights = np.ones(size) if row_weight is None else np.asarray(row_weight, dtype=float)
+        z, result = np.empty(size), np.empty(size)
+        status, iterations, norm = compiled.newton(
+            np.asarray(x0, dtype=float), layout.n_balls, per_ball, layout.ring, live, targets,
+            contacts.kernel_geometry, scalars, sb.kernel_tables(), pair.chord, pair.rotation, pair_scalars,
+            int(max_iterations), rows, weights, z, result)
+        if status == compiled.CONVERGED:
+            return z, result, int(iterations)
+        if status == compiled.FALLBACK:
+            return newton(function, x0, tolerance=tolerance, max_iterations=max_iterations, what=what,
+                          row_tolerance=row_tolerance, row_weight=row_weight)
+        message, reason = failures[status]
+        raise ConvergenceError(f"{what}: {message}", residual=float(norm), iterations=int(iterations),
+                               tolerance=tolerance, reason=reason)
+
+    return solver
+
+
+def warm_up_kernel(compiled) -> None:
+    """Compile (or load from the cache) the chain solver of :mod:`lowmodel.screw.ball_kernels` for the argument
+    types of :func:`solve` (two balls of lin2019 Table 4, one Newton iteration)."""
+    contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(2))
+    scales = sb.scales_for(contacts, 100.0)
+    layout = ChainLayout(2, sb.N_UNKNOWNS, np.array([0]), n_global=1)
+    solver = _compiled_solver(contacts, layout, False, np.array([1.0]), scales, pair_geometry(contacts.module), 1.0,
+                              compiled)
+
+    def function(_z):   # not called: the kernel converges or stops at the iteration limit
+        raise AssertionError("warm-up")
+
+    function.oversize = 0.0
+    try:
+        solver(function, layout.pack(np.zeros((2, sb.N_UNKNOWNS))), tolerance=1e-10, max_iterations=1, what="warm-up",
+               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+    except (ConvergenceError, AssertionError):   # compiled either way
+        pass

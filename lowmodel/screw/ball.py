@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -60,7 +61,8 @@ from ballbench.lowmodel.state import BallStateBase
 
 __all__ = [
     "ScrewBallState", "solve", "N_UNKNOWNS", "ball_terms", "free_rolling_guess", "scales_for", "solve_preloaded",
-    "continuation_start", "reference_force", "state_from", "Scales", "BallTerms", "FRICTION_LEVEL",
+    "continuation_start", "reference_force", "state_from", "Scales", "BallTerms", "FRICTION_LEVEL", "KERNELS",
+    "kernel_scalars", "kernel_tables", "warm_up_kernel",
 ]
 
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
@@ -120,6 +122,9 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
     Unknowns: ``(x_B3, z_B3)/length``, ``omega_B/orbit``, ``(omega_x, omega_y, omega_z)/spin``.
     ``oversize`` [m] overrides the module's preload (continuation).
     """
+    fast = _compiled_terms(unknowns, nut_shift, contacts, scales, oversize)
+    if fast is not None:
+        return fast
     from ballbench.lowmodel.contact.ellipse_friction_offset import friction_offset
 
     module = contacts.module
@@ -223,6 +228,75 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
                      loss.reshape(n, 4), nut_power.reshape(n, 4).sum(axis=1))
 
 
+KERNELS = "screw.ball_kernels"  # the compiled twin of ball_terms (lowmodel.kernels.load)
+
+
+@lru_cache(maxsize=1)
+def kernel_tables():
+    from ballbench.lowmodel.contact.ellipse_friction_offset import FAR_CENTRE, SMALLEST_SLIP, disc_rule
+    from ballbench.lowmodel.quadrature import tanh_sinh
+
+    return (FRICTION_LEVEL["coarse_min_b_over_a"], *tanh_sinh(FRICTION_LEVEL["coarse"]),
+            *tanh_sinh(FRICTION_LEVEL["fine"]), *disc_rule(), FAR_CENTRE, SMALLEST_SLIP)
+
+
+@lru_cache(maxsize=64)
+def _module_scalars(module) -> tuple:
+    """R_B, sin and cos alpha, omega_N, L / (2 pi), oversize, r_g, mu of a module (the kernel's scalars 4-11)."""
+    return (module.ball_radius, math.sin(module.lead_angle), math.cos(module.lead_angle), module.nut_speed,
+            module.helix_radius, module.oversize, module.groove_radius, module.friction_coefficient)
+
+
+def kernel_scalars(scales: Scales, module, oversize) -> tuple:
+    """The ``scalars`` of :func:`lowmodel.screw.ball_kernels.ball_terms`: the scales, then the module's (the
+    ``oversize`` [m] in place of its preload unless None)."""
+    values = _module_scalars(module)
+    if oversize is not None:
+        values = values[:5] + (float(oversize),) + values[6:]
+    return (scales.length, scales.orbit, scales.spin, scales.force) + values
+
+
+def _compiled_terms(unknowns, nut_shift, contacts: BallContacts, scales: Scales, oversize) -> BallTerms | None:
+    """:func:`ball_terms` by the compiled kernel, or None (no kernels, a calibrated contact law, or an evaluation
+    the kernel hands back: a contact at rest or a slip outside the float range; the numpy code runs)."""
+    if contacts.bulk_compliance is not None:
+        return None
+    from ballbench.lowmodel import kernels
+
+    compiled = kernels.load(KERNELS)
+    if compiled is None:
+        return None
+    return _run_kernel(compiled, unknowns, nut_shift, contacts, scales, oversize)
+
+
+def _run_kernel(compiled, unknowns, nut_shift, contacts, scales, oversize):
+    module = contacts.module
+    n = unknowns.shape[0]
+    data = contacts.kernel_geometry
+    scalars = np.array(kernel_scalars(scales, module, oversize))
+    shift = np.ascontiguousarray(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)))
+    residual, jacobian = np.empty((n, 6)), np.empty((n, 6, N_UNKNOWNS + 1))
+    axial, axial_gradient = np.empty(n), np.empty((n, N_UNKNOWNS + 1))
+    contact, power = np.empty((n, 4, 15)), np.empty(n)
+    status = compiled.ball_terms(np.ascontiguousarray(unknowns, dtype=float), shift, data, scalars,
+                                 *kernel_tables(), residual, jacobian, axial, axial_gradient, contact, power)
+    if status != compiled.CONVERGED:
+        return None
+    return BallTerms(residual, jacobian, axial, axial_gradient, contact[..., 0], contact[..., 1:3], contact[..., 3],
+                     contact[..., 4], contact[..., 5], contact[..., 6], contact[..., 7], contact[..., 8:11],
+                     contact[..., 11:14], contact[..., 14], power)
+
+
+def warm_up_kernel(compiled) -> None:
+    """Compile (or load from the cache) :mod:`lowmodel.screw.ball_kernels` for the argument types of
+    :func:`ball_terms` (two balls of lin2019 Table 4)."""
+    from ballbench.lowmodel.screw.contacts import ball_contacts, screw_module
+
+    contacts = ball_contacts(screw_module(), np.zeros(2))
+    scales = scales_for(contacts, 100.0)
+    _run_kernel(compiled, np.zeros((2, N_UNKNOWNS)), 0.0, contacts, scales, None)
+
+
 # --------------------------------------------------------------------------
 # solution
 # --------------------------------------------------------------------------
@@ -267,20 +341,21 @@ def free_rolling_guess(contacts: BallContacts) -> np.ndarray:
     module = contacts.module
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     guess = np.empty((contacts.n_balls, 4))
+    radius, helix_radius, nut_speed = module.ball_radius, module.helix_radius, module.nut_speed
     for j in range(contacts.n_balls):
-        rows, rhs = [], []
+        rows, rhs = np.zeros((12, 4)), np.empty(12)
         for i in range(4):
-            beta = contacts.contact_angles[j, i]
-            e = np.array([SIGN_U[i] * math.cos(beta), 0.0, SIGN_W[i] * math.sin(beta)])
-            q = module.ball_radius * e
-            helical = np.array([s * q[2], module.helix_radius + c * q[0], -s * q[0]])
-            # slip = (omega_B - Omega) H + omega x q; omega x q = -[q]x omega
-            skew = np.array([[0.0, -q[2], q[1]], [q[2], 0.0, -q[0]], [-q[1], q[0], 0.0]])
-            block = np.column_stack([helical, -skew])
-            rows.append(block)
-            rhs.append(module.nut_speed * ON_NUT[i] * helical)
-        solution = np.linalg.lstsq(np.vstack(rows), np.concatenate(rhs), rcond=None)[0]
-        guess[j] = solution
+            beta = float(contacts.contact_angles[j, i])
+            qx, qz = radius * (SIGN_U[i] * math.cos(beta)), radius * (SIGN_W[i] * math.sin(beta))   # q = R_B e
+            helical = (s * qz, helix_radius + c * qx, -s * qx)
+            # slip = (omega_B - Omega) H + omega x q; omega x q = -[q]x omega (q_y = 0)
+            block = rows[3 * i:3 * i + 3]
+            block[:, 0] = helical
+            block[0, 2], block[1, 1], block[1, 3], block[2, 2] = qz, -qz, qx, -qx
+            block[0, 1] = block[1, 2] = block[0, 3] = block[2, 3] = -0.0   # -[q]x entry by entry, signed zeros too
+            rhs[3 * i:3 * i + 3] = helical
+            rhs[3 * i:3 * i + 3] *= nut_speed * ON_NUT[i]
+        guess[j] = np.linalg.lstsq(rows, rhs, rcond=None)[0]
     return guess
 
 
@@ -363,7 +438,7 @@ def continuation_start(contacts: BallContacts, axial_load: float) -> float:
 def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, load_per_ball: float, *,
                     tolerance: float, max_iterations: int, what: str, steps: int = 6, max_halvings: int = 10,
                     step_iterations: int = 15, direct_fraction: float = 0.2, direct_iterations: int = 12,
-                    row_tolerance=None, row_weight=None, contacts_at=None):
+                    row_tolerance=None, row_weight=None, contacts_at=None, solver=None):
     """Newton (:func:`lowmodel.solvers.newton`) on ``make_function(oversize)`` at the module's preload.
 
     Between ``direct_fraction`` and half of :func:`continuation_start` Newton is tried
@@ -375,14 +450,15 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
     (:func:`.convergence.row_tolerances`, :func:`.convergence.row_weights`);
     ``contacts_at(z, oversize)``: the :class:`BallTerms` (or any object with ``normal_force``, ``slip_minor``,
     ``spin``, ``semi_major``) at a converged point, from which a stall's reason is read
-    (:func:`.convergence.stall_reason`).  Returns ``(z, residual, iterations)``; ConvergenceError if a step keeps
-    failing.
+    (:func:`.convergence.stall_reason`); ``solver``: a replacement of :func:`lowmodel.solvers.newton` with its
+    signature (the compiled solver of :mod:`lowmodel.screw.b2b`), default that function.  Returns
+    ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
     """
     from functools import partial
 
     from ballbench.lowmodel.solvers import newton
 
-    newton = partial(newton, row_tolerance=row_tolerance, row_weight=row_weight)
+    newton = partial(solver or newton, row_tolerance=row_tolerance, row_weight=row_weight)
 
     target = contacts.module.oversize
     start = continuation_start(contacts, load_per_ball)

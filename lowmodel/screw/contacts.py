@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -159,6 +159,18 @@ class BallContacts:
     @property
     def n_balls(self) -> int:
         return self.contact_angles.shape[0]
+
+    @cached_property
+    def kernel_geometry(self) -> np.ndarray:
+        """(n, 4, 6), read-only, cached: per contact the arc centre ``(x3, z3)`` [m], Hertz ``C``, ``a / F^(1/3)``,
+        b/a and 1 on the nut (the layout of :mod:`lowmodel.screw.ball_kernels`)."""
+        data = np.empty(self.contact_angles.shape + (6,))
+        data[..., 0:2] = self.arc_centres
+        data[..., 2] = self.hertz_constant
+        data[..., 3] = self.semi_major_unit
+        data[..., 4] = self.b_over_a
+        data[..., 5] = ON_NUT
+        return checks.read_only(data)
 
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
@@ -304,9 +316,8 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
             raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
                              f"{module.conformity!r} ({error})") from None
         for j in range(n):   # angles validated by flank_angles; the core's flank gives the arc centre
-            flank = groove_core.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius,
-                                              module.lead, float(angles[j, i]), _BODY[i], _FLANK[i])
-            centres[j, i] = flank.arc_centre  # (u, w) = (x3, z3)
+            centres[j, i] = _arc_centre(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                                        float(angles[j, i]), _BODY[i], _FLANK[i])  # (u, w) = (x3, z3)
     _check_axis_ratio(module, angles, ratio)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     bulk = None
@@ -319,6 +330,14 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
             unit[:, columns] *= a_factor
             bulk[:, columns] = c_b
     return BallContacts(module, angles, centres, constant, unit, ratio, theta, bulk)
+
+
+@lru_cache(maxsize=4096)
+def _arc_centre(ball_radius, conformity, pitch_radius, lead, angle, body, flank) -> np.ndarray:
+    """The core's arc centre of a flank (:attr:`groove.HelicalGroove.arc_centre`), cached (read-only): the nut
+    flanks of every ball, and the flanks of balls at the same deviation, share one."""
+    flank = groove_core.HelicalGroove(ball_radius, conformity, pitch_radius, lead, angle, body, flank)
+    return checks.read_only(flank.arc_centre)
 
 
 def _check_axis_ratio(module: ScrewModule, angles: np.ndarray, ratio: np.ndarray) -> None:
