@@ -19,6 +19,7 @@ from ballbench.lowmodel.contact import halfspace as hs
 from ballbench.lowmodel.linear_bearing import b2b, rolling_contacts
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import render3d, stickslip3d
 from ballbench.validation.figures import rolling as figures
 from ballbench.validation.references import rolling as ref
 from ballbench.validation.references.richardson import extrapolate
@@ -200,7 +201,7 @@ NAMES = ("BL", "BR", "TR", "TL")
 
 @scene("rolling-lin2019-contacts", "The four contacts of lin2019 Table 1, case (a) free ball, at the creepages and "
        "spin of the converged low-order state: stick/slip on two half-spaces (Heathcote slip included) against "
-       "lin2019's full slip", kind="low-order", cost_s=4.0)
+       "lin2019's full slip", kind="low-order", cost_s=4.0, show=render3d.show_saved)
 def rolling_lin2019_contacts(run):
     cells = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}[run.fidelity]
     contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **TABLE1_INPUTS).ball(0)
@@ -257,6 +258,9 @@ def rolling_lin2019_contacts(run):
     run.note("Per contact (Kalker's creepage and spin of the lin2019 case (a) state; stick/slip with Heathcote's "
              "slip, in brackets without it): " + " | ".join(lines))
     run.save_figure(figures.contacts_figure(NAMES, results), "contacts.png")
+    stickslip3d.artifacts(run, "contacts", [(name, c.solution) for name, c in zip(NAMES, results)],
+                          title="lin2019 Table 1 case (a), free ball: the four contacts with Heathcote's slip",
+                          ellipses=[(c.motion.semi_axis_rolling, c.motion.semi_axis_lateral) for c in results])
 
 
 # --------------------------------------------------------------------------
