@@ -25,6 +25,7 @@ MM, MPA = v.MM, v.MPA
 STICK_COLOUR = v.VERMILLION  # flat: apart from every colour of viridis
 SLIP_CMAP = v.PRESSURE_CMAP
 _ARRAYS = ("pressure", "traction", "slip", "stick", "contact")
+VIEW = (0.5, 0.0, -0.87)  # the cameras' direction: along the rolling direction, 60 degrees down
 
 
 def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, title: str,
@@ -108,6 +109,10 @@ def _outline(x, y, mask) -> np.ndarray:
     return np.asarray(segments, float).reshape(-1, 2, 3)
 
 
+def _length(mm: float) -> str:
+    return f"{mm * 1e3:.3g} um" if mm < 1.0 else f"{mm:.3g} mm"
+
+
 def _segments(pv, segments):
     points = segments.reshape(-1, 3)
     lines = np.hstack([np.full((len(segments), 1), 2), np.arange(2 * len(segments)).reshape(-1, 2)]).ravel()
@@ -133,13 +138,16 @@ def picture(meta_path) -> Path:
     width, row_height = 1800, 330
     plot = v.plotter((rows, columns), (width, row_height * rows),
                      f"{meta['scene']}: {meta['title']}, {meta['fidelity']} level\nq: the magnitude of the tangential "
-                     f"traction (height and colour; 100 MPa = {100.0 * height * 1e3:.3g} um high); x rolling (leading "
+                     f"traction (height and colour; 100 MPa = {_length(100.0 * height)} high); x rolling (leading "
                      "edge +x), y lateral", caption=62)
     actor = None
     aspect = (width / columns) / row_height
+    across = max(span[1] for span in spans)  # the lateral extent: horizontal on the screen
+    deep = max(span[0] for span in spans) * abs(VIEW[2]) + top * height * abs(VIEW[0])  # rolling extent and heights
+    half_height = max(0.55 * across / aspect, 0.62 * deep)  # room for the title's line above
     for k, (f, entry, bound) in enumerate(zip(fields, entries, bounds)):
         v.subplot(plot, k // columns, k % columns)
-        actor = _contact(plot, pv, f, entry, bound, top, height, 0.56 * long / aspect) or actor
+        actor = _contact(plot, pv, f, entry, bound, top, height, half_height) or actor
     legend = ("vermillion: the stick area (q < mu p); the slip area (q = mu p) coloured by q;\n"
               "grey wire: the bound mu p over the stick area; black arrows: the direction of the slip velocity;\n"
               "black outline: the contact area (p > 0); blue: the Hertz ellipse (where the scene gives it)")
@@ -161,9 +169,13 @@ def _contact(plot, pv, f, entry, bound, top, height, half_height):
     actor = plot.add_mesh(surface, scalars="q", cmap=SLIP_CMAP, clim=(0.0, top), nan_color=STICK_COLOUR,
                           show_scalar_bar=False)
     if stick.any():
-        wire = _centre_surface(pv, x, y, np.where(contact, bound, 0.0) * height, bound, stick)
+        k = max(1, -(-max(len(x), len(y)) // 24))  # at most about 24 wires across
+        sub = np.s_[::k, ::k]
+        wire = _centre_surface(pv, x[::k], y[::k], np.where(contact, bound, 0.0)[sub] * height, bound[sub],
+                               stick[sub])
         wire = wire.extract_cells(np.flatnonzero(np.isnan(wire.cell_data["q"])))  # the quads that touch stick
-        plot.add_mesh(wire, style="wireframe", color="#505050", line_width=1, lighting=False)
+        if wire.n_cells:  # a stick area smaller than the wires' spacing has none
+            plot.add_mesh(wire, style="wireframe", color="#505050", line_width=1, lighting=False)
     step = max(1, int(round(np.sqrt(slip.sum() / 60.0))))
     pick = slip & (np.add.outer(np.arange(len(x)) % step, np.arange(len(y)) % step) == 0)
     s = f["slip"][pick]
@@ -185,8 +197,10 @@ def _contact(plot, pv, f, entry, bound, top, height, half_height):
         a, b = (value * MM for value in entry["ellipse_m"])
         plot.add_mesh(v.polyline(v.ellipse((0.0, 0.0, 0.0), (1, 0, 0), (0, 1, 0), a, b)), color=v.BLUE,
                       line_width=3)
-    v.title(plot, f"{entry['label']}: F = {entry['normal_force_N']:.1f} N, mu = {entry['friction_coefficient']:g}; "
-                  f"stick {100.0 * entry['stick_fraction']:.1f} % of the contact area")
+    force = entry["normal_force_N"]
+    force_words = f"{force:.1f} N" if force < 1e3 else f"{force * 1e-3:.1f} kN"
+    v.title(plot, f"{entry['label']}: F = {force_words}, mu = {entry['friction_coefficient']:g}; stick "
+                  f"{100.0 * entry['stick_fraction']:.1f} %")
     v.scale_bar(plot, (x[0] - 2.5 * dx, y[0], 0.0), (0, 1, 0), v.nice(0.4 * float(np.ptp(y))))
-    v.view(plot, (0.0, 0.0, 0.3 * top * height), (0.5, 0.0, -0.87), (0, 0, 1), half_height)
+    v.view(plot, (0.5 * (x[0] + x[-1]), 0.5 * (y[0] + y[-1]), 0.5 * top * height), VIEW, (0, 0, 1), half_height)
     return actor
