@@ -360,7 +360,7 @@ def _module_assembly(grids, meta, heading, path: Path) -> Path:
                                           "one-ball module, here placed and cut between the balls; the loads from the "
                                           "contact forces on the loaded bodies", column_weights=[1.25, 1.0, 1.0])
     v.subplot(plot, 0, 0)
-    plot.enable_depth_peeling()
+    v.transparency(plot)
     for k, (grid, rotation, translation) in enumerate(placed):
         v.bodies(plot, grid, colours, opacity=opacity, smooth=True)
         _load_arrow(plot, balls[k], rotation, translation, 1.2 * radius, f"ball {k + 1}")
@@ -573,7 +573,7 @@ def _module_helix(grids, meta, heading, path: Path) -> Path:
     plot = v.plotter((1, 1), (1400, 900), f"{heading}\nthe two-ball module seen along the helix from behind ball 1 "
                                           f"(the {balls[0]['loaded_body']} above, transparent)")
     v.subplot(plot, 0, 0)
-    plot.enable_depth_peeling()
+    v.transparency(plot)
     for k, (grid, rotation, _) in enumerate(placed):
         v.bodies(plot, grid, colours, opacity=opacity, smooth=True)
         v.text(plot, centres[k] + 1.05 * radius * (rotation @ up), f"ball {k + 1}")
