@@ -339,8 +339,9 @@ def rolling_fe_compliance(run):
         run.budget(model="fem.rolling_compliance", quantity=f"solve time / half-space solve time, {name}", unit="1",
                    value=value_s / max(reference_s, 1e-9), budget=10.0,
                    source="target: within 10x of the half-space solve after condensation (docs/rolling_contact.md)")
-    stickslip3d.artifacts(run, "spin", fields, title=f"ball on a block, spin: FE compliance against the half-space, "
-                          f"{level}", ellipses=[(a, a)] * len(fields))
+    if fields:
+        stickslip3d.artifacts(run, "spin", fields, title=f"ball on a block, spin: FE compliance against the "
+                              f"half-space, {level}", ellipses=[(a, a)] * len(fields))
     if run.fidelity == "quick":
         return
     _fe_grooves(run, GROOVE_H[run.fidelity])
