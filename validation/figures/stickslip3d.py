@@ -75,23 +75,29 @@ def artifacts(run, name: str, contacts, *, title: str, ellipses=None) -> None:
         run.note(f"3D screenshot of {paths[0].name} not drawn: {type(error).__name__}: {error}")
 
 
-def _centre_surface(pv, x, y, heights, values, hidden):
-    """The surface through the cell centres ``x`` (nx,), ``y`` (ny,) [mm] at ``heights`` (nx, ny): quadrilaterals
-    between four neighbouring centres with the cell value ``values`` (the mean of the corners, NaN where any corner
-    is ``hidden``); only those with every corner above zero (inside the contact), so that the contact's outline on
-    z = 0 stays visible."""
-    nx, ny = len(x), len(y)
-    X, Y = np.meshgrid(x, y, indexing="ij")
+def _corner_heights(values, contact, step: int = 1) -> np.ndarray:
+    """Heights at the cell corners ((nx + 1, ny + 1), or every ``step``-th corner): the mean of the four cells about
+    each corner, those outside the contact counted as zero (so the surface meets the plane at the contact's edge)."""
+    padded = np.pad(np.where(contact, values, 0.0), 1)
+    corners = 0.25 * (padded[:-1, :-1] + padded[1:, :-1] + padded[:-1, 1:] + padded[1:, 1:])
+    return corners if step == 1 else corners[_every(corners.shape[0], step)][:, _every(
+        corners.shape[1], step)]
+
+
+def _every(n: int, step: int) -> np.ndarray:
+    """Every ``step``-th index of ``range(n)`` and the last one."""
+    return np.unique(np.r_[np.arange(0, n, step), n - 1])
+
+
+def _cells_surface(pv, x_edges, y_edges, heights, mask, values):
+    """One quadrilateral per cell of ``mask`` between the corners ``x_edges`` (nx + 1,), ``y_edges`` (ny + 1,) [mm]
+    at ``heights`` (nx + 1, ny + 1), with the cell data ``q`` = ``values`` of those cells (NaN: the stick colour)."""
+    X, Y = np.meshgrid(x_edges, y_edges, indexing="ij")
     points = np.stack([X.ravel(), Y.ravel(), heights.ravel()], 1)
-    index = np.arange(nx * ny).reshape(nx, ny)
-    quads = np.stack([index[:-1, :-1], index[1:, :-1], index[1:, 1:], index[:-1, 1:]], -1).reshape(-1, 4)
-    corners = heights.ravel()[quads]
-    keep = np.all(corners > 0.0, axis=1)
-    quads = quads[keep]
-    value = values.ravel()[quads].mean(axis=1)
-    value[np.any(hidden.ravel()[quads], axis=1)] = np.nan
+    index = np.arange(X.size).reshape(X.shape)
+    quads = np.stack([index[:-1, :-1], index[1:, :-1], index[1:, 1:], index[:-1, 1:]], -1)[mask]
     mesh = pv.PolyData(points, np.hstack([np.full((len(quads), 1), 4), quads]).ravel())
-    mesh.cell_data["q"] = value
+    mesh.cell_data["q"] = values[mask]
     return mesh
 
 
@@ -165,17 +171,19 @@ def _contact(plot, pv, f, entry, bound, top, height, half_height):
     base = pv.Plane(center=(0.5 * (x[0] + x[-1]), 0.5 * (y[0] + y[-1]), -0.01 * top * height), direction=(0, 0, 1),
                     i_size=float(np.ptp(x)) + dx, j_size=float(np.ptp(y)) + dy, i_resolution=1, j_resolution=1)
     plot.add_mesh(base, color=v.ZERO_PRESSURE_COLOUR, lighting=False)
-    surface = _centre_surface(pv, x, y, np.where(contact, q, 0.0) * height, q, stick)
+    x_edges = np.r_[x - 0.5 * dx, x[-1] + 0.5 * dx]
+    y_edges = np.r_[y - 0.5 * dy, y[-1] + 0.5 * dy]
+    corners = _corner_heights(q, contact) * height
+    surface = _cells_surface(pv, x_edges, y_edges, corners, contact, np.where(stick, np.nan, q))
     actor = plot.add_mesh(surface, scalars="q", cmap=SLIP_CMAP, clim=(0.0, top), nan_color=STICK_COLOUR,
                           show_scalar_bar=False)
     if stick.any():
-        k = max(1, -(-max(len(x), len(y)) // 24))  # at most about 24 wires across
-        sub = np.s_[::k, ::k]
-        wire = _centre_surface(pv, x[::k], y[::k], np.where(contact, bound, 0.0)[sub] * height, bound[sub],
-                               stick[sub])
-        wire = wire.extract_cells(np.flatnonzero(np.isnan(wire.cell_data["q"])))  # the quads that touch stick
-        if wire.n_cells:  # a stick area smaller than the wires' spacing has none
-            plot.add_mesh(wire, style="wireframe", color="#505050", line_width=1, lighting=False)
+        k = max(1, -(-max(len(x), len(y)) // 24))  # at most about 24 wires across: blocks of k x k cells
+        rows, columns = _every(len(x) + 1, k), _every(len(y) + 1, k)
+        blocks = np.add.reduceat(np.add.reduceat(stick.astype(int), rows[:-1], axis=0), columns[:-1], axis=1) > 0
+        wire = _cells_surface(pv, x_edges[rows], y_edges[columns], _corner_heights(bound, contact, k) * height,
+                              blocks, np.zeros(blocks.shape))
+        plot.add_mesh(wire, style="wireframe", color="#505050", line_width=1, lighting=False)
     step = max(1, int(round(np.sqrt(slip.sum() / 60.0))))
     pick = slip & (np.add.outer(np.arange(len(x)) % step, np.arange(len(y)) % step) == 0)
     s = f["slip"][pick]
@@ -184,7 +192,8 @@ def _contact(plot, pv, f, entry, bound, top, height, half_height):
     if keep.any():
         ii, jj = np.nonzero(pick)
         lift = 0.04 * top * height
-        centres = np.stack([x[ii], y[jj], q[ii, jj] * height + lift], 1)[keep]
+        middle = 0.25 * (corners[ii, jj] + corners[ii + 1, jj] + corners[ii, jj + 1] + corners[ii + 1, jj + 1])
+        centres = np.stack([x[ii], y[jj], np.maximum(middle, q[ii, jj] * height) + lift], 1)[keep]
         arrows = pv.PolyData(centres)
         arrows.point_data["direction"] = np.hstack([s[keep] / norm[keep, None], np.zeros((int(keep.sum()), 1))])
         length = 0.8 * step * min(dx, dy)
