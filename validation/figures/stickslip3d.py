@@ -32,10 +32,10 @@ def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, t
                  ellipses=None) -> list[Path]:
     """Save the tangential solutions of ``contacts`` (``[(label, RollingContact), ...]``) as
     ``<directory>/stickslip_<name>.npz`` (per contact ``k``: ``x_k`` (nx,), ``y_k`` (ny,) [m] the cell centres,
-    ``pressure_k`` (nx, ny) [Pa], ``traction_k`` and ``slip_k`` (nx, ny, 2) [Pa], [-], ``stick_k``, ``contact_k``
-    (nx, ny) bool) and ``stickslip_<name>.json`` (scene, fidelity, title, per contact its label, friction
-    coefficient, normal force, stick fraction and optional Hertz ellipse ``(a_x, b_y)`` [m]); ``ellipses``: per
-    contact ``(a_x, b_y)`` or None.  Returns ``[npz, json]``."""
+    ``pressure_k`` (nx, ny) [Pa], ``traction_k`` and ``slip_k`` (nx, ny, 2) [Pa], [-] (a shift: [m]),
+    ``stick_k``, ``contact_k`` (nx, ny) bool) and ``stickslip_<name>.json`` (scene, fidelity, title, per contact
+    its label, friction coefficient, normal force, stick fraction and optional Hertz ellipse ``(a_x, b_y)`` [m]);
+    ``ellipses``: per contact ``(a_x, b_y)`` or None.  Returns ``[npz, json]``."""
     directory = Path(directory)
     contacts = list(contacts)
     if not contacts:
