@@ -16,7 +16,8 @@ Pictures (``3d_*.png``):
   also of the minor one), the largest FE value of each body on the cut marked (green dot) with its value, and the
   Hertz subsurface maximum (``validation.references.hertz.axis_von_mises_maximum``, blue ring) beside it;
 * ``3d_helix.png`` (ball-screw modules) - the two-ball module seen along the helix;
-* ``3d_<name>.png`` - fields on a surface grid (BEM, EHL; :mod:`validation.figures.surfaces3d`).
+* ``3d_<name>.png`` - fields on a surface grid (BEM, EHL; :mod:`validation.figures.surfaces3d`);
+* ``3d_stickslip_<name>.png`` - the stick and slip areas of rolling contacts (:mod:`validation.figures.stickslip3d`).
 
 Determinism (the image regression tests rely on it): fixed window sizes, anti-aliasing off, cameras computed
 from the saved geometry, the default light kit, no time stamps.  Colour maps are perceptually uniform and
@@ -31,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.figures import surfaces3d
+from ballbench.validation.figures import stickslip3d, surfaces3d
 from ballbench.validation.figures import views3d as v
 
 __all__ = ["render", "artifacts", "module_artifacts", "surface_artifacts", "has_fields",
@@ -46,10 +47,11 @@ MM, MPA = v.MM, v.MPA
 
 # ----------------------------------------------------------------------------------------------- entry points
 def has_fields(scene_dir) -> bool:
-    """True when ``scene_dir`` holds saved fields :func:`render` can draw (``fields.json`` or
-    ``surface_*.json``)."""
+    """True when ``scene_dir`` holds saved fields :func:`render` can draw (``fields.json``, ``surface_*.json`` or
+    ``stickslip_*.json``)."""
     scene_dir = Path(scene_dir)
-    return (scene_dir / "fields.json").is_file() or any(scene_dir.glob("surface_*.json"))
+    return ((scene_dir / "fields.json").is_file() or any(scene_dir.glob("surface_*.json"))
+            or any(scene_dir.glob("stickslip_*.json")))
 
 
 def render(scene_dir) -> list[Path]:
@@ -58,7 +60,7 @@ def render(scene_dir) -> list[Path]:
     FileNotFoundError when no fields are saved there, ValueError for a meta file of an unknown kind."""
     scene_dir = Path(scene_dir)
     if not has_fields(scene_dir):
-        raise FileNotFoundError(f"no saved fields in {scene_dir} (fields.json or surface_*.json)")
+        raise FileNotFoundError(f"no saved fields in {scene_dir} (fields.json, surface_*.json or stickslip_*.json)")
     paths = []
     meta_path = scene_dir / "fields.json"
     if meta_path.is_file():
@@ -72,18 +74,20 @@ def render(scene_dir) -> list[Path]:
             raise ValueError(f"{meta_path}: unknown kind of fields {kind!r} (pair or module)")
     for surface_meta in sorted(scene_dir.glob("surface_*.json")):
         paths.append(surfaces3d.surface_picture(surface_meta))
+    for stickslip_meta in sorted(scene_dir.glob("stickslip_*.json")):
+        paths.append(stickslip3d.picture(stickslip_meta))
     return paths
 
 
 def show_saved(scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of a scene whose pictures are only the 3D screenshots of fields it saved during
-    ``ballbench validate`` (the BEM / EHL surfaces): :func:`render`, or FileNotFoundError saying to validate
-    first.  ``fidelity`` is not used: the saved fields are those of the run that wrote them."""
+    ``ballbench validate`` (the BEM / EHL surfaces, the stick/slip areas): :func:`render`, or FileNotFoundError
+    saying to validate first.  ``fidelity`` is not used: the saved fields are those of the run that wrote them."""
     del fidelity  # the hook signature; the saved fields fix the level
     scene_dir = Path(scene_dir)
     if not has_fields(scene_dir):
-        raise FileNotFoundError(f"no saved surface fields in {scene_dir}: run 'ballbench validate {scene_dir.name} "
-                                f"--out {scene_dir.parent}' first")
+        raise FileNotFoundError(f"no saved surface or stick/slip fields in {scene_dir}: run 'ballbench validate "
+                                f"{scene_dir.name} --out {scene_dir.parent}' first")
     return render(scene_dir)
 
 
@@ -356,7 +360,7 @@ def _module_assembly(grids, meta, heading, path: Path) -> Path:
                                           "one-ball module, here placed and cut between the balls; the loads from the "
                                           "contact forces on the loaded bodies", column_weights=[1.25, 1.0, 1.0])
     v.subplot(plot, 0, 0)
-    plot.enable_depth_peeling()
+    v.transparency(plot)
     for k, (grid, rotation, translation) in enumerate(placed):
         v.bodies(plot, grid, colours, opacity=opacity, smooth=True)
         _load_arrow(plot, balls[k], rotation, translation, 1.2 * radius, f"ball {k + 1}")
@@ -569,7 +573,7 @@ def _module_helix(grids, meta, heading, path: Path) -> Path:
     plot = v.plotter((1, 1), (1400, 900), f"{heading}\nthe two-ball module seen along the helix from behind ball 1 "
                                           f"(the {balls[0]['loaded_body']} above, transparent)")
     v.subplot(plot, 0, 0)
-    plot.enable_depth_peeling()
+    v.transparency(plot)
     for k, (grid, rotation, _) in enumerate(placed):
         v.bodies(plot, grid, colours, opacity=opacity, smooth=True)
         v.text(plot, centres[k] + 1.05 * radius * (rotation @ up), f"ball {k + 1}")

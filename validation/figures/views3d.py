@@ -70,6 +70,19 @@ def plotter(shape, size, heading: str, *, caption: int = 0, column_weights=None)
     return out
 
 
+def transparency(plot, peels: int = 2) -> None:
+    """Depth peeling in the current viewport for a transparent body, with ``peels`` layers (a transparent body
+    seen through is two: its front and back faces; 2 peels differ from pyvista's default 4 in 0.1 % of the pixels
+    of the module pictures at 60-70 % of the rendering time).  Set on the renderer directly: pyvista's
+    ``enable_depth_peeling`` first renders a probe window to ask whether peeling works (VTK falls back to plain
+    blending where it does not)."""
+    renderer = plot.renderer
+    renderer.SetUseDepthPeeling(True)
+    renderer.SetMaximumNumberOfPeels(peels)
+    renderer.SetOcclusionRatio(0.0)
+    renderer.Modified()
+
+
 def subplot(plot, row: int, column: int) -> None:
     """Select the viewport (``row``, ``column``) of a :func:`plotter` (below its heading row)."""
     plot.subplot(row + 1, column)

@@ -19,6 +19,7 @@ from ballbench.lowmodel.contact import halfspace as hs
 from ballbench.lowmodel.linear_bearing import b2b, rolling_contacts
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import render3d, stickslip3d
 from ballbench.validation.figures import rolling as figures
 from ballbench.validation.references import rolling as ref
 from ballbench.validation.references.richardson import extrapolate
@@ -63,15 +64,17 @@ def rolling_carter(run):
 
 
 @scene("rolling-cattaneo", "Cattaneo-Mindlin shift of a Hertz circle (nu = 0): tangential force at Mindlin's shift and "
-       "stick radius", kind="low-order", cost_s=3.0)
+       "stick radius", kind="low-order", cost_s=3.0, show=render3d.show_saved)
 def rolling_cattaneo(run):
     a, force = 1e-3, 1000.0
     n = 40 if run.fidelity == "quick" else 60 if run.fidelity == "default" else 80
     grid = rolling.hertz_grid(a, a, (n, n))
     pressure = rolling.hertz_pressure(grid, a, a, force)
+    shifts = []
     for ratio in (0.3, 0.7):
         delta = ref.mindlin_shift(ratio, force, a, G, 0.0, MU)
         result, time_s = run.time(rolling.shift, pressure, grid, G, 0.0, MU, (delta, 0.0), budget_s=0.0, max_repeat=1)
+        shifts.append((f"Mindlin's shift at Q/(mu P) = {ratio}", result))
         run.check(model=MODEL, quantity=f"Q/(mu P) at Mindlin's shift, {ratio}", unit="1",
                   value=-result.force_rolling / (MU * force), reference=ratio, tolerance=4e-3, time_s=time_s,
                   source="Mindlin (1949); Johnson (1985) eq 7.42", family="BEM", level=_cells(n))
@@ -80,6 +83,8 @@ def rolling_cattaneo(run):
                   reference=ref.mindlin_stick_radius(ratio, 1.0), tolerance=0.02, time_s=time_s,
                   source="Cattaneo (1938); Johnson (1985) eq 7.38", family="BEM", level=_cells(n),
                   note="radius of the circle with the stick cells' area")
+    stickslip3d.artifacts(run, "shift", shifts, title="Cattaneo-Mindlin shift of a Hertz circle (arrows: the shift's "
+                          "slip)", ellipses=[(a, a)] * len(shifts))
 
 
 @scene("rolling-kalker", "Kalker's creepage coefficients C11, C22, C23 (linear theory) from the exact solver, "
@@ -121,7 +126,7 @@ def _tractcurv_normal():
 
 @scene("rolling-tractcurv", "CONTACT's creep-force curve example tractcurv (FN 106.7 kN, mu 0.33): the exact solver "
        "on CONTACT's grid and BEM pressure, the grid-converged curve and FASTSIM beside it", kind="low-order",
-       cost_s=4.0)
+       cost_s=4.0, show=render3d.show_saved)
 def rolling_tractcurv(run):
     d = ref.TRACTCURV_INPUT
     mu, force = d["friction_coefficient"], d["normal_force"]
@@ -129,6 +134,7 @@ def rolling_tractcurv(run):
     operator = rolling.half_space_operator(grid, d["shear_modulus"], d["poisson_ratio"])
     n_fine = 32 if run.fidelity == "quick" else 64
     curves = {"CONTACT's grid": [], "Hertz, " + _cells(n_fine): [], "FASTSIM": []}
+    fields = []
     for creepage, published in zip(ref.TRACTCURV_CREEPAGES, ref.TRACTCURV_FX_OVER_MU_FN):
         w = rolling.rigid_slip(grid, creepage, 0.0, 0.0)
         result, time_s = run.time(rolling.solve, pressure, operator, mu, w, budget_s=0.0, max_repeat=1)
@@ -138,6 +144,7 @@ def rolling_tractcurv(run):
         fine, fine_s = run.time(rolling.steady_rolling, d["semi_axis_rolling"], d["semi_axis_lateral"], force,
                                 d["shear_modulus"], d["poisson_ratio"], mu, creepage, 0.0, 0.0, n_fine,
                                 budget_s=0.0, max_repeat=1)
+        fields.append((f"xi = {creepage:.1e}", fine))
         run.check(model=MODEL, quantity=f"|FX|/(mu FN), xi = {creepage:.1e}, Hertz pressure", unit="1",
                   value=-fine.force_rolling / (mu * force), reference=published, source=ref.TRACTCURV_SOURCE,
                   tolerance=0.03, time_s=fine_s, family="BEM", level=_cells(n_fine),
@@ -153,6 +160,9 @@ def rolling_tractcurv(run):
             curve.append(-value / (mu * force))
     run.save_figure(figures.creep_figure(ref.TRACTCURV_CREEPAGES, ref.TRACTCURV_FX_OVER_MU_FN, curves),
                     "creep_curve.png")
+    stickslip3d.artifacts(run, "creep_curve", fields[::2] + fields[-1:],
+                          title=f"CONTACT's tractcurv along the creep curve (Hertz pressure, {_cells(n_fine)})",
+                          ellipses=[(d["semi_axis_rolling"], d["semi_axis_lateral"])] * 4)
 
 
 @scene("rolling-full-slip", "The full-slip limit: stick/slip forces and spin moment converge to the ellipse-friction "
@@ -200,7 +210,7 @@ NAMES = ("BL", "BR", "TR", "TL")
 
 @scene("rolling-lin2019-contacts", "The four contacts of lin2019 Table 1, case (a) free ball, at the creepages and "
        "spin of the converged low-order state: stick/slip on two half-spaces (Heathcote slip included) against "
-       "lin2019's full slip", kind="low-order", cost_s=4.0)
+       "lin2019's full slip", kind="low-order", cost_s=4.0, show=render3d.show_saved)
 def rolling_lin2019_contacts(run):
     cells = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}[run.fidelity]
     contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **TABLE1_INPUTS).ball(0)
@@ -257,6 +267,9 @@ def rolling_lin2019_contacts(run):
     run.note("Per contact (Kalker's creepage and spin of the lin2019 case (a) state; stick/slip with Heathcote's "
              "slip, in brackets without it): " + " | ".join(lines))
     run.save_figure(figures.contacts_figure(NAMES, results), "contacts.png")
+    stickslip3d.artifacts(run, "contacts", [(name, c.solution) for name, c in zip(NAMES, results)],
+                          title="lin2019 Table 1 case (a), free ball: the four contacts with Heathcote's slip",
+                          ellipses=[(c.motion.semi_axis_rolling, c.motion.semi_axis_lateral) for c in results])
 
 
 # --------------------------------------------------------------------------
@@ -289,7 +302,8 @@ def _flat_like(cells: int, h_factor: float):
 @scene("rolling-fe-compliance", "Rolling contact on an FE compliance (W = B K^-1 B^T condensed onto the grid) against "
        "the half-space on a flat-like contact (ball R 10 mm on a block, 100 N); the lin2019 Table 1 contact BL in "
        "the f = 0.56 and 0.52 grooves on FE compliance against the half-space", kind="FE", cost_s=260.0,
-       budget_s={"quick": 180.0, "default": 600.0, "fine": 3600.0}, level="8 x 8 cells, P2, h 0.7 cell")
+       budget_s={"quick": 180.0, "default": 600.0, "fine": 3600.0}, level="8 x 8 cells, P2, h 0.7 cell",
+       show=render3d.show_saved)
 def rolling_fe_compliance(run):
     cells, h_factor = FE_LEVELS[run.fidelity]
     a, force, grid, compliance, build_s = _flat_like(cells, h_factor)
@@ -300,12 +314,14 @@ def rolling_fe_compliance(run):
     half_space = rolling.half_space_operator(grid, shear, nu)
     fe = compliance.operator(coupling=False)
     p0 = 1.5 * force / (math.pi * a * a)
+    fields = []
     cases = {"linear (xi 1e-9)": (1e-9, 0.0), "xi 0.3 mu p0 / G": (0.3 * MU * p0 / shear, 0.0),
              "spin 0.5 mu p0 / (a G)": (0.0, 0.5 * MU * p0 / (a * shear))}
     for name, (xi, phi) in cases.items():
         w = rolling.rigid_slip(grid, xi, 0.0, phi)
         reference, reference_s = run.time(rolling.solve, pressure, half_space, MU, w, budget_s=0.0, max_repeat=1)
         value, value_s = run.time(rolling.solve, pressure, fe, MU, w)
+        fields = [(f"FE compliance, {name}", value), (f"half-space, {name}", reference)] if phi else fields
         quantity, attribute = ("F_y", "force_lateral") if phi else ("F_x", "force_rolling")
         run.check(model="fem.rolling_compliance", quantity=f"{quantity}, {name}", unit="N",
                   value=getattr(value, attribute), reference=getattr(reference, attribute), tolerance=0.02,
@@ -323,6 +339,9 @@ def rolling_fe_compliance(run):
         run.budget(model="fem.rolling_compliance", quantity=f"solve time / half-space solve time, {name}", unit="1",
                    value=value_s / max(reference_s, 1e-9), budget=10.0,
                    source="target: within 10x of the half-space solve after condensation (docs/rolling_contact.md)")
+    if fields:
+        stickslip3d.artifacts(run, "spin", fields, title=f"ball on a block, spin: FE compliance against the "
+                              f"half-space, {level}", ellipses=[(a, a)] * len(fields))
     if run.fidelity == "quick":
         return
     _fe_grooves(run, GROOVE_H[run.fidelity])

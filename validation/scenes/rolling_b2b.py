@@ -9,6 +9,7 @@ grids and levels in :mod:`validation.cases.stick_slip`.
 from __future__ import annotations
 
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import render3d
 from ballbench.validation.scene import scene
 from ballbench.validation.studies import full_slip_validity as validity
 from ballbench.validation.studies import rolling_b2b as study
@@ -20,14 +21,14 @@ _LEVEL = "FE module h 30 um; stick/slip on 20 x 80 cells per contact; FE complia
 @scene("rolling-b2b-linear-a", "B2B force of lin2019's linear-bearing module, case (a), with stick/slip ball-to-groove "
        "contacts: the ladder from the analytical model to stick/slip on the FE compliance against ANSYS 3.96 N",
        kind="FE", cost_s=375.0, budget_s=_BUDGET, level=_LEVEL,
-       case=lin2019.TABLE3_A)
+       case=lin2019.TABLE3_A, show=render3d.show_saved)
 def rolling_b2b_linear_a(run):
     study.record_ladder(run, "linear", "a")
 
 
 @scene("rolling-b2b-linear-b", "B2B force of lin2019's linear-bearing module, case (b) (mitigating top groove), with "
        "stick/slip contacts: zero at every rung", kind="FE", cost_s=375.0, budget_s=_BUDGET, level=_LEVEL,
-       case=lin2019.TABLE3_B)
+       case=lin2019.TABLE3_B, show=render3d.show_saved)
 def rolling_b2b_linear_b(run):
     study.record_ladder(run, "linear", "b")
 
@@ -35,14 +36,14 @@ def rolling_b2b_linear_b(run):
 @scene("rolling-b2b-screw-a", "B2B force of lin2019's ball-screw module, Table 5 case (a), with stick/slip "
        "ball-to-groove contacts: the ladder from the low-order model to stick/slip on the FE compliance against "
        "ANSYS 1.80 N", kind="FE", cost_s=440.0, budget_s=_BUDGET, level=_LEVEL,
-       case=lin2019.TABLE5_A)
+       case=lin2019.TABLE5_A, show=render3d.show_saved)
 def rolling_b2b_screw_a(run):
     study.record_ladder(run, "screw", "a")
 
 
 @scene("rolling-b2b-screw-b", "B2B force of lin2019's ball-screw module, Table 5 case (b), with stick/slip contacts: "
        "the ladder against ANSYS 2.71 N", kind="FE", cost_s=440.0, budget_s=_BUDGET, level=_LEVEL,
-       case=lin2019.TABLE5_B)
+       case=lin2019.TABLE5_B, show=render3d.show_saved)
 def rolling_b2b_screw_b(run):
     study.record_ladder(run, "screw", "b")
 

@@ -297,6 +297,20 @@ CASE_B_FE_TOLERANCE = 0.01  # the fe-b2b scenes' bound on an FE-informed case (b
 TIME_BUDGET_S = {"quick": 120.0, "default": 600.0, "fine": 3000.0}
 
 
+def _stick_slip_pictures(run, rungs: list[Rung]) -> None:
+    """Save the touching state's contacts of the Hertz + half-space rung and of the finest FE-compliance rung and
+    draw their stick and slip areas (:mod:`validation.figures.stickslip3d`)."""
+    from ballbench.validation.figures import stickslip3d
+
+    chosen = {"hertz_halfspace": next((r for r in rungs if r.model.endswith("Hertz + half-space")), None),
+              "fe_compliance": next((r for r in reversed(rungs) if r.model.endswith("+ FE compliance")), None)}
+    for name, rung in chosen.items():
+        contacts = [(f"ball {ball + 1} {c.name}", c.solution) for ball, row in enumerate(rung.contacts) for c in row
+                    if c.solution is not None] if rung is not None else []
+        if contacts:
+            stickslip3d.artifacts(run, name, contacts, title=f"{rung.model} [{rung.level}], the touching balls")
+
+
 def record_ladder(run, product: str, case: str) -> list[Rung]:
     """Run the ladder of ``product`` ("linear" or "screw") for ``case`` at ``run.fidelity`` and record its checks,
     ladder.csv, contacts.csv and the notes."""
@@ -388,6 +402,7 @@ def record_ladder(run, product: str, case: str) -> list[Rung]:
     write_contacts(run.path("contacts.csv"), rungs, mu)
     run.add_artifact(run.path("ladder.csv"))
     run.add_artifact(run.path("contacts.csv"))
+    _stick_slip_pictures(run, rungs)
     run.note("Ladder (ladder.csv; per contact: contacts.csv): " + "; ".join(
         f"{r.model} [{r.level or r.family}]: F_B2B {r.b2b_force:.4f} N"
         + ("" if math.isnan(r.full_slip_force) else f" (full slip on the same cells {r.full_slip_force:.4f} N)")

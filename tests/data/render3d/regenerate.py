@@ -8,7 +8,9 @@ data.  A coarse mesh is enough: the tests judge the pictures, not the FE.
 
 * ``pair/``: the ball on a flat (fe-hertz-flat) at n = b/h 5, growth 2, 100 N (validation.studies.fe_contact);
 * ``module/``: lin2019's two-ball linear module, case (a), at h 90 um, growth 2 (validation.studies.fe_b2b_linear);
-* ``surface/``: the sun2021 dry BEM at A, 21.71 deg, 32 x 32 cells (validation.studies.sun2021).
+* ``surface/``: the sun2021 dry BEM at A, 21.71 deg, 32 x 32 cells (validation.studies.sun2021);
+* ``stickslip/``: steady rolling of a Hertz ellipse (a/b 0.5, 24 x 24 cells) at a creepage with a large stick area
+  and with creepage and spin (lowmodel.contact.rolling; :func:`stickslip`, a second alone).
 
 After regenerating, reset the baseline images: ``BALLBENCH_RESET_BASELINES=1 .venv/bin/python -m pytest
 tests/test_render3d.py`` and look at them (tests/baseline_images/render3d/).
@@ -64,6 +66,23 @@ def main() -> None:
                          {"pressure_Pa": bem.pressure, "separation_m": bem.separation},
                          {"scene": "sun2021-dry-contact", "fidelity": "test", "title": "dry BEM at A, 32 x 32",
                           "axes": ["major axis", "minor axis"]})
+    stickslip()
+
+
+def stickslip() -> None:
+    """The two rolling contacts of ``stickslip/`` (validation.figures.stickslip3d.write_fields)."""
+    from ballbench.lowmodel.contact import rolling
+    from ballbench.validation.figures import stickslip3d
+
+    a, b, force, shear, nu, mu = 0.5e-3, 1e-3, 500.0, 80e9, 0.28, 0.3
+    p0 = 1.5 * force / (np.pi * a * b)
+    scale = mu * p0 / shear
+    contacts = [("creepage", rolling.steady_rolling(a, b, force, shear, nu, mu, 0.5 * scale, 0.0, 0.0, (24, 24))),
+                ("creepage and spin", rolling.steady_rolling(a, b, force, shear, nu, mu, 0.3 * scale, 0.0,
+                                                             1.5 * scale / b, (24, 24)))]
+    (HERE / "stickslip").mkdir(exist_ok=True)
+    stickslip3d.write_fields(HERE / "stickslip", "rolling", contacts, scene="rolling-test", fidelity="test",
+                             title="a Hertz ellipse rolling, 24 x 24 cells", ellipses=[(a, b)] * 2)
 
 
 if __name__ == "__main__":

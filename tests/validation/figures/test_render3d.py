@@ -31,6 +31,7 @@ PICTURES = {
     "pair": ("3d_assembly.png", "3d_pressure.png", "3d_stress.png"),
     "module": ("3d_assembly.png", "3d_pressure_overview.png", "3d_pressure_contacts.png", "3d_stress.png"),
     "surface": ("3d_bem_A.png",),
+    "stickslip": ("3d_stickslip_rolling.png",),
 }
 
 
@@ -138,6 +139,52 @@ def test_a_wrong_stress_changes_the_pictures(tmp_path):
     _edit_vtu(module / "fields_ball2.vtu", hotter)
     paths = {p.name: p for p in render3d.module_pictures(module)}
     assert _error(paths["3d_stress.png"], _baseline("module", "3d_stress.png")) > 2 * ERROR_TOLERANCE
+
+
+def _edit_npz(path: Path, edit) -> None:
+    with np.load(path) as data:
+        arrays = dict(data)
+    edit(arrays)
+    np.savez_compressed(path, **arrays)
+
+
+@pytest.mark.parametrize("change", ["traction 20 % lower", "stick area one row longer"])
+def test_a_wrong_stick_slip_field_changes_the_picture(tmp_path, change):
+    """The saved rolling contacts with the traction of the first contact 20 % lower everywhere, or the stick area
+    of the second grown by one row of cells towards the trailing edge (the traction unchanged), must not pass
+    the baseline."""
+    from ballbench.validation.figures import stickslip3d
+
+    directory = _copy("stickslip", tmp_path)
+
+    def edit(arrays):
+        if change.startswith("traction"):
+            arrays["traction_0"] = 0.8 * arrays["traction_0"]
+        else:
+            stick = arrays["stick_1"]
+            arrays["stick_1"] = (stick | np.roll(stick, -1, axis=0)) & arrays["contact_1"]
+
+    _edit_npz(directory / "stickslip_rolling.npz", edit)
+    picture = stickslip3d.picture(directory / "stickslip_rolling.json")
+    assert _error(picture, _baseline("stickslip", "3d_stickslip_rolling.png")) > 2 * ERROR_TOLERANCE
+
+
+def test_stick_slip_fields_round_trip(tmp_path):
+    """write_fields keeps each contact's arrays in Kalker's grid order and its numbers in the meta file."""
+    from ballbench.lowmodel.contact import rolling
+    from ballbench.validation.figures import stickslip3d
+
+    solution = rolling.steady_rolling(1e-3, 1e-3, 100.0, 80e9, 0.3, 0.3, 1e-4, 0.0, 0.0, (8, 10))
+    data, meta = stickslip3d.write_fields(tmp_path, "one", [("c", solution)], scene="s", fidelity="test", title="t")
+    with np.load(data) as arrays:
+        assert np.array_equal(arrays["x_0"], solution.grid.x) and np.array_equal(arrays["y_0"], solution.grid.y)
+        assert np.array_equal(arrays["traction_0"], solution.traction)
+        assert np.array_equal(arrays["stick_0"], solution.stick)
+    entry = json.loads(meta.read_text())["contacts"][0]
+    assert entry["stick_fraction"] == solution.stick_fraction and entry["ellipse_m"] is None
+    with pytest.raises(ValueError, match="ellipses"):
+        stickslip3d.write_fields(tmp_path, "two", [("c", solution)], scene="s", fidelity="test", title="t",
+                                 ellipses=[])
 
 
 def test_render_needs_saved_fields(tmp_path):
