@@ -46,18 +46,22 @@ def ehl_scene(run, *, case) -> None:
                       reference=value, tolerance=HAMROCK_DOWSON_TOLERANCE, time_s=0.0, finding=True,
                       source=f"the numerical EHL solve ({MODEL}, {c.grid} cells)",
                       note=f"{where}; the 15 % of the ehl-hamrock-dowson and sun2021-ehl scenes (docs/ehl.md)")
-    run.table("EHL per distinct contact", (
-        "contact", "load [N]", "U_e [m/s]", "R_x [mm]", "R_y [mm]", "grid", "h_c solve [nm]", "h_c HD [nm]",
-        "h_c HD / solve - 1 [%]", "h_min solve [nm]", "h_min HD [nm]", "h_min HD / solve - 1 [%]", "U", "G", "W",
-        "k", "HD checked", "p0 Hertz [MPa]", "p centre / p0", "p max / p0", "time [s]"),
-        [(c.label, fmt(c.load), fmt(c.speed), fmt(c.radius_x * 1e3), fmt(c.radius_y * 1e3), c.grid,
-          fmt(c.solution.central_film * 1e9), fmt(c.reference["h_c"] * 1e9),
-          fmt(100 * (c.reference["h_c"] / c.solution.central_film - 1), 3), fmt(c.solution.minimum_film * 1e9),
-          fmt(c.reference["h_min"] * 1e9), fmt(100 * (c.reference["h_min"] / c.solution.minimum_film - 1), 3),
-          fmt(c.reference["U"], 3), fmt(c.reference["G"], 4), fmt(c.reference["W"], 3), fmt(c.reference["k"], 3),
-          "yes" if c.within_fit else f"no: k outside {lo:g}-{hi:g}", fmt(c.p0 / 1e6),
-          fmt(c.solution.central_pressure / c.p0, 3), fmt(c.solution.max_pressure / c.p0, 3), fmt(c.time_s, 3))
-         for c in points])
+    sigma = case.screw.lubricant.roughness
+    header = ("contact", "load [N]", "U_e [m/s]", "R_x [mm]", "R_y [mm]", "grid", "h_c solve [nm]", "h_c HD [nm]",
+              "h_c HD / solve - 1 [%]", "h_min solve [nm]", "h_min HD [nm]", "h_min HD / solve - 1 [%]", "U", "G",
+              "W", "k", "HD checked", "p0 Hertz [MPa]", "p centre / p0", "p max / p0", "time [s]")
+    rows = [(c.label, fmt(c.load), fmt(c.speed), fmt(c.radius_x * 1e3), fmt(c.radius_y * 1e3), c.grid,
+             fmt(c.solution.central_film * 1e9), fmt(c.reference["h_c"] * 1e9),
+             fmt(100 * (c.reference["h_c"] / c.solution.central_film - 1), 3), fmt(c.solution.minimum_film * 1e9),
+             fmt(c.reference["h_min"] * 1e9), fmt(100 * (c.reference["h_min"] / c.solution.minimum_film - 1), 3),
+             fmt(c.reference["U"], 3), fmt(c.reference["G"], 4), fmt(c.reference["W"], 3), fmt(c.reference["k"], 3),
+             "yes" if c.within_fit else f"no: k outside {lo:g}-{hi:g}", fmt(c.p0 / 1e6),
+             fmt(c.solution.central_pressure / c.p0, 3), fmt(c.solution.max_pressure / c.p0, 3), fmt(c.time_s, 3))
+            for c in points]
+    if sigma is not None:  # Lambda = h_min / sigma (Tallian; Hamrock, Fundamentals of Fluid Film Lubrication)
+        header += ("Lambda = h_min / sigma (solve)",)
+        rows = [row + (fmt(c.solution.minimum_film / sigma, 3),) for row, c in zip(rows, points)]
+    run.table("EHL per distinct contact", header, rows)
     oil = case.screw.lubricant
     run.note(f"Oil eta_0 {fmt(oil.viscosity)} Pa s, rho_0 {fmt(oil.density)} kg/m^3, Roelands alpha "
              f"(lowmodel.contact.ehl); E' = 2 E*.  U = eta_0 U_e / (E' R_x), G = alpha E', W = F / (E' R_x^2), "
@@ -65,5 +69,8 @@ def ehl_scene(run, *, case) -> None:
              "U_e: wang2022 eqs 1-2 (lowmodel.screw.kinematics) at the drive speed and the nominal contact angle "
              "(studies.case_ehl).  h_c at the grid point nearest the contact centre, h_min the smallest film on "
              "the grid; the exit spike sharpens with the grid and does not converge (docs/ehl.md).  Hamrock-Dowson "
-             f"is checked where k lies in its fit's range {lo:g}-{hi:g}; smooth surfaces (no roughness key: no "
-             "film-to-roughness ratio).")
+             f"is checked where k lies in its fit's range {lo:g}-{hi:g}.  The solve is smooth; "
+             + (f"Lambda = h_min / sigma with the file's composite RMS roughness sigma {fmt(sigma * 1e9)} nm (below 1 "
+                "boundary, 1-3 mixed, above 3 full-film lubrication: Hamrock, Fundamentals of Fluid Film "
+                "Lubrication): a rough surface changes the film itself (docs/mixed_lubrication.md)." if sigma
+                is not None else "no lubricant.roughness in the file: no film-to-roughness ratio."))

@@ -149,7 +149,10 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
                 check="choice", choices=READINGS, example='"tilted"')),
         "lubricant": (
             Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", in_template=False),
-            Key("density", "density", "rho_0", check="positive", in_template=False)),
+            Key("density", "density", "rho_0", check="positive", in_template=False),
+            Key("roughness", "length", "sigma, composite RMS roughness sqrt(Rq_1^2 + Rq_2^2) of ball and raceway "
+                "(the film-to-roughness ratio h_min / sigma of the EHL rung)", required=False, check="positive",
+                in_template=False)),
         "fe": (
             Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
             Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
@@ -427,7 +430,8 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                    load.get("n_balls", 2), fe)
         if kind == "ball-screw":
             lub = tables.get("lubricant")
-            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"]) if lub
+            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"],
+                                                                      lub.get("roughness")) if lub
                            else None)
             load = tables["load"]
             fe = None

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import math
 
+import pytest
+
 from ballbench.validation import case_scenes
 from ballbench.validation.cases import case_file
 from ballbench.validation.runner import run_scenes
@@ -44,6 +46,18 @@ def test_lubricated_example_ehl_scene_at_quick(tmp_path):
         assert o.reference > 0 and o.value > 0
     (table,) = [t for t in result.tables if t[0] == "EHL per distinct contact"]
     assert [row[0] for row in table[2]] == ["screw side", "nut side"]
+    # the film-to-roughness ratio of the file's composite roughness (0.14 um): h_min of the solve over sigma
+    header, rows = table[1], table[2]
+    column, h_min = header.index("Lambda = h_min / sigma (solve)"), header.index("h_min solve [nm]")
+    for row in rows:
+        assert math.isclose(float(row[column]), float(row[h_min]) / 140.0, rel_tol=2e-3)
+
+
+def test_roughness_key_is_read_in_si_and_checked():
+    assert case_file.load(OIL).screw.lubricant.roughness == 0.14e-6
+    text = OIL.read_text().replace('roughness = "0.14 um"', 'roughness = "0.14 mm"')
+    with pytest.raises(case_file.CaseFileError, match="roughness"):
+        case_file.loads(text, "oil.toml")
 
 
 def test_no_ehl_scene_without_a_lubricant_or_above_the_levels():
