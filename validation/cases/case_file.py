@@ -148,11 +148,10 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
             Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
                 check="choice", choices=READINGS, example='"tilted"')),
         "lubricant": (
-            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", in_template=False),
-            Key("density", "density", "rho_0", check="positive", in_template=False),
-            Key("roughness", "length", "sigma, composite RMS roughness sqrt(Rq_1^2 + Rq_2^2) of ball and raceway "
-                "(the film-to-roughness ratio h_min / sigma of the EHL rung)", required=False, check="positive",
-                in_template=False)),
+            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", example='"0.1 Pa s"'),
+            Key("density", "density", "rho_0", check="positive", example='"870 kg/m^3"'),
+            Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / "
+                "sigma)", required=False, check="positive", example='"0.14 um"')),
         "fe": (
             Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
             Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
@@ -558,6 +557,11 @@ def template(kind: str) -> str:
             for alt in alternatives:
                 notes.append(f"or {alt.name}")
             out.append(f"{line:<32} # {'; '.join(notes)}")
+    if kind == "ball-screw":  # optional, so commented out: the file loads as it is, without the EHL rung
+        out += ["", "# [lubricant] (optional): an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md)"]
+        for key in SCHEMA[kind]["lubricant"]:
+            line = f"# {key.name} = {key.example}"
+            out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
     if kind == "contact":
         out += ["",
                 "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",

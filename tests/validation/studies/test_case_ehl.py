@@ -70,3 +70,12 @@ def test_no_ehl_scene_without_a_lubricant_or_above_the_levels():
     oil = case_file.load(OIL)
     assert "o-ehl" not in case_scenes.scene_names(oil, "o", top="BEM")
     assert not any(s.name == "o-ehl" for s in case_scenes.case_scenes(oil, "o", top="BEM"))
+
+
+def test_template_lubricant_block_loads_when_uncommented():
+    text = case_file.template("ball-screw")
+    assert case_file.loads(text, "t.toml").screw.lubricant is None  # commented out: loads as it is
+    block = text[text.index("# [lubricant]"):].split("\n\n")[0]
+    lines = [line.removeprefix("# ") for line in block.splitlines() if line.startswith("# ")]
+    oil = case_file.loads(text + "\n[lubricant]\n" + "\n".join(lines[1:]) + "\n", "t.toml").screw.lubricant
+    assert (oil.viscosity, oil.density, oil.roughness) == (0.1, 870.0, 0.14e-6)
