@@ -20,12 +20,8 @@ HD_MODEL = "Hamrock-Dowson (1977) film (lowmodel.contact.ehl.hamrock_dowson_film
 def ehl_scene(run, *, case) -> None:
     """The scene function of ``<stem>-ehl`` (``case`` a BallScrewCase with a lubricant)."""
     from ballbench.validation.studies import case_ehl
-    from ballbench.validation.studies.ladder import distinct_contacts
 
-    speeds = case_ehl.entrainment_speeds(case)
-    n = case_ehl.GRID_N[run.fidelity]
-    points = [case_ehl.ehl_contact(case, d.contact.pair, d.contact.force, speeds[d.contact.pair], n, d.label)
-              for d in run.progress(distinct_contacts(case), desc="contacts")]
+    points = case_ehl.contacts(case, run.fidelity, progress=run.progress)
     lo, hi = case_ehl.ELLIPTICITY_RANGE
     for c in points:
         s, r = c.solution, c.reference

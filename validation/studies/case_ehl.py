@@ -109,17 +109,15 @@ def ehl_contact(case: BallScrewCase, pair: str, load: float, speed: float, n: in
                       solution, f"{grid.nx} x {grid.ny}", wall)
 
 
-def contacts(case: BallScrewCase, fidelity: str) -> list[EHLContact]:
-    """The EHL of every distinct contact of ``case`` (studies.ladder.distinct_contacts) at ``fidelity``."""
+def contacts(case: BallScrewCase, fidelity: str, progress=None) -> list[EHLContact]:
+    """The EHL of every distinct contact of ``case`` (studies.ladder.distinct_contacts) at ``fidelity``;
+    ``progress``: a wrapper of the iterable of contacts (a scene's ``run.progress``)."""
     from ballbench.validation.studies.ladder import distinct_contacts
 
     if not applies(case):
         raise ValueError(f"the EHL rung needs a ball-screw case with a [lubricant] table, got {case.name!r}")
     speeds = entrainment_speeds(case)
     n = GRID_N[fidelity]
-    found = []
-    for distinct in distinct_contacts(case):
-        pair = distinct.contact.pair
-        found.append(ehl_contact(case, pair, distinct.contact.force, speeds[pair], n, distinct.label))
-    return found
-
+    found = distinct_contacts(case)
+    return [ehl_contact(case, d.contact.pair, d.contact.force, speeds[d.contact.pair], n, d.label)
+            for d in (progress(found, desc="contacts") if progress is not None else found)]
