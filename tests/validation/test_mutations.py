@@ -216,6 +216,16 @@ def _soft_half_space(monkeypatch):  # stick/slip on a half-space of a tenth of t
     monkeypatch.setattr(b2b_rolling, "_material", lambda e, nu: (0.1 * original(e, nu)[0], original(e, nu)[1]))
 
 
+def _screw_gap_on_nut_side(monkeypatch):  # the EHL solve of a nut-side contact on the screw groove's gap
+    from ballbench.lowmodel.geometry import groove
+
+    original = groove.pair_initial_gap
+
+    def mutant(ball_radius, conformity, pitch_radius, lead, contact_angle, body="screw", **kwargs):
+        return original(ball_radius, conformity, pitch_radius, lead, contact_angle, "screw", **kwargs)
+    monkeypatch.setattr(groove, "pair_initial_gap", mutant)
+
+
 # mutant -> (what it is, case file, rung, scene suffix, the checks (level, quantity) expected to leave "pass")
 CASE_MUTANTS = {
     "nut-side BEM on the screw's groove": (_nut_bem_on_screw_groove, "validation/cases/files/lin2019-table5-a.toml",
@@ -223,6 +233,8 @@ CASE_MUTANTS = {
     "stick/slip half-space shear modulus x 0.1": (_soft_half_space, "examples/compact_linear_guide.toml",
                                                   "stick-slip", "stick-slip",
                                                   [("8 x 32 cells", "friction force, balls apart")]),
+    "EHL gap of the screw groove on the nut side": (_screw_gap_on_nut_side, "examples/ball_screw_32x10_oil.toml",
+                                                    "EHL", "ehl", [("nut side, 128 x 32 cells", "central film h_c")]),
 }
 
 
@@ -237,7 +249,8 @@ def _case_scene(path, rung, suffix, directory):
     return {(o.level, o.quantity): o.status for o in result.outputs}, result.error
 
 
-@pytest.mark.parametrize("label", [pytest.param(k, marks=(pytest.mark.slow,) if v[2] == "stick-slip" else (), id=k)
+@pytest.mark.parametrize("label", [pytest.param(k, marks=(pytest.mark.slow,) if v[2] in ("stick-slip", "EHL") else (),
+                                                id=k)
                                    for k, v in CASE_MUTANTS.items()])
 def test_case_scene_mutant_is_rejected(label, monkeypatch, tmp_path):
     mutate, path, rung, suffix, rejecting = CASE_MUTANTS[label]

@@ -14,6 +14,9 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
   extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
   time; its fields (fields.vtu) and 3D screenshots;
+* ``<stem>-ehl`` (ball screw with a ``[lubricant]``; rung ``EHL``): each distinct contact lubricated at its load and
+  the entrainment speed of the case's kinematics: the EHL solve's central and minimum film, U, G, W, k, the pressure
+  against Hertz, Hamrock-Dowson judged against the solve (studies.case_ehl);
 * ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
   full slip on the same cells (studies.case_stick_slip);
 * ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
@@ -28,8 +31,8 @@ uncertainty of the extrapolated reference stay pass/fail.
 ``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
 stops refining a mesh study when the next level's predicted time would pass it.
 
-Modules: ``balls`` (``<stem>-balls``), ``contact`` (``<stem>-contact``), ``b2b_fe`` (``<stem>-b2b-fe``),
-``stick_slip`` (``<stem>-stick-slip``), ``common``
+Modules: ``balls`` (``<stem>-balls``), ``contact`` (``<stem>-contact``), ``ehl`` (``<stem>-ehl``), ``b2b_fe``
+(``<stem>-b2b-fe``), ``stick_slip`` (``<stem>-stick-slip``), ``common``
 (tolerances, tables and checks they share); this file names the scenes of a case and builds them.
 """
 from __future__ import annotations
@@ -41,6 +44,7 @@ from pathlib import Path
 from ballbench.validation.case_scenes.b2b_fe import b2b_fe_scene, show_module
 from ballbench.validation.case_scenes.balls import balls_scene
 from ballbench.validation.case_scenes.contact import contact_scene, show_contact
+from ballbench.validation.case_scenes.ehl import ehl_scene
 from ballbench.validation.case_scenes.stick_slip import stick_slip_scene
 from ballbench.validation.cases.case import ContactCase, LinearGuideCase
 from ballbench.validation.scene import Scene
@@ -62,6 +66,12 @@ def _kind(case) -> str:
             else "ball-screw")
 
 
+def _lubricated(case) -> bool:
+    from ballbench.validation.studies import case_ehl
+
+    return case_ehl.applies(case)
+
+
 def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
     from ballbench.validation.studies.ladder import rungs_up_to
@@ -69,6 +79,8 @@ def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     rungs = rungs_up_to(top)
     names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
     names.append(f"{stem}-contact")
+    if "EHL" in rungs and _lubricated(case):
+        names.append(f"{stem}-ehl")
     if "FE-informed" in rungs and not isinstance(case, ContactCase):
         names.append(f"{stem}-b2b-fe")
     if "stick-slip" in rungs and not isinstance(case, ContactCase):
@@ -100,6 +112,12 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                         budget_s=({f: t * (1 if f == "quick" else n_contacts) for f, t in BUDGET_S.items()} if fe
                                   else LOW_BUDGET_S),
                         case=case, show=functools.partial(show_contact, case) if fe else None))
+    if "EHL" in rungs and _lubricated(case):
+        scenes.append(Scene(f"{stem}-ehl", f"{case.name}: each distinct contact lubricated (smooth isothermal EHL on "
+                            "the exact helical gap at the case's entrainment speed): film, U, G, W, pressure, "
+                            "Hamrock-Dowson against the solve", functools.partial(ehl_scene, case=case),
+                            tags=("case",), kind="low-order", cost_s=5.0 * n_contacts,
+                            budget_s={"quick": 60.0, "default": 120.0, "fine": 900.0}, case=case))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "
                             "force per mesh level, extrapolated: the reference of the analytical and low-order models",

@@ -76,10 +76,14 @@ class Lubricant:
 
     viscosity: float  # eta_0 [Pa s]
     density: float    # rho_0 [kg/m^3]
+    roughness: float | None = None  # composite RMS roughness sigma = sqrt(Rq_1^2 + Rq_2^2) of the surfaces [m]
 
     def __post_init__(self):
         checks.positive("viscosity", self.viscosity, "Pa s")
         checks.positive("density", self.density, "kg/m^3")
+        if self.roughness is not None:  # a raceway's RMS roughness is well under 10 um (ground: 0.05-0.3 um)
+            checks.bounded("roughness", self.roughness, 0.0, 1e-5, "m", upper_closed=True,
+                           note="an RMS roughness of 0.1 um is 1e-7 m")
 
 
 @dataclass(frozen=True)

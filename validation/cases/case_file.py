@@ -148,8 +148,10 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
             Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
                 check="choice", choices=READINGS, example='"tilted"')),
         "lubricant": (
-            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", in_template=False),
-            Key("density", "density", "rho_0", check="positive", in_template=False)),
+            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", example='"0.1 Pa s"'),
+            Key("density", "density", "rho_0", check="positive", example='"870 kg/m^3"'),
+            Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / "
+                "sigma)", required=False, check="positive", example='"0.14 um"')),
         "fe": (
             Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
             Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
@@ -427,7 +429,8 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                    load.get("n_balls", 2), fe)
         if kind == "ball-screw":
             lub = tables.get("lubricant")
-            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"]) if lub
+            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"],
+                                                                      lub.get("roughness")) if lub
                            else None)
             load = tables["load"]
             fe = None
@@ -554,6 +557,11 @@ def template(kind: str) -> str:
             for alt in alternatives:
                 notes.append(f"or {alt.name}")
             out.append(f"{line:<32} # {'; '.join(notes)}")
+    if kind == "ball-screw":  # optional, so commented out: the file loads as it is, without the EHL rung
+        out += ["", "# [lubricant] (optional): an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md)"]
+        for key in SCHEMA[kind]["lubricant"]:
+            line = f"# {key.name} = {key.example}"
+            out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
     if kind == "contact":
         out += ["",
                 "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",

@@ -9,6 +9,10 @@ Rungs, bottom to top (:data:`RUNGS`):
   loads, angles, ellipses, friction force or torque, B2B forces (studies.bearing_results);
 * ``BEM``: the half-space contact on the exact gap of the most loaded contact (lowmodel.contact.halfspace; the
   helical grooves through lowmodel.contact.screw_contact), on grids of ``n x n`` cells;
+* ``EHL`` (a ball screw whose file gives a ``[lubricant]``): each distinct contact lubricated, the smooth
+  isothermal EHL solve on the exact helical gap (lowmodel.contact.ehl, sun2021 eqs 14-19; its deflection is the
+  BEM's half-space) at the entrainment speed of the case's kinematics, the reference of the Hamrock-Dowson film
+  (studies.case_ehl);
 * ``FE``: the contact of the most loaded contact in FE (studies.fe_contact) on three or more meshes whose sizes
   follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), and the Richardson extrapolation of the study
   (references.richardson): the reference every model of the contact is judged against, with its uncertainty;
@@ -38,7 +42,7 @@ __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "Di
             "module_fe", "hertz_values", "bem_values",
            "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time"]
 
-RUNGS = ("analytical", "low-order", "BEM", "FE", "FE-informed", "stick-slip")
+RUNGS = ("analytical", "low-order", "BEM", "EHL", "FE", "FE-informed", "stick-slip")
 QUANTITIES = (("a", "m"), ("b", "m"), ("p0", "Pa"), ("delta", "m"))
 # n x n cells of the BEM per fidelity (coarse to fine; the finest is the BEM's reported level)
 BEM_GRIDS = {"quick": (64, 128), "default": (128, 256), "fine": (128, 256, 512)}

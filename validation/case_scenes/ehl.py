@@ -1,0 +1,72 @@
+"""``<stem>-ehl`` of a ball-screw case whose file gives a ``[lubricant]`` (rung ``EHL``): each distinct contact at
+its load and the entrainment speed of the case's kinematics (studies.case_ehl), the smooth isothermal EHL solve
+(lowmodel.contact.ehl.solve_reynolds, sun2021 eqs 14-19) on the exact helical gap and the Hamrock-Dowson film
+(Hamrock & Dowson 1977) with the full-tensor radii: central and minimum film, U, G, W, k, the central and the
+largest pressure against the Hertz p0.  Hamrock-Dowson is judged against the solve (a finding when it misses, within
+the ellipticity range of its fit only); the solve's load balance and ``p >= 0`` are self-checks (its Reynolds
+residual is checked inside the solve, lowmodel.contact.ehl.verify); docs/ehl.md."""
+from __future__ import annotations
+
+import numpy as np
+
+from ballbench.validation.case_scenes.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt
+
+__all__ = ["ehl_scene"]
+
+MODEL = "lowmodel.contact.ehl.solve_reynolds"
+HD_MODEL = "Hamrock-Dowson (1977) film (lowmodel.contact.ehl.hamrock_dowson_film)"
+
+
+def ehl_scene(run, *, case) -> None:
+    """The scene function of ``<stem>-ehl`` (``case`` a BallScrewCase with a lubricant)."""
+    from ballbench.validation.studies import case_ehl
+
+    points = case_ehl.contacts(case, run.fidelity, progress=run.progress)
+    lo, hi = case_ehl.ELLIPTICITY_RANGE
+    for c in points:
+        s, r = c.solution, c.reference
+        level = f"{c.label}, {c.grid} cells"
+        where = f"{fmt(c.load)} N, U_e {fmt(c.speed)} m/s"
+        solve = dict(model=MODEL, family="EHL", level=level, time_s=c.time_s, note=where)
+        run.check(**solve, quantity="load balance (sun2021 eq 19)", unit="N", value=s.force, reference=c.load,
+                  tolerance=EHL_LOAD_TOLERANCE, source="the contact's load (studies.ladder.distinct_contacts)")
+        run.check(**solve, quantity="min pressure (cavitation p >= 0)", unit="Pa", value=float(np.min(s.pressure)),
+                  reference=0.0, relation="ge", scale=1e6, tolerance=0.0,
+                  why="sign test: tolerance 0, so any negative pressure fails; 1 MPa only names the unit",
+                  source="sun2021 eq 18")
+        if not c.within_fit:
+            continue  # said in the table and the note: outside the fit, not checked
+        for name, key, value in (("central film h_c", "h_c", s.central_film),
+                                 ("minimum film h_min", "h_min", s.minimum_film)):
+            run.check(model=HD_MODEL, family="analytical", level=level, quantity=name, unit="m", value=r[key],
+                      reference=value, tolerance=HAMROCK_DOWSON_TOLERANCE, time_s=0.0, finding=True,
+                      source=f"the numerical EHL solve ({MODEL}, {c.grid} cells)",
+                      note=f"{where}; the 15 % of the ehl-hamrock-dowson and sun2021-ehl scenes (docs/ehl.md)")
+    sigma = case.screw.lubricant.roughness
+    header = ("contact", "load [N]", "U_e [m/s]", "R_x [mm]", "R_y [mm]", "grid", "h_c solve [nm]", "h_c HD [nm]",
+              "h_c HD / solve - 1 [%]", "h_min solve [nm]", "h_min HD [nm]", "h_min HD / solve - 1 [%]", "U", "G",
+              "W", "k", "HD checked", "p0 Hertz [MPa]", "p centre / p0", "p max / p0", "time [s]")
+    rows = [(c.label, fmt(c.load), fmt(c.speed), fmt(c.radius_x * 1e3), fmt(c.radius_y * 1e3), c.grid,
+             fmt(c.solution.central_film * 1e9), fmt(c.reference["h_c"] * 1e9),
+             fmt(100 * (c.reference["h_c"] / c.solution.central_film - 1), 3), fmt(c.solution.minimum_film * 1e9),
+             fmt(c.reference["h_min"] * 1e9), fmt(100 * (c.reference["h_min"] / c.solution.minimum_film - 1), 3),
+             fmt(c.reference["U"], 3), fmt(c.reference["G"], 4), fmt(c.reference["W"], 3), fmt(c.reference["k"], 3),
+             "yes" if c.within_fit else f"no: k outside {lo:g}-{hi:g}", fmt(c.p0 / 1e6),
+             fmt(c.solution.central_pressure / c.p0, 3), fmt(c.solution.max_pressure / c.p0, 3), fmt(c.time_s, 3))
+            for c in points]
+    if sigma is not None:  # Lambda = h_min / sigma (Tallian; Hamrock, Fundamentals of Fluid Film Lubrication)
+        header += ("Lambda = h_min / sigma (solve)",)
+        rows = [row + (fmt(c.solution.minimum_film / sigma, 3),) for row, c in zip(rows, points)]
+    run.table("EHL per distinct contact", header, rows)
+    oil = case.screw.lubricant
+    run.note(f"Oil eta_0 {fmt(oil.viscosity)} Pa s, rho_0 {fmt(oil.density)} kg/m^3, Roelands alpha "
+             f"(lowmodel.contact.ehl); E' = 2 E*.  U = eta_0 U_e / (E' R_x), G = alpha E', W = F / (E' R_x^2), "
+             "k = 1.0339 (R_y/R_x)^0.636; R_x along the track, R_y across the groove (full-tensor radii).  "
+             "U_e: wang2022 eqs 1-2 (lowmodel.screw.kinematics) at the drive speed and the nominal contact angle "
+             "(studies.case_ehl).  h_c at the grid point nearest the contact centre, h_min the smallest film on "
+             "the grid; the exit spike sharpens with the grid and does not converge (docs/ehl.md).  Hamrock-Dowson "
+             f"is checked where k lies in its fit's range {lo:g}-{hi:g}.  The solve is smooth; "
+             + (f"Lambda = h_min / sigma with the file's composite RMS roughness sigma {fmt(sigma * 1e9)} nm (below 1 "
+                "boundary, 1-3 mixed, above 3 full-film lubrication: Hamrock, Fundamentals of Fluid Film "
+                "Lubrication): a rough surface changes the film itself (docs/mixed_lubrication.md)." if sigma
+                is not None else "no lubricant.roughness in the file: no film-to-roughness ratio."))
