@@ -293,17 +293,8 @@ def _cmd_show(args) -> int:
 
     if _is_case_file(args.scene):
         return _show_case(args)
-    scenes = registry()
-    drawable = sorted(n for n in scenes if can_show(n))
-    if args.scene not in scenes:
-        raise UsageError(f"no scene {args.scene!r}{_did_you_mean(args.scene, drawable)}; show draws: "
-                         f"{', '.join(drawable)}")
-    scene = scenes[args.scene]
-    if not can_show(args.scene):
-        what = "an FE scene that saves no fields to draw" if scene.kind == "FE" else f"{scene.kind} scene"
-        what = what if scene.kind == "FE" else ("an " if scene.kind[0] in "aeiou" else "a ") + what
-        raise UsageError(f"show draws the saved fields of FE scenes; {args.scene!r} is {what} "
-                         f"(show draws: {', '.join(drawable)})")
+    if not can_show(args.scene):  # the full registry only to say what went wrong
+        _show_refused(args.scene)
     out_dir = Path(args.out)
     _show_out(out_dir, args.scene)
     from ballbench.validation import show
@@ -322,6 +313,19 @@ def _cmd_show(args) -> int:
     for path in paths:
         print(path)
     return EXIT_OK
+
+
+def _show_refused(name: str) -> None:
+    from ballbench.validation.show import drawable as drawable_scenes
+
+    scenes, drawable = registry(), drawable_scenes()
+    if name not in scenes:
+        raise UsageError(f"no scene {name!r}{_did_you_mean(name, drawable)}; show draws: {', '.join(drawable)}")
+    scene = scenes[name]
+    what = "an FE scene that saves no fields to draw" if scene.kind == "FE" else f"{scene.kind} scene"
+    what = what if scene.kind == "FE" else ("an " if scene.kind[0] in "aeiou" else "a ") + what
+    raise UsageError(f"show draws the saved fields of FE scenes; {name!r} is {what} "
+                     f"(show draws: {', '.join(drawable)})")
 
 
 def _show_out(out_dir: Path, name: str) -> None:

@@ -3,13 +3,15 @@
 A scene that has pictures declares ``@scene(..., show=hook)`` with ``hook(scene_dir, fidelity) ->
 list[Path]``: it draws into ``<out>/<scene>/`` from what the scene saved there (fields.vtu, fields.json), and
 solves the scene's checked level at ``fidelity`` first only when it needs to (validation.studies).  This
-module knows no scene: it looks the scene up in the registry and calls its hook.
+module knows no scene: it looks the scene up in the registry and calls its hook.  A drawable scene is found
+through ``validation.scenes.SHOWN_IN``, which imports only the module that registers it (docs/render3d.md,
+"Cost"); any other name is looked up in the full registry.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-from ballbench.validation.scene import FIDELITIES, registry
+from ballbench.validation.scene import FIDELITIES, REGISTRY, Scene, registry
 
 __all__ = ["show", "can_show", "drawable"]
 
@@ -19,9 +21,17 @@ def drawable() -> list[str]:
     return sorted(name for name, entry in registry().items() if entry.show is not None)
 
 
+def _entry(scene_name: str) -> Scene | None:
+    from ballbench.validation import scenes
+
+    if scenes.load_shown(scene_name) and scene_name in REGISTRY:
+        return REGISTRY[scene_name]
+    return registry().get(scene_name)
+
+
 def can_show(scene_name: str) -> bool:
     """True for a registered scene with a ``show`` hook (the FE scenes that save fields or solve their modules)."""
-    entry = registry().get(scene_name)
+    entry = _entry(scene_name)
     return entry is not None and entry.show is not None
 
 
@@ -34,4 +44,4 @@ def show(scene_name: str, out_dir: Path, fidelity: str = "default") -> list[Path
         raise ValueError(f"show draws the FE scenes with pictures ({', '.join(drawable())}), got {scene_name!r}")
     if fidelity not in FIDELITIES:
         raise ValueError(f"fidelity must be one of {FIDELITIES}, got {fidelity!r}")
-    return registry()[scene_name].show(Path(out_dir) / scene_name, fidelity)
+    return _entry(scene_name).show(Path(out_dir) / scene_name, fidelity)

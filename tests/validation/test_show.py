@@ -138,3 +138,21 @@ def test_show_labels_give_the_fe_error_against_hertz():
     assert against(421.2844e-6, 421.2438e-6) == "+0.010 %"
     assert against(97.757e-6, 97.790e-6) == "-0.034 %"
     assert against(1.0, 0.0) == "n/a"
+
+
+def test_shown_in_index_matches_the_registry():
+    from ballbench.validation import scenes
+
+    full = {name: entry.function.__module__.rsplit(".", 1)[1] for name, entry in registry().items()
+            if entry.show is not None}
+    assert scenes.SHOWN_IN == full
+
+
+def test_show_imports_only_the_scene_module():
+    import subprocess
+    import sys
+
+    code = ("import sys; from ballbench.validation import show; assert show.can_show('fe-b2b-linear-a'); "
+            "print(sorted(m for m in sys.modules if m.startswith('ballbench.validation.scenes.')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "['ballbench.validation.scenes.fe_b2b']"
