@@ -149,7 +149,8 @@ def stress_figure(data: dict, meta: dict):
     """The von Mises stress of the saved fields ``(data, meta)`` on the cut y = 0 and along the contact axis."""
     import matplotlib.tri as mtri
 
-    from ballbench.validation.references.hertz import axis_stress, axis_von_mises_maximum
+    from ballbench.validation.figures.views3d import MM, MPA, hertz_maximum
+    from ballbench.validation.references.hertz import axis_stress
 
     hertz = meta["hertz"]
     a, b, p0 = hertz["a_m"], hertz["b_m"], hertz["p0_Pa"]
@@ -162,7 +163,8 @@ def stress_figure(data: dict, meta: dict):
         xz = np.concatenate([xz, xz * [-1, 1]])
         faces = np.concatenate([faces, faces + count])
         von_mises = np.concatenate([von_mises, von_mises])
-    depth_max, value_max = axis_von_mises_maximum(a, b, p0, nu)
+    depth_max, value_max = hertz_maximum(a, b, p0, nu)  # the 3D stress picture's maximum, computed once
+    depth_max, value_max = depth_max / MM, value_max / MPA
     fig = figure(figsize=(13, 5.6), layout="constrained")
     left, right = fig.subplots(1, 2, gridspec_kw={"width_ratios": (1.5, 1.0)})
     triangulation = mtri.Triangulation(xz[:, 0] * mm, xz[:, 1] * mm, faces)
