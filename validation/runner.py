@@ -124,8 +124,11 @@ def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_pr
     return results, stopped
 
 
-# dask settings of the LocalCluster that run_scenes_distributed starts (the sweep's: no statistical profiler)
-LOCAL_CLUSTER_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
+# dask settings of the LocalCluster that run_scenes_distributed starts: those of the sweep (no statistical profiler),
+# and worker processes that may start processes of their own (a scene that runs a sweep starts its own
+# LocalCluster; a daemonic worker process may not have children)
+LOCAL_CLUSTER_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s",
+                        "distributed.worker.daemon": False}
 
 
 def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, workers: int = 2,

@@ -111,3 +111,12 @@ def test_a_scene_reports_its_peak_memory(tmp_path):
     small = run_scene(_probe("zz-small", None), "quick", tmp_path)
     large = run_scene(Scene("zz-large", "probe", allocating, default=False, cost_s=0.1), "quick", tmp_path)
     assert large.peak_memory_gb - small.peak_memory_gb > 0.3
+
+
+def test_a_scene_that_starts_its_own_cluster_runs_on_a_worker(tmp_path):
+    # sweep-equivalence starts a LocalCluster of two processes; a daemonic dask worker may not have children, so
+    # the local cluster's workers are started non-daemonic (runner.LOCAL_CLUSTER_CONFIG)
+    out = tmp_path / "dask"
+    assert cli.main(["validate", "sweep-equivalence", "--quick", "--out", str(out), "--workers", "2"]) == 0
+    scene = json.loads((out / "results.json").read_text())["scenes"][0]
+    assert scene["status"] == "pass" and not scene["error"]
