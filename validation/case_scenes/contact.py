@@ -21,8 +21,8 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     from ballbench.validation.studies import ladder
 
     distinct = ladder.distinct_contacts(case)
-    # the quick level keeps the cost of one FE study: the FE of a helical screw pair's quick ladder is about 10 min
-    # and 12 GB (docs/your_own_bearing.md, "Measured"); the default and fine levels run it on every contact
+    # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
+    # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
     ran = [", ".join(r for r in rungs if r in ("analytical", "BEM", "FE") and (r != "FE" or on)) for on in fe_on]
     run.table("Contacts run (each distinct geometry at its largest load)",
