@@ -161,17 +161,20 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
 def _memory_guard(run, pair, level, tag: str) -> bool:
     """Whether the FE level ``level`` of ``pair`` may run: its peak memory predicted from the P2 DOFs of its mesh
     (studies.ladder.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) within the memory the
-    machine has available now (studies.ladder.available_memory).  When not, a note says so and the level and those
-    above it do not run (the study keeps the levels that ran, as ``--budget`` does)."""
+    machine has available now (studies.ladder.available_memory) and within the memory the scene declares
+    (:meth:`Scene.memory_for`, what the distributed runner reserves for it).  When not, a note says so and the level
+    and those above it do not run (the study keeps the levels that ran, as ``--budget`` does)."""
+    from ballbench.validation.runner import GB
     from ballbench.validation.studies import fe_contact, ladder
 
     ndofs = fe_contact.level_dofs(pair, level)
-    need, available = ladder.predicted_memory(ndofs), ladder.available_memory()
-    if need <= available:
+    need = ladder.predicted_memory(ndofs)
+    available, declared = ladder.available_memory(), run.scene.memory_for(run.fidelity) * GB
+    if need <= min(available, declared):
         return True
     run.note(_head(tag) + f"memory: FE levels from n = b/h {level.n:g} on not run: {ndofs} P2 DOFs need about "
-             f"{need / 1e9:.1f} GB ({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), "
-             f"{available / 1e9:.1f} GB available")
+             f"{need / GB:.1f} GB ({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), "
+             f"{available / GB:.1f} GB available, {declared / GB:g} GB declared by the scene")
     return False
 
 

@@ -122,6 +122,27 @@ def test_an_fe_level_predicted_beyond_the_available_memory_does_not_run(tmp_path
     assert "2.0 GB" in note and "1.0 GB available" in note and "DOFs" in note
 
 
+def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, monkeypatch):
+    # plenty available on the machine, but more than the scene declares (what a distributed worker reserves)
+    from ballbench.validation import case_scenes
+    from ballbench.validation.runner import GB, run_scenes
+    from ballbench.validation.studies import fe_contact
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("an FE level ran although its predicted memory exceeds the scene's declared memory")
+
+    case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
+    (scene,) = [s for s in case_scenes.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
+    declared = scene.memory_for("quick") * GB
+    monkeypatch.setattr(ladder, "available_memory", lambda: 100 * declared)
+    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 2 * declared)
+    monkeypatch.setattr(fe_contact, "solve_level", no_solve)
+    (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
+    assert not result.error, result.error
+    assert not [o for o in result.outputs if o.family == "FE"]
+    assert any(n.startswith("memory: FE levels") and "declared by the scene" in n for n in result.notes)
+
+
 def test_the_memory_of_a_level_is_predicted_from_its_dofs():
     assert ladder.predicted_memory(100_000) == ladder.BYTES_PER_DOF * 100_000
     assert ladder.predicted_memory(200_000) == 2 * ladder.predicted_memory(100_000)
