@@ -62,7 +62,7 @@ SCREW_QUICK_RATIOS = (1.2, 1.15, 1.1)
 QUICK_DOF_CAP = 334_000
 # peak resident memory of an FE contact level per P2 DOF [bytes]: the largest measured ratio of peak RSS to the
 # finest level's DOFs (docs/your_own_bearing.md, "Memory and time of the FE rung")
-BYTES_PER_DOF = 22.1e3
+BYTES_PER_DOF = 22.2e3
 # module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
 # for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
 # 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
