@@ -17,7 +17,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry.groove import contact_frame, helical_groove
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts.groove_block import add_groove_block
-from ballbench.meshes.refinement import check_fine_zone, check_refinement, refine_contact
+from ballbench.meshes.refinement import check_fine_ellipse, check_fine_zone, check_refinement, refine_contact
 from ballbench.meshes.snapping import snap_to_groove
 
 __all__ = ["ball_in_screw_groove_pair"]
@@ -30,6 +30,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
                               growth: float = 1.3, *, flank: str = "left", profile_plane: str = "normal",
                               h_max: float | None = None, fine_radius: float | None = None,
                               fine_half_length: float = 0.0, fine_patch: tuple[float, float] | None = None,
+                              fine_ellipse: tuple[float, float, float] | None = None,
                               block_half_width: float | None = None, block_half_length: float | None = None,
                               block_depth: float | None = None, cap_height: float | None = None,
                               element_order: int = 1, cache: bool = True) -> Path:
@@ -60,7 +61,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     the x axis (as :func:`meshes.assemblies.contact_pairs.ball_in_groove_pair`:
     ``fine_radius ~ b``, ``fine_half_length ~ a``); or, with ``fine_patch = (l_x, l_y[, l_z])``
     [m], ``r`` the distance from the box ``|x| <= l_x, |y| <= l_y, |z| <= l_z`` (``l_z``
-    default 0: the rectangle of the contact plane), e.g. ``(1.15 a, 1.4 b, 0.6 a)``.
+    default 0: the rectangle of the contact plane), e.g. ``(1.15 a, 1.4 b, 0.6 a)``; or, with
+    ``fine_ellipse = (l_1, l_2, l_3)`` [m], ``r`` the distance from the elliptic slab
+    ``x^2/l_1^2 + y^2/l_2^2 <= 1, |z| <= l_3`` (:func:`meshes.refinement.ellipse_distance`, docs/fem.md).
 
     ``h_contact`` [m] size at the contact, ``growth`` the size ratio of
     neighbouring elements away from the fine zone of radius ``fine_radius`` [m]
@@ -87,6 +90,9 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
                          f"flat loaded face), got {cap!r}")
     element_order = checks.count("element_order", element_order, 1, 2)
     fine_half_length, fine_patch = check_fine_zone(fine_half_length, fine_patch)
+    fine_ellipse = check_fine_ellipse(fine_ellipse)
+    if fine_ellipse is not None and (fine_patch is not None or fine_half_length > 0.0):
+        raise ValueError("fine_ellipse excludes fine_patch and fine_half_length: give one fine zone")
     if groove.body == "screw" and depth >= groove.pitch_radius - radius:
         raise ValueError(f"block_depth must be smaller than pitch_radius - ball_radius, got {depth!r}")
 
@@ -95,6 +101,8 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
                   h_contact=h_contact, growth=growth, h_max=h_max, fine_radius=fine_radius, half_width=half_width,
                   half_length=half_length, depth=depth, cap=cap, order=element_order, fine_patch=fine_patch,
                   fine_half_length=fine_half_length)
+    if fine_ellipse is not None:  # only then: the cache keys of the other fine zones stay as they were
+        params["fine_ellipse"] = list(fine_ellipse)
     path, build = cached_msh("screw-pair", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -125,7 +133,7 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
         physical(gmsh, 2, [groove_face], "counter_contact")
         physical(gmsh, 2, [support_face], "counter_support")
         refine_contact(gmsh, h_contact, growth, h_max, fine_radius=fine_radius, fine_half_length=fine_half_length,
-                       fine_patch=fine_patch)
+                       fine_patch=fine_patch, fine_ellipse=fine_ellipse)
         gmsh.model.mesh.generate(3)
         if element_order == 2:
             gmsh.model.mesh.setOrder(2)

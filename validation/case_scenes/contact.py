@@ -21,8 +21,8 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     from ballbench.validation.studies import ladder
 
     distinct = ladder.distinct_contacts(case)
-    # the quick level keeps the cost of one FE study: the FE of a helical screw pair's quick ladder is about 10 min
-    # and 12 GB (docs/your_own_bearing.md, "Measured"); the default and fine levels run it on every contact
+    # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
+    # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
     ran = [", ".join(r for r in rungs if r in ("analytical", "BEM", "FE") and (r != "FE" or on)) for on in fe_on]
     run.table("Contacts run (each distinct geometry at its largest load)",
@@ -115,7 +115,8 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
 
 def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: list):
     """The FE levels of ``contact`` (sizes ``h = b / n`` from its Hertz semi-axis ``b``), stopped where ``--budget``
-    would be passed; appends each level to ``models``; returns (rows, results, levels)."""
+    would be passed or where a level's predicted memory exceeds the memory available (:func:`_memory_guard`);
+    appends each level to ``models``; returns (rows, results, levels)."""
     from ballbench.validation.studies import fe_contact, ladder
 
     fe_rows, fe_results, fe_levels = [], [], []
@@ -133,6 +134,11 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
                 run.note(_head(tag) + f"--budget: FE levels from n = b/h {level.n:g} on not run (predicted "
                          f"{predicted:.0f} s beyond the budget)")
                 break
+        if fe_results and fe_results[-1].model.factor is not None:
+            # only one level's factor alive at a time: the fields of the finest level refactorise if they need it
+            fe_results[-1].model.factor.free()
+        if not _memory_guard(run, pair, level, tag):
+            break
         start = time.perf_counter()
         result, ref = fe_contact.solve_level(pair, level)
         wall = time.perf_counter() - start
@@ -144,14 +150,32 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
         fe_rows.append(dict(n=level.n, growth=level.growth, h_contact=result.h_contact, ndofs=result.ndofs,
                             iterations=result.iterations, residual=result.residual, wall_s=wall,
                             force_sum=result.force_sum, **{f"{q}": v for q, v in values.items()}))
-        if fe_results and fe_results[-1].model.factor is not None:
-            fe_results[-1].model.factor.free()  # only the finest level's factor is kept (for the fields)
         fe_results.append(result)
         fe_levels.append(level)
         if deadline is not None and time.monotonic() > deadline:
             run.note("--budget reached after this level")
             break
     return fe_rows, fe_results, fe_levels
+
+
+def _memory_guard(run, pair, level, tag: str) -> bool:
+    """Whether the FE level ``level`` of ``pair`` may run: its peak memory predicted from the P2 DOFs of its mesh
+    (studies.ladder.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) within the memory the
+    machine has available now (studies.ladder.available_memory) and within the memory the scene declares
+    (:meth:`Scene.memory_for`, what the distributed runner reserves for it).  When not, a note says so and the level
+    and those above it do not run (the study keeps the levels that ran, as ``--budget`` does)."""
+    from ballbench.validation.runner import GB
+    from ballbench.validation.studies import fe_contact, ladder
+
+    ndofs = fe_contact.level_dofs(pair, level)
+    need = ladder.predicted_memory(ndofs)
+    available, declared = ladder.available_memory(), run.scene.memory_for(run.fidelity) * GB
+    if need <= min(available, declared):
+        return True
+    run.note(_head(tag) + f"memory: FE levels from n = b/h {level.n:g} on not run: {ndofs} P2 DOFs need about "
+             f"{need / GB:.1f} GB ({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), "
+             f"{available / GB:.1f} GB available, {declared / GB:g} GB declared by the scene")
+    return False
 
 
 def _model_rows(models) -> list[tuple]:

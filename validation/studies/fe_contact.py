@@ -21,8 +21,8 @@ from ballbench.fem.postprocess import nodal_stress
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases.case import ContactCase
 
-__all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "write_fields", "compute_fields",
-           "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
+__all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "level_dofs", "mesh_dofs", "write_fields",
+           "compute_fields", "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
 
 FIELD_NAMES = {
     "displacement": "displacement_m",          # the P2 solution at all 10 nodes of each quadratic tetrahedron [m]
@@ -113,6 +113,27 @@ def pair_model(case: ContactCase) -> PairModel:
         def build(h, growth):
             return screw_pair.ball_in_screw_groove_pair(*args, h_contact=h, growth=growth, **zone)
     return PairModel(case, build, geometry, source)
+
+
+def mesh_dofs(path) -> int:
+    """The P2 DOFs of the tetrahedral mesh at ``path`` (``.msh``): 3 per vertex and per edge of its tetrahedra,
+    the DOFs fem.hertz_case solves (before the support's Dirichlet DOFs are removed)."""
+    import meshio
+
+    mesh = meshio.read(path)
+    tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"]).astype(np.int64)
+    edges = np.sort(np.concatenate([tets[:, [i, j]] for i, j in ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))]),
+                    axis=1)
+    n_edges = np.unique(edges[:, 0] * (int(edges.max()) + 1) + edges[:, 1]).size
+    return 3 * (np.unique(tets).size + n_edges)
+
+
+def level_dofs(pair: PairModel, level) -> int:
+    """The P2 DOFs of ``pair`` at the mesh level ``(n = b/h, growth)``, from its mesh alone (meshed, or taken from
+    the mesh cache; no assembly, no solve): what the memory of the level is predicted from."""
+    n, growth = level
+    ref = hertz.solve_load(pair.geometry, pair.force)
+    return mesh_dofs(pair.builder(float(ref.b) / n, growth))
 
 
 def solve_level(pair: PairModel, level):

@@ -40,7 +40,9 @@ from ballbench.validation.cases.case import (BallScrewCase, ContactCase, Contact
 
 __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
             "module_fe", "hertz_values", "bem_values",
-           "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time"]
+           "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time",
+           "predicted_memory", "available_memory", "BYTES_PER_DOF", "QUICK_DOF_CAP", "SCREW_QUICK_RATIOS",
+           "SCREW_QUICK_GROWTH", "screw_quick_levels"]
 
 RUNGS = ("analytical", "low-order", "BEM", "EHL", "FE", "FE-informed", "stick-slip")
 QUANTITIES = (("a", "m"), ("b", "m"), ("p0", "Pa"), ("delta", "m"))
@@ -50,6 +52,17 @@ BEM_GRIDS = {"quick": (64, 128), "default": (128, 256), "fine": (128, 256, 512)}
 # post-processing needs >= 5 elements across b (fem.postprocess), the papers' contacts run at n = 5.5-8 (docs/fem.md)
 CONTACT_LEVELS = {"quick": ((5.5, 6.6, 7.92), 1.4), "default": ((5.5, 6.875, 8.59375), 1.35),
                   "fine": ((5.5, 6.875, 8.59375, 10.7421875), 1.3)}
+# the quick study of a helical screw or nut contact of a case file (docs/your_own_bearing.md, "Memory and time of
+# the FE rung"): the growth of the papers' screw scenes at quick (validation/cases/files/lin2019-contact-screw.toml),
+# levels n = 5.5 r^k with the largest ratio r of SCREW_QUICK_RATIOS whose finest level has at most QUICK_DOF_CAP P2
+# DOFs on its mesh; the cap is the largest level of the papers' screw scenes below --fine (fe-hertz-screw default,
+# 334k DOFs, docs/fem.md)
+SCREW_QUICK_GROWTH = 1.6
+SCREW_QUICK_RATIOS = (1.2, 1.15, 1.1)
+QUICK_DOF_CAP = 334_000
+# peak resident memory of an FE contact level per P2 DOF [bytes]: the largest measured ratio of peak RSS to the
+# finest level's DOFs (docs/your_own_bearing.md, "Memory and time of the FE rung")
+BYTES_PER_DOF = 22.2e3
 # module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
 # for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
 # 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
@@ -78,6 +91,19 @@ def predicted_time(times: list[float], sizes: list[float], next_size: float) -> 
     """Wall time [s] of the next mesh level from the last measured one: ``t (h / h_next)^3`` (the DOFs of a 3D
     fine zone grow like ``h^-3``; the solve at least like the DOFs)."""
     return times[-1] * (sizes[-1] / next_size) ** 3
+
+
+def predicted_memory(ndofs: int) -> float:
+    """Peak resident memory [bytes] of an FE contact level of ``ndofs`` P2 DOFs: ``BYTES_PER_DOF * ndofs`` (the
+    measured ratio, docs/your_own_bearing.md)."""
+    return BYTES_PER_DOF * float(ndofs)
+
+
+def available_memory() -> float:
+    """The memory the machine has available now [bytes] (psutil, which dask.distributed installs)."""
+    import psutil
+
+    return float(psutil.virtual_memory().available)
 
 
 # --------------------------------------------------------------------------
@@ -172,8 +198,11 @@ def distinct_contacts(case, result=None) -> tuple[DistinctContact, ...]:
 # --------------------------------------------------------------------------
 def contact_fe(case: ContactCase) -> ContactCase:
     """``case`` with FE settings: its own ``fe`` when given, else levels from its Hertz ellipse
-    (:data:`CONTACT_LEVELS`, ``h = b / n``), the elliptic fine zone (1.2 a, 1.3 b, 0.8 b) of a slender ellipse
-    (b/a < 0.5) of a straight groove, else the capsule of the papers' pairs (docs/fem.md, "Fine zones")."""
+    (:data:`CONTACT_LEVELS`, ``h = b / n``) and a fine zone (docs/fem.md, "Fine zones"): the elliptic slab
+    (1.2 a, 1.3 b, 0.8 b) of a slender ellipse (b/a < 0.5) of a straight groove; for a helical screw or nut groove
+    the slab (1.2 a, 1.3 b, 0.5 b) of a slender ellipse (else the capsule (1.2 b, 1.0 a)) and quick levels whose
+    finest mesh stays within :data:`QUICK_DOF_CAP` (:func:`screw_quick_levels`); else the capsule of the papers'
+    pairs."""
     if case.fe is not None:
         return case
     from ballbench.validation.studies import fe_contact
@@ -183,10 +212,29 @@ def contact_fe(case: ContactCase) -> ContactCase:
     if case.pair == "groove" and geometry.axis_ratio < 0.5:
         fe = ContactFe(levels, "ellipse", (1.2, 1.3, 0.8))
     elif case.pair in ("screw", "nut"):
-        fe = ContactFe(levels, "capsule", (1.2, 1.0))
+        fe = (ContactFe(levels, "ellipse", (1.2, 1.3, 0.5)) if geometry.axis_ratio < 0.5 else
+              ContactFe(levels, "capsule", (1.2, 1.0)))
+        fe = replace(fe, levels=replace(levels, quick=screw_quick_levels(replace(case, fe=fe))))
     else:
         fe = ContactFe(levels, "capsule", (1.3, 0.0 if geometry.axis_ratio > 0.8 else 1.1))
     return replace(case, fe=fe)
+
+
+def screw_quick_levels(case: ContactCase) -> tuple:
+    """The quick levels of a helical screw or nut contact ``case`` (with its fine zone in ``case.fe``): three levels
+    ``n = n_1 r^k`` (``n_1`` the first quick level of :data:`CONTACT_LEVELS`, growth :data:`SCREW_QUICK_GROWTH`), ``r``
+    the largest of :data:`SCREW_QUICK_RATIOS` whose finest level has at most :data:`QUICK_DOF_CAP` P2 DOFs on its
+    mesh (meshed and counted, studies.fe_contact.level_dofs; the meshes are cached for the solve), else the smallest
+    ratio (the scene's memory guard then decides what runs)."""
+    from ballbench.validation.studies import fe_contact
+
+    first = CONTACT_LEVELS["quick"][0][0]
+    pair = fe_contact.pair_model(case)
+    for ratio in SCREW_QUICK_RATIOS:
+        levels = tuple(PairLevel(first * ratio ** k, SCREW_QUICK_GROWTH) for k in range(3))
+        if fe_contact.level_dofs(pair, levels[-1]) <= QUICK_DOF_CAP:
+            break
+    return levels
 
 
 def module_fe(case, result=None):

@@ -83,3 +83,100 @@ def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
     assert any("no FE level run" in n for n in result.notes) and any("most loaded contact only" in n
                                                                          for n in result.notes)
     assert not [o for o in result.outputs if o.family == "FE"]
+
+
+# --------------------------------------------------------------------------
+# the FE rung's memory and size (docs/your_own_bearing.md, "Memory and time of the FE rung")
+# --------------------------------------------------------------------------
+def test_the_dofs_counted_on_a_mesh_are_those_of_its_p2_basis():
+    # the memory guard predicts from the mesh alone; the count must be the DOFs the P2 solve assembles
+    from ballbench.fem.elasticity import load_pair, vector_basis
+    from ballbench.validation.studies import fe_contact
+
+    case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
+    pair = fe_contact.pair_model(case)
+    level = case.fe.levels["quick"][0]
+    path = pair.builder(fe_contact.hertz.solve_load(pair.geometry, case.force).b / level.n, level.growth)
+    assert fe_contact.mesh_dofs(path) == vector_basis(load_pair(path), order=2).N
+    assert fe_contact.level_dofs(pair, level) == fe_contact.mesh_dofs(path)
+
+
+def test_an_fe_level_predicted_beyond_the_available_memory_does_not_run(tmp_path, monkeypatch):
+    # the guard skips the level (and those above) with a note instead of solving it; no FE solve runs here
+    from ballbench.validation import case_scenes
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import fe_contact
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("an FE level ran although its predicted memory exceeds the available memory")
+
+    monkeypatch.setattr(ladder, "available_memory", lambda: 1e9)
+    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 2e9 if ndofs > 0 else 0.0)
+    monkeypatch.setattr(fe_contact, "solve_level", no_solve)
+    case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
+    (scene,) = [s for s in case_scenes.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
+    (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
+    assert not result.error, result.error
+    assert not [o for o in result.outputs if o.family == "FE"]
+    (note,) = [n for n in result.notes if n.startswith("memory: FE levels")]
+    assert "2.0 GB" in note and "1.0 GB available" in note and "DOFs" in note
+
+
+def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, monkeypatch):
+    # plenty available on the machine, but more than the scene declares (what a distributed worker reserves)
+    from ballbench.validation import case_scenes
+    from ballbench.validation.runner import GB, run_scenes
+    from ballbench.validation.studies import fe_contact
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("an FE level ran although its predicted memory exceeds the scene's declared memory")
+
+    case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
+    (scene,) = [s for s in case_scenes.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
+    declared = scene.memory_for("quick") * GB
+    monkeypatch.setattr(ladder, "available_memory", lambda: 100 * declared)
+    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 2 * declared)
+    monkeypatch.setattr(fe_contact, "solve_level", no_solve)
+    (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
+    assert not result.error, result.error
+    assert not [o for o in result.outputs if o.family == "FE"]
+    assert any(n.startswith("memory: FE levels") and "declared by the scene" in n for n in result.notes)
+
+
+def test_the_memory_of_a_level_is_predicted_from_its_dofs():
+    assert ladder.predicted_memory(100_000) == ladder.BYTES_PER_DOF * 100_000
+    assert ladder.predicted_memory(200_000) == 2 * ladder.predicted_memory(100_000)
+    assert 0 < ladder.available_memory()
+
+
+def test_the_quick_study_of_a_screw_contact_keeps_its_finest_level_within_the_cap(monkeypatch):
+    # three levels at a constant ratio (a Richardson study), the largest ratio whose finest mesh fits the cap
+    from ballbench.validation.studies import fe_contact
+
+    counted = []
+
+    def dofs(pair, level):  # DOFs of a fine zone growing like n^3 (no meshing here)
+        counted.append(level)
+        return int(120_000 * (level.n / 5.5) ** 3)
+
+    monkeypatch.setattr(fe_contact, "level_dofs", dofs)
+    case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
+    contact = ladder.distinct_contacts(case)[0].contact
+    chosen = ladder.contact_fe(contact)
+    quick = chosen.fe.levels["quick"]
+    assert len(quick) == 3 and {lv.growth for lv in quick} == {ladder.SCREW_QUICK_GROWTH}
+    ratios = [quick[k + 1].n / quick[k].n for k in range(2)]
+    assert abs(ratios[0] - ratios[1]) < 1e-12 and ratios[0] > 1
+    assert dofs(None, quick[-1]) <= ladder.QUICK_DOF_CAP
+    larger = [r for r in ladder.SCREW_QUICK_RATIOS if r > ratios[0] + 1e-12]
+    assert all(dofs(None, type(quick[0])(quick[0].n * r * r, quick[0].growth)) > ladder.QUICK_DOF_CAP
+               for r in larger)
+    assert chosen.fe.fine_zone == "ellipse"  # a slender helical ellipse gets the elliptic slab (docs/fem.md)
+    assert chosen.fe.levels["default"] == tuple(ladder.PairLevel(n, g) for n, g in
+                                                [(n, ladder.CONTACT_LEVELS["default"][1])
+                                                 for n in ladder.CONTACT_LEVELS["default"][0]])
+
+
+def test_a_paper_contact_keeps_its_own_fe_settings():
+    case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-nut.toml")
+    assert ladder.contact_fe(case) is case
