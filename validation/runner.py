@@ -124,11 +124,14 @@ def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_pr
     return results, stopped
 
 
-# dask settings of the LocalCluster that run_scenes_distributed starts: those of the sweep (no statistical profiler),
-# and worker processes that may start processes of their own (a scene that runs a sweep starts its own
-# LocalCluster; a daemonic worker process may not have children)
+# dask settings of the LocalCluster that run_scenes_distributed starts: those of the sweep (no statistical profiler);
+# worker processes that may start processes of their own (a scene that runs a sweep starts its own LocalCluster; a
+# daemonic worker process may not have children); and the BLAS / OpenMP threads of a serial run: dask's nanny sets
+# OMP/MKL/OPENBLAS_NUM_THREADS=1 by default, and another thread count sums the FE and BLAS products in another order
+# (results equal to round-off, not to the bit; docs/validation.md, "Distributed runs")
 LOCAL_CLUSTER_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s",
-                        "distributed.worker.daemon": False}
+                        "distributed.worker.daemon": False,
+                        "distributed.nanny.pre-spawn-environ": {"MALLOC_TRIM_THRESHOLD_": 65536}}
 
 
 def run_scenes_distributed(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, workers: int = 2,
