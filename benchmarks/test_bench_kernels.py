@@ -20,7 +20,6 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -30,6 +29,8 @@ import pytest
 from ballbench.lowmodel import kernels
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+
+from kernel_support import compiled_module, first_call_seconds, interleaved
 
 ROOT = Path(__file__).resolve().parents[1]
 KERNELS = "linear_bearing.ball_kernels"
@@ -67,28 +68,9 @@ def scalar_rate() -> float:
     return (2.0 / 3.0 * 48 ** 3 + 2 * 48 ** 2) / float(np.median(times))
 
 
-def _interleaved(function, repeats: int, block: int = 1):
-    """Median CPU seconds of ``function()`` with the kernels and without them: ``repeats`` alternating blocks of
-    ``block`` calls each (a block keeps one path's data in cache, as a loop of solves does), per call."""
-    new, old = [], []
-    for _ in range(repeats):
-        for enabled, into in ((True, new), (False, old)):
-            kernels.use_kernels(enabled)
-            function()
-            start = time.process_time()
-            for _ in range(block):
-                function()
-            into.append((time.process_time() - start) / block)
-    kernels.use_kernels(None)
-    return float(np.median(new)), float(np.median(old))
-
-
 @pytest.fixture(scope="module")
 def compiled():
-    pytest.importorskip("numba")
-    module = kernels.load(KERNELS)
-    assert module is not None, kernels.load_errors
-    return module
+    return compiled_module(KERNELS)
 
 
 def test_import_is_light():
@@ -107,15 +89,7 @@ def test_import_is_light():
 
 def test_first_call_cost(compiled):
     """Cold: a fresh numba cache (every kernel compiled); warm: the cache of this run (loaded from disk)."""
-    code = ("import time\nfrom ballbench.lowmodel import kernels\nstart = time.perf_counter()\n"
-            "assert kernels.load('linear_bearing.ball_kernels') is not None, kernels.load_errors\n"
-            "print(time.perf_counter() - start)")
-    with tempfile.TemporaryDirectory() as cache:
-        environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
-        cold = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                                    env=environment).stdout)
-        warm = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                                    env=environment).stdout)
+    cold, warm = first_call_seconds(KERNELS)
     print(f"\nkernels' first call in a process: compile {cold:.1f} s with an empty numba cache, {warm:.2f} s from "
           f"the disk cache (NUMBA_CACHE_DIR, default ~/.cache/ballbench/numba); load average "
           f"{os.getloadavg()[0]:.2f}")
@@ -137,7 +111,7 @@ def test_one_case_solves(compiled, n_balls):
             return b2b.solve(contacts, gaps)
     state = solve()
     repeats, block = {1: (41, 20), 2: (41, 20), 50: (31, 4), 200: (21, 2), 1000: (15, 1)}[n_balls]
-    new, old = _interleaved(solve, repeats, block)
+    new, old = interleaved(solve, repeats, block)
     rate = scalar_rate()
     flops = arithmetic(n_balls, state.iterations, 7 if n_balls == 1 else 8)
     target = {2: " (target <= 0.2 ms)", 1000: " (target <= 10 ms)"}.get(n_balls, "")

@@ -15,9 +15,6 @@ Run: python -m pytest benchmarks/test_bench_screw.py -s
 """
 import math
 import os
-import subprocess
-import sys
-import tempfile
 import time
 
 import numpy as np
@@ -29,6 +26,8 @@ from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import ball as screw_ball
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import load_distribution, whole_screw
+
+from kernel_support import compiled_module, first_call_seconds, interleaved
 
 OVERSIZE = 1.6848e-6  # m, fitted on lin2019 Table 5 case a (scene lin2019-table5-a)
 # flops of lowmodel/screw/ball_kernels.py: one tanh-sinh node of the friction integrals (cos, sin, atan2 and sqrt
@@ -46,40 +45,14 @@ def arithmetic(n_balls: int, evaluations: int, iterations: int, size: int) -> fl
     return evaluations * evaluation + iterations * (2.0 + 2.0 / 3.0) * size ** 3
 
 
-def _interleaved(function, repeats: int, block: int = 1):
-    """Median CPU seconds per call of ``function()`` with the kernels and without them (alternating blocks)."""
-    new, old = [], []
-    for _ in range(repeats):
-        for enabled, into in ((True, new), (False, old)):
-            kernels.use_kernels(enabled)
-            function()
-            start = time.process_time()
-            for _ in range(block):
-                function()
-            into.append((time.process_time() - start) / block)
-    kernels.use_kernels(None)
-    return float(np.median(new)), float(np.median(old))
-
-
 @pytest.fixture(scope="module")
 def compiled():
-    pytest.importorskip("numba")
-    module = kernels.load(screw_ball.KERNELS)
-    assert module is not None, kernels.load_errors
-    return module
+    return compiled_module(screw_ball.KERNELS)
 
 
 def test_first_call_cost(compiled):
     """Cold: a fresh numba cache (every screw kernel compiled); warm: the cache of this run (loaded from disk)."""
-    code = ("import time\nfrom ballbench.lowmodel import kernels\nstart = time.perf_counter()\n"
-            f"assert kernels.load({screw_ball.KERNELS!r}) is not None, kernels.load_errors\n"
-            "print(time.perf_counter() - start)")
-    with tempfile.TemporaryDirectory() as cache:
-        environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
-        cold = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                                    env=environment).stdout)
-        warm = float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                                    env=environment).stdout)
+    cold, warm = first_call_seconds(screw_ball.KERNELS)
     print(f"\nscrew kernels' first call in a process: compile {cold:.1f} s with an empty numba cache, {warm:.2f} s "
           f"from the disk cache; load average {os.getloadavg()[0]:.2f}")
 
@@ -94,7 +67,7 @@ def test_two_ball_b2b_solve(compiled):
         return screw_b2b.solve(contacts, 50.0)
 
     state = solve()
-    new, old = _interleaved(solve, 31, 10)
+    new, old = interleaved(solve, 31, 10)
     rate = scalar_rate()
     size = 2 * (screw_ball.N_UNKNOWNS + 1) + 1
     flops = arithmetic(2, state.iterations + 1, state.iterations, size)

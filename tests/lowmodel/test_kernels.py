@@ -10,6 +10,7 @@ from ballbench.lowmodel import kernels
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from tests.kernel_support import both, kernels_on
 
 FIELDS = ("ball_velocity", "omega", "velocity_deviation", "spin", "slide", "c_over_a", "friction_force",
           "friction_moment", "friction_loss", "friction_loss_table", "b2b_force", "b2b_friction_loss", "b2b_slip")
@@ -17,21 +18,7 @@ FIELDS = ("ball_velocity", "omega", "velocity_deviation", "spin", "slide", "c_ov
 
 @pytest.fixture
 def compiled():
-    pytest.importorskip("numba")
-    kernels.use_kernels(True)
-    module = kernels.load("linear_bearing.ball_kernels")
-    assert module is not None, kernels.load_errors
-    yield module
-    kernels.use_kernels(None)
-
-
-def _both(function, *args, **kwargs):
-    kernels.use_kernels(False)
-    try:
-        reference = function(*args, **kwargs)
-    finally:
-        kernels.use_kernels(True)
-    return reference, function(*args, **kwargs)
+    yield from kernels_on("linear_bearing.ball_kernels")
 
 
 def _assert_same(reference, state, tolerance=1e-12):
@@ -60,15 +47,15 @@ CASES = [(2.0, -0.6), (2.87, -0.5), (1.0, 0.3), (0.0, 0.0), (3.5, -0.2), (0.5, -
 @pytest.mark.parametrize("theta_deg, rho", CASES)
 def test_two_ball_kernel_equals_numpy(compiled, theta_deg, rho):
     contacts = b2b.module_contacts(math.radians(theta_deg), rho)
-    _assert_same(*_both(b2b.solve, contacts, [0.0]))
-    _assert_same(*_both(bearing_ball.solve, contacts))
+    _assert_same(*both(b2b.solve, contacts, [0.0]))
+    _assert_same(*both(bearing_ball.solve, contacts))
 
 
 @pytest.mark.parametrize("n_balls, gaps", [(3, [0.0, 1e-4]), (7, None), (12, [0.0] * 5 + [1e-5] + [0.0] * 5)])
 def test_chain_kernel_equals_numpy(compiled, n_balls, gaps):
     # 7 and 12 balls: the band path (banded Cholesky of the permuted normal equations)
     contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=n_balls)
-    _assert_same(*_both(b2b.solve, contacts, gaps))
+    _assert_same(*both(b2b.solve, contacts, gaps))
 
 
 def test_failure_is_the_numpy_failure(compiled):

@@ -118,12 +118,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "linear-guide", reference, source, extrapolation, low, rows,
                 guide.friction_coefficient * case.vertical_force)
-    words = f"h {rows[-1]['h_contact_um']:.0f} um"
-    run.check(model=f"FE-informed B2B ({words})", family="FE-informed", level=words,
-              quantity="power balance (input - losses)/input", unit="1", value=rows[-1]["power_balance"],
-              reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=rows[-1]["wall_s"],
-              source="energy conservation incl. B2B loss (lin2019 eq 7; docs/fe_b2b.md: 1e-6)",
-              why="the value is itself a relative power error: zero judged on the scale 1")
+    _informed_power_check(run, rows[-1], "energy conservation incl. B2B loss (lin2019 eq 7; docs/fe_b2b.md: 1e-6)")
     _module_table(run, rows, "friction_force_N", "friction force [N]", low_state, guide.groove_velocity, reference)
     run.write_csv("levels.csv", rows)
     render3d.module_artifacts(run, kept["model"], kept["results"], materials=guide.material.pair,
@@ -143,6 +138,15 @@ def _module_table(run, rows, key, label, low_state, speed, reference) -> None:
                   "", ""))
     run.table("B2B force and friction by model and mesh level", ("model", "DOFs", "wall [s]", "F_B2B [N]",
                                                                  "F_B2B error", label, "friction increase"), table)
+
+
+def _informed_power_check(run, finest: dict, source: str) -> None:
+    """The relative power balance of the FE-informed B2B state on the finest module level (row of the study)."""
+    words = f"h {finest['h_contact_um']:.0f} um"
+    run.check(model=f"FE-informed B2B ({words})", family="FE-informed", level=words,
+              quantity="power balance (input - losses)/input", unit="1", value=finest["power_balance"],
+              reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=finest["wall_s"], source=source,
+              why="the value is itself a relative power error: zero judged on the scale 1")
 
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
@@ -175,12 +179,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "ball-screw", reference, source, extrapolation, low, rows,
                 case.screw.friction_coefficient * max(case.axial_load, 1.0))
-    words = f"h {rows[-1]['h_contact_um']:.0f} um"
-    run.check(model=f"FE-informed B2B ({words})", family="FE-informed", level=words,
-              quantity="power balance (input - losses)/input", unit="1", value=rows[-1]["power_balance"],
-              reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=rows[-1]["wall_s"],
-              source="energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)",
-              why="the value is itself a relative power error: zero judged on the scale 1")
+    _informed_power_check(run, rows[-1], "energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)")
     _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed, reference)
     run.write_csv("levels.csv", rows)
     render3d.module_artifacts(run, kept["models"], kept["results"], materials=case.screw.material.pair,

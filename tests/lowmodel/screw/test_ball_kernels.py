@@ -18,6 +18,7 @@ from ballbench.lowmodel.quadrature import tanh_sinh
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as sc
+from tests.kernel_support import both, kernels_on
 
 TOLERANCE = 1e-10
 OVERSIZE = 1.6848e-6  # m, the lin2019 Table 5 preload fit (docs/ball_screw.md)
@@ -25,21 +26,7 @@ OVERSIZE = 1.6848e-6  # m, the lin2019 Table 5 preload fit (docs/ball_screw.md)
 
 @pytest.fixture
 def compiled():
-    pytest.importorskip("numba")
-    kernels.use_kernels(True)
-    module = kernels.load(sb.KERNELS)
-    assert module is not None, kernels.load_errors
-    yield module
-    kernels.use_kernels(None)
-
-
-def _both(function, *args, **kwargs):
-    kernels.use_kernels(False)
-    try:
-        reference = function(*args, **kwargs)
-    finally:
-        kernels.use_kernels(True)
-    return reference, function(*args, **kwargs)
+    yield from kernels_on(sb.KERNELS)
 
 
 def _assert_close(a, b, name, tolerance=TOLERANCE):
@@ -83,7 +70,7 @@ def test_ball_terms_kernel_equals_numpy(compiled, oversize, deviations):
         unknowns[:, 3:] = rates[:, 1:] / scales.spin
         unknowns += rng.normal(size=(3, 6)) * (0.3 if trial % 2 else 1e-3)
         shift = rng.normal(size=3) * 0.3 if trial % 3 else float(rng.normal())
-        reference, terms = _both(sb.ball_terms, unknowns, shift, contacts, scales, oversize=2.0 * oversize)
+        reference, terms = both(sb.ball_terms, unknowns, shift, contacts, scales, oversize=2.0 * oversize)
         for name in reference.__dataclass_fields__:
             _assert_close(getattr(reference, name), getattr(terms, name), name)
 
@@ -101,17 +88,17 @@ def _assert_same_state(reference, state):
 def test_two_ball_solve_kernel_equals_numpy(compiled, oversize, load):
     # lin2019 Table 5 a (preload fit), the literal no-preload reading (preload continuation of solve_preloaded)
     contacts = sc.ball_contacts(sc.screw_module(oversize=oversize), np.radians([0.0, 2.0]))
-    _assert_same_state(*_both(screw_b2b.solve, contacts, load))
+    _assert_same_state(*both(screw_b2b.solve, contacts, load))
 
 
 def test_ring_with_per_ball_loads_and_warm_start_equal_numpy(compiled):
     # the whole-screw form (ring, one nut shift per ball, warm start from a previous state), on 4 balls
     contacts = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), np.radians([0.0, 2.0, -1.0, 0.5]))
     loads = np.array([40.0, 45.0, 35.0, 50.0])
-    reference, state = _both(screw_b2b.solve, contacts, loads, np.array([0.0, 0.0, 1e-3, 0.0]), ring=True)
+    reference, state = both(screw_b2b.solve, contacts, loads, np.array([0.0, 0.0, 1e-3, 0.0]), ring=True)
     _assert_same_state(reference, state)
     moved = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), np.radians([0.2, 1.8, -0.8, 0.4]))
-    _assert_same_state(*_both(screw_b2b.solve, moved, loads * 1.05, np.array([0.0, 0.0, 5e-4, 0.0]), ring=True,
+    _assert_same_state(*both(screw_b2b.solve, moved, loads * 1.05, np.array([0.0, 0.0, 5e-4, 0.0]), ring=True,
                               initial=reference))
 
 
@@ -138,6 +125,6 @@ def test_calibrated_laws_keep_the_numpy_path(compiled):
     scales = sb.scales_for(contacts, 50.0)
     unknowns = np.zeros((2, 6))
     unknowns[:, 2] = 0.45
-    reference, terms = _both(sb.ball_terms, unknowns, 0.1, calibrated, scales)
+    reference, terms = both(sb.ball_terms, unknowns, 0.1, calibrated, scales)
     for name in reference.__dataclass_fields__:   # the kernel would drop C_b: the numpy code ran both times
         assert np.array_equal(getattr(reference, name), getattr(terms, name)), name
