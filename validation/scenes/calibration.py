@@ -208,7 +208,8 @@ def _whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_B
 
 @scene("calibration-effect-screw", "The contact laws of the screw and nut grooves (lin2019 Table 4) calibrated on FE "
        "(C, C_b, Psi) beside Hertz: load distribution over the 37 balls of the nut (1500 N) and F_B2B and the "
-       "friction increase of lin2019 Table 5", kind="low-order", cost_s=240.0, budget_s=400.0)
+       "friction increase of lin2019 Table 5", kind="low-order", cost_s=240.0, budget_s=400.0,
+       memory_gb=5.0)
 def calibration_effect_screw(run):
     import csv
 
