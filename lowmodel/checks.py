@@ -66,6 +66,12 @@ def _bound(x: float) -> str:
     return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:.12g}"
 
 
+def _digits(value) -> str:
+    """A short description of a too-large integer input (its repr may run to hundreds of digits)."""
+    text = repr(value)
+    return text if len(text) <= 40 else f"{text[:20]}... ({len(text)} characters)"
+
+
 def _out(array: np.ndarray):
     return float(array) if array.ndim == 0 else array
 
@@ -76,6 +82,8 @@ def real(name: str, value) -> np.ndarray:
         raise ValueError(f"{name} must be a real number, not a boolean; got {value!r}")
     try:
         return np.asarray(value, dtype=float)
+    except OverflowError:  # a Python int beyond float range (e.g. 10**400)
+        raise ValueError(f"{name} must be finite; got an integer beyond float range ({_digits(value)})") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a real number or array of them, got {value!r}") from None
 
@@ -184,7 +192,7 @@ def four_angles(name: str, value, labels: str) -> list[float]:
     naming ``name`` otherwise (not a sequence of four numbers)."""
     try:
         angles = [float(v) for v in value]
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}") from None
     if len(angles) != 4:
         raise ValueError(f"{name} must be four angles {labels} [rad], got {value!r}")

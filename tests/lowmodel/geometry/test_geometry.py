@@ -243,6 +243,10 @@ def test_groove_bad_input(call, match):
     (lambda: checks.count("element_order", 3, 1, 2), r"\[1, 2\], got 3"),
     (lambda: checks.trailing_axis("angles", [1.0, 2.0], 4, "(BL, BR, TR, TL)"), r"trailing axis of 4 \(BL"),
     (lambda: checks.bounded("poisson_ratio", 0.5, -1.0, 0.5), r"poisson_ratio must lie in \(-1, 0\.5\); got 0\.5"),
+    # integers beyond float range were a bare OverflowError
+    (lambda: checks.positive("creepage", 10**400), r"creepage must be finite; got an integer beyond float range"),
+    (lambda: checks.finite("forces", [1, 10**400]), r"forces must be finite; .*\(406 characters\)"),
+    (lambda: checks.four_angles("angles", [0, 0, 0, 10**400], "(BL, BR, TR, TL)"), r"angles must be four angles"),
 ])
 def test_checks_name_parameter_range_and_value(call, match):
     with pytest.raises(ValueError, match=match):
