@@ -53,6 +53,9 @@ __all__ = ["case_scenes", "scene_names", "show_case", "slug"]
 
 BUDGET_S = {"quick": 900.0, "default": 1800.0, "fine": 7200.0}  # wall-time budget of a generated FE scene [s]
 LOW_BUDGET_S = {"quick": 60.0, "default": 60.0, "fine": 60.0}   # of a generated scene without FE [s]
+# the stick/slip rung's resident memory at the default fidelity [GB]: the FE compliance condensation of the case's
+# groove (8 x 32 cells, P2; docs/your_own_bearing.md)
+STICK_SLIP_MEMORY_GB = 6.0
 
 
 def slug(path: str | Path) -> str:
@@ -127,7 +130,8 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
         scenes.append(Scene(f"{stem}-stick-slip", f"{case.name}: the balls with stick/slip contacts against full "
                             "slip on the same cells (Lambda, stick fraction, forces, spin moments, B2B force)",
                             functools.partial(stick_slip_scene, case=case), tags=("case",), kind="low-order",
-                            cost_s=60.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case))
+                            cost_s=150.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case,
+                            memory_gb=STICK_SLIP_MEMORY_GB))
     return scenes
 
 

@@ -64,7 +64,65 @@ def stick_slip_scene(run, *, case) -> None:
                 fmt(result.touching.input_power / speed), fmt(result.friction_increase)),
                ("full slip", fmt(full), fmt(result.full_slip_free.input_power / speed),
                 fmt(result.full_slip.input_power / speed), fmt(result.full_slip_increase))])
+    _compliance_rungs(run, case, mu, load, speed, what, unit)
     run.note("Lambda = |phi| b G / (mu p0), the spin parameter: full slip holds for Lambda >> 1; the lateral force is "
              "what lin2019's full-slip maps (eqs A4-A7) leave out; the full-slip law on the same cells is pointwise "
              "Coulomb on the slip field, whose lateral force is shown beside; docs/b2b_rolling.md, 'Validity of full "
              "slip'.")
+
+
+def _compliance_rungs(run, case, mu: float, load: float, speed: float, what: str, unit: str) -> None:
+    """The FE compliance rungs (studies.case_stick_slip.compliance_rungs): stick/slip with Hertz's pressure on the
+    FE compliance of the case's groove (power balance) against the same module on two half-spaces on that grid:
+    the half-space, the compliance of the rung above, judged at full slip's declared accuracy (F_B2B 2.5 %,
+    friction 1 %; findings), the accuracy at which it judges full slip."""
+    from ballbench.lowmodel import full_slip_validity as fsv
+    from ballbench.validation.studies import case_stick_slip as study
+    from ballbench.validation.studies.rolling_b2b import FULL_SLIP_TOLERANCE
+
+    rows = []
+    for rung in study.compliance_rungs(case, run.fidelity, progress=run.progress):
+        along, across, h = rung.level
+        level = f"{along} x {across} cells, FE compliance P2, h {h:g} cell, {rung.ndofs} DOFs"
+        reference = f"stick/slip, Hertz pressure + FE compliance of the case's groove ({along} x {across} cells)"
+        model = f"stick/slip, Hertz pressure + two half-spaces ({along} x {across} cells of the FE compliance grid)"
+        wall = rung.condense_s + rung.fe_s
+        fe, half = rung.fe, rung.half_space
+        run.check(model=reference, family="FE-informed", level=level,
+                  quantity="power balance |P_in - P_loss| / P_in, worst of the four solves", unit="1",
+                  value=fe.power_balance, reference=0.0, scale=1.0, tolerance=1e-6, time_s=wall,
+                  source="energy conservation incl. the B2B loss (lin2019 eq 7; docs/b2b_rolling.md: 1e-6)",
+                  why="the value is itself a relative power error: zero judged on the scale 1")
+        stick, half_force = float(fe.touching.b2b_force[0]), float(half.touching.b2b_force[0])
+        near_zero = NEAR_ZERO_B2B * mu * load
+        note = ("the half-space is the compliance of the stick/slip rung above, which judges full slip at 2.5 % "
+                "(F_B2B) and 1 % (friction): it is judged at the same accuracy")
+        run.check(model=model, family="BEM", level=level, quantity="F_B2B", unit="N", value=half_force,
+                  reference=stick, scale=near_zero if abs(stick) < near_zero else 0.0,
+                  tolerance=FULL_SLIP_TOLERANCE, time_s=rung.half_space_s, source=reference, finding=True,
+                  note=note, why="" if abs(stick) >= near_zero else "a B2B force near zero judged against 5 % of mu "
+                                                                    "times the load")
+        for words, h_state, f_state in (("balls apart", half.free, fe.free),
+                                        ("balls touching", half.touching, fe.touching)):
+            run.check(model=model, family="BEM", level=level, quantity=f"{what}, {words}", unit=unit,
+                      value=h_state.input_power / speed, reference=f_state.input_power / speed,
+                      tolerance=fsv.TOLERANCE, time_s=rung.half_space_s, source=reference, finding=True, note=note)
+        for label, result, seconds in (("FE compliance", fe, wall), ("two half-spaces", half, rung.half_space_s)):
+            lam = [c.spin_parameter for row in result.touching.contacts for c in row]
+            stick_f = [c.stick_fraction for row in result.touching.contacts for c in row]
+            rows.append((f"{along} x {across}", label, fmt(float(result.touching.b2b_force[0])),
+                         fmt(float(result.full_slip.b2b_force[0])), fmt(result.free.input_power / speed),
+                         fmt(result.touching.input_power / speed), fmt(result.friction_increase),
+                         f"{min(lam):.0f}-{max(lam):.0f}", fmt(max(stick_f), 3), f"{seconds:.1f}"))
+    if rows:
+        run.table("Stick/slip on the FE compliance of the case's groove against two half-spaces on the same grid",
+                  ("grid [cells]", "compliance", "F_B2B [N]", "F_B2B, full slip on the same cells [N]",
+                   f"{what} apart [{unit}]", f"{what} touching [{unit}]", "friction increase [%]", "Lambda",
+                   "stick fraction, largest", "time [s]"), rows)
+        run.note("FE compliance: a ball of the case's radius in a straight groove of its conformity and material (P2, "
+                 "condensed onto one grid over every contact; fem.rolling_compliance, cached on disk); it stands for "
+                 "every contact of the module since the steady-state operator sees only the local shape of ball and "
+                 "groove (docs/b2b_rolling.md). The FE rung's time includes the condensation (seconds when cached). "
+                 "The compliance grid is coarser than the contacts' own grids above (one grid over every contact): "
+                 "the forces of both laws move with it, so the laws are compared on the contacts' own grids above "
+                 "and the compliances here.")

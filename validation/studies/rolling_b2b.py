@@ -62,13 +62,14 @@ def compliance(product: str, level: stick_slip.ComplianceLevel):
 
 @lru_cache(maxsize=8)
 def pair_compliance(radius: float, conformity: float, along: float, across: float, cells_along: int,
-                    cells_across: int, h_factor: float):
+                    cells_across: int, h_factor: float, material: tuple[float, float] = STEEL.pair):
     """The FE compliance of a ball (``radius`` [m]) in a straight groove of ``conformity`` condensed onto the grid of
     ``cells`` over the half-widths ``along`` x ``across`` [m] (``fem.rolling_compliance``, disk-cached; P2, the
     contact-pair mesh with its fine slab over the grid, element size ``h_factor`` cells): ``(grid,
-    RollingCompliance, seconds)``.  The pair (the groove straight, its block 0.6 R_B deep) stands for every contact
-    of a module: the steady-state operator ``(W(x) - W(x + dx)) / dx`` does not see the far field (the module's
-    other contacts, its truncated bodies), only the local shape of ball and groove (docs/b2b_rolling.md)."""
+    RollingCompliance, seconds)``; ``material``: ``(E [Pa], nu)`` of ball and groove.  The pair (the groove
+    straight, its block 0.6 R_B deep) stands for every contact of a module: the steady-state operator
+    ``(W(x) - W(x + dx)) / dx`` does not see the far field (the module's other contacts, its truncated bodies), only
+    the local shape of ball and groove (docs/b2b_rolling.md)."""
     from ballbench.fem import rolling_compliance
     from ballbench.meshes.assemblies import contact_pairs
 
@@ -79,7 +80,7 @@ def pair_compliance(radius: float, conformity: float, along: float, across: floa
     path = contact_pairs.ball_in_groove_pair(radius, conformity, h_factor * min(grid.dx, grid.dy), 1.3,
                                              symmetry="full", element_order=2,
                                              fine_ellipse=(across + grid.dy, along + grid.dx, 0.35 * along))
-    result = rolling_compliance.condense(path, STEEL.pair, grid, order=2, cache=True)
+    result = rolling_compliance.condense(path, material, grid, order=2, cache=True)
     return grid, result, time.perf_counter() - start
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from ballbench.validation import cli
 from ballbench.validation.cases import case_file
 from ballbench.validation.studies import bearing_results, ladder
@@ -180,3 +182,47 @@ def test_the_quick_study_of_a_screw_contact_keeps_its_finest_level_within_the_ca
 def test_a_paper_contact_keeps_its_own_fe_settings():
     case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-nut.toml")
     assert ladder.contact_fe(case) is case
+
+
+def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypatch):
+    # default level: the FE compliance of a ball of the case's radius in a groove of its conformity and material,
+    # over the case's largest ellipses; the condensation replaced by the half-space (operator None), so the FE rung
+    # must equal the half-space rung on the same grid, and the arguments are the case's, not lin2019's steel guide
+    from ballbench.lowmodel.contact import rolling
+    from ballbench.validation import case_scenes
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import bearing_results, case_stick_slip, rolling_b2b
+
+    calls = []
+
+    class HalfSpace:
+        ndofs = 1
+
+        def operator(self):
+            return None
+
+    def fake(radius, conformity, along, across, cells_along, cells_across, h_factor, material):
+        calls.append((radius, conformity, along, across, cells_along, cells_across, h_factor, material))
+        return rolling.hertz_grid(along, across, (cells_along, cells_across)), HalfSpace(), 0.0
+
+    monkeypatch.setattr(rolling_b2b, "pair_compliance", fake)
+    text = (paths.ROOT / "examples" / "compact_linear_guide.toml").read_text()
+    case = case_file.loads(text.replace('youngs_modulus = "210 GPa"', 'youngs_modulus = "200 GPa"'))
+    assert case.guide.material.youngs_modulus == 200e9
+    assert case_stick_slip.COMPLIANCE["quick"] == ()
+    (rung,) = case_stick_slip.compliance_rungs(case, "default")
+    contacts = bearing_results.guide_contacts(case)
+    along = float((contacts.semi_major * contacts.b_over_a).max())
+    (call,) = calls
+    assert call[:2] == (case.guide.ball_radius, case.guide.conformity) and call[7] == (200e9, case.guide.material
+                                                                                        .poisson_ratio)
+    assert call[2] == pytest.approx(1.4 * along, rel=1e-12) and call[4:6] == (8, 32)
+    assert float(rung.fe.touching.b2b_force[0]) == float(rung.half_space.touching.b2b_force[0]) > 0
+    (scene,) = [s for s in case_scenes.case_scenes(case, "g") if s.name == "g-stick-slip"]
+    assert scene.memory_for("default") == case_scenes.STICK_SLIP_MEMORY_GB
+    (result,), _ = run_scenes([scene], "default", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    fe_rows = [o for o in result.outputs if "FE compliance" in o.level and o.family == "BEM"]
+    assert {o.quantity for o in fe_rows} >= {"F_B2B", "friction force, balls touching", "friction force, balls apart"}
+    title, header, rows = result.tables[-1]
+    assert "FE compliance" in title and [r[1] for r in rows] == ["FE compliance", "two half-spaces"]
