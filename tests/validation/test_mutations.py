@@ -216,6 +216,17 @@ def _soft_half_space(monkeypatch):  # stick/slip on a half-space of a tenth of t
     monkeypatch.setattr(b2b_rolling, "_material", lambda e, nu: (0.1 * original(e, nu)[0], original(e, nu)[1]))
 
 
+def _soft_fe_compliance(monkeypatch):  # the case's groove condensed with a tenth of its Young's modulus
+    from ballbench.validation.studies import rolling_b2b
+
+    original = rolling_b2b.pair_compliance
+
+    def mutant(*args):
+        *head, (youngs_modulus, poisson_ratio) = args
+        return original(*head, (0.1 * youngs_modulus, poisson_ratio))
+    monkeypatch.setattr(rolling_b2b, "pair_compliance", mutant)
+
+
 def _screw_gap_on_nut_side(monkeypatch):  # the EHL solve of a nut-side contact on the screw groove's gap
     from ballbench.lowmodel.geometry import groove
 
@@ -235,17 +246,23 @@ CASE_MUTANTS = {
                                                   [("8 x 32 cells", "friction force, balls apart")]),
     "EHL gap of the screw groove on the nut side": (_screw_gap_on_nut_side, "examples/ball_screw_32x10_oil.toml",
                                                     "EHL", "ehl", [("nut side, 128 x 32 cells", "central film h_c")]),
+    "FE compliance of the case's groove with E x 0.1": (
+        _soft_fe_compliance, "examples/compact_linear_guide.toml", "stick-slip", "stick-slip",
+        [("8 x 32 cells, FE compliance P2, h 0.8 cell, 242643 DOFs", "F_B2B"),
+         ("8 x 32 cells, FE compliance P2, h 0.8 cell, 242643 DOFs", "friction force, balls apart")]),
 }
+# the fidelity a case mutant runs at (quick unless named): the FE compliance rung runs from the default level on
+CASE_FIDELITY = {"FE compliance of the case's groove with E x 0.1": "default"}
 
 
-def _case_scene(path, rung, suffix, directory):
+def _case_scene(path, rung, suffix, directory, fidelity="quick"):
     from ballbench.validation import case_scenes
     from ballbench.validation.cases import case_file
     from ballbench.validation.runner import run_scenes
 
     (scene,) = [s for s in case_scenes.case_scenes(case_file.load(paths.ROOT / path), "m", top=rung)
                 if s.name == f"m-{suffix}"]
-    (result,), _ = run_scenes([scene], "quick", directory, show_progress=False)
+    (result,), _ = run_scenes([scene], fidelity, directory, show_progress=False)
     return {(o.level, o.quantity): o.status for o in result.outputs}, result.error
 
 
@@ -254,10 +271,11 @@ def _case_scene(path, rung, suffix, directory):
                                    for k, v in CASE_MUTANTS.items()])
 def test_case_scene_mutant_is_rejected(label, monkeypatch, tmp_path):
     mutate, path, rung, suffix, rejecting = CASE_MUTANTS[label]
-    statuses, error = _case_scene(path, rung, suffix, tmp_path / "baseline")
+    fidelity = CASE_FIDELITY.get(label, "quick")
+    statuses, error = _case_scene(path, rung, suffix, tmp_path / "baseline", fidelity)
     assert not error and all(s == "pass" for s in statuses.values()), f"unmutated checks must pass first: {statuses}"
     mutate(monkeypatch)
-    statuses, error = _case_scene(path, rung, suffix, tmp_path / "mutant")
+    statuses, error = _case_scene(path, rung, suffix, tmp_path / "mutant", fidelity)
     assert not error, error
     assert all(statuses[key] != "pass" for key in rejecting), f"{label} passes: {statuses}"
 
