@@ -118,14 +118,15 @@ def preload_loss(contacts: BallContacts) -> PreloadLoss:
         approach, forces, e = _forces(contacts, centres, shift)
         return approach, forces, e
 
-    if oversize <= 0.0:
-        approach, forces, e = state(0.0)
-        return PreloadLoss(0.0, 0, CONTACT_NAMES[int(np.argmin(approach[0]))], 0.0, forces)
     # the sign of the nut shift that loads the screw along +axial_load
-    probe = 1e-3 * oversize
+    probe = 1e-3 * oversize if oversize > 0.0 else 1e-6 * contacts.module.ball_radius
     _, forces, e = state(probe)
     sign = 1.0 if _axial(contacts, forces, e) > 0.0 else -1.0
     guess[:] = 0.0
+    if oversize <= 0.0:  # no preload: the receding contacts are off under any load
+        approach, forces, _ = state(sign * probe)
+        j, i = np.unravel_index(int(np.argmin(approach)), approach.shape)
+        return PreloadLoss(0.0, int(j), CONTACT_NAMES[int(i)], 0.0, np.zeros((n, 4)))
 
     def smallest(shift):
         return float(np.min(state(sign * shift)[0]))

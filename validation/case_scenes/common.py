@@ -89,12 +89,16 @@ def _past_preload_loss(case, error) -> str:
     """The reason a ConvergenceError of lin2019's ball-screw model is its declared limit on ``case``, or "" when it
     is not: the load ramp stopped near full sliding (lowmodel.screw.b2b.FULL_SLIDING_LIMIT) at an axial load past
     the preload loss."""
+    from ballbench.lowmodel.errors import ConvergenceError
     from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
     from ballbench.validation.cases.case import BallScrewCase
 
     if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") != FULL_SLIDING_LIMIT:
         return ""
-    loss = preload_loss(case)
+    try:
+        loss = preload_loss(case)
+    except (ConvergenceError, ValueError):  # no preload loss to judge against: the original error stands
+        return ""
     if not case.axial_load > loss.axial_load:
         return ""
     last = error.last_converged
@@ -142,9 +146,15 @@ def limits_lines(case, names) -> list[str]:
     which of the scenes ``names`` may not apply and why (docs/your_own_bearing.md, 'Reading the verdict')."""
     from ballbench.validation.cases.case import BallScrewCase
 
+    from ballbench.lowmodel.errors import ConvergenceError
+
     if not isinstance(case, BallScrewCase):
         return []
-    loss = preload_loss(case)
+    try:
+        loss = preload_loss(case)
+    except (ConvergenceError, ValueError) as error:  # said, not hidden: the scenes run and decide on their own
+        return [f"the preload loss of this screw was not found ({type(error).__name__}: {error}); no scene can be "
+                "declared not applicable past it"]
     words = preload_loss_words(case)
     head = f"preload loss at {loss.axial_load:.4g} N axial load {words}"
     if not case.axial_load > loss.axial_load:

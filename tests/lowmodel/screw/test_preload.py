@@ -38,7 +38,8 @@ def test_the_preload_loss_grows_like_the_oversize_to_the_three_halves():
 
 
 def test_a_ball_without_oversize_loses_its_preload_at_once():
-    assert preload.preload_loss(_nominal(0.0)).axial_load == 0.0
+    loss = preload.preload_loss(_nominal(0.0))
+    assert loss.axial_load == 0.0 and loss.contact in ("SR", "NL")
 
 
 def test_two_balls_under_one_nut_shift_add_their_loads():
