@@ -154,3 +154,11 @@ def test_the_module_fe_does_not_start_a_level_beyond_the_memory(tmp_path, monkey
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert result.status() == "error" and result.error.startswith("MemoryError")
     assert "400000 P2 DOFs" in result.error and "9.0 GB" in result.error and "4.0 GB available" in result.error
+
+
+def test_the_ball_screw_template_states_the_range_of_lin2019_s_model():
+    text = case_file.template("ball-screw")
+    loss = common.preload_loss(case_file.loads(text))
+    at = text.index('axial_load = "')
+    comment = text[at:text.index("deviations =")]
+    assert f"below the preload loss: {loss.axial_load:.0f} N" in comment and "oversize^1.5" in comment

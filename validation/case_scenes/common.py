@@ -144,9 +144,8 @@ def _within_limits(function, case, *args, **kwargs):
 def limits_lines(case, names) -> list[str]:
     """What a ball-screw case's header says before any work: its preload loss, and when the axial load is past it,
     which of the scenes ``names`` may not apply and why (docs/your_own_bearing.md, 'Reading the verdict')."""
-    from ballbench.validation.cases.case import BallScrewCase
-
     from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation.cases.case import BallScrewCase
 
     if not isinstance(case, BallScrewCase):
         return []
