@@ -84,6 +84,18 @@ def _case_scenes(names: list[str], top: str, deadline: float | None):
     return chosen
 
 
+def _limits(names: list[str], top: str) -> list[str]:
+    """What the case files among ``names`` say before any work about their models' limits (case_scenes.limits):
+    a ball screw's preload loss against its axial load, the scenes that may not apply."""
+    from ballbench.validation import case_scenes
+
+    lines = []
+    for name in names:
+        if _is_case_file(name):
+            lines += [f"{name}: {line}" for line in case_scenes.limits(_load_case(name), case_scenes.slug(name), top)]
+    return lines
+
+
 def _select(names: list[str], fast: bool = False, top: str = "FE-informed", deadline: float | None = None):
     files = [n for n in names if _is_case_file(n)]
     names = [n for n in names if n not in files]
@@ -254,6 +266,8 @@ def _cmd_validate(args) -> int:
 
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
+    for line in _limits(args.scenes, args.levels or RUNGS[-1]):
+        print(f"ballbench: {line}", file=sys.stderr, flush=True)
     with _Interrupt() as interrupt:
         if args.workers is not None or args.scheduler:
             from ballbench.validation.runner import run_scenes_distributed
@@ -278,9 +292,11 @@ def _cmd_validate(args) -> int:
         return EXIT_INTERRUPTED
     failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
     gaps, findings = statuses.count("known gap"), statuses.count("findings")
+    unfit = statuses.count("not applicable")
     print(f"{len(results) - len(failed)} of {len(results)} scenes passed"
           + (f" ({gaps} with known gaps)" if gaps else "")
           + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
+          + (f" ({unfit} do not apply to the case: the model has no state there)" if unfit else "")
           + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
@@ -352,8 +368,12 @@ def _show_case(args) -> int:
     names = [s.name for s in case_scenes.case_scenes(case, stem) if s.show is not None]
     for name in names:
         _show_out(out_dir, name)
+    def skipped(name, reason):
+        print(f"ballbench: {name} skipped, it does not apply to this case: {reason}", file=sys.stderr, flush=True)
+
     try:
-        paths = case_scenes.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default")
+        paths = case_scenes.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default",
+                                      on_skip=skipped)
     except KeyboardInterrupt:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -7,7 +7,7 @@ import traceback
 from pathlib import Path
 from typing import Callable, Iterable
 
-from ballbench.validation.scene import Run, Scene, SceneResult
+from ballbench.validation.scene import NotApplicable, Run, Scene, SceneResult
 
 GB = 1e9  # bytes
 
@@ -46,15 +46,24 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
     artifact of the report), not to the terminal.  Ctrl-C inside the scene, or a stop request
     (``should_stop()`` true at one of the scene's steps, :meth:`Run.checkpoint`), returns a result marked
     ``interrupted``.  ``progress_lines``: one line per step on stderr when there is no bar.
+
+    :class:`~ballbench.validation.scene.NotApplicable` from a case file's scene (tag ``case``) gives a result
+    marked ``not_applicable`` with its reason; from a registered scene it is an error like any exception.
     """
     run = Run(scene, fidelity, out_dir, show_progress=show_progress, progress_lines=progress_lines,
               should_stop=should_stop)
     measured = reset_peak_memory()
     start = time.perf_counter()
     error = ""
+    not_applicable = ""
     interrupted = False
     try:
-        scene.function(run)
+        try:
+            scene.function(run)
+        except NotApplicable as exc:
+            if "case" not in scene.tags:
+                raise
+            not_applicable = exc.reason
     except KeyboardInterrupt:
         interrupted = True
         error = "interrupted by the user (Ctrl-C) before the scene finished"
@@ -67,9 +76,9 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
         except OSError:
             pass
     wall = time.perf_counter() - start
-    if not error and not run.outputs:
+    if not error and not not_applicable and not run.outputs:
         error = "scene recorded no checked output"
-    return run.result(wall, error, interrupted, peak_memory_gb() if measured else 0.0)
+    return run.result(wall, error, interrupted, peak_memory_gb() if measured else 0.0, not_applicable)
 
 
 def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_progress: bool = False,

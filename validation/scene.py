@@ -49,6 +49,12 @@ Budgets: ``run.budget(...)`` records a wall time or a throughput against its
 target.  Budgets are reported (budget, measured, over or under) and never
 decide pass or fail unless ``--strict-time`` is given; so is every scene's own
 wall time against ``Scene.budget_s``.
+
+Does not apply: a scene built from a case file (``tags=("case",)``) whose model has no state on that case raises
+:class:`NotApplicable` with the reason, from an explicit, tested condition (a contact the FE module needs is
+unloaded; the axial load is past the preload loss and lin2019's model stops at its declared limit).  Its status
+is ``not applicable``: it passes the run (``--strict`` makes it fail) and the report gives the reason.  A
+registered (paper) scene that raises it ends in ``error``: the papers' cases lie inside their models.
 """
 from __future__ import annotations
 
@@ -66,13 +72,24 @@ KINDS = ("analytical", "low-order", "FE")
 # of error_vs_time.png group by them (docs/validation.md, "Model identity")
 FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informed")
 # scene statuses that pass a run without --strict (SceneResult.status)
-PASSING = ("pass", "known gap", "findings")
+PASSING = ("pass", "known gap", "findings", "not applicable")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
 # the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): the FE figure
 # covers the largest peak measured at the default fidelity, the others the peaks of the worker processes that ran
 # them (what an earlier scene left loaded included)
 DEFAULT_MEMORY_GB = {"analytical": 3.5, "low-order": 3.5, "FE": 12.0}
+
+
+class NotApplicable(Exception):
+    """Raised by a case file's scene whose model has no state on the case (module docstring, "Does not apply"):
+    ``reason`` names the limit and the number, e.g. the axial load against the preload loss."""
+
+    def __init__(self, reason: str):
+        if not isinstance(reason, str) or not reason.strip():
+            raise ValueError("NotApplicable needs a reason: the model's limit and the case's number against it")
+        super().__init__(reason)
+        self.reason = reason
 
 
 @dataclass(frozen=True)
@@ -167,6 +184,7 @@ class SceneResult:
     interrupted: bool = False
     tables: tuple = ()  # ((title, header, rows), ...): results for the reader beside the checks (Run.table)
     peak_memory_gb: float = 0.0  # the process's peak resident memory while the scene ran [GB]; 0 = not measured
+    not_applicable: str = ""  # why the scene's model has no state on the case (NotApplicable); "" = it applies
 
     def outputs_with(self, status: str) -> list[Output]:
         return [o for o in self.outputs if o.status == status]
@@ -177,13 +195,18 @@ class SceneResult:
         return self.wall_time_s > self.budget_s or bool(self.outputs_with("over budget"))
 
     def status(self, *, strict: bool = False, strict_time: bool = False) -> str:
-        """``error``, ``fail``, ``findings`` (passes, with models outside their accuracy), ``known gap`` (passes,
+        """``error``, ``fail``, ``not applicable`` (passes: the model has no state on the case, for
+        :attr:`not_applicable`), ``findings`` (passes, with models outside their accuracy), ``known gap`` (passes,
         with declared gaps) or ``pass``.
 
-        ``strict``: findings and known gaps fail; ``strict_time``: a budget overrun fails.
+        ``strict``: not applicable, findings and known gaps fail; ``strict_time``: a budget overrun fails.
         An unexpected pass of a known gap always fails (remove the declaration).
         """
-        if self.error or not self.outputs:
+        if self.error:
+            return "error"
+        if self.not_applicable:
+            return "fail" if strict else "not applicable"
+        if not self.outputs:
             return "error"
         if self.outputs_with("fail") or self.outputs_with("unexpected pass"):
             return "fail"
@@ -499,11 +522,11 @@ class Run:
         return tuple(self._outputs)
 
     def result(self, wall_time_s: float, error: str = "", interrupted: bool = False,
-               peak_memory_gb: float = 0.0) -> SceneResult:
+               peak_memory_gb: float = 0.0, not_applicable: str = "") -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
                            wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
-                           tuple(self._tables), peak_memory_gb)
+                           tuple(self._tables), peak_memory_gb, not_applicable)
 
 
 def registry() -> dict[str, Scene]:

@@ -54,8 +54,8 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START", "saturation",
-           "check_gaps", "warm_up_kernel"]
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START",
+           "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
@@ -174,6 +174,9 @@ def check_gaps(gaps, count: int) -> np.ndarray:
 
 
 LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a load ramp from here
+# ConvergenceError.reason when the load ramp stops past a converged state whose contacts slide near their limit
+# mu F: the declared limit of lin2019's full-sliding model under heavy load (docs/ball_screw.md, "Preload loss")
+FULL_SLIDING_LIMIT = "load ramp stopped: contacts near full sliding"
 
 
 def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,
@@ -218,8 +221,10 @@ def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring:
                 raise ConvergenceError(f"no converged state: load ramp stopped at {100 * factor:.1f} % of the "
                                        f"load{reason}", residual=ramp_error.residual,
                                        iterations=ramp_error.iterations, tolerance=tolerance,
-                                       reason="load ramp stopped" + (": contacts near full sliding" if reason
-                                                                     else f" ({ramp_error.reason})")) from error
+                                       reason=FULL_SLIDING_LIMIT if reason else
+                                       f"load ramp stopped ({ramp_error.reason})",
+                                       last_converged=("load fraction", float(reached)) if state is not None
+                                       else None) from error
         return state
 
 

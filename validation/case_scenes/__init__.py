@@ -28,6 +28,12 @@ outside its declared accuracy on this geometry (status ``outside accuracy``; doc
 verdict"), not that the software failed; the solvers' own checks (power balance, statics, load balance) and the
 uncertainty of the extrapolated reference stay pass/fail.
 
+A scene whose model has no state on the case raises NotApplicable (status ``not applicable``, with the reason): the
+FE screw module where lin2019's state leaves a contact unloaded (b2b_fe); every ball-screw scene where lin2019's
+model stops at its declared limit past the preload loss (common.within_model_limits, around each scene function
+and show hook).  :func:`limits` says before any work where a ball screw's axial load stands against its preload
+loss.
+
 ``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
 stops refining a mesh study when the next level's predicted time would pass it.
 
@@ -39,17 +45,19 @@ from __future__ import annotations
 
 import functools
 import re
+from dataclasses import replace
 from pathlib import Path
 
 from ballbench.validation.case_scenes.b2b_fe import b2b_fe_scene, show_module
 from ballbench.validation.case_scenes.balls import balls_scene
+from ballbench.validation.case_scenes.common import limited, limits_lines
 from ballbench.validation.case_scenes.contact import contact_scene, show_contact
 from ballbench.validation.case_scenes.ehl import ehl_scene
 from ballbench.validation.case_scenes.stick_slip import stick_slip_scene
 from ballbench.validation.cases.case import ContactCase, LinearGuideCase
-from ballbench.validation.scene import Scene
+from ballbench.validation.scene import NotApplicable, Scene
 
-__all__ = ["case_scenes", "scene_names", "show_case", "slug"]
+__all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
 
 BUDGET_S = {"quick": 900.0, "default": 1800.0, "fine": 7200.0}  # wall-time budget of a generated FE scene [s]
 LOW_BUDGET_S = {"quick": 60.0, "default": 60.0, "fine": 60.0}   # of a generated scene without FE [s]
@@ -132,14 +140,28 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             functools.partial(stick_slip_scene, case=case), tags=("case",), kind="low-order",
                             cost_s=150.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case,
                             memory_gb=STICK_SLIP_MEMORY_GB))
+    if kind == "ball-screw":  # lin2019's model has no state past the preload loss: those scenes do not apply
+        scenes = [replace(s, function=limited(s.function, case),
+                          show=None if s.show is None else limited(s.show, case)) for s in scenes]
     return scenes
 
 
-def show_case(case, stem: str, out_dir: Path, fidelity: str = "default") -> list[Path]:
+def limits(case, stem: str, top: str = "stick-slip") -> list[str]:
+    """Lines for the reader before any work: the case's model limits (a ball screw's preload loss, and the scenes
+    that do not apply past it; common.limits_lines)."""
+    return limits_lines(case, scene_names(case, stem, top))
+
+
+def show_case(case, stem: str, out_dir: Path, fidelity: str = "default", *, on_skip=None) -> list[Path]:
     """``ballbench show my_case.toml``: the pictures of every generated scene that has them, drawn from the fields
-    ``validate`` saved in ``out_dir/<scene>/`` (solved first only where none are saved)."""
+    ``validate`` saved in ``out_dir/<scene>/`` (solved first only where none are saved).  A scene that does not
+    apply to the case (NotApplicable) is skipped: ``on_skip(scene_name, reason)`` is told."""
     paths = []
     for scene in case_scenes(case, stem):
         if scene.show is not None:
-            paths += scene.show(Path(out_dir) / scene.name, fidelity)
+            try:
+                paths += scene.show(Path(out_dir) / scene.name, fidelity)
+            except NotApplicable as skipped:
+                if on_skip is not None:
+                    on_skip(scene.name, skipped.reason)
     return paths

@@ -3,6 +3,7 @@ meshes from their ellipses, the FE-informed B2B force per level and its extrapol
 analytical and low-order B2B forces; the modules' fields and screenshots."""
 from __future__ import annotations
 
+import functools
 import time
 from pathlib import Path
 
@@ -12,6 +13,7 @@ from ballbench.validation.case_scenes.common import (B2B_TOLERANCE, NEAR_ZERO_B2
                                                      REFERENCE_UNCERTAINTY, fmt)
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.lowmodel.state import friction_increase
+from ballbench.validation.scene import NotApplicable
 
 __all__ = ["b2b_fe_scene", "show_module"]
 
@@ -26,9 +28,10 @@ def b2b_fe_scene(run, *, case, deadline) -> None:
         _screw_b2b_fe(run, module_fe(case), deadline)
 
 
-def _levels(run, case, deadline, solve):
-    """Run ``solve(level) -> dict`` over the case's module levels (stopping where the budget would be passed);
-    returns the rows."""
+def _levels(run, case, deadline, solve, dofs):
+    """Run ``solve(level) -> dict`` over the case's module levels, stopping where the budget would be passed or
+    where a level's predicted memory exceeds the memory available (:func:`_memory_guard`, ``dofs(level)`` its P2
+    DOFs); returns the rows.  A study whose first level does not fit raises MemoryError (nothing to judge)."""
     from ballbench.validation.studies import ladder
 
     rows, sizes, times = [], [], []
@@ -39,6 +42,12 @@ def _levels(run, case, deadline, solve):
                 run.note(f"--budget: module levels from h {level.h_contact * 1e6:.0f} um on not run (predicted "
                          f"{predicted:.0f} s beyond the budget)")
                 break
+        words = _memory_guard(run, level, dofs(level))
+        if words:
+            if not rows:
+                raise MemoryError(f"the FE module study: {words}")
+            run.note(f"memory: module levels from h {level.h_contact * 1e6:.0f} um on not run: {words}")
+            break
         start = time.perf_counter()
         row = solve(level)
         row["wall_s"] = time.perf_counter() - start
@@ -46,6 +55,23 @@ def _levels(run, case, deadline, solve):
         sizes.append(level.h_contact)
         times.append(row["wall_s"])
     return rows
+
+
+def _memory_guard(run, level, ndofs: int) -> str:
+    """"" when the module level ``level`` of ``ndofs`` P2 DOFs may run, else why not: its peak memory predicted
+    from its DOFs (studies.ladder.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
+    the memory the machine has available now (studies.ladder.available_memory) or above the memory the scene
+    declares (:meth:`Scene.memory_for`), as the contact scene's guard decides."""
+    from ballbench.validation.runner import GB
+    from ballbench.validation.studies import ladder
+
+    need = ladder.predicted_memory(ndofs)
+    available, declared = ladder.available_memory(), run.scene.memory_for(run.fidelity) * GB
+    if need <= min(available, declared):
+        return ""
+    return (f"{ndofs} P2 DOFs (h {level.h_contact * 1e6:.0f} um) need about {need / GB:.1f} GB "
+            f"({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), {available / GB:.1f} GB "
+            f"available, {declared / GB:g} GB declared by the scene")
 
 
 def _b2b_reference(run, rows, key: str = "F_B2B"):
@@ -103,6 +129,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
     kept = {}
 
     def solve(level):
+        kept.clear()  # the previous level's module goes before the next level's is built
         model, results, timings = study.solve_fe_level(case, level)
         state = study.fe_informed(case, model, results)
         free = study.fe_informed(case, model, results, gaps=[1e-3])
@@ -114,7 +141,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
                     friction_increase=friction_increase(state, free),
                     power_balance=float(state.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve)
+    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "linear-guide", reference, source, extrapolation, low, rows,
                 guide.friction_coefficient * case.vertical_force)
@@ -150,23 +177,20 @@ def _informed_power_check(run, finest: dict, source: str) -> None:
 
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
-    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_screw as study
 
     (contacts, free, state), time_low = run.time(study.low_order, case)
-    lost = [f"ball {j + 1} {name}" for j, row in enumerate(np.asarray(state.normal_force))
-            for name, force in zip(CONTACT_NAMES, row) if not force > 0]
+    lost = _unloaded(state)
     if lost:
-        raise ValueError(f"the FE screw module needs all four contacts of each ball loaded (lin2017 eq 37), but "
-                         f"{', '.join(lost)} carry no load at this axial load and oversize; raise the oversize "
-                         "(preload) or run --levels FE")
+        raise NotApplicable(_unloaded_reason(case, lost))
     low = [("lowmodel.screw.b2b", "low-order numerical", float(state.b2b_force[0]), time_low)]
     shares = study.axial_shares(contacts, state)
     kept = {}
     speed = abs(case.screw.nut_speed)
 
     def solve(level):
+        kept.clear()  # the previous level's modules go before the next level's are built
         models, results, timings = study.solve_fe_level(case, level, shares)
         informed = study.fe_informed(case, models, results)
         kept.update(models=models, results=results, level=level)
@@ -175,7 +199,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
                     friction_increase=float(informed.friction_increase) / 100.0,
                     power_balance=float(informed.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve)
+    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "ball-screw", reference, source, extrapolation, low, rows,
                 case.screw.friction_coefficient * max(case.axial_load, 1.0))
@@ -187,6 +211,38 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
                                                      "growth": kept["level"].growth})
 
 
+def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
+    """Why the FE screw module does not apply: the contacts lin2019's state leaves unloaded, with the preload loss."""
+    from ballbench.validation.case_scenes.common import oversize_for, preload_loss, preload_loss_words
+
+    loss = preload_loss(case)
+    past = (f"past the preload loss at {loss.axial_load:.4g} N" if case.axial_load > loss.axial_load else
+            f"below the frictionless preload loss at {loss.axial_load:.4g} N (friction unloads it first)")
+    return (f"{', '.join(lost)} carry no load in lin2019's state at the axial load {case.axial_load:.4g} N and "
+            f"oversize {case.screw.oversize * 1e6:.3g} um, {past} {preload_loss_words(case)}: the FE screw module "
+            f"(fem.screw_module, lin2017 eq 37) needs all four contacts of each ball loaded. Raise the oversize "
+            f"(preload) until lin2019's state loads all four: the frictionless preload loss reaches this load at about "
+            f"{oversize_for(case, case.axial_load) * 1e6:.2g} um, friction unloads a contact earlier; or run "
+            "--levels FE.")
+
+
+def _unloaded(state) -> list[str]:
+    """The contacts ("ball 1 SR", ...) that lin2019's ball-screw ``state`` leaves without load."""
+    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
+
+    return [f"ball {j + 1} {name}" for j, row in enumerate(np.asarray(state.normal_force))
+            for name, force in zip(CONTACT_NAMES, row) if not force > 0]
+
+
+def _screw_unloaded(case: BallScrewCase) -> None:
+    """NotApplicable when lin2019's state of ``case`` leaves a contact unloaded (the show hook's check)."""
+    from ballbench.validation.studies import fe_b2b_screw
+
+    lost = _unloaded(fe_b2b_screw.low_order(case)[2])
+    if lost:
+        raise NotApplicable(_unloaded_reason(case, lost))
+
+
 def show_module(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (solved if none)."""
     from ballbench.validation.figures import render3d
@@ -195,5 +251,7 @@ def show_module(case, scene_dir, fidelity: str) -> list[Path]:
 
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
+    if isinstance(case, BallScrewCase):
+        _screw_unloaded(case)
     show = fe_b2b_linear.show_module if isinstance(case, LinearGuideCase) else fe_b2b_screw.show_module
     return show(module_fe(case), scene_dir, "quick" if fidelity == "quick" else "default")

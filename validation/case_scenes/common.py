@@ -1,7 +1,11 @@
 """What the scenes of a case file share (validation.case_scenes): the tolerances they judge by, the number format of
-their tables, the per-contact table and the power-balance check of a low-order or FE-informed state."""
+their tables, the per-contact table and the power-balance check of a low-order or FE-informed state; the preload
+loss of a ball screw and the limits of lin2019's model it sets (:func:`preload_loss`, :func:`within_model_limits`,
+:func:`limits_lines`)."""
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
 
 REFERENCE_UNCERTAINTY = 0.01  # the extrapolated FE reference must be known to 1 % to judge models against it
@@ -16,7 +20,12 @@ HAMROCK_DOWSON_TOLERANCE = 0.15
 EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as those scenes check it
 
 __all__ = ["B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
-           "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check"]
+           "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss", "preload_loss_words",
+           "oversize_for", "within_model_limits", "limited", "limits_lines", "LIN2019_SCENES"]
+
+# the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
+# stick/slip balls, the EHL loads): where that model has no state they do not apply
+LIN2019_SCENES = ("balls", "contact", "ehl", "b2b-fe", "stick-slip")
 
 
 def fmt(value: float, digits: int = 4) -> str:
@@ -40,3 +49,127 @@ def power_check(run, model: str, state, time_s: float, what: str) -> None:
               unit="1", value=balance, reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE, time_s=time_s,
               source="energy conservation incl. the B2B loss (lin2019 eq 7); docs/fe_b2b.md: 1e-6",
               why="the value is itself a relative power error: zero judged on the scale 1")
+
+
+@functools.lru_cache(maxsize=16)
+def preload_loss(case):
+    """The preload loss of a BallScrewCase's balls under one nut shift (lowmodel.screw.preload: frictionless, exact
+    flank arcs, Hertz's law lin2019 eq 53): ``PreloadLoss`` with the total axial load [N] at which the first contact
+    unloads."""
+    from ballbench.lowmodel.screw import preload
+    from ballbench.validation.studies import screw_two_ball
+
+    return preload.preload_loss(screw_two_ball.ball_contacts(case))
+
+
+def oversize_for(case, axial_load: float) -> float:
+    """The oversize [m] that moves the preload loss of ``case`` to ``axial_load`` [N], from the preload loss's
+    growth like ``oversize^(3/2)`` (lowmodel.screw.preload.nominal_preload_loss): an estimate for the reader."""
+    from ballbench.lowmodel.screw.preload import nominal_preload_loss
+    from ballbench.validation.studies import screw_two_ball
+
+    loss = preload_loss(case)
+    if loss.axial_load > 0.0:
+        return case.screw.oversize * (axial_load / loss.axial_load) ** (2.0 / 3.0)
+    # no preload: the closed form of a nominal ball at a unit oversize, scaled the same way
+    contacts = screw_two_ball.ball_contacts(case, oversize=1e-6)
+    per_ball = nominal_preload_loss(contacts)
+    return 1e-6 * (axial_load / (contacts.n_balls * per_ball)) ** (2.0 / 3.0)
+
+
+def preload_loss_words(case) -> str:
+    """How the preload loss of ``case`` is computed, in parentheses (the number itself is the caller's)."""
+    loss = preload_loss(case)
+    return (f"(oversize {case.screw.oversize * 1e6:.3g} um; frictionless four-point contacts with Hertz's law, "
+            f"lin2019 eq 53, lowmodel.screw.preload; ball {loss.ball + 1} {loss.contact} unloads first; "
+            "docs/ball_screw.md, 'Preload loss')")
+
+
+def _past_preload_loss(case, error) -> str:
+    """The reason a ConvergenceError of lin2019's ball-screw model is its declared limit on ``case``, or "" when it
+    is not: the load ramp stopped near full sliding (lowmodel.screw.b2b.FULL_SLIDING_LIMIT) at an axial load past
+    the preload loss."""
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
+    from ballbench.validation.cases.case import BallScrewCase
+
+    if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") != FULL_SLIDING_LIMIT:
+        return ""
+    try:
+        loss = preload_loss(case)
+    except (ConvergenceError, ValueError):  # no preload loss to judge against: the original error stands
+        return ""
+    if not case.axial_load > loss.axial_load:
+        return ""
+    last = error.last_converged
+    reached = (f": its load ramp found no state beyond {100 * last[1]:.3g} % of the load "
+               f"({last[1] * case.axial_load:.4g} N), its contacts sliding at their limit mu F") if last else ""
+    below = (f"At this oversize lin2019's model has states up to about {last[1] * case.axial_load:.4g} N "
+             f"(between {loss.axial_load:.4g} N and that, three-point states sliding near their limit: judge them "
+             "with care)") if last else "Lower the axial load"
+    return (f"axial load {case.axial_load:.4g} N is past the preload loss at {loss.axial_load:.4g} N "
+            f"{preload_loss_words(case)}: the balls go over to two-point contact, where one contact rolls without "
+            f"spin, and lin2019's four-point full-sliding model has no state there{reached}. {below}; below "
+            f"{loss.axial_load:.4g} N it models the four-point contact it was made for.")
+
+
+@contextlib.contextmanager
+def within_model_limits(case):
+    """Run a ball-screw scene's work; a ConvergenceError that is lin2019's declared limit on ``case`` (the full-
+    sliding model has no state past the preload loss, :func:`_past_preload_loss`) becomes NotApplicable with the
+    reason; any other ConvergenceError stays as it is (the scene ends in error)."""
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation.scene import NotApplicable
+
+    try:
+        yield
+    except ConvergenceError as error:
+        reason = _past_preload_loss(case, error)
+        if not reason:
+            raise
+        raise NotApplicable(reason) from error
+
+
+def limited(function, case):
+    """``function`` (a scene function ``f(run)`` or a show hook ``f(scene_dir, fidelity)``) run
+    :func:`within_model_limits` of ``case`` (a partial of a module function: it pickles for a distributed run)."""
+    return functools.partial(_within_limits, function, case)
+
+
+def _within_limits(function, case, *args, **kwargs):
+    with within_model_limits(case):
+        return function(*args, **kwargs)
+
+
+def limits_lines(case, names) -> list[str]:
+    """What a ball-screw case's header says before any work: its preload loss, and when the axial load is past it,
+    which of the scenes ``names`` may not apply and why (docs/your_own_bearing.md, 'Reading the verdict')."""
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation.cases.case import BallScrewCase
+
+    if not isinstance(case, BallScrewCase):
+        return []
+    try:
+        loss = preload_loss(case)
+    except (ConvergenceError, ValueError) as error:  # said, not hidden: the scenes run and decide on their own
+        return [f"the preload loss of this screw was not found ({type(error).__name__}: {error}); no scene can be "
+                "declared not applicable past it"]
+    words = preload_loss_words(case)
+    head = f"preload loss at {loss.axial_load:.4g} N axial load {words}"
+    if not case.axial_load > loss.axial_load:
+        return [f"{head}; the axial load {case.axial_load:.4g} N lies below it: lin2019's four-point model "
+                "applies."]
+    fe = [n for n in names if n.endswith("-b2b-fe")]
+    built = [n for n in names if any(n.endswith("-" + s) for s in LIN2019_SCENES)]
+    lines = [f"{head}; the axial load {case.axial_load:.4g} N is past it: contacts unload and the balls go over "
+             "to two-point contact, outside lin2019's four-point full-sliding model "
+             f"(the frictionless preload loss reaches this load at an oversize of about "
+             f"{oversize_for(case, case.axial_load) * 1e6:.2g} um; friction unloads a contact earlier)."]
+    if fe:
+        lines.append(f"{fe[0]} does not apply where lin2019's state leaves a contact unloaded (its FE module needs "
+                     "four loaded contacts, lin2017 eq 37).")
+    if built:
+        lines.append(f"Where lin2019's model finds no state at this load, {', '.join(built)} (built on its state) do "
+                     "not apply; where it finds one, its contacts slide near their limit mu F: judge its friction "
+                     "with care.")
+    return lines

@@ -567,4 +567,20 @@ def template(kind: str) -> str:
                 "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",
                 "# friction_coefficient, nut_speed) as in 'ballbench init ball-screw'; conformity belongs to a groove."]
     out += ["", "# [fe] (optional): FE mesh levels; without it 'validate' chooses them from the contact ellipses."]
+    if kind == "ball-screw":
+        at = next(i for i, line in enumerate(out) if line.startswith("axial_load ="))
+        out[at + 1:at + 1] = _preload_loss_comment("\n".join(out) + "\n")
     return "\n".join(out) + "\n"
+
+
+def _preload_loss_comment(text: str) -> list[str]:
+    """The template's comment on the range of lin2019's ball-screw model: below the preload loss of the values as
+    written (case_scenes.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
+    from ballbench.validation.case_scenes.common import preload_loss
+
+    loss = preload_loss(loads(text, "<template>")).axial_load
+    pad = " " * 32
+    return [f"{pad} # lin2019's four-point model applies below the preload loss: {loss:.0f} N for",
+            f"{pad} # the values as written (frictionless, Hertz eq 53; it grows like oversize^1.5;",
+            f"{pad} # 'ballbench validate' prints yours); above it the balls go over to two-point",
+            f"{pad} # contact and its rungs may not apply (docs/ball_screw.md, 'Preload loss')"]

@@ -10,8 +10,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
     {"fidelity": str, "passed": bool, "strict": bool, "strict_time": bool,
      "complete": bool, "not_run": [str],
-     "counts": {"pass", "known gap", "findings", "fail", "error"},
-     "scenes": [{"name", "description", "kind", "status", "passed", "error",
+     "counts": {"pass", "known gap", "findings", "not applicable", "fail", "error"},
+     "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
                  "artifacts": [str], "notes": [str],
                  "outputs": [{"model", "quantity", "unit", "value", "reference",
@@ -22,6 +22,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                  "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
 ``peak_memory_gb`` is the process's peak resident memory while the scene ran (0 where not measured).
+``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
+scene that applies).
 A scene's ``status`` is one of ``counts``' keys; an output's is ``pass``, ``fail``, ``outside accuracy`` (a
 finding: a model outside its declared accuracy on a case's own geometry, docs/validation.md), ``known gap``,
 ``unexpected pass``, ``within budget`` or ``over budget``.

@@ -14,8 +14,9 @@ from ballbench.validation.report.document import (Block, Bullets, Document, File
                                                   Span, Table, Text, Verdict)
 from ballbench.validation.report.points import family_order
 from ballbench.validation.report.records import Tally
-from ballbench.validation.report.rows import (FINDINGS_MEANING, check_line, count, failure_lines, family_of, fmt_time,
-                                              ratio_text, row, scene_budget_text, status_word, worst_ratio_text)
+from ballbench.validation.report.rows import (FINDINGS_MEANING, NOT_APPLICABLE_MEANING, check_line, count,
+                                              failure_lines, family_of, fmt_time, ratio_text, row, scene_budget_text,
+                                              status_word, worst_ratio_text)
 from ballbench.validation.scene import Output, SceneResult
 
 
@@ -91,7 +92,7 @@ def _verdict(r: SceneResult, status: str, counted: Tally) -> Verdict:
     return Verdict(r.name, r.kind, status, r.wall_time_s, scene_budget_text(r), r.error,
                    tuple(failure_lines(r, limit=50, **options)),
                    tuple(f"{o.quantity}: {o.known_gap.reason}" for o in r.outputs_with("known gap")),
-                   tuple(f"{check_line(o)}: {o.status}" for o in r.outputs))
+                   tuple(f"{check_line(o)}: {o.status}" for o in r.outputs), r.not_applicable)
 
 
 def _head(results, fidelity, counted: Tally) -> list[Block]:
@@ -99,10 +100,11 @@ def _head(results, fidelity, counted: Tally) -> list[Block]:
     mode = ", ".join(m for m, on in (("--strict", counted.strict), ("--strict-time", counted.strict_time)) if on)
     ok = c["fail"] == 0 and c["error"] == 0 and not counted.not_run
     findings = f"{c['findings']} passed with findings, " if c["findings"] else ""
+    unfit = f"{c['not applicable']} do not apply to this case, " if c["not applicable"] else ""
     blocks = [Paragraph(("Fidelity ", Span(fidelity, "code"), f", mode {mode or 'default'}. "
                          f"{count(len(results), 'scene')}: {c['pass']} passed, {c['known gap']} passed with known "
-                         f"gaps, {findings}{c['fail']} failed, {c['error']} raised."),
-                        tone=("warn" if c["findings"] else "ok") if ok else "bad")]
+                         f"gaps, {findings}{unfit}{c['fail']} failed, {c['error']} raised."),
+                        tone=("warn" if c["findings"] or c["not applicable"] else "ok") if ok else "bad")]
     if counted.not_run:
         blocks.append(Paragraph((Span(f"Partial report: the run was interrupted; "
                                       f"{count(len(counted.not_run), 'scene')} did not run:", "strong"),
@@ -139,6 +141,22 @@ def _findings(results, counted: Tally) -> list[Section]:
                    "bearing (docs/your_own_bearing.md, 'Reading the verdict').")),
         Table(("scene", "model", "quantity", "value", "reference", "error", "tolerance", "status", "reference from"),
               tuple(rows), numeric=(3, 4, 5, 6))))]
+
+
+def _not_applicable(results, counted: Tally) -> list[Section]:
+    """The scenes whose model has no state on the case, each with its reason: what the reader cannot learn here."""
+    unfit = [r for r in results if r.not_applicable and not r.error]
+    if not unfit:
+        return []
+    consequence = ("; this ", Span("--strict", "code"), " run counts them as failures.") if counted.strict else (
+        "; they do not fail the run (", Span("--strict", "code"), " makes them fail).")
+    return [Section("Rungs that do not apply to this case", "not-applicable", (
+        Paragraph(("Each scene below ended with ", Span("does not apply", status="not applicable"), ": ",
+                   NOT_APPLICABLE_MEANING, consequence, " The reason names the limit and the number "
+                   "(docs/your_own_bearing.md, 'Reading the verdict').")),
+        Table(("scene", "status", "reason"),
+              tuple((Span(r.name, link=f"#{r.name}"), Span(status_word(s), status=s), r.not_applicable)
+                    for r, s in zip(results, counted.statuses) if r in unfit))))]
 
 
 def _summary(results, counted: Tally) -> Section:
@@ -215,6 +233,9 @@ def _scene(r: SceneResult, status: str, out_dir: Path | None) -> Section:
                    f"; wall time {fmt_time(r.wall_time_s)} (budget {scene_budget_text(r)})."))]
     if r.error:
         blocks.append(Paragraph((Span("Error:", "strong", status="error"), " ", Span(r.error, "code"))))
+    elif r.not_applicable:
+        blocks.append(Paragraph((Span("Does not apply:", "strong", status="not applicable"), " ", r.not_applicable),
+                                tone="muted"))
     for title, header, rows in r.tables:  # results for the reader (loads, friction), before the checks
         blocks.append(Paragraph(Span(title, "strong")))
         blocks.append(Table(header, rows, numeric=tuple(range(1, len(header)))))
@@ -251,6 +272,7 @@ def build_document(results: Sequence[SceneResult], fidelity: str, counted: Tally
     verdicts = tuple(_verdict(r, s, counted) for r, s in zip(results, counted.statuses))
     sections = [Section("", "", tuple(_head(results, fidelity, counted)))]
     sections += _unexpected(results)
+    sections += _not_applicable(results, counted)
     sections += _findings(results, counted)
     sections += [_summary(results, counted), _known_gaps(results, counted), _budgets(results)]
     sections += _error_budget(points, figure)

@@ -35,7 +35,7 @@ class Paragraph:
 
     text: Text
     small: bool = False
-    tone: str = ""  # "" or a banner: "ok", "bad", "warn"
+    tone: str = ""  # "" or a banner: "ok", "bad", "warn", "muted" (a scene that does not apply)
 
 
 @dataclass(frozen=True)
@@ -95,6 +95,7 @@ class Verdict:
     failures: tuple[str, ...]   # one line per failed check (JUnit failure text)
     gaps: tuple[str, ...]       # "quantity: reason" of each known gap
     checks: tuple[str, ...]     # every check as a line with its status
+    reason: str = ""            # why the scene does not apply to its case (status "not applicable")
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,8 @@
 """JUnit XML of the :class:`~.document.Document`: one test case per scene for CI systems.
 
 Classname ``ballbench.<kind>``; a failure names the failed checks, known gaps
-are skipped tests, scenes an interrupted run did not reach are skipped too;
+are skipped tests, so are scenes that do not apply to their case (the reason as the message) and scenes an
+interrupted run did not reach;
 each case's system-out holds the wall time against the budget and every check.
 """
 from __future__ import annotations
@@ -18,7 +19,8 @@ def render(document: Document) -> bytes:
     verdicts = document.verdicts
     suite = ET.Element("testsuite", name="ballbench", tests=str(len(verdicts) + len(counted.not_run)),
                        failures=str(counted.counts["fail"]), errors=str(counted.counts["error"]),
-                       skipped=str(counted.counts["known gap"] + len(counted.not_run)),
+                       skipped=str(counted.counts["known gap"] + counted.counts["not applicable"]
+                                   + len(counted.not_run)),
                        time=f"{sum(v.wall_time_s for v in verdicts):.3f}")
     for v in verdicts:
         case = ET.SubElement(suite, "testcase", classname=f"ballbench.{v.kind}", name=v.name,
@@ -28,6 +30,8 @@ def render(document: Document) -> bytes:
         elif v.status == "fail":
             message = v.failures[0].strip() if v.failures else "failed"
             ET.SubElement(case, "failure", message=message).text = "\n".join(v.failures)
+        elif v.status == "not applicable":
+            ET.SubElement(case, "skipped", message="does not apply: " + v.reason)
         elif v.status == "known gap":
             ET.SubElement(case, "skipped", message="known gap: " + "; ".join(v.gaps))
         budget = f"wall time {fmt_time(v.wall_time_s)}, budget {v.budget}"

@@ -16,7 +16,7 @@ from ballbench.validation.scene import PASSING, KnownGap, Output, SceneResult
 CSV_FIELDS = ("scene", "model", "quantity", "unit", "value", "reference", "source", "rel_error", "tolerance",
               "passed", "status", "time_s", "relation", "kind", "scale", "note", "why", "known_gap_reason",
               "known_gap_evidence", "family", "level")
-SCENE_STATUSES = ("pass", "known gap", "findings", "fail", "error")
+SCENE_STATUSES = ("pass", "known gap", "findings", "not applicable", "fail", "error")
 _NUMBERS = ("value", "reference", "rel_error", "tolerance", "time_s", "scale")
 
 
@@ -38,8 +38,8 @@ class Tally:
 
 def tally(results: Sequence[SceneResult], *, strict: bool = False, strict_time: bool = False,
           not_run: Sequence[str] = ()) -> Tally:
-    """The :class:`Tally` of ``results`` (``strict``: findings and known gaps fail; ``strict_time``: budget overruns
-    fail)."""
+    """The :class:`Tally` of ``results`` (``strict``: findings, known gaps and scenes that do not apply fail;
+    ``strict_time``: budget overruns fail)."""
     statuses = tuple(r.status(strict=strict, strict_time=strict_time) for r in results)
     return Tally(statuses, {k: statuses.count(k) for k in SCENE_STATUSES}, strict, strict_time, tuple(not_run))
 
@@ -74,6 +74,7 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "status": status,
                 "passed": status in PASSING,
                 "error": r.error,
+                "not_applicable": r.not_applicable,
                 "wall_time_s": r.wall_time_s,
                 "budget_s": json_number(r.budget_s),
                 "over_budget": r.over_budget,
@@ -105,7 +106,8 @@ def write_csv(results: Sequence[SceneResult], path: Path) -> None:
 def results_from_json(data: dict) -> list[SceneResult]:
     """Scene results back from ``results.json`` data (to re-render a report without running the scenes).
 
-    Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``) take their defaults; a
+    Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``, ``not_applicable``) take their
+    defaults; a
     finding check that missed is known by its status (``outside accuracy``)."""
     fields = set(Output.__dataclass_fields__) - {"known_gap", "finding"}
     results = []
@@ -120,5 +122,5 @@ def results_from_json(data: dict) -> list[SceneResult]:
                                    json_float(s["budget_s"]), s["kind"], s["interrupted"],
                                    tuple((t["title"], tuple(t["header"]), tuple(tuple(x) for x in t["rows"]))
                                          for t in s.get("tables", ())),
-                                   s.get("peak_memory_gb", 0.0)))
+                                   s.get("peak_memory_gb", 0.0), s.get("not_applicable", "")))
     return results

@@ -24,7 +24,9 @@ _ENGINEERING = {
 DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "-" in a unit column
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
 STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)",
-                "findings": "PASS, FINDINGS (models outside their accuracy here)", "fail": "FAIL", "error": "ERROR"}
+                "findings": "PASS, FINDINGS (models outside their accuracy here)",
+                "not applicable": "DOES NOT APPLY (the model has no state on this case)", "fail": "FAIL",
+                "error": "ERROR"}
 
 
 # what a finding means for the reader (report.md/html and the CLI; docs/your_own_bearing.md, "Reading the verdict")
@@ -199,8 +201,16 @@ def check_line(o: Output, *, level: bool = False) -> str:
             f"error {r.error or '0 %'}, {tolerance}")
 
 
+# what a scene that does not apply means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
+NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case (a limit of the model, named with the case's "
+                          "number against it): not a failure of the software, and no validation of that rung here")
+
+
 def passing_lines(result: SceneResult, status: str) -> list[str]:
-    """What a passing scene with findings or known gaps adds under its status line on the terminal."""
+    """What a passing scene with findings, known gaps or a model that does not apply adds under its status line on
+    the terminal."""
+    if status == "not applicable":
+        return [f"  does not apply: {result.not_applicable}"]
     if status == "findings":
         return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o, level=True)}: outside accuracy"
                                                       for o in result.outputs_with("outside accuracy")]
@@ -216,6 +226,8 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
     bad = [o for o in result.outputs if o.status in ("fail", "unexpected pass", *strict_fails)
            or (strict_time and o.status == "over budget")]
     lines = []
+    if strict and result.not_applicable and not result.error:
+        lines.append(f"  does not apply (--strict): {result.not_applicable}")
     for o in bad[:limit]:
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "outside accuracy": "outside accuracy (--strict)",

@@ -16,8 +16,8 @@ import numpy as np
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
 from ballbench.validation.cases.case import LinearGuideCase
 
-__all__ = ["low_order_contacts", "analytical", "fine_ellipses", "eq36_hertz", "solve_fe_level", "traction_patches",
-           "fe_informed", "full_stress", "hertz_axes", "sensitivity", "show_module"]
+__all__ = ["low_order_contacts", "analytical", "fine_ellipses", "eq36_hertz", "solve_fe_level", "level_dofs",
+           "traction_patches", "fe_informed", "full_stress", "hertz_axes", "sensitivity", "show_module"]
 
 
 def low_order_contacts(case: LinearGuideCase):
@@ -76,18 +76,33 @@ def fine_ellipses(case: LinearGuideCase) -> list:
     return [(k1 * float(a_i), k2 * float(b_i), k3 * float(b_i)) for a_i, b_i in zip(a, b)]
 
 
+def _module_mesh(case: LinearGuideCase, level):
+    """The cached gmsh mesh of the guide's module at the ModuleLevel ``level``."""
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
+
+    guide = case.guide
+    return fourpoint_module(guide.ball_radius, guide.conformity, guide.nominal_angle, case.deviations, 1,
+                            h_contact=level.h_contact, growth=level.growth, fine_radius=level.fine_radius,
+                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None)
+
+
+def level_dofs(case: LinearGuideCase, level) -> int:
+    """The P2 DOFs of the guide's module at ``level`` from its mesh alone (meshed or cached; no assembly): what the
+    level's memory is predicted from."""
+    from ballbench.validation.studies.fe_contact import mesh_dofs
+
+    return mesh_dofs(_module_mesh(case, level))
+
+
 def solve_fe_level(case: LinearGuideCase, level):
     """Mesh, condense and solve the module for both balls' loads at the :class:`ModuleLevel` ``level``;
     returns (model, results, timings [s])."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
 
     guide = case.guide
     timings = {}
     start = time.perf_counter()
-    path = fourpoint_module(guide.ball_radius, guide.conformity, guide.nominal_angle, case.deviations, 1,
-                            h_contact=level.h_contact, growth=level.growth, fine_radius=level.fine_radius,
-                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None)
+    path = _module_mesh(case, level)
     timings["mesh_s"] = time.perf_counter() - start
     geometry = fp.ModuleGeometry(guide.ball_radius, guide.conformity, tuple(case.contact_angles))
     model = fp.build_module_model(path, geometry, materials=guide.material.pair, gap_limit=case.fe.gap_limit)

@@ -31,7 +31,7 @@ ANSYS_GAP = KnownGap(
              "level); docs/fe_b2b.md (screw half, depth table and results).")
 
 __all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "axial_shares", "hertz_ellipse", "solve_fe_level",
-           "fe_informed", "sensitivity", "patch_axes", "show_module"]
+           "level_dofs", "fe_informed", "sensitivity", "patch_axes", "show_module"]
 
 
 def low_order(case: BallScrewCase, oversize: float | None = None):
@@ -62,24 +62,39 @@ def hertz_ellipse(contacts, ball: int, forces) -> np.ndarray:
     return np.column_stack([a, b, 1.5 * forces / (math.pi * a * b)])
 
 
+def _module_mesh(case: BallScrewCase, level, theta: float):
+    """The cached gmsh mesh of the module of a ball with deviation ``theta`` [rad] at the ModuleLevel ``level``."""
+    from ballbench.meshes.assemblies.ball_screw_module import ball_screw_module
+
+    screw, fe = case.screw, case.fe
+    depth = {} if fe.body_depth is None else {
+        "screw_back_radius": screw.pitch_radius - fe.body_depth * screw.ball_radius,
+        "nut_back_radius": screw.pitch_radius + fe.body_depth * screw.ball_radius}
+    return ball_screw_module(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
+                             screw.nominal_angle, (theta, theta, 0.0, 0.0), 1, h_contact=level.h_contact,
+                             growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max, **depth)
+
+
+def level_dofs(case: BallScrewCase, level) -> int:
+    """The P2 DOFs of the modules of all balls of ``case`` at ``level`` (:func:`solve_fe_level` keeps them all),
+    from their meshes alone (meshed or cached; no assembly): what the level's memory is predicted from."""
+    from ballbench.validation.studies.fe_contact import mesh_dofs
+
+    return sum(mesh_dofs(_module_mesh(case, level, theta)) for theta in case.deviations)
+
+
 def solve_fe_level(case: BallScrewCase, level, shares, oversize: float | None = None):
     """Mesh, condense and solve one module per ball at the :class:`ModuleLevel` ``level``, ball ``j`` carrying
     the axial share ``shares[j]`` [N]; returns (models, results, timings [s])."""
     from ballbench.fem import screw_module as sm
-    from ballbench.meshes.assemblies.ball_screw_module import ball_screw_module
 
     screw, fe = case.screw, case.fe
     oversize = screw.oversize if oversize is None else oversize
     timings = {"mesh_s": 0.0, "assembly_s": 0.0, "condense_s": 0.0, "contact_solve_s": 0.0}
     models, results = [], []
-    depth = {} if fe.body_depth is None else {
-        "screw_back_radius": screw.pitch_radius - fe.body_depth * screw.ball_radius,
-        "nut_back_radius": screw.pitch_radius + fe.body_depth * screw.ball_radius}
     for ball, theta in enumerate(case.deviations):
         start = time.perf_counter()
-        path = ball_screw_module(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
-                                 screw.nominal_angle, (theta, theta, 0.0, 0.0), 1, h_contact=level.h_contact,
-                                 growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max, **depth)
+        path = _module_mesh(case, level, theta)
         timings["mesh_s"] += time.perf_counter() - start
         geometry = sm.screw_module_geometry(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
                                             sm.flank_angles_tilted(screw.nominal_angle, theta), oversize)

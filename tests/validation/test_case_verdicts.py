@@ -1,0 +1,164 @@
+"""Scenes of a case file that do not apply to the case (status ``not applicable``): the verdict, its reason with
+the case's number, and what every output says (docs/your_own_bearing.md, 'Reading the verdict';
+docs/validation.md, 'Does not apply')."""
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.validation import case_scenes, cli
+from ballbench.validation.case_scenes import common
+from ballbench.validation.cases import case_file
+from ballbench.validation.runner import run_scene, run_scenes
+from ballbench.validation.scene import NotApplicable, Scene
+
+# the new user's walk-through: the ball-screw template with three values edited (docs/your_own_bearing.md)
+PRELOAD_LOSS_N = 127.6  # lowmodel.screw.preload of the walk-through screw (frictionless, lin2019 eq 53)
+
+
+def _screw_file(tmp_path, axial_load: str):
+    text = case_file.template("ball-screw")
+    for old, new in (('pitch_radius = "16.6 mm"', 'pitch_radius = "20 mm"'),
+                     ("conformity = 0.55 ", "conformity = 0.54 "),
+                     ('axial_load = "200 N"', f'axial_load = "{axial_load}"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    return path
+
+
+def _scene(case, name, top="stick-slip"):
+    (scene,) = [s for s in case_scenes.case_scenes(case, "s", top=top) if s.name == f"s-{name}"]
+    return scene
+
+
+def test_the_preload_loss_of_the_walk_through_screw(tmp_path):
+    case = case_file.load(_screw_file(tmp_path, "300 N"))
+    loss = common.preload_loss(case)
+    assert loss.axial_load == pytest.approx(PRELOAD_LOSS_N, abs=0.05)
+    assert (loss.ball, loss.contact) == (1, "NL")  # the deviated ball's nut flank goes first
+
+
+def test_the_fe_module_does_not_apply_where_lin2019_leaves_a_contact_unloaded(tmp_path):
+    # 300 N, 1.5 um: lin2019's state leaves SR of both balls without load; the FE module needs all four
+    case = case_file.load(_screw_file(tmp_path, "300 N"))
+    result = run_scene(_scene(case, "b2b-fe"), "quick", tmp_path / "out")
+    assert not result.error, result.error
+    assert result.status() == "not applicable" and result.passed
+    assert result.status(strict=True) == "fail"
+    assert "ball 1 SR" in result.not_applicable and "lin2017 eq 37" in result.not_applicable
+    assert f"preload loss at {PRELOAD_LOSS_N:g} N" in result.not_applicable
+    # show skips it with the reason instead of solving a module it cannot build
+    with pytest.raises(NotApplicable, match="needs all four contacts"):
+        _scene(case, "b2b-fe").show(tmp_path / "out" / "s-b2b-fe", "quick")
+
+
+def test_past_the_preload_loss_lin2019_s_scenes_do_not_apply_and_the_run_passes(tmp_path, capsys):
+    path = _screw_file(tmp_path, "450 N")
+    out = tmp_path / "report"
+    code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 0, err
+    # before any work, the header says where the axial load stands against the preload loss
+    head = err[:err.index("DOES NOT APPLY")]
+    assert f"preload loss at {PRELOAD_LOSS_N:g} N" in head and "450 N is past it" in head
+    data = json.loads((out / "results.json").read_text())
+    assert data["passed"] and data["counts"]["not applicable"] == 2 and data["counts"]["error"] == 0
+    for scene in data["scenes"]:
+        assert scene["status"] == "not applicable" and scene["passed"] and not scene["error"]
+        assert "450 N is past the preload loss at 127.6 N" in scene["not_applicable"]
+        assert "no state" in scene["not_applicable"] and "lin2019 eq 53" in scene["not_applicable"]
+    report = (out / "report.md").read_text()
+    assert "## Rungs that do not apply to this case" in report and "DOES NOT APPLY" in report
+    page = (out / "report.html").read_text()
+    assert 'class="na"' in page and 'class="banner muted"' in page
+    # --strict fails it, and says why
+    code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--strict",
+                     "--out", str(out), "--junit", str(tmp_path / "junit.xml")])
+    assert code == 1 and "does not apply (--strict)" in capsys.readouterr().err
+
+
+def test_junit_skips_a_scene_that_does_not_apply(tmp_path):
+    path = _screw_file(tmp_path, "450 N")
+    out = tmp_path / "report"
+    assert cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--out", str(out),
+                     "--junit", str(tmp_path / "junit.xml")]) == 0
+    suite = ET.parse(tmp_path / "junit.xml").getroot()
+    assert suite.get("skipped") == "2" and suite.get("errors") == "0" and suite.get("failures") == "0"
+    skipped = [case.find("skipped") for case in suite.iter("testcase")]
+    assert all(s is not None and s.get("message").startswith("does not apply: axial load 450 N") for s in skipped)
+
+
+def _raise(reason):
+    def solve(*args, **kwargs):
+        raise ConvergenceError("no converged state", residual=1.0, iterations=3, tolerance=1e-10, reason=reason,
+                               last_converged=("load fraction", 0.5))
+    return solve
+
+
+def test_another_convergence_error_of_a_case_scene_stays_an_error(tmp_path, monkeypatch):
+    # past the preload loss, but the solver stopped for another reason: not the declared limit
+    case = case_file.load(_screw_file(tmp_path, "450 N"))
+    monkeypatch.setattr(screw_b2b, "solve", _raise("no descent step"))
+    result = run_scene(_scene(case, "balls", top="low-order"), "quick", tmp_path / "out")
+    assert result.status() == "error" and "ConvergenceError" in result.error and not result.not_applicable
+
+
+def test_the_declared_limit_below_the_preload_loss_stays_an_error(tmp_path, monkeypatch):
+    # the full-sliding limit at a load below the preload loss is not the declared model limit (four-point contact)
+    case = case_file.load(_screw_file(tmp_path, "100 N"))
+    monkeypatch.setattr(screw_b2b, "solve", _raise(screw_b2b.FULL_SLIDING_LIMIT))
+    result = run_scene(_scene(case, "balls", top="low-order"), "quick", tmp_path / "out")
+    assert result.status() == "error" and "ConvergenceError" in result.error
+
+
+def test_a_paper_scene_still_errors_on_the_declared_limit(tmp_path, monkeypatch):
+    from ballbench.validation.scene import registry
+
+    monkeypatch.setattr(screw_b2b, "solve", _raise(screw_b2b.FULL_SLIDING_LIMIT))
+    result = run_scene(registry()["lin2019-table5-a"], "quick", tmp_path)
+    assert result.status() == "error" and "ConvergenceError" in result.error and not result.not_applicable
+
+
+def test_only_a_case_file_s_scene_may_not_apply(tmp_path):
+    def unfit(run):
+        raise NotApplicable("the model has no state here")
+
+    paper = run_scene(Scene("zz-paper", "a registered scene", unfit), "quick", tmp_path)
+    assert paper.status() == "error" and paper.error.startswith("NotApplicable")
+    case = run_scene(Scene("zz-case", "a case file's scene", unfit, tags=("case",)), "quick", tmp_path)
+    assert case.status() == "not applicable" and case.not_applicable == "the model has no state here"
+    with pytest.raises(ValueError, match="reason"):
+        NotApplicable(" ")
+
+
+def test_the_module_fe_does_not_start_a_level_beyond_the_memory(tmp_path, monkeypatch):
+    # the module FE's memory guard (as the contact FE's): the level's predicted peak above the available memory
+    from ballbench.validation.studies import fe_b2b_linear, ladder
+    from tests import paths
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("a module level ran although its predicted memory exceeds the available memory")
+
+    monkeypatch.setattr(fe_b2b_linear, "level_dofs", lambda case, level: 400_000)
+    monkeypatch.setattr(fe_b2b_linear, "solve_fe_level", no_solve)
+    monkeypatch.setattr(ladder, "available_memory", lambda: 4e9)
+    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 9e9 if ndofs == 400_000 else 0.0)
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    (scene,) = [s for s in case_scenes.case_scenes(case, "g", top="FE-informed") if s.name == "g-b2b-fe"]
+    (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
+    assert result.status() == "error" and result.error.startswith("MemoryError")
+    assert "400000 P2 DOFs" in result.error and "9.0 GB" in result.error and "4.0 GB available" in result.error
+
+
+def test_the_ball_screw_template_states_the_range_of_lin2019_s_model():
+    text = case_file.template("ball-screw")
+    loss = common.preload_loss(case_file.loads(text))
+    at = text.index('axial_load = "')
+    comment = text[at:text.index("deviations =")]
+    assert f"below the preload loss: {loss.axial_load:.0f} N" in comment and "oversize^1.5" in comment
