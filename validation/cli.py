@@ -293,10 +293,11 @@ def _cmd_validate(args) -> int:
     failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
     gaps, findings = statuses.count("known gap"), statuses.count("findings")
     unfit = statuses.count("not applicable")
-    print(f"{len(results) - len(failed)} of {len(results)} scenes passed"
+    # a scene that does not apply validated nothing: it passes the run but is not counted as passed
+    print(f"{len(results) - len(failed) - unfit} of {len(results)} scenes passed"
           + (f" ({gaps} with known gaps)" if gaps else "")
           + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
-          + (f" ({unfit} do not apply to the case: the model has no state there)" if unfit else "")
+          + (f", {unfit} do not apply to the case (the model has no state there)" if unfit else "")
           + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
