@@ -116,7 +116,7 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
         scenes.append(Scene(f"{stem}-ehl", f"{case.name}: each distinct contact lubricated (smooth isothermal EHL on "
                             "the exact helical gap at the case's entrainment speed): film, U, G, W, pressure, "
                             "Hamrock-Dowson against the solve", functools.partial(ehl_scene, case=case),
-                            tags=("case",), kind="low-order", cost_s=5.0 * n_contacts,
+                            tags=("case",), kind="low-order", cost_s=25.0 * n_contacts,
                             budget_s={"quick": 60.0, "default": 120.0, "fine": 900.0}, case=case))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "
