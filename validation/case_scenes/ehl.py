@@ -1,6 +1,7 @@
-"""``<stem>-ehl`` of a ball-screw case whose file gives a ``[lubricant]`` (rung ``EHL``): each distinct contact at
+"""``<stem>-ehl`` of a ball-screw or linear-guide case whose file gives a ``[lubricant]`` (rung ``EHL``): each
+distinct contact at
 its load and the entrainment speed of the case's kinematics (studies.case_ehl), the smooth isothermal EHL solve
-(lowmodel.contact.ehl.solve_reynolds, sun2021 eqs 14-19) on the exact helical gap and the Hamrock-Dowson film
+(lowmodel.contact.ehl.solve_reynolds, sun2021 eqs 14-19) on the exact groove gap and the Hamrock-Dowson film
 (Hamrock & Dowson 1977) with the full-tensor radii: central and minimum film, U, G, W, k, the central and the
 largest pressure against the Hertz p0.  Hamrock-Dowson is judged against the solve (a finding when it misses, within
 the ellipticity range of its fit and against a grid-converged solve only); the solve's load balance, ``p >= 0`` and
@@ -11,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ballbench.validation.case_scenes.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt
+from ballbench.validation.cases.case import LinearGuideCase
 
 # where to go when the level's grid is not converged: the next level and its grid (studies.case_ehl.GRID_N)
 NEXT_LEVEL = {"quick": "the default level (no --quick; 256 x 64 cells) or --fine (512 x 128)",
@@ -67,7 +69,8 @@ def ehl_scene(run, *, case) -> None:
                       reference=value, tolerance=HAMROCK_DOWSON_TOLERANCE, time_s=0.0, finding=True,
                       source=f"the numerical EHL solve ({MODEL}, {c.grid} cells)",
                       note=f"{where}; the 15 % of the ehl-hamrock-dowson and sun2021-ehl scenes (docs/ehl.md)")
-    sigma = case.screw.lubricant.roughness
+    oil = case_ehl.lubricant(case)
+    sigma = oil.roughness
     header = ("contact", "load [N]", "U_e [m/s]", "R_x [mm]", "R_y [mm]", "grid", "h_c solve [nm]", "h_c HD [nm]",
               "h_c HD / solve - 1 [%]", "h_min solve [nm]", "h_min HD [nm]", "h_min HD / solve - 1 [%]", "U", "G",
               "W", "k", "second grid", "h_c grid change [%]", "h_min grid change [%]", "HD checked", "p0 Hertz [MPa]",
@@ -85,13 +88,17 @@ def ehl_scene(run, *, case) -> None:
         header += ("Lambda = h_min / sigma (solve)",)
         rows = [row + (fmt(c.solution.minimum_film / sigma, 3),) for row, c in zip(rows, points)]
     run.table("EHL per distinct contact", header, rows)
-    oil = case.screw.lubricant
     run.note(f"Oil eta_0 {fmt(oil.viscosity)} Pa s, rho_0 {fmt(oil.density)} kg/m^3, Roelands alpha "
              f"(lowmodel.contact.ehl); E' = 2 E*.  U = eta_0 U_e / (E' R_x), G = alpha E', W = F / (E' R_x^2), "
              "k = 1.0339 (R_y/R_x)^0.636; R_x along the track, R_y across the groove (full-tensor radii).  "
-             "U_e: wang2022 eqs 1-2 (lowmodel.screw.kinematics) at the drive speed and the nominal contact angle "
-             "(studies.case_ehl).  h_c at the grid point nearest the contact centre, h_min the smallest film on "
-             "the grid; the exit spike sharpens with the grid and does not converge (docs/ehl.md).  Hamrock-Dowson "
+             + ("U_e: |V_1 + V_2| / 2 of the ball's and the groove's surface speeds relative to the contact, from "
+                "the rigid rolling/sliding state of the four-point ball (lin2017 eqs 1, 4, 6, 7; "
+                "lowmodel.linear_bearing.fourpoint) at the carriage speed and the case's contact angles, at the most "
+                "loaded contact of the low-order balls (studies.case_ehl)." if isinstance(case, LinearGuideCase) else
+                "U_e: wang2022 eqs 1-2 (lowmodel.screw.kinematics) at the drive speed and the nominal contact angle "
+                "(studies.case_ehl).")
+             + "  h_c at the grid point nearest the contact centre, h_min the smallest film on the grid; the exit "
+             "spike sharpens with the grid and does not converge (docs/ehl.md).  Hamrock-Dowson "
              f"is checked where k lies in its fit's range {lo:g}-{hi:g} and the solve is grid-converged: h_c and "
              f"h_min change by at most {100 * case_ehl.GRID_TOLERANCE:g} % from the level's grid to the next "
              "coarser level's (the finer one where the coarser gives no film; docs/ehl.md).  The solve is smooth; "
