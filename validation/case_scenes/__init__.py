@@ -18,7 +18,7 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   at its load and the entrainment speed of the case's kinematics: the EHL solve's central and minimum film, U, G, W,
   k, the pressure against Hertz, its grid convergence, Hamrock-Dowson judged against the solve (studies.case_ehl);
 * ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
-  full slip on the same cells (studies.case_stick_slip);
+  full slip on the same cells (studies.case_stick_slip); the touching balls' stick/slip fields (NPZ, VTU) and picture;
 * ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
   their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
   low-order B2B forces; the modules' fields and screenshots.
