@@ -14,11 +14,11 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
   extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
   time; its fields (fields.vtu) and 3D screenshots;
-* ``<stem>-ehl`` (ball screw with a ``[lubricant]``; rung ``EHL``): each distinct contact lubricated at its load and
-  the entrainment speed of the case's kinematics: the EHL solve's central and minimum film, U, G, W, k, the pressure
-  against Hertz, Hamrock-Dowson judged against the solve (studies.case_ehl);
+* ``<stem>-ehl`` (ball screw or linear guide with a ``[lubricant]``; rung ``EHL``): each distinct contact lubricated
+  at its load and the entrainment speed of the case's kinematics: the EHL solve's central and minimum film, U, G, W,
+  k, the pressure against Hertz, its grid convergence, Hamrock-Dowson judged against the solve (studies.case_ehl);
 * ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
-  full slip on the same cells (studies.case_stick_slip);
+  full slip on the same cells (studies.case_stick_slip); the touching balls' stick/slip fields (NPZ, VTU) and picture;
 * ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
   their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
   low-order B2B forces; the modules' fields and screenshots.
@@ -125,9 +125,9 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                         case=case, show=functools.partial(show_contact, case) if fe else None))
     if "EHL" in rungs and _lubricated(case):
         scenes.append(Scene(f"{stem}-ehl", f"{case.name}: each distinct contact lubricated (smooth isothermal EHL on "
-                            "the exact helical gap at the case's entrainment speed): film, U, G, W, pressure, "
+                            "the exact groove gap at the case's entrainment speed): film, U, G, W, pressure, "
                             "Hamrock-Dowson against the solve", functools.partial(ehl_scene, case=case),
-                            tags=("case",), kind="low-order", cost_s=5.0 * n_contacts,
+                            tags=("case",), kind="low-order", cost_s=25.0 * n_contacts,
                             budget_s={"quick": 60.0, "default": 120.0, "fine": 900.0}, case=case))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "

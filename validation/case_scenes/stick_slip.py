@@ -2,7 +2,9 @@
 stick/slip contacts against lin2019's full slip on the same cells (studies.case_stick_slip): per contact Lambda, the
 stick fraction, the force along rolling and the spin moment by both laws and the lateral force full slip lacks as a
 share of mu F; the B2B force and the balls' friction by both laws, judged at full slip's declared accuracy
-(docs/b2b_rolling.md, 'Validity of full slip')."""
+(docs/b2b_rolling.md, 'Validity of full slip'); the touching balls' stick/slip fields as ``stickslip_touching.npz``,
+``.json`` and one ``stickslip_touching_<k>.vtu`` per contact, and their picture (validation.figures.stickslip3d,
+docs/render3d.md)."""
 from __future__ import annotations
 
 from ballbench.validation.case_scenes.common import NEAR_ZERO_B2B, fmt
@@ -64,6 +66,12 @@ def stick_slip_scene(run, *, case) -> None:
                 fmt(result.touching.input_power / speed), fmt(result.friction_increase)),
                ("full slip", fmt(full), fmt(result.full_slip_free.input_power / speed),
                 fmt(result.full_slip.input_power / speed), fmt(result.full_slip_increase))])
+    from ballbench.validation.figures import stickslip3d
+
+    contacts = [(f"ball {ball + 1} {c.name}", c.solution) for ball, row in enumerate(result.touching.contacts)
+                for c in row if c.solution is not None]
+    if contacts:
+        stickslip3d.artifacts(run, "touching", contacts, title=f"stick/slip contacts of the touching balls, {level}")
     _compliance_rungs(run, case, mu, load, speed, what, unit)
     run.note("Lambda = |phi| b G / (mu p0), the spin parameter: full slip holds for Lambda >> 1; the lateral force is "
              "what lin2019's full-slip maps (eqs A4-A7) leave out; the full-slip law on the same cells is pointwise "

@@ -193,7 +193,7 @@ class ModuleFe:
 # --------------------------------------------------------------------------
 @dataclass(frozen=True)
 class LinearGuide:
-    """A linear ball guide: ball and grooves, material, friction and the speed of the top groove."""
+    """A linear ball guide: ball and grooves, material, friction, the speed of the top groove and an optional oil."""
 
     ball_radius: float           # R_B [m]
     conformity: float            # f = groove radius / ball diameter [-]
@@ -201,6 +201,7 @@ class LinearGuide:
     material: Material
     friction_coefficient: float  # mu [-], Coulomb friction of every contact
     groove_velocity: float       # v [m/s], top groove against the bottom one
+    lubricant: Lubricant | None = None  # an oil: the EHL rung (validation.studies.case_ehl)
 
     def __post_init__(self):
         checks.positive("ball_radius", self.ball_radius, "m")

@@ -147,11 +147,7 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
                 check="deviation", example='["0 deg", "2 deg"]'),
             Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
                 check="choice", choices=READINGS, example='"tilted"')),
-        "lubricant": (
-            Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", example='"0.1 Pa s"'),
-            Key("density", "density", "rho_0", check="positive", example='"870 kg/m^3"'),
-            Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / "
-                "sigma)", required=False, check="positive", example='"0.14 um"')),
+        "lubricant": None,  # the oil's keys, shared with the linear guide (filled below)
         "fe": (
             Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
             Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
@@ -188,9 +184,17 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
             Key("fine", "levels", "", required=False, in_template=False)),
     },
 }
+LUBRICANT_KEYS = (
+    Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", example='"0.1 Pa s"'),
+    Key("density", "density", "rho_0", check="positive", example='"870 kg/m^3"'),
+    Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / sigma)",
+        required=False, check="positive", example='"0.14 um"'))
+SCHEMA["ball-screw"]["lubricant"] = LUBRICANT_KEYS
+SCHEMA["linear-guide"]["lubricant"] = LUBRICANT_KEYS
 SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k.name != "ball_radius"
                                    and k.name != "ball_diameter")
-OPTIONAL_TABLES = {"linear-guide": {"fe"}, "ball-screw": {"fe", "lubricant"}, "contact": {"fe", "screw"}}
+OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant"}, "ball-screw": {"fe", "lubricant"},
+                   "contact": {"fe", "screw"}}
 
 _HEADERS = {
     "linear-guide": "A linear guide: balls between a rail (bottom groove) and a carriage (top groove), lin2019 Sec 2.",
@@ -402,6 +406,11 @@ def _screw(values: dict, material: Material, lubricant: Lubricant | None) -> Bal
                      lubricant=lubricant, **extra)
 
 
+def _lubricant(tables: dict) -> Lubricant | None:
+    lub = tables.get("lubricant")
+    return Lubricant(lub["viscosity"], lub["density"], lub.get("roughness")) if lub else None
+
+
 def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the three case kinds and their tables
     kind = data.get("kind")
     if kind not in KINDS:
@@ -418,7 +427,7 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
         if kind == "linear-guide":
             g, load, dev = tables["guide"], tables["load"], tables["deviations"]
             guide = LinearGuide(g["ball_radius"], g["conformity"], g["nominal_angle"], material,
-                                g["friction_coefficient"], g["groove_velocity"])
+                                g["friction_coefficient"], g["groove_velocity"], _lubricant(tables))
             fe = None
             levels = _levels(reader, fe_raw, "module")
             if levels is not None:
@@ -428,10 +437,7 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                    (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
                                    load.get("n_balls", 2), fe)
         if kind == "ball-screw":
-            lub = tables.get("lubricant")
-            screw = _screw(tables["screw"], material, Lubricant(lub["viscosity"], lub["density"],
-                                                                      lub.get("roughness")) if lub
-                           else None)
+            screw = _screw(tables["screw"], material, _lubricant(tables))
             load = tables["load"]
             fe = None
             levels = _levels(reader, fe_raw, "module")
@@ -557,8 +563,10 @@ def template(kind: str) -> str:
             for alt in alternatives:
                 notes.append(f"or {alt.name}")
             out.append(f"{line:<32} # {'; '.join(notes)}")
-    if kind == "ball-screw":  # optional, so commented out: the file loads as it is, without the EHL rung
-        out += ["", "# [lubricant] (optional): an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md)"]
+    if "lubricant" in SCHEMA[kind]:  # optional, so commented out: the file loads as it is, without the EHL rung
+        speed = "groove_velocity" if kind == "linear-guide" else "nut_speed"
+        out += ["", f"# [lubricant] (optional): an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md) at "
+                    f"{speed}"]
         for key in SCHEMA[kind]["lubricant"]:
             line = f"# {key.name} = {key.example}"
             out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))

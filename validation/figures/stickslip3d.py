@@ -2,7 +2,9 @@
 
 :func:`write_fields` saves the tangential solutions (:class:`~lowmodel.contact.rolling.RollingContact`, Kalker's
 frame: ``x`` rolling, ``y`` lateral) of a scene's contacts as ``stickslip_<name>.npz`` with ``stickslip_<name>.json``
-beside it; :func:`picture` draws ``3d_stickslip_<name>.png`` from those files only (nothing is solved again).
+beside it, and each contact as ``stickslip_<name>_<k>.vtu`` (:func:`write_vtu`: the grid's cells as quadrilaterals
+with SI cell data, for ParaView; docs/render3d.md); :func:`picture` draws ``3d_stickslip_<name>.png`` from the NPZ
+and JSON only (nothing is solved again).
 
 Each contact is a surface over its grid raised by the traction magnitude ``|q|`` [MPa]: the slip area coloured by
 ``|q| = mu p`` (``viridis``, one colour scale for the picture), the stick area (``|q| < mu p``) in one flat colour
@@ -19,13 +21,51 @@ import numpy as np
 
 from ballbench.validation.figures import views3d as v
 
-__all__ = ["write_fields", "picture", "artifacts", "STICK_COLOUR", "SLIP_CMAP"]
+__all__ = ["write_fields", "write_vtu", "picture", "artifacts", "STICK_COLOUR", "SLIP_CMAP", "VTU_ARRAYS"]
 
 MM, MPA = v.MM, v.MPA
 STICK_COLOUR = v.VERMILLION  # flat: apart from every colour of viridis
 SLIP_CMAP = v.PRESSURE_CMAP
 _ARRAYS = ("pressure", "traction", "slip", "stick", "contact")
 VIEW = (0.5, 0.0, -0.87)  # the cameras' direction: along the rolling direction, 60 degrees down
+# the cell data of stickslip_<name>_<k>.vtu (write_vtu): names carry their SI units
+VTU_ARRAYS = ("p [Pa]", "q_x [Pa]", "q_y [Pa]", "|q| [Pa]", "mu p [Pa]", "stick [1]", "contact [1]",
+              "slip direction [1]")
+
+
+def write_vtu(path, solution) -> Path:
+    """One tangential solution (a RollingContact) as a VTU file at ``path``: the grid's ``nx ny`` cells as
+    quadrilaterals in the plane z = 0 (corners at the cell edges [m], Kalker's frame: x rolling, y lateral), cell
+    (i, j) the ``i ny + j``-th, with the cell data of :data:`VTU_ARRAYS`: the normal pressure ``p``, the traction
+    on body 1 ``q_x``, ``q_y`` and ``|q|``, the traction bound ``mu p`` [Pa], ``stick`` (1 in the stick area, 0
+    elsewhere), ``contact`` (1 where ``p > 0``), and ``slip direction``, the unit vector of the slip of body 1
+    relative to body 2 in the slip area (x, y, 0), zero in stick and outside the contact.  Returns the path."""
+    import meshio
+
+    grid = solution.grid
+    x, y = np.asarray(grid.x, float), np.asarray(grid.y, float)
+    x_edges = np.r_[x - 0.5 * grid.dx, x[-1] + 0.5 * grid.dx]
+    y_edges = np.r_[y - 0.5 * grid.dy, y[-1] + 0.5 * grid.dy]
+    X, Y = np.meshgrid(x_edges, y_edges, indexing="ij")
+    points = np.column_stack([X.ravel(), Y.ravel(), np.zeros(X.size)])
+    index = np.arange(X.size).reshape(X.shape)
+    quads = np.column_stack([index[:-1, :-1].ravel(), index[1:, :-1].ravel(), index[1:, 1:].ravel(),
+                             index[:-1, 1:].ravel()])
+    pressure = np.asarray(solution.pressure, float)
+    traction = np.asarray(solution.traction, float)
+    contact, stick = np.asarray(solution.contact, bool), np.asarray(solution.stick, bool)
+    slip = np.asarray(solution.slip, float)
+    norm = np.linalg.norm(slip, axis=-1)
+    moving = contact & ~stick & (norm > 0.0)
+    direction = np.zeros(slip.shape[:2] + (3,))
+    direction[moving, :2] = slip[moving] / norm[moving, None]
+    values = (pressure, traction[..., 0], traction[..., 1], np.linalg.norm(traction, axis=-1),
+              float(solution.friction_coefficient) * pressure, stick.astype(float), contact.astype(float))
+    data = {key: [np.asarray(value).ravel()] for key, value in zip(VTU_ARRAYS, values)}
+    data[VTU_ARRAYS[-1]] = [direction.reshape(-1, 3)]
+    path = Path(path)
+    meshio.Mesh(points, [("quad", quads)], cell_data=data).write(path)
+    return path
 
 
 def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, title: str,
@@ -34,8 +74,9 @@ def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, t
     ``<directory>/stickslip_<name>.npz`` (per contact ``k``: ``x_k`` (nx,), ``y_k`` (ny,) [m] the cell centres,
     ``pressure_k`` (nx, ny) [Pa], ``traction_k`` and ``slip_k`` (nx, ny, 2) [Pa], [-] (a shift: [m]),
     ``stick_k``, ``contact_k`` (nx, ny) bool) and ``stickslip_<name>.json`` (scene, fidelity, title, per contact
-    its label, friction coefficient, normal force, stick fraction and optional Hertz ellipse ``(a_x, b_y)`` [m]);
-    ``ellipses``: per contact ``(a_x, b_y)`` or None.  Returns ``[npz, json]``."""
+    its label, friction coefficient, normal force, stick fraction, optional Hertz ellipse ``(a_x, b_y)`` [m] and its
+    VTU file) and per contact ``stickslip_<name>_<k>.vtu`` (:func:`write_vtu`, ``k`` from 0);
+    ``ellipses``: per contact ``(a_x, b_y)`` or None.  Returns ``[npz, json, vtu_0, vtu_1, ...]``."""
     directory = Path(directory)
     contacts = list(contacts)
     if not contacts:
@@ -43,8 +84,10 @@ def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, t
     ellipses = [None] * len(contacts) if ellipses is None else list(ellipses)
     if len(ellipses) != len(contacts):
         raise ValueError(f"ellipses must have one entry per contact ({len(contacts)}), got {len(ellipses)}")
-    arrays, entries = {}, []
+    arrays, entries, vtus = {}, [], []
+    directory.mkdir(parents=True, exist_ok=True)
     for k, (label, solution) in enumerate(contacts):
+        vtus.append(write_vtu(directory / f"stickslip_{name}_{k}.vtu", solution))
         arrays[f"x_{k}"], arrays[f"y_{k}"] = np.asarray(solution.grid.x, float), np.asarray(solution.grid.y, float)
         for key in _ARRAYS:
             arrays[f"{key}_{k}"] = np.asarray(getattr(solution, key))
@@ -53,13 +96,14 @@ def write_fields(directory, name: str, contacts, *, scene: str, fidelity: str, t
                         "friction_coefficient": float(solution.friction_coefficient),
                         "normal_force_N": float(solution.normal_force),
                         "stick_fraction": float(solution.stick_fraction),
-                        "ellipse_m": None if ellipse is None else [float(ellipse[0]), float(ellipse[1])]})
+                        "ellipse_m": None if ellipse is None else [float(ellipse[0]), float(ellipse[1])],
+                        "vtu": vtus[-1].name})
     data_path, meta_path = directory / f"stickslip_{name}.npz", directory / f"stickslip_{name}.json"
     np.savez_compressed(data_path, **arrays)
     meta_path.write_text(json.dumps({"kind": "stickslip", "scene": scene, "fidelity": fidelity, "title": title,
                                      "file": data_path.name, "frame": "Kalker: x rolling, y lateral, z normal",
-                                     "contacts": entries}, indent=1))
-    return [data_path, meta_path]
+                                     "vtu_arrays": list(VTU_ARRAYS), "contacts": entries}, indent=1))
+    return [data_path, meta_path, *vtus]
 
 
 def artifacts(run, name: str, contacts, *, title: str, ellipses=None) -> None:
@@ -68,7 +112,7 @@ def artifacts(run, name: str, contacts, *, title: str, ellipses=None) -> None:
     paths = write_fields(run.path(""), name, contacts, scene=run.scene.name, fidelity=run.fidelity, title=title,
                          ellipses=ellipses)
     for path in paths:
-        run.add_artifact(path)
+        run.add_artifact(path)  # the NPZ, JSON and one VTU per contact
     try:
         run.add_artifact(picture(paths[1]))
     except Exception as error:  # the picture is an extra; the checks stand without it

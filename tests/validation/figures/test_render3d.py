@@ -175,7 +175,8 @@ def test_stick_slip_fields_round_trip(tmp_path):
     from ballbench.validation.figures import stickslip3d
 
     solution = rolling.steady_rolling(1e-3, 1e-3, 100.0, 80e9, 0.3, 0.3, 1e-4, 0.0, 0.0, (8, 10))
-    data, meta = stickslip3d.write_fields(tmp_path, "one", [("c", solution)], scene="s", fidelity="test", title="t")
+    data, meta, _ = stickslip3d.write_fields(tmp_path, "one", [("c", solution)], scene="s", fidelity="test",
+                                             title="t")
     with np.load(data) as arrays:
         assert np.array_equal(arrays["x_0"], solution.grid.x) and np.array_equal(arrays["y_0"], solution.grid.y)
         assert np.array_equal(arrays["traction_0"], solution.traction)
@@ -185,6 +186,48 @@ def test_stick_slip_fields_round_trip(tmp_path):
     with pytest.raises(ValueError, match="ellipses"):
         stickslip3d.write_fields(tmp_path, "two", [("c", solution)], scene="s", fidelity="test", title="t",
                                  ellipses=[])
+
+
+def test_stick_slip_fields_as_vtu(tmp_path):
+    """Each contact's stick/slip field is also a VTU (docs/render3d.md): meshio reads back one quadrilateral per
+    grid cell, cell (i, j) the i ny + j-th, with the SI arrays equal to the solution's; the slip direction a unit
+    vector along the slip in the slip area and zero in stick."""
+    import meshio
+
+    from ballbench.lowmodel.contact import rolling
+    from ballbench.validation.figures import stickslip3d
+
+    solutions = [rolling.steady_rolling(1e-3, 1e-3, 100.0, 80e9, 0.3, 0.3, 1e-4, 0.0, 0.0, (8, 10)),
+                 rolling.steady_rolling(1e-3, 0.6e-3, 150.0, 80e9, 0.3, 0.3, 5e-4, 0.0, 0.0, (6, 12))]
+    paths = stickslip3d.write_fields(tmp_path, "two", [("a", solutions[0]), ("b", solutions[1])], scene="s",
+                                     fidelity="test", title="t")
+    assert [p.name for p in paths[2:]] == ["stickslip_two_0.vtu", "stickslip_two_1.vtu"]
+    meta = json.loads(paths[1].read_text())
+    assert [c["vtu"] for c in meta["contacts"]] == ["stickslip_two_0.vtu", "stickslip_two_1.vtu"]
+    for path, solution in zip(paths[2:], solutions):
+        mesh = meshio.read(path)
+        nx, ny = solution.grid.nx, solution.grid.ny
+        assert [block.type for block in mesh.cells] == ["quad"] and len(mesh.cells[0].data) == nx * ny
+        assert set(stickslip3d.VTU_ARRAYS) <= set(mesh.cell_data)
+        cell = {key: np.asarray(mesh.cell_data[key][0]) for key in stickslip3d.VTU_ARRAYS}
+        assert np.array_equal(cell["p [Pa]"].reshape(nx, ny), solution.pressure)
+        assert np.array_equal(cell["q_x [Pa]"].reshape(nx, ny), solution.traction[..., 0])
+        assert np.array_equal(cell["q_y [Pa]"].reshape(nx, ny), solution.traction[..., 1])
+        assert np.allclose(cell["|q| [Pa]"].reshape(nx, ny), np.linalg.norm(solution.traction, axis=-1))
+        assert np.allclose(cell["mu p [Pa]"].reshape(nx, ny), solution.friction_coefficient * solution.pressure)
+        stick = cell["stick [1]"].reshape(nx, ny).astype(bool)
+        assert np.array_equal(stick, solution.stick) and np.array_equal(
+            cell["contact [1]"].reshape(nx, ny).astype(bool), solution.contact)
+        direction = cell["slip direction [1]"].reshape(nx, ny, 3)
+        slip = solution.contact & ~solution.stick
+        assert slip.any() and np.allclose(np.linalg.norm(direction[slip], axis=-1), 1.0)
+        d, v = direction[slip, :2], solution.slip[slip]
+        assert np.allclose(d[:, 0] * v[:, 1] - d[:, 1] * v[:, 0], 0.0, atol=1e-12 * np.abs(v).max())
+        assert np.all(np.sum(direction[slip, :2] * solution.slip[slip], axis=-1) > 0.0)
+        assert not direction[~slip].any()
+        # the cell (i, j) sits at the grid's cell centre (x_i, y_j)
+        centres = mesh.points[mesh.cells[0].data].mean(axis=1).reshape(nx, ny, 3)
+        assert np.allclose(centres[:, 0, 0], solution.grid.x) and np.allclose(centres[0, :, 1], solution.grid.y)
 
 
 def test_render_needs_saved_fields(tmp_path):

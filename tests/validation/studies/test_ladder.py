@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from ballbench.validation import cli
@@ -67,6 +68,18 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     assert title.startswith("Per contact") and len(rows) == 4 * case.n_balls
     lam = header.index("Lambda")
     assert all(float(r[lam]) > 1.0 for r in rows)
+    # the touching balls' stick/slip fields, one VTU per contact with the grid's cells (docs/render3d.md)
+    import meshio
+
+    from ballbench.validation.figures import stickslip3d
+
+    vtus = sorted((tmp_path / "g-stick-slip").glob("stickslip_touching_*.vtu"))
+    assert len(vtus) == 4 * case.n_balls
+    assert {str(v.relative_to(tmp_path)) for v in vtus} <= set(result.artifacts)
+    mesh = meshio.read(vtus[0])
+    with np.load(tmp_path / "g-stick-slip" / "stickslip_touching.npz") as arrays:  # the solver's grid of contact 0
+        cells = arrays["x_0"].size * arrays["y_0"].size
+    assert len(mesh.cells[0].data) == cells and set(stickslip3d.VTU_ARRAYS) <= set(mesh.cell_data)
 
 
 def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
