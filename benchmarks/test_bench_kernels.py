@@ -42,18 +42,21 @@ from kernel_support import compiled_module, first_call_seconds, interleaved
 ROOT = Path(__file__).resolve().parents[1]
 KERNELS = "linear_bearing.ball_kernels"
 # flops per ball of the kernels' loops (ball_kernels.py): one evaluation of the chain (4 friction patches of 3 x 44
-# flops, slip kinematics, eq 4 rows, Jacobian entries, sin/cos counted as 20 each; the pair loads), the normal
-# equations summed over J's nonzeros, J x and J^T r, the banded Cholesky over a chain's envelope with its two
-# triangular solves (dense systems: LU, 2/3 size^3)
-EVALUATION, NORMAL, PRODUCTS, BAND = 900, 640, 240, 1100
+# flops, slip kinematics, eq 4 rows, Jacobian entries, sin/cos counted as 20 each; the pair loads); below 6 balls
+# the normal equations summed over J's nonzeros, J x and J^T r and a dense LU (2/3 size^3); from 6 balls the Newton
+# step by the block LU of J (LU of the 8 x 8 pivot block, 2/3 8^3, three columns of M^-1 U, the update of rows 0-2),
+# its two sweeps and J x (the Levenberg-Marquardt fallback on the normal equations is not counted)
+EVALUATION, NORMAL, PRODUCTS, BLOCK_LU, BLOCK_SOLVE, MATVEC = 900, 640, 240, 780, 220, 120
 
 
 def arithmetic(n_balls: int, iterations: int, unknowns: int = 8) -> float:
     """Floating-point operations of a kernel solve of ``n_balls`` balls in ``iterations`` Newton iterations (one
     trial evaluation each; rejected steps are not counted, so this is a lower bound)."""
     size = n_balls * unknowns
-    solve = (2.0 / 3.0) * size ** 3 if n_balls < 6 else BAND * n_balls
-    per_iteration = (EVALUATION + NORMAL + PRODUCTS) * n_balls + solve
+    if n_balls < 6:
+        per_iteration = (EVALUATION + NORMAL + PRODUCTS) * n_balls + (2.0 / 3.0) * size ** 3
+    else:
+        per_iteration = (EVALUATION + BLOCK_LU + BLOCK_SOLVE + MATVEC) * n_balls
     return EVALUATION * n_balls + iterations * per_iteration
 
 
