@@ -31,7 +31,7 @@ Status codes of the solves:
 :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`STATIONARY`, :data:`NO_DESCENT`, :data:`REJECTED`
 (the numpy path names them in its ConvergenceError messages, and runs again where a kernel fails).
 
-One concept in one file (about 780 lines): the compiled twin of the ball and chain solves.  The kernels call
+One concept in one file (about 950 lines): the compiled twin of the ball and chain solves.  The kernels call
 one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
