@@ -14,8 +14,14 @@ lowmodel/linear_bearing/ball_kernels.py for the iterations the solve took) divid
 machine gives such loops now (:func:`scalar_rate`, a dense LU in the same compiled style): the ratio is the
 roofline-style figure of merit (1 = the solve is pure arithmetic at that rate).
 
+The chains are also timed against the compiled kernels of commit :data:`BEFORE` (the Levenberg-Marquardt step on
+the banded normal equations in every iteration; today's kernel tries the Newton step by a block LU of ``J`` first):
+that module is read with ``git show``, kept under the numba cache directory (so it compiles once per machine) and
+given to ``ball_fast`` in alternating blocks with today's (skipped without git).
+
 Run: python -m pytest benchmarks/test_bench_kernels.py -s
 """
+import importlib.util
 import math
 import os
 import subprocess
@@ -29,24 +35,28 @@ import pytest
 from ballbench.lowmodel import kernels
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
+from ballbench.lowmodel.linear_bearing import ball_fast
 
 from kernel_support import compiled_module, first_call_seconds, interleaved
 
 ROOT = Path(__file__).resolve().parents[1]
 KERNELS = "linear_bearing.ball_kernels"
 # flops per ball of the kernels' loops (ball_kernels.py): one evaluation of the chain (4 friction patches of 3 x 44
-# flops, slip kinematics, eq 4 rows, Jacobian entries, sin/cos counted as 20 each; the pair loads), the normal
-# equations summed over J's nonzeros, J x and J^T r, the banded Cholesky over a chain's envelope with its two
-# triangular solves (dense systems: LU, 2/3 size^3)
-EVALUATION, NORMAL, PRODUCTS, BAND = 900, 640, 240, 1100
+# flops, slip kinematics, eq 4 rows, Jacobian entries, sin/cos counted as 20 each; the pair loads); below 6 balls
+# the normal equations summed over J's nonzeros, J x and J^T r and a dense LU (2/3 size^3); from 6 balls the Newton
+# step by the block LU of J (LU of the 8 x 8 pivot block, 2/3 8^3, three columns of M^-1 U, the update of rows 0-2),
+# its two sweeps and J x (the Levenberg-Marquardt fallback on the normal equations is not counted)
+EVALUATION, NORMAL, PRODUCTS, BLOCK_LU, BLOCK_SOLVE, MATVEC = 900, 640, 240, 780, 220, 120
 
 
 def arithmetic(n_balls: int, iterations: int, unknowns: int = 8) -> float:
     """Floating-point operations of a kernel solve of ``n_balls`` balls in ``iterations`` Newton iterations (one
     trial evaluation each; rejected steps are not counted, so this is a lower bound)."""
     size = n_balls * unknowns
-    solve = (2.0 / 3.0) * size ** 3 if n_balls < 6 else BAND * n_balls
-    per_iteration = (EVALUATION + NORMAL + PRODUCTS) * n_balls + solve
+    if n_balls < 6:
+        per_iteration = (EVALUATION + NORMAL + PRODUCTS) * n_balls + (2.0 / 3.0) * size ** 3
+    else:
+        per_iteration = (EVALUATION + BLOCK_LU + BLOCK_SOLVE + MATVEC) * n_balls
     return EVALUATION * n_balls + iterations * per_iteration
 
 
@@ -71,6 +81,64 @@ def scalar_rate() -> float:
 @pytest.fixture(scope="module")
 def compiled():
     return compiled_module(KERNELS)
+
+
+BEFORE = "026a2bd"  # the chain kernels before the block-LU Newton step
+
+
+@pytest.fixture(scope="module")
+def previous(compiled):
+    """lowmodel/linear_bearing/ball_kernels.py as of :data:`BEFORE`, compiled (or loaded from numba's cache) under
+    another module name; None without git."""
+    try:
+        text = subprocess.run(["git", "-C", str(ROOT), "show", f"{BEFORE}:lowmodel/linear_bearing/ball_kernels.py"],
+                              check=True, capture_output=True, text=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    folder = Path(os.environ["NUMBA_CACHE_DIR"]).parent / "benchmark_sources"
+    path = folder / f"ball_kernels_{BEFORE}.py"
+    if not path.exists() or path.read_text() != text:  # a fixed file: numba's cache keys on its path and time stamp
+        folder.mkdir(parents=True, exist_ok=True)
+        part = path.with_suffix(f".{os.getpid()}.part")
+        part.write_text(text)
+        part.replace(path)
+    spec = importlib.util.spec_from_file_location(f"ball_kernels_{BEFORE}", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    module.warm_up()
+    return module
+
+
+@pytest.mark.parametrize("n_balls", [50, 200, 1000])
+def test_chain_against_previous_kernels(compiled, previous, n_balls, monkeypatch):
+    if previous is None:
+        pytest.skip("no git: the kernels before cannot be read")
+    contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=n_balls)
+    gaps = np.zeros(n_balls - 1)
+    states = {}
+    for name, module in (("now", compiled), ("before", previous)):
+        monkeypatch.setattr(ball_fast, "compiled", lambda module=module: module)
+        states[name] = b2b.solve(contacts, gaps)
+    difference = max(float(np.max(np.abs(getattr(states["now"], field) - getattr(states["before"], field))
+                                  / max(np.max(np.abs(getattr(states["before"], field))), 1e-300)))
+                     for field in ("ball_velocity", "omega", "friction_force", "b2b_force"))
+    repeats, block = {50: (31, 4), 200: (21, 2), 1000: (15, 1)}[n_balls]
+    times = {"now": [], "before": []}
+    for _ in range(repeats):
+        for name, module in (("now", compiled), ("before", previous)):
+            monkeypatch.setattr(ball_fast, "compiled", lambda module=module: module)
+            b2b.solve(contacts, gaps)
+            start = time.process_time()
+            for _ in range(block):
+                b2b.solve(contacts, gaps)
+            times[name].append((time.process_time() - start) / block)
+    now, before = (1e3 * float(np.median(times[name])) for name in ("now", "before"))
+    target = " (target <= 10 ms)" if n_balls == 1000 else ""
+    print(f"\n{n_balls}-ball B2B chain, compiled: {now:.3f} ms now{target}, {before:.3f} ms with the kernels of "
+          f"{BEFORE} (x {before / now:.2f}); minimum {1e3 * min(times['now']):.3f} / {1e3 * min(times['before']):.3f} "
+          f"ms; {states['now'].iterations} / {states['before'].iterations} iterations; states apart by "
+          f"{difference:.1e} (largest relative); load average {os.getloadavg()[0]:.2f}")
 
 
 def test_import_is_light():

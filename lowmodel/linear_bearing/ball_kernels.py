@@ -13,7 +13,9 @@ so that nothing allocates per operation (loaded by :func:`lowmodel.kernels.load`
   blocks of its block-tridiagonal Jacobian.
 * :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt with Nielsen's update): dense
   normal equations solved by LU with partial pivoting below :data:`lowmodel.b2b_chain.SPARSE_BALLS`
-  balls, else ``J^T J`` in band storage and a banded Cholesky (what ``dpbsv`` does).
+  balls; from there on each iteration tries the plain Newton step first, by a block LU of the
+  block-tridiagonal ``J`` (:func:`_block_factor`, :func:`_block_solve`), and where that is refused takes the
+  Levenberg-Marquardt step with ``J^T J`` in band storage and a banded Cholesky (what ``dpbsv`` does).
 * :func:`solve_branch`: :func:`lowmodel.linear_bearing.ball.solve_branch` (restart a converged point
   whose slip speed is negative with its slip angle turned by pi).
 * :func:`solve_free_cases`, :func:`solve_chain_cases`: the solves of :func:`lowmodel.linear_bearing.ball.solve`
@@ -29,7 +31,7 @@ Status codes of the solves:
 :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`STATIONARY`, :data:`NO_DESCENT`, :data:`REJECTED`
 (the numpy path names them in its ConvergenceError messages, and runs again where a kernel fails).
 
-One concept in one file (about 780 lines): the compiled twin of the ball and chain solves.  The kernels call
+One concept in one file (about 950 lines): the compiled twin of the ball and chain solves.  The kernels call
 one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
@@ -424,10 +426,143 @@ def _band_solve(band, damping, rhs, factor, out):
 
 
 @_jit
+def _block_factor(diagonal, upper, lower, factor, pivots, coupling, reach):  # noqa: C901 - one factorisation loop
+    """Block LU of the block-tridiagonal ``J`` (the block Thomas algorithm): ``J = L U`` with ``L`` block lower
+    bidiagonal (diagonal ``M_j = D_j - L_j G_{j-1}``, below it ``L_j``) and ``U`` unit block upper bidiagonal
+    (above the diagonal ``G_j = M_j^-1 U_j``).  ``factor[j]``: the LU of ``M_j`` with partial pivoting (row
+    exchanges ``pivots[j]``), ``coupling[j]``: ``G_j``; ``reach[j]``: the last nonzero row of ``L_j`` and column of
+    ``U_j`` plus one (a chain couples balls through rows and columns 0-2 and the force slot only, so the updates
+    run over those).  No pivoting across blocks: False where a pivot is 0 (then the caller takes the normal
+    equations)."""
+    n, k = diagonal.shape[0], diagonal.shape[1]
+    for j in range(n):
+        rows, columns = 0, 0
+        for a in range(k):
+            for b in range(k):
+                if j > 0 and lower[j, a, b] != 0.0:
+                    rows = a + 1
+                if j < n - 1 and upper[j, a, b] != 0.0:
+                    columns = max(columns, b + 1)
+        reach[j, 0] = rows
+        reach[j, 1] = columns
+        for a in range(k):
+            for b in range(k):
+                factor[j, a, b] = diagonal[j, a, b]
+        if j > 0:
+            width = reach[j - 1, 1]
+            for a in range(rows):
+                for b in range(k):
+                    value = lower[j, a, b]
+                    if value != 0.0:
+                        for c in range(width):
+                            factor[j, a, c] -= value * coupling[j - 1, b, c]
+        for col in range(k):
+            pivot = col
+            best = abs(factor[j, col, col])
+            for row in range(col + 1, k):
+                if abs(factor[j, row, col]) > best:
+                    best = abs(factor[j, row, col])
+                    pivot = row
+            if not best > 0.0:
+                return False
+            pivots[j, col] = pivot
+            if pivot != col:
+                for c in range(k):
+                    factor[j, col, c], factor[j, pivot, c] = factor[j, pivot, c], factor[j, col, c]
+            inverse = 1.0 / factor[j, col, col]
+            for row in range(col + 1, k):
+                multiplier = factor[j, row, col] * inverse
+                factor[j, row, col] = multiplier
+                if multiplier != 0.0:
+                    for c in range(col + 1, k):
+                        factor[j, row, c] -= multiplier * factor[j, col, c]
+        for c in range(columns):
+            for a in range(k):
+                coupling[j, a, c] = upper[j, a, c]
+            _block_apply(factor, pivots, j, coupling[j, :, c])
+    return True
+
+
+@_jit
+def _block_apply(factor, pivots, j, x):
+    """``x <- M_j^-1 x`` with the LU of :func:`_block_factor`."""
+    k = x.size
+    for col in range(k):
+        p = pivots[j, col]
+        if p != col:
+            x[col], x[p] = x[p], x[col]
+    for col in range(k):
+        value = x[col]
+        if value != 0.0:
+            for row in range(col + 1, k):
+                x[row] -= factor[j, row, col] * value
+    for row in range(k - 1, -1, -1):
+        total = x[row]
+        for c in range(row + 1, k):
+            total -= factor[j, row, c] * x[c]
+        x[row] = total / factor[j, row, row]
+
+
+@_jit
+def _block_solve(factor, pivots, coupling, reach, lower, rhs, out, x):
+    """``out = J^-1 rhs`` with the factors of :func:`_block_factor` (``x`` scratch of size K): ``L y = rhs`` ball by
+    ball forwards, then ``U out = y`` backwards."""
+    n, k = factor.shape[0], factor.shape[1]
+    for j in range(n):
+        base = k * j
+        for a in range(k):
+            x[a] = rhs[base + a]
+        for a in range(reach[j, 0]):
+            total = 0.0
+            for b in range(k):
+                total += lower[j, a, b] * out[base - k + b]
+            x[a] -= total
+        _block_apply(factor, pivots, j, x)
+        for a in range(k):
+            out[base + a] = x[a]
+    for j in range(n - 2, -1, -1):
+        base = k * j
+        width = reach[j, 1]
+        for a in range(k):
+            total = 0.0
+            for c in range(width):
+                total += coupling[j, a, c] * out[base + k + c]
+            out[base + a] -= total
+
+
+@_jit
+def _column_norm_max(diagonal, upper, lower):
+    """The largest squared column norm of the block-tridiagonal ``J``: the largest diagonal entry of ``J^T J``."""
+    n, k = diagonal.shape[0], diagonal.shape[1]
+    largest = 0.0
+    for j in range(n):
+        for b in range(k):
+            total = 0.0
+            for a in range(k):
+                total += diagonal[j, a, b] * diagonal[j, a, b]
+                if j < n - 1:
+                    total += lower[j + 1, a, b] * lower[j + 1, a, b]
+                if j > 0:
+                    total += upper[j - 1, a, b] * upper[j - 1, a, b]
+            largest = max(largest, total)
+    return largest
+
+
+_NEWTON_DEFECT = 1e-8  # Newton steps are used where max|r + J dx| <= this max|r| (no pivoting across balls)
+
+
+@_jit
 def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,  # noqa: C901 - one compiled Levenberg-Marquardt loop (numba: no closures)
            residual):
     """:func:`lowmodel.solvers.newton` on :func:`chain_terms` from ``z`` (overwritten with the last iterate);
-    the residual at it into ``residual`` (n K,).  Returns ``(status, iterations, max |residual|)``."""
+    the residual at it into ``residual`` (n K,).  Returns ``(status, iterations, max |residual|)``.
+
+    From :data:`SPARSE_BALLS` balls on, each iteration first tries the plain Newton step ``J dx = -r`` by the
+    block LU of ``J`` (:func:`_block_factor`, O(n K^3) with small constants), accepted by the same gain test as a
+    Levenberg-Marquardt step (and only where ``max|r + J dx| <= _NEWTON_DEFECT max|r|``); where the LU has a zero
+    pivot or the step is refused, the Levenberg-Marquardt steps of :func:`lowmodel.solvers.newton` follow from the
+    same damping (banded Cholesky of the permuted normal equations).  The damping follows Nielsen's update after
+    either step.  The convergence test (``max|r| <= tolerance`` at an evaluated point) is the same either way."""
     size = n * big_k
     diagonal = np.zeros((n, big_k, big_k))
     upper = np.zeros((n, big_k, big_k))
@@ -443,6 +578,7 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
     rhs = np.empty(size)
     step = np.empty(size)
     change = np.empty(size)
+    scratch = np.empty(big_k)
     dense = n < SPARSE_BALLS
     if dense:
         jacobian = np.empty((size, size))
@@ -454,7 +590,15 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         factor = np.empty((1, 1))
         permuted = np.empty(1)
         position = np.empty(1, dtype=np.int64)
+        blocks = np.empty((1, 1, 1))
+        pivots = np.empty((1, 1), dtype=np.int64)
+        coupling = np.empty((1, 1, 1))
+        reach = np.empty((1, 2), dtype=np.int64)
     else:
+        blocks = np.empty((n, big_k, big_k))
+        pivots = np.empty((n, big_k), dtype=np.int64)
+        coupling = np.empty((n, big_k, big_k))
+        reach = np.empty((n, 2), dtype=np.int64)
         jacobian = np.empty((1, 1))
         normal = np.empty((1, 1))
         system = np.empty((1, 1))
@@ -481,30 +625,49 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         if iterations >= max_iterations or not math.isfinite(norm):
             return NOT_CONVERGED, iterations, norm
         iterations += 1
+        factored = False
+        formed = False  # the normal equations of this iteration (the banded path forms them where needed)
         if dense:
             _dense(diagonal, upper, lower, jacobian)
             _normal_dense(jacobian, normal, columns, values)
             diagonal_max = -np.inf
             for i in range(size):
                 diagonal_max = max(diagonal_max, normal[i, i])
+            _rmatvec(diagonal, upper, lower, residual, gradient)
+            for i in range(size):
+                rhs[i] = -gradient[i]
         else:
-            if not _normal_band_sparse(diagonal, upper, lower, _CHAIN_ORDER, band):
-                return NOT_CONVERGED, iterations, norm  # not a B2B chain's pattern (cannot happen for eqs 4-10)
-            diagonal_max = band[:, 0].max()
-        _rmatvec(diagonal, upper, lower, residual, gradient)
+            factored = _block_factor(diagonal, upper, lower, blocks, pivots, coupling, reach)
+            diagonal_max = _column_norm_max(diagonal, upper, lower) if damping < 0.0 else 0.0
         if damping < 0.0:
             damping = 1e-8 * diagonal_max
         merit = 0.0
+        largest_residual = 0.0
         for i in range(size):
             merit += residual[i] * residual[i]
-            rhs[i] = -gradient[i]
+            largest_residual = max(largest_residual, abs(residual[i]))
+        plain = factored  # the first try of the iteration: the Newton step
         while True:
-            if dense:
+            newton_try = plain
+            plain = False
+            if newton_try:
+                for i in range(size):
+                    change[i] = -residual[i]
+                _block_solve(blocks, pivots, coupling, reach, lower, change, step, scratch)
+                solved = True
+            elif dense:
                 system[:] = normal
                 for i in range(size):
                     system[i, i] += damping
                 solved = _lu_solve(system, rhs, step)
             else:
+                if not formed:
+                    if not _normal_band_sparse(diagonal, upper, lower, _CHAIN_ORDER, band):
+                        return NOT_CONVERGED, iterations, norm  # not a B2B chain's pattern (cannot happen for eqs 4-10)
+                    _rmatvec(diagonal, upper, lower, residual, gradient)
+                    for i in range(size):
+                        rhs[i] = -gradient[i]
+                    formed = True
                 for i in range(size):
                     permuted[position[i]] = rhs[i]
                 solved = _band_solve(band, damping, permuted, factor, change)
@@ -520,10 +683,14 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
             if finite:
                 _matvec(diagonal, upper, lower, step, change)
                 linear = 0.0
+                defect = 0.0
                 for i in range(size):
                     value = residual[i] + change[i]
                     linear += value * value
+                    defect = max(defect, abs(value))
                 predicted = merit - linear
+                if newton_try and not defect <= _NEWTON_DEFECT * largest_residual:
+                    finite = False  # an inaccurate block LU (no pivoting across balls): the normal equations
             if finite and predicted > 0.0:
                 for i in range(size):
                     trial[i] = z[i] + step[i]
@@ -537,12 +704,14 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
                     damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
                     growth = 2.0
                     break
-            elif finite and predicted <= 0.0:
+            elif finite and predicted <= 0.0 and not newton_try:
                 largest = 0.0
                 for i in range(size):
                     largest = max(largest, abs(step[i]))
                 if largest == 0.0:
                     return STATIONARY, iterations, norm
+            if newton_try:
+                continue  # refused: the Levenberg-Marquardt step at the same damping
             damping *= growth
             growth *= 2.0
             if not math.isfinite(damping) or damping > 1e30:

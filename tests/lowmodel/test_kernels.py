@@ -58,6 +58,32 @@ def test_chain_kernel_equals_numpy(compiled, n_balls, gaps):
     _assert_same(*both(b2b.solve, contacts, gaps))
 
 
+def test_block_lu_of_a_chain_jacobian(compiled):
+    # the block LU of the Newton step (ball_kernels._block_factor/_block_solve) against a dense solve, on the pattern
+    # of a chain's Jacobian (couplings through rows and columns 0-2 and the force slot) with random values; a zero
+    # pivot is refused (then the kernel takes the normal equations)
+    rng = np.random.default_rng(3)
+    n, k = 9, 8
+    diagonal = rng.normal(size=(n, k, k)) + 4.0 * np.eye(k)
+    upper, lower = np.zeros((n, k, k)), np.zeros((n, k, k))
+    upper[:-1, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
+    upper[:-1, 7, 0] = rng.normal(size=n - 1)
+    lower[1:, 0:3, 7] = rng.normal(size=(n - 1, 3))
+    lower[1:, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
+    dense = np.zeros((n * k, n * k))
+    compiled._dense(diagonal, upper, lower, dense)
+    factor, coupling = np.empty((n, k, k)), np.empty((n, k, k))
+    pivots, reach = np.empty((n, k), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
+    assert compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    assert reach[1:].tolist() == [[3, 3]] * (n - 2) + [[3, 0]]
+    rhs, out = rng.normal(size=n * k), np.empty(n * k)
+    compiled._block_solve(factor, pivots, coupling, reach, lower, rhs, out, np.empty(k))
+    expected = np.linalg.solve(dense, rhs)
+    assert np.max(np.abs(out - expected)) <= 1e-12 * np.max(np.abs(expected))
+    diagonal[4] = 0.0
+    assert not compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+
+
 def test_failure_is_the_numpy_failure(compiled):
     # beyond the spin-capacity limit the kernels fail and the numpy path names the failure, the same either way
     contacts = b2b.module_contacts(math.radians(2.87), -0.9, vertical_force=128.0, friction_coefficient=0.6)
