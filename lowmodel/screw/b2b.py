@@ -307,7 +307,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         return function
 
     what = f"{n}-ball screw module"
-    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale)
+    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last)
     if solver is not None:
         newton = solver
     guess = np.zeros((n, k))
@@ -374,14 +374,15 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
 
 
 def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout, per_ball: bool, targets, scales,
-                     pair: PairGeometry, rate_scale: float, compiled=None):
+                     pair: PairGeometry, rate_scale: float, compiled=None, last=None):
     """A solver with the signature of :func:`lowmodel.solvers.newton` that runs the same Levenberg-Marquardt
     iterations on the same chain compiled (docs/speed.md): in :mod:`lowmodel.screw.ball_kernels` for the dense chains
     (fewer than :data:`lowmodel.b2b_chain.SPARSE_BALLS` balls), in :mod:`lowmodel.screw.ring_kernels` for longer
     chains and rings with one nut shift per ball (the whole screw), of Hertz contacts; None where it does not apply
     (a long chain with a common nut shift, a calibrated contact law) or the kernels are off.  It solves the system of
     ``function.oversize``; where the kernel hands an evaluation back (a contact at rest), the numpy ``newton`` runs
-    ``function`` itself.  Failures raise the ConvergenceError of
+    ``function`` itself.  ``last`` (a dict): a converged solve leaves there the ball terms at its solution, as the
+    numpy ``function`` does (``terms``, ``oversize``, ``balls``, ``extra``).  Failures raise the ConvergenceError of
     :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations)."""
     from ballbench.lowmodel import kernels
     from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
@@ -412,12 +413,16 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
         rows = np.full(size, float(tolerance)) if row_tolerance is None else np.asarray(row_tolerance, dtype=float)
         weights = np.ones(size) if row_weight is None else np.asarray(row_weight, dtype=float)
         z, result = np.empty(size), np.empty(size)
+        outputs = sb.kernel_outputs(layout.n_balls)
         chain = (layout.n_balls, layout.ring) if long_chain else (layout.n_balls, per_ball, layout.ring)
         status, iterations, norm = compiled.newton(
             np.asarray(x0, dtype=float), *chain, live, targets, contacts.kernel_geometry, scalars,
             sb.kernel_tables(), pair.chord, pair.rotation, pair_scalars, int(max_iterations), rows, weights, z,
-            result)
+            result, outputs)
         if status == compiled.CONVERGED:
+            if last is not None:
+                balls, _, extra = layout.unpack(z)
+                last.update(terms=sb.terms_of_kernel(outputs), oversize=function.oversize, balls=balls, extra=extra)
             return z, result, int(iterations)
         if status == compiled.FALLBACK:
             return newton(function, x0, tolerance=tolerance, max_iterations=max_iterations, what=what,

@@ -30,8 +30,8 @@ import math
 import numba
 import numpy as np
 
-from ballbench.lowmodel.screw.ball_kernels import (CONTACT_FIELDS, CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE,
-                                                   NOT_CONVERGED, STATIONARY, _pair_loads, ball_terms)
+from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
+                                                   STATIONARY, ball_outputs, ball_terms, copy_outputs, pair_loads)
 
 __all__ = ["chain_blocks", "newton", "warm_up", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY",
            "NO_DESCENT"]
@@ -44,9 +44,10 @@ _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
 @_jit
 def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, blocks
-                 residual, diagonal, upper, lower):
-    """Residual (n K,) and the blocks (n, K, K) of the chain's Jacobian (module docstring) at ``z``; returns the
-    status of :func:`lowmodel.screw.ball_kernels.ball_terms`."""
+                 residual, diagonal, upper, lower, terms):
+    """Residual (n K,) and the blocks (n, K, K) of the chain's Jacobian (module docstring) at ``z``, the ball terms
+    into ``terms`` (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
+    :func:`lowmodel.screw.ball_kernels.ball_terms`."""
     (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
      smallest_slip) = tables
     radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
@@ -61,9 +62,7 @@ def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, ro
             unknowns[j, q] = z[j * _K + q]
         shift[j] = z[j * _K + 6]
         slots[j] = z[j * _K + k]
-    ball_res, ball_jac = np.empty((n, 6)), np.empty((n, 6, 7))
-    axial, axial_gradient = np.empty(n), np.empty((n, 7))
-    contact, power = np.empty((n, 4, CONTACT_FIELDS)), np.empty(n)
+    ball_res, ball_jac, axial, axial_gradient, contact, power = terms
     status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
                         weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
                         axial_gradient, contact, power)
@@ -79,7 +78,7 @@ def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, ro
     load = np.empty((n, 6))
     d_spin = np.zeros((pairs, 2, 2, 6, 3))
     d_force = np.zeros((pairs, 2, 6))
-    _pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
+    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
                 load, d_spin, d_force)
     diagonal[:] = 0.0
     upper[:] = 0.0
@@ -307,10 +306,11 @@ def _weigh(residual, diagonal, upper, lower, row_weight):
 
 @_jit
 def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, structured
-           max_iterations, row_tolerance, row_weight, z, result):
+           max_iterations, row_tolerance, row_weight, z, result, terms):
     """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update) on :func:`chain_blocks` with the
-    structured Cholesky of the module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted;
-    returns ``(status, iterations, norm)`` as :func:`lowmodel.screw.ball_kernels.newton`."""
+    structured Cholesky of the module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted,
+    ``terms`` the ball terms at ``z``; returns ``(status, iterations, norm)`` as
+    :func:`lowmodel.screw.ball_kernels.newton`."""
     size = z0.size
     m = (n - 2) * _K
     residual, trial_residual = np.empty(size), np.empty(size)
@@ -320,9 +320,10 @@ def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pa
     border, l_border = np.zeros((2 * _K, m)), np.zeros((2 * _K, m))
     corner, l_corner = np.zeros((2 * _K, 2 * _K)), np.zeros((2 * _K, 2 * _K))
     gradient, step, change, trial = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
+    trial_terms = ball_outputs(n)
     z[:] = z0
     status = chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, residual,
-                          diagonal, upper, lower)
+                          diagonal, upper, lower, terms)
     if status != CONVERGED:
         return status, 0, 0.0
     limits = row_tolerance * row_weight
@@ -361,7 +362,7 @@ def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pa
                 for i in range(size):
                     trial[i] = z[i] + step[i]
                 status = chain_blocks(trial, n, ring, live, targets, geometry, scalars, tables, chord, rot,
-                                      pair_scalars, trial_residual, t_diagonal, t_upper, t_lower)
+                                      pair_scalars, trial_residual, t_diagonal, t_upper, t_lower, trial_terms)
                 if status != CONVERGED:
                     return status, iterations, norm
                 _weigh(trial_residual, t_diagonal, t_upper, t_lower, row_weight)
@@ -384,6 +385,7 @@ def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pa
         diagonal[:] = t_diagonal
         upper[:] = t_upper
         lower[:] = t_lower
+        copy_outputs(trial_terms, terms)
         norm = np.max(np.abs(residual / row_weight))
     result[:] = residual / row_weight
     return CONVERGED, iterations, norm
