@@ -80,22 +80,22 @@ class ScrewModule:
     poisson_ratio: float
     oversize: float
 
-    @property
+    @cached_property   # the derived lengths and angles: computed once per module (they sit in every solve's loops)
     def lead_angle(self) -> float:
         """``alpha = atan(lead / (2 pi R_P))`` [rad] (lin2019 eq 42, :func:`helix.lead_angle`)."""
         return float(helix.lead_angle(self.lead, self.pitch_radius))
 
-    @property
+    @cached_property
     def lead_per_radian(self) -> float:
         """``p = lead / (2 pi)`` [m/rad] (lin2019 eq 34's r_g)."""
         return float(helix.helix_parameter(self.lead))
 
-    @property
+    @cached_property
     def helix_radius(self) -> float:
         """``L / (2 pi) = sqrt(R_P^2 + p^2)`` [m] (lin2019 eq 45)."""
         return math.hypot(self.pitch_radius, self.lead_per_radian)
 
-    @property
+    @cached_property
     def groove_radius(self) -> float:
         return 2.0 * self.conformity * self.ball_radius
 
