@@ -72,7 +72,7 @@ from ballbench.lowmodel.geometry import fourpoint, helix
 __all__ = [
     "BODIES", "FLANKS", "PROFILE_PLANES", "MAX_DEVIATION",
     "groove_radius", "straight_groove_curvatures", "GothicArch", "gothic_arch",
-    "HelicalGroove", "helical_groove", "ContactFrame", "contact_frame", "groove_curvatures_helical",
+    "HelicalGroove", "helical_groove", "flank_arc_centre", "ContactFrame", "contact_frame", "groove_curvatures_helical",
     "counter_height", "pair_initial_gap", "straight_pair_initial_gap", "profile_coordinates", "surface_residual",
 ]
 
@@ -190,6 +190,15 @@ def gothic_arch(ball_radius: float, conformity: float, contact_angle: float, dev
 # --------------------------------------------------------------------------
 # helical gothic arch (ball screw and nut)
 # --------------------------------------------------------------------------
+def flank_arc_centre(ball_radius: float, groove_radius: float, contact_angle: float, sign_u: float,
+                     sign_w: float) -> np.ndarray:
+    """(u, w) of a helical flank's arc centre: ``-(r_g - R_B)`` along the contact direction
+    ``(sign_u cos beta, sign_w sin beta)`` (:attr:`HelicalGroove.arc_centre`, whose fields give the signs and ``r_g``;
+    no input checks: for loops over many contact angles of one validated groove)."""
+    return -(groove_radius - ball_radius) * np.array([sign_u * math.cos(contact_angle),
+                                                       sign_w * math.sin(contact_angle)])
+
+
 @dataclass(frozen=True)
 class HelicalGroove:
     """One flank of a helical gothic-arch groove (build with :func:`helical_groove`).
@@ -247,8 +256,9 @@ class HelicalGroove:
 
     @property
     def arc_centre(self) -> np.ndarray:
-        """(u, w) of this flank's arc centre: ``-(r_g - R_B)`` along the contact direction."""
-        return -(self.groove_radius - self.ball_radius) * self.contact_direction
+        """(u, w) of this flank's arc centre: ``-(r_g - R_B)`` along the contact direction
+        (:func:`flank_arc_centre`)."""
+        return flank_arc_centre(self.ball_radius, self.groove_radius, self.contact_angle, self.sign_u, self.sign_w)
 
     @property
     def contact_theta(self) -> float:

@@ -55,7 +55,7 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
 __all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START",
-           "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel"]
+           "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel", "RING_KERNELS"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
@@ -312,7 +312,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         return function
 
     what = f"{n}-ball screw module"
-    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale)
+    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last)
     if solver is not None:
         newton = solver
     guess = np.zeros((n, k))
@@ -379,20 +379,26 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
 
 
 def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout, per_ball: bool, targets, scales,
-                     pair: PairGeometry, rate_scale: float, compiled=None):
+                     pair: PairGeometry, rate_scale: float, compiled=None, last=None):
     """A solver with the signature of :func:`lowmodel.solvers.newton` that runs the same Levenberg-Marquardt
-    iterations on the same chain in :mod:`lowmodel.screw.ball_kernels` (docs/speed.md), for the dense chains
-    (fewer than :data:`lowmodel.b2b_chain.SPARSE_BALLS` balls) of Hertz contacts; None where it does not apply or
-    the kernels are off.  It solves the system of ``function.oversize``; where the kernel hands an evaluation back
-    (a contact at rest), the numpy ``newton`` runs ``function`` itself.  Failures raise the ConvergenceError of
+    iterations on the same chain compiled (docs/speed.md): in :mod:`lowmodel.screw.ball_kernels` for the dense chains
+    (fewer than :data:`lowmodel.b2b_chain.SPARSE_BALLS` balls), in :mod:`lowmodel.screw.ring_kernels` for longer
+    chains and rings with one nut shift per ball (the whole screw), of Hertz contacts; None where it does not apply
+    (a long chain with a common nut shift, a calibrated contact law) or the kernels are off.  It solves the system of
+    ``function.oversize``; where the kernel hands an evaluation back (a contact at rest), the numpy ``newton`` runs
+    ``function`` itself.  ``last`` (a dict): a converged solve leaves there the ball terms at its solution, as the
+    numpy ``function`` does (``terms``, ``oversize``, ``balls``, ``extra``).  Failures raise the ConvergenceError of
     :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations)."""
     from ballbench.lowmodel import kernels
     from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
     from ballbench.lowmodel.solvers import newton
 
-    if layout.n_balls >= SPARSE_BALLS or contacts.bulk_compliance is not None:
+    if contacts.bulk_compliance is not None:
         return None
-    compiled = compiled or kernels.load(sb.KERNELS)
+    long_chain = layout.n_balls >= SPARSE_BALLS
+    if long_chain and not per_ball:
+        return None   # a long chain with one common nut shift (a global unknown) keeps the numpy Newton
+    compiled = compiled or kernels.load(RING_KERNELS if long_chain else sb.KERNELS)
     if compiled is None:
         return None
     module = contacts.module
@@ -412,11 +418,16 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
         rows = np.full(size, float(tolerance)) if row_tolerance is None else np.asarray(row_tolerance, dtype=float)
         weights = np.ones(size) if row_weight is None else np.asarray(row_weight, dtype=float)
         z, result = np.empty(size), np.empty(size)
+        outputs = sb.kernel_outputs(layout.n_balls)
+        chain = (layout.n_balls, layout.ring) if long_chain else (layout.n_balls, per_ball, layout.ring)
         status, iterations, norm = compiled.newton(
-            np.asarray(x0, dtype=float), layout.n_balls, per_ball, layout.ring, live, targets,
-            contacts.kernel_geometry, scalars, sb.kernel_tables(), pair.chord, pair.rotation, pair_scalars,
-            int(max_iterations), rows, weights, z, result)
+            np.asarray(x0, dtype=float), *chain, live, targets, contacts.kernel_geometry, scalars,
+            sb.kernel_tables(), pair.chord, pair.rotation, pair_scalars, int(max_iterations), rows, weights, z,
+            result, outputs)
         if status == compiled.CONVERGED:
+            if last is not None:
+                balls, _, extra = layout.unpack(z)
+                last.update(terms=sb.terms_of_kernel(outputs), oversize=function.oversize, balls=balls, extra=extra)
             return z, result, int(iterations)
         if status == compiled.FALLBACK:
             return newton(function, x0, tolerance=tolerance, max_iterations=max_iterations, what=what,
@@ -426,6 +437,34 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
                                tolerance=tolerance, reason=reason)
 
     return solver
+
+
+RING_KERNELS = "screw.ring_kernels"  # the compiled Newton of long chains with per-ball loads (lowmodel.kernels.load)
+
+
+def warm_up_ring_kernel(compiled) -> None:
+    """Compile (or load from the cache) :mod:`lowmodel.screw.ring_kernels` for the argument types of :func:`solve`
+    (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration)."""
+    from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
+
+    n = SPARSE_BALLS
+    contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(n))
+    scales = sb.scales_for(contacts, 100.0)
+    layout = ChainLayout(n, sb.N_UNKNOWNS + 1, np.arange(n), ring=True)
+    solver = _compiled_solver(contacts, layout, True, np.ones(n), scales, pair_geometry(contacts.module), 1.0,
+                              compiled)
+
+    def function(_z):   # not called: the kernel converges or stops at the iteration limit
+        raise AssertionError("warm-up")
+
+    function.oversize = 0.0
+    guess = np.zeros((n, sb.N_UNKNOWNS + 1))
+    guess[:, 2] = 0.45
+    try:
+        solver(function, layout.pack(guess), tolerance=1e-10, max_iterations=1, what="warm-up",
+               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+    except (ConvergenceError, AssertionError):   # compiled either way
+        pass
 
 
 def warm_up_kernel(compiled) -> None:

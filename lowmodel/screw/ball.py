@@ -62,7 +62,7 @@ from ballbench.lowmodel.state import BallStateBase
 __all__ = [
     "ScrewBallState", "solve", "N_UNKNOWNS", "ball_terms", "free_rolling_guess", "scales_for", "solve_preloaded",
     "continuation_start", "reference_force", "state_from", "Scales", "BallTerms", "FRICTION_LEVEL", "KERNELS",
-    "kernel_scalars", "kernel_tables", "warm_up_kernel",
+    "kernel_scalars", "kernel_tables", "kernel_outputs", "terms_of_kernel", "warm_up_kernel",
 ]
 
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
@@ -275,13 +275,24 @@ def _run_kernel(compiled, unknowns, nut_shift, contacts, scales, oversize):
     data = contacts.kernel_geometry
     scalars = np.array(kernel_scalars(scales, module, oversize))
     shift = np.ascontiguousarray(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)))
-    residual, jacobian = np.empty((n, 6)), np.empty((n, 6, N_UNKNOWNS + 1))
-    axial, axial_gradient = np.empty(n), np.empty((n, N_UNKNOWNS + 1))
-    contact, power = np.empty((n, 4, 15)), np.empty(n)
+    outputs = kernel_outputs(n)
     status = compiled.ball_terms(np.ascontiguousarray(unknowns, dtype=float), shift, data, scalars,
-                                 *kernel_tables(), residual, jacobian, axial, axial_gradient, contact, power)
+                                 *kernel_tables(), *outputs)
     if status != compiled.CONVERGED:
         return None
+    return terms_of_kernel(outputs)
+
+
+def kernel_outputs(n: int) -> tuple:
+    """The output arrays of :func:`lowmodel.screw.ball_kernels.ball_terms` for ``n`` balls (residual, Jacobian,
+    axial, its gradient, contact fields, nut input power)."""
+    return (np.empty((n, 6)), np.empty((n, 6, N_UNKNOWNS + 1)), np.empty(n), np.empty((n, N_UNKNOWNS + 1)),
+            np.empty((n, 4, 15)), np.empty(n))
+
+
+def terms_of_kernel(outputs: tuple) -> BallTerms:
+    """:class:`BallTerms` of the kernel's :func:`kernel_outputs` (views, no copy)."""
+    residual, jacobian, axial, axial_gradient, contact, power = outputs
     return BallTerms(residual, jacobian, axial, axial_gradient, contact[..., 0], contact[..., 1:3], contact[..., 3],
                      contact[..., 4], contact[..., 5], contact[..., 6], contact[..., 7], contact[..., 8:11],
                      contact[..., 11:14], contact[..., 14], power)

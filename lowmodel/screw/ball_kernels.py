@@ -29,7 +29,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["ball_terms", "friction_offset", "chain_function", "newton", "warm_up", "FIELDS", "SCALARS",
+__all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_function", "newton", "ball_outputs", "copy_outputs",
+           "warm_up", "FIELDS", "SCALARS",
            "CONTACT_FIELDS", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY", "NO_DESCENT"]
 
 # geometry fields per contact: arc centre (x3, z3) [m], Hertz C [m N^-2/3], a / F^(1/3) [m N^-1/3], b/a, on nut
@@ -415,7 +416,7 @@ _B2B_REGULARISATION = 1e-14  # as lowmodel.screw.b2b: |s| floor in units of R_B 
 
 
 @_jit
-def _pair_loads(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_spin, d_force):
+def pair_loads(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_spin, d_force):
     """lin2019 eqs 57-59 (:func:`lowmodel.screw.b2b.b2b_loads`) for the chain's pairs: loads (n, 6) [N, N m],
     d_spin (p, 2, 2, 6, 3), d_force (p, 2, 6)."""
     pairs = n if ring else n - 1
@@ -459,11 +460,30 @@ def _pair_loads(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_s
 
 
 @_jit
+def ball_outputs(n):
+    """The output arrays of :func:`ball_terms` for ``n`` balls: residual (n, 6), Jacobian (n, 6, 7), axial (n,), its
+    gradient (n, 7), contact fields (n, 4, CONTACT_FIELDS), nut input power (n,)."""
+    return (np.empty((n, 6)), np.empty((n, 6, _K)), np.empty(n), np.empty((n, _K)), np.empty((n, 4, CONTACT_FIELDS)),
+            np.empty(n))
+
+
+@_jit
+def copy_outputs(source, target):
+    """Copy the :func:`ball_outputs` ``source`` into ``target``."""
+    target[0][:] = source[0]
+    target[1][:] = source[1]
+    target[2][:] = source[2]
+    target[3][:] = source[3]
+    target[4][:] = source[4]
+    target[5][:] = source[5]
+
+
+@_jit
 def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, dense
-                   residual, jacobian):
+                   residual, jacobian, terms):
     """Residual and dense Jacobian of the screw chain (:func:`lowmodel.b2b_chain.chain_system` of
-    :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61); returns the
-    status of :func:`ball_terms`."""
+    :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61), the ball terms
+    into ``terms`` (:func:`ball_outputs`); returns the status of :func:`ball_terms`."""
     (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
      smallest_slip) = tables
     radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
@@ -479,9 +499,7 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
             unknowns[j, q] = z[j * big_k + q]
         shift[j] = z[j * big_k + 6] if per_ball else z[n * big_k]
         slots[j] = z[j * big_k + k]
-    ball_res, ball_jac = np.empty((n, 6)), np.empty((n, 6, 7))
-    axial, axial_gradient = np.empty(n), np.empty((n, 7))
-    contact, power = np.empty((n, 4, CONTACT_FIELDS)), np.empty(n)
+    ball_res, ball_jac, axial, axial_gradient, contact, power = terms
     status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
                         weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
                         axial_gradient, contact, power)
@@ -498,7 +516,7 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
     d_spin = np.zeros((max(pairs, 1), 2, 2, 6, 3))
     d_force = np.zeros((max(pairs, 1), 2, 6))
     if pairs > 0:
-        _pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
+        pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
                     load, d_spin, d_force)
     else:
         load[:] = 0.0
@@ -567,19 +585,20 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
 
 @_jit
 def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, dense
-           max_iterations, row_tolerance, row_weight, z, result):
+           max_iterations, row_tolerance, row_weight, z, result, terms):
     """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update, dense normal equations) on
-    :func:`chain_function`; ``z`` the solution, ``result`` (residual (size,) unweighted); returns
-    ``(status, iterations, norm)`` with status :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`NON_FINITE`,
-    :data:`STATIONARY`, :data:`NO_DESCENT` or :data:`FALLBACK`."""
+    :func:`chain_function`; ``z`` the solution, ``result`` (residual (size,) unweighted), ``terms`` the ball terms at
+    ``z`` (:func:`ball_outputs`); returns ``(status, iterations, norm)`` with status :data:`CONVERGED`,
+    :data:`NOT_CONVERGED`, :data:`NON_FINITE`, :data:`STATIONARY`, :data:`NO_DESCENT` or :data:`FALLBACK`."""
     size = z0.size
     residual = np.empty(size)
     jacobian = np.empty((size, size))
     trial_residual = np.empty(size)
     trial_jacobian = np.empty((size, size))
+    trial_terms = ball_outputs(n)
     z[:] = z0
     status = chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot,
-                            pair_scalars, residual, jacobian)
+                            pair_scalars, residual, jacobian, terms)
     if status != CONVERGED:
         return status, 0, 0.0
     limits = row_tolerance * row_weight
@@ -613,7 +632,7 @@ def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chor
             if finite and predicted > 0.0:
                 trial = z + step
                 status = chain_function(trial, n, per_ball, ring, live, targets, geometry, scalars, tables, chord,
-                                        rot, pair_scalars, trial_residual, trial_jacobian)
+                                        rot, pair_scalars, trial_residual, trial_jacobian, trial_terms)
                 if status != CONVERGED:
                     return status, iterations, norm
                 for r in range(size):
@@ -636,6 +655,7 @@ def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chor
         z[:] = trial
         residual[:] = trial_residual
         jacobian[:] = trial_jacobian
+        copy_outputs(trial_terms, terms)
         norm = np.max(np.abs(residual / row_weight))
     result[:] = residual / row_weight
     return CONVERGED, iterations, norm

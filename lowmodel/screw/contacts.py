@@ -80,22 +80,22 @@ class ScrewModule:
     poisson_ratio: float
     oversize: float
 
-    @property
+    @cached_property   # the derived lengths and angles: computed once per module (they sit in every solve's loops)
     def lead_angle(self) -> float:
         """``alpha = atan(lead / (2 pi R_P))`` [rad] (lin2019 eq 42, :func:`helix.lead_angle`)."""
         return float(helix.lead_angle(self.lead, self.pitch_radius))
 
-    @property
+    @cached_property
     def lead_per_radian(self) -> float:
         """``p = lead / (2 pi)`` [m/rad] (lin2019 eq 34's r_g)."""
         return float(helix.helix_parameter(self.lead))
 
-    @property
+    @cached_property
     def helix_radius(self) -> float:
         """``L / (2 pi) = sqrt(R_P^2 + p^2)`` [m] (lin2019 eq 45)."""
         return math.hypot(self.pitch_radius, self.lead_per_radian)
 
-    @property
+    @cached_property
     def groove_radius(self) -> float:
         return 2.0 * self.conformity * self.ball_radius
 
@@ -315,9 +315,12 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
         except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
             raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
                              f"{module.conformity!r} ({error})") from None
-        for j in range(n):   # angles validated by flank_angles; the core's flank gives the arc centre
-            centres[j, i] = _arc_centre(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
-                                        float(angles[j, i]), _BODY[i], _FLANK[i])  # (u, w) = (x3, z3)
+        flank = _flank(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                       float(module.nominal_angle), _BODY[i], _FLANK[i])
+        radius = flank.groove_radius
+        for j in range(n):   # angles validated by flank_angles; the core's arc centre of the flank at each angle
+            centres[j, i] = groove_core.flank_arc_centre(module.ball_radius, radius, float(angles[j, i]),
+                                                         flank.sign_u, flank.sign_w)  # (u, w) = (x3, z3)
     _check_axis_ratio(module, angles, ratio)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     bulk = None
@@ -332,12 +335,11 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     return BallContacts(module, angles, centres, constant, unit, ratio, theta, bulk)
 
 
-@lru_cache(maxsize=4096)
-def _arc_centre(ball_radius, conformity, pitch_radius, lead, angle, body, flank) -> np.ndarray:
-    """The core's arc centre of a flank (:attr:`groove.HelicalGroove.arc_centre`), cached (read-only): the nut
-    flanks of every ball, and the flanks of balls at the same deviation, share one."""
-    flank = groove_core.HelicalGroove(ball_radius, conformity, pitch_radius, lead, angle, body, flank)
-    return checks.read_only(flank.arc_centre)
+@lru_cache(maxsize=256)
+def _flank(ball_radius, conformity, pitch_radius, lead, angle, body, flank) -> groove_core.HelicalGroove:
+    """The core's flank (:class:`groove.HelicalGroove`) of a module's groove at the nominal angle, cached: its
+    ``groove_radius`` and signs for :func:`groove.flank_arc_centre` at each ball's contact angle."""
+    return groove_core.HelicalGroove(ball_radius, conformity, pitch_radius, lead, angle, body, flank)
 
 
 def _check_axis_ratio(module: ScrewModule, angles: np.ndarray, ratio: np.ndarray) -> None:

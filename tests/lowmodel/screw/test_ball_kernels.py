@@ -102,6 +102,40 @@ def test_ring_with_per_ball_loads_and_warm_start_equal_numpy(compiled):
                               initial=reference))
 
 
+@pytest.fixture
+def ring_compiled():
+    yield from kernels_on(screw_b2b.RING_KERNELS)
+
+
+@pytest.mark.parametrize("ring", [True, False])
+def test_long_chain_with_per_ball_loads_equals_numpy(ring_compiled, ring):
+    # the whole screw's ring (lowmodel.screw.ring_kernels: banded-bordered Cholesky of the damped normal equations)
+    # and an open chain, 7 balls, per-ball loads, touching and open pairs; then a warm start from the state
+    deviations = np.radians([0.0, 2.0, -1.0, 0.5, 1.5, -2.0, 0.8])
+    contacts = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), deviations)
+    loads = np.array([40.0, 45.0, 35.0, 50.0, 42.0, 38.0, 47.0])
+    gaps = np.array([0.0, 0.0, 1e-3, 0.0, 0.0, 0.0, 0.0])[:7 if ring else 6]
+    reference, state = both(screw_b2b.solve, contacts, loads, gaps, ring=ring)
+    _assert_same_state(reference, state)
+    assert np.count_nonzero(reference.b2b_force > 0.0) >= 2   # the B2B coupling is exercised
+    moved = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), deviations * 0.9 + 0.002)
+    _assert_same_state(*both(screw_b2b.solve, moved, loads * 1.05, gaps, ring=ring, initial=reference))
+
+
+def test_long_chain_failure_is_the_numpy_failure(ring_compiled):
+    contacts = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), np.radians(np.linspace(-2.0, 2.0, 7)))
+    loads = np.full(7, 40.0)
+    errors = []
+    for enabled in (False, True):
+        kernels.use_kernels(enabled)
+        with pytest.raises(ConvergenceError) as error:
+            screw_b2b._solve_attempt(contacts, loads, np.zeros(7), ring=True, max_iterations=2)
+        errors.append(error.value)
+    assert str(errors[0]) == str(errors[1])
+    assert errors[0].reason == errors[1].reason
+    assert errors[0].iterations == errors[1].iterations
+
+
 def test_failure_is_the_numpy_failure(compiled):
     contacts = sc.ball_contacts(sc.screw_module(oversize=OVERSIZE), np.radians([0.0, 2.0]))
     errors = []

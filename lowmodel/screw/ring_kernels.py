@@ -1,0 +1,400 @@
+"""Compiled (numba) Newton of a long ball-screw chain with one nut shift per ball: the whole screw's ring.
+
+The chain of :func:`lowmodel.screw.b2b._solve_attempt` with per-ball axial loads (lin2019 eqs 54-61; the
+whole screw of lin2019 Sec 3.4, :mod:`lowmodel.screw.whole_screw`), for chains of at least
+:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, open or closed (ring), as loops (loaded by
+:func:`lowmodel.kernels.load`; never imported by ``import ballbench.lowmodel``):
+
+* :func:`chain_blocks`: residual and Jacobian of the chain as ``K x K`` blocks (``K = 8``: the 7 unknowns of a ball
+  with its own nut shift and the force slot of its pair; :mod:`lowmodel.b2b_chain`): ``diagonal[j]``,
+  ``upper[j]`` = block (j, j+1) and ``lower[j]`` = block (j, j-1), indices modulo ``n`` (the ring's pair
+  (n-1, 0) gives the corner blocks ``upper[n-1]`` and ``lower[0]``; zero in an open chain).  The ball terms and the
+  B2B loads are those of :mod:`lowmodel.screw.ball_kernels` (the same loops as the dense chain there).
+* :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's damping update, row weights and
+  row tolerances, the same acceptance, the same failure statuses) with the damped normal equations
+  ``(J^T J + lam I) dx = -J^T r`` solved by a Cholesky factorisation that follows their structure: ``J^T J`` of a
+  cyclic block-tridiagonal ``J`` is cyclic block-pentadiagonal; with the last two blocks of balls ordered last it is
+  a band (half-bandwidth ``3 K - 1``) bordered by ``2 K`` dense rows and columns (the corner coupling of the ring),
+  so the factor is a banded Cholesky of the first ``(n - 2) K`` unknowns, the border rows against it, and a dense
+  Cholesky of the ``2 K x 2 K`` Schur complement (O(n K^3) per step, where the numpy path's sparse LU of the
+  ring's normal equations fills in along the border as well).  The step solves the same equations as the numpy
+  path's, so the iterates agree to round-off (tests/lowmodel/screw/test_ball_kernels.py).
+
+A status other than :data:`CONVERGED` is :mod:`lowmodel.screw.ball_kernels`' (an evaluation handed back to the numpy
+code, or a failure the caller raises as the ConvergenceError of :func:`lowmodel.solvers.newton`).
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
+                                                   STATIONARY, ball_outputs, ball_terms, copy_outputs, pair_loads)
+
+__all__ = ["chain_blocks", "newton", "warm_up", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY",
+           "NO_DESCENT"]
+
+_K = 8  # block: x_B3, z_B3, omega_B, omega (3), the ball's nut shift, the force slot of its pair
+_FB_SMOOTHING = 1e-14  # as lowmodel.b2b_chain
+
+_jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+
+
+@_jit
+def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, blocks
+                 residual, diagonal, upper, lower, terms):
+    """Residual (n K,) and the blocks (n, K, K) of the chain's Jacobian (module docstring) at ``z``, the ball terms
+    into ``terms`` (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
+    :func:`lowmodel.screw.ball_kernels.ball_terms`."""
+    (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
+     smallest_slip) = tables
+    radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
+    spin_scale, force_scale = scalars[2], scalars[3]
+    k = _K - 1
+    pairs = n if ring else n - 1
+    unknowns = np.empty((n, 6))
+    shift = np.empty(n)
+    slots = np.empty(n)
+    for j in range(n):
+        for q in range(6):
+            unknowns[j, q] = z[j * _K + q]
+        shift[j] = z[j * _K + 6]
+        slots[j] = z[j * _K + k]
+    ball_res, ball_jac, axial, axial_gradient, contact, power = terms
+    status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
+                        weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
+                        axial_gradient, contact, power)
+    if status != CONVERGED:
+        return status
+    lam = np.zeros(n)
+    for j in range(n):
+        if live[j]:
+            lam[j] = slots[j]
+    forces = np.zeros(pairs)
+    for p in range(pairs):
+        forces[p] = lam[p]
+    load = np.empty((n, 6))
+    d_spin = np.zeros((pairs, 2, 2, 6, 3))
+    d_force = np.zeros((pairs, 2, 6))
+    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
+                load, d_spin, d_force)
+    diagonal[:] = 0.0
+    upper[:] = 0.0
+    lower[:] = 0.0
+    for j in range(n):
+        base = j * _K
+        for r in range(6):
+            residual[base + r] = ball_res[j, r]
+            for q in range(7):
+                diagonal[j, r, q] = ball_jac[j, r, q]
+        residual[base + 6] = axial[j] - targets[j]
+        for q in range(7):
+            diagonal[j, 6, q] = axial_gradient[j, q]
+        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
+            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
+    spin_factor = spin_scale / force_scale
+    for p in range(pairs):
+        behind, ahead = p, (p + 1) % n
+        for side_row in range(2):
+            for side_col in range(2):
+                if side_row == side_col:
+                    block = diagonal[behind if side_row == 0 else ahead]
+                elif side_row == 0:
+                    block = upper[behind]   # rows of the ball behind, columns of the ball ahead
+                else:
+                    block = lower[ahead]    # rows of the ball ahead, columns of the ball behind
+                for r in range(6):
+                    for q in range(3):
+                        value = d_spin[p, side_row, side_col, r, q]
+                        block[r, 3 + q] += (value / radius if r >= 3 else value) * spin_factor
+            if live[p]:   # the force column: slot k of the ball behind
+                block = diagonal[behind] if side_row == 0 else lower[ahead]
+                for r in range(6):
+                    value = d_force[p, side_row, r]
+                    block[r, k] += value / radius if r >= 3 else value
+    # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders (open pairs, the chain's end): slot = 0
+    for j in range(n):
+        row = j * _K + k
+        if not live[j]:
+            residual[row] = slots[j]
+            diagonal[j, k, k] = 1.0
+            continue
+        ahead = (j + 1) % n
+        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
+        a = lam[j]
+        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
+        residual[row] = a + rate - root
+        diagonal[j, k, k] = 1.0 - a / root
+        d_rate = (1.0 - rate / root) * rate_scale
+        if j < pairs:
+            upper[j, k, 2] += d_rate
+        diagonal[j, k, 2] += -d_rate
+    return CONVERGED
+
+
+@_jit
+def _matvec(diagonal, upper, lower, x, out):
+    """``out = J x`` of the cyclic block-tridiagonal ``J``."""
+    n = diagonal.shape[0]
+    for j in range(n):
+        after, before = ((j + 1) % n) * _K, ((j - 1) % n) * _K
+        for r in range(_K):
+            total = 0.0
+            for q in range(_K):
+                total += diagonal[j, r, q] * x[j * _K + q] + upper[j, r, q] * x[after + q] \
+                    + lower[j, r, q] * x[before + q]
+            out[j * _K + r] = total
+
+
+@_jit
+def _rmatvec(diagonal, upper, lower, r_vec, out):
+    """``out = J^T r``: column block ``a`` collects ``D_a^T r_a + U_{a-1}^T r_{a-1} + L_{a+1}^T r_{a+1}``."""
+    n = diagonal.shape[0]
+    for a in range(n):
+        before, after = ((a - 1) % n), ((a + 1) % n)
+        for q in range(_K):
+            total = 0.0
+            for r in range(_K):
+                total += diagonal[a, r, q] * r_vec[a * _K + r] + upper[before, r, q] * r_vec[before * _K + r] \
+                    + lower[after, r, q] * r_vec[after * _K + r]
+            out[a * _K + q] = total
+
+
+@_jit
+def _product_t(a_block, b_block, out, add):
+    """``out (+)= A^T B`` of two K x K blocks."""
+    for p in range(_K):
+        for q in range(_K):
+            total = 0.0
+            for r in range(_K):
+                total += a_block[r, p] * b_block[r, q]
+            out[p, q] = out[p, q] + total if add else total
+
+
+@_jit
+def _normal(diagonal, upper, lower, band, border, corner):
+    """``N = J^T J`` into the band (m, 3K) (``band[i, d] = N[i, i - d]``), the border rows (2K, m)
+    (``N[m + r, j]``) and the corner (2K, 2K) (lower triangle), ``m = (n - 2) K``.
+
+    Blocks (indices modulo n): ``N[a, a] = D_a^T D_a + U_{a-1}^T U_{a-1} + L_{a+1}^T L_{a+1}``,
+    ``N[a, a-1] = U_{a-1}^T D_{a-1} + D_a^T L_a``, ``N[a, a-2] = U_{a-1}^T L_{a-1}``."""
+    n = diagonal.shape[0]
+    m = (n - 2) * _K
+    block = np.empty((_K, _K))
+    for a in range(n):
+        before, after, two = (a - 1) % n, (a + 1) % n, (a - 2) % n
+        for e in range(3):
+            if e == 0:
+                _product_t(diagonal[a], diagonal[a], block, False)
+                _product_t(upper[before], upper[before], block, True)
+                _product_t(lower[after], lower[after], block, True)
+                column = a
+            elif e == 1:
+                _product_t(upper[before], diagonal[before], block, False)
+                _product_t(diagonal[a], lower[a], block, True)
+                column = before
+            else:
+                _product_t(upper[before], lower[before], block, False)
+                column = two
+            for p in range(_K):
+                for q in range(_K):
+                    i, j = a * _K + p, column * _K + q
+                    if i < j:
+                        if e == 0:
+                            continue   # the diagonal block's upper triangle
+                        i, j = j, i
+                    if i >= m:
+                        if j >= m:
+                            corner[i - m, j - m] = block[p, q]
+                        else:
+                            border[i - m, j] = block[p, q]
+                    else:
+                        band[i, i - j] = block[p, q]
+
+
+@_jit
+def _factor(band, border, corner, damping, l_band, l_border, l_corner):  # noqa: C901 - one Cholesky, band and border
+    """Cholesky factor of ``N + damping I`` (:func:`_normal`'s storage) into ``l_*`` (same layout); False where the
+    matrix is not (numerically) positive definite."""
+    m, width = band.shape[0], band.shape[1] - 1
+    b = corner.shape[0]
+    for i in range(m):
+        for d in range(width + 1):
+            l_band[i, d] = band[i, d]
+        l_band[i, 0] += damping
+    for j in range(m):
+        low = max(0, j - width)
+        total = l_band[j, 0]
+        for t in range(low, j):
+            value = l_band[j, j - t]
+            total -= value * value
+        if not total > 0.0:
+            return False
+        pivot = math.sqrt(total)
+        l_band[j, 0] = pivot
+        for i in range(j + 1, min(j + width, m - 1) + 1):
+            total = l_band[i, i - j]
+            for t in range(max(0, i - width), j):
+                total -= l_band[i, i - t] * l_band[j, j - t]
+            l_band[i, i - j] = total / pivot
+        for r in range(b):
+            total = border[r, j]
+            for t in range(low, j):
+                total -= l_border[r, t] * l_band[j, j - t]
+            l_border[r, j] = total / pivot
+    for r in range(b):
+        for s in range(r + 1):
+            total = corner[r, s] + (damping if r == s else 0.0)
+            for t in range(m):
+                total -= l_border[r, t] * l_border[s, t]
+            for t in range(s):
+                total -= l_corner[r, t] * l_corner[s, t]
+            if r == s:
+                if not total > 0.0:
+                    return False
+                l_corner[r, r] = math.sqrt(total)
+            else:
+                l_corner[r, s] = total / l_corner[s, s]
+    return True
+
+
+@_jit
+def _solve(l_band, l_border, l_corner, rhs, x):
+    """``x = (L L^T)^-1 rhs`` with the factor of :func:`_factor`."""
+    m, width = l_band.shape[0], l_band.shape[1] - 1
+    b = l_corner.shape[0]
+    for i in range(m):
+        total = rhs[i]
+        for t in range(max(0, i - width), i):
+            total -= l_band[i, i - t] * x[t]
+        x[i] = total / l_band[i, 0]
+    for r in range(b):
+        total = rhs[m + r]
+        for t in range(m):
+            total -= l_border[r, t] * x[t]
+        for s in range(r):
+            total -= l_corner[r, s] * x[m + s]
+        x[m + r] = total / l_corner[r, r]
+    for r in range(b - 1, -1, -1):
+        total = x[m + r]
+        for s in range(r + 1, b):
+            total -= l_corner[s, r] * x[m + s]
+        x[m + r] = total / l_corner[r, r]
+    for i in range(m - 1, -1, -1):
+        total = x[i]
+        for t in range(i + 1, min(i + width, m - 1) + 1):
+            total -= l_band[t, t - i] * x[t]
+        for r in range(b):
+            total -= l_border[r, i] * x[m + r]
+        x[i] = total / l_band[i, 0]
+
+
+@_jit
+def _weigh(residual, diagonal, upper, lower, row_weight):
+    n = diagonal.shape[0]
+    for j in range(n):
+        for r in range(_K):
+            w = row_weight[j * _K + r]
+            residual[j * _K + r] *= w
+            for q in range(_K):
+                diagonal[j, r, q] *= w
+                upper[j, r, q] *= w
+                lower[j, r, q] *= w
+
+
+@_jit
+def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, structured
+           max_iterations, row_tolerance, row_weight, z, result, terms):
+    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update) on :func:`chain_blocks` with the
+    structured Cholesky of the module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted,
+    ``terms`` the ball terms at ``z``; returns ``(status, iterations, norm)`` as
+    :func:`lowmodel.screw.ball_kernels.newton`."""
+    size = z0.size
+    m = (n - 2) * _K
+    residual, trial_residual = np.empty(size), np.empty(size)
+    diagonal, upper, lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
+    t_diagonal, t_upper, t_lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
+    band, l_band = np.zeros((m, 3 * _K)), np.zeros((m, 3 * _K))
+    border, l_border = np.zeros((2 * _K, m)), np.zeros((2 * _K, m))
+    corner, l_corner = np.zeros((2 * _K, 2 * _K)), np.zeros((2 * _K, 2 * _K))
+    gradient, step, change, trial = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
+    trial_terms = ball_outputs(n)
+    z[:] = z0
+    status = chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, residual,
+                          diagonal, upper, lower, terms)
+    if status != CONVERGED:
+        return status, 0, 0.0
+    limits = row_tolerance * row_weight
+    _weigh(residual, diagonal, upper, lower, row_weight)
+    norm = np.max(np.abs(residual / row_weight))
+    iterations = 0
+    damping = -1.0
+    growth = 2.0
+    while not np.all(np.abs(residual) <= limits):
+        if iterations >= max_iterations or not np.isfinite(norm):
+            result[:] = residual / row_weight
+            return (NOT_CONVERGED if np.isfinite(norm) else NON_FINITE), iterations, norm
+        iterations += 1
+        _normal(diagonal, upper, lower, band, border, corner)
+        diagonal_max = -math.inf
+        for i in range(m):
+            diagonal_max = max(diagonal_max, band[i, 0])
+        for r in range(2 * _K):
+            diagonal_max = max(diagonal_max, corner[r, r])
+        _rmatvec(diagonal, upper, lower, residual, gradient)
+        for i in range(size):
+            gradient[i] = -gradient[i]
+        if damping < 0.0:
+            damping = 1e-8 * diagonal_max
+        merit = residual @ residual
+        while True:
+            if _factor(band, border, corner, damping, l_band, l_border, l_corner):
+                _solve(l_band, l_border, l_corner, gradient, step)
+            else:
+                step[:] = np.nan
+            _matvec(diagonal, upper, lower, step, change)
+            linear = residual + change
+            predicted = merit - linear @ linear
+            finite = np.all(np.isfinite(step))
+            if finite and predicted > 0.0:
+                for i in range(size):
+                    trial[i] = z[i] + step[i]
+                status = chain_blocks(trial, n, ring, live, targets, geometry, scalars, tables, chord, rot,
+                                      pair_scalars, trial_residual, t_diagonal, t_upper, t_lower, trial_terms)
+                if status != CONVERGED:
+                    return status, iterations, norm
+                _weigh(trial_residual, t_diagonal, t_upper, t_lower, row_weight)
+                trial_merit = trial_residual @ trial_residual
+                gain = (merit - trial_merit) / predicted
+                if math.isfinite(trial_merit) and gain > 1e-4:
+                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
+                    growth = 2.0
+                    break
+            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
+                result[:] = residual / row_weight
+                return STATIONARY, iterations, norm
+            damping *= growth
+            growth *= 2.0
+            if not math.isfinite(damping) or damping > 1e30:
+                result[:] = residual / row_weight
+                return NO_DESCENT, iterations, norm
+        z[:] = trial
+        residual[:] = trial_residual
+        diagonal[:] = t_diagonal
+        upper[:] = t_upper
+        lower[:] = t_lower
+        copy_outputs(trial_terms, terms)
+        norm = np.max(np.abs(residual / row_weight))
+    result[:] = residual / row_weight
+    return CONVERGED, iterations, norm
+
+
+def warm_up() -> None:
+    """Compile (or load from numba's disk cache) the kernel with the argument types the model passes."""
+    import sys
+
+    from ballbench.lowmodel.screw import b2b
+
+    b2b.warm_up_ring_kernel(sys.modules[__name__])
