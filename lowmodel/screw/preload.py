@@ -20,6 +20,15 @@ where the loaded one carries ``F = (4 delta_0 / (C_S + C_N))^(3/2)`` (2^(3/2) ti
 the axial load is ``F sin beta_0 cos alpha`` (:func:`nominal_preload_loss`; the check of the solve, tests).
 Friction is left out: lin2019's model with friction loses the contact at a slightly different load (friction
 pushes the ball onto the unloading nut flank).
+
+:func:`frictionless_statics` solves the same statics at a given total axial load ``F_a``, below or past the
+preload loss: the nut shift ``u`` is the root of the axial balance ``F_a(u) = F_a`` (brentq on a bracket grown
+from zero), each ball's centre balances its normal forces at that ``u``, and a contact whose approach is not
+positive carries nothing (eq 53's ``max(0, delta_i)``: past the preload loss the ball runs in two-point contact on
+SL-NR).  The actual contact angles follow from ``e_i = (s_u cos beta_i, s_w sin beta_i)`` (eq 37).  In the
+one-ball nominal limit past the preload loss the ball centre lies on the line through the arc centres of the
+loaded diagonal, so its two forces are equal and opposite along it, and the axial balance gives
+``F = F_a / (sin beta cos alpha)`` with ``beta`` the diagonal's actual contact angle (the check of the solve, tests).
 """
 from __future__ import annotations
 
@@ -28,9 +37,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel.screw.contacts import CONTACT_NAMES, ON_NUT, BallContacts
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES, ON_NUT, SIGN_U, SIGN_W, BallContacts
 
-__all__ = ["PreloadLoss", "preload_loss", "nominal_preload_loss"]
+__all__ = ["PreloadLoss", "preload_loss", "nominal_preload_loss", "FrictionlessState", "frictionless_statics",
+           "STATICS_TOLERANCE"]
+
+# relative tolerance of the checks of frictionless_statics: each ball's force balance against its largest force,
+# the axial balance against the axial load
+STATICS_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -71,13 +85,14 @@ def _forces(contacts: BallContacts, centres: np.ndarray, shift: float):
     return approach, forces, e
 
 
-def _balanced(contacts: BallContacts, shift: float, guess: np.ndarray) -> np.ndarray:
-    """The ball centres (n, 2) [m] at which each ball's frictionless normal forces balance, nut shift ``shift``."""
+def _balanced(contacts: BallContacts, shift: float, guess: np.ndarray, scale: float | None = None) -> np.ndarray:
+    """The ball centres (n, 2) [m] at which each ball's frictionless normal forces balance, nut shift ``shift``;
+    ``scale`` [m] the length the solve works in (default: the oversize, at least 1 nm)."""
     from scipy.optimize import root
 
     from ballbench.lowmodel.errors import ConvergenceError
 
-    scale = max(contacts.module.oversize, 1e-9)
+    scale = max(contacts.module.oversize, 1e-9) if scale is None else scale
     reference = float(np.max((scale / contacts.hertz_constant) ** 1.5))
     centres = np.empty_like(guess)
     for j in range(contacts.n_balls):
@@ -90,7 +105,7 @@ def _balanced(contacts: BallContacts, shift: float, guess: np.ndarray) -> np.nda
         found = root(residual, guess[j] / scale, method="hybr", options={"xtol": 1e-13})
         error = float(np.max(np.abs(residual(found.x))))
         if error > 1e-9:
-            raise ConvergenceError("preload_loss: the frictionless ball centre does not balance its normal forces",
+            raise ConvergenceError("preload: the frictionless ball centre does not balance its normal forces",
                                    residual=error, iterations=int(found.nfev), tolerance=1e-9,
                                    reason="ball statics")
         centres[j] = found.x * scale
@@ -142,3 +157,102 @@ def preload_loss(contacts: BallContacts) -> PreloadLoss:
     approach, forces, e = state(sign * shift)
     j, i = np.unravel_index(int(np.argmin(approach)), approach.shape)
     return PreloadLoss(_axial(contacts, forces, e), int(j), CONTACT_NAMES[int(i)], sign * shift, forces)
+
+
+@dataclass(frozen=True)
+class FrictionlessState:
+    """The frictionless statics of a set of balls at a total axial load (:func:`frictionless_statics`); arrays of
+    shape (n, 4) in (SL, SR, NR, NL).
+
+    axial_load : N, the axial load the state carries (positive as in lowmodel.screw.b2b's ``axial_load``)
+    nut_shift : m, the nut's axial shift against the screw
+    centres : (n, 2) m, the ball centres in ``(x3, z3)``
+    approach : m, ``delta_i`` (eq 53; not positive: the contact is open)
+    normal_force : N, ``F_i = max(0, delta_i / C_i)^(3/2)``
+    contact_angle : rad, the actual contact angle ``beta_i`` of eq 37 (of the open contacts too: the direction to
+        their arc centre)
+    force_residual : the worst ball's ``|sum_i F_i e_i|`` over its largest force (checked against
+        :data:`STATICS_TOLERANCE`)
+    load_residual : ``|F_a(u) - F_a|`` over ``F_a`` (0 at zero load; checked against :data:`STATICS_TOLERANCE`)
+    """
+
+    axial_load: float
+    nut_shift: float
+    centres: np.ndarray
+    approach: np.ndarray
+    normal_force: np.ndarray
+    contact_angle: np.ndarray
+    force_residual: float
+    load_residual: float
+
+    @property
+    def loaded(self) -> np.ndarray:
+        """(n, 4) bool: the contacts that carry load."""
+        return self.normal_force > 0.0
+
+
+def frictionless_statics(contacts: BallContacts, axial_load: float) -> FrictionlessState:
+    """The frictionless statics of the balls of ``contacts`` under the total ``axial_load`` [N] (>= 0), below or past
+    the preload loss (module docstring; lin2019 eqs 37, 48, 53; contacts unload where ``delta_i <= 0``).
+
+    The nut shift is the root of the axial balance (scipy.optimize.brentq on a bracket doubled from the oversize);
+    the answer is checked before it is returned: each ball's force balance and the axial load balance within
+    :data:`STATICS_TOLERANCE` (relative), else ConvergenceError naming the check.  ValueError for a negative or
+    non-finite load, or one that needs a nut shift beyond a tenth of the ball radius (outside the small-strain
+    Hertz law)."""
+    from scipy.optimize import brentq
+
+    from ballbench.lowmodel import checks
+    from ballbench.lowmodel.errors import ConvergenceError
+
+    axial_load = float(checks.non_negative("axial_load", axial_load, "N"))
+    module = contacts.module
+    n = contacts.n_balls
+    # the length the solves work in: the oversize, or the approach of a nominal contact under the load per ball
+    per_ball = axial_load / max(n, 1) / (math.sin(module.nominal_angle) * math.cos(module.lead_angle))
+    scale = max(module.oversize, float(np.max(contacts.hertz_constant)) * per_ball ** (2.0 / 3.0), 1e-9)
+    guess = np.zeros((n, 2))
+
+    def state(shift):
+        centres = _balanced(contacts, shift, guess, scale)
+        guess[:] = centres
+        approach, forces, e = _forces(contacts, centres, shift)
+        return centres, approach, forces, e
+
+    probe = 1e-3 * scale
+    _, _, forces, e = state(probe)
+    sign = 1.0 if _axial(contacts, forces, e) > 0.0 else -1.0
+    guess[:] = 0.0
+    if axial_load == 0.0:
+        shift = 0.0
+    else:
+        def excess(s):
+            _, _, f, e = state(sign * s)
+            return _axial(contacts, f, e) - axial_load
+
+        high = scale
+        while excess(high) < 0.0:
+            high *= 2.0
+            if high > 0.1 * module.ball_radius:
+                raise ValueError(f"axial_load {axial_load!r} N needs a nut shift beyond 0.1 ball_radius "
+                                 f"({0.1 * module.ball_radius!r} m): outside the small-strain Hertz law (eq 53)")
+        guess[:] = 0.0
+        shift = brentq(excess, 0.0, high, xtol=1e-13 * scale, rtol=4.0 * np.finfo(float).eps, maxiter=200)
+    centres, approach, forces, e = state(sign * shift)
+    # the checks that define the answer
+    balance = np.sqrt(np.sum(np.sum(forces[..., None] * e, axis=1) ** 2, axis=-1))
+    largest = np.max(forces, axis=1)
+    force_residual = float(np.max(np.where(largest > 0.0, balance / np.where(largest > 0.0, largest, 1.0), balance)))
+    if not force_residual <= STATICS_TOLERANCE:
+        raise ConvergenceError("frictionless_statics: a ball's normal forces do not balance (sum_i F_i e_i = 0, "
+                               "relative to its largest force)", residual=force_residual, iterations=1,
+                               tolerance=STATICS_TOLERANCE, reason="ball force balance")
+    carried = _axial(contacts, forces, e)
+    load_residual = abs(carried - axial_load) / axial_load if axial_load > 0.0 else abs(carried)
+    if not load_residual <= STATICS_TOLERANCE:
+        raise ConvergenceError("frictionless_statics: the screw flanks' axial force does not carry the axial load "
+                               "(relative to it)", residual=load_residual, iterations=1,
+                               tolerance=STATICS_TOLERANCE, reason="axial load balance")
+    angle = np.arctan2(SIGN_W * e[..., 1], SIGN_U * e[..., 0])
+    return FrictionlessState(axial_load, sign * shift, centres, approach, forces, angle, force_residual,
+                             load_residual)

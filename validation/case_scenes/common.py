@@ -21,11 +21,19 @@ EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as t
 
 __all__ = ["B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss", "preload_loss_words",
-           "oversize_for", "within_model_limits", "limited", "limits_lines", "LIN2019_SCENES"]
+           "oversize_for", "past_preload_loss", "FRICTIONLESS_WORDS", "within_model_limits", "limited",
+           "limits_lines", "LIN2019_SCENES"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
-# stick/slip balls, the EHL loads): where that model has no state they do not apply
+# stick/slip balls, the EHL loads): where that model has no state they do not apply, but for the contact rung, which
+# judges contact mechanics and then runs on the loads of the frictionless statics (FRICTIONLESS_WORDS)
 LIN2019_SCENES = ("balls", "contact", "ehl", "b2b-fe", "stick-slip")
+# what the -contact scene and the header say when its loads are those of the frictionless statics
+FRICTIONLESS_WORDS = ("the loads of the frictionless two-point statics of the balls at the case's axial load "
+                      "(lowmodel.screw.preload.frictionless_statics: exact flank arcs, Hertz's law lin2019 eq 53, "
+                      "unloaded contacts carry nothing), not those of lin2019's friction model, which has no state "
+                      "at this load; the contact rung judges contact mechanics (Hertz, BEM, FE at a given load), "
+                      "not friction")
 
 
 def fmt(value: float, digits: int = 4) -> str:
@@ -85,7 +93,7 @@ def preload_loss_words(case) -> str:
             "docs/ball_screw.md, 'Preload loss')")
 
 
-def _past_preload_loss(case, error) -> str:
+def past_preload_loss(case, error) -> str:
     """The reason a ConvergenceError of lin2019's ball-screw model is its declared limit on ``case``, or "" when it
     is not: the load ramp stopped near full sliding (lowmodel.screw.b2b.FULL_SLIDING_LIMIT) at an axial load past
     the preload loss."""
@@ -116,7 +124,7 @@ def _past_preload_loss(case, error) -> str:
 @contextlib.contextmanager
 def within_model_limits(case):
     """Run a ball-screw scene's work; a ConvergenceError that is lin2019's declared limit on ``case`` (the full-
-    sliding model has no state past the preload loss, :func:`_past_preload_loss`) becomes NotApplicable with the
+    sliding model has no state past the preload loss, :func:`past_preload_loss`) becomes NotApplicable with the
     reason; any other ConvergenceError stays as it is (the scene ends in error)."""
     from ballbench.lowmodel.errors import ConvergenceError
     from ballbench.validation.scene import NotApplicable
@@ -124,7 +132,7 @@ def within_model_limits(case):
     try:
         yield
     except ConvergenceError as error:
-        reason = _past_preload_loss(case, error)
+        reason = past_preload_loss(case, error)
         if not reason:
             raise
         raise NotApplicable(reason) from error
@@ -168,8 +176,12 @@ def limits_lines(case, names) -> list[str]:
     if fe:
         lines.append(f"{fe[0]} does not apply where lin2019's state leaves a contact unloaded (its FE module needs "
                      "four loaded contacts, lin2017 eq 37).")
+    contact = [n for n in built if n.endswith("-contact")]
+    built = [n for n in built if not n.endswith("-contact")]
     if built:
         lines.append(f"Where lin2019's model finds no state at this load, {', '.join(built)} (built on its state) do "
                      "not apply; where it finds one, its contacts slide near their limit mu F: judge its friction "
                      "with care.")
+    if contact:
+        lines.append(f"Where lin2019's model finds no state at this load, {contact[0]} runs on {FRICTIONLESS_WORDS}.")
     return lines

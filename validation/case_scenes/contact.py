@@ -1,13 +1,16 @@
 """``<stem>-contact``: the most loaded contact of a case (or the case's own contact) up the ladder: exact Hertz,
 the BEM on the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the
 Richardson extrapolation of the FE study with its uncertainty as the reference, every model's error against it and
-its run time; its fields (fields.vtu) and 3D screenshots."""
+its run time; its fields (fields.vtu) and 3D screenshots.  A ball screw past its preload loss, where lin2019's model
+has no state, runs on the loads of the frictionless two-point statics (lowmodel.screw.preload; :func:`_distinct`)."""
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 
-from ballbench.validation.case_scenes.common import REFERENCE_UNCERTAINTY, fmt
+from ballbench.validation.case_scenes.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
+                                                     past_preload_loss)
 from ballbench.validation.cases.case import ContactCase
 
 __all__ = ["contact_scene", "show_contact"]
@@ -17,15 +20,20 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     """The scene function of ``<stem>-contact``: every distinct contact geometry of ``case`` at its largest load
     (studies.ladder.distinct_contacts: one for a guide or a contact, the screw and the nut side of a screw) up the
     ladder; ``rungs`` those to run, ``deadline`` a ``time.monotonic()`` value (``--budget``) past which no further FE
-    level starts.  The fields and pictures are those of the most loaded contact."""
+    level starts.  The fields and pictures are those of the most loaded contact.  Past a ball screw's preload loss,
+    where lin2019's model has no state, the loads are those of the frictionless statics (:func:`_distinct`), and the
+    scene says so."""
     from ballbench.validation.studies import ladder
 
-    distinct = ladder.distinct_contacts(case)
+    distinct, reason = _distinct(case)
+    if reason:
+        _frictionless_table(run, case, reason)
     # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
     # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
     ran = [", ".join(r for r in rungs if r in ("analytical", "BEM", "FE") and (r != "FE" or on)) for on in fe_on]
-    run.table("Contacts run (each distinct geometry at its largest load)",
+    run.table("Contacts run (each distinct geometry at its largest load" + (", loads of the frictionless two-point "
+              "statics, lowmodel.screw.preload" if reason else "") + ")",
               ("contact", "pair", "F [N]", "rungs", "stands for", "why"),
               [(d.label, d.contact.pair, fmt(d.contact.force), r, ", ".join(d.members), d.why)
                for d, r in zip(distinct, ran)])
@@ -36,6 +44,38 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
         tag = d.label if len(distinct) > 1 else ""
         chosen = rungs if fe_on[index] else tuple(r for r in rungs if r != "FE")
         _one_contact(run, ladder.contact_fe(d.contact), chosen, deadline, tag, fields=index == 0)
+
+
+def _distinct(case):
+    """(studies.ladder.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
+    screw past its preload loss, where lin2019's model stops at its declared limit (common.past_preload_loss), runs
+    on the loads of the frictionless two-point statics (lowmodel.screw.preload.frictionless_statics) instead of
+    not applying: the contact rung needs a contact geometry and a load, not lin2019's friction.  Any other
+    ConvergenceError stays as it is."""
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation.studies import ladder
+
+    try:
+        return ladder.distinct_contacts(case), ""
+    except ConvergenceError as error:
+        reason = past_preload_loss(case, error)
+        if not reason:
+            raise
+    return ladder.distinct_contacts(case, frictionless=True), reason
+
+
+def _frictionless_table(run, case, reason: str) -> None:
+    """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on."""
+    from ballbench.validation.studies import bearing_results
+
+    run.note("Loads: " + FRICTIONLESS_WORDS + ".")
+    run.note("Why: " + reason)
+    rows = bearing_results.screw_frictionless_contacts(case)
+    run.table(f"Per ball and contact (frictionless two-point statics at {fmt(case.axial_load)} N, "
+              "lowmodel.screw.preload; not lin2019's friction model)",
+              ("ball", "contact", "F [N]", "angle [deg]", "approach [um]"),
+              [(c.ball, c.contact, fmt(c.normal_force), fmt(math.degrees(c.contact_angle)), fmt(c.approach * 1e6))
+               for c in rows])
 
 
 def _head(tag: str) -> str:
@@ -239,5 +279,5 @@ def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
     ``fidelity`` if none)."""
     from ballbench.validation.studies import fe_contact, ladder
 
-    governing = ladder.distinct_contacts(case)[0].contact
+    governing = _distinct(case)[0][0].contact
     return fe_contact.show_fields(ladder.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)

@@ -21,7 +21,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "guide_contacts", "guide_result", "screw_result"]
+__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "guide_contacts", "guide_result", "screw_result",
+           "screw_frictionless_contacts"]
 
 
 @dataclass(frozen=True)
@@ -198,3 +199,28 @@ def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
     return ScrewResult(case.name, "lowmodel.screw.b2b", tuple(rows), tuple(float(x) for x in touching.b2b_force),
                        free.input_power / speed, touching.input_power / speed, float(free.input_power),
                        float(touching.input_power), tuple(float(x) for x in shares))
+
+
+def screw_frictionless_contacts(case) -> tuple[ContactLoad, ...]:
+    """The contacts of a :class:`BallScrewCase`'s balls by the frictionless statics at the case's axial load
+    (lowmodel.screw.preload.frictionless_statics: exact flank arcs, Hertz's law lin2019 eq 53, contacts unload; below
+    or past the preload loss), not lin2019's friction model: per ball and contact the normal force, the actual contact
+    angle (eq 37), the Hertz semi-axes and maximum pressure of the same Hertz solution as the statics' ``C_i`` (at the
+    flank's contact angle, lowmodel.screw.contacts) and the approach (not positive: the contact is open)."""
+    from ballbench.lowmodel.screw import preload
+    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
+    from ballbench.validation.studies import screw_two_ball
+
+    contacts = screw_two_ball.ball_contacts(case)
+    state = preload.frictionless_statics(contacts, case.axial_load)
+    a = contacts.semi_major_unit * np.cbrt(state.normal_force)
+    b = a * contacts.b_over_a
+    rows = []
+    for ball in range(contacts.n_balls):
+        for i, name in enumerate(CONTACT_NAMES):
+            f = float(state.normal_force[ball, i])
+            area = math.pi * float(a[ball, i]) * float(b[ball, i])
+            rows.append(ContactLoad(ball + 1, name, f, float(state.contact_angle[ball, i]), float(a[ball, i]),
+                                    float(b[ball, i]), 1.5 * f / area if f > 0 else 0.0,
+                                    float(state.approach[ball, i])))
+    return tuple(rows)

@@ -148,15 +148,21 @@ class DistinctContact:
     why: str
 
 
-def distinct_contacts(case, result=None) -> tuple[DistinctContact, ...]:
+def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple[DistinctContact, ...]:
     """The distinct contact geometries of ``case``, each at the largest normal force among its contacts, the most
-    loaded first.
+    loaded first.  ``frictionless`` (a ball screw): the loads of the frictionless statics of its balls at its axial
+    load (studies.bearing_results.screw_frictionless_contacts; two-point contact past the preload loss) instead of
+    lin2019's friction model's state (``result``), for the contact rung where that model has no state
+    (docs/ball_screw.md, "Preload loss").
 
     A contact's geometry is the ball radius, the groove's conformity and, for a helical groove, the side: a linear
     guide has one conformity for the rail (BL, BR) and the carriage (TL, TR) grooves (docs/fourpoint.md; the case's
     ``conformity``), so its four contacts are one geometry; in a ball screw the screw-side contacts (S*) touch a
     groove cut in the shaft and the nut-side ones (N*) a groove cut in the bore: their curvatures along the helix
     differ (docs/ball_screw.md, helical groove curvatures), two geometries.  A ContactCase is its own one."""
+    if frictionless and not isinstance(case, BallScrewCase):
+        raise ValueError(f"frictionless loads are those of a ball screw's balls (lowmodel.screw.preload), got a "
+                         f"{type(case).__name__}")
     if isinstance(case, ContactCase):
         return (DistinctContact("contact", case, (case.name,), "the case file's own contact"),)
     from ballbench.validation.studies import bearing_results
@@ -174,21 +180,27 @@ def distinct_contacts(case, result=None) -> tuple[DistinctContact, ...]:
                                 f"{guide.conformity:g} and ball radius of the case: one contact geometry, run at the "
                                 "largest load"),)
     if isinstance(case, BallScrewCase):
-        result = result or bearing_results.screw_result(case)
+        if frictionless:
+            loads = bearing_results.screw_frictionless_contacts(case)
+        else:
+            loads = (result or bearing_results.screw_result(case)).contacts
+        words = ", frictionless two-point statics" if frictionless else ""
         screw = case.screw
         found = []
         for pair, prefix in (("screw", "S"), ("nut", "N")):
-            side = [c for c in result.contacts if c.contact.startswith(prefix)]
+            side = [c for c in loads if c.contact.startswith(prefix)]
             worst = max(side, key=lambda c: c.normal_force)
             if not worst.normal_force > 0:
                 continue  # no loaded contact on this side: nothing to run
             contact = ContactCase(f"{case.name}: most loaded {pair}-side contact (ball {worst.ball} {worst.contact},"
-                                  f" {worst.normal_force:.4g} N)", pair, screw.ball_radius, screw.material,
+                                  f" {worst.normal_force:.4g} N{words})", pair, screw.ball_radius, screw.material,
                                   worst.normal_force, screw=screw)
             found.append(DistinctContact(f"{pair} side", contact, tuple(f"ball {c.ball} {c.contact}" for c in side),
                                          f"the {pair}-side contacts share the {pair} groove's curvatures (the "
                                          f"screw's conformity, pitch radius {screw.pitch_radius * 1e3:.4g} mm); "
-                                         "run at the largest load of the side"))
+                                         "run at the largest load of the side"
+                                         + (" of the frictionless statics (lowmodel.screw.preload)" if frictionless
+                                            else "")))
         return tuple(sorted(found, key=lambda d: -d.contact.force))
     raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
 

@@ -34,6 +34,23 @@ def test_a_screw_has_a_screw_side_and_a_nut_side_each_at_its_largest_load():
     assert distinct[0].contact.force == ladder.governing_contact(case).force
 
 
+def test_the_frictionless_loads_of_a_screw_are_the_largest_of_its_frictionless_statics():
+    # the contact rung's loads past the preload loss (lowmodel.screw.preload.frictionless_statics), per side
+    from ballbench.lowmodel.screw import preload
+    from ballbench.validation.studies import screw_two_ball
+
+    case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
+    distinct = ladder.distinct_contacts(case, frictionless=True)
+    state = preload.frictionless_statics(screw_two_ball.ball_contacts(case), case.axial_load)
+    largest = {"screw": state.normal_force[:, :2].max(), "nut": state.normal_force[:, 2:].max()}
+    assert {d.contact.pair: d.contact.force for d in distinct} == largest
+    assert all("frictionless" in d.contact.name and "lowmodel.screw.preload" in d.why for d in distinct)
+    assert distinct[0].contact.force >= distinct[1].contact.force
+    with pytest.raises(ValueError, match="frictionless"):
+        ladder.distinct_contacts(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"),
+                                 frictionless=True)
+
+
 def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
     out = tmp_path / "report"
     cli.main(["validate", str(paths.ROOT / "examples" / "ball_screw_32x10.toml"), "--quick", "--no-progress",
