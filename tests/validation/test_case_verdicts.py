@@ -24,7 +24,7 @@ def _screw_file(tmp_path, axial_load: str):
     text = case_file.template("ball-screw")
     for old, new in (('pitch_radius = "16.6 mm"', 'pitch_radius = "20 mm"'),
                      ("conformity = 0.55 ", "conformity = 0.54 "),
-                     ('axial_load = "200 N"', f'axial_load = "{axial_load}"')):
+                     ('axial_load = "100 N"', f'axial_load = "{axial_load}"')):
         assert old in text, old
         text = text.replace(old, new)
     path = tmp_path / "s.toml"
@@ -246,3 +246,5 @@ def test_the_ball_screw_template_states_the_range_of_lin2019_s_model():
     at = text.index('axial_load = "')
     comment = text[at:text.index("deviations =")]
     assert f"below the preload loss: {loss.axial_load:.0f} N" in comment and "oversize^1.5" in comment
+    # the template's own example lies in that range (a new user's first run is the model's four-point regime)
+    assert case_file.loads(text).axial_load < loss.axial_load

@@ -142,7 +142,7 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
         "material": _material_keys(),
         "load": (
             Key("axial_load", "force", "axial load on the screw, shared by the balls", check="non-negative",
-                example='"200 N"'),
+                example='"100 N"'),
             Key("deviations", "angle list", "theta of each ball: screw-side contact angle deviation",
                 check="deviation", example='["0 deg", "2 deg"]'),
             Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
