@@ -149,12 +149,27 @@ def chain_terms(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_m
     """Residual (n K,) and Jacobian blocks of ``n`` balls: ``K = 7`` one ball alone (``n = 1``), ``K = 8`` an open
     chain with the B2B loads of lin2019 eqs 5-8 and the ``min`` complementarity of eqs 9-10 on the force slot
     (units mu F_ref; ``live[j]``: pair (j, j+1) touches).  Blocks: ``diagonal[j]``, ``upper[j]`` = (j, j+1),
-    ``lower[j]`` = (j, j-1), each (n, K, K), overwritten."""
-    diagonal[:] = 0.0
-    upper[:] = 0.0
-    lower[:] = 0.0
+    ``lower[j]`` = (j, j-1), each (n, K, K), overwritten.  With ``K = 8`` only the entries the chain can fill are
+    written (``ball_terms``' pattern, rows and columns 1-2 of the pair loads, column 7 of rows 0-2, row 7 columns 0
+    and 7): the blocks must hold zeros elsewhere (allocated by ``np.zeros`` and written by this function only)."""
+    if big_k == 7:
+        diagonal[:] = 0.0
+        upper[:] = 0.0
+        lower[:] = 0.0
     for j in range(n):
         base = big_k * j
+        if big_k == 8:  # the entries of the pair loads and eqs 9-10, added to or set below
+            for a in range(3):
+                diagonal[j, a, 7] = 0.0
+                lower[j, a, 7] = 0.0
+            for a in range(1, 3):
+                for b in range(1, 3):
+                    diagonal[j, a, b] = 0.0
+                    upper[j, a, b] = 0.0
+                    lower[j, a, b] = 0.0
+            diagonal[j, 7, 0] = 0.0
+            diagonal[j, 7, 7] = 0.0
+            upper[j, 7, 0] = 0.0
         ball_terms(z[base:base + 7], geometry[j], nodes_x, mid_x, n_mid_y, flat, residual[base:base + 7],
                    diagonal[j], slip[j], table)
     if big_k == 7:
@@ -217,6 +232,32 @@ def _matvec(diagonal, upper, lower, x, out):
                 for b in range(k):
                     total += upper[j, a, b] * x[k * (j + 1) + b]
             out[k * j + a] = total
+
+
+@_jit
+def _matvec_reach(diagonal, upper, lower, reach, x, out):
+    """:func:`_matvec` over the rows of ``lower[j]`` below ``reach[j, 0]`` and the columns of ``upper[j]`` below
+    ``reach[j, 1]`` only (:func:`_block_factor`: the rest of those blocks is zero)."""
+    n, k = diagonal.shape[0], diagonal.shape[1]
+    for j in range(n):
+        base = k * j
+        for a in range(k):
+            total = 0.0
+            for b in range(k):
+                total += diagonal[j, a, b] * x[base + b]
+            out[base + a] = total
+        if j > 0:
+            for a in range(reach[j, 0]):
+                total = 0.0
+                for b in range(k):
+                    total += lower[j, a, b] * x[base - k + b]
+                out[base + a] += total
+        if j < n - 1:
+            for a in range(k):
+                total = 0.0
+                for b in range(reach[j, 1]):
+                    total += upper[j, a, b] * x[base + k + b]
+                out[base + a] += total
 
 
 @_jit
@@ -456,26 +497,11 @@ def _block_factor(diagonal, upper, lower, factor, pivots, coupling, reach):  # n
                     if value != 0.0:
                         for c in range(width):
                             factor[j, a, c] -= value * coupling[j - 1, b, c]
-        for col in range(k):
-            pivot = col
-            best = abs(factor[j, col, col])
-            for row in range(col + 1, k):
-                if abs(factor[j, row, col]) > best:
-                    best = abs(factor[j, row, col])
-                    pivot = row
-            if not best > 0.0:
+        if _slip_eliminable(factor, j):
+            if not _slip_factor(factor, pivots, j):
                 return False
-            pivots[j, col] = pivot
-            if pivot != col:
-                for c in range(k):
-                    factor[j, col, c], factor[j, pivot, c] = factor[j, pivot, c], factor[j, col, c]
-            inverse = 1.0 / factor[j, col, col]
-            for row in range(col + 1, k):
-                multiplier = factor[j, row, col] * inverse
-                factor[j, row, col] = multiplier
-                if multiplier != 0.0:
-                    for c in range(col + 1, k):
-                        factor[j, row, c] -= multiplier * factor[j, col, c]
+        elif not _full_factor(factor, pivots, j):
+            return False
         for c in range(columns):
             for a in range(k):
                 coupling[j, a, c] = upper[j, a, c]
@@ -483,10 +509,153 @@ def _block_factor(diagonal, upper, lower, factor, pivots, coupling, reach):  # n
     return True
 
 
+_SLIP_PIVOT = 1e-4  # a slip-angle pivot |d r_i / d phi_i| = |slip speed| below this times its row: the full LU
+
+
+@_jit
+def _slip_eliminable(factor, j):
+    """Whether the pivot block ``factor[j]`` (K = 8) has the slip-angle pattern of a chain ball (rows and columns 3-6
+    diagonal: the slip kinematics of contact ``i`` hold only its own angle) with every slip-angle pivot at least
+    :data:`_SLIP_PIVOT` of the largest other entry of its row (a contact near sticking: the full LU instead)."""
+    if factor.shape[1] != 8:
+        return False
+    for s in range(3, 7):
+        largest = 0.0
+        for c in range(8):
+            if c != s:
+                if 3 <= c <= 6 and factor[j, s, c] != 0.0:
+                    return False
+                largest = max(largest, abs(factor[j, s, c]))
+        if not abs(factor[j, s, s]) > _SLIP_PIVOT * largest:
+            return False
+    return True
+
+
+@_jit
+def _slip_factor(factor, pivots, j):
+    """LU of the pivot block with the slip angles eliminated first: with ``R`` = (0, 1, 2, 7) and ``S`` = 3-6 (``S``
+    diagonal), ``M = [[A, B], [C, S]]`` gives the 4 x 4 Schur complement ``A - B S^-1 C``, factored with partial
+    pivoting (row exchanges within ``R`` in ``pivots[j, 0:4]``, ``pivots[j, 7] = -1`` marks the block).  In
+    ``factor[j]``: ``1 / S`` on the slip diagonal, ``S^-1 C`` in the rows of ``S``, ``B`` as it was, the LU in
+    ``R x R``.  False where a pivot of the complement is 0 (``M`` is then singular)."""
+    for s in range(3, 7):
+        inverse = 1.0 / factor[j, s, s]
+        factor[j, s, s] = inverse
+        for a in range(4):
+            ra = 7 if a == 3 else a
+            factor[j, s, ra] *= inverse
+    for a in range(4):
+        ra = 7 if a == 3 else a
+        for b in range(4):
+            rb = 7 if b == 3 else b
+            total = factor[j, ra, rb]
+            for s in range(3, 7):
+                total -= factor[j, ra, s] * factor[j, s, rb]
+            factor[j, ra, rb] = total
+    for col in range(4):
+        rc = 7 if col == 3 else col
+        pivot = col
+        best = abs(factor[j, rc, rc])
+        for row in range(col + 1, 4):
+            rr = 7 if row == 3 else row
+            if abs(factor[j, rr, rc]) > best:
+                best = abs(factor[j, rr, rc])
+                pivot = row
+        if not best > 0.0:
+            return False
+        pivots[j, col] = pivot
+        if pivot != col:
+            rp = 7 if pivot == 3 else pivot
+            for c in range(4):
+                q = 7 if c == 3 else c
+                factor[j, rc, q], factor[j, rp, q] = factor[j, rp, q], factor[j, rc, q]
+        inverse = 1.0 / factor[j, rc, rc]
+        for row in range(col + 1, 4):
+            rr = 7 if row == 3 else row
+            multiplier = factor[j, rr, rc] * inverse
+            factor[j, rr, rc] = multiplier
+            if multiplier != 0.0:
+                for c in range(col + 1, 4):
+                    q = 7 if c == 3 else c
+                    factor[j, rr, q] -= multiplier * factor[j, rc, q]
+    pivots[j, 7] = -1
+    return True
+
+
+@_jit
+def _full_factor(factor, pivots, j):
+    """LU of the pivot block ``factor[j]`` with partial pivoting over all K rows; False where a pivot is 0."""
+    k = factor.shape[1]
+    for col in range(k):
+        pivot = col
+        best = abs(factor[j, col, col])
+        for row in range(col + 1, k):
+            if abs(factor[j, row, col]) > best:
+                best = abs(factor[j, row, col])
+                pivot = row
+        if not best > 0.0:
+            return False
+        pivots[j, col] = pivot
+        if pivot != col:
+            for c in range(k):
+                factor[j, col, c], factor[j, pivot, c] = factor[j, pivot, c], factor[j, col, c]
+        inverse = 1.0 / factor[j, col, col]
+        for row in range(col + 1, k):
+            multiplier = factor[j, row, col] * inverse
+            factor[j, row, col] = multiplier
+            if multiplier != 0.0:
+                for c in range(col + 1, k):
+                    factor[j, row, c] -= multiplier * factor[j, col, c]
+    return True
+
+
+@_jit
+def _slip_apply(factor, pivots, j, x):
+    """``x <- M_j^-1 x`` with the LU of :func:`_slip_factor`."""
+    for s in range(3, 7):
+        x[s] *= factor[j, s, s]
+    for a in range(4):
+        ra = 7 if a == 3 else a
+        total = x[ra]
+        for s in range(3, 7):
+            total -= factor[j, ra, s] * x[s]
+        x[ra] = total
+    for col in range(4):
+        p = pivots[j, col]
+        if p != col:
+            rc = 7 if col == 3 else col
+            rp = 7 if p == 3 else p
+            x[rc], x[rp] = x[rp], x[rc]
+    for col in range(4):
+        rc = 7 if col == 3 else col
+        value = x[rc]
+        if value != 0.0:
+            for row in range(col + 1, 4):
+                rr = 7 if row == 3 else row
+                x[rr] -= factor[j, rr, rc] * value
+    for row in range(3, -1, -1):
+        rr = 7 if row == 3 else row
+        total = x[rr]
+        for c in range(row + 1, 4):
+            q = 7 if c == 3 else c
+            total -= factor[j, rr, q] * x[q]
+        x[rr] = total / factor[j, rr, rr]
+    for s in range(3, 7):
+        total = x[s]
+        for a in range(4):
+            ra = 7 if a == 3 else a
+            total -= factor[j, s, ra] * x[ra]
+        x[s] = total
+
+
 @_jit
 def _block_apply(factor, pivots, j, x):
-    """``x <- M_j^-1 x`` with the LU of :func:`_block_factor`."""
+    """``x <- M_j^-1 x`` with the LU of :func:`_block_factor` (of :func:`_slip_factor` where ``pivots[j, 7] < 0``:
+    ``y = S^-1 x_S``, ``(A - B S^-1 C) u_R = x_R - B y``, ``u_S = y - S^-1 C u_R``)."""
     k = x.size
+    if pivots[j, k - 1] < 0:
+        _slip_apply(factor, pivots, j, x)
+        return
     for col in range(k):
         p = pivots[j, col]
         if p != col:
@@ -681,7 +850,10 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
                         break
             predicted = -1.0
             if finite:
-                _matvec(diagonal, upper, lower, step, change)
+                if newton_try:
+                    _matvec_reach(diagonal, upper, lower, reach, step, change)
+                else:
+                    _matvec(diagonal, upper, lower, step, change)
                 linear = 0.0
                 defect = 0.0
                 for i in range(size):

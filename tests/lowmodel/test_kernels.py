@@ -84,6 +84,40 @@ def test_block_lu_of_a_chain_jacobian(compiled):
     assert not compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
 
 
+def test_block_lu_eliminates_the_slip_angles_first(compiled):
+    # pivot blocks with a chain ball's pattern (slip kinematics rows 3-6: columns 0-2 and their own angle only) take
+    # the 4 x 4 Schur complement (ball_kernels._slip_factor, marked by pivots[j, 7] = -1); a slip-angle pivot near 0
+    # (a contact near sticking) takes the full 8 x 8 LU; both against a dense solve
+    rng = np.random.default_rng(5)
+    n, k = 9, 8
+    diagonal = np.zeros((n, k, k))
+    diagonal[:, 0:3, 3:7] = rng.normal(size=(n, 3, 4))
+    diagonal[:, 3:7, 0:3] = rng.normal(size=(n, 4, 3))
+    diagonal[:, 1:3, 1:3] = rng.normal(size=(n, 2, 2))
+    diagonal[:, 0:3, 7] = rng.normal(size=(n, 3))
+    diagonal[:, 7, 7] = 1.0
+    diagonal[::2, 7, 0], diagonal[::2, 7, 7] = -2.0, 0.0
+    for s in range(3, 7):
+        diagonal[:, s, s] = rng.uniform(0.5, 1.5, size=n) * rng.choice([-1.0, 1.0], size=n)
+    diagonal[6, 5, 5] = 1e-9
+    upper, lower = np.zeros((n, k, k)), np.zeros((n, k, k))
+    upper[:-1, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
+    upper[::2, 7, 0] = 2.0
+    upper[-1] = 0.0
+    lower[1:, 0:3, 7] = rng.normal(size=(n - 1, 3))
+    lower[1:, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
+    dense = np.zeros((n * k, n * k))
+    compiled._dense(diagonal, upper, lower, dense)
+    factor, coupling = np.empty((n, k, k)), np.empty((n, k, k))
+    pivots, reach = np.empty((n, k), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
+    assert compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    assert [bool(p < 0) for p in pivots[:, 7]] == [j != 6 for j in range(n)]
+    rhs, out = rng.normal(size=n * k), np.empty(n * k)
+    compiled._block_solve(factor, pivots, coupling, reach, lower, rhs, out, np.empty(k))
+    expected = np.linalg.solve(dense, rhs)
+    assert np.max(np.abs(out - expected)) <= 1e-10 * np.max(np.abs(expected))
+
+
 def test_failure_is_the_numpy_failure(compiled):
     # beyond the spin-capacity limit the kernels fail and the numpy path names the failure, the same either way
     contacts = b2b.module_contacts(math.radians(2.87), -0.9, vertical_force=128.0, friction_coefficient=0.6)
