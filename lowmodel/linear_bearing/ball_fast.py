@@ -10,6 +10,7 @@ has the continuation and names the failure.
 """
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -93,6 +94,20 @@ def solve_free(contacts: BallContacts, balls_per_case: int, reference_force, *, 
     return out
 
 
+_SCRATCH = threading.local()
+
+
+def _workspace(module, balls_per_case: int) -> np.ndarray:
+    """The chain Newton's scratch (``ball_kernels.workspace_size``), kept per thread and reused by later solves of
+    chains as long or shorter: the first touch of fresh memory of this size costs more than the block LU."""
+    size = module.workspace_size(balls_per_case)
+    work = getattr(_SCRATCH, "work", None)
+    if work is None or work.size < size:
+        work = np.empty(size)
+        _SCRATCH.work = work
+    return work
+
+
 def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_force, *, tolerance: float,
                  max_iterations: int) -> CaseStates | None:
     """Cases of open B2B chains of ``balls_per_case`` balls (lin2019 eqs 4-10; the first two attempts of
@@ -106,7 +121,7 @@ def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_fo
     module.solve_chain_cases(geometry(contacts), balls_per_case, np.asarray(live, dtype=np.bool_),
                              scalars, COMPLEMENTARITY_SCALE, float(tolerance), int(max_iterations), *_tables(),
                              out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
-                             out.input_power)
+                             out.input_power, _workspace(module, balls_per_case))
     return out
 
 
@@ -123,7 +138,7 @@ def warm_up(module) -> None:
                             out.residual, out.ball, out.contact, out.input_power)
     module.solve_chain_cases(geometry(contacts), 2, np.array([True, False]), scalars, COMPLEMENTARITY_SCALE, 1e-12, 2,
                              *_tables(), out.status, out.iterations, out.residual, out.ball, out.contact, out.pair,
-                             out.input_power)
+                             out.input_power, np.empty(0))
 
 
 def store_state(states: CaseStates, case: int, state) -> None:

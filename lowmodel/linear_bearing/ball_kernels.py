@@ -42,7 +42,8 @@ import numba
 import numpy as np
 
 __all__ = ["ball_terms", "chain_terms", "newton", "solve_branch", "solve_free_cases", "solve_chain_cases",
-           "contact_terms", "warm_up", "FIELDS", "CONVERGED", "NOT_CONVERGED", "STATIONARY", "NO_DESCENT", "REJECTED",
+           "contact_terms", "warm_up",
+           "workspace_size", "FIELDS", "CONVERGED", "NOT_CONVERGED", "STATIONARY", "NO_DESCENT", "REJECTED",
            "VIOLATED"]
 
 NX, NY, ARM, TOP, LOAD, CELL, POWER_Y, SEMI_MAJOR, ANGLE = 0, 1, 2, 3, 4, 5, 6, 10, 11
@@ -722,7 +723,7 @@ _NEWTON_DEFECT = 1e-8  # Newton steps are used where max|r + J dx| <= this max|r
 
 @_jit
 def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,  # noqa: C901 - one compiled Levenberg-Marquardt loop (numba: no closures)
-           residual):
+           residual, work):
     """:func:`lowmodel.solvers.newton` on :func:`chain_terms` from ``z`` (overwritten with the last iterate);
     the residual at it into ``residual`` (n K,).  Returns ``(status, iterations, max |residual|)``.
 
@@ -731,14 +732,33 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
     Levenberg-Marquardt step (and only where ``max|r + J dx| <= _NEWTON_DEFECT max|r|``); where the LU has a zero
     pivot or the step is refused, the Levenberg-Marquardt steps of :func:`lowmodel.solvers.newton` follow from the
     same damping (banded Cholesky of the permuted normal equations).  The damping follows Nielsen's update after
-    either step.  The convergence test (``max|r| <= tolerance`` at an evaluated point) is the same either way."""
+    either step.  The convergence test (``max|r| <= tolerance`` at an evaluated point) is the same either way.
+
+    ``work``: scratch of at least :func:`workspace_size` floats for the eight (n, K, K) block arrays of the sparse
+    path, reused between solves (fresh memory of that size costs more page faults than the solve's LU); smaller
+    (e.g. empty): allocated here."""
     size = n * big_k
-    diagonal = np.zeros((n, big_k, big_k))
-    upper = np.zeros((n, big_k, big_k))
-    lower = np.zeros((n, big_k, big_k))
-    trial_diagonal = np.zeros((n, big_k, big_k))
-    trial_upper = np.zeros((n, big_k, big_k))
-    trial_lower = np.zeros((n, big_k, big_k))
+    dense = n < SPARSE_BALLS
+    count = n * big_k * big_k
+    if not dense and work.size >= 8 * count:
+        diagonal = work[0:count].reshape((n, big_k, big_k))
+        upper = work[count:2 * count].reshape((n, big_k, big_k))
+        lower = work[2 * count:3 * count].reshape((n, big_k, big_k))
+        trial_diagonal = work[3 * count:4 * count].reshape((n, big_k, big_k))
+        trial_upper = work[4 * count:5 * count].reshape((n, big_k, big_k))
+        trial_lower = work[5 * count:6 * count].reshape((n, big_k, big_k))
+        blocks = work[6 * count:7 * count].reshape((n, big_k, big_k))
+        coupling = work[7 * count:8 * count].reshape((n, big_k, big_k))
+        work[0:6 * count] = 0.0
+    else:
+        diagonal = np.zeros((n, big_k, big_k))
+        upper = np.zeros((n, big_k, big_k))
+        lower = np.zeros((n, big_k, big_k))
+        trial_diagonal = np.zeros((n, big_k, big_k))
+        trial_upper = np.zeros((n, big_k, big_k))
+        trial_lower = np.zeros((n, big_k, big_k))
+        blocks = np.empty((n, big_k, big_k))
+        coupling = np.empty((n, big_k, big_k))
     trial_residual = np.empty(size)
     slip = np.empty((n, 4))
     table = np.empty((3, 2))
@@ -748,7 +768,6 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
     step = np.empty(size)
     change = np.empty(size)
     scratch = np.empty(big_k)
-    dense = n < SPARSE_BALLS
     if dense:
         jacobian = np.empty((size, size))
         normal = np.empty((size, size))
@@ -759,14 +778,10 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
         factor = np.empty((1, 1))
         permuted = np.empty(1)
         position = np.empty(1, dtype=np.int64)
-        blocks = np.empty((1, 1, 1))
         pivots = np.empty((1, 1), dtype=np.int64)
-        coupling = np.empty((1, 1, 1))
         reach = np.empty((1, 2), dtype=np.int64)
     else:
-        blocks = np.empty((n, big_k, big_k))
         pivots = np.empty((n, big_k), dtype=np.int64)
-        coupling = np.empty((n, big_k, big_k))
         reach = np.empty((n, 2), dtype=np.int64)
         jacobian = np.empty((1, 1))
         normal = np.empty((1, 1))
@@ -901,9 +916,15 @@ def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
     return CONVERGED, iterations, norm
 
 
+def workspace_size(n_balls: int) -> int:
+    """Floats of the scratch ``work`` of :func:`newton` (and :func:`solve_chain_cases`) for chains of ``n_balls``
+    balls: eight (n, 8, 8) block arrays from :data:`SPARSE_BALLS` balls on, none below."""
+    return 8 * 64 * n_balls if n_balls >= SPARSE_BALLS else 0
+
+
 @_jit
 def solve_branch(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance,
-                 max_iterations, attempts, residual):
+                 max_iterations, attempts, residual, work):
     """:func:`newton`, then the physical branch: a converged point with a contact slip speed below
     ``-1e3 tolerance`` is restarted with that slip angle turned by pi, at most ``attempts`` runs sharing
     ``max_iterations`` (:func:`lowmodel.solvers.solve_with_restarts`).  ``z`` is overwritten; returns
@@ -915,7 +936,7 @@ def solve_branch(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_
     for _ in range(attempts):
         if total < max_iterations:
             status, iterations, norm = newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
-                                              flat, tolerance, max_iterations - total, residual)
+                                              flat, tolerance, max_iterations - total, residual, work)
             if status != CONVERGED:
                 return status, total + iterations, norm
         else:  # the budget is spent: the restart point counts only if it solves the system as it is
@@ -1022,7 +1043,8 @@ def _free(n, x, geometry, scalars, nodes_x, mid_x, n_mid_y, flat, tolerance, max
     worst_iterations, worst_residual = 0, 0.0
     for j in range(n):
         status, iterations, norm = solve_branch(x[j], 1, 7, geometry[j:j + 1], live, scalars[2], 0.0, nodes_x,
-                                                mid_x, n_mid_y, flat, tolerance, max_iterations, 4, residual)
+                                                mid_x, n_mid_y, flat, tolerance, max_iterations, 4, residual,
+                                                np.empty(0))
         if status != CONVERGED:
             return status, iterations, norm
         worst_iterations = max(worst_iterations, iterations)
@@ -1052,11 +1074,13 @@ def solve_free_cases(geometry, balls_per_case, scalars, tolerance, max_iteration
 
 @_jit
 def solve_chain_cases(geometry, balls_per_case, live, scalars, rate_scale, tolerance, max_iterations, nodes_x, mid_x,
-                      n_mid_y, flat, status, iterations, residual, out_ball, out_contact, out_pair, input_power):
+                      n_mid_y, flat, status, iterations, residual, out_ball, out_contact, out_pair, input_power,
+                      work):
     """``m`` open B2B chains of ``n`` balls (:func:`lowmodel.linear_bearing.b2b.solve`'s first two attempts: the
     coupled Newton from rolling at v/2, else from every ball solved alone), ``live`` (n,) the touching pairs;
     the complementarity check of :func:`lowmodel.b2b_chain.chain_forces` (status :data:`VIOLATED`); per case
-    the state (:func:`_state`), ``out_pair`` (m, n - 1, 3): F_B2B [N], B2B slip [m/s], B2B loss [W]."""
+    the state (:func:`_state`), ``out_pair`` (m, n - 1, 3): F_B2B [N], B2B slip [m/s], B2B loss [W]; ``work``
+    the scratch of :func:`newton` (:func:`workspace_size` floats; smaller: allocated per solve)."""
     m, n = geometry.shape[0] // balls_per_case, balls_per_case
     big_k = 8
     x = np.empty((n, 7))
@@ -1072,7 +1096,7 @@ def solve_chain_cases(geometry, balls_per_case, live, scalars, rate_scale, toler
             z[big_k * j:big_k * j + 7] = x[j]
             z[big_k * j + 7] = 0.0
         state, count, norm = solve_branch(z, n, big_k, g, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat,
-                                          tolerance, max_iterations, 4, chain_residual)
+                                          tolerance, max_iterations, 4, chain_residual, work)
         if state != CONVERGED:  # from every ball solved on its own
             state, free_count, norm = _free(n, x, g, scalar, nodes_x, mid_x, n_mid_y, flat, tolerance,
                                             max_iterations)
@@ -1081,7 +1105,7 @@ def solve_chain_cases(geometry, balls_per_case, live, scalars, rate_scale, toler
                     z[big_k * j:big_k * j + 7] = x[j]
                     z[big_k * j + 7] = 0.0
                 state, count, norm = solve_branch(z, n, big_k, g, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
-                                                  flat, tolerance, max_iterations, 4, chain_residual)
+                                                  flat, tolerance, max_iterations, 4, chain_residual, work)
                 count += free_count
         status[c], iterations[c], residual[c] = state, count, norm
         if state != CONVERGED:
