@@ -14,7 +14,8 @@ so that nothing allocates per operation (loaded by :func:`lowmodel.kernels.load`
 * :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt with Nielsen's update): dense
   normal equations solved by LU with partial pivoting below :data:`lowmodel.b2b_chain.SPARSE_BALLS`
   balls; from there on each iteration tries the plain Newton step first, by a block LU of the
-  block-tridiagonal ``J`` (:func:`_block_factor`, :func:`_block_solve`), and where that is refused takes the
+  block-tridiagonal ``J`` (:func:`_block_factor`, :func:`_block_solve`; the slip angles of a ball eliminated first,
+  :func:`_slip_factor`), and where that is refused takes the
   Levenberg-Marquardt step with ``J^T J`` in band storage and a banded Cholesky (what ``dpbsv`` does).
 * :func:`solve_branch`: :func:`lowmodel.linear_bearing.ball.solve_branch` (restart a converged point
   whose slip speed is negative with its slip angle turned by pi).
