@@ -54,7 +54,7 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "solve", "LOAD_RAMP_START",
+__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "b2b_slip", "solve", "LOAD_RAMP_START",
            "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel", "RING_KERNELS"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
@@ -133,8 +133,7 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     b_mat = radius * _skew(pair.chord)           # moment = B f
     rot = pair.rotation
     behind, ahead = pairs[:, 0], pairs[:, 1]
-    slip = (spins[behind] + spins[ahead] @ rot.T) @ a_mat.T                 # (p, 3)
-    speeds = np.sqrt(np.einsum("pi,pi->p", slip, slip))
+    slip, speeds = b2b_slip(spins, pair, radius, pairs)
     norm = np.sqrt(speeds**2 + (_REGULARISATION * radius * speed) ** 2)
     direction = slip / norm[:, None]
     friction = -mu * forces[:, None] * direction                              # eq 58 on the ball behind
@@ -159,6 +158,80 @@ def b2b_loads(spins: np.ndarray, forces: np.ndarray, pair: PairGeometry, radius:
     d_force[:, 1, :3] = (pair.chord - dfric_dforce) @ rot
     d_force[:, 1, 3:] = dfric_dforce @ b_mat.T @ rot
     return load, d_spin, d_force, speeds
+
+
+def b2b_slip(spins: np.ndarray, pair: PairGeometry, radius: float, pairs: np.ndarray):
+    """Slip of every pair (eq 57), ball behind relative to ball ahead: ``(s (p, 3) [m/s] in the CS3 of the ball
+    behind, |s| (p,) [m/s])`` of spins (n, 3) [rad/s] and ``pairs`` (p, 2) int indices (behind, ahead) (the
+    arithmetic of :func:`b2b_loads`)."""
+    behind, ahead = pairs[:, 0], pairs[:, 1]
+    slip = (spins[behind] + spins[ahead] @ pair.rotation.T) @ (-radius * _skew(pair.chord)).T
+    return slip, np.sqrt(np.einsum("pi,pi->p", slip, slip))
+
+
+@dataclass(frozen=True)
+class _ChainSetup:
+    """What a solve of :func:`_solve_attempt` needs besides its start, for one load, gap pattern and tolerance on
+    one set of contacts (remembered in :attr:`BallContacts.solver_memo`): the reference force's scales, the chain's
+    layout, the scaled axial targets, the complementarity rate's scale, the per-row tolerances and step weights
+    (docs/ball_screw.md, small mu), the free-rolling start (n, 4) in scaled unknowns, and the compiled solver's
+    constant arrays."""
+
+    scales: sb.Scales
+    layout: ChainLayout
+    targets: np.ndarray
+    rate_scale: float
+    rows: np.ndarray
+    weights: np.ndarray
+    rolling_start: np.ndarray
+    kernel_constants: tuple
+
+
+def _chain_setup(contacts: screw_contacts.BallContacts, loads: np.ndarray, per_ball: bool, touching: np.ndarray,
+                 ring: bool, tolerance: float) -> _ChainSetup:
+    """The :class:`_ChainSetup` of a solve (computed at the first solve with these inputs, then remembered)."""
+    key = (loads.tobytes(), per_ball, touching.tobytes(), bool(ring), float(tolerance))
+    setups = contacts.solver_memo.setdefault("chain", {})
+    if key not in setups:
+        if len(setups) >= sb.MEMO_SIZE:
+            setups.clear()
+        setups[key] = _new_chain_setup(contacts, loads, per_ball, touching, ring, tolerance)
+    return setups[key]
+
+
+def _new_chain_setup(contacts, loads, per_ball, touching, ring, tolerance) -> _ChainSetup:
+    n = contacts.n_balls
+    module = contacts.module
+    total = float(loads.sum())
+    reference = sb.reference_force(contacts, float(np.max(np.abs(loads))) if per_ball else total / n)
+    scales = sb.scales_for(contacts, reference)
+    k = sb.N_UNKNOWNS + (1 if per_ball else 0)   # per-ball loads: the ball's own nut shift is its 7th unknown
+    layout = ChainLayout(n, k, checks.read_only(touching), ring=ring and n > 1, n_global=0 if per_ball else 1)
+    rate_scale = COMPLEMENTARITY_SCALE * scales.orbit / abs(module.nut_speed)   # rate in units |omega_N| / gamma
+    # per-row tolerances and step weights (docs/ball_screw.md, small mu) in the chain's order: every ball's block
+    # (six eq 54 rows, its axial row when the nut shift is per ball, its pair's slot), then the global axial row
+    ball_rows = dict(balls=1, axial=1 if per_ball else 0, extra=1)
+    rows = np.concatenate([np.tile(row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                                  groove_radius=module.groove_radius,
+                                                  ball_radius=module.ball_radius, approach=scales.length,
+                                                  **ball_rows), n),
+                           row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                          groove_radius=module.groove_radius, ball_radius=module.ball_radius,
+                                          approach=scales.length, balls=0, axial=layout.n_global)])
+    weights = np.concatenate([np.tile(row_weights(friction_coefficient=module.friction_coefficient, **ball_rows), n),
+                              row_weights(friction_coefficient=module.friction_coefficient, balls=0,
+                                          axial=layout.n_global)])
+    rates = sb.free_rolling_guess(contacts)
+    start = np.empty((n, 4))
+    start[:, 0] = rates[:, 0] / scales.orbit
+    start[:, 1:] = rates[:, 1:] / scales.spin
+    live = np.ascontiguousarray(layout.live)
+    pair_scalars = np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale])
+    constants = (np.array(sb.kernel_scalars(scales, module, None)), live, pair_scalars)
+    targets = loads / scales.force
+    for array in (rows, weights, start, targets, *constants):
+        array.setflags(write=False)
+    return _ChainSetup(scales, layout, targets, rate_scale, rows, weights, start, constants)
 
 
 def check_gaps(gaps, count: int) -> np.ndarray:
@@ -269,14 +342,12 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     module = contacts.module
     total = float(loads.sum())
-    reference = sb.reference_force(contacts, float(np.max(np.abs(loads))) if per_ball else total / n)
-    scales = sb.scales_for(contacts, reference)
+    setup = _chain_setup(contacts, loads, per_ball, touching, ring, tolerance)
+    scales, layout, rows, weights, targets = setup.scales, setup.layout, setup.rows, setup.weights, setup.targets
     pair = pair_geometry(module)
-    k = sb.N_UNKNOWNS + (1 if per_ball else 0)   # per-ball loads: the ball's own nut shift is its 7th unknown
-    layout = ChainLayout(n, k, touching, ring=ring and n > 1, n_global=0 if per_ball else 1)
+    k = layout.n_unknowns
     pairs = layout.pairs
-    targets = loads / scales.force
-    rate_scale = COMPLEMENTARITY_SCALE * scales.orbit / abs(module.nut_speed)   # rate in units |omega_N| / gamma
+    rate_scale = setup.rate_scale
     spin_factor = scales.spin / scales.force
     last = {}
 
@@ -312,25 +383,13 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         return function
 
     what = f"{n}-ball screw module"
-    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last)
+    solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last,
+                              constants=setup.kernel_constants)
     if solver is not None:
         newton = solver
     guess = np.zeros((n, k))
     extra = np.zeros(layout.n_global)
     forces = None
-    # per-row tolerances and step weights (docs/ball_screw.md, small mu) in the chain's order: every ball's block
-    # (six eq 54 rows, its axial row when the nut shift is per ball, its pair's slot), then the global axial row
-    ball_rows = dict(balls=1, axial=1 if per_ball else 0, extra=1)
-    rows = np.concatenate([np.tile(row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
-                                                  groove_radius=module.groove_radius,
-                                                  ball_radius=module.ball_radius, approach=scales.length,
-                                                  **ball_rows), n),
-                           row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
-                                          groove_radius=module.groove_radius, ball_radius=module.ball_radius,
-                                          approach=scales.length, balls=0, axial=layout.n_global)])
-    weights = np.concatenate([np.tile(row_weights(friction_coefficient=module.friction_coefficient, **ball_rows), n),
-                              row_weights(friction_coefficient=module.friction_coefficient, balls=0,
-                                          axial=layout.n_global)])
     if initial is not None and initial.orbit_speed.shape == (n,):
         guess[:, :2] = initial.centre / scales.length
         guess[:, 2] = initial.orbit_speed / scales.orbit
@@ -347,9 +406,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
                                          tolerance=tolerance, max_iterations=max_iterations,
                                          what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
-        rates = sb.free_rolling_guess(contacts)
-        guess[:, 2] = rates[:, 0] / scales.orbit
-        guess[:, 3:6] = rates[:, 1:] / scales.spin
+        guess[:, 2:6] = setup.rolling_start
 
         def contacts_at(z, oversize):  # the contacts of a converged point, for a stall's reason
             balls_z, _, extra_z = layout.unpack(z)
@@ -371,15 +428,14 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     else:
         terms = sb.ball_terms(balls, shift, contacts, scales)
     forces = forces * scales.force
-    speeds = b2b_loads(balls[:, 3:6] * scales.spin, forces, pair, module.ball_radius, module.friction_coefficient,
-                       pairs, abs(module.nut_speed))[3]
+    speeds = b2b_slip(balls[:, 3:6] * scales.spin, pair, module.ball_radius, pairs)[1]
     b2b_loss = module.friction_coefficient * forces * speeds          # lin2019 eq 58: mu F |s|
     return sb.state_from(balls, shift, terms, scales, axial_load=total, b2b_force=forces, b2b_loss=b2b_loss,
                          b2b_slip=speeds, iterations=iterations, residual=float(np.max(np.abs(residual))))
 
 
 def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout, per_ball: bool, targets, scales,
-                     pair: PairGeometry, rate_scale: float, compiled=None, last=None):
+                     pair: PairGeometry, rate_scale: float, compiled=None, last=None, constants=None):
     """A solver with the signature of :func:`lowmodel.solvers.newton` that runs the same Levenberg-Marquardt
     iterations on the same chain compiled (docs/speed.md): in :mod:`lowmodel.screw.ball_kernels` for the dense chains
     (fewer than :data:`lowmodel.b2b_chain.SPARSE_BALLS` balls), in :mod:`lowmodel.screw.ring_kernels` for longer
@@ -388,7 +444,8 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
     ``function.oversize``; where the kernel hands an evaluation back (a contact at rest), the numpy ``newton`` runs
     ``function`` itself.  ``last`` (a dict): a converged solve leaves there the ball terms at its solution, as the
     numpy ``function`` does (``terms``, ``oversize``, ``balls``, ``extra``).  Failures raise the ConvergenceError of
-    :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations)."""
+    :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations).  ``constants``: the kernel's
+    ``(scalars, live, pair scalars)`` of these arguments if already at hand (:class:`_ChainSetup`)."""
     from ballbench.lowmodel import kernels
     from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
     from ballbench.lowmodel.solvers import newton
@@ -402,9 +459,10 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
     if compiled is None:
         return None
     module = contacts.module
-    base = np.array(sb.kernel_scalars(scales, module, None))
-    live = np.ascontiguousarray(layout.live)
-    pair_scalars = np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale])
+    if constants is None:
+        constants = (np.array(sb.kernel_scalars(scales, module, None)), np.ascontiguousarray(layout.live),
+                     np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale]))
+    base, live, pair_scalars = constants
     targets = np.ascontiguousarray(targets, dtype=float)
     failures = {compiled.NOT_CONVERGED: ("Newton did not converge", "iteration limit"),
                 compiled.NON_FINITE: ("Newton did not converge", "non-finite residual"),

@@ -348,7 +348,15 @@ def _contact_angles(direction: np.ndarray) -> np.ndarray:
 
 
 def free_rolling_guess(contacts: BallContacts) -> np.ndarray:
-    """Orbit and spin (n, 4) [rad/s] with least-squares zero slip at the four nominal contact centres."""
+    """Orbit and spin (n, 4) [rad/s] with least-squares zero slip at the four nominal contact centres (read-only;
+    computed once per ``contacts``, :attr:`BallContacts.solver_memo`)."""
+    memo = contacts.solver_memo
+    if "free_rolling" not in memo:
+        memo["free_rolling"] = checks.read_only(_free_rolling(contacts))
+    return memo["free_rolling"]
+
+
+def _free_rolling(contacts: BallContacts) -> np.ndarray:
     module = contacts.module
     s, c = math.sin(module.lead_angle), math.cos(module.lead_angle)
     guess = np.empty((contacts.n_balls, 4))
@@ -389,10 +397,23 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
     return _stack(states)
 
 
+MEMO_SIZE = 64  # loads (or load and gap patterns) remembered per BallContacts (BallContacts.solver_memo)
+
+
 def reference_force(contacts: BallContacts, axial_load: float) -> float:
-    """Normal force scale [N]: the axial load over one loaded pair, at least the preload force."""
-    module = contacts.module
+    """Normal force scale [N]: the axial load over one loaded pair, at least the preload force (remembered per
+    ``contacts`` and load, :attr:`BallContacts.solver_memo`)."""
     load = checks.scalar("axial_load", axial_load, "N")
+    forces = contacts.solver_memo.setdefault("reference_force", {})
+    if load not in forces:
+        if len(forces) >= MEMO_SIZE:
+            forces.clear()
+        forces[load] = _reference_force(contacts, load, axial_load)
+    return forces[load]
+
+
+def _reference_force(contacts: BallContacts, load: float, axial_load) -> float:
+    module = contacts.module
     with np.errstate(over="ignore"):
         pair = abs(load) / np.float64(math.sin(module.nominal_angle) * math.cos(module.lead_angle))
     preload = (module.oversize / float(np.min(contacts.hertz_constant))) ** 1.5 if module.oversize > 0 else 0.0
@@ -439,7 +460,18 @@ def _solve_one(contacts: BallContacts, index: int, axial_load: float, tolerance:
 
 def continuation_start(contacts: BallContacts, axial_load: float) -> float:
     """Oversize [m] where the preload continuation starts: twice the approach of the reference force,
-    so that all four contacts stay loaded (well-conditioned four-point state)."""
+    so that all four contacts stay loaded (well-conditioned four-point state); remembered per ``contacts`` and
+    load like :func:`reference_force`."""
+    load = checks.scalar("axial_load", axial_load, "N")
+    starts = contacts.solver_memo.setdefault("continuation_start", {})
+    if load not in starts:
+        if len(starts) >= MEMO_SIZE:
+            starts.clear()
+        starts[load] = _continuation_start(contacts, axial_load)
+    return starts[load]
+
+
+def _continuation_start(contacts: BallContacts, axial_load: float) -> float:
     with np.errstate(over="ignore"):
         start = 2.0 * float(np.max(contacts.hertz_constant)) * np.float64(reference_force(contacts, axial_load)) ** (
             2.0 / 3.0)

@@ -172,6 +172,15 @@ class BallContacts:
         data[..., 5] = ON_NUT
         return checks.read_only(data)
 
+    @cached_property
+    def solver_memo(self) -> dict:
+        """The load-independent constants of the solves on these contacts, filled by :mod:`lowmodel.screw.ball` and
+        :mod:`lowmodel.screw.b2b` at their first use (the free-rolling start, the reference forces by load, the
+        chain's scales, layout and row tolerances by load and gaps): a solve repeated on the same contacts skips
+        that Python (docs/speed.md).  Computed once per instance like :attr:`kernel_geometry`: a BallContacts is
+        not changed after it is built."""
+        return {}
+
     def ball(self, index: int) -> "BallContacts":
         """The contacts of ball ``index`` alone (shape (1, 4))."""
         sl = slice(index, index + 1)
