@@ -58,6 +58,20 @@ def test_chain_kernel_equals_numpy(compiled, n_balls, gaps):
     _assert_same(*both(b2b.solve, contacts, gaps))
 
 
+def _block_solve_and_dense(compiled, diagonal, upper, lower, rng):
+    """The block LU (ball_kernels._block_factor, which must succeed) and its solve of a random right-hand side, with
+    the dense solve of the same block-tridiagonal matrix: (pivots, reach, block solution, dense solution)."""
+    n, k = diagonal.shape[:2]
+    dense = np.zeros((n * k, n * k))
+    compiled._dense(diagonal, upper, lower, dense)
+    factor, coupling = np.empty((n, k, k)), np.empty((n, k, k))
+    pivots, reach = np.empty((n, k), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
+    assert compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    rhs, out = rng.normal(size=n * k), np.empty(n * k)
+    compiled._block_solve(factor, pivots, coupling, reach, lower, rhs, out, np.empty(k))
+    return pivots, reach, out, np.linalg.solve(dense, rhs)
+
+
 def test_block_lu_of_a_chain_jacobian(compiled):
     # the block LU of the Newton step (ball_kernels._block_factor/_block_solve) against a dense solve, on the pattern
     # of a chain's Jacobian (couplings through rows and columns 0-2 and the force slot) with random values; a zero
@@ -70,18 +84,11 @@ def test_block_lu_of_a_chain_jacobian(compiled):
     upper[:-1, 7, 0] = rng.normal(size=n - 1)
     lower[1:, 0:3, 7] = rng.normal(size=(n - 1, 3))
     lower[1:, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
-    dense = np.zeros((n * k, n * k))
-    compiled._dense(diagonal, upper, lower, dense)
-    factor, coupling = np.empty((n, k, k)), np.empty((n, k, k))
-    pivots, reach = np.empty((n, k), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
-    assert compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    pivots, reach, out, expected = _block_solve_and_dense(compiled, diagonal, upper, lower, rng)
     assert reach[1:].tolist() == [[3, 3]] * (n - 2) + [[3, 0]]
-    rhs, out = rng.normal(size=n * k), np.empty(n * k)
-    compiled._block_solve(factor, pivots, coupling, reach, lower, rhs, out, np.empty(k))
-    expected = np.linalg.solve(dense, rhs)
     assert np.max(np.abs(out - expected)) <= 1e-12 * np.max(np.abs(expected))
     diagonal[4] = 0.0
-    assert not compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    assert not compiled._block_factor(diagonal, upper, lower, np.empty((n, k, k)), pivots, np.empty((n, k, k)), reach)
 
 
 def test_block_lu_eliminates_the_slip_angles_first(compiled):
@@ -106,15 +113,8 @@ def test_block_lu_eliminates_the_slip_angles_first(compiled):
     upper[-1] = 0.0
     lower[1:, 0:3, 7] = rng.normal(size=(n - 1, 3))
     lower[1:, 1:3, 1:3] = rng.normal(size=(n - 1, 2, 2))
-    dense = np.zeros((n * k, n * k))
-    compiled._dense(diagonal, upper, lower, dense)
-    factor, coupling = np.empty((n, k, k)), np.empty((n, k, k))
-    pivots, reach = np.empty((n, k), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
-    assert compiled._block_factor(diagonal, upper, lower, factor, pivots, coupling, reach)
+    pivots, _, out, expected = _block_solve_and_dense(compiled, diagonal, upper, lower, rng)
     assert [bool(p < 0) for p in pivots[:, 7]] == [j != 6 for j in range(n)]
-    rhs, out = rng.normal(size=n * k), np.empty(n * k)
-    compiled._block_solve(factor, pivots, coupling, reach, lower, rhs, out, np.empty(k))
-    expected = np.linalg.solve(dense, rhs)
     assert np.max(np.abs(out - expected)) <= 1e-10 * np.max(np.abs(expected))
 
 

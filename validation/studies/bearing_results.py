@@ -177,23 +177,14 @@ def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
 def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
     """:class:`ScrewResult` of a :class:`BallScrewCase` by the low-order numerical model (solved here unless the
     states are given, as ``studies.screw_two_ball.two_ball`` returns them)."""
-    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
     from ballbench.validation.studies import fe_b2b_screw, screw_two_ball
 
     if contacts is None:
         contacts = screw_two_ball.ball_contacts(case)
     if touching is None or free is None:
         free, touching = screw_two_ball.two_ball(case)
-    rows = []
     a = touching.semi_major
-    b = a * contacts.b_over_a
-    for ball in range(touching.normal_force.shape[0]):
-        for i, name in enumerate(CONTACT_NAMES):
-            f = float(touching.normal_force[ball, i])
-            area = math.pi * float(a[ball, i]) * float(b[ball, i])
-            rows.append(ContactLoad(ball + 1, name, f, float(touching.contact_angle[ball, i]), float(a[ball, i]),
-                                    float(b[ball, i]), 1.5 * f / area if f > 0 else 0.0,
-                                    float(touching.approach[ball, i])))
+    rows = _screw_rows(touching.normal_force, touching.contact_angle, a, a * contacts.b_over_a, touching.approach)
     speed = abs(case.screw.nut_speed)
     shares = fe_b2b_screw.axial_shares(contacts, touching)
     return ScrewResult(case.name, "lowmodel.screw.b2b", tuple(rows), tuple(float(x) for x in touching.b2b_force),
@@ -208,19 +199,24 @@ def screw_frictionless_contacts(case) -> tuple[ContactLoad, ...]:
     angle (eq 37), the Hertz semi-axes and maximum pressure of the same Hertz solution as the statics' ``C_i`` (at the
     flank's contact angle, lowmodel.screw.contacts) and the approach (not positive: the contact is open)."""
     from ballbench.lowmodel.screw import preload
-    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
     from ballbench.validation.studies import screw_two_ball
 
     contacts = screw_two_ball.ball_contacts(case)
     state = preload.frictionless_statics(contacts, case.axial_load)
     a = contacts.semi_major_unit * np.cbrt(state.normal_force)
-    b = a * contacts.b_over_a
+    return tuple(_screw_rows(state.normal_force, state.contact_angle, a, a * contacts.b_over_a, state.approach))
+
+
+def _screw_rows(forces, angles, a, b, approaches) -> list[ContactLoad]:
+    """ContactLoad rows (SL, SR, NR, NL of each ball) of (n, 4) normal forces [N], contact angles [rad], semi-axes
+    a, b [m] and approaches [m]; p0 = 1.5 F / (pi a b) (Hertz), 0 where the contact carries no load."""
+    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
+
     rows = []
-    for ball in range(contacts.n_balls):
+    for ball in range(forces.shape[0]):
         for i, name in enumerate(CONTACT_NAMES):
-            f = float(state.normal_force[ball, i])
+            f = float(forces[ball, i])
             area = math.pi * float(a[ball, i]) * float(b[ball, i])
-            rows.append(ContactLoad(ball + 1, name, f, float(state.contact_angle[ball, i]), float(a[ball, i]),
-                                    float(b[ball, i]), 1.5 * f / area if f > 0 else 0.0,
-                                    float(state.approach[ball, i])))
-    return tuple(rows)
+            rows.append(ContactLoad(ball + 1, name, f, float(angles[ball, i]), float(a[ball, i]), float(b[ball, i]),
+                                    1.5 * f / area if f > 0 else 0.0, float(approaches[ball, i])))
+    return rows

@@ -35,29 +35,10 @@ def drive_speed(case) -> float:
 
 def module(case, fidelity: str):
     """Both laws on the case's balls: a RollingModuleB2B (guide) or ScrewRollingModule (screw) with ``touching``,
-    ``free`` (stick/slip) and ``full_slip``, ``full_slip_free`` on the same cells."""
-    cells = CELLS[fidelity]
-    if isinstance(case, LinearGuideCase):
-        from ballbench.lowmodel.linear_bearing import b2b_rolling
-        from ballbench.validation.studies import bearing_results
-
-        guide = case.guide
-        contacts = bearing_results.guide_contacts(case)
-        balls = [b2b_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity,
-                                            **guide.material.keywords) for j in range(contacts.n_balls)]
-        return b2b_rolling.module_b2b(balls, ball_radius=guide.ball_radius,
-                                      friction_coefficient=guide.friction_coefficient,
-                                      groove_velocity=guide.groove_velocity)
-    if isinstance(case, BallScrewCase):
-        from ballbench.lowmodel.screw import b2b_rolling
-        from ballbench.validation.studies import screw_two_ball
-
-        contacts = screw_two_ball.ball_contacts(case)
-        _, touching = screw_two_ball.two_ball(case)
-        balls = [b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells)
-                 for j in range(len(case.deviations))]
-        return b2b_rolling.module_b2b(balls, screw_two_ball.screw_module(case.screw))
-    raise TypeError(f"the stick/slip rung runs on a LinearGuideCase or BallScrewCase, got {type(case).__name__}")
+    ``free`` (stick/slip) and ``full_slip``, ``full_slip_free`` on the same cells (``CELLS[fidelity]`` per contact,
+    two half-spaces)."""
+    *_, balls_on, solve = _hertz_balls(case)
+    return solve(balls_on(CELLS[fidelity], None))
 
 
 @dataclass(frozen=True)
@@ -77,7 +58,9 @@ class ComplianceRung:
 
 
 def _hertz_balls(case):
-    """``(product, ball_radius, conformity, material, balls_on(grid, operator))`` of the case's touching module."""
+    """``(product, ball_radius, conformity, material, (along, across) largest Hertz semi-axes, balls_on(cells,
+    operator), solve(balls))`` of the case's touching module: ``cells`` (along, across) per contact or one
+    SurfaceGrid; ``operator`` None for two half-spaces."""
     if isinstance(case, LinearGuideCase):
         from ballbench.lowmodel.linear_bearing import b2b_rolling
         from ballbench.validation.studies import bearing_results
@@ -87,8 +70,8 @@ def _hertz_balls(case):
         along = float((contacts.semi_major * contacts.b_over_a).max())
         across = float(contacts.semi_major.max())
 
-        def balls_on(grid, operator):
-            return [b2b_rolling.hertz_contacts(contacts, j, cells=grid, conformity=guide.conformity,
+        def balls_on(cells, operator):
+            return [b2b_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity,
                                                operator_for=None if operator is None else (lambda _g: operator),
                                                **guide.material.keywords) for j in range(contacts.n_balls)]
 
@@ -109,8 +92,8 @@ def _hertz_balls(case):
         across = float(touching.semi_major.max())
         module_ = screw_two_ball.screw_module(screw)
 
-        def balls_on(grid, operator):
-            return [b2b_rolling.hertz_contacts(touching, contacts, j, cells=grid,
+        def balls_on(cells, operator):
+            return [b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,
                                                operator_for=None if operator is None else (lambda _g: operator))
                     for j in range(len(case.deviations))]
 
