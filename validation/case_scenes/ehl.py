@@ -98,7 +98,8 @@ def ehl_scene(run, *, case) -> None:
                 "U_e: wang2022 eqs 1-2 (lowmodel.screw.kinematics) at the drive speed and the nominal contact angle "
                 "(studies.case_ehl).")
              + "  h_c at the grid point nearest the contact centre, h_min the smallest film on the grid; the exit "
-             "spike sharpens with the grid and does not converge (docs/ehl.md).  Hamrock-Dowson "
+             "pressure spike sharpens with the grid and its peak does not converge (docs/ehl.md); the films do, where "
+             "the grid check says so.  Hamrock-Dowson "
              f"is checked where k lies in its fit's range {lo:g}-{hi:g} and the solve is grid-converged: h_c and "
              f"h_min change by at most {100 * case_ehl.GRID_TOLERANCE:g} % from the level's grid to the next "
              "coarser level's (the finer one where the coarser gives no film; docs/ehl.md).  The solve is smooth; "
