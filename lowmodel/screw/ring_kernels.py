@@ -163,21 +163,14 @@ def _rmatvec(diagonal, upper, lower, r_vec, out):
 
 
 @_jit
-def _product_t(a_block, b_block, out, add, scratch):
-    """``out (+)= A^T B`` of two K x K blocks.  Each entry is the sum ``0 + A[0, p] B[0, q] + A[1, p] B[1, q] + ...``
-    in that order, the 64 sums advanced together row by row of ``A`` and ``B`` (``scratch`` (K, K)): independent
-    chains instead of one chain after the other, the same floating-point operations."""
+def _product_t(a_block, b_block, out, add):
+    """``out (+)= A^T B`` of two K x K blocks."""
     for p in range(_K):
         for q in range(_K):
-            scratch[p, q] = 0.0
-    for r in range(_K):
-        for p in range(_K):
-            a_rp = a_block[r, p]
-            for q in range(_K):
-                scratch[p, q] += a_rp * b_block[r, q]
-    for p in range(_K):
-        for q in range(_K):
-            out[p, q] = out[p, q] + scratch[p, q] if add else scratch[p, q]
+            total = 0.0
+            for r in range(_K):
+                total += a_block[r, p] * b_block[r, q]
+            out[p, q] = out[p, q] + total if add else total
 
 
 @_jit
@@ -191,21 +184,20 @@ def _normal(diagonal, upper, lower, band, border, corner):
     n = diagonal.shape[0]
     m = (n - 2) * _K
     block = np.empty((_K, _K))
-    scratch = np.empty((_K, _K))
     for a in range(n):
         before, after, two = (a - 1) % n, (a + 1) % n, (a - 2) % n
         for e in range(3):
             if e == 0:
-                _product_t(diagonal[a], diagonal[a], block, False, scratch)
-                _product_t(upper[before], upper[before], block, True, scratch)
-                _product_t(lower[after], lower[after], block, True, scratch)
+                _product_t(diagonal[a], diagonal[a], block, False)
+                _product_t(upper[before], upper[before], block, True)
+                _product_t(lower[after], lower[after], block, True)
                 column = a
             elif e == 1:
-                _product_t(upper[before], diagonal[before], block, False, scratch)
-                _product_t(diagonal[a], lower[a], block, True, scratch)
+                _product_t(upper[before], diagonal[before], block, False)
+                _product_t(diagonal[a], lower[a], block, True)
                 column = before
             else:
-                _product_t(upper[before], lower[before], block, False, scratch)
+                _product_t(upper[before], lower[before], block, False)
                 column = two
             for p in range(_K):
                 for q in range(_K):
