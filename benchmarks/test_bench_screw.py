@@ -9,7 +9,8 @@ Every figure is printed beside the code before the compiled path, timed in the s
 machine is shared; the load average beside it).  The two-ball solve is also set against its arithmetic: the flops
 of the kernel's loops (:func:`arithmetic`) at the rate of compiled loops on this machine now
 (``test_bench_kernels.scalar_rate``); the kernels' first-call cost (compile with an empty numba cache, load from
-the disk cache) is printed.
+the disk cache) is printed, and the pieces of one Newton iteration of the whole screw's ring (one evaluation of the
+chain, the normal matrix, its banded-bordered Cholesky, the two triangular solves).
 
 Run: python -m pytest benchmarks/test_bench_screw.py -s
 """
@@ -99,3 +100,50 @@ def test_whole_screw_simulation(compiled):
           f"{seconds[True] / steps * 1e3:.1f} ms per step), numpy path {seconds[False]:.1f} s "
           f"(x {seconds[False] / seconds[True]:.1f}); {int(history.iterations.sum())} Newton iterations "
           f"({history.iterations.mean():.2f} per step, the first from rest); load average {os.getloadavg()[0]:.2f}")
+
+
+def test_ring_pieces(compiled):
+    """One state of the whole screw's ring (the third step's start): the compiled pieces of a Newton iteration."""
+    ring = kernels.load(screw_b2b.RING_KERNELS)
+    module = screw_contacts.screw_module(oversize=OVERSIZE)
+    stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
+    captured, newton = [], ring.newton
+
+    def spy(*args):
+        captured.append([value.copy() if isinstance(value, np.ndarray) else value for value in args])
+        return newton(*args)
+
+    ring.newton = spy
+    try:
+        whole_screw.simulate(module, amplitude=math.radians(3.0), stiffness=stiffness, steps=3)
+    finally:
+        ring.newton = newton
+    z, n, closed, live, targets, geometry, scalars, tables, chord, rot, pair_scalars = captured[2][:11]
+    weights, terms, k = captured[2][13], captured[2][16], 8
+    m = (n - 2) * k
+    residual, blocks = np.empty(n * k), [np.empty((n, k, k)) for _ in range(3)]
+    band, border, corner = np.zeros((m, 3 * k)), np.zeros((m, 2 * k)), np.zeros((2 * k, 2 * k))
+    factor = (np.zeros((m, 3 * k)), np.zeros((m, 2 * k)), np.zeros((2 * k, 2 * k)))
+    step, gradient = np.empty(n * k), np.empty(n * k)
+
+    def evaluate():
+        ring.chain_blocks(z, n, closed, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, residual,
+                          *blocks, terms)
+
+    def timed(function, repeats):
+        function()
+        start = time.process_time()
+        for _ in range(repeats):
+            function()
+        return (time.process_time() - start) / repeats
+
+    seconds = {"evaluation": timed(evaluate, 30)}
+    ring._weigh(residual, *blocks, weights)
+    ring._rmatvec(*blocks, residual, gradient)
+    seconds["normal matrix"] = timed(lambda: ring._normal(*blocks, band, border, corner), 300)
+    damping = 1e-8 * max(float(band[:, 0].max()), float(np.diag(corner).max()))
+    seconds["Cholesky"] = timed(lambda: ring._factor(band, border, corner, damping, *factor), 300)
+    seconds["two solves"] = timed(lambda: ring._solve(*factor, gradient, step), 300)
+    print(f"\nwhole screw's ring ({n} balls, {n * k} unknowns), compiled, CPU time: "
+          + ", ".join(f"{name} {value * 1e3:.3f} ms" for name, value in seconds.items())
+          + f"; load average {os.getloadavg()[0]:.2f}")

@@ -10,7 +10,8 @@ nothing allocates per array operation (loaded by :func:`lowmodel.kernels.load`; 
   centre inside and outside the ellipse, the disc rule of a far centre) for one contact.
 * :func:`ball_terms`: lin2019 eqs 36-54 of every ball (closed-form contact geometry, Hertz eq 53, the helical
   kinematics, friction forces and moments summed about the ball centre) with the forward-mode derivatives of
-  :class:`lowmodel.dual.Dual`, written out: every quantity is a vector ``(value, d/d 7 unknowns)``.
+  :class:`lowmodel.dual.Dual`, written out: every quantity is a tuple of 8 floats ``(value, d/d 7 unknowns)``
+  (registers, no allocation per operation), each operation in the component order of ``Dual``.
 
 A status other than :data:`CONVERGED` (a contact at rest, a slip outside the float range of the friction
 Jacobian, a non-finite input) hands the evaluation back to the numpy code, which names the problem.
@@ -49,66 +50,98 @@ _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
 
 # --------------------------------------------------------------------------
-# dual numbers (value, gradient) as arrays of 8: lowmodel.dual.Dual's arithmetic
+# dual numbers (value, gradient) as tuples of 8 floats: lowmodel.dual.Dual's arithmetic, written out per
+# component (numba keeps a tuple in registers: nothing allocates per operation) in the order of operations
+# of lowmodel.dual.Dual
 # --------------------------------------------------------------------------
 @_jit
 def _mul(a, b):
-    out = np.empty(_D)
-    out[0] = a[0] * b[0]
-    for c in range(1, _D):
-        out[c] = a[c] * b[0] + b[c] * a[0]
-    return out
+    """``a * b``."""
+    a0, b0 = a[0], b[0]
+    return (a0 * b0, a[1] * b0 + b[1] * a0, a[2] * b0 + b[2] * a0, a[3] * b0 + b[3] * a0, a[4] * b0 + b[4] * a0,
+            a[5] * b0 + b[5] * a0, a[6] * b0 + b[6] * a0, a[7] * b0 + b[7] * a0)
 
 
 @_jit
 def _scale(a, s):
-    out = np.empty(_D)
-    for c in range(_D):
-        out[c] = a[c] * s
-    return out
+    """``a * s`` of a float ``s``."""
+    return (a[0] * s, a[1] * s, a[2] * s, a[3] * s, a[4] * s, a[5] * s, a[6] * s, a[7] * s)
 
 
 @_jit
 def _add(a, b):
-    out = np.empty(_D)
-    for c in range(_D):
-        out[c] = a[c] + b[c]
-    return out
+    """``a + b``."""
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3], a[4] + b[4], a[5] + b[5], a[6] + b[6], a[7] + b[7])
 
 
 @_jit
 def _sub(a, b):
-    out = np.empty(_D)
-    for c in range(_D):
-        out[c] = a[c] - b[c]
-    return out
+    """``a - b``."""
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2], a[3] - b[3], a[4] - b[4], a[5] - b[5], a[6] - b[6], a[7] - b[7])
 
 
 @_jit
 def _shift(a, s):
-    out = a.copy()
-    out[0] = a[0] + s
-    return out
+    """``a + s`` of a float ``s``."""
+    return (a[0] + s, a[1], a[2], a[3], a[4], a[5], a[6], a[7])
 
 
 @_jit
 def _div(a, b):
+    """``a / b``: value ``a0 / b0``, derivatives ``(a' - b' (a0 / b0)) / b0``."""
     inv = 1.0 / b[0]
-    out = np.empty(_D)
-    out[0] = a[0] * inv
-    for c in range(1, _D):
-        out[c] = (a[c] - b[c] * (a[0] * inv)) * inv
-    return out
+    ratio = a[0] * inv
+    return (ratio, (a[1] - b[1] * ratio) * inv, (a[2] - b[2] * ratio) * inv, (a[3] - b[3] * ratio) * inv,
+            (a[4] - b[4] * ratio) * inv, (a[5] - b[5] * ratio) * inv, (a[6] - b[6] * ratio) * inv,
+            (a[7] - b[7] * ratio) * inv)
 
 
 @_jit
 def _sqrt(a):
-    out = np.empty(_D)
+    """``sqrt(a)``."""
     root = math.sqrt(a[0])
-    out[0] = root
-    for c in range(1, _D):
-        out[c] = a[c] * (0.5 / root)
-    return out
+    half = 0.5 / root
+    return (root, a[1] * half, a[2] * half, a[3] * half, a[4] * half, a[5] * half, a[6] * half, a[7] * half)
+
+
+@_jit
+def _with_value(a, value):
+    """``a`` with its value replaced by ``value`` (the derivatives kept)."""
+    return (value, a[1], a[2], a[3], a[4], a[5], a[6], a[7])
+
+
+@_jit
+def _variable(value, column, scale):
+    """The unknown ``column`` (0-6) of value ``value * scale`` and derivative ``scale``."""
+    return (value * scale, scale if column == 0 else 0.0, scale if column == 1 else 0.0,
+            scale if column == 2 else 0.0, scale if column == 3 else 0.0, scale if column == 4 else 0.0,
+            scale if column == 5 else 0.0, scale if column == 6 else 0.0)
+
+
+@_jit
+def _chain(value, jac, row, a, b, c):
+    """Value ``value``, derivatives ``jac[row] . (a', b', c')`` (the friction of one contact through its velocities)."""
+    j0, j1, j2 = jac[row, 0], jac[row, 1], jac[row, 2]
+    return (value, ((0.0 + j0 * a[1]) + j1 * b[1]) + j2 * c[1], ((0.0 + j0 * a[2]) + j1 * b[2]) + j2 * c[2],
+            ((0.0 + j0 * a[3]) + j1 * b[3]) + j2 * c[3], ((0.0 + j0 * a[4]) + j1 * b[4]) + j2 * c[4],
+            ((0.0 + j0 * a[5]) + j1 * b[5]) + j2 * c[5], ((0.0 + j0 * a[6]) + j1 * b[6]) + j2 * c[6],
+            ((0.0 + j0 * a[7]) + j1 * b[7]) + j2 * c[7])
+
+
+_ZERO = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@_jit
+def _accumulate(target, row, a):
+    """``target[row] += a`` of a (D,) row of a 2-d array."""
+    target[row, 0] += a[0]
+    target[row, 1] += a[1]
+    target[row, 2] += a[2]
+    target[row, 3] += a[3]
+    target[row, 4] += a[4]
+    target[row, 5] += a[5]
+    target[row, 6] += a[6]
+    target[row, 7] += a[7]
 
 
 # --------------------------------------------------------------------------
@@ -123,8 +156,8 @@ def _poles(cos_psi, sin_psi):
 
 
 @_jit
-def _angular(cos_t, sin_t, j0, j1, j2, weight, beta, sums):
-    """One node of the angular sums (f_major, f_minor, loss, c_ss, c_sc, c_cc), added to ``sums``."""
+def _angular(cos_t, sin_t, j0, j1, j2, weight, beta):
+    """One node's terms of the angular sums (f_major (subtracted), f_minor, loss, c_ss, c_sc, c_cc)."""
     bsin = beta * sin_t
     g2 = cos_t * cos_t + bsin * bsin
     g = math.sqrt(g2)
@@ -132,32 +165,42 @@ def _angular(cos_t, sin_t, j0, j1, j2, weight, beta, sums):
     w0 = weight * j0 / (g2 * g)
     w0_bsin = w0 * bsin
     w0_cos = w0 * cos_t
-    sums[0] -= w1 * bsin
-    sums[1] += w1 * cos_t
-    sums[2] += weight * g * j2
-    sums[3] += w0_bsin * bsin
-    sums[4] += w0_bsin * cos_t
-    sums[5] += w0_cos * cos_t
+    return w1 * bsin, w1 * cos_t, weight * g * j2, w0_bsin * bsin, w0_bsin * cos_t, w0_cos * cos_t
 
 
 @_jit
-def _centred(kappa, lam, beta, nodes, weights, sums):
-    """The integrals about the velocity centre (omega > 0) into ``sums`` (6,)."""
-    for q in range(6):
-        sums[q] = 0.0
+def _sort4(a, b, c, d):
+    """Four floats in ascending order (a sorting network: exact)."""
+    if b < a:
+        a, b = b, a
+    if d < c:
+        c, d = d, c
+    if c < a:
+        a, c = c, a
+    if d < b:
+        b, d = d, b
+    if c < b:
+        b, c = c, b
+    return a, b, c, d
+
+
+@_jit
+def _centred(kappa, lam, beta, nodes, weights, sums):  # noqa: C901 - the two quadratures of lowmodel.contact.ellipse_friction_offset
+    """The integrals about the velocity centre (omega > 0) into ``sums`` (6,).  The node sums run in local
+    variables, node after node in the order of the numpy code's sums."""
+    s0 = s1 = s2 = s3 = s4 = s5 = 0.0
     rc = math.hypot(kappa, lam)
     cos_psi = kappa / rc if rc > 0.0 else 1.0
     sin_psi = lam / rc if rc > 0.0 else 0.0
     p0, p1 = _poles(cos_psi, sin_psi)
     if rc < 1.0:
-        ends = np.empty(5)
-        ends[0], ends[1], ends[2], ends[3] = -0.5 * math.pi, 0.5 * math.pi, p0, p1
-        ends[:4] = np.sort(ends[:4])
-        ends[4] = 1.5 * math.pi
+        e0, e1, e2, e3 = _sort4(-0.5 * math.pi, 0.5 * math.pi, p0, p1)
         h = math.sqrt(max(1.0 - rc * rc, 0.0))
         k1 = h ** 3 / 3.0
         for panel in range(4):
-            start, width = ends[panel], ends[panel + 1] - ends[panel]
+            start = e0 if panel == 0 else (e1 if panel == 1 else (e2 if panel == 2 else e3))
+            end = e1 if panel == 0 else (e2 if panel == 1 else (e3 if panel == 2 else 1.5 * math.pi))
+            width = end - start
             for node in range(nodes.size):
                 angle = start + width * nodes[node]
                 weight = width * weights[node]
@@ -171,7 +214,13 @@ def _centred(kappa, lam, beta, nodes, weights, sums):
                 j2 = k2 - 2.0 * b * k1 + b * b * k0
                 cos_t = -(cos_psi * cos_p - sin_psi * sin_p)
                 sin_t = -(sin_psi * cos_p + cos_psi * sin_p)
-                _angular(cos_t, sin_t, k0, j1, j2, weight, beta, sums)
+                t0, t1, t2, t3, t4, t5 = _angular(cos_t, sin_t, k0, j1, j2, weight, beta)
+                s0 -= t0
+                s1 += t1
+                s2 += t2
+                s3 += t3
+                s4 += t4
+                s5 += t5
     else:
         if p0 > math.pi:
             p0 -= 2.0 * math.pi
@@ -203,9 +252,15 @@ def _centred(kappa, lam, beta, nodes, weights, sums):
                 cos_p = chord / rc
                 cos_t = -(cos_psi * cos_p - sin_psi * sin_p)
                 sin_t = -(sin_psi * cos_p + cos_psi * sin_p)
-                _angular(cos_t, sin_t, j0, j1, j2, weight, beta, sums)
-    for q in range(6):
-        sums[q] *= _PREFACTOR
+                t0, t1, t2, t3, t4, t5 = _angular(cos_t, sin_t, j0, j1, j2, weight, beta)
+                s0 -= t0
+                s1 += t1
+                s2 += t2
+                s3 += t3
+                s4 += t4
+                s5 += t5
+    sums[0], sums[1], sums[2] = s0 * _PREFACTOR, s1 * _PREFACTOR, s2 * _PREFACTOR
+    sums[3], sums[4], sums[5] = s3 * _PREFACTOR, s4 * _PREFACTOR, s5 * _PREFACTOR
 
 
 @_jit
@@ -273,14 +328,6 @@ def friction_offset(w, un, um, beta, nodes, weights, disc_t, disc_s, disc_w, far
 # lin2019 eqs 36-54 of every ball (lowmodel.screw.ball.ball_terms)
 # --------------------------------------------------------------------------
 @_jit
-def _variable(value, column, scale):
-    out = np.zeros(_D)
-    out[0] = value * scale
-    out[1 + column] = scale
-    return out
-
-
-@_jit
 def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,  # noqa: C901 - one contact loop of eqs 36-54
                weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, residual, jacobian, axial,
                axial_gradient, contact, input_power):
@@ -308,7 +355,7 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
     fr_jac = np.empty((4, 3))
     sums = np.empty(6)
     rows = np.empty((6, _D))
-    axial_sum = np.empty(_D)
+    axial_sum = np.empty((1, _D))
     for j in range(n):
         x_b = _variable(unknowns[j, 0], 0, length)
         z_b = _variable(unknowns[j, 1], 1, length)
@@ -331,10 +378,9 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
             loaded = approach[0] > 0.0
             ratio = (approach[0] if loaded else 0.0) / hertz_c
             force_v = ratio ** 1.5
-            force = _scale(approach, 1.5 * math.sqrt(ratio) / hertz_c)
-            force[0] = force_v
-            semi = _scale(force, (geometry[j, i, SEMI_UNIT] * np.cbrt(force_v)) / (3.0 * force_v) if loaded else 0.0)
-            semi[0] = geometry[j, i, SEMI_UNIT] * np.cbrt(force_v)
+            force = _with_value(_scale(approach, 1.5 * math.sqrt(ratio) / hertz_c), force_v)
+            semi = _with_value(_scale(force, (geometry[j, i, SEMI_UNIT] * np.cbrt(force_v)) / (3.0 * force_v)
+                                      if loaded else 0.0), geometry[j, i, SEMI_UNIT] * np.cbrt(force_v))
             relative = _shift(orbit, -nut_speed * on_nut)
             q0, q2 = _scale(ex, radius), _scale(ez, radius)
             h0, h1, h2 = _scale(q2, s), _shift(_scale(q0, c), helix_radius), _scale(q0, -s)
@@ -350,7 +396,7 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
             spin = _add(_mul(sv0, in0), _mul(sv2, in2))
             spin_velocity = _mul(spin, semi)
             slip_major = _add(_mul(slip0, ez), _mul(slip2, in0))   # major = (e_z, 0, -e_x)
-            fm, fn, fo = np.zeros(_D), np.zeros(_D), np.zeros(_D)
+            fm, fn, fo = _ZERO, _ZERO, _ZERO
             loss_unit = 0.0
             if loaded:
                 w, un, um = spin_velocity[0], slip1[0], slip_major[0]
@@ -362,11 +408,9 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
                 if not friction_offset(w, un, um, geometry[j, i, B_OVER_A], nodes, weights, disc_t, disc_s, disc_w,
                                        far_centre, fr, fr_jac, sums):
                     return FALLBACK
-                for target, row in ((fm, 0), (fn, 1), (fo, 2)):
-                    target[0] = fr[row]
-                    for col in range(1, _D):
-                        target[col] = ((0.0 + fr_jac[row, 0] * spin_velocity[col]) + fr_jac[row, 1] * slip1[col]) \
-                            + fr_jac[row, 2] * slip_major[col]
+                fm = _chain(fr[0], fr_jac, 0, spin_velocity, slip1, slip_major)
+                fn = _chain(fr[1], fr_jac, 1, spin_velocity, slip1, slip_major)
+                fo = _chain(fr[2], fr_jac, 2, spin_velocity, slip1, slip_major)
                 loss_unit = fr[3]
             mu_force = _scale(force, mu)
             f_major, f_minor = _mul(fm, mu_force), _mul(fn, mu_force)
@@ -380,14 +424,14 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
             tf1 = fr1
             tf2 = _add(_mul(_scale(ez, -1.0), force), fr2)
             inv = 1.0 / radius
-            for row, quantity in enumerate((tf0, tf1, tf2, _scale(_add(am0, cm0), inv), _scale(am1, inv),
-                                            _scale(_add(am2, cm2), inv))):
-                for col in range(_D):
-                    rows[row, col] += quantity[col]
+            _accumulate(rows, 0, tf0)
+            _accumulate(rows, 1, tf1)
+            _accumulate(rows, 2, tf2)
+            _accumulate(rows, 3, _scale(_add(am0, cm0), inv))
+            _accumulate(rows, 4, _scale(am1, inv))
+            _accumulate(rows, 5, _scale(_add(am2, cm2), inv))
             if on_nut == 0.0:
-                along = _add(_scale(tf1, s), _scale(tf2, c))
-                for col in range(_D):
-                    axial_sum[col] += along[col]
+                _accumulate(axial_sum, 0, _add(_scale(tf1, s), _scale(tf2, c)))
             else:
                 power += ((fr0[0] * h0[0] + fr1[0] * h1[0]) + fr2[0] * h2[0] + cm2[0] * c) * nut_speed
             out = contact[j, i]
@@ -400,9 +444,9 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
             residual[j, row] = rows[row, 0] / force_scale
             for col in range(_K):
                 jacobian[j, row, col] = rows[row, 1 + col] / force_scale
-        axial[j] = axial_sum[0] / force_scale
+        axial[j] = axial_sum[0, 0] / force_scale
         for col in range(_K):
-            axial_gradient[j, col] = axial_sum[1 + col] / force_scale
+            axial_gradient[j, col] = axial_sum[0, 1 + col] / force_scale
         input_power[j] = power
     return CONVERGED
 

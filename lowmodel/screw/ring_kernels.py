@@ -175,8 +175,9 @@ def _product_t(a_block, b_block, out, add):
 
 @_jit
 def _normal(diagonal, upper, lower, band, border, corner):
-    """``N = J^T J`` into the band (m, 3K) (``band[i, d] = N[i, i - d]``), the border rows (2K, m)
-    (``N[m + r, j]``) and the corner (2K, 2K) (lower triangle), ``m = (n - 2) K``.
+    """``N = J^T J`` into the band (m, 3K) by columns (``band[j, d] = N[j + d, j]``, LAPACK's lower band storage,
+    row by row), the border (m, 2K) (``border[j, r] = N[m + r, j]``) and the corner (2K, 2K) (lower triangle),
+    ``m = (n - 2) K``: what the factorisation reads together lies together in memory.
 
     Blocks (indices modulo n): ``N[a, a] = D_a^T D_a + U_{a-1}^T U_{a-1} + L_{a+1}^T L_{a+1}``,
     ``N[a, a-1] = U_{a-1}^T D_{a-1} + D_a^T L_a``, ``N[a, a-2] = U_{a-1}^T L_{a-1}``."""
@@ -209,17 +210,24 @@ def _normal(diagonal, upper, lower, band, border, corner):
                         if j >= m:
                             corner[i - m, j - m] = block[p, q]
                         else:
-                            border[i - m, j] = block[p, q]
+                            border[j, i - m] = block[p, q]
                     else:
-                        band[i, i - j] = block[p, q]
+                        band[j, i - j] = block[p, q]
 
 
 @_jit
 def _factor(band, border, corner, damping, l_band, l_border, l_corner):  # noqa: C901 - one Cholesky, band and border
     """Cholesky factor of ``N + damping I`` (:func:`_normal`'s storage) into ``l_*`` (same layout); False where the
-    matrix is not (numerically) positive definite."""
+    matrix is not (numerically) positive definite.
+
+    Left-looking: entry ``(i, j)`` is ``N[i, j]`` minus ``L[i, t] L[j, t]`` for ``t = 0, 1, ...`` in that order, then
+    divided by the pivot.  The sums of one column (its band rows, its border rows) and those of the corner's border
+    part are advanced together, ``t`` outermost: independent chains the processor overlaps instead of one chain after
+    the other, each sum's operations in the same order (the factor is the same to the last bit)."""
     m, width = band.shape[0], band.shape[1] - 1
     b = corner.shape[0]
+    column = np.empty(width)
+    rows = np.empty(b)
     for i in range(m):
         for d in range(width + 1):
             l_band[i, d] = band[i, d]
@@ -228,27 +236,40 @@ def _factor(band, border, corner, damping, l_band, l_border, l_corner):  # noqa:
         low = max(0, j - width)
         total = l_band[j, 0]
         for t in range(low, j):
-            value = l_band[j, j - t]
+            value = l_band[t, j - t]
             total -= value * value
         if not total > 0.0:
             return False
         pivot = math.sqrt(total)
         l_band[j, 0] = pivot
-        for i in range(j + 1, min(j + width, m - 1) + 1):
-            total = l_band[i, i - j]
-            for t in range(max(0, i - width), j):
-                total -= l_band[i, i - t] * l_band[j, j - t]
-            l_band[i, i - j] = total / pivot
+        last = min(j + width, m - 1)
+        for i in range(j + 1, last + 1):
+            column[i - j - 1] = l_band[j, i - j]
         for r in range(b):
-            total = border[r, j]
-            for t in range(low, j):
-                total -= l_border[r, t] * l_band[j, j - t]
-            l_border[r, j] = total / pivot
+            rows[r] = border[j, r]
+        for t in range(low, j):
+            l_jt = l_band[t, j - t]
+            for i in range(j + 1, min(t + width, last) + 1):   # rows i with t >= i - width
+                column[i - j - 1] -= l_band[t, i - t] * l_jt
+            for r in range(b):
+                rows[r] -= l_border[t, r] * l_jt
+        for i in range(j + 1, last + 1):
+            l_band[j, i - j] = column[i - j - 1] / pivot
+        for r in range(b):
+            l_border[j, r] = rows[r] / pivot
+    for r in range(b):   # the corner: N + damping I minus the border's part, then its own dense Cholesky
+        for s in range(r + 1):
+            l_corner[r, s] = corner[r, s] + (damping if r == s else 0.0)
+    for t in range(m):
+        for r in range(b):
+            rows[r] = l_border[t, r]
+        for r in range(b):
+            l_rt = rows[r]
+            for s in range(r + 1):
+                l_corner[r, s] -= l_rt * rows[s]
     for r in range(b):
         for s in range(r + 1):
-            total = corner[r, s] + (damping if r == s else 0.0)
-            for t in range(m):
-                total -= l_border[r, t] * l_border[s, t]
+            total = l_corner[r, s]
             for t in range(s):
                 total -= l_corner[r, t] * l_corner[s, t]
             if r == s:
@@ -268,12 +289,12 @@ def _solve(l_band, l_border, l_corner, rhs, x):
     for i in range(m):
         total = rhs[i]
         for t in range(max(0, i - width), i):
-            total -= l_band[i, i - t] * x[t]
+            total -= l_band[t, i - t] * x[t]
         x[i] = total / l_band[i, 0]
     for r in range(b):
         total = rhs[m + r]
         for t in range(m):
-            total -= l_border[r, t] * x[t]
+            total -= l_border[t, r] * x[t]
         for s in range(r):
             total -= l_corner[r, s] * x[m + s]
         x[m + r] = total / l_corner[r, r]
@@ -285,9 +306,9 @@ def _solve(l_band, l_border, l_corner, rhs, x):
     for i in range(m - 1, -1, -1):
         total = x[i]
         for t in range(i + 1, min(i + width, m - 1) + 1):
-            total -= l_band[t, t - i] * x[t]
+            total -= l_band[i, t - i] * x[t]
         for r in range(b):
-            total -= l_border[r, i] * x[m + r]
+            total -= l_border[i, r] * x[m + r]
         x[i] = total / l_band[i, 0]
 
 
@@ -317,7 +338,7 @@ def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pa
     diagonal, upper, lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
     t_diagonal, t_upper, t_lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
     band, l_band = np.zeros((m, 3 * _K)), np.zeros((m, 3 * _K))
-    border, l_border = np.zeros((2 * _K, m)), np.zeros((2 * _K, m))
+    border, l_border = np.zeros((m, 2 * _K)), np.zeros((m, 2 * _K))
     corner, l_corner = np.zeros((2 * _K, 2 * _K)), np.zeros((2 * _K, 2 * _K))
     gradient, step, change, trial = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
     trial_terms = ball_outputs(n)

@@ -7,6 +7,8 @@ far out, where the moment is a difference of terms R_c times larger); converged 
 same iteration count (observed 1e-14, docs/speed.md).
 """
 import math
+import platform
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -162,3 +164,80 @@ def test_calibrated_laws_keep_the_numpy_path(compiled):
     reference, terms = both(sb.ball_terms, unknowns, 0.1, calibrated, scales)
     for name in reference.__dataclass_fields__:   # the kernel would drop C_b: the numpy code ran both times
         assert np.array_equal(getattr(reference, name), getattr(terms, name)), name
+
+
+_REFERENCE = Path(__file__).parents[2] / "data" / "screw_kernels" / "ball_terms_f01e0a3.npz"
+
+
+@pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64") or platform.libc_ver()[0] != "glibc",
+                    reason="reference bits from x86-64 glibc (cos, sin, atan2, cbrt of another libm may differ)")
+def test_ball_terms_kernel_bits_equal_stored_reference(compiled):
+    # the dual numbers as tuples (no allocation per operation) do the same arithmetic in the same order as the arrays
+    # of commit f01e0a3: its outputs on three 37-ball ring states (whole-screw size; the third with 37 of 148 contacts
+    # unloaded), stored with their inputs, reproduced to the last bit (docs/speed.md, "Dual numbers without allocation")
+    data = np.load(_REFERENCE)
+    tables = tuple(float(data[f"table{k}"]) if data[f"table{k}"].ndim == 0 else data[f"table{k}"] for k in range(10))
+    for state in range(3):
+        outputs = sb.kernel_outputs(37)
+        assert compiled.ball_terms(data[f"unknowns{state}"], data[f"shift{state}"], data[f"geometry{state}"],
+                                   data[f"scalars{state}"], *tables, *outputs) == compiled.CONVERGED
+        for name, value in zip(("residual", "jacobian", "axial", "axial_gradient", "contact", "power"), outputs):
+            expected = data[f"{name}{state}"]
+            assert np.array_equal(value.view(np.int64), expected.view(np.int64)), (state, name)
+    assert np.count_nonzero(data["contact2"][..., 0] == 0.0) == 37   # unloaded contacts are in the reference
+
+
+def _reference_cholesky(matrix):
+    """Textbook left-looking Cholesky, each entry ``(A[i, j] - L[i, 0] L[j, 0] - L[i, 1] L[j, 1] - ...) / L[j, j]``
+    in that order, in Python floats (terms outside the band are exact zeros)."""
+    size = matrix.shape[0]
+    factor = [[0.0] * size for _ in range(size)]
+    for j in range(size):
+        total = float(matrix[j, j])
+        for t in range(j):
+            total -= factor[j][t] * factor[j][t]
+        factor[j][j] = math.sqrt(total)
+        for i in range(j + 1, size):
+            total = float(matrix[i, j])
+            for t in range(j):
+                total -= factor[i][t] * factor[j][t]
+            factor[i][j] = total / factor[j][j]
+    return np.array(factor)
+
+
+def test_ring_normal_equations_factor_is_the_textbook_cholesky(ring_compiled):
+    # lowmodel.screw.ring_kernels: the normal matrix J^T J of a cyclic block-tridiagonal J in band (by columns),
+    # border and corner storage, against numpy's J^T J; its Cholesky (sums advanced together, t outermost) equal to
+    # the textbook order's value for value; the solve against numpy's
+    rng = np.random.default_rng(5)
+    n, k = 6, 8
+    m = (n - 2) * k
+    diagonal, upper, lower = (rng.normal(size=(n, k, k)) for _ in range(3))
+    dense_j = np.zeros((n * k, n * k))
+    for j in range(n):
+        rows = slice(j * k, (j + 1) * k)
+        dense_j[rows, j * k:(j + 1) * k] = diagonal[j]
+        dense_j[rows, ((j + 1) % n) * k:((j + 1) % n + 1) * k] += upper[j]
+        dense_j[rows, ((j - 1) % n) * k:((j - 1) % n + 1) * k] += lower[j]
+    band, border, corner = np.zeros((m, 3 * k)), np.zeros((m, 2 * k)), np.zeros((2 * k, 2 * k))
+    ring_compiled._normal(diagonal, upper, lower, band, border, corner)
+    normal = np.zeros((n * k, n * k))
+    for j in range(m):
+        for d in range(min(3 * k, m - j)):
+            normal[j + d, j] = normal[j, j + d] = band[j, d]
+    normal[m:, :m], normal[:m, m:] = border.T, border
+    normal[m:, m:] = np.tril(corner) + np.tril(corner, -1).T
+    _assert_close(dense_j.T @ dense_j, normal, "normal", 1e-14)
+    damping = 0.3
+    l_band, l_border, l_corner = np.zeros_like(band), np.zeros_like(border), np.zeros_like(corner)
+    assert ring_compiled._factor(band, border, corner, damping, l_band, l_border, l_corner)
+    reference = _reference_cholesky(normal + damping * np.eye(n * k))
+    for j in range(m):
+        for d in range(min(3 * k, m - j)):
+            assert l_band[j, d] == reference[j + d, j], (j, d)
+    assert np.array_equal(l_border, reference[m:, :m].T)
+    assert np.array_equal(np.tril(l_corner), reference[m:, m:])
+    rhs, step = rng.normal(size=n * k), np.empty(n * k)
+    ring_compiled._solve(l_band, l_border, l_corner, rhs, step)
+    _assert_close(np.linalg.solve(normal + damping * np.eye(n * k), rhs), step, "step", 1e-12)
+    assert not ring_compiled._factor(band, border, corner, -1e3 * np.max(band[:, 0]), l_band, l_border, l_corner)
