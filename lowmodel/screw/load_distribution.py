@@ -86,9 +86,29 @@ class AxialStiffness:
         order = np.argsort(self.shifts)
         return PchipInterpolator(self.shifts[order], self.loads[order])
 
+    @cached_property
+    def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The pchip's breakpoints ``x_0 .. x_m``, its inner ones ``x_1 .. x_(m-1)`` and its coefficients (m, 4) per
+        piece (highest power first), read-only."""
+        interpolant = self._interpolant
+        breaks = np.array(interpolant.x)
+        return tuple(checks.read_only(np.ascontiguousarray(a)) for a in (breaks, breaks[1:-1], interpolant.c.T))
+
     def load(self, shift) -> np.ndarray:
-        """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points."""
-        return self._interpolant(shift)
+        """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points, extrapolated beyond them.
+
+        The piecewise cubic of scipy's ``PchipInterpolator`` evaluated here with the arithmetic of its evaluation (the
+        piece ``x_i <= u < x_(i+1)``, the last one closed, the end pieces extended; ``c_3 + c_2 s + c_1 s^2 + c_0 s^3``
+        with ``s = u - x_i``, summed in this order, ``s^3 = (s s) s``): the same numbers to the last bit without
+        scipy's call overhead (tests compare the two), for :func:`distribute`'s root search, which evaluates it
+        thousands of times per call."""
+        breaks, inner, coefficients = self._pieces
+        u = np.asarray(shift, dtype=float)
+        index = np.searchsorted(inner, u, side="right")   # the piece: 0 below x_1, m - 1 from x_(m-1) on
+        c = coefficients[index]
+        s = u - breaks[index]
+        square = s * s
+        return c[..., 3] + c[..., 2] * s + c[..., 1] * square + c[..., 0] * (square * s)
 
     def shift(self, load) -> np.ndarray:
         """``u = U(q)``, the exact inverse of :meth:`load` (brentq per value)."""
@@ -178,12 +198,13 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         offset = offset + geometric
         sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
 
-        def mismatch(u0):
-            return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)  # noqa: B023 - called within this iteration
+        shifted = sign * offset
+
+        def mismatch(u0):   # np.clip's value, through the ufuncs (np.clip's Python wrapper costs more than its work)
+            return float(stiffness.load(np.minimum(np.maximum(u0 - shifted, low), high)).sum() - total)  # noqa: B023 - called within this iteration
 
         # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
         # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold
-        shifted = sign * offset
         start = min(low - offset.max(), low + shifted.min())
         end = max(high + offset.max(), high + shifted.max())
         if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change
