@@ -209,6 +209,8 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
                  poisson_ratio):
     from scipy.interpolate import CubicSpline
 
+    from ballbench.lowmodel.cubic_pieces import cubic_pieces
+
     low = max(nominal_angle - groove_core.MAX_DEVIATION, 1e-3)
     high = min(nominal_angle + groove_core.MAX_DEVIATION, 0.5 * math.pi - 1e-3)
     below = np.arange(nominal_angle, low, -_HERTZ_STEP)[::-1]
@@ -216,7 +218,8 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
     angles = np.concatenate([below, above])
     values = np.array([hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, float(a), body,
                                     youngs_modulus, poisson_ratio) for a in angles])
-    return tuple(CubicSpline(angles, values[:, q]) for q in range(3))
+    # scipy's splines evaluated without its call overhead, the same numbers (lowmodel.cubic_pieces)
+    return tuple(cubic_pieces(CubicSpline(angles, values[:, q])) for q in range(3))
 
 
 def hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, angle, body, youngs_modulus, poisson_ratio):

@@ -87,27 +87,17 @@ class AxialStiffness:
         return PchipInterpolator(self.shifts[order], self.loads[order])
 
     @cached_property
-    def _pieces(self) -> tuple[np.ndarray, ...]:
-        """The pchip's breakpoints ``x_0 .. x_m``, its inner ones ``x_1 .. x_(m-1)`` and its coefficients of
-        ``s^3, s^2, s, 1`` per piece, (m,) each; read-only."""
-        interpolant = self._interpolant
-        breaks = np.array(interpolant.x)
-        return tuple(checks.read_only(np.ascontiguousarray(a)) for a in (breaks, breaks[1:-1], *interpolant.c))
+    def _pieces(self):
+        from ballbench.lowmodel.cubic_pieces import cubic_pieces
+
+        return cubic_pieces(self._interpolant)
 
     def load(self, shift) -> np.ndarray:
         """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points, extrapolated beyond them.
 
-        The piecewise cubic of scipy's ``PchipInterpolator`` evaluated here with the arithmetic of its evaluation (the
-        piece ``x_i <= u < x_(i+1)``, the last one closed, the end pieces extended; ``c_3 + c_2 s + c_1 s^2 + c_0 s^3``
-        with ``s = u - x_i``, summed in this order, ``s^3 = (s s) s``): the same numbers to the last bit without
-        scipy's call overhead (tests compare the two), for :func:`distribute`'s root search, which evaluates it
-        thousands of times per call."""
-        breaks, inner, c0, c1, c2, c3 = self._pieces
-        u = np.asarray(shift, dtype=float)
-        index = inner.searchsorted(u, side="right")   # the piece: 0 below x_1, m - 1 from x_(m-1) on
-        s = u - breaks[index]
-        square = s * s
-        return c3[index] + c2[index] * s + c1[index] * square + c0[index] * (square * s)
+        scipy's ``PchipInterpolator`` evaluated by :class:`lowmodel.cubic_pieces.CubicPieces` (the same numbers to the
+        last bit without scipy's call overhead: :func:`distribute`'s root search evaluates it thousands of times)."""
+        return self._pieces(shift)
 
     def shift(self, load) -> np.ndarray:
         """``u = U(q)``, the exact inverse of :meth:`load` (brentq per value)."""
