@@ -40,7 +40,7 @@ A pair with a positive gap carries no force.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
@@ -174,9 +174,9 @@ class _ChainSetup:
     """What a solve of :func:`_solve_attempt` needs besides its start, for one load, gap pattern and tolerance on
     one set of contacts (remembered in :attr:`BallContacts.solver_memo`): the reference force's scales, the chain's
     layout, the scaled axial targets, the complementarity rate's scale, the per-row tolerances and step weights
-    (docs/ball_screw.md, small mu) and the compiled solver's constant arrays.  The free-rolling start is not among
-    them: only a cold start needs it (:func:`_rolling_start`), and a warm-started solve on new contacts (each step of
-    the whole screw after the first) would pay its least squares for nothing."""
+    (docs/ball_screw.md, small mu) and the compiled solver's constant arrays; the free-rolling start (n, 4) in scaled
+    unknowns at the first cold start (:meth:`rolling_start`): a warm-started solve on new contacts (each step of the
+    whole screw after the first) would pay its least squares for nothing."""
 
     scales: sb.Scales
     layout: ChainLayout
@@ -185,6 +185,16 @@ class _ChainSetup:
     rows: np.ndarray
     weights: np.ndarray
     kernel_constants: tuple
+    _lazy: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def rolling_start(self, contacts: screw_contacts.BallContacts) -> np.ndarray:
+        """The free-rolling start of a cold start on ``contacts`` (those of this setup; :func:`_rolling_start`),
+        computed at its first use, then remembered (read-only)."""
+        if "rolling_start" not in self._lazy:
+            start = _rolling_start(contacts, self.scales)
+            start.setflags(write=False)
+            self._lazy["rolling_start"] = start
+        return self._lazy["rolling_start"]
 
 
 def _chain_setup(contacts: screw_contacts.BallContacts, loads: np.ndarray, per_ball: bool, touching: np.ndarray,
@@ -412,7 +422,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
                                          tolerance=tolerance, max_iterations=max_iterations,
                                          what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
-        guess[:, 2:6] = _rolling_start(contacts, scales)
+        guess[:, 2:6] = setup.rolling_start(contacts)
 
         def contacts_at(z, oversize):  # the contacts of a converged point, for a stall's reason
             balls_z, _, extra_z = layout.unpack(z)
