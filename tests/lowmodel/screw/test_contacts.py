@@ -128,3 +128,7 @@ def test_flank_arc_centre_of_an_array_is_the_centre_of_each_angle():
         assert centres.shape == (angles.size, 2)
         assert np.array_equal(centres, np.array([groove.flank_arc_centre(2.778e-3, 3.11e-3, float(a), sign_u, sign_w)
                                                  for a in angles]))
+        # the formula itself, one angle at a time (math.cos / math.sin of each angle)
+        assert np.array_equal(centres, np.array([-(3.11e-3 - 2.778e-3) * np.array([sign_u * math.cos(a),
+                                                                                  sign_w * math.sin(a)])
+                                                 for a in angles.tolist()]))
