@@ -47,7 +47,8 @@ class CubicPieces:
         index = self.inner.searchsorted(u, side="right")   # the piece: 0 below x_1, m - 1 from x_(m-1) on
         s = u - self.breaks[index]
         square = s * s
-        return self.c3[index] + self.c2[index] * s + self.c1[index] * square + self.c0[index] * (square * s)
+        value = self.c3[index] + self.c2[index] * s + self.c1[index] * square + self.c0[index] * (square * s)
+        return value if u.ndim else np.asarray(value)   # a 0-d array like scipy's, not a numpy scalar
 
 
 def cubic_pieces(interpolant) -> CubicPieces:
