@@ -190,13 +190,16 @@ def gothic_arch(ball_radius: float, conformity: float, contact_angle: float, dev
 # --------------------------------------------------------------------------
 # helical gothic arch (ball screw and nut)
 # --------------------------------------------------------------------------
-def flank_arc_centre(ball_radius: float, groove_radius: float, contact_angle: float, sign_u: float,
+def flank_arc_centre(ball_radius: float, groove_radius: float, contact_angle, sign_u: float,
                      sign_w: float) -> np.ndarray:
-    """(u, w) of a helical flank's arc centre: ``-(r_g - R_B)`` along the contact direction
+    """(u, w) of a helical flank's arc centre [m]: ``-(r_g - R_B)`` along the contact direction
     ``(sign_u cos beta, sign_w sin beta)`` (:attr:`HelicalGroove.arc_centre`, whose fields give the signs and ``r_g``;
-    no input checks: for loops over many contact angles of one validated groove)."""
-    return -(groove_radius - ball_radius) * np.array([sign_u * math.cos(contact_angle),
-                                                       sign_w * math.sin(contact_angle)])
+    no input checks: for many contact angles of one validated groove).  One angle: shape (2,); a 1-D array of n:
+    (n, 2), each row the numbers of its angle alone (``math.cos`` per angle: numpy's may round otherwise)."""
+    angles = np.asarray(contact_angle, dtype=float).reshape(-1).tolist()
+    direction = np.array([[sign_u * math.cos(a) for a in angles], [sign_w * math.sin(a) for a in angles]])
+    centres = (-(groove_radius - ball_radius) * direction).T
+    return centres[0] if np.ndim(contact_angle) == 0 else centres
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,7 @@ A pair with a positive gap carries no force.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
@@ -174,8 +174,9 @@ class _ChainSetup:
     """What a solve of :func:`_solve_attempt` needs besides its start, for one load, gap pattern and tolerance on
     one set of contacts (remembered in :attr:`BallContacts.solver_memo`): the reference force's scales, the chain's
     layout, the scaled axial targets, the complementarity rate's scale, the per-row tolerances and step weights
-    (docs/ball_screw.md, small mu), the free-rolling start (n, 4) in scaled unknowns, and the compiled solver's
-    constant arrays."""
+    (docs/ball_screw.md, small mu) and the compiled solver's constant arrays; the free-rolling start (n, 4) in scaled
+    unknowns at the first cold start (:meth:`rolling_start`): a warm-started solve on new contacts (each step of the
+    whole screw after the first) would pay its least squares for nothing."""
 
     scales: sb.Scales
     layout: ChainLayout
@@ -183,8 +184,17 @@ class _ChainSetup:
     rate_scale: float
     rows: np.ndarray
     weights: np.ndarray
-    rolling_start: np.ndarray
     kernel_constants: tuple
+    _lazy: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def rolling_start(self, contacts: screw_contacts.BallContacts) -> np.ndarray:
+        """The free-rolling start of a cold start on ``contacts`` (those of this setup; :func:`_rolling_start`),
+        computed at its first use, then remembered (read-only)."""
+        if "rolling_start" not in self._lazy:
+            start = _rolling_start(contacts, self.scales)
+            start.setflags(write=False)
+            self._lazy["rolling_start"] = start
+        return self._lazy["rolling_start"]
 
 
 def _chain_setup(contacts: screw_contacts.BallContacts, loads: np.ndarray, per_ball: bool, touching: np.ndarray,
@@ -221,17 +231,23 @@ def _new_chain_setup(contacts, loads, per_ball, touching, ring, tolerance) -> _C
     weights = np.concatenate([np.tile(row_weights(friction_coefficient=module.friction_coefficient, **ball_rows), n),
                               row_weights(friction_coefficient=module.friction_coefficient, balls=0,
                                           axial=layout.n_global)])
-    rates = sb.free_rolling_guess(contacts)
-    start = np.empty((n, 4))
-    start[:, 0] = rates[:, 0] / scales.orbit
-    start[:, 1:] = rates[:, 1:] / scales.spin
     live = np.ascontiguousarray(layout.live)
     pair_scalars = np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale])
     constants = (np.array(sb.kernel_scalars(scales, module, None)), live, pair_scalars)
     targets = loads / scales.force
-    for array in (rows, weights, start, targets, *constants):
+    for array in (rows, weights, targets, *constants):
         array.setflags(write=False)
-    return _ChainSetup(scales, layout, targets, rate_scale, rows, weights, start, constants)
+    return _ChainSetup(scales, layout, targets, rate_scale, rows, weights, constants)
+
+
+def _rolling_start(contacts: screw_contacts.BallContacts, scales: sb.Scales) -> np.ndarray:
+    """The cold start of a solve: the free-rolling orbit and spins (:func:`ball.free_rolling_guess`, remembered per
+    contacts) in scaled unknowns, (n, 4)."""
+    rates = sb.free_rolling_guess(contacts)
+    start = np.empty((contacts.n_balls, 4))
+    start[:, 0] = rates[:, 0] / scales.orbit
+    start[:, 1:] = rates[:, 1:] / scales.spin
+    return start
 
 
 def check_gaps(gaps, count: int) -> np.ndarray:
@@ -406,7 +422,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
                                          tolerance=tolerance, max_iterations=max_iterations,
                                          what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
-        guess[:, 2:6] = setup.rolling_start
+        guess[:, 2:6] = setup.rolling_start(contacts)
 
         def contacts_at(z, oversize):  # the contacts of a converged point, for a stall's reason
             balls_z, _, extra_z = layout.unpack(z)

@@ -209,6 +209,8 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
                  poisson_ratio):
     from scipy.interpolate import CubicSpline
 
+    from ballbench.lowmodel.cubic_pieces import cubic_pieces
+
     low = max(nominal_angle - groove_core.MAX_DEVIATION, 1e-3)
     high = min(nominal_angle + groove_core.MAX_DEVIATION, 0.5 * math.pi - 1e-3)
     below = np.arange(nominal_angle, low, -_HERTZ_STEP)[::-1]
@@ -216,7 +218,8 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
     angles = np.concatenate([below, above])
     values = np.array([hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, float(a), body,
                                     youngs_modulus, poisson_ratio) for a in angles])
-    return tuple(CubicSpline(angles, values[:, q]) for q in range(3))
+    # scipy's splines evaluated without its call overhead, the same numbers (lowmodel.cubic_pieces)
+    return tuple(cubic_pieces(CubicSpline(angles, values[:, q])) for q in range(3))
 
 
 def hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, angle, body, youngs_modulus, poisson_ratio):
@@ -324,12 +327,10 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
         except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
             raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
                              f"{module.conformity!r} ({error})") from None
-        flank = _flank(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
-                       float(module.nominal_angle), _BODY[i], _FLANK[i])
-        radius = flank.groove_radius
-        for j in range(n):   # angles validated by flank_angles; the core's arc centre of the flank at each angle
-            centres[j, i] = groove_core.flank_arc_centre(module.ball_radius, radius, float(angles[j, i]),
-                                                         flank.sign_u, flank.sign_w)  # (u, w) = (x3, z3)
+        radius, sign_u, sign_w = _flank_arc(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                                            float(module.nominal_angle), _BODY[i], _FLANK[i])
+        # angles validated by flank_angles; the core's arc centre of the flank at each ball's angle, (u, w) = (x3, z3)
+        centres[:, i] = groove_core.flank_arc_centre(module.ball_radius, radius, angles[:, i], sign_u, sign_w)
     _check_axis_ratio(module, angles, ratio)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     bulk = None
@@ -345,10 +346,12 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
 
 
 @lru_cache(maxsize=256)
-def _flank(ball_radius, conformity, pitch_radius, lead, angle, body, flank) -> groove_core.HelicalGroove:
-    """The core's flank (:class:`groove.HelicalGroove`) of a module's groove at the nominal angle, cached: its
-    ``groove_radius`` and signs for :func:`groove.flank_arc_centre` at each ball's contact angle."""
-    return groove_core.HelicalGroove(ball_radius, conformity, pitch_radius, lead, angle, body, flank)
+def _flank_arc(ball_radius, conformity, pitch_radius, lead, angle, body, flank) -> tuple[float, float, float]:
+    """``(r_g, sign_u, sign_w)`` of the core's flank (:class:`groove.HelicalGroove`) of a module's groove at the
+    nominal angle, cached (the flank's ``groove_radius`` checks its inputs at every read): the inputs of
+    :func:`groove.flank_arc_centre` at each ball's contact angle."""
+    core = groove_core.HelicalGroove(ball_radius, conformity, pitch_radius, lead, angle, body, flank)
+    return core.groove_radius, core.sign_u, core.sign_w
 
 
 def _check_axis_ratio(module: ScrewModule, angles: np.ndarray, ratio: np.ndarray) -> None:

@@ -86,9 +86,18 @@ class AxialStiffness:
         order = np.argsort(self.shifts)
         return PchipInterpolator(self.shifts[order], self.loads[order])
 
+    @cached_property
+    def _pieces(self):
+        from ballbench.lowmodel.cubic_pieces import cubic_pieces
+
+        return cubic_pieces(self._interpolant)
+
     def load(self, shift) -> np.ndarray:
-        """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points."""
-        return self._interpolant(shift)
+        """``q = U^-1(u)``: monotone cubic (pchip) through the tabulated points, extrapolated beyond them.
+
+        scipy's ``PchipInterpolator`` evaluated by :class:`lowmodel.cubic_pieces.CubicPieces` (the same numbers to the
+        last bit without scipy's call overhead: :func:`distribute`'s root search evaluates it thousands of times)."""
+        return self._pieces(shift)
 
     def shift(self, load) -> np.ndarray:
         """``u = U(q)``, the exact inverse of :meth:`load` (brentq per value)."""
@@ -178,12 +187,13 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         offset = offset + geometric
         sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
 
-        def mismatch(u0):
-            return float(np.sum(stiffness.load(np.clip(u0 - sign * offset, low, high))) - total)  # noqa: B023 - called within this iteration
+        shifted = sign * offset
+
+        def mismatch(u0):   # np.clip's value, through the ufuncs (np.clip's Python wrapper costs more than its work)
+            return float(stiffness.load(np.minimum(np.maximum(u0 - shifted, low), high)).sum() - total)  # noqa: B023 - called within this iteration
 
         # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
         # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold
-        shifted = sign * offset
         start = min(low - offset.max(), low + shifted.min())
         end = max(high + offset.max(), high + shifted.max())
         if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change

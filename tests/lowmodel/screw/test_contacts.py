@@ -91,3 +91,44 @@ def test_ball_contacts_names_a_deviation_of_the_wrong_shape():
         with pytest.raises(ValueError, match="deviation must be one theta"):
             screw_contacts.ball_contacts(module, bad)
     assert screw_contacts.ball_contacts(module, [0.0, 0.01]).n_balls == 2
+
+
+@pytest.mark.parametrize("reading", screw_contacts.DEVIATION_READINGS)
+def test_ball_contacts_of_many_balls_are_those_of_each_ball_alone(reading):
+    """ball_contacts builds all balls at once (the arc centres of each flank in one call of the geometry core): every
+    array equals, at 0 difference, the contacts of each ball built alone, and the arc centres equal the core's
+    groove.flank_arc_centre of each flank at each ball's contact angle, one angle per call."""
+    from ballbench.lowmodel.geometry import groove
+
+    module = screw_contacts.screw_module(oversize=1.7e-6)
+    theta = np.radians(3.0) * np.sin(np.linspace(0.0, 7.0, 37)) + np.radians(0.37)
+    many = screw_contacts.ball_contacts(module, theta, reading)
+    for j in range(theta.size):
+        alone = screw_contacts.ball_contacts(module, float(theta[j]), reading)
+        for name in ("contact_angles", "arc_centres", "hertz_constant", "semi_major_unit", "b_over_a", "deviation"):
+            assert np.array_equal(getattr(many, name)[j], getattr(alone, name)[0]), name
+        for i in range(4):
+            flank = groove.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                                         module.nominal_angle, ("screw", "screw", "nut", "nut")[i],
+                                         ("left", "right", "right", "left")[i])
+            centre = groove.flank_arc_centre(module.ball_radius, flank.groove_radius,
+                                             float(many.contact_angles[j, i]), flank.sign_u, flank.sign_w)
+            assert np.array_equal(many.arc_centres[j, i], centre)
+            at_angle = groove.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                                            float(many.contact_angles[j, i]), flank.body, flank.flank)
+            assert np.array_equal(many.arc_centres[j, i], at_angle.arc_centre)
+
+
+def test_flank_arc_centre_of_an_array_is_the_centre_of_each_angle():
+    from ballbench.lowmodel.geometry import groove
+
+    angles = np.linspace(0.3, 1.2, 1001)
+    for sign_u, sign_w in ((-1.0, 1.0), (1.0, -1.0)):
+        centres = groove.flank_arc_centre(2.778e-3, 3.11e-3, angles, sign_u, sign_w)
+        assert centres.shape == (angles.size, 2)
+        assert np.array_equal(centres, np.array([groove.flank_arc_centre(2.778e-3, 3.11e-3, float(a), sign_u, sign_w)
+                                                 for a in angles]))
+        # the formula itself, one angle at a time (math.cos / math.sin of each angle)
+        assert np.array_equal(centres, np.array([-(3.11e-3 - 2.778e-3) * np.array([sign_u * math.cos(a),
+                                                                                  sign_w * math.sin(a)])
+                                                 for a in angles.tolist()]))

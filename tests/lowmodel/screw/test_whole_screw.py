@@ -228,3 +228,52 @@ def test_whole_screw_takes_a_constant_deviation_function(table):
         ws.simulate(module, deviation=lambda phi: np.zeros(3), **options)
     with pytest.raises(ValueError, match="deviation must be a function"):
         ws.simulate(module, deviation=0.01, **options)
+
+
+@pytest.mark.parametrize("direction", [1.0, -1.0])
+def test_stiffness_load_is_scipys_pchip_to_the_last_bit(stiffness, direction):
+    """AxialStiffness.load evaluates the pchip from its coefficients (distribute's root search): the numbers of
+    scipy's PchipInterpolator at 0 difference, inside the pieces, at and next to every breakpoint, beyond the table
+    (extrapolated), for a table of rising and of falling shifts."""
+    from scipy.interpolate import PchipInterpolator
+
+    table = ld.AxialStiffness(stiffness.loads, direction * stiffness.shifts)
+    order = np.argsort(table.shifts)
+    reference = PchipInterpolator(table.shifts[order], table.loads[order])
+    low, high = table.shifts.min(), table.shifts.max()
+    rng = np.random.default_rng(7)
+    shifts = np.concatenate([rng.uniform(low, high, 20000), table.shifts, np.nextafter(table.shifts, -np.inf),
+                             np.nextafter(table.shifts, np.inf), rng.uniform(2 * low - high, 2 * high - low, 479)])
+    assert np.array_equal(table.load(shifts), reference(shifts))
+    assert np.array_equal(table.load(shifts.reshape(4, -1)), reference(shifts.reshape(4, -1)))
+    assert np.shape(table.load(shifts[0])) == () and float(table.load(shifts[0])) == float(reference(shifts[0]))
+
+
+def test_whole_screw_steps_need_no_free_rolling_start(module, stiffness):
+    """After the first step every solve of the whole screw is warm-started: its new contacts never compute the
+    free-rolling start (b2b._rolling_start is for a cold start only); the cold start is the free-rolling rates of
+    each ball alone (ball.free_rolling_guess of BallContacts.ball) over the solve's scales."""
+    from ballbench.lowmodel.screw import b2b
+
+    built = []
+    original = screw_contacts.ball_contacts
+
+    def recording(*args, **kwargs):
+        built.append(original(*args, **kwargs))
+        return built[-1]
+
+    whole_screw.screw_contacts.ball_contacts = recording
+    try:
+        ws.simulate(module, n_balls=8, axial_load=200.0, steps=3, stiffness=stiffness)
+    finally:
+        whole_screw.screw_contacts.ball_contacts = original
+    built = [contacts for contacts in built if contacts.module == module]   # not a kernel's warm-up
+    assert len(built) == 4
+    assert "free_rolling" in built[0].solver_memo
+    assert not any("free_rolling" in contacts.solver_memo for contacts in built[1:])
+    contacts = built[0]
+    scales = sb.scales_for(contacts, 100.0)
+    start = b2b._rolling_start(contacts, scales)
+    for j in range(contacts.n_balls):
+        rates = sb.free_rolling_guess(contacts.ball(j))[0]
+        assert np.array_equal(start[j], np.concatenate([[rates[0] / scales.orbit], rates[1:] / scales.spin]))
