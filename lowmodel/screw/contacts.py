@@ -97,7 +97,8 @@ class ScrewModule:
 
     @cached_property
     def groove_radius(self) -> float:
-        return 2.0 * self.conformity * self.ball_radius
+        """``r_g = conformity * 2 R_B`` [m] (:func:`lowmodel.geometry.groove.groove_radius`)."""
+        return float(groove_core.groove_radius(self.ball_radius, self.conformity))
 
 
 def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pitch_radius: float = 16.5e-3,
