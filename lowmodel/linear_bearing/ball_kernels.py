@@ -511,6 +511,8 @@ def _block_factor(diagonal, upper, lower, factor, pivots, coupling, reach):  # n
     return True
 
 
+_SCHUR_ROWS = np.array([0, 1, 2, 7])  # R of the slip elimination: v_B, omega_x, omega_y, F
+_ALL_ROWS = np.arange(8)  # every row of a pivot block (K <= 8)
 _SLIP_PIVOT = 1e-4  # a slip-angle pivot |d r_i / d phi_i| = |slip speed| below this times its row: the full LU
 
 
@@ -544,22 +546,33 @@ def _slip_factor(factor, pivots, j):
         inverse = 1.0 / factor[j, s, s]
         factor[j, s, s] = inverse
         for a in range(4):
-            ra = 7 if a == 3 else a
+            ra = _SCHUR_ROWS[a]
             factor[j, s, ra] *= inverse
     for a in range(4):
-        ra = 7 if a == 3 else a
+        ra = _SCHUR_ROWS[a]
         for b in range(4):
-            rb = 7 if b == 3 else b
+            rb = _SCHUR_ROWS[b]
             total = factor[j, ra, rb]
             for s in range(3, 7):
                 total -= factor[j, ra, s] * factor[j, s, rb]
             factor[j, ra, rb] = total
-    for col in range(4):
-        rc = 7 if col == 3 else col
+    if not _lu(factor, pivots, j, _SCHUR_ROWS, 4):
+        return False
+    pivots[j, 7] = -1
+    return True
+
+
+@_jit
+def _lu(factor, pivots, j, rows, count):
+    """LU with partial pivoting of ``factor[j]`` restricted to rows and columns ``rows[:count]`` (in place: the
+    multipliers below, ``U`` on and above the diagonal); row exchanges within them in ``pivots[j, :count]`` (positions
+    in ``rows``).  False where a pivot is 0."""
+    for col in range(count):
+        rc = rows[col]
         pivot = col
         best = abs(factor[j, rc, rc])
-        for row in range(col + 1, 4):
-            rr = 7 if row == 3 else row
+        for row in range(col + 1, count):
+            rr = rows[row]
             if abs(factor[j, rr, rc]) > best:
                 best = abs(factor[j, rr, rc])
                 pivot = row
@@ -567,48 +580,50 @@ def _slip_factor(factor, pivots, j):
             return False
         pivots[j, col] = pivot
         if pivot != col:
-            rp = 7 if pivot == 3 else pivot
-            for c in range(4):
-                q = 7 if c == 3 else c
+            rp = rows[pivot]
+            for c in range(count):
+                q = rows[c]
                 factor[j, rc, q], factor[j, rp, q] = factor[j, rp, q], factor[j, rc, q]
         inverse = 1.0 / factor[j, rc, rc]
-        for row in range(col + 1, 4):
-            rr = 7 if row == 3 else row
+        for row in range(col + 1, count):
+            rr = rows[row]
             multiplier = factor[j, rr, rc] * inverse
             factor[j, rr, rc] = multiplier
             if multiplier != 0.0:
-                for c in range(col + 1, 4):
-                    q = 7 if c == 3 else c
+                for c in range(col + 1, count):
+                    q = rows[c]
                     factor[j, rr, q] -= multiplier * factor[j, rc, q]
-    pivots[j, 7] = -1
     return True
+
+
+@_jit
+def _lu_apply(factor, pivots, j, rows, count, x):
+    """``x[rows[:count]] <- (LU)^-1 x[rows[:count]]`` with the factors of :func:`_lu`."""
+    for col in range(count):
+        p = pivots[j, col]
+        if p != col:
+            rc, rp = rows[col], rows[p]
+            x[rc], x[rp] = x[rp], x[rc]
+    for col in range(count):
+        rc = rows[col]
+        value = x[rc]
+        if value != 0.0:
+            for row in range(col + 1, count):
+                rr = rows[row]
+                x[rr] -= factor[j, rr, rc] * value
+    for row in range(count - 1, -1, -1):
+        rr = rows[row]
+        total = x[rr]
+        for c in range(row + 1, count):
+            q = rows[c]
+            total -= factor[j, rr, q] * x[q]
+        x[rr] = total / factor[j, rr, rr]
 
 
 @_jit
 def _full_factor(factor, pivots, j):
     """LU of the pivot block ``factor[j]`` with partial pivoting over all K rows; False where a pivot is 0."""
-    k = factor.shape[1]
-    for col in range(k):
-        pivot = col
-        best = abs(factor[j, col, col])
-        for row in range(col + 1, k):
-            if abs(factor[j, row, col]) > best:
-                best = abs(factor[j, row, col])
-                pivot = row
-        if not best > 0.0:
-            return False
-        pivots[j, col] = pivot
-        if pivot != col:
-            for c in range(k):
-                factor[j, col, c], factor[j, pivot, c] = factor[j, pivot, c], factor[j, col, c]
-        inverse = 1.0 / factor[j, col, col]
-        for row in range(col + 1, k):
-            multiplier = factor[j, row, col] * inverse
-            factor[j, row, col] = multiplier
-            if multiplier != 0.0:
-                for c in range(col + 1, k):
-                    factor[j, row, c] -= multiplier * factor[j, col, c]
-    return True
+    return _lu(factor, pivots, j, _ALL_ROWS, factor.shape[1])
 
 
 @_jit
@@ -617,35 +632,16 @@ def _slip_apply(factor, pivots, j, x):
     for s in range(3, 7):
         x[s] *= factor[j, s, s]
     for a in range(4):
-        ra = 7 if a == 3 else a
+        ra = _SCHUR_ROWS[a]
         total = x[ra]
         for s in range(3, 7):
             total -= factor[j, ra, s] * x[s]
         x[ra] = total
-    for col in range(4):
-        p = pivots[j, col]
-        if p != col:
-            rc = 7 if col == 3 else col
-            rp = 7 if p == 3 else p
-            x[rc], x[rp] = x[rp], x[rc]
-    for col in range(4):
-        rc = 7 if col == 3 else col
-        value = x[rc]
-        if value != 0.0:
-            for row in range(col + 1, 4):
-                rr = 7 if row == 3 else row
-                x[rr] -= factor[j, rr, rc] * value
-    for row in range(3, -1, -1):
-        rr = 7 if row == 3 else row
-        total = x[rr]
-        for c in range(row + 1, 4):
-            q = 7 if c == 3 else c
-            total -= factor[j, rr, q] * x[q]
-        x[rr] = total / factor[j, rr, rr]
+    _lu_apply(factor, pivots, j, _SCHUR_ROWS, 4, x)
     for s in range(3, 7):
         total = x[s]
         for a in range(4):
-            ra = 7 if a == 3 else a
+            ra = _SCHUR_ROWS[a]
             total -= factor[j, s, ra] * x[ra]
         x[s] = total
 
@@ -658,20 +654,7 @@ def _block_apply(factor, pivots, j, x):
     if pivots[j, k - 1] < 0:
         _slip_apply(factor, pivots, j, x)
         return
-    for col in range(k):
-        p = pivots[j, col]
-        if p != col:
-            x[col], x[p] = x[p], x[col]
-    for col in range(k):
-        value = x[col]
-        if value != 0.0:
-            for row in range(col + 1, k):
-                x[row] -= factor[j, row, col] * value
-    for row in range(k - 1, -1, -1):
-        total = x[row]
-        for c in range(row + 1, k):
-            total -= factor[j, row, c] * x[c]
-        x[row] = total / factor[j, row, row]
+    _lu_apply(factor, pivots, j, _ALL_ROWS, k, x)
 
 
 @_jit

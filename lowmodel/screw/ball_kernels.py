@@ -156,8 +156,12 @@ def _poles(cos_psi, sin_psi):
 
 
 @_jit
-def _angular(cos_t, sin_t, j0, j1, j2, weight, beta):
-    """One node's terms of the angular sums (f_major (subtracted), f_minor, loss, c_ss, c_sc, c_cc)."""
+def _angular(acc, cos_psi, sin_psi, cos_p, sin_p, j0, j1, j2, weight, beta):
+    """The angular sums (f_major, f_minor, loss, c_ss, c_sc, c_cc) with one node added: the node's direction
+    ``theta`` from the ray's ``(cos_p, sin_p)`` turned by the velocity centre's ``psi``, its radial integrals
+    ``j0 .. j2`` and weight."""
+    cos_t = -(cos_psi * cos_p - sin_psi * sin_p)
+    sin_t = -(sin_psi * cos_p + cos_psi * sin_p)
     bsin = beta * sin_t
     g2 = cos_t * cos_t + bsin * bsin
     g = math.sqrt(g2)
@@ -165,7 +169,9 @@ def _angular(cos_t, sin_t, j0, j1, j2, weight, beta):
     w0 = weight * j0 / (g2 * g)
     w0_bsin = w0 * bsin
     w0_cos = w0 * cos_t
-    return w1 * bsin, w1 * cos_t, weight * g * j2, w0_bsin * bsin, w0_bsin * cos_t, w0_cos * cos_t
+    s0, s1, s2, s3, s4, s5 = acc
+    return (s0 - w1 * bsin, s1 + w1 * cos_t, s2 + weight * g * j2, s3 + w0_bsin * bsin, s4 + w0_bsin * cos_t,
+            s5 + w0_cos * cos_t)
 
 
 @_jit
@@ -188,7 +194,7 @@ def _sort4(a, b, c, d):
 def _centred(kappa, lam, beta, nodes, weights, sums):  # noqa: C901 - the two quadratures of lowmodel.contact.ellipse_friction_offset
     """The integrals about the velocity centre (omega > 0) into ``sums`` (6,).  The node sums run in local
     variables, node after node in the order of the numpy code's sums."""
-    s0 = s1 = s2 = s3 = s4 = s5 = 0.0
+    acc = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     rc = math.hypot(kappa, lam)
     cos_psi = kappa / rc if rc > 0.0 else 1.0
     sin_psi = lam / rc if rc > 0.0 else 0.0
@@ -212,15 +218,7 @@ def _centred(kappa, lam, beta, nodes, weights, sums):  # noqa: C901 - the two qu
                 k2 = 0.0625 * math.pi * big_r2 ** 2 - 0.125 * (b * (2.0 * b * b - big_r2) * h + big_r2 ** 2 * asin)
                 j1 = k1 - b * k0
                 j2 = k2 - 2.0 * b * k1 + b * b * k0
-                cos_t = -(cos_psi * cos_p - sin_psi * sin_p)
-                sin_t = -(sin_psi * cos_p + cos_psi * sin_p)
-                t0, t1, t2, t3, t4, t5 = _angular(cos_t, sin_t, k0, j1, j2, weight, beta)
-                s0 -= t0
-                s1 += t1
-                s2 += t2
-                s3 += t3
-                s4 += t4
-                s5 += t5
+                acc = _angular(acc, cos_psi, sin_psi, cos_p, sin_p, k0, j1, j2, weight, beta)
     else:
         if p0 > math.pi:
             p0 -= 2.0 * math.pi
@@ -250,15 +248,8 @@ def _centred(kappa, lam, beta, nodes, weights, sums):  # noqa: C901 - the two qu
                 j2 = 0.125 * math.pi * ratio * cos_x ** 2 + 0.5 * math.pi * chord * c3
                 sin_p = sin_x / rc
                 cos_p = chord / rc
-                cos_t = -(cos_psi * cos_p - sin_psi * sin_p)
-                sin_t = -(sin_psi * cos_p + cos_psi * sin_p)
-                t0, t1, t2, t3, t4, t5 = _angular(cos_t, sin_t, j0, j1, j2, weight, beta)
-                s0 -= t0
-                s1 += t1
-                s2 += t2
-                s3 += t3
-                s4 += t4
-                s5 += t5
+                acc = _angular(acc, cos_psi, sin_psi, cos_p, sin_p, j0, j1, j2, weight, beta)
+    s0, s1, s2, s3, s4, s5 = acc
     sums[0], sums[1], sums[2] = s0 * _PREFACTOR, s1 * _PREFACTOR, s2 * _PREFACTOR
     sums[3], sums[4], sums[5] = s3 * _PREFACTOR, s4 * _PREFACTOR, s5 * _PREFACTOR
 
