@@ -17,9 +17,10 @@ documented substitute with two ingredients:
    The shift seen by ball ``j`` is ``u_j = u_0 - int_0^{z_j} (N_s/(E A_s) + N_n/(E A_n)) dz``.
 
 The loads solve ``q_j = U^-1(u_j)``, ``sum q_j = F_a`` (fixed-point iteration on the
-elastic offsets, ``brentq`` for ``u_0``).  Left out (docs/ball_screw.md): radial and
-lateral deformation of screw and nut, thread bending, shear lag of the nut wall,
-geometric errors in the distribution (every ball is the nominal one here; the
+elastic offsets, ``brentq`` for ``u_0``; with numba the steps are compiled in
+:mod:`lowmodel.screw.distribution_kernels`, the same numbers to the last bit).
+Left out (docs/ball_screw.md): radial and lateral deformation of screw and nut, thread bending, shear lag of the
+nut wall, geometric errors in the distribution (every ball is the nominal one here; the
 deviations enter the friction model only), friction's effect on the shares,
 centrifugal and gyroscopic loads.
 """
@@ -31,7 +32,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import checks, kernels
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
@@ -133,10 +134,51 @@ def axial_stiffness(module: screw_contacts.ScrewModule, max_load: float, points:
     return AxialStiffness(loads, shifts)
 
 
+KERNELS = "screw.distribution_kernels"  # the compiled root search of u_0 (lowmodel.kernels.load)
+_ROOT_XTOL = 1e-16             # m, Brent's absolute tolerance on u_0
+_ROOT_RTOL = 4 * np.finfo(float).eps   # Brent's relative tolerance (scipy.optimize.brentq's default, its least)
+_ROOT_ITERATIONS = 2000
+
+
 def _swamped(offset, low, high):
     raise ValueError(f"positions, lead, lead_error, youngs_modulus: the offsets of the balls (up to "
                      f"{float(np.max(np.abs(offset)))!r} m) swamp the range of the ball's shift table "
                      f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
+
+
+def _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness):
+    """One step of :func:`distribute`'s fixed-point iteration: the loads that carry ``total`` on the offsets of
+    ``loads``."""
+    from scipy.optimize import brentq
+
+    n = loads.size
+    handed = np.cumsum(loads[order]) - loads[order]           # S(z) just before each ball
+    before = np.concatenate([[0.0], handed[1:]])               # S over each segment
+    strain = (total - before) * compliance_s + before * compliance_n
+    offset = np.empty(n)
+    offset[order] = np.cumsum(strain * segment)                # int_0^z (eps_s + eps_n)
+    offset = offset + geometric
+    shifted = sign * offset
+    low, high = stiffness.shifts.min(), stiffness.shifts.max()
+
+    def mismatch(u0):   # np.clip's value, through the ufuncs (np.clip's Python wrapper costs more than its work)
+        return float(stiffness.load(np.minimum(np.maximum(u0 - shifted, low), high)).sum() - total)
+
+    # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
+    # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold
+    start = min(low - offset.max(), low + shifted.min())
+    end = max(high + offset.max(), high + shifted.max())
+    if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change
+        _swamped(offset, low, high)
+    try:   # bisection may need ~1100 halvings where the offsets dwarf the table (absurd stiffness)
+        u0 = brentq(mismatch, start, end, xtol=_ROOT_XTOL, rtol=_ROOT_RTOL, maxiter=_ROOT_ITERATIONS)
+    except RuntimeError as error:
+        raise ConvergenceError(f"distribute: the nut shift u_0 was not found ({error})", residual=math.inf,
+                               iterations=_ROOT_ITERATIONS, tolerance=_ROOT_XTOL, reason="no root bracketed") from None
+    new = stiffness.load(np.clip(u0 - sign * offset, low, high))
+    if abs(float(new.sum()) - total) > 1e-6 * total:   # the loads must carry the axial load (lost precision)
+        _swamped(offset, low, high)
+    return new
 
 
 def distribute(positions, total_load: float, stiffness: AxialStiffness, sections: BarSections, lead: float,
@@ -150,8 +192,6 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
     Sec 3.1 / ref [19]); it adds ``lead_error psi / 2 pi`` to the nut's axial position at each ball
     (with the sign of the elastic shortening: a positive error unloads the far balls).
     """
-    from scipy.optimize import brentq
-
     from ballbench.lowmodel.solvers import check_solver_options
 
     check_solver_options(tolerance, max_iterations)
@@ -175,37 +215,33 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
         compliance_n = checks.finite_result("youngs_modulus", 1.0 / np.float64(youngs_modulus * sections.nut_area),
                                             "1/N")
     order = np.argsort(z)
-    loads = np.full(n, total / n)
+    segment = np.diff(np.concatenate([[0.0], z[order]]))      # z from the previous ball (or 0)
+    sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
     low, high = stiffness.shifts.min(), stiffness.shifts.max()
+    compiled = kernels.load(KERNELS)
+    if compiled is not None and n <= compiled.MAX_BALLS:   # the same operations compiled (the same bits)
+        data = compiled.pack(n, low, high, total, stiffness._pieces)
+
+        def step(loads):
+            start, end, at_start, at_end = compiled.offsets(loads, order, segment, geometric, total, compliance_s,
+                                                            compliance_n, sign, data)
+            if at_start * at_end > 0.0:
+                _swamped(compiled.shifted(data), low, high)
+            u0, status, _ = compiled.nut_shift(data, start, end, _ROOT_XTOL, _ROOT_RTOL, _ROOT_ITERATIONS)
+            if status != compiled.CONVERGED or not math.isfinite(u0):
+                raise ConvergenceError(f"distribute: the nut shift u_0 was not found (scipy's Brent routine, status "
+                                       f"{status}, u_0 = {u0!r})", residual=math.inf, iterations=_ROOT_ITERATIONS,
+                                       tolerance=_ROOT_XTOL, reason="no root bracketed")
+            new = np.empty(n)
+            if abs(compiled.loads_at(u0, data, new) - total) > 1e-6 * total:
+                _swamped(compiled.shifted(data), low, high)
+            return new
+    else:
+        def step(loads):
+            return _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness)
+    loads = np.full(n, total / n)
     for _ in range(max_iterations):
-        handed = np.cumsum(loads[order]) - loads[order]           # S(z) just before each ball
-        segment = np.diff(np.concatenate([[0.0], z[order]]))      # z from the previous ball (or 0)
-        before = np.concatenate([[0.0], handed[1:]])               # S over each segment
-        strain = (total - before) * compliance_s + before * compliance_n
-        offset = np.empty(n)
-        offset[order] = np.cumsum(strain * segment)                # int_0^z (eps_s + eps_n)
-        offset = offset + geometric
-        sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0
-
-        shifted = sign * offset
-
-        def mismatch(u0):   # np.clip's value, through the ufuncs (np.clip's Python wrapper costs more than its work)
-            return float(stiffness.load(np.minimum(np.maximum(u0 - shifted, low), high)).sum() - total)  # noqa: B023 - called within this iteration
-
-        # bracket: every ball at the bottom of the table, then every ball at its top (sum 0, then >= total);
-        # for offsets >= 0 (no negative lead_error) the wider ends low - max, high + max hold
-        start = min(low - offset.max(), low + shifted.min())
-        end = max(high + offset.max(), high + shifted.max())
-        if mismatch(start) * mismatch(end) > 0.0:   # offsets so large that the table's range is lost: no sign change
-            _swamped(offset, low, high)
-        try:   # bisection may need ~1100 halvings where the offsets dwarf the table (absurd stiffness)
-            u0 = brentq(mismatch, start, end, xtol=1e-16, maxiter=2000)
-        except RuntimeError as error:
-            raise ConvergenceError(f"distribute: the nut shift u_0 was not found ({error})", residual=math.inf,
-                                   iterations=2000, tolerance=1e-16, reason="no root bracketed") from None
-        new = stiffness.load(np.clip(u0 - sign * offset, low, high))
-        if abs(float(new.sum()) - total) > 1e-6 * total:   # the loads must carry the axial load (lost precision)
-            _swamped(offset, low, high)
+        new = step(loads)
         change = float(np.max(np.abs(new - loads)))
         if change <= tolerance * total:
             return new
