@@ -13,10 +13,14 @@ A measurement study, run by hand (not collected by pytest; nothing in the models
    ``ellipse_friction_offset.tanh_sinh``, which this study replaces for the call (the kernels read it through
    ``screw.ball.kernel_tables``), so every candidate runs the same panels and radial closed forms.
 3. ``timing``: CPU time per contact of the compiled ``screw.ball_kernels.friction_offset`` with each rule's table.
-4. ``screw``: the whole screw (benchmark run, CPU time) and the lin2019-fig21 scene's outputs with the kernels fed
-   a candidate table (``kernel_tables`` replaced in this process only) against the current one.
+4. ``screw``: the whole screw (benchmark run, CPU time, torque histories, worst power balance) with the kernels fed
+   a candidate table (``kernel_tables`` replaced in this process only) against the current one; ``screw-time``
+   alternates the two over several rounds.
+5. ``validate``: ``ballbench validate`` of the screw scenes with a candidate table (the scenes' outputs, among them
+   lin2019-fig21's).
 
-Run: ``python benchmarks/quadrature_study.py capture|errors|timing|screw|all [--data DIR]``.
+Run: ``python benchmarks/quadrature_study.py capture|errors|grid|timing|screw|screw-time|validate|all [--rule NAME]
+[--data DIR]``.
 """
 from __future__ import annotations
 
@@ -317,15 +321,16 @@ def timing(data: Path, names=None, repeats: int = 7) -> None:
 
 
 # --------------------------------------------------------------------------
-# 4. the whole screw and the lin2019-fig21 scene with a candidate table
+# 4. the whole screw with a candidate table
 # --------------------------------------------------------------------------
-def screw(data: Path, name: str, steps: int | None = None) -> None:
+def screw(data: Path, name: str) -> None:
+    """The benchmark's whole screw with the current table and ``name``'s: CPU time, iterations, the torque histories
+    and the worst power balance (the scenes' outputs: the ``validate`` stage)."""
     import json
 
     from ballbench.lowmodel.screw import ball as screw_ball
     from ballbench.lowmodel.screw import contacts as screw_contacts
     from ballbench.lowmodel.screw import load_distribution, whole_screw
-    from ballbench.validation.scenes import lin2019_screw as scene
 
     current_function = screw_ball.kernel_tables
     current = current_function()
@@ -333,7 +338,6 @@ def screw(data: Path, name: str, steps: int | None = None) -> None:
     candidate = (current[0], *rule, *rule, *current[5:])
     module = screw_contacts.screw_module(oversize=OVERSIZE)
     stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
-    steps = steps or scene.FIG21_STEPS["default"]
     results = {}
     whole_screw.simulate(module, amplitude=math.radians(3.0), stiffness=stiffness, steps=3)   # load the kernels
     for label, tables in (("current", current), (name, candidate), ("current again", current)):
@@ -341,24 +345,14 @@ def screw(data: Path, name: str, steps: int | None = None) -> None:
         start = time.process_time()
         history = whole_screw.simulate(module, amplitude=math.radians(3.0), stiffness=stiffness)
         bench = time.process_time() - start
-        start = time.process_time()
-        fig21 = scene._whole_screw(steps)
-        scene_s = time.process_time() - start
-        summary = scene._fig21_summary(fig21)
-        results[label] = dict(bench_s=bench, iterations=int(history.iterations.sum()), scene_s=scene_s,
-                              power=float(fig21.power_error.max()), groups=summary["groups"],
-                              peak=summary["peak_increase"], peak_deg=summary["peak_angle_deg"],
-                              zero_deg=summary["zero_angle_deg"], min_after=summary["min_after_peak"],
-                              b2b_torque=fig21.b2b_torque.tolist(), groove_torque=fig21.groove_torque.tolist())
-        print(f"{label:16s} benchmark run {bench:.2f} s CPU ({results[label]['iterations']} iterations); scene "
-              f"({steps} steps) {scene_s:.2f} s CPU: power {results[label]['power']:.6e}, groups "
-              f"{summary['groups']}, peak {summary['peak_increase']:.12f} % at {summary['peak_angle_deg']:.9f} deg, "
-              f"zero at {summary['zero_angle_deg']:.9f} deg, min after peak {summary['min_after_peak']:.3e}; "
-              f"{load_average()}")
+        results[label] = dict(bench_s=bench, iterations=int(history.iterations.sum()),
+                              power=float(history.power_error.max()), b2b_torque=history.b2b_torque.tolist(),
+                              groove_torque=history.groove_torque.tolist())
+        print(f"{label:16s} benchmark run {bench:.2f} s CPU ({results[label]['iterations']} iterations), worst power "
+              f"balance {results[label]['power']:.6e}; {load_average()}")
     screw_ball.kernel_tables = current_function
     a, b = results["current"], results[name]
-    for key in ("power", "peak", "peak_deg", "zero_deg"):
-        print(f"  {key}: {a[key]:.15g} -> {b[key]:.15g} (relative {abs(b[key] - a[key]) / abs(a[key]):.2e})")
+    print(f"  power: {a['power']:.15g} -> {b['power']:.15g} (relative {abs(b['power'] - a['power']) / a['power']:.2e})")
     for key in ("b2b_torque", "groove_torque"):
         x, y = np.array(a[key]), np.array(b[key])
         print(f"  {key} history: largest difference {np.max(np.abs(x - y)):.3e} against largest value "
