@@ -66,7 +66,8 @@ __all__ = [
 ]
 
 N_UNKNOWNS = 6  # per ball: x_B3, z_B3, omega_B, omega_x, omega_y, omega_z
-# tanh-sinh level of friction_offset: 3 where every b/a >= 0.2 (error < 3e-8 there, tests), else 4
+# tanh-sinh level of friction_offset: 3 where every b/a >= 0.2 (outputs' error < 3e-8 there, tests; the Jacobian's
+# error is larger next to the rim, docs/speed.md 'The offset friction's quadrature'), else 4
 FRICTION_LEVEL = {"coarse": 3, "fine": 4, "coarse_min_b_over_a": 0.2}
 
 
