@@ -453,7 +453,9 @@ _B2B_REGULARISATION = 1e-14  # as lowmodel.screw.b2b: |s| floor in units of R_B 
 @_jit
 def pair_loads(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_spin, d_force):
     """lin2019 eqs 57-59 (:func:`lowmodel.screw.b2b.b2b_loads`) for the chain's pairs: loads (n, 6) [N, N m],
-    d_spin (p, 2, 2, 6, 3), d_force (p, 2, 6)."""
+    d_spin (p, 2, 2, 6, 3), d_force (p, 2, 6).  The matrix products go to BLAS as numpy's ``@`` does (``np.dot``
+    into scratch arrays: the same routine, so the same bits), the element-wise steps are loops in numpy's order, so
+    a pair allocates nothing; ``rot^T B`` and ``-rot^T`` are the same for every pair."""
     pairs = n if ring else n - 1
     a_mat = np.zeros((3, 3))
     a_mat[0, 1], a_mat[0, 2], a_mat[1, 0] = chord[2], -chord[1], -chord[2]
@@ -463,35 +465,61 @@ def pair_loads(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_sp
             a_mat[r, q] *= radius
     b_mat = -a_mat
     rot_t = np.ascontiguousarray(rot.T)
+    minus_rot_t = -rot_t
+    rot_t_b = rot_t @ b_mat
     load[:] = 0.0
     floor = (_B2B_REGULARISATION * radius * speed) ** 2
+    rotated, total, slip, direction = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+    friction, force_behind, moment, vector = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+    product, dfd, b_dfd = np.empty(3), np.empty(3), np.empty(3)
+    scaled, d_behind, d_rotated, block = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
     for p in range(pairs):
         behind, ahead = p, (p + 1) % n
-        total = spins[behind] + rot @ spins[ahead]
-        slip = a_mat @ total
+        np.dot(rot, spins[ahead], rotated)
+        for i in range(3):
+            total[i] = spins[behind, i] + rotated[i]
+        np.dot(a_mat, total, slip)
         speeds = math.sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2])
         norm = math.sqrt(speeds ** 2 + floor)
-        direction = slip / norm
-        friction = -mu * forces[p] * direction
-        force_behind = -forces[p] * chord + friction
-        moment = b_mat @ friction
-        load[behind, :3] += force_behind
-        load[behind, 3:] += moment
-        load[ahead, :3] += rot_t @ (-force_behind)
-        load[ahead, 3:] += rot_t @ moment
-        projector = np.eye(3) - np.outer(direction, direction)
-        d_behind = (-mu * forces[p] / norm) * projector @ a_mat
+        scale = -mu * forces[p]
+        for i in range(3):
+            direction[i] = slip[i] / norm
+            friction[i] = scale * direction[i]
+            force_behind[i] = -forces[p] * chord[i] + friction[i]
+        np.dot(b_mat, friction, moment)
+        for i in range(3):
+            load[behind, i] += force_behind[i]
+            load[behind, 3 + i] += moment[i]
+            vector[i] = -force_behind[i]
+        np.dot(rot_t, vector, product)
+        load[ahead, :3] += product
+        np.dot(rot_t, moment, product)
+        load[ahead, 3:] += product
+        factor = -mu * forces[p] / norm
+        for r in range(3):   # factor (I - d d^T)
+            for c in range(3):
+                scaled[r, c] = factor * ((1.0 if r == c else 0.0) - direction[r] * direction[c])
+        np.dot(scaled, a_mat, d_behind)
+        np.dot(d_behind, rot, d_rotated)
         for side in range(2):
-            d_fric = d_behind if side == 0 else d_behind @ rot
+            d_fric = d_behind if side == 0 else d_rotated
             d_spin[p, 0, side, :3] = d_fric
-            d_spin[p, 0, side, 3:] = b_mat @ d_fric
-            d_spin[p, 1, side, :3] = -rot_t @ d_fric
-            d_spin[p, 1, side, 3:] = rot_t @ b_mat @ d_fric
-        dfd = -mu * direction
-        d_force[p, 0, :3] = -chord + dfd
-        d_force[p, 0, 3:] = b_mat @ dfd
-        d_force[p, 1, :3] = rot_t @ (chord - dfd)
-        d_force[p, 1, 3:] = rot_t @ (b_mat @ dfd)
+            np.dot(b_mat, d_fric, block)
+            d_spin[p, 0, side, 3:] = block
+            np.dot(minus_rot_t, d_fric, block)
+            d_spin[p, 1, side, :3] = block
+            np.dot(rot_t_b, d_fric, block)
+            d_spin[p, 1, side, 3:] = block
+        for i in range(3):
+            dfd[i] = -mu * direction[i]
+            d_force[p, 0, i] = -chord[i] + dfd[i]
+            vector[i] = chord[i] - dfd[i]
+        np.dot(b_mat, dfd, b_dfd)
+        d_force[p, 0, 3:] = b_dfd
+        np.dot(rot_t, vector, product)
+        d_force[p, 1, :3] = product
+        np.dot(rot_t, b_dfd, product)
+        d_force[p, 1, 3:] = product
 
 
 @_jit

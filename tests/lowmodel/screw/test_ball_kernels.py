@@ -241,3 +241,67 @@ def test_ring_normal_equations_factor_is_the_textbook_cholesky(ring_compiled):
     ring_compiled._solve(l_band, l_border, l_corner, rhs, step)
     _assert_close(np.linalg.solve(normal + damping * np.eye(n * k), rhs), step, "step", 1e-12)
     assert not ring_compiled._factor(band, border, corner, -1e3 * np.max(band[:, 0]), l_band, l_border, l_corner)
+
+
+def _matrix_form_pair_loads():
+    """lin2019 eqs 57-59 for every pair written with matrix products (``@``, numpy's operators): the reference of
+    :func:`ball_kernels.pair_loads`, whose products go to the same BLAS routines into scratch arrays."""
+    import numba
+
+    @numba.njit(cache=False)
+    def reference(spins, forces, chord, rot, radius, mu, speed, n, ring, load, d_spin, d_force):
+        pairs = n if ring else n - 1
+        cross = np.array([[0.0, chord[2], -chord[1]], [-chord[2], 0.0, chord[0]], [chord[1], -chord[0], 0.0]])
+        a_mat = cross * radius
+        b_mat = -a_mat
+        rot_t = np.ascontiguousarray(rot.T)
+        load[:] = 0.0
+        floor = (1e-14 * radius * speed) ** 2
+        for p in range(pairs):
+            behind, ahead = p, (p + 1) % n
+            slip = a_mat @ (spins[behind] + rot @ spins[ahead])
+            norm = math.sqrt(math.sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]) ** 2 + floor)
+            direction = slip / norm
+            friction = -mu * forces[p] * direction
+            force_behind = -forces[p] * chord + friction
+            moment = b_mat @ friction
+            load[behind, :3] += force_behind
+            load[behind, 3:] += moment
+            load[ahead, :3] += rot_t @ (-force_behind)
+            load[ahead, 3:] += rot_t @ moment
+            d_behind = (-mu * forces[p] / norm) * (np.eye(3) - np.outer(direction, direction)) @ a_mat
+            for side in range(2):
+                d_fric = d_behind if side == 0 else d_behind @ rot
+                d_spin[p, 0, side, :3] = d_fric
+                d_spin[p, 0, side, 3:] = b_mat @ d_fric
+                d_spin[p, 1, side, :3] = -rot_t @ d_fric
+                d_spin[p, 1, side, 3:] = rot_t @ b_mat @ d_fric
+            dfd = -mu * direction
+            d_force[p, 0, :3] = -chord + dfd
+            d_force[p, 0, 3:] = b_mat @ dfd
+            d_force[p, 1, :3] = rot_t @ (chord - dfd)
+            d_force[p, 1, 3:] = rot_t @ (b_mat @ dfd)
+
+    return reference
+
+
+def test_pair_loads_are_the_matrix_form_bit_for_bit(compiled):
+    """The B2B loads of random chains (open and ring, 2-40 balls, some pairs unloaded) equal the matrix form to the
+    last bit (a product regrouped or summed in loops instead of BLAS differs in most chains)."""
+    reference = _matrix_form_pair_loads()
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        n, ring = int(rng.integers(2, 41)), bool(rng.integers(0, 2))
+        spins = rng.standard_normal((n, 3)) * 10 ** rng.uniform(-2, 3)
+        forces = np.abs(rng.standard_normal(n)) * 10 * (rng.uniform(size=n) > 0.1)
+        chord = rng.standard_normal(3)
+        chord /= np.linalg.norm(chord)
+        rot = np.ascontiguousarray(np.linalg.qr(rng.standard_normal((3, 3)))[0])
+        args = (spins, forces, chord, rot, 3.175e-3, rng.uniform(0.01, 0.3), rng.uniform(1.0, 100.0), n, ring)
+        outputs = []
+        for function in (reference, compiled.pair_loads):
+            out = (np.zeros((n, 6)), np.zeros((n, 2, 2, 6, 3)), np.zeros((n, 2, 6)))
+            function(*args, *out)
+            outputs.append(out)
+        for name, a, b in zip(("load", "d_spin", "d_force"), *outputs):
+            assert np.array_equal(a, b), (name, n, ring)
