@@ -494,9 +494,11 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
     if compiled is None:
         return None
     module = contacts.module
-    if constants is None:
-        constants = (np.array(sb.kernel_scalars(scales, module, None)), np.ascontiguousarray(layout.live),
-                     np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale]))
+    if constants is None:   # read-only as _new_chain_setup's: the types numba compiles for (warm_up_kernel)
+        constants = (np.array(sb.kernel_scalars(scales, module, None)),
+                     checks.read_only(np.ascontiguousarray(layout.live)),
+                     checks.read_only(np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed),
+                                                rate_scale])))
     base, live, pair_scalars = constants
     targets = np.ascontiguousarray(targets, dtype=float)
     failures = {compiled.NOT_CONVERGED: ("Newton did not converge", "iteration limit"),
@@ -537,15 +539,16 @@ RING_KERNELS = "screw.ring_kernels"  # the compiled Newton of long chains with p
 
 def warm_up_ring_kernel(compiled) -> None:
     """Compile (or load from the cache) :mod:`lowmodel.screw.ring_kernels` for the argument types of :func:`solve`
-    (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration)."""
+    (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration; the read-only
+    arrays of a solve's :class:`_ChainSetup` read-only here too: numba compiles a read-only array type apart)."""
     from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
 
     n = SPARSE_BALLS
     contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(n))
     scales = sb.scales_for(contacts, 100.0)
     layout = ChainLayout(n, sb.N_UNKNOWNS + 1, np.arange(n), ring=True)
-    solver = _compiled_solver(contacts, layout, True, np.ones(n), scales, pair_geometry(contacts.module), 1.0,
-                              compiled)
+    solver = _compiled_solver(contacts, layout, True, checks.read_only(np.ones(n)), scales,
+                              pair_geometry(contacts.module), 1.0, compiled)
 
     def function(_z):   # not called: the kernel converges or stops at the iteration limit
         raise AssertionError("warm-up")
@@ -555,7 +558,8 @@ def warm_up_ring_kernel(compiled) -> None:
     guess[:, 2] = 0.45
     try:
         solver(function, layout.pack(guess), tolerance=1e-10, max_iterations=1, what="warm-up",
-               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+               row_tolerance=checks.read_only(np.full(layout.size, 1e-10)),
+               row_weight=checks.read_only(np.ones(layout.size)))
     except (ConvergenceError, AssertionError):   # compiled either way
         pass
 
@@ -566,8 +570,8 @@ def warm_up_kernel(compiled) -> None:
     contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(2))
     scales = sb.scales_for(contacts, 100.0)
     layout = ChainLayout(2, sb.N_UNKNOWNS, np.array([0]), n_global=1)
-    solver = _compiled_solver(contacts, layout, False, np.array([1.0]), scales, pair_geometry(contacts.module), 1.0,
-                              compiled)
+    solver = _compiled_solver(contacts, layout, False, checks.read_only(np.array([1.0])), scales,
+                              pair_geometry(contacts.module), 1.0, compiled)
 
     def function(_z):   # not called: the kernel converges or stops at the iteration limit
         raise AssertionError("warm-up")
@@ -575,6 +579,7 @@ def warm_up_kernel(compiled) -> None:
     function.oversize = 0.0
     try:
         solver(function, layout.pack(np.zeros((2, sb.N_UNKNOWNS))), tolerance=1e-10, max_iterations=1, what="warm-up",
-               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+               row_tolerance=checks.read_only(np.full(layout.size, 1e-10)),
+               row_weight=checks.read_only(np.ones(layout.size)))
     except (ConvergenceError, AssertionError):   # compiled either way
         pass

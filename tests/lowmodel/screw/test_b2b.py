@@ -154,3 +154,26 @@ def test_chain_setups_of_touching_patterns_in_turn(module):
     weights = b2b._chain_weights(module.friction_coefficient, 6, True, 0)
     assert np.array_equal(weights, np.tile(row_weights(friction_coefficient=module.friction_coefficient, balls=1,
                                                        axial=1, extra=1), 6))
+
+
+def test_kernel_warm_ups_compile_the_types_the_solves_pass():
+    """numba compiles a read-only array type apart from a writable one: the warm-ups (run when a kernel module is
+    loaded) pass the chain's constant arrays read-only as a solve's _ChainSetup holds them, so a fresh process's
+    two-ball solve and whole screw run on the warmed-up specialisation (one signature each) and do not compile or
+    load another (the warm-ups passed writable arrays: two signatures each)."""
+    import subprocess
+    import sys
+
+    pytest.importorskip("numba")
+    code = """
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.screw import b2b, ball, contacts, whole_screw
+kernels.use_kernels(True)
+compiled = [kernels.load(name) for name in (b2b.RING_KERNELS, ball.KERNELS)]
+module = contacts.screw_module(oversize=1.7e-6)
+whole_screw.simulate(module, n_balls=8, axial_load=200.0, steps=2)
+b2b.solve(contacts.ball_contacts(module, [0.0, 0.03]), 50.0)
+print(*(len(kernel.newton.signatures) for kernel in compiled))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["1", "1"], out.stdout
