@@ -88,6 +88,12 @@ class ChainLayout:
     ring: bool = False
     n_global: int = 0
 
+    def __post_init__(self):   # touching read-only: the live slots are cached from it
+        checks.freeze_arrays(self, "touching")
+
+    def __reduce__(self):
+        return checks.rebuilt_through_init(self)
+
     @cached_property
     def pairs(self) -> np.ndarray:
         """(p, 2) the pairs (behind, ahead): (j, j+1), and (n-1, 0) in a ring (read-only, cached)."""
@@ -106,17 +112,22 @@ class ChainLayout:
 
     @property
     def live(self) -> np.ndarray:
-        """(n,) bool: the force slot of ball j holds a touching pair's force."""
+        """(n,) bool: the force slot of ball j holds a touching pair's force (a new array at every read)."""
+        return self._live.copy()
+
+    @cached_property
+    def _live(self) -> np.ndarray:
+        """:attr:`live`, read-only and cached: what this file's loops read."""
         live = np.zeros(self.n_balls, dtype=bool)
         live[np.asarray(self.touching, dtype=int)] = True
-        return live
+        return checks.read_only(live)
 
     def unpack(self, z: np.ndarray):
         """``(balls (n, k), forces (p,) in slot units, 0 for open pairs, extra (g,))`` of a state ``z``."""
         n, k = self.n_balls, self.n_unknowns
         blocks = z[:n * (k + 1)].reshape(n, k + 1)
         p = len(self.pairs)
-        return blocks[:, :k], np.where(self.live[:p], blocks[:p, k], 0.0), z[n * (k + 1):]
+        return blocks[:, :k], np.where(self._live[:p], blocks[:p, k], 0.0), z[n * (k + 1):]
 
     def pack(self, balls: np.ndarray, forces=None, extra=None) -> np.ndarray:
         """The state ``z`` of ball unknowns (n, k), pair forces (p,) [slot units; touching pairs only; default 0]
@@ -206,7 +217,7 @@ def chain_system(ball_function, pair_function, layout: ChainLayout, *, rate_inde
     big_k = k + 1
     pairs = layout.pairs
     behind, ahead = pairs[:, 0], pairs[:, 1]
-    live = layout.live
+    live = layout._live
     placeholder = ~live
     live_pairs = live[behind]
     every_pair = bool(live_pairs.all())

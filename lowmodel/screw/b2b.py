@@ -216,28 +216,47 @@ def _new_chain_setup(contacts, loads, per_ball, touching, ring, tolerance) -> _C
     reference = sb.reference_force(contacts, float(np.max(np.abs(loads))) if per_ball else total / n)
     scales = sb.scales_for(contacts, reference)
     k = sb.N_UNKNOWNS + (1 if per_ball else 0)   # per-ball loads: the ball's own nut shift is its 7th unknown
-    layout = ChainLayout(n, k, checks.read_only(touching), ring=ring and n > 1, n_global=0 if per_ball else 1)
+    layout, live = _chain_layout(n, k, np.asarray(touching, dtype=np.intp).tobytes(), bool(ring) and n > 1,
+                                 0 if per_ball else 1)
     rate_scale = COMPLEMENTARITY_SCALE * scales.orbit / abs(module.nut_speed)   # rate in units |omega_N| / gamma
     # per-row tolerances and step weights (docs/ball_screw.md, small mu) in the chain's order: every ball's block
     # (six eq 54 rows, its axial row when the nut shift is per ball, its pair's slot), then the global axial row
-    ball_rows = dict(balls=1, axial=1 if per_ball else 0, extra=1)
-    rows = np.concatenate([np.tile(row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
-                                                  groove_radius=module.groove_radius,
-                                                  ball_radius=module.ball_radius, approach=scales.length,
-                                                  **ball_rows), n),
-                           row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
-                                          groove_radius=module.groove_radius, ball_radius=module.ball_radius,
-                                          approach=scales.length, balls=0, axial=layout.n_global)])
-    weights = np.concatenate([np.tile(row_weights(friction_coefficient=module.friction_coefficient, **ball_rows), n),
-                              row_weights(friction_coefficient=module.friction_coefficient, balls=0,
-                                          axial=layout.n_global)])
-    live = np.ascontiguousarray(layout.live)
+    rows = np.tile(row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                  groove_radius=module.groove_radius, ball_radius=module.ball_radius,
+                                  approach=scales.length, balls=1, axial=1 if per_ball else 0, extra=1), n)
+    if layout.n_global:
+        rows = np.concatenate([rows, row_tolerances(tolerance, friction_coefficient=module.friction_coefficient,
+                                                    groove_radius=module.groove_radius,
+                                                    ball_radius=module.ball_radius, approach=scales.length, balls=0,
+                                                    axial=layout.n_global)])
+    weights = _chain_weights(module.friction_coefficient, n, per_ball, layout.n_global)
     pair_scalars = np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale])
     constants = (np.array(sb.kernel_scalars(scales, module, None)), live, pair_scalars)
     targets = loads / scales.force
-    for array in (rows, weights, targets, *constants):
+    for array in (rows, targets, constants[0], pair_scalars):
         array.setflags(write=False)
     return _ChainSetup(scales, layout, targets, rate_scale, rows, weights, constants)
+
+
+@lru_cache(maxsize=256)
+def _chain_layout(n: int, k: int, touching: bytes, ring: bool, n_global: int) -> tuple[ChainLayout, np.ndarray]:
+    """The :class:`ChainLayout` of ``n`` balls of ``k`` unknowns with the touching pairs ``touching`` (the bytes of an
+    intp array) and its ``live`` slots (contiguous), read-only, cached: one object for every solve with this pattern
+    (the steps of the whole screw while no pair opens or closes keep its cached pairs)."""
+    layout = ChainLayout(n, k, np.frombuffer(touching, dtype=np.intp), ring=ring, n_global=n_global)
+    return layout, checks.read_only(np.ascontiguousarray(layout.live))
+
+
+@lru_cache(maxsize=64)
+def _chain_weights(friction_coefficient: float, n: int, per_ball: bool, n_global: int) -> np.ndarray:
+    """The step weights (read-only, cached) of a chain of ``n`` balls in :func:`_new_chain_setup`'s row order:
+    :func:`convergence.row_weights` of every ball's block, then of the ``n_global`` global axial rows."""
+    weights = np.tile(row_weights(friction_coefficient=friction_coefficient, balls=1, axial=1 if per_ball else 0,
+                                  extra=1), n)
+    if n_global:
+        weights = np.concatenate([weights, row_weights(friction_coefficient=friction_coefficient, balls=0,
+                                                       axial=n_global)])
+    return checks.read_only(weights)
 
 
 def _rolling_start(contacts: screw_contacts.BallContacts, scales: sb.Scales) -> np.ndarray:
@@ -475,9 +494,11 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
     if compiled is None:
         return None
     module = contacts.module
-    if constants is None:
-        constants = (np.array(sb.kernel_scalars(scales, module, None)), np.ascontiguousarray(layout.live),
-                     np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed), rate_scale]))
+    if constants is None:   # read-only as _new_chain_setup's: the types numba compiles for (warm_up_kernel)
+        constants = (np.array(sb.kernel_scalars(scales, module, None)),
+                     checks.read_only(np.ascontiguousarray(layout.live)),
+                     checks.read_only(np.array([module.ball_radius, module.friction_coefficient, abs(module.nut_speed),
+                                                rate_scale])))
     base, live, pair_scalars = constants
     targets = np.ascontiguousarray(targets, dtype=float)
     failures = {compiled.NOT_CONVERGED: ("Newton did not converge", "iteration limit"),
@@ -518,15 +539,16 @@ RING_KERNELS = "screw.ring_kernels"  # the compiled Newton of long chains with p
 
 def warm_up_ring_kernel(compiled) -> None:
     """Compile (or load from the cache) :mod:`lowmodel.screw.ring_kernels` for the argument types of :func:`solve`
-    (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration)."""
+    (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration; the read-only
+    arrays of a solve's :class:`_ChainSetup` read-only here too: numba compiles a read-only array type apart)."""
     from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
 
     n = SPARSE_BALLS
     contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(n))
     scales = sb.scales_for(contacts, 100.0)
     layout = ChainLayout(n, sb.N_UNKNOWNS + 1, np.arange(n), ring=True)
-    solver = _compiled_solver(contacts, layout, True, np.ones(n), scales, pair_geometry(contacts.module), 1.0,
-                              compiled)
+    solver = _compiled_solver(contacts, layout, True, checks.read_only(np.ones(n)), scales,
+                              pair_geometry(contacts.module), 1.0, compiled)
 
     def function(_z):   # not called: the kernel converges or stops at the iteration limit
         raise AssertionError("warm-up")
@@ -536,7 +558,8 @@ def warm_up_ring_kernel(compiled) -> None:
     guess[:, 2] = 0.45
     try:
         solver(function, layout.pack(guess), tolerance=1e-10, max_iterations=1, what="warm-up",
-               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+               row_tolerance=checks.read_only(np.full(layout.size, 1e-10)),
+               row_weight=checks.read_only(np.ones(layout.size)))
     except (ConvergenceError, AssertionError):   # compiled either way
         pass
 
@@ -547,8 +570,8 @@ def warm_up_kernel(compiled) -> None:
     contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(2))
     scales = sb.scales_for(contacts, 100.0)
     layout = ChainLayout(2, sb.N_UNKNOWNS, np.array([0]), n_global=1)
-    solver = _compiled_solver(contacts, layout, False, np.array([1.0]), scales, pair_geometry(contacts.module), 1.0,
-                              compiled)
+    solver = _compiled_solver(contacts, layout, False, checks.read_only(np.array([1.0])), scales,
+                              pair_geometry(contacts.module), 1.0, compiled)
 
     def function(_z):   # not called: the kernel converges or stops at the iteration limit
         raise AssertionError("warm-up")
@@ -556,6 +579,7 @@ def warm_up_kernel(compiled) -> None:
     function.oversize = 0.0
     try:
         solver(function, layout.pack(np.zeros((2, sb.N_UNKNOWNS))), tolerance=1e-10, max_iterations=1, what="warm-up",
-               row_tolerance=np.full(layout.size, 1e-10), row_weight=np.ones(layout.size))
+               row_tolerance=checks.read_only(np.full(layout.size, 1e-10)),
+               row_weight=checks.read_only(np.ones(layout.size)))
     except (ConvergenceError, AssertionError):   # compiled either way
         pass

@@ -322,16 +322,15 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     constant = np.empty((n, 4))
     unit = np.empty((n, 4))
     ratio = np.empty((n, 4))
-    for i in range(4):
-        try:
-            constant[:, i], unit[:, i], ratio[:, i] = _hertz_of(module, angles[:, i], _BODY[i])
-        except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
-            raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
-                             f"{module.conformity!r} ({error})") from None
-        radius, sign_u, sign_w = _flank_arc(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
-                                            float(module.nominal_angle), _BODY[i], _FLANK[i])
-        # angles validated by flank_angles; the core's arc centre of the flank at each ball's angle, (u, w) = (x3, z3)
-        centres[:, i] = groove_core.flank_arc_centre(module.ball_radius, radius, angles[:, i], sign_u, sign_w)
+    for i in range(2):   # the screw flanks, at beta_0 + theta
+        if i == 1 and reading == "tilted":   # SR at SL's angles on the same groove: SL's Hertz numbers
+            constant[:, 1], unit[:, 1], ratio[:, 1] = constant[:, 0], unit[:, 0], ratio[:, 0]
+        else:
+            constant[:, i], unit[:, i], ratio[:, i] = _flank_hertz(module, angles[:, i], i)
+        centres[:, i] = _flank_centres(module, angles[:, i], i)
+    # the nut flanks keep beta_0 whatever the deviation: their numbers depend on the module and n alone
+    nut_constant, nut_unit, nut_ratio, nut_centres = _nut_flanks(module, n)
+    constant[:, 2:], unit[:, 2:], ratio[:, 2:], centres[:, 2:] = nut_constant, nut_unit, nut_ratio, nut_centres
     _check_axis_ratio(module, angles, ratio)
     theta = np.broadcast_to(np.asarray(deviation, dtype=float), (n,)).copy()
     bulk = None
@@ -344,6 +343,38 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
             unit[:, columns] *= a_factor
             bulk[:, columns] = c_b
     return BallContacts(module, angles, centres, constant, unit, ratio, theta, bulk)
+
+
+def _flank_hertz(module: ScrewModule, angles: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(C, a per F^(1/3), b/a) of flank ``i`` at ``angles`` (:func:`_hertz_of`); ValueError naming the flank."""
+    try:
+        return _hertz_of(module, angles, _BODY[i])
+    except ValueError as error:   # e.g. conformity next to 0.5: the flank conforms with the ball
+        raise ValueError(f"module: no Hertz point contact on flank {CONTACT_NAMES[i]} with conformity "
+                         f"{module.conformity!r} ({error})") from None
+
+
+def _flank_centres(module: ScrewModule, angles: np.ndarray, i: int) -> np.ndarray:
+    """(n, 2) arc centres ``(u, w) = (x3, z3)`` of flank ``i`` at the balls' contact ``angles`` (validated by
+    :func:`flank_angles`): the core's :func:`groove.flank_arc_centre`."""
+    radius, sign_u, sign_w = _flank_arc(module.ball_radius, module.conformity, module.pitch_radius, module.lead,
+                                        float(module.nominal_angle), _BODY[i], _FLANK[i])
+    return groove_core.flank_arc_centre(module.ball_radius, radius, angles, sign_u, sign_w)
+
+
+@lru_cache(maxsize=64)
+def _nut_flanks(module: ScrewModule, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """C, a per F^(1/3), b/a (n, 2) and arc centres (n, 2, 2) of the nut flanks (NR, NL) of ``n`` balls, read-only,
+    cached: the nut keeps ``beta_0`` (:func:`flank_angles`), so :func:`ball_contacts` computes them once per module and
+    ``n`` on the same column of angles; every number is that of its own angle alone (:func:`_hertz_of`,
+    :func:`groove.flank_arc_centre`), so each step of the whole screw gets the numbers it would compute."""
+    angles = np.full((n, 4), float(module.nominal_angle))
+    constant, unit, ratio = (np.empty((n, 2)) for _ in range(3))
+    centres = np.empty((n, 2, 2))
+    for column, i in enumerate((2, 3)):
+        constant[:, column], unit[:, column], ratio[:, column] = _flank_hertz(module, angles[:, i], i)
+        centres[:, column] = _flank_centres(module, angles[:, i], i)
+    return tuple(checks.read_only(array) for array in (constant, unit, ratio, centres))
 
 
 @lru_cache(maxsize=256)

@@ -163,18 +163,20 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
         records["orbit"].append(state.orbit_speed)
         records["groove"].append(state.groove_loss / omega_n)
         records["b2b"].append(float(state.b2b_friction_loss.sum()) / omega_n)
-        records["power"].append(abs(state.input_power - state.total_loss) / state.total_loss)
+        total_loss = state.total_loss
+        records["power"].append(abs(state.input_power - total_loss) / total_loss)
         records["iterations"].append(state.iterations)
         if step == steps:
             break
         # advance: ball j's gap to the next ball (ring)
-        rate = np.roll(state.orbit_speed, -1) - state.orbit_speed
+        orbit = state.orbit_speed
+        rate = np.concatenate([orbit[1:], orbit[:1]]) - orbit   # omega_B of the ball ahead (ring) - omega_B
         pressed = (gaps <= 1e-12) & (state.b2b_force > 0.0)
         new_gaps = np.where(pressed, 0.0, gaps + rate * dt)
         new_gaps = np.maximum(new_gaps, 0.0)
         open_sum = new_gaps.sum()
         gaps = new_gaps * (slack / open_sum) if open_sum > 0.0 else new_gaps
-        first += state.orbit_speed[0] * dt - omega_n * dt
+        first += orbit[0] * dt - omega_n * dt
     return ScrewHistory(np.array(records["time"]), omega_n * np.array(records["time"]),
                         np.array(records["positions"]), np.array(records["spacing"]), np.array(records["force"]),
                         np.array(records["deviation"]), np.array(records["load"]), np.array(records["orbit"]),

@@ -229,3 +229,28 @@ def test_fischer_burmeister(a, b):
             assert phi < 0.0
         elif min(a, b) > scale:
             assert phi > 0.0
+
+
+def test_layout_keeps_its_touching_pairs():
+    """A ChainLayout caches its live slots from ``touching``, so it holds ``touching`` read-only (a copy of a writable
+    array: the caller's array stays writable and its later edits do not reach the layout); ``live`` is a new writable
+    array at every read, as before the cache; pickle and deepcopy rebuild the layout through ``__init__``."""
+    import copy
+    import pickle
+
+    touching = np.array([0, 2])
+    layout = b2b_chain.ChainLayout(4, 3, touching, ring=True)
+    assert np.array_equal(layout.live, [True, False, True, False])
+    touching[1] = 3
+    assert touching.flags.writeable and not layout.touching.flags.writeable
+    assert np.array_equal(layout.touching, [0, 2]) and np.array_equal(layout.live, [True, False, True, False])
+    live = layout.live
+    live[1] = True   # the caller's array: the layout's slots stay
+    assert np.array_equal(layout.live, [True, False, True, False])
+    balls, forces, _ = layout.unpack(np.arange(layout.size, dtype=float))
+    assert np.array_equal(forces, [3.0, 0.0, 11.0, 0.0])
+    for rebuilt in (pickle.loads(pickle.dumps(layout)), copy.deepcopy(layout)):
+        assert not rebuilt.touching.flags.writeable
+        assert np.array_equal(rebuilt.live, layout.live) and np.array_equal(rebuilt.pairs, layout.pairs)
+    listed = b2b_chain.ChainLayout(3, 2, [1])   # a list, as before
+    assert np.array_equal(listed.live, [False, True, False])

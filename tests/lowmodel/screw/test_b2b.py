@@ -129,3 +129,51 @@ def test_b2b_solution_does_not_depend_on_the_speed_scale():
         assert abs(state.input_power - state.total_loss) <= 1e-8 * state.total_loss
     assert states[1].b2b_force[0] == pytest.approx(states[0].b2b_force[0], rel=1e-6)
     assert states[1].total_loss / 2e-13 == pytest.approx(states[0].total_loss / (2 * math.pi), rel=1e-6)
+
+
+def test_chain_setups_of_touching_patterns_in_turn(module):
+    """The chain layouts and step weights of b2b's solves are kept per touching pattern (and ball count, mu, nut
+    shifts): patterns in turn each get the layout built for them, equal to a ChainLayout built directly, and the
+    solves of each pattern repeated after the others equal the first, at 0 difference."""
+    from ballbench.lowmodel.b2b_chain import ChainLayout
+    from ballbench.lowmodel.screw.convergence import row_weights
+
+    contacts = screw_contacts.ball_contacts(module, np.radians([0.0, 2.0, -1.0, 3.0, 1.0, 0.5]))
+    loads = np.array([40.0, 60.0, 50.0, 45.0, 70.0, 55.0])
+    patterns = (np.zeros(6), np.array([0.0, 1e-3, 0.0, 0.0, 2e-3, 0.0]), np.array([1e-3, 0.0, 0.0, 1e-3, 0.0, 0.0]))
+    first = [b2b.solve(contacts, loads, gaps, ring=True) for gaps in patterns]
+    again = [b2b.solve(contacts, loads, gaps, ring=True) for gaps in patterns[::-1]][::-1]
+    for gaps, one, two in zip(patterns, first, again):
+        assert np.array_equal(one.b2b_force, two.b2b_force) and np.array_equal(one.orbit_speed, two.orbit_speed)
+        assert np.all(one.b2b_force[gaps > 0.0] == 0.0)
+        touching = np.flatnonzero(gaps <= 1e-12)
+        layout, live = b2b._chain_layout(6, sb.N_UNKNOWNS + 1, touching.tobytes(), True, 0)
+        direct = ChainLayout(6, sb.N_UNKNOWNS + 1, touching, ring=True)
+        assert np.array_equal(layout.touching, touching) and np.array_equal(live, direct.live)
+        assert np.array_equal(layout.pairs, direct.pairs) and not live.flags.writeable
+    weights = b2b._chain_weights(module.friction_coefficient, 6, True, 0)
+    assert np.array_equal(weights, np.tile(row_weights(friction_coefficient=module.friction_coefficient, balls=1,
+                                                       axial=1, extra=1), 6))
+
+
+def test_kernel_warm_ups_compile_the_types_the_solves_pass():
+    """numba compiles a read-only array type apart from a writable one: the warm-ups (run when a kernel module is
+    loaded) pass the chain's constant arrays read-only as a solve's _ChainSetup holds them, so a fresh process's
+    two-ball solve and whole screw run on the warmed-up specialisation (one signature each) and do not compile or
+    load another (the warm-ups passed writable arrays: two signatures each)."""
+    import subprocess
+    import sys
+
+    pytest.importorskip("numba")
+    code = """
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.screw import b2b, ball, contacts, whole_screw
+kernels.use_kernels(True)
+compiled = [kernels.load(name) for name in (b2b.RING_KERNELS, ball.KERNELS)]
+module = contacts.screw_module(oversize=1.7e-6)
+whole_screw.simulate(module, n_balls=8, axial_load=200.0, steps=2)
+b2b.solve(contacts.ball_contacts(module, [0.0, 0.03]), 50.0)
+print(*(len(kernel.newton.signatures) for kernel in compiled))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["1", "1"], out.stdout

@@ -132,3 +132,34 @@ def test_flank_arc_centre_of_an_array_is_the_centre_of_each_angle():
         assert np.array_equal(centres, np.array([-(3.11e-3 - 2.778e-3) * np.array([sign_u * math.cos(a),
                                                                                   sign_w * math.sin(a)])
                                                  for a in angles.tolist()]))
+
+
+def test_nut_flanks_of_two_modules_in_turn_are_each_modules_own():
+    """ball_contacts keeps the nut flanks' numbers (Hertz C, a / F^(1/3), b/a and arc centres at beta_0) per module and
+    ball count: two modules of the same ball count built in turn each get their own, equal at 0 difference to Hertz
+    at beta_0 (hertz_direct; the spline is exact at its nodes, beta_0 among them) and to the core's arc centre, for
+    any deviation and either reading; the screw flanks follow each call's deviation (SR = SL's Hertz numbers when
+    tilted, as computed alone)."""
+    from ballbench.lowmodel.geometry import groove
+
+    modules = (screw_contacts.screw_module(oversize=1.7e-6),
+               screw_contacts.screw_module(nominal_angle=math.radians(40.0), conformity=0.55))
+    theta = np.radians(3.0) * np.sin(np.linspace(0.0, 7.0, 37))
+    for reading in screw_contacts.DEVIATION_READINGS:
+        for module in (*modules, modules[0]):
+            for deviation in (theta, -0.5 * theta):
+                contacts = screw_contacts.ball_contacts(module, deviation, reading)
+                for i, (body, flank) in enumerate((("nut", "right"), ("nut", "left")), start=2):
+                    hertz = screw_contacts.hertz_direct(module.ball_radius, module.conformity, module.pitch_radius,
+                                                        module.lead_angle, module.nominal_angle, body,
+                                                        module.youngs_modulus, module.poisson_ratio)
+                    for array, value in zip((contacts.hertz_constant, contacts.semi_major_unit, contacts.b_over_a),
+                                            hertz):
+                        assert np.all(array[:, i] == value), (reading, i)
+                    core = groove.HelicalGroove(module.ball_radius, module.conformity, module.pitch_radius,
+                                                module.lead, module.nominal_angle, body, flank)
+                    assert np.all(contacts.arc_centres[:, i] == core.arc_centre), (reading, i)
+                for j in (0, 17):
+                    alone = screw_contacts.ball_contacts(module, float(deviation[j]), reading)
+                    for name in ("hertz_constant", "semi_major_unit", "b_over_a", "arc_centres"):
+                        assert np.array_equal(getattr(contacts, name)[j], getattr(alone, name)[0]), name

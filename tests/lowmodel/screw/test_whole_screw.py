@@ -277,3 +277,68 @@ def test_whole_screw_steps_need_no_free_rolling_start(module, stiffness):
     for j in range(contacts.n_balls):
         rates = sb.free_rolling_guess(contacts.ball(j))[0]
         assert np.array_equal(start[j], np.concatenate([[rates[0] / scales.orbit], rates[1:] / scales.spin]))
+
+
+
+_HISTORY_FIELDS = ("time", "nut_angle", "positions", "spacing", "b2b_force", "deviation", "axial_load", "orbit_speed",
+                   "groove_torque", "b2b_torque", "power_error", "iterations")
+# two modules with the same number of balls, and two deviations (both readings) of one of them; 37 balls under 1500 N
+# close gaps within the 4 steps (B2B forces, changing touching patterns)
+_CACHE_CASES = {
+    "a": (dict(oversize=1.7e-6), dict(amplitude=math.radians(3.0), cycles=4)),
+    "b": (dict(oversize=1.2e-6, nominal_angle=math.radians(40.0), conformity=0.55),
+          dict(amplitude=math.radians(3.0), cycles=4)),
+    "a-rotated": (dict(oversize=1.7e-6), dict(amplitude=math.radians(2.0), cycles=3, reading="rotated")),
+}
+_FRESH_RUN = """
+import json, sys
+import numpy as np
+from ballbench.lowmodel import kernels
+from ballbench.lowmodel.screw import contacts as screw_contacts, load_distribution, whole_screw
+module_options, options, compiled, out = json.loads(sys.argv[1])
+kernels.use_kernels(compiled)
+module = screw_contacts.screw_module(**module_options)
+stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37, points=7)
+history = whole_screw.simulate(module, n_balls=37, axial_load=1500.0, duration=0.4, steps=4, stiffness=stiffness,
+                               **options)
+np.savez(out, **{name: getattr(history, name) for name in %r})
+""" % (_HISTORY_FIELDS,)
+
+
+@pytest.mark.parametrize("compiled", [None, pytest.param(False, marks=pytest.mark.slow)])
+def test_whole_screw_in_one_process_is_each_case_in_a_fresh_process(tmp_path, compiled):
+    """What the whole screw's steps keep between calls (contacts.ball_contacts: the nut flanks' Hertz numbers and arc
+    centres per module and ball count; b2b: the chain layouts per touching pattern, the step weights) must give
+    every case its own numbers: two modules of the same ball count and two deviations (both readings) of one module,
+    simulated in turn in one process (and the first again after the others), equal array for array at 0 difference
+    the histories of each case run alone in a fresh process; on the default path (the compiled kernels where numba
+    is installed) and on numpy's (slow)."""
+    import json
+    import subprocess
+    import sys
+
+    from ballbench.lowmodel import kernels
+
+    fresh = {}
+    for name, (module_options, options) in _CACHE_CASES.items():
+        out = tmp_path / f"{name}.npz"
+        subprocess.run([sys.executable, "-c", _FRESH_RUN, json.dumps([module_options, options, compiled, str(out)])],
+                       check=True, capture_output=True, text=True)
+        fresh[name] = np.load(out)
+    kernels.use_kernels(compiled)
+    try:
+        for name in (*_CACHE_CASES, "a"):
+            module_options, options = _CACHE_CASES[name]
+            module = screw_contacts.screw_module(**module_options)
+            stiffness = ld.axial_stiffness(module, 3.0 * 1500.0 / 37, points=7)
+            history = ws.simulate(module, n_balls=37, axial_load=1500.0, duration=0.4, steps=4, stiffness=stiffness,
+                                  **options)
+            for field in _HISTORY_FIELDS:
+                assert np.array_equal(getattr(history, field), fresh[name][field]), (name, field)
+    finally:
+        kernels.use_kernels(None)
+    # the cases differ and close gaps: a cache shared between them, or one pattern's layout for another, would show
+    for name in _CACHE_CASES:
+        assert len({tuple(row > 0.0) for row in fresh[name]["b2b_force"]}) >= 2, name
+    assert not np.array_equal(fresh["a"]["b2b_force"], fresh["b"]["b2b_force"])
+    assert not np.array_equal(fresh["a"]["orbit_speed"], fresh["a-rotated"]["orbit_speed"])
