@@ -275,7 +275,7 @@ def _run_kernel(compiled, unknowns, nut_shift, contacts, scales, oversize):
     n = unknowns.shape[0]
     data = contacts.kernel_geometry
     scalars = np.array(kernel_scalars(scales, module, oversize))
-    shift = np.ascontiguousarray(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)))
+    shift = np.array(np.broadcast_to(np.asarray(nut_shift, dtype=float), (n,)))   # writable always: one kernel type
     outputs = kernel_outputs(n)
     status = compiled.ball_terms(np.ascontiguousarray(unknowns, dtype=float), shift, data, scalars,
                                  *kernel_tables(), *outputs)
