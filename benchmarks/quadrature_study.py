@@ -323,21 +323,29 @@ def timing(data: Path, names=None, repeats: int = 7) -> None:
 # --------------------------------------------------------------------------
 # 4. the whole screw with a candidate table
 # --------------------------------------------------------------------------
+def _screw_setting(name: str):
+    """The benchmark's module and stiffness table, the kernels' current node tables and ``name``'s in their place."""
+    from ballbench.lowmodel.screw import ball as screw_ball
+    from ballbench.lowmodel.screw import contacts as screw_contacts
+    from ballbench.lowmodel.screw import load_distribution
+
+    current = screw_ball.kernel_tables()
+    rule = rules()[name]
+    module = screw_contacts.screw_module(oversize=OVERSIZE)
+    stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
+    return module, stiffness, current, (current[0], *rule, *rule, *current[5:])
+
+
 def screw(data: Path, name: str) -> None:
     """The benchmark's whole screw with the current table and ``name``'s: CPU time, iterations, the torque histories
     and the worst power balance (the scenes' outputs: the ``validate`` stage)."""
     import json
 
     from ballbench.lowmodel.screw import ball as screw_ball
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.lowmodel.screw import load_distribution, whole_screw
+    from ballbench.lowmodel.screw import whole_screw
 
     current_function = screw_ball.kernel_tables
-    current = current_function()
-    rule = rules()[name]
-    candidate = (current[0], *rule, *rule, *current[5:])
-    module = screw_contacts.screw_module(oversize=OVERSIZE)
-    stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
+    module, stiffness, current, candidate = _screw_setting(name)
     results = {}
     whole_screw.simulate(module, amplitude=math.radians(3.0), stiffness=stiffness, steps=3)   # load the kernels
     for label, tables in (("current", current), (name, candidate), ("current again", current)):
@@ -363,15 +371,10 @@ def screw(data: Path, name: str) -> None:
 def screw_time(data: Path, name: str, rounds: int = 6) -> None:
     """The benchmark's whole-screw run, CPU time, the current table and ``name``'s alternating in one process."""
     from ballbench.lowmodel.screw import ball as screw_ball
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.lowmodel.screw import load_distribution, whole_screw
+    from ballbench.lowmodel.screw import whole_screw
 
     current_function = screw_ball.kernel_tables
-    current = current_function()
-    rule = rules()[name]
-    candidate = (current[0], *rule, *rule, *current[5:])
-    module = screw_contacts.screw_module(oversize=OVERSIZE)
-    stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
+    module, stiffness, current, candidate = _screw_setting(name)
     seconds = {"current": [], name: []}
     print(f"whole screw (37 balls, 200 steps), CPU s, {rounds} alternating rounds; {load_average()}")
     for tables in (current, candidate):   # load the kernels for both argument sets outside the timing
