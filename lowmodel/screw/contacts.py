@@ -323,7 +323,7 @@ def ball_contacts(module: ScrewModule, deviation=0.0, reading: str = "tilted", *
     unit = np.empty((n, 4))
     ratio = np.empty((n, 4))
     for i in range(2):   # the screw flanks, at beta_0 + theta
-        if i == 1 and reading == "tilted":   # SR at SL's angles on the same groove: SL's Hertz numbers
+        if i == 1 and np.array_equal(angles[:, 1], angles[:, 0]):   # SR at SL's angles (tilted): SL's numbers
             constant[:, 1], unit[:, 1], ratio[:, 1] = constant[:, 0], unit[:, 0], ratio[:, 0]
         else:
             constant[:, i], unit[:, i], ratio[:, i] = _flank_hertz(module, angles[:, i], i)
@@ -368,12 +368,12 @@ def _nut_flanks(module: ScrewModule, n: int) -> tuple[np.ndarray, np.ndarray, np
     cached: the nut keeps ``beta_0`` (:func:`flank_angles`), so :func:`ball_contacts` computes them once per module and
     ``n`` on the same column of angles; every number is that of its own angle alone (:func:`_hertz_of`,
     :func:`groove.flank_arc_centre`), so each step of the whole screw gets the numbers it would compute."""
-    angles = np.full((n, 4), float(module.nominal_angle))
+    angles = np.full(n, float(module.nominal_angle))
     constant, unit, ratio = (np.empty((n, 2)) for _ in range(3))
     centres = np.empty((n, 2, 2))
     for column, i in enumerate((2, 3)):
-        constant[:, column], unit[:, column], ratio[:, column] = _flank_hertz(module, angles[:, i], i)
-        centres[:, column] = _flank_centres(module, angles[:, i], i)
+        constant[:, column], unit[:, column], ratio[:, column] = _flank_hertz(module, angles, i)
+        centres[:, column] = _flank_centres(module, angles, i)
     return tuple(checks.read_only(array) for array in (constant, unit, ratio, centres))
 
 

@@ -90,8 +90,9 @@ def _pairwise_sum(values, start, count):
 
 
 @_jit
-def _loads_sum(u0, data, loads):
-    """``sum_j U^-1(clip(u_0 - shifted_j))`` of the packed ``data`` (:func:`pack`), the loads into ``loads``."""
+def loads_at(u0, data, loads):
+    """The balls' loads ``U^-1(clip(u_0 - s o_j))`` of the packed ``data`` (:func:`pack`) into ``loads`` (n,); returns
+    their sum (``np.sum``'s order)."""
     n, m = int(data[0]), int(data[1])
     low, high = data[2], data[3]
     shifted = _HEADER
@@ -122,7 +123,7 @@ def mismatch(u0, address):
     header = numba.carray(address, (_HEADER,), dtype=np.float64)
     n, m = int(header[0]), int(header[1])
     data = numba.carray(address, (_HEADER + 2 * n + 6 * m,), dtype=np.float64)
-    return _loads_sum(u0, data, data[_HEADER + n + 6 * m:]) - data[4]
+    return loads_at(u0, data, data[_HEADER + n + 6 * m:]) - data[4]
 
 
 @_jit
@@ -159,13 +160,7 @@ def offsets(loads, order, segment, geometric, total, compliance_s, compliance_n,
     end, other = high + offset_max, high + shifted_max
     end = other if other > end else end
     scratch = data[_HEADER + n + 6 * int(data[1]):]
-    return start, end, _loads_sum(start, data, scratch) - total, _loads_sum(end, data, scratch) - total
-
-
-@_jit
-def loads_at(u0, data, loads):
-    """The balls' loads ``U^-1(clip(u_0 - s o_j))`` into ``loads`` (n,); returns their sum (``np.sum``'s order)."""
-    return _loads_sum(u0, data, loads)
+    return start, end, loads_at(start, data, scratch) - total, loads_at(end, data, scratch) - total
 
 
 def pack(n: int, low: float, high: float, total: float, pieces) -> np.ndarray:

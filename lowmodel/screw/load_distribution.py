@@ -146,9 +146,9 @@ def _swamped(offset, low, high):
                      f"({float(high - low)!r} m) in double precision; positions must be azimuths in the nut")
 
 
-def _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness):
+def _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness, low, high):
     """One step of :func:`distribute`'s fixed-point iteration: the loads that carry ``total`` on the offsets of
-    ``loads``."""
+    ``loads`` (``low``, ``high``: the range of the table's shifts)."""
     from scipy.optimize import brentq
 
     n = loads.size
@@ -159,7 +159,6 @@ def _step(loads, order, segment, geometric, total, compliance_s, compliance_n, s
     offset[order] = np.cumsum(strain * segment)                # int_0^z (eps_s + eps_n)
     offset = offset + geometric
     shifted = sign * offset
-    low, high = stiffness.shifts.min(), stiffness.shifts.max()
 
     def mismatch(u0):   # np.clip's value, through the ufuncs (np.clip's Python wrapper costs more than its work)
         return float(stiffness.load(np.minimum(np.maximum(u0 - shifted, low), high)).sum() - total)
@@ -238,7 +237,8 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
             return new
     else:
         def step(loads):
-            return _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness)
+            return _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness, low,
+                         high)
     loads = np.full(n, total / n)
     for _ in range(max_iterations):
         new = step(loads)
