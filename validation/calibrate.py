@@ -35,6 +35,7 @@ import csv
 import os
 import re
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -290,8 +291,7 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
     if not (0.0 < fit_range):
         raise ValueError(f"k_f.fit_range must be > 0, got {fit_range!r}")
     guide = lin2019.GUIDE
-    contact = hertz.solve_load(hertz.ball_in_groove(guide.ball_radius, conformity, **guide.material.keywords),
-                               lin2019.VERTICAL_FORCE)
+    contact = hertz.solve_load(hertz.groove_geometry(replace(guide, conformity=conformity)), lin2019.VERTICAL_FORCE)
     ratio = float(contact.b / contact.a)
     exact = float(ef.k_f_exact(ratio))
     continuous = float(ef.k_f_least_squares(ratio, fit_range))

@@ -85,7 +85,7 @@ def two_ball_numerical(theta: float, rho: float, *, top_tr: float = 0.0, top_tl:
     ``calibration``: a calibration file whose ``ball-groove-<conformity>`` Psi sets the contact size.
     """
     options = {**TABLE1, **table1}
-    contacts = b2b.module_contacts(theta, rho, top_deviations=(top_tr, top_tl), **options)
+    contacts = b2b.contacts(lin2019.module_case(theta, rho, top=(top_tr, top_tl), **options))
     if calibration:
         contacts = with_psi(contacts, calibrated_psi(calibration, options["conformity"]))
     return _two_ball(contacts)
@@ -184,10 +184,9 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
     from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.studies.screw_two_ball import screw_module
 
     laws = screw_contacts.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
-    module = screw_module(lin2019.SCREW)
+    module = screw_contacts.module(lin2019.SCREW)
     stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)
     return module, laws, stiffness
 

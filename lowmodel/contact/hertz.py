@@ -49,6 +49,9 @@ __all__ = [
     "ball_on_ball",
     "ball_in_groove",
     "ball_in_screw_groove",
+    "groove_geometry",
+    "pair_geometry",
+    "helical_pair",
     "solve_load",
     "solve_approach",
     "psi_constant",
@@ -270,6 +273,35 @@ def ball_in_screw_groove(ball_radius: float, conformity: float, pitch_radius: fl
         raise ValueError(f"ball_radius {ball_radius!r} m, conformity {conformity!r}, pitch_radius {pitch_radius!r} m, "
                          f"contact_angle {contact_angle!r} rad, lead_angle {lead_angle!r} rad, {body} groove, "
                          f"profile_plane {profile_plane!r}: {error}") from None
+
+
+def groove_geometry(guide) -> HertzGeometry:
+    """The Hertz geometry of the ball of a :class:`lowmodel.bearing.LinearGuide` in its groove (rail and carriage
+    grooves alike: :func:`ball_in_groove` of its ball radius, conformity and material)."""
+    return ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords)
+
+
+def pair_geometry(contact) -> HertzGeometry:
+    """The Hertz geometry of a :class:`lowmodel.bearing.ContactLoadCase`: its ball on a flat, on a ball of the same
+    radius, in a straight groove of its conformity, or on the flank of its ball screw's helical screw or nut groove
+    at the nominal contact angle (the exact helical frame of the geometry core,
+    :func:`lowmodel.geometry.groove.contact_frame`), of the contact's material."""
+    radius, material = contact.ball_radius, contact.material.keywords
+    if contact.pair == "flat":
+        return ball_on_flat(radius, **material)
+    if contact.pair == "ball":
+        return ball_on_ball(radius, **material)
+    if contact.pair == "groove":
+        return ball_in_groove(radius, contact.conformity, **material)
+    frame = groove.contact_frame(groove.helical_groove(*helical_pair(contact)))
+    return from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor), **material)
+
+
+def helical_pair(contact) -> tuple:
+    """``(R_B, conformity, R_P, lead, beta_0, pair)`` of a screw or nut :class:`lowmodel.bearing.ContactLoadCase`:
+    the arguments of :func:`lowmodel.geometry.groove.helical_groove` (and of the helical pair's mesh builder)."""
+    screw = contact.screw
+    return (screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead, screw.nominal_angle, contact.pair)
 
 
 # --------------------------------------------------------------------------

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.bearing import GuideLoadCase, LinearGuide, Material
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
     chain_system
 from ballbench.lowmodel.b2b_relaxation import Relaxation, relax
@@ -74,7 +75,8 @@ from ballbench.lowmodel.linear_bearing.ball import (
 )
 from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options
 
-__all__ = ["solve", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps", "GapHistory", "module_contacts",
+__all__ = ["solve", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps", "GapHistory", "contacts",
+           "module_contacts",
            "b2b_terms", "coupled_system", "pair_function", "touching_pairs", "MU_PATH_START"]
 
 MU_PATH_START = 100.0  # the mu continuation path of solve() starts at mu / MU_PATH_START
@@ -82,44 +84,44 @@ _REGULARISATION = 1e-14  # |dv| floor (units |v|) in dv/|dv|; B2B slip is O(1) i
 _IDENTITY_2 = np.eye(2)
 
 
+def contacts(case) -> BallContacts:
+    """The contacts of the balls of a :class:`lowmodel.bearing.GuideLoadCase`: its contact angles
+    ``beta_0 + deviations`` (BL, BR, TR, TL) for every ball, ``N_y`` on every ball and ``N_x = +-rho N_y``
+    alternating (ball 0, "ball 1" behind, ``+rho N_y``; lin2019 Sec 2.4, Fig 7); normal forces from lin2017 eq 36
+    (not the sqrt(2)/2 approximation of Sec 2.4.1, which only the analytical model uses), Hertz ellipses of the
+    guide's groove (:func:`lowmodel.linear_bearing.contacts.ball_contacts`)."""
+    angles = np.tile(case.contact_angles, (case.n_balls, 1))
+    try:
+        return ball_contacts(angles, case.side_forces, case.vertical_force, **case.guide.keywords)
+    except ValueError as error:
+        if "side_force" in str(error) and "side_force_ratio" not in str(error):  # name the case's field
+            raise ValueError(f"side_force_ratio (N_x = side_force_ratio * vertical_force): {error}") from None
+        raise
+
+
 def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.0, 0.0), n_balls: int = 2,
                     nominal_angle: float = math.pi / 4, vertical_force: float = 100.0, ball_radius: float = 5e-3,
                     conformity: float = 0.56, friction_coefficient: float = 0.1, groove_velocity: float = 0.01,
                     youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28) -> BallContacts:
-    """Balls of the lin2019 case study (Sec 2.4, Fig 7; defaults: Table 1).
-
-    Contact angles ``beta_BL = beta_0 - theta``, ``beta_BR = beta_0 + theta``
-    (bottom rail), ``beta_TR = beta_0 + top_deviations[0]``,
-    ``beta_TL = beta_0 + top_deviations[1]`` (Table 2 case (b):
-    ``(-theta, +theta)``); all angles in rad.  Yaw loading: the same
-    ``N_y = vertical_force`` [N] on every ball and ``N_x = +-rho N_y``
-    alternating, ball 0 (behind, "ball 1") carrying ``+rho N_y``.  Normal
-    forces from lin2017 eq 36 (not the sqrt(2)/2 approximation of Sec 2.4.1,
-    which only the analytical model uses).
-    """
+    """:func:`contacts` of the lin2019 case study (Sec 2.4, Fig 7; defaults: Table 1) by keywords, for the paper
+    figures that sweep one parameter: bottom groove ``(-theta, +theta)``, top groove ``top_deviations``
+    ``(Delta beta_TR, Delta beta_TL)`` (Table 2 case (b): ``(-theta, +theta)``); all angles in rad.  Builds the
+    :class:`lowmodel.bearing.GuideLoadCase` (its checks) and its contacts."""
     n_balls = checks.count("n_balls", n_balls, 1)
     nominal_angle = checks.contact_angle("nominal_angle", nominal_angle)
     limit = min(nominal_angle, 0.5 * math.pi - nominal_angle)  # beta_0 -+ theta inside (0, 90) deg
     theta = checks.bounded("theta", theta, -limit, limit, "rad",
                            note=f"|theta| below {math.degrees(limit):.4g} deg keeps beta_0 -+ theta in (0, 90) deg; "
                                 "radians: 2 deg is 0.0349 rad")
-    checks.plausible("ball_radius", ball_radius)
     side_force_ratio = checks.finite("side_force_ratio", side_force_ratio)
     top = checks.finite("top_deviations", top_deviations, "rad")
     if np.shape(top) != (2,):
         raise ValueError("top_deviations must be a pair (Delta beta_TR, Delta beta_TL) [rad], got shape "
                          f"{np.shape(top)}")
-    angles = nominal_angle + np.array([-theta, theta, top[0], top[1]])
-    sign = np.where(np.arange(n_balls) % 2 == 0, 1.0, -1.0)
-    try:
-        return ball_contacts(np.tile(angles, (n_balls, 1)), sign * side_force_ratio * vertical_force,
-                             vertical_force, ball_radius=ball_radius, conformity=conformity,
-                             friction_coefficient=friction_coefficient, groove_velocity=groove_velocity,
-                             youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
-    except ValueError as error:
-        if "side_force" in str(error) and "side_force_ratio" not in str(error):  # name this function's parameter
-            raise ValueError(f"side_force_ratio (N_x = side_force_ratio * vertical_force): {error}") from None
-        raise
+    guide = LinearGuide(ball_radius, conformity, nominal_angle, Material(youngs_modulus, poisson_ratio),
+                        friction_coefficient, groove_velocity)
+    return contacts(GuideLoadCase(guide, vertical_force, side_force_ratio,
+                                  (-theta, theta, float(top[0]), float(top[1])), n_balls))
 
 
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:

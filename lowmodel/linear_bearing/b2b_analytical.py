@@ -36,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing.fourpoint import contact_limits
 
 __all__ = [
@@ -47,6 +48,7 @@ __all__ = [
     "friction_loss",
     "mitigating_top_deviations",
     "two_ball_case",
+    "from_case",
     "TwoBallCase",
 ]
 
@@ -334,6 +336,20 @@ def two_ball_case(theta, rho, *, normal_load, groove_velocity, friction_coeffici
     pressed = force > 0.0
     return TwoBallCase(epsilon_1, epsilon_2, free_1, free_2, force, loss, common,
                        np.where(pressed, common, free_1), np.where(pressed, common, free_2))
+
+
+def from_case(case, *, k_f=K_F_PAPER, psi=None) -> TwoBallCase:
+    """:func:`two_ball_case` of a :class:`lowmodel.bearing.GuideLoadCase` (bottom deviations ``(-theta, +theta)``,
+    its top deviations, nominal contact angle, load, speed and friction): ``psi`` (eq 15) from the exact Hertz
+    contact of its groove (:func:`lowmodel.contact.hertz.psi_constant`) unless given, the paper's ``k_f`` = 1.38
+    unless given."""
+    guide = case.guide
+    if psi is None:
+        psi = hertz.psi_constant(hertz.groove_geometry(guide), guide.ball_radius)
+    return two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,
+                         groove_velocity=guide.groove_velocity, friction_coefficient=guide.friction_coefficient,
+                         psi=psi, ball_radius=guide.ball_radius, k_f=k_f, delta_beta_top=case.top_deviations,
+                         nominal_contact_angle=guide.nominal_angle)
 
 
 def _top_pair(delta_beta_top):

@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.bearing import guide_values
 from ballbench.lowmodel.contact import rolling_friction as rf
 from ballbench.lowmodel.contact.influence import combined_material
 from ballbench.lowmodel.errors import ConvergenceError
@@ -55,6 +56,8 @@ __all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "sampled_con
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue: power balance to 1e-6)
 AXIS = np.array([0.0, 0.0, 1.0])  # the grooves' direction (lin2019 Fig 2: z along the rails)
+TABLE1_STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # the default material: lin2019 Table 1's steel
+TABLE1 = {"conformity": 0.56, **TABLE1_STEEL}  # the default grooves: lin2019 Table 1
 AXIS.setflags(write=False)
 
 
@@ -88,16 +91,19 @@ def _material(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float
     return shear, nu_c
 
 
-def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), conformity: float = 0.56,
-                   youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28, heathcote: bool = True,
-                   operator_for=None) -> tuple:
+def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), guide=None,
+                   conformity: float | None = None, youngs_modulus: float | None = None,
+                   poisson_ratio: float | None = None, heathcote: bool = True, operator_for=None) -> tuple:
     """The four contacts (BL, BR, TR, TL) of ``ball`` of the low-order model as :class:`GridContact` with Hertz's
     pressure: at ``R_B n_i`` (rigid contact angles, lin2019 Fig 2), semi-axes ``b_i`` along the rails and ``a_i``
     across, ``cells = (n_along, n_across)`` across the ellipse (or one fixed ``SurfaceGrid`` for every contact).
     ``conformity``: of the grooves, for the curvature of the contact surface (``heathcote=False``: planar,
-    lin2019's slip field eq 3); ``youngs_modulus`` [Pa], ``poisson_ratio``: ball and grooves; ``operator_for(grid)``
-    the operator (default the half-space)."""
+    lin2019's slip field eq 3); ``youngs_modulus`` [Pa], ``poisson_ratio``: ball and grooves (default lin2019
+    Table 1's 0.56 and steel), or all three from ``guide`` (a :class:`lowmodel.bearing.LinearGuide`);
+    ``operator_for(grid)`` the operator (default the half-space)."""
     index = checks.count("ball", ball, 0, contacts.n_balls - 1)
+    conformity, youngs_modulus, poisson_ratio = guide_values(guide, dict(
+        conformity=conformity, youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio), TABLE1).values()
     shear, nu = _material(youngs_modulus, poisson_ratio)
     radius = contacts.ball_radius
     curvature = 1.0 / deformed_radius(radius, conformity) if heathcote else 0.0
@@ -112,14 +118,18 @@ def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), con
     return tuple(out)
 
 
-def sampled_contacts(samples, *, ball_radius: float, conformity: float, cells=None, grid=None,
-                     youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28, heathcote: bool = True,
-                     operator=None, outside: float = 0.0) -> tuple:
+def sampled_contacts(samples, *, guide=None, ball_radius: float | None = None, conformity: float | None = None,
+                     cells=None, grid=None, youngs_modulus: float | None = None, poisson_ratio: float | None = None,
+                     heathcote: bool = True, operator=None, outside: float = 0.0) -> tuple:
     """The contacts of one ball from sampled pressures (e.g. the FE module's, ``fem.fourpoint``): ``samples`` a
     sequence of ``(name, top, points (q, 3) [m], pressure (q,) [Pa], areas (q,) [m^2])`` in lin2019's frame
     (points on the ball relative to its centre); each on a grid of ``cells`` over its pressure, or on the given
     ``grid`` with ``operator`` (an FE compliance; ``outside`` the share of the force allowed beyond its inner cells)
-    (:func:`lowmodel.contact.rolling_friction.sampled_contact`)."""
+    (:func:`lowmodel.contact.rolling_friction.sampled_contact`).  Ball radius, conformity and material: given, or
+    from ``guide`` (a :class:`lowmodel.bearing.LinearGuide`); the material defaults to lin2019 Table 1's steel."""
+    ball_radius, conformity, youngs_modulus, poisson_ratio = guide_values(guide, dict(
+        ball_radius=ball_radius, conformity=conformity, youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio),
+        TABLE1_STEEL).values()
     shear, nu = _material(youngs_modulus, poisson_ratio)
     curvature = 1.0 / deformed_radius(ball_radius, conformity) if heathcote else 0.0
     return tuple(rf.sampled_contact(name, top, points, pressure, areas, AXIS, cells=cells, grid=grid,
@@ -225,10 +235,13 @@ class RollingModuleB2B:
     power_balance: float
 
 
-def module_b2b(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float,
-               **options) -> RollingModuleB2B:
-    """Touching and free (gaps of ``R_B``) states of ``balls`` with both laws (:func:`solve`); ``options`` go to
-    :func:`solve` (tolerance, max_iterations)."""
+def module_b2b(balls, guide=None, *, ball_radius: float | None = None, friction_coefficient: float | None = None,
+               groove_velocity: float | None = None, **options) -> RollingModuleB2B:
+    """Touching and free (gaps of ``R_B``) states of ``balls`` with both laws (:func:`solve`) in ``guide`` (a
+    :class:`lowmodel.bearing.LinearGuide`: its ball radius, friction and speed; or those given one by one);
+    ``options`` go to :func:`solve` (tolerance, max_iterations)."""
+    ball_radius, friction_coefficient, groove_velocity = guide_values(guide, dict(
+        ball_radius=ball_radius, friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)).values()
     common = dict(ball_radius=ball_radius, friction_coefficient=friction_coefficient,
                   groove_velocity=groove_velocity, **options)
     n = len(balls)
@@ -248,8 +261,9 @@ def module_b2b(balls, *, ball_radius: float, friction_coefficient: float, groove
                             max(s.power_balance for s in states.values()))
 
 
-def b2b_contact_check(state: RollingB2BState, pair: int = 0, *, ball_radius: float, friction_coefficient: float,
-                      youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28, cells: int = 24):
+def b2b_contact_check(state: RollingB2BState, pair: int = 0, *, guide=None, ball_radius: float | None = None,
+                      friction_coefficient: float | None = None, youngs_modulus: float | None = None,
+                      poisson_ratio: float | None = None, cells: int = 24):
     """The B2B contact of ``pair`` solved as a steady rolling contact: ``(F_x / (mu F), creepage parameter)``.
 
     The two balls touch at ``+R_B e_z`` of ball j and ``-R_B e_z`` of ball j+1 (Hertz circle of two spheres of
@@ -258,8 +272,14 @@ def b2b_contact_check(state: RollingB2BState, pair: int = 0, *, ball_radius: flo
     ``V = |Omega_j - Omega_{j+1}| R_B / 2`` (near zero), their difference the slip ``|dv|`` of eq 5; the
     creepage ``|dv| / V`` against ``mu p0 / G``.  lin2019's full sliding (eq 6) holds where the rolling solver's
     force is ``mu F`` (a ratio of 1); returns ``(nan, inf)`` for an open pair and ``(1, inf)`` for ``V = 0``.
+    Ball radius, friction and material: given (the material defaults to lin2019 Table 1's steel), or from ``guide``
+    (a :class:`lowmodel.bearing.LinearGuide`).
     """
     from ballbench.lowmodel.contact import rolling
+
+    ball_radius, friction_coefficient, youngs_modulus, poisson_ratio = guide_values(guide, dict(
+        ball_radius=ball_radius, friction_coefficient=friction_coefficient, youngs_modulus=youngs_modulus,
+        poisson_ratio=poisson_ratio), TABLE1_STEEL).values()
 
     force = float(state.b2b_force[pair])
     if force <= 0.0:

@@ -60,6 +60,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.bearing import guide_values
 from ballbench.lowmodel.contact.traction import (SampledCoulomb, TractionPatch, check_patch, ellipse_samples,
                                                  solve_chain, stack_patches)
 from ballbench.lowmodel.errors import ConvergenceError
@@ -162,14 +163,16 @@ def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, 
     return tuple(patches)
 
 
-def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float, gaps=None,
-          tolerance: float = 1e-11, max_iterations: int = 100, regularisation: float = 1e-12) -> TractionState:
+def solve(balls, guide=None, *, ball_radius: float | None = None, friction_coefficient: float | None = None,
+          groove_velocity: float | None = None, gaps=None, tolerance: float = 1e-11, max_iterations: int = 100,
+          regularisation: float = 1e-12) -> TractionState:
     """Quasi-static motion of ``n >= 1`` balls with sampled contact tractions and B2B contact.
 
     Parameters
     ----------
     balls : sequence of ``n`` sequences of :class:`TractionPatch` (the same number of patches per ball),
         balls ordered along +z (ball 0 behind, lin2019 "ball 1"); the ball centre is the origin of its points
+    guide : a :class:`lowmodel.bearing.LinearGuide` (its ball radius, friction and speed), or these one by one:
     ball_radius : m;  friction_coefficient : mu (> 0, ball-to-groove and ball-to-ball)
     groove_velocity : m/s, velocity of the top groove along +z (nonzero)
     gaps : (n-1,) m, ``d_{j,j+1} - 2 R_B`` (default all touching)
@@ -180,6 +183,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     balance misses POWER_BALANCE_TOLERANCE.
     """
     check_solver_options(tolerance, max_iterations)
+    ball_radius, friction_coefficient, groove_velocity = guide_values(guide, dict(
+        ball_radius=ball_radius, friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)).values()
     radius = float(ball_radius)
     if not math.isfinite(radius) or radius <= 0.0 or not math.isfinite(1.0 / radius):
         raise ValueError(f"ball_radius must be a finite number > 0 m with a finite inverse, got {ball_radius!r}")

@@ -54,8 +54,9 @@ from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
 
-__all__ = ["PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "b2b_slip", "solve", "LOAD_RAMP_START",
-           "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel", "RING_KERNELS"]
+__all__ = ["contacts", "PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "b2b_slip", "solve",
+           "LOAD_RAMP_START", "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel",
+           "RING_KERNELS"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
@@ -285,6 +286,18 @@ LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a l
 # ConvergenceError.reason when the load ramp stops past a converged state whose contacts slide near their limit
 # mu F: the declared limit of lin2019's full-sliding model under heavy load (docs/ball_screw.md, "Preload loss")
 FULL_SLIDING_LIMIT = "load ramp stopped: contacts near full sliding"
+
+
+def contacts(case, *, oversize: float | None = None, reading: str | None = None,
+             contact_law: screw_contacts.GrooveContactLaws | None = None) -> screw_contacts.BallContacts:
+    """The contacts of the balls of a :class:`lowmodel.bearing.ScrewLoadCase` (each ball's screw-side deviation
+    theta, read as the case's ``reading``): :func:`lowmodel.screw.contacts.ball_contacts` on the screw's module
+    (:func:`lowmodel.screw.contacts.module`).  ``oversize`` [m] and ``reading``: other than the case's (a fit of the
+    preload, the other reading of lin2019 Fig 17); ``contact_law``: calibrated laws of the grooves, None: Hertz
+    (lin2019 eq 53)."""
+    return screw_contacts.ball_contacts(screw_contacts.module(case.screw, oversize), np.array(case.deviations),
+                                        reading=case.reading if reading is None else reading,
+                                        contact_law=contact_law)
 
 
 def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring: bool = False, tolerance: float = 1e-10,

@@ -37,11 +37,12 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.bearing import BallScrew, Material
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
 
 __all__ = [
-    "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "screw_module", "BallContacts", "ball_contacts",
+    "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "module", "screw_module", "BallContacts", "ball_contacts",
     "flank_angles", "profile_2d", "arc_profile", "hertz_direct", "GrooveContactLaws", "NUT_SPEED_RANGE",
     "FRICTION_COEFFICIENT_MAX", "SIGN_U", "SIGN_W", "ON_NUT",
 ]
@@ -101,38 +102,53 @@ class ScrewModule:
         return float(groove_core.groove_radius(self.ball_radius, self.conformity))
 
 
+def module(screw, oversize: float | None = None) -> ScrewModule:
+    """The module of the lin2019 Sec 3 models (:class:`ScrewModule`) of a :class:`lowmodel.bearing.BallScrew`, with
+    the preload ``oversize`` [m] (default: the screw's own).  The screw must give its conformity, material, friction
+    coefficient and nut speed (the nut drives, the screw is at rest); the module's own ranges are checked here:
+    ``mu`` in [0, 2], a nonzero nut speed, the groove inside the pitch radius, a lead angle below 90 deg."""
+    screw.need("conformity", "material", "friction_coefficient", "nut_speed",
+               by="the ball-screw module (lowmodel.screw.ball)")
+    oversize = screw.oversize if oversize is None else oversize
+    ball_radius = checks.positive("ball_radius", screw.ball_radius, "m")
+    conformity = checks.conformity("conformity", screw.conformity)
+    pitch_radius = checks.positive("pitch_radius", screw.pitch_radius, "m")
+    lead = checks.non_negative("lead", screw.lead, "m (right-handed screw)")
+    nominal_angle = checks.contact_angle("nominal_angle", screw.nominal_angle)
+    nut_speed = checks.finite("nut_speed", screw.nut_speed, "rad/s")
+    if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
+        raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
+                         f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
+                         f"like 1 / speed and leaves the float range near 1e-300), got {screw.nut_speed!r}")
+    mu = checks.bounded("friction_coefficient", screw.friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX,
+                        upper_closed=True,
+                        note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
+    youngs_modulus = checks.positive("youngs_modulus", screw.material.youngs_modulus, "Pa")
+    poisson_ratio = checks.bounded("poisson_ratio", screw.material.poisson_ratio, -1.0, 0.5)
+    oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
+                              upper_closed=True, note="i.e. [0, 0.01 ball_radius]")
+    checks.plausible("oversize", oversize)  # a module's own oversize (the screw's is checked by BallScrew)
+    if pitch_radius <= 2.0 * conformity * ball_radius:
+        raise ValueError(f"pitch_radius must exceed the groove radius {2 * conformity * ball_radius!r} m, "
+                         f"got {screw.pitch_radius!r}")
+    if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
+        raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
+                         f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {screw.lead!r}")
+    return ScrewModule(ball_radius, conformity, pitch_radius, lead, nominal_angle, nut_speed, mu, youngs_modulus,
+                       poisson_ratio, oversize)
+
+
 def screw_module(*, ball_radius: float = 2.778e-3, conformity: float = 0.56, pitch_radius: float = 16.5e-3,
                  lead: float = 20e-3, nominal_angle: float = math.radians(45.0), nut_speed: float = 2 * math.pi,
                  friction_coefficient: float = 0.1, youngs_modulus: float = 2.1e11, poisson_ratio: float = 0.28,
                  oversize: float = 0.0) -> ScrewModule:
-    """Validated :class:`ScrewModule`; defaults are lin2019 Table 4 (E = 210 GPa, papers/README)."""
-    ball_radius = checks.positive("ball_radius", ball_radius, "m")
-    conformity = checks.conformity("conformity", conformity)
-    pitch_radius = checks.positive("pitch_radius", pitch_radius, "m")
-    lead = checks.non_negative("lead", lead, "m (right-handed screw)")
-    nominal_angle = checks.contact_angle("nominal_angle", nominal_angle)
-    nut_speed = checks.finite("nut_speed", nut_speed, "rad/s")
-    if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
-        raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
-                         f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
-                         f"like 1 / speed and leaves the float range near 1e-300), got {nut_speed!r}")
-    mu = checks.bounded("friction_coefficient", friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX, upper_closed=True,
-                        note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
-    youngs_modulus = checks.positive("youngs_modulus", youngs_modulus, "Pa")
-    poisson_ratio = checks.bounded("poisson_ratio", poisson_ratio, -1.0, 0.5)
-    oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
-                              upper_closed=True, note="i.e. [0, 0.01 ball_radius]")
-    if pitch_radius <= 2.0 * conformity * ball_radius:
-        raise ValueError(f"pitch_radius must exceed the groove radius {2 * conformity * ball_radius!r} m, "
-                         f"got {pitch_radius!r}")
-    if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
-        raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
-                         f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {lead!r}")
-    for name, value in (("ball_radius", ball_radius), ("pitch_radius", pitch_radius), ("lead", lead),
-                        ("oversize", oversize), ("youngs_modulus", youngs_modulus)):
-        checks.plausible(name, value)  # a length in mm or a modulus in GPa is refused here, not in a solve
-    return ScrewModule(ball_radius, conformity, pitch_radius, lead, nominal_angle, nut_speed, mu, youngs_modulus,
-                       poisson_ratio, oversize)
+    """:func:`module` by keywords, for the paper figures that sweep one parameter; defaults are lin2019 Table 4
+    (E = 210 GPa, papers/README).  Builds the :class:`lowmodel.bearing.BallScrew` (its checks, the plausible ranges
+    among them: a length in mm or a modulus in GPa is refused here, not in a solve) and its module."""
+    screw = BallScrew(ball_radius=ball_radius, pitch_radius=pitch_radius, lead=lead, nominal_angle=nominal_angle,
+                      conformity=conformity, material=Material(youngs_modulus, poisson_ratio),
+                      friction_coefficient=friction_coefficient, nut_speed=nut_speed, oversize=oversize)
+    return module(screw)
 
 
 @dataclass(frozen=True)

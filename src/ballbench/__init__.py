@@ -9,7 +9,11 @@ docs/architecture.md.  Importing this package imports none of them.
 
 The small public API (docs/cases.md, "Python"): every function imports what it
 needs when called, so ``import ballbench`` stays light (no numpy work, no gmsh,
-pyvista, vtk or matplotlib)::
+pyvista, vtk or matplotlib).  The models are reached at the model layer
+(``friction`` and ``contact`` are ``ballbench.lowmodel.bearing_results``'s, on the
+description types of ``ballbench.lowmodel.bearing``); ``load_case`` reads a case
+file (the TOML schema of ``ballbench.validation.cases``) into such a description
+with a name and FE settings; ``ladder`` runs the validation harness::
 
     import ballbench
     case = ballbench.load_case("my_guide.toml")     # SI inside, units only in the file
@@ -41,19 +45,33 @@ def _version() -> str:
         return "0+unknown"
 
 
+# the front door's model functions, defined at the model layer (imported on first use, PEP 562):
+# ``friction(case)`` (GuideResult / ScrewResult: per ball and contact the loads, angles, Hertz ellipses and pressures;
+# the carriage friction force [N] or the nut's friction torque [N m] with and without ball-to-ball contact, the
+# friction increase and the B2B forces) and ``contact(case)`` (exact Hertz of a single contact, or of the most loaded
+# contact of a linear guide or ball screw); ``case`` a ballbench.lowmodel.bearing load case or a case file's
+_FUNCTIONS = {
+    "friction": "ballbench.lowmodel.bearing_results",
+    "contact": "ballbench.lowmodel.bearing_results",
+}
+
+
 def __getattr__(name):
     if name == "__version__":  # read on first use: importlib.metadata is most of this package's import time
         return _version()
-    if name in _MODULES:
+    if name in _MODULES or name in _FUNCTIONS:
         import importlib
 
-        return importlib.import_module(_MODULES[name])
+        if name in _MODULES:
+            return importlib.import_module(_MODULES[name])
+        return getattr(importlib.import_module(_FUNCTIONS[name]), name)
     raise AttributeError(f"module 'ballbench' has no attribute {name!r}")
 
 
 def load_case(path):
     """The case of the TOML case file ``path`` (``ballbench init KIND`` writes one): a LinearGuideCase,
-    BallScrewCase or ContactCase in SI units (ballbench.validation.cases.case).  Every key is checked before any
+    BallScrewCase or ContactCase in SI units (ballbench.validation.cases.case: a load case of
+    ballbench.lowmodel.bearing with the file's name and FE settings).  Every key is checked before any
     work; a mistake raises ValueError (CaseFileError) naming the file, line, key and range (docs/cases.md)."""
     from ballbench.validation.cases import case_file
 
@@ -66,32 +84,6 @@ def template(kind: str) -> str:
     from ballbench.validation.cases import case_file
 
     return case_file.template(kind)
-
-
-def friction(case):
-    """What an engineer reads from a linear guide or ball screw case: per ball and contact the loads, angles,
-    Hertz ellipses and pressures; the carriage friction force [N] (GuideResult) or the friction torque on the nut
-    [N m] (ScrewResult) with and without ball-to-ball contact, the friction increase and the B2B forces, by the
-    low-order numerical models (validation.studies.bearing_results; ``.to_dataset()`` gives xarray)."""
-    from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
-    from ballbench.validation.studies import bearing_results
-
-    if isinstance(case, LinearGuideCase):
-        return bearing_results.guide_result(case)
-    if isinstance(case, BallScrewCase):
-        return bearing_results.screw_result(case)
-    raise TypeError(f"friction takes a LinearGuideCase or BallScrewCase (ballbench.load_case), got "
-                    f"{type(case).__name__}")
-
-
-def contact(case):
-    """Exact Hertz (lowmodel.contact.hertz.HertzContact: a, b, p0, approach in SI) of the contact of a
-    ContactCase, or of the most loaded contact of a linear guide or ball screw (validation.studies.ladder)."""
-    from ballbench.lowmodel.contact import hertz as _hertz
-    from ballbench.validation.studies import fe_contact, ladder as _ladder
-
-    governing = _ladder.governing_contact(case)
-    return _hertz.solve_load(fe_contact.hertz_geometry(governing), governing.force)
 
 
 def ladder(case, fidelity: str = "quick", *, levels: str = "stick-slip", out_dir=None, budget_s=None,

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from ballbench.fem import screw_module as sm
+from ballbench.lowmodel.bearing_results import axial_shares
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import helix
 from ballbench.validation.cases import lin2019
@@ -78,7 +79,7 @@ def test_bad_input():
 
 def test_hertz_statics_reference():
     contacts, _, state = study.low_order(lin2019.TABLE5_A)
-    shares = study.axial_shares(contacts, state)
+    shares = axial_shares(contacts, state)
     assert shares.sum() == pytest.approx(50.0, rel=1e-8)  # the touching state's 50 N on the screw
     forces = statics.hertz_statics(contacts, 0, 25.0)
     # theta = 0 without friction: the half-turn about y3 maps SL <-> NR and SR <-> NL
@@ -96,7 +97,7 @@ def test_hertz_statics_of_both_cases_converge():
     "not making good progress" at a 4e-12 N residual, case b ball 1, was once taken for a failure)."""
     for case in ("a", "b"):
         contacts, _, state = study.low_order(lin2019.TABLE5[case])
-        shares = study.axial_shares(contacts, state)
+        shares = axial_shares(contacts, state)
         for ball in range(2):
             forces = statics.hertz_statics(contacts, ball, shares[ball])
             assert np.all(forces > 0.0)
@@ -130,7 +131,7 @@ def test_statics_checks_of_the_scene_reject_wrong_forces():
 @pytest.fixture(scope="module")
 def quick_modules():
     contacts, _, state = study.low_order(lin2019.TABLE5_A)
-    shares = study.axial_shares(contacts, state)
+    shares = axial_shares(contacts, state)
     case = lin2019.TABLE5_A
     models, results, _ = study.solve_fe_level(case, case.fe.levels["quick"][0], shares)
     return case, contacts, state, shares, models, results

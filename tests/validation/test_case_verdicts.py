@@ -128,12 +128,12 @@ def _largest_per_side(forces):
 
 def test_past_the_preload_loss_the_contact_rung_runs_on_the_frictionless_statics(tmp_path, monkeypatch):
     from ballbench.lowmodel.screw import preload
-    from ballbench.validation.studies import screw_two_ball
+    from ballbench.lowmodel.screw import b2b as screw_b2b
 
     case = case_file.load(_screw_file(tmp_path, "450 N"))
     result, seen = _contact_loads(case, tmp_path, monkeypatch)
     assert result.status() == "pass" and not result.not_applicable
-    state = preload.frictionless_statics(screw_two_ball.ball_contacts(case), 450.0)
+    state = preload.frictionless_statics(screw_b2b.contacts(case), 450.0)
     assert seen == _largest_per_side(state.normal_force)  # the very loads of the frictionless solve
     assert state.normal_force[0, 1] == 0.0 and state.normal_force[0, 3] == 0.0  # two-point contact
 
@@ -142,7 +142,7 @@ def test_past_the_preload_loss_the_contact_rung_runs_on_the_frictionless_statics
 def test_where_lin2019_has_a_state_the_contact_rung_runs_on_it(tmp_path, monkeypatch, load):
     # below the preload loss (100 N, four-point) and past it where lin2019's ramp still finds a state (300 N):
     # the loads of lin2019's state, as before, and no word of the frictionless statics
-    from ballbench.validation.studies import bearing_results
+    from ballbench.lowmodel import bearing_results
 
     case = case_file.load(_screw_file(tmp_path, load))
     states = []
@@ -169,12 +169,12 @@ def test_past_the_preload_loss_the_contact_scene_passes_up_to_the_bem(tmp_path, 
     # the walk-through's -contact at --levels BEM (about 40 s): Hertz and the BEM on the exact helical gap at the
     # frictionless loads; a Hertz miss against the BEM is a finding, not a failure
     from ballbench.lowmodel.screw import preload
-    from ballbench.validation.studies import screw_two_ball
+    from ballbench.lowmodel.screw import b2b as screw_b2b
 
     case = case_file.load(_screw_file(tmp_path, "450 N"))
     result, seen = _contact_loads(case, tmp_path, monkeypatch, top="BEM")
     assert result.status() in ("pass", "findings") and result.passed
-    state = preload.frictionless_statics(screw_two_ball.ball_contacts(case), 450.0)
+    state = preload.frictionless_statics(screw_b2b.contacts(case), 450.0)
     assert seen == _largest_per_side(state.normal_force)
 
 

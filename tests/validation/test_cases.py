@@ -7,8 +7,9 @@ import math
 
 import pytest
 
-from ballbench.validation.cases import (BallScrew, ContactCase, ContactFe, LinearGuideCase, Material, MeshLevels,
-                                        PairLevel, lin2017, lin2019, sun2021, wang2022)
+from ballbench.lowmodel.bearing import BallScrew, Material
+from ballbench.validation.cases import (ContactCase, ContactFe, LinearGuideCase, MeshLevels, PairLevel, lin2017,
+                                        lin2019, sun2021, wang2022)
 from ballbench.validation.references.published import lin2019 as printed_lin2019
 from ballbench.validation.references.published import wang2022 as printed_wang2022
 from tests import paths
@@ -82,13 +83,13 @@ def test_bad_case_data_is_refused_with_the_field_named():
     with pytest.raises(ValueError, match="poisson_ratio"):
         Material(2e11, 0.6)
     with pytest.raises(ValueError, match="conformity"):
-        ContactCase("x", "groove", 5e-3, lin2019.STEEL, 100.0)
+        ContactCase("groove", 5e-3, lin2019.STEEL, 100.0, name="x")
     with pytest.raises(ValueError, match="pair"):
-        ContactCase("x", "cylinder", 5e-3, lin2019.STEEL, 100.0)
+        ContactCase("cylinder", 5e-3, lin2019.STEEL, 100.0, name="x")
     with pytest.raises(ValueError, match="screw"):
-        ContactCase("x", "nut", 5e-3, lin2019.STEEL, 100.0)
+        ContactCase("nut", 5e-3, lin2019.STEEL, 100.0, name="x")
     with pytest.raises(ValueError, match="deviations"):
-        LinearGuideCase("x", lin2019.GUIDE, 100.0, 0.0, (0.0, 0.0))
+        LinearGuideCase(lin2019.GUIDE, 100.0, 0.0, (0.0, 0.0), name="x")
     with pytest.raises(ValueError, match="at least one level"):
         MeshLevels(quick=(), default=(PairLevel(6, 1.3),), fine=(PairLevel(6, 1.3),))
     with pytest.raises(ValueError, match="zone"):
@@ -96,9 +97,9 @@ def test_bad_case_data_is_refused_with_the_field_named():
     with pytest.raises(ValueError, match="fidelity"):
         lin2019.PAIR_LEVELS["ultra"]
     with pytest.raises(ValueError, match="conformity"):
-        from ballbench.validation.studies.screw_two_ball import screw_module
+        from ballbench.lowmodel.screw.contacts import module
 
-        screw_module(BallScrew(ball_radius=3e-3, pitch_radius=20e-3, lead=10e-3, nominal_angle=math.pi / 4))
+        module(BallScrew(ball_radius=3e-3, pitch_radius=20e-3, lead=10e-3, nominal_angle=math.pi / 4))
 
 
 def test_contact_scenes_run_their_case():

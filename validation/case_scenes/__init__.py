@@ -6,7 +6,7 @@ case (they are not registered; the CLI runs them beside or instead of the regist
 
 * ``<stem>-balls`` (linear guide, ball screw): the low-order numerical model of the balls, touching and free:
   loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
-  without B2B contact, the friction increase, the B2B forces (studies.bearing_results); power balance and statics
+  without B2B contact, the friction increase, the B2B forces (lowmodel.bearing_results); power balance and statics
   checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
 * ``<stem>-contact``: each distinct contact geometry at its largest load (studies.ladder.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own

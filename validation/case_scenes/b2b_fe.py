@@ -115,7 +115,7 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
 
 
 def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
-    from ballbench.lowmodel.linear_bearing import b2b
+    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear as study
 
@@ -124,7 +124,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
     b2b.solve(contacts, [0.0])  # loads the friction map outside the timed call
     low_state, time_low = run.time(b2b.solve, contacts, [0.0])
     low = [("lowmodel.linear_bearing.b2b", "low-order numerical", float(low_state.b2b_force[0]), time_low)]
-    analytical, time_a = run.time(study.analytical, case)
+    analytical, time_a = run.time(b2b_analytical.from_case, case)
     low.append(("lowmodel.linear_bearing.b2b_analytical", "analytical", float(analytical.b2b_force), time_a))
     kept = {}
 
@@ -178,6 +178,7 @@ def _informed_power_check(run, finest: dict, source: str) -> None:
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     from ballbench.validation.figures import render3d
+    from ballbench.lowmodel.bearing_results import axial_shares
     from ballbench.validation.studies import fe_b2b_screw as study
 
     (contacts, free, state), time_low = run.time(study.low_order, case)
@@ -185,7 +186,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     if lost:
         raise NotApplicable(_unloaded_reason(case, lost))
     low = [("lowmodel.screw.b2b", "low-order numerical", float(state.b2b_force[0]), time_low)]
-    shares = study.axial_shares(contacts, state)
+    shares = axial_shares(contacts, state)
     kept = {}
     speed = abs(case.screw.nut_speed)
 

@@ -1,6 +1,6 @@
 """``<stem>-balls`` of a linear guide or ball screw case: the low-order numerical model of the balls, touching and
 apart: loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
-without B2B contact, the friction increase, the B2B forces (studies.bearing_results); power balance and statics
+without B2B contact, the friction increase, the B2B forces (lowmodel.bearing_results); power balance and statics
 checks; for a two-ball guide the analytical B2B model (lin2019 eq 30) against the numerical one."""
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ __all__ = ["balls_scene"]
 
 def balls_scene(run, *, case, rungs) -> None:
     """The scene function of ``<stem>-balls``: ``case`` a LinearGuideCase or BallScrewCase, ``rungs`` those to run."""
-    from ballbench.validation.studies import bearing_results
+    from ballbench.lowmodel import bearing_results
 
     if isinstance(case, LinearGuideCase):
         _guide_balls(run, case, rungs, bearing_results)
@@ -27,7 +27,7 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
     from ballbench.lowmodel.linear_bearing import b2b
 
     guide = case.guide
-    contacts = bearing_results.guide_contacts(case)
+    contacts = b2b.contacts(case)
     model = "lowmodel.linear_bearing.b2b"
     touching, time_touching = run.time(b2b.solve, contacts, np.zeros(case.n_balls - 1))
     free, time_free = run.time(b2b.solve, contacts, np.full(case.n_balls - 1, 1e-3))
@@ -72,10 +72,10 @@ def _eq36_residual(case: LinearGuideCase, contacts) -> float:
 
 
 def _guide_analytical(run, case: LinearGuideCase, result) -> None:
-    from ballbench.validation.studies import fe_b2b_linear
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
 
     guide = case.guide
-    analytical, time_a = run.time(fe_b2b_linear.analytical, case)
+    analytical, time_a = run.time(b2b_analytical.from_case, case)
     numerical = result.b2b_forces[0]
     scale = NEAR_ZERO_B2B * guide.friction_coefficient * case.vertical_force
     run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical", quantity="F_B2B", unit="N",
@@ -87,15 +87,15 @@ def _guide_analytical(run, case: LinearGuideCase, result) -> None:
 
 
 def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
-    from ballbench.validation.studies import fe_b2b_screw, screw_two_ball
+    from ballbench.lowmodel.screw import b2b as screw_b2b
 
     model = "lowmodel.screw.b2b"
-    contacts = screw_two_ball.ball_contacts(case)
-    (free, touching), time_s = run.time(screw_two_ball.two_ball, case)
+    contacts = screw_b2b.contacts(case)
+    (free, touching), time_s = run.time(bearing_results.screw_states, case)
     result = bearing_results.screw_result(case, touching, free, contacts)
     power_check(run, model, touching, time_s, "balls touching")
     power_check(run, model, free, time_s, "balls apart")
-    shares = fe_b2b_screw.axial_shares(contacts, touching)
+    shares = bearing_results.axial_shares(contacts, touching)
     run.check(model=model, family="low-order numerical", quantity="axial balance: sum of the balls' axial loads",
               unit="N", value=float(np.sum(shares)), reference=case.axial_load,
               scale=0.0 if case.axial_load > 0 else 1.0, tolerance=1e-9, time_s=time_s,

@@ -42,7 +42,7 @@ def fmt(value: float, digits: int = 4) -> str:
 
 
 def contact_table(run, result, what: str) -> None:
-    """The per-ball, per-contact table of a GuideResult or ScrewResult (studies.bearing_results) and its CSV."""
+    """The per-ball, per-contact table of a GuideResult or ScrewResult (lowmodel.bearing_results) and its CSV."""
     run.table(f"Per ball and contact ({what}, {result.model})",
               ("ball", "contact", "F [N]", "angle [deg]", "a [mm]", "b [mm]", "p0 [MPa]", "approach [um]"),
               [(c.ball, c.contact, fmt(c.normal_force), fmt(math.degrees(c.contact_angle)), fmt(c.a * 1e3),
@@ -64,23 +64,23 @@ def preload_loss(case):
     """The preload loss of a BallScrewCase's balls under one nut shift (lowmodel.screw.preload: frictionless, exact
     flank arcs, Hertz's law lin2019 eq 53): ``PreloadLoss`` with the total axial load [N] at which the first contact
     unloads."""
+    from ballbench.lowmodel.screw import b2b as screw_b2b
     from ballbench.lowmodel.screw import preload
-    from ballbench.validation.studies import screw_two_ball
 
-    return preload.preload_loss(screw_two_ball.ball_contacts(case))
+    return preload.preload_loss(screw_b2b.contacts(case))
 
 
 def oversize_for(case, axial_load: float) -> float:
     """The oversize [m] that moves the preload loss of ``case`` to ``axial_load`` [N], from the preload loss's
     growth like ``oversize^(3/2)`` (lowmodel.screw.preload.nominal_preload_loss): an estimate for the reader."""
+    from ballbench.lowmodel.screw import b2b as screw_b2b
     from ballbench.lowmodel.screw.preload import nominal_preload_loss
-    from ballbench.validation.studies import screw_two_ball
 
     loss = preload_loss(case)
     if loss.axial_load > 0.0:
         return case.screw.oversize * (axial_load / loss.axial_load) ** (2.0 / 3.0)
     # no preload: the closed form of a nominal ball at a unit oversize, scaled the same way
-    contacts = screw_two_ball.ball_contacts(case, oversize=1e-6)
+    contacts = screw_b2b.contacts(case, oversize=1e-6)
     per_ball = nominal_preload_loss(contacts)
     return 1e-6 * (axial_load / (contacts.n_balls * per_ball)) ** (2.0 / 3.0)
 

@@ -66,7 +66,7 @@ def _distinct(case):
 
 def _frictionless_table(run, case, reason: str) -> None:
     """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on."""
-    from ballbench.validation.studies import bearing_results
+    from ballbench.lowmodel import bearing_results
 
     run.note("Loads: " + FRICTIONLESS_WORDS + ".")
     run.note("Why: " + reason)

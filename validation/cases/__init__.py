@@ -6,9 +6,8 @@
 sweeps and ``calibrate`` read these objects; none re-declares a paper's input.  Printed results are references
 (:mod:`ballbench.validation.references.published`).  docs/cases.md describes the fields.
 """
-from ballbench.validation.cases.case import (FIDELITIES, BallScrew, BallScrewCase, ContactCase, ContactFe, Fit,
-                                             LinearGuide, LinearGuideCase, Lubricant, Material, MeshLevels,
-                                             ModuleFe, ModuleLevel, PairLevel)
+from ballbench.validation.cases.case import (FIDELITIES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
+                                             MeshLevels, ModuleFe, ModuleLevel, PairLevel, named)
 
-__all__ = ["FIDELITIES", "BallScrew", "BallScrewCase", "ContactCase", "ContactFe", "Fit", "LinearGuide",
-           "LinearGuideCase", "Lubricant", "Material", "MeshLevels", "ModuleFe", "ModuleLevel", "PairLevel"]
+__all__ = ["FIDELITIES", "BallScrewCase", "ContactCase", "ContactFe", "LinearGuideCase", "MeshLevels", "ModuleFe",
+           "ModuleLevel", "PairLevel", "named"]

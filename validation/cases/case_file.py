@@ -22,10 +22,10 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import bearing, checks
+from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
 from ballbench.validation import units
-from ballbench.validation.cases.case import (FINE_ZONES, PAIRS, READINGS, BallScrew, BallScrewCase, ContactCase,
-                                             ContactFe, Fit, LinearGuide, LinearGuideCase, Lubricant, Material,
+from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
 
 __all__ = ["KINDS", "SCHEMA", "CaseFileError", "Key", "load", "loads", "template", "describe"]
@@ -41,28 +41,35 @@ class CaseFileError(ValueError):
 @dataclass(frozen=True)
 class Key:
     """One key of a case file: its dimension (validation.units), what it is, whether it is required, the check of
-    its value (``"positive"``, ``"non-negative"``, ``"conformity"``, ``"contact angle"``, ``"poisson"``,
-    ``"count"``, ``"choice"``, ``"deviation"``, ``"text"``, ``"fraction"``), the plausible range it must lie in
-    (a key of lowmodel.checks.PLAUSIBLE), its example value in the template, and alternatives (another key that
-    gives the same value, e.g. a diameter for a radius)."""
+    its value, its example value in the template, and alternatives (another key that gives the same value, e.g. a
+    diameter for a radius).
+
+    The check of a key that gives a field of the bearing's description is that field's own
+    (``lowmodel.bearing.check_field``: physical and plausible range, defined once there): ``field`` names it, by
+    default the key's name when it is a field (:data:`lowmodel.bearing.FIELDS`).  The other keys (names, choices,
+    FE settings) carry their own ``check`` (``"positive"``, ``"choice"``, ``"text"``)."""
 
     name: str
     dimension: str
     help: str
     required: bool = True
     check: str = ""
-    plausible: str = ""
+    field: str = ""
     example: str = ""
     choices: tuple = ()
     alternative_of: str = ""  # this key gives ``alternative_of`` (times ``scale``)
     scale: float = 1.0
     in_template: bool = True
 
+    @property
+    def described(self) -> str:
+        """The field of lowmodel.bearing whose check applies to this key ("" for none)."""
+        return self.field or (self.name if self.name in bearing.FIELDS else "")
+
 
 def _material_keys():
-    return (Key("youngs_modulus", "pressure", "E, elastic modulus of ball and raceways", check="positive",
-                plausible="youngs_modulus", example='"210 GPa"'),
-            Key("poisson_ratio", "dimensionless", "nu, Poisson's ratio", check="poisson", example="0.3"))
+    return (Key("youngs_modulus", "pressure", "E, elastic modulus of ball and raceways", example='"210 GPa"'),
+            Key("poisson_ratio", "dimensionless", "nu, Poisson's ratio", example="0.3"))
 
 
 # table -> keys, per kind; "" is the top level
@@ -71,31 +78,28 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
         "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"linear-guide"'),
              Key("name", "text", "a name for the report", check="text", example='"my linear guide"')),
         "guide": (
-            Key("ball_radius", "length", "R_B, ball radius (1.5875 mm: a 1/8-inch ball)", check="positive",
-                plausible="ball_radius", example='"1.5875 mm"'),
+            Key("ball_radius", "length", "R_B, ball radius (1.5875 mm: a 1/8-inch ball)", example='"1.5875 mm"'),
             Key("ball_diameter", "length", "or the ball diameter (1/8-inch ball: \"0.125 in\")", required=False,
                 check="positive", alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter", check="conformity",
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter",
                 example="0.52"),
-            Key("nominal_angle", "angle", "beta_0, nominal contact angle of the four contacts",
-                check="contact angle", example='"45 deg"'),
-            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact",
-                check="non-negative", example="0.1"),
+            Key("nominal_angle", "angle", "beta_0, nominal contact angle of the four contacts", example='"45 deg"'),
+            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact", example="0.1"),
             Key("groove_velocity", "speed", "v, speed of the carriage (top groove) against the rail",
-                check="finite", example='"100 mm/s"')),
+                example='"100 mm/s"')),
         "material": _material_keys(),
         "load": (
-            Key("vertical_force", "force", "N_y, vertical load on every ball", check="positive", example='"50 N"'),
+            Key("vertical_force", "force", "N_y, vertical load on every ball", example='"50 N"'),
             Key("side_force_ratio", "dimensionless", "rho = N_x / N_y of ball 1 (ball 2: -rho, alternating)",
-                check="finite", example="-0.6"),
+                example="-0.6"),
             Key("n_balls", "count", "balls in a row (2: the two-ball module of lin2019 Sec 2.4)", required=False,
-                check="count", example="2")),
+                example="2")),
         "deviations": (
-            Key("bottom_left", "angle", "BL, contact angle deviation from beta_0 (every ball)", check="deviation",
+            Key("bottom_left", "angle", "BL, contact angle deviation from beta_0 (every ball)", field="deviation",
                 example='"-2 deg"'),
-            Key("bottom_right", "angle", "BR", check="deviation", example='"2 deg"'),
-            Key("top_right", "angle", "TR", check="deviation", example='"0 deg"'),
-            Key("top_left", "angle", "TL", check="deviation", example='"0 deg"')),
+            Key("bottom_right", "angle", "BR", field="deviation", example='"2 deg"'),
+            Key("top_right", "angle", "TR", field="deviation", example='"0 deg"'),
+            Key("top_left", "angle", "TL", field="deviation", example='"0 deg"')),
         "fe": (
             Key("gap_limit", "length", "candidate zone: initial gaps up to this", required=False, check="positive",
                 in_template=False),
@@ -110,41 +114,37 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
         "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"ball-screw"'),
              Key("name", "text", "a name for the report", check="text", example='"my ball screw"')),
         "screw": (
-            Key("ball_radius", "length", "R_B, ball radius (a 6.35 mm ball)", check="positive",
-                plausible="ball_radius", example='"3.175 mm"'),
+            Key("ball_radius", "length", "R_B, ball radius (a 6.35 mm ball)", example='"3.175 mm"'),
             Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
                 alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("pitch_radius", "length", "R_P, radius of the ball-centre helix", check="positive",
-                plausible="pitch_radius", example='"16.6 mm"'),
+            Key("pitch_radius", "length", "R_P, radius of the ball-centre helix", example='"16.6 mm"'),
             Key("pitch_diameter", "length", "or the pitch (ball-centre) diameter", required=False, check="positive",
                 alternative_of="pitch_radius", scale=0.5, in_template=False),
-            Key("lead", "length", "L, axial advance per turn", check="non-negative", plausible="lead",
+            Key("lead", "length", "L, axial advance per turn",
                 example='"10 mm"'),
-            Key("nominal_angle", "angle", "beta_0, nominal contact angle", check="contact angle",
+            Key("nominal_angle", "angle", "beta_0, nominal contact angle",
                 example='"45 deg"'),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter (screw and nut)",
-                check="conformity", example="0.55"),
-            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact",
-                check="non-negative", example="0.1"),
+            Key("conformity", "dimensionless", "f = groove radius / ball diameter (screw and nut)", example="0.55"),
+            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact", example="0.1"),
             Key("nut_speed", "angular speed", "omega_N, nut speed (the nut drives, the screw is at rest)",
-                check="finite", example='"1 rev/s"'),
+                example='"1 rev/s"'),
             Key("oversize", "length", "ball oversize: preload by interference (every contact approaches by it)",
-                required=False, check="non-negative", plausible="oversize", example='"1.5 um"'),
+                required=False, example='"1.5 um"'),
             Key("oversize_fit", "fit", "how the oversize was fitted: { target = \"...\", method = \"...\" }",
                 required=False, in_template=False),
-            Key("ball_count", "count", "loaded balls of the nut", required=False, check="count",
+            Key("ball_count", "count", "loaded balls of the nut", required=False,
                 in_template=False),
-            Key("ball_mass", "mass", "mass of one ball", required=False, check="positive", in_template=False),
-            Key("preload", "force", "axial preload of a double nut", required=False, check="non-negative",
+            Key("ball_mass", "mass", "mass of one ball", required=False, in_template=False),
+            Key("preload", "force", "axial preload of a double nut", required=False,
                 in_template=False),
             Key("screw_speed", "angular speed", "omega, screw speed (screw driven)", required=False,
-                check="finite", in_template=False)),
+                in_template=False)),
         "material": _material_keys(),
         "load": (
-            Key("axial_load", "force", "axial load on the screw, shared by the balls", check="non-negative",
+            Key("axial_load", "force", "axial load on the screw, shared by the balls",
                 example='"100 N"'),
             Key("deviations", "angle list", "theta of each ball: screw-side contact angle deviation",
-                check="deviation", example='["0 deg", "2 deg"]'),
+                field="deviation", example='["0 deg", "2 deg"]'),
             Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
                 check="choice", choices=READINGS, example='"tilted"')),
         "lubricant": None,  # the oil's keys, shared with the linear guide (filled below)
@@ -162,13 +162,13 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
         "contact": (
             Key("pair", "text", "the counter body: flat, ball (same radius), groove (straight), screw or nut "
                 "(the helical groove of [screw])", check="choice", choices=PAIRS, example='"groove"'),
-            Key("ball_radius", "length", "R_B, ball radius", check="positive", plausible="ball_radius",
+            Key("ball_radius", "length", "R_B, ball radius",
                 example='"3.175 mm"'),
             Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
                 alternative_of="ball_radius", scale=0.5, in_template=False),
             Key("conformity", "dimensionless", "f = groove radius / ball diameter (groove pair only)",
-                required=False, check="conformity", example="0.54"),
-            Key("force", "force", "normal force", check="positive", example='"200 N"')),
+                required=False, example="0.54"),
+            Key("force", "force", "normal force", example='"200 N"')),
         "material": _material_keys(),
         "screw": None,  # the ball-screw table, for screw and nut pairs (filled below)
         "fe": (
@@ -185,10 +185,10 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
     },
 }
 LUBRICANT_KEYS = (
-    Key("viscosity", "viscosity", "eta_0 at ambient pressure", check="positive", example='"0.1 Pa s"'),
-    Key("density", "density", "rho_0", check="positive", example='"870 kg/m^3"'),
+    Key("viscosity", "viscosity", "eta_0 at ambient pressure", example='"0.1 Pa s"'),
+    Key("density", "density", "rho_0", example='"870 kg/m^3"'),
     Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / sigma)",
-        required=False, check="positive", example='"0.14 um"'))
+        required=False, example='"0.14 um"'))
 SCHEMA["ball-screw"]["lubricant"] = LUBRICANT_KEYS
 SCHEMA["linear-guide"]["lubricant"] = LUBRICANT_KEYS
 SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k.name != "ball_radius"
@@ -277,7 +277,7 @@ def _convert(where: str, key: Key, raw):  # noqa: C901 - one dispatch over the k
             raise ValueError(f'{where} must be a list of angles, one per ball, e.g. ["0 deg", "2 deg"], got {raw!r}')
         values = tuple(units.quantity(v, "angle", f"{where}[{k}]") for k, v in enumerate(raw))
         for k, v in enumerate(values):
-            checks.plausible(f"{where}[{k}]", v, "deviation")
+            bearing.check_field(key.described, v, f"{where}[{k}]")
         return values
     value = units.quantity(raw, key.dimension, where)
     if isinstance(value, list):
@@ -287,25 +287,16 @@ def _convert(where: str, key: Key, raw):  # noqa: C901 - one dispatch over the k
 
 
 def _check(where: str, key: Key, value: float) -> None:
+    """The check of ``key``'s value: its description field's (lowmodel.bearing.check_field), else the key's own."""
+    if key.described:
+        bearing.check_field(key.described, value, where)
+        return
     unit = units.SI_UNIT.get(key.dimension, "")
     unit = "" if unit == "1" else unit
-    check = key.check
-    if check == "positive":
+    if key.check == "positive":
         checks.positive(where, value, unit)
-    elif check == "non-negative":
-        checks.non_negative(where, value, unit)
-    elif check == "finite":
+    elif key.check == "finite":
         checks.finite(where, value, unit)
-    elif check == "conformity":
-        checks.conformity(where, value)
-    elif check == "contact angle":
-        checks.contact_angle(where, value)
-    elif check == "poisson":
-        checks.bounded(where, value, -1.0, 0.5)
-    elif check == "deviation":
-        checks.plausible(where, value, "deviation")
-    if key.plausible:
-        checks.plausible(where, value, key.plausible)
 
 
 def _table(reader: _Reader, data: dict, kind: str, table: str, *, required: bool) -> dict:
@@ -433,9 +424,9 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
             if levels is not None:
                 f = tables["fe"]
                 fe = ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
-            return LinearGuideCase(name, guide, load["vertical_force"], load["side_force_ratio"],
+            return LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"],
                                    (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
-                                   load.get("n_balls", 2), fe)
+                                   load.get("n_balls", 2), name=name, fe=fe)
         if kind == "ball-screw":
             screw = _screw(tables["screw"], material, _lubricant(tables))
             load = tables["load"]
@@ -444,8 +435,8 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
             if levels is not None:
                 f = tables["fe"]
                 fe = ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
-            return BallScrewCase(name, screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
-                                 fe)
+            return BallScrewCase(screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
+                                 name=name, fe=fe)
         c = tables["contact"]
         pair = c["pair"]
         if (pair == "groove") != ("conformity" in c):
@@ -470,7 +461,7 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                 raise reader.error("fe", "", "explicit levels need fe.fine_zone and fe.zone")
             fe = ContactFe(levels, f["fine_zone"], f["zone"], f.get("gap_limit", 1.05),
                            fine_targets=f.get("fine_targets", ()))
-        return ContactCase(name, pair, c["ball_radius"], material, c["force"], c.get("conformity"), screw, fe)
+        return ContactCase(pair, c["ball_radius"], material, c["force"], c.get("conformity"), screw, name=name, fe=fe)
     except CaseFileError:
         raise
     except ValueError as error:  # a check across keys (e.g. a pitch radius inside the groove)
@@ -514,18 +505,10 @@ def kind_of(path: str | Path) -> str | None:
 # writing
 # --------------------------------------------------------------------------
 def _range_text(key: Key) -> str:
-    if key.check == "conformity":
-        return "in (0.5, 1)"
-    if key.check == "contact angle":
-        return "in (0, 90) deg"
-    if key.check == "poisson":
-        return "in (-1, 0.5)"
-    if key.plausible:
-        low, high, unit, what, _ = checks.PLAUSIBLE[key.plausible]
-        shown = {"m": "mm", "Pa": "GPa", "rad": "deg"}.get(unit, unit)
-        shown = "um" if key.plausible == "oversize" else shown
-        scale = units.factor(shown)
-        return f"plausible {low / scale:.4g} to {high / scale:.4g} {shown}"
+    if key.described:
+        unit = bearing.FIELDS[key.described][1]
+        shown = "um" if key.described == "oversize" else {"m": "mm", "Pa": "GPa", "rad": "deg"}.get(unit, unit)
+        return bearing.range_text(key.described, shown, units.factor(shown) if shown else 1.0)
     return {"positive": "> 0", "non-negative": ">= 0"}.get(key.check, "")
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
+from ballbench.lowmodel.bearing import GuideLoadCase
 from ballbench.validation.cases.case_file import load
 
 FILES = Path(__file__).parent / "files"
@@ -41,6 +42,20 @@ VERTICAL_FORCE = TABLE3_A.vertical_force  # N_y [N], printed 100 N
 THETA = TABLE3_A.theta                  # contact angle deviation [rad], printed 2 deg (Sec 2.4, Fig 7)
 SIDE_FORCE_RATIO = TABLE3_A.side_force_ratio  # rho = N_x / N_y [-], printed -0.6
 GUIDE_FE = TABLE3_A.fe                  # FE four-point module levels (docs/fe_b2b.md, "Fine zones")
+
+
+def module_case(theta: float, rho: float, *, top=(0.0, 0.0), n_balls: int = 2, vertical_force: float = VERTICAL_FORCE,
+                **guide) -> GuideLoadCase:
+    """The setup of Sec 2.4 (Fig 7) on the Table 1 guide, for the paper figures that sweep it: bottom groove
+    ``(-theta, +theta)`` [rad], top groove ``top`` = (TR, TL) [rad], ``rho`` = N_x / N_y of ball 1, ``n_balls`` balls
+    under ``vertical_force`` [N] each; ``guide``: fields of Table 1's :class:`lowmodel.bearing.LinearGuide` changed
+    (e.g. ``friction_coefficient``; ``youngs_modulus`` and ``poisson_ratio`` change its material).  The models take
+    it as they take a case file's case (``lowmodel.linear_bearing.b2b.contacts``)."""
+    material = {k: guide.pop(k) for k in ("youngs_modulus", "poisson_ratio") if k in guide}
+    if material:
+        guide["material"] = replace(GUIDE.material, **material)
+    return GuideLoadCase(replace(GUIDE, **guide) if guide else GUIDE, vertical_force, rho,
+                         (-theta, theta, top[0], top[1]), n_balls)
 
 # --------------------------------------------------------------------------
 # Table 4: the ball screw, the preload fitted on Table 5 case (a), and Table 5's cases

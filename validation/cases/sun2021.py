@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import math
 
-from ballbench.validation.cases.case import BallScrew, Lubricant, Material, MeshLevels, PairLevel
+from ballbench.lowmodel.bearing import BallScrew, Lubricant, Material
+from ballbench.validation.cases.case import MeshLevels, PairLevel
 
 STEEL = Material(youngs_modulus=200e9,  # E1 = E2 [Pa]   printed 200 GPa
                  poisson_ratio=0.3)     # nu1 = nu2      printed 0.3

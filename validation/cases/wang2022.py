@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from ballbench.validation.cases.case import BallScrew
+from ballbench.lowmodel.bearing import BallScrew
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 

@@ -100,13 +100,8 @@ def _b2b_force_with_psi(psi: float, case) -> tuple[float, float]:
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
     from ballbench.validation.sweep_cases import with_psi
 
-    guide = case.guide
-    analytical = b2b_analytical.two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,
-                                              groove_velocity=guide.groove_velocity,
-                                              friction_coefficient=guide.friction_coefficient, psi=psi,
-                                              ball_radius=guide.ball_radius)
-    contacts = with_psi(b2b.module_contacts(case.theta, case.side_force_ratio, vertical_force=case.vertical_force,
-                                            **guide.keywords), psi)  # lin2017 eq 36 forces
+    analytical = b2b_analytical.from_case(case, psi=psi)
+    contacts = with_psi(b2b.contacts(case), psi)  # lin2017 eq 36 forces
     return float(analytical.b2b_force), float(b2b.solve(contacts, [0.0]).b2b_force[0])
 
 
@@ -117,7 +112,7 @@ def calibration_effect(run):
     start = time.perf_counter()
     calibration, origin = _calibrated_contact_law(run)
     fit_time = time.perf_counter() - start
-    geometry = hertz.ball_in_groove(GUIDE.ball_radius, GUIDE.conformity, **GUIDE.material.keywords)
+    geometry = hertz.groove_geometry(GUIDE)
     c_hertz, psi_hertz = hertz.hertz_constant(geometry), hertz.psi_constant(geometry, GUIDE.ball_radius)
     psi = calibration.get(GROUP, "psi")
     c = calibration.get(GROUP, "hertz_constant")
@@ -220,7 +215,7 @@ def calibration_effect_screw(run):
     laws, origin = _calibrated_groove_laws()
     fit_time = time.perf_counter() - start
     hertz_oversize = lin2019.SCREW.oversize
-    module = screw_two_ball.screw_module(lin2019.SCREW)
+    module = screw_contacts.module(lin2019.SCREW)
     # 1. the laws as the model uses them: every loaded contact of ball 1 (theta = 0, flanks at beta_0) obeys
     #    delta = C F^(2/3) + C_b F of its groove (reference from the calibrated constants and Hertz, not the model)
     (free_c, state_c), time_c = run.time(screw_two_ball.two_ball, case_a, None, None, laws)

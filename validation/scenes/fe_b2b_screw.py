@@ -21,6 +21,7 @@ import time
 
 import numpy as np
 
+from ballbench.lowmodel.bearing_results import axial_shares
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import render3d
@@ -86,7 +87,7 @@ def _run(run, which: str) -> None:
     run.check(**low, quantity="friction increase by B2B", unit="%", value=increase_low,
               reference=printed.friction_increase, source="lin2019 Sec 3.3 (low-order)",
               tolerance=3.0 / printed.friction_increase, time_s=time_low, note="tolerance 3 points")
-    shares = study.axial_shares(contacts, state)
+    shares = axial_shares(contacts, state)
     reference = [hertz_statics(contacts, ball, shares[ball]) for ball in range(2)]
     rows, contact_rows = [], []
     last = None

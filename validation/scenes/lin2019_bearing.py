@@ -13,7 +13,6 @@ import math
 
 import numpy as np
 
-from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
@@ -35,8 +34,6 @@ SPEED = GUIDE.groove_velocity  # m/s, v
 MU = GUIDE.friction_coefficient
 THETA = CASE.theta  # Table 2/3 cases
 RHO = CASE.side_force_ratio
-# keyword arguments of b2b.module_contacts (lin2019 Table 1)
-TABLE1_INPUTS = dict(vertical_force=VERTICAL, nominal_angle=GUIDE.nominal_angle, **GUIDE.keywords)
 GRID = {"quick": (9, 9), "default": (25, 25), "fine": (49, 49)}  # (rho, theta) points of Figs 8 and 9
 EDGE_MARGINS = {"quick": (0.02, 0.005), "default": (0.04, 0.02, 0.01, 0.003, 0.001),
                 "fine": (0.05, 0.04, 0.03, 0.02, 0.01, 0.003, 0.001, 1e-4)}  # extra rho near the eq 37 limit
@@ -62,8 +59,8 @@ def _four_point_limit(theta: float) -> tuple[float, float]:
     return -upper, upper
 
 
-def _case(theta, rho, top=(0.0, 0.0), **overrides):
-    return b2b.module_contacts(theta, rho, top_deviations=top, **{**TABLE1_INPUTS, **overrides})
+def _case(theta, rho, top=(0.0, 0.0)):
+    return b2b.contacts(lin2019.module_case(theta, rho, top=top))
 
 
 def _two_ball(theta, rho, top=(0.0, 0.0)):
@@ -188,10 +185,7 @@ def table3_a(run):
               value=_power_error(state), reference=0.0, scale=1.0, tolerance=1e-8,
               why="the value is itself a relative power error: zero judged on the scale 1",
               source="energy conservation incl. B2B loss (lin2019 eq 7)", time_s=time_s)
-    geometry = hertz.ball_in_groove(RADIUS, CONFORMITY, **GUIDE.material.keywords)
-    psi = hertz.psi_constant(geometry, RADIUS)
-    analytical, time_a = run.time(b2b_analytical.two_ball_case, THETA, RHO, normal_load=VERTICAL,
-                                  groove_velocity=SPEED, friction_coefficient=MU, psi=psi, ball_radius=RADIUS)
+    analytical, time_a = run.time(b2b_analytical.from_case, CASE)
     run.check(model="lowmodel.linear_bearing.b2b_analytical", family="analytical", quantity="F_B2B", unit="N",
               value=float(analytical.b2b_force),
               reference=PRINTED.f_b2b_ansys, source="lin2019 Table 3 case (a), ANSYS FEA", tolerance=0.07,

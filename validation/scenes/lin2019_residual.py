@@ -31,7 +31,7 @@ THETA, RHO = CASE.theta, CASE.side_force_ratio
        "and loss against an independent residual of eqs 1-8 (Legendre-form Hertz, adaptive quadrature of A4-A5)",
        kind="low-order", cost_s=2.0, case=CASE)
 def b2b_residual(run):
-    contacts = b2b.module_contacts(THETA, RHO, vertical_force=VERTICAL, **TABLE1)
+    contacts = b2b.contacts(CASE)
     b2b.solve(contacts, [0.0])  # warm-up: loads the friction map outside the timing
     state, time_s = run.time(b2b.solve, contacts, [0.0])
     sides = np.array([RHO, -RHO]) * VERTICAL

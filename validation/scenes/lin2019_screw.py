@@ -19,6 +19,7 @@ numbers of Fig 21 that depend on the missing Fig 19 (``FIG21_GAP``).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -28,7 +29,7 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import lin2019
 from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import KnownGap, scene
-from ballbench.validation.studies.screw_two_ball import ball_contacts, friction_increase, two_ball
+from ballbench.validation.studies.screw_two_ball import friction_increase, two_ball
 
 MODEL = "lowmodel.screw.b2b"
 LOW = dict(model=MODEL, family="low-order numerical")
@@ -50,7 +51,7 @@ def _table5(run, which: str):
     printed = PRINTED[which]
     oversize = case.screw.oversize
     (free, state), time_s = run.time(two_ball, case)
-    contacts = ball_contacts(case)
+    contacts = screw_b2b.contacts(case)
     _, solve_s = run.time(screw_b2b.solve, contacts, case.axial_load)
     force = float(state.b2b_force[0])
     increase = friction_increase(free, state)
@@ -143,9 +144,7 @@ FIG21_GAP = KnownGap(
 def _whole_screw(steps: int, progress=None):
     """History of lin2019 Sec 3.4 with the Table 5 preload fit and the tilted deviation reading."""
     from ballbench.lowmodel.screw import whole_screw as ws
-    from ballbench.validation.studies.screw_two_ball import screw_module
-
-    return ws.simulate(screw_module(lin2019.SCREW), n_balls=lin2019.WHOLE_SCREW_BALLS,
+    return ws.simulate(screw_contacts.module(lin2019.SCREW), n_balls=lin2019.WHOLE_SCREW_BALLS,
                        axial_load=lin2019.WHOLE_SCREW_AXIAL_LOAD, duration=lin2019.WHOLE_SCREW_DURATION,
                        steps=steps, amplitude=FIG21_AMPLITUDE, cycles=lin2019.WHOLE_SCREW_THETA_CYCLES,
                        reading=READING, progress=progress)
@@ -247,7 +246,7 @@ def _run_stability_case(case: dict):
     pitch_radius = lin2019.SCREW.pitch_radius
     lead = 2.0 * math.pi * pitch_radius * math.tan(math.radians(case.get("lead_angle_deg", math.degrees(
         math.atan(lin2019.SCREW.lead / (2 * math.pi * pitch_radius))))))
-    module = screw_contacts.screw_module(lead=lead, oversize=case["oversize"])
+    module = screw_contacts.module(dataclasses.replace(lin2019.SCREW, lead=lead, oversize=case["oversize"]))
     contacts = screw_contacts.ball_contacts(module, np.radians(case["thetas"]), reading=case.get("reading", READING))
     return screw_b2b.solve(contacts, case["load"] * len(case["thetas"]))
 

@@ -10,6 +10,7 @@ reason; no solve may return NaN.  Parameters around lin2019 Table 1.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
@@ -28,8 +29,7 @@ MODEL_BALL = "lowmodel.linear_bearing.ball"
 MODEL_B2B = "lowmodel.linear_bearing.b2b"
 BALL = dict(model=MODEL_BALL, family="low-order numerical")
 B2B = dict(model=MODEL_B2B, family="low-order numerical")
-# lin2019 Table 1
-TABLE1 = dict(vertical_force=lin2019.VERTICAL_FORCE, **lin2019.GUIDE.keywords)
+GUIDE = lin2019.GUIDE  # lin2019 Table 1
 RATIO_FLOOR = 1.05  # spin-capacity ratio above which a state exists and must be found
 SIZES = {"quick": dict(grid=(9, 7), margins=(1e-3, 1e-2, 3e-2), loads=9, mus=5, chains=(1, 2, 5, 20, 200),
                        repeats=2, stick_steps=3),
@@ -40,7 +40,7 @@ SIZES = {"quick": dict(grid=(9, 7), margins=(1e-3, 1e-2, 3e-2), loads=9, mus=5, 
 
 
 def _case(theta, rho, n_balls=1, **overrides):
-    return b2b.module_contacts(theta, rho, n_balls=n_balls, **{**TABLE1, **overrides})
+    return b2b.contacts(lin2019.module_case(theta, rho, n_balls=n_balls, **overrides))
 
 
 class _Tally:
@@ -118,11 +118,10 @@ def stability(run):
             angles = math.pi / 4 + np.column_stack([-deviations[:, 0], deviations[:, 0], 0.3 * deviations[:, 1],
                                                     -0.3 * deviations[:, 1]])
             load = float(10 ** rng.uniform(-1.0, 3.0))
-            contacts = bearing_contacts.ball_contacts(angles, rng.uniform(-0.6, 0.6, n_balls) * load, load,
-                                                  ball_radius=TABLE1["ball_radius"], conformity=TABLE1["conformity"],
-                                                  friction_coefficient=float(10 ** rng.uniform(-3.0, 0.0)),
-                                                  groove_velocity=TABLE1["groove_velocity"])
-            gaps = np.where(rng.random(n_balls - 1) < 0.6, 0.0, rng.uniform(0.0, 0.1 * TABLE1["ball_radius"],
+            sides = rng.uniform(-0.6, 0.6, n_balls) * load  # drawn before mu: the cases of the random sequence
+            guide = dataclasses.replace(GUIDE, friction_coefficient=float(10 ** rng.uniform(-3.0, 0.0)))
+            contacts = bearing_contacts.ball_contacts(angles, sides, load, **guide.keywords)
+            gaps = np.where(rng.random(n_balls - 1) < 0.6, 0.0, rng.uniform(0.0, 0.1 * GUIDE.ball_radius,
                                                                             n_balls - 1))
             began = time.perf_counter()
             tally.solve("chain", contacts, gaps)
@@ -266,7 +265,7 @@ def _stick_boundary(run, steps: int) -> None:
             ok_state, ok = b2b.solve(_case(theta, -0.7, 2, friction_coefficient=mid), [0.0]), mid
         except ConvergenceError:
             bad = mid
-    slip = np.hypot(ok_state.slide, ok_state.spin * _case(theta, -0.7, 2).semi_major) / TABLE1["groove_velocity"]
+    slip = np.hypot(ok_state.slide, ok_state.spin * _case(theta, -0.7, 2).semi_major) / GUIDE.groove_velocity
     run.check(**B2B, quantity=f"smallest contact slip speed / v at the last converged mu = {ok:.6f} "
               f"(next failing {bad:.6f}; theta = 3 deg, rho = -0.7, two touching balls)", unit="1",
               value=float(np.min(slip)), reference=0.0, scale=1.0, tolerance=1e-3,

@@ -203,8 +203,6 @@ def rolling_full_slip(run):
               level="48 x 48 cells")
 
 
-TABLE1_INPUTS = dict(vertical_force=lin2019.VERTICAL_FORCE, nominal_angle=lin2019.GUIDE.nominal_angle,
-                     **lin2019.GUIDE.keywords)
 NAMES = ("BL", "BR", "TR", "TL")
 
 
@@ -213,7 +211,7 @@ NAMES = ("BL", "BR", "TR", "TL")
        "lin2019's full slip", kind="low-order", cost_s=4.0, show=render3d.show_saved)
 def rolling_lin2019_contacts(run):
     cells = {"quick": (12, 48), "default": (20, 80), "fine": (30, 120)}[run.fidelity]
-    contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **TABLE1_INPUTS).ball(0)
+    contacts = b2b.contacts(lin2019.TABLE3_A).ball(0)
     state = bearing_ball.solve(contacts)
     mu = contacts.friction_coefficient
     material = lin2019.GUIDE.material.keywords
@@ -355,8 +353,8 @@ def _fe_grooves(run, h_factor: float):
     e, nu = lin2019.GUIDE.material.pair
     cells = (6, 24)
     for conformity in (0.56, 0.52):
-        inputs = dict(TABLE1_INPUTS, conformity=conformity)
-        contacts = b2b.module_contacts(lin2019.THETA, lin2019.SIDE_FORCE_RATIO, **inputs).ball(0)
+        contacts = b2b.contacts(lin2019.module_case(lin2019.THETA, lin2019.SIDE_FORCE_RATIO,
+                                                    conformity=conformity)).ball(0)
         state = bearing_ball.solve(contacts)
         a_lin, b_lin = contacts.semi_major[0, 0], contacts.semi_major[0, 0] * contacts.b_over_a[0, 0]
         grid = rolling.hertz_grid(b_lin, a_lin, cells)

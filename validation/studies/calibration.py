@@ -33,7 +33,7 @@ NOISE_F = 0.02  # N, friction force
 def synthetic_truth() -> dict:
     """The constants the synthetic data are drawn from (SI units)."""
     guide = lin2019.GUIDE
-    geometry = hertz.ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords)
+    geometry = hertz.groove_geometry(guide)
     return {"hertz_constant": hertz.hertz_constant(geometry), "bulk_compliance": BULK,
             "psi": hertz.psi_constant(geometry, guide.ball_radius), "mu": MU_0, "mu_speed_slope": MU_V, "k_f": K_F}
 

@@ -28,7 +28,7 @@ beta_t``, so ``U_e = v r_i / (r_b + r_t)`` with the rolling radii ``r = R_B cos 
 where the radii are equal (tests/validation/studies/test_case_ehl.py).  On a tie of lin2017 (motion not unique) the
 centroid motion of fourpoint.solve is used.  A guide's one distinct contact (rail and carriage share the
 conformity) runs at the load and entrainment of the most loaded contact of the low-order balls (lin2019,
-studies.bearing_results.guide_result).
+lowmodel.bearing_results.guide_result).
 
 Grid convergence (docs/ehl.md, 'On a case file'): each contact is solved a second time on the grid of the next
 coarser level (``n/2``: half the cells each way, the factor between the fidelity levels), and the change of h_c and
@@ -233,7 +233,7 @@ def contacts(case, fidelity: str, progress=None) -> list[EHLContact]:
     n = GRID_N[fidelity]
     if isinstance(case, LinearGuideCase):
         from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
-        from ballbench.validation.studies import bearing_results
+        from ballbench.lowmodel import bearing_results
 
         result = bearing_results.guide_result(case)
         (found,) = distinct_contacts(case, result)

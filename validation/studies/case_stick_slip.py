@@ -62,35 +62,34 @@ def _hertz_balls(case):
     operator), solve(balls))`` of the case's touching module: ``cells`` (along, across) per contact or one
     SurfaceGrid; ``operator`` None for two half-spaces."""
     if isinstance(case, LinearGuideCase):
-        from ballbench.lowmodel.linear_bearing import b2b_rolling
-        from ballbench.validation.studies import bearing_results
+        from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
 
         guide = case.guide
-        contacts = bearing_results.guide_contacts(case)
+        contacts = b2b.contacts(case)
         along = float((contacts.semi_major * contacts.b_over_a).max())
         across = float(contacts.semi_major.max())
 
         def balls_on(cells, operator):
-            return [b2b_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity,
-                                               operator_for=None if operator is None else (lambda _g: operator),
-                                               **guide.material.keywords) for j in range(contacts.n_balls)]
+            return [b2b_rolling.hertz_contacts(contacts, j, cells=cells, guide=guide,
+                                               operator_for=None if operator is None else (lambda _g: operator))
+                    for j in range(contacts.n_balls)]
 
         def solve(balls):
-            return b2b_rolling.module_b2b(balls, ball_radius=guide.ball_radius,
-                                          friction_coefficient=guide.friction_coefficient,
-                                          groove_velocity=guide.groove_velocity)
+            return b2b_rolling.module_b2b(balls, guide)
 
         return "linear", guide.ball_radius, guide.conformity, guide.material.pair, (along, across), balls_on, solve
     if isinstance(case, BallScrewCase):
+        from ballbench.lowmodel.bearing_results import screw_states
+        from ballbench.lowmodel.screw import b2b as screw_b2b
         from ballbench.lowmodel.screw import b2b_rolling
-        from ballbench.validation.studies import screw_two_ball
+        from ballbench.lowmodel.screw import contacts as screw_contacts
 
         screw = case.screw
-        contacts = screw_two_ball.ball_contacts(case)
-        _, touching = screw_two_ball.two_ball(case)
+        contacts = screw_b2b.contacts(case)
+        _, touching = screw_states(case)
         along = float((touching.semi_major * contacts.b_over_a).max())
         across = float(touching.semi_major.max())
-        module_ = screw_two_ball.screw_module(screw)
+        module_ = screw_contacts.module(screw)
 
         def balls_on(cells, operator):
             return [b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,

@@ -10,59 +10,32 @@ Mesh levels (the case's :class:`ModuleFe`): ``h_contact`` in the elliptic slab a
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
+from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
+from ballbench.lowmodel.linear_bearing import fourpoint as rigid
 from ballbench.validation.cases.case import LinearGuideCase
 
-__all__ = ["low_order_contacts", "analytical", "fine_ellipses", "eq36_hertz", "solve_fe_level", "level_dofs",
+__all__ = ["low_order_contacts", "fine_ellipses", "eq36_hertz", "solve_fe_level", "level_dofs",
            "traction_patches", "fe_informed", "full_stress", "hertz_axes", "sensitivity", "show_module"]
 
 
 def low_order_contacts(case: LinearGuideCase):
-    """The low-order model's contacts (lowmodel.linear_bearing.b2b.module_contacts) of ``case``."""
-    guide = case.guide
-    return b2b.module_contacts(case.theta, case.side_force_ratio, top_deviations=case.top_deviations,
-                               vertical_force=case.vertical_force, ball_radius=guide.ball_radius,
-                               conformity=guide.conformity, friction_coefficient=guide.friction_coefficient,
-                               groove_velocity=guide.groove_velocity, **guide.material.keywords)
-
-
-def analytical(case: LinearGuideCase):
-    """lin2019's analytical two-ball model (eqs 15-33; eq 30 for F_B2B) of ``case``: ``Psi`` (eq 15) from the exact
-    Hertz contact of its groove, the paper's ``k_f`` = 1.38, the case's top deviations and nominal contact angle.
-    The analytical rung of every ladder of a linear guide
-    (:class:`lowmodel.linear_bearing.b2b_analytical.TwoBallCase`)."""
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
-    guide = case.guide
-    return b2b_analytical.two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,
-                                        groove_velocity=guide.groove_velocity,
-                                        friction_coefficient=guide.friction_coefficient,
-                                        psi=hertz.psi_constant(_groove_geometry(case), guide.ball_radius),
-                                        ball_radius=guide.ball_radius, delta_beta_top=case.top_deviations,
-                                        nominal_contact_angle=guide.nominal_angle)
-
-
-def _groove_geometry(case: LinearGuideCase):
-    from ballbench.lowmodel.contact import hertz
-
-    guide = case.guide
-    return hertz.ball_in_groove(guide.ball_radius, guide.conformity, **guide.material.keywords)
+    """The low-order model's contacts (``lowmodel.linear_bearing.b2b.contacts``) of the two balls of ``case``'s FE
+    module (two balls, whatever the case's ``n_balls``)."""
+    return b2b.contacts(replace(case, n_balls=2))
 
 
 def eq36_hertz(case: LinearGuideCase, ball: int, angles=None):
     """Hertz contacts (lowmodel.contact.hertz.HertzContact, arrays over BL, BR, TR, TL) of ball ``ball`` at the
     lin2017 eq 36 forces for the contact angles ``angles`` [rad] (default: the case's rigid angles), and the
     forces [N]."""
-    from ballbench.lowmodel.linear_bearing import fourpoint as rigid
-    from ballbench.lowmodel.contact import hertz
-
     angles = case.contact_angles if angles is None else np.asarray(angles)
     forces = rigid.normal_forces(case.side_force(ball), case.vertical_force, angles)
-    return hertz.solve_load(_groove_geometry(case), forces), forces
+    return hertz.solve_load(hertz.groove_geometry(case.guide), forces), forces
 
 
 def fine_ellipses(case: LinearGuideCase) -> list:
@@ -125,9 +98,7 @@ def traction_patches(model, results, normal: str = "mid"):
 def fe_informed(case: LinearGuideCase, model, results, *, normal: str = "mid", gaps=None):
     """FE-informed two-ball state (b2b_traction) from the module's solved contacts (``gaps`` [m]: the balls'
     initial gaps, None: touching)."""
-    guide = case.guide
-    return b2b_traction.solve(traction_patches(model, results, normal), ball_radius=guide.ball_radius,
-                              friction_coefficient=guide.friction_coefficient, groove_velocity=guide.groove_velocity,
+    return b2b_traction.solve(traction_patches(model, results, normal), case.guide,
                               **({} if gaps is None else {"gaps": gaps}))
 
 
@@ -149,21 +120,16 @@ def sensitivity(case: LinearGuideCase, model, results, low, contacts) -> list[tu
     (no geometric update) or under load, and with Hertz or FE ellipses: ``[(variant, F_B2B), ...]``; ``low``:
     the low-order touching state of ``contacts``."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
 
-    guide = case.guide
-    keywords = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
-                    groove_velocity=guide.groove_velocity)
     rows = [("low-order: Hertz ellipses on planes, rigid angles, eq 36 (lin2019)", float(low.b2b_force[0]))]
     hertz_planar = [b2b_traction.hertz_patches(contacts, j) for j in range(2)]
     hertz_curved = [b2b_traction.hertz_patches(contacts, j, planar=False) for j in range(2)]
     for label, patches in (("Hertz samples on planes (b2b_traction; quadrature check)", hertz_planar),
                            ("Hertz samples on the sphere (curved contact)", hertz_curved)):
-        state = b2b_traction.solve(patches, **keywords)
+        state = b2b_traction.solve(patches, case.guide)
         rows.append((label, float(state.b2b_force[0])))
     loaded = np.array([[c.contact_angle for c in r.contacts] for r in results])
-    loaded_contacts = bearing_contacts.contacts_from_forces(loaded, contacts.normal_forces, contacts.semi_major,
-                                                        contacts.b_over_a, **keywords)
+    loaded_contacts = replace(contacts, contact_angles=loaded)
     rows.append(("low-order with the FE loaded contact angles (Hertz ellipses)",
                  float(b2b.solve(loaded_contacts, [0.0]).b2b_force[0])))
     for normal in ("mid", "sphere", "contact"):

@@ -15,6 +15,9 @@ import time
 
 import numpy as np
 
+from ballbench.lowmodel.bearing_results import axial_shares, screw_states
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases.case import BallScrewCase
 from ballbench.validation.scene import KnownGap
 from ballbench.validation.studies import screw_two_ball
@@ -30,28 +33,16 @@ ANSYS_GAP = KnownGap(
     evidence="levels.csv of `ballbench validate fe-b2b-screw-b --quick` and of the default level (F_B2B per mesh "
              "level); docs/fe_b2b.md (screw half, depth table and results).")
 
-__all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "axial_shares", "hertz_ellipse", "solve_fe_level",
+__all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "hertz_ellipse", "solve_fe_level",
            "level_dofs", "fe_informed", "sensitivity", "patch_axes", "show_module"]
 
 
 def low_order(case: BallScrewCase, oversize: float | None = None):
     """(contacts, free state, touching state) of the low-order model of ``case`` at the preload ``oversize`` [m]
     (default: the screw's)."""
-    contacts = screw_two_ball.ball_contacts(case, oversize)
-    free, state = screw_two_ball.two_ball(case, oversize)
+    contacts = screw_b2b.contacts(case, oversize=oversize)
+    free, state = screw_states(case, contacts)
     return contacts, free, state
-
-
-def axial_shares(contacts, state) -> np.ndarray:
-    """(n,) N: each ball's axial load, the force of its screw contacts (SL, SR: normal + friction) along z_hat."""
-    alpha = contacts.module.lead_angle
-    z_hat = np.array([0.0, math.sin(alpha), math.cos(alpha)])
-    angles = state.contact_angle
-    sign_u, sign_w = np.array([-1.0, -1.0]), np.array([-1.0, 1.0])
-    e = np.stack([sign_u * np.cos(angles[:, :2]), np.zeros_like(angles[:, :2]), sign_w * np.sin(angles[:, :2])],
-                 axis=-1)  # (n, 2, 3) CS3, ball centre -> contact (eq 37)
-    normal = -state.normal_force[:, :2, None] * e
-    return ((normal + state.friction_force[:, :2]) @ z_hat).sum(axis=1)
 
 
 def hertz_ellipse(contacts, ball: int, forces) -> np.ndarray:
@@ -114,7 +105,7 @@ def fe_informed(case: BallScrewCase, models, results, *, normal: str = "mid", fr
     from ballbench.lowmodel.screw import b2b_traction as sbt
 
     patches = [fp.traction_patches(model, result, normal=normal) for model, result in zip(models, results)]
-    return sbt.module_b2b(patches, screw_two_ball.screw_module(case.screw), **(
+    return sbt.module_b2b(patches, screw_contacts.module(case.screw), **(
         {} if free_balls is None else {"free_balls": free_balls}))
 
 
@@ -129,7 +120,7 @@ def sensitivity(case: BallScrewCase, models, results, state, contacts, *, fit_ca
     from ballbench.lowmodel.screw import b2b_traction as sbt
     from ballbench.validation.references.screw_statics import hertz_statics
 
-    module = screw_two_ball.screw_module(case.screw)
+    module = screw_contacts.module(case.screw)
     rows = [("low-order: Hertz ellipses, eqs 34-61 (screw.b2b)", float(state.b2b_force[0]))]
     hertz = [sbt.hertz_patches(state, contacts, ball) for ball in range(2)]
     rows.append(("Hertz samples on planes (screw.b2b_traction; quadrature check)",

@@ -54,28 +54,19 @@ def _fe(case: ContactCase):
 
 
 def _pair_geometry(case: ContactCase) -> tuple[hertz.HertzGeometry, tuple, str]:
-    """Hertz geometry, the helical groove's arguments (screw pairs) and the source text of the reference."""
-    radius, material = case.ball_radius, case.material.keywords
-    load = f"{case.force:g} N"
+    """Hertz geometry (lowmodel.contact.hertz.pair_geometry), the helical groove's arguments (screw pairs) and the
+    source text of the reference."""
+    radius, load = case.ball_radius, f"{case.force:g} N"
+    geometry = hertz.pair_geometry(case)
     if case.pair == "flat":
-        return (hertz.ball_on_flat(radius, **material), (),
-                f"lowmodel.contact.hertz.ball_on_flat (R_B {radius * 1e3:g} mm, {load})")
+        return geometry, (), f"lowmodel.contact.hertz.ball_on_flat (R_B {radius * 1e3:g} mm, {load})"
     if case.pair == "ball":
-        return (hertz.ball_on_ball(radius, **material), (),
-                f"lowmodel.contact.hertz.ball_on_ball (R_B {radius * 1e3:g} mm each, {load})")
+        return geometry, (), f"lowmodel.contact.hertz.ball_on_ball (R_B {radius * 1e3:g} mm each, {load})"
     if case.pair == "groove":
-        return (hertz.ball_in_groove(radius, case.conformity, **material), (),
-                f"lowmodel.contact.hertz.ball_in_groove (conformity {case.conformity}, R_B {radius * 1e3:g} mm, "
-                f"{load})")
-    from ballbench.lowmodel.geometry import groove
-
-    screw = case.screw
-    args = (screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead, screw.nominal_angle, case.pair)
-    frame = groove.contact_frame(groove.helical_groove(*args))
-    geometry = hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
-                                     **material)
-    return (geometry, args, f"lowmodel.contact.hertz.from_curvatures of the exact helical {case.pair} frame "
-                            f"({case.name}, {load})")
+        return (geometry, (), f"lowmodel.contact.hertz.ball_in_groove (conformity {case.conformity}, R_B "
+                              f"{radius * 1e3:g} mm, {load})")
+    return (geometry, hertz.helical_pair(case), f"lowmodel.contact.hertz.from_curvatures of the exact helical "
+                                                f"{case.pair} frame ({case.name}, {load})")
 
 
 def hertz_geometry(case: ContactCase) -> hertz.HertzGeometry:

@@ -15,9 +15,10 @@ import numpy as np
 from ballbench.lowmodel import full_slip_validity as fsv
 from ballbench.lowmodel.linear_bearing import b2b_rolling as linear_rolling
 from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import lin2019, stick_slip
 from ballbench.validation.figures import rolling as figures
-from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw, screw_two_ball
+from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
 from ballbench.validation.studies.rolling_b2b import level_name, pair_compliance
 
 __all__ = ["validity_points", "write_points", "record_map", "worst_point", "worst_module", "record_worst"]
@@ -120,20 +121,18 @@ def worst_module(cells, operator_for=None, worst: stick_slip.WorstCase = stick_s
         case = _worst_guide(worst)
         guide = case.guide
         contacts = fe_b2b_linear.low_order_contacts(case)
-        balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity,
-                                               operator_for=operator_for, **STEEL.keywords) for j in range(2)]
+        balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, guide=guide, operator_for=operator_for)
+                 for j in range(2)]
         along = float((contacts.semi_major * contacts.b_over_a).max())
         across = float(contacts.semi_major.max())
-        return balls, (along, across), lambda: linear_rolling.module_b2b(
-            balls, ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
-            groove_velocity=guide.groove_velocity)
+        return balls, (along, across), lambda: linear_rolling.module_b2b(balls, guide)
     case = _worst_screw(worst)
     contacts, _, state = fe_b2b_screw.low_order(case)
     balls = [screw_rolling.hertz_contacts(state, contacts, j, cells=cells, operator_for=operator_for)
              for j in range(2)]
     along = float((state.semi_major * contacts.b_over_a).max())
     across = float(state.semi_major.max())
-    module = screw_two_ball.screw_module(case.screw)
+    module = screw_contacts.module(case.screw)
     return balls, (along, across), lambda: screw_rolling.module_b2b(balls, module)
 
 

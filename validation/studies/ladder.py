@@ -6,7 +6,7 @@ Rungs, bottom to top (:data:`RUNGS`):
 * ``analytical``: exact Hertz of the most loaded contact (lowmodel.contact.hertz); the analytical B2B model of a
   linear guide (lin2019 eq 30);
 * ``low-order``: the low-order numerical models of the balls (lowmodel.linear_bearing.b2b, lowmodel.screw.b2b):
-  loads, angles, ellipses, friction force or torque, B2B forces (studies.bearing_results);
+  loads, angles, ellipses, friction force or torque, B2B forces (lowmodel.bearing_results);
 * ``BEM``: the half-space contact on the exact gap of the most loaded contact (lowmodel.contact.halfspace; the
   helical grooves through lowmodel.contact.screw_contact), on grids of ``n x n`` cells;
 * ``EHL`` (a ball screw whose file gives a ``[lubricant]``): each distinct contact lubricated, the smooth
@@ -35,8 +35,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ballbench.lowmodel import bearing_results
 from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
-                                             ModuleFe, ModuleLevel, PairLevel)
+                                             ModuleFe, ModuleLevel, PairLevel, named)
 
 __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
             "module_fe", "hertz_values", "bem_values",
@@ -111,27 +112,16 @@ def available_memory() -> float:
 # --------------------------------------------------------------------------
 def governing_contact(case, result=None) -> ContactCase:
     """The most loaded contact of ``case`` as a :class:`ContactCase` (itself for a ContactCase): the largest normal
-    force of the low-order touching state (``result``: its studies.bearing_results result, computed when None)."""
+    force of the low-order touching state (``result``: its lowmodel.bearing_results result, computed when None;
+    lowmodel.bearing_results.most_loaded)."""
     if isinstance(case, ContactCase):
         return case
-    from ballbench.validation.studies import bearing_results
-
-    if isinstance(case, LinearGuideCase):
-        result = result or bearing_results.guide_result(case)
-        worst = max(result.contacts, key=lambda c: c.normal_force)
-        guide = case.guide
-        return ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, "
-                           f"{worst.normal_force:.4g} N)", "groove", guide.ball_radius, guide.material,
-                           worst.normal_force, conformity=guide.conformity)
-    if isinstance(case, BallScrewCase):
-        result = result or bearing_results.screw_result(case)
-        worst = max(result.contacts, key=lambda c: c.normal_force)
-        screw = case.screw
-        pair = "screw" if worst.contact.startswith("S") else "nut"
-        return ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, {pair} groove, "
-                           f"{worst.normal_force:.4g} N)", pair, screw.ball_radius, screw.material,
-                           worst.normal_force, screw=screw)
-    raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
+    if not isinstance(case, (LinearGuideCase, BallScrewCase)):
+        raise TypeError(f"a case is a ContactCase, LinearGuideCase or BallScrewCase, got {type(case).__name__}")
+    worst, contact = bearing_results.most_loaded(case, result)
+    where = "" if isinstance(case, LinearGuideCase) else f", {contact.pair} groove"
+    return named(contact, f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}{where}, "
+                          f"{worst.normal_force:.4g} N)")
 
 
 @dataclass(frozen=True)
@@ -151,7 +141,7 @@ class DistinctContact:
 def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple[DistinctContact, ...]:
     """The distinct contact geometries of ``case``, each at the largest normal force among its contacts, the most
     loaded first.  ``frictionless`` (a ball screw): the loads of the frictionless statics of its balls at its axial
-    load (studies.bearing_results.screw_frictionless_contacts; two-point contact past the preload loss) instead of
+    load (lowmodel.bearing_results.screw_frictionless_contacts; two-point contact past the preload loss) instead of
     lin2019's friction model's state (``result``), for the contact rung where that model has no state
     (docs/ball_screw.md, "Preload loss").
 
@@ -165,15 +155,10 @@ def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple
                          f"{type(case).__name__}")
     if isinstance(case, ContactCase):
         return (DistinctContact("contact", case, (case.name,), "the case file's own contact"),)
-    from ballbench.validation.studies import bearing_results
-
     if isinstance(case, LinearGuideCase):
         result = result or bearing_results.guide_result(case)
         guide = case.guide
-        worst = max(result.contacts, key=lambda c: c.normal_force)
-        contact = ContactCase(f"{case.name}: most loaded contact (ball {worst.ball} {worst.contact}, "
-                              f"{worst.normal_force:.4g} N)", "groove", guide.ball_radius, guide.material,
-                              worst.normal_force, conformity=guide.conformity)
+        contact = governing_contact(case, result)
         members = tuple(f"ball {c.ball} {c.contact}" for c in result.contacts)
         return (DistinctContact("groove", contact, members,
                                 f"rail (BL, BR) and carriage (TL, TR) grooves have the one conformity "
@@ -192,9 +177,9 @@ def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple
             worst = max(side, key=lambda c: c.normal_force)
             if not worst.normal_force > 0:
                 continue  # no loaded contact on this side: nothing to run
-            contact = ContactCase(f"{case.name}: most loaded {pair}-side contact (ball {worst.ball} {worst.contact},"
-                                  f" {worst.normal_force:.4g} N{words})", pair, screw.ball_radius, screw.material,
-                                  worst.normal_force, screw=screw)
+            contact = named(screw.contact(pair, worst.normal_force),
+                            f"{case.name}: most loaded {pair}-side contact (ball {worst.ball} {worst.contact}, "
+                            f"{worst.normal_force:.4g} N{words})")
             found.append(DistinctContact(f"{pair} side", contact, tuple(f"ball {c.ball} {c.contact}" for c in side),
                                          f"the {pair}-side contacts share the {pair} groove's curvatures (the "
                                          f"screw's conformity, pitch radius {screw.pitch_radius * 1e3:.4g} mm); "
@@ -256,7 +241,6 @@ def module_fe(case, result=None):
     slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max."""
     if case.fe is not None:
         return case
-    from ballbench.validation.studies import bearing_results
 
     if isinstance(case, LinearGuideCase):
         result = result or bearing_results.guide_result(case)

@@ -21,12 +21,15 @@ from functools import lru_cache
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import rolling
+from ballbench.lowmodel.bearing_results import axial_shares
 from ballbench.lowmodel.linear_bearing import b2b as linear_b2b
+from ballbench.lowmodel.linear_bearing import b2b_analytical
 from ballbench.lowmodel.linear_bearing import b2b_rolling as linear_rolling
 from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import FIDELITIES, lin2019, stick_slip
 from ballbench.validation.references.published import lin2019 as printed
-from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw, screw_two_ball
+from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
 from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["Rung", "linear_ladder", "screw_ladder", "record_ladder", "pair_compliance", "compliance",
@@ -134,11 +137,9 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
     module_case, guide, levels = lin2019.TABLE3[case], lin2019.GUIDE, stick_slip.LINEAR
     contacts = fe_b2b_linear.low_order_contacts(module_case)
     linear_b2b.solve(contacts, [0.0])  # the friction map's disk cache, outside the timed calls
-    common = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
-                  groove_velocity=guide.groove_velocity)
     if case == "a":
         start = time.perf_counter()
-        analytical = fe_b2b_linear.analytical(module_case)
+        analytical = b2b_analytical.from_case(module_case)
         rungs.append(Rung("lowmodel.linear_bearing.b2b_analytical", "analytical", "", float(analytical.b2b_force),
                           math.nan, time.perf_counter() - start))
     start = time.perf_counter()
@@ -149,12 +150,11 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
                       100.0 * friction_increase(low, free), seconds))
     cells = levels.hertz_cells.checked(level)
     start = time.perf_counter()
-    balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, conformity=guide.conformity, **STEEL.keywords)
+    balls = [linear_rolling.hertz_contacts(contacts, j, cells=cells, guide=guide)
              for j in range(2)]
-    result = linear_rolling.module_b2b(balls, **common)
+    result = linear_rolling.module_b2b(balls, guide)
     seconds = time.perf_counter() - start
-    check = linear_rolling.b2b_contact_check(result.touching, ball_radius=guide.ball_radius,
-                                             friction_coefficient=guide.friction_coefficient, **STEEL.keywords)
+    check = linear_rolling.b2b_contact_check(result.touching, guide=guide)
     rungs.append(rolling_rung("b2b_rolling stick/slip, Hertz + half-space", "BEM", level_name(cells), result, seconds,
                               check))
     if not with_fe:
@@ -172,9 +172,8 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
                       fe_s + time.perf_counter() - start, power_balance=float(full.power_balance)))
     samples = [pressure_samples(model, r) for r in results]
     start = time.perf_counter()
-    balls = [linear_rolling.sampled_contacts(s, ball_radius=guide.ball_radius, conformity=guide.conformity,
-                                             cells=cells, **STEEL.keywords) for s in samples]
-    result = linear_rolling.module_b2b(balls, **common)
+    balls = [linear_rolling.sampled_contacts(s, guide=guide, cells=cells) for s in samples]
+    result = linear_rolling.module_b2b(balls, guide)
     rungs.append(rolling_rung("b2b_rolling stick/slip, FE pressure + half-space", "FE-informed",
                               f"h {h_um:.0f} um, {level_name(cells)}", result, fe_s + time.perf_counter() - start))
     for compliance_level in progress(levels.compliance[level], desc="FE compliance levels"):
@@ -182,10 +181,9 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
         operator = fe_compliance.operator()
         start = time.perf_counter()
         for label, op in (("FE compliance", operator), ("half-space, FE compliance grid", None)):
-            balls = [linear_rolling.sampled_contacts(s, ball_radius=guide.ball_radius, conformity=guide.conformity,
-                                                     grid=grid, operator=op, outside=levels.outside,
-                                                     **STEEL.keywords) for s in samples]
-            result = linear_rolling.module_b2b(balls, **common)
+            balls = [linear_rolling.sampled_contacts(s, guide=guide, grid=grid, operator=op, outside=levels.outside)
+                     for s in samples]
+            result = linear_rolling.module_b2b(balls, guide)
             family = "FE-informed"
             rungs.append(rolling_rung(f"b2b_rolling stick/slip, FE pressure + {label}", family,
                                       f"h {h_um:.0f} um, {level_name(compliance_level)}, "
@@ -202,7 +200,7 @@ def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_f
     start = time.perf_counter()
     contacts, free, state = fe_b2b_screw.low_order(module_case)
     seconds = time.perf_counter() - start
-    module = screw_two_ball.screw_module(module_case.screw)
+    module = screw_contacts.module(module_case.screw)
     rungs.append(Rung("lowmodel.screw.b2b", "low-order numerical", "", float(state.b2b_force[0]),
                       100.0 * friction_increase(state, free), seconds))
     cells = levels.hertz_cells.checked(level)
@@ -216,7 +214,7 @@ def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_f
     fe_level = module_case.fe.levels.checked(level)
     start = time.perf_counter()
     models, results, _ = fe_b2b_screw.solve_fe_level(module_case, fe_level,
-                                                     fe_b2b_screw.axial_shares(contacts, state))
+                                                     axial_shares(contacts, state))
     fe_s = time.perf_counter() - start
     h_um = fe_level.h_contact * 1e6
     start = time.perf_counter()

@@ -1,50 +1,30 @@
-"""The ball-screw B2B module of lin2019 Sec 3.3 from a :class:`BallScrewCase`: balls free and touching, the
-friction increase, and the preload fitted on a printed B2B force.
+"""The ball-screw B2B module of lin2019 Sec 3.3 from a :class:`BallScrewCase`: the friction increase in the paper's
+percent, and the preload fitted on a printed B2B force.
 
-Models: lowmodel.screw.ball (eqs 34-55), lowmodel.screw.b2b (eqs 56-61).  Two readings the paper
-leaves open (docs/ball_screw.md): the preload (Table 4 gives none: the oversize is fitted, :func:`fit_oversize`)
-and the deviation (the case's ``reading``).
+The models are lowmodel's: the balls' contacts ``lowmodel.screw.b2b.contacts(case)`` (eqs 34-53), their free and
+touching states ``lowmodel.bearing_results.screw_states`` (eqs 54-61).  Two readings the paper leaves open
+(docs/ball_screw.md): the preload (Table 4 gives none: the oversize is fitted, :func:`fit_oversize`) and the
+deviation (the case's ``reading``).
 """
 from __future__ import annotations
 
 from functools import lru_cache
 
-import numpy as np
+from scipy.optimize import brentq
 
+from ballbench.lowmodel.bearing_results import screw_states
 from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import contacts as screw_contacts
-from ballbench.validation.cases.case import BallScrew, BallScrewCase
 from ballbench.lowmodel.state import friction_increase as increase_fraction
+from ballbench.validation.cases.case import BallScrewCase
 
-__all__ = ["screw_module", "ball_contacts", "two_ball", "friction_increase", "fit_oversize"]
-
-
-def screw_module(screw: BallScrew, oversize: float | None = None) -> screw_contacts.ScrewModule:
-    """The low-order module of ``screw`` with the preload ``oversize`` [m] (default: the screw's own)."""
-    screw.need("conformity", "material", "friction_coefficient", "nut_speed",
-               by="the ball-screw module (lowmodel.screw.ball)")
-    return screw_contacts.screw_module(ball_radius=screw.ball_radius, conformity=screw.conformity,
-                                   pitch_radius=screw.pitch_radius, lead=screw.lead,
-                                   nominal_angle=screw.nominal_angle, nut_speed=screw.nut_speed,
-                                   friction_coefficient=screw.friction_coefficient,
-                                   oversize=screw.oversize if oversize is None else oversize,
-                                   **screw.material.keywords)
-
-
-def ball_contacts(case: BallScrewCase, oversize: float | None = None, reading: str | None = None,
-                  contact_law=None) -> screw_contacts.BallContacts:
-    """Contacts of the case's balls (lowmodel.screw.ball.ball_contacts); ``contact_law``: calibrated laws
-    of the grooves (:class:`screw_contacts.GrooveContactLaws`), None: Hertz."""
-    return screw_contacts.ball_contacts(screw_module(case.screw, oversize), np.array(case.deviations),
-                                    reading=case.reading if reading is None else reading, contact_law=contact_law)
+__all__ = ["two_ball", "friction_increase", "fit_oversize"]
 
 
 def two_ball(case: BallScrewCase, oversize: float | None = None, reading: str | None = None, contact_law=None):
-    """(free balls, touching balls) of ``case`` at the preload ``oversize`` [m] (default: the screw's)."""
-    contacts = ball_contacts(case, oversize, reading, contact_law)
-    free = screw_b2b.solve(contacts, case.axial_load, with_b2b=False)
-    state = screw_b2b.solve(contacts, case.axial_load)
-    return free, state
+    """(free balls, touching balls) of ``case`` at the preload ``oversize`` [m] (default: the screw's), the deviation
+    ``reading`` (default: the case's) and the calibrated ``contact_law`` of the grooves (None: Hertz)."""
+    contacts = screw_b2b.contacts(case, oversize=oversize, reading=reading, contact_law=contact_law)
+    return screw_states(case, contacts)
 
 
 def friction_increase(free, state) -> float:
@@ -56,7 +36,5 @@ def friction_increase(free, state) -> float:
 def fit_oversize(case: BallScrewCase, b2b_force: float, reading: str | None = None, contact_law=None) -> float:
     """Preload (oversize [m]) at which the touching balls of ``case`` press on each other with ``b2b_force`` [N]
     (brentq on [1e-6, 3e-6] m, xtol 1e-12 m; the fit of cases.lin2019.OVERSIZE_FIT)."""
-    from scipy.optimize import brentq
-
     return float(brentq(lambda oversize: two_ball(case, oversize, reading, contact_law)[1].b2b_force[0] - b2b_force,
                         1.0e-6, 3.0e-6, xtol=1e-12))

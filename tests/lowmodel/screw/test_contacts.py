@@ -3,6 +3,8 @@ import math
 
 import numpy as np
 import pytest
+
+from ballbench.lowmodel import checks
 from ballbench.lowmodel.screw import b2b as b2b
 from ballbench.lowmodel.screw import b2b_traction as traction
 from ballbench.lowmodel.screw import ball as sb
@@ -21,8 +23,11 @@ def table():
 
 @pytest.mark.filterwarnings("error")
 def test_screw_module_refuses_a_lead_angle_of_90_degrees():
-    """lead = 1e300 m was accepted; ball_contacts then failed naming ``lead_angle``, not a parameter it has."""
-    with pytest.raises(ValueError, match="lead must give a lead angle below pi/2"):
+    """lead = 1e300 m was accepted; ball_contacts then failed naming ``lead_angle``, not a parameter it has.  The
+    plausible range of a lead (lowmodel.bearing) refuses it first; past it (a limit study) the module's own check."""
+    with pytest.raises(ValueError, match=r"lead must lie in \[0, 0.5\] m \(the plausible range"):
+        screw_contacts.screw_module(lead=1e300)
+    with checks.beyond_plausible(), pytest.raises(ValueError, match="lead must give a lead angle below pi/2"):
         screw_contacts.screw_module(lead=1e300)
 
 

@@ -175,7 +175,7 @@ def test_lubricated_guide_ehl_scene_at_quick(tmp_path):
     loaded of the low-order balls) at its load and its ball's entrainment speed; every self-check met (load balance,
     p >= 0, grid change within 5 % against 64 x 16), Hamrock-Dowson judged within its 15 %."""
     from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
-    from ballbench.validation.studies import bearing_results
+    from ballbench.lowmodel import bearing_results
 
     case = _guide(speed="2 m/s", load="5 N", conformity="0.54")
     assert "g-ehl" in case_scenes.scene_names(case, "g")

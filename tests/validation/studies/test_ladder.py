@@ -9,7 +9,8 @@ import pytest
 
 from ballbench.validation import cli
 from ballbench.validation.cases import case_file
-from ballbench.validation.studies import bearing_results, ladder
+from ballbench.lowmodel import bearing_results
+from ballbench.validation.studies import ladder
 from tests import paths
 
 
@@ -37,11 +38,11 @@ def test_a_screw_has_a_screw_side_and_a_nut_side_each_at_its_largest_load():
 def test_the_frictionless_loads_of_a_screw_are_the_largest_of_its_frictionless_statics():
     # the contact rung's loads past the preload loss (lowmodel.screw.preload.frictionless_statics), per side
     from ballbench.lowmodel.screw import preload
-    from ballbench.validation.studies import screw_two_ball
+    from ballbench.lowmodel.screw import b2b as screw_b2b
 
     case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
     distinct = ladder.distinct_contacts(case, frictionless=True)
-    state = preload.frictionless_statics(screw_two_ball.ball_contacts(case), case.axial_load)
+    state = preload.frictionless_statics(screw_b2b.contacts(case), case.axial_load)
     largest = {"screw": state.normal_force[:, :2].max(), "nut": state.normal_force[:, 2:].max()}
     assert {d.contact.pair: d.contact.force for d in distinct} == largest
     assert all("frictionless" in d.contact.name and "lowmodel.screw.preload" in d.why for d in distinct)
@@ -221,7 +222,8 @@ def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypat
     from ballbench.lowmodel.contact import rolling
     from ballbench.validation import case_scenes
     from ballbench.validation.runner import run_scenes
-    from ballbench.validation.studies import bearing_results, case_stick_slip, rolling_b2b
+    from ballbench.lowmodel.linear_bearing import b2b
+    from ballbench.validation.studies import case_stick_slip, rolling_b2b
 
     calls = []
 
@@ -241,7 +243,7 @@ def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypat
     assert case.guide.material.youngs_modulus == 200e9
     assert case_stick_slip.COMPLIANCE["quick"] == ()
     (rung,) = case_stick_slip.compliance_rungs(case, "default")
-    contacts = bearing_results.guide_contacts(case)
+    contacts = b2b.contacts(case)
     along = float((contacts.semi_major * contacts.b_over_a).max())
     (call,) = calls
     assert call[:2] == (case.guide.ball_radius, case.guide.conformity) and call[7] == (200e9, case.guide.material

@@ -1,0 +1,281 @@
+"""What an engineer reads of a load case (:mod:`lowmodel.bearing`): per ball and contact the loads, angles, Hertz
+ellipses and pressures; the carriage friction force [N] of a linear guide or the friction torque [N m] of a ball
+screw, with and without ball-to-ball (B2B) contact, the friction increase and the B2B forces.  Plain frozen
+dataclasses in SI units (``to_dataset()`` gives an xarray Dataset), computed by the low-order numerical models:
+
+* linear guide: ``lowmodel.linear_bearing.b2b`` (lin2019 eqs 1-10; contacts by lin2017 eq 36 with Hertz ellipses);
+  the friction force of the carriage is the power its drive puts in over its speed, ``F = P_in / |v|`` (at
+  equilibrium ``P_in`` equals the friction losses, lin2019 eq 7);
+* ball screw: ``lowmodel.screw.b2b`` (lin2019 eqs 34-61); the nut drives, the screw is at rest, and the friction
+  torque is ``T = P_in / |omega_N|``.
+
+"Free" is the state with the balls apart (no B2B contact), "touching" the state with every neighbouring pair in
+contact; the friction increase is ``P_touching / P_free - 1`` (lin2019 Fig 9c, Table 5).  The numbers are those of
+the balls of the case (the two-ball module of lin2019), not of a whole carriage or nut: a carriage of N balls
+carries N / n_balls such modules if its balls are loaded alike.
+
+The front door of ``import ballbench`` (docs/your_own_bearing.md): :func:`friction` (the results above) and
+:func:`contact` (exact Hertz of a contact, or of the most loaded contact of a guide or screw)::
+
+    import ballbench
+    case = ballbench.load_case("my_guide.toml")   # a lowmodel.bearing load case (with the validation's name and FE)
+    ballbench.friction(case).friction_force       # [N]
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ballbench.lowmodel.bearing import ContactLoadCase, GuideLoadCase, ScrewLoadCase
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import preload
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
+
+__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "friction", "contact", "most_loaded", "guide_result",
+           "screw_states", "screw_result", "axial_shares", "screw_frictionless_contacts"]
+
+
+@dataclass(frozen=True)
+class ContactLoad:
+    """One ball-raceway contact of the touching state: ``ball`` (1-based), ``contact`` (BL, BR, TR, TL or SL, SR,
+    NR, NL), ``normal_force`` [N], ``contact_angle`` [rad], Hertz semi-axes ``a``, ``b`` [m], maximum pressure
+    ``p0`` [Pa] (``3 F / (2 pi a b)``), ``approach`` [m]."""
+
+    ball: int
+    contact: str
+    normal_force: float
+    contact_angle: float
+    a: float
+    b: float
+    p0: float
+    approach: float
+
+
+def _table(contacts) -> list[dict]:
+    return [asdict(c) for c in contacts]
+
+
+def _dataset(contacts, names, attrs: dict):
+    import xarray as xr
+
+    balls = sorted({c.ball for c in contacts})
+    data = {}
+    for field in ("normal_force", "contact_angle", "a", "b", "p0", "approach"):
+        grid = np.full((len(balls), len(names)), np.nan)
+        for c in contacts:
+            grid[balls.index(c.ball), names.index(c.contact)] = getattr(c, field)
+        data[field] = (("ball", "contact"), grid)
+    return xr.Dataset(data, coords={"ball": balls, "contact": list(names)}, attrs=attrs)
+
+
+@dataclass(frozen=True)
+class GuideResult:
+    """A linear guide's balls touching and free (see the module docstring); SI units."""
+
+    case: str
+    model: str
+    contacts: tuple[ContactLoad, ...]
+    b2b_forces: tuple[float, ...]             # [N] between balls j and j+1
+    friction_force_free: float                # [N] carriage friction force, balls apart
+    friction_force: float                     # [N] carriage friction force, balls touching
+    power_free: float                         # [W]
+    power: float                              # [W]
+    velocity_deviation_free: tuple[float, ...]  # epsilon = 2 v_B / v - 1 of each free ball (lin2019 eq 21)
+
+    @property
+    def friction_increase(self) -> float:
+        """``F_touching / F_free - 1`` [-] (lin2019 Fig 9c)."""
+        return self.friction_force / self.friction_force_free - 1.0
+
+    def table(self) -> list[dict]:
+        """One dict per contact (ball, contact, normal_force, contact_angle, a, b, p0, approach; SI)."""
+        return _table(self.contacts)
+
+    def to_dataset(self):
+        """The contacts as an xarray Dataset (dims ball, contact) with the scalars as attributes."""
+        return _dataset(self.contacts, GUIDE_CONTACTS, {
+            "case": self.case, "model": self.model, "friction_force_N": self.friction_force,
+            "friction_force_free_N": self.friction_force_free, "friction_increase": self.friction_increase,
+            "b2b_forces_N": list(self.b2b_forces)})
+
+
+@dataclass(frozen=True)
+class ScrewResult:
+    """A ball screw's balls touching and free (see the module docstring); SI units."""
+
+    case: str
+    model: str
+    contacts: tuple[ContactLoad, ...]
+    b2b_forces: tuple[float, ...]             # [N]
+    friction_torque_free: float               # [N m] on the nut, balls apart
+    friction_torque: float                    # [N m] on the nut, balls touching
+    power_free: float                         # [W]
+    power: float                              # [W]
+    axial_shares: tuple[float, ...]           # [N] axial load carried by each ball (touching)
+
+    @property
+    def friction_increase(self) -> float:
+        """``T_touching / T_free - 1`` [-] (lin2019 Table 5's friction increase / 100)."""
+        return self.friction_torque / self.friction_torque_free - 1.0
+
+    def table(self) -> list[dict]:
+        return _table(self.contacts)
+
+    def to_dataset(self):
+        return _dataset(self.contacts, SCREW_CONTACTS, {
+            "case": self.case, "model": self.model, "friction_torque_Nm": self.friction_torque,
+            "friction_torque_free_Nm": self.friction_torque_free, "friction_increase": self.friction_increase,
+            "b2b_forces_N": list(self.b2b_forces)})
+
+
+def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
+    """:class:`GuideResult` of a :class:`lowmodel.bearing.GuideLoadCase` by the low-order numerical model (solved
+    here unless the states are given: ``contacts`` of ``b2b.contacts``, ``touching`` and ``free`` of
+    ``b2b.solve``)."""
+    guide = case.guide
+    if contacts is None:
+        contacts = b2b.contacts(case)
+    gaps_touching = np.zeros(case.n_balls - 1)
+    if touching is None:
+        touching = b2b.solve(contacts, gaps_touching)
+    if free is None:
+        free = b2b.solve(contacts, np.full(case.n_balls - 1, 1e-3))
+    constant = hertz.hertz_constant(hertz.groove_geometry(guide))
+    rows = []
+    forces, angles = contacts.normal_forces, contacts.contact_angles
+    a = contacts.semi_major
+    b = a * contacts.b_over_a
+    for ball in range(contacts.normal_forces.shape[0]):
+        for i, name in enumerate(GUIDE_CONTACTS):
+            f = float(forces[ball, i])
+            rows.append(ContactLoad(ball + 1, name, f, float(angles[ball, i]), float(a[ball, i]), float(b[ball, i]),
+                                    1.5 * f / (math.pi * float(a[ball, i]) * float(b[ball, i])),
+                                    constant * f ** (2.0 / 3.0)))
+    speed = abs(guide.groove_velocity)
+    return GuideResult(_name(case), "lowmodel.linear_bearing.b2b", tuple(rows),
+                       tuple(float(x) for x in touching.b2b_force), free.input_power / speed,
+                       touching.input_power / speed, float(free.input_power), float(touching.input_power),
+                       tuple(float(x) for x in free.velocity_deviation))
+
+
+def screw_states(case, contacts=None):
+    """(free balls, touching balls) of a :class:`lowmodel.bearing.ScrewLoadCase` by ``screw.b2b.solve`` at the
+    case's axial load (``contacts``: default ``screw.b2b.contacts(case)``)."""
+    if contacts is None:
+        contacts = screw_b2b.contacts(case)
+    free = screw_b2b.solve(contacts, case.axial_load, with_b2b=False)
+    touching = screw_b2b.solve(contacts, case.axial_load)
+    return free, touching
+
+
+def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
+    """:class:`ScrewResult` of a :class:`lowmodel.bearing.ScrewLoadCase` by the low-order numerical model (solved
+    here unless the states are given, as :func:`screw_states` returns them)."""
+    if contacts is None:
+        contacts = screw_b2b.contacts(case)
+    if touching is None or free is None:
+        free, touching = screw_states(case)
+    a = touching.semi_major
+    rows = _screw_rows(touching.normal_force, touching.contact_angle, a, a * contacts.b_over_a, touching.approach)
+    speed = abs(case.screw.nut_speed)
+    shares = axial_shares(contacts, touching)
+    return ScrewResult(_name(case), "lowmodel.screw.b2b", tuple(rows), tuple(float(x) for x in touching.b2b_force),
+                       free.input_power / speed, touching.input_power / speed, float(free.input_power),
+                       float(touching.input_power), tuple(float(x) for x in shares))
+
+
+def axial_shares(contacts, state) -> np.ndarray:
+    """(n,) N: each ball's axial load, the force of its screw contacts (SL, SR: normal + friction) along the screw
+    axis ``z_hat`` (lin2019 eqs 37, 42, 55), of a ``screw.b2b.solve`` ``state`` on ``contacts``."""
+    alpha = contacts.module.lead_angle
+    z_hat = np.array([0.0, math.sin(alpha), math.cos(alpha)])
+    angles = state.contact_angle
+    sign_u, sign_w = np.array([-1.0, -1.0]), np.array([-1.0, 1.0])
+    e = np.stack([sign_u * np.cos(angles[:, :2]), np.zeros_like(angles[:, :2]), sign_w * np.sin(angles[:, :2])],
+                 axis=-1)  # (n, 2, 3) CS3, ball centre -> contact (eq 37)
+    normal = -state.normal_force[:, :2, None] * e
+    return ((normal + state.friction_force[:, :2]) @ z_hat).sum(axis=1)
+
+
+def screw_frictionless_contacts(case) -> tuple[ContactLoad, ...]:
+    """The contacts of a :class:`lowmodel.bearing.ScrewLoadCase`'s balls by the frictionless statics at the case's
+    axial load (lowmodel.screw.preload.frictionless_statics: exact flank arcs, Hertz's law lin2019 eq 53, contacts
+    unload; below or past the preload loss), not lin2019's friction model: per ball and contact the normal force, the
+    actual contact angle (eq 37), the Hertz semi-axes and maximum pressure of the same Hertz solution as the statics'
+    ``C_i`` (at the flank's contact angle, lowmodel.screw.contacts) and the approach (not positive: the contact is
+    open)."""
+    contacts = screw_b2b.contacts(case)
+    state = preload.frictionless_statics(contacts, case.axial_load)
+    a = contacts.semi_major_unit * np.cbrt(state.normal_force)
+    return tuple(_screw_rows(state.normal_force, state.contact_angle, a, a * contacts.b_over_a, state.approach))
+
+
+def _name(case) -> str:
+    """The name a result carries: the case's own (a validation case has one), else its kind."""
+    return getattr(case, "name", None) or type(case).__name__
+
+
+def _screw_rows(forces, angles, a, b, approaches) -> list[ContactLoad]:
+    """ContactLoad rows (SL, SR, NR, NL of each ball) of (n, 4) normal forces [N], contact angles [rad], semi-axes
+    a, b [m] and approaches [m]; p0 = 1.5 F / (pi a b) (Hertz), 0 where the contact carries no load."""
+    rows = []
+    for ball in range(forces.shape[0]):
+        for i, name in enumerate(SCREW_CONTACTS):
+            f = float(forces[ball, i])
+            area = math.pi * float(a[ball, i]) * float(b[ball, i])
+            rows.append(ContactLoad(ball + 1, name, f, float(angles[ball, i]), float(a[ball, i]), float(b[ball, i]),
+                                    1.5 * f / area if f > 0 else 0.0, float(approaches[ball, i])))
+    return rows
+
+
+# --------------------------------------------------------------------------
+# the front door
+# --------------------------------------------------------------------------
+def friction(case) -> GuideResult | ScrewResult:
+    """What an engineer reads of a linear guide or ball screw load case (:class:`lowmodel.bearing.GuideLoadCase`,
+    :class:`lowmodel.bearing.ScrewLoadCase`, or a case file's case, which is one): per ball and contact the loads,
+    angles, Hertz ellipses and pressures; the carriage friction force [N] (:class:`GuideResult`) or the friction
+    torque on the nut [N m] (:class:`ScrewResult`) with and without ball-to-ball contact, the friction increase and
+    the B2B forces, by the low-order numerical models (``.to_dataset()`` gives xarray)."""
+    if isinstance(case, GuideLoadCase):
+        return guide_result(case)
+    if isinstance(case, ScrewLoadCase):
+        return screw_result(case)
+    raise TypeError(f"friction takes a GuideLoadCase or ScrewLoadCase (lowmodel.bearing; a case file's "
+                    f"LinearGuideCase or BallScrewCase is one), got {type(case).__name__}")
+
+
+def most_loaded(case, result: GuideResult | ScrewResult | None = None, *,
+                pair: str | None = None) -> tuple[ContactLoad, ContactLoadCase]:
+    """The most loaded contact of a guide or screw load case: its row of the low-order touching state (``result``:
+    :func:`friction`'s, computed when None) and that contact as a :class:`lowmodel.bearing.ContactLoadCase` at its
+    normal force (a guide's groove; a screw's screw or nut flank).  ``pair`` (a screw): ``"screw"`` or ``"nut"``,
+    the most loaded contact of that side."""
+    result = result or friction(case)
+    rows = result.contacts
+    if pair is not None:
+        if not isinstance(case, ScrewLoadCase):
+            raise ValueError(f"pair selects a side of a ball screw's contacts, not of a {type(case).__name__}")
+        rows = [c for c in rows if c.contact.startswith(pair[0].upper())]
+    worst = max(rows, key=lambda c: c.normal_force)
+    if isinstance(case, GuideLoadCase):
+        return worst, case.guide.contact(worst.normal_force)
+    side = "screw" if worst.contact.startswith("S") else "nut"
+    return worst, case.screw.contact(side, worst.normal_force)
+
+
+def contact(case) -> hertz.HertzContact:
+    """Exact Hertz (``lowmodel.contact.hertz.HertzContact``: a, b, p0, approach in SI) of a
+    :class:`lowmodel.bearing.ContactLoadCase`, or of the most loaded contact (:func:`most_loaded`) of a linear guide
+    or ball screw load case."""
+    if not isinstance(case, ContactLoadCase):
+        if not isinstance(case, (GuideLoadCase, ScrewLoadCase)):
+            raise TypeError(f"contact takes a ContactLoadCase, GuideLoadCase or ScrewLoadCase (lowmodel.bearing), "
+                            f"got {type(case).__name__}")
+        case = most_loaded(case)[1]
+    return hertz.solve_load(hertz.pair_geometry(case), case.force)
