@@ -183,7 +183,7 @@ def test_killed_sweep_restarts_with_the_missing_cases_only(helpers, tmp_path):
 
 
 def test_example_specs_parse_and_match_the_scene():
-    from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
+    from ballbench.validation.sweep.functions import EQUIVALENCE_SPEC
 
     from ballbench.validation.cases.case_file import kind_of
 
@@ -219,6 +219,20 @@ def test_cli_reports_spec_errors_as_messages(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text('name = "b"\nfunction = "math:hypot"\noutputs = ["x"]\nchunk_size = 0\n')
     assert "chunk_size must be an integer >= 1" in one_error_line(capsys, cli.main(["sweep", str(bad), "--serial"]))
+
+
+def test_a_spec_naming_the_old_module_of_the_case_functions_is_told_the_new_one(tmp_path, capsys):
+    """The case functions moved from validation/sweep_cases.py to validation/sweep/functions.py: a spec that still
+    names the old module is a wrong use whose message gives the new path (no alias module)."""
+    from ballbench.validation import cli
+    from tests.cli_support import one_error_line
+
+    old = tmp_path / "old.toml"
+    old.write_text('name = "o"\nfunction = "ballbench.validation.sweep_cases:two_ball_numerical"\n'
+                   'outputs = ["b2b_force"]\n')
+    line = one_error_line(capsys, cli.main(["sweep", str(old), "--serial", "--out", str(tmp_path / "out")]))
+    assert 'function = "ballbench.validation.sweep.functions:two_ball_numerical"' in line
+    assert not (tmp_path / "out").exists()
 
 
 def test_gridded_sweep_lands_in_a_zarr_dataset_and_resumes_the_missing_cases(helpers, tmp_path, monkeypatch):

@@ -98,7 +98,7 @@ def _b2b_force_with_psi(psi: float, case) -> tuple[float, float]:
     """F_B2B [N] of the linear-guide ``case`` with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (lin2019 eq 15):
     (analytical eq 30, low-order numerical eqs 4-10)."""
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
-    from ballbench.validation.sweep_cases import with_psi
+    from ballbench.validation.sweep.functions import with_psi
 
     guide = case.guide
     analytical = b2b_analytical.two_ball_case(case.theta, case.side_force_ratio, normal_load=case.vertical_force,

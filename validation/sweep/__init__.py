@@ -13,7 +13,7 @@ seeded random draws) and the outputs to keep (docs/sweeps.md).  Modules:
 Spec (TOML)::
 
     name = "lin2019-fig8-9"
-    function = "ballbench.validation.sweep_cases:two_ball_numerical"
+    function = "ballbench.validation.sweep.functions:two_ball_numerical"
     vectorised = false          # true: one call per chunk with arrays (the function broadcasts)
     chunk_size = 200
     outputs = ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"]
