@@ -42,7 +42,7 @@ import numpy as np
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel import checks
 from ballbench.validation.cases import lin2019
-from ballbench.validation.specs import read_toml
+from ballbench.validation.cases.toml_files import read_toml
 
 __all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
            "contact_law", "fe_contact_law", "fe_contact_scenes", "case_contact", "run_spec", "check_spec",

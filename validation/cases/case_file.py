@@ -1,7 +1,7 @@
 """Case files: a linear guide, a ball screw or a single contact as TOML, read into the Case types (SI).
 
 Every quantity carries its unit (``"3.175 mm"``, ``"2 deg"``, ``"500 N"``, ``{ value = 3.175, unit = "mm" }``;
-validation.units).  The whole file is checked before any work: an unknown key (with "did you mean"), a missing
+validation.cases.units).  The whole file is checked before any work: an unknown key (with "did you mean"), a missing
 one, a unit of the wrong dimension or a missing unit, a value outside its physical range (a conformity of 0.5, a
 negative load) or outside the plausible range of real bearings (a radius of metres, an elastic modulus of Pa:
 lowmodel.checks.PLAUSIBLE); a :class:`CaseFileError` names the file, the line, the key and the range.
@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ballbench.lowmodel import checks
-from ballbench.validation import units
+from ballbench.validation.cases import units
 from ballbench.validation.cases.case import (FINE_ZONES, PAIRS, READINGS, BallScrew, BallScrewCase, ContactCase,
                                              ContactFe, Fit, LinearGuide, LinearGuideCase, Lubricant, Material,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
@@ -40,7 +40,7 @@ class CaseFileError(ValueError):
 
 @dataclass(frozen=True)
 class Key:
-    """One key of a case file: its dimension (validation.units), what it is, whether it is required, the check of
+    """One key of a case file: its dimension (validation.cases.units), what it is, whether it is required, the check of
     its value (``"positive"``, ``"non-negative"``, ``"conformity"``, ``"contact angle"``, ``"poisson"``,
     ``"count"``, ``"choice"``, ``"deviation"``, ``"text"``, ``"fraction"``), the plausible range it must lie in
     (a key of lowmodel.checks.PLAUSIBLE), its example value in the template, and alternatives (another key that
