@@ -17,9 +17,10 @@ import sys
 from pathlib import Path
 
 from ballbench import __version__
-from ballbench.validation import calibrate, sweep
+from ballbench.validation import sweep
 from ballbench.validation.cases.case_file import KINDS as CASE_KINDS
 from ballbench.validation.scene import registry
+from ballbench.validation.studies.calibration import command as calibrate_command
 from ballbench.validation.studies.ladder import RUNGS
 
 from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
@@ -443,7 +444,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the scenes on an existing dask scheduler, e.g. tcp://127.0.0.1:8786 (workers started "
                         "with --nthreads 1, sharing this file system)")
-    calibrate.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
+    calibrate_command.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
     p.set_defaults(func=_cmd_validate)
 
     p = sub.add_parser("show", help="pictures of an FE scene's saved fields",
@@ -463,7 +464,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_init)
 
     sweep.add_parser(sub)  # ballbench sweep SPEC.toml (docs/sweeps.md)
-    calibrate.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)
+    calibrate_command.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)
     return parser
 
 

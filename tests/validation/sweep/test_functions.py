@@ -52,14 +52,14 @@ def test_example_spec_runs_two_screws(tmp_path):
 
 def test_calibration_file_reaches_the_whole_screw(tmp_path):
     """``calibration = FILE`` puts the FE screw/nut groove laws (cached quick-level sweeps) into every ball."""
-    from ballbench.validation import calibrate
+    from ballbench.validation.studies.calibration import spec as calibration_spec
 
     data = paths.DATA
     spec = tmp_path / "spec.toml"
     spec.write_text("\n".join(
         f'[contact."{group}"]\ndata = "{data / f"fe_{body}_quick.load_approach.csv"}"\nball_radius = 2.778e-3\n'
         for group, body in (("screw-groove", "screw"), ("nut-groove", "nut"))))
-    path, _ = calibrate.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
+    path, _ = calibration_spec.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
     hertz = functions.whole_screw_fourier(b4=3 * DEG, steps=2)
     calibrated = functions.whole_screw_fourier(b4=3 * DEG, steps=2, calibration=str(path))
     _, laws, _ = functions._screw_setup(str(path), 37, 1500.0)
