@@ -117,7 +117,7 @@ def test_contact_scenes_run_their_case():
 
 def test_paper_numbers_declared_once():
     """No scene, study or figure module re-declares a paper's input or printed result as a literal."""
-    for folder in ("scenes", "studies", "figures"):
+    for folder in ("scenes", "studies", "figures", "ladder"):
         for path in (ROOT / "validation" / folder).rglob("*.py"):
             code = "\n".join(line.split("#")[0] for line in path.read_text().splitlines())
             for literal in ("2.1e11", "200e9", "5.307e-4", "reference=4.01", "reference=3.96", "reference=3.74",

@@ -583,8 +583,8 @@ def template(kind: str) -> str:
 
 def _preload_loss_comment(text: str) -> list[str]:
     """The template's comment on the range of lin2019's ball-screw model: below the preload loss of the values as
-    written (case_scenes.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
-    from ballbench.validation.case_scenes.common import preload_loss
+    written (ladder.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
+    from ballbench.validation.ladder.common import preload_loss
 
     loss = preload_loss(loads(text, "<template>")).axial_load
     pad = " " * 32

@@ -86,8 +86,8 @@ def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 
 def case_contact(path: str | Path):
     """The contact an ``fe_case`` of a spec names: the case file's own contact, or the most loaded contact of a
     linear guide or ball screw, with the FE levels of its file or chosen from its Hertz ellipse
-    (studies.ladder.contact_fe; docs/cases.md)."""
+    (ladder.rungs.contact_fe; docs/cases.md)."""
     from ballbench.validation.cases import case_file
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs
 
-    return ladder.contact_fe(ladder.governing_contact(case_file.load(path)))
+    return rungs.contact_fe(rungs.governing_contact(case_file.load(path)))
