@@ -20,7 +20,7 @@ def quick_scene(tmp_path_factory):
             from ballbench.validation.runner import run_scene
             from ballbench.validation.scene import registry
 
-            from ballbench.validation.calibrate import CALIBRATION_ENV
+            from ballbench.validation.studies.calibration.command import CALIBRATION_ENV
 
             folder = tmp_path_factory.mktemp("quick")
             with pytest.MonkeyPatch.context() as patch:  # the scene's own constants, not a calibration file's

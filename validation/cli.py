@@ -17,10 +17,11 @@ import sys
 from pathlib import Path
 
 from ballbench import __version__
-from ballbench.validation import calibrate, sweep
+from ballbench.validation import sweep
 from ballbench.validation.cases.case_file import KINDS as CASE_KINDS
 from ballbench.validation.scene import registry
-from ballbench.validation.studies.ladder import RUNGS
+from ballbench.validation.studies.calibration import command as calibrate_command
+from ballbench.validation.ladder.rungs import RUNGS
 
 from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
 
@@ -70,29 +71,29 @@ def _load_case(name: str):
 
 
 def _case_scenes(names: list[str], top: str, deadline: float | None):
-    """The generated scenes of the case files among ``names`` (validation.case_scenes); one stem per file."""
-    from ballbench.validation import case_scenes
+    """The generated scenes of the case files among ``names`` (validation.ladder); one stem per file."""
+    from ballbench.validation import ladder
 
     chosen, stems = [], {}
     for name in names:
-        stem = case_scenes.slug(name)
+        stem = ladder.slug(name)
         if stem in stems and stems[stem] != name:
             raise UsageError(f"case files {stems[stem]} and {name} give the same scene names ({stem}-...); "
                              "rename one")
         stems[stem] = name
-        chosen += case_scenes.case_scenes(_load_case(name), stem, top=top, deadline=deadline)
+        chosen += ladder.case_scenes(_load_case(name), stem, top=top, deadline=deadline)
     return chosen
 
 
 def _limits(names: list[str], top: str) -> list[str]:
-    """What the case files among ``names`` say before any work about their models' limits (case_scenes.limits):
+    """What the case files among ``names`` say before any work about their models' limits (ladder.limits):
     a ball screw's preload loss against its axial load, the scenes that may not apply."""
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
 
     lines = []
     for name in names:
         if _is_case_file(name):
-            lines += [f"{name}: {line}" for line in case_scenes.limits(_load_case(name), case_scenes.slug(name), top)]
+            lines += [f"{name}: {line}" for line in ladder.limits(_load_case(name), ladder.slug(name), top)]
     return lines
 
 
@@ -361,20 +362,20 @@ def _show_out(out_dir: Path, name: str) -> None:
 
 def _show_case(args) -> int:
     """``ballbench show my_case.toml``: the pictures of the case's generated FE scenes."""
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
 
     case = _load_case(args.scene)
-    stem = case_scenes.slug(args.scene)
+    stem = ladder.slug(args.scene)
     out_dir = Path(args.out)
-    names = [s.name for s in case_scenes.case_scenes(case, stem) if s.show is not None]
+    names = [s.name for s in ladder.case_scenes(case, stem) if s.show is not None]
     for name in names:
         _show_out(out_dir, name)
     def skipped(name, reason):
         print(f"ballbench: {name} skipped, it does not apply to this case: {reason}", file=sys.stderr, flush=True)
 
     try:
-        paths = case_scenes.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default",
-                                      on_skip=skipped)
+        paths = ladder.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default",
+                                 on_skip=skipped)
     except KeyboardInterrupt:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -443,7 +444,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the scenes on an existing dask scheduler, e.g. tcp://127.0.0.1:8786 (workers started "
                         "with --nthreads 1, sharing this file system)")
-    calibrate.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
+    calibrate_command.add_validate_option(p)  # --calibration FILE (docs/calibration.md)
     p.set_defaults(func=_cmd_validate)
 
     p = sub.add_parser("show", help="pictures of an FE scene's saved fields",
@@ -463,7 +464,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_init)
 
     sweep.add_parser(sub)  # ballbench sweep SPEC.toml (docs/sweeps.md)
-    calibrate.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)
+    calibrate_command.add_parser(sub)  # ballbench calibrate SPEC.toml (docs/calibration.md)
     return parser
 
 

@@ -108,7 +108,7 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
     up to 3x the mean ball load); ``lead_error`` [m per turn] of the nut against the screw
     (:func:`load_distribution.distribute`); ``progress`` wraps the step iterator (e.g. a tqdm).
     ``deviation``: a function of the screw azimuth phi [rad] (array) giving theta [rad] in place of the
-    sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep_cases);
+    sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep.functions);
     ``contact_law``: calibrated contact laws of the grooves (:class:`ball.GrooveContactLaws`) for the
     balls and the default ``stiffness``; None: Hertz.
     """

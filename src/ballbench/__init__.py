@@ -88,8 +88,8 @@ def template(kind: str) -> str:
 
 def ladder(case, fidelity: str = "quick", *, levels: str = "stick-slip", out_dir=None, budget_s=None,
            name: str = "case"):
-    """Run the validation ladder on ``case`` (validation.case_scenes) up to the rung ``levels`` (one of
-    validation.studies.ladder.RUNGS) at ``fidelity`` ("quick", "default" or "fine"); returns the SceneResult of
+    """Run the validation ladder on ``case`` (validation.ladder) up to the rung ``levels`` (one of
+    validation.ladder.rungs.RUNGS) at ``fidelity`` ("quick", "default" or "fine"); returns the SceneResult of
     each scene (checks with error and run time per model, tables of the engineer's results).  ``out_dir``: where
     the scenes write their files and the report (a temporary folder, deleted afterwards, when None);
     ``budget_s``: stop refining mesh studies when their next level is predicted to end after this wall time."""
@@ -97,12 +97,12 @@ def ladder(case, fidelity: str = "quick", *, levels: str = "stick-slip", out_dir
     import time
     from pathlib import Path
 
-    from ballbench.validation import case_scenes
+    from ballbench.validation.ladder import case_scenes
     from ballbench.validation.report import write_report
     from ballbench.validation.runner import run_scenes
 
     deadline = time.monotonic() + budget_s if budget_s is not None else None
-    scenes = case_scenes.case_scenes(case, name, top=levels, deadline=deadline)
+    scenes = case_scenes(case, name, top=levels, deadline=deadline)
     if out_dir is None:
         with tempfile.TemporaryDirectory() as folder:
             return run_scenes(scenes, fidelity, Path(folder))[0]

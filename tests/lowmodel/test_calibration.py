@@ -1,5 +1,5 @@
 """lowmodel.calibration: fits with intervals, the contact law, the calibration file (``ballbench calibrate``'s spec and
-CSV input: tests/validation/test_calibrate.py)."""
+CSV input: tests/validation/studies/test_calibrate.py)."""
 import json
 import math
 

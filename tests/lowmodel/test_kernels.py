@@ -171,7 +171,7 @@ def test_use_kernels_checks_its_argument():
 def test_batched_cases_equal_one_case_solves(enabled):
     # the vectorised Monte Carlo case function (one batch per chunk) gives each case's scalar call to the last bit,
     # with the kernels and without them (then the batch is the one-case solves)
-    from ballbench.validation import sweep_cases
+    from ballbench.validation.sweep import functions
 
     if enabled:
         pytest.importorskip("numba")
@@ -179,9 +179,9 @@ def test_batched_cases_equal_one_case_solves(enabled):
     try:
         draws = np.random.default_rng(5).normal(0.0, math.radians(1.0), (8, 12))
         rho = np.linspace(-0.5, 0.5, 12)
-        batch = sweep_cases.two_ball_deviations(*draws, rho=rho)
+        batch = functions.two_ball_deviations(*draws, rho=rho)
         for case in range(12):
-            one = sweep_cases.two_ball_deviations(*draws[:, case], rho=float(rho[case]))
+            one = functions.two_ball_deviations(*draws[:, case], rho=float(rho[case]))
             for name, value in one.items():
                 assert batch[name][case] == value, (case, name)
     finally:

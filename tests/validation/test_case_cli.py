@@ -69,7 +69,7 @@ def test_calibrate_takes_a_case_file(tmp_path, capsys, monkeypatch):
     # ellipse; a bad case file is named before any FE runs
     import numpy as np
 
-    from ballbench.validation import calibrate
+    from ballbench.validation.studies.calibration import fe_laws
     from ballbench.validation.studies import fe_contact
 
     path = _init("linear-guide", tmp_path, capsys)
@@ -93,7 +93,7 @@ def test_calibrate_takes_a_case_file(tmp_path, capsys, monkeypatch):
     (case,) = seen
     assert case.fe is not None and case.pair == "groove" and case.conformity == 0.52
     loads = ballbench.friction(ballbench.load_case(path)).contacts
-    assert case.force == max(c.normal_force for c in loads) == calibrate.case_contact(path).force
+    assert case.force == max(c.normal_force for c in loads) == fe_laws.case_contact(path).force
     path.write_text(path.read_text().replace("conformity = 0.52", "conformity = 52"))
     line = one_error_line(capsys, cli.main(["calibrate", str(spec)]))
     assert "fe_case" in line and "guide.conformity" in line

@@ -10,8 +10,8 @@ import pytest
 
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.validation import case_scenes, cli
-from ballbench.validation.case_scenes import common
+from ballbench.validation import cli, ladder
+from ballbench.validation.ladder import common
 from ballbench.validation.cases import case_file
 from ballbench.validation.runner import run_scene, run_scenes
 from ballbench.validation.scene import NotApplicable, Scene
@@ -33,7 +33,7 @@ def _screw_file(tmp_path, axial_load: str):
 
 
 def _scene(case, name, top="stick-slip"):
-    (scene,) = [s for s in case_scenes.case_scenes(case, "s", top=top) if s.name == f"s-{name}"]
+    (scene,) = [s for s in ladder.case_scenes(case, "s", top=top) if s.name == f"s-{name}"]
     return scene
 
 
@@ -107,16 +107,16 @@ def test_junit_skips_a_scene_that_does_not_apply(tmp_path):
 
 def _contact_loads(case, tmp_path, monkeypatch, top="analytical"):
     """The result of the -contact scene of ``case`` and the forces [N] of the contacts it ran (by pair)."""
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs
 
     seen = {}
-    hertz_values = ladder.hertz_values
+    hertz_values = rungs.hertz_values
 
     def spy(contact):
         seen[contact.pair] = contact.force
         return hertz_values(contact)
 
-    monkeypatch.setattr(ladder, "hertz_values", spy)
+    monkeypatch.setattr(rungs, "hertz_values", spy)
     result = run_scene(_scene(case, "contact", top=top), "quick", tmp_path / "out")
     assert not result.error, result.error
     return result, seen
@@ -223,7 +223,8 @@ def test_only_a_case_file_s_scene_may_not_apply(tmp_path):
 
 def test_the_module_fe_does_not_start_a_level_beyond_the_memory(tmp_path, monkeypatch):
     # the module FE's memory guard (as the contact FE's): the level's predicted peak above the available memory
-    from ballbench.validation.studies import fe_b2b_linear, ladder
+    from ballbench.validation.ladder import rungs
+    from ballbench.validation.studies import fe_b2b_linear
     from tests import paths
 
     def no_solve(*args, **kwargs):
@@ -231,10 +232,10 @@ def test_the_module_fe_does_not_start_a_level_beyond_the_memory(tmp_path, monkey
 
     monkeypatch.setattr(fe_b2b_linear, "level_dofs", lambda case, level: 400_000)
     monkeypatch.setattr(fe_b2b_linear, "solve_fe_level", no_solve)
-    monkeypatch.setattr(ladder, "available_memory", lambda: 4e9)
-    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 9e9 if ndofs == 400_000 else 0.0)
+    monkeypatch.setattr(rungs, "available_memory", lambda: 4e9)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 9e9 if ndofs == 400_000 else 0.0)
     case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "g", top="FE-informed") if s.name == "g-b2b-fe"]
+    (scene,) = [s for s in ladder.case_scenes(case, "g", top="FE-informed") if s.name == "g-b2b-fe"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert result.status() == "error" and result.error.startswith("MemoryError")
     assert "400000 P2 DOFs" in result.error and "9.0 GB" in result.error and "4.0 GB available" in result.error

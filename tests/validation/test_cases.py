@@ -104,7 +104,7 @@ def test_bad_case_data_is_refused_with_the_field_named():
 
 def test_contact_scenes_run_their_case():
     """The FE contact scenes carry their ContactCase (what calibrate and show read); no name is parsed."""
-    from ballbench.validation.calibrate import fe_contact_scenes
+    from ballbench.validation.studies.calibration.fe_laws import fe_contact_scenes
     from ballbench.validation.scene import registry
 
     cases = fe_contact_scenes()
@@ -118,8 +118,8 @@ def test_contact_scenes_run_their_case():
 
 def test_paper_numbers_declared_once():
     """No scene, study or figure module re-declares a paper's input or printed result as a literal."""
-    for folder in ("scenes", "studies", "figures"):
-        for path in (ROOT / "validation" / folder).glob("*.py"):
+    for folder in ("scenes", "studies", "figures", "ladder"):
+        for path in (ROOT / "validation" / folder).rglob("*.py"):
             code = "\n".join(line.split("#")[0] for line in path.read_text().splitlines())
             for literal in ("2.1e11", "200e9", "5.307e-4", "reference=4.01", "reference=3.96", "reference=3.74",
                             "41.4e-3", "6.35e-3", "2.778e-3", "16.5e-3", "2.9765e-3", "0.50265"):

@@ -196,7 +196,7 @@ def test_mutant_list_is_documented():
 
 
 # --------------------------------------------------------------------------
-# the case scenes (validation.case_scenes): a wrong model is rejected when a check of the scene leaves "pass" (a model
+# the case scenes (validation.ladder): a wrong model is rejected when a check of the scene leaves "pass" (a model
 # outside its accuracy is a finding there, not a failure: docs/validation.md, "Findings")
 # --------------------------------------------------------------------------
 def _nut_bem_on_screw_groove(monkeypatch):  # the BEM of a nut-side contact on the screw's groove
@@ -256,11 +256,11 @@ CASE_FIDELITY = {"FE compliance of the case's groove with E x 0.1": "default"}
 
 
 def _case_scene(path, rung, suffix, directory, fidelity="quick"):
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.cases import case_file
     from ballbench.validation.runner import run_scenes
 
-    (scene,) = [s for s in case_scenes.case_scenes(case_file.load(paths.ROOT / path), "m", top=rung)
+    (scene,) = [s for s in ladder.case_scenes(case_file.load(paths.ROOT / path), "m", top=rung)
                 if s.name == f"m-{suffix}"]
     (result,), _ = run_scenes([scene], fidelity, directory, show_progress=False)
     return {(o.level, o.quantity): o.status for o in result.outputs}, result.error

@@ -183,7 +183,7 @@ def test_killed_sweep_restarts_with_the_missing_cases_only(helpers, tmp_path):
 
 
 def test_example_specs_parse_and_match_the_scene():
-    from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
+    from ballbench.validation.sweep.functions import EQUIVALENCE_SPEC
 
     from ballbench.validation.cases.case_file import kind_of
 
@@ -219,6 +219,20 @@ def test_cli_reports_spec_errors_as_messages(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text('name = "b"\nfunction = "math:hypot"\noutputs = ["x"]\nchunk_size = 0\n')
     assert "chunk_size must be an integer >= 1" in one_error_line(capsys, cli.main(["sweep", str(bad), "--serial"]))
+
+
+def test_a_spec_naming_the_old_module_of_the_case_functions_is_told_the_new_one(tmp_path, capsys):
+    """The case functions moved from validation/sweep_cases.py to validation/sweep/functions.py: a spec that still
+    names the old module is a wrong use whose message gives the new path (no alias module)."""
+    from ballbench.validation import cli
+    from tests.cli_support import one_error_line
+
+    old = tmp_path / "old.toml"
+    old.write_text('name = "o"\nfunction = "ballbench.validation.sweep_cases:two_ball_numerical"\n'
+                   'outputs = ["b2b_force"]\n')
+    line = one_error_line(capsys, cli.main(["sweep", str(old), "--serial", "--out", str(tmp_path / "out")]))
+    assert 'function = "ballbench.validation.sweep.functions:two_ball_numerical"' in line
+    assert not (tmp_path / "out").exists()
 
 
 def test_gridded_sweep_lands_in_a_zarr_dataset_and_resumes_the_missing_cases(helpers, tmp_path, monkeypatch):
@@ -311,14 +325,13 @@ def test_jobqueue_example_builds_its_job_script(flag, lines):
 
 
 def test_the_spec_units_live_in_one_module():
-    """Spec parsing, execution and storage are separate modules, and only units.py turns a unit into a factor
-    (a units parser shared with the case files and calibrate specs replaces that one module)."""
+    """Spec parsing, execution and storage are separate modules, and no module of the sweep turns a unit into a
+    factor: the one units parser, shared with the case files and calibrate specs, is validation/cases/units.py."""
     folder = Path(sweep.__file__).parent
     for path in folder.glob("*.py"):
         text = path.read_text()
         assert len(text.splitlines()) <= 600, path.name
-        if path.name != "units.py":
-            assert "math.pi / 180" not in text and "1e-3" not in text and "UNITS[" not in text, path.name
+        assert "math.pi / 180" not in text and "1e-3" not in text and "UNITS[" not in text, path.name
     spec = sweep.spec_from_dict({"name": "u", "function": "math:hypot", "outputs": ["real"],
                                  "grid": {"x": {"values": [1.0, 2.0], "unit": "mm"}}})
     np.testing.assert_allclose(spec.grid["x"], [1e-3, 2e-3])

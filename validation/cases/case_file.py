@@ -1,7 +1,7 @@
 """Case files: a linear guide, a ball screw or a single contact as TOML, read into the Case types (SI).
 
 Every quantity carries its unit (``"3.175 mm"``, ``"2 deg"``, ``"500 N"``, ``{ value = 3.175, unit = "mm" }``;
-validation.units).  The whole file is checked before any work: an unknown key (with "did you mean"), a missing
+validation.cases.units).  The whole file is checked before any work: an unknown key (with "did you mean"), a missing
 one, a unit of the wrong dimension or a missing unit, a value outside its physical range (a conformity of 0.5, a
 negative load) or outside the plausible range of real bearings (a radius of metres, an elastic modulus of Pa:
 lowmodel.checks.PLAUSIBLE); a :class:`CaseFileError` names the file, the line, the key and the range.
@@ -24,7 +24,7 @@ from pathlib import Path
 
 from ballbench.lowmodel import bearing, checks
 from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
-from ballbench.validation import units
+from ballbench.validation.cases import units
 from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
 
@@ -40,7 +40,7 @@ class CaseFileError(ValueError):
 
 @dataclass(frozen=True)
 class Key:
-    """One key of a case file: its dimension (validation.units), what it is, whether it is required, the check of
+    """One key of a case file: its dimension (validation.cases.units), what it is, whether it is required, the check of
     its value, its example value in the template, and alternatives (another key that gives the same value, e.g. a
     diameter for a radius).
 
@@ -566,8 +566,8 @@ def template(kind: str) -> str:
 
 def _preload_loss_comment(text: str) -> list[str]:
     """The template's comment on the range of lin2019's ball-screw model: below the preload loss of the values as
-    written (case_scenes.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
-    from ballbench.validation.case_scenes.common import preload_loss
+    written (ladder.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
+    from ballbench.validation.ladder.common import preload_loss
 
     loss = preload_loss(loads(text, "<template>")).axial_load
     pad = " " * 32

@@ -1,4 +1,4 @@
-"""Scenes of the calibration (lowmodel/calibration.py, validation/calibrate.py, docs/calibration.md).
+"""Scenes of the calibration (lowmodel/calibration.py, validation/studies/calibration/, docs/calibration.md).
 
 * ``calibration-roundtrip``: synthetic data from known constants plus noise;
   the fits recover them within their 95 % intervals, and over many seeds the
@@ -22,7 +22,7 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases import lin2019
 from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import scene
-from ballbench.validation.studies import calibration as study
+from ballbench.validation.studies.calibration import roundtrip as study
 from ballbench.validation.studies import screw_two_ball
 
 MODEL = "lowmodel.calibration"
@@ -77,7 +77,7 @@ def calibration_roundtrip(run):
 # --------------------------------------------------------------------------
 def _calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
     """The contact law of the 0.56 groove: from ``--calibration FILE`` when it has one, else FE at the run's level."""
-    from ballbench.validation.calibrate import active_calibration
+    from ballbench.validation.studies.calibration.command import active_calibration
     from ballbench.validation.studies.fe_contact import load_sweep
 
     given = active_calibration()
@@ -98,7 +98,7 @@ def _b2b_force_with_psi(psi: float, case) -> tuple[float, float]:
     """F_B2B [N] of the linear-guide ``case`` with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (lin2019 eq 15):
     (analytical eq 30, low-order numerical eqs 4-10)."""
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
-    from ballbench.validation.sweep_cases import with_psi
+    from ballbench.validation.sweep.functions import with_psi
 
     analytical = b2b_analytical.from_case(case, psi=psi)
     contacts = with_psi(b2b.contacts(case), psi)  # lin2017 eq 36 forces
@@ -156,7 +156,7 @@ def calibration_effect(run):
     run.note("Load distribution: in the linear bearing the four normal forces of a ball are statically determinate "
              "(lin2017 eq 36) and do not depend on the contact stiffness; the calibrated stiffness changes the load "
              "distribution over the balls of a screw: calibration-effect-screw.")
-    from ballbench.validation.figures.calibration import approach_law
+    from ballbench.validation.figures.hertz import approach_law
 
     run.save_figure(approach_law(law, c_hertz), "approach_law.png")
 
@@ -174,7 +174,8 @@ def _calibrated_groove_laws():
     ``nut-groove``, else fitted to FE load sweeps of the Table 4 screw and nut contacts at the quick level.
     Returns (:class:`screw_contacts.GrooveContactLaws`, origin text)."""
     from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.calibrate import active_calibration, contact_law
+    from ballbench.validation.studies.calibration.command import active_calibration
+    from ballbench.validation.studies.calibration.fe_laws import contact_law
 
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]

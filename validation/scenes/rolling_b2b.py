@@ -3,7 +3,7 @@
 The model ladder of lin2019's two-ball modules side by side: analytical, low-order full slip, FE-informed full
 slip, stick/slip on two half-spaces (Hertz and FE pressure) and on the FE compliance, against ANSYS (lin2019
 Tables 3 and 5) and the paper's low-order numbers; and where full slip is worst within the models' domain.
-The runs live in :mod:`validation.studies.rolling_b2b` and :mod:`validation.studies.full_slip_validity`; the
+The runs live in :mod:`validation.studies.rolling_b2b` and :mod:`validation.studies.full_slip_map`; the
 grids and levels in :mod:`validation.cases.stick_slip`.
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ from __future__ import annotations
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import render3d
 from ballbench.validation.scene import scene
-from ballbench.validation.studies import full_slip_validity as validity
+from ballbench.validation.studies import full_slip_map as validity
 from ballbench.validation.studies import rolling_b2b as study
 
 _BUDGET = study.TIME_BUDGET_S

@@ -10,7 +10,7 @@ import numpy as np
 
 from ballbench.validation import sweep
 from ballbench.validation.scene import scene
-from ballbench.validation.sweep_cases import EQUIVALENCE_SPEC
+from ballbench.validation.sweep.functions import EQUIVALENCE_SPEC
 
 MODEL = "validation.sweep"
 SWEEP = dict(model=MODEL, family="low-order numerical")  # the sweep runs the low-order two-ball model

@@ -5,5 +5,6 @@ A scene module holds only its ``@scene`` functions; what they compute with more 
 anything else needs, lives here: :mod:`.fe_contact` (FE of one contact against Hertz), :mod:`.screw_two_ball`
 (the two-ball ball-screw module, its fitted preload), :mod:`.fe_b2b_linear` and :mod:`.fe_b2b_screw` (FE
 modules and FE-informed B2B), :mod:`.sun2021` (the sun2021 contact load, dry contact and EHL domain),
-:mod:`.calibration` (the synthetic round trip of the fits).
+:mod:`.calibration` (the one calibration home of validation: the ``calibrate`` spec, FE load sweeps and
+contact laws, the command and ``--calibration FILE``, the synthetic round trip of the fits).
 """

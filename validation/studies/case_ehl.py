@@ -1,5 +1,5 @@
-"""The EHL rung of a ball-screw or linear-guide case with a lubricant (studies.ladder, rung ``EHL``): each distinct
-contact of the case (studies.ladder.distinct_contacts) at its load and the entrainment speed of the case's
+"""The EHL rung of a ball-screw or linear-guide case with a lubricant (ladder.rungs, rung ``EHL``): each distinct
+contact of the case (ladder.rungs.distinct_contacts) at its load and the entrainment speed of the case's
 kinematics, the smooth isothermal EHL solve (lowmodel.contact.ehl.solve_reynolds, sun2021 eqs 14-19) on the exact
 gap (helical groove: lowmodel.geometry.groove.pair_initial_gap; straight groove: straight_pair_initial_gap) beside
 the Hamrock-Dowson film (lowmodel.contact.ehl.hamrock_dowson_film) with the full-tensor radii; docs/ehl.md.
@@ -223,9 +223,9 @@ def _solve(gap, a, b, n, e_star, load, speed, oil, initial_film):
 
 
 def contacts(case, fidelity: str, progress=None) -> list[EHLContact]:
-    """The EHL of every distinct contact of ``case`` (studies.ladder.distinct_contacts) at ``fidelity``;
+    """The EHL of every distinct contact of ``case`` (ladder.rungs.distinct_contacts) at ``fidelity``;
     ``progress``: a wrapper of the iterable of contacts (a scene's ``run.progress``)."""
-    from ballbench.validation.studies.ladder import distinct_contacts
+    from ballbench.validation.ladder.rungs import distinct_contacts
 
     if not applies(case):
         raise ValueError(f"the EHL rung needs a ball-screw or linear-guide case with a [lubricant] table, got "

@@ -4,7 +4,7 @@ A sweep names a model function, its fixed inputs, the swept ones (grids and
 seeded random draws) and the outputs to keep (docs/sweeps.md).  Modules:
 
 - :mod:`.spec`: parsing and checking a spec (:func:`load_spec`, :func:`spec_from_dict`), units through
-  :mod:`ballbench.validation.units` (shared with case files and calibrate specs);
+  :mod:`ballbench.validation.cases.units` (shared with case files and calibrate specs);
 - :mod:`.cases`: case numbering, reproducible draws, computing a chunk of cases in any process (:func:`run_chunk`);
 - :mod:`.execution`: running the chunks on dask or serially (:func:`run_sweep`);
 - :mod:`.storage`: Parquet parts, the manifest, resuming, the xarray Dataset of a gridded sweep;
@@ -13,7 +13,7 @@ seeded random draws) and the outputs to keep (docs/sweeps.md).  Modules:
 Spec (TOML)::
 
     name = "lin2019-fig8-9"
-    function = "ballbench.validation.sweep_cases:two_ball_numerical"
+    function = "ballbench.validation.sweep.functions:two_ball_numerical"
     vectorised = false          # true: one call per chunk with arrays (the function broadcasts)
     chunk_size = 200
     outputs = ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"]
@@ -42,7 +42,7 @@ from ballbench.validation.sweep.execution import (DATASET_EVERY_S, LOCAL_CLUSTER
 from ballbench.validation.sweep.spec import DISTRIBUTIONS, Distribution, SweepSpec, load_spec, spec_from_dict
 from ballbench.validation.sweep.storage import (DATASET_NAME, missing_chunks, read_dataset, read_results, to_dataset,
                                                 write_dataset)
-from ballbench.validation.units import UNITS
+from ballbench.validation.cases.units import UNITS
 
 __all__ = ["SweepSpec", "Distribution", "load_spec", "spec_from_dict", "case_inputs", "run_chunk", "run_sweep",
            "read_results", "SweepSummary", "UNITS", "DRAW_BLOCK", "to_dataset", "read_dataset", "write_dataset",

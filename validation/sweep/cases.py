@@ -26,6 +26,9 @@ from ballbench.validation.sweep.spec import SweepSpec, spec_from_dict
 
 DRAW_BLOCK = 4096  # random draws per seeded block (fixed: changing it changes every draw)
 VECTOR_LEAF = 8  # a vectorised call that raises is halved down to this many cases, then called case by case
+# modules of case functions that moved: old module -> new module.  A spec that names the old one is told the new
+# path (no alias module keeps the old one importable; docs/sweeps.md, "Case functions")
+MOVED_MODULES = {"ballbench.validation.sweep_cases": "ballbench.validation.sweep.functions"}
 
 
 def _draws(spec: SweepSpec, draw_index: np.ndarray) -> dict[str, np.ndarray]:
@@ -59,6 +62,9 @@ def case_inputs(spec: SweepSpec, start: int, stop: int) -> dict[str, np.ndarray]
 def resolve_function(path: str) -> Callable:
     """The function that ``path`` (``"package.module:function"``) names; ValueError when it cannot be had."""
     module, _, attribute = path.partition(":")
+    if module in MOVED_MODULES:
+        raise ValueError(f"function {path!r}: the module {module!r} moved to {MOVED_MODULES[module]!r}; write "
+                         f"function = \"{MOVED_MODULES[module]}:{attribute}\"")
     try:
         target = importlib.import_module(module)
     except ImportError as error:
@@ -87,7 +93,7 @@ def check_inputs(spec: SweepSpec, function: Callable | None = None) -> None:
     except TypeError as error:
         raise ValueError(f"the inputs of the spec ({', '.join(names) or 'none'}) do not fit {spec.function}"
                          f"{signature}: {error}") from None
-    forwarded = getattr(function, "keywords", None)  # the names a function's **keywords pass on (sweep_cases)
+    forwarded = getattr(function, "keywords", None)  # the names a function's **keywords pass on (sweep.functions)
     own = {p.name for p in signature.parameters.values() if p.kind is not p.VAR_KEYWORD}
     if forwarded is not None:
         for name in names:

@@ -3,7 +3,7 @@
 A spec names a model function, its fixed inputs, the swept ones (grids and
 seeded random draws) and the outputs to keep; :func:`spec_from_dict` turns the
 TOML table into a :class:`SweepSpec` with every number in SI units (units
-through :mod:`ballbench.validation.units`, the parser case files and calibrate specs share), or raises
+through :mod:`ballbench.validation.cases.units`, the parser case files and calibrate specs share), or raises
 ValueError naming the key.
 """
 from __future__ import annotations
@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.specs import read_toml
-from ballbench.validation.units import DIMENSIONLESS, dimension_of, quantity, si_factor, split
+from ballbench.validation.cases.toml_files import read_toml
+from ballbench.validation.cases.units import DIMENSIONLESS, dimension_of, quantity, si_factor, split
 
 DISTRIBUTIONS = {"normal": ("mean", "sigma"), "uniform": ("low", "high"), "lognormal": ("mean", "sigma")}
 _TOP_KEYS = {"name", "function", "vectorised", "chunk_size", "outputs", "fixed", "grid", "random", "description"}

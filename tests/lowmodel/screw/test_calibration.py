@@ -115,7 +115,8 @@ DATA = paths.DATA
 def test_calibration_effect_screw_scene_from_cached_fe_sweeps(tmp_path, monkeypatch):
     """The scene on the FE load sweeps of fe-hertz-screw / fe-hertz-nut (quick level, cached CSVs) given as a
     calibration file: every check passes and the report shows Hertz beside the calibrated values."""
-    from ballbench.validation import calibrate
+    from ballbench.validation.studies.calibration import command
+    from ballbench.validation.studies.calibration import spec as calibration_spec
     from ballbench.validation.runner import run_scene
     from ballbench.validation.scene import registry
 
@@ -123,9 +124,9 @@ def test_calibration_effect_screw_scene_from_cached_fe_sweeps(tmp_path, monkeypa
     spec.write_text("\n".join(
         f'[contact."{group}"]\ndata = "{DATA / f"fe_{body}_quick.load_approach.csv"}"\nball_radius = 2.778e-3\n'
         for group, body in (("screw-groove", "screw"), ("nut-groove", "nut"))))
-    path, calibration = calibrate.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
+    path, calibration = calibration_spec.run_spec(spec, tmp_path / "c.json", log=lambda *_: None)
     assert calibration.value("nut-groove", "bulk_compliance") < 0  # FE: the finite bodies are stiffer than Hertz
-    monkeypatch.setenv(calibrate.CALIBRATION_ENV, str(path))
+    monkeypatch.setenv(command.CALIBRATION_ENV, str(path))
     result = run_scene(registry()["calibration-effect-screw"], "quick", tmp_path)
     assert result.passed, [(o.quantity, o.value, o.reference) for o in result.outputs if not o.passed] or result.error
     text = " ".join(result.notes)

@@ -1,11 +1,11 @@
-"""The EHL rung of a case file (studies.case_ehl, validation/case_scenes/ehl.py; docs/your_own_bearing.md)."""
+"""The EHL rung of a case file (studies.case_ehl, validation/ladder/ehl.py; docs/your_own_bearing.md)."""
 from __future__ import annotations
 
 import math
 
 import pytest
 
-from ballbench.validation import case_scenes
+from ballbench.validation import ladder
 from ballbench.validation.cases import case_file
 from ballbench.validation.runner import run_scenes
 from ballbench.validation.studies import case_ehl
@@ -29,8 +29,8 @@ def test_entrainment_speed_without_lead_is_the_ball_bearings():
 
 def test_lubricated_example_ehl_scene_at_quick(tmp_path):
     case = case_file.load(OIL)
-    assert "o-ehl" in case_scenes.scene_names(case, "o")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "o", top="EHL") if s.name == "o-ehl"]
+    assert "o-ehl" in ladder.scene_names(case, "o")
+    (scene,) = [s for s in ladder.case_scenes(case, "o", top="EHL") if s.name == "o-ehl"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert result.error == ""
     own = [o for o in result.outputs if o.family == "EHL"]
@@ -72,7 +72,7 @@ def test_unconverged_film_fails_its_grid_check_and_is_not_judged(tmp_path):
     self-check fails naming the contact, both grids, the change and the tolerance and sends the user to a finer
     level, and Hamrock-Dowson is not judged against that solve."""
     case = case_file.loads(HEAVY, "heavy.toml")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "h", top="EHL") if s.name == "h-ehl"]
+    (scene,) = [s for s in ladder.case_scenes(case, "h", top="EHL") if s.name == "h-ehl"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert result.error == ""
     grid = [o for o in result.outputs if o.quantity.startswith("grid change of minimum film")]
@@ -100,13 +100,13 @@ def test_roughness_key_is_read_in_si_and_checked():
 def test_no_ehl_scene_without_a_lubricant_or_above_the_levels():
     plain = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
     assert plain.screw.lubricant is None and not case_ehl.applies(plain)
-    assert not any(n.endswith("-ehl") for n in case_scenes.scene_names(plain, "p"))
-    assert not any(s.name.endswith("-ehl") for s in case_scenes.case_scenes(plain, "p"))
+    assert not any(n.endswith("-ehl") for n in ladder.scene_names(plain, "p"))
+    assert not any(s.name.endswith("-ehl") for s in ladder.case_scenes(plain, "p"))
     guide = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")  # no [lubricant]
-    assert not any(n.endswith("-ehl") for n in case_scenes.scene_names(guide, "g"))
+    assert not any(n.endswith("-ehl") for n in ladder.scene_names(guide, "g"))
     oil = case_file.load(OIL)
-    assert "o-ehl" not in case_scenes.scene_names(oil, "o", top="BEM")
-    assert not any(s.name == "o-ehl" for s in case_scenes.case_scenes(oil, "o", top="BEM"))
+    assert "o-ehl" not in ladder.scene_names(oil, "o", top="BEM")
+    assert not any(s.name == "o-ehl" for s in ladder.case_scenes(oil, "o", top="BEM"))
 
 
 @pytest.mark.parametrize("kind", ["ball-screw", "linear-guide"])
@@ -119,7 +119,7 @@ def test_template_lubricant_block_loads_when_uncommented(kind):
     case = case_file.loads(text + "\n[lubricant]\n" + "\n".join(lines[1:]) + "\n", "t.toml")
     oil = case_ehl.lubricant(case)
     assert (oil.viscosity, oil.density, oil.roughness) == (0.1, 870.0, 0.14e-6)
-    assert case_ehl.applies(case) and any(n.endswith("-ehl") for n in case_scenes.scene_names(case, "t"))
+    assert case_ehl.applies(case) and any(n.endswith("-ehl") for n in ladder.scene_names(case, "t"))
 
 
 GUIDE = paths.ROOT / "examples" / "compact_linear_guide.toml"
@@ -178,8 +178,8 @@ def test_lubricated_guide_ehl_scene_at_quick(tmp_path):
     from ballbench.lowmodel import bearing_results
 
     case = _guide(speed="2 m/s", load="5 N", conformity="0.54")
-    assert "g-ehl" in case_scenes.scene_names(case, "g")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "g", top="EHL") if s.name == "g-ehl"]
+    assert "g-ehl" in ladder.scene_names(case, "g")
+    (scene,) = [s for s in ladder.case_scenes(case, "g", top="EHL") if s.name == "g-ehl"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert result.error == ""
     worst = max(bearing_results.guide_result(case).contacts, key=lambda c: c.normal_force)

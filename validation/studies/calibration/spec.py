@@ -1,9 +1,9 @@
-"""``ballbench calibrate SPEC``: fit the low-order constants from FE results and measurements.
+"""The spec of ``ballbench calibrate SPEC``: fit the low-order constants from FE results and measurements.
 
 The fits and the file live in :mod:`ballbench.lowmodel.calibration`; this
-module reads data (FE load sweeps of the contact case of a scene, CSV files),
-runs the fits named in a spec, writes the calibration file and registers the
-``calibrate`` command and the ``--calibration FILE`` option of ``validate``.
+module checks a spec, reads the data it names (CSV files; the FE load sweeps
+through :mod:`.fe_laws`), runs the fits and writes the calibration file.  The
+command and the ``--calibration FILE`` option of ``validate``: :mod:`.command`.
 
 Spec (TOML; docs/calibration.md)::
 
@@ -32,9 +32,7 @@ ValueError naming the file, line and column.
 from __future__ import annotations
 
 import csv
-import os
 import re
-import sys
 from dataclasses import replace
 from pathlib import Path
 
@@ -43,13 +41,13 @@ import numpy as np
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel import checks
 from ballbench.validation.cases import lin2019
-from ballbench.validation.specs import read_toml
+from ballbench.validation.cases.toml_files import read_toml
+from ballbench.validation.studies.calibration.fe_laws import (case_contact, check_load_factors, contact_law,
+                                                              fe_contact_law, fe_contact_scenes, hertz_references)
 
-__all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "fe_load_sweep",
-           "contact_law", "fe_contact_law", "fe_contact_scenes", "case_contact", "run_spec", "check_spec",
-           "active_calibration", "CALIBRATION_ENV", "CSV_UNITS"]
+__all__ = ["read_csv", "read_friction_csv", "read_load_approach_csv", "write_load_approach_csv", "kf_constants",
+           "run_spec", "check_spec", "CSV_UNITS", "BALL_RADIUS_RANGE", "FIDELITIES"]
 
-CALIBRATION_ENV = "BALLBENCH_CALIBRATION"  # set by `ballbench validate --calibration FILE`
 # quantity -> {unit: SI factor}
 CSV_UNITS = {
     "force": {"N": 1.0, "kN": 1e3, "mN": 1e-3},
@@ -158,89 +156,10 @@ def write_load_approach_csv(path: str | Path, forces, approaches, semi_axes, com
     return path
 
 
-# --------------------------------------------------------------------------
-# FE load sweep
-# --------------------------------------------------------------------------
-def _check_load_factors(load_factors) -> np.ndarray:
-    factors = np.asarray(load_factors, dtype=float)
-    if factors.ndim != 1 or factors.size < 3 or np.any(factors <= 0.0) or np.any(factors > 1.5):
-        raise ValueError("load_factors must be >= 3 values in (0, 1.5] (the FE candidate zone holds the contact up "
-                         f"to 1.5 times the scene's force), got {list(np.atleast_1d(load_factors))}")
-    return factors
-
-
-def fe_contact_scenes() -> dict:
-    """The registered scenes that run a single contact with FE settings: ``{scene name: ContactCase}`` (the
-    scene's own ``case``; what ``fe_scene`` of a spec may name)."""
-    from ballbench.validation.cases import ContactCase
-    from ballbench.validation.scene import registry
-
-    return {name: entry.case for name, entry in registry().items()
-            if isinstance(entry.case, ContactCase) and entry.case.fe is not None}
-
-
-def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5)) -> dict:
-    """FE load sweep of the contact case of scene ``scene_name`` (:func:`fe_contact_scenes`):
-    ``force`` [N], ``approach`` [m], ``a`` [m] at every load (studies.fe_contact.load_sweep).
-
-    One mesh and one condensation (the checked level of the case at ``fidelity``),
-    then a contact solve and a Hertz-field fit per load.  Returns also
-    ``ball_radius`` [m], the Hertz ``geometry`` and the wall time [s].
-    """
-    from ballbench.validation.studies import fe_contact
-
-    cases = fe_contact_scenes()
-    if scene_name not in cases:
-        raise ValueError(f"fe_scene must be one of {sorted(cases)}, got {scene_name!r}")
-    return fe_contact.load_sweep(cases[scene_name], fidelity, _check_load_factors(load_factors))
-
 
 # --------------------------------------------------------------------------
 # spec
 # --------------------------------------------------------------------------
-def _hertz_references(geometry, ball_radius):
-    from ballbench.lowmodel.contact import hertz
-
-    return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
-
-
-def contact_law(case, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
-                confidence: float = 0.95, label: str = "") -> tuple[cal.ContactLaw, dict]:
-    """The contact law ``U = C F^(2/3) + C_b F``, ``a = Psi R^(1/3) F^(1/3)`` fitted to the FE load sweep of the
-    :class:`ContactCase` ``case`` at ``fidelity`` (studies.fe_contact.load_sweep), with the pair's Hertz C and Psi
-    as references; returns (law, sweep with its ``source`` text, which names ``label`` or the case)."""
-    from ballbench.validation.studies.fe_contact import load_sweep
-
-    sweep = load_sweep(case, fidelity, _check_load_factors(load_factors))
-    radius = sweep["ball_radius"]
-    reference_c, reference_psi = _hertz_references(sweep["geometry"], radius)
-    source = (f"FE {label or case.name} {fidelity} level (n = b/h = {sweep['level'][0]:g}, growth "
-              f"{sweep['level'][1]:g}, {sweep['ndofs']} DOFs), {sweep['force'].size} loads "
-              f"{sweep['force'].min():g}-{sweep['force'].max():g} N")
-    law = cal.fit_contact_law(sweep["force"], sweep["approach"], semi_axes=sweep["a"], ball_radius=radius,
-                              confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
-    return law, {**sweep, "source": source}
-
-
-def fe_contact_law(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0.75, 1.0, 1.25, 1.5), *,
-                   confidence: float = 0.95) -> tuple[cal.ContactLaw, dict]:
-    """:func:`contact_law` of the contact case of scene ``scene_name`` (:func:`fe_contact_scenes`)."""
-    cases = fe_contact_scenes()
-    if scene_name not in cases:
-        raise ValueError(f"fe_scene must be one of {sorted(cases)}, got {scene_name!r}")
-    return contact_law(cases[scene_name], fidelity, load_factors, confidence=confidence, label=scene_name)
-
-
-def case_contact(path: str | Path):
-    """The contact an ``fe_case`` of a spec names: the case file's own contact, or the most loaded contact of a
-    linear guide or ball screw, with the FE levels of its file or chosen from its Hertz ellipse
-    (studies.ladder.contact_fe; docs/cases.md)."""
-    from ballbench.validation.cases import case_file
-    from ballbench.validation.studies import ladder
-
-    return ladder.contact_fe(ladder.governing_contact(case_file.load(path)))
-
-
 def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: float, log) -> dict:
     reference_c = reference_psi = None
     if "fe_scene" in table or "fe_case" in table:
@@ -265,7 +184,7 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
         from ballbench.lowmodel.contact import hertz
 
         geometry = hertz.ball_in_groove(radius, table["conformity"])
-        reference_c, reference_psi = _hertz_references(geometry, radius)
+        reference_c, reference_psi = hertz_references(geometry, radius)
     source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
     law = cal.fit_contact_law(data["force"], data["approach"], semi_axes=data.get("a"), ball_radius=radius,
                               confidence=confidence, source=source, hertz_constant=reference_c, psi=reference_psi)
@@ -350,7 +269,7 @@ def check_spec(spec: dict, spec_path: str | Path) -> None:  # noqa: C901 - one b
                 raise ValueError(f"{where}.fe_scene must be one of {sorted(scenes)}, got {table['fe_scene']!r}")
             if table.get("fidelity", "quick") not in FIDELITIES:
                 raise ValueError(f"{where}.fidelity must be quick, default or fine, got {table['fidelity']!r}")
-            _check_load_factors(table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
+            check_load_factors(table.get("load_factors", (0.5, 0.75, 1.0, 1.25, 1.5)))
             extra = set(table) & {"data", "ball_radius", "conformity"}
             if extra:
                 raise ValueError(f"{where}: {sorted(extra)} belong to a 'data' contact; the FE case sets them")
@@ -410,58 +329,3 @@ def run_spec(spec_path: str | Path, output: str | Path | None = None, log=print)
                 f"[{c.ci_low:.6g}, {c.ci_high:.6g}]{ref}")
     log(f"calibration written to {target}")
     return target, calibration
-
-
-# --------------------------------------------------------------------------
-# CLI and the --calibration option
-# --------------------------------------------------------------------------
-def active_calibration() -> cal.Calibration | None:
-    """The calibration given to ``ballbench validate --calibration FILE`` (or ``$BALLBENCH_CALIBRATION``)."""
-    path = os.environ.get(CALIBRATION_ENV)
-    return cal.load(path) if path else None
-
-
-def _calibration_file(value: str) -> str:
-    import argparse
-
-    try:
-        cal.load(value)
-    except ValueError as error:
-        raise argparse.ArgumentTypeError(str(error)) from None
-    os.environ[CALIBRATION_ENV] = str(Path(value).resolve())  # read by scenes through active_calibration()
-    return value
-
-
-def add_validate_option(parser) -> None:
-    """``--calibration FILE`` on ``ballbench validate``: scenes that use calibrated constants load this file."""
-    parser.add_argument("--calibration", type=_calibration_file, metavar="FILE",
-                        help="calibration file of `ballbench calibrate` used by the scenes that take constants")
-
-
-def main(args) -> int:
-    """``ballbench calibrate SPEC``: the spec and the output file are checked before any fit (UsageError, exit 2);
-    a fit that fails is exit 1."""
-    from ballbench.validation.usage import EXIT_FAILED, UsageError, check_writable_file
-
-    spec_path = Path(args.spec)
-    try:
-        spec = read_toml(spec_path)
-        check_spec(spec, spec_path)
-    except ValueError as error:
-        raise UsageError(f"calibrate: {error}") from None
-    target = Path(args.out) if args.out else spec_path.parent / spec.get("output", "calibration.json")
-    check_writable_file(target, "--out" if args.out else "output")
-    try:
-        run_spec(spec_path, args.out)
-    except ValueError as error:
-        print(f"ballbench calibrate: {error}", file=sys.stderr)
-        return EXIT_FAILED
-    return 0
-
-
-def add_parser(sub) -> None:
-    p = sub.add_parser("calibrate", help="fit constants (Psi, C, C_b, mu, k_f) with intervals; write a calibration")
-    p.add_argument("spec", help="calibration spec (TOML, docs/calibration.md)")
-    p.add_argument("--out", help="calibration file to write, relative to the current folder (default: the "
-                                 "spec's 'output', relative to the spec's folder)")
-    p.set_defaults(func=main)

@@ -1,4 +1,4 @@
-"""The one units parser (validation/units.py) and the plausibility ranges (lowmodel.checks.PLAUSIBLE) that catch
+"""The one units parser (validation/cases/units.py) and the plausibility ranges (lowmodel.checks.PLAUSIBLE) that catch
 mm-for-m and deg-for-rad at the models' entry points."""
 import math
 
@@ -6,7 +6,7 @@ import pytest
 
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b
-from ballbench.validation import units
+from ballbench.validation.cases import units
 
 
 def test_decimal_units_are_exact():

@@ -1,4 +1,4 @@
-"""What the scenes of a case file share (validation.case_scenes): the tolerances they judge by, the number format of
+"""What the scenes of a case file share (validation.ladder): the tolerances they judge by, the number format of
 their tables, the per-contact table and the power-balance check of a low-order or FE-informed state; the preload
 loss of a ball screw and the limits of lin2019's model it sets (:func:`preload_loss`, :func:`within_model_limits`,
 :func:`limits_lines`)."""

@@ -1,10 +1,9 @@
-"""Calibration studies: the synthetic round trip of the fits, and the contact laws calibrated on FE.
+"""The synthetic round trip of the calibration fits.
 
-* :func:`synthetic_truth`, :func:`synthetic_fit`, :func:`coverage`: data drawn from known constants plus noise
-  (the ``calibration-roundtrip`` scene and tests/test_calibration.py): the fits of lowmodel.calibration recover
-  them within their intervals, as often as the intervals claim;
-The contact laws calibrated on FE are ``validation.calibrate.contact_law`` (a case) and ``fe_contact_law`` (a
-scene's case).
+:func:`synthetic_truth`, :func:`synthetic_fit`, :func:`coverage`: data drawn from known constants plus noise (the
+``calibration-roundtrip`` scene and tests/validation/studies/test_calibration_roundtrip.py): the fits of
+lowmodel.calibration recover them within their intervals, as often as the intervals claim.  The contact laws
+calibrated on FE are :func:`.fe_laws.contact_law` (a case) and :func:`.fe_laws.fe_contact_law` (a scene's case).
 """
 from __future__ import annotations
 
@@ -42,7 +41,7 @@ def synthetic_fit(seed: int, truth: dict, work: Path | None = None, confidence: 
     """Fit every constant to synthetic data of ``seed``; returns ``{name: Constant}``.
 
     With ``work`` the friction data go through a CSV file (units N and mm/s, read back by
-    :func:`validation.calibrate.read_friction_csv`).
+    :func:`.spec.read_friction_csv`).
     """
     radius = lin2019.GUIDE.ball_radius
     rng = np.random.default_rng(seed)
@@ -55,7 +54,7 @@ def synthetic_fit(seed: int, truth: dict, work: Path | None = None, confidence: 
     speed = np.tile([0.01, 0.05, 0.1], 4)  # m/s
     friction = (truth["mu"] + truth["mu_speed_slope"] * speed) * normal + rng.normal(0.0, NOISE_F, normal.size)
     if work is not None:
-        from ballbench.validation.calibrate import read_friction_csv
+        from ballbench.validation.studies.calibration.spec import read_friction_csv
 
         path = work / f"friction-{seed}.csv"
         lines = ["# synthetic friction data (calibration-roundtrip)",

@@ -1,4 +1,4 @@
-"""Case functions for sweeps (``function = "ballbench.validation.sweep_cases:<name>"`` in a spec).
+"""Case functions for sweeps (``function = "ballbench.validation.sweep.functions:<name>"`` in a spec).
 
 Each takes scalar inputs as keywords (SI units) and returns a dict of scalar
 outputs; the vectorised ones broadcast arrays.  Defaults: lin2019 Table 1
@@ -30,7 +30,7 @@ NOMINAL = lin2019.GUIDE.nominal_angle  # beta_0 [rad], lin2019 Sec 2.4
 # top-groove deviations
 EQUIVALENCE_SPEC = {
     "name": "sweep-equivalence",
-    "function": "ballbench.validation.sweep_cases:two_ball_numerical",
+    "function": "ballbench.validation.sweep.functions:two_ball_numerical",
     "chunk_size": 7,  # does not divide the case count: a short last chunk
     "outputs": ["epsilon_1", "epsilon_2", "b2b_force", "friction_increase"],
     "grid": {"theta": {"linspace": [-3.0, 3.0, 3], "unit": "deg"}, "rho": {"values": [-0.95, -0.6, 0.3]}},

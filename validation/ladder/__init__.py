@@ -1,5 +1,9 @@
-"""Scenes generated from a case file: ``ballbench validate my_guide.toml`` runs the validation ladder on one's own
-bearing (studies.ladder) with the same harness, report, ``show`` pictures and VTU as the paper scenes.
+"""The validation ladder of a case of one's own, its one home: ``ballbench validate my_guide.toml`` runs it on one's
+own bearing with the same harness, report, ``show`` pictures and VTU as the paper scenes.  :mod:`.rungs` holds the
+rungs, the governing and distinct contacts and the mesh levels chosen from a case; :mod:`.balls`,
+:mod:`.contact`, :mod:`.ehl`, :mod:`.b2b_fe` and :mod:`.stick_slip` build one scene each, :mod:`.common` holds
+their shared tolerances and checks.  The run logic of the stick/slip and EHL rungs lives in studies
+(studies.case_stick_slip, studies.case_ehl).
 
 This package is a factory, not a scene module: it builds :class:`~ballbench.validation.scene.Scene` objects from a
 case (they are not registered; the CLI runs them beside or instead of the registered scenes).  A case file gives:
@@ -8,7 +12,7 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
   without B2B contact, the friction increase, the B2B forces (lowmodel.bearing_results); power balance and statics
   checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
-* ``<stem>-contact``: each distinct contact geometry at its largest load (studies.ladder.distinct_contacts: one for
+* ``<stem>-contact``: each distinct contact geometry at its largest load (ladder.rungs.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
   contact) up the ladder: exact Hertz, the BEM on
   the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
@@ -49,12 +53,12 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from ballbench.validation.case_scenes.b2b_fe import b2b_fe_scene, show_module
-from ballbench.validation.case_scenes.balls import balls_scene
-from ballbench.validation.case_scenes.common import limited, limits_lines
-from ballbench.validation.case_scenes.contact import contact_scene, show_contact
-from ballbench.validation.case_scenes.ehl import ehl_scene
-from ballbench.validation.case_scenes.stick_slip import stick_slip_scene
+from ballbench.validation.ladder.b2b_fe import b2b_fe_scene, show_module
+from ballbench.validation.ladder.balls import balls_scene
+from ballbench.validation.ladder.common import limited, limits_lines
+from ballbench.validation.ladder.contact import contact_scene, show_contact
+from ballbench.validation.ladder.ehl import ehl_scene
+from ballbench.validation.ladder.stick_slip import stick_slip_scene
 from ballbench.validation.cases.case import ContactCase, LinearGuideCase
 from ballbench.validation.scene import NotApplicable, Scene
 
@@ -86,7 +90,7 @@ def _lubricated(case) -> bool:
 
 def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
-    from ballbench.validation.studies.ladder import rungs_up_to
+    from ballbench.validation.ladder.rungs import rungs_up_to
 
     rungs = rungs_up_to(top)
     names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
@@ -102,8 +106,8 @@ def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
 
 def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | None = None) -> list[Scene]:
     """The scenes of ``case`` (a LinearGuideCase, BallScrewCase or ContactCase) named ``<stem>-...``, up to the
-    rung ``top`` (studies.ladder.RUNGS)."""
-    from ballbench.validation.studies.ladder import rungs_up_to
+    rung ``top`` (ladder.rungs.RUNGS)."""
+    from ballbench.validation.ladder.rungs import rungs_up_to
 
     rungs = rungs_up_to(top)
     kind = _kind(case)
@@ -115,7 +119,7 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
                             functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
-    # studies.ladder.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
+    # ladder.rungs.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
     n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("
                         + ", ".join(r for r in rungs if r in ("analytical", "BEM", "FE")) + ")",

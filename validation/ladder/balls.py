@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ballbench.validation.case_scenes.common import B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check
+from ballbench.validation.ladder.common import B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 
 __all__ = ["balls_scene"]

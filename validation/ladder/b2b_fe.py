@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.case_scenes.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE,
-                                                     REFERENCE_UNCERTAINTY, fmt)
+from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE,
+                                               REFERENCE_UNCERTAINTY, fmt)
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.lowmodel.state import friction_increase
 from ballbench.validation.scene import NotApplicable
@@ -20,7 +20,7 @@ __all__ = ["b2b_fe_scene", "show_module"]
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
     """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``)."""
-    from ballbench.validation.studies.ladder import module_fe
+    from ballbench.validation.ladder.rungs import module_fe
 
     if isinstance(case, LinearGuideCase):
         _guide_b2b_fe(run, module_fe(case), deadline)
@@ -32,12 +32,12 @@ def _levels(run, case, deadline, solve, dofs):
     """Run ``solve(level) -> dict`` over the case's module levels, stopping where the budget would be passed or
     where a level's predicted memory exceeds the memory available (:func:`_memory_guard`, ``dofs(level)`` its P2
     DOFs); returns the rows.  A study whose first level does not fit raises MemoryError (nothing to judge)."""
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
 
     rows, sizes, times = [], [], []
     for level in run.progress(case.fe.levels[run.fidelity], desc=f"{run.scene.name} FE module levels"):
         if deadline is not None and times:
-            predicted = ladder.predicted_time(times, sizes, level.h_contact)
+            predicted = ladder_rungs.predicted_time(times, sizes, level.h_contact)
             if time.monotonic() + predicted > deadline:
                 run.note(f"--budget: module levels from h {level.h_contact * 1e6:.0f} um on not run (predicted "
                          f"{predicted:.0f} s beyond the budget)")
@@ -59,18 +59,18 @@ def _levels(run, case, deadline, solve, dofs):
 
 def _memory_guard(run, level, ndofs: int) -> str:
     """"" when the module level ``level`` of ``ndofs`` P2 DOFs may run, else why not: its peak memory predicted
-    from its DOFs (studies.ladder.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
-    the memory the machine has available now (studies.ladder.available_memory) or above the memory the scene
+    from its DOFs (ladder.rungs.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
+    the memory the machine has available now (ladder.rungs.available_memory) or above the memory the scene
     declares (:meth:`Scene.memory_for`), as the contact scene's guard decides."""
     from ballbench.validation.runner import GB
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
 
-    need = ladder.predicted_memory(ndofs)
-    available, declared = ladder.available_memory(), run.scene.memory_for(run.fidelity) * GB
+    need = ladder_rungs.predicted_memory(ndofs)
+    available, declared = ladder_rungs.available_memory(), run.scene.memory_for(run.fidelity) * GB
     if need <= min(available, declared):
         return ""
     return (f"{ndofs} P2 DOFs (h {level.h_contact * 1e6:.0f} um) need about {need / GB:.1f} GB "
-            f"({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), {available / GB:.1f} GB "
+            f"({ladder_rungs.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), {available / GB:.1f} GB "
             f"available, {declared / GB:g} GB declared by the scene")
 
 
@@ -214,7 +214,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 
 def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
     """Why the FE screw module does not apply: the contacts lin2019's state leaves unloaded, with the preload loss."""
-    from ballbench.validation.case_scenes.common import oversize_for, preload_loss, preload_loss_words
+    from ballbench.validation.ladder.common import oversize_for, preload_loss, preload_loss_words
 
     loss = preload_loss(case)
     past = (f"past the preload loss at {loss.axial_load:.4g} N" if case.axial_load > loss.axial_load else
@@ -248,7 +248,7 @@ def show_module(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (solved if none)."""
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
-    from ballbench.validation.studies.ladder import module_fe
+    from ballbench.validation.ladder.rungs import module_fe
 
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)

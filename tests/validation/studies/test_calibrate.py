@@ -1,4 +1,5 @@
-"""validation.calibrate (``ballbench calibrate``): friction CSV input, k_f constants, the spec, the FE load sweep."""
+"""validation.studies.calibration (``ballbench calibrate``): friction CSV input, k_f constants, the spec, the FE load
+sweep."""
 import json
 import math
 from pathlib import Path
@@ -6,7 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 from ballbench.lowmodel.contact import hertz
-from ballbench.validation import calibrate, cli
+from ballbench.validation import cli
+from ballbench.validation.studies.calibration import command, fe_laws
+from ballbench.validation.studies.calibration import spec as calibration_spec
 
 from tests.cli_support import one_error_line
 from tests import paths
@@ -33,11 +36,9 @@ FE_CONTACT = '[contact."ball-groove-0.56"]\nfe_scene = "fe-hertz-groove-056"\n'
     ('[contact.nut]\ndata = "nut.csv"\nball_radius = 3.175\n', "ball_radius must lie in [0.0001, 0.1] m"),
 ])
 def test_calibrate_spec_mistakes_are_found_before_the_fe_sweep(tmp_path, monkeypatch, capsys, body, expected):
-    from ballbench.validation import calibrate
-
     # a typo in the last table used to surface only after the FE load sweep of the first (minutes); a ball
     # radius in mm used to give a Psi 10x off without a word
-    monkeypatch.setattr(calibrate, "fe_contact_law", lambda *a, **k: pytest.fail("FE started before the check"))
+    monkeypatch.setattr(calibration_spec, "fe_contact_law", lambda *a, **k: pytest.fail("FE started before the check"))
     line = one_error_line(capsys, cli.main(["calibrate", str(_calibrate_spec(tmp_path, body))]))
     assert expected in line
     assert not (tmp_path / "out").exists()
@@ -64,7 +65,7 @@ def _write(tmp_path, text, name="f.csv"):
 def test_friction_csv_units_and_torque(tmp_path):
     path = _write(tmp_path, "# rig 3, 2026-11-20\nnormal_force [kN],friction_torque [N mm],lever_arm [mm],"
                             "speed [mm/s]\n0.1,500,50,10\n0.2,1100,50,20\n")
-    data = calibrate.read_friction_csv(path)
+    data = calibration_spec.read_friction_csv(path)
     np.testing.assert_allclose(data["normal_force"], [100.0, 200.0])
     np.testing.assert_allclose(data["friction_force"], [10.0, 22.0])  # 0.5 N m / 0.05 m
     np.testing.assert_allclose(data["speed"], [0.01, 0.02])
@@ -87,14 +88,14 @@ def test_friction_csv_units_and_torque(tmp_path):
 def test_bad_friction_csv_names_line_and_column(tmp_path, text, message):
     path = _write(tmp_path, text)
     with pytest.raises(ValueError, match=message) as error:
-        calibrate.read_friction_csv(path)
+        calibration_spec.read_friction_csv(path)
     assert str(path) in str(error.value)
 
 
 def test_kf_exact_and_least_squares():
     from ballbench.lowmodel.contact import ellipse_friction as ef
 
-    constants = calibrate.kf_constants(0.56, 0.5)
+    constants = calibration_spec.kf_constants(0.56, 0.5)
     exact, ls, ls_map = constants["exact"].value, constants["least_squares"].value, constants["least_squares_map"]
     assert exact > ls  # the cubic term of the force bends the fitted slope below the tangent (lin2019 eq A8)
     ratio = float(hertz.solve_load(hertz.ball_in_groove(5e-3, 0.56), 100.0).b
@@ -120,7 +121,7 @@ data = "{friction.name}"
 conformity = 0.56
 ''', "spec.toml")
     lines = []
-    path, calibration = calibrate.run_spec(spec, log=lines.append)
+    path, calibration = calibration_spec.run_spec(spec, log=lines.append)
     assert path == tmp_path / "cal.json" and path.is_file()
     psi = calibration.get("ball-groove-0.56", "psi")
     geometry = hertz.ball_in_groove(5e-3, 0.56)
@@ -132,7 +133,7 @@ conformity = 0.56
 
     from ballbench.validation import cli
 
-    monkeypatch.setenv(calibrate.CALIBRATION_ENV, "")  # restored after the test
+    monkeypatch.setenv(command.CALIBRATION_ENV, "")  # restored after the test
     out = tmp_path / "report"
     code = cli.main(["validate", "calibration-effect", "--calibration", str(path), "--out", str(out),
                      "--no-progress"])
@@ -144,16 +145,16 @@ conformity = 0.56
 def test_bad_spec_is_named(tmp_path):
     spec = _write(tmp_path, '[contact.x]\nfe_scene = "fe-hertz-flat"\ndata = "a.csv"\n', "s.toml")
     with pytest.raises(ValueError, match="exactly one of 'fe_scene'"):
-        calibrate.run_spec(spec, log=lambda _: None)
+        calibration_spec.run_spec(spec, log=lambda _: None)
     spec = _write(tmp_path, 'colour = 1\n', "t.toml")
     with pytest.raises(ValueError, match="unknown key"):
-        calibrate.run_spec(spec, log=lambda _: None)
+        calibration_spec.run_spec(spec, log=lambda _: None)
 
 
 @pytest.mark.slow
 def test_fe_sweep_reproduces_the_cached_data():
     # the quick FE level of fe-hertz-groove-056 (about 10-60 s on the shared machine)
-    sweep = calibrate.fe_load_sweep("fe-hertz-groove-056", "quick")
-    cached = calibrate.read_load_approach_csv(FE_CSV)
+    sweep = fe_laws.fe_load_sweep("fe-hertz-groove-056", "quick")
+    cached = calibration_spec.read_load_approach_csv(FE_CSV)
     for name in ("force", "approach", "a"):
         np.testing.assert_allclose(sweep[name], cached[name], rtol=1e-6)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ballbench.validation.case_scenes.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt
+from ballbench.validation.ladder.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt
 from ballbench.validation.cases.case import LinearGuideCase
 
 # where to go when the level's grid is not converged: the next level and its grid (studies.case_ehl.GRID_N)
@@ -38,7 +38,7 @@ def ehl_scene(run, *, case) -> None:
         where = f"{fmt(c.load)} N, U_e {fmt(c.speed)} m/s"
         solve = dict(model=MODEL, family="EHL", level=level, time_s=c.time_s, note=where)
         run.check(**solve, quantity="load balance (sun2021 eq 19)", unit="N", value=s.force, reference=c.load,
-                  tolerance=EHL_LOAD_TOLERANCE, source="the contact's load (studies.ladder.distinct_contacts)")
+                  tolerance=EHL_LOAD_TOLERANCE, source="the contact's load (ladder.rungs.distinct_contacts)")
         run.check(**solve, quantity="min pressure (cavitation p >= 0)", unit="Pa", value=float(np.min(s.pressure)),
                   reference=0.0, relation="ge", scale=1e6, tolerance=0.0,
                   why="sign test: tolerance 0, so any negative pressure fails; 1 MPa only names the unit",

@@ -7,7 +7,7 @@ share of mu F; the B2B force and the balls' friction by both laws, judged at ful
 docs/render3d.md)."""
 from __future__ import annotations
 
-from ballbench.validation.case_scenes.common import NEAR_ZERO_B2B, fmt
+from ballbench.validation.ladder.common import NEAR_ZERO_B2B, fmt
 from ballbench.validation.cases.case import LinearGuideCase
 
 __all__ = ["stick_slip_scene"]

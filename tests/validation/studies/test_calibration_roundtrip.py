@@ -1,8 +1,8 @@
-"""validation.studies.calibration: the synthetic calibration round trip (interval coverage over seeds)."""
+"""validation.studies.calibration.roundtrip: the synthetic calibration round trip (interval coverage over seeds)."""
 
 
 def test_intervals_cover_the_truth_in_at_least_90_percent_of_seeds():
-    from ballbench.validation.studies.calibration import coverage, synthetic_truth
+    from ballbench.validation.studies.calibration.roundtrip import coverage, synthetic_truth
 
     shares = coverage(range(100), synthetic_truth())
     assert set(shares) == {"hertz_constant", "bulk_compliance", "psi", "mu", "mu_speed_slope", "k_f"}

@@ -9,8 +9,8 @@ import math
 import time
 from pathlib import Path
 
-from ballbench.validation.case_scenes.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
-                                                     past_preload_loss)
+from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
+                                               past_preload_loss)
 from ballbench.validation.cases.case import ContactCase
 
 __all__ = ["contact_scene", "show_contact"]
@@ -18,12 +18,12 @@ __all__ = ["contact_scene", "show_contact"]
 
 def contact_scene(run, *, case, rungs, deadline) -> None:
     """The scene function of ``<stem>-contact``: every distinct contact geometry of ``case`` at its largest load
-    (studies.ladder.distinct_contacts: one for a guide or a contact, the screw and the nut side of a screw) up the
+    (ladder.rungs.distinct_contacts: one for a guide or a contact, the screw and the nut side of a screw) up the
     ladder; ``rungs`` those to run, ``deadline`` a ``time.monotonic()`` value (``--budget``) past which no further FE
     level starts.  The fields and pictures are those of the most loaded contact.  Past a ball screw's preload loss,
     where lin2019's model has no state, the loads are those of the frictionless statics (:func:`_distinct`), and the
     scene says so."""
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
 
     distinct, reason = _distinct(case)
     if reason:
@@ -43,25 +43,25 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     for index, d in enumerate(distinct):
         tag = d.label if len(distinct) > 1 else ""
         chosen = rungs if fe_on[index] else tuple(r for r in rungs if r != "FE")
-        _one_contact(run, ladder.contact_fe(d.contact), chosen, deadline, tag, fields=index == 0)
+        _one_contact(run, ladder_rungs.contact_fe(d.contact), chosen, deadline, tag, fields=index == 0)
 
 
 def _distinct(case):
-    """(studies.ladder.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
+    """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
     screw past its preload loss, where lin2019's model stops at its declared limit (common.past_preload_loss), runs
     on the loads of the frictionless two-point statics (lowmodel.screw.preload.frictionless_statics) instead of
     not applying: the contact rung needs a contact geometry and a load, not lin2019's friction.  Any other
     ConvergenceError stays as it is."""
     from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
 
     try:
-        return ladder.distinct_contacts(case), ""
+        return ladder_rungs.distinct_contacts(case), ""
     except ConvergenceError as error:
         reason = past_preload_loss(case, error)
         if not reason:
             raise
-    return ladder.distinct_contacts(case, frictionless=True), reason
+    return ladder_rungs.distinct_contacts(case, frictionless=True), reason
 
 
 def _frictionless_table(run, case, reason: str) -> None:
@@ -91,14 +91,15 @@ def _tagged(level: str, tag: str) -> str:
 def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields: bool) -> None:
     from ballbench.lowmodel.contact import hertz
     from ballbench.validation.references.richardson import extrapolate
-    from ballbench.validation.studies import fe_contact, ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
+    from ballbench.validation.studies import fe_contact
 
     run.note(_head(tag) + f"Contact: {contact.name}; pair {contact.pair}, R_B "
              f"{fmt(contact.ball_radius * 1e3)} mm" + (f", conformity {contact.conformity:g}" if contact.conformity
                                                        else "") + f", F {fmt(contact.force)} N.")
     models = []  # (model, family, level, values, time)
     hertz_model = "lowmodel.contact.hertz"
-    ref_hertz, time_h = run.time(ladder.hertz_values, contact)
+    ref_hertz, time_h = run.time(ladder_rungs.hertz_values, contact)
     models.append((hertz_model, "analytical", "", ref_hertz, time_h))
     geometry = fe_contact.hertz_geometry(contact)
     radius = geometry.reference_radius
@@ -106,9 +107,9 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
               unit="1", value=ref_hertz["a"] / radius, reference=hertz.VALIDITY_RATIO, relation="le", tolerance=0.0,
               time_s=time_h, source="lowmodel.contact.hertz.VALIDITY_RATIO (docs/hertz.md, validity)", finding=True)
     if "BEM" in rungs:
-        for n in ladder.BEM_GRIDS[run.fidelity]:
+        for n in ladder_rungs.BEM_GRIDS[run.fidelity]:
             run.checkpoint()
-            values, wall = ladder.timed(ladder.bem_values, contact, n)
+            values, wall = ladder_rungs.timed(ladder_rungs.bem_values, contact, n)
             models.append(("lowmodel.contact.halfspace (exact gap)", "BEM", f"{n} x {n}", values, wall))
     fe_rows, fe_results, fe_levels = (_fe_study(run, contact, ref_hertz["b"], deadline, tag, models) if "FE" in rungs
                                       else ([], [], []))
@@ -121,10 +122,10 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
     for model, family, level, values, wall in models:
         if values is reference:
             continue  # the model that is the reference (one FE level, or the finest BEM grid): no check of itself
-        tolerances = (ladder.FE_TOLERANCES[run.fidelity] if family == "FE" else
-                      {q: ladder.BEM_TOLERANCE for q, _ in ladder.QUANTITIES} if family == "BEM"
-                      else ladder.HERTZ_TOLERANCES)
-        for quantity, unit in ladder.QUANTITIES:
+        tolerances = (ladder_rungs.FE_TOLERANCES[run.fidelity] if family == "FE" else
+                      {q: ladder_rungs.BEM_TOLERANCE for q, _ in ladder_rungs.QUANTITIES} if family == "BEM"
+                      else ladder_rungs.HERTZ_TOLERANCES)
+        for quantity, unit in ladder_rungs.QUANTITIES:
             run.check(model=model, family=family, level=_tagged(level, tag), quantity=quantity, unit=unit,
                       value=values[quantity], reference=reference[quantity], source=source,
                       tolerance=tolerances[quantity], time_s=wall,
@@ -157,7 +158,8 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
     """The FE levels of ``contact`` (sizes ``h = b / n`` from its Hertz semi-axis ``b``), stopped where ``--budget``
     would be passed or where a level's predicted memory exceeds the memory available (:func:`_memory_guard`);
     appends each level to ``models``; returns (rows, results, levels)."""
-    from ballbench.validation.studies import fe_contact, ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
+    from ballbench.validation.studies import fe_contact
 
     fe_rows, fe_results, fe_levels = [], [], []
     pair = fe_contact.pair_model(contact)
@@ -169,7 +171,7 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
             run.note(_head(tag) + "--budget: passed before this contact's FE study; no FE level run")
             break
         if deadline is not None and times:
-            predicted = ladder.predicted_time(times, sizes, size)
+            predicted = ladder_rungs.predicted_time(times, sizes, size)
             if time.monotonic() + predicted > deadline:
                 run.note(_head(tag) + f"--budget: FE levels from n = b/h {level.n:g} on not run (predicted "
                          f"{predicted:.0f} s beyond the budget)")
@@ -184,7 +186,7 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
         wall = time.perf_counter() - start
         sizes.append(size)
         times.append(wall)
-        values = {q: float(getattr(result, q)) for q, _ in ladder.QUANTITIES}
+        values = {q: float(getattr(result, q)) for q, _ in ladder_rungs.QUANTITIES}
         words = f"n = b/h {level.n:g}, growth {level.growth:g}"
         models.append(("fem.contact", "FE", words, values, wall))
         fe_rows.append(dict(n=level.n, growth=level.growth, h_contact=result.h_contact, ndofs=result.ndofs,
@@ -200,20 +202,21 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
 
 def _memory_guard(run, pair, level, tag: str) -> bool:
     """Whether the FE level ``level`` of ``pair`` may run: its peak memory predicted from the P2 DOFs of its mesh
-    (studies.ladder.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) within the memory the
-    machine has available now (studies.ladder.available_memory) and within the memory the scene declares
+    (ladder.rungs.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) within the memory the
+    machine has available now (ladder.rungs.available_memory) and within the memory the scene declares
     (:meth:`Scene.memory_for`, what the distributed runner reserves for it).  When not, a note says so and the level
     and those above it do not run (the study keeps the levels that ran, as ``--budget`` does)."""
     from ballbench.validation.runner import GB
-    from ballbench.validation.studies import fe_contact, ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
+    from ballbench.validation.studies import fe_contact
 
     ndofs = fe_contact.level_dofs(pair, level)
-    need = ladder.predicted_memory(ndofs)
-    available, declared = ladder.available_memory(), run.scene.memory_for(run.fidelity) * GB
+    need = ladder_rungs.predicted_memory(ndofs)
+    available, declared = ladder_rungs.available_memory(), run.scene.memory_for(run.fidelity) * GB
     if need <= min(available, declared):
         return True
     run.note(_head(tag) + f"memory: FE levels from n = b/h {level.n:g} on not run: {ndofs} P2 DOFs need about "
-             f"{need / GB:.1f} GB ({ladder.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), "
+             f"{need / GB:.1f} GB ({ladder_rungs.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), "
              f"{available / GB:.1f} GB available, {declared / GB:g} GB declared by the scene")
     return False
 
@@ -235,13 +238,13 @@ def _tolerance_note(family: str, fidelity: str) -> str:
 def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
     """(reference values, source text, relative uncertainties or None): the extrapolated FE study (>= 2 levels),
     the one FE level, or the finest BEM grid; None when only Hertz ran."""
-    from ballbench.validation.studies import ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
 
     fe = [m for m in models if m[1] == "FE"]
     if len(fe) >= 2:
         sizes = [r["h_contact"] for r in fe_rows]
         reference, uncertainty, notes = {}, {}, []
-        for quantity, _ in ladder.QUANTITIES:
+        for quantity, _ in ladder_rungs.QUANTITIES:
             e = extrapolate(sizes, [r[quantity] for r in fe_rows])
             reference[quantity] = e.value
             uncertainty[quantity] = e.relative_uncertainty
@@ -277,7 +280,8 @@ def _fields(run, contact: ContactCase, result, level) -> None:
 def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (solved at
     ``fidelity`` if none)."""
-    from ballbench.validation.studies import fe_contact, ladder
+    from ballbench.validation.ladder import rungs as ladder_rungs
+    from ballbench.validation.studies import fe_contact
 
     governing = _distinct(case)[0][0].contact
-    return fe_contact.show_fields(ladder.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)
+    return fe_contact.show_fields(ladder_rungs.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)

@@ -1,4 +1,5 @@
-"""studies.ladder.distinct_contacts: the contact geometries of a case the ``-contact`` scene runs
+"""The ladder of a case of one's own (validation.ladder): its rungs (ladder.rungs.distinct_contacts: the contact
+geometries of a case the ``-contact`` scene runs; the FE rung's memory and levels) and the scenes it builds
 (docs/your_own_bearing.md, "The ladder")."""
 from __future__ import annotations
 
@@ -10,13 +11,13 @@ import pytest
 from ballbench.validation import cli
 from ballbench.validation.cases import case_file
 from ballbench.lowmodel import bearing_results
-from ballbench.validation.studies import ladder
+from ballbench.validation.ladder import rungs
 from tests import paths
 
 
 def test_a_guide_has_one_contact_geometry_run_at_its_largest_load():
     case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
-    (only,) = ladder.distinct_contacts(case)
+    (only,) = rungs.distinct_contacts(case)
     result = bearing_results.guide_result(case)
     assert only.label == "groove" and len(only.members) == len(result.contacts)
     assert only.contact.force == max(c.normal_force for c in result.contacts)
@@ -25,14 +26,14 @@ def test_a_guide_has_one_contact_geometry_run_at_its_largest_load():
 
 def test_a_screw_has_a_screw_side_and_a_nut_side_each_at_its_largest_load():
     case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
-    distinct = ladder.distinct_contacts(case)
+    distinct = rungs.distinct_contacts(case)
     result = bearing_results.screw_result(case)
     assert {d.label for d in distinct} == {"screw side", "nut side"}
     for d in distinct:
         side = [c for c in result.contacts if c.contact[0] == d.contact.pair[0].upper()]
         assert d.contact.force == max(c.normal_force for c in side) and len(d.members) == len(side)
     assert distinct[0].contact.force >= distinct[1].contact.force  # the most loaded first: its fields are saved
-    assert distinct[0].contact.force == ladder.governing_contact(case).force
+    assert distinct[0].contact.force == rungs.governing_contact(case).force
 
 
 def test_the_frictionless_loads_of_a_screw_are_the_largest_of_its_frictionless_statics():
@@ -41,15 +42,15 @@ def test_the_frictionless_loads_of_a_screw_are_the_largest_of_its_frictionless_s
     from ballbench.lowmodel.screw import b2b as screw_b2b
 
     case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
-    distinct = ladder.distinct_contacts(case, frictionless=True)
+    distinct = rungs.distinct_contacts(case, frictionless=True)
     state = preload.frictionless_statics(screw_b2b.contacts(case), case.axial_load)
     largest = {"screw": state.normal_force[:, :2].max(), "nut": state.normal_force[:, 2:].max()}
     assert {d.contact.pair: d.contact.force for d in distinct} == largest
     assert all("frictionless" in d.contact.name and "lowmodel.screw.preload" in d.why for d in distinct)
     assert distinct[0].contact.force >= distinct[1].contact.force
     with pytest.raises(ValueError, match="frictionless"):
-        ladder.distinct_contacts(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"),
-                                 frictionless=True)
+        rungs.distinct_contacts(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"),
+                                frictionless=True)
 
 
 def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
@@ -67,14 +68,14 @@ def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
 def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accuracy(tmp_path):
     # the balls of one's own guide with stick/slip contacts against full slip on the same cells: the B2B force at
     # full slip's 2.5 % (docs/b2b_rolling.md), the friction at 1 %, a power balance per solve, a row per contact
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.runner import run_scenes
     from ballbench.validation.studies.rolling_b2b import FULL_SLIP_TOLERANCE
 
     case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
-    scenes = [s for s in case_scenes.case_scenes(case, "g", top="stick-slip") if s.name == "g-stick-slip"]
-    assert scenes and "g-stick-slip" in case_scenes.scene_names(case, "g", top="stick-slip")
-    assert "g-stick-slip" not in case_scenes.scene_names(case, "g", top="FE-informed")
+    scenes = [s for s in ladder.case_scenes(case, "g", top="stick-slip") if s.name == "g-stick-slip"]
+    assert scenes and "g-stick-slip" in ladder.scene_names(case, "g", top="stick-slip")
+    assert "g-stick-slip" not in ladder.scene_names(case, "g", top="FE-informed")
     (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
     assert not result.error and result.passed, result
     checks = {o.quantity: o for o in result.outputs}
@@ -103,16 +104,16 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
 def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
     # --budget already passed: the FE rung of the screw side starts no level and says so; at quick the nut side has
     # no FE rung at all (one FE study per scene at quick, every contact at the default level)
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.cases import case_file as files
     from ballbench.validation.runner import run_scenes
 
     case = files.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-table5-a.toml")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "m", top="FE", deadline=0.0) if s.name == "m-contact"]
+    (scene,) = [s for s in ladder.case_scenes(case, "m", top="FE", deadline=0.0) if s.name == "m-contact"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     title, header, rows = result.tables[0]
-    rungs = {row[0]: row[header.index("rungs")] for row in rows}
-    assert rungs == {"screw side": "analytical, BEM, FE", "nut side": "analytical, BEM"}, rows
+    ran = {row[0]: row[header.index("rungs")] for row in rows}
+    assert ran == {"screw side": "analytical, BEM, FE", "nut side": "analytical, BEM"}, rows
     assert any("no FE level run" in n for n in result.notes) and any("most loaded contact only" in n
                                                                          for n in result.notes)
     assert not [o for o in result.outputs if o.family == "FE"]
@@ -136,18 +137,18 @@ def test_the_dofs_counted_on_a_mesh_are_those_of_its_p2_basis():
 
 def test_an_fe_level_predicted_beyond_the_available_memory_does_not_run(tmp_path, monkeypatch):
     # the guard skips the level (and those above) with a note instead of solving it; no FE solve runs here
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.runner import run_scenes
     from ballbench.validation.studies import fe_contact
 
     def no_solve(*args, **kwargs):
         raise AssertionError("an FE level ran although its predicted memory exceeds the available memory")
 
-    monkeypatch.setattr(ladder, "available_memory", lambda: 1e9)
-    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 2e9 if ndofs > 0 else 0.0)
+    monkeypatch.setattr(rungs, "available_memory", lambda: 1e9)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 2e9 if ndofs > 0 else 0.0)
     monkeypatch.setattr(fe_contact, "solve_level", no_solve)
     case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
+    (scene,) = [s for s in ladder.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert not result.error, result.error
     assert not [o for o in result.outputs if o.family == "FE"]
@@ -157,7 +158,7 @@ def test_an_fe_level_predicted_beyond_the_available_memory_does_not_run(tmp_path
 
 def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, monkeypatch):
     # plenty available on the machine, but more than the scene declares (what a distributed worker reserves)
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.runner import GB, run_scenes
     from ballbench.validation.studies import fe_contact
 
@@ -165,10 +166,10 @@ def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, m
         raise AssertionError("an FE level ran although its predicted memory exceeds the scene's declared memory")
 
     case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
-    (scene,) = [s for s in case_scenes.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
+    (scene,) = [s for s in ladder.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
     declared = scene.memory_for("quick") * GB
-    monkeypatch.setattr(ladder, "available_memory", lambda: 100 * declared)
-    monkeypatch.setattr(ladder, "predicted_memory", lambda ndofs: 2 * declared)
+    monkeypatch.setattr(rungs, "available_memory", lambda: 100 * declared)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 2 * declared)
     monkeypatch.setattr(fe_contact, "solve_level", no_solve)
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert not result.error, result.error
@@ -177,9 +178,9 @@ def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, m
 
 
 def test_the_memory_of_a_level_is_predicted_from_its_dofs():
-    assert ladder.predicted_memory(100_000) == ladder.BYTES_PER_DOF * 100_000
-    assert ladder.predicted_memory(200_000) == 2 * ladder.predicted_memory(100_000)
-    assert 0 < ladder.available_memory()
+    assert rungs.predicted_memory(100_000) == rungs.BYTES_PER_DOF * 100_000
+    assert rungs.predicted_memory(200_000) == 2 * rungs.predicted_memory(100_000)
+    assert 0 < rungs.available_memory()
 
 
 def test_the_quick_study_of_a_screw_contact_keeps_its_finest_level_within_the_cap(monkeypatch):
@@ -194,25 +195,25 @@ def test_the_quick_study_of_a_screw_contact_keeps_its_finest_level_within_the_ca
 
     monkeypatch.setattr(fe_contact, "level_dofs", dofs)
     case = case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml")
-    contact = ladder.distinct_contacts(case)[0].contact
-    chosen = ladder.contact_fe(contact)
+    contact = rungs.distinct_contacts(case)[0].contact
+    chosen = rungs.contact_fe(contact)
     quick = chosen.fe.levels["quick"]
-    assert len(quick) == 3 and {lv.growth for lv in quick} == {ladder.SCREW_QUICK_GROWTH}
+    assert len(quick) == 3 and {lv.growth for lv in quick} == {rungs.SCREW_QUICK_GROWTH}
     ratios = [quick[k + 1].n / quick[k].n for k in range(2)]
     assert abs(ratios[0] - ratios[1]) < 1e-12 and ratios[0] > 1
-    assert dofs(None, quick[-1]) <= ladder.QUICK_DOF_CAP
-    larger = [r for r in ladder.SCREW_QUICK_RATIOS if r > ratios[0] + 1e-12]
-    assert all(dofs(None, type(quick[0])(quick[0].n * r * r, quick[0].growth)) > ladder.QUICK_DOF_CAP
+    assert dofs(None, quick[-1]) <= rungs.QUICK_DOF_CAP
+    larger = [r for r in rungs.SCREW_QUICK_RATIOS if r > ratios[0] + 1e-12]
+    assert all(dofs(None, type(quick[0])(quick[0].n * r * r, quick[0].growth)) > rungs.QUICK_DOF_CAP
                for r in larger)
     assert chosen.fe.fine_zone == "ellipse"  # a slender helical ellipse gets the elliptic slab (docs/fem.md)
-    assert chosen.fe.levels["default"] == tuple(ladder.PairLevel(n, g) for n, g in
-                                                [(n, ladder.CONTACT_LEVELS["default"][1])
-                                                 for n in ladder.CONTACT_LEVELS["default"][0]])
+    assert chosen.fe.levels["default"] == tuple(rungs.PairLevel(n, g) for n, g in
+                                                [(n, rungs.CONTACT_LEVELS["default"][1])
+                                                 for n in rungs.CONTACT_LEVELS["default"][0]])
 
 
 def test_a_paper_contact_keeps_its_own_fe_settings():
     case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-nut.toml")
-    assert ladder.contact_fe(case) is case
+    assert rungs.contact_fe(case) is case
 
 
 def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypatch):
@@ -220,7 +221,7 @@ def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypat
     # over the case's largest ellipses; the condensation replaced by the half-space (operator None), so the FE rung
     # must equal the half-space rung on the same grid, and the arguments are the case's, not lin2019's steel guide
     from ballbench.lowmodel.contact import rolling
-    from ballbench.validation import case_scenes
+    from ballbench.validation import ladder
     from ballbench.validation.runner import run_scenes
     from ballbench.lowmodel.linear_bearing import b2b
     from ballbench.validation.studies import case_stick_slip, rolling_b2b
@@ -250,8 +251,8 @@ def test_the_stick_slip_rung_condenses_the_case_s_own_groove(tmp_path, monkeypat
                                                                                         .poisson_ratio)
     assert call[2] == pytest.approx(1.4 * along, rel=1e-12) and call[4:6] == (8, 32)
     assert float(rung.fe.touching.b2b_force[0]) == float(rung.half_space.touching.b2b_force[0]) > 0
-    (scene,) = [s for s in case_scenes.case_scenes(case, "g") if s.name == "g-stick-slip"]
-    assert scene.memory_for("default") == case_scenes.STICK_SLIP_MEMORY_GB
+    (scene,) = [s for s in ladder.case_scenes(case, "g") if s.name == "g-stick-slip"]
+    assert scene.memory_for("default") == ladder.STICK_SLIP_MEMORY_GB
     (result,), _ = run_scenes([scene], "default", tmp_path, show_progress=False)
     assert not result.error and result.passed, result
     fe_rows = [o for o in result.outputs if "FE compliance" in o.level and o.family == "BEM"]
