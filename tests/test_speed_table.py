@@ -42,6 +42,15 @@ def test_a_page_without_one_pair_of_markers_is_refused(page):
         speed_table.replace_between(page, "| table |")
 
 
+def test_the_rendered_table_lies_between_the_markers_of_the_page():
+    page = speed_table.PAGE.read_text()
+    table = speed_table.render(_run(_row()))
+    written = speed_table.replace_between(page, table)
+    head, tail = page.split(START)[0], page.split(END)[1]
+    assert written.startswith(head + START) and written.endswith(END + tail)
+    assert "| figure bearing.2 | 0.0500 ms | CPU | <= 0.2 ms | met |" in written
+
+
 @pytest.mark.parametrize("target, value, verdict", [("<= 0.2", 0.2, "met"), ("<= 0.2", 0.21, "short"),
                                                      ("< 500", 500.0, "short"), (">= 2e4", 30801.0, "met"),
                                                      (">= 1e5", 9.9e4, "short"), ("stated", 3.0, ""), (None, 3.0, "")])
