@@ -8,11 +8,13 @@ import numpy as np
 
 from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 
+from speed_table import figure
+
 N_CASES = 1_000_000
 COMMON = dict(normal_load=100.0, groove_velocity=0.01, friction_coefficient=0.1, psi=5.3073e-4, ball_radius=5e-3)
 
 
-def test_two_ball_cases_per_second(benchmark):
+def test_two_ball_cases_per_second(benchmark, record_property):
     rng = np.random.default_rng(0)
     theta = rng.uniform(-math.radians(3), math.radians(3), N_CASES)
     rho = rng.uniform(-0.9, 0.9, N_CASES)  # |rho| < tan(42 deg): four-point contact (lin2017 eq 37)
@@ -20,6 +22,8 @@ def test_two_ball_cases_per_second(benchmark):
     rate = N_CASES / benchmark.stats.stats.median
     benchmark.extra_info["cases_per_second"] = rate
     print(f"\nanalytical two-ball cases per second (vectorised over {N_CASES}): {rate:.3e} (target >= 1e6)")
+    figure(record_property, "b2b_analytical", f"analytical B2B two-ball cases (lin2019 eqs 22, 30, 32), vectorised "
+           f"over {N_CASES:,}", rate, "cases/s", target=">= 1e6", clock="wall")
 
 
 def test_two_ball_single_case(benchmark):

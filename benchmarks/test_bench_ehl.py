@@ -14,11 +14,13 @@ import pytest
 from ballbench.lowmodel.contact import ehl, hertz
 from ballbench.lowmodel.contact import halfspace as hs
 
+from speed_table import figure
+
 E, NU, ETA0, R, LOAD, SPEED = 2.1e11, 0.3, 0.05, 0.01, 8.0, 1.0
 
 
 @pytest.mark.parametrize("n, target_s", [(128, 20.0), (256, 120.0)])
-def test_bench_ehl_point(benchmark, n, target_s):
+def test_bench_ehl_point(benchmark, n, target_s, record_property):
     geometry = hertz.ball_on_flat(R, youngs_modulus=E, poisson_ratio=NU)
     a = float(hertz.solve_load(geometry, LOAD).a)
     grid = hs.SurfaceGrid(n, n, 5.5 * a / n, 5.0 * a / n, -1.25 * a, 0.0)
@@ -39,6 +41,8 @@ def test_bench_ehl_point(benchmark, n, target_s):
           f"{solution.central_film / reference['h_c']:.3f}, "
           f"h_min / HD {solution.minimum_film / reference['h_min']:.3f}, "
           f"load error {solution.load_error:.1e}, p_max / p_Hertz {solution.max_pressure / geometry_p0(geometry):.3f}")
+    figure(record_property, f"ehl.{n}", f"EHL point contact (sun2021 eqs 14-19), {n} x {n} cells, one operating "
+           f"point ({cpu:.3g} s CPU)", benchmark.stats.stats.median, "s", target=f"< {target_s:g}", clock="wall")
 
 
 def geometry_p0(geometry):

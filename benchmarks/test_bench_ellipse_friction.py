@@ -6,8 +6,10 @@ import numpy as np
 
 from ballbench.lowmodel.contact import ellipse_friction as ef
 
+from speed_table import figure
 
-def test_map_build_cold(benchmark, tmp_path, monkeypatch):
+
+def test_map_build_cold(benchmark, tmp_path, monkeypatch, record_property):
     """Tabulate the integrals of lin2019 eqs A4-A6 on the default grid, no cache (target <= 10 s)."""
     monkeypatch.setenv("BALLBENCH_CACHE", str(tmp_path))
     build = ef.friction_map.__wrapped__
@@ -16,6 +18,9 @@ def test_map_build_cold(benchmark, tmp_path, monkeypatch):
     benchmark.extra_info["build_s"] = seconds
     print(f"\nfriction map build (cold, {table.phi.size} x {table.log_b_over_a.size} nodes): {seconds:.3f} s "
           "(target <= 10 s)")
+    figure(record_property, "friction_map", f"friction map over a Hertz ellipse (lin2019 A4-A6), built without cache "
+           f"({table.phi.size} x {table.log_b_over_a.size} nodes, median of 3)", seconds, "s", target="<= 10",
+           clock="wall")
     assert seconds <= 10.0
 
 

@@ -8,6 +8,8 @@ import numpy as np
 
 from ballbench.lowmodel.linear_bearing import fourpoint
 
+from speed_table import figure
+
 N_CASES = 100_000
 
 
@@ -19,7 +21,7 @@ def _cases():
     return angles, rho
 
 
-def test_fourpoint_solve_per_second(benchmark):
+def test_fourpoint_solve_per_second(benchmark, record_property):
     angles, rho = _cases()
     state = benchmark(fourpoint.solve, angles, 100.0 * rho, 100.0, ball_radius=5e-3, friction_coefficient=0.1,
                       groove_velocity=0.01)
@@ -28,6 +30,8 @@ def test_fourpoint_solve_per_second(benchmark):
     benchmark.extra_info["evaluations_per_second"] = rate
     print(f"\nfour-point evaluations per second (solve, vectorised over {N_CASES} cases): {rate:.3e} "
           f"(target >= 1e5)")
+    figure(record_property, "fourpoint", f"four-point evaluations (lin2017), vectorised over {N_CASES:,} cases", rate,
+           "evaluations/s", target=">= 1e5", clock="wall")
 
 
 def test_fourpoint_normal_forces_per_second(benchmark):

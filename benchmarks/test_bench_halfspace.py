@@ -13,6 +13,7 @@ import os
 
 import numpy as np
 import pytest
+from speed_table import figure
 from tamaas_support import tamaas_pressure, timed
 
 from ballbench.lowmodel.contact import halfspace as hs
@@ -39,7 +40,7 @@ def _errors(contact, pressure, grid, approach=None):
 
 
 @pytest.mark.parametrize("n, target_s", [(256, 0.5), (1024, 10.0)])
-def test_bench_bem_hertz(benchmark, n, target_s):
+def test_bench_bem_hertz(benchmark, n, target_s, record_property):
     contact, grid, gap = _problem(n)
     hs.solve(gap, grid, GEOMETRY.contact_modulus, force=LOAD, tolerance=1e-3)  # kernel spectrum cached
 
@@ -54,6 +55,8 @@ def test_bench_bem_hertz(benchmark, n, target_s):
           f"target < {target_s} s), {result.iterations} CG iterations; error vs Hertz "
           + _errors(contact, result.pressure, grid, result.approach)
           + f"; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    figure(record_property, f"bem.{n}", f"half-space BEM, {n} x {n} cells, Hertz (tolerance 1e-8; one run "
+           f"{cpu:.3g} s CPU), median", median, "s", target=f"< {target_s:g}", clock="wall")
 
 
 def test_bench_bem_vs_tamaas_512(benchmark):

@@ -38,6 +38,7 @@ from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import ball_fast
 
 from kernel_support import compiled_module, first_call_seconds, interleaved
+from speed_table import figure, number
 
 ROOT = Path(__file__).resolve().parents[1]
 KERNELS = "linear_bearing.ball_kernels"
@@ -159,7 +160,7 @@ def test_chain_against_previous_kernels(compiled, previous, n_balls, monkeypatch
           f"{difference:.1e} (largest relative); load average {os.getloadavg()[0]:.2f}")
 
 
-def test_import_is_light():
+def test_import_is_light(record_property):
     code = ("import sys, time\nstart = time.perf_counter()\nimport ballbench.lowmodel\n"
             "print(time.perf_counter() - start, sorted({n.split('.')[0] for n in sys.modules} & "
             "{'numba', 'llvmlite', 'gmsh', 'pyvista', 'vtk', 'matplotlib'}))")
@@ -171,6 +172,8 @@ def test_import_is_light():
     print(f"\nimport ballbench.lowmodel: {1e3 * float(np.median(seconds)):.0f} ms median of 5 fresh processes "
           f"(target < 500 ms), heavy modules loaded: {heavy.strip()}; load average {os.getloadavg()[0]:.2f}")
     assert heavy.strip() == "[]"
+    figure(record_property, "import", "`import ballbench.lowmodel` in a fresh process, median of 5 (numba, gmsh, "
+           "pyvista, vtk, matplotlib not loaded)", 1e3 * float(np.median(seconds)), "ms", target="< 500", clock="wall")
 
 
 def test_first_call_cost(compiled):
@@ -186,7 +189,7 @@ def _two_ball():
 
 
 @pytest.mark.parametrize("n_balls", [1, 2, 50, 200, 1000])
-def test_one_case_solves(compiled, n_balls):
+def test_one_case_solves(compiled, n_balls, record_property):
     contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=n_balls)
     gaps = np.zeros(n_balls - 1)
     if n_balls == 1:
@@ -206,6 +209,9 @@ def test_one_case_solves(compiled, n_balls):
           f"{state.iterations} iterations, {flops:.3g} flop = {flops / rate * 1e3:.3f} ms at the measured "
           f"{rate / 1e9:.2f} Gflop/s of compiled loops: figure of merit {flops / rate / new:.2f} (1 = pure "
           f"arithmetic); load average {os.getloadavg()[0]:.2f}")
+    label = {1: "single-ball solve", 2: "two-ball B2B solve"}.get(n_balls, f"{n_balls:,}-ball B2B chain")
+    figure(record_property, f"bearing.{n_balls}", f"{label} (linear bearing), compiled, median", 1e3 * new, "ms",
+           target={2: "<= 0.2", 1000: "<= 10"}.get(n_balls), baseline=f"numpy path {number(1e3 * old)} ms")
 
 
 def _spec(draws: int, vectorised: bool, chunk: int):
@@ -218,7 +224,7 @@ def _spec(draws: int, vectorised: bool, chunk: int):
     return sweep.spec_from_dict(raw)
 
 
-def test_monte_carlo(compiled, tmp_path):
+def test_monte_carlo(compiled, tmp_path, record_property):
     """Serial chunk rates of the new vectorised chunk (kernels, one batch per chunk) and of today's code (numpy
     path, one case per call, chunks of 250) on the same draws; then the whole 100,000-draw example on a
     LocalCluster of two workers (started before the clock; its start time printed)."""
@@ -242,6 +248,9 @@ def test_monte_carlo(compiled, tmp_path):
     print(f"\ntwo-ball Monte Carlo, one process: vectorised chunk with kernels {new_rate:.0f} cases/s (20,000 "
           f"draws, {failed} failed), today's code {old_rate:.0f} cases/s (300 draws, numpy path, one case per "
           f"call): x {new_rate / old_rate:.0f}; load average {load:.2f}")
+    figure(record_property, "monte_carlo.process", "two-ball Monte Carlo in one process (vectorised chunk of 20,000 "
+           "draws, setup included)", new_rate, "cases/s",
+           baseline=f"numpy path, one case per call: {number(old_rate)} cases/s")
     spec = sweep.load_spec(ROOT / "examples" / "two_ball_monte_carlo.toml")
     began = time.perf_counter()
     import dask
@@ -260,3 +269,5 @@ def test_monte_carlo(compiled, tmp_path):
           f"code: {old_rate:.0f} cases/s per core (260 cases/s on two idle workers, measured before the kernels); "
           f"load average {os.getloadavg()[0]:.2f}")
     assert summary.computed == spec.n_cases
+    figure(record_property, "monte_carlo.cluster", f"two-ball Monte Carlo, the example's {spec.n_cases:,} draws on "
+           "LocalCluster(2)", summary.throughput, "cases/s", target=">= 20000", clock="wall")

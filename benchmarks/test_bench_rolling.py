@@ -37,6 +37,8 @@ import pytest
 from ballbench.lowmodel import kernels
 from ballbench.lowmodel.contact import fastsim, rolling, rolling_newton
 
+from speed_table import figure, number
+
 A, B, FORCE, G, NU, MU = 6.304e-3, 12.61e-3, 106.7e3, 82e9, 0.28, 0.33  # CONTACT's tractcurv contact
 CASES = ((0.4e-3, 0.0, 0.0), (1.2e-3, 0.0, 0.0), (2.4e-3, 0.0, 0.0), (0.0, 0.0, 0.1), (1e-3, 0.5e-3, 1.0))
 
@@ -126,11 +128,15 @@ def _cpu_per_solve(paths, rounds):
 
 
 @pytest.mark.parametrize("n, target_ms", [(11, 2.0), (35, 100.0)])
-def test_bench_exact_half_space(benchmark, previous, compile_seconds, n, target_ms):
+def test_bench_exact_half_space(benchmark, previous, compile_seconds, n, target_ms, record_property):
     compiled = kernels.load(rolling_newton.KERNELS) is not None
     if compile_seconds is not None and n <= 11:
         print(f"\nrolling kernels' first load in a fresh process: {compile_seconds[0]:.1f} s compiling into an empty "
               f"numba cache, {compile_seconds[1]:.2f} s from the cache (wall; load average {os.getloadavg()[0]:.1f})")
+        for key, label, seconds in (("compile", "compiling into an empty numba cache", compile_seconds[0]),
+                                    ("cache", "from numba's disk cache", compile_seconds[1])):
+            figure(record_property, f"rolling.first_load.{key}", f"rolling kernels' first load in a fresh process, "
+                   f"{label}", seconds, "s", target="stated", clock="wall")
     for cells, label in (((n, n), f"{n} x {n} across the contact"), ((n - 4, n - 4), f"CONTACT's {n} x {n}")):
         prepared = rolling.prepare_rolling(A, B, FORCE, G, NU, MU, cells)
 
@@ -168,11 +174,15 @@ def test_bench_exact_half_space(benchmark, previous, compile_seconds, n, target_
               f"(compiled) (target <= {target_ms} ms); wall {wall:.2f} ms (mean of all paths); Newton "
               f"{newton:.1f}, GMRES {krylov:.1f} per solve; load average {os.getloadavg()[0]:.1f} on "
               f"{os.cpu_count()} cores, numpy call {_call_overhead_us():.2f} us")
+        figure(record_property, f"rolling.{n}.{'across' if cells == (n, n) else 'contact'}",
+               f"exact rolling solve, {label} ({contact} contact cells), `steady_rolling`, median",
+               cpu["steady_rolling"][0], "ms", target=f"<= {target_ms:g}",
+               baseline=(f"{BEFORE[:7]}: {number(cpu['before'][0])} ms" if previous is not None else ""))
     benchmark.pedantic(_solve_all, args=((n, n),), rounds=3 if n <= 11 else 1, iterations=1)
     benchmark.extra_info.update({"n": n, "cpu_ms": cpu})
 
 
-def test_bench_fastsim_throughput(benchmark):
+def test_bench_fastsim_throughput(benchmark, record_property):
     rng = np.random.default_rng(0)
     count = 10_000
     xi, eta = rng.uniform(-3e-3, 3e-3, (2, count))
@@ -190,6 +200,8 @@ def test_bench_fastsim_throughput(benchmark):
     benchmark.extra_info["contacts_per_second"] = rate
     print(f"\nFASTSIM 20 x 20 elements, {count} contacts: {rate:.3g} contacts/s (median of 3; one run wall "
           f"{wall * 1e3:.0f} ms, CPU {cpu * 1e3:.0f} ms; target >= 1e4/s); load average {os.getloadavg()[0]:.1f}")
+    figure(record_property, "fastsim", f"FASTSIM, 20 x 20 elements, {count:,} contacts (median of 3)", rate,
+           "contacts/s", target=">= 1e4", clock="wall")
 
 
 def test_bench_fe_compliance_solve(benchmark):

@@ -29,6 +29,7 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import load_distribution, whole_screw
 
 from kernel_support import compiled_module, first_call_seconds, interleaved
+from speed_table import figure, number
 
 OVERSIZE = 1.6848e-6  # m, fitted on lin2019 Table 5 case a (scene lin2019-table5-a)
 # flops of lowmodel/screw/ball_kernels.py: one tanh-sinh node of the friction integrals (cos, sin, atan2 and sqrt
@@ -60,7 +61,7 @@ def test_first_call_cost(compiled, name):
           f"from the disk cache; load average {os.getloadavg()[0]:.2f}")
 
 
-def test_two_ball_b2b_solve(compiled):
+def test_two_ball_b2b_solve(compiled, record_property):
     from test_bench_kernels import scalar_rate
 
     module = screw_contacts.screw_module(oversize=OVERSIZE)
@@ -79,9 +80,11 @@ def test_two_ball_b2b_solve(compiled):
           f"{flops:.3g} flop = {flops / rate * 1e3:.3f} ms at the measured {rate / 1e9:.2f} Gflop/s of compiled "
           f"loops: figure of merit {flops / rate / new:.2f} (1 = pure arithmetic); load average "
           f"{os.getloadavg()[0]:.2f}")
+    figure(record_property, "screw.two_ball", "screw two-ball B2B solve (Table 5 a), compiled, median", 1e3 * new,
+           "ms", target="<= 1", baseline=f"numpy path {number(1e3 * old)} ms")
 
 
-def test_whole_screw_simulation(compiled):
+def test_whole_screw_simulation(compiled, record_property):
     module = screw_contacts.screw_module(oversize=OVERSIZE)
     stiffness = load_distribution.axial_stiffness(module, 3.0 * 1500.0 / 37)
 
@@ -100,9 +103,12 @@ def test_whole_screw_simulation(compiled):
           f"{seconds[True] / steps * 1e3:.1f} ms per step), numpy path {seconds[False]:.1f} s "
           f"(x {seconds[False] / seconds[True]:.1f}); {int(history.iterations.sum())} Newton iterations "
           f"({history.iterations.mean():.2f} per step, the first from rest); load average {os.getloadavg()[0]:.2f}")
+    figure(record_property, "screw.whole", f"whole screw, 37 balls, 200 steps ({int(history.iterations.sum())} "
+           "Newton iterations), compiled, one run", seconds[True], "s", target="<= 0.5",
+           baseline=f"numpy path {number(seconds[False])} s")
 
 
-def test_ring_pieces(compiled):
+def test_ring_pieces(compiled, record_property):
     """One state of the whole screw's ring (the third step's start): the compiled pieces of a Newton iteration."""
     ring = kernels.load(screw_b2b.RING_KERNELS)
     module = screw_contacts.screw_module(oversize=OVERSIZE)
@@ -147,3 +153,7 @@ def test_ring_pieces(compiled):
     print(f"\nwhole screw's ring ({n} balls, {n * k} unknowns), compiled, CPU time: "
           + ", ".join(f"{name} {value * 1e3:.3f} ms" for name, value in seconds.items())
           + f"; load average {os.getloadavg()[0]:.2f}")
+    figure(record_property, "screw.ring_evaluation", f"whole screw's ring: one evaluation of the chain ({4 * n} "
+           "contacts' friction integrals, the pairs, the blocks)", 1e3 * seconds["evaluation"], "ms")
+    figure(record_property, "screw.ring_step", "whole screw's ring: normal matrix, its Cholesky and the two solves "
+           "of one step", 1e3 * (seconds["normal matrix"] + seconds["Cholesky"] + seconds["two solves"]), "ms")

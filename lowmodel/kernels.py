@@ -1,7 +1,7 @@
 """Compiled kernels: where they are loaded, when they are used, and the numpy path beside them.
 
 The low-order models are numpy code whose cost for a small system (a two-ball state has 16 unknowns) is
-per-call overhead of small array operations, not arithmetic (docs/performance.md).  Where a kernel
+per-call overhead of small array operations, not arithmetic (docs/speed.md).  Where a kernel
 compiled with numba beats that by a wide margin, a module holds it beside the numpy code it mirrors
 (:mod:`lowmodel.linear_bearing.ball_kernels`: the ball equilibrium of lin2019 eq 4, the B2B chain of
 eqs 5-10 and the damped Newton of :func:`lowmodel.solvers.newton`, as loops; :mod:`lowmodel.screw.ball_kernels`:
@@ -10,7 +10,7 @@ and the same Newton).  The rules:
 
 * ``import ballbench.lowmodel`` never imports numba (a test checks it): a kernel module is imported by
   :func:`load` at the first solve that uses it.
-* numba is optional (the ``fast`` extra; docs/performance.md says why): when it is missing, when
+* numba is optional (the ``fast`` extra; docs/speed.md says why): when it is missing, when
   ``BALLBENCH_KERNELS=numpy`` is set, when :func:`use_kernels` turned it off, or when a kernel fails to
   compile, the models run their numpy code, which gives the same results (to round-off; tests compare
   both paths).
