@@ -80,3 +80,41 @@ def test_the_description_types_are_defined_once():
             if isinstance(node, ast.ClassDef) and node.name in DESCRIPTIONS:
                 defined.setdefault(node.name, []).append(str(path.relative_to(paths.ROOT)))
     assert defined == {name: ["lowmodel/bearing.py"] for name in DESCRIPTIONS}
+
+
+def walk_names(text: str) -> list[str]:
+    """The dotted ``ballbench.`` names of the table 'From a case file to a report' of docs/architecture.md."""
+    section = text.split("## From a case file to a report", 1)[1].split("\n## ", 1)[0]
+    return sorted(set(re.findall(r"`(ballbench(?:\.\w+)+)`", section)))
+
+
+def resolves(name: str) -> bool:
+    """Whether ``name`` is a module or an attribute of a module (imported)."""
+    import importlib
+
+    parts = name.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            value = importlib.import_module(".".join(parts[:cut]))
+        except ImportError:
+            continue
+        try:
+            for attribute in parts[cut:]:
+                value = getattr(value, attribute)
+        except AttributeError:
+            return False
+        return True
+    return False
+
+
+def test_the_walk_of_the_architecture_page_is_the_code():
+    names = walk_names((paths.ROOT / "docs" / "architecture.md").read_text())
+    assert len(names) >= 15 and "ballbench.lowmodel.linear_bearing.b2b.contacts" in names
+    missing = [name for name in names if not resolves(name)]
+    assert not missing, missing
+
+
+def test_the_walk_check_sees_a_stale_name():
+    text = "## From a case file to a report\n| `ballbench.lowmodel.bearing.Nothing` | `ballbench.friction` |\n## Next"
+    assert walk_names(text) == ["ballbench.friction", "ballbench.lowmodel.bearing.Nothing"]
+    assert [resolves(name) for name in walk_names(text)] == [True, False]
