@@ -109,13 +109,11 @@ def module(screw, oversize: float | None = None) -> ScrewModule:
     ``mu`` in [0, 2], a nonzero nut speed, the groove inside the pitch radius, a lead angle below 90 deg."""
     screw.need("conformity", "material", "friction_coefficient", "nut_speed",
                by="the ball-screw module (lowmodel.screw.ball)")
+    # the screw's fields are checked by BallScrew (lowmodel.bearing.check_field); the module's own ranges here
+    ball_radius, conformity, pitch_radius, lead, nominal_angle, nut_speed = (float(x) for x in (
+        screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead, screw.nominal_angle, screw.nut_speed))
+    youngs_modulus, poisson_ratio = float(screw.material.youngs_modulus), float(screw.material.poisson_ratio)
     oversize = screw.oversize if oversize is None else oversize
-    ball_radius = checks.positive("ball_radius", screw.ball_radius, "m")
-    conformity = checks.conformity("conformity", screw.conformity)
-    pitch_radius = checks.positive("pitch_radius", screw.pitch_radius, "m")
-    lead = checks.non_negative("lead", screw.lead, "m (right-handed screw)")
-    nominal_angle = checks.contact_angle("nominal_angle", screw.nominal_angle)
-    nut_speed = checks.finite("nut_speed", screw.nut_speed, "rad/s")
     if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
         raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
                          f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
@@ -123,8 +121,6 @@ def module(screw, oversize: float | None = None) -> ScrewModule:
     mu = checks.bounded("friction_coefficient", screw.friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX,
                         upper_closed=True,
                         note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
-    youngs_modulus = checks.positive("youngs_modulus", screw.material.youngs_modulus, "Pa")
-    poisson_ratio = checks.bounded("poisson_ratio", screw.material.poisson_ratio, -1.0, 0.5)
     oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
                               upper_closed=True, note="i.e. [0, 0.01 ball_radius]")
     checks.plausible("oversize", oversize)  # a module's own oversize (the screw's is checked by BallScrew)

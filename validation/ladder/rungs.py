@@ -279,9 +279,9 @@ def bem_values(case: ContactCase, n: int) -> dict:
 
     material = case.material.keywords
     if case.pair in ("screw", "nut"):
-        s = case.screw
-        result = screw_contact.groove_contact(s.ball_radius, s.conformity, s.pitch_radius, s.lead, s.nominal_angle,
-                                              case.force, case.pair, n=n, **material).bem
+        radius, conformity, pitch_radius, lead, nominal_angle, pair = hertz.helical_pair(case)
+        result = screw_contact.groove_contact(radius, conformity, pitch_radius, lead, nominal_angle, case.force, pair,
+                                              n=n, **material).bem
     else:
         geometry = fe_contact.hertz_geometry(case)
         contact = hertz.solve_load(geometry, case.force)

@@ -180,7 +180,7 @@ def ehl_contact(case, pair: str, load: float, speed: float, n: int, label: str =
     else:
         s = case.screw
         ball_radius, material = s.ball_radius, s.material
-        args = (s.ball_radius, s.conformity, s.pitch_radius, s.lead, s.nominal_angle, pair)
+        args = hertz.helical_pair(s.contact(pair, load))
         frame = groove.contact_frame(groove.helical_groove(*args))
         across, along = frame.curvature_major, frame.curvature_minor
         gap = groove.pair_initial_gap(*args)  # the groove's first coordinate runs across (studies.sun2021)
