@@ -118,10 +118,15 @@ def module_contacts(theta: float, side_force_ratio: float, *, top_deviations=(0.
     if np.shape(top) != (2,):
         raise ValueError("top_deviations must be a pair (Delta beta_TR, Delta beta_TL) [rad], got shape "
                          f"{np.shape(top)}")
-    guide = LinearGuide(ball_radius, conformity, nominal_angle, Material(youngs_modulus, poisson_ratio),
-                        friction_coefficient, groove_velocity)
-    return contacts(GuideLoadCase(guide, vertical_force, side_force_ratio,
-                                  (-theta, theta, float(top[0]), float(top[1])), n_balls))
+    checks.plausible("ball_radius", ball_radius)
+    # the keyword entry point's range: theta up to the four-point geometry's limit (checked above), past the 20 deg
+    # of a real bearing's deviation (lowmodel.checks.PLAUSIBLE), which the paper figures' sweeps reach
+    with checks.beyond_plausible():
+        guide = LinearGuide(ball_radius, conformity, nominal_angle, Material(youngs_modulus, poisson_ratio),
+                            friction_coefficient, groove_velocity)
+        case = GuideLoadCase(guide, vertical_force, side_force_ratio, (-theta, theta, float(top[0]), float(top[1])),
+                             n_balls)
+    return contacts(case)
 
 
 def _check_gaps(gaps, n_balls: int, radius: float) -> np.ndarray:

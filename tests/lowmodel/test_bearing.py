@@ -157,3 +157,16 @@ def test_every_field_is_checked_by_the_one_table():
     assert not unchecked, unchecked
     assert bearing.range_text("conformity") == "in (0.5, 1)"
     assert bearing.range_text("ball_radius", "mm", 1e-3) == "plausible 0.1 to 100 mm"
+
+
+def test_the_keyword_entry_point_keeps_its_range_up_to_the_four_point_limit():
+    # lin2019-stability sweeps theta to 40 deg: past a real bearing's 20 deg, inside the geometry's 45 deg
+    contacts = b2b.module_contacts(math.radians(30.0), 0.0)
+    expected = math.pi / 4 + np.array([-1.0, 1.0]) * math.radians(30.0)
+    np.testing.assert_array_equal(contacts.contact_angles[0, :2], expected)
+    with pytest.raises(ValueError, match="theta"):
+        b2b.module_contacts(math.radians(46.0), 0.0)
+    with pytest.raises(ValueError, match="deviations BL"):   # the description itself: a real bearing's range
+        dataclasses.replace(CASE, deviations=(-math.radians(30), math.radians(30), 0.0, 0.0))
+    with pytest.raises(ValueError, match="ball_radius"):     # mm for m, refused by the keyword entry point too
+        b2b.module_contacts(THETA, -0.6, ball_radius=5.0)
