@@ -1,7 +1,8 @@
 """The papers' setups as data: geometry, materials, loads, deviations, fitted values and FE levels (SI).
 
-:mod:`.case` defines what a case is (frozen dataclasses: :class:`ContactCase`, :class:`LinearGuideCase`,
-:class:`BallScrewCase` and their parts); one module per paper (:mod:`.lin2017`, :mod:`.lin2019`, :mod:`.sun2021`,
+:mod:`.case` defines what a case is: a load case of :mod:`ballbench.lowmodel.bearing` (the bearing and its loads,
+described once at the model layer) with a name and FE levels (:class:`ContactCase`, :class:`LinearGuideCase`,
+:class:`BallScrewCase`, the mesh levels); one module per paper (:mod:`.lin2017`, :mod:`.lin2019`, :mod:`.sun2021`,
 :mod:`.wang2022`) declares its cases once, with the printed value and unit beside each field.  Scenes, studies,
 sweeps and ``calibrate`` read these objects; none re-declares a paper's input.  Printed results are references
 (:mod:`ballbench.validation.references.published`).  docs/cases.md describes the fields.
