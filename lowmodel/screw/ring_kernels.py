@@ -11,7 +11,8 @@ whole screw of lin2019 Sec 3.4, :mod:`lowmodel.screw.whole_screw`), for chains o
   (n-1, 0) gives the corner blocks ``upper[n-1]`` and ``lower[0]``; zero in an open chain).  The ball terms and the
   B2B loads are those of :mod:`lowmodel.screw.ball_kernels` (the same loops as the dense chain there).
 * :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's damping update, row weights and
-  row tolerances, the same acceptance, the same failure statuses) with the damped normal equations
+  row tolerances, the same acceptance, the same failure statuses: the loop of
+  :func:`lowmodel.newton_kernels.levenberg_marquardt`) with the damped normal equations
   ``(J^T J + lam I) dx = -J^T r`` solved by a Cholesky factorisation that follows their structure: ``J^T J`` of a
   cyclic block-tridiagonal ``J`` is cyclic block-pentadiagonal; with the last two blocks of balls ordered last it is
   a band (half-bandwidth ``3 K - 1``) bordered by ``2 K`` dense rows and columns (the corner coupling of the ring),
@@ -30,6 +31,7 @@ import math
 import numba
 import numpy as np
 
+from ballbench.lowmodel.newton_kernels import blas_dot, levenberg_marquardt
 from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
                                                    STATIONARY, ball_outputs, ball_terms, copy_outputs, pair_loads)
 
@@ -40,6 +42,7 @@ _K = 8  # block: x_B3, z_B3, omega_B, omega (3), the ball's nut shift, the force
 _FB_SMOOTHING = 1e-14  # as lowmodel.b2b_chain
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_inline = numba.njit(inline="always", nogil=True, error_model="numpy")   # the steps of newton, inlined into it
 
 
 @_jit
@@ -325,91 +328,78 @@ def _weigh(residual, diagonal, upper, lower, row_weight):
                 lower[j, r, q] *= w
 
 
-@_jit
-def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, structured
-           max_iterations, row_tolerance, row_weight, z, result, terms):
-    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update) on :func:`chain_blocks` with the
-    structured Cholesky of the module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted,
-    ``terms`` the ball terms at ``z``; returns ``(status, iterations, norm)`` as
-    :func:`lowmodel.screw.ball_kernels.newton`."""
-    size = z0.size
-    m = (n - 2) * _K
-    residual, trial_residual = np.empty(size), np.empty(size)
-    diagonal, upper, lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
-    t_diagonal, t_upper, t_lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
-    band, l_band = np.zeros((m, 3 * _K)), np.zeros((m, 3 * _K))
-    border, l_border = np.zeros((m, 2 * _K)), np.zeros((m, 2 * _K))
-    corner, l_corner = np.zeros((2 * _K, 2 * _K)), np.zeros((2 * _K, 2 * _K))
-    gradient, step, change, trial = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
-    trial_terms = ball_outputs(n)
-    z[:] = z0
+@_inline
+def _evaluate(evaluation, z, state):
+    """:func:`chain_blocks` at ``z`` into ``state`` (residual, diagonal, upper, lower, ball terms), its rows weighted:
+    the evaluation of :func:`lowmodel.newton_kernels.levenberg_marquardt`."""
+    n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight = evaluation
+    residual, diagonal, upper, lower, terms = state
     status = chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, residual,
                           diagonal, upper, lower, terms)
-    if status != CONVERGED:
-        return status, 0, 0.0
-    limits = row_tolerance * row_weight
-    _weigh(residual, diagonal, upper, lower, row_weight)
-    norm = np.max(np.abs(residual / row_weight))
-    iterations = 0
-    damping = -1.0
-    growth = 2.0
-    while not np.all(np.abs(residual) <= limits):
-        if iterations >= max_iterations or not np.isfinite(norm):
-            result[:] = residual / row_weight
-            return (NOT_CONVERGED if np.isfinite(norm) else NON_FINITE), iterations, norm
-        iterations += 1
-        _normal(diagonal, upper, lower, band, border, corner)
-        diagonal_max = -math.inf
-        for i in range(m):
-            diagonal_max = max(diagonal_max, band[i, 0])
-        for r in range(2 * _K):
-            diagonal_max = max(diagonal_max, corner[r, r])
-        _rmatvec(diagonal, upper, lower, residual, gradient)
-        for i in range(size):
-            gradient[i] = -gradient[i]
-        if damping < 0.0:
-            damping = 1e-8 * diagonal_max
-        merit = residual @ residual
-        while True:
-            if _factor(band, border, corner, damping, l_band, l_border, l_corner):
-                _solve(l_band, l_border, l_corner, gradient, step)
-            else:
-                step[:] = np.nan
-            _matvec(diagonal, upper, lower, step, change)
-            linear = residual + change
-            predicted = merit - linear @ linear
-            finite = np.all(np.isfinite(step))
-            if finite and predicted > 0.0:
-                for i in range(size):
-                    trial[i] = z[i] + step[i]
-                status = chain_blocks(trial, n, ring, live, targets, geometry, scalars, tables, chord, rot,
-                                      pair_scalars, trial_residual, t_diagonal, t_upper, t_lower, trial_terms)
-                if status != CONVERGED:
-                    return status, iterations, norm
-                _weigh(trial_residual, t_diagonal, t_upper, t_lower, row_weight)
-                trial_merit = trial_residual @ trial_residual
-                gain = (merit - trial_merit) / predicted
-                if math.isfinite(trial_merit) and gain > 1e-4:
-                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
-                    growth = 2.0
-                    break
-            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
-                result[:] = residual / row_weight
-                return STATIONARY, iterations, norm
-            damping *= growth
-            growth *= 2.0
-            if not math.isfinite(damping) or damping > 1e30:
-                result[:] = residual / row_weight
-                return NO_DESCENT, iterations, norm
-        z[:] = trial
-        residual[:] = trial_residual
-        diagonal[:] = t_diagonal
-        upper[:] = t_upper
-        lower[:] = t_lower
-        copy_outputs(trial_terms, terms)
-        norm = np.max(np.abs(residual / row_weight))
-    result[:] = residual / row_weight
-    return CONVERGED, iterations, norm
+    if status == CONVERGED:
+        _weigh(residual, diagonal, upper, lower, row_weight)
+    return status
+
+
+@_inline
+def _prepare(steps, state, _first):
+    """``J^T J`` in :func:`_normal`'s storage and ``-J^T r``; no plain Newton step."""
+    band, border, corner, gradient = steps[:4]
+    residual, diagonal, upper, lower = state[:4]
+    _normal(diagonal, upper, lower, band, border, corner)
+    _rmatvec(diagonal, upper, lower, residual, gradient)
+    for i in range(gradient.size):
+        gradient[i] = -gradient[i]
+    return _diagonal_max(band, corner), False
+
+
+@_jit
+def _diagonal_max(band, corner):
+    """The largest diagonal entry of ``N`` in :func:`_normal`'s storage."""
+    diagonal_max = -math.inf
+    for i in range(band.shape[0]):
+        diagonal_max = max(diagonal_max, band[i, 0])
+    for r in range(corner.shape[0]):
+        diagonal_max = max(diagonal_max, corner[r, r])
+    return diagonal_max
+
+
+@_inline
+def _step(steps, _state, damping, _plain, step):
+    """``(J^T J + damping I) dx = -J^T r`` by the Cholesky factor of :func:`_factor`; False where it fails."""
+    band, border, corner, gradient, l_band, l_border, l_corner = steps
+    if not _factor(band, border, corner, damping, l_band, l_border, l_corner):
+        return False
+    _solve(l_band, l_border, l_corner, gradient, step)
+    return True
+
+
+@_inline
+def _multiply(_steps, state, step, _plain, change):
+    """``change = J step``."""
+    _matvec(state[1], state[2], state[3], step, change)
+
+
+@_jit
+def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, max_iterations,
+           row_tolerance, row_weight, z, result, terms):
+    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update: the loop of
+    :func:`lowmodel.newton_kernels.levenberg_marquardt`) on :func:`chain_blocks` with the structured Cholesky of the
+    module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted, ``terms`` the ball terms at
+    ``z``; returns ``(status, iterations, norm)`` as :func:`lowmodel.screw.ball_kernels.newton`."""
+    size, m = z0.size, (n - 2) * _K
+    evaluation = (n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight)
+    steps = (np.zeros((m, 3 * _K)), np.zeros((m, 2 * _K)), np.zeros((2 * _K, 2 * _K)), np.empty(size),
+             np.zeros((m, 3 * _K)), np.zeros((m, 2 * _K)), np.zeros((2 * _K, 2 * _K)))
+    state = (np.empty(size), np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K)), terms)
+    trial_state = (np.empty(size), np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K)),
+                   ball_outputs(n))
+    z[:] = z0
+    status, iterations, norm, state = levenberg_marquardt(_evaluate, _prepare, _step, _multiply, blas_dot, evaluation,
+                                                          steps, z, state, trial_state, row_tolerance * row_weight,
+                                                          row_weight, max_iterations, result)
+    copy_outputs(state[4], terms)
+    return status, iterations, norm
 
 
 def warm_up() -> None:
