@@ -16,10 +16,11 @@ nothing allocates per array operation (loaded by :func:`lowmodel.kernels.load`; 
 A status other than :data:`CONVERGED` (a contact at rest, a slip outside the float range of the friction
 Jacobian, a non-finite input) hands the evaluation back to the numpy code, which names the problem.
 The caller is :func:`lowmodel.screw.ball.ball_terms`; the data layout (``geometry`` (n, 4, FIELDS),
-``scalars``, the ``contact`` fields) is built and read there.  :func:`chain_function` and :func:`newton` are the
-B2B chain of :mod:`lowmodel.screw.b2b` (eqs 56-61) and :func:`lowmodel.solvers.newton` (the loop of
+``scalars``, the ``contact`` fields) is built and read there.  :func:`chain_residual` is the residual of the B2B
+chain of :mod:`lowmodel.screw.b2b` (eqs 54-61) in the layouts of both compiled chains, :func:`chain_function` it with
+its dense Jacobian, and :func:`newton` :func:`lowmodel.solvers.newton` on it (the loop of
 :func:`lowmodel.newton_kernels.levenberg_marquardt`) for chains of fewer than
-:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, called by ``b2b.solve``.
+:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, called by ``b2b.solve`` (longer: :mod:`lowmodel.screw.ring_kernels`).
 
 One concept in one file (about 750 lines): the compiled twin of the screw ball and its small chains.  The kernels
 call one another and numba compiles and caches them per module, so one module keeps one compile cache.
@@ -34,7 +35,7 @@ import numpy as np
 from ballbench.lowmodel.newton_kernels import (CONVERGED, NO_DESCENT, NON_FINITE, NOT_CONVERGED, STATIONARY, blas_dot,
                                                levenberg_marquardt)
 
-__all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_function", "newton",
+__all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_residual", "chain_function", "newton",
            "ball_outputs", "copy_outputs", "warm_up", "FIELDS", "SCALARS", "CONTACT_FIELDS", "CONVERGED", "FALLBACK",
            "NOT_CONVERGED", "NON_FINITE", "STATIONARY", "NO_DESCENT"]
 
@@ -546,17 +547,23 @@ def copy_outputs(source, target):
 
 
 @_jit
-def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, dense
-                   residual, jacobian, terms):
-    """Residual and dense Jacobian of the screw chain (:func:`lowmodel.b2b_chain.chain_system` of
-    :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61), the ball terms
-    into ``terms`` (:func:`ball_outputs`); returns the status of :func:`ball_terms`."""
+def chain_residual(z, n, big_k, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,
+                   residual, terms):
+    """The residual of the screw chain (:func:`lowmodel.b2b_chain.chain_system` of
+    :func:`lowmodel.screw.b2b._solve_attempt`) at ``z`` into ``residual`` (the ball terms into ``terms``,
+    :func:`ball_outputs`), in either layout of the unknowns: ``big_k`` per ball, the ball's 6, its nut shift at ``j
+    big_k + 6`` where ``per_ball`` (else one at ``n big_k``, the last row the axial balance), the force slot of the
+    pair ``(j, j + 1)`` last.  Rows: lin2019 eq 54 of each ball with the B2B loads of eqs 57-59 (moments / R_B, in
+    units of the force scale), the axial balance, eqs 60-61 by Fischer-Burmeister (``slot = 0`` where the pair does
+    not touch or past the chain's end).  Returns ``(status, d_spin, d_force, d_phi)`` for the Jacobian: the
+    derivatives of :func:`pair_loads` and, per pair, ``d phi / d F`` and ``d phi / d omega_B`` of the ball ahead
+    (that of the ball behind its negative; ``(1, 0)`` for a placeholder); status that of :func:`ball_terms` (the rest
+    undefined unless :data:`CONVERGED`)."""
     (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
      smallest_slip) = tables
     radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
     spin_scale, force_scale = scalars[2], scalars[3]
-    k = 7 if per_ball else 6
-    big_k = k + 1
+    k = big_k - 1
     pairs = n if ring else n - 1
     unknowns = np.empty((n, 6))
     shift = np.empty(n)
@@ -566,12 +573,15 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
             unknowns[j, q] = z[j * big_k + q]
         shift[j] = z[j * big_k + 6] if per_ball else z[n * big_k]
         slots[j] = z[j * big_k + k]
+    d_spin = np.zeros((max(pairs, 1), 2, 2, 6, 3))
+    d_force = np.zeros((max(pairs, 1), 2, 6))
+    d_phi = np.empty((n, 2))
     ball_res, ball_jac, axial, axial_gradient, contact, power = terms
     status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
                         weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
                         axial_gradient, contact, power)
     if status != CONVERGED:
-        return status
+        return status, d_spin, d_force, d_phi
     lam = np.zeros(n)
     for j in range(n):
         if live[j]:
@@ -580,18 +590,57 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
     for p in range(pairs):
         forces[p] = lam[p]
     load = np.empty((n, 6))
-    d_spin = np.zeros((max(pairs, 1), 2, 2, 6, 3))
-    d_force = np.zeros((max(pairs, 1), 2, 6))
-    if pairs > 0:
-        pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
-                    load, d_spin, d_force)
-    else:
-        load[:] = 0.0
-    jacobian[:] = 0.0
+    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring, load,
+               d_spin, d_force)   # no pairs (one ball): no loads
     for j in range(n):
         base = j * big_k
         for r in range(6):
             residual[base + r] = ball_res[j, r]
+        if per_ball:
+            residual[base + 6] = axial[j] - targets[j]
+        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
+            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
+    if not per_ball:
+        total = 0.0
+        for j in range(n):
+            total += axial[j]
+        residual[n * big_k] = total - targets[0]
+    for j in range(n):   # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders: slot = 0
+        row = j * big_k + k
+        if not live[j]:
+            residual[row] = slots[j]
+            d_phi[j, 0], d_phi[j, 1] = 1.0, 0.0
+            continue
+        ahead = (j + 1) % n
+        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
+        a = lam[j]
+        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
+        residual[row] = a + rate - root
+        d_phi[j, 0] = 1.0 - a / root
+        d_phi[j, 1] = (1.0 - rate / root) * rate_scale
+    return status, d_spin, d_force, d_phi
+
+
+@_jit
+def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the Jacobian of lowmodel.b2b_chain.chain_system, dense
+                   residual, jacobian, terms):
+    """Residual (:func:`chain_residual`) and dense Jacobian of the screw chain (:func:`lowmodel.b2b_chain.chain_system`
+    of :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61), the ball terms
+    into ``terms`` (:func:`ball_outputs`); returns the status of :func:`ball_terms`."""
+    radius = pair_scalars[0]
+    spin_scale, force_scale = scalars[2], scalars[3]
+    k = 7 if per_ball else 6
+    big_k = k + 1
+    pairs = n if ring else n - 1
+    status, d_spin, d_force, d_phi = chain_residual(z, n, big_k, per_ball, ring, live, targets, geometry, scalars,
+                                                    tables, chord, rot, pair_scalars, residual, terms)
+    if status != CONVERGED:
+        return status
+    ball_jac, axial_gradient = terms[1], terms[3]
+    jacobian[:] = 0.0
+    for j in range(n):
+        base = j * big_k
+        for r in range(6):
             for q in range(6):
                 jacobian[base + r, base + q] = ball_jac[j, r, q]
             if per_ball:
@@ -599,20 +648,14 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
             else:
                 jacobian[base + r, n * big_k] = ball_jac[j, r, 6]
         if per_ball:
-            residual[base + 6] = axial[j] - targets[j]
             for q in range(7):
                 jacobian[base + 6, base + q] = axial_gradient[j, q]
-        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
-            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
     if not per_ball:
-        total = 0.0
         block = 0.0
         for j in range(n):
-            total += axial[j]
             block += axial_gradient[j, 6]
             for q in range(6):
                 jacobian[n * big_k, j * big_k + q] = axial_gradient[j, q]
-        residual[n * big_k] = total - targets[0]
         jacobian[n * big_k, n * big_k] = block
     spin_factor = spin_scale / force_scale
     for p in range(pairs):
@@ -630,23 +673,13 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
                 for r in range(6):
                     value = d_force[p, side_row, r] / radius if r >= 3 else d_force[p, side_row, r]
                     jacobian[row_ball * big_k + r, behind * big_k + k] += value
-    # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders (open pairs, the chain's end): slot = 0
-    for j in range(n):
+    for j in range(n):   # eqs 60-61
         row = j * big_k + k
-        if not live[j]:
-            residual[row] = slots[j]
-            jacobian[row, row] = 1.0
-            continue
-        ahead = (j + 1) % n
-        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
-        a = lam[j]
-        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
-        residual[row] = a + rate - root
-        jacobian[row, row] = 1.0 - a / root
-        d_rate = (1.0 - rate / root) * rate_scale
-        if j < pairs:
-            jacobian[row, ahead * big_k + 2] += d_rate
-        jacobian[row, j * big_k + 2] += -d_rate
+        jacobian[row, row] = d_phi[j, 0]
+        if live[j]:
+            if j < pairs:
+                jacobian[row, ((j + 1) % n) * big_k + 2] += d_phi[j, 1]
+            jacobian[row, j * big_k + 2] += -d_phi[j, 1]
     return CONVERGED
 
 

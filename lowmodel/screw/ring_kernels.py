@@ -33,70 +33,42 @@ import numpy as np
 
 from ballbench.lowmodel.newton_kernels import blas_dot, levenberg_marquardt
 from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
-                                                   STATIONARY, ball_outputs, ball_terms, copy_outputs, pair_loads)
+                                                   STATIONARY, ball_outputs, chain_residual, copy_outputs)
 
 __all__ = ["chain_blocks", "newton", "warm_up", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY",
            "NO_DESCENT"]
 
 _K = 8  # block: x_B3, z_B3, omega_B, omega (3), the ball's nut shift, the force slot of its pair
-_FB_SMOOTHING = 1e-14  # as lowmodel.b2b_chain
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 _inline = numba.njit(inline="always", nogil=True, error_model="numpy")   # the steps of newton, inlined into it
 
 
 @_jit
-def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, blocks
+def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the Jacobian of lowmodel.b2b_chain.chain_system, blocks
                  residual, diagonal, upper, lower, terms):
-    """Residual (n K,) and the blocks (n, K, K) of the chain's Jacobian (module docstring) at ``z``, the ball terms
-    into ``terms`` (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
+    """Residual (n K,) (:func:`lowmodel.screw.ball_kernels.chain_residual`) and the blocks (n, K, K) of the chain's
+    Jacobian (module docstring) at ``z``, the ball terms into ``terms``
+    (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
     :func:`lowmodel.screw.ball_kernels.ball_terms`."""
-    (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
-     smallest_slip) = tables
-    radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
+    radius = pair_scalars[0]
     spin_scale, force_scale = scalars[2], scalars[3]
     k = _K - 1
     pairs = n if ring else n - 1
-    unknowns = np.empty((n, 6))
-    shift = np.empty(n)
-    slots = np.empty(n)
-    for j in range(n):
-        for q in range(6):
-            unknowns[j, q] = z[j * _K + q]
-        shift[j] = z[j * _K + 6]
-        slots[j] = z[j * _K + k]
-    ball_res, ball_jac, axial, axial_gradient, contact, power = terms
-    status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
-                        weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
-                        axial_gradient, contact, power)
+    status, d_spin, d_force, d_phi = chain_residual(z, n, _K, True, ring, live, targets, geometry, scalars, tables,
+                                                    chord, rot, pair_scalars, residual, terms)
     if status != CONVERGED:
         return status
-    lam = np.zeros(n)
-    for j in range(n):
-        if live[j]:
-            lam[j] = slots[j]
-    forces = np.zeros(pairs)
-    for p in range(pairs):
-        forces[p] = lam[p]
-    load = np.empty((n, 6))
-    d_spin = np.zeros((pairs, 2, 2, 6, 3))
-    d_force = np.zeros((pairs, 2, 6))
-    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
-                load, d_spin, d_force)
+    ball_jac, axial_gradient = terms[1], terms[3]
     diagonal[:] = 0.0
     upper[:] = 0.0
     lower[:] = 0.0
     for j in range(n):
-        base = j * _K
         for r in range(6):
-            residual[base + r] = ball_res[j, r]
             for q in range(7):
                 diagonal[j, r, q] = ball_jac[j, r, q]
-        residual[base + 6] = axial[j] - targets[j]
         for q in range(7):
             diagonal[j, 6, q] = axial_gradient[j, q]
-        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
-            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
     spin_factor = spin_scale / force_scale
     for p in range(pairs):
         behind, ahead = p, (p + 1) % n
@@ -117,23 +89,12 @@ def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, ro
                 for r in range(6):
                     value = d_force[p, side_row, r]
                     block[r, k] += value / radius if r >= 3 else value
-    # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders (open pairs, the chain's end): slot = 0
-    for j in range(n):
-        row = j * _K + k
-        if not live[j]:
-            residual[row] = slots[j]
-            diagonal[j, k, k] = 1.0
-            continue
-        ahead = (j + 1) % n
-        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
-        a = lam[j]
-        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
-        residual[row] = a + rate - root
-        diagonal[j, k, k] = 1.0 - a / root
-        d_rate = (1.0 - rate / root) * rate_scale
-        if j < pairs:
-            upper[j, k, 2] += d_rate
-        diagonal[j, k, 2] += -d_rate
+    for j in range(n):   # eqs 60-61
+        diagonal[j, k, k] = d_phi[j, 0]
+        if live[j]:
+            if j < pairs:
+                upper[j, k, 2] += d_phi[j, 1]
+            diagonal[j, k, 2] += -d_phi[j, 1]
     return CONVERGED
 
 
