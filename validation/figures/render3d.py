@@ -342,16 +342,23 @@ def _zones(ball):
     return [(np.asarray(c["point_m"]) * MM, 2.5 * c["hertz"]["a_m"] * MM) for c in ball["contacts"]]
 
 
-def _module_assembly(grids, meta, heading, path: Path) -> Path:
+def _module_scene(grids, meta, loaded_opacity: float):
+    """What the assembly and helix pictures of a module share: the balls placed (:func:`_placed`), the ball radius
+    [mm], the bodies' colours and opacities (the loaded body at ``loaded_opacity``), the ball centres in place [mm]."""
     balls = meta["balls"]
     placed = _placed(grids, meta)
-    radius = balls[0]["ball_radius_m"] * MM
     loaded = _loaded_index(balls[0])
     colours = v.body_colours(len(balls[0]["bodies"]), loaded=loaded)
     opacity = [1.0] * len(colours)
-    opacity[loaded] = 0.35
+    opacity[loaded] = loaded_opacity
     centres = [rotation @ (np.asarray(ball["ball_centre_m"]) * MM) + translation
                for ball, (_, rotation, translation) in zip(balls, placed)]
+    return placed, balls[0]["ball_radius_m"] * MM, colours, opacity, centres
+
+
+def _module_assembly(grids, meta, heading, path: Path) -> Path:
+    balls = meta["balls"]
+    placed, radius, colours, opacity, centres = _module_scene(grids, meta, 0.35)
     middle = np.mean(centres, axis=0)
     _, look, up, right = _module_frame(balls[0])
     rotation0 = placed[0][1]
@@ -559,14 +566,7 @@ def _module_stress(grids, meta, heading, path: Path) -> Path:
 
 def _module_helix(grids, meta, heading, path: Path) -> Path:
     balls = meta["balls"]
-    placed = _placed(grids, meta)
-    radius = balls[0]["ball_radius_m"] * MM
-    loaded = _loaded_index(balls[0])
-    colours = v.body_colours(len(balls[0]["bodies"]), loaded=loaded)
-    opacity = [1.0] * len(colours)
-    opacity[loaded] = 0.25
-    centres = [rotation @ (np.asarray(ball["ball_centre_m"]) * MM) + translation
-               for ball, (_, rotation, translation) in zip(balls, placed)]
+    placed, radius, colours, opacity, centres = _module_scene(grids, meta, 0.25)
     _, look, up, _ = _module_frame(balls[0])  # look: the helix tangent at ball 1, up: radially out (to the nut)
     if len(centres) > 1 and look @ (centres[1] - centres[0]) < 0.0:
         look = -look
