@@ -17,7 +17,10 @@ and the same Newton).  The rules:
 * The compiled machine code is cached on disk (``cache=True``) in ``$NUMBA_CACHE_DIR`` if set, else in
   ``lowmodel.cache.cache_dir("numba")`` (``~/.cache/ballbench/numba``), so the compile cost (seconds)
   is paid once per machine and kernel version, not once per process; :func:`load_seconds` reports what
-  the first use in this process cost (compile, or load from the cache).
+  the first use in this process cost (compile, or load from the cache).  numba keys a kernel's cache on its own
+  source file: a kernel that calls another module's (the compiled Newtons call the loop of
+  :mod:`lowmodel.newton_kernels`; :mod:`lowmodel.screw.ring_kernels` calls :mod:`lowmodel.screw.ball_kernels`)
+  keeps its cached code after an edit of that other module alone, so clear the cache after such an edit.
 """
 from __future__ import annotations
 

@@ -11,7 +11,8 @@ so that nothing allocates per operation (loaded by :func:`lowmodel.kernels.load`
 * :func:`chain_terms`: the B2B chain of :func:`lowmodel.b2b_chain.chain_system` for the open chain of
   :mod:`lowmodel.linear_bearing.b2b` (B2B loads of eqs 5-8, ``min`` complementarity of eqs 9-10) as the
   blocks of its block-tridiagonal Jacobian.
-* :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt with Nielsen's update): dense
+* :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt with Nielsen's update; the loop is
+  :func:`lowmodel.newton_kernels.levenberg_marquardt`, its steps are this module's): dense
   normal equations solved by LU with partial pivoting below :data:`lowmodel.b2b_chain.SPARSE_BALLS`
   balls; from there on each iteration tries the plain Newton step first, by a block LU of the
   block-tridiagonal ``J`` (:func:`_block_factor`, :func:`_block_solve`; the slip angles of a ball eliminated first,
@@ -32,7 +33,7 @@ Status codes of the solves:
 :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`STATIONARY`, :data:`NO_DESCENT`, :data:`REJECTED`
 (the numpy path names them in its ConvergenceError messages, and runs again where a kernel fails).
 
-One concept in one file (about 950 lines): the compiled twin of the ball and chain solves.  The kernels call
+One concept in one file (about 1,100 lines): the compiled twin of the ball and chain solves.  The kernels call
 one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
@@ -41,6 +42,8 @@ import math
 
 import numba
 import numpy as np
+
+from ballbench.lowmodel.newton_kernels import levenberg_marquardt, ordered_dot
 
 __all__ = ["ball_terms", "chain_terms", "newton", "solve_branch", "solve_free_cases", "solve_chain_cases",
            "contact_terms", "warm_up",
@@ -54,6 +57,7 @@ SPARSE_BALLS = 6  # as lowmodel.b2b_chain.SPARSE_BALLS: dense normal equations b
 _REGULARISATION = 1e-14  # as lowmodel.linear_bearing.b2b: the |dv| floor in dv/|dv|
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_inline = numba.njit(inline="always", nogil=True, error_model="numpy")   # the steps of newton, inlined into it
 
 
 @_jit
@@ -702,202 +706,152 @@ def _column_norm_max(diagonal, upper, lower):
     return largest
 
 
-_NEWTON_DEFECT = 1e-8  # Newton steps are used where max|r + J dx| <= this max|r| (no pivoting across balls)
+@_inline
+def _evaluate(evaluation, z, state):
+    """:func:`chain_terms` at ``z`` into ``state`` (residual, diagonal, upper, lower): the evaluation of
+    :func:`lowmodel.newton_kernels.levenberg_marquardt`."""
+    n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, slip, table = evaluation
+    residual, diagonal, upper, lower = state
+    chain_terms(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, residual, diagonal,
+                upper, lower, slip, table)
+    return CONVERGED
+
+
+@_inline
+def _dense_prepare(steps, state, _first):
+    """Below :data:`SPARSE_BALLS` balls: the dense normal equations ``J^T J`` (summed over ``J``'s nonzeros) and
+    ``-J^T r``; no plain Newton step."""
+    jacobian, normal, _, columns, values, gradient, rhs = steps
+    residual, diagonal, upper, lower = state
+    _dense(diagonal, upper, lower, jacobian)
+    _normal_dense(jacobian, normal, columns, values)
+    diagonal_max = -np.inf
+    for i in range(residual.size):
+        diagonal_max = max(diagonal_max, normal[i, i])
+    _rmatvec(diagonal, upper, lower, residual, gradient)
+    for i in range(residual.size):
+        rhs[i] = -gradient[i]
+    return diagonal_max, False
+
+
+@_inline
+def _dense_step(steps, _state, damping, _plain, step):
+    """``(J^T J + damping I) dx = -J^T r`` by LU with partial pivoting; False at a zero pivot."""
+    normal, system, rhs = steps[1], steps[2], steps[6]
+    system[:] = normal
+    for i in range(rhs.size):
+        system[i, i] += damping
+    return _lu_solve(system, rhs, step)
+
+
+@_inline
+def _dense_multiply(_steps, state, step, _plain, change):
+    """``change = J step``."""
+    _matvec(state[1], state[2], state[3], step, change)
+
+
+@_inline
+def _banded_prepare(steps, state, first):
+    """From :data:`SPARSE_BALLS` balls on: the block LU of ``J`` (the plain Newton step offered where it has no zero
+    pivot) and, where ``first``, the largest column norm; the banded normal equations are formed where a step needs
+    them (:func:`_banded_step`)."""
+    blocks, pivots, coupling, reach, formed = steps[:5]
+    diagonal, upper, lower = state[1], state[2], state[3]
+    formed[0] = False
+    factored = _block_factor(diagonal, upper, lower, blocks, pivots, coupling, reach)
+    return (_column_norm_max(diagonal, upper, lower) if first else 0.0), factored
+
+
+@_inline
+def _banded_step(steps, state, damping, plain, step):
+    """The plain step ``J dx = -r`` by the block LU of :func:`_banded_prepare`; else ``(J^T J + damping I) dx =
+    -J^T r`` in band storage (the permutation :data:`_CHAIN_ORDER`) by Cholesky; False where there is none."""
+    blocks, pivots, coupling, reach, formed, band, factor, permuted, position, solution, scratch, gradient, rhs = steps
+    residual, diagonal, upper, lower = state
+    size = residual.size
+    if plain:
+        for i in range(size):
+            solution[i] = -residual[i]
+        _block_solve(blocks, pivots, coupling, reach, lower, solution, step, scratch)
+        return True
+    if not formed[0]:
+        if not _normal_band_sparse(diagonal, upper, lower, _CHAIN_ORDER, band):
+            return False  # not a B2B chain's pattern (cannot happen for eqs 4-10)
+        _rmatvec(diagonal, upper, lower, residual, gradient)
+        for i in range(size):
+            rhs[i] = -gradient[i]
+        formed[0] = True
+    for i in range(size):
+        permuted[position[i]] = rhs[i]
+    solved = _band_solve(band, damping, permuted, factor, solution)
+    for i in range(size):
+        step[i] = solution[position[i]]
+    return solved
+
+
+@_inline
+def _banded_multiply(steps, state, step, plain, change):
+    """``change = J step`` (after a plain step over the reach of the block LU's blocks only)."""
+    if plain:
+        _matvec_reach(state[1], state[2], state[3], steps[3], step, change)
+    else:
+        _matvec(state[1], state[2], state[3], step, change)
+
+
+# the statuses of lowmodel.newton_kernels in this module's (an iteration limit and a non-finite residual alike)
+_STATUS = np.array([CONVERGED, NOT_CONVERGED, NOT_CONVERGED, NOT_CONVERGED, STATIONARY, NO_DESCENT])
 
 
 @_jit
-def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,  # noqa: C901 - one compiled Levenberg-Marquardt loop (numba: no closures)
+def newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, tolerance, max_iterations,
            residual, work):
     """:func:`lowmodel.solvers.newton` on :func:`chain_terms` from ``z`` (overwritten with the last iterate);
     the residual at it into ``residual`` (n K,).  Returns ``(status, iterations, max |residual|)``.
 
-    From :data:`SPARSE_BALLS` balls on, each iteration first tries the plain Newton step ``J dx = -r`` by the
-    block LU of ``J`` (:func:`_block_factor`, O(n K^3) with small constants), accepted by the same gain test as a
-    Levenberg-Marquardt step (and only where ``max|r + J dx| <= _NEWTON_DEFECT max|r|``); where the LU has a zero
-    pivot or the step is refused, the Levenberg-Marquardt steps of :func:`lowmodel.solvers.newton` follow from the
-    same damping (banded Cholesky of the permuted normal equations).  The damping follows Nielsen's update after
-    either step.  The convergence test (``max|r| <= tolerance`` at an evaluated point) is the same either way.
+    The loop is :func:`lowmodel.newton_kernels.levenberg_marquardt`; its steps here: below :data:`SPARSE_BALLS` balls
+    the dense normal equations by LU; from there on each iteration first tries the plain Newton step ``J dx = -r`` by
+    the block LU of ``J`` (:func:`_block_factor`, O(n K^3) with small constants), accepted by the same gain test as a
+    Levenberg-Marquardt step (and only where ``max|r + J dx| <= NEWTON_DEFECT max|r|``,
+    :data:`lowmodel.newton_kernels.NEWTON_DEFECT`); where the LU has a zero pivot or the step is refused, the
+    Levenberg-Marquardt steps of :func:`lowmodel.solvers.newton` follow from the same damping (banded Cholesky of the
+    permuted normal equations).  The damping follows Nielsen's update after either step.  The convergence test
+    (``max|r| <= tolerance`` at an evaluated point) is the same either way.
 
     ``work``: scratch of at least :func:`workspace_size` floats for the eight (n, K, K) block arrays of the sparse
     path, reused between solves (fresh memory of that size costs more page faults than the solve's LU); smaller
     (e.g. empty): allocated here."""
     size = n * big_k
-    dense = n < SPARSE_BALLS
     count = n * big_k * big_k
-    if not dense and work.size >= 8 * count:
-        diagonal = work[0:count].reshape((n, big_k, big_k))
-        upper = work[count:2 * count].reshape((n, big_k, big_k))
-        lower = work[2 * count:3 * count].reshape((n, big_k, big_k))
-        trial_diagonal = work[3 * count:4 * count].reshape((n, big_k, big_k))
-        trial_upper = work[4 * count:5 * count].reshape((n, big_k, big_k))
-        trial_lower = work[5 * count:6 * count].reshape((n, big_k, big_k))
-        blocks = work[6 * count:7 * count].reshape((n, big_k, big_k))
-        coupling = work[7 * count:8 * count].reshape((n, big_k, big_k))
-        work[0:6 * count] = 0.0
-    else:
-        diagonal = np.zeros((n, big_k, big_k))
-        upper = np.zeros((n, big_k, big_k))
-        lower = np.zeros((n, big_k, big_k))
-        trial_diagonal = np.zeros((n, big_k, big_k))
-        trial_upper = np.zeros((n, big_k, big_k))
-        trial_lower = np.zeros((n, big_k, big_k))
-        blocks = np.empty((n, big_k, big_k))
-        coupling = np.empty((n, big_k, big_k))
-    trial_residual = np.empty(size)
-    slip = np.empty((n, 4))
-    table = np.empty((3, 2))
-    trial = np.empty(size)
-    gradient = np.empty(size)
-    rhs = np.empty(size)
-    step = np.empty(size)
-    change = np.empty(size)
-    scratch = np.empty(big_k)
-    if dense:
-        jacobian = np.empty((size, size))
-        normal = np.empty((size, size))
-        system = np.empty((size, size))
-        columns = np.empty(size, dtype=np.int64)
-        values = np.empty(size)
-        band = np.empty((1, 1))
-        factor = np.empty((1, 1))
-        permuted = np.empty(1)
-        position = np.empty(1, dtype=np.int64)
-        pivots = np.empty((1, 1), dtype=np.int64)
-        reach = np.empty((1, 2), dtype=np.int64)
-    else:
-        pivots = np.empty((n, big_k), dtype=np.int64)
-        reach = np.empty((n, 2), dtype=np.int64)
-        jacobian = np.empty((1, 1))
-        normal = np.empty((1, 1))
-        system = np.empty((1, 1))
-        columns = np.empty(1, dtype=np.int64)
-        values = np.empty(1)
-        band = np.empty((size, 2 * big_k + 2))
-        factor = np.empty((size, 2 * big_k + 2))
-        permuted = np.empty(size)
-        position = np.empty(size, dtype=np.int64)  # where unknown i sits in the band
-        for j in range(n):
-            for b in range(big_k):
-                position[big_k * j + b] = big_k * j + _CHAIN_ORDER[b]
-    chain_terms(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, residual, diagonal,
-                upper, lower, slip, table)
-    norm = 0.0
-    for i in range(size):
-        norm = max(norm, abs(residual[i]))
-    if residual.size and np.isnan(residual).any():
-        norm = np.nan
-    iterations = 0
-    damping = -1.0
-    growth = 2.0
-    while not norm <= tolerance:
-        if iterations >= max_iterations or not math.isfinite(norm):
-            return NOT_CONVERGED, iterations, norm
-        iterations += 1
-        factored = False
-        formed = False  # the normal equations of this iteration (the banded path forms them where needed)
-        if dense:
-            _dense(diagonal, upper, lower, jacobian)
-            _normal_dense(jacobian, normal, columns, values)
-            diagonal_max = -np.inf
-            for i in range(size):
-                diagonal_max = max(diagonal_max, normal[i, i])
-            _rmatvec(diagonal, upper, lower, residual, gradient)
-            for i in range(size):
-                rhs[i] = -gradient[i]
-        else:
-            factored = _block_factor(diagonal, upper, lower, blocks, pivots, coupling, reach)
-            diagonal_max = _column_norm_max(diagonal, upper, lower) if damping < 0.0 else 0.0
-        if damping < 0.0:
-            damping = 1e-8 * diagonal_max
-        merit = 0.0
-        largest_residual = 0.0
-        for i in range(size):
-            merit += residual[i] * residual[i]
-            largest_residual = max(largest_residual, abs(residual[i]))
-        plain = factored  # the first try of the iteration: the Newton step
-        while True:
-            newton_try = plain
-            plain = False
-            if newton_try:
-                for i in range(size):
-                    change[i] = -residual[i]
-                _block_solve(blocks, pivots, coupling, reach, lower, change, step, scratch)
-                solved = True
-            elif dense:
-                system[:] = normal
-                for i in range(size):
-                    system[i, i] += damping
-                solved = _lu_solve(system, rhs, step)
-            else:
-                if not formed:
-                    if not _normal_band_sparse(diagonal, upper, lower, _CHAIN_ORDER, band):
-                        return NOT_CONVERGED, iterations, norm  # not a B2B chain's pattern (cannot happen for eqs 4-10)
-                    _rmatvec(diagonal, upper, lower, residual, gradient)
-                    for i in range(size):
-                        rhs[i] = -gradient[i]
-                    formed = True
-                for i in range(size):
-                    permuted[position[i]] = rhs[i]
-                solved = _band_solve(band, damping, permuted, factor, change)
-                for i in range(size):
-                    step[i] = change[position[i]]
-            finite = solved
-            if solved:
-                for i in range(size):
-                    if not math.isfinite(step[i]):
-                        finite = False
-                        break
-            predicted = -1.0
-            if finite:
-                if newton_try:
-                    _matvec_reach(diagonal, upper, lower, reach, step, change)
-                else:
-                    _matvec(diagonal, upper, lower, step, change)
-                linear = 0.0
-                defect = 0.0
-                for i in range(size):
-                    value = residual[i] + change[i]
-                    linear += value * value
-                    defect = max(defect, abs(value))
-                predicted = merit - linear
-                if newton_try and not defect <= _NEWTON_DEFECT * largest_residual:
-                    finite = False  # an inaccurate block LU (no pivoting across balls): the normal equations
-            if finite and predicted > 0.0:
-                for i in range(size):
-                    trial[i] = z[i] + step[i]
-                chain_terms(trial, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat,
-                            trial_residual, trial_diagonal, trial_upper, trial_lower, slip, table)
-                trial_merit = 0.0
-                for i in range(size):
-                    trial_merit += trial_residual[i] * trial_residual[i]
-                gain = (merit - trial_merit) / predicted
-                if math.isfinite(trial_merit) and gain > 1e-4:
-                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
-                    growth = 2.0
-                    break
-            elif finite and predicted <= 0.0 and not newton_try:
-                largest = 0.0
-                for i in range(size):
-                    largest = max(largest, abs(step[i]))
-                if largest == 0.0:
-                    return STATIONARY, iterations, norm
-            if newton_try:
-                continue  # refused: the Levenberg-Marquardt step at the same damping
-            damping *= growth
-            growth *= 2.0
-            if not math.isfinite(damping) or damping > 1e30:
-                return NO_DESCENT, iterations, norm
-        z[:] = trial
-        residual[:] = trial_residual
-        diagonal, trial_diagonal = trial_diagonal, diagonal
-        upper, trial_upper = trial_upper, upper
-        lower, trial_lower = trial_lower, lower
-        norm = 0.0
-        for i in range(size):
-            norm = max(norm, abs(residual[i]))
-        if np.isnan(residual).any():
-            norm = np.nan
-    return CONVERGED, iterations, norm
+    if n >= SPARSE_BALLS and work.size >= 8 * count:
+        blocks = work[0:8 * count].reshape((8, n, big_k, big_k))
+        blocks[0:6] = 0.0
+    else:  # the dense path needs no factors (blocks 6, 7)
+        blocks = np.zeros((8 if n >= SPARSE_BALLS else 6, n, big_k, big_k))
+    diagonal, upper, lower, trial_diagonal, trial_upper, trial_lower = (blocks[0], blocks[1], blocks[2], blocks[3],
+                                                                        blocks[4], blocks[5])
+    evaluation = (n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, np.empty((n, 4)),
+                  np.empty((3, 2)))
+    state = (residual, diagonal, upper, lower)
+    trial_state = (np.empty(size), trial_diagonal, trial_upper, trial_lower)
+    limits, weight = np.full(size, tolerance), np.ones(size)
+    if n < SPARSE_BALLS:
+        steps = (np.empty((size, size)), np.empty((size, size)), np.empty((size, size)), np.empty(size, dtype=np.int64),
+                 np.empty(size), np.empty(size), np.empty(size))
+        status, iterations, norm, _ = levenberg_marquardt(
+            _evaluate, _dense_prepare, _dense_step, _dense_multiply, ordered_dot, evaluation, steps, z, state,
+            trial_state, limits, weight, max_iterations, residual)
+        return _STATUS[status], iterations, norm
+    position = np.empty(size, dtype=np.int64)  # where unknown i sits in the band
+    for j in range(n):
+        for b in range(big_k):
+            position[big_k * j + b] = big_k * j + _CHAIN_ORDER[b]
+    steps = (blocks[6], np.empty((n, big_k), dtype=np.int64), blocks[7], np.empty((n, 2), dtype=np.int64),
+             np.zeros(1, dtype=np.bool_), np.empty((size, 2 * big_k + 2)), np.empty((size, 2 * big_k + 2)),
+             np.empty(size), position, np.empty(size), np.empty(big_k), np.empty(size), np.empty(size))
+    status, iterations, norm, _ = levenberg_marquardt(
+        _evaluate, _banded_prepare, _banded_step, _banded_multiply, ordered_dot, evaluation, steps, z, state,
+        trial_state, limits, weight, max_iterations, residual)
+    return _STATUS[status], iterations, norm
 
 
 def workspace_size(n_balls: int) -> int:
@@ -915,8 +869,6 @@ def solve_branch(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_
     ``(status, iterations, max |residual|)``."""
     total = 0
     norm = np.inf
-    slip = np.empty((n, 4))
-    table = np.empty((3, 2))
     for _ in range(attempts):
         if total < max_iterations:
             status, iterations, norm = newton(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y,
@@ -926,7 +878,8 @@ def solve_branch(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_
         else:  # the budget is spent: the restart point counts only if it solves the system as it is
             diagonal = np.zeros((n, big_k, big_k))
             chain_terms(z, n, big_k, geometry, live, mu, rate_scale, nodes_x, mid_x, n_mid_y, flat, residual,
-                        diagonal, np.zeros((n, big_k, big_k)), np.zeros((n, big_k, big_k)), slip, table)
+                        diagonal, np.zeros((n, big_k, big_k)), np.zeros((n, big_k, big_k)), np.empty((n, 4)),
+                        np.empty((3, 2)))
             norm = np.abs(residual).max() if residual.size else 0.0
             if not norm <= tolerance:
                 return NOT_CONVERGED, total, norm

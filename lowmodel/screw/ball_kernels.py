@@ -16,11 +16,13 @@ nothing allocates per array operation (loaded by :func:`lowmodel.kernels.load`; 
 A status other than :data:`CONVERGED` (a contact at rest, a slip outside the float range of the friction
 Jacobian, a non-finite input) hands the evaluation back to the numpy code, which names the problem.
 The caller is :func:`lowmodel.screw.ball.ball_terms`; the data layout (``geometry`` (n, 4, FIELDS),
-``scalars``, the ``contact`` fields) is built and read there.  :func:`chain_function` and :func:`newton` are the
-B2B chain of :mod:`lowmodel.screw.b2b` (eqs 56-61) and :func:`lowmodel.solvers.newton` for chains of fewer than
-:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, called by ``b2b.solve``.
+``scalars``, the ``contact`` fields) is built and read there.  :func:`chain_residual` is the residual of the B2B
+chain of :mod:`lowmodel.screw.b2b` (eqs 54-61) in the layouts of both compiled chains, :func:`chain_function` it with
+its dense Jacobian, and :func:`newton` :func:`lowmodel.solvers.newton` on it (the loop of
+:func:`lowmodel.newton_kernels.levenberg_marquardt`) for chains of fewer than
+:data:`lowmodel.b2b_chain.SPARSE_BALLS` balls, called by ``b2b.solve`` (longer: :mod:`lowmodel.screw.ring_kernels`).
 
-One concept in one file (about 650 lines): the compiled twin of the screw ball and its small chains.  The kernels
+One concept in one file (about 750 lines): the compiled twin of the screw ball and its small chains.  The kernels
 call one another and numba compiles and caches them per module, so one module keeps one compile cache.
 """
 from __future__ import annotations
@@ -30,9 +32,12 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_function", "newton", "ball_outputs", "copy_outputs",
-           "warm_up", "FIELDS", "SCALARS",
-           "CONTACT_FIELDS", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY", "NO_DESCENT"]
+from ballbench.lowmodel.newton_kernels import (CONVERGED, NO_DESCENT, NON_FINITE, NOT_CONVERGED, STATIONARY, blas_dot,
+                                               levenberg_marquardt)
+
+__all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_residual", "chain_function", "newton",
+           "ball_outputs", "copy_outputs", "warm_up", "FIELDS", "SCALARS", "CONTACT_FIELDS", "CONVERGED", "FALLBACK",
+           "NOT_CONVERGED", "NON_FINITE", "STATIONARY", "NO_DESCENT"]
 
 # geometry fields per contact: arc centre (x3, z3) [m], Hertz C [m N^-2/3], a / F^(1/3) [m N^-1/3], b/a, on nut
 CENTRE_X, CENTRE_Z, HERTZ, SEMI_UNIT, B_OVER_A, ON_NUT = range(6)
@@ -41,12 +46,13 @@ FIELDS = 6
 SCALARS = 12
 # contact outputs: F, e_x, e_z, delta, a, spin, slip_minor, slip_major, friction force (3), moment (3), loss
 CONTACT_FIELDS = 15
-CONVERGED, FALLBACK = 0, 1
+FALLBACK = 1  # an evaluation handed back to the numpy code (CONVERGED: evaluated)
 _K = 7  # unknowns of one ball: x_B3, z_B3, omega_B, omega (3), nut shift
 _D = _K + 1  # a dual number: value and 7 derivatives
 _PREFACTOR = 3.0 / (2.0 * math.pi)  # lin2019 eq A7: p0 a b / F
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_inline = numba.njit(inline="always", nogil=True, error_model="numpy")   # the steps of newton, inlined into it
 
 
 # --------------------------------------------------------------------------
@@ -445,7 +451,6 @@ def ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, w
 # --------------------------------------------------------------------------
 # the B2B chain of a few balls (lowmodel.screw.b2b, lowmodel.b2b_chain) and its damped Newton
 # --------------------------------------------------------------------------
-NOT_CONVERGED, NON_FINITE, STATIONARY, NO_DESCENT = 2, 3, 4, 5
 _FB_SMOOTHING = 1e-14  # as lowmodel.b2b_chain: the Fischer-Burmeister smoothing
 _B2B_REGULARISATION = 1e-14  # as lowmodel.screw.b2b: |s| floor in units of R_B * speed
 
@@ -542,17 +547,23 @@ def copy_outputs(source, target):
 
 
 @_jit
-def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, dense
-                   residual, jacobian, terms):
-    """Residual and dense Jacobian of the screw chain (:func:`lowmodel.b2b_chain.chain_system` of
-    :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61), the ball terms
-    into ``terms`` (:func:`ball_outputs`); returns the status of :func:`ball_terms`."""
+def chain_residual(z, n, big_k, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,
+                   residual, terms):
+    """The residual of the screw chain (:func:`lowmodel.b2b_chain.chain_system` of
+    :func:`lowmodel.screw.b2b._solve_attempt`) at ``z`` into ``residual`` (the ball terms into ``terms``,
+    :func:`ball_outputs`), in either layout of the unknowns: ``big_k`` per ball, the ball's 6, its nut shift at ``j
+    big_k + 6`` where ``per_ball`` (else one at ``n big_k``, the last row the axial balance), the force slot of the
+    pair ``(j, j + 1)`` last.  Rows: lin2019 eq 54 of each ball with the B2B loads of eqs 57-59 (moments / R_B, in
+    units of the force scale), the axial balance, eqs 60-61 by Fischer-Burmeister (``slot = 0`` where the pair does
+    not touch or past the chain's end).  Returns ``(status, d_spin, d_force, d_phi)`` for the Jacobian: the
+    derivatives of :func:`pair_loads` and, per pair, ``d phi / d F`` and ``d phi / d omega_B`` of the ball ahead
+    (that of the ball behind its negative; ``(1, 0)`` for a placeholder); status that of :func:`ball_terms` (the rest
+    undefined unless :data:`CONVERGED`)."""
     (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
      smallest_slip) = tables
     radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
     spin_scale, force_scale = scalars[2], scalars[3]
-    k = 7 if per_ball else 6
-    big_k = k + 1
+    k = big_k - 1
     pairs = n if ring else n - 1
     unknowns = np.empty((n, 6))
     shift = np.empty(n)
@@ -562,12 +573,15 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
             unknowns[j, q] = z[j * big_k + q]
         shift[j] = z[j * big_k + 6] if per_ball else z[n * big_k]
         slots[j] = z[j * big_k + k]
+    d_spin = np.zeros((max(pairs, 1), 2, 2, 6, 3))
+    d_force = np.zeros((max(pairs, 1), 2, 6))
+    d_phi = np.empty((n, 2))
     ball_res, ball_jac, axial, axial_gradient, contact, power = terms
     status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
                         weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
                         axial_gradient, contact, power)
     if status != CONVERGED:
-        return status
+        return status, d_spin, d_force, d_phi
     lam = np.zeros(n)
     for j in range(n):
         if live[j]:
@@ -576,18 +590,57 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
     for p in range(pairs):
         forces[p] = lam[p]
     load = np.empty((n, 6))
-    d_spin = np.zeros((max(pairs, 1), 2, 2, 6, 3))
-    d_force = np.zeros((max(pairs, 1), 2, 6))
-    if pairs > 0:
-        pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
-                    load, d_spin, d_force)
-    else:
-        load[:] = 0.0
-    jacobian[:] = 0.0
+    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring, load,
+               d_spin, d_force)   # no pairs (one ball): no loads
     for j in range(n):
         base = j * big_k
         for r in range(6):
             residual[base + r] = ball_res[j, r]
+        if per_ball:
+            residual[base + 6] = axial[j] - targets[j]
+        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
+            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
+    if not per_ball:
+        total = 0.0
+        for j in range(n):
+            total += axial[j]
+        residual[n * big_k] = total - targets[0]
+    for j in range(n):   # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders: slot = 0
+        row = j * big_k + k
+        if not live[j]:
+            residual[row] = slots[j]
+            d_phi[j, 0], d_phi[j, 1] = 1.0, 0.0
+            continue
+        ahead = (j + 1) % n
+        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
+        a = lam[j]
+        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
+        residual[row] = a + rate - root
+        d_phi[j, 0] = 1.0 - a / root
+        d_phi[j, 1] = (1.0 - rate / root) * rate_scale
+    return status, d_spin, d_force, d_phi
+
+
+@_jit
+def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the Jacobian of lowmodel.b2b_chain.chain_system, dense
+                   residual, jacobian, terms):
+    """Residual (:func:`chain_residual`) and dense Jacobian of the screw chain (:func:`lowmodel.b2b_chain.chain_system`
+    of :func:`lowmodel.screw.b2b._solve_attempt`, Fischer-Burmeister complementarity of eqs 60-61), the ball terms
+    into ``terms`` (:func:`ball_outputs`); returns the status of :func:`ball_terms`."""
+    radius = pair_scalars[0]
+    spin_scale, force_scale = scalars[2], scalars[3]
+    k = 7 if per_ball else 6
+    big_k = k + 1
+    pairs = n if ring else n - 1
+    status, d_spin, d_force, d_phi = chain_residual(z, n, big_k, per_ball, ring, live, targets, geometry, scalars,
+                                                    tables, chord, rot, pair_scalars, residual, terms)
+    if status != CONVERGED:
+        return status
+    ball_jac, axial_gradient = terms[1], terms[3]
+    jacobian[:] = 0.0
+    for j in range(n):
+        base = j * big_k
+        for r in range(6):
             for q in range(6):
                 jacobian[base + r, base + q] = ball_jac[j, r, q]
             if per_ball:
@@ -595,20 +648,14 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
             else:
                 jacobian[base + r, n * big_k] = ball_jac[j, r, 6]
         if per_ball:
-            residual[base + 6] = axial[j] - targets[j]
             for q in range(7):
                 jacobian[base + 6, base + q] = axial_gradient[j, q]
-        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
-            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
     if not per_ball:
-        total = 0.0
         block = 0.0
         for j in range(n):
-            total += axial[j]
             block += axial_gradient[j, 6]
             for q in range(6):
                 jacobian[n * big_k, j * big_k + q] = axial_gradient[j, q]
-        residual[n * big_k] = total - targets[0]
         jacobian[n * big_k, n * big_k] = block
     spin_factor = spin_scale / force_scale
     for p in range(pairs):
@@ -626,102 +673,83 @@ def chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, table
                 for r in range(6):
                     value = d_force[p, side_row, r] / radius if r >= 3 else d_force[p, side_row, r]
                     jacobian[row_ball * big_k + r, behind * big_k + k] += value
-    # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders (open pairs, the chain's end): slot = 0
-    for j in range(n):
+    for j in range(n):   # eqs 60-61
         row = j * big_k + k
-        if not live[j]:
-            residual[row] = slots[j]
-            jacobian[row, row] = 1.0
-            continue
-        ahead = (j + 1) % n
-        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
-        a = lam[j]
-        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
-        residual[row] = a + rate - root
-        jacobian[row, row] = 1.0 - a / root
-        d_rate = (1.0 - rate / root) * rate_scale
-        if j < pairs:
-            jacobian[row, ahead * big_k + 2] += d_rate
-        jacobian[row, j * big_k + 2] += -d_rate
+        jacobian[row, row] = d_phi[j, 0]
+        if live[j]:
+            if j < pairs:
+                jacobian[row, ((j + 1) % n) * big_k + 2] += d_phi[j, 1]
+            jacobian[row, j * big_k + 2] += -d_phi[j, 1]
     return CONVERGED
 
 
-@_jit
-def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, dense
-           max_iterations, row_tolerance, row_weight, z, result, terms):
-    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update, dense normal equations) on
-    :func:`chain_function`; ``z`` the solution, ``result`` (residual (size,) unweighted), ``terms`` the ball terms at
-    ``z`` (:func:`ball_outputs`); returns ``(status, iterations, norm)`` with status :data:`CONVERGED`,
-    :data:`NOT_CONVERGED`, :data:`NON_FINITE`, :data:`STATIONARY`, :data:`NO_DESCENT` or :data:`FALLBACK`."""
-    size = z0.size
-    residual = np.empty(size)
-    jacobian = np.empty((size, size))
-    trial_residual = np.empty(size)
-    trial_jacobian = np.empty((size, size))
-    trial_terms = ball_outputs(n)
-    z[:] = z0
+@_inline
+def _evaluate(evaluation, z, state):
+    """:func:`chain_function` at ``z`` into ``state`` (residual, Jacobian, ball terms), its rows weighted: the
+    evaluation of :func:`lowmodel.newton_kernels.levenberg_marquardt`."""
+    n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight = evaluation
+    residual, jacobian, terms = state
     status = chain_function(z, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot,
                             pair_scalars, residual, jacobian, terms)
-    if status != CONVERGED:
-        return status, 0, 0.0
-    limits = row_tolerance * row_weight
-    for r in range(size):
-        residual[r] *= row_weight[r]
-        jacobian[r] *= row_weight[r]
-    norm = np.max(np.abs(residual / row_weight))
-    iterations = 0
-    damping = -1.0
-    growth = 2.0
-    identity = np.eye(size)
-    while not np.all(np.abs(residual) <= limits):
-        if iterations >= max_iterations or not np.isfinite(norm):
-            result[:] = residual / row_weight
-            return (NOT_CONVERGED if np.isfinite(norm) else NON_FINITE), iterations, norm
-        iterations += 1
-        normal = jacobian.T @ jacobian
-        diagonal_max = np.max(np.diag(normal))
-        gradient = jacobian.T @ residual
-        if damping < 0.0:
-            damping = 1e-8 * diagonal_max
-        merit = residual @ residual
-        while True:
-            try:
-                step = np.linalg.solve(normal + damping * identity, -gradient)
-            except Exception:  # noqa: BLE001 - numba raises a generic error for a singular matrix
-                step = np.full(size, np.nan)
-            linear = residual + jacobian @ step
-            predicted = merit - linear @ linear
-            finite = np.all(np.isfinite(step))
-            if finite and predicted > 0.0:
-                trial = z + step
-                status = chain_function(trial, n, per_ball, ring, live, targets, geometry, scalars, tables, chord,
-                                        rot, pair_scalars, trial_residual, trial_jacobian, trial_terms)
-                if status != CONVERGED:
-                    return status, iterations, norm
-                for r in range(size):
-                    trial_residual[r] *= row_weight[r]
-                    trial_jacobian[r] *= row_weight[r]
-                trial_merit = trial_residual @ trial_residual
-                gain = (merit - trial_merit) / predicted
-                if math.isfinite(trial_merit) and gain > 1e-4:
-                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
-                    growth = 2.0
-                    break
-            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
-                result[:] = residual / row_weight
-                return STATIONARY, iterations, norm
-            damping *= growth
-            growth *= 2.0
-            if not math.isfinite(damping) or damping > 1e30:
-                result[:] = residual / row_weight
-                return NO_DESCENT, iterations, norm
-        z[:] = trial
-        residual[:] = trial_residual
-        jacobian[:] = trial_jacobian
-        copy_outputs(trial_terms, terms)
-        norm = np.max(np.abs(residual / row_weight))
-    result[:] = residual / row_weight
-    return CONVERGED, iterations, norm
+    if status == CONVERGED:
+        for r in range(residual.size):
+            residual[r] *= row_weight[r]
+            jacobian[r] *= row_weight[r]
+    return status
+
+
+@_inline
+def _prepare(steps, state, _first):
+    """The dense normal equations ``J^T J`` and ``J^T r`` (BLAS, as numpy's ``@``); no plain Newton step."""
+    normal, gradient = steps[0], steps[1]
+    residual, jacobian = state[0], state[1]
+    normal[:] = jacobian.T @ jacobian
+    gradient[:] = jacobian.T @ residual
+    return np.max(np.diag(normal)), False
+
+
+@_inline
+def _step(steps, _state, damping, _plain, step):
+    """``(J^T J + damping I) dx = -J^T r`` (:func:`_damped_solve`); False where it is singular."""
+    normal, gradient, identity = steps
+    return _damped_solve(normal, gradient, identity, damping, step)
+
+
+@_jit
+def _damped_solve(normal, gradient, identity, damping, step):
+    """``step = (normal + damping I)^-1 (-gradient)`` by LAPACK's LU (``np.linalg.solve``); False where singular."""
+    try:
+        step[:] = np.linalg.solve(normal + damping * identity, -gradient)
+    except Exception:  # noqa: BLE001 - numba raises a generic error for a singular matrix
+        return False
+    return True
+
+
+@_inline
+def _multiply(_steps, state, step, _plain, change):
+    """``change = J step`` (BLAS, as numpy's ``@``)."""
+    change[:] = state[1] @ step
+
+
+@_jit
+def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,
+           max_iterations, row_tolerance, row_weight, z, result, terms):
+    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update, dense normal equations: the loop of
+    :func:`lowmodel.newton_kernels.levenberg_marquardt`) on :func:`chain_function`; ``z`` the solution, ``result``
+    (residual (size,) unweighted), ``terms`` the ball terms at ``z`` (:func:`ball_outputs`); returns ``(status,
+    iterations, norm)`` with status :data:`CONVERGED`, :data:`NOT_CONVERGED`, :data:`NON_FINITE`,
+    :data:`STATIONARY`, :data:`NO_DESCENT` or :data:`FALLBACK`."""
+    size = z0.size
+    evaluation = (n, per_ball, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight)
+    steps = (np.empty((size, size)), np.empty(size), np.eye(size))   # J^T J, J^T r, I
+    state = (np.empty(size), np.empty((size, size)), terms)
+    trial_state = (np.empty(size), np.empty((size, size)), ball_outputs(n))
+    z[:] = z0
+    status, iterations, norm, state = levenberg_marquardt(_evaluate, _prepare, _step, _multiply, blas_dot, evaluation,
+                                                          steps, z, state, trial_state, row_tolerance * row_weight,
+                                                          row_weight, max_iterations, result)
+    copy_outputs(state[2], terms)   # the terms at z (a no-op where they are there already)
+    return status, iterations, norm
 
 
 def warm_up() -> None:

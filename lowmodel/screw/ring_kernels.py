@@ -11,7 +11,8 @@ whole screw of lin2019 Sec 3.4, :mod:`lowmodel.screw.whole_screw`), for chains o
   (n-1, 0) gives the corner blocks ``upper[n-1]`` and ``lower[0]``; zero in an open chain).  The ball terms and the
   B2B loads are those of :mod:`lowmodel.screw.ball_kernels` (the same loops as the dense chain there).
 * :func:`newton`: :func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's damping update, row weights and
-  row tolerances, the same acceptance, the same failure statuses) with the damped normal equations
+  row tolerances, the same acceptance, the same failure statuses: the loop of
+  :func:`lowmodel.newton_kernels.levenberg_marquardt`) with the damped normal equations
   ``(J^T J + lam I) dx = -J^T r`` solved by a Cholesky factorisation that follows their structure: ``J^T J`` of a
   cyclic block-tridiagonal ``J`` is cyclic block-pentadiagonal; with the last two blocks of balls ordered last it is
   a band (half-bandwidth ``3 K - 1``) bordered by ``2 K`` dense rows and columns (the corner coupling of the ring),
@@ -30,70 +31,44 @@ import math
 import numba
 import numpy as np
 
+from ballbench.lowmodel.newton_kernels import blas_dot, levenberg_marquardt
 from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
-                                                   STATIONARY, ball_outputs, ball_terms, copy_outputs, pair_loads)
+                                                   STATIONARY, ball_outputs, chain_residual, copy_outputs)
 
 __all__ = ["chain_blocks", "newton", "warm_up", "CONVERGED", "FALLBACK", "NOT_CONVERGED", "NON_FINITE", "STATIONARY",
            "NO_DESCENT"]
 
 _K = 8  # block: x_B3, z_B3, omega_B, omega (3), the ball's nut shift, the force slot of its pair
-_FB_SMOOTHING = 1e-14  # as lowmodel.b2b_chain
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_inline = numba.njit(inline="always", nogil=True, error_model="numpy")   # the steps of newton, inlined into it
 
 
 @_jit
-def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the chain of lowmodel.b2b_chain.chain_system, blocks
+def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - the Jacobian of lowmodel.b2b_chain.chain_system, blocks
                  residual, diagonal, upper, lower, terms):
-    """Residual (n K,) and the blocks (n, K, K) of the chain's Jacobian (module docstring) at ``z``, the ball terms
-    into ``terms`` (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
+    """Residual (n K,) (:func:`lowmodel.screw.ball_kernels.chain_residual`) and the blocks (n, K, K) of the chain's
+    Jacobian (module docstring) at ``z``, the ball terms into ``terms``
+    (:func:`lowmodel.screw.ball_kernels.ball_outputs`); returns the status of
     :func:`lowmodel.screw.ball_kernels.ball_terms`."""
-    (level_coarse, nodes_coarse, weights_coarse, nodes_fine, weights_fine, disc_t, disc_s, disc_w, far_centre,
-     smallest_slip) = tables
-    radius, mu, speed, rate_scale = pair_scalars[0], pair_scalars[1], pair_scalars[2], pair_scalars[3]
+    radius = pair_scalars[0]
     spin_scale, force_scale = scalars[2], scalars[3]
     k = _K - 1
     pairs = n if ring else n - 1
-    unknowns = np.empty((n, 6))
-    shift = np.empty(n)
-    slots = np.empty(n)
-    for j in range(n):
-        for q in range(6):
-            unknowns[j, q] = z[j * _K + q]
-        shift[j] = z[j * _K + 6]
-        slots[j] = z[j * _K + k]
-    ball_res, ball_jac, axial, axial_gradient, contact, power = terms
-    status = ball_terms(unknowns, shift, geometry, scalars, level_coarse, nodes_coarse, weights_coarse, nodes_fine,
-                        weights_fine, disc_t, disc_s, disc_w, far_centre, smallest_slip, ball_res, ball_jac, axial,
-                        axial_gradient, contact, power)
+    status, d_spin, d_force, d_phi = chain_residual(z, n, _K, True, ring, live, targets, geometry, scalars, tables,
+                                                    chord, rot, pair_scalars, residual, terms)
     if status != CONVERGED:
         return status
-    lam = np.zeros(n)
-    for j in range(n):
-        if live[j]:
-            lam[j] = slots[j]
-    forces = np.zeros(pairs)
-    for p in range(pairs):
-        forces[p] = lam[p]
-    load = np.empty((n, 6))
-    d_spin = np.zeros((pairs, 2, 2, 6, 3))
-    d_force = np.zeros((pairs, 2, 6))
-    pair_loads(unknowns[:, 3:6] * spin_scale, forces * force_scale, chord, rot, radius, mu, speed, n, ring,
-                load, d_spin, d_force)
+    ball_jac, axial_gradient = terms[1], terms[3]
     diagonal[:] = 0.0
     upper[:] = 0.0
     lower[:] = 0.0
     for j in range(n):
-        base = j * _K
         for r in range(6):
-            residual[base + r] = ball_res[j, r]
             for q in range(7):
                 diagonal[j, r, q] = ball_jac[j, r, q]
-        residual[base + 6] = axial[j] - targets[j]
         for q in range(7):
             diagonal[j, 6, q] = axial_gradient[j, q]
-        for r in range(6):   # the B2B loads (eqs 57-59), moments / R_B, in units of the force scale
-            residual[base + r] += (load[j, r] / radius if r >= 3 else load[j, r]) / force_scale
     spin_factor = spin_scale / force_scale
     for p in range(pairs):
         behind, ahead = p, (p + 1) % n
@@ -114,23 +89,12 @@ def chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, ro
                 for r in range(6):
                     value = d_force[p, side_row, r]
                     block[r, k] += value / radius if r >= 3 else value
-    # eqs 60-61: phi(F, gamma rate) = 0, Fischer-Burmeister; placeholders (open pairs, the chain's end): slot = 0
-    for j in range(n):
-        row = j * _K + k
-        if not live[j]:
-            residual[row] = slots[j]
-            diagonal[j, k, k] = 1.0
-            continue
-        ahead = (j + 1) % n
-        rate = (unknowns[ahead, 2] - unknowns[j, 2]) * rate_scale if j < pairs else 0.0
-        a = lam[j]
-        root = math.sqrt(a * a + rate * rate + _FB_SMOOTHING ** 2)
-        residual[row] = a + rate - root
-        diagonal[j, k, k] = 1.0 - a / root
-        d_rate = (1.0 - rate / root) * rate_scale
-        if j < pairs:
-            upper[j, k, 2] += d_rate
-        diagonal[j, k, 2] += -d_rate
+    for j in range(n):   # eqs 60-61
+        diagonal[j, k, k] = d_phi[j, 0]
+        if live[j]:
+            if j < pairs:
+                upper[j, k, 2] += d_phi[j, 1]
+            diagonal[j, k, 2] += -d_phi[j, 1]
     return CONVERGED
 
 
@@ -325,91 +289,78 @@ def _weigh(residual, diagonal, upper, lower, row_weight):
                 lower[j, r, q] *= w
 
 
-@_jit
-def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars,  # noqa: C901 - lowmodel.solvers.newton, structured
-           max_iterations, row_tolerance, row_weight, z, result, terms):
-    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update) on :func:`chain_blocks` with the
-    structured Cholesky of the module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted,
-    ``terms`` the ball terms at ``z``; returns ``(status, iterations, norm)`` as
-    :func:`lowmodel.screw.ball_kernels.newton`."""
-    size = z0.size
-    m = (n - 2) * _K
-    residual, trial_residual = np.empty(size), np.empty(size)
-    diagonal, upper, lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
-    t_diagonal, t_upper, t_lower = np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K))
-    band, l_band = np.zeros((m, 3 * _K)), np.zeros((m, 3 * _K))
-    border, l_border = np.zeros((m, 2 * _K)), np.zeros((m, 2 * _K))
-    corner, l_corner = np.zeros((2 * _K, 2 * _K)), np.zeros((2 * _K, 2 * _K))
-    gradient, step, change, trial = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
-    trial_terms = ball_outputs(n)
-    z[:] = z0
+@_inline
+def _evaluate(evaluation, z, state):
+    """:func:`chain_blocks` at ``z`` into ``state`` (residual, diagonal, upper, lower, ball terms), its rows weighted:
+    the evaluation of :func:`lowmodel.newton_kernels.levenberg_marquardt`."""
+    n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight = evaluation
+    residual, diagonal, upper, lower, terms = state
     status = chain_blocks(z, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, residual,
                           diagonal, upper, lower, terms)
-    if status != CONVERGED:
-        return status, 0, 0.0
-    limits = row_tolerance * row_weight
-    _weigh(residual, diagonal, upper, lower, row_weight)
-    norm = np.max(np.abs(residual / row_weight))
-    iterations = 0
-    damping = -1.0
-    growth = 2.0
-    while not np.all(np.abs(residual) <= limits):
-        if iterations >= max_iterations or not np.isfinite(norm):
-            result[:] = residual / row_weight
-            return (NOT_CONVERGED if np.isfinite(norm) else NON_FINITE), iterations, norm
-        iterations += 1
-        _normal(diagonal, upper, lower, band, border, corner)
-        diagonal_max = -math.inf
-        for i in range(m):
-            diagonal_max = max(diagonal_max, band[i, 0])
-        for r in range(2 * _K):
-            diagonal_max = max(diagonal_max, corner[r, r])
-        _rmatvec(diagonal, upper, lower, residual, gradient)
-        for i in range(size):
-            gradient[i] = -gradient[i]
-        if damping < 0.0:
-            damping = 1e-8 * diagonal_max
-        merit = residual @ residual
-        while True:
-            if _factor(band, border, corner, damping, l_band, l_border, l_corner):
-                _solve(l_band, l_border, l_corner, gradient, step)
-            else:
-                step[:] = np.nan
-            _matvec(diagonal, upper, lower, step, change)
-            linear = residual + change
-            predicted = merit - linear @ linear
-            finite = np.all(np.isfinite(step))
-            if finite and predicted > 0.0:
-                for i in range(size):
-                    trial[i] = z[i] + step[i]
-                status = chain_blocks(trial, n, ring, live, targets, geometry, scalars, tables, chord, rot,
-                                      pair_scalars, trial_residual, t_diagonal, t_upper, t_lower, trial_terms)
-                if status != CONVERGED:
-                    return status, iterations, norm
-                _weigh(trial_residual, t_diagonal, t_upper, t_lower, row_weight)
-                trial_merit = trial_residual @ trial_residual
-                gain = (merit - trial_merit) / predicted
-                if math.isfinite(trial_merit) and gain > 1e-4:
-                    damping *= max(1.0 / 3.0, 1.0 - (2.0 * gain - 1.0) ** 3)
-                    growth = 2.0
-                    break
-            elif finite and predicted <= 0.0 and np.max(np.abs(step)) == 0.0:
-                result[:] = residual / row_weight
-                return STATIONARY, iterations, norm
-            damping *= growth
-            growth *= 2.0
-            if not math.isfinite(damping) or damping > 1e30:
-                result[:] = residual / row_weight
-                return NO_DESCENT, iterations, norm
-        z[:] = trial
-        residual[:] = trial_residual
-        diagonal[:] = t_diagonal
-        upper[:] = t_upper
-        lower[:] = t_lower
-        copy_outputs(trial_terms, terms)
-        norm = np.max(np.abs(residual / row_weight))
-    result[:] = residual / row_weight
-    return CONVERGED, iterations, norm
+    if status == CONVERGED:
+        _weigh(residual, diagonal, upper, lower, row_weight)
+    return status
+
+
+@_inline
+def _prepare(steps, state, _first):
+    """``J^T J`` in :func:`_normal`'s storage and ``-J^T r``; no plain Newton step."""
+    band, border, corner, gradient = steps[:4]
+    residual, diagonal, upper, lower = state[:4]
+    _normal(diagonal, upper, lower, band, border, corner)
+    _rmatvec(diagonal, upper, lower, residual, gradient)
+    for i in range(gradient.size):
+        gradient[i] = -gradient[i]
+    return _diagonal_max(band, corner), False
+
+
+@_jit
+def _diagonal_max(band, corner):
+    """The largest diagonal entry of ``N`` in :func:`_normal`'s storage."""
+    diagonal_max = -math.inf
+    for i in range(band.shape[0]):
+        diagonal_max = max(diagonal_max, band[i, 0])
+    for r in range(corner.shape[0]):
+        diagonal_max = max(diagonal_max, corner[r, r])
+    return diagonal_max
+
+
+@_inline
+def _step(steps, _state, damping, _plain, step):
+    """``(J^T J + damping I) dx = -J^T r`` by the Cholesky factor of :func:`_factor`; False where it fails."""
+    band, border, corner, gradient, l_band, l_border, l_corner = steps
+    if not _factor(band, border, corner, damping, l_band, l_border, l_corner):
+        return False
+    _solve(l_band, l_border, l_corner, gradient, step)
+    return True
+
+
+@_inline
+def _multiply(_steps, state, step, _plain, change):
+    """``change = J step``."""
+    _matvec(state[1], state[2], state[3], step, change)
+
+
+@_jit
+def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, max_iterations,
+           row_tolerance, row_weight, z, result, terms):
+    """:func:`lowmodel.solvers.newton` (Levenberg-Marquardt, Nielsen's update: the loop of
+    :func:`lowmodel.newton_kernels.levenberg_marquardt`) on :func:`chain_blocks` with the structured Cholesky of the
+    module docstring; ``z`` the solution, ``result`` the residual (size,) unweighted, ``terms`` the ball terms at
+    ``z``; returns ``(status, iterations, norm)`` as :func:`lowmodel.screw.ball_kernels.newton`."""
+    size, m = z0.size, (n - 2) * _K
+    evaluation = (n, ring, live, targets, geometry, scalars, tables, chord, rot, pair_scalars, row_weight)
+    steps = (np.zeros((m, 3 * _K)), np.zeros((m, 2 * _K)), np.zeros((2 * _K, 2 * _K)), np.empty(size),
+             np.zeros((m, 3 * _K)), np.zeros((m, 2 * _K)), np.zeros((2 * _K, 2 * _K)))
+    state = (np.empty(size), np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K)), terms)
+    trial_state = (np.empty(size), np.empty((n, _K, _K)), np.empty((n, _K, _K)), np.empty((n, _K, _K)),
+                   ball_outputs(n))
+    z[:] = z0
+    status, iterations, norm, state = levenberg_marquardt(_evaluate, _prepare, _step, _multiply, blas_dot, evaluation,
+                                                          steps, z, state, trial_state, row_tolerance * row_weight,
+                                                          row_weight, max_iterations, result)
+    copy_outputs(state[4], terms)
+    return status, iterations, norm
 
 
 def warm_up() -> None:
