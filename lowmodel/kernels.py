@@ -18,17 +18,20 @@ and the same Newton).  The rules:
   ``lowmodel.cache.cache_dir("numba")`` (``~/.cache/ballbench/numba``), so the compile cost (seconds)
   is paid once per machine and kernel version, not once per process; :func:`load_seconds` reports what
   the first use in this process cost (compile, or load from the cache).  numba keys a kernel's cache on its own
-  source file: a kernel that calls another module's (the compiled Newtons call the loop of
-  :mod:`lowmodel.newton_kernels`; :mod:`lowmodel.screw.ring_kernels` calls :mod:`lowmodel.screw.ball_kernels`)
-  keeps its cached code after an edit of that other module alone, so clear the cache after such an edit.
+  source file, but a kernel calls other modules' (the compiled Newtons inline the loop of
+  :mod:`lowmodel.newton_kernels`; :mod:`lowmodel.screw.ring_kernels` calls :mod:`lowmodel.screw.ball_kernels`): so
+  ballbench's cache is one folder per version of all kernel sources (:func:`sources_key`, a hash of every
+  ``*_kernels.py``), and an edit of any kernel compiles them all anew instead of loading a stale caller.
 """
 from __future__ import annotations
 
+import hashlib
 import importlib
 import os
 import time
+from pathlib import Path
 
-__all__ = ["load", "use_kernels", "kernels_enabled", "load_seconds", "ENVIRONMENT_VARIABLE"]
+__all__ = ["load", "use_kernels", "kernels_enabled", "load_seconds", "sources_key", "ENVIRONMENT_VARIABLE"]
 
 ENVIRONMENT_VARIABLE = "BALLBENCH_KERNELS"  # "numpy" (or "0", "off"): never use the compiled kernels
 _LOADED: dict = {}  # module name -> module, or None where it could not be had
@@ -80,10 +83,19 @@ def load_seconds(name: str) -> float | None:
     return _SECONDS.get(name)
 
 
+def sources_key(folder: Path = Path(__file__).parent) -> str:
+    """16 hex digits of a hash of every kernel source (``*_kernels.py`` below ``folder``, by path and content): the
+    version of the compiled code that ballbench's numba cache is kept under."""
+    digest = hashlib.sha256()
+    for path in sorted(folder.rglob("*_kernels.py")):
+        digest.update(path.relative_to(folder).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()[:16]
+
+
 def _cache_location() -> None:
-    """numba's cache directory: ``$NUMBA_CACHE_DIR`` if set, else ballbench's cache (read when numba is first
-    imported; a numba imported before keeps its own setting)."""
+    """numba's cache directory: ``$NUMBA_CACHE_DIR`` if set, else ballbench's cache, one folder per
+    :func:`sources_key` (read when numba is first imported; a numba imported before keeps its own setting)."""
     if "NUMBA_CACHE_DIR" not in os.environ:
         from ballbench.lowmodel.cache import cache_dir
 
-        os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba"))
+        os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba") / sources_key())

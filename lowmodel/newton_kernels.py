@@ -30,8 +30,9 @@ inlining keeps down; what remains is felt only by the smallest systems (a ball a
 
 Loaded by the kernel modules that call it (:mod:`lowmodel.linear_bearing.ball_kernels`,
 :mod:`lowmodel.screw.ball_kernels`, :mod:`lowmodel.screw.ring_kernels`); never imported by
-``import ballbench.lowmodel``.  numba's disk cache keys a kernel on its own file only: after an edit here, clear the
-cache (``$NUMBA_CACHE_DIR``) so that the callers compile the new loop.
+``import ballbench.lowmodel``.  numba's disk cache keys a kernel on its own file only; ballbench keeps its cache in
+one folder per version of all kernel sources (:func:`lowmodel.kernels.sources_key`), so an edit here compiles the
+callers anew (with ``$NUMBA_CACHE_DIR`` set by hand, clear it after such an edit).
 """
 from __future__ import annotations
 

@@ -192,3 +192,18 @@ def test_case_batches_check_their_size():
     contacts = b2b.module_contacts(math.radians(2.0), -0.6, n_balls=3)
     with pytest.raises(ValueError, match="balls_per_case"):
         b2b.solve_cases(contacts, 2)
+
+
+def test_the_disk_cache_is_kept_per_version_of_all_kernel_sources(tmp_path):
+    # a kernel inlines another module's loop (lowmodel.newton_kernels): an edit of that module alone must not load
+    # its callers' stale code, so the cache folder changes with any kernel source
+    for name, text in (("a_kernels.py", "x = 1\n"), ("sub/b_kernels.py", "y = 2\n"), ("other.py", "z = 3\n")):
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        (tmp_path / name).write_text(text)
+    key = kernels.sources_key(tmp_path)
+    assert kernels.sources_key(tmp_path) == key and len(key) == 16
+    (tmp_path / "other.py").write_text("z = 4\n")   # not a kernel: the same key
+    assert kernels.sources_key(tmp_path) == key
+    (tmp_path / "sub" / "b_kernels.py").write_text("y = 3\n")
+    assert kernels.sources_key(tmp_path) != key
+    assert kernels.sources_key() != kernels.sources_key(tmp_path)  # the package's own kernels
