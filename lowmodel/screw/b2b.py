@@ -433,8 +433,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     what = f"{n}-ball screw module"
     solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last,
                               constants=setup.kernel_constants)
-    if solver is not None:
-        newton = solver
+    warm_newton = newton if solver is None else solver
     guess = np.zeros((n, k))
     extra = np.zeros(layout.n_global)
     forces = None
@@ -450,9 +449,9 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         previous = np.asarray(initial.b2b_force, dtype=float)
         if previous.shape == (n_pairs,):
             forces = previous / scales.force
-        z, residual, iterations = newton(make_function(module.oversize), layout.pack(guess, forces, extra),
-                                         tolerance=tolerance, max_iterations=max_iterations,
-                                         what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
+        z, residual, iterations = warm_newton(make_function(module.oversize), layout.pack(guess, forces, extra),
+                                              tolerance=tolerance, max_iterations=max_iterations,
+                                              what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
         guess[:, 2:6] = setup.rolling_start(contacts)
 

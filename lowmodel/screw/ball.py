@@ -502,26 +502,28 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
 
     from ballbench.lowmodel.solvers import newton
 
-    newton = partial(solver or newton, row_tolerance=row_tolerance, row_weight=row_weight)
+    newton_solve = partial(solver or newton, row_tolerance=row_tolerance, row_weight=row_weight)
 
     target = contacts.module.oversize
     start = continuation_start(contacts, load_per_ball)
     if target >= 0.5 * start:
-        return newton(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+        return newton_solve(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations,
+                            what=what)
     if target >= direct_fraction * start:   # some preload: try Newton directly, briefly
         try:
-            return newton(make_function(target), guess, tolerance=tolerance,
-                          max_iterations=min(direct_iterations, max_iterations), what=what)
+            return newton_solve(make_function(target), guess, tolerance=tolerance,
+                                max_iterations=min(direct_iterations, max_iterations), what=what)
         except ConvergenceError:
             pass
-    z, residual, total = newton(make_function(start), guess, tolerance=tolerance, max_iterations=max_iterations,
-                                what=what)
+    z, residual, total = newton_solve(make_function(start), guess, tolerance=tolerance,
+                                      max_iterations=max_iterations, what=what)
     current, step, halvings = start, (start - target) / steps, 0
     while current > target:
         trial = max(target, current - step)
         try:
-            z_new, residual, iterations = newton(make_function(trial), z, tolerance=tolerance,
-                                                 max_iterations=min(step_iterations, max_iterations), what=what)
+            z_new, residual, iterations = newton_solve(make_function(trial), z, tolerance=tolerance,
+                                                       max_iterations=min(step_iterations, max_iterations),
+                                                       what=what)
         except ConvergenceError as error:
             halvings += 1
             if halvings > max_halvings:

@@ -117,10 +117,10 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
 def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
     from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
     from ballbench.validation.figures import render3d
-    from ballbench.validation.studies import fe_b2b_linear as study
+    from ballbench.validation.studies import fe_b2b_linear
 
     guide = case.guide
-    contacts = study.low_order_contacts(case)
+    contacts = fe_b2b_linear.low_order_contacts(case)
     b2b.solve(contacts, [0.0])  # loads the friction map outside the timed call
     low_state, time_low = run.time(b2b.solve, contacts, [0.0])
     low = [("lowmodel.linear_bearing.b2b", "low-order numerical", float(low_state.b2b_force[0]), time_low)]
@@ -130,9 +130,9 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
 
     def solve(level):
         kept.clear()  # the previous level's module goes before the next level's is built
-        model, results, timings = study.solve_fe_level(case, level)
-        state = study.fe_informed(case, model, results)
-        free = study.fe_informed(case, model, results, gaps=[1e-3])
+        model, results, timings = fe_b2b_linear.solve_fe_level(case, level)
+        state = fe_b2b_linear.fe_informed(case, model, results)
+        free = fe_b2b_linear.fe_informed(case, model, results, gaps=[1e-3])
         kept.update(model=model, results=results, level=level, state=state)
         v = abs(guide.groove_velocity)
         return dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=model.ndofs,
@@ -141,7 +141,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
                     friction_increase=friction_increase(state, free),
                     power_balance=float(state.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
+    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_linear.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "linear-guide", reference, source, extrapolation, low, rows,
                 guide.friction_coefficient * case.vertical_force)
@@ -179,9 +179,9 @@ def _informed_power_check(run, finest: dict, source: str) -> None:
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     from ballbench.validation.figures import render3d
     from ballbench.lowmodel.bearing_results import axial_shares
-    from ballbench.validation.studies import fe_b2b_screw as study
+    from ballbench.validation.studies import fe_b2b_screw
 
-    (contacts, free, state), time_low = run.time(study.low_order, case)
+    (contacts, free, state), time_low = run.time(fe_b2b_screw.low_order, case)
     lost = _unloaded(state)
     if lost:
         raise NotApplicable(_unloaded_reason(case, lost))
@@ -192,15 +192,15 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 
     def solve(level):
         kept.clear()  # the previous level's modules go before the next level's are built
-        models, results, timings = study.solve_fe_level(case, level, shares)
-        informed = study.fe_informed(case, models, results)
+        models, results, timings = fe_b2b_screw.solve_fe_level(case, level, shares)
+        informed = fe_b2b_screw.fe_informed(case, models, results)
         kept.update(models=models, results=results, level=level)
         return dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=sum(m.ndofs for m in models),
                     F_B2B=float(informed.b2b_force[0]), friction_torque_Nm=informed.touching.input_power / speed,
                     friction_increase=float(informed.friction_increase) / 100.0,
                     power_balance=float(informed.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
+    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_screw.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "ball-screw", reference, source, extrapolation, low, rows,
                 case.screw.friction_coefficient * max(case.axial_load, 1.0))

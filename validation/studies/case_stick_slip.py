@@ -81,7 +81,7 @@ def _hertz_balls(case):
     if isinstance(case, BallScrewCase):
         from ballbench.lowmodel.bearing_results import screw_states
         from ballbench.lowmodel.screw import b2b as screw_b2b
-        from ballbench.lowmodel.screw import b2b_rolling
+        from ballbench.lowmodel.screw import b2b_rolling as screw_b2b_rolling
         from ballbench.lowmodel.screw import contacts as screw_contacts
 
         screw = case.screw
@@ -92,12 +92,12 @@ def _hertz_balls(case):
         module_ = screw_contacts.module(screw)
 
         def balls_on(cells, operator):
-            return [b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,
-                                               operator_for=None if operator is None else (lambda _g: operator))
+            return [screw_b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,
+                                                     operator_for=None if operator is None else (lambda _g: operator))
                     for j in range(len(case.deviations))]
 
         def solve(balls):
-            return b2b_rolling.module_b2b(balls, module_)
+            return screw_b2b_rolling.module_b2b(balls, module_)
 
         return "screw", screw.ball_radius, screw.conformity, screw.material.pair, (along, across), balls_on, solve
     raise TypeError(f"the stick/slip rung runs on a LinearGuideCase or BallScrewCase, got {type(case).__name__}")
