@@ -228,7 +228,7 @@ class _Interrupt:
 def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, status_word, write_report
     from ballbench.validation.report.rows import passing_lines
-    from ballbench.validation.runner import run_scenes
+    from ballbench.validation import runner
 
     import time
 
@@ -271,17 +271,15 @@ def _cmd_validate(args) -> int:
         print(f"ballbench: {line}", file=sys.stderr, flush=True)
     with _Interrupt() as interrupt:
         if args.workers is not None or args.scheduler:
-            from ballbench.validation.runner import run_scenes_distributed
-
             where = args.scheduler or f"a local cluster of {args.workers} workers"
             print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
-            results, stopped = run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
-                                                      scheduler=args.scheduler, on_result=on_result,
-                                                      should_stop=lambda: interrupt.requested)
+            results, stopped = runner.run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
+                                                             scheduler=args.scheduler, on_result=on_result,
+                                                             should_stop=lambda: interrupt.requested)
         else:
-            results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
-                                          on_result=on_result, should_stop=lambda: interrupt.requested,
-                                          progress_lines=progress_lines)
+            results, stopped = runner.run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
+                                                 on_result=on_result, should_stop=lambda: interrupt.requested,
+                                                 progress_lines=progress_lines)
     done = {r.name for r in results if not r.interrupted}
     not_run = [s.name for s in scenes if s.name not in done]
     results = [r for r in results if not r.interrupted]

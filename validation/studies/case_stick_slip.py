@@ -108,16 +108,16 @@ def compliance_rungs(case, fidelity: str, progress=lambda it, desc="": it) -> li
     ``COMPLIANCE[fidelity]`` (none at quick, 8 x 32 cells at default, 6 x 24 and 8 x 32 at fine), and the same
     module on two half-spaces on the same grid.  The grid covers the case's largest Hertz semi-axes by the product's
     ``cover``."""
-    from ballbench.validation.studies.rolling_b2b import pair_compliance
+    from ballbench.validation.studies import rolling_b2b
 
     product, radius, conformity, material, (along, across), balls_on, solve = _hertz_balls(case)
     levels = stick_slip.LEVELS[product]
     out = []
     for level in progress(COMPLIANCE[fidelity], desc="FE compliance levels"):
         half_along, half_across = levels.cover[0] * along, levels.cover[1] * across
-        grid, fe_compliance, condense_s = pair_compliance(radius, conformity, half_along, half_across,
-                                                          level.cells_along, level.cells_across, level.h_factor,
-                                                          material)
+        grid, fe_compliance, condense_s = rolling_b2b.pair_compliance(radius, conformity, half_along, half_across,
+                                                                      level.cells_along, level.cells_across,
+                                                                      level.h_factor, material)
         operator = fe_compliance.operator()
         start = time.perf_counter()
         fe = solve(balls_on(grid, operator))
