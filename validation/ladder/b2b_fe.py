@@ -9,10 +9,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE,
-                                               REFERENCE_UNCERTAINTY, fmt)
-from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.lowmodel.bearing_results import axial_shares
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
 from ballbench.lowmodel.state import friction_increase
+from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.validation.ladder import rungs as ladder_rungs
+from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
+                                                fmt, oversize_for, preload_loss, preload_loss_words)
+from ballbench.validation.ladder.rungs import module_fe
+from ballbench.validation.references.richardson import extrapolate
+from ballbench.validation.runner import GB
 from ballbench.validation.scene import NotApplicable
 
 __all__ = ["b2b_fe_scene", "show_module"]
@@ -20,8 +27,6 @@ __all__ = ["b2b_fe_scene", "show_module"]
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
     """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``)."""
-    from ballbench.validation.ladder.rungs import module_fe
-
     if isinstance(case, LinearGuideCase):
         _guide_b2b_fe(run, module_fe(case), deadline)
     else:
@@ -32,8 +37,6 @@ def _levels(run, case, deadline, solve, dofs):
     """Run ``solve(level) -> dict`` over the case's module levels, stopping where the budget would be passed or
     where a level's predicted memory exceeds the memory available (:func:`_memory_guard`, ``dofs(level)`` its P2
     DOFs); returns the rows.  A study whose first level does not fit raises MemoryError (nothing to judge)."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     rows, sizes, times = [], [], []
     for level in run.progress(case.fe.levels[run.fidelity], desc=f"{run.scene.name} FE module levels"):
         if deadline is not None and times:
@@ -62,9 +65,6 @@ def _memory_guard(run, level, ndofs: int) -> str:
     from its DOFs (ladder.rungs.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
     the memory the machine has available now (ladder.rungs.available_memory) or above the memory the scene
     declares (:meth:`Scene.memory_for`), as the contact scene's guard decides."""
-    from ballbench.validation.runner import GB
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     need = ladder_rungs.predicted_memory(ndofs)
     available, declared = ladder_rungs.available_memory(), run.scene.memory_for(run.fidelity) * GB
     if need <= min(available, declared):
@@ -75,8 +75,6 @@ def _memory_guard(run, level, ndofs: int) -> str:
 
 
 def _b2b_reference(run, rows, key: str = "F_B2B"):
-    from ballbench.validation.references.richardson import extrapolate
-
     if len(rows) >= 2:
         e = extrapolate([r["h_contact_um"] for r in rows], [r[key] for r in rows])
         run.note(f"Reference F_B2B: Richardson extrapolation of the FE-informed levels ({e.note}, U = "
@@ -115,7 +113,7 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
 
 
 def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear
 
@@ -178,7 +176,6 @@ def _informed_power_check(run, finest: dict, source: str) -> None:
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     from ballbench.validation.figures import render3d
-    from ballbench.lowmodel.bearing_results import axial_shares
     from ballbench.validation.studies import fe_b2b_screw
 
     (contacts, free, state), time_low = run.time(fe_b2b_screw.low_order, case)
@@ -214,8 +211,6 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 
 def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
     """Why the FE screw module does not apply: the contacts lin2019's state leaves unloaded, with the preload loss."""
-    from ballbench.validation.ladder.common import oversize_for, preload_loss, preload_loss_words
-
     loss = preload_loss(case)
     past = (f"past the preload loss at {loss.axial_load:.4g} N" if case.axial_load > loss.axial_load else
             f"below the frictionless preload loss at {loss.axial_load:.4g} N (friction unloads it first)")
@@ -229,8 +224,6 @@ def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
 
 def _unloaded(state) -> list[str]:
     """The contacts ("ball 1 SR", ...) that lin2019's ball-screw ``state`` leaves without load."""
-    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
-
     return [f"ball {j + 1} {name}" for j, row in enumerate(np.asarray(state.normal_force))
             for name, force in zip(CONTACT_NAMES, row) if not force > 0]
 
@@ -248,8 +241,6 @@ def show_module(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (solved if none)."""
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
-    from ballbench.validation.ladder.rungs import module_fe
-
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
     if isinstance(case, BallScrewCase):
