@@ -18,14 +18,15 @@ import time
 from pathlib import Path
 
 from ballbench import __version__
-from ballbench.validation import ladder, runner, show, sweep
-from ballbench.validation.cases import case_file
+from ballbench.validation import sweep
 from ballbench.validation.cases.case_file import KINDS as CASE_KINDS
 from ballbench.validation.scene import registry
-from ballbench.validation.show import can_show
-from ballbench.validation.show import drawable as drawable_scenes
 from ballbench.validation.studies.calibration import command as calibrate_command
 from ballbench.validation.ladder.rungs import RUNGS
+from ballbench.validation import ladder, runner, show
+from ballbench.validation.cases import case_file
+from ballbench.validation.show import can_show
+from ballbench.validation.show import drawable as drawable_scenes
 
 from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
 
