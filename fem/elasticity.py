@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import scipy.sparse as sp
 
 __all__ = ["PairMesh", "load_pair", "contact_pair", "CONTACT_PAIR_SURFACES", "lame", "stress", "von_mises", "stiffness",
            "stiffness_fast", "vector_basis"]
@@ -239,8 +240,6 @@ def stiffness_fast(pair: PairMesh, materials, order: int = 1, chunk: int = 20000
     :func:`stress`, ``K_e[(i,c),(j,d)] = lambda T_icjd + mu (T_idjc + delta_cd sum_k T_ikjk)`` with
     ``T_icjd = sum_q w_q d_c phi_i d_d phi_j``: Hooke's law contracted with the gradients in closed form
     (about 3x faster for P2 than the generic form; equal to :func:`stiffness` to 1e-15, test)."""
-    import scipy.sparse as sp
-
     if np.ndim(materials[0]) == 0:
         materials = [materials, materials]
     lam_mu = np.array([lame(*m) for m in materials])

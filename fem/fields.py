@@ -33,6 +33,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ballbench.fem import fourpoint
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry import groove, helix
+
 __all__ = ["FIELD_NAMES", "p2_nodes", "placement", "module_meta", "write_module_fields", "write_surface_fields"]
 
 FIELD_NAMES = {
@@ -72,8 +76,6 @@ def placement(geometry, ball: int, n_balls: int) -> dict:
     """
     radius = float(geometry.ball_radius)
     if hasattr(geometry, "pitch_radius"):
-        from ballbench.lowmodel.geometry import helix
-
         p = float(geometry.lead) / (2.0 * math.pi)
         step = float(helix.ball_centre_azimuths(geometry.pitch_radius, geometry.lead, 2.0 * radius)) \
             if n_balls > 1 else 0.0
@@ -109,12 +111,8 @@ def placement(geometry, ball: int, n_balls: int) -> dict:
 def _hertz_geometry(geometry, i: int, materials):
     """Hertz geometry of contact ``i``: the ball against the exact helical flank's curvatures (screw) or against
     the straight groove (rails)."""
-    from ballbench.lowmodel.contact import hertz
-
     youngs_modulus, poisson_ratio = materials
     if hasattr(geometry, "flank"):
-        from ballbench.lowmodel.geometry import groove
-
         frame = groove.contact_frame(geometry.flank(i))
         radius = geometry.ball_radius
         return hertz.from_curvatures((1 / radius, 1 / radius), (frame.curvature_major, frame.curvature_minor),
@@ -132,8 +130,6 @@ def _body_of_surface(pair, name: str) -> int:
 
 def module_meta(model, result, materials) -> dict:
     """What a picture of one solved module needs besides its VTU (module docstring), JSON-ready."""
-    from ballbench.lowmodel.contact import hertz
-
     geometry = model.geometry
     contacts = []
     load = np.zeros(3)
@@ -189,8 +185,6 @@ def write_module_fields(directory, models, results, *, materials, scene: str, fi
     factor) and one stress evaluation.
     """
     import meshio
-
-    from ballbench.fem import fourpoint
 
     results = list(results)
     models = list(models) if isinstance(models, (list, tuple)) else [models] * len(results)

@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ballbench.fem import linsolve
+from ballbench.fem import elasticity, linsolve
 from ballbench.fem.contact import solve_free
 from ballbench.fem.elasticity import PairMesh, load_pair, stiffness_fast
 from ballbench.fem.module_lcp import solve_lcp
@@ -56,6 +56,7 @@ from ballbench.fem.surface import locate
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
+from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
 
 __all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
            "exact_gap", "build_module_model", "solve",
@@ -505,8 +506,6 @@ def traction_patches(model: ModuleModel, result: ModuleResult, *, normal: str = 
     point (for equal elastic constants the loaded interface lies halfway between the two surfaces),
     ``"sphere"`` the ball's normal, ``"contact"`` the fixed contact normal ``n_i`` of the mortar gap.
     """
-    from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
-
     if normal not in ("mid", "sphere", "contact"):
         raise ValueError(f"normal must be 'mid', 'sphere' or 'contact', got {normal!r}")
     geometry = model.geometry
@@ -548,8 +547,6 @@ def full_displacement(model: ModuleModel, result: ModuleResult) -> np.ndarray:
 def von_mises(model: ModuleModel, displacement: np.ndarray, materials=(2.1e11, 0.28)) -> np.ndarray:
     """Element-mean von Mises stress (n_tets,) [Pa] of the displacement DOF vector (P2, 4-point rule):
     :func:`fem.elasticity.von_mises` of Hooke's law (:func:`fem.elasticity.stress`) at the quadrature points."""
-    from ballbench.fem import elasticity
-
     lam, mu = elasticity.lame(*materials)
     sigma = elasticity.stress(model.basis.interpolate(displacement).grad, lam, mu)  # (3, 3, nel, nq)
     return elasticity.von_mises(sigma).mean(axis=1)

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.fem import contact, postprocess
+from ballbench.fem.mortar import build_mortar_model
 
 __all__ = ["CaseResult", "solve_case", "contact_edge_length", "fit_contact_patch"]
 
@@ -116,8 +117,6 @@ def solve_case(mesh_builder, force: float, materials, gap_limit: float, *, load_
             raise ValueError(f"node-to-surface contact needs order 1, got {order!r}")
         model = contact.build_model(path, materials, gap_limit, method=method, initial_gap=initial_gap)
     elif formulation == "mortar":
-        from ballbench.fem.mortar import build_mortar_model
-
         model = build_mortar_model(path, materials, gap_limit, order=order, method=method, initial_gap=initial_gap)
     else:
         raise ValueError(f"formulation must be 'node' or 'mortar', got {formulation!r}")

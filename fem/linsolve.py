@@ -19,9 +19,11 @@ second factorisation of ``K`` (docs/fem.md).
 from __future__ import annotations
 
 import ctypes
+import weakref
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.sparse.linalg import splu
 
 __all__ = ["compliance", "inverse_block", "factorize", "CondensedFactor", "METHODS"]
 
@@ -52,8 +54,6 @@ def factorize(K: sp.spmatrix):
 
         solve.free = lambda: solver.free_memory(everything=True)
         return solve
-    from scipy.sparse.linalg import splu
-
     lu = splu(K.tocsc())
 
     def solve(b):
@@ -146,8 +146,6 @@ class CondensedFactor:
     releases the factor (also when the object is collected)."""
 
     def __init__(self, handle: _Pardiso, n: int):
-        import weakref
-
         self._handle = handle
         self.n = n
         self._finalizer = weakref.finalize(self, handle.free)
@@ -235,8 +233,6 @@ def inverse_block(K: sp.spmatrix, c: np.ndarray, method: str = "schur") -> np.nd
         return out
     solve = factorize(K) if method == "rhs" else None
     if method == "splu":
-        from scipy.sparse.linalg import splu
-
         lu = splu(K.tocsc())
         solve = lu.solve
     n = K.shape[0]

@@ -32,6 +32,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.optimize import least_squares
+
+from ballbench.fem.elasticity import lame, stress, von_mises
 
 __all__ = ["EllipseFit", "moment_ellipse", "fit_ellipse", "ApproachFit", "approach_fit", "mesh_check", "nodal_stress"]
 
@@ -136,8 +140,6 @@ def fit_ellipse(xy: np.ndarray, pressure: np.ndarray, *, symmetric_x: bool = Tru
 
     ``xy`` (n, 2) [m] node positions in the contact frame, ``pressure`` (n,) [Pa].
     """
-    from scipy.optimize import least_squares
-
     xy = np.asarray(xy, float)
     pressure = np.asarray(pressure, float)
     active = pressure > 0
@@ -205,8 +207,6 @@ def force_operator(points: np.ndarray, triangles: np.ndarray, nodes: np.ndarray,
     triangle is split into ``subdivisions^2`` sub-triangles, one centroid point each.
     Hertz pressure acts on the projected area (half-space theory), hence xy areas.
     """
-    import scipy.sparse as sp
-
     index = -np.ones(len(points), dtype=np.int64)
     index[nodes] = np.arange(len(nodes))
     tris = triangles[(index[triangles] >= 0).all(axis=1)]
@@ -243,8 +243,6 @@ def fit_ellipse_forces(xq: np.ndarray, operator, forces: np.ndarray, *, symmetri
     ellipse's also on a symmetry cut, so ``force = 2 pi p0 a b / 3`` is the full model's without a
     symmetry factor (unlike :func:`moment_ellipse`, which integrates the meshed cut).
     """
-    from scipy.optimize import least_squares
-
     forces = np.asarray(forces, float)
     f_max = float(np.max(forces))
     if np.count_nonzero(forces > 0) < 5:
@@ -274,8 +272,6 @@ def nodal_stress(basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: flo
     volume-weighted mean over each element, then the volume-weighted mean of the elements that share a node;
     von Mises (:func:`fem.elasticity.von_mises`) of the element-mean stress.
     """
-    from ballbench.fem.elasticity import lame, stress, von_mises
-
     lam, mu = lame(youngs_modulus, poisson_ratio)
     sigma = stress(basis.interpolate(u).grad, lam, mu)    # (3, 3, n_elements, n_qp)
     dx = basis.dx                                          # (n_elements, n_qp) [m^3]

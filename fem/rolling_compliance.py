@@ -37,6 +37,7 @@ The full model is meshed (tangential loads break the contact pair's symmetries).
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import time
 from dataclasses import dataclass, field
@@ -49,6 +50,7 @@ from ballbench.fem import linsolve
 from ballbench.fem.elasticity import PairMesh, contact_pair, stiffness_fast
 from ballbench.fem.mortar import edge_index, surface_dofs
 from ballbench.fem.surface import locate_along_z
+from ballbench.lowmodel.cache import cache_dir, parameter_hash
 from ballbench.lowmodel.contact.halfspace import SurfaceGrid
 from ballbench.lowmodel.contact.rolling import MatrixOperator
 
@@ -162,10 +164,6 @@ def condense(mesh, materials, grid: SurfaceGrid, *, order: int = 2, depth: float
 
 
 def _cache_path(mesh, materials, grid: SurfaceGrid, order, depth, method):
-    import hashlib
-
-    from ballbench.lowmodel.cache import cache_dir, parameter_hash
-
     digest = hashlib.sha256(Path(mesh).read_bytes()).hexdigest()
     params = {"mesh": digest, "materials": np.asarray(materials, dtype=float).tolist(),
               "grid": [grid.nx, grid.ny, repr(float(grid.dx)), repr(float(grid.dy)), repr(float(grid.x_centre)),

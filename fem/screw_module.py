@@ -50,6 +50,7 @@ from ballbench.fem import fourpoint
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel.screw.contacts import flank_angles
 
 __all__ = ["CONTACTS", "ScrewModuleGeometry", "screw_module_geometry", "build_screw_model", "solve",
            "flank_angles_tilted", "with_oversize"]
@@ -185,8 +186,6 @@ def flank_angles_tilted(nominal_angle: float, theta: float) -> tuple:
     """Contact angles (SL, SR, NR, NL) [rad] of lin2019 Fig 17 as the low-order model reads it (docs/ball_screw.md,
     ``reading="tilted"``): both screw flanks at ``beta_0 + theta``, the nut's at ``beta_0``
     (:func:`lowmodel.screw.ball.flank_angles`)."""
-    from ballbench.lowmodel.screw.contacts import flank_angles
-
     return tuple(float(a) for a in flank_angles(nominal_angle, theta, "tilted")[0])
 
 

@@ -5,6 +5,7 @@ normal z onto the counter surface.  ``points`` (n, 3) [m], triangles as node ind
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 __all__ = ["lumped_area", "locate", "locate_along_z"]
 
@@ -39,8 +40,6 @@ def locate(points: np.ndarray, triangles: np.ndarray, xy: np.ndarray, tol: float
     the nearest centroids and, for the points not found among them (a large triangle next to small
     ones: its centroid lies far from the point), every triangle.
     """
-    from scipy.spatial import cKDTree
-
     xy = np.atleast_2d(np.asarray(xy, dtype=float))
     p = points[triangles][:, :, :2]
     a, e1, e2 = p[:, 0], p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]

@@ -60,6 +60,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from scipy import sparse
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
@@ -184,8 +185,6 @@ def fischer_burmeister(a, b):
     ``phi = 0`` is the complementarity.  Returns ``(phi, d phi / d a, d phi / d b)``, arrays like ``a``;
     ValueError naming ``a`` or ``b`` where they are not finite.
     """
-    from ballbench.lowmodel import checks
-
     return _fischer_burmeister(np.asarray(checks.finite("a", a), dtype=float),
                                np.asarray(checks.finite("b", b), dtype=float))
 
@@ -315,8 +314,6 @@ def jacobian_matrix(layout: ChainLayout, diagonal, above, below, extra_blocks=No
             matrix[n * big_k:, :n * big_k].reshape(g, n, big_k)[:, :, :k] = global_rows
             matrix[n * big_k:, n * big_k:] = global_block
         return matrix
-    from scipy import sparse
-
     local = np.arange(big_k)
     data = [v.reshape(-1) for v in values]
     row_index = [np.broadcast_to(r[:, None, None] * big_k + local[None, :, None], v.shape).reshape(-1)

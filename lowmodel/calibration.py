@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Callable
 
 import numpy as np
+from scipy import optimize
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
@@ -112,7 +113,7 @@ def fit_least_squares(residual: Callable[[np.ndarray], np.ndarray], p0, *, n_poi
     with ``s^2 = SSR/(n - p)``; intervals from Student's t with ``n - p``
     degrees of freedom.  Needs ``n_points > p``.
     """
-    from scipy import optimize, stats
+    from scipy import stats
 
     confidence = checks.bounded("confidence", confidence, 0.0, 1.0, note="a probability such as 0.95")
     p0 = np.reshape(checks.finite("p0", p0), -1)

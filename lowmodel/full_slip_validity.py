@@ -32,6 +32,10 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import b2b_rolling as screw_b2b_rolling
+from ballbench.lowmodel.screw import contacts as screw_contacts
 
 __all__ = ["ValidityPoint", "linear_point", "screw_point", "required_rung", "validity_map", "RUNGS", "TOLERANCE"]
 
@@ -99,8 +103,6 @@ def linear_point(theta: float, side_force_ratio: float = -0.6, *, friction_coeff
     """lin2019's linear-bearing module (Fig 7: ``beta_BL,BR = 45 deg -+ theta`` [rad], ``N_x = +-rho N_y`` [N])
     with both laws on Hertz contacts of ``cells`` (Table 1 defaults); a point with ``error`` where either has no
     state."""
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
-
     parameters = dict(theta=float(theta), side_force_ratio=float(side_force_ratio), mu=float(friction_coefficient),
                       conformity=float(conformity), load=float(vertical_force))
     start = time.perf_counter()
@@ -123,9 +125,6 @@ def screw_point(theta: float, *, oversize: float, friction_coefficient: float = 
     """lin2019's ball-screw module (Sec 3.3: ball 1 theta 0, ball 2 ``theta`` [rad], ``axial_load`` [N] on the
     screw, preload ``oversize`` [m], Table 4 defaults for the rest) with both laws on Hertz contacts of ``cells``
     at the low-order state's forces; a point with ``error`` where a model has no state."""
-    from ballbench.lowmodel.screw import b2b, b2b_rolling
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-
     parameters = dict(theta=float(theta), mu=float(friction_coefficient), conformity=float(conformity),
                       load=float(axial_load), oversize=float(oversize))
     start = time.perf_counter()
@@ -133,9 +132,9 @@ def screw_point(theta: float, *, oversize: float, friction_coefficient: float = 
                                          oversize=oversize, **module_options)
     try:
         contacts = screw_contacts.ball_contacts(module, np.array([0.0, theta]), reading=reading)
-        low = b2b.solve(contacts, axial_load)
-        balls = [b2b_rolling.hertz_contacts(low, contacts, j, cells=cells) for j in range(2)]
-        result = b2b_rolling.module_b2b(balls, module)
+        low = screw_b2b.solve(contacts, axial_load)
+        balls = [screw_b2b_rolling.hertz_contacts(low, contacts, j, cells=cells) for j in range(2)]
+        result = screw_b2b_rolling.module_b2b(balls, module)
     except ConvergenceError as error:
         return ValidityPoint("ball screw", parameters, time_s=time.perf_counter() - start, error=str(error))
     return _point("ball screw", parameters, result, abs(module.nut_speed), time.perf_counter() - start)

@@ -31,6 +31,8 @@ import os
 import time
 from pathlib import Path
 
+from ballbench.lowmodel.cache import cache_dir
+
 __all__ = ["load", "use_kernels", "kernels_enabled", "load_seconds", "sources_key", "ENVIRONMENT_VARIABLE"]
 
 ENVIRONMENT_VARIABLE = "BALLBENCH_KERNELS"  # "numpy" (or "0", "off"): never use the compiled kernels
@@ -96,6 +98,4 @@ def _cache_location() -> None:
     """numba's cache directory: ``$NUMBA_CACHE_DIR`` if set, else ballbench's cache, one folder per
     :func:`sources_key` (read when numba is first imported; a numba imported before keeps its own setting)."""
     if "NUMBA_CACHE_DIR" not in os.environ:
-        from ballbench.lowmodel.cache import cache_dir
-
         os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba") / sources_key())

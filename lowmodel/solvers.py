@@ -28,6 +28,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from scipy import sparse as sp
+from scipy.linalg.lapack import dpbsv
+from scipy.sparse.linalg import spsolve
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
@@ -115,9 +118,6 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             band = jacobian.normal_band()
             diagonal_max = float(band.storage[0].max()) if damping is None else 0.0  # used once, below
         elif sparse:  # many balls: the Jacobian is block tridiagonal (a scipy sparse matrix is used as given)
-            from scipy import sparse as sp
-            from scipy.sparse.linalg import spsolve
-
             jac_sparse = jacobian if sp.isspmatrix_csr(jacobian) else sp.csr_matrix(jacobian)
             jacobian = jac_sparse
             normal = (jac_sparse.T @ jac_sparse).tocoo()
@@ -197,8 +197,6 @@ class _Band:
     def solve(self, damping, rhs):
         """``(N + damping I)^-1 rhs`` by LAPACK's banded Cholesky ``dpbsv`` (what ``scipy.linalg.solveh_banded``
         calls, without its per-call input checks); NaN where the matrix is not positive definite."""
-        from scipy.linalg.lapack import dpbsv
-
         storage = self.storage.copy(order="F")  # LAPACK's column-major band storage: no further copy
         storage[0] += damping
         _, step, info = dpbsv(storage, rhs, lower=1, overwrite_ab=1)
@@ -212,8 +210,6 @@ def _scaled_rows(jacobian, weight: np.ndarray):
         return BlockTridiagonal(jacobian.lower * rows, jacobian.diagonal * rows, jacobian.upper * rows)
     if isinstance(jacobian, np.ndarray):
         return jacobian * weight[:, None]
-    from scipy import sparse as sp
-
     return sp.csr_matrix(sp.diags(weight) @ jacobian)
 
 

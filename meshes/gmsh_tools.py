@@ -23,6 +23,8 @@ from typing import Iterator, Sequence
 
 import numpy as np
 
+from ballbench.lowmodel.cache import cache_dir, parameter_hash
+
 __all__ = ["session", "cached_msh", "write_msh", "physical", "face_point", "msh_to_vtu"]
 
 
@@ -55,8 +57,6 @@ def cached_msh(prefix: str, parameters: dict, version: str = "1", *, cache: bool
     Returns ``(path, build)``; ``build`` is True if the file is missing or
     ``cache`` is False.
     """
-    from ballbench.lowmodel.cache import cache_dir, parameter_hash
-
     path = cache_dir("meshes") / f"{prefix}-{parameter_hash(parameters, version)}.msh"
     return path, (not cache) or (not path.exists())
 

@@ -14,6 +14,7 @@ import os
 import shutil
 import signal
 import sys
+import time
 from pathlib import Path
 
 from ballbench import __version__
@@ -22,6 +23,10 @@ from ballbench.validation.cases.case_file import KINDS as CASE_KINDS
 from ballbench.validation.scene import registry
 from ballbench.validation.studies.calibration import command as calibrate_command
 from ballbench.validation.ladder.rungs import RUNGS
+from ballbench.validation import ladder, runner, show
+from ballbench.validation.cases import case_file
+from ballbench.validation.show import can_show
+from ballbench.validation.show import drawable as drawable_scenes
 
 from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, EXIT_USAGE, UsageError
 
@@ -62,8 +67,6 @@ def _is_case_file(name: str) -> bool:
 
 
 def _load_case(name: str):
-    from ballbench.validation.cases import case_file
-
     try:
         return case_file.load(name)
     except case_file.CaseFileError as error:
@@ -72,8 +75,6 @@ def _load_case(name: str):
 
 def _case_scenes(names: list[str], top: str, deadline: float | None):
     """The generated scenes of the case files among ``names`` (validation.ladder); one stem per file."""
-    from ballbench.validation import ladder
-
     chosen, stems = [], {}
     for name in names:
         stem = ladder.slug(name)
@@ -88,8 +89,6 @@ def _case_scenes(names: list[str], top: str, deadline: float | None):
 def _limits(names: list[str], top: str) -> list[str]:
     """What the case files among ``names`` say before any work about their models' limits (ladder.limits):
     a ball screw's preload loss against its axial load, the scenes that may not apply."""
-    from ballbench.validation import ladder
-
     lines = []
     for name in names:
         if _is_case_file(name):
@@ -228,10 +227,6 @@ class _Interrupt:
 def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, status_word, write_report
     from ballbench.validation.report.rows import passing_lines
-    from ballbench.validation.runner import run_scenes
-
-    import time
-
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be at least 1, got {args.workers}")
@@ -271,17 +266,15 @@ def _cmd_validate(args) -> int:
         print(f"ballbench: {line}", file=sys.stderr, flush=True)
     with _Interrupt() as interrupt:
         if args.workers is not None or args.scheduler:
-            from ballbench.validation.runner import run_scenes_distributed
-
             where = args.scheduler or f"a local cluster of {args.workers} workers"
             print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
-            results, stopped = run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
-                                                      scheduler=args.scheduler, on_result=on_result,
-                                                      should_stop=lambda: interrupt.requested)
+            results, stopped = runner.run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
+                                                             scheduler=args.scheduler, on_result=on_result,
+                                                             should_stop=lambda: interrupt.requested)
         else:
-            results, stopped = run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
-                                          on_result=on_result, should_stop=lambda: interrupt.requested,
-                                          progress_lines=progress_lines)
+            results, stopped = runner.run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
+                                                 on_result=on_result, should_stop=lambda: interrupt.requested,
+                                                 progress_lines=progress_lines)
     done = {r.name for r in results if not r.interrupted}
     not_run = [s.name for s in scenes if s.name not in done]
     results = [r for r in results if not r.interrupted]
@@ -307,16 +300,12 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_show(args) -> int:
-    from ballbench.validation.show import can_show
-
     if _is_case_file(args.scene):
         return _show_case(args)
     if not can_show(args.scene):  # the full registry only to say what went wrong
         _show_refused(args.scene)
     out_dir = Path(args.out)
     _show_out(out_dir, args.scene)
-    from ballbench.validation import show
-
     fidelity = "quick" if args.quick else "default"
     try:
         paths = show.show(args.scene, out_dir, fidelity=fidelity)
@@ -334,8 +323,6 @@ def _cmd_show(args) -> int:
 
 
 def _show_refused(name: str) -> None:
-    from ballbench.validation.show import drawable as drawable_scenes
-
     scenes, drawable = registry(), drawable_scenes()
     if name not in scenes:
         raise UsageError(f"no scene {name!r}{_did_you_mean(name, drawable)}; show draws: {', '.join(drawable)}")
@@ -362,8 +349,6 @@ def _show_out(out_dir: Path, name: str) -> None:
 
 def _show_case(args) -> int:
     """``ballbench show my_case.toml``: the pictures of the case's generated FE scenes."""
-    from ballbench.validation import ladder
-
     case = _load_case(args.scene)
     stem = ladder.slug(args.scene)
     out_dir = Path(args.out)
@@ -388,8 +373,6 @@ def _show_case(args) -> int:
 
 
 def _cmd_init(args) -> int:
-    from ballbench.validation.cases import case_file
-
     sys.stdout.write(case_file.template(args.kind))
     return EXIT_OK
 

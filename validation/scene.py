@@ -58,12 +58,16 @@ registered (paper) scene that raises it ends in ``error``: the papers' cases lie
 """
 from __future__ import annotations
 
+import csv
 import math
 import statistics
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterable
+
+from ballbench.validation import scenes as _scenes
 
 FIDELITIES = ("quick", "default", "fine")
 RELATIONS = ("eq", "ge", "le")
@@ -455,8 +459,6 @@ class Run:
     def write_csv(self, filename: str, rows: list[dict]) -> Path | None:
         """A table (rows of one set of keys, the first row's order) as ``filename`` in the scene's folder, listed
         as an artifact; nothing for no rows."""
-        import csv
-
         if not rows:
             return None
         path = self.path(filename)
@@ -506,8 +508,6 @@ class Run:
         return self._steps(iterable, total, desc or "steps")
 
     def _steps(self, iterable: Iterable, total: int | None, label: str):
-        import sys
-
         start = time.perf_counter()
         for k, item in enumerate(iterable):
             self.checkpoint()
@@ -531,7 +531,5 @@ class Run:
 
 def registry() -> dict[str, Scene]:
     """All registered scenes, after importing every module of validation.scenes."""
-    from ballbench.validation import scenes as _scenes
-
     _scenes.load_all()
     return dict(REGISTRY)

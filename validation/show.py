@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ballbench.validation import scenes
 from ballbench.validation.scene import FIDELITIES, REGISTRY, Scene, registry
 
 __all__ = ["show", "can_show", "drawable"]
@@ -22,8 +23,6 @@ def drawable() -> list[str]:
 
 
 def _entry(scene_name: str) -> Scene | None:
-    from ballbench.validation import scenes
-
     if scenes.load_shown(scene_name) and scene_name in REGISTRY:
         return REGISTRY[scene_name]
     return registry().get(scene_name)

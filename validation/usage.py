@@ -7,6 +7,7 @@ Ctrl-C.  A subcommand raises :class:`UsageError` for a wrong use; ``validation.c
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 __all__ = ["UsageError", "EXIT_OK", "EXIT_FAILED", "EXIT_USAGE", "EXIT_INTERRUPTED", "check_writable_file",
@@ -55,8 +56,6 @@ def check_writable_folder(path: str | Path, option: str) -> Path:
 def _probe(folder: Path, message: str) -> None:
     """UsageError with ``message`` unless a file can be made in ``folder`` (made and removed at once: a read-only
     file system or a folder of another user is found even by root, whom ``os.access`` always lets write)."""
-    import tempfile
-
     try:
         with tempfile.NamedTemporaryFile(dir=folder, prefix=".ballbench-write-test-"):
             pass

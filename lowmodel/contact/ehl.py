@@ -30,6 +30,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import LinearOperator, gmres, splu
+from threadpoolctl import threadpool_limits
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import halfspace
@@ -358,8 +361,6 @@ def solve_reynolds(gap: np.ndarray, grid: halfspace.SurfaceGrid, contact_modulus
     ``load`` [N]; ``entrainment_speed`` u_s [m/s] > 0; ``viscosity_0`` [Pa s];
     ``density_0`` [kg/m^3] (cancels in eq 14).
     """
-    from threadpoolctl import threadpool_limits
-
     # one BLAS thread: GMRES's many short vector operations stall (several times slower in wall time)
     # when a threaded BLAS competes for cores the machine shares
     tolerance = checks.positive("tolerance", tolerance)
@@ -384,9 +385,6 @@ def _reynolds_newton(gap, grid, contact_modulus, load, entrainment_speed, viscos
                      initial_film, initial_pressure, initial_h0, tolerance, load_tolerance, max_iterations,
                      centre, coarsest) -> EHLSolution:
     # the body of solve_reynolds (its docstring), with the nested coarse-grid solve
-    import scipy.sparse as sp
-    from scipy.sparse.linalg import LinearOperator, gmres, splu
-
     gap = np.asarray(gap, dtype=float)
     if gap.shape != (grid.nx, grid.ny) or not np.all(np.isfinite(gap)):
         raise ValueError(f"gap must be a finite array of shape {(grid.nx, grid.ny)}")

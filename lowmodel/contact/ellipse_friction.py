@@ -79,6 +79,7 @@ import numpy as np
 from scipy.special import ellipe, ellipkm1, elliprd
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.cache import cache_dir, parameter_hash
 from ballbench.lowmodel.quadrature import gauss_legendre, tanh_sinh
 
 __all__ = [
@@ -595,8 +596,6 @@ def friction_map(n_uniform: int = _GRID["n_uniform"], n_cluster: int = _GRID["n_
     symmetry; ``n_beta`` uniform nodes of ``log(b/a)`` on
     ``[log 0.02, 0]``.  Disk cache: ``lowmodel.cache.cache_dir("ellipse_friction")``.
     """
-    from ballbench.lowmodel.cache import cache_dir, parameter_hash
-
     n_uniform = checks.count("n_uniform", n_uniform, 9)  # integers, not bools or floats
     n_cluster = checks.count("n_cluster", n_cluster, 1)
     n_beta = checks.count("n_beta", n_beta, 4)

@@ -71,6 +71,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from scipy.special import ellipe
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.quadrature import tanh_sinh
@@ -328,8 +329,6 @@ def friction_offset(spin_velocity, slip_minor, slip_major, b_over_a, *, level: i
     rest = (w == 0.0) & (slip == 0.0)
     near = ~far & ~rest
     if np.any(rest):
-        from scipy.special import ellipe
-
         moment[rest] = 0.375 * ellipe(1.0 - beta[rest] ** 2)   # lin2019 eq 11
     far &= ~rest
     if np.any(far):

@@ -48,12 +48,15 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces, chain_system
 from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.contact.halfspace import SurfaceGrid
-from ballbench.lowmodel.contact.traction import TractionPatch
+from ballbench.lowmodel.contact.traction import TractionPatch, free_ball_starts
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.solvers import newton
 
 __all__ = ["GridContact", "grid_contact", "hertz_contact", "sampled_contact", "sampled_pressure", "StickSlipFriction",
            "ContactSummary", "contact_frame", "solve_balls", "LAWS", "FD_STEP", "SOLVE_TOLERANCE"]
@@ -209,8 +212,6 @@ def sampled_pressure(grid: SurfaceGrid, x, y, pressure, weights, normal_force: f
     ``outside`` of the force (a fixed grid, e.g. an FE compliance's, and an FE pressure whose piecewise-linear
     tail reaches one element beyond the contact): those are dropped and their force restored by the scaling.
     """
-    from scipy.spatial import cKDTree
-
     x = np.asarray(checks.finite("x", x, "m"), dtype=float).reshape(-1)
     y = np.asarray(checks.finite("y", y, "m"), dtype=float).reshape(-1)
     p = np.asarray(checks.non_negative("pressure", pressure, "Pa"), dtype=float).reshape(-1)
@@ -501,11 +502,6 @@ def solve_balls(friction: StickSlipFriction, start: np.ndarray, touching, pair_f
     on its own.  Returns ``(states (n, k), forces (n-1,) in slot units, iterations, max residual)``;
     ConvergenceError naming ``what``.
     """
-    from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces, \
-        chain_system
-    from ballbench.lowmodel.contact.traction import free_ball_starts
-    from ballbench.lowmodel.solvers import newton
-
     start = np.asarray(start, dtype=float)
     n, k = start.shape
     touching = np.asarray(touching, dtype=int)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from threadpoolctl import ThreadpoolController
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact.halfspace import SurfaceGrid
@@ -29,8 +30,6 @@ __all__ = ["ConvolutionOperator", "MatrixOperator", "half_space_operator", "one_
 
 @functools.lru_cache(maxsize=1)
 def _blas_controller():
-    from threadpoolctl import ThreadpoolController
-
     return ThreadpoolController()
 
 

@@ -29,6 +29,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.special import roots_jacobi
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, chain_forces, chain_system
@@ -104,8 +105,6 @@ def ellipse_samples(n_radial: int = 24, n_angular: int = 96) -> tuple[np.ndarray
     ``n_angular`` equal angles ``t = 2 pi (i + 1/2) / n_angular`` (symmetric in ``v -> -v``);
     the weights ``w`` sum to 1, so ``F w`` are the forces of an ellipse ``(a u, b v)`` carrying ``F``.
     """
-    from scipy.special import roots_jacobi
-
     if not (isinstance(n_radial, int) and n_radial >= 1 and isinstance(n_angular, int) and n_angular >= 4):
         raise ValueError(f"n_radial must be an integer >= 1 and n_angular >= 4, got {n_radial!r}, {n_angular!r}")
     nodes, weights = roots_jacobi(n_radial, 0.0, 0.5)  # weight (1 + t)^(1/2) on [-1, 1]

@@ -40,6 +40,7 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.bearing import guide_values
+from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.contact import rolling_friction as rf
 from ballbench.lowmodel.contact.influence import combined_material
 from ballbench.lowmodel.errors import ConvergenceError
@@ -275,8 +276,6 @@ def b2b_contact_check(state: RollingB2BState, pair: int = 0, *, guide=None, ball
     Ball radius, friction and material: given (the material defaults to lin2019 Table 1's steel), or from ``guide``
     (a :class:`lowmodel.bearing.LinearGuide`).
     """
-    from ballbench.lowmodel.contact import rolling
-
     ball_radius, friction_coefficient, youngs_modulus, poisson_ratio = guide_values(guide, dict(
         ball_radius=ball_radius, friction_coefficient=friction_coefficient, youngs_modulus=youngs_modulus,
         poisson_ratio=poisson_ratio), TABLE1_STEEL).values()

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel import kernels
+from ballbench.lowmodel import checks, kernels
 from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE
-from ballbench.lowmodel.linear_bearing.contacts import BallContacts
+from ballbench.lowmodel.linear_bearing.contacts import BallContacts, contacts_from_forces
 
 __all__ = ["compiled", "geometry", "solve_free", "solve_chains", "CaseStates", "KERNELS", "empty_states",
            "store_state", "case_contacts", "case_reference_forces"]
@@ -128,8 +128,6 @@ def solve_chains(contacts: BallContacts, balls_per_case: int, live, reference_fo
 def warm_up(module) -> None:
     """Compile (or load from the cache) the kernels for the argument types of :func:`solve_free` and
     :func:`solve_chains`."""
-    from ballbench.lowmodel.linear_bearing.contacts import contacts_from_forces
-
     contacts = contacts_from_forces(np.full((2, 4), np.pi / 4), 100.0, 4e-4, 0.2, ball_radius=5e-3,
                                     friction_coefficient=0.1, groove_velocity=0.01)
     scalars = _scalars(contacts, 100.0)
@@ -169,8 +167,6 @@ def case_contacts(contacts: BallContacts, balls_per_case: int, case: int) -> Bal
 def case_reference_forces(contacts: BallContacts, balls_per_case: int) -> np.ndarray:
     """(m,) N: the largest normal force of each case, the unit of its force residuals (as a one-case solve);
     ValueError unless ``balls_per_case`` divides the number of balls."""
-    from ballbench.lowmodel import checks
-
     b = checks.count("balls_per_case", balls_per_case, 1)
     if contacts.n_balls % b:
         raise ValueError(f"balls_per_case = {b} must divide the number of balls, {contacts.n_balls}")

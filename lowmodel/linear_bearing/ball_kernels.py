@@ -39,10 +39,13 @@ one another and numba compiles and caches them per module, so one module keeps o
 from __future__ import annotations
 
 import math
+import sys
 
 import numba
 import numpy as np
 
+from ballbench.lowmodel.contact.ellipse_friction import friction_angle_at
+from ballbench.lowmodel.linear_bearing import ball_fast
 from ballbench.lowmodel.newton_kernels import levenberg_marquardt, ordered_dot
 
 __all__ = ["ball_terms", "chain_terms", "newton", "solve_branch", "solve_free_cases", "solve_chain_cases",
@@ -1077,11 +1080,5 @@ def solve_chain_cases(geometry, balls_per_case, live, scalars, rate_scale, toler
 
 def warm_up() -> None:
     """Compile (or load from numba's disk cache) the kernels with the argument types the models pass."""
-    from ballbench.lowmodel.contact.ellipse_friction import friction_angle_at
-
     friction_angle_at(np.array([0.5]))  # the default map's patches
-    import sys
-
-    from ballbench.lowmodel.linear_bearing import ball_fast
-
     ball_fast.warm_up(sys.modules[__name__])

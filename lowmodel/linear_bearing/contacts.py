@@ -17,8 +17,11 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 import numpy as np
+from scipy.optimize import brentq
+from scipy.special import ellipe
 
 from ballbench.lowmodel import checks
+from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
 
 __all__ = ["BallContacts", "ball_contacts", "contacts_from_forces", "spin_capacity_ratio", "minimum_conformity", "TOP"]
@@ -186,8 +189,6 @@ def ball_contacts(contact_angles, side_force, vertical_force, *, ball_radius: fl
     :func:`lowmodel.contact.hertz.ball_in_groove` / ``solve_load``.
     """
     from ballbench.lowmodel.linear_bearing import fourpoint
-    from ballbench.lowmodel.contact import hertz
-
     angles = _check_angles(contact_angles)
     n = angles.shape[0]
     side = np.broadcast_to(np.asarray(side_force, dtype=float), (n,))
@@ -215,9 +216,6 @@ def minimum_conformity() -> float:
 
 @lru_cache(maxsize=1)
 def _minimum_conformity() -> float:
-    from scipy.optimize import brentq
-
-    from ballbench.lowmodel.contact import hertz
     from ballbench.lowmodel.contact.ellipse_friction import B_OVER_A_RANGE
 
     def excess(f):
@@ -250,8 +248,6 @@ def spin_capacity_ratio(contacts: BallContacts) -> np.ndarray:
     against the solver: the last converged rho towards the four-point limit and the
     zero of ``ratio - 1`` coincide (lin2019-stability).
     """
-    from scipy.special import ellipe
-
     force, axis = contacts.normal_forces, contacts.semi_major
     m0 = 0.375 * ellipe(1.0 - contacts.b_over_a[:, 0] ** 2)  # lin2019 eq 11 (scipy: parameter m = e^2)
     radius = contacts.ball_radius

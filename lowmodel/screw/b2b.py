@@ -45,14 +45,15 @@ from functools import lru_cache
 
 import numpy as np
 
-from ballbench.lowmodel import checks
-from ballbench.lowmodel.b2b_chain import COMPLEMENTARITY_SCALE, BallBlocks, ChainLayout, PairBlocks, chain_forces, \
-    chain_system
+from ballbench.lowmodel import checks, kernels
+from ballbench.lowmodel.b2b_chain import (COMPLEMENTARITY_SCALE, SPARSE_BALLS, BallBlocks, ChainLayout, PairBlocks,
+                                          chain_forces, chain_system)
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import helix
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sliding_ratio
+from ballbench.lowmodel.solvers import check_solver_options, newton
 
 __all__ = ["contacts", "PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "b2b_slip", "solve",
            "LOAD_RAMP_START", "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel",
@@ -377,8 +378,6 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     Returns ScrewBallState with ``b2b_force`` (pairs,) [N], ``b2b_friction_loss`` [W] and ``b2b_slip`` [m/s].
     Raises ConvergenceError with its residual if the solve fails or complementarity is violated.
     """
-    from ballbench.lowmodel.solvers import check_solver_options, newton
-
     check_solver_options(tolerance, max_iterations)
     n = contacts.n_balls
     loads = np.atleast_1d(np.asarray(checks.finite("axial_load", axial_load, "N"), dtype=float))
@@ -433,8 +432,7 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
     what = f"{n}-ball screw module"
     solver = _compiled_solver(contacts, layout, per_ball, targets, scales, pair, rate_scale, last=last,
                               constants=setup.kernel_constants)
-    if solver is not None:
-        newton = solver
+    warm_newton = newton if solver is None else solver
     guess = np.zeros((n, k))
     extra = np.zeros(layout.n_global)
     forces = None
@@ -450,9 +448,9 @@ def _solve_attempt(contacts: screw_contacts.BallContacts, axial_load, gaps=None,
         previous = np.asarray(initial.b2b_force, dtype=float)
         if previous.shape == (n_pairs,):
             forces = previous / scales.force
-        z, residual, iterations = newton(make_function(module.oversize), layout.pack(guess, forces, extra),
-                                         tolerance=tolerance, max_iterations=max_iterations,
-                                         what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
+        z, residual, iterations = warm_newton(make_function(module.oversize), layout.pack(guess, forces, extra),
+                                              tolerance=tolerance, max_iterations=max_iterations,
+                                              what=f"{what} (warm start)", row_tolerance=rows, row_weight=weights)
     else:
         guess[:, 2:6] = setup.rolling_start(contacts)
 
@@ -494,10 +492,6 @@ def _compiled_solver(contacts: screw_contacts.BallContacts, layout: ChainLayout,
     numpy ``function`` does (``terms``, ``oversize``, ``balls``, ``extra``).  Failures raise the ConvergenceError of
     :func:`lowmodel.solvers.newton` (same message, reason, residual and iterations).  ``constants``: the kernel's
     ``(scalars, live, pair scalars)`` of these arguments if already at hand (:class:`_ChainSetup`)."""
-    from ballbench.lowmodel import kernels
-    from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
-    from ballbench.lowmodel.solvers import newton
-
     if contacts.bulk_compliance is not None:
         return None
     long_chain = layout.n_balls >= SPARSE_BALLS
@@ -554,8 +548,6 @@ def warm_up_ring_kernel(compiled) -> None:
     """Compile (or load from the cache) :mod:`lowmodel.screw.ring_kernels` for the argument types of :func:`solve`
     (a ring of ``SPARSE_BALLS`` balls of lin2019 Table 4 with per-ball loads, one Newton iteration; the read-only
     arrays of a solve's :class:`_ChainSetup` read-only here too: numba compiles a read-only array type apart)."""
-    from ballbench.lowmodel.b2b_chain import SPARSE_BALLS
-
     n = SPARSE_BALLS
     contacts = screw_contacts.ball_contacts(screw_contacts.screw_module(), np.zeros(n))
     scales = sb.scales_for(contacts, 100.0)

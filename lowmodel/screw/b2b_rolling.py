@@ -41,6 +41,7 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import rolling_friction as rf
 from ballbench.lowmodel.contact.influence import combined_material
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing.rolling_contacts import deformed_radius as radius_of
 from ballbench.lowmodel.screw import b2b, b2b_traction
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
@@ -78,8 +79,6 @@ class ScrewRollingState(BallStateBase):
 def deformed_radius(module: screw_contacts.ScrewModule) -> float:
     """Radius [m] of the deformed contact surface across the groove, ``2 R_B r_g / (R_B + r_g)`` (both flanks of
     one conformity; :func:`lowmodel.linear_bearing.rolling_contacts.deformed_radius`)."""
-    from ballbench.lowmodel.linear_bearing.rolling_contacts import deformed_radius as radius_of
-
     return radius_of(module.ball_radius, module.conformity)
 
 

@@ -48,15 +48,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import checks, kernels
+from ballbench.lowmodel.calibration import law_force
 from ballbench.lowmodel.dual import Dual, constant, cross, dot, variable
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.screw.contacts import ON_NUT, SIGN_U, SIGN_W, BallContacts
+from ballbench.lowmodel.quadrature import tanh_sinh
+from ballbench.lowmodel.screw.contacts import ON_NUT, SIGN_U, SIGN_W, BallContacts, ball_contacts, screw_module
 from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, stall_reason
+from ballbench.lowmodel.solvers import check_solver_options, newton
 from ballbench.lowmodel.state import BallStateBase
 
 __all__ = [
@@ -161,8 +164,6 @@ def ball_terms(unknowns: np.ndarray, nut_shift: float, contacts: BallContacts, s
         force_v = ratio**1.5
         force = Dual(force_v, approach.g * (1.5 * np.sqrt(ratio) / hertz_c)[:, None])  # eq 53
     else:  # calibrated law delta = C F^(2/3) + C_b F (eq 53 + finite-body compliance), lowmodel.calibration
-        from ballbench.lowmodel.calibration import law_force
-
         force_v, slope = law_force(approach.v, hertz_c, contacts.bulk_compliance.reshape(m))
         force = Dual(force_v, approach.g * slope[:, None])
     semi = Dual(contacts.semi_major_unit.reshape(m) * np.cbrt(force_v), np.zeros((m, k)))
@@ -235,8 +236,6 @@ KERNELS = "screw.ball_kernels"  # the compiled twin of ball_terms (lowmodel.kern
 @lru_cache(maxsize=1)
 def kernel_tables():
     from ballbench.lowmodel.contact.ellipse_friction_offset import FAR_CENTRE, SMALLEST_SLIP, disc_rule
-    from ballbench.lowmodel.quadrature import tanh_sinh
-
     return (FRICTION_LEVEL["coarse_min_b_over_a"], *tanh_sinh(FRICTION_LEVEL["coarse"]),
             *tanh_sinh(FRICTION_LEVEL["fine"]), *disc_rule(), FAR_CENTRE, SMALLEST_SLIP)
 
@@ -262,8 +261,6 @@ def _compiled_terms(unknowns, nut_shift, contacts: BallContacts, scales: Scales,
     the kernel hands back: a contact at rest or a slip outside the float range; the numpy code runs)."""
     if contacts.bulk_compliance is not None:
         return None
-    from ballbench.lowmodel import kernels
-
     compiled = kernels.load(KERNELS)
     if compiled is None:
         return None
@@ -302,8 +299,6 @@ def terms_of_kernel(outputs: tuple) -> BallTerms:
 def warm_up_kernel(compiled) -> None:
     """Compile (or load from the cache) :mod:`lowmodel.screw.ball_kernels` for the argument types of
     :func:`ball_terms` (two balls of lin2019 Table 4)."""
-    from ballbench.lowmodel.screw.contacts import ball_contacts, screw_module
-
     contacts = ball_contacts(screw_module(), np.zeros(2))
     scales = scales_for(contacts, 100.0)
     _run_kernel(compiled, np.zeros((2, N_UNKNOWNS)), 0.0, contacts, scales, None)
@@ -390,8 +385,6 @@ def solve(contacts: BallContacts, axial_load: float, *, tolerance: float = 1e-10
     for the loaded pair, forces and moments / R_B) and of the axial balance.
     Raises ConvergenceError with its residual if Newton fails.
     """
-    from ballbench.lowmodel.solvers import check_solver_options
-
     check_solver_options(tolerance, max_iterations)
     load = checks.scalar("axial_load", axial_load, "N", note="the load on each ball")
     states = [_solve_one(contacts, j, load, tolerance, max_iterations) for j in range(contacts.n_balls)]
@@ -498,30 +491,28 @@ def solve_preloaded(make_function, guess: np.ndarray, contacts: BallContacts, lo
     signature (the compiled solver of :mod:`lowmodel.screw.b2b`), default that function.  Returns
     ``(z, residual, iterations)``; ConvergenceError if a step keeps failing.
     """
-    from functools import partial
-
-    from ballbench.lowmodel.solvers import newton
-
-    newton = partial(solver or newton, row_tolerance=row_tolerance, row_weight=row_weight)
+    newton_solve = partial(solver or newton, row_tolerance=row_tolerance, row_weight=row_weight)
 
     target = contacts.module.oversize
     start = continuation_start(contacts, load_per_ball)
     if target >= 0.5 * start:
-        return newton(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations, what=what)
+        return newton_solve(make_function(target), guess, tolerance=tolerance, max_iterations=max_iterations,
+                            what=what)
     if target >= direct_fraction * start:   # some preload: try Newton directly, briefly
         try:
-            return newton(make_function(target), guess, tolerance=tolerance,
-                          max_iterations=min(direct_iterations, max_iterations), what=what)
+            return newton_solve(make_function(target), guess, tolerance=tolerance,
+                                max_iterations=min(direct_iterations, max_iterations), what=what)
         except ConvergenceError:
             pass
-    z, residual, total = newton(make_function(start), guess, tolerance=tolerance, max_iterations=max_iterations,
-                                what=what)
+    z, residual, total = newton_solve(make_function(start), guess, tolerance=tolerance,
+                                      max_iterations=max_iterations, what=what)
     current, step, halvings = start, (start - target) / steps, 0
     while current > target:
         trial = max(target, current - step)
         try:
-            z_new, residual, iterations = newton(make_function(trial), z, tolerance=tolerance,
-                                                 max_iterations=min(step_iterations, max_iterations), what=what)
+            z_new, residual, iterations = newton_solve(make_function(trial), z, tolerance=tolerance,
+                                                       max_iterations=min(step_iterations, max_iterations),
+                                                       what=what)
         except ConvergenceError as error:
             halvings += 1
             if halvings > max_halvings:

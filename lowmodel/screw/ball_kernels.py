@@ -28,12 +28,14 @@ call one another and numba compiles and caches them per module, so one module ke
 from __future__ import annotations
 
 import math
+import sys
 
 import numba
 import numpy as np
 
 from ballbench.lowmodel.newton_kernels import (CONVERGED, NO_DESCENT, NON_FINITE, NOT_CONVERGED, STATIONARY, blas_dot,
                                                levenberg_marquardt)
+from ballbench.lowmodel.screw import b2b, ball
 
 __all__ = ["ball_terms", "friction_offset", "pair_loads", "chain_residual", "chain_function", "newton",
            "ball_outputs", "copy_outputs", "warm_up", "FIELDS", "SCALARS", "CONTACT_FIELDS", "CONVERGED", "FALLBACK",
@@ -754,9 +756,5 @@ def newton(z0, n, per_ball, ring, live, targets, geometry, scalars, tables, chor
 
 def warm_up() -> None:
     """Compile (or load from numba's disk cache) the kernel with the argument types the model passes."""
-    import sys
-
-    from ballbench.lowmodel.screw import b2b, ball
-
     ball.warm_up_kernel(sys.modules[__name__])
     b2b.warm_up_kernel(sys.modules[__name__])

@@ -38,6 +38,9 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.bearing import BallScrew, Material
+from ballbench.lowmodel.calibration import ContactLaw
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.cubic_pieces import cubic_pieces
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
 
@@ -222,8 +225,6 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
                  poisson_ratio):
     from scipy.interpolate import CubicSpline
 
-    from ballbench.lowmodel.cubic_pieces import cubic_pieces
-
     low = max(nominal_angle - groove_core.MAX_DEVIATION, 1e-3)
     high = min(nominal_angle + groove_core.MAX_DEVIATION, 0.5 * math.pi - 1e-3)
     below = np.arange(nominal_angle, low, -_HERTZ_STEP)[::-1]
@@ -237,8 +238,6 @@ def _hertz_table(ball_radius, conformity, pitch_radius, lead_angle, nominal_angl
 
 def hertz_direct(ball_radius, conformity, pitch_radius, lead_angle, angle, body, youngs_modulus, poisson_ratio):
     """(C [m N^-2/3], a per F^(1/3) [m N^-1/3], b/a) from :func:`hertz.ball_in_screw_groove` (no table)."""
-    from ballbench.lowmodel.contact import hertz
-
     geometry = hertz.ball_in_screw_groove(ball_radius, conformity, pitch_radius, angle, lead_angle, body,
                                           youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio)
     unit = hertz.solve_load(geometry, 1.0)
@@ -292,8 +291,6 @@ class GrooveContactLaws:
     def from_calibration(cls, calibration, screw_group: str = "screw-groove",
                          nut_group: str = "nut-groove") -> "GrooveContactLaws":
         """The laws of the groups ``screw_group`` and ``nut_group`` of a :class:`lowmodel.calibration.Calibration`."""
-        from ballbench.lowmodel.calibration import ContactLaw
-
         def law(group):
             psi = calibration.constants.get(group, {}).get("psi")
             return ContactLaw(calibration.get(group, "hertz_constant"), calibration.get(group, "bulk_compliance"),

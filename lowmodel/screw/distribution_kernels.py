@@ -34,6 +34,8 @@ import numpy as np
 from numba import types
 from numba.extending import get_cython_function_address
 
+from ballbench.lowmodel.cubic_pieces import CubicPieces
+
 __all__ = ["mismatch", "offsets", "loads_at", "nut_shift", "pack", "shifted", "warm_up", "CONVERGED", "NOT_CONVERGED",
            "NOT_BRACKETED", "MAX_BALLS"]
 
@@ -191,8 +193,6 @@ def nut_shift(data: np.ndarray, start: float, end: float, xtol: float, rtol: flo
 def warm_up() -> None:
     """Compile (or load from numba's disk cache) the kernels with the argument types the model passes; one step
     on a two-piece linear table (``U^-1(v) = v``) whose root is known."""
-    from ballbench.lowmodel.cubic_pieces import CubicPieces
-
     pieces = CubicPieces(np.array([0.0, 1.0, 2.0]), np.array([1.0]), np.zeros(2), np.zeros(2), np.ones(2),
                          np.array([0.0, 1.0]))
     data = pack(3, 0.0, 2.0, 3.0, pieces)

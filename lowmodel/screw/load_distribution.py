@@ -31,11 +31,15 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
+from scipy.optimize import brentq
 
 from ballbench.lowmodel import checks, kernels
+from ballbench.lowmodel.cubic_pieces import cubic_pieces
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import ball as sb
 from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.solvers import check_solver_options
 
 __all__ = ["BarSections", "bar_sections", "AxialStiffness", "axial_stiffness", "distribute"]
 
@@ -82,15 +86,11 @@ class AxialStiffness:
 
     @cached_property
     def _interpolant(self):
-        from scipy.interpolate import PchipInterpolator
-
         order = np.argsort(self.shifts)
         return PchipInterpolator(self.shifts[order], self.loads[order])
 
     @cached_property
     def _pieces(self):
-        from ballbench.lowmodel.cubic_pieces import cubic_pieces
-
         return cubic_pieces(self._interpolant)
 
     def load(self, shift) -> np.ndarray:
@@ -102,8 +102,6 @@ class AxialStiffness:
 
     def shift(self, load) -> np.ndarray:
         """``u = U(q)``, the exact inverse of :meth:`load` (brentq per value)."""
-        from scipy.optimize import brentq
-
         values = np.atleast_1d(np.asarray(load, dtype=float))
         low, high = self.shifts.min(), self.shifts.max()
         out = np.array([brentq(lambda u, q=q: float(self._interpolant(u)) - q, low, high, xtol=1e-18)
@@ -149,8 +147,6 @@ def _swamped(offset, low, high):
 def _step(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, stiffness, low, high):
     """One step of :func:`distribute`'s fixed-point iteration: the loads that carry ``total`` on the offsets of
     ``loads`` (``low``, ``high``: the range of the table's shifts)."""
-    from scipy.optimize import brentq
-
     n = loads.size
     handed = np.cumsum(loads[order]) - loads[order]           # S(z) just before each ball
     before = np.concatenate([[0.0], handed[1:]])               # S over each segment
@@ -191,8 +187,6 @@ def distribute(positions, total_load: float, stiffness: AxialStiffness, sections
     Sec 3.1 / ref [19]); it adds ``lead_error psi / 2 pi`` to the nut's axial position at each ball
     (with the sign of the elastic shortening: a positive error unloads the far balls).
     """
-    from ballbench.lowmodel.solvers import check_solver_options
-
     check_solver_options(tolerance, max_iterations)
     psi = np.asarray(checks.non_negative("positions", positions, "rad"), dtype=float).reshape(-1)
     total = checks.non_negative("total_load", total_load, "N")

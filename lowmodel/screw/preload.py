@@ -36,7 +36,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq, root
 
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw.contacts import CONTACT_NAMES, ON_NUT, SIGN_U, SIGN_W, BallContacts
 
 __all__ = ["PreloadLoss", "preload_loss", "nominal_preload_loss", "FrictionlessState", "frictionless_statics",
@@ -88,10 +91,6 @@ def _forces(contacts: BallContacts, centres: np.ndarray, shift: float):
 def _balanced(contacts: BallContacts, shift: float, guess: np.ndarray, scale: float | None = None) -> np.ndarray:
     """The ball centres (n, 2) [m] at which each ball's frictionless normal forces balance, nut shift ``shift``;
     ``scale`` [m] the length the solve works in (default: the oversize, at least 1 nm)."""
-    from scipy.optimize import root
-
-    from ballbench.lowmodel.errors import ConvergenceError
-
     scale = max(contacts.module.oversize, 1e-9) if scale is None else scale
     reference = float(np.max((scale / contacts.hertz_constant) ** 1.5))
     centres = np.empty_like(guess)
@@ -121,8 +120,6 @@ def _axial(contacts: BallContacts, forces: np.ndarray, e: np.ndarray) -> float:
 def preload_loss(contacts: BallContacts) -> PreloadLoss:
     """The preload loss of the balls of ``contacts`` under one nut shift (frictionless, exact flank arcs, eq 53;
     module docstring).  The load is positive in the sense of lowmodel.screw.b2b's ``axial_load``."""
-    from scipy.optimize import brentq
-
     n = contacts.n_balls
     oversize = contacts.module.oversize
     guess = np.zeros((n, 2))
@@ -200,11 +197,6 @@ def frictionless_statics(contacts: BallContacts, axial_load: float) -> Frictionl
     :data:`STATICS_TOLERANCE` (relative), else ConvergenceError naming the check.  ValueError for a negative or
     non-finite load, or one that needs a nut shift beyond a tenth of the ball radius (outside the small-strain
     Hertz law)."""
-    from scipy.optimize import brentq
-
-    from ballbench.lowmodel import checks
-    from ballbench.lowmodel.errors import ConvergenceError
-
     axial_load = float(checks.non_negative("axial_load", axial_load, "N"))
     module = contacts.module
     n = contacts.n_balls

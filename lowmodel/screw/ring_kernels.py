@@ -27,11 +27,13 @@ code, or a failure the caller raises as the ConvergenceError of :func:`lowmodel.
 from __future__ import annotations
 
 import math
+import sys
 
 import numba
 import numpy as np
 
 from ballbench.lowmodel.newton_kernels import blas_dot, levenberg_marquardt
+from ballbench.lowmodel.screw import b2b
 from ballbench.lowmodel.screw.ball_kernels import (CONVERGED, FALLBACK, NO_DESCENT, NON_FINITE, NOT_CONVERGED,
                                                    STATIONARY, ball_outputs, chain_residual, copy_outputs)
 
@@ -365,8 +367,4 @@ def newton(z0, n, ring, live, targets, geometry, scalars, tables, chord, rot, pa
 
 def warm_up() -> None:
     """Compile (or load from numba's disk cache) the kernel with the argument types the model passes."""
-    import sys
-
-    from ballbench.lowmodel.screw import b2b
-
     b2b.warm_up_ring_kernel(sys.modules[__name__])

@@ -23,6 +23,8 @@ with a name and FE settings; ``ladder`` runs the validation harness::
     results = ballbench.ladder(case, "quick", levels="BEM")   # the validation ladder: SceneResult per scene
     ballbench.hertz.ball_in_groove(3.175e-3, 0.52)  # the models, one attribute deep (SI floats)
 """
+import time
+
 __all__ = ["load_case", "template", "friction", "contact", "ladder", "hertz", "halfspace", "b2b",
            "b2b_analytical", "screw", "__version__"]
 
@@ -94,7 +96,6 @@ def ladder(case, fidelity: str = "quick", *, levels: str = "stick-slip", out_dir
     the scenes write their files and the report (a temporary folder, deleted afterwards, when None);
     ``budget_s``: stop refining mesh studies when their next level is predicted to end after this wall time."""
     import tempfile
-    import time
     from pathlib import Path
 
     from ballbench.validation.ladder import case_scenes

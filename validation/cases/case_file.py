@@ -24,6 +24,8 @@ from pathlib import Path
 
 from ballbench.lowmodel import bearing, checks
 from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import preload
 from ballbench.validation.cases import units
 from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
@@ -566,10 +568,9 @@ def template(kind: str) -> str:
 
 def _preload_loss_comment(text: str) -> list[str]:
     """The template's comment on the range of lin2019's ball-screw model: below the preload loss of the values as
-    written (ladder.common.preload_loss: frictionless four-point contacts, Hertz's law lin2019 eq 53)."""
-    from ballbench.validation.ladder.common import preload_loss
-
-    loss = preload_loss(loads(text, "<template>")).axial_load
+    written (lowmodel.screw.preload.preload_loss of the case's balls: frictionless four-point contacts, Hertz's law
+    lin2019 eq 53)."""
+    loss = preload.preload_loss(screw_b2b.contacts(loads(text, "<template>"))).axial_load
     pad = " " * 32
     return [f"{pad} # lin2019's four-point model applies below the preload loss: {loss:.0f} N for",
             f"{pad} # the values as written (frictionless, Hertz eq 53; it grows like oversize^1.5;",

@@ -17,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 
 from ballbench.validation.figures.style import FE_STYLE, HERTZ_STYLE, against, figure
+from ballbench.validation.figures.views3d import MM, MPA, hertz_maximum
+from ballbench.validation.references.hertz import axis_stress
 
 QUANTITIES = ("a", "b", "p0", "delta")
 
@@ -148,9 +150,6 @@ def _cut(data: dict, meta: dict, field: str, span: float):
 def stress_figure(data: dict, meta: dict):
     """The von Mises stress of the saved fields ``(data, meta)`` on the cut y = 0 and along the contact axis."""
     import matplotlib.tri as mtri
-
-    from ballbench.validation.figures.views3d import MM, MPA, hertz_maximum
-    from ballbench.validation.references.hertz import axis_stress
 
     hertz = meta["hertz"]
     a, b, p0 = hertz["a_m"], hertz["b_m"], hertz["p0_Pa"]

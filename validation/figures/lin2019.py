@@ -1,6 +1,8 @@
 """Pictures of the lin2019 scenes: the analogues of the paper's Figs 5, 8-10 and 20-21, and the solver maps."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ballbench.validation.figures.style import figure
@@ -139,8 +141,6 @@ def converged_region(rho, theta, ratio, converged, ratio_floor: float):
     """The single-ball solver's converged grid points over (rho, theta [deg]) with the spin-capacity ratio 1 and
     ``ratio_floor`` contours and the four-point limit of lin2017 eq 37 (beta_BL = 45 - theta, beta_BR = 45 + theta,
     top at 45 deg)."""
-    import math
-
     fig = figure(figsize=(7, 5), layout="constrained")
     axes = fig.subplots()
     axes.scatter(rho[converged], theta[converged], s=8, c="tab:green", marker="s", label="converged")

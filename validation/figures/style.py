@@ -1,6 +1,7 @@
 """Shared styles and the one save of the figures (matplotlib object API)."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 HERTZ_STYLE = {"color": "#D55E00", "ls": "-", "lw": 2.2}   # Okabe-Ito vermillion, solid
@@ -23,8 +24,6 @@ def save(fig, path, *, dpi: int = 110, tight: bool = False) -> Path:
 
 def against(value: float, reference: float) -> str:
     """``"+0.010 %"``: the signed relative difference of ``value`` from ``reference`` for a figure label."""
-    import math
-
     if not (math.isfinite(value) and math.isfinite(reference)) or reference == 0.0:
         return "n/a"
     return f"{100.0 * (value / reference - 1.0):+.3f} %"

@@ -9,10 +9,15 @@ it does not first try an X server and print a warning.
 from __future__ import annotations
 
 import math
+import os
+import sys
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+from scipy.spatial import cKDTree
+
+from ballbench.validation.references.hertz import axis_von_mises_maximum
 
 # Okabe-Ito (colour-blind safe)
 ORANGE, SKY_BLUE, GREEN, YELLOW, BLUE, VERMILLION, PURPLE = ("#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2",
@@ -31,9 +36,6 @@ MM, MPA = 1e3, 1e-6
 
 def pyvista():
     """pyvista, with VTK pointed at EGL on a Linux machine without an X server (module docstring)."""
-    import os
-    import sys
-
     if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
@@ -369,8 +371,6 @@ def on_surface(outer, curve_plane, origin, frame, lift: float, scale: float) -> 
     its ``u_mm`` there and lifted by ``lift`` against ``frame[2]``.  Height and displacement are the
     inverse-distance means of the 4 nearest surface points in the tangent plane (the refined mesh makes that
     exact to a small fraction of an element)."""
-    from scipy.spatial import cKDTree
-
     frame = np.asarray(frame, dtype=float)
     local = (np.asarray(outer.points) - np.asarray(origin, dtype=float)[None, :]) @ frame.T
     reach = 1.6 * float(np.max(np.linalg.norm(curve_plane, axis=1)))
@@ -463,8 +463,6 @@ def hertz_maximum(a_m: float, b_m: float, p0_Pa: float, poisson_ratio: float) ->
 
 @lru_cache(maxsize=64)
 def _unit_maximum(ratio: float, poisson_ratio: float) -> tuple[float, float]:
-    from ballbench.validation.references.hertz import axis_von_mises_maximum
-
     return axis_von_mises_maximum(ratio, 1.0, 1.0, poisson_ratio)
 
 

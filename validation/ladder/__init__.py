@@ -53,13 +53,14 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
+from ballbench.validation.cases.case import ContactCase, LinearGuideCase
 from ballbench.validation.ladder.b2b_fe import b2b_fe_scene, show_module
 from ballbench.validation.ladder.balls import balls_scene
 from ballbench.validation.ladder.common import limited, limits_lines
 from ballbench.validation.ladder.contact import contact_scene, show_contact
 from ballbench.validation.ladder.ehl import ehl_scene
+from ballbench.validation.ladder.rungs import rungs_up_to
 from ballbench.validation.ladder.stick_slip import stick_slip_scene
-from ballbench.validation.cases.case import ContactCase, LinearGuideCase
 from ballbench.validation.scene import NotApplicable, Scene
 
 __all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
@@ -90,8 +91,6 @@ def _lubricated(case) -> bool:
 
 def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
-    from ballbench.validation.ladder.rungs import rungs_up_to
-
     rungs = rungs_up_to(top)
     names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
     names.append(f"{stem}-contact")
@@ -107,8 +106,6 @@ def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
 def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | None = None) -> list[Scene]:
     """The scenes of ``case`` (a LinearGuideCase, BallScrewCase or ContactCase) named ``<stem>-...``, up to the
     rung ``top`` (ladder.rungs.RUNGS)."""
-    from ballbench.validation.ladder.rungs import rungs_up_to
-
     rungs = rungs_up_to(top)
     kind = _kind(case)
     fe = "FE" in rungs

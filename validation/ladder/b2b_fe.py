@@ -9,10 +9,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE,
-                                               REFERENCE_UNCERTAINTY, fmt)
-from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.lowmodel.bearing_results import axial_shares
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
 from ballbench.lowmodel.state import friction_increase
+from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.validation.ladder import rungs as ladder_rungs
+from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
+                                                fmt, oversize_for, preload_loss, preload_loss_words)
+from ballbench.validation.ladder.rungs import module_fe
+from ballbench.validation.references.richardson import extrapolate
+from ballbench.validation.runner import GB
 from ballbench.validation.scene import NotApplicable
 
 __all__ = ["b2b_fe_scene", "show_module"]
@@ -20,8 +27,6 @@ __all__ = ["b2b_fe_scene", "show_module"]
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
     """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``)."""
-    from ballbench.validation.ladder.rungs import module_fe
-
     if isinstance(case, LinearGuideCase):
         _guide_b2b_fe(run, module_fe(case), deadline)
     else:
@@ -32,8 +37,6 @@ def _levels(run, case, deadline, solve, dofs):
     """Run ``solve(level) -> dict`` over the case's module levels, stopping where the budget would be passed or
     where a level's predicted memory exceeds the memory available (:func:`_memory_guard`, ``dofs(level)`` its P2
     DOFs); returns the rows.  A study whose first level does not fit raises MemoryError (nothing to judge)."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     rows, sizes, times = [], [], []
     for level in run.progress(case.fe.levels[run.fidelity], desc=f"{run.scene.name} FE module levels"):
         if deadline is not None and times:
@@ -62,9 +65,6 @@ def _memory_guard(run, level, ndofs: int) -> str:
     from its DOFs (ladder.rungs.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
     the memory the machine has available now (ladder.rungs.available_memory) or above the memory the scene
     declares (:meth:`Scene.memory_for`), as the contact scene's guard decides."""
-    from ballbench.validation.runner import GB
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     need = ladder_rungs.predicted_memory(ndofs)
     available, declared = ladder_rungs.available_memory(), run.scene.memory_for(run.fidelity) * GB
     if need <= min(available, declared):
@@ -75,8 +75,6 @@ def _memory_guard(run, level, ndofs: int) -> str:
 
 
 def _b2b_reference(run, rows, key: str = "F_B2B"):
-    from ballbench.validation.references.richardson import extrapolate
-
     if len(rows) >= 2:
         e = extrapolate([r["h_contact_um"] for r in rows], [r[key] for r in rows])
         run.note(f"Reference F_B2B: Richardson extrapolation of the FE-informed levels ({e.note}, U = "
@@ -115,12 +113,12 @@ def _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale) -
 
 
 def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+    from ballbench.lowmodel.linear_bearing import b2b_analytical
     from ballbench.validation.figures import render3d
-    from ballbench.validation.studies import fe_b2b_linear as study
+    from ballbench.validation.studies import fe_b2b_linear
 
     guide = case.guide
-    contacts = study.low_order_contacts(case)
+    contacts = fe_b2b_linear.low_order_contacts(case)
     b2b.solve(contacts, [0.0])  # loads the friction map outside the timed call
     low_state, time_low = run.time(b2b.solve, contacts, [0.0])
     low = [("lowmodel.linear_bearing.b2b", "low-order numerical", float(low_state.b2b_force[0]), time_low)]
@@ -130,9 +128,9 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
 
     def solve(level):
         kept.clear()  # the previous level's module goes before the next level's is built
-        model, results, timings = study.solve_fe_level(case, level)
-        state = study.fe_informed(case, model, results)
-        free = study.fe_informed(case, model, results, gaps=[1e-3])
+        model, results, timings = fe_b2b_linear.solve_fe_level(case, level)
+        state = fe_b2b_linear.fe_informed(case, model, results)
+        free = fe_b2b_linear.fe_informed(case, model, results, gaps=[1e-3])
         kept.update(model=model, results=results, level=level, state=state)
         v = abs(guide.groove_velocity)
         return dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=model.ndofs,
@@ -141,7 +139,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
                     friction_increase=friction_increase(state, free),
                     power_balance=float(state.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
+    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_linear.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "linear-guide", reference, source, extrapolation, low, rows,
                 guide.friction_coefficient * case.vertical_force)
@@ -178,10 +176,9 @@ def _informed_power_check(run, finest: dict, source: str) -> None:
 
 def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     from ballbench.validation.figures import render3d
-    from ballbench.lowmodel.bearing_results import axial_shares
-    from ballbench.validation.studies import fe_b2b_screw as study
+    from ballbench.validation.studies import fe_b2b_screw
 
-    (contacts, free, state), time_low = run.time(study.low_order, case)
+    (contacts, free, state), time_low = run.time(fe_b2b_screw.low_order, case)
     lost = _unloaded(state)
     if lost:
         raise NotApplicable(_unloaded_reason(case, lost))
@@ -192,15 +189,15 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 
     def solve(level):
         kept.clear()  # the previous level's modules go before the next level's are built
-        models, results, timings = study.solve_fe_level(case, level, shares)
-        informed = study.fe_informed(case, models, results)
+        models, results, timings = fe_b2b_screw.solve_fe_level(case, level, shares)
+        informed = fe_b2b_screw.fe_informed(case, models, results)
         kept.update(models=models, results=results, level=level)
         return dict(h_contact_um=level.h_contact * 1e6, growth=level.growth, ndofs=sum(m.ndofs for m in models),
                     F_B2B=float(informed.b2b_force[0]), friction_torque_Nm=informed.touching.input_power / speed,
                     friction_increase=float(informed.friction_increase) / 100.0,
                     power_balance=float(informed.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve, functools.partial(study.level_dofs, case))
+    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_screw.level_dofs, case))
     reference, source, extrapolation = _b2b_reference(run, rows)
     _b2b_checks(run, "ball-screw", reference, source, extrapolation, low, rows,
                 case.screw.friction_coefficient * max(case.axial_load, 1.0))
@@ -214,8 +211,6 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
 
 def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
     """Why the FE screw module does not apply: the contacts lin2019's state leaves unloaded, with the preload loss."""
-    from ballbench.validation.ladder.common import oversize_for, preload_loss, preload_loss_words
-
     loss = preload_loss(case)
     past = (f"past the preload loss at {loss.axial_load:.4g} N" if case.axial_load > loss.axial_load else
             f"below the frictionless preload loss at {loss.axial_load:.4g} N (friction unloads it first)")
@@ -229,8 +224,6 @@ def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:
 
 def _unloaded(state) -> list[str]:
     """The contacts ("ball 1 SR", ...) that lin2019's ball-screw ``state`` leaves without load."""
-    from ballbench.lowmodel.screw.contacts import CONTACT_NAMES
-
     return [f"ball {j + 1} {name}" for j, row in enumerate(np.asarray(state.normal_force))
             for name, force in zip(CONTACT_NAMES, row) if not force > 0]
 
@@ -248,8 +241,6 @@ def show_module(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (solved if none)."""
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
-    from ballbench.validation.ladder.rungs import module_fe
-
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
     if isinstance(case, BallScrewCase):

@@ -7,16 +7,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from ballbench.validation.ladder.common import B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check
+from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel.geometry.fourpoint import contact_normals
+from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.validation.ladder.common import B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check
 
 __all__ = ["balls_scene"]
 
 
 def balls_scene(run, *, case, rungs) -> None:
     """The scene function of ``<stem>-balls``: ``case`` a LinearGuideCase or BallScrewCase, ``rungs`` those to run."""
-    from ballbench.lowmodel import bearing_results
-
     if isinstance(case, LinearGuideCase):
         _guide_balls(run, case, rungs, bearing_results)
     else:
@@ -24,8 +26,6 @@ def balls_scene(run, *, case, rungs) -> None:
 
 
 def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
-    from ballbench.lowmodel.linear_bearing import b2b
-
     guide = case.guide
     contacts = b2b.contacts(case)
     model = "lowmodel.linear_bearing.b2b"
@@ -59,8 +59,6 @@ def _eq36_residual(case: LinearGuideCase, contacts) -> float:
     """Largest force residual of the balls' statics with the low-order normal forces [N_y]: with the outward unit
     normals ``n_i`` of lin2017 eq 1 the four forces of a ball balance, ``sum_i F_i n_i = 0``, and its two rail
     contacts (BL, BR) carry the ball's load, ``F_BL n_BL + F_BR n_BR = (N_x, -N_y)`` (lin2017 eq 36)."""
-    from ballbench.lowmodel.geometry.fourpoint import contact_normals
-
     worst = 0.0
     for ball in range(contacts.normal_forces.shape[0]):
         normals = np.asarray(contact_normals(contacts.contact_angles[ball]))  # (4, 2)
@@ -87,8 +85,6 @@ def _guide_analytical(run, case: LinearGuideCase, result) -> None:
 
 
 def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
-    from ballbench.lowmodel.screw import b2b as screw_b2b
-
     model = "lowmodel.screw.b2b"
     contacts = screw_b2b.contacts(case)
     (free, touching), time_s = run.time(bearing_results.screw_states, case)

@@ -8,6 +8,14 @@ import contextlib
 import functools
 import math
 
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import preload
+from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
+from ballbench.lowmodel.screw.preload import nominal_preload_loss
+from ballbench.validation.cases.case import BallScrewCase
+from ballbench.validation.scene import NotApplicable
+
 REFERENCE_UNCERTAINTY = 0.01  # the extrapolated FE reference must be known to 1 % to judge models against it
 B2B_TOLERANCE = {"linear-guide": 0.07, "ball-screw": 0.10}  # lin2019's own claims, docs/fe_b2b.md
 POWER_TOLERANCE = 1e-6  # docs/fe_b2b.md: energy conservation incl. the B2B loss
@@ -64,18 +72,12 @@ def preload_loss(case):
     """The preload loss of a BallScrewCase's balls under one nut shift (lowmodel.screw.preload: frictionless, exact
     flank arcs, Hertz's law lin2019 eq 53): ``PreloadLoss`` with the total axial load [N] at which the first contact
     unloads."""
-    from ballbench.lowmodel.screw import b2b as screw_b2b
-    from ballbench.lowmodel.screw import preload
-
     return preload.preload_loss(screw_b2b.contacts(case))
 
 
 def oversize_for(case, axial_load: float) -> float:
     """The oversize [m] that moves the preload loss of ``case`` to ``axial_load`` [N], from the preload loss's
     growth like ``oversize^(3/2)`` (lowmodel.screw.preload.nominal_preload_loss): an estimate for the reader."""
-    from ballbench.lowmodel.screw import b2b as screw_b2b
-    from ballbench.lowmodel.screw.preload import nominal_preload_loss
-
     loss = preload_loss(case)
     if loss.axial_load > 0.0:
         return case.screw.oversize * (axial_load / loss.axial_load) ** (2.0 / 3.0)
@@ -97,10 +99,6 @@ def past_preload_loss(case, error) -> str:
     """The reason a ConvergenceError of lin2019's ball-screw model is its declared limit on ``case``, or "" when it
     is not: the load ramp stopped near full sliding (lowmodel.screw.b2b.FULL_SLIDING_LIMIT) at an axial load past
     the preload loss."""
-    from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
-    from ballbench.validation.cases.case import BallScrewCase
-
     if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") != FULL_SLIDING_LIMIT:
         return ""
     try:
@@ -126,9 +124,6 @@ def within_model_limits(case):
     """Run a ball-screw scene's work; a ConvergenceError that is lin2019's declared limit on ``case`` (the full-
     sliding model has no state past the preload loss, :func:`past_preload_loss`) becomes NotApplicable with the
     reason; any other ConvergenceError stays as it is (the scene ends in error)."""
-    from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.validation.scene import NotApplicable
-
     try:
         yield
     except ConvergenceError as error:
@@ -152,9 +147,6 @@ def _within_limits(function, case, *args, **kwargs):
 def limits_lines(case, names) -> list[str]:
     """What a ball-screw case's header says before any work: its preload loss, and when the axial load is past it,
     which of the scenes ``names`` may not apply and why (docs/your_own_bearing.md, 'Reading the verdict')."""
-    from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.validation.cases.case import BallScrewCase
-
     if not isinstance(case, BallScrewCase):
         return []
     try:

@@ -9,9 +9,15 @@ import math
 import time
 from pathlib import Path
 
+from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.validation.cases.case import ContactCase
+from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
                                                past_preload_loss)
-from ballbench.validation.cases.case import ContactCase
+from ballbench.validation.references.richardson import extrapolate
+from ballbench.validation.runner import GB
 
 __all__ = ["contact_scene", "show_contact"]
 
@@ -23,8 +29,6 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     level starts.  The fields and pictures are those of the most loaded contact.  Past a ball screw's preload loss,
     where lin2019's model has no state, the loads are those of the frictionless statics (:func:`_distinct`), and the
     scene says so."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     distinct, reason = _distinct(case)
     if reason:
         _frictionless_table(run, case, reason)
@@ -52,9 +56,6 @@ def _distinct(case):
     on the loads of the frictionless two-point statics (lowmodel.screw.preload.frictionless_statics) instead of
     not applying: the contact rung needs a contact geometry and a load, not lin2019's friction.  Any other
     ConvergenceError stays as it is."""
-    from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     try:
         return ladder_rungs.distinct_contacts(case), ""
     except ConvergenceError as error:
@@ -66,8 +67,6 @@ def _distinct(case):
 
 def _frictionless_table(run, case, reason: str) -> None:
     """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on."""
-    from ballbench.lowmodel import bearing_results
-
     run.note("Loads: " + FRICTIONLESS_WORDS + ".")
     run.note("Why: " + reason)
     rows = bearing_results.screw_frictionless_contacts(case)
@@ -89,9 +88,6 @@ def _tagged(level: str, tag: str) -> str:
 
 
 def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields: bool) -> None:
-    from ballbench.lowmodel.contact import hertz
-    from ballbench.validation.references.richardson import extrapolate
-    from ballbench.validation.ladder import rungs as ladder_rungs
     from ballbench.validation.studies import fe_contact
 
     run.note(_head(tag) + f"Contact: {contact.name}; pair {contact.pair}, R_B "
@@ -158,7 +154,6 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
     """The FE levels of ``contact`` (sizes ``h = b / n`` from its Hertz semi-axis ``b``), stopped where ``--budget``
     would be passed or where a level's predicted memory exceeds the memory available (:func:`_memory_guard`);
     appends each level to ``models``; returns (rows, results, levels)."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
     from ballbench.validation.studies import fe_contact
 
     fe_rows, fe_results, fe_levels = [], [], []
@@ -206,8 +201,6 @@ def _memory_guard(run, pair, level, tag: str) -> bool:
     machine has available now (ladder.rungs.available_memory) and within the memory the scene declares
     (:meth:`Scene.memory_for`, what the distributed runner reserves for it).  When not, a note says so and the level
     and those above it do not run (the study keeps the levels that ran, as ``--budget`` does)."""
-    from ballbench.validation.runner import GB
-    from ballbench.validation.ladder import rungs as ladder_rungs
     from ballbench.validation.studies import fe_contact
 
     ndofs = fe_contact.level_dofs(pair, level)
@@ -238,8 +231,6 @@ def _tolerance_note(family: str, fidelity: str) -> str:
 def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
     """(reference values, source text, relative uncertainties or None): the extrapolated FE study (>= 2 levels),
     the one FE level, or the finest BEM grid; None when only Hertz ran."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
-
     fe = [m for m in models if m[1] == "FE"]
     if len(fe) >= 2:
         sizes = [r["h_contact"] for r in fe_rows]
@@ -265,7 +256,6 @@ def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
 def _fields(run, contact: ContactCase, result, level) -> None:
     """fields.vtu and fields.json of the finest FE level that ran (studies.fe_contact.write_fields) and their 3D
     screenshots (figures.render3d), as artifacts of the scene."""
-    from ballbench.lowmodel.contact import hertz
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_contact
 
@@ -280,7 +270,6 @@ def _fields(run, contact: ContactCase, result, level) -> None:
 def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
     """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (solved at
     ``fidelity`` if none)."""
-    from ballbench.validation.ladder import rungs as ladder_rungs
     from ballbench.validation.studies import fe_contact
 
     governing = _distinct(case)[0][0].contact

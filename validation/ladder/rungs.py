@@ -36,6 +36,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.geometry import groove
 from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
                                              ModuleFe, ModuleLevel, PairLevel, named)
 
@@ -263,7 +265,6 @@ def module_fe(case, result=None):
 # --------------------------------------------------------------------------
 def hertz_values(case: ContactCase) -> dict:
     """Exact Hertz of ``case``: a, b [m], p0 [Pa], delta [m]."""
-    from ballbench.lowmodel.contact import hertz
     from ballbench.validation.studies import fe_contact
 
     contact = hertz.solve_load(fe_contact.hertz_geometry(case), case.force)
@@ -273,8 +274,7 @@ def hertz_values(case: ContactCase) -> dict:
 def bem_values(case: ContactCase, n: int) -> dict:
     """Half-space contact (BEM) of ``case`` on the exact gap of its bodies, ``n x n`` cells over 1.3 times the
     Hertz semi-axes: a, b [m] (the Hertz field of the same pressure moments), p0 [Pa] (central pressure), delta [m]."""
-    from ballbench.lowmodel.contact import halfspace, hertz, screw_contact
-    from ballbench.lowmodel.geometry import groove
+    from ballbench.lowmodel.contact import halfspace, screw_contact
     from ballbench.validation.studies import fe_contact
 
     material = case.material.keywords

@@ -23,7 +23,9 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+import numpy as np
 from scipy.integrate import quad
+from scipy.optimize import minimize_scalar
 
 
 def contact_modulus(youngs_modulus: float, poisson_ratio: float, youngs_modulus_2: float | None = None,
@@ -84,8 +86,6 @@ def ellipse_quadrature(a: float, b: float, p0: float, contact_modulus: float) ->
 # --------------------------------------------------------------------------- subsurface stress on the axis
 @lru_cache(maxsize=4)
 def _gauss_legendre(order: int):
-    import numpy as np
-
     return np.polynomial.legendre.leggauss(order)
 
 
@@ -100,8 +100,6 @@ def axis_stress(a: float, b: float, p0: float, poisson_ratio: float, depth, orde
     symmetry, so these are the principal stresses.  Independent of
     lowmodel.contact.hertz (no elliptic integral).
     """
-    import numpy as np
-
     depth = np.atleast_1d(np.asarray(depth, dtype=float))
     if not (a > 0 and b > 0 and np.all(depth > 0)):
         raise ValueError("a, b [m] and every depth [m] must be > 0")
@@ -131,9 +129,6 @@ def axis_stress(a: float, b: float, p0: float, poisson_ratio: float, depth, orde
 
 def axis_von_mises_maximum(a: float, b: float, p0: float, poisson_ratio: float) -> tuple[float, float]:
     """Depth [m] and value [Pa] of the largest von Mises stress on the axis below a Hertz pressure."""
-    import numpy as np
-    from scipy.optimize import minimize_scalar
-
     scale = min(a, b)
 
     def negative(z):

@@ -12,6 +12,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import fsolve
+
+from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["hertz_statics", "statics_residual", "half_turn_asymmetry"]
 
@@ -24,8 +27,6 @@ def hertz_statics(contacts, ball: int, axial_load: float) -> np.ndarray:
     eq 48) and the ball's equilibrium without friction in x3 and z3 plus the screw's axial push ``axial_load`` [N].
     The same geometry and Hertz constants as the low-order model, none of its friction: the FE's reference.
     Solved by MINPACK (scipy fsolve); ConvergenceError if the residual exceeds ``1e-8 axial_load``."""
-    from scipy.optimize import fsolve
-
     module = contacts.module
     centres = contacts.arc_centres[ball]
     constant = contacts.hertz_constant[ball]
@@ -50,8 +51,6 @@ def hertz_statics(contacts, ball: int, axial_load: float) -> np.ndarray:
     # judged by the residual, not by fsolve's flag: with xtol 1e-13 MINPACK may stop with "not making good
     # progress" at a residual of 4e-12 N (case b, ball 1), a converged point
     if max(abs(r) for r in residual(z)) > 1e-8 * axial_load:
-        from ballbench.lowmodel.errors import ConvergenceError
-
         raise ConvergenceError(f"hertz_statics: {message}", residual=float(np.max(np.abs(residual(z)))),
                                iterations=int(info["nfev"]), tolerance=1e-8 * axial_load)
     return forces(z)[0]

@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import csv
 import math
 import tempfile
 import time
@@ -19,11 +20,17 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import lin2019
 from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import scene
-from ballbench.validation.studies.calibration import roundtrip as study
 from ballbench.validation.studies import screw_two_ball
+from ballbench.validation.studies.calibration import roundtrip as study
+from ballbench.validation.studies.calibration.command import active_calibration
+from ballbench.validation.studies.calibration.fe_laws import contact_law
+from ballbench.validation.studies.fe_contact import load_sweep
+from ballbench.validation.sweep.functions import with_psi
 
 MODEL = "lowmodel.calibration"
 CAL = dict(model=MODEL, family="low-order numerical")
@@ -77,9 +84,6 @@ def calibration_roundtrip(run):
 # --------------------------------------------------------------------------
 def _calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
     """The contact law of the 0.56 groove: from ``--calibration FILE`` when it has one, else FE at the run's level."""
-    from ballbench.validation.studies.calibration.command import active_calibration
-    from ballbench.validation.studies.fe_contact import load_sweep
-
     given = active_calibration()
     if given is not None and GROUP in given.constants and "psi" in given.constants[GROUP]:
         return given, "the --calibration file"
@@ -97,9 +101,6 @@ def _calibrated_contact_law(run) -> tuple[cal.Calibration, str]:
 def _b2b_force_with_psi(psi: float, case) -> tuple[float, float]:
     """F_B2B [N] of the linear-guide ``case`` with contact semi-axes ``a = psi R^(1/3) F^(1/3)`` (lin2019 eq 15):
     (analytical eq 30, low-order numerical eqs 4-10)."""
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
-    from ballbench.validation.sweep.functions import with_psi
-
     analytical = b2b_analytical.from_case(case, psi=psi)
     contacts = with_psi(b2b.contacts(case), psi)  # lin2017 eq 36 forces
     return float(analytical.b2b_force), float(b2b.solve(contacts, [0.0]).b2b_force[0])
@@ -173,10 +174,6 @@ def _calibrated_groove_laws():
     """Laws of the screw and nut grooves: from ``--calibration FILE`` when it has the groups ``screw-groove`` and
     ``nut-groove``, else fitted to FE load sweeps of the Table 4 screw and nut contacts at the quick level.
     Returns (:class:`screw_contacts.GrooveContactLaws`, origin text)."""
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-    from ballbench.validation.studies.calibration.command import active_calibration
-    from ballbench.validation.studies.calibration.fe_laws import contact_law
-
     given = active_calibration()
     groups = [group for group, _ in SCREW_FE.values()]
     if given is not None and all(g in given.constants and "psi" in given.constants[g] for g in groups):
@@ -207,10 +204,6 @@ def _whole_screw_loads(module, contact_law=None, *, n_balls: int = WHOLE_SCREW_B
        "friction increase of lin2019 Table 5", kind="low-order", cost_s=240.0, budget_s=400.0,
        memory_gb=5.0)
 def calibration_effect_screw(run):
-    import csv
-
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-
     case_a, printed_a = lin2019.TABLE5_A, published.TABLE5_A
     start = time.perf_counter()
     laws, origin = _calibrated_groove_laws()

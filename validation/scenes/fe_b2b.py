@@ -20,12 +20,13 @@ import time
 import numpy as np
 
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
+from ballbench.lowmodel.state import friction_increase
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import render3d
+from ballbench.validation.figures.fe_module import patch_figure
 from ballbench.validation.references.published.lin2019 import PRINTED
 from ballbench.validation.scene import scene
 from ballbench.validation.studies import fe_b2b_linear as study
-from ballbench.lowmodel.state import friction_increase
 
 TIME_LIMIT_S = {"quick": 90.0, "default": 300.0}  # per scene at its level (docs/fe_b2b.md)
 # wall-time budget of each scene per fidelity [s] (reported; decides only with --strict-time): the time limits,
@@ -159,8 +160,6 @@ def _run(run, which: str) -> None:
              "FE-informed per level: " + "; ".join(lines) + ".  "
              f"Per-contact FE results (force, loaded angle, fitted a, b, p0, approach) against eq 36 and Hertz: "
              f"contacts.csv.  Semi-axes at the {which_level}: {_ellipse_summary(contact_rows, h_contact)}.")
-    from ballbench.validation.figures.fe_module import patch_figure
-
     run.save_figure(patch_figure(results, study.hertz_axes(case, model), ylabel="z [mm]",
                                  hertz_label="Hertz ellipse (eq 36 force)"), "pressure_patches.png")
     render3d.module_artifacts(run, model, results, materials=case.guide.material.pair,

@@ -25,6 +25,7 @@ from ballbench.lowmodel.bearing_results import axial_shares
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import render3d
+from ballbench.validation.figures.fe_module import patch_figure
 from ballbench.validation.references.published.lin2019 import TABLE5 as PRINTED
 from ballbench.validation.references.screw_statics import half_turn_asymmetry, hertz_statics, statics_residual
 from ballbench.validation.scene import KnownGap, scene
@@ -199,8 +200,6 @@ def _run(run, which: str) -> None:
              f"{shares[1]:.3f} N.  Low-order: F_B2B {force_low:.3f} N, friction increase {increase_low:.2f} %.  "
              "FE per level: " + "; ".join(lines) + ".  Per contact (contacts.csv): FE force against the frictionless "
              "Hertz statics and the low-order model, loaded vs rigid angle, fitted a, b, p0 vs Hertz, approach.")
-    from ballbench.validation.figures.fe_module import patch_figure
-
     run.save_figure(patch_figure(results, study.patch_axes(contacts, results), ylabel="e2 along the groove [mm]",
                                  xlim=0.4, ylim=0.12, hertz_label="Hertz ellipse at the FE force"),
                     "pressure_patches.png")

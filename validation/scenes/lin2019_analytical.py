@@ -6,11 +6,13 @@ import time
 import warnings
 
 import numpy as np
+from scipy import integrate
 
-from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 from ballbench.lowmodel.contact import ellipse_friction as ef
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.linear_bearing import b2b_analytical as b2b
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures.lin2019 import analytical_maps, friction_vs_c_over_a
 from ballbench.validation.references.published.lin2019 import PRINTED, PSI
 from ballbench.validation.scene import scene
 
@@ -38,8 +40,6 @@ def _axis_ratio(conformity: float = CONFORMITY) -> float:
 
 def _cartesian_force(kappa: float, beta: float) -> float:
     """Independent reference: nested adaptive quadrature of lin2019 eq A4 (second line) in (t, s)."""
-    from scipy import integrate
-
     def integrand(s, t):
         distance = math.hypot(t - kappa, beta * s)
         return math.sqrt(max(1 - t * t - s * s, 0.0)) * (t - kappa) / distance if distance > 0 else 0.0
@@ -149,8 +149,6 @@ def lin2019_kf(run):
 
 
 def _figure_5(run, k_ls: float) -> None:
-    from ballbench.validation.figures.lin2019 import friction_vs_c_over_a
-
     kappa_full = np.linspace(-10, 10, 801)
     kappa_zoom = np.linspace(-1, 1, 401)
     curves = {conformity: (ef.friction(kappa_full, ratio), ef.friction(kappa_zoom, ratio))
@@ -233,8 +231,6 @@ def lin2019_analytical(run):
 
 
 def _figures_8_9(run, common) -> None:
-    from ballbench.validation.figures.lin2019 import analytical_maps
-
     rho = np.linspace(-0.9, 0.9, 181)
     theta_deg = np.linspace(-3, 3, 121)
     case = b2b.two_ball_case(np.radians(theta_deg)[:, None], rho[None, :], **common)

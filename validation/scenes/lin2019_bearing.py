@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.lowmodel.linear_bearing import b2b
+from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.validation.cases import lin2019
 from ballbench.validation.figures import lin2019 as figures
@@ -98,8 +98,6 @@ def table2_a(run):
 
 
 def _figure8(run):
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
     n_rho, n_theta = GRID[run.fidelity]
     thetas = np.radians(np.linspace(-3.0, 3.0, n_theta))
     rhos = np.linspace(-0.95, 0.95, n_rho)
@@ -157,8 +155,6 @@ def table2_b(run):
     run.check(**B2B, quantity="contact time, case a", unit="s", value=float(histories["a"].times[1]),
               reference=gap0 / closing, tolerance=1e-9, time_s=sim_time,
               source="gap0 / (v_B,1 - v_B,2) of the free balls (kinematics of Fig 10(a))")
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
     eps_1 = b2b_analytical.side_force_deviation(THETA, RHO)  # lin2019 eq 33, as the paper's Fig 10(a)
     eps_2 = b2b_analytical.side_force_deviation(THETA, -RHO)
     t_contact = gap0 / ((eps_1 - eps_2) * SPEED / 2)
@@ -171,8 +167,6 @@ def table2_b(run):
 @scene("lin2019-table3-a", "B2B contact force of two balls, theta = 2 deg, rho = -0.6 (lin2019 Table 3 case a)",
        kind="low-order", cost_s=0.3, case=CASE)
 def table3_a(run):
-    from ballbench.lowmodel.linear_bearing import b2b_analytical
-
     contacts = _case(THETA, RHO)
     state, time_s = run.time(b2b.solve, contacts, [0.0])
     force = float(state.b2b_force[0])

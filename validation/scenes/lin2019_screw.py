@@ -21,12 +21,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import time
 
 import numpy as np
 
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures import lin2019 as figures
 from ballbench.validation.references.published import lin2019 as published
 from ballbench.validation.scene import KnownGap, scene
 from ballbench.validation.studies.screw_two_ball import friction_increase, two_ball
@@ -166,8 +169,6 @@ def _fig21_summary(history) -> dict:
 @scene("lin2019-fig21", "Whole ball screw, 37 balls, 1500 N, 2 s: B2B groups and friction torque (Figs 20-21)",
        tags=("lowmodel", "screw", "b2b", "slow"), kind="low-order", cost_s=13.0)
 def lin2019_fig21(run):
-    import time
-
     steps = FIG21_STEPS[run.fidelity]
     start = time.perf_counter()
     history = _whole_screw(steps, progress=lambda it: run.progress(it, desc="whole screw steps"))
@@ -208,8 +209,6 @@ def lin2019_fig21(run):
              f"{history.axial_load.min():.1f} .. "
              f"{history.axial_load.max():.1f} N; friction torque ball-to-groove "
              f"{1e3 * history.groove_torque.mean():.1f} mN m (mean).")
-    from ballbench.validation.figures import lin2019 as figures
-
     run.save_figure(figures.whole_screw_spacing(history), "fig20.png")
     run.save_figure(figures.whole_screw_torque(history), "fig21.png")
 
@@ -254,10 +253,6 @@ def _run_stability_case(case: dict):
 @scene("lin2019-screw-stability", "Ball-screw solvers over lead angle, preload, deviation, 1-100 balls, 1 N-5 kN",
        tags=("lowmodel", "screw", "robustness"), kind="low-order", cost_s=21.0)
 def lin2019_screw_stability(run):
-    import time
-
-    from ballbench.lowmodel.errors import ConvergenceError
-
     cases = _stability_cases(run.fidelity)
     converged, failures, no_state, worst_power, nan_count = 0, [], [], 0.0, 0
     start = time.perf_counter()

@@ -17,12 +17,13 @@ import time
 import numpy as np
 
 from ballbench.lowmodel import b2b_relaxation, checks
-from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.validation.cases import lin2019
+from ballbench.validation.figures.lin2019 import converged_region
 from ballbench.validation.scene import scene
 
 MODEL_BALL = "lowmodel.linear_bearing.ball"
@@ -297,8 +298,6 @@ def _loss_of_contact(run) -> None:
 
 
 def _figure(run, grid, n_theta, n_rho) -> None:
-    from ballbench.validation.figures.lin2019 import converged_region
-
     theta = np.array([g[0] for g in grid]).reshape(n_theta, n_rho)
     rho = np.array([g[1] for g in grid]).reshape(n_theta, n_rho)
     ratio = np.array([g[3] for g in grid]).reshape(n_theta, n_rho)

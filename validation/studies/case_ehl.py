@@ -41,7 +41,17 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 
+import numpy as np
+
+from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel.contact import ehl, halfspace, hertz
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry import groove
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+from ballbench.lowmodel.linear_bearing import fourpoint
+from ballbench.lowmodel.screw import kinematics
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.validation.ladder.rungs import distinct_contacts
 
 __all__ = ["GRID_N", "GRID_TOLERANCE", "ELLIPTICITY_RANGE", "EHLContact", "applies", "lubricant",
            "entrainment_speeds", "guide_entrainment_speeds", "ehl_contact", "contacts"]
@@ -124,11 +134,6 @@ def applies(case) -> bool:
 def guide_entrainment_speeds(case: LinearGuideCase):
     """``(n_balls, 4)`` entrainment speeds U_e [m/s] of each ball's contacts (BL, BR, TR, TL) at the carriage speed
     (module docstring; lin2017 eqs 1, 4, 6, 7)."""
-    import numpy as np
-
-    from ballbench.lowmodel.geometry.fourpoint import contact_normals
-    from ballbench.lowmodel.linear_bearing import fourpoint
-
     g = case.guide
     v = float(g.groove_velocity)
     if not abs(v) > 0.0:
@@ -150,8 +155,6 @@ def guide_entrainment_speeds(case: LinearGuideCase):
 
 def entrainment_speeds(case: BallScrewCase) -> dict[str, float]:
     """``{"screw": U_screw, "nut": U_nut}`` [m/s] of the case's drive (module docstring; wang2022 eqs 1-2)."""
-    from ballbench.lowmodel.screw import kinematics
-
     s = case.screw
     speed = s.screw_speed if s.screw_speed is not None else s.nut_speed
     if speed is None or not abs(speed) > 0.0:
@@ -167,10 +170,6 @@ def ehl_contact(case, pair: str, load: float, speed: float, n: int, label: str =
     ``case`` under ``load`` [N] at the entrainment
     ``speed`` [m/s] on the ``2n x n/2`` grid, and its Hamrock-Dowson film; with ``second_grid`` also on the
     coarser ``n x n/4`` grid (or, where that one gives no film, the finer ``4n x n``: module docstring)."""
-    from ballbench.lowmodel.contact import ehl, hertz
-    from ballbench.lowmodel.errors import ConvergenceError
-    from ballbench.lowmodel.geometry import groove
-
     oil = lubricant(case)
     if pair == "groove":  # a linear guide's straight groove (lowmodel.geometry.groove)
         g = case.guide
@@ -210,8 +209,6 @@ def ehl_contact(case, pair: str, load: float, speed: float, n: int, label: str =
 
 def _solve(gap, a, b, n, e_star, load, speed, oil, initial_film):
     """The EHL solve on the ``2n x n/2`` grid of the module docstring: ``("nx x ny", EHLSolution, wall [s])``."""
-    from ballbench.lowmodel.contact import ehl, halfspace
-
     grid = halfspace.surface_grid(0.5 * (INLET + OUTLET) * b, ACROSS * a, 2 * n, n // 2,
                                   centre=(-0.5 * (INLET - OUTLET) * b, 0.0))
     X, Y = grid.coordinates()
@@ -225,16 +222,11 @@ def _solve(gap, a, b, n, e_star, load, speed, oil, initial_film):
 def contacts(case, fidelity: str, progress=None) -> list[EHLContact]:
     """The EHL of every distinct contact of ``case`` (ladder.rungs.distinct_contacts) at ``fidelity``;
     ``progress``: a wrapper of the iterable of contacts (a scene's ``run.progress``)."""
-    from ballbench.validation.ladder.rungs import distinct_contacts
-
     if not applies(case):
         raise ValueError(f"the EHL rung needs a ball-screw or linear-guide case with a [lubricant] table, got "
                          f"{case.name!r}")
     n = GRID_N[fidelity]
     if isinstance(case, LinearGuideCase):
-        from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
-        from ballbench.lowmodel import bearing_results
-
         result = bearing_results.guide_result(case)
         (found,) = distinct_contacts(case, result)
         worst = max(result.contacts, key=lambda c: c.normal_force)  # the contact distinct_contacts runs

@@ -16,8 +16,14 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 
+from ballbench.lowmodel.bearing_results import screw_states
+from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
+from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import b2b_rolling as screw_b2b_rolling
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import stick_slip
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
+from ballbench.validation.studies import rolling_b2b
 
 __all__ = ["CELLS", "COMPLIANCE", "module", "drive_speed", "ComplianceRung", "compliance_rungs"]
 
@@ -62,8 +68,6 @@ def _hertz_balls(case):
     operator), solve(balls))`` of the case's touching module: ``cells`` (along, across) per contact or one
     SurfaceGrid; ``operator`` None for two half-spaces."""
     if isinstance(case, LinearGuideCase):
-        from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
-
         guide = case.guide
         contacts = b2b.contacts(case)
         along = float((contacts.semi_major * contacts.b_over_a).max())
@@ -79,11 +83,6 @@ def _hertz_balls(case):
 
         return "linear", guide.ball_radius, guide.conformity, guide.material.pair, (along, across), balls_on, solve
     if isinstance(case, BallScrewCase):
-        from ballbench.lowmodel.bearing_results import screw_states
-        from ballbench.lowmodel.screw import b2b as screw_b2b
-        from ballbench.lowmodel.screw import b2b_rolling
-        from ballbench.lowmodel.screw import contacts as screw_contacts
-
         screw = case.screw
         contacts = screw_b2b.contacts(case)
         _, touching = screw_states(case)
@@ -92,12 +91,12 @@ def _hertz_balls(case):
         module_ = screw_contacts.module(screw)
 
         def balls_on(cells, operator):
-            return [b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,
-                                               operator_for=None if operator is None else (lambda _g: operator))
+            return [screw_b2b_rolling.hertz_contacts(touching, contacts, j, cells=cells,
+                                                     operator_for=None if operator is None else (lambda _g: operator))
                     for j in range(len(case.deviations))]
 
         def solve(balls):
-            return b2b_rolling.module_b2b(balls, module_)
+            return screw_b2b_rolling.module_b2b(balls, module_)
 
         return "screw", screw.ball_radius, screw.conformity, screw.material.pair, (along, across), balls_on, solve
     raise TypeError(f"the stick/slip rung runs on a LinearGuideCase or BallScrewCase, got {type(case).__name__}")
@@ -108,16 +107,14 @@ def compliance_rungs(case, fidelity: str, progress=lambda it, desc="": it) -> li
     ``COMPLIANCE[fidelity]`` (none at quick, 8 x 32 cells at default, 6 x 24 and 8 x 32 at fine), and the same
     module on two half-spaces on the same grid.  The grid covers the case's largest Hertz semi-axes by the product's
     ``cover``."""
-    from ballbench.validation.studies.rolling_b2b import pair_compliance
-
     product, radius, conformity, material, (along, across), balls_on, solve = _hertz_balls(case)
     levels = stick_slip.LEVELS[product]
     out = []
     for level in progress(COMPLIANCE[fidelity], desc="FE compliance levels"):
         half_along, half_across = levels.cover[0] * along, levels.cover[1] * across
-        grid, fe_compliance, condense_s = pair_compliance(radius, conformity, half_along, half_across,
-                                                          level.cells_along, level.cells_across, level.h_factor,
-                                                          material)
+        grid, fe_compliance, condense_s = rolling_b2b.pair_compliance(radius, conformity, half_along, half_across,
+                                                                      level.cells_along, level.cells_across,
+                                                                      level.h_factor, material)
         operator = fe_compliance.operator()
         start = time.perf_counter()
         fe = solve(balls_on(grid, operator))

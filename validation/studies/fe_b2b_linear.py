@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -18,6 +19,10 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_traction
 from ballbench.lowmodel.linear_bearing import fourpoint as rigid
 from ballbench.validation.cases.case import LinearGuideCase
+from ballbench.validation.figures import render3d
+from ballbench.validation.figures.fe_module import contact_summary, cut_figure, patch_figure
+from ballbench.validation.figures.style import save
+from ballbench.validation.studies.fe_contact import mesh_dofs
 
 __all__ = ["low_order_contacts", "fine_ellipses", "eq36_hertz", "solve_fe_level", "level_dofs",
            "traction_patches", "fe_informed", "full_stress", "hertz_axes", "sensitivity", "show_module"]
@@ -62,8 +67,6 @@ def _module_mesh(case: LinearGuideCase, level):
 def level_dofs(case: LinearGuideCase, level) -> int:
     """The P2 DOFs of the guide's module at ``level`` from its mesh alone (meshed or cached; no assembly): what the
     level's memory is predicted from."""
-    from ballbench.validation.studies.fe_contact import mesh_dofs
-
     return mesh_dofs(_module_mesh(case, level))
 
 
@@ -148,15 +151,8 @@ def show_module(case: LinearGuideCase, scene_dir, fidelity: str) -> list:
     the Hertz ellipses of the low-order model and the FE moment ellipses) and ``stress.png`` (von Mises stress of
     ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and BR-TL are the two pairs
     of opposite contacts)."""
-    from pathlib import Path
-
-    from ballbench.validation.figures.fe_module import contact_summary, cut_figure, patch_figure
-    from ballbench.validation.figures.style import save
-
     if fidelity not in ("quick", "default"):
         raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
-    from ballbench.validation.figures import render3d
-
     if render3d.has_fields(scene_dir):  # the fields saved by validate: the 3D screenshots, no solve
         return render3d.render(scene_dir)
     level = case.fe.levels.checked(fidelity)

@@ -10,17 +10,26 @@ add up to the case's axial load).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
+from pathlib import Path
 
 import numpy as np
 
 from ballbench.lowmodel.bearing_results import axial_shares, screw_states
 from ballbench.lowmodel.screw import b2b as screw_b2b
+from ballbench.lowmodel.screw import b2b_traction as sbt
 from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases.case import BallScrewCase
+from ballbench.validation.figures import render3d
+from ballbench.validation.figures.fe_module import contact_summary, cut_figure, patch_figure
+from ballbench.validation.figures.style import save
+from ballbench.validation.references.screw_statics import hertz_statics
 from ballbench.validation.scene import KnownGap
 from ballbench.validation.studies import screw_two_ball
+from ballbench.validation.studies.fe_b2b_linear import full_stress
+from ballbench.validation.studies.fe_contact import mesh_dofs
 
 # (Table 5 case, h_contact [m]) where the FE-informed F_B2B misses ANSYS's value by more than 10 % (measured)
 ANSYS_GAP_LEVELS = {("b", 4.0e-5)}
@@ -69,8 +78,6 @@ def _module_mesh(case: BallScrewCase, level, theta: float):
 def level_dofs(case: BallScrewCase, level) -> int:
     """The P2 DOFs of the modules of all balls of ``case`` at ``level`` (:func:`solve_fe_level` keeps them all),
     from their meshes alone (meshed or cached; no assembly): what the level's memory is predicted from."""
-    from ballbench.validation.studies.fe_contact import mesh_dofs
-
     return sum(mesh_dofs(_module_mesh(case, level, theta)) for theta in case.deviations)
 
 
@@ -102,8 +109,6 @@ def solve_fe_level(case: BallScrewCase, level, shares, oversize: float | None = 
 def fe_informed(case: BallScrewCase, models, results, *, normal: str = "mid", free_balls=None):
     """FE-informed two-ball result (``screw.b2b_traction.module_b2b``) of the solved modules."""
     from ballbench.fem import fourpoint as fp
-    from ballbench.lowmodel.screw import b2b_traction as sbt
-
     patches = [fp.traction_patches(model, result, normal=normal) for model, result in zip(models, results)]
     return sbt.module_b2b(patches, screw_contacts.module(case.screw), **(
         {} if free_balls is None else {"free_balls": free_balls}))
@@ -114,12 +119,7 @@ def sensitivity(case: BallScrewCase, models, results, state, contacts, *, fit_ca
     """F_B2B [N] with Hertz or FE patches, rigid or loaded contact angles, the friction-plane normal, and at the
     oversize at which the low-order model of ``fit_case`` gives ``fit_force`` [N] (the unknown preload):
     ``[(variant, F_B2B), ...]``; ``state``: the low-order touching state of ``contacts``."""
-    import dataclasses
-
     from ballbench.fem import screw_module as sm
-    from ballbench.lowmodel.screw import b2b_traction as sbt
-    from ballbench.validation.references.screw_statics import hertz_statics
-
     module = screw_contacts.module(case.screw)
     rows = [("low-order: Hertz ellipses, eqs 34-61 (screw.b2b)", float(state.b2b_force[0]))]
     hertz = [sbt.hertz_patches(state, contacts, ball) for ball in range(2)]
@@ -170,16 +170,8 @@ def show_module(case: BallScrewCase, scene_dir, fidelity: str) -> list:
     low-order model's Hertz ellipses at the FE forces and the FE moment ellipses) and ``stress.png`` (von Mises
     stress of ball 2's module on the plane through the ball centre normal to the helix, x3-z3, which holds all
     four contacts: SL-NR and SR-NL are the two pairs of opposite contacts)."""
-    from pathlib import Path
-
-    from ballbench.validation.figures.fe_module import contact_summary, cut_figure, patch_figure
-    from ballbench.validation.figures.style import save
-    from ballbench.validation.studies.fe_b2b_linear import full_stress
-
     if fidelity not in ("quick", "default"):
         raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
-    from ballbench.validation.figures import render3d
-
     if render3d.has_fields(scene_dir):  # the fields saved by validate: the 3D screenshots, no solve
         return render3d.render(scene_dir)
     contacts, _, state = low_order(case)

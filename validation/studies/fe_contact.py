@@ -10,16 +10,24 @@ use it.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import math
+import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ballbench.fem import contact, hertz_case, postprocess
+from ballbench.fem.contact import full_solution
 from ballbench.fem.postprocess import nodal_stress
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases.case import ContactCase
+from ballbench.validation.figures import render3d
+from ballbench.validation.figures.style import save
 
 __all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "level_dofs", "mesh_dofs", "write_fields",
            "compute_fields", "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
@@ -129,8 +137,6 @@ def level_dofs(pair: PairModel, level) -> int:
 
 def solve_level(pair: PairModel, level):
     """FE result (fem.hertz_case.CaseResult) and Hertz reference at the mesh level ``(n = b/h, growth)``."""
-    from ballbench.fem import hertz_case
-
     n, growth = level
     fe = _fe(pair.case)
     ref = hertz.solve_load(pair.geometry, pair.force)
@@ -152,8 +158,6 @@ def write_fields(result, ref, directory, *, scene_name: str, fidelity: str, leve
     :class:`Material`.  Returns the two paths.
     """
     import meshio
-
-    from ballbench.fem.contact import full_solution
 
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
@@ -228,10 +232,6 @@ def load_sweep(case: ContactCase, fidelity: str = "quick", load_factors=(0.5, 0.
     fit per load.  Returns also ``ball_radius`` [m], the Hertz ``geometry``, the ``level``, ``ndofs`` and the
     wall time [s].
     """
-    import time
-
-    from ballbench.fem import contact, hertz_case, postprocess
-
     start = time.perf_counter()
     pair = pair_model(case)
     n, growth = _fe(case).levels.checked(fidelity)
@@ -258,9 +258,6 @@ def load_fields(directory) -> tuple[dict, dict]:
     ``mesh``: ``points`` (n, 3) [m], ``tets`` (m, 10) quadratic tetrahedra (VTK node order) or (m, 4),
     ``body`` (m,) and the point fields by their names in ``meta["fields"]``.
     """
-    import contextlib
-    import io
-
     import meshio
 
     directory = Path(directory)
@@ -291,11 +288,7 @@ def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 
     """The ``show`` hook of an FE contact scene: ``pressure.png`` and ``stress.png`` (figures.fe_contact) drawn
     from the fields saved in ``scene_dir`` (named after the scene); only when none are saved does it solve the
     checked level at ``fidelity`` first (about ``cost_s`` [s]), saying so on stderr."""
-    import sys
-
     from ballbench.validation.figures import fe_contact as figures
-    from ballbench.validation.figures.style import save
-
     levels = _fe(case).levels
     if fidelity not in levels:
         raise ValueError(f"fidelity must be one of {('quick', 'default', 'fine')}, got {fidelity!r}")
@@ -319,7 +312,5 @@ def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 
         data, meta = load_fields(directory)
     if not math.isfinite(meta["hertz"]["a_m"]):
         raise ValueError(f"{directory / 'fields.json'}: no Hertz reference")
-    from ballbench.validation.figures import render3d
-
     return [save(figures.pressure_figure(data, meta), directory / "pressure.png", dpi=100, tight=True),
             save(figures.stress_figure(data, meta), directory / "stress.png", dpi=100)] + render3d.render(directory)

@@ -19,18 +19,21 @@ import time
 from dataclasses import dataclass
 from functools import lru_cache
 
+import numpy as np
+
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.bearing_results import axial_shares
+from ballbench.lowmodel.contact import rolling
 from ballbench.lowmodel.linear_bearing import b2b as linear_b2b
 from ballbench.lowmodel.linear_bearing import b2b_analytical
 from ballbench.lowmodel.linear_bearing import b2b_rolling as linear_rolling
 from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
 from ballbench.lowmodel.screw import contacts as screw_contacts
+from ballbench.lowmodel.state import friction_increase
 from ballbench.validation.cases import FIDELITIES, lin2019, stick_slip
+from ballbench.validation.figures import stickslip3d
 from ballbench.validation.references.published import lin2019 as printed
 from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
-from ballbench.lowmodel.state import friction_increase
 
 __all__ = ["Rung", "linear_ladder", "screw_ladder", "record_ladder", "pair_compliance", "compliance",
            "largest_semi_axes", "pressure_samples", "level_name", "TIME_BUDGET_S"]
@@ -45,8 +48,6 @@ def level_name(cells) -> str:
 def pressure_samples(model, result) -> list:
     """The solved FE contacts as ``(name, top, points (q, 3) [m], pressure (q,) [Pa], areas (q,) [m^2])`` in the
     ball frame of the lowmodel (``model.geometry.to_ball_frame``: lin2019 Fig 2, or the ball's CS3)."""
-    import numpy as np
-
     geometry = model.geometry
     return [(c.name, geometry.moving(i), geometry.to_ball_frame(c.points), np.clip(c.pressure, 0.0, None), c.areas)
             for i, c in enumerate(result.contacts)]
@@ -299,8 +300,6 @@ TIME_BUDGET_S = {"quick": 120.0, "default": 600.0, "fine": 3000.0}
 def _stick_slip_pictures(run, rungs: list[Rung]) -> None:
     """Save the touching state's contacts of the Hertz + half-space rung and of the finest FE-compliance rung and
     draw their stick and slip areas (:mod:`validation.figures.stickslip3d`)."""
-    from ballbench.validation.figures import stickslip3d
-
     chosen = {"hertz_halfspace": next((r for r in rungs if r.model.endswith("Hertz + half-space")), None),
               "fe_compliance": next((r for r in reversed(rungs) if r.model.endswith("+ FE compliance")), None)}
     for name, rung in chosen.items():

@@ -13,6 +13,8 @@ import time
 
 import numpy as np
 
+from ballbench.fem import contact, hertz_case, postprocess
+from ballbench.fem.mortar import build_mortar_model
 from ballbench.lowmodel.contact import ehl, halfspace, hertz, mixed, roughness, screw_contact
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry import groove, helix
@@ -230,8 +232,6 @@ def fe_contact(helix_angle_deg: float, point: str, level, hertz_contact, gap_lim
     the mesh level ``(n = b/h, growth)``; candidate zone ``gap_limit`` times the Hertz approach.  Returns a dict
     of p0 [Pa], a, b [m], angle [rad] (major axis from the contact frame's x), force [N], ndofs, timings [s] and
     the quadrature pressure."""
-    from ballbench.fem import contact, hertz_case, postprocess
-    from ballbench.fem.mortar import build_mortar_model
     from ballbench.meshes.assemblies import screw_pair
 
     n, growth = level

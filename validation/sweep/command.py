@@ -4,17 +4,16 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ballbench.validation.sweep.cases import check_inputs
 from ballbench.validation.sweep.execution import run_sweep
 from ballbench.validation.sweep.spec import load_spec, spec_from_dict
 from ballbench.validation.sweep.storage import DATASET_NAME
+from ballbench.validation.usage import UsageError, check_writable_folder
 
 
 def main(args) -> int:
     """``ballbench sweep`` (registered in validation/cli.py): a mistake in the spec or the options is a wrong use
     (UsageError, exit 2) found before the output folder is made; exit 1 when every case failed."""
-    from ballbench.validation.sweep.cases import check_inputs
-    from ballbench.validation.usage import UsageError, check_writable_folder
-
     try:
         spec = load_spec(args.spec)
         if args.chunk_size is not None:

@@ -16,6 +16,7 @@ from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
 from ballbench.lowmodel.linear_bearing import ball as bearing_ball
 from ballbench.lowmodel.linear_bearing import contacts as bearing_contacts
+from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.validation.cases import lin2019
 
 __all__ = ["two_ball_numerical", "two_ball_deviations", "two_ball_analytical", "with_psi", "calibrated_psi",
@@ -183,8 +184,6 @@ def _screw_setup(calibration: str | None, n_balls: int, axial_load: float):
     """Module (lin2019 Table 4, preload fitted on Table 5 a), contact laws and axial stiffness table, once per
     worker process."""
     from ballbench.lowmodel.screw import load_distribution as ld
-    from ballbench.lowmodel.screw import contacts as screw_contacts
-
     laws = screw_contacts.GrooveContactLaws.from_calibration(_load(calibration)) if calibration else None
     module = screw_contacts.module(lin2019.SCREW)
     stiffness = ld.axial_stiffness(module, 3.0 * max(axial_load, 1.0) / n_balls, contact_law=laws)

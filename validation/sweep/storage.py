@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -170,8 +171,6 @@ def read_dataset(out_dir: str | Path):
 def write_dataset(out_dir: str | Path, spec: SweepSpec | None = None) -> Path | None:
     """(Re)write ``OUT/results.zarr`` from the parts of a gridded sweep (written aside, then swapped in);
     returns its path, or None when the sweep has no grid or no part yet."""
-    import shutil
-
     out_dir = Path(out_dir)
     spec = manifest_spec(out_dir) if spec is None else spec
     if not spec.grid or not done_ranges(out_dir):

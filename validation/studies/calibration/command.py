@@ -2,6 +2,7 @@
 (registered in validation/cli.py; docs/calibration.md)."""
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 from pathlib import Path
@@ -9,6 +10,7 @@ from pathlib import Path
 from ballbench.lowmodel import calibration as cal
 from ballbench.validation.cases.toml_files import read_toml
 from ballbench.validation.studies.calibration.spec import check_spec, run_spec
+from ballbench.validation.usage import EXIT_FAILED, UsageError, check_writable_file
 
 __all__ = ["CALIBRATION_ENV", "active_calibration", "add_validate_option", "main", "add_parser"]
 
@@ -22,8 +24,6 @@ def active_calibration() -> cal.Calibration | None:
 
 
 def _calibration_file(value: str) -> str:
-    import argparse
-
     try:
         cal.load(value)
     except ValueError as error:
@@ -41,8 +41,6 @@ def add_validate_option(parser) -> None:
 def main(args) -> int:
     """``ballbench calibrate SPEC``: the spec and the output file are checked before any fit (UsageError, exit 2);
     a fit that fails is exit 1."""
-    from ballbench.validation.usage import EXIT_FAILED, UsageError, check_writable_file
-
     spec_path = Path(args.spec)
     try:
         spec = read_toml(spec_path)

@@ -8,6 +8,10 @@ from pathlib import Path
 import numpy as np
 
 from ballbench.lowmodel import calibration as cal
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.cases import ContactCase, case_file
+from ballbench.validation.ladder import rungs
+from ballbench.validation.scene import registry
 
 __all__ = ["check_load_factors", "fe_contact_scenes", "fe_load_sweep", "hertz_references", "contact_law",
            "fe_contact_law", "case_contact"]
@@ -25,9 +29,6 @@ def check_load_factors(load_factors) -> np.ndarray:
 def fe_contact_scenes() -> dict:
     """The registered scenes that run a single contact with FE settings: ``{scene name: ContactCase}`` (the
     scene's own ``case``; what ``fe_scene`` of a spec may name)."""
-    from ballbench.validation.cases import ContactCase
-    from ballbench.validation.scene import registry
-
     return {name: entry.case for name, entry in registry().items()
             if isinstance(entry.case, ContactCase) and entry.case.fe is not None}
 
@@ -51,8 +52,6 @@ def fe_load_sweep(scene_name: str, fidelity: str = "quick", load_factors=(0.5, 0
 
 def hertz_references(geometry, ball_radius):
     """(Hertz C [m N^-2/3], lin2019 eq 53; Psi [-], lin2019 eq 15) of the Hertz ``geometry`` and ``ball_radius`` [m]."""
-    from ballbench.lowmodel.contact import hertz
-
     return hertz.hertz_constant(geometry), hertz.psi_constant(geometry, ball_radius)
 
 
@@ -87,7 +86,4 @@ def case_contact(path: str | Path):
     """The contact an ``fe_case`` of a spec names: the case file's own contact, or the most loaded contact of a
     linear guide or ball screw, with the FE levels of its file or chosen from its Hertz ellipse
     (ladder.rungs.contact_fe; docs/cases.md)."""
-    from ballbench.validation.cases import case_file
-    from ballbench.validation.ladder import rungs
-
     return rungs.contact_fe(rungs.governing_contact(case_file.load(path)))

@@ -14,6 +14,7 @@ import numpy as np
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel.contact import hertz
 from ballbench.validation.cases import lin2019
+from ballbench.validation.studies.calibration.spec import read_friction_csv
 
 __all__ = ["synthetic_truth", "synthetic_fit", "coverage", "LOADS", "NOISE_U", "NOISE_A", "NOISE_F",
            "BULK", "MU_0", "MU_V", "K_F"]
@@ -54,8 +55,6 @@ def synthetic_fit(seed: int, truth: dict, work: Path | None = None, confidence: 
     speed = np.tile([0.01, 0.05, 0.1], 4)  # m/s
     friction = (truth["mu"] + truth["mu_speed_slope"] * speed) * normal + rng.normal(0.0, NOISE_F, normal.size)
     if work is not None:
-        from ballbench.validation.studies.calibration.spec import read_friction_csv
-
         path = work / f"friction-{seed}.csv"
         lines = ["# synthetic friction data (calibration-roundtrip)",
                  "normal_force [N],friction_force [N],speed [mm/s]"]

@@ -40,7 +40,8 @@ import numpy as np
 
 from ballbench.lowmodel import calibration as cal
 from ballbench.lowmodel import checks
-from ballbench.validation.cases import lin2019
+from ballbench.lowmodel.contact import hertz
+from ballbench.validation.cases import case_file, lin2019
 from ballbench.validation.cases.toml_files import read_toml
 from ballbench.validation.studies.calibration.fe_laws import (case_contact, check_load_factors, contact_law,
                                                               fe_contact_law, fe_contact_scenes, hertz_references)
@@ -181,8 +182,6 @@ def _contact(name: str, table: dict, base: Path, out_dir: Path, confidence: floa
     if "a" in data and radius is None:
         raise ValueError(f"contact.{name}: the data carry 'a'; give ball_radius [m] for Psi (lin2019 eq 15)")
     if "conformity" in table:  # Hertz reference of a ball in a straight groove
-        from ballbench.lowmodel.contact import hertz
-
         geometry = hertz.ball_in_groove(radius, table["conformity"])
         reference_c, reference_psi = hertz_references(geometry, radius)
     source = f"{path.name}, {data['force'].size} loads {data['force'].min():g}-{data['force'].max():g} N"
@@ -205,8 +204,6 @@ def kf_constants(conformity: float, fit_range: float = 0.5, *, confidence: float
     the load or the size): the exact slope at c/a = 0 and least squares over ``|c/a| <= fit_range`` (continuous,
     and discrete on ``points`` values of the tabulated friction map, with its interval)."""
     from ballbench.lowmodel.contact import ellipse_friction as ef
-    from ballbench.lowmodel.contact import hertz
-
     if not (0.0 < fit_range):
         raise ValueError(f"k_f.fit_range must be > 0, got {fit_range!r}")
     guide = lin2019.GUIDE
@@ -257,8 +254,6 @@ def check_spec(spec: dict, spec_path: str | Path) -> None:  # noqa: C901 - one b
                              "'fe_case' (of a case file's contact) or 'data' (CSV file)")
         if "fe_scene" in table or "fe_case" in table:
             if "fe_case" in table:
-                from ballbench.validation.cases import case_file
-
                 if not isinstance(table["fe_case"], str):
                     raise ValueError(f"{where}.fe_case must be the path of a case file, got {table['fe_case']!r}")
                 try:
