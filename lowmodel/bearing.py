@@ -40,7 +40,6 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import helix
 
 __all__ = ["Material", "Lubricant", "Fit", "LinearGuide", "GuideLoadCase", "BallScrew", "ScrewLoadCase",
@@ -182,6 +181,8 @@ class Material:
     def contact_modulus(self) -> float:
         """E* [Pa] of two bodies of this material: ``E / (2 (1 - nu^2))`` (Johnson 1985 eq 4.22; the same
         arithmetic as ``lowmodel.contact.hertz.contact_modulus``)."""
+        from ballbench.lowmodel.contact import hertz  # scipy: reading a case file does not load it
+
         return hertz.contact_modulus(self.youngs_modulus, self.poisson_ratio)
 
 

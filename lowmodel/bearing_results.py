@@ -179,7 +179,7 @@ def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
     if contacts is None:
         contacts = screw_b2b.contacts(case)
     if touching is None or free is None:
-        free, touching = screw_states(case)
+        free, touching = screw_states(case, contacts)
     a = touching.semi_major
     rows = _screw_rows(touching.normal_force, touching.contact_angle, a, a * contacts.b_over_a, touching.approach)
     speed = abs(case.screw.nut_speed)

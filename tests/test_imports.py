@@ -39,7 +39,10 @@ OPTIONAL = {
 FRONT = "import ballbench loads no layer and nothing a bare interpreter does not (tests/test_api.py)"
 STARTUP = "the CLI's startup imports this file; the module is not loaded there"
 SCENES = "ballbench scenes imports this file; the module is not loaded there"
+READ = "ballbench.load_case imports this file and loads no model (numpy and the description types only)"
 LIGHT = {
+    ("lowmodel/bearing.py", "ballbench.lowmodel.contact.hertz"): READ,
+    ("validation/cases/case_file.py", "ballbench.lowmodel.screw"): READ,
     ("src/ballbench/__init__.py", "importlib"): FRONT,
     ("src/ballbench/__init__.py", "pathlib"): FRONT,
     ("src/ballbench/__init__.py", "tempfile"): FRONT,
@@ -207,6 +210,9 @@ def test_the_check_sees_each_stray_import(file, text, stray):
 # what each light path must not load: the modules the reasons above keep off it
 KEPT_OFF = {
     "import ballbench": ("import ballbench", ["numpy", "importlib.metadata", "tempfile", "ballbench.validation"]),
+    "reading a case file": ("import ballbench; ballbench.load_case(sys.argv[1])",
+                            ["scipy", "ballbench.lowmodel.contact", "ballbench.lowmodel.screw",
+                             "ballbench.lowmodel.linear_bearing", "ballbench.validation.ladder"]),
     "the CLI's startup": ("import ballbench.validation.cli",
                           ["scipy.stats", "scipy.interpolate", "tqdm", "ballbench.validation.report",
                            "ballbench.validation.studies.fe_contact", "ballbench.validation.studies.rolling_b2b",
@@ -223,7 +229,8 @@ KEPT_OFF = {
 @pytest.mark.parametrize("path", list(KEPT_OFF))
 def test_the_light_paths_stay_light(path):
     code, kept_off = KEPT_OFF[path]
-    out = subprocess.run([sys.executable, "-c", f"import sys\n{code}\nprint('\\n'.join(sys.modules))"],
+    case = paths.ROOT / "examples" / "ball_screw_32x10.toml"
+    out = subprocess.run([sys.executable, "-c", f"import sys\n{code}\nprint('\\n'.join(sys.modules))", str(case)],
                          capture_output=True, text=True, check=True)
     loaded = [name for name in kept_off if any(within(module, name) for module in out.stdout.split())]
     assert not loaded, f"{path} loads {loaded}"

@@ -40,7 +40,7 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.bearing import guide_values
-from ballbench.lowmodel.contact import rolling
+from ballbench.lowmodel.contact import hertz, rolling
 from ballbench.lowmodel.contact import rolling_friction as rf
 from ballbench.lowmodel.contact.influence import combined_material
 from ballbench.lowmodel.errors import ConvergenceError
@@ -57,7 +57,8 @@ __all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "sampled_con
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue: power balance to 1e-6)
 AXIS = np.array([0.0, 0.0, 1.0])  # the grooves' direction (lin2019 Fig 2: z along the rails)
-TABLE1_STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.28}  # the default material: lin2019 Table 1's steel
+# the default material: lin2019 Table 1's steel (lowmodel.contact.hertz's)
+TABLE1_STEEL = {"youngs_modulus": hertz.STEEL_YOUNGS_MODULUS, "poisson_ratio": hertz.STEEL_POISSON_RATIO}
 TABLE1 = {"conformity": 0.56, **TABLE1_STEEL}  # the default grooves: lin2019 Table 1
 AXIS.setflags(write=False)
 

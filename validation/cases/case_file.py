@@ -24,8 +24,6 @@ from pathlib import Path
 
 from ballbench.lowmodel import bearing, checks
 from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
-from ballbench.lowmodel.screw import b2b as screw_b2b
-from ballbench.lowmodel.screw import preload
 from ballbench.validation.cases import units
 from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
@@ -570,6 +568,9 @@ def _preload_loss_comment(text: str) -> list[str]:
     """The template's comment on the range of lin2019's ball-screw model: below the preload loss of the values as
     written (lowmodel.screw.preload.preload_loss of the case's balls: frictionless four-point contacts, Hertz's law
     lin2019 eq 53)."""
+    from ballbench.lowmodel.screw import b2b as screw_b2b  # the models: reading a case file does not load them
+    from ballbench.lowmodel.screw import preload
+
     loss = preload.preload_loss(screw_b2b.contacts(loads(text, "<template>"))).axial_load
     pad = " " * 32
     return [f"{pad} # lin2019's four-point model applies below the preload loss: {loss:.0f} N for",

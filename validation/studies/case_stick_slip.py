@@ -85,7 +85,7 @@ def _hertz_balls(case):
     if isinstance(case, BallScrewCase):
         screw = case.screw
         contacts = screw_b2b.contacts(case)
-        _, touching = screw_states(case)
+        _, touching = screw_states(case, contacts)
         along = float((touching.semi_major * contacts.b_over_a).max())
         across = float(touching.semi_major.max())
         module_ = screw_contacts.module(screw)
