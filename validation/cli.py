@@ -226,7 +226,7 @@ class _Interrupt:
 
 def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, status_word, write_report
-    from ballbench.validation.report.rows import passing_lines
+    from ballbench.validation.report.rows import memory_line, passing_lines
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be at least 1, got {args.workers}")
@@ -259,6 +259,8 @@ def _cmd_validate(args) -> int:
             print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
         for line in passing_lines(result, status):
             print(line, file=sys.stderr)
+        if result.over_memory and not args.strict_time:
+            print(memory_line(result) + " (reported; --strict-time fails it)", file=sys.stderr)
 
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
@@ -410,8 +412,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="declared known gaps and findings (models outside their accuracy on a case file's geometry) "
                         "fail the run too")
     p.add_argument("--strict-time", action="store_true",
-                   help="a scene over its wall-time budget fails (by default budgets are only reported, "
-                        "since run time depends on the machine's load)")
+                   help="a scene over its wall-time budget or over its declared memory fails (by default "
+                        "budgets are only reported, since run time depends on the machine's load)")
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")

@@ -13,6 +13,7 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
      "counts": {"pass", "known gap", "findings", "not applicable", "fail", "error"},
      "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
+                 "scene_peak_memory_gb", "declared_memory_gb", "over_memory",
                  "artifacts": [str], "notes": [str],
                  "outputs": [{"model", "quantity", "unit", "value", "reference",
                               "source", "rel_error", "tolerance", "passed",
@@ -21,7 +22,10 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                               "known_gap_evidence", "family", "level"}],
                  "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
-``peak_memory_gb`` is the process's peak resident memory while the scene ran (0 where not measured).
+``scene_peak_memory_gb`` is the scene's own peak resident memory (the peak while it ran above the resident memory
+at its start, docs/validation.md, "Memory"), ``peak_memory_gb`` the process's peak while it ran (what earlier scenes
+left loaded included), both 0 where not measured; ``declared_memory_gb`` what the scene declares at the run's
+fidelity, ``over_memory`` whether its own peak is above that.
 ``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
 scene that applies).
 A scene's ``status`` is one of ``counts``' keys; an output's is ``pass``, ``fail``, ``outside accuracy`` (a
