@@ -10,7 +10,7 @@ import pytest
 
 from ballbench.validation import cli
 from ballbench.validation import scene as scene_module
-from ballbench.validation.runner import run_scene
+from ballbench.validation.runner import MemoryUse, SceneMemory, run_scene
 from ballbench.validation.scene import Scene
 
 pytestmark = pytest.mark.skipif(not os.path.exists("/proc/self/clear_refs"), reason="needs Linux /proc")
@@ -85,3 +85,19 @@ def test_a_scene_above_its_declared_memory_is_flagged_and_fails_only_strict_time
     assert "zz-over" in budgets and "zz-within" not in budgets.split("\n#")[0]
     assert cli.main(["validate", "zz-over", "--out", str(tmp_path / "s"), "--strict-time"]) == 1
     assert "over its declared 0.1 GB (--strict-time)" in capsys.readouterr().err
+
+
+def test_scenes_overlapping_in_one_process_are_not_measured():
+    # the peak resident memory is the process's: a scene beside another (a dask worker with several threads) has no
+    # own peak to read, so neither says one
+    first, second = SceneMemory(), SceneMemory()
+    first.start()
+    second.start()
+    block = np.ones(BLOCK)
+    assert second.stop() == MemoryUse() and first.stop() == MemoryUse()
+    alone = SceneMemory()
+    alone.start()
+    block = np.ones(2 * BLOCK)
+    used = alone.stop()
+    del block
+    assert 0.35 < used.scene_peak_gb < 0.5
