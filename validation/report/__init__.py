@@ -24,7 +24,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
 ``scene_peak_memory_gb`` is the scene's own peak resident memory (the peak while it ran above the resident memory
 at its start, docs/validation.md, "Memory"), ``peak_memory_gb`` the process's peak while it ran (what earlier scenes
-left loaded included), both 0 where not measured; ``declared_memory_gb`` what the scene declares at the run's
+left loaded included), both 0 where not measured (a measured scene's own peak may be 0: it needed nothing the
+process did not hold already); ``declared_memory_gb`` what the scene declares at the run's
 fidelity, ``over_memory`` whether its own peak is above that.
 ``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
 scene that applies).
