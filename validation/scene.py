@@ -79,9 +79,8 @@ FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informe
 PASSING = ("pass", "known gap", "findings", "not applicable")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
-# the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): the FE figure
-# covers the largest peak measured at the default fidelity, the others the peaks of the worker processes that ran
-# them (what an earlier scene left loaded included)
+# the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): each covers the
+# largest own peak of its kind's scenes measured at the default fidelity (runner.SceneMemory)
 DEFAULT_MEMORY_GB = {"analytical": 3.5, "low-order": 3.5, "FE": 12.0}
 
 
