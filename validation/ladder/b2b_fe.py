@@ -17,6 +17,7 @@ from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
                                                 fmt, oversize_for, preload_loss, preload_loss_words)
+from ballbench.validation.ladder.common import not_truncated
 from ballbench.validation.ladder.rungs import module_fe
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.runner import GB
@@ -26,7 +27,9 @@ __all__ = ["b2b_fe_scene", "show_module"]
 
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
-    """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``)."""
+    """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``).  Does not
+    apply where a contact ellipse reaches its groove's shoulder (common.not_truncated, docs/truncation.md)."""
+    not_truncated(case)
     if isinstance(case, LinearGuideCase):
         _guide_b2b_fe(run, module_fe(case), deadline)
     else:
@@ -243,6 +246,7 @@ def show_module(case, scene_dir, fidelity: str) -> list[Path]:
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
+    not_truncated(case)
     if isinstance(case, BallScrewCase):
         _screw_unloaded(case)
     show = fe_b2b_linear.show_module if isinstance(case, LinearGuideCase) else fe_b2b_screw.show_module

@@ -16,6 +16,7 @@ from ballbench.validation.cases.case import ContactCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
                                                past_preload_loss)
+from ballbench.validation.ladder.common import truncation_check
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.runner import GB
 
@@ -32,6 +33,8 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     distinct, reason = _distinct(case)
     if reason:
         _frictionless_table(run, case, reason)
+    else:  # the ellipses of lin2019's state against the grooves' shoulders (docs/truncation.md)
+        truncation_check(run, case)
     # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
     # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
