@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry.groove import groove_radius
 
-__all__ = ["SHOULDER_DEPTH", "Truncation", "shoulder_angle", "end_angle", "truncation", "words"]
+__all__ = ["SHOULDER_DEPTH", "Truncation", "shoulder_angle", "land_depth", "end_angle", "truncation", "words"]
 
 SHOULDER_DEPTH = 0.25  # the groove's land: 0.25 R_B from the ball centre towards the groove's body (convention)
 
@@ -53,6 +53,23 @@ def shoulder_angle(ball_radius: float, conformity: float, contact_angle: float,
     return math.atan2(v_e, d)
 
 
+def land_depth(ball_radius: float, conformity: float, contact_angle: float, angle: float) -> float:
+    """The inverse of :func:`shoulder_angle`: the land depth (in units of ``R_B``, from the ball centre towards the
+    groove's body) at which the flank of ``contact_angle`` [rad] ends at ``angle`` [rad] from the load axis.
+
+    The flank point seen at ``angle`` ``theta`` lies at ``rho (sin theta, cos theta)`` with ``|rho u - C| = r_g``:
+    ``rho = u.C + sqrt((u.C)^2 - |C|^2 + r_g^2)``, ``u.C = -(r_g - R_B) cos(theta - beta_r)``; the depth is
+    ``rho cos theta / R_B`` (negative past ``theta = pi/2``: the flank would have to rise above the ball centre)."""
+    radius = checks.positive("ball_radius", ball_radius, "m")
+    beta = checks.contact_angle("contact_angle", contact_angle)
+    theta = checks.bounded("angle", angle, 0.0, math.pi, "rad")
+    r_g = float(groove_radius(radius, conformity))
+    offset = r_g - radius
+    u_c = -offset * math.cos(theta - beta)
+    rho = u_c + math.sqrt(u_c * u_c - offset * offset + r_g * r_g)
+    return rho * math.cos(theta) / radius
+
+
 def end_angle(ball_radius: float, contact_angle: float, a: float) -> float:
     """``beta + asin(a / R_B)`` [rad]: the end of the major semi-axis ``a`` [m] of a contact ellipse at the loaded
     contact angle ``beta`` [rad], seen from the ball centre (``a >= R_B``: ``beta + pi/2``)."""
@@ -64,13 +81,15 @@ def end_angle(ball_radius: float, contact_angle: float, a: float) -> float:
 @dataclass(frozen=True)
 class Truncation:
     """One contact's truncation check: ``contact`` (``"ball 1 BR"``), ``contact_angle`` (loaded) [rad], ``a`` [m],
-    ``end_angle`` and ``shoulder_angle`` [rad]; ``margin`` [rad] what is left between them."""
+    ``end_angle`` and ``shoulder_angle`` [rad], ``rigid_angle`` [rad] the flank's; ``margin`` [rad] what is left
+    between the ellipse's end and the shoulder."""
 
     contact: str
     contact_angle: float
     a: float
     end_angle: float
     shoulder_angle: float
+    rigid_angle: float  # the flank's contact angle with the ball centred [rad] (it places the shoulder)
 
     @property
     def margin(self) -> float:
@@ -94,7 +113,7 @@ def truncation(contact: str, ball_radius: float, conformity: float, rigid_angle:
     places the shoulder (:func:`shoulder_angle`), the ``loaded_angle`` [rad] and semi-axis ``a`` [m] of the touching
     state the ellipse's end (:func:`end_angle`)."""
     return Truncation(contact, float(loaded_angle), float(a), end_angle(ball_radius, loaded_angle, a),
-                      shoulder_angle(ball_radius, conformity, rigid_angle, depth))
+                      shoulder_angle(ball_radius, conformity, rigid_angle, depth), float(rigid_angle))
 
 
 def words(found: list[Truncation] | tuple[Truncation, ...]) -> str:
@@ -103,7 +122,8 @@ def words(found: list[Truncation] | tuple[Truncation, ...]) -> str:
     if not cut:
         return ""
     worst = max(cut, key=lambda t: t.end_angle - t.shoulder_angle)
-    return (f"contact ellipse truncated by the groove's shoulder on {len(cut)} contact(s) ({', '.join(t.contact for t in cut)}); "
+    names = ", ".join(t.contact for t in cut)
+    return (f"contact ellipse truncated by the groove's shoulder on {len(cut)} contact(s) ({names}); "
             f"worst {worst.text()} (the land {SHOULDER_DEPTH:g} R_B from the ball centre, the shoulder convention of "
             "docs/truncation.md): the contact carries an edge pressure that Hertz's ellipse, lin2019's friction "
             "models and the FE modules (whose grooves end at that land) do not represent; lower the load or use a "

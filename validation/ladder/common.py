@@ -230,19 +230,25 @@ def limits_lines(case, names) -> list[str]:
 # --------------------------------------------------------------------------
 def truncations(case, result=None) -> tuple:
     """The :class:`lowmodel.truncation.Truncation` of every loaded contact of a guide's or screw's low-order touching
-    state (``result``: its lowmodel.bearing_results result, computed when None): the flank's shoulder from the
+    state (``result``: its lowmodel.bearing_results result, computed when None; none without a state): the flank's
+    shoulder from the
     contact angle with the ball centred (a guide's ``beta_0 + deviation``; a screw's flank angles of its deviation
     reading, lowmodel.screw.contacts.flank_angles), the ellipse's end from the loaded angle and ``a``."""
+    if result is None:
+        try:
+            result = (bearing_results.guide_result(case) if isinstance(case, LinearGuideCase)
+                      else bearing_results.screw_result(case) if isinstance(case, BallScrewCase) else None)
+        except ConvergenceError:  # no low-order state: no ellipse to check (the rungs say why, LIN2019_SCENES)
+            return ()
     if isinstance(case, LinearGuideCase):
-        result = result or bearing_results.guide_result(case)
         radius, conformity = case.guide.ball_radius, case.guide.conformity
         rigid = {(j, name): float(angle) for j in range(1, case.n_balls + 1)
                  for name, angle in zip(GUIDE_CONTACTS, case.contact_angles)}
     elif isinstance(case, BallScrewCase):
-        result = result or bearing_results.screw_result(case)
         radius, conformity = case.screw.ball_radius, case.screw.conformity
         angles = flank_angles(case.screw.nominal_angle, list(case.deviations), case.reading)
-        rigid = {(j + 1, name): float(angle) for j, row in enumerate(angles) for name, angle in zip(SCREW_CONTACTS, row)}
+        rigid = {(j + 1, name): float(angle) for j, row in enumerate(angles)
+                 for name, angle in zip(SCREW_CONTACTS, row)}
     else:
         return ()
     return tuple(truncation.truncation(f"ball {c.ball} {c.contact}", radius, conformity, rigid[(c.ball, c.contact)],
