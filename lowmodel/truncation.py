@@ -6,7 +6,7 @@ lies at the angle ``beta + theta_a`` from the load axis, ``beta`` the loaded con
 a / R_B`` (``a`` is measured in the contact's tangent plane, docs/hertz.md); the ellipse is truncated when that
 angle reaches the shoulder angle ``theta_s``, where the groove's flank meets its land.  A truncated contact carries
 an edge pressure Hertz's ellipse does not have: every model of the workbench (Hertz, the BEM on the groove's
-exact gap, lin2019's friction models, the FE modules, whose grooves end at the land) is outside its assumptions.
+exact gap, lin2019's friction models, the FE modules, whose flanks end at a land) is outside its assumptions.
 
 Where the shoulder is (a convention, docs/truncation.md): a case description gives no shoulder height, so the
 groove's land lies ``SHOULDER_DEPTH R_B = 0.25 R_B`` from the ball centre towards the groove's body, measured
@@ -14,7 +14,9 @@ along the load axis: for a linear guide's rail and carriage grooves below/above 
 FE four-point module since lin2017's cross-section, meshes.parts.rail), for a screw's and a nut's groove radially
 (the lands ``R_P -+ 0.25 R_B`` of the FE screw module, meshes.assemblies.ball_screw_module).  A flank of
 conformity ``f`` and contact angle ``beta_r`` (the ball centred, deviation included) then ends at the shoulder
-angle of :func:`shoulder_angle`: 75.5 deg at ``f -> 0.5``, about 76-77 deg at f 0.52-0.58 and 40-50 deg.
+angle of :func:`shoulder_angle`: ``acos 0.25`` = 75.5 deg at ``f -> 0.5``, 75.5-76.3 deg at f 0.5-0.6 and
+30-60 deg (docs/truncation.md, table).  The FE modules keep that land where the contact's zone fits on the
+flank; a heavy contact short of the shoulder gets a longer flank (:func:`land_depth`, ladder.rungs.module_fe).
 
 Only the shoulder end is checked: the other end reaches the groove's bottom (the other flank of a gothic arch)
 only where ``theta_a`` passes the contact angle itself, ``a / R_B > sin beta`` (0.64 at 40 deg), far past the
@@ -126,5 +128,5 @@ def words(found: list[Truncation] | tuple[Truncation, ...]) -> str:
     return (f"contact ellipse truncated by the groove's shoulder on {len(cut)} contact(s) ({names}); "
             f"worst {worst.text()} (the land {SHOULDER_DEPTH:g} R_B from the ball centre, the shoulder convention of "
             "docs/truncation.md): the contact carries an edge pressure that Hertz's ellipse, lin2019's friction "
-            "models and the FE modules (whose grooves end at that land) do not represent; lower the load or use a "
+            "models and the FE modules (their contacts on the flank) do not represent; lower the load or use a "
             "closer conformity / higher shoulder")

@@ -275,8 +275,8 @@ def truncation_check(run, case, result=None, *, time_s: float = 0.0) -> tuple:
 
 
 def not_truncated(case, result=None) -> None:
-    """NotApplicable when a contact ellipse of ``case`` reaches its groove's shoulder: the FE modules' grooves end
-    at the land (docs/truncation.md), an edge contact no module level resolves."""
+    """NotApplicable when a contact ellipse of ``case`` reaches its groove's shoulder (docs/truncation.md): an
+    edge contact, which the FE modules (their mortar zones on the flank, fem.fourpoint) do not resolve."""
     words = truncation.words(truncations(case, result))
     if words:
         raise NotApplicable(f"{words}. The FE module (fem.fourpoint, fem.screw_module) needs every contact ellipse "
