@@ -8,6 +8,7 @@ import contextlib
 import dataclasses
 import functools
 import math
+import time
 
 from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.errors import ConvergenceError
@@ -260,11 +261,14 @@ def truncation_check(run, case, result=None, *, time_s: float = 0.0) -> tuple:
     """The truncation finding of a rung (docs/truncation.md): the end of the worst contact ellipse's major axis
     against its groove's shoulder, a finding when it reaches it (every model of the rung then works outside its
     assumptions; the verdict names the contact and the angles).  Returns the truncations."""
+    start = time.perf_counter()
     found = truncations(case, result)
+    if result is None:  # the state solved here: its time is the check's
+        time_s += time.perf_counter() - start
     if not found:
         return found
     worst = min(found, key=lambda t: t.margin)
-    run.check(model="contact ellipse of the low-order touching state (Hertz semi-axis a)", family="low-order numerical",
+    run.check(model="contact ellipse of the low-order touching state (Hertz semi-axis a)", family="analytical",
               quantity=f"end of the major semi-axis, beta + asin(a/R_B), {worst.contact}", unit="rad",
               value=worst.end_angle, reference=worst.shoulder_angle, relation="le", tolerance=0.0, time_s=time_s,
               source=f"the groove's shoulder, the land {truncation.SHOULDER_DEPTH:g} R_B from the ball centre "
