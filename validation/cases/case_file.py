@@ -383,9 +383,12 @@ def _level(where: str, entry: dict, level_type: str):
     h = units.quantity(entry["h_contact"], "length", f"{where}.h_contact")
     checks.positive(f"{where}.h_contact", h, "m")
     growth = float(checks.bounded(f"{where}.growth", entry["growth"], 1.0, 3.0, upper_closed=True))
-    fine = units.quantity(entry["fine_radius"], "length", f"{where}.fine_radius") if "fine_radius" in entry else None
-    h_max = units.quantity(entry["h_max"], "length", f"{where}.h_max") if "h_max" in entry else None
-    return ModuleLevel(h, growth, fine, h_max)
+    sizes = {}
+    for name in ("fine_radius", "h_max"):  # optional: None leaves them to the mesh builder
+        if name in entry:
+            sizes[name] = checks.positive(f"{where}.{name}", units.quantity(entry[name], "length",
+                                                                            f"{where}.{name}"), "m")
+    return ModuleLevel(h, growth, sizes.get("fine_radius"), sizes.get("h_max"))
 
 
 def _screw(values: dict, material: Material, lubricant: Lubricant | None) -> BallScrew:

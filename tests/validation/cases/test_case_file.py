@@ -59,3 +59,58 @@ def test_paper_cases_read_the_printed_values():
     assert screw.screw.nut_speed == pytest.approx(2 * math.pi, rel=1e-15)
     assert screw.axial_load == 50.0
     assert guide == lin2019.TABLE3_A and screw == lin2019.TABLE5_A  # what the paper scenes run
+
+
+def _screw(edit: str, new: str) -> str:
+    text = case_file.template("ball-screw")
+    assert edit in text
+    return text.replace(edit, new)
+
+
+def _refused(text: str, line: int, *words: str) -> str:
+    """The CaseFileError of ``text`` (as file "c.toml"): a ValueError of one line naming the file, ``line`` and
+    ``words`` (the key, the range)."""
+    with pytest.raises(case_file.CaseFileError) as error:
+        case_file.loads(text, "c.toml")
+    message = str(error.value)
+    assert message.startswith(f"c.toml, line {line}: "), message
+    assert "\n" not in message, message
+    for word in words:
+        assert word in message, message
+    return message
+
+
+def _line(text: str, start: str) -> int:
+    return next(k for k, line in enumerate(text.splitlines(), start=1) if line.startswith(start))
+
+
+@pytest.mark.parametrize("value", ['{ value = ' + "9" * 400 + ', unit = "mm" }', '"1e999999999 mm"',
+                                   '"-1e999999999 mm"', '{ value = -' + "9" * 400 + ', unit = "mm" }'])
+def test_a_number_beyond_the_float_range_is_named(value):
+    # a 400-digit integer raised a bare OverflowError, "1e999999999 mm" decimal.Overflow
+    text = _guide('ball_radius = "1.5875 mm"', f"ball_radius = {value}")
+    _refused(text, _line(text, "ball_radius"), "guide.ball_radius", "float range")
+
+
+@pytest.mark.parametrize("key", ["h_max", "fine_radius"])
+@pytest.mark.parametrize("value", ['"-1 mm"', '"0 mm"'])
+def test_fe_level_sizes_must_be_positive(key, value):
+    # loaded silently before: a mesh level with a negative or zero element size or fine zone
+    levels = "\n".join(f'{f} = [{{ h_contact = "30 um", growth = 1.4, {key} = {value} }}]'
+                       for f in ("quick", "default", "fine"))
+    text = case_file.template("linear-guide") + "\n[fe]\n" + levels + "\n"
+    _refused(text, _line(text, "quick ="), f"fe.quick[0].{key}", "> 0")
+
+
+def test_fe_level_sizes_load_when_positive():
+    levels = "\n".join(f'{f} = [{{ h_contact = "30 um", growth = 1.4, h_max = "0.5 mm", fine_radius = "0.2 mm" }}]'
+                       for f in ("quick", "default", "fine"))
+    case = case_file.loads(case_file.template("linear-guide") + "\n[fe]\n" + levels + "\n", "c.toml")
+    assert (case.fe.levels.quick[0].h_max, case.fe.levels.quick[0].fine_radius) == (5e-4, 2e-4)
+
+
+@pytest.mark.parametrize("value", ['"1 1/s"', '"60 1/min"'])
+def test_an_angular_speed_says_what_turns(value):
+    # "1/s" was read as rad/s while "1/min" was refused: both are refused alike, naming the units a speed takes
+    text = _screw('nut_speed = "1 rev/s"', f"nut_speed = {value}")
+    _refused(text, _line(text, "nut_speed"), "screw.nut_speed", "rad/s", "rev/s", "rpm")
