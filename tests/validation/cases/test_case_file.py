@@ -114,3 +114,41 @@ def test_an_angular_speed_says_what_turns(value):
     # "1/s" was read as rad/s while "1/min" was refused: both are refused alike, naming the units a speed takes
     text = _screw('nut_speed = "1 rev/s"', f"nut_speed = {value}")
     _refused(text, _line(text, "nut_speed"), "screw.nut_speed", "rad/s", "rev/s", "rpm")
+
+
+@pytest.mark.parametrize("kind, edit, new, words", [
+    ("linear-guide", "friction_coefficient = 0.1", "friction_coefficient = 0", ["guide.friction_coefficient", "> 0"]),
+    ("linear-guide", 'groove_velocity = "100 mm/s"', 'groove_velocity = "0 mm/s"', ["guide.groove_velocity",
+                                                                                    "nonzero"]),
+    ("linear-guide", "side_force_ratio = -0.6", "side_force_ratio = -1.5", ["load.side_force_ratio", "lin2017 eq 37",
+                                                                          "(-0.932515, 1)"]),
+    ("linear-guide", "side_force_ratio = -0.6", "side_force_ratio = 1.0", ["load.side_force_ratio", "ball 1"]),
+    ("ball-screw", "friction_coefficient = 0.1", "friction_coefficient = 0", ["screw.friction_coefficient",
+                                                                            "(0, 2]"]),
+    ("ball-screw", 'nut_speed = "1 rev/s"', 'nut_speed = "0 rpm"', ["screw.nut_speed", "nonzero"]),
+    ("ball-screw", 'axial_load = "100 N"', 'axial_load = "1e9 N"', ["load.axial_load", "[0, 10000000] N"]),
+])
+def test_what_the_models_refuse_is_refused_at_load_time(kind, edit, new, words):
+    # loaded before, refused only by ballbench.friction, without file or line: the loader calls the models' own
+    # checks (lowmodel.model_inputs, the plausible axial load of lowmodel.checks.PLAUSIBLE)
+    text = case_file.template(kind)
+    assert edit in text
+    text = text.replace(edit, new)
+    _refused(text, _line(text, new.split(" =")[0]), *words)
+
+
+def test_the_side_force_range_is_the_models():
+    # the bound of load.side_force_ratio is that of lin2017 eq 37 at beta_0 + deviations: tan(43 deg) below,
+    # 1 = tan(45 deg) above for the template's (-2, 2, 0, 0) deg; just inside loads
+    inside = -0.99 * math.tan(math.radians(43.0))
+    case = case_file.loads(_guide("side_force_ratio = -0.6", f"side_force_ratio = {inside!r}"), "c.toml")
+    assert case.side_force_ratio == inside
+    text = _guide("side_force_ratio = -0.6", f"side_force_ratio = {-1.01 * math.tan(math.radians(43.0))!r}")
+    _refused(text, _line(text, "side_force_ratio"), "ball 1")
+
+
+def test_the_template_says_what_the_models_take():
+    guide, screw = case_file.template("linear-guide"), case_file.template("ball-screw")
+    assert "mu, Coulomb friction of every contact; > 0" in guide
+    assert "mu, Coulomb friction of every contact; in (0, 2]" in screw
+    assert "against the rail; nonzero" in guide
