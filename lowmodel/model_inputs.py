@@ -14,9 +14,11 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_limits
+from ballbench.lowmodel.geometry.groove import groove_radius
 
 __all__ = ["FRICTION_COEFFICIENT_MAX", "NUT_SPEED_RANGE", "guide_friction_coefficient", "groove_velocity",
-           "screw_friction_coefficient", "nut_speed", "four_point_contact", "RANGES"]
+           "screw_friction_coefficient", "nut_speed", "screw_pitch_radius", "four_point_contact",
+           "RANGES"]
 
 FRICTION_COEFFICIENT_MAX = 2.0  # mu in (0, 2]: residuals are scaled by mu F (friction would swamp the normal forces)
 NUT_SPEED_RANGE = (1e-100, 1e100)  # |omega_N| [rad/s]: quasi-static, any speed; the floats set the range
@@ -54,6 +56,17 @@ def nut_speed(value, name: str = "nut_speed") -> float:
                          "(nonzero: the ball motion is undetermined at rest; the friction Jacobian scales like "
                          f"1 / speed and leaves the float range near 1e-300), got {value!r}")
     return speed
+
+
+def screw_pitch_radius(pitch_radius, ball_radius, conformity, name: str = "pitch_radius") -> float:
+    """R_P [m] of lin2019 Sec 3's screw module: beyond the groove radius ``r_g = 2 f R_B``
+    (:func:`lowmodel.geometry.groove.groove_radius`; the screw groove must not reach the axis, as
+    :func:`lowmodel.geometry.groove.helical_groove` checks for the groove alone)."""
+    flank = groove_radius(ball_radius, conformity)
+    if not float(pitch_radius) > flank:
+        raise ValueError(f"{name} must exceed the groove radius 2 conformity ball_radius = {flank!r} m (the screw "
+                         f"groove must not reach the axis), got {pitch_radius!r}")
+    return float(pitch_radius)
 
 
 def four_point_contact(side_forces, vertical_force: float, contact_angles, name: str = "side_force_ratio") -> None:

@@ -121,9 +121,7 @@ def module(screw, oversize: float | None = None) -> ScrewModule:
     oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
                               upper_closed=True, note="i.e. [0, 0.01 ball_radius]")
     checks.plausible("oversize", oversize)  # a module's own oversize (the screw's is checked by BallScrew)
-    if pitch_radius <= 2.0 * conformity * ball_radius:
-        raise ValueError(f"pitch_radius must exceed the groove radius {2 * conformity * ball_radius!r} m, "
-                         f"got {screw.pitch_radius!r}")
+    model_inputs.screw_pitch_radius(pitch_radius, ball_radius, conformity)
     if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
         raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
                          f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {screw.lead!r}")

@@ -196,11 +196,14 @@ SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k
 OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant"}, "ball-screw": {"fe", "lubricant"},
                    "contact": {"fe", "screw"}}
 
-# what lin2019's models need of a key beyond its field's range: their own checks (lowmodel.model_inputs), at load time
-MODEL_CHECKS = {"linear-guide": {("guide", "friction_coefficient"): model_inputs.guide_friction_coefficient,
-                                 ("guide", "groove_velocity"): model_inputs.groove_velocity},
-                "ball-screw": {("screw", "friction_coefficient"): model_inputs.screw_friction_coefficient,
-                               ("screw", "nut_speed"): model_inputs.nut_speed}}
+# what lin2019's models need of a key beyond its field's range: their own checks (lowmodel.model_inputs), at load
+# time; kind -> (table, key) -> (check, the other keys of the table it takes after the key's value)
+MODEL_CHECKS = {"linear-guide": {("guide", "friction_coefficient"): (model_inputs.guide_friction_coefficient,),
+                                 ("guide", "groove_velocity"): (model_inputs.groove_velocity,)},
+                "ball-screw": {("screw", "friction_coefficient"): (model_inputs.screw_friction_coefficient,),
+                               ("screw", "nut_speed"): (model_inputs.nut_speed,),
+                               ("screw", "pitch_radius"): (model_inputs.screw_pitch_radius, "ball_radius",
+                                                           "conformity")}}
 
 _HEADERS = {
     "linear-guide": "A linear guide: balls between a rail (bottom groove) and a carriage (top groove), lin2019 Sec 2.",
@@ -393,8 +396,7 @@ def _level(where: str, entry: dict, level_type: str):
     if not set(entry) <= allowed or not {"h_contact", "growth"} <= set(entry):
         raise ValueError(f"{where} must be {{ h_contact = \"30 um\", growth = 1.4 }} (optionally fine_radius, h_max), "
                          f"got keys {sorted(entry)}")
-    h = units.quantity(entry["h_contact"], "length", f"{where}.h_contact")
-    checks.positive(f"{where}.h_contact", h, "m")
+    h = checks.positive(f"{where}.h_contact", units.quantity(entry["h_contact"], "length", f"{where}.h_contact"), "m")
     growth = float(checks.bounded(f"{where}.growth", entry["growth"], 1.0, 3.0, upper_closed=True))
     fine, h_max = (checks.positive(f"{where}.{k}", units.quantity(entry[k], "length", f"{where}.{k}"), "m")
                    if k in entry else None for k in ("fine_radius", "h_max"))  # None: the mesh builder's
@@ -424,8 +426,9 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                        + (f" (did you mean {close[0]!r}?)" if close else ""))
     top = _table(reader, data, kind, "", required=True)
     tables = {t: _table(reader, data, kind, t, required=t not in OPTIONAL_TABLES[kind]) for t in SCHEMA[kind] if t}
-    for (table, key), check in MODEL_CHECKS.get(kind, {}).items():
-        reader.check(table, key, check, tables[table][key], f"{table}.{key}")
+    for (table, key), (check, *others) in MODEL_CHECKS.get(kind, {}).items():
+        values = tables[table]
+        reader.check(table, key, check, values[key], *(values[k] for k in others), f"{table}.{key}")
     material = _material(tables["material"])
     fe_raw = data.get("fe", {})
     name = top["name"]
@@ -434,11 +437,8 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
             g, load, dev = tables["guide"], tables["load"], tables["deviations"]
             guide = LinearGuide(g["ball_radius"], g["conformity"], g["nominal_angle"], material,
                                 g["friction_coefficient"], g["groove_velocity"], _lubricant(tables))
-            fe = None
-            levels = _levels(reader, fe_raw, "module")
-            if levels is not None:
-                f = tables["fe"]
-                fe = ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
+            f, levels = tables["fe"], _levels(reader, fe_raw, "module")
+            fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
             case = LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"],
                                    (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
                                    load.get("n_balls", 2), name=name, fe=fe)
@@ -448,11 +448,8 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
         if kind == "ball-screw":
             screw = _screw(tables["screw"], material, _lubricant(tables))
             load = tables["load"]
-            fe = None
-            levels = _levels(reader, fe_raw, "module")
-            if levels is not None:
-                f = tables["fe"]
-                fe = ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
+            f, levels = tables["fe"], _levels(reader, fe_raw, "module")
+            fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
             return BallScrewCase(screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
                                  name=name, fe=fe)
         c = tables["contact"]
@@ -523,8 +520,9 @@ def kind_of(path: str | Path) -> str | None:
 # writing
 # --------------------------------------------------------------------------
 def _range_text(key: Key, kind: str = "", table: str = "") -> str:
-    if (table, key.name) in MODEL_CHECKS.get(kind, {}):
-        return model_inputs.RANGES[MODEL_CHECKS[kind][table, key.name].__name__]
+    model = MODEL_CHECKS.get(kind, {}).get((table, key.name), (None,))[0]
+    if model is not None and model.__name__ in model_inputs.RANGES:  # else the field's range (below)
+        return model_inputs.RANGES[model.__name__]
     if key.described:
         unit = bearing.FIELDS[key.described][1]
         shown = "um" if key.described == "oversize" else {"m": "mm", "Pa": "GPa", "rad": "deg"}.get(unit, unit)

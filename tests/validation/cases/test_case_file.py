@@ -127,6 +127,8 @@ def test_an_angular_speed_says_what_turns(value):
                                                                             "(0, 2]"]),
     ("ball-screw", 'nut_speed = "1 rev/s"', 'nut_speed = "0 rpm"', ["screw.nut_speed", "nonzero"]),
     ("ball-screw", 'axial_load = "100 N"', 'axial_load = "1e9 N"', ["load.axial_load", "[0, 10000000] N"]),
+    ("ball-screw", 'pitch_radius = "16.6 mm"', 'pitch_radius = "3 mm"', ["screw.pitch_radius",
+                                                                        "exceed the groove radius"]),
 ])
 def test_what_the_models_refuse_is_refused_at_load_time(kind, edit, new, words):
     # loaded before, refused only by ballbench.friction, without file or line: the loader calls the models' own
