@@ -1,12 +1,16 @@
 """What lin2019's low-order friction models need of their inputs beyond each field's own range
-(:data:`lowmodel.bearing.FIELDS`): a friction coefficient > 0, a nonzero speed, four-point contact of every ball.
+(:data:`lowmodel.bearing.FIELDS`): a friction coefficient > 0, a nonzero speed, a screw groove inside the pitch
+radius, four-point contact of every guide ball.
 
 Each check is defined once, here, and called by the model that needs it when it is built
 (:func:`lowmodel.linear_bearing.contacts.contacts_from_forces`, :func:`lowmodel.screw.contacts.module`,
 :func:`lowmodel.linear_bearing.b2b_rolling.solve`) and by the case files when they are read
-(``validation.cases.case_file``: before any work, the message then naming file, line and key).  numpy and the
-contact geometry only, so that reading a case file loads no model.  Every function returns the checked value(s) and
-raises ValueError naming ``name`` and the range otherwise.
+(``validation.cases.case_file``: before any work, the message then naming file, line and key).  Four-point contact
+is the exception: the guide models check it on lin2017 eq 36's forces as they compute them
+(:func:`lowmodel.linear_bearing.fourpoint.normal_forces`), the case files by :func:`four_point_contact` on the range
+those forces give, lin2017 eq 37 (:func:`lowmodel.geometry.fourpoint.contact_limits`, which the models' message
+quotes).  numpy and the geometry core only, so that reading a case file loads no model.  Each function raises
+ValueError naming ``name`` and the range; the others than :func:`four_point_contact` return the value as a float.
 """
 from __future__ import annotations
 
