@@ -267,7 +267,9 @@ def module_fe(case, result=None):
     """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
     ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
     (``result``), the candidate zone to twice the largest approach (plus the oversize), for a guide the elliptic
-    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max."""
+    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max; the ball caps
+    and the grooves' lands from the largest ellipse where the builders' defaults are too small for it
+    (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
     if case.fe is not None:
         return case
 
