@@ -58,8 +58,8 @@ from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
 
-__all__ = ["CONTACTS", "ShoulderContact", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult",
-           "load_module", "exact_gap", "build_module_model", "solve",
+__all__ = ["CONTACTS", "ShoulderContact", "ZoneEdgeContact", "ModuleGeometry", "ModuleModel", "ContactResult",
+           "ModuleResult", "load_module", "exact_gap", "build_module_model", "solve",
            "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
 CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
@@ -245,6 +245,16 @@ class ShoulderContact(ValueError):
         self.contact = contact
         super().__init__(f"contact {contact}: the FE contact pressure reaches the groove's shoulder (the end of its "
                          "flank): the contact ellipse is truncated (docs/truncation.md)")
+
+
+class ZoneEdgeContact(ValueError):
+    """The contact pressure of a solved module reaches the edge of its candidate zone (the gap ``gap_limit`` or the
+    ball cap's edge, meshes.parts.ball.cap_limit): a larger zone is needed.  ``contact`` names it."""
+
+    def __init__(self, contact: str):
+        self.contact = contact
+        super().__init__(f"contact {contact} reaches the edge of the candidate zone: raise gap_limit or the ball's "
+                         "cap_angle")
 
 
 def _on_flank(local: np.ndarray, ball_tris: np.ndarray, rail_tris: np.ndarray, candidates: np.ndarray,
@@ -476,7 +486,7 @@ def solve_loaded(model: ModuleModel, load: np.ndarray, *, tol: float = 1e-9, fit
         if np.any(touching[patch.shoulder]):
             raise ShoulderContact(patch.name)
         if np.any(touching[patch.boundary]):
-            raise ValueError(f"contact {patch.name} reaches the edge of the candidate zone: raise gap_limit")
+            raise ZoneEdgeContact(patch.name)
     results = []
     for i, patch in enumerate(model.patches):
         sel = model.contact_of == i

@@ -30,19 +30,31 @@ __all__ = ["b2b_fe_scene", "show_module"]
 def b2b_fe_scene(run, *, case, deadline) -> None:
     """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``).  Does not
     apply where a contact ellipse reaches its groove's shoulder (common.not_truncated, docs/truncation.md)."""
-    from ballbench.fem.fourpoint import ShoulderContact
+    from ballbench.fem.fourpoint import ShoulderContact, ZoneEdgeContact
 
     not_truncated(case)
+    sized = module_fe(case)
     try:
         if isinstance(case, LinearGuideCase):
-            _guide_b2b_fe(run, module_fe(case), deadline)
+            _guide_b2b_fe(run, sized, deadline)
         else:
-            _screw_b2b_fe(run, module_fe(case), deadline)
+            _screw_b2b_fe(run, sized, deadline)
     except ShoulderContact as error:  # the FE pressure reaches the flank's end where Hertz's ellipse stops short
         worst = min(truncations(case), key=lambda t: t.margin)
         raise NotApplicable(f"{error}, though the low-order ellipses stop short of it (closest: {worst.text()}, "
                             f"{math.degrees(worst.margin):.1f} deg short): the FE module's contact is an edge "
                             "contact its flank does not resolve") from error
+    except ZoneEdgeContact as error:  # a heavy ellipse wider than the largest ball cap the module can mesh
+        if case.fe is not None or sized.fe.min_cap_angle is None:
+            raise
+        radius = (case.guide if isinstance(case, LinearGuideCase) else case.screw).ball_radius
+        a_max = max(t.a for t in truncations(case))
+        asked, half = math.degrees(sized.fe.min_cap_angle), math.degrees(math.asin(min(1.0, a_max / radius)))
+        raise NotApplicable(f"{error}: the FE contact fills the ball cap the module meshes for it (asked for "
+                            f"{asked:.1f} deg, the ellipse to {ladder_rungs.CAP_MARGIN:g} a; "
+                            f"a / R_B = {a_max / radius:.3f}, half-angle {half:.1f} deg; the caps may not pass 0.45 x "
+                            "the angle between two contacts, meshes.parts.ball.cap_limit): a contact this wide is "
+                            "outside what the module resolves (docs/truncation.md)") from error
 
 
 def _levels(run, case, deadline, solve, dofs):
