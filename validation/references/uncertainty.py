@@ -14,8 +14,9 @@ quantity ``phi_i`` solved on ``n_g >= 3`` meshes of element sizes ``h_i`` (any r
 
    The error of the finest mesh is ``eps = |phi_fit(h_n) - phi_0|`` of ``delta_RE`` when the data converge
    monotonically with ``0.5 <= p < p_formal``; otherwise (p below 0.5 or at and above the formal order, divergent or
-   oscillating data) of the fixed-order fit of smallest ``sigma``: the observed order is then not trusted, and an
-   erratic one (p = 17 from three levels that agree to 0.1 %) cannot make the estimate blow up or vanish.
+   oscillating data) of the fixed-order fit of smallest ``sigma`` (three levels: see below): the observed order is
+   then not trusted, and an erratic one (p = 17 from three levels that agree to 0.1 %) cannot make the estimate
+   blow up or vanish.
 2. The data range (eq 19): ``Delta_phi = (max phi_i - min phi_i) / (n_g - 1)``.
 3. The safety factor: ``F_s = 1.25`` when the data converge monotonically with ``0.5 <= p < 1.05 p_formal`` (2.1 for
    the formal order 2) and ``sigma < Delta_phi``; else ``F_s = 3``.
@@ -30,7 +31,14 @@ quantity ``phi_i`` solved on ``n_g >= 3`` meshes of element sizes ``h_i`` (any r
 Conventions where the paper is silent or needs more meshes (it recommends at least four): a fit with as many
 parameters as meshes (``delta_RE`` or ``delta_12`` on three) has no degree of freedom; its ``sigma`` is taken with
 the denominator 1 (zero for an exact fit), and ``delta_12`` (a polynomial through every point) is left out of the
-choice below four meshes.  The exponent of ``delta_RE`` is searched in [0.05, 30] (a scan, then golden-section
+choice below four meshes.  Three levels: when their observed order is not trusted, the one fixed-order fit is the
+formal order's, ``delta_formal = alpha h^p_formal`` (unweighted or weighted, smaller ``sigma``), with ``F_s = 3``:
+the GCI's rule for an observed order that cannot be relied on (Roache 1998; ASME V&V 20-2009, section 2-4: the
+formal order with the factor of safety 3).  Each fixed fit on three levels keeps one degree of freedom, so choosing
+between ``delta_1`` and ``delta_2`` by ``sigma`` would choose by a single residual, the scatter of the levels; with
+``delta_1`` a study whose three levels agree within 0.2 % (docs/verification.md, "Three levels") would extrapolate
+that scatter 2.3 times beyond the finest level (``h_n / (h_1 - h_n)`` for the ratio 1.2) and then triple it.  With
+four or more levels the paper's choice among ``delta_1, delta_2, delta_12`` stands.  The exponent of ``delta_RE`` is searched in [0.05, 30] (a scan, then golden-section
 refinement of ``sum w_i (phi_i - phi_fit,i)^2``; for a fixed p the fit is linear in phi_0, alpha).  Identical values on
 every mesh give ``U = 0``.  The steps were checked against the public implementation of Appendix A in ORNL's
 cfd-verify (``EcaHoekstra2014Uncertainty``: eqs 19-21, the factors 1.25 and 3, the bound ``1.05 p_formal``); with
@@ -114,12 +122,15 @@ def _sigma(phi, fitted, w, parameters: int) -> float:
     return float(math.sqrt(n * float(np.sum(w * (phi - fitted) ** 2)) / max(n - parameters, 1)))
 
 
-def _fixed(h, phi, key: str, weighted: bool) -> _Fit:
-    powers = {"1": (1.0,), "2": (2.0,), "12": (1.0, 2.0)}[key]
+def _fixed(h, phi, key: str, weighted: bool, formal_order: float = 2.0) -> _Fit:
+    powers = {"1": (1.0,), "2": (2.0,), "12": (1.0, 2.0), "formal": (formal_order,)}[key]
     w = _weights(h, weighted)
     coefficients, fitted = _linear_fit(h, phi, w, powers)
-    return _Fit(key, weighted, float(coefficients[0]), fitted, _sigma(phi, fitted, w, 1 + len(powers)),
-                {"1": 1.0, "2": 2.0, "12": 1.0}[key])
+    return _Fit(key, weighted, float(coefficients[0]), fitted, _sigma(phi, fitted, w, 1 + len(powers)), powers[0])
+
+
+def _fit_words(fit: _Fit) -> str:
+    return f"phi_0 + alpha h^{fit.order:g}" if fit.key == "formal" else FITS[fit.key]
 
 
 def _power(h, phi, weighted: bool) -> _Fit:
@@ -186,12 +197,15 @@ def eca_hoekstra(sizes, values, formal_order: float = 2.0) -> Uncertainty:
         chosen = power
         how = f"observed order p = {p:.3g} (least squares)"
     else:
-        keys = ("1", "2", "12") if n >= 4 else ("1", "2")
-        chosen = _best([_fixed(h, phi, key, weighted) for key in keys for weighted in (False, True)])
+        # four or more levels: Eca and Hoekstra's choice among the fixed-order fits; three: the formal order's
+        # (module docstring, "Three levels")
+        keys = ("1", "2", "12") if n >= 4 else ("formal",)
+        chosen = _best([_fixed(h, phi, key, weighted, formal_order) for key in keys for weighted in (False, True)])
         why = "oscillating levels" if not monotone else (
             f"observed order p = {p:.3g} below 0.5" if p < 0.5 else
             f"observed order p = {p:.3g} not below the formal order {formal_order:g}")
-        how = f"{why}: the fixed-order fit {FITS[chosen.key]} of smallest standard deviation"
+        how = (f"{why}: the fixed-order fit {_fit_words(chosen)} of smallest standard deviation" if n >= 4 else
+               f"{why}: the formal-order fit {_fit_words(chosen)} (three levels)")
     scaled_sigma = chosen.sigma
     error = abs(float(chosen.fitted[-1]) - chosen.phi0)
     residual = abs(float(phi[-1] - chosen.fitted[-1]))
@@ -205,6 +219,6 @@ def eca_hoekstra(sizes, values, formal_order: float = 2.0) -> Uncertainty:
         rule = "sigma >= Delta_phi: 3 sigma / Delta_phi (eq 21)"
     sigma = scaled_sigma * data_range
     return Uncertainty(finest, scaled_u * data_range, finest + chosen.phi0 * data_range, p if monotone else math.nan,
-                       FITS[chosen.key], chosen.weighted, error * data_range, sigma, data_range, safety,
+                       _fit_words(chosen), chosen.weighted, error * data_range, sigma, data_range, safety,
                        f"Eca-Hoekstra on {n} meshes: {how}" + (", weighted" if chosen.weighted else "")
                        + f", {rule}")

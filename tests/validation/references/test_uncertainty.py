@@ -11,6 +11,7 @@ from ballbench.validation.references.uncertainty import SAFETY_TRUSTED, SAFETY_U
 # --quick): three FE levels n = b/h 5.5, 6.6, 7.92 whose semi-axis a agrees within 0.2 %
 CONTACT_N = (5.5, 6.6, 7.92)
 CONTACT_A_UM = (771.3, 771.4, 772.4)
+CONTACT_P0_MPA = (3634.08, 3632.17, 3624.49)
 
 
 def test_celik_2008_table_1_three_meshes_in_the_asymptotic_range():
@@ -37,6 +38,36 @@ def test_an_exact_power_law_on_four_meshes_by_hand():
     assert u.sigma < 1e-9 and u.safety == SAFETY_TRUSTED
     assert u.uncertainty == pytest.approx(1.25 * 0.5 * 0.512 ** 1.5, rel=1e-6)
     assert u.data_range == pytest.approx((values[0] - values[-1]) / 3)
+
+
+def test_a_power_law_with_noise_on_six_meshes_covers_the_exact_value():
+    # phi = 2 + 0.5 h^1.5 + 0.001 (-1)^k on h = 0.8^k, k = 0..5: the exact value is 2, the finest mesh is off by
+    # 0.5 * 0.8^7.5 - 0.001 = 0.09279; the fit recovers p and phi_0 within the noise, sigma is of the noise's size
+    # (amplitude 0.001, three fitted parameters on six points), and U covers the true error without tripling it
+    sizes = [0.8 ** k for k in range(6)]
+    values = [2.0 + 0.5 * h ** 1.5 + 1e-3 * (-1) ** k for k, h in enumerate(sizes)]
+    u = eca_hoekstra(sizes, values)
+    true_error = abs(values[-1] - 2.0)
+    assert true_error == pytest.approx(0.5 * 0.8 ** 7.5 - 1e-3)
+    assert u.order == pytest.approx(1.5, abs=0.05) and u.extrapolated == pytest.approx(2.0, abs=1e-3)
+    assert 5e-4 < u.sigma < 2e-3 and u.safety == SAFETY_TRUSTED
+    assert true_error <= u.uncertainty <= 1.25 * true_error + 2 * u.sigma + 2e-3
+
+
+def test_three_levels_with_an_untrusted_order_take_the_formal_order_fit_by_hand():
+    # phi = 0, 1, 3 on h = 1, 1/2, 1/4 (increments growing: p < 0.5): the formal-order fit phi_0 + alpha h^2.
+    # Unweighted through x = h^2 = 1, 0.25, 0.0625: mean x = 0.4375, mean phi = 4/3, Sxx = 0.4921875,
+    # Sxy = sum (x - 0.4375)(phi - 4/3) = 0.5625 (-4/3) - 0.1875 (-1/3) - 0.375 (5/3) = -1.3125, c1 = -2.666667,
+    # c0 = 4/3 + 2.666667 * 0.4375 = 2.5; residuals phi - fit = 0.166667, -0.833333, 0.666667: sigma (1 dof) =
+    # sqrt(3 * (1/3) * (0.027778 + 0.694444 + 0.444444)) = 1.080123.  Weighted (w ~ 1/h = 1, 2, 4: fit 2.8 - 3.2 x,
+    # residuals 0.4, -1, 0.4, sigma = sqrt(3 (0.16 + 2 + 0.64) / 7) = 1.095445) it is larger: the unweighted fit is
+    # kept.  eps = |fit(h_3) - c0| = 0.166667, the finest residual 0.666667; sigma < Delta_phi = 1.5: eq 20 with F_s 3,
+    # U = 3 * 0.166667 + 1.080123 + 0.666667 = 2.246790.  The choice of delta_1 by its sigma would extrapolate the
+    # growing increments linearly instead
+    u = eca_hoekstra([1.0, 0.5, 0.25], [0.0, 1.0, 3.0])
+    assert u.fit == "phi_0 + alpha h^2" and not u.weighted and u.safety == SAFETY_UNTRUSTED and u.order < 0.5
+    assert u.extrapolated == pytest.approx(2.5) and u.sigma == pytest.approx(1.080123, abs=1e-6)
+    assert u.error == pytest.approx(1 / 6) and u.uncertainty == pytest.approx(2.246790, abs=1e-6)
 
 
 def test_a_high_observed_order_falls_back_to_the_fixed_order_fits_by_hand():
@@ -69,6 +100,9 @@ def test_the_contact_study_that_agrees_within_0_2_percent_is_conclusive():
         assert u.safety == SAFETY_UNTRUSTED  # the erratic order is not trusted ...
         assert u.fit != "phi_0 + alpha h^p"  # ... and does not set the estimate
     assert extrapolate(sizes, CONTACT_A_UM).note.endswith("F_s 3")
+    # the same study's p0 [MPa] (levels.csv of that run), its worst quantity: spread 0.27 %, increments growing
+    u = eca_hoekstra(sizes, CONTACT_P0_MPA)
+    assert u.order < 0.5 and u.fit == "phi_0 + alpha h^2" and u.relative_uncertainty < 0.01
 
 
 def test_levels_that_scatter_by_tens_of_percent_stay_uncertain():
