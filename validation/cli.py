@@ -396,8 +396,10 @@ def build_parser() -> argparse.ArgumentParser:
                                    "error_vs_time.png into the output folder (emptied first if it holds an "
                                    "earlier report). Exit code 0 when every scene passes (declared known gaps "
                                    "and findings, models outside their declared accuracy on a case file's "
-                                   "geometry, allowed), 1 when a check fails, 130 when interrupted (Ctrl-C "
-                                   "stops after the current scene and writes a partial report; twice stops at once).")
+                                   "geometry, scenes that do not apply and inconclusive ones, without a "
+                                   "conclusive reference at the fidelity, allowed), 1 when a check fails, 130 "
+                                   "when interrupted (Ctrl-C stops after the current scene and writes a partial "
+                                   "report; twice stops at once).")
     p.add_argument("scenes", nargs="*", metavar="SCENE",
                    help="scene names or shell patterns such as 'lin2019-*' (default: every default scene), or "
                         "case files (my_guide.toml: the validation ladder on that case, docs/cases.md)")

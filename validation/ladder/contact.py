@@ -129,7 +129,10 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
     if reference is not None and not conclusive:
         _inconclusive(run, uncertainty, fe_rows, tag)
     if not conclusive:
-        run.table("Contact by each rung, side by side (no reference: nothing judged)" + suffix,
+        run.table("Contact by each rung, side by side (" + ("no conclusive reference at this fidelity"
+                                                            if reference is not None else
+                                                            "no reference at this level") + ": nothing judged)"
+                  + suffix,
                   ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]", "one evaluation [s]"),
                   _model_rows(models))
         if fe_results:

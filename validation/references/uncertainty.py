@@ -38,13 +38,13 @@ formal order with the factor of safety 3).  Each fixed fit on three levels keeps
 between ``delta_1`` and ``delta_2`` by ``sigma`` would choose by a single residual, the scatter of the levels; with
 ``delta_1`` a study whose three levels agree within 0.2 % (docs/verification.md, "Three levels") would extrapolate
 that scatter 2.3 times beyond the finest level (``h_n / (h_1 - h_n)`` for the ratio 1.2) and then triple it.  With
-four or more levels the paper's choice among ``delta_1, delta_2, delta_12`` stands.  The exponent of ``delta_RE`` is searched in [0.05, 30] (a scan, then golden-section
-refinement of ``sum w_i (phi_i - phi_fit,i)^2``; for a fixed p the fit is linear in phi_0, alpha).  Identical values on
-every mesh give ``U = 0``.  The steps were checked against the public implementation of Appendix A in ORNL's
-cfd-verify (``EcaHoekstra2014Uncertainty``: eqs 19-21, the factors 1.25 and 3, the bound ``1.05 p_formal``); with
-three meshes converging monotonically inside ``[0.5, p_formal)`` the procedure is Roache's GCI with F_s 1.25
-(tests/validation/references/test_uncertainty.py reproduces Celik et al. 2008, J. Fluids Eng. 130, 078001, Table 1).
-Pure arithmetic on the levels: it never calls a model.
+four or more levels the paper's choice among ``delta_1, delta_2, delta_12`` stands.
+
+The exponent of ``delta_RE`` is searched in [0.05, 30] (a scan, then golden-section refinement of
+``sum w_i (phi_i - phi_fit,i)^2``; for a fixed p the fit is linear in phi_0, alpha).  Identical values on every mesh
+give ``U = 0``.  With three meshes converging monotonically inside ``[0.5, p_formal)`` the procedure is Roache's
+GCI with F_s 1.25 (tests/validation/references/test_uncertainty.py reproduces Celik et al. 2008, J. Fluids Eng.
+130, 078001, Table 1).  Pure arithmetic on the levels: it never calls a model.
 """
 from __future__ import annotations
 

@@ -1,0 +1,95 @@
+"""Scenes of a case file without a conclusive reference at the run's fidelity (status ``inconclusive``): the verdict,
+the counts of results.json, the report (markdown, HTML, JUnit), the exit code of ``ballbench validate`` (0; --strict 1)
+and a solver's own check that still fails (validation/scene.py, "Inconclusive"; docs/your_own_bearing.md, 'Reading
+the verdict')."""
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from ballbench.validation import cli, ladder, report
+from ballbench.validation.report import results_from_json
+from ballbench.validation.runner import run_scene
+from ballbench.validation.scene import PASSING, Scene
+from tests import paths
+
+REASON = ("no conclusive reference: the uncertainty of the FE reference is 2.1 % in p0 against the 1 % it needs. "
+          "What settles it: a finer study: run at the default fidelity (without --quick) or --fine")
+
+
+def _scene(*, self_check_error: float = 0.0, self_check: bool = True, name: str = "zz-unsure") -> Scene:
+    def fn(run):
+        if self_check:  # a solver's own check (load equilibrium)
+            run.check(model="fem.contact", family="FE", quantity="force_sum", unit="N", value=1.0 + self_check_error,
+                      reference=1.0, source="load equilibrium", tolerance=1e-9, time_s=0.0)
+        run.inconclusive(REASON)
+        run.table("side by side", ("model", "a [mm]"), [("hertz", "0.79"), ("FE", "0.77")])
+
+    return Scene(name, "a case file's contact rung", fn, tags=("case",))
+
+
+def test_a_scene_without_a_conclusive_reference_is_inconclusive(tmp_path):
+    result = run_scene(_scene(), "quick", tmp_path)
+    assert not result.error and result.inconclusive == REASON
+    assert result.status() == "inconclusive" and result.passed and "inconclusive" in PASSING
+    assert result.status(strict=True) == "fail"
+
+
+def test_an_inconclusive_scene_with_no_other_check_is_no_error(tmp_path):
+    # the reference is what is missing, not the scene's work: no "scene recorded no checked output"
+    result = run_scene(_scene(self_check=False), "quick", tmp_path)
+    assert not result.error and result.status() == "inconclusive"
+
+
+def test_a_failed_self_check_still_fails_an_inconclusive_scene(tmp_path):
+    result = run_scene(_scene(self_check_error=1e-3), "quick", tmp_path)
+    assert result.status() == "fail" and not result.passed
+
+
+def test_an_inconclusive_scene_needs_a_reason(tmp_path):
+    def fn(run):
+        run.inconclusive(" ")
+
+    result = run_scene(Scene("zz-no-reason", "no reason", fn, tags=("case",)), "quick", tmp_path)
+    assert result.status() == "error" and "needs a reason" in result.error
+
+
+def test_the_report_counts_and_names_an_inconclusive_scene(tmp_path):
+    result = run_scene(_scene(), "quick", tmp_path / "run")
+    report.write_report([result], tmp_path, "quick", junit=tmp_path / "junit.xml")
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data["passed"] and data["counts"]["inconclusive"] == 1 and data["counts"]["pass"] == 0
+    (scene,) = data["scenes"]
+    assert scene["status"] == "inconclusive" and scene["passed"] and scene["inconclusive"] == REASON
+    assert results_from_json(data)[0].inconclusive == REASON  # a re-rendered report keeps it
+    text = (tmp_path / "report.md").read_text()
+    assert "## Scenes without a conclusive reference at this fidelity" in text
+    assert "INCONCLUSIVE (no conclusive reference at this fidelity)" in text and "What settles it" in text
+    assert "1 inconclusive (no conclusive reference at this fidelity)" in text
+    assert 'class="inconclusive"' in (tmp_path / "report.html").read_text()
+    suite = ET.parse(tmp_path / "junit.xml").getroot()
+    assert suite.get("skipped") == "1" and suite.get("failures") == "0" and suite.get("errors") == "0"
+    assert suite.find("testcase/skipped").get("message") == "inconclusive: " + REASON
+
+
+def test_validate_exits_0_on_an_inconclusive_scene_and_1_with_strict(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(ladder, "case_scenes", lambda case, stem, top="stick-slip", deadline=None: [_scene()])
+    path = str(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    out = ["--quick", "--no-progress", "--out", str(tmp_path / "report")]
+    assert cli.main(["validate", path, *out]) == 0
+    captured = capsys.readouterr()
+    said = captured.out + captured.err
+    assert "INCONCLUSIVE" in said and "What settles it" in said
+    assert "0 of 1 scenes passed" in said and "1 inconclusive" in said
+    assert cli.main(["validate", path, "--strict", *out]) == 1
+    captured = capsys.readouterr()
+    assert "inconclusive (--strict): no conclusive reference" in captured.out + captured.err
+
+
+@pytest.mark.parametrize("strict", [False, True])
+def test_the_junit_of_a_strict_run_fails_an_inconclusive_scene(tmp_path, strict):
+    result = run_scene(_scene(), "quick", tmp_path)
+    suite = ET.fromstring(report.to_junit([result], strict=strict))
+    assert suite.get("failures") == ("1" if strict else "0")
