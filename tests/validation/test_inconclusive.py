@@ -93,3 +93,38 @@ def test_the_junit_of_a_strict_run_fails_an_inconclusive_scene(tmp_path, strict)
     result = run_scene(_scene(), "quick", tmp_path)
     suite = ET.fromstring(report.to_junit([result], strict=strict))
     assert suite.get("failures") == ("1" if strict else "0")
+
+
+def _guide(tmp_path, force: str):
+    from ballbench.validation.cases import case_file
+
+    text = case_file.template("linear-guide")
+    assert 'vertical_force = "50 N"' in text
+    path = tmp_path / "g.toml"
+    path.write_text(text.replace('vertical_force = "50 N"', f'vertical_force = "{force}"'))
+    return case_file.load(path)
+
+
+def _contact_up_to_the_bem(case, tmp_path):
+    (scene,) = [s for s in ladder.case_scenes(case, "g", top="BEM") if s.name == "g-contact"]
+    return run_scene(scene, "quick", tmp_path)
+
+
+def test_the_bem_outside_its_validity_judges_no_model(tmp_path):
+    # 1/8-inch ball, f 0.52, 500 N: a/R = 0.47 by the BEM, beyond the half-space rungs' 0.3; the FE study of that
+    # contact puts the BEM further from the FE in a (-3.96 %) than Hertz (+2.06 %): the BEM is no referee there
+    result = _contact_up_to_the_bem(_guide(tmp_path, "500 N"), tmp_path / "500")
+    assert not result.error and result.status() == "findings"  # Hertz's own a/R flag, nothing else
+    assert [o.quantity for o in result.outputs] == ["a / R (Hertz's small-contact assumption)"]
+    assert any("No reference at this level" in note and "a/R = 0.467" in note for note in result.notes)
+    (table,) = [t for t in result.tables if "no reference at this level" in t[0]]
+    assert [row[0] for row in table[2]][:2] == ["lowmodel.contact.hertz", "lowmodel.contact.halfspace (exact gap)"]
+
+
+def test_the_bem_inside_its_validity_judges_hertz(tmp_path):
+    # the template's 50 N: a/R = 0.22, the BEM is the referee of Hertz without an FE rung
+    result = _contact_up_to_the_bem(_guide(tmp_path, "50 N"), tmp_path / "50")
+    assert not result.error
+    judged = {(o.model, o.quantity) for o in result.outputs}
+    assert ("lowmodel.contact.hertz", "a") in judged
+    assert any("Reference: the finest BEM grid" in note for note in result.notes)
