@@ -52,7 +52,7 @@ FRICTIONLESS_WORDS = ("the loads of the frictionless statics of the balls at the
 
 
 def settle_words(fidelity: str, finer: str) -> str:
-    """What settles an inconclusive reference (docs/your_own_bearing.md, "Reading the verdict"): the next fidelity
+    """What settles an inconclusive reference (docs/verification.md, "Bounds and INCONCLUSIVE"): the next fidelity
     of the run at ``fidelity``, and ``finer``, the finer levels in words (e.g. "FE levels n = b/h 5.5, 6.6, 7.92,
     9.5, 11.4"), for a case file's own ``[fe]`` table."""
     step = {"quick": "run at the default fidelity (without --quick) or --fine",

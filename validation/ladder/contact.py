@@ -28,9 +28,8 @@ __all__ = ["contact_scene", "show_contact", "HALF_SPACE_RATIO"]
 # small against the radii of both surfaces (docs/hertz.md and docs/halfspace.md, "Validity").  The limit is Hertz's
 # flag, a / R <= 0.3 (lowmodel.contact.hertz.VALIDITY_RATIO) with R the smallest principal radius of either surface
 # (the ball's: a groove's radius f D is larger, so a / r_groove < a / R_B and one ratio bounds both).  A half-space
-# rung beyond it is no referee of another model: at a/R = 0.5 (1/8-inch ball, f 0.52, 500 N) the FE study puts the
-# BEM 3.96 % off in a, further than Hertz (+2.06 %), where the BEM claims 0.5 % (docs/your_own_bearing.md, "No
-# reference at this level").
+# rung beyond it is no referee of another model: there the FE study can put the BEM further from the FE than Hertz
+# (docs/verification.md, "No reference at this level", the measured case).
 HALF_SPACE_RATIO = hertz.VALIDITY_RATIO
 
 

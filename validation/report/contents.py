@@ -172,7 +172,7 @@ def _inconclusive(results, counted: Tally) -> list[Section]:
         "; they do not fail the run (", Span("--strict", "code"), " makes them fail).")
     return [Section("Scenes without a conclusive reference at this fidelity", "inconclusive", (
         Paragraph(("Each scene below ended ", Span("inconclusive", status="inconclusive"), ": ", INCONCLUSIVE_MEANING,
-                   consequence, " (docs/your_own_bearing.md, 'Reading the verdict').")),
+                   consequence, " (docs/verification.md, 'Bounds and INCONCLUSIVE').")),
         Table(("scene", "status", "reason and what settles it"),
               tuple((Span(r.name, link=f"#{r.name}"), Span(status_word(s), status=s), r.inconclusive)
                     for r, s in zip(results, counted.statuses) if r in unsure))))]
