@@ -196,7 +196,7 @@ def _module_table(run, rows, key, label, low_state, speed, reference) -> None:
     table = [("low-order numerical", "-", "-", fmt(low), error(low), fmt(low_state.input_power / abs(speed)), "-")]
     table += [(f"FE-informed, h {r['h_contact_um']:.0f} um", str(r["ndofs"]), f"{r['wall_s']:.0f}", fmt(r["F_B2B"]),
                error(r["F_B2B"]), fmt(r[key]), fmt(100 * r["friction_increase"]) + " %") for r in rows]
-    table.append(("reference (" + ("h -> 0" if len(rows) >= 2 else "finest level") + ")", "", "", fmt(reference), "",
+    table.append(("reference (" + ("h -> 0" if len(rows) == 2 else "finest level") + ")", "", "", fmt(reference), "",
                   "", ""))
     run.table("B2B force and friction by model and mesh level", ("model", "DOFs", "wall [s]", "F_B2B [N]",
                                                                  "F_B2B error", label, "friction increase"), table)
