@@ -60,7 +60,9 @@ Inconclusive: a case file's scene whose reference (an FE mesh study) is too unce
 the models against it calls ``run.inconclusive(reason)``, the reason naming the uncertainty, its bound and the
 fidelity or ``[fe]`` levels that settle it; the models judged against that reference are then not checked (no
 finding: there is no conclusive reference), the solver's own checks still are.  Its status is ``inconclusive``: it
-passes the run (``--strict`` makes it fail); a failed self-check still makes it ``fail``.
+passes the run (``--strict`` makes it fail); a failed self-check still makes it ``fail``.  A registered (paper)
+scene that calls it ends in ``error``: the papers' references are known at the levels those scenes run
+(docs/verification.md).
 """
 from __future__ import annotations
 
@@ -499,6 +501,9 @@ class Run:
         reference.  Called more than once (one reference per contact), the reasons are joined."""
         if not isinstance(reason, str) or not reason.strip():
             raise ValueError("Run.inconclusive needs a reason: the uncertainty, its bound and what settles it")
+        if "case" not in self.scene.tags:  # the papers' scenes run at levels their references are known at
+            raise ValueError(f"only a case file's scene may end inconclusive; {self.scene.name} is a registered "
+                             f"(paper) scene: {reason.strip()}")
         self._inconclusive.append(reason.strip())
 
     @property

@@ -56,6 +56,14 @@ def test_an_inconclusive_scene_needs_a_reason(tmp_path):
     assert result.status() == "error" and "needs a reason" in result.error
 
 
+def test_only_a_case_file_s_scene_may_be_inconclusive(tmp_path):
+    def fn(run):
+        run.inconclusive(REASON)
+
+    result = run_scene(Scene("zz-paper", "a registered scene", fn), "quick", tmp_path)
+    assert result.status() == "error" and "only a case file's scene" in result.error
+
+
 def test_the_report_counts_and_names_an_inconclusive_scene(tmp_path):
     result = run_scene(_scene(), "quick", tmp_path / "run")
     report.write_report([result], tmp_path, "quick", junit=tmp_path / "junit.xml")
