@@ -136,3 +136,37 @@ def test_the_bem_inside_its_validity_judges_hertz(tmp_path):
     judged = {(o.model, o.quantity) for o in result.outputs}
     assert ("lowmodel.contact.hertz", "a") in judged
     assert any("Reference: the finest BEM grid" in note for note in result.notes)
+
+
+def _b2b_scene(forces):
+    from ballbench.validation.ladder import b2b_fe
+
+    # three module levels h_contact = b_max / n, n = 1.25, 1.5625, 1.95 (quick, docs/your_own_bearing.md)
+    rows = [dict(h_contact_um=100.0 / n, F_B2B=f, wall_s=1.0) for n, f in zip((1.25, 1.5625, 1.95), forces)]
+    low = [("lowmodel.screw.b2b", "low-order numerical", 1.0, 0.01)]
+
+    def fn(run):
+        b2b_fe.judge_b2b(run, "ball-screw", rows, low, 10.0)
+
+    return Scene("zz-b2b-fe", "a case file's FE-informed rung", fn, tags=("case",))
+
+
+def test_scattered_module_levels_leave_the_b2b_models_unjudged(tmp_path):
+    # FE-informed forces 0.633, 1.104, 0.971 N oscillate by tens of percent: U far above the 5 % bound
+    result = run_scene(_b2b_scene((0.633, 1.104, 0.971)), "quick", tmp_path)
+    assert not result.error and result.status() == "inconclusive" and result.passed
+    assert not [o for o in result.outputs if o.model == "lowmodel.screw.b2b"]
+    assert "the 5 % it needs" in result.inconclusive and "What settles it" in result.inconclusive
+    assert "run at the default fidelity (without --quick) or --fine" in result.inconclusive
+    assert "h_contact = 80, 64, 51, 41, 33 um" in result.inconclusive  # the levels continued at their ratio
+    (table,) = [t for t in result.tables if "nothing judged" in t[0]]
+    assert ("lowmodel.screw.b2b", "low-order numerical", "1") in table[2]
+
+
+def test_module_levels_that_agree_judge_the_b2b_models(tmp_path):
+    result = run_scene(_b2b_scene((1.004, 1.001, 1.002)), "quick", tmp_path)
+    assert not result.error and not result.inconclusive
+    (judged,) = [o for o in result.outputs if o.model == "lowmodel.screw.b2b"]
+    assert judged.reference == 1.002 and judged.status == "pass"
+    (bound,) = [o for o in result.outputs if o.quantity == "relative uncertainty of the F_B2B reference"]
+    assert bound.status == "pass" and bound.value < 0.05

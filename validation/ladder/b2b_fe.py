@@ -25,7 +25,7 @@ from ballbench.validation.references.uncertainty import eca_hoekstra
 from ballbench.validation.runner import GB
 from ballbench.validation.scene import NotApplicable
 
-__all__ = ["b2b_fe_scene", "show_module"]
+__all__ = ["b2b_fe_scene", "show_module", "judge_b2b", "B2B_UNCERTAINTY"]
 
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
@@ -78,6 +78,17 @@ def _memory_guard(run, level, ndofs: int) -> str:
 
 
 B2B_UNCERTAINTY = REFERENCE_UNCERTAINTY * 5  # 5 % against the 7-10 % claims the FE-informed force judges
+
+
+def judge_b2b(run, kind: str, rows, low, scale: float) -> float:
+    """The FE-informed reference of the module study ``rows`` (per level, coarse to fine: ``h_contact_um``,
+    ``F_B2B`` [N], ``wall_s``) and the B2B models ``low`` ((model, family, F_B2B [N], time [s]), ...) judged against
+    it with ``kind``'s tolerance (:data:`B2B_TOLERANCE`), or the scene inconclusive when the reference's uncertainty
+    exceeds :data:`B2B_UNCERTAINTY`; ``scale`` is mu times the ball load [N] (a force near zero is judged on
+    :data:`NEAR_ZERO_B2B` of it).  Returns the reference [N]."""
+    reference, source, extrapolation = _b2b_reference(run, rows)
+    _b2b_checks(run, kind, reference, source, extrapolation, low, rows, scale)
+    return reference
 
 
 def _b2b_reference(run, rows, key: str = "F_B2B"):
@@ -177,9 +188,7 @@ def _guide_b2b_fe(run, case: LinearGuideCase, deadline) -> None:
                     power_balance=float(state.power_balance), **{k: float(x) for k, x in timings.items()})
 
     rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_linear.level_dofs, case))
-    reference, source, extrapolation = _b2b_reference(run, rows)
-    _b2b_checks(run, "linear-guide", reference, source, extrapolation, low, rows,
-                guide.friction_coefficient * case.vertical_force)
+    reference = judge_b2b(run, "linear-guide", rows, low, guide.friction_coefficient * case.vertical_force)
     _informed_power_check(run, rows[-1], "energy conservation incl. B2B loss (lin2019 eq 7; docs/fe_b2b.md: 1e-6)")
     _module_table(run, rows, "friction_force_N", "friction force [N]", low_state, guide.groove_velocity, reference)
     run.write_csv("levels.csv", rows)
@@ -235,9 +244,7 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
                     power_balance=float(informed.power_balance), **{k: float(x) for k, x in timings.items()})
 
     rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_screw.level_dofs, case))
-    reference, source, extrapolation = _b2b_reference(run, rows)
-    _b2b_checks(run, "ball-screw", reference, source, extrapolation, low, rows,
-                case.screw.friction_coefficient * max(case.axial_load, 1.0))
+    reference = judge_b2b(run, "ball-screw", rows, low, case.screw.friction_coefficient * max(case.axial_load, 1.0))
     _informed_power_check(run, rows[-1], "energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)")
     _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed, reference)
     run.write_csv("levels.csv", rows)
