@@ -170,3 +170,48 @@ def test_module_levels_that_agree_judge_the_b2b_models(tmp_path):
     assert judged.reference == 1.002 and judged.status == "pass"
     (bound,) = [o for o in result.outputs if o.quantity == "relative uncertainty of the F_B2B reference"]
     assert bound.status == "pass" and bound.value < 0.05
+
+
+def _contact_with_fe_levels(tmp_path, monkeypatch, factors):
+    """The -contact scene of the 50 N guide template up to the FE, its FE levels replaced by Hertz's values times
+    ``factors`` (coarse to fine): the study's data without the solves (a reference is pure arithmetic on them)."""
+    from types import SimpleNamespace
+
+    from ballbench.validation.ladder import contact as contact_module
+    from ballbench.validation.ladder import rungs
+    from ballbench.validation.studies import fe_contact
+
+    levels = iter(factors)
+
+    def solve_level(pair, level):
+        factor = next(levels)
+        values = {q: v * factor for q, v in rungs.hertz_values(pair).items()}
+        return SimpleNamespace(**values, h_contact=values["b"] / level.n, ndofs=1000, iterations=1, residual=0.0,
+                               force_sum=pair.force, model=SimpleNamespace(factor=None)), None
+
+    monkeypatch.setattr(fe_contact, "pair_model", lambda contact: contact)
+    monkeypatch.setattr(fe_contact, "level_dofs", lambda pair, level: 1000)
+    monkeypatch.setattr(fe_contact, "solve_level", solve_level)
+    monkeypatch.setattr(contact_module, "_fields", lambda *args: None)
+    (scene,) = [s for s in ladder.case_scenes(_guide(tmp_path, "50 N"), "g", top="FE") if s.name == "g-contact"]
+    return run_scene(scene, "quick", tmp_path / "out")
+
+
+def test_scattered_fe_levels_make_the_contact_inconclusive(tmp_path, monkeypatch):
+    result = _contact_with_fe_levels(tmp_path, monkeypatch, (1.0, 1.05, 0.97))
+    assert not result.error and result.status() == "inconclusive" and result.status(strict=True) == "fail"
+    judged = {(o.model, o.quantity) for o in result.outputs}
+    assert judged == {("lowmodel.contact.hertz", "a / R (Hertz's small-contact assumption)"),
+                      ("fem.contact", "force_sum")}  # Hertz's own flag and the FE's load equilibrium only
+    assert "against the 1 % it needs" in result.inconclusive
+    assert "FE levels n = b/h 5.5, 6.6, 7.92, 9.5, 11.4" in result.inconclusive
+    assert any("no conclusive reference at this fidelity" in t[0] for t in result.tables)
+
+
+def test_fe_levels_that_agree_with_an_erratic_order_judge_the_models(tmp_path, monkeypatch):
+    # increments growing, as the 500 N guide's a (0.07 % then 0.12 %): observed order below 0.5, yet conclusive
+    result = _contact_with_fe_levels(tmp_path, monkeypatch, (1.0, 1.0007, 1.0019))
+    assert not result.error and not result.inconclusive and result.status() in ("pass", "findings")
+    (bound,) = [o for o in result.outputs if o.model == "uncertainty of the FE study"]
+    assert bound.status == "pass" and bound.value < 0.01
+    assert {o.quantity for o in result.outputs if o.model == "lowmodel.contact.hertz"} >= {"a", "b", "p0", "delta"}
