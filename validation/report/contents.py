@@ -168,8 +168,8 @@ def _inconclusive(results, counted: Tally) -> list[Section]:
     unsure = [r for r in results if r.inconclusive and not r.error and not r.not_applicable]
     if not unsure:
         return []
-    consequence = ("; this ", Span("--strict", "code"), " run counts them as failures.") if counted.strict else (
-        "; they do not fail the run (", Span("--strict", "code"), " makes them fail).")
+    consequence = ("; this ", Span("--strict", "code"), " run counts them as failures") if counted.strict else (
+        "; they do not fail the run (", Span("--strict", "code"), " makes them fail)")
     return [Section("Scenes without a conclusive reference at this fidelity", "inconclusive", (
         Paragraph(("Each scene below ended ", Span("inconclusive", status="inconclusive"), ": ", INCONCLUSIVE_MEANING,
                    consequence, " (docs/verification.md, 'Bounds and INCONCLUSIVE').")),
