@@ -270,15 +270,30 @@ def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
     assert "existing file" in one_error_line(capsys, cli.main(["show", "fe-hertz-flat", "--out", str(a_file)]))
 
 
-def test_rerun_into_same_out_starts_clean(fakes, tmp_path):
+def test_rerun_into_same_out_removes_the_earlier_reports_files_only(fakes, tmp_path, capsys):
+    # no stale file of the earlier report survives a re-run; files of one's own put into it do, untouched (the
+    # run used to empty the folder: a user's notes.txt and folder were deleted without a word)
     code, out = _validate(tmp_path, "zz-a-pass")
     assert code == 0 and (out / "zz-a-pass" / "line.png").exists()
-    (out / "zz-a-pass" / "stale.png").write_bytes(b"old")
-    (out / "old-scene").mkdir()
+    (out / "zz-a-pass" / "mine.png").write_bytes(b"mine")
+    (out / "notes.txt").write_text("my notes")
+    (out / "my-folder" / "deeper").mkdir(parents=True)
+    (out / "my-folder" / "deeper" / "data.csv").write_text("1,2")
+    (out / "empty-of-mine").mkdir()
+    capsys.readouterr()
     code, out = _validate(tmp_path, "zz-h-after")
     assert code == 0
-    assert not (out / "zz-a-pass").exists() and not (out / "old-scene").exists()
+    assert not (out / "zz-a-pass" / "line.png").exists()
     assert (out / "zz-h-after" / "line.png").exists()
+    assert (out / "notes.txt").read_text() == "my notes"
+    assert (out / "my-folder" / "deeper" / "data.csv").read_text() == "1,2"
+    assert (out / "zz-a-pass" / "mine.png").read_bytes() == b"mine" and (out / "empty-of-mine").is_dir()
+    err = capsys.readouterr().err
+    assert "untouched" in err and "notes.txt" in err and "my-folder" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]  # no temporary or aside folder left
+    # a third run: the carried files are still the user's (not in the manifest), the second run's are removed
+    assert _validate(tmp_path, "zz-a-pass")[0] == 0
+    assert (out / "notes.txt").exists() and not (out / "zz-h-after").exists()
 
 
 def test_ctrl_c_inside_a_scene_writes_partial_report(fakes, tmp_path, capsys):
