@@ -34,10 +34,10 @@ uncertainty of the extrapolated reference stay pass/fail.
 
 A scene whose model has no state on the case raises NotApplicable (status ``not applicable``, with the reason): the
 FE screw module where lin2019's state leaves a contact unloaded (b2b_fe); every ball-screw scene where lin2019's
-model stops at its declared limit past the preload loss (common.within_model_limits, around each scene function
-and show hook), but ``<stem>-contact``, which then runs on the loads of the frictionless two-point statics
-(lowmodel.screw.preload; the contact module).  :func:`limits` says before any work where a ball screw's axial load
-stands against its preload loss.
+model finds no state (past the preload loss, or below it where friction unloads a contact first;
+common.within_model_limits, around each scene function and show hook), but ``<stem>-contact``, which then runs on
+the loads of the frictionless statics (lowmodel.screw.preload; the contact module).  :func:`limits` says before
+any work where a ball screw's axial load stands against its preload loss.
 
 ``top`` (``--levels``) names the highest rung to run; ``deadline`` (``--budget``, a ``time.monotonic()`` value)
 stops refining a mesh study when the next level's predicted time would pass it.

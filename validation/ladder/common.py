@@ -5,9 +5,11 @@ loss of a ball screw and the limits of lin2019's model it sets (:func:`preload_l
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import functools
 import math
 
+from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
@@ -28,18 +30,20 @@ HAMROCK_DOWSON_TOLERANCE = 0.15
 EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as those scenes check it
 
 __all__ = ["B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
-           "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss", "preload_loss_words",
-           "oversize_for", "past_preload_loss", "FRICTIONLESS_WORDS", "within_model_limits", "limited",
-           "limits_lines", "LIN2019_SCENES"]
+           "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
+           "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
+           "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
+           "LIN2019_SCENES"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
 # stick/slip balls, the EHL loads): where that model has no state they do not apply, but for the contact rung, which
 # judges contact mechanics and then runs on the loads of the frictionless statics (FRICTIONLESS_WORDS)
 LIN2019_SCENES = ("balls", "contact", "ehl", "b2b-fe", "stick-slip")
 # what the -contact scene and the header say when its loads are those of the frictionless statics
-FRICTIONLESS_WORDS = ("the loads of the frictionless two-point statics of the balls at the case's axial load "
+FRICTIONLESS_WORDS = ("the loads of the frictionless statics of the balls at the case's axial load "
                       "(lowmodel.screw.preload.frictionless_statics: exact flank arcs, Hertz's law lin2019 eq 53, "
-                      "unloaded contacts carry nothing), not those of lin2019's friction model, which has no state "
+                      "unloaded contacts carry nothing: two-point contact past the preload loss), not those of "
+                      "lin2019's friction model, which has no state "
                       "at this load; the contact rung judges contact mechanics (Hertz, BEM, FE at a given load), "
                       "not friction")
 
@@ -95,33 +99,72 @@ def preload_loss_words(case) -> str:
             "docs/ball_screw.md, 'Preload loss')")
 
 
+# the reasons a ConvergenceError of lin2019's ball-screw model gives when its continuation finds no state: the load
+# ramp stopping near full sliding (lowmodel.screw.b2b), the preload continuation stopping at a contact that slides
+# fully or without a named cause (lowmodel.screw.convergence.stall_reason); any other reason is a solver fault
+NO_STATE_REASONS = (FULL_SLIDING_LIMIT, "a contact slides fully", "continuation stalled",
+                    "preload continuation stalled")
+STATE_SEARCH_STEPS = 8  # bisection steps of :func:`largest_state_load` (the load known to 2^-8 of the case's)
+
+
+@functools.lru_cache(maxsize=16)
+def largest_state_load(case) -> float | None:
+    """The largest axial load [N] at or below ``case.axial_load`` at which lin2019's ball-screw model of ``case``
+    finds a state, by bisection on the axial load (:data:`STATE_SEARCH_STEPS` steps; the model found no state at
+    ``case.axial_load``); None when it finds none even at zero axial load (the preload alone).  Evidence for the
+    reader, not a proof: a continuation may stop short of a state that exists."""
+    def has_state(load: float) -> bool:
+        try:
+            bearing_results.screw_states(dataclasses.replace(case, axial_load=load))
+        except ConvergenceError:
+            return False
+        return True
+
+    if not has_state(0.0):
+        return None
+    low, high = 0.0, float(case.axial_load)
+    for _ in range(STATE_SEARCH_STEPS):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if has_state(middle) else (low, middle)
+    return low
+
+
 def past_preload_loss(case, error) -> str:
-    """The reason a ConvergenceError of lin2019's ball-screw model is its declared limit on ``case``, or "" when it
-    is not: the load ramp stopped near full sliding (lowmodel.screw.b2b.FULL_SLIDING_LIMIT) at an axial load past
-    the preload loss."""
-    if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") != FULL_SLIDING_LIMIT:
+    """The reason a ConvergenceError of lin2019's ball-screw model is the limit of that model on ``case``, or ""
+    when it is not (a solver fault, which then stands): its load ramp or its preload continuation stopped at a
+    contact near full sliding or without a named cause (:data:`NO_STATE_REASONS`), either past the frictionless
+    preload loss (two-point contact) or below it, where friction unloads a contact earlier (docs/ball_screw.md,
+    'Preload loss') and the model finds states at lower loads (below the loss with no state even under the preload
+    alone, the error stands: a fault, not a limit).  The reason names the stop, the preload loss and the largest
+    axial load at which the model finds a state (:func:`largest_state_load`)."""
+    if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") not in NO_STATE_REASONS:
         return ""
     try:
         loss = preload_loss(case)
     except (ConvergenceError, ValueError):  # no preload loss to judge against: the original error stands
         return ""
-    if not case.axial_load > loss.axial_load:
+    reach = largest_state_load(case)
+    past = case.axial_load > loss.axial_load
+    if not past and reach is None:  # below the loss with no state even under the preload alone: a fault, it stands
         return ""
-    last = error.last_converged
-    reached = (f": its load ramp found no state beyond {100 * last[1]:.3g} % of the load "
-               f"({last[1] * case.axial_load:.4g} N), its contacts sliding at their limit mu F") if last else ""
-    below = (f"At this oversize lin2019's model has states up to about {last[1] * case.axial_load:.4g} N "
-             f"(between {loss.axial_load:.4g} N and that, three-point states sliding near their limit: judge them "
-             "with care)") if last else "Lower the axial load"
-    return (f"axial load {case.axial_load:.4g} N is past the preload loss at {loss.axial_load:.4g} N "
-            f"{preload_loss_words(case)}: the balls go over to two-point contact, where one contact rolls without "
-            f"spin, and lin2019's four-point full-sliding model has no state there{reached}. {below}; below "
-            f"{loss.axial_load:.4g} N it models the four-point contact it was made for.")
+    stop = str(error).split(" (residual")[0]
+    found = ("it finds no state even at zero axial load (the preload alone)" if reach is None else
+             f"it finds states up to about {reach:.4g} N axial load at this oversize (bisection on the axial load)")
+    if past:
+        where = (f"axial load {case.axial_load:.4g} N is past the preload loss at {loss.axial_load:.4g} N "
+                 f"{preload_loss_words(case)}: the balls go over to two-point contact, where one contact rolls "
+                 "without spin, and lin2019's four-point full-sliding model has no state there")
+    else:
+        where = (f"axial load {case.axial_load:.4g} N lies below the frictionless preload loss at "
+                 f"{loss.axial_load:.4g} N {preload_loss_words(case)}, but friction unloads a contact earlier: "
+                 "lin2019's four-point full-sliding model found no state at this load")
+    return (f"{where} ({stop}); {found}. Below that load it models the four-point contact it was made for; near it "
+            "its contacts slide close to their limit mu F: judge its friction with care.")
 
 
 @contextlib.contextmanager
 def within_model_limits(case):
-    """Run a ball-screw scene's work; a ConvergenceError that is lin2019's declared limit on ``case`` (the full-
+    """Run a ball-screw scene's work; a ConvergenceError that is lin2019's limit on ``case`` (the full-
     sliding model has no state past the preload loss, :func:`past_preload_loss`) becomes NotApplicable with the
     reason; any other ConvergenceError stays as it is (the scene ends in error)."""
     try:

@@ -52,10 +52,10 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
 
 def _distinct(case):
     """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
-    screw past its preload loss, where lin2019's model stops at its declared limit (common.past_preload_loss), runs
-    on the loads of the frictionless two-point statics (lowmodel.screw.preload.frictionless_statics) instead of
-    not applying: the contact rung needs a contact geometry and a load, not lin2019's friction.  Any other
-    ConvergenceError stays as it is."""
+    screw where lin2019's model finds no state (past its preload loss, or below it where friction unloads a contact
+    first; common.past_preload_loss) runs on the loads of the frictionless statics
+    (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung needs a contact geometry
+    and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
     try:
         return ladder_rungs.distinct_contacts(case), ""
     except ConvergenceError as error:
@@ -70,7 +70,8 @@ def _frictionless_table(run, case, reason: str) -> None:
     run.note("Loads: " + FRICTIONLESS_WORDS + ".")
     run.note("Why: " + reason)
     rows = bearing_results.screw_frictionless_contacts(case)
-    run.table(f"Per ball and contact (frictionless two-point statics at {fmt(case.axial_load)} N, "
+    kind = "two-point " if any(c.normal_force <= 0.0 for c in rows) else ""
+    run.table(f"Per ball and contact (frictionless {kind}statics at {fmt(case.axial_load)} N, "
               "lowmodel.screw.preload; not lin2019's friction model)",
               ("ball", "contact", "F [N]", "angle [deg]", "approach [um]"),
               [(c.ball, c.contact, fmt(c.normal_force), fmt(math.degrees(c.contact_angle)), fmt(c.approach * 1e6))

@@ -171,7 +171,7 @@ def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple
             loads = bearing_results.screw_frictionless_contacts(case)
         else:
             loads = (result or bearing_results.screw_result(case)).contacts
-        words = ", frictionless two-point statics" if frictionless else ""
+        words = ", frictionless statics" if frictionless else ""
         screw = case.screw
         found = []
         for pair, prefix in (("screw", "S"), ("nut", "N")):
