@@ -282,8 +282,12 @@ class _Interrupt:
 
     def stop_now(self) -> None:
         """The second Ctrl-C: the run's folder put beside the report as partial, one line, exit 130 at once."""
-        if self.temp is None or self.finishing or not self._lock.acquire(blocking=False):
+        if self.temp is None or self.finishing:
             return
+        if not self._lock.acquire(blocking=False):
+            if self.finishing:  # the complete report is being put in place (finish)
+                return
+            self._lock.acquire()  # the other thread's stop_now ends the process; this waits for it
         where = ""
         try:
             if self.temp.is_dir():
@@ -297,6 +301,12 @@ class _Interrupt:
             os.write(2, f"\nballbench: stopped at once (second Ctrl-C){where}{untouched}\n".encode())
         finally:
             os._exit(EXIT_INTERRUPTED)
+
+    def finish(self) -> None:
+        """The report is complete and is being put in place: from here a second Ctrl-C waits for the few renames
+        (a stop_now under way in the other thread ends the process first)."""
+        self._lock.acquire()
+        self.finishing = True
 
     def __exit__(self, *exc):
         if self._wakeup is not None:
@@ -392,7 +402,7 @@ def _cmd_validate(args) -> int:
         results = [r for r in results if not r.interrupted]
         paths = write_report(results, temp, fidelity, not_run=not_run if stopped else (), junit=junit, **options)
         report_folder.write_manifest(temp)
-        interrupt.finishing = True  # a second Ctrl-C from here waits for the few renames
+        interrupt.finish()  # a second Ctrl-C from here waits for the few renames
         final = _put_partial(temp, out_dir) if stopped else out_dir
         carried, aside = ([], None) if stopped else report_folder.replace(temp, out_dir)
     paths = {k: final / p.relative_to(temp) if p.is_relative_to(temp) else p for k, p in paths.items()}

@@ -13,6 +13,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
 
@@ -299,22 +300,102 @@ def test_rerun_into_same_out_removes_the_earlier_reports_files_only(fakes, tmp_p
 def test_ctrl_c_inside_a_scene_writes_partial_report(fakes, tmp_path, capsys):
     code, out = _validate(tmp_path, "zz-a-pass", "zz-f-interrupt", "zz-h-after")
     assert code == 130
-    data = json.loads((out / "results.json").read_text())
+    partial = tmp_path / "report-partial"  # beside the report folder, named so
+    data = json.loads((partial / "results.json").read_text())
     assert [s["name"] for s in data["scenes"]] == ["zz-a-pass"]
     assert data["complete"] is False and data["not_run"] == ["zz-f-interrupt", "zz-h-after"]
     assert "interrupted" in capsys.readouterr().err.splitlines()[-1]
-    assert "Partial report" in (out / "report.md").read_text()
+    assert "Partial report" in (partial / "report.md").read_text()
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["report-partial"]
+
+
+def test_an_interrupted_run_leaves_the_earlier_complete_report_intact(fakes, tmp_path, capsys):
+    # the run used to empty the report folder first: Ctrl-C left only a partial report where the complete one was
+    code, out = _validate(tmp_path, "zz-a-pass", "zz-h-after")
+    assert code == 0
+    before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    for scene in ("zz-f-interrupt", "zz-g-sigint"):  # Ctrl-C inside a scene; between two scenes
+        capsys.readouterr()
+        assert _validate(tmp_path, "zz-a-pass", scene, "zz-h-after")[0] == 130
+        assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+        assert "untouched" in capsys.readouterr().err.splitlines()[-1]
+        data = json.loads((tmp_path / "report-partial" / "results.json").read_text())
+        assert data["complete"] is False and data["not_run"][-1] == "zz-h-after"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report", "report-partial"]
+    # the next complete run replaces the report; the partial one beside it is left as it is
+    assert _validate(tmp_path, "zz-h-after")[0] == 0
+    assert not (out / "zz-a-pass").exists() and (tmp_path / "report-partial" / "report.md").exists()
 
 
 def test_first_ctrl_c_stops_after_the_current_scene(fakes, tmp_path, capsys):
     code, out = _validate(tmp_path, "zz-a-pass", "zz-g-sigint", "zz-h-after")
     assert code == 130
-    data = json.loads((out / "results.json").read_text())
+    data = json.loads((tmp_path / "report-partial" / "results.json").read_text())
     assert [s["name"] for s in data["scenes"]] == ["zz-a-pass", "zz-g-sigint"]
     assert data["not_run"] == ["zz-h-after"]
     err = capsys.readouterr().err
     assert "stopping after the current scene" in err and "Traceback" not in err
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+_DRIVER = """
+import hashlib, sys
+from ballbench.validation import cli, scene as scene_module
+from ballbench.validation.scene import Scene
+
+
+def quick(run):
+    run.check(model="m", family="analytical", quantity="q", unit="1", value=1.0, reference=1.0, source="s",
+              tolerance=1e-9, time_s=1e-3)
+
+
+def long(run):
+    print("zz-long: inside", file=sys.stderr, flush=True)
+    # one C call that releases the GIL and never looks for signals, as a sparse solve does: minutes
+    hashlib.pbkdf2_hmac("sha256", b"p", b"s", 2 ** 31 - 1)
+
+
+scene_module.registry()
+for name, function in (("zz-quick", quick), ("zz-long", long)):
+    scene_module.REGISTRY[name] = Scene(name, "fake", function, default=False, kind="low-order", cost_s=0.1)
+sys.exit(cli.main(["validate", *sys.argv[2:], "--out", sys.argv[1], "--no-progress"]))
+"""
+
+
+def test_a_second_ctrl_c_ends_the_run_at_once_leaving_the_earlier_report(tmp_path):
+    # the second Ctrl-C used to raise KeyboardInterrupt only when the solver call returned (minutes), into a
+    # report folder the run had emptied first
+    driver = tmp_path / "driver.py"
+    driver.write_text(_DRIVER)
+    out = tmp_path / "report"
+    command = [sys.executable, str(driver), str(out)]
+    done = subprocess.run([*command, "zz-quick"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    process = subprocess.Popen([*command, "zz-quick", "zz-long"], stderr=subprocess.PIPE, text=True)
+    try:
+        lines = []
+        while not lines or lines[-1] != "zz-long: inside\n":
+            lines.append(process.stderr.readline())
+            assert lines[-1], "".join(lines)
+        time.sleep(0.3)
+        process.send_signal(signal.SIGINT)
+        time.sleep(0.3)
+        assert process.poll() is None  # the first Ctrl-C waits for the scene
+        start = time.monotonic()
+        process.send_signal(signal.SIGINT)
+        code = process.wait(timeout=10)
+        elapsed = time.monotonic() - start
+        err = process.stderr.read()
+    finally:
+        process.kill()
+        process.wait()
+    assert code == 130 and elapsed < 2.0, (code, elapsed, err)
+    assert "stopped at once" in err and "untouched" in err
+    assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+    partial = tmp_path / "report-partial"
+    assert (partial / ".ballbench-report").is_file() and not (partial / "report.md").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["driver.py", "report", "report-partial"]
 
 
 def test_broken_pipe_is_quiet():
