@@ -11,14 +11,10 @@ removes only the files an earlier report wrote (validation.report.folder, docs/v
 from __future__ import annotations
 
 import argparse
-import contextlib
 import difflib
 import fnmatch
-import json
 import os
-import signal
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -30,7 +26,8 @@ from ballbench.validation.studies.calibration import command as calibrate_comman
 from ballbench.validation.ladder.rungs import RUNGS
 from ballbench.validation import ladder, runner, show
 from ballbench.validation.cases import case_file
-from ballbench.validation.report import folder as report_folder
+from ballbench.validation import report_folder
+from ballbench.validation.interrupt import Interrupt, kept_on_error
 from ballbench.validation.show import can_show
 from ballbench.validation.show import drawable as drawable_scenes
 
@@ -174,23 +171,9 @@ def _check_out_dir(out: Path) -> None:
     """Refuse an --out that cannot hold a report, before any work is done."""
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is an existing file, not a folder; choose a folder")
-    if out.is_dir() and any(out.iterdir()) and not _is_report(out):
+    if out.is_dir() and any(out.iterdir()) and not report_folder.is_report(out):
         raise UsageError(f"--out {out} is a non-empty folder that is not a ballbench report (no {MARKER}); "
                          "choose a new or empty folder")
-
-
-def _make_temporary(out: Path) -> Path:
-    """The folder the run writes into (report_folder.temporary), created now: the check that --out's folder takes
-    files."""
-    temp = report_folder.temporary(out)
-    try:
-        temp.mkdir(parents=True, exist_ok=False)
-    except FileExistsError:  # left by a killed run of a process that had this id
-        for child in sorted(temp.rglob("*"), key=lambda p: -len(p.parts)):
-            child.rmdir() if child.is_dir() and not child.is_symlink() else child.unlink()
-    except OSError as error:
-        raise UsageError(f"cannot write to --out {out}: {error.strerror or error}") from None
-    return temp
 
 
 def _check_file_target(path: Path, option: str) -> None:
@@ -201,149 +184,6 @@ def _check_file_target(path: Path, option: str) -> None:
         raise UsageError(f"{option} {path}: folder {parent} does not exist")
     if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
         raise UsageError(f"cannot write {option} {path}: permission denied")
-
-
-def _is_report(out: Path) -> bool:
-    """A folder an earlier run wrote: it carries the manifest (or, before it existed, report.md and results.json)."""
-    return report_folder.is_report(out)
-
-
-def _put_partial(temp: Path, out: Path) -> Path:
-    """Put the partial report ``temp`` (its manifest written) beside ``out`` as ``<out>-partial`` (replacing an
-    earlier partial report the same way a complete one replaces ``out``); returns where it went."""
-    target = report_folder.partial(out)
-    if target.exists() and not (target.is_dir() and (_is_report(target) or not any(target.iterdir()))):
-        target = target.parent / f"{target.name}-{os.getpid()}"  # a folder of one's own of that name
-    report_folder.replace(temp, target)
-    return target
-
-
-class _Interrupt:
-    """SIGINT: the first Ctrl-C stops after the current scene, the second stops at once.
-
-    At once is within a moment even while the main thread is inside a long solver call: Python runs its signal
-    handler only between two bytecodes of the main thread, so the signal also wakes a thread of its own
-    (``signal.set_wakeup_fd``), which ends the process (``os._exit``) after putting the run's temporary folder
-    beside the report as its partial one.  The earlier report in ``out`` is never touched.  ``temp``/``out``:
-    the run's folders (None outside a validate run); ``finishing``: the complete report is being put in place, a
-    second Ctrl-C then waits for it (a few renames).
-    """
-
-    def __init__(self, temp: Path | None = None, out: Path | None = None):
-        self.requested = False
-        self.previous = None
-        self.temp, self.out = temp, out
-        self.finishing = False
-        self._lock = threading.Lock()
-        self._wakeup = None
-
-    def __enter__(self):
-        try:
-            self.previous = signal.signal(signal.SIGINT, self._handle)
-        except ValueError:  # not the main thread (e.g. in some test runners)
-            self.previous = None
-            return self
-        read, write = os.pipe()
-        os.set_blocking(write, False)
-        try:
-            old = signal.set_wakeup_fd(write, warn_on_full_buffer=False)
-        except ValueError:
-            os.close(read)
-            os.close(write)
-            return self
-        self._wakeup = (read, write, old)
-        threading.Thread(target=self._watch, args=(read,), name="ballbench-ctrl-c", daemon=True).start()
-        return self
-
-    def _watch(self, read: int) -> None:
-        seen = 0
-        while True:
-            try:
-                data = os.read(read, 64)
-            except OSError:
-                return
-            if not data:  # __exit__ closed the other end
-                os.close(read)
-                return
-            seen += data.count(signal.SIGINT)
-            if seen >= 2:
-                self.stop_now()
-
-    def _handle(self, signum, frame):  # noqa: ARG002 - the signal-handler signature
-        if self.requested:
-            if self.finishing:
-                return
-            self.stop_now()
-            raise KeyboardInterrupt  # only outside a validate run's folders (stop_now returned)
-        self.requested = True
-        print("\nballbench: Ctrl-C: stopping after the current scene, at its next step (Ctrl-C again to stop now"
-              + (f"; the report in {self.out} stays untouched" if self.out is not None and _is_report(self.out)
-                 else "") + ")", file=sys.stderr, flush=True)
-
-    def stop_now(self) -> None:
-        """The second Ctrl-C: the run's folder put beside the report as partial, one line, exit 130 at once."""
-        if self.temp is None or self.finishing:
-            return
-        if not self._lock.acquire(blocking=False):
-            if self.finishing:  # the complete report is being put in place (finish)
-                return
-            self._lock.acquire()  # the other thread's stop_now ends the process; this waits for it
-        where = ""
-        try:
-            if self.temp.is_dir():
-                report_folder.write_manifest(self.temp)
-                kept = _put_partial(self.temp, self.out)
-                where = f"; what it wrote so far is in {kept} (no report.md: the scenes stopped unfinished)"
-        except OSError as error:
-            where = f"; its files stay in {self.temp} ({error.strerror or error})"
-        untouched = f"; the report in {self.out} is untouched" if _is_report(self.out) else ""
-        try:
-            os.write(2, f"\nballbench: stopped at once (second Ctrl-C){where}{untouched}\n".encode())
-        finally:
-            os._exit(EXIT_INTERRUPTED)
-
-    def finish(self) -> None:
-        """The report is complete and is being put in place: from here a second Ctrl-C waits for the few renames
-        (a stop_now under way in the other thread ends the process first)."""
-        self._lock.acquire()
-        self.finishing = True
-
-    def __exit__(self, *exc):
-        if self._wakeup is not None:
-            _, write, old = self._wakeup
-            signal.set_wakeup_fd(old)
-            os.close(write)  # the thread reads the end of its pipe and closes it
-        if self.previous is not None:
-            signal.signal(signal.SIGINT, self.previous)
-        return False
-
-
-def _say_kept(out: Path, carried: list[str], aside: Path | None) -> None:
-    """Name the files of one's own a complete run carried from the earlier report into the new one (and where
-    those whose names the new report uses stayed)."""
-    if carried:
-        print(f"ballbench: kept in {out}, untouched (not files of the earlier report): {', '.join(carried)}",
-              file=sys.stderr)
-    if aside is not None:
-        print(f"ballbench: files of one's own in the earlier report whose names the new report uses are kept in "
-              f"{aside}", file=sys.stderr)
-
-
-@contextlib.contextmanager
-def _kept_on_error(temp: Path, out: Path):
-    """What a run wrote before an exception escaped it (a bug, Ctrl-C outside a scene) is put beside ``out`` as its
-    partial report folder, never left as a temporary folder nor written over ``out``."""
-    try:
-        yield
-    except BaseException:
-        if temp.is_dir():
-            try:
-                report_folder.write_manifest(temp)
-                kept = _put_partial(temp, out)
-                print(f"ballbench: what the run wrote so far is in {kept}", file=sys.stderr)
-            except OSError:
-                pass
-        raise
 
 
 def _cmd_validate(args) -> int:
@@ -365,7 +205,7 @@ def _cmd_validate(args) -> int:
     junit = Path(args.junit) if args.junit else None
     if junit is not None:
         _check_file_target(junit, "--junit")
-    temp = _make_temporary(out_dir)
+    temp = report_folder.make_temporary(out_dir)
     show_progress = sys.stderr.isatty() and not args.no_progress
     progress_lines = not sys.stderr.isatty() and not args.no_progress  # piped: one line per step
     options = dict(strict=args.strict, strict_time=args.strict_time)
@@ -386,7 +226,7 @@ def _cmd_validate(args) -> int:
           flush=True)
     for line in _limits(args.scenes, args.levels or RUNGS[-1]):
         print(f"ballbench: {line}", file=sys.stderr, flush=True)
-    with _Interrupt(temp, out_dir) as interrupt, _kept_on_error(temp, out_dir):
+    with Interrupt(temp, out_dir) as interrupt, kept_on_error(temp, out_dir):
         if args.workers is not None or args.scheduler:
             where = args.scheduler or f"a local cluster of {args.workers} workers"
             print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
@@ -403,13 +243,13 @@ def _cmd_validate(args) -> int:
         paths = write_report(results, temp, fidelity, not_run=not_run if stopped else (), junit=junit, **options)
         report_folder.write_manifest(temp)
         interrupt.finish()  # a second Ctrl-C from here waits for the few renames
-        final = _put_partial(temp, out_dir) if stopped else out_dir
+        final = report_folder.put_partial(temp, out_dir) if stopped else out_dir
         carried, aside = ([], None) if stopped else report_folder.replace(temp, out_dir)
     paths = {k: final / p.relative_to(temp) if p.is_relative_to(temp) else p for k, p in paths.items()}
-    _say_kept(out_dir, carried, aside)
+    report_folder.say_kept(out_dir, carried, aside)
     statuses = [r.status(**options) for r in results]
     if stopped:
-        untouched = f"; the report in {out_dir} is untouched" if _is_report(out_dir) else ""
+        untouched = f"; the report in {out_dir} is untouched" if report_folder.is_report(out_dir) else ""
         print(f"ballbench: interrupted; partial report of {len(results)} of {len(scenes)} scenes: "
               f"{paths['markdown']}{untouched}", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -432,12 +272,13 @@ def _show_folder(args, names: list[str]) -> Path:
     """The report folder ``show`` draws from: ``--out``, or the folder ``validate`` writes without it
     (:func:`_default_out`); where that holds no report, its partial one (``-partial``: an interrupted run), and for
     a case file ``./ballbench-report`` when it holds the case's scenes (several case files validated in one run).
+    A folder that is no report but holds a scene's folder is one too (fields saved by hand, a copied scene folder).
     No report there: a wrong use naming the validate command, except with --solve (the folder is made)."""
     first = Path(args.out) if args.out is not None else _default_out([args.scene])
     candidates = [first] if args.out is not None or first == Path(DEFAULT_OUT) else [first, Path(DEFAULT_OUT)]
     for index, candidate in enumerate(candidates):
         for folder in (candidate, report_folder.partial(candidate)):
-            if folder.is_dir() and _is_report(folder) and (
+            if folder.is_dir() and (report_folder.is_report(folder) or any((folder / n).is_dir() for n in names)) and (
                     index == 0 or {s["name"] for s in report_folder.scenes_in(folder)} & set(names)):
                 if folder != candidate:
                     print(f"ballbench: no complete report in {candidate}; drawing from the partial report {folder}",
@@ -447,8 +288,8 @@ def _show_folder(args, names: list[str]) -> Path:
         raise UsageError(f"--out {first} is an existing file, not a folder")
     if not args.solve:
         out = f" --out {first}" if args.out is not None else ""
-        raise UsageError(f"no ballbench report in {first}: run 'ballbench validate {args.scene}{out}' first "
-                         f"(or 'ballbench show {args.scene}{out} --solve' to solve the fields to draw)")
+        raise UsageError(f"no ballbench report in {first}: run 'ballbench validate {args.scene}{out}' first, which "
+                         "saves the fields show draws (--solve solves those of an FE contact or module scene instead)")
     return first
 
 
@@ -461,32 +302,6 @@ def _show_out(out_dir: Path, name: str) -> None:
         probe.unlink()
     except OSError as error:
         raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
-
-
-def _why_nothing(out_dir: Path, name: str, error: Exception, command: str) -> str:
-    """Why scene ``name`` has no saved fields in the report ``out_dir``, from its results.json and error.txt."""
-    try:
-        data = json.loads((out_dir / "results.json").read_text())
-    except (OSError, ValueError):
-        data = {}
-    data = data if isinstance(data, dict) else {}
-    record = {s["name"]: s for s in report_folder.scenes_in(out_dir)}.get(name)
-    solve = f"'{command} --solve' solves them"
-    if record is None:
-        if name in data.get("not_run", []):
-            return f"not run: the validate run was interrupted before it ({solve})"
-        return f"not in this report, whose run did not include it ({solve})"
-    status = record.get("status", "")
-    if status == "error":
-        traceback = out_dir / name / "error.txt"
-        where = f"; traceback: {traceback}" if traceback.is_file() else ""
-        return f"the scene ended in an error: {record.get('error', '')}{where}"
-    if status == "not applicable":
-        return f"the scene does not apply to this case: {record.get('not_applicable', '')}"
-    if record.get("interrupted"):
-        return f"the scene was interrupted before it saved them ({solve})"
-    quick = (" (a --quick run of an FE contact scene saves none)" if data.get("fidelity") == "quick" else "")
-    return f"the scene ({status}) saved no fields here{quick}: {error} ({solve})"
 
 
 def _cmd_show(args) -> int:
@@ -506,7 +321,7 @@ def _cmd_show(args) -> int:
         return EXIT_INTERRUPTED
     except FileNotFoundError as error:
         print(f"ballbench: nothing saved to draw for {args.scene} in {out_dir}: "
-              f"{_why_nothing(out_dir, args.scene, error, command)}", file=sys.stderr)
+              f"{report_folder.why_nothing_saved(out_dir, args.scene, error, command)}", file=sys.stderr)
         return EXIT_OK
     except (OSError, ValueError, KeyError) as error:  # e.g. a damaged fields.vtu / fields.json
         print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error} (delete "
@@ -560,7 +375,7 @@ def _show_case(args) -> int:
     def missing(name, error):
         nothing.append(name)
         print(f"ballbench: {name}: nothing saved to draw in {out_dir / name}: "
-              f"{_why_nothing(out_dir, name, error, command)}", file=sys.stderr, flush=True)
+              f"{report_folder.why_nothing_saved(out_dir, name, error, command)}", file=sys.stderr, flush=True)
 
     try:
         paths = ladder.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default",

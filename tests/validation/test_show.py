@@ -61,7 +61,7 @@ def test_show_reads_saved_fields_and_writes_into_the_scene_folder(saved, monkeyp
     assert captured.err == "" and "vtk" not in captured.out.lower()
 
 
-def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
+def test_show_solves_only_when_asked_and_fields_are_missing(saved, tmp_path, monkeypatch):
     calls = []
 
     def fake_compute(case, scene_name, fidelity, directory, show_progress=False):
@@ -71,8 +71,11 @@ def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
 
     monkeypatch.setattr(fe_contact, "compute_fields", fake_compute)
     monkeypatch.setattr(render3d, "render", lambda directory: [])  # the 3D screenshots: tests/test_render3d.py
-    show.show(SCENE, tmp_path, fidelity="quick")
-    show.show(SCENE, tmp_path, fidelity="quick")
+    with pytest.raises(FileNotFoundError, match="no saved fields"):  # never solved unasked
+        show.show(SCENE, tmp_path, fidelity="quick")
+    assert calls == []
+    show.show(SCENE, tmp_path, fidelity="quick", solve=True)
+    show.show(SCENE, tmp_path, fidelity="quick", solve=True)
     assert calls == [(SCENE, "quick")]
 
 
@@ -126,7 +129,7 @@ def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys
     monkeypatch.setattr(fe_contact, "compute_fields", stop)
     (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": []}))
     with pytest.raises(Stop):
-        show.show("fe-hertz-groove-056", tmp_path, "default")
+        show.show("fe-hertz-groove-056", tmp_path, "default", solve=True)
     # the user ran 'validate --quick' then 'show' and saw the default level solved without a reason
     assert "a --quick run, which saves no fields" in capsys.readouterr().err
 

@@ -18,12 +18,15 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from pathlib import Path
 
 from ballbench import __version__
+from ballbench.validation.usage import UsageError
 
 __all__ = ["MARKER", "REPORT_FILES", "is_report", "owned", "write_manifest", "add_to_manifest", "temporary",
-           "partial", "replace", "remove_owned", "scenes_in"]
+           "make_temporary", "partial", "put_partial", "replace", "remove_owned", "scenes_in", "say_kept",
+           "why_nothing_saved"]
 
 MARKER = ".ballbench-report"
 # the top-level files write_report writes (validation.report.write_report)
@@ -197,3 +200,70 @@ def replace(new: Path, out: Path) -> tuple[list[str], Path | None]:
         raise
     left = remove_owned(aside, mine)
     return carried, (aside if left else None)
+
+
+def make_temporary(out: Path) -> Path:
+    """The folder the run writes into (:func:`temporary`), created now: the check that ``--out``'s folder takes
+    files (UsageError where it does not)."""
+    temp = temporary(out)
+    try:
+        temp.mkdir(parents=True, exist_ok=False)
+    except FileExistsError:  # left by a killed run of a process that had this id
+        for child in sorted(temp.rglob("*"), key=lambda p: -len(p.parts)):
+            child.rmdir() if child.is_dir() and not child.is_symlink() else child.unlink()
+    except OSError as error:
+        raise UsageError(f"cannot write to --out {out}: {error.strerror or error}") from None
+    return temp
+
+
+def put_partial(temp: Path, out: Path) -> Path:
+    """Put the partial report ``temp`` (its manifest written) beside ``out`` as ``<out>-partial`` (replacing an
+    earlier partial report the same way a complete one replaces ``out``); returns where it went."""
+    target = partial(out)
+    if target.exists() and not (target.is_dir() and (is_report(target) or not any(target.iterdir()))):
+        target = target.parent / f"{target.name}-{os.getpid()}"  # a folder of one's own of that name
+    replace(temp, target)
+    return target
+
+
+def say_kept(out: Path, carried: list[str], aside: Path | None) -> None:
+    """Name the files of one's own a complete run carried from the earlier report into the new one (and where
+    those whose names the new report uses stayed)."""
+    if carried:
+        print(f"ballbench: kept in {out}, untouched (not files of the earlier report): {', '.join(carried)}",
+              file=sys.stderr)
+    if aside is not None:
+        print(f"ballbench: files of one's own in the earlier report whose names the new report uses are kept in "
+              f"{aside}", file=sys.stderr)
+
+
+def why_nothing_saved(out_dir: Path, name: str, error: Exception, command: str) -> str:
+    """Why scene ``name`` has no saved fields in the report ``out_dir``, from its results.json and error.txt."""
+    try:
+        data = json.loads((out_dir / "results.json").read_text())
+    except (OSError, ValueError):
+        data = {}
+    data = data if isinstance(data, dict) else {}
+    record = {s["name"]: s for s in scenes_in(out_dir)}.get(name)
+    solve = f"'{command} --solve' solves them"
+    if record is None:
+        if name in data.get("not_run", []):
+            return f"not run: the validate run was interrupted before it ({solve})"
+        return f"not in this report, whose run did not include it ({solve})"
+    status = record.get("status", "")
+    if status == "error":
+        traceback = out_dir / name / "error.txt"
+        where = f"; traceback: {traceback}" if traceback.is_file() else ""
+        return f"the scene ended in an error: {record.get('error', '')}{where}"
+    if status == "not applicable":
+        return f"the scene does not apply to this case: {record.get('not_applicable', '')}"
+    if record.get("interrupted"):
+        return f"the scene was interrupted before it saved them ({solve})"
+    if record.get("kind") not in (None, "FE"):  # a case file's contact scene run below its FE rung (--levels)
+        quick = f" (it ran as a {record['kind']} scene: the run's --levels stopped below FE)"
+    else:
+        quick = " (a --quick run of an FE contact scene saves none)" if data.get("fidelity") == "quick" else ""
+    # a hook with nothing to solve (render3d.show_saved: BEM / EHL surfaces, stick/slip areas) says to validate
+    hint = "" if "ballbench validate" in str(error) else f" ({solve})"
+    return f"the scene ({status}) saved no fields here{quick}: {error}{hint}"
+
