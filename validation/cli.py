@@ -201,6 +201,8 @@ def _cmd_validate(args) -> int:
         raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
     scenes = _select(args.scenes, args.fast, args.levels or RUNGS[-1], deadline)
     out_dir = Path(args.out) if args.out is not None else _default_out(args.scenes)
+    if out_dir.is_symlink():  # the report replaces the folder the link names, not the link
+        out_dir = out_dir.resolve()
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
     if junit is not None:

@@ -99,7 +99,7 @@ def add_to_manifest(folder: Path, paths) -> None:
     """Add ``paths`` (files ballbench wrote inside ``folder``, e.g. ``ballbench show``'s pictures) to its manifest
     (written new where the folder has none: a folder ``show --solve`` made)."""
     folder = Path(folder)
-    files = owned(folder) - {MARKER} if (folder / MARKER).is_file() else set()
+    files = owned(folder) - {MARKER} if is_report(folder) else set()  # a report without a manifest: its own files
     files |= {Path(p).resolve().relative_to(folder.resolve()).as_posix() for p in paths}
     data = {"written_by": f"ballbench {__version__}",
             "note": "a ballbench report folder; a later run into it removes only the files listed here",

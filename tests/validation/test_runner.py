@@ -573,6 +573,31 @@ def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
     assert json.loads((out / "results.json").read_text())["scenes"][0]["name"] == "zz-a-pass"
 
 
+def test_pictures_added_to_a_report_of_an_older_version_keep_its_files_its_own(fakes, tmp_path, capsys):
+    # a report without a manifest: 'show' listing only its pictures made the next run keep the old report.md
+    from ballbench.validation import report_folder
+
+    out = tmp_path / "report"
+    assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
+    (out / ".ballbench-report").unlink()  # as an earlier version wrote it: report.md and results.json
+    (out / "zz-a-pass" / "picture.png").write_bytes(b"png")
+    report_folder.add_to_manifest(out, [out / "zz-a-pass" / "picture.png"])
+    assert {"report.md", "results.json", "zz-a-pass/picture.png", "zz-a-pass/line.png"} <= report_folder.owned(out)
+    capsys.readouterr()
+    assert cli.main(["validate", "zz-h-after", "--out", str(out)]) == 0
+    assert "untouched" not in capsys.readouterr().err and not (out / "zz-a-pass").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
+
+
+def test_a_link_to_a_report_folder_stays_a_link(fakes, tmp_path):
+    target = tmp_path / "reports" / "mine"
+    assert cli.main(["validate", "zz-a-pass", "--out", str(target)]) == 0
+    link = tmp_path / "link"
+    link.symlink_to(target)
+    assert cli.main(["validate", "zz-h-after", "--out", str(link)]) == 0
+    assert link.is_symlink() and (target / "zz-h-after").is_dir() and not (target / "zz-a-pass").exists()
+
+
 def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):
     """Declared known gaps at the quick level: the gap is listed, the run passes; --strict fails it."""
     out = tmp_path / "report"
