@@ -106,7 +106,7 @@ def test_damaged_fields_end_in_one_line(tmp_path, capsys):
 @pytest.mark.slow
 def test_show_fourpoint_module_writes_pngs(tmp_path):
     # FE four-point module at the quick level (111k DOFs) plus one solve for the displacement field
-    paths = show.show("fe-b2b-linear-a", tmp_path, fidelity="quick")
+    paths = show.show("fe-b2b-linear-a", tmp_path, fidelity="quick", solve=True)
     assert [p.name for p in paths] == ["pressure.png", "stress.png", "3d_assembly.png", "3d_pressure_overview.png",
                                        "3d_pressure_contacts.png", "3d_stress.png"]
     for path in paths:
