@@ -316,6 +316,7 @@ def _cmd_show(args) -> int:
     command = f"ballbench show {args.scene}" + (f" --out {args.out}" if args.out is not None else "")
     if args.solve:
         _show_out(out_dir, args.scene)
+    before = _files(out_dir, [args.scene])
     try:
         paths = show.show(args.scene, out_dir, fidelity=fidelity, solve=args.solve)
     except KeyboardInterrupt:
@@ -330,17 +331,24 @@ def _cmd_show(args) -> int:
               f"{out_dir / args.scene / 'fields.vtu'} and run '{command} --solve' to solve the fields again)",
               file=sys.stderr)
         return EXIT_FAILED
-    _drawn(out_dir, paths)
+    _drawn(out_dir, paths, [args.scene], before)
     return EXIT_OK
 
 
-def _drawn(out_dir: Path, paths: list[Path]) -> None:
-    """Print the pictures drawn (stdout, one path a line) and add them to the report's manifest."""
+def _files(out_dir: Path, names: list[str]) -> set[Path]:
+    """The files in the folders of scenes ``names`` in ``out_dir``."""
+    return {p for name in names if (out_dir / name).is_dir() for p in (out_dir / name).rglob("*") if p.is_file()}
+
+
+def _drawn(out_dir: Path, paths: list[Path], names: list[str], before: set[Path]) -> None:
+    """Print the pictures drawn (stdout, one path a line) and add them to the report's manifest with the files
+    --solve wrote (those in the scenes' folders that were not there ``before``)."""
     for path in paths:
         print(path)
-    if paths:
+    written = set(paths) | (_files(out_dir, names) - before)
+    if written:
         try:
-            report_folder.add_to_manifest(out_dir, paths)
+            report_folder.add_to_manifest(out_dir, sorted(written))
         except (OSError, ValueError):
             pass
 
@@ -367,6 +375,7 @@ def _show_case(args) -> int:
     if args.solve:
         for name in names:
             _show_out(out_dir, name)
+    before = _files(out_dir, names)
     drawn, nothing = {}, []
 
     def skipped(name, reason):
@@ -395,7 +404,7 @@ def _show_case(args) -> int:
     if not drawn:
         print(f"ballbench: no pictures drawn from {out_dir} ({len(nothing)} of {len(names)} scenes with pictures "
               "have nothing saved, said above)", file=sys.stderr)
-    _drawn(out_dir, paths)
+    _drawn(out_dir, paths, names, before)
     return EXIT_OK
 
 

@@ -79,6 +79,26 @@ def test_show_solves_only_when_asked_and_fields_are_missing(saved, tmp_path, mon
     assert calls == [(SCENE, "quick")]
 
 
+def test_cli_show_solve_lists_what_it_wrote_in_the_manifest(saved, tmp_path, monkeypatch, capsys):
+    # the fields --solve writes into a report are the report's: the next validate removes them, not a user's file
+    from ballbench.validation import report_folder
+
+    def fake_compute(case, scene_name, fidelity, directory, show_progress=False):
+        shutil.copytree(saved / SCENE, directory, dirs_exist_ok=True)
+
+    monkeypatch.setattr(fe_contact, "compute_fields", fake_compute)
+    monkeypatch.setattr(render3d, "render", lambda directory: [])
+    out = tmp_path / "r"
+    assert cli.main(["show", SCENE, "--out", str(out)]) == 2  # no report there: nothing solved unasked
+    assert not out.exists()
+    (out / SCENE).mkdir(parents=True)
+    (out / SCENE / "mine.txt").write_text("mine")
+    assert cli.main(["show", SCENE, "--out", str(out), "--quick", "--solve"]) == 0
+    owned = report_folder.owned(out)
+    assert {f"{SCENE}/fields.vtu", f"{SCENE}/fields.json", f"{SCENE}/pressure.png", f"{SCENE}/stress.png"} <= owned
+    assert f"{SCENE}/mine.txt" not in owned
+
+
 def test_cli_show(saved, monkeypatch, capsys):
     monkeypatch.setattr(fe_contact, "solve_level", _no_solve)
     assert cli.main(["show", SCENE, "--out", str(saved)]) == 0
