@@ -171,6 +171,8 @@ def _check_out_dir(out: Path) -> None:
     """Refuse an --out that cannot hold a report, before any work is done."""
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is an existing file, not a folder; choose a folder")
+    if out.is_dir() and Path.cwd().resolve().is_relative_to(out.resolve()):  # the report is replaced by a rename
+        raise UsageError(f"--out {out} is the current folder or holds it; choose a folder inside it")
     if out.is_dir() and any(out.iterdir()) and not report_folder.is_report(out):
         raise UsageError(f"--out {out} is a non-empty folder that is not a ballbench report (no {MARKER}); "
                          "choose a new or empty folder")

@@ -263,6 +263,7 @@ def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
              (["--out", str(a_file / "sub")], "cannot write"),
              (["--out", "/proc/ballbench-cannot-write-here"], "cannot write"),
              (["--out", str(other)], "not a ballbench report"),
+             (["--out", "."], "the current folder"),
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path)], "--junit"),
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path / "missing" / "j.xml")], "does not exist")]
     for extra, expected in cases:
