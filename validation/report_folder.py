@@ -247,6 +247,8 @@ def why_nothing_saved(out_dir: Path, name: str, error: Exception, command: str) 
     record = {s["name"]: s for s in scenes_in(out_dir)}.get(name)
     solve = f"'{command} --solve' solves them"
     if record is None:
+        if not (out_dir / "results.json").is_file() and (out_dir / MARKER).is_file():  # a run's partial folder
+            return f"the validate run stopped at once (a second Ctrl-C) before it wrote its results ({solve})"
         if name in data.get("not_run", []):
             return f"not run: the validate run was interrupted before it ({solve})"
         return f"not in this report, whose run did not include it ({solve})"
@@ -262,7 +264,10 @@ def why_nothing_saved(out_dir: Path, name: str, error: Exception, command: str) 
     if record.get("kind") not in (None, "FE"):  # a case file's contact scene run below its FE rung (--levels)
         quick = f" (it ran as a {record['kind']} scene: the run's --levels stopped below FE)"
     else:
-        quick = " (a --quick run of an FE contact scene saves none)" if data.get("fidelity") == "quick" else ""
+        # the registered FE contact scenes (fe-hertz-*) save their fields at the default and fine levels only
+        registered = not name.endswith(("-contact", "-b2b-fe"))
+        quick = (" (a --quick run of an FE contact scene saves none)" if data.get("fidelity") == "quick" and registered
+                 else "")
     # a hook with nothing to solve (render3d.show_saved: BEM / EHL surfaces, stick/slip areas) says to validate
     hint = "" if "ballbench validate" in str(error) else f" ({solve})"
     return f"the scene ({status}) saved no fields here{quick}: {error}{hint}"

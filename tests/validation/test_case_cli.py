@@ -172,3 +172,7 @@ def test_every_case_file_keeps_its_own_default_report_and_show_never_solves_unas
     assert [x.split(":")[1].strip() for x in lines] == ["g-contact", "g-b2b-fe"], captured.err
     assert "below FE" in lines[0] and "not in this report" in lines[1] and "--solve" in lines[1]
     assert "no pictures drawn from ballbench-report-g" in captured.err
+    # only an interrupted run's partial report: show draws from it and says so
+    (tmp_path / "ballbench-report-h").rename(tmp_path / "ballbench-report-h-partial")
+    assert cli.main(["show", "h.toml"]) == 0
+    assert "drawing from the partial report ballbench-report-h-partial" in capsys.readouterr().err
