@@ -29,8 +29,14 @@ from ballbench.validation.cases.case import ContactCase
 from ballbench.validation.figures import render3d
 from ballbench.validation.figures.style import save
 
-__all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "level_dofs", "mesh_dofs", "write_fields",
+__all__ = ["PairModel", "pair_model", "hertz_geometry", "block_half_width", "BLOCK_MARGIN", "DEFAULT_BLOCK",
+           "solve_level", "level_dofs", "mesh_dofs", "write_fields",
            "compute_fields", "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
+
+# the counter block of a groove pair holds the candidate zone with this margin (block_half_width); the builders'
+# default half-width is DEFAULT_BLOCK R_B (meshes.assemblies.contact_pairs.ball_in_groove_pair, screw_pair)
+BLOCK_MARGIN = 1.15
+DEFAULT_BLOCK = 0.6
 
 FIELD_NAMES = {
     "displacement": "displacement_m",          # the P2 solution at all 10 nodes of each quadratic tetrahedron [m]
@@ -99,6 +105,9 @@ def pair_model(case: ContactCase) -> PairModel:
         zone = {"fine_radius": fe.zone[0] * ref.b}
         if fe.zone[1]:
             zone["fine_half_length"] = fe.zone[1] * ref.a
+    width = block_half_width(case, geometry, ref)
+    if width is not None:
+        zone["block_half_width"] = width
     if case.pair == "flat":
         def build(h, growth):
             return contact_pairs.ball_on_flat_pair(radius, h, growth, **zone)
@@ -112,6 +121,21 @@ def pair_model(case: ContactCase) -> PairModel:
         def build(h, growth):
             return screw_pair.ball_in_screw_groove_pair(*args, h_contact=h, growth=growth, **zone)
     return PairModel(case, build, geometry, source)
+
+
+def block_half_width(case: ContactCase, geometry: hertz.HertzGeometry, ref) -> float | None:
+    """The counter block's half-width across a groove [m] (the major axis a of a ball in a groove, straight or
+    helical) that holds the candidate zone of ``case``: :data:`BLOCK_MARGIN` times the zone's reach along the major
+    axis, ``sqrt(gap_limit delta / min(A, B))`` (Hertz's separation; ``ref`` the Hertz solution at the case's
+    force), when that passes the builders' default ``0.6 R_B`` (meshes.assemblies.contact_pairs, screw_pair); None
+    (the default block, the mesh cache's key unchanged) otherwise, and for a flat or a ball counter body.  A block
+    the groove cannot hold (a straight groove's ``0.9 r_g``, a helical flank's 90 % of the arc to its bottom) raises
+    the builder's ValueError naming the width: the ellipse is then near the groove's shoulder (docs/truncation.md)."""
+    if case.pair not in ("groove", "screw", "nut"):
+        return None
+    reach = math.sqrt(_fe(case).gap_limit * float(ref.delta) / min(geometry.A, geometry.B))
+    width = BLOCK_MARGIN * reach
+    return width if width > DEFAULT_BLOCK * case.ball_radius else None
 
 
 def mesh_dofs(path) -> int:
