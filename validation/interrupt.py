@@ -118,7 +118,6 @@ class Interrupt:
         return False
 
 
-
 @contextlib.contextmanager
 def kept_on_error(temp: Path, out: Path):
     """What a run wrote before an exception escaped it (a bug, Ctrl-C outside a scene) is put beside ``out`` as its
