@@ -308,10 +308,10 @@ def load_fields(directory) -> tuple[dict, dict]:
     return data, meta
 
 
-def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 0.0) -> list[Path]:
+def show_fields(case: ContactCase, scene_dir, fidelity: str, solve: bool = False, *, cost_s: float = 0.0) -> list[Path]:
     """The ``show`` hook of an FE contact scene: ``pressure.png`` and ``stress.png`` (figures.fe_contact) drawn
-    from the fields saved in ``scene_dir`` (named after the scene); only when none are saved does it solve the
-    checked level at ``fidelity`` first (about ``cost_s`` [s]), saying so on stderr."""
+    from the fields saved in ``scene_dir`` (named after the scene).  None saved: FileNotFoundError, or with
+    ``solve`` the checked level at ``fidelity`` solved first (about ``cost_s`` [s]), saying so on stderr."""
     from ballbench.validation.figures import fe_contact as figures
     levels = _fe(case).levels
     if fidelity not in levels:
@@ -321,6 +321,8 @@ def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 
     try:
         data, meta = load_fields(directory)
     except FileNotFoundError:
+        if not solve:
+            raise
         hint = ""
         results = directory.parent / "results.json"
         if fidelity != "quick" and results.is_file():
