@@ -143,7 +143,7 @@ def mesh_dofs(path) -> int:
     the DOFs fem.hertz_case solves (before the support's Dirichlet DOFs are removed)."""
     import meshio
 
-    mesh = meshio.read(path)
+    mesh = meshio.read(path, file_format="gmsh")  # by name: meshio tries other readers and prints their errors
     tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"]).astype(np.int64)
     edges = np.sort(np.concatenate([tets[:, [i, j]] for i, j in ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))]),
                     axis=1)
