@@ -77,6 +77,7 @@ LIGHT = {
     ("validation/ladder/rungs.py", "ballbench.lowmodel.contact.halfspace"): STARTUP,
     ("validation/ladder/rungs.py", "ballbench.lowmodel.contact.screw_contact"): STARTUP,
     ("validation/ladder/rungs.py", "ballbench.validation.studies.fe_contact"): STARTUP,
+    ("validation/ladder/rungs.py", "ballbench.fem.hertz_case"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.lowmodel.full_slip_validity"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.figures.stickslip3d"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.case_stick_slip"): STARTUP,

@@ -250,8 +250,9 @@ class Scene:
     the default fidelity on a 2-core machine [s] (shown by ``ballbench
     scenes``); ``budget_s``: wall-time budget per fidelity [s] (reported,
     decides only with ``--strict-time``); ``level``: the default mesh level
-    in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity) -> list[Path]``,
-    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``);
+    in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity, solve=False) -> list[Path]``,
+    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``): none
+    saved, FileNotFoundError, or with ``solve`` the scene's checked level at ``fidelity`` solved first;
     ``case``: the case the scene runs (:mod:`ballbench.validation.cases`), read by ``calibrate`` (FE load
     sweeps of a scene's contact) and the report; None for a scene of many cases; ``memory_gb``: the peak
     resident memory the scene needs at the default fidelity [GB] (:meth:`memory_for`; the distributed runner

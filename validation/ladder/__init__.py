@@ -155,16 +155,22 @@ def limits(case, stem: str, top: str = "stick-slip") -> list[str]:
     return limits_lines(case, scene_names(case, stem, top))
 
 
-def show_case(case, stem: str, out_dir: Path, fidelity: str = "default", *, on_skip=None) -> list[Path]:
+def show_case(case, stem: str, out_dir: Path, fidelity: str = "default", *, solve: bool = False, on_skip=None,
+              on_missing=None) -> list[Path]:
     """``ballbench show my_case.toml``: the pictures of every generated scene that has them, drawn from the fields
-    ``validate`` saved in ``out_dir/<scene>/`` (solved first only where none are saved).  A scene that does not
-    apply to the case (NotApplicable) is skipped: ``on_skip(scene_name, reason)`` is told."""
+    ``validate`` saved in ``out_dir/<scene>/``.  A scene that does not apply to the case (NotApplicable) is skipped:
+    ``on_skip(scene_name, reason)`` is told; one that saved nothing is skipped too, ``on_missing(scene_name,
+    error)`` told, or with ``solve`` solved at ``fidelity`` first (``ballbench show --solve``)."""
     paths = []
     for scene in case_scenes(case, stem):
         if scene.show is not None:
             try:
-                paths += scene.show(Path(out_dir) / scene.name, fidelity)
+                paths += scene.show(Path(out_dir) / scene.name, fidelity, solve)
             except NotApplicable as skipped:
                 if on_skip is not None:
                     on_skip(scene.name, skipped.reason)
+            except FileNotFoundError as missing:
+                if solve or on_missing is None:
+                    raise
+                on_missing(scene.name, missing)
     return paths

@@ -281,13 +281,16 @@ def _screw_unloaded(case: BallScrewCase) -> None:
         raise NotApplicable(_unloaded_reason(case, lost))
 
 
-def show_module(case, scene_dir, fidelity: str) -> list[Path]:
-    """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (solved if none)."""
+def show_module(case, scene_dir, fidelity: str, solve: bool = False) -> list[Path]:
+    """The ``show`` hook of ``<stem>-b2b-fe``: pictures of the saved module fields (none saved: NotApplicable where
+    the module cannot be built, else FileNotFoundError, or with ``solve`` the module solved first)."""
     from ballbench.validation.figures import render3d
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
     if isinstance(case, BallScrewCase):
         _screw_unloaded(case)
+    if not solve:
+        raise FileNotFoundError(f"no saved module fields in {scene_dir} (fields.json)")
     show = fe_b2b_linear.show_module if isinstance(case, LinearGuideCase) else fe_b2b_screw.show_module
-    return show(module_fe(case), scene_dir, "quick" if fidelity == "quick" else "default")
+    return show(module_fe(case), scene_dir, "quick" if fidelity == "quick" else "default", solve)

@@ -335,10 +335,10 @@ def _fields(run, contact: ContactCase, result, level) -> None:
         run.add_artifact(path)
 
 
-def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
-    """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (solved at
-    ``fidelity`` if none)."""
+def show_contact(case, scene_dir, fidelity: str, solve: bool = False) -> list[Path]:
+    """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (none saved:
+    FileNotFoundError, or with ``solve`` solved at ``fidelity`` first)."""
     from ballbench.validation.studies import fe_contact
 
     governing = _distinct(case)[0][0].contact
-    return fe_contact.show_fields(ladder_rungs.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)
+    return fe_contact.show_fields(ladder_rungs.contact_fe(governing), scene_dir, fidelity, solve, cost_s=60.0)

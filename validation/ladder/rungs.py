@@ -63,6 +63,11 @@ CONTACT_LEVELS = {"quick": ((5.5, 6.6, 7.92), 1.4), "default": ((5.5, 6.875, 8.5
 SCREW_QUICK_GROWTH = 1.6
 SCREW_QUICK_RATIOS = (1.2, 1.15, 1.1)
 QUICK_DOF_CAP = 334_000
+# the candidate zone of a case file's FE contact (ContactFe.gap_limit, in units of the Hertz approach delta at the
+# case's force): it reaches CANDIDATE_REACH a along the major axis at the largest load of the study's sweep
+# (fem.hertz_case.LOAD_FACTORS), by Hertz's separation A x^2 + B y^2, and never less than the papers' 1.05 delta
+# (docs/your_own_bearing.md, "Heavy contacts")
+CANDIDATE_REACH = 1.3
 # peak resident memory of an FE contact level per P2 DOF [bytes]: the largest measured ratio of peak RSS to the
 # finest level's DOFs (docs/your_own_bearing.md, "Memory and time of the FE rung")
 BYTES_PER_DOF = 22.2e3
@@ -207,6 +212,7 @@ def contact_fe(case: ContactCase) -> ContactCase:
     from ballbench.validation.studies import fe_contact
 
     geometry = fe_contact.hertz_geometry(case)
+    gap_limit = candidate_gap_limit(geometry, case.force)
     levels = MeshLevels(**{f: tuple(PairLevel(n, growth) for n in ns) for f, (ns, growth) in CONTACT_LEVELS.items()})
     if case.pair == "groove" and geometry.axis_ratio < 0.5:
         fe = ContactFe(levels, "ellipse", (1.2, 1.3, 0.8))
@@ -216,7 +222,24 @@ def contact_fe(case: ContactCase) -> ContactCase:
         fe = replace(fe, levels=replace(levels, quick=screw_quick_levels(replace(case, fe=fe))))
     else:
         fe = ContactFe(levels, "capsule", (1.3, 0.0 if geometry.axis_ratio > 0.8 else 1.1))
-    return replace(case, fe=fe)
+    return replace(case, fe=replace(fe, gap_limit=gap_limit))
+
+
+def candidate_gap_limit(geometry: hertz.HertzGeometry, force: float) -> float:
+    """The candidate zone of an FE contact study of ``geometry`` at ``force`` [N], as ContactFe.gap_limit (a
+    multiple of the Hertz approach delta at ``force``): the initial gap ``min(A, B) (CANDIDATE_REACH a_top)^2``
+    at the end of the major semi-axis grown by :data:`CANDIDATE_REACH`, ``a_top`` Hertz's at the largest load of
+    the sweep (fem.hertz_case.LOAD_FACTORS: the zone must hold the contact there), and at least the 1.05 of the
+    papers' pairs.  A slender ellipse ends where Hertz's separation is close to delta (``A a^2 / delta =
+    (K(e) - E(e)) / (e^2 K(e))`` tends to 1, Johnson 1985 eqs 3.64-3.68), so the fixed 1.05 delta reaches barely
+    past it at 1.5 times the force, and the FE contact, a few per cent longer than Hertz's, reached the zone's edge
+    (docs/your_own_bearing.md, "Heavy contacts")."""
+    from ballbench.fem.hertz_case import LOAD_FACTORS
+
+    top = max(LOAD_FACTORS) * force
+    reach = CANDIDATE_REACH * float(hertz.solve_load(geometry, top).a)
+    delta = float(hertz.solve_load(geometry, force).delta)
+    return max(ContactFe.gap_limit, min(geometry.A, geometry.B) * reach * reach / delta)
 
 
 def screw_quick_levels(case: ContactCase) -> tuple:
