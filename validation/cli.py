@@ -259,12 +259,14 @@ def _cmd_validate(args) -> int:
         return EXIT_INTERRUPTED
     failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
     gaps, findings = statuses.count("known gap"), statuses.count("findings")
-    unfit = statuses.count("not applicable")
-    # a scene that does not apply validated nothing: it passes the run but is not counted as passed
-    print(f"{len(results) - len(failed) - unfit} of {len(results)} scenes passed"
+    unfit, unsure = statuses.count("not applicable"), statuses.count("inconclusive")
+    # a scene that does not apply or is inconclusive validated nothing: it passes the run but is not counted as passed
+    print(f"{len(results) - len(failed) - unfit - unsure} of {len(results)} scenes passed"
           + (f" ({gaps} with known gaps)" if gaps else "")
           + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
           + (f", {unfit} do not apply to the case (the model has no state there)" if unfit else "")
+          + (f", {unsure} inconclusive (no conclusive reference at this fidelity; each names what settles it)"
+             if unsure else "")
           + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
@@ -434,7 +436,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "files that report wrote (its manifest, .ballbench-report): files of one's own in "
                                    "it are carried over untouched. Exit code 0 when every scene passes (declared "
                                    "known gaps and findings, models outside their declared accuracy on a case "
-                                   "file's geometry, allowed), 1 when a check fails, 130 when interrupted (Ctrl-C "
+                                   "file's geometry, scenes that do not apply and inconclusive ones, without a "
+                                   "conclusive reference at the fidelity, allowed), 1 when a check fails, 130 when "
+                                   "interrupted (Ctrl-C "
                                    "stops after the current scene and writes a partial report into DIR-partial, "
                                    "leaving DIR untouched; twice stops at once).")
     p.add_argument("scenes", nargs="*", metavar="SCENE",
@@ -449,7 +453,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fast", action="store_true",
                    help="a first look: leave out the FE scenes and those costing over 30 s")
     p.add_argument("--strict", action="store_true",
-                   help="declared known gaps and findings (models outside their accuracy on a case file's geometry) "
+                   help="declared known gaps, findings (models outside their accuracy on a case file's geometry), "
+                        "scenes that do not apply and inconclusive scenes (no conclusive reference at the fidelity) "
                         "fail the run too")
     p.add_argument("--strict-time", action="store_true",
                    help="a scene over its wall-time budget fails (by default budgets are only reported, "
