@@ -76,7 +76,7 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
         except OSError:
             pass
     wall = time.perf_counter() - start
-    if not error and not not_applicable and not run.outputs:
+    if not error and not not_applicable and not run.outputs and not run.inconclusive_reasons:
         error = "scene recorded no checked output"
     return run.result(wall, error, interrupted, peak_memory_gb() if measured else 0.0, not_applicable)
 

@@ -22,7 +22,9 @@ from ballbench.lowmodel.screw.preload import nominal_preload_loss
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.scene import NotApplicable
 
-REFERENCE_UNCERTAINTY = 0.01  # the extrapolated FE reference must be known to 1 % to judge models against it
+# the FE reference must be known to 1 % (its uncertainty by references.uncertainty) to judge models against it;
+# above that the scene is inconclusive (validation.scene, "Inconclusive")
+REFERENCE_UNCERTAINTY = 0.01
 B2B_TOLERANCE = {"linear-guide": 0.07, "ball-screw": 0.10}  # lin2019's own claims, docs/fe_b2b.md
 POWER_TOLERANCE = 1e-6  # docs/fe_b2b.md: energy conservation incl. the B2B loss
 # a B2B force below this share of the friction scale mu N (N: the ball load) is "near zero" and judged on that
@@ -33,7 +35,8 @@ NEAR_ZERO_B2B = 0.05
 HAMROCK_DOWSON_TOLERANCE = 0.15
 EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as those scenes check it
 
-__all__ = ["B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
+__all__ = ["settle_words",
+           "B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
            "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
@@ -50,6 +53,15 @@ FRICTIONLESS_WORDS = ("the loads of the frictionless statics of the balls at the
                       "lin2019's friction model, which has no state "
                       "at this load; the contact rung judges contact mechanics (Hertz, BEM, FE at a given load), "
                       "not friction")
+
+
+def settle_words(fidelity: str, finer: str) -> str:
+    """What settles an inconclusive reference (docs/verification.md, "Bounds and INCONCLUSIVE"): the next fidelity
+    of the run at ``fidelity``, and ``finer``, the finer levels in words (e.g. "FE levels n = b/h 5.5, 6.6, 7.92,
+    9.5, 11.4"), for a case file's own ``[fe]`` table."""
+    step = {"quick": "run at the default fidelity (without --quick) or --fine",
+            "default": "run --fine"}.get(fidelity, "give the case file an [fe] table with finer levels")
+    return f"What settles it: a finer study: {step}; or {finer}."
 
 
 def fmt(value: float, digits: int = 4) -> str:

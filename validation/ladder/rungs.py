@@ -14,11 +14,11 @@ Rungs, bottom to top (:data:`RUNGS`):
   BEM's half-space) at the entrainment speed of the case's kinematics, the reference of the Hamrock-Dowson film
   (studies.case_ehl);
 * ``FE``: the contact of the most loaded contact in FE (studies.fe_contact) on three or more meshes whose sizes
-  follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), and the Richardson extrapolation of the study
-  (references.richardson): the reference every model of the contact is judged against, with its uncertainty;
+  follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), the finest level with its uncertainty over the
+  levels (references.uncertainty): the reference every model of the contact is judged against;
 * ``FE-informed``: the FE modules of the two balls (fem.fourpoint, fem.screw_module) on meshes sized from the
   smallest ellipse of the module (:func:`module_fe`), their contact pressures fed to the B2B model
-  (studies.fe_b2b_linear, studies.fe_b2b_screw); the extrapolated FE-informed B2B force is the reference of the
+  (studies.fe_b2b_linear, studies.fe_b2b_screw); the finest FE-informed B2B force is the reference of the
   analytical and low-order B2B forces;
 * ``stick-slip``: the case's balls with stick/slip ball-to-groove contacts (lowmodel.contact.rolling_friction on
   two half-spaces) against lin2019's full slip on the same cells (studies.case_stick_slip): whether full slip holds
@@ -80,7 +80,7 @@ BYTES_PER_DOF = 22.2e3
 CAP_MARGIN = 1.25
 MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
                  "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
-# What each model of the contact must reach against the extrapolated FE reference, with the source of the number:
+# What each model of the contact must reach against the FE reference, with the source of the number:
 # the FE levels the accuracy docs/fem.md states for its levels (validation/scenes/fe_hertz.py checks the same
 # numbers against Hertz), Hertz and the BEM the agreement docs/fem.md and docs/halfspace.md show for the papers'
 # contacts at the default level.  A contact where Hertz misses is a contact outside Hertz's assumptions: the ladder

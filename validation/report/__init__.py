@@ -10,8 +10,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
     {"fidelity": str, "passed": bool, "strict": bool, "strict_time": bool,
      "complete": bool, "not_run": [str],
-     "counts": {"pass", "known gap", "findings", "not applicable", "fail", "error"},
-     "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable",
+     "counts": {"pass", "known gap", "findings", "not applicable", "inconclusive", "fail", "error"},
+     "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable", "inconclusive",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
                  "artifacts": [str], "notes": [str],
                  "outputs": [{"model", "quantity", "unit", "value", "reference",
@@ -23,7 +23,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
 ``peak_memory_gb`` is the process's peak resident memory while the scene ran (0 where not measured).
 ``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
-scene that applies).
+scene that applies).  ``inconclusive`` is why its reference is too uncertain to judge at the run's fidelity, with
+what settles it (status ``inconclusive``; ``""`` when the reference is conclusive).
 A scene's ``status`` is one of ``counts``' keys; an output's is ``pass``, ``fail``, ``outside accuracy`` (a
 finding: a model outside its declared accuracy on a case's own geometry, docs/validation.md), ``known gap``,
 ``unexpected pass``, ``within budget`` or ``over budget``.

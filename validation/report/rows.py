@@ -25,7 +25,8 @@ DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
 STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)",
                 "findings": "PASS, FINDINGS (models outside their accuracy here)",
-                "not applicable": "DOES NOT APPLY (the model has no state on this case)", "fail": "FAIL",
+                "not applicable": "DOES NOT APPLY (the model has no state on this case)",
+                "inconclusive": "INCONCLUSIVE (no conclusive reference at this fidelity)", "fail": "FAIL",
                 "error": "ERROR"}
 
 
@@ -206,11 +207,19 @@ NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case (a limit 
                           "number against it): not a failure of the software, and no validation of that rung here")
 
 
+# what an inconclusive scene means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
+INCONCLUSIVE_MEANING = ("the reference (an FE mesh study) is too uncertain at this fidelity to judge the models "
+                        "against it: no conclusive reference, so those models are not judged (no finding, no "
+                        "failure); the reason names the fidelity or [fe] levels that settle it")
+
+
 def passing_lines(result: SceneResult, status: str) -> list[str]:
-    """What a passing scene with findings, known gaps or a model that does not apply adds under its status line on
-    the terminal."""
+    """What a passing scene with findings, known gaps, no conclusive reference or a model that does not apply adds
+    under its status line on the terminal."""
     if status == "not applicable":
         return [f"  does not apply: {result.not_applicable}"]
+    if status == "inconclusive":
+        return [f"  inconclusive: {result.inconclusive}"]
     if status == "findings":
         return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o, level=True)}: outside accuracy"
                                                       for o in result.outputs_with("outside accuracy")]
@@ -228,6 +237,8 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
     lines = []
     if strict and result.not_applicable and not result.error:
         lines.append(f"  does not apply (--strict): {result.not_applicable}")
+    if strict and result.inconclusive and not result.error and not result.not_applicable:
+        lines.append(f"  inconclusive (--strict): {result.inconclusive}")
     for o in bad[:limit]:
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "outside accuracy": "outside accuracy (--strict)",

@@ -147,9 +147,10 @@ def sensitivity(case: LinearGuideCase, model, results, low, contacts) -> list[tu
     return rows
 
 
-def show_module(case: LinearGuideCase, scene_dir, fidelity: str) -> list:
+def show_module(case: LinearGuideCase, scene_dir, fidelity: str, solve: bool = False) -> list:
     """The ``show`` hook of an FE-informed linear-guide scene, at the case's checked level for ``fidelity``
-    (quick or default; the module is solved again): ``pressure.png`` (the four contact patches of both balls with
+    (quick or default): the 3D screenshots of the saved module fields; none saved: FileNotFoundError, or with
+    ``solve`` the module solved again and ``pressure.png`` (the four contact patches of both balls with
     the Hertz ellipses of the low-order model and the FE moment ellipses) and ``stress.png`` (von Mises stress of
     ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and BR-TL are the two pairs
     of opposite contacts)."""
@@ -157,6 +158,8 @@ def show_module(case: LinearGuideCase, scene_dir, fidelity: str) -> list:
         raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
     if render3d.has_fields(scene_dir):  # the fields saved by validate: the 3D screenshots, no solve
         return render3d.render(scene_dir)
+    if not solve:
+        raise FileNotFoundError(f"no saved module fields in {scene_dir} (fields.json)")
     level = case.fe.levels.checked(fidelity)
     model, results, _ = solve_fe_level(case, level)
     target = Path(scene_dir)

@@ -143,7 +143,7 @@ def mesh_dofs(path) -> int:
     the DOFs fem.hertz_case solves (before the support's Dirichlet DOFs are removed)."""
     import meshio
 
-    mesh = meshio.read(path)
+    mesh = meshio.read(path, file_format="gmsh")  # by name: meshio tries other readers and prints their errors
     tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"]).astype(np.int64)
     edges = np.sort(np.concatenate([tets[:, [i, j]] for i, j in ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))]),
                     axis=1)
@@ -308,10 +308,10 @@ def load_fields(directory) -> tuple[dict, dict]:
     return data, meta
 
 
-def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 0.0) -> list[Path]:
+def show_fields(case: ContactCase, scene_dir, fidelity: str, solve: bool = False, *, cost_s: float = 0.0) -> list[Path]:
     """The ``show`` hook of an FE contact scene: ``pressure.png`` and ``stress.png`` (figures.fe_contact) drawn
-    from the fields saved in ``scene_dir`` (named after the scene); only when none are saved does it solve the
-    checked level at ``fidelity`` first (about ``cost_s`` [s]), saying so on stderr."""
+    from the fields saved in ``scene_dir`` (named after the scene).  None saved: FileNotFoundError, or with
+    ``solve`` the checked level at ``fidelity`` solved first (about ``cost_s`` [s]), saying so on stderr."""
     from ballbench.validation.figures import fe_contact as figures
     levels = _fe(case).levels
     if fidelity not in levels:
@@ -321,6 +321,8 @@ def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 
     try:
         data, meta = load_fields(directory)
     except FileNotFoundError:
+        if not solve:
+            raise
         hint = ""
         results = directory.parent / "results.json"
         if fidelity != "quick" and results.is_file():
