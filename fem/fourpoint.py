@@ -259,12 +259,10 @@ class ZoneEdgeContact(ValueError):
 
 def _on_flank(local: np.ndarray, ball_tris: np.ndarray, rail_tris: np.ndarray, candidates: np.ndarray,
               bary: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The candidate zone trimmed to the ball triangles that face the flank: every vertex of a candidate
-    triangle (one with a candidate vertex) whose quadrature points do not all project on the flank along e3
-    leaves the zone.  The zone of a heavy contact is the whole ball cap, which can reach past the flank's end
-    (the groove's shoulder) on a flank turned by a deviation; ball points there face the land, not the flank.
-    Returns ``(candidates, shoulder)``: the kept vertices and those of them next to a dropped one (the zone's
-    edge at the shoulder)."""
+    """The candidate zone trimmed to the ball triangles that face the flank: every vertex of a candidate triangle
+    (one with a candidate vertex) whose quadrature points do not all project on the flank along e3 leaves the zone
+    (a heavy contact's zone, the whole ball cap, can reach past the flank's end, the groove's shoulder; ball points
+    there face the land).  Returns ``(candidates, shoulder)``: the kept vertices, those next to a dropped one."""
     index = -np.ones(len(local), dtype=np.int64)
     index[candidates] = np.arange(candidates.size)
     tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
