@@ -66,6 +66,7 @@ LIGHT = {
     ("validation/sweep/execution.py", "tqdm.auto"): STARTUP,
     ("validation/studies/fe_contact.py", "tqdm.auto"): SCENES,
     ("validation/ladder/__init__.py", "ballbench.validation.studies.case_ehl"): STARTUP,
+    ("validation/ladder/b2b_fe.py", "ballbench.fem.fourpoint"): STARTUP,
     ("validation/ladder/b2b_fe.py", "ballbench.lowmodel.linear_bearing.b2b_analytical"): STARTUP,
     ("validation/ladder/b2b_fe.py", "ballbench.validation.figures.render3d"): STARTUP,
     ("validation/ladder/b2b_fe.py", "ballbench.validation.studies.fe_b2b_linear"): STARTUP,

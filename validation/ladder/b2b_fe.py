@@ -6,6 +6,7 @@ screenshots."""
 from __future__ import annotations
 
 import functools
+import math
 import time
 from pathlib import Path
 
@@ -19,21 +20,44 @@ from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
                                                 fmt, oversize_for, preload_loss, preload_loss_words, settle_words)
+from ballbench.validation.ladder.common import not_truncated, truncations
+from ballbench.validation.scene import NotApplicable
 from ballbench.validation.ladder.rungs import module_fe
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.references.uncertainty import eca_hoekstra
 from ballbench.validation.runner import GB
-from ballbench.validation.scene import NotApplicable
 
 __all__ = ["b2b_fe_scene", "show_module", "judge_b2b", "B2B_UNCERTAINTY"]
 
 
 def b2b_fe_scene(run, *, case, deadline) -> None:
-    """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``)."""
-    if isinstance(case, LinearGuideCase):
-        _guide_b2b_fe(run, module_fe(case), deadline)
-    else:
-        _screw_b2b_fe(run, module_fe(case), deadline)
+    """The scene function of ``<stem>-b2b-fe``: ``deadline`` as for the contact scene (``--budget``).  Does not
+    apply where a contact ellipse reaches its groove's shoulder (common.not_truncated, docs/truncation.md)."""
+    from ballbench.fem.fourpoint import ShoulderContact, ZoneEdgeContact
+
+    not_truncated(case)
+    sized = module_fe(case)
+    try:
+        if isinstance(case, LinearGuideCase):
+            _guide_b2b_fe(run, sized, deadline)
+        else:
+            _screw_b2b_fe(run, sized, deadline)
+    except ShoulderContact as error:  # the FE pressure reaches the flank's end where Hertz's ellipse stops short
+        worst = min(truncations(case), key=lambda t: t.margin)
+        raise NotApplicable(f"{error}, though the low-order ellipses stop short of it (closest: {worst.text()}, "
+                            f"{math.degrees(worst.margin):.1f} deg short): the FE module's contact is an edge "
+                            "contact its flank does not resolve") from error
+    except ZoneEdgeContact as error:  # a heavy ellipse wider than the largest ball cap the module can mesh
+        if case.fe is not None or sized.fe.min_cap_angle is None:
+            raise
+        radius = (case.guide if isinstance(case, LinearGuideCase) else case.screw).ball_radius
+        a_max = max(t.a for t in truncations(case))
+        asked, half = math.degrees(sized.fe.min_cap_angle), math.degrees(math.asin(min(1.0, a_max / radius)))
+        raise NotApplicable(f"{error}: the FE contact fills the ball cap the module meshes for it (asked for "
+                            f"{asked:.1f} deg, the ellipse to {ladder_rungs.CAP_MARGIN:g} a; "
+                            f"a / R_B = {a_max / radius:.3f}, half-angle {half:.1f} deg; the caps may not pass 0.45 x "
+                            "the angle between two contacts, meshes.parts.ball.cap_limit): a contact this wide is "
+                            "outside what the module resolves (docs/truncation.md)") from error
 
 
 def _levels(run, case, deadline, solve, dofs):
@@ -288,6 +312,7 @@ def show_module(case, scene_dir, fidelity: str, solve: bool = False) -> list[Pat
     from ballbench.validation.studies import fe_b2b_linear, fe_b2b_screw
     if render3d.has_fields(scene_dir):
         return render3d.render(scene_dir)
+    not_truncated(case)
     if isinstance(case, BallScrewCase):
         _screw_unloaded(case)
     if not solve:

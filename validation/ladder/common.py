@@ -8,14 +8,18 @@ import contextlib
 import dataclasses
 import functools
 import math
+import time
 
-from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
+from ballbench.lowmodel.screw.contacts import flank_angles
 from ballbench.lowmodel.screw.preload import nominal_preload_loss
-from ballbench.validation.cases.case import BallScrewCase
+from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.scene import NotApplicable
 
 # the FE reference must be known to 1 % (its uncertainty by references.uncertainty) to judge models against it;
@@ -36,7 +40,7 @@ __all__ = ["settle_words",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
            "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
-           "LIN2019_SCENES"]
+           "LIN2019_SCENES", "truncations", "truncation_check", "not_truncated"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
 # stick/slip balls, the EHL loads): where that model has no state they do not apply, but for the contact rung, which
@@ -232,3 +236,64 @@ def limits_lines(case, names) -> list[str]:
     if contact:
         lines.append(f"Where lin2019's model finds no state at this load, {contact[0]} runs on {FRICTIONLESS_WORDS}.")
     return lines
+
+
+# --------------------------------------------------------------------------
+# contact ellipse truncation by the groove's shoulder (lowmodel.truncation, docs/truncation.md)
+# --------------------------------------------------------------------------
+def truncations(case, result=None) -> tuple:
+    """The :class:`lowmodel.truncation.Truncation` of every loaded contact of a guide's or screw's low-order touching
+    state (``result``: its lowmodel.bearing_results result, computed when None; none without a state): the flank's
+    shoulder from the
+    contact angle with the ball centred (a guide's ``beta_0 + deviation``; a screw's flank angles of its deviation
+    reading, lowmodel.screw.contacts.flank_angles), the ellipse's end from the loaded angle and ``a``."""
+    if result is None:
+        try:
+            result = (bearing_results.guide_result(case) if isinstance(case, LinearGuideCase)
+                      else bearing_results.screw_result(case) if isinstance(case, BallScrewCase) else None)
+        except ConvergenceError:  # no low-order state: no ellipse to check (the rungs say why, LIN2019_SCENES)
+            return ()
+    if isinstance(case, LinearGuideCase):
+        radius, conformity = case.guide.ball_radius, case.guide.conformity
+        rigid = {(j, name): float(angle) for j in range(1, case.n_balls + 1)
+                 for name, angle in zip(GUIDE_CONTACTS, case.contact_angles)}
+    elif isinstance(case, BallScrewCase):
+        radius, conformity = case.screw.ball_radius, case.screw.conformity
+        angles = flank_angles(case.screw.nominal_angle, list(case.deviations), case.reading)
+        rigid = {(j + 1, name): float(angle) for j, row in enumerate(angles)
+                 for name, angle in zip(SCREW_CONTACTS, row)}
+    else:
+        return ()
+    return tuple(truncation.truncation(f"ball {c.ball} {c.contact}", radius, conformity, rigid[(c.ball, c.contact)],
+                                       c.contact_angle, c.a)
+                 for c in result.contacts if c.normal_force > 0)
+
+
+def truncation_check(run, case, result=None, *, time_s: float = 0.0) -> tuple:
+    """The truncation finding of a rung (docs/truncation.md): the end of the worst contact ellipse's major axis
+    against its groove's shoulder, a finding when it reaches it (every model of the rung then works outside its
+    assumptions; the verdict names the contact and the angles).  Returns the truncations."""
+    start = time.perf_counter()
+    found = truncations(case, result)
+    if result is None:  # the state solved here: its time is the check's
+        time_s += time.perf_counter() - start
+    if not found:
+        return found
+    worst = min(found, key=lambda t: t.margin)
+    run.check(model="contact ellipse of the low-order touching state (Hertz semi-axis a)", family="analytical",
+              quantity=f"end of the major semi-axis, beta + asin(a/R_B), {worst.contact}", unit="rad",
+              value=worst.end_angle, reference=worst.shoulder_angle, relation="le", tolerance=0.0, time_s=time_s,
+              source=f"the groove's shoulder, the land {truncation.SHOULDER_DEPTH:g} R_B from the ball centre "
+                     "(lowmodel.truncation; Harris & Kotzalas, contact ellipse truncation; docs/truncation.md)",
+              note=truncation.words(found) or f"worst margin {math.degrees(worst.margin):.1f} deg: "
+                                              f"{worst.text()}", finding=True)
+    return found
+
+
+def not_truncated(case, result=None) -> None:
+    """NotApplicable when a contact ellipse of ``case`` reaches its groove's shoulder (docs/truncation.md): an
+    edge contact, which the FE modules (their mortar zones on the flank, fem.fourpoint) do not resolve."""
+    words = truncation.words(truncations(case, result))
+    if words:
+        raise NotApplicable(f"{words}. The FE module (fem.fourpoint, fem.screw_module) needs every contact ellipse "
+                            "on its flank.")

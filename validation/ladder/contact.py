@@ -14,10 +14,11 @@ from pathlib import Path
 from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.validation.cases.case import ContactCase
+from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
                                                past_preload_loss, settle_words)
+from ballbench.validation.ladder.common import truncation_check
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.references.uncertainty import eca_hoekstra
 from ballbench.validation.runner import GB
@@ -40,9 +41,13 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     level starts.  The fields and pictures are those of the most loaded contact.  Past a ball screw's preload loss,
     where lin2019's model has no state, the loads are those of the frictionless statics (:func:`_distinct`), and the
     scene says so."""
-    distinct, reason = _distinct(case)
+    start = time.perf_counter()
+    distinct, reason, result = _distinct(case)
+    time_s = time.perf_counter() - start  # lin2019's state (once: the contacts' loads come from it)
     if reason:
         _frictionless_table(run, case, reason)
+    elif result is not None:  # the ellipses of lin2019's state against the grooves' shoulders (docs/truncation.md)
+        truncation_check(run, case, result, time_s=time_s)
     # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
     # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
@@ -62,18 +67,24 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
 
 
 def _distinct(case):
-    """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
-    screw where lin2019's model finds no state (past its preload loss, or below it where friction unloads a contact
-    first; common.past_preload_loss) runs on the loads of the frictionless statics
-    (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung needs a contact geometry
-    and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
+    """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or "", the
+    low-order state they come from or None): a ball screw where lin2019's model finds no state (past its preload
+    loss, or below it where friction unloads a contact first; common.past_preload_loss) runs on the loads of the
+    frictionless statics (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung
+    needs a contact geometry and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
     try:
-        return ladder_rungs.distinct_contacts(case), ""
+        if isinstance(case, LinearGuideCase):
+            result = bearing_results.guide_result(case)
+        elif isinstance(case, BallScrewCase):
+            result = bearing_results.screw_result(case)
+        else:
+            result = None
+        return ladder_rungs.distinct_contacts(case, result), "", result
     except ConvergenceError as error:
         reason = past_preload_loss(case, error)
         if not reason:
             raise
-    return ladder_rungs.distinct_contacts(case, frictionless=True), reason
+    return ladder_rungs.distinct_contacts(case, frictionless=True), reason, None
 
 
 def _frictionless_table(run, case, reason: str) -> None:

@@ -35,14 +35,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove
+from ballbench.validation.ladder.common import truncations
 from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
                                              ModuleFe, ModuleLevel, PairLevel, named)
 
 __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
-            "module_fe", "hertz_values", "bem_values",
+            "module_fe", "module_cap_angle", "module_land_depth", "CAP_MARGIN", "hertz_values", "bem_values",
            "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time",
            "predicted_memory", "available_memory", "BYTES_PER_DOF", "QUICK_DOF_CAP", "SCREW_QUICK_RATIOS",
            "SCREW_QUICK_GROWTH", "screw_quick_levels"]
@@ -74,6 +75,9 @@ BYTES_PER_DOF = 22.2e3
 # module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
 # for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
 # 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
+# the module's ball caps hold the contact ellipse out to CAP_MARGIN a (the pressure's edge and about two cells
+# beyond it at the module levels' growth): module_cap_angle
+CAP_MARGIN = 1.25
 MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
                  "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
 # What each model of the contact must reach against the FE reference, with the source of the number:
@@ -263,7 +267,9 @@ def module_fe(case, result=None):
     """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
     ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
     (``result``), the candidate zone to twice the largest approach (plus the oversize), for a guide the elliptic
-    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max."""
+    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max; the ball caps
+    and the grooves' lands from the largest ellipse where the builders' defaults are too small for it
+    (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
     if case.fe is not None:
         return case
 
@@ -274,13 +280,41 @@ def module_fe(case, result=None):
     loaded = [c for c in result.contacts if c.normal_force > 0]
     b_max = max(c.b for c in loaded)
     approach = max(c.approach for c in loaded)
+    bearing = case.guide if isinstance(case, LinearGuideCase) else case.screw
+    cap = module_cap_angle(max(c.a for c in loaded), bearing.ball_radius)
+    land = module_land_depth(truncations(case, result), bearing.ball_radius, bearing.conformity)
     if isinstance(case, LinearGuideCase):
         levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
                                for f, (ns, growth) in MODULE_LEVELS.items()})
-        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5)))
+        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5), min_cap_angle=cap,
+                                         land_depth=land))
     levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, 2.2 * b_max) for n in ns)
                            for f, (ns, growth) in MODULE_LEVELS.items()})
-    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize))
+    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize, min_cap_angle=cap,
+                                     land_depth=land))
+
+
+def module_cap_angle(a: float, ball_radius: float) -> float | None:
+    """The ball caps (the mortar zones) a module needs for the largest Hertz semi-major axis ``a`` [m] of its
+    contacts: the ellipse's half-angle seen from the ball centre, ``asin(a / R_B)``, with the zone ``CAP_MARGIN a``
+    (docs/truncation.md); None where the builders' default cap of 30 deg holds it already (every scene whose
+    ellipse fits keeps its mesh)."""
+    need = math.asin(min(1.0, CAP_MARGIN * a / ball_radius))
+    return need if need > math.radians(30.0) else None
+
+
+def module_land_depth(found, ball_radius: float, conformity: float) -> float | None:
+    """The land depth (units of ``R_B``) a module's grooves need so that every flank runs past its contact's zone,
+    the ellipse out to ``CAP_MARGIN a`` (:func:`lowmodel.truncation.land_depth` at ``beta + asin(CAP_MARGIN a /
+    R_B)``), for the contacts' truncation checks ``found`` (ladder.common.truncations); None where the shoulder
+    convention's 0.25 leaves that room already (every scene whose ellipses fit keeps its mesh).  A flank past
+    the convention's shoulder changes no contact whose ellipse ends before that shoulder (a truncated one does
+    not reach the FE: ladder.common.not_truncated); docs/truncation.md."""
+    need = min((truncation.land_depth(ball_radius, conformity, t.rigid_angle,
+                                      min(math.pi / 2, t.contact_angle + math.asin(min(1.0, CAP_MARGIN * t.a
+                                                                                     / ball_radius))))
+                for t in found), default=truncation.SHOULDER_DEPTH)
+    return max(0.0, need) if need < truncation.SHOULDER_DEPTH else None
 
 
 # --------------------------------------------------------------------------

@@ -61,7 +61,9 @@ def _module_mesh(case: LinearGuideCase, level):
     guide = case.guide
     return fourpoint_module(guide.ball_radius, guide.conformity, guide.nominal_angle, case.deviations, 1,
                             h_contact=level.h_contact, growth=level.growth, fine_radius=level.fine_radius,
-                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None)
+                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None,
+                            min_cap_angle=case.fe.min_cap_angle,
+                            land_height=None if case.fe.land_depth is None else -case.fe.land_depth * guide.ball_radius)
 
 
 def level_dofs(case: LinearGuideCase, level) -> int:

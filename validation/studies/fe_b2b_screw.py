@@ -70,9 +70,13 @@ def _module_mesh(case: BallScrewCase, level, theta: float):
     depth = {} if fe.body_depth is None else {
         "screw_back_radius": screw.pitch_radius - fe.body_depth * screw.ball_radius,
         "nut_back_radius": screw.pitch_radius + fe.body_depth * screw.ball_radius}
+    if fe.land_depth is not None:
+        depth.update(screw_land_radius=screw.pitch_radius - fe.land_depth * screw.ball_radius,
+                     nut_land_radius=screw.pitch_radius + fe.land_depth * screw.ball_radius)
     return ball_screw_module(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
                              screw.nominal_angle, (theta, theta, 0.0, 0.0), 1, h_contact=level.h_contact,
-                             growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max, **depth)
+                             growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max,
+                             min_cap_angle=fe.min_cap_angle, **depth)
 
 
 def level_dofs(case: BallScrewCase, level) -> int:
