@@ -264,7 +264,7 @@ def _cmd_validate(args) -> int:
     print(f"{len(results) - len(failed) - unfit - unsure} of {len(results)} scenes passed"
           + (f" ({gaps} with known gaps)" if gaps else "")
           + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
-          + (f", {unfit} do not apply to the case (the model has no state there)" if unfit else "")
+          + (f", {unfit} do not apply to the case (outside the model's limits there)" if unfit else "")
           + (f", {unsure} inconclusive (no conclusive reference at this fidelity; each names what settles it)"
              if unsure else "")
           + f"; report: {paths['markdown']} and {paths['html']}")

@@ -25,7 +25,7 @@ DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
 STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)",
                 "findings": "PASS, FINDINGS (models outside their accuracy here)",
-                "not applicable": "DOES NOT APPLY (the model has no state on this case)",
+                "not applicable": "DOES NOT APPLY (outside the model's limits on this case)",
                 "inconclusive": "INCONCLUSIVE (no conclusive reference at this fidelity)", "fail": "FAIL",
                 "error": "ERROR"}
 
@@ -203,8 +203,9 @@ def check_line(o: Output, *, level: bool = False) -> str:
 
 
 # what a scene that does not apply means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
-NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case (a limit of the model, named with the case's "
-                          "number against it): not a failure of the software, and no validation of that rung here")
+NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case, or the case lies outside what the rung can "
+                          "model (a contact ellipse reaching its groove's shoulder): a limit named with the case's "
+                          "number against it, not a failure of the software, and no validation of that rung here")
 
 
 # what an inconclusive scene means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
