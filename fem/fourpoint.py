@@ -58,8 +58,8 @@ from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
 from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.lowmodel.linear_bearing.b2b_traction import TractionPatch
 
-__all__ = ["CONTACTS", "ModuleGeometry", "ModuleModel", "ContactResult", "ModuleResult", "load_module",
-           "exact_gap", "build_module_model", "solve",
+__all__ = ["CONTACTS", "ShoulderContact", "ZoneEdgeContact", "ModuleGeometry", "ModuleModel", "ContactResult",
+           "ModuleResult", "load_module", "exact_gap", "build_module_model", "solve",
            "residual_load", "traction_patches", "full_displacement", "von_mises"]
 
 CONTACTS = CONTACT_NAMES  # (BL, BR, TR, TL), the project-wide order
@@ -203,6 +203,7 @@ class _Patch:
     g0q: np.ndarray  # (q,) exact initial gap
     surface: np.ndarray  # (q, 3) sphere points of the quadrature points
     boundary: np.ndarray  # (n,) candidates on the zone edge
+    shoulder: np.ndarray  # (n,) candidates on the zone edge the flank's end (the groove's shoulder) cuts
 
 
 @dataclass
@@ -233,6 +234,48 @@ class ModuleModel:
     @property
     def n_multipliers(self) -> int:
         return int(self.g0.size)
+
+
+class ShoulderContact(ValueError):
+    """The contact pressure of a solved module reaches the end of its flank (the groove's shoulder, the land of
+    the module's mesh): the contact ellipse is truncated in the FE (docs/truncation.md), an edge contact the
+    module's mortar zone on the flank does not resolve.  ``contact`` names it (BL, BR, TR, TL or SL, ...)."""
+
+    def __init__(self, contact: str):
+        self.contact = contact
+        super().__init__(f"contact {contact}: the FE contact pressure reaches the groove's shoulder (the end of its "
+                         "flank): the contact ellipse is truncated (docs/truncation.md)")
+
+
+class ZoneEdgeContact(ValueError):
+    """The contact pressure of a solved module reaches the edge of its candidate zone (the gap ``gap_limit`` or the
+    ball cap's edge, meshes.parts.ball.cap_limit): a larger zone is needed.  ``contact`` names it."""
+
+    def __init__(self, contact: str):
+        self.contact = contact
+        super().__init__(f"contact {contact} reaches the edge of the candidate zone: raise gap_limit or the ball's "
+                         "cap_angle")
+
+
+def _on_flank(local: np.ndarray, ball_tris: np.ndarray, rail_tris: np.ndarray, candidates: np.ndarray,
+              bary: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The candidate zone trimmed to the ball triangles that face the flank: every vertex of a candidate triangle
+    (one with a candidate vertex) whose quadrature points do not all project on the flank along e3 leaves the zone
+    (a heavy contact's zone, the whole ball cap, can reach past the flank's end, the groove's shoulder; ball points
+    there face the land).  Returns ``(candidates, shoulder)``: the kept vertices, those next to a dropped one."""
+    index = -np.ones(len(local), dtype=np.int64)
+    index[candidates] = np.arange(candidates.size)
+    tris = ball_tris[(index[ball_tris] >= 0).any(axis=1)]
+    corners = local[tris][:, :, :2]
+    points = np.einsum("qk,tkd->tqd", bary, corners).reshape(-1, 2)  # the triangles' sub-triangle points
+    _, _, inside = locate(local, rail_tris, points)
+    off_tris = ~inside.reshape(len(tris), len(bary)).all(axis=1)
+    if not off_tris.any():
+        return candidates, np.zeros(0, dtype=candidates.dtype)
+    off = np.unique(tris[off_tris])
+    kept = np.setdiff1d(candidates, off)
+    beside = ball_tris[np.isin(ball_tris, off).any(axis=1)]
+    return kept, np.intersect1d(kept, beside)
 
 
 def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.28), gap_limit: float,
@@ -290,6 +333,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         verts = np.unique(ball_tris)
         g_vert, _ = geometry.gap(i, local[verts, :2])
         candidates = verts[g_vert <= gap_limit]
+        candidates, shoulder = _on_flank(local, ball_tris, rail_tris, candidates, bary)
         if candidates.size < 20:
             raise ValueError(f"contact {name}: only {candidates.size} candidate nodes (need >= 20): refine the mesh "
                              "at the contact (smaller h_contact) or raise gap_limit")
@@ -299,9 +343,9 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         xq, wq, phi, mult = projected_quadrature(local[tris][:, :, :2], index[tris], bary)
         g0q, surface = geometry.gap(i, xq)
         rail_rows, rail_bary, inside = locate(local, rail_tris, xq)  # along e3: the local z
-        if not inside.all():
-            raise ValueError(f"contact {name}: a ball quadrature point projects outside its flank: enlarge the "
-                             "rails or lower gap_limit")
+        if not inside.all():  # _on_flank keeps only the triangles whose points all land on the flank
+            raise RuntimeError(f"contact {name}: a ball quadrature point projects outside its flank after the "
+                               "candidate zone was trimmed to the flank (fem.fourpoint._on_flank)")
         ball_dofs = [np.repeat(triangle_dofs(basis, tris, c, edges), nq, axis=0) for c in range(3)]
         rail_dofs = [triangle_dofs(basis, rail_tris[rail_rows], c, edges) for c in range(3)]
         ball_shape = np.tile(shape, (len(tris), 1))
@@ -320,7 +364,7 @@ def build_module_model(mesh, geometry: ModuleGeometry, *, materials=(2.1e11, 0.2
         edge_tris = tris[(index[tris] < 0).any(axis=1)]
         patches.append(_Patch(name, candidates, local[candidates, :2], index[tris], xq, wq, phi,
                               np.where(mult >= 0, mult + offset, -1), g0q, surface,
-                              np.isin(candidates, edge_tris)))
+                              np.isin(candidates, edge_tris), np.isin(candidates, shoulder)))
         g0_all.append(g0)
         w_all.append(weights)
         contact_of.append(np.full(n_c, i))
@@ -436,8 +480,11 @@ def solve_loaded(model: ModuleModel, load: np.ndarray, *, tol: float = 1e-9, fit
         raise ConvergenceError("four-point module: geometric update of the gap did not converge", residual=change,
                                iterations=max_updates, tolerance=1e-4 * float(np.max(np.abs(q))))
     for patch in model.patches:
-        if np.any(active[np.flatnonzero(model.contact_of == geometry.contact_names.index(patch.name))][patch.boundary]):
-            raise ValueError(f"contact {patch.name} reaches the edge of the candidate zone: raise gap_limit")
+        touching = active[np.flatnonzero(model.contact_of == geometry.contact_names.index(patch.name))]
+        if np.any(touching[patch.shoulder]):
+            raise ShoulderContact(patch.name)
+        if np.any(touching[patch.boundary]):
+            raise ZoneEdgeContact(patch.name)
     results = []
     for i, patch in enumerate(model.patches):
         sel = model.contact_of == i

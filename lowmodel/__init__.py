@@ -25,6 +25,7 @@ Shared: ``lowmodel.b2b_chain`` (the B2B chain complementarity of every B2B model
 ``lowmodel.solvers`` (damped Newton, continuation), ``lowmodel.state`` (the fields every ball
 state shares), ``lowmodel.dual`` (forward-mode derivatives), ``lowmodel.quadrature``
 (tanh-sinh, Gauss-Legendre), ``lowmodel.checks`` (input checks: one ValueError naming
-parameter, unit, range and value), ``lowmodel.errors`` (ConvergenceError), ``lowmodel.cache``.
+parameter, unit, range and value), ``lowmodel.model_inputs`` (what lin2019's models need beyond each field's
+range, checked by the models and the case files), ``lowmodel.errors`` (ConvergenceError), ``lowmodel.cache``.
 docs/architecture.md maps papers, sections and equations to modules.
 """

@@ -75,7 +75,7 @@ FIELDS: dict[str, tuple[str, str, str]] = {
     "side_force_ratio": ("finite", "", ""),
     "n_balls": ("count", "", ""),
     "deviation": ("finite", "rad", "deviation"),
-    "axial_load": ("non-negative", "N", ""),
+    "axial_load": ("non-negative", "N", "axial_load"),
     "force": ("positive", "N", ""),
 }
 

@@ -414,7 +414,7 @@ def fit_line_through_origin(x, y, *, confidence: float = 0.95, source: str = "",
     start = float(-(x @ y) / (x @ x))
     fit = _fit("x, y", lambda p: -p[0] * x - y, [start], n_points=x.size, confidence=confidence)
     with np.errstate(over="ignore", under="ignore"):
-        to_si = y_scale / x_scale
+        to_si = np.float64(y_scale) / np.float64(x_scale)  # numpy: beyond the float range is inf, checked below
         scaled, fit = fit, FitResult(fit.params * to_si, fit.covariance * to_si**2, fit.std_error * to_si,
                                      fit.ci * to_si, fit.rms * y_scale, fit.dof, fit.confidence)
     underflow = scaled.std_error[0] != 0.0 and not fit.std_error[0] >= np.finfo(float).tiny

@@ -273,7 +273,9 @@ def power_of_two_scale(value) -> float:
 # for rad): (low, high, SI unit, what the range is, an example in SI).  Closed ranges.  Ball radii 0.1 mm to 100 mm
 # cover miniature guides to slewing rings; pitch radii 1 mm to 1 m; leads up to 0.5 m; an oversize (preload by
 # interference) up to 100 um; elastic moduli of polymers (1 GPa) to carbides (1 TPa); contact angle deviations up
-# to 20 deg (machining and assembly errors are a few degrees).
+# to 20 deg (machining and assembly errors are a few degrees); axial loads of a ball screw up to 10 MN (the largest
+# catalogue screws are rated a few MN statically; beyond, lin2019's Hertz contacts of real balls approach by more
+# than the ball radius, which the model refuses only once its contacts are built: lowmodel.screw.ball).
 PLAUSIBLE = {
     "ball_radius": (1e-4, 0.1, "m", "a ball radius", "a 3.175 mm ball radius is 3.175e-3 m"),
     "pitch_radius": (1e-3, 1.0, "m", "a ball-screw pitch radius", "a 20 mm pitch radius is 0.02 m"),
@@ -281,6 +283,7 @@ PLAUSIBLE = {
     "oversize": (0.0, 1e-4, "m", "a ball oversize", "a 2 um oversize is 2e-6 m"),
     "youngs_modulus": (1e9, 1e12, "Pa", "an elastic modulus", "210 GPa is 2.1e11 Pa"),
     "deviation": (-0.35, 0.35, "rad", "a contact angle deviation (20 deg)", "2 deg is 0.0349 rad"),
+    "axial_load": (0.0, 1e7, "N", "a ball screw's axial load", "a 5 kN load is 5000 N"),
 }
 
 

@@ -3,7 +3,10 @@
 Exit codes: 0 every scene passed (known gaps and findings allowed: a model outside
 its declared accuracy on a case's own geometry), 1 a check failed or a scene raised,
 2 wrong use (one line on stderr naming the problem), 130 interrupted by Ctrl-C (a
-partial report is written).
+partial report is written beside the report folder, which stays untouched).
+
+A run writes its report into a temporary folder beside ``--out`` and puts it in place only when complete; it
+removes only the files an earlier report wrote (validation.report.folder, docs/validation.md "The report folder").
 """
 from __future__ import annotations
 
@@ -11,8 +14,6 @@ import argparse
 import difflib
 import fnmatch
 import os
-import shutil
-import signal
 import sys
 import time
 from pathlib import Path
@@ -25,6 +26,8 @@ from ballbench.validation.studies.calibration import command as calibrate_comman
 from ballbench.validation.ladder.rungs import RUNGS
 from ballbench.validation import ladder, runner, show
 from ballbench.validation.cases import case_file
+from ballbench.validation import report_folder
+from ballbench.validation.interrupt import Interrupt, kept_on_error
 from ballbench.validation.show import can_show
 from ballbench.validation.show import drawable as drawable_scenes
 
@@ -32,7 +35,8 @@ from ballbench.validation.usage import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK, E
 
 __all__ = ["main", "build_parser", "UsageError", "EXIT_OK", "EXIT_FAILED", "EXIT_USAGE", "EXIT_INTERRUPTED"]
 
-MARKER = ".ballbench-report"  # written into every report folder; a re-run cleans only folders that carry it
+MARKER = report_folder.MARKER  # the manifest of every report folder: a re-run removes only the files it lists
+DEFAULT_OUT = "ballbench-report"  # the report folder of registered scenes; a case file's is DEFAULT_OUT-<stem>
 
 DESCRIPTION = """Validate low-order friction models of ball bearings and ball screws against
 finite-element analysis and the numbers the source papers publish."""
@@ -44,8 +48,8 @@ EPILOG = """examples:
   ballbench validate 'lin2019-*'        scenes by name or pattern
   ballbench show fe-hertz-groove-056    pictures of an FE scene's saved fields
   ballbench init linear-guide > g.toml  a commented case file of one's own bearing (docs/cases.md)
-  ballbench validate g.toml --quick     the validation ladder on that case (Hertz, BEM, FE study, ...)
-  ballbench show g.toml                 its pictures
+  ballbench validate g.toml --quick     the validation ladder on that case into ./ballbench-report-g
+  ballbench show g.toml                 its pictures, from the fields that run saved (--solve to solve them)
 
 exit codes: 0 passed (known gaps and findings allowed), 1 a check failed, 2 wrong use, 130 interrupted"""
 
@@ -154,20 +158,24 @@ def _cmd_scenes(args) -> int:  # noqa: ARG001 - every command takes the parsed a
     return EXIT_OK
 
 
+def _default_out(names: list[str]) -> Path:
+    """The report folder without --out: ``ballbench-report-<stem>`` for one case file alone, so that every case
+    file keeps its own report; ``ballbench-report`` for registered scenes and for several case files in one run."""
+    files = [n for n in names if _is_case_file(n)]
+    if files and len(set(files)) == len(names) == 1:
+        return Path(f"{DEFAULT_OUT}-{ladder.slug(files[0])}")
+    return Path(DEFAULT_OUT)
+
+
 def _check_out_dir(out: Path) -> None:
     """Refuse an --out that cannot hold a report, before any work is done."""
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is an existing file, not a folder; choose a folder")
-    if out.is_dir() and any(out.iterdir()) and not _is_report(out):
+    if out.is_dir() and Path.cwd().resolve().is_relative_to(out.resolve()):  # the report is replaced by a rename
+        raise UsageError(f"--out {out} is the current folder or holds it; choose a folder inside it")
+    if out.is_dir() and any(out.iterdir()) and not report_folder.is_report(out):
         raise UsageError(f"--out {out} is a non-empty folder that is not a ballbench report (no {MARKER}); "
                          "choose a new or empty folder")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        probe = out / f".write-test-{os.getpid()}"
-        probe.write_text("")
-        probe.unlink()
-    except OSError as error:
-        raise UsageError(f"cannot write to --out {out}: {error.strerror or error}") from None
 
 
 def _check_file_target(path: Path, option: str) -> None:
@@ -180,53 +188,9 @@ def _check_file_target(path: Path, option: str) -> None:
         raise UsageError(f"cannot write {option} {path}: permission denied")
 
 
-def _is_report(out: Path) -> bool:
-    """A folder an earlier run wrote: it carries the marker (or, before the marker existed, report.md and
-    results.json)."""
-    return (out / MARKER).exists() or ((out / "report.md").is_file() and (out / "results.json").is_file())
-
-
-def _clean(out: Path) -> None:
-    """Empty a previous report folder, so no stale file survives a re-run."""
-    if _is_report(out):
-        for child in out.iterdir():
-            if child.is_dir() and not child.is_symlink():
-                shutil.rmtree(child)
-            else:
-                child.unlink()
-    (out / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
-
-
-class _Interrupt:
-    """SIGINT: the first Ctrl-C stops after the current scene, the second stops at once."""
-
-    def __init__(self):
-        self.requested = False
-        self.previous = None
-
-    def __enter__(self):
-        try:
-            self.previous = signal.signal(signal.SIGINT, self._handle)
-        except ValueError:  # not the main thread (e.g. in some test runners)
-            self.previous = None
-        return self
-
-    def _handle(self, signum, frame):  # noqa: ARG002 - the signal-handler signature
-        if self.requested:
-            raise KeyboardInterrupt
-        self.requested = True
-        print("\nballbench: Ctrl-C: stopping after the current scene, at its next step (Ctrl-C again to stop now)",
-              file=sys.stderr, flush=True)
-
-    def __exit__(self, *exc):
-        if self.previous is not None:
-            signal.signal(signal.SIGINT, self.previous)
-        return False
-
-
 def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, status_word, write_report
-    from ballbench.validation.report.rows import memory_line, passing_lines
+    from ballbench.validation.report.rows import memory_lines, passing_lines
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be at least 1, got {args.workers}")
@@ -238,12 +202,14 @@ def _cmd_validate(args) -> int:
     if not any(_is_case_file(n) for n in args.scenes) and (args.levels is not None or deadline is not None):
         raise UsageError("--levels and --budget apply to case files (ballbench validate my_guide.toml --levels BEM)")
     scenes = _select(args.scenes, args.fast, args.levels or RUNGS[-1], deadline)
-    out_dir = Path(args.out)
+    out_dir = Path(args.out) if args.out is not None else _default_out(args.scenes)
+    if out_dir.is_symlink():  # the report replaces the folder the link names, not the link
+        out_dir = out_dir.resolve()
     _check_out_dir(out_dir)
     junit = Path(args.junit) if args.junit else None
     if junit is not None:
         _check_file_target(junit, "--junit")
-    _clean(out_dir)
+    temp = report_folder.make_temporary(out_dir)
     show_progress = sys.stderr.isatty() and not args.no_progress
     progress_lines = not sys.stderr.isatty() and not args.no_progress  # piped: one line per step
     options = dict(strict=args.strict, strict_time=args.strict_time)
@@ -257,43 +223,50 @@ def _cmd_validate(args) -> int:
         traceback = [a for a in result.artifacts if a.endswith("error.txt")]
         if traceback:
             print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
-        for line in passing_lines(result, status):
+        for line in passing_lines(result, status) + memory_lines(result, strict_time=args.strict_time):
             print(line, file=sys.stderr)
-        if result.over_memory and not args.strict_time:
-            print(memory_line(result) + " (reported; --strict-time fails it)", file=sys.stderr)
 
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
           flush=True)
     for line in _limits(args.scenes, args.levels or RUNGS[-1]):
         print(f"ballbench: {line}", file=sys.stderr, flush=True)
-    with _Interrupt() as interrupt:
+    with Interrupt(temp, out_dir) as interrupt, kept_on_error(temp, out_dir):
         if args.workers is not None or args.scheduler:
             where = args.scheduler or f"a local cluster of {args.workers} workers"
             print(f"ballbench: scenes as dask.distributed tasks on {where}", file=sys.stderr, flush=True)
-            results, stopped = runner.run_scenes_distributed(scenes, fidelity, out_dir, workers=args.workers or 2,
+            results, stopped = runner.run_scenes_distributed(scenes, fidelity, temp, workers=args.workers or 2,
                                                              scheduler=args.scheduler, on_result=on_result,
                                                              should_stop=lambda: interrupt.requested)
         else:
-            results, stopped = runner.run_scenes(scenes, fidelity, out_dir, show_progress=show_progress,
+            results, stopped = runner.run_scenes(scenes, fidelity, temp, show_progress=show_progress,
                                                  on_result=on_result, should_stop=lambda: interrupt.requested,
                                                  progress_lines=progress_lines)
-    done = {r.name for r in results if not r.interrupted}
-    not_run = [s.name for s in scenes if s.name not in done]
-    results = [r for r in results if not r.interrupted]
-    paths = write_report(results, out_dir, fidelity, not_run=not_run if stopped else (), junit=junit, **options)
+        done = {r.name for r in results if not r.interrupted}
+        not_run = [s.name for s in scenes if s.name not in done]
+        results = [r for r in results if not r.interrupted]
+        paths = write_report(results, temp, fidelity, not_run=not_run if stopped else (), junit=junit, **options)
+        report_folder.write_manifest(temp)
+        interrupt.finish()  # a second Ctrl-C from here waits for the few renames
+        final = report_folder.put_partial(temp, out_dir) if stopped else out_dir
+        carried, aside = ([], None) if stopped else report_folder.replace(temp, out_dir)
+    paths = {k: final / p.relative_to(temp) if p.is_relative_to(temp) else p for k, p in paths.items()}
+    report_folder.say_kept(out_dir, carried, aside)
     statuses = [r.status(**options) for r in results]
     if stopped:
+        untouched = f"; the report in {out_dir} is untouched" if report_folder.is_report(out_dir) else ""
         print(f"ballbench: interrupted; partial report of {len(results)} of {len(scenes)} scenes: "
-              f"{paths['markdown']}", file=sys.stderr)
+              f"{paths['markdown']}{untouched}", file=sys.stderr)
         return EXIT_INTERRUPTED
     failed = [r.name for r, s in zip(results, statuses) if s in ("fail", "error")]
     gaps, findings = statuses.count("known gap"), statuses.count("findings")
-    unfit = statuses.count("not applicable")
-    # a scene that does not apply validated nothing: it passes the run but is not counted as passed
-    print(f"{len(results) - len(failed) - unfit} of {len(results)} scenes passed"
+    unfit, unsure = statuses.count("not applicable"), statuses.count("inconclusive")
+    # a scene that does not apply or is inconclusive validated nothing: it passes the run but is not counted as passed
+    print(f"{len(results) - len(failed) - unfit - unsure} of {len(results)} scenes passed"
           + (f" ({gaps} with known gaps)" if gaps else "")
           + (f" ({findings} with findings: models outside their accuracy here)" if findings else "")
-          + (f", {unfit} do not apply to the case (the model has no state there)" if unfit else "")
+          + (f", {unfit} do not apply to the case (outside the model's limits there)" if unfit else "")
+          + (f", {unsure} inconclusive (no conclusive reference at this fidelity; each names what settles it)"
+             if unsure else "")
           + f"; report: {paths['markdown']} and {paths['html']}")
     if failed:
         print("failed: " + ", ".join(failed))
@@ -301,27 +274,87 @@ def _cmd_validate(args) -> int:
     return EXIT_OK
 
 
+def _show_folder(args, names: list[str]) -> Path:
+    """The report folder ``show`` draws from: ``--out``, or the folder ``validate`` writes without it
+    (:func:`_default_out`); where that holds no report, its partial one (``-partial``: an interrupted run), and for
+    a case file ``./ballbench-report`` when it holds the case's scenes (several case files validated in one run).
+    A folder that is no report but holds a scene's folder is one too (fields saved by hand, a copied scene folder).
+    No report there: a wrong use naming the validate command, except with --solve (the folder is made)."""
+    first = Path(args.out) if args.out is not None else _default_out([args.scene])
+    candidates = [first] if args.out is not None or first == Path(DEFAULT_OUT) else [first, Path(DEFAULT_OUT)]
+    for index, candidate in enumerate(candidates):
+        for folder in (candidate, report_folder.partial(candidate)):
+            if folder.is_dir() and (report_folder.is_report(folder) or any((folder / n).is_dir() for n in names)) and (
+                    index == 0 or {s["name"] for s in report_folder.scenes_in(folder)} & set(names)):
+                if folder != candidate:
+                    print(f"ballbench: no complete report in {candidate}; drawing from the partial report {folder}",
+                          file=sys.stderr, flush=True)
+                return folder
+    if first.exists() and not first.is_dir():
+        raise UsageError(f"--out {first} is an existing file, not a folder")
+    if not args.solve:
+        out = f" --out {first}" if args.out is not None else ""
+        raise UsageError(f"no ballbench report in {first}: run 'ballbench validate {args.scene}{out}' first, which "
+                         "saves the fields show draws (--solve solves those of an FE contact or module scene instead)")
+    return first
+
+
+def _show_out(out_dir: Path, name: str) -> None:
+    """--solve: the scene's folder in ``out_dir``, made and checked for writing."""
+    try:
+        (out_dir / name).mkdir(parents=True, exist_ok=True)
+        probe = out_dir / name / f".write-test-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as error:
+        raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
+
+
 def _cmd_show(args) -> int:
     if _is_case_file(args.scene):
         return _show_case(args)
     if not can_show(args.scene):  # the full registry only to say what went wrong
         _show_refused(args.scene)
-    out_dir = Path(args.out)
-    _show_out(out_dir, args.scene)
+    out_dir = _show_folder(args, [args.scene])
     fidelity = "quick" if args.quick else "default"
+    command = f"ballbench show {args.scene}" + (f" --out {args.out}" if args.out is not None else "")
+    if args.solve:
+        _show_out(out_dir, args.scene)
+    before = _files(out_dir, [args.scene])
     try:
-        paths = show.show(args.scene, out_dir, fidelity=fidelity)
+        paths = show.show(args.scene, out_dir, fidelity=fidelity, solve=args.solve)
     except KeyboardInterrupt:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except FileNotFoundError as error:
+        print(f"ballbench: nothing saved to draw for {args.scene} in {out_dir}: "
+              f"{report_folder.why_nothing_saved(out_dir, args.scene, error, command)}", file=sys.stderr)
+        return EXIT_OK
     except (OSError, ValueError, KeyError) as error:  # e.g. a damaged fields.vtu / fields.json
-        hint = "" if isinstance(error, FileNotFoundError) else (  # a missing file: the error says what to run
-            f" (delete {out_dir / args.scene / 'fields.vtu'} to solve the fields again)")
-        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error}{hint}", file=sys.stderr)
+        print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error} (delete "
+              f"{out_dir / args.scene / 'fields.vtu'} and run '{command} --solve' to solve the fields again)",
+              file=sys.stderr)
         return EXIT_FAILED
+    _drawn(out_dir, paths, [args.scene], before)
+    return EXIT_OK
+
+
+def _files(out_dir: Path, names: list[str]) -> set[Path]:
+    """The files in the folders of scenes ``names`` in ``out_dir``."""
+    return {p for name in names if (out_dir / name).is_dir() for p in (out_dir / name).rglob("*") if p.is_file()}
+
+
+def _drawn(out_dir: Path, paths: list[Path], names: list[str], before: set[Path]) -> None:
+    """Print the pictures drawn (stdout, one path a line) and add them to the report's manifest with the files
+    --solve wrote (those in the scenes' folders that were not there ``before``)."""
     for path in paths:
         print(path)
-    return EXIT_OK
+    written = set(paths) | (_files(out_dir, names) - before)
+    if written:
+        try:
+            report_folder.add_to_manifest(out_dir, sorted(written))
+        except (OSError, ValueError):
+            pass
 
 
 def _show_refused(name: str) -> None:
@@ -335,34 +368,33 @@ def _show_refused(name: str) -> None:
                      f"(show draws: {', '.join(drawable)})")
 
 
-def _show_out(out_dir: Path, name: str) -> None:
-    if out_dir.exists() and not out_dir.is_dir():
-        raise UsageError(f"--out {out_dir} is an existing file, not a folder")
-    try:
-        (out_dir / name).mkdir(parents=True, exist_ok=True)
-        probe = out_dir / name / f".write-test-{os.getpid()}"
-        probe.write_text("")
-        probe.unlink()
-    except OSError as error:
-        raise UsageError(f"cannot write to --out {out_dir}: {error.strerror or error}") from None
-    if not (out_dir / MARKER).exists():
-        (out_dir / MARKER).write_text("ballbench report folder; 'ballbench validate' empties it before writing\n")
-
-
 def _show_case(args) -> int:
-    """``ballbench show my_case.toml``: the pictures of the case's generated FE scenes."""
+    """``ballbench show my_case.toml``: the pictures of the case's generated FE scenes, from the fields its validate
+    run saved; says which scenes have none and why."""
     case = _load_case(args.scene)
     stem = ladder.slug(args.scene)
-    out_dir = Path(args.out)
     names = [s.name for s in ladder.case_scenes(case, stem) if s.show is not None]
-    for name in names:
-        _show_out(out_dir, name)
+    out_dir = _show_folder(args, names)
+    command = f"ballbench show {args.scene}" + (f" --out {args.out}" if args.out is not None else "")
+    if args.solve:
+        for name in names:
+            _show_out(out_dir, name)
+    before = _files(out_dir, names)
+    drawn, nothing = {}, []
+
     def skipped(name, reason):
-        print(f"ballbench: {name} skipped, it does not apply to this case: {reason}", file=sys.stderr, flush=True)
+        nothing.append(name)
+        print(f"ballbench: {name}: nothing to draw, it does not apply to this case: {reason}", file=sys.stderr,
+              flush=True)
+
+    def missing(name, error):
+        nothing.append(name)
+        print(f"ballbench: {name}: nothing saved to draw in {out_dir / name}: "
+              f"{report_folder.why_nothing_saved(out_dir, name, error, command)}", file=sys.stderr, flush=True)
 
     try:
         paths = ladder.show_case(case, stem, out_dir, fidelity="quick" if args.quick else "default",
-                                 on_skip=skipped)
+                                 solve=args.solve, on_skip=skipped, on_missing=missing)
     except KeyboardInterrupt:
         print("ballbench: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -370,7 +402,13 @@ def _show_case(args) -> int:
         print(f"ballbench: show {args.scene} failed: {type(error).__name__}: {error}", file=sys.stderr)
         return EXIT_FAILED
     for path in paths:
-        print(path)
+        drawn.setdefault(Path(path).parent.name, []).append(Path(path).name)
+    for name, files in drawn.items():
+        print(f"ballbench: {name}: drew {', '.join(files)}", file=sys.stderr)
+    if not drawn:
+        print(f"ballbench: no pictures drawn from {out_dir} ({len(nothing)} of {len(names)} scenes with pictures "
+              "have nothing saved, said above)", file=sys.stderr)
+    _drawn(out_dir, paths, names, before)
     return EXIT_OK
 
 
@@ -393,23 +431,30 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("validate", help="run scenes and write the report",
                        description="Run scenes and write report.md, report.html, results.json, results.csv and "
-                                   "error_vs_time.png into the output folder (emptied first if it holds an "
-                                   "earlier report). Exit code 0 when every scene passes (declared known gaps "
-                                   "and findings, models outside their declared accuracy on a case file's "
-                                   "geometry, allowed), 1 when a check fails, 130 when interrupted (Ctrl-C "
-                                   "stops after the current scene and writes a partial report; twice stops at once).")
+                                   "error_vs_time.png into the report folder. The run writes into DIR.incomplete-PID "
+                                   "beside it and replaces an earlier report only when complete, removing only the "
+                                   "files that report wrote (its manifest, .ballbench-report): files of one's own in "
+                                   "it are carried over untouched. Exit code 0 when every scene passes (declared "
+                                   "known gaps and findings, models outside their declared accuracy on a case "
+                                   "file's geometry, scenes that do not apply and inconclusive ones, without a "
+                                   "conclusive reference at the fidelity, allowed), 1 when a check fails, 130 when "
+                                   "interrupted (Ctrl-C "
+                                   "stops after the current scene and writes a partial report into DIR-partial, "
+                                   "leaving DIR untouched; twice stops at once).")
     p.add_argument("scenes", nargs="*", metavar="SCENE",
                    help="scene names or shell patterns such as 'lin2019-*' (default: every default scene), or "
                         "case files (my_guide.toml: the validation ladder on that case, docs/cases.md)")
-    p.add_argument("--out", default="ballbench-report", metavar="DIR",
-                   help="report folder (default: ./ballbench-report)")
+    p.add_argument("--out", metavar="DIR",
+                   help="report folder (default: ./ballbench-report-STEM for one case file STEM.toml, else "
+                        "./ballbench-report)")
     level = p.add_mutually_exclusive_group()
     level.add_argument("--quick", action="store_true", help="coarsest level of every scene (what CI runs)")
     level.add_argument("--fine", action="store_true", help="finest level: FE mesh-convergence studies (slow)")
     p.add_argument("--fast", action="store_true",
                    help="a first look: leave out the FE scenes and those costing over 30 s")
     p.add_argument("--strict", action="store_true",
-                   help="declared known gaps and findings (models outside their accuracy on a case file's geometry) "
+                   help="declared known gaps, findings (models outside their accuracy on a case file's geometry), "
+                        "scenes that do not apply and inconclusive scenes (no conclusive reference at the fidelity) "
                         "fail the run too")
     p.add_argument("--strict-time", action="store_true",
                    help="a scene over its wall-time budget or over its declared memory fails (by default "
@@ -433,13 +478,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_validate)
 
     p = sub.add_parser("show", help="pictures of an FE scene's saved fields",
-                       description="Draw the contact pressure and a stress cut of an FE scene from the fields "
-                                   "that 'ballbench validate' saved in DIR/SCENE/ (solving them first only if "
-                                   "they are missing) and write the PNG files there.")
+                       description="Draw the contact pressure and a stress cut of an FE scene (or of a case file's "
+                                   "scenes) from the fields that 'ballbench validate' saved in DIR/SCENE/ and write "
+                                   "the PNG files there; it never solves unasked: a scene with nothing saved is "
+                                   "named with the reason (it errored, did not apply, was not run), and --solve "
+                                   "solves its fields first. Exit code 0 when it drew what is saved (also when "
+                                   "nothing is, the reason said), 1 when saved fields cannot be read, 2 when DIR "
+                                   "holds no report (run 'ballbench validate' first).")
     p.add_argument("scene", metavar="SCENE", help="an FE scene, e.g. fe-hertz-groove-056, or a case file")
-    p.add_argument("--out", default="ballbench-report", metavar="DIR",
-                   help="report folder of the validate run (default: ./ballbench-report)")
-    p.add_argument("--quick", action="store_true", help="coarsest mesh level when the fields must be solved")
+    p.add_argument("--out", metavar="DIR",
+                   help="report folder of the validate run (default: the one validate writes without --out, "
+                        "./ballbench-report-STEM for STEM.toml, else ./ballbench-report)")
+    p.add_argument("--solve", action="store_true",
+                   help="solve the fields of the scenes that saved none (the FE solve: minutes) and draw them")
+    p.add_argument("--quick", action="store_true", help="with --solve: the coarsest mesh level")
     p.set_defaults(func=_cmd_show)
 
     p = sub.add_parser("init", help="write a commented case file to stdout",

@@ -155,7 +155,7 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
             pass
     wall = time.perf_counter() - start
     used = memory.stop()
-    if not error and not not_applicable and not run.outputs:
+    if not error and not not_applicable and not run.outputs and not run.inconclusive_reasons:
         error = "scene recorded no checked output"
     return run.result(wall, error, interrupted, used.process_peak_gb, not_applicable, used.scene_peak_gb)
 

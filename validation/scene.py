@@ -55,6 +55,14 @@ Does not apply: a scene built from a case file (``tags=("case",)``) whose model 
 unloaded; the axial load is past the preload loss and lin2019's model stops at its declared limit).  Its status
 is ``not applicable``: it passes the run (``--strict`` makes it fail) and the report gives the reason.  A
 registered (paper) scene that raises it ends in ``error``: the papers' cases lie inside their models.
+
+Inconclusive: a case file's scene whose reference (an FE mesh study) is too uncertain at the run's fidelity to judge
+the models against it calls ``run.inconclusive(reason)``, the reason naming the uncertainty, its bound and the
+fidelity or ``[fe]`` levels that settle it; the models judged against that reference are then not checked (no
+finding: there is no conclusive reference), the solver's own checks still are.  Its status is ``inconclusive``: it
+passes the run (``--strict`` makes it fail); a failed self-check still makes it ``fail``.  A registered (paper)
+scene that calls it ends in ``error``: the papers' references are known at the levels those scenes run
+(docs/verification.md).
 """
 from __future__ import annotations
 
@@ -76,7 +84,7 @@ KINDS = ("analytical", "low-order", "FE")
 # of error_vs_time.png group by them (docs/validation.md, "Model identity")
 FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informed")
 # scene statuses that pass a run without --strict (SceneResult.status)
-PASSING = ("pass", "known gap", "findings", "not applicable")
+PASSING = ("pass", "known gap", "findings", "not applicable", "inconclusive")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
 # the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): each covers the
@@ -188,6 +196,7 @@ class SceneResult:
     tables: tuple = ()  # ((title, header, rows), ...): results for the reader beside the checks (Run.table)
     peak_memory_gb: float = 0.0  # the process's peak resident memory while the scene ran [GB]; 0 = not measured
     not_applicable: str = ""  # why the scene's model has no state on the case (NotApplicable); "" = it applies
+    inconclusive: str = ""  # why the scene's reference is too uncertain to judge at this fidelity (Run.inconclusive)
     # the scene's own peak resident memory: the peak while it ran above the resident memory at its start [GB]
     # (runner.SceneMemory; docs/validation.md, "Memory"); 0 = not measured
     scene_peak_memory_gb: float = 0.0
@@ -208,23 +217,26 @@ class SceneResult:
 
     def status(self, *, strict: bool = False, strict_time: bool = False) -> str:
         """``error``, ``fail``, ``not applicable`` (passes: the model has no state on the case, for
-        :attr:`not_applicable`), ``findings`` (passes, with models outside their accuracy), ``known gap`` (passes,
+        :attr:`not_applicable`), ``inconclusive`` (passes: no conclusive reference at this fidelity, for
+        :attr:`inconclusive`), ``findings`` (passes, with models outside their accuracy), ``known gap`` (passes,
         with declared gaps) or ``pass``.
 
-        ``strict``: not applicable, findings and known gaps fail; ``strict_time``: a budget overrun fails, of
-        wall time or of memory (:attr:`over_memory`).
-        An unexpected pass of a known gap always fails (remove the declaration).
+        ``strict``: not applicable, inconclusive, findings and known gaps fail; ``strict_time``: a budget overrun
+        fails, of wall time or of memory (:attr:`over_memory`).  An unexpected pass of a known gap always fails
+        (remove the declaration); so does a failed self-check of an inconclusive scene.
         """
         if self.error:
             return "error"
         if self.not_applicable:
             return "fail" if strict else "not applicable"
-        if not self.outputs:
+        if not self.outputs and not self.inconclusive:
             return "error"
         if self.outputs_with("fail") or self.outputs_with("unexpected pass"):
             return "fail"
         if strict_time and (self.over_budget or self.over_memory):
             return "fail"
+        if self.inconclusive:
+            return "fail" if strict else "inconclusive"
         if self.outputs_with("outside accuracy"):
             return "fail" if strict else "findings"
         if self.outputs_with("known gap"):
@@ -246,8 +258,9 @@ class Scene:
     the default fidelity on a 2-core machine [s] (shown by ``ballbench
     scenes``); ``budget_s``: wall-time budget per fidelity [s] (reported,
     decides only with ``--strict-time``); ``level``: the default mesh level
-    in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity) -> list[Path]``,
-    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``);
+    in words (FE scenes); ``show``: the scene's picture hook, ``show(scene_dir, fidelity, solve=False) -> list[Path]``,
+    which draws from the fields the scene saved in ``scene_dir`` without re-solving (``ballbench show``): none
+    saved, FileNotFoundError, or with ``solve`` the scene's checked level at ``fidelity`` solved first;
     ``case``: the case the scene runs (:mod:`ballbench.validation.cases`), read by ``calibrate`` (FE load
     sweeps of a scene's contact) and the report; None for a scene of many cases; ``memory_gb``: the peak
     resident memory the scene needs at the default fidelity [GB] (:meth:`memory_for`; the distributed runner
@@ -347,6 +360,7 @@ class Run:
         self._artifacts: list[str] = []
         self._notes: list[str] = []
         self._tables: list[tuple] = []
+        self._inconclusive: list[str] = []
 
     # -- timing -----------------------------------------------------------
     @staticmethod
@@ -489,6 +503,23 @@ class Run:
         """A sentence for the report under this scene's table (conventions, gaps)."""
         self._notes.append(text)
 
+    def inconclusive(self, reason: str) -> None:
+        """End the scene ``inconclusive`` (module docstring, "Inconclusive"): its reference is too uncertain at this
+        fidelity to judge the models against it.  ``reason`` names the uncertainty, its bound and the fidelity or
+        ``[fe]`` levels that settle it; the scene goes on (tables, self-checks) but checks no model against that
+        reference.  Called more than once (one reference per contact), the reasons are joined."""
+        if not isinstance(reason, str) or not reason.strip():
+            raise ValueError("Run.inconclusive needs a reason: the uncertainty, its bound and what settles it")
+        if "case" not in self.scene.tags:  # the papers' scenes run at levels their references are known at
+            raise ValueError(f"only a case file's scene may end inconclusive; {self.scene.name} is a registered "
+                             f"(paper) scene: {reason.strip()}")
+        self._inconclusive.append(reason.strip())
+
+    @property
+    def inconclusive_reasons(self) -> tuple[str, ...]:
+        """The reasons given to :meth:`inconclusive` so far."""
+        return tuple(self._inconclusive)
+
     def table(self, title: str, header, rows) -> None:
         """A table of results for the reader (loads, friction forces, ...) shown under the scene's checks; cells
         are text, already in the units the header names."""
@@ -536,8 +567,8 @@ class Run:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
                            wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
-                           tuple(self._tables), peak_memory_gb, not_applicable, scene_peak_memory_gb,
-                           self.scene.memory_for(self.fidelity))
+                           tuple(self._tables), peak_memory_gb, not_applicable, " ".join(self._inconclusive),
+                           scene_peak_memory_gb, self.scene.memory_for(self.fidelity))
 
 
 def registry() -> dict[str, Scene]:

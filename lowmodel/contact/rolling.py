@@ -251,6 +251,9 @@ def shift(pressure, grid: SurfaceGrid, shear_modulus: float, poisson_ratio: floa
     value = np.asarray(checks.real("rigid_shift", rigid_shift), dtype=float)
     if value.shape == (2,):
         value = np.broadcast_to(value, (grid.nx, grid.ny, 2))
+    elif value.shape != (grid.nx, grid.ny, 2):
+        raise ValueError(f"rigid_shift must have shape (2,) or {(grid.nx, grid.ny, 2)} [m], got {value.shape}")
+    value = _check_rigid(value, grid, "rigid_shift")
     return solve(pressure, operator, friction_coefficient, value, tolerance=tolerance,
                  max_iterations=max_iterations)
 
@@ -383,8 +386,8 @@ def steady_rolling(semi_axis_rolling: float, semi_axis_lateral: float, normal_fo
         (:func:`lowmodel.contact.influence.combined_material`; quasi-identical bodies)
     friction_coefficient : mu > 0
     creepage_rolling, creepage_lateral : xi, eta [-]; spin : phi [rad/m] (Kalker's signs, module docstring)
-    cells : (n_rolling, n_lateral) cells across the ellipse's ``2a x 2b`` box (the grid has one more empty
-        cell on each side, :func:`hertz_grid`); an int for both
+    cells : (n_rolling, n_lateral) cells across the ellipse's ``2a x 2b`` box, each in [2, 4096] (the grid has
+        one more empty cell on each side, :func:`hertz_grid`); an int for both
     rolling_speed : V [m/s] for the frictional power [W]
 
     Returns

@@ -68,8 +68,9 @@ def rigid_slip_field(grid: SurfaceGrid, sliding_velocity, angular_velocity, roll
 
 
 def hertz_grid(semi_axis_rolling: float, semi_axis_lateral: float, cells) -> SurfaceGrid:
-    """The grid of :func:`steady_rolling`: ``cells = (n_x, n_y)`` across the ellipse's ``2a x 2b`` box, plus
-    one empty cell on each side (the contact must lie inside the grid)."""
+    """The grid of :func:`steady_rolling`: ``cells = (n_x, n_y)`` across the ellipse's ``2a x 2b`` box, each in
+    [2, 4096], plus one empty cell on each side (the contact must lie inside the grid; a
+    :class:`~lowmodel.contact.halfspace.SurfaceGrid` has at least 4 cells each way)."""
     a = checks.positive("semi_axis_rolling", semi_axis_rolling, "m")
     b = checks.positive("semi_axis_lateral", semi_axis_lateral, "m")
     nx, ny = _cells(cells)
@@ -115,7 +116,7 @@ def _cells(cells) -> tuple[int, int]:
         nx, ny = cells
     except (TypeError, ValueError):
         raise ValueError(f"cells must be (n_rolling, n_lateral), got {cells!r}") from None
-    return checks.count("cells[0] (n_rolling)", nx, 2, 4096), checks.count("cells[1] (n_lateral)", ny, 1, 4096)
+    return checks.count("cells[0] (n_rolling)", nx, 2, 4096), checks.count("cells[1] (n_lateral)", ny, 2, 4096)
 
 
 @functools.lru_cache(maxsize=32)

@@ -220,7 +220,9 @@ class TangentialProblem:
             trial = upstream - w[:, i]
             norm = np.hypot(trial[:, 0], trial[:, 1])
             limit = g[:, i]
-            trial *= np.where(norm > limit, limit / np.where(norm > 0.0, norm, 1.0), 1.0)[:, None]
+            # the quotient only where it is < 1 (limit >= 0): a subnormal |trial| cannot overflow it
+            sliding = norm > limit
+            trial *= np.where(sliding, limit / np.where(sliding, norm, 1.0), 1.0)[:, None]
             p[:, i] = upstream = trial
         return p[self.line_of, self.position]
 

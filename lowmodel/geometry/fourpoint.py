@@ -19,7 +19,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 
-__all__ = ["CONTACT_NAMES", "SIGN_X", "SIGN_Y", "contact_normals", "contact_normal", "contact_points"]
+__all__ = ["CONTACT_NAMES", "SIGN_X", "SIGN_Y", "contact_normals", "contact_normal", "contact_points",
+           "contact_limits"]
 
 CONTACT_NAMES = ("BL", "BR", "TR", "TL")  # lin2017 Fig 2 order
 SIGN_X = np.array([-1.0, 1.0, 1.0, -1.0])  # n_x / sin(beta): left -, right +
@@ -51,3 +52,16 @@ def contact_points(ball_radius: float, contact_angles) -> np.ndarray:
     angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
     checks.contact_angle("contact_angles", angles)
     return radius * contact_normals(angles)
+
+
+def contact_limits(contact_angles) -> tuple[np.ndarray, np.ndarray]:
+    """Range of the side-force ratio ``rho = N_x / N_y`` with four-point contact (lin2017 eq 37).
+
+    ``contact_angles`` (..., 4) rad.  Returns ``(rho_min, rho_max)``, each (...);
+    contact needs ``rho_min < rho < rho_max`` (equality: a force is zero).  Here, with the contact geometry, so
+    that the case files check it without loading the models (lowmodel.model_inputs); the models import it from
+    :mod:`lowmodel.linear_bearing.fourpoint`.
+    """
+    angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
+    bl, br, tr, tl = np.moveaxis(checks.contact_angle("contact_angles", angles), -1, 0)  # lin2017 Sec 2.1
+    return -np.minimum(np.tan(bl), np.tan(tr)), np.minimum(np.tan(br), np.tan(tl))  # lin2017 eq 37

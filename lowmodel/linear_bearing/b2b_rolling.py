@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import checks, model_inputs
 from ballbench.lowmodel.bearing import guide_values
 from ballbench.lowmodel.contact import hertz, rolling
 from ballbench.lowmodel.contact import rolling_friction as rf
@@ -168,10 +168,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     check_solver_options(tolerance, max_iterations)
     law = checks.choice("law", law, rf.LAWS)
     radius = checks.positive("ball_radius", ball_radius, "m")
-    mu = checks.positive("friction_coefficient", friction_coefficient)
-    velocity = checks.finite("groove_velocity", groove_velocity, "m/s")
-    if velocity == 0.0:
-        raise ValueError("groove_velocity must be finite and nonzero m/s, got 0.0")
+    mu = model_inputs.guide_friction_coefficient(friction_coefficient)
+    velocity = model_inputs.groove_velocity(groove_velocity)
     balls = [tuple(contacts) for contacts in balls]
     n = len(balls)
     if n < 1 or len({len(c) for c in balls}) != 1:

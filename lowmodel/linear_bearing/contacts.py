@@ -20,7 +20,7 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import ellipe
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import checks, model_inputs
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
 
@@ -157,11 +157,8 @@ def contacts_from_forces(contact_angles, normal_forces, semi_major, b_over_a, *,
     Shapes ``(4,)`` or ``(n, 4)``; forces [N] must be > 0 (four-point contact).
     """
     radius = checks.positive("ball_radius", ball_radius, "m")
-    mu = checks.positive("friction_coefficient", friction_coefficient,
-                         note="mu = 0 leaves the ball motion undetermined")
-    velocity = checks.finite("groove_velocity", groove_velocity, "m/s")
-    if velocity == 0.0:
-        raise ValueError(f"groove_velocity must be finite and nonzero m/s, got {groove_velocity!r}")
+    mu = model_inputs.guide_friction_coefficient(friction_coefficient)
+    velocity = model_inputs.groove_velocity(groove_velocity)
     angles = _check_angles(contact_angles)
     forces = np.broadcast_to(checks.positive("normal_forces", normal_forces, "N", note=(
         "at all four contacts; loss of four-point contact otherwise, lin2017 eq 37")), angles.shape)

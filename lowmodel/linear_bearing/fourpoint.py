@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ballbench.lowmodel import checks
-from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_normals
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES, contact_limits, contact_normals
 
 __all__ = ["CONTACT_NAMES", "FourPointState", "normal_forces", "contact_limits", "rolling_condition",
            "characteristic_parameters", "two_point_sliding_ratio", "solve", "solve_forces"]
@@ -133,16 +133,6 @@ def _degenerate_pair(angles, where) -> ValueError:
         f"beta_BL + beta_BR = {bl + br:.6g} and beta_TR + beta_TL = {tr + tl:.6g} rad must stay far enough from 0 "
         "and pi that the normal forces (lin2017 eq 36, ~ N / sin(sum)) and K (eq 23) stay finite; two contacts "
         "that coincide (both angles near 0) or face each other (both near 90 deg) cannot carry the load")
-
-
-def contact_limits(contact_angles) -> tuple[np.ndarray, np.ndarray]:
-    """Range of the side-force ratio ``rho = N_x / N_y`` with four-point contact (lin2017 eq 37).
-
-    ``contact_angles`` (..., 4) rad.  Returns ``(rho_min, rho_max)``, each (...);
-    contact needs ``rho_min < rho < rho_max`` (equality: a force is zero).
-    """
-    bl, br, tr, tl = np.moveaxis(_angles(contact_angles), -1, 0)
-    return -np.minimum(np.tan(bl), np.tan(tr)), np.minimum(np.tan(br), np.tan(tl))  # lin2017 eq 37
 
 
 def normal_forces(side_force, vertical_force, contact_angles) -> np.ndarray:

@@ -36,13 +36,14 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from ballbench.lowmodel import checks
+from ballbench.lowmodel import checks, model_inputs
 from ballbench.lowmodel.bearing import BallScrew, Material
 from ballbench.lowmodel.calibration import ContactLaw
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.cubic_pieces import cubic_pieces
 from ballbench.lowmodel.geometry import groove as groove_core
 from ballbench.lowmodel.geometry import helix
+from ballbench.lowmodel.model_inputs import FRICTION_COEFFICIENT_MAX, NUT_SPEED_RANGE  # their home; named here too
 
 __all__ = [
     "CONTACT_NAMES", "DEVIATION_READINGS", "ScrewModule", "module", "screw_module", "BallContacts", "ball_contacts",
@@ -52,8 +53,6 @@ __all__ = [
 
 CONTACT_NAMES = ("SL", "SR", "NR", "NL")  # lin2019 eq 54 order
 DEVIATION_READINGS = ("rotated", "tilted")
-FRICTION_COEFFICIENT_MAX = 2.0  # mu in (0, 2]: residuals are scaled by mu F (friction would swamp the normal forces)
-NUT_SPEED_RANGE = (1e-100, 1e100)  # |omega_N| [rad/s]: quasi-static, any speed; the floats set the range
 _BODY = ("screw", "screw", "nut", "nut")
 _FLANK = ("left", "right", "right", "left")
 ON_NUT = np.array([0.0, 0.0, 1.0, 1.0])  # 1 on the nut flanks (NR, NL)
@@ -117,19 +116,12 @@ def module(screw, oversize: float | None = None) -> ScrewModule:
         screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead, screw.nominal_angle, screw.nut_speed))
     youngs_modulus, poisson_ratio = float(screw.material.youngs_modulus), float(screw.material.poisson_ratio)
     oversize = screw.oversize if oversize is None else oversize
-    if not NUT_SPEED_RANGE[0] <= abs(nut_speed) <= NUT_SPEED_RANGE[1]:
-        raise ValueError(f"nut_speed must satisfy {NUT_SPEED_RANGE[0]:g} <= |nut_speed| <= {NUT_SPEED_RANGE[1]:g} "
-                         f"rad/s (nonzero: the ball motion is undetermined at rest; the friction Jacobian scales "
-                         f"like 1 / speed and leaves the float range near 1e-300), got {screw.nut_speed!r}")
-    mu = checks.bounded("friction_coefficient", screw.friction_coefficient, 0.0, FRICTION_COEFFICIENT_MAX,
-                        upper_closed=True,
-                        note="Coulomb friction of steel contacts; equilibrium is solved to a tolerance in mu F")
+    nut_speed = model_inputs.nut_speed(nut_speed)
+    mu = model_inputs.screw_friction_coefficient(screw.friction_coefficient)
     oversize = checks.bounded("oversize", oversize, 0.0, 0.01 * ball_radius, "m", lower_closed=True,
                               upper_closed=True, note="i.e. [0, 0.01 ball_radius]")
     checks.plausible("oversize", oversize)  # a module's own oversize (the screw's is checked by BallScrew)
-    if pitch_radius <= 2.0 * conformity * ball_radius:
-        raise ValueError(f"pitch_radius must exceed the groove radius {2 * conformity * ball_radius!r} m, "
-                         f"got {screw.pitch_radius!r}")
+    model_inputs.screw_pitch_radius(pitch_radius, ball_radius, conformity)
     if not helix.lead_angle(lead, pitch_radius) < 0.5 * math.pi:
         raise ValueError(f"lead must give a lead angle below pi/2 rad with pitch_radius {pitch_radius!r} m "
                          f"(atan(lead / (2 pi pitch_radius)) rounds to 90 deg), got {screw.lead!r}")

@@ -39,7 +39,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                       nut_back_radius: float | None = None, half_angle: float | None = None,
                       h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
                       fine_radius: float | None = None, cap_angle: float | None = None,
-                      cache: bool = True) -> Path:
+                      min_cap_angle: float | None = None, cache: bool = True) -> Path:
     """The ball-screw module as a cached gmsh 4.1 ``.msh`` [m] (screw frame).
 
     ``deviations`` [rad]: contact angle deviations ``(SL, SR, NR, NL)``;
@@ -56,7 +56,8 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     ``nut_land``, ``screw_support`` (the screw core), ``nut_load`` (the nut's outer
     face), ``screw_free``, ``nut_free``; ``ball{k}_{SL,SR,NR,NL}`` (spherical caps of
     half-angle ``cap_angle`` centred on the contacts; default ``min(30 deg, 0.45 x the
-    smallest angle between contacts)``), ``ball{k}_B2B`` (two balls),
+    smallest angle between contacts)``, at least ``min_cap_angle`` [rad] up to that limit when given:
+    meshes.parts.ball.check_cap_angle), ``ball{k}_B2B`` (two balls),
     ``ball{k}_free``.  Bodies share no nodes.
     """
     deviations = checks.four_angles("deviations", deviations, "(SL, SR, NR, NL)")
@@ -94,7 +95,7 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
             chord = centres[1] - centres[0]
             directions["B2B"] = (1.0 if k == 0 else -1.0) * chord / np.linalg.norm(chord)
         ball_directions.append(directions)
-    cap_angle = check_cap_angle(cap_angle, list(ball_directions[0].values()))
+    cap_angle = check_cap_angle(cap_angle, list(ball_directions[0].values()), min_cap_angle)
     refine = h_contact is not None
     h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                              growth, h_max, fine_radius)

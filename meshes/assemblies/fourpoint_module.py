@@ -43,13 +43,14 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
                      width: float | None = None, depth: float | None = None, length: float | None = None,
                      h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
                      fine_radius: float | None = None, cap_angle: float | None = None,
-                     fine_ellipses=None, cache: bool = True) -> Path:
+                     fine_ellipses=None, min_cap_angle: float | None = None, cache: bool = True) -> Path:
     """The four-point module as a cached gmsh 4.1 ``.msh`` [m].
 
     ``deviations`` [rad]: contact angle deviations ``(BL, BR, TR, TL)``;
     ``n_balls`` 1 or 2; ``spacing`` [m] centre distance of two balls (default
     ``2 R_B``: touching); rail geometry as :func:`meshes.parts.rail.rail_segment`
-    (defaults ``width 2.6 R_B``, ``depth 1.6 R_B``, ``land_height -0.25 R_B``;
+    (defaults ``width 2.6 R_B`` (the groove's width + 0.3 R_B where that is more), ``depth 1.6 R_B``,
+    ``land_height -0.25 R_B``;
     ``length`` default ``(n_balls - 1) spacing + 2.4 R_B``).  With ``h_contact`` [m]
     the mesh is refined around every contact point (four per ball and the B2B
     point), else uniform ``h_max`` (default ``R_B / 3``).  ``fine_ellipses`` (with ``h_contact``): the fine
@@ -63,7 +64,8 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     ``bottom_support`` (bottom face of the bottom rail), ``top_load`` (top face of
     the top rail), ``bottom_land``, ``top_land``, ``rail_free``; ball surfaces
     ``ball{k}_{BL,BR,TR,TL}`` (spherical caps of half-angle ``cap_angle`` centred on
-    the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``),
+    the contacts; default ``min(30 deg, 0.45 x the smallest angle between contacts)``, at least ``min_cap_angle``
+    [rad] up to that limit when given: meshes.parts.ball.check_cap_angle),
     ``ball{k}_B2B`` (two balls: cap around the B2B point), ``ball{k}_free``.  Bodies share no nodes.
     """
     radius = checks.positive("ball_radius", ball_radius, "m")
@@ -75,7 +77,11 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if n_balls == 2 and spacing < 2.0 * radius:
         raise ValueError(f"spacing must lie in [2 ball_radius, inf) = [{2 * radius!r}, inf) m (balls may not "
                          f"overlap), got {spacing!r}")
-    width = 2.6 * radius if width is None else checks.positive("width", width, "m")
+    if width is None:  # 2.6 R_B, wider where a land raised for a heavy contact widens the groove
+        groove_width = 2.0 * max(abs(arch.edge(side)[0]) for arch in (bottom, top) for side in ("left", "right"))
+        width = max(2.6 * radius, groove_width + 0.3 * radius)
+    else:
+        width = checks.positive("width", width, "m")
     depth = 1.6 * radius if depth is None else checks.positive("depth", depth, "m")
     length = (n_balls - 1) * spacing + 2.4 * radius if length is None else checks.positive("length", length, "m")
     for arch in (bottom, top):
@@ -104,7 +110,8 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     in_plane = contact_points(radius, angles)
     ball_directions = {name: np.append(point / radius, 0.0) for name, point in zip(CONTACTS, in_plane)}
     cap_angle = check_cap_angle(cap_angle, list(ball_directions.values()) + ([np.array([0.0, 0.0, 1.0])]
-                                                                              if n_balls == 2 else []))
+                                                                              if n_balls == 2 else []),
+                                min_cap_angle)
     params = dict(builder="fourpoint_module", radius=radius, conformity=bottom.conformity, angles=angles,
                   land=bottom.land_height, n_balls=n_balls, spacing=spacing, width=width, depth=depth,
                   length=length, refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,

@@ -13,7 +13,7 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 
-__all__ = ["check_cap_angle", "add_split_ball"]
+__all__ = ["cap_limit", "check_cap_angle", "add_split_ball"]
 
 
 def _pole_axis(directions: list[np.ndarray]) -> np.ndarray:
@@ -27,15 +27,26 @@ def _pole_axis(directions: list[np.ndarray]) -> np.ndarray:
     return candidates[int(np.argmin(worst))]
 
 
-def check_cap_angle(cap_angle, directions: list[np.ndarray]) -> float:
-    """Validated cap half-angle [rad]: default ``min(30 deg, 0.45 x)`` with ``x`` the
-    smallest angle between two contact directions (unit, (n, 3)) of a ball (caps must not overlap)."""
+def cap_limit(directions: list[np.ndarray]) -> float:
+    """The largest cap half-angle [rad] of a ball: ``0.45 x`` with ``x`` the smallest angle between two of its
+    contact directions (unit, (n, 3)), so the caps do not overlap."""
     unit = np.asarray(directions, dtype=float)
     cosines = np.clip(unit @ unit.T, -1.0, 1.0)
     np.fill_diagonal(cosines, -1.0)
-    limit = 0.45 * math.acos(float(cosines.max()))
+    return 0.45 * math.acos(float(cosines.max()))
+
+
+def check_cap_angle(cap_angle, directions: list[np.ndarray], min_cap_angle: float | None = None) -> float:
+    """Validated cap half-angle [rad]: default ``min(30 deg, 0.45 x)`` with ``x`` the
+    smallest angle between two contact directions (unit, (n, 3)) of a ball (caps must not overlap,
+    :func:`cap_limit`).  ``min_cap_angle`` [rad] (with the default): at least this, up to the limit (a heavy
+    contact's ellipse needs a larger cap than 30 deg; docs/truncation.md)."""
+    limit = cap_limit(directions)
     if cap_angle is None:
-        return min(math.radians(30.0), limit)
+        default = min(math.radians(30.0), limit)
+        if min_cap_angle is None:
+            return default
+        return max(default, min(checks.positive("min_cap_angle", min_cap_angle, "rad"), limit))
     cap_angle = checks.finite("cap_angle", cap_angle, "rad")
     if not 0.0 < cap_angle <= limit:
         raise ValueError(f"cap_angle must lie in (0, {limit!r}] rad (0.45 x the smallest angle between two contacts "

@@ -78,3 +78,40 @@ def test_module_statics_angles_and_b2b(coarse_module):
     state = b2b_traction.solve(patches, ball_radius=5e-3, friction_coefficient=0.1, groove_velocity=0.01)
     assert state.power_balance < 1e-6
     assert 3.5 < state.b2b_force[0] < 4.5  # lin2019 Table 3 case (a): 3.96 N (ANSYS), 4.01 N (low-order)
+
+
+@pytest.fixture(scope="module")
+def heavy_module():
+    """The module of ``ballbench init linear-guide`` (1/8-inch ball, f 0.52, BL/BR at 43/47 deg) whose candidate
+    zones are the whole 30 deg caps: BR's cap ends at 77 deg, past its flank's end at the land (75.6 deg)."""
+    from ballbench.meshes.assemblies.fourpoint_module import fourpoint_module
+
+    radius, theta = 1.5875e-3, math.radians(2.0)
+    deviations = (-theta, theta, 0.0, 0.0)
+    path = fourpoint_module(radius, 0.52, math.pi / 4, deviations, 1, h_contact=radius / 5, growth=1.6,
+                            fine_radius=radius / 2)
+    geometry = fp.ModuleGeometry(radius, 0.52, tuple(math.pi / 4 + np.array(deviations)))
+    return fp.build_module_model(path, geometry, gap_limit=1e-3)
+
+
+def test_candidate_zone_ends_on_the_flank(heavy_module):
+    # before: "contact BR: a ball quadrature point projects outside its flank" (a ValueError of a heavy contact)
+    from ballbench.lowmodel import truncation
+
+    geometry = heavy_module.geometry
+    for i, patch in enumerate(heavy_module.patches):
+        shoulder = truncation.shoulder_angle(geometry.ball_radius, geometry.conformity, geometry.contact_angles[i])
+        seen = np.arctan2(np.abs(patch.surface[:, 0]), np.abs(patch.surface[:, 1]))  # from the load axis
+        assert seen.max() < shoulder
+        # only BR's cap (47 + 30 deg) reaches past its flank: only its zone has an edge at the shoulder
+        assert patch.shoulder.any() == (patch.name == "BR")
+
+
+def test_contact_reaching_the_shoulder_is_named(heavy_module):
+    # 3 kN on ball 2 (N_x = +0.6 N_y): BR's Hertz ellipse (a / R_B about 0.85) would end far past the flank's end
+    with pytest.raises(fp.ShoulderContact, match="BR.*shoulder") as error:
+        fp.solve(heavy_module, 0.6 * 3000.0, 3000.0)
+    assert error.value.contact == "BR"
+    # a light load stays inside the zones
+    result = fp.solve(heavy_module, 0.6 * 50.0, 50.0)
+    assert all(c.normal_force > 0 for c in result.contacts)

@@ -159,7 +159,7 @@ def test_module_statics_and_fe_informed_b2b(quick_modules):
 def test_show_screw_module_writes_pngs(tmp_path):
     from ballbench.validation import show
 
-    paths = show.show("fe-b2b-screw-a", tmp_path, fidelity="quick")
+    paths = show.show("fe-b2b-screw-a", tmp_path, fidelity="quick", solve=True)
     assert [p.name for p in paths] == ["pressure.png", "stress.png"]
     for path in paths:
         assert path.exists() and path.stat().st_size > 10_000

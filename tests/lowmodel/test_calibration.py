@@ -308,3 +308,13 @@ def test_speed_fit_with_speeds_that_determine_no_slope():
             _no_warning(cal.fit_friction_coefficient, normal, friction, speeds)
     with pytest.raises(ValueError, match="x, y"):  # a slope below the float range (was 0 +- 0)
         _no_warning(cal.fit_line_through_origin, [1e300, 2e300, 3e300], [-1e-300, -2e-300, -3.1e-300])
+
+
+@pytest.mark.parametrize("x, y", [([1e-200, 2e-200, 3e-200], [1.0, 2.1, 2.9]),
+                                  ([1.0, 2.0, 3.0], [1e200, 2.1e200, 2.9e200]),
+                                  ([1e-200, 1.0, 3e-200], [1e200, 2.1e200, 2.9e200])])
+def test_a_slope_whose_variance_leaves_the_float_range_is_named(x, y):
+    # x near 1e-200 against y near 1 raised a bare OverflowError (the Python float to_si**2): the slope's
+    # variance (1e396 and beyond) is outside the float range, which the error says, naming x and y
+    with pytest.raises(ValueError, match="x, y: the slope y / x .* or its variance is beyond the float range"):
+        _no_warning(cal.fit_line_through_origin, x, y)

@@ -140,3 +140,39 @@ def test_a_model_outside_its_accuracy_on_ones_own_guide_is_a_finding(strict, tmp
 
     again = results_from_json(data)  # the status survives a re-render of the report from results.json
     assert next(r for r in again if r.name == "g-balls").status() == "findings"
+
+
+def _no_solve(*args, **kwargs):
+    raise AssertionError("show solved although it was not asked to")
+
+
+def test_every_case_file_keeps_its_own_default_report_and_show_never_solves_unasked(tmp_path, capsys, monkeypatch):
+    # both case files used to write into ./ballbench-report, the second run deleting the first's report; 'show'
+    # then solved the FE levels the run had not saved (minutes) and exited 1 where a scene had errored
+    from ballbench.validation.ladder import b2b_fe
+    from ballbench.validation.studies import fe_contact
+
+    monkeypatch.chdir(tmp_path)
+    for name in ("g.toml", "h.toml"):
+        capsys.readouterr()
+        path = _init("linear-guide", tmp_path, capsys, name=name)
+        assert cli.main(["validate", path.name, "--quick", "--levels", "low-order"]) in (0, 1)
+    capsys.readouterr()
+    for stem in ("g", "h"):
+        data = json.loads((tmp_path / f"ballbench-report-{stem}" / "results.json").read_text())
+        assert {s["name"] for s in data["scenes"]} == {f"{stem}-balls", f"{stem}-contact"}
+    assert not (tmp_path / "ballbench-report").exists()
+    monkeypatch.setattr(fe_contact, "solve_level", _no_solve)
+    monkeypatch.setattr(fe_contact, "compute_fields", _no_solve)
+    monkeypatch.setattr(b2b_fe, "module_fe", _no_solve)
+    assert cli.main(["show", "g.toml"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.strip() == ""  # no picture: nothing was saved
+    lines = [x for x in captured.err.splitlines() if x.startswith("ballbench: g-")]
+    assert [x.split(":")[1].strip() for x in lines] == ["g-contact", "g-b2b-fe"], captured.err
+    assert "below FE" in lines[0] and "not in this report" in lines[1] and "--solve" in lines[1]
+    assert "no pictures drawn from ballbench-report-g" in captured.err
+    # only an interrupted run's partial report: show draws from it and says so
+    (tmp_path / "ballbench-report-h").rename(tmp_path / "ballbench-report-h-partial")
+    assert cli.main(["show", "h.toml"]) == 0
+    assert "drawing from the partial report ballbench-report-h-partial" in capsys.readouterr().err

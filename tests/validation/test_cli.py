@@ -2,6 +2,7 @@
 each test fails on the behaviour it guards."""
 from __future__ import annotations
 
+import json
 
 import pytest
 
@@ -28,9 +29,29 @@ def test_misspelt_scene_name_suggests_the_close_ones(capsys, no_work, tmp_path):
 def test_show_of_a_scene_without_saved_fields_says_to_validate_first(capsys, tmp_path):
     # sun2021-fe-bem saves only its BEM surfaces (no fields.vtu): 'show' on a folder without them used to advise
     # deleting a fields.vtu that never existed
-    assert cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]) == 1
-    lines = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
-    assert len(lines) == 1 and "ballbench validate sun2021-fe-bem" in lines[0] and "delete" not in lines[0]
+    line = one_error_line(capsys, cli.main(["show", "sun2021-fe-bem", "--out", str(tmp_path / "r")]))
+    assert "no ballbench report" in line and "ballbench validate sun2021-fe-bem" in line and "delete" not in line
+    assert not (tmp_path / "r").exists()
+
+
+@pytest.mark.parametrize("record, words", [
+    ({"status": "error", "error": "ValueError: conformity"}, ["ended in an error: ValueError: conformity",
+                                                             "error.txt"]),
+    ({"status": "pass"}, ["saved no fields", "ballbench validate"]),
+])
+def test_show_of_a_scene_with_nothing_saved_says_why_and_exits_0(capsys, tmp_path, record, words):
+    # a scene that errored in the validate run: 'show' used to exit 1 (or solve it again, minutes)
+    out = tmp_path / "r"
+    (out / "sun2021-fe-bem").mkdir(parents=True)
+    (out / "sun2021-fe-bem" / "error.txt").write_text("Traceback")
+    (out / ".ballbench-report").write_text("{}")
+    (out / "results.json").write_text(json.dumps({"fidelity": "default", "scenes": [
+        {"name": "sun2021-fe-bem", **record}]}))
+    assert cli.main(["show", "sun2021-fe-bem", "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    lines = [x for x in captured.err.splitlines() if x.strip()]
+    assert captured.out == "" and len(lines) == 1 and "nothing saved to draw" in lines[0]
+    assert all(w in lines[0] for w in words) and "--solve" not in lines[0], lines[0]
 
 
 def test_show_names_the_kind_with_the_right_article(capsys, no_work, tmp_path):

@@ -111,8 +111,8 @@ def test_status_counts_are_those_of_the_one_tally():
     results = many_scenes(1)
     bad = _scene("zz-bad", _output("m", "FE", error=2.0))
     counted = tally([*results, bad])
-    assert counted.counts == {"pass": len(results), "known gap": 0, "findings": 0, "not applicable": 0, "fail": 1,
-                             "error": 0}
+    assert counted.counts == {"pass": len(results), "known gap": 0, "findings": 0, "not applicable": 0,
+                              "inconclusive": 0, "fail": 1, "error": 0}
     built = contents.build_document([*results, bad], "quick", counted)
     assert [v.status for v in built.verdicts] == list(counted.statuses)
     assert report.to_json([*results, bad], "quick")["counts"] == counted.counts
@@ -135,7 +135,8 @@ def test_a_missed_finding_passes_the_run_a_failed_self_check_does_not(tmp_path):
     assert (found.status(), found.status(strict=True), found.passed) == ("findings", "fail", True)
     assert (broken.status(), broken.passed) == ("fail", False)
     counted = tally([found, broken, fine])
-    assert counted.counts == {"pass": 1, "known gap": 0, "findings": 1, "not applicable": 0, "fail": 1, "error": 0}
+    assert counted.counts == {"pass": 1, "known gap": 0, "findings": 1, "not applicable": 0, "inconclusive": 0,
+                              "fail": 1, "error": 0}
     assert not counted.passed and tally([found, fine]).passed and not tally([found], strict=True).passed
     report.write_report([found, fine], tmp_path, "quick")
     text = (tmp_path / "report.md").read_text()

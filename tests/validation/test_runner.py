@@ -13,6 +13,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
 
@@ -262,6 +263,7 @@ def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
              (["--out", str(a_file / "sub")], "cannot write"),
              (["--out", "/proc/ballbench-cannot-write-here"], "cannot write"),
              (["--out", str(other)], "not a ballbench report"),
+             (["--out", "."], "the current folder"),
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path)], "--junit"),
              (["--out", str(tmp_path / "r"), "--junit", str(tmp_path / "missing" / "j.xml")], "does not exist")]
     for extra, expected in cases:
@@ -270,36 +272,131 @@ def test_cli_out_checked_before_any_work(fakes, tmp_path, capsys, monkeypatch):
     assert "existing file" in one_error_line(capsys, cli.main(["show", "fe-hertz-flat", "--out", str(a_file)]))
 
 
-def test_rerun_into_same_out_starts_clean(fakes, tmp_path):
+def test_rerun_into_same_out_removes_the_earlier_reports_files_only(fakes, tmp_path, capsys):
+    # no stale file of the earlier report survives a re-run; files of one's own put into it do, untouched (the
+    # run used to empty the folder: a user's notes.txt and folder were deleted without a word)
     code, out = _validate(tmp_path, "zz-a-pass")
     assert code == 0 and (out / "zz-a-pass" / "line.png").exists()
-    (out / "zz-a-pass" / "stale.png").write_bytes(b"old")
-    (out / "old-scene").mkdir()
+    (out / "zz-a-pass" / "mine.png").write_bytes(b"mine")
+    (out / "notes.txt").write_text("my notes")
+    (out / "my-folder" / "deeper").mkdir(parents=True)
+    (out / "my-folder" / "deeper" / "data.csv").write_text("1,2")
+    (out / "empty-of-mine").mkdir()
+    capsys.readouterr()
     code, out = _validate(tmp_path, "zz-h-after")
     assert code == 0
-    assert not (out / "zz-a-pass").exists() and not (out / "old-scene").exists()
+    assert not (out / "zz-a-pass" / "line.png").exists()
     assert (out / "zz-h-after" / "line.png").exists()
+    assert (out / "notes.txt").read_text() == "my notes"
+    assert (out / "my-folder" / "deeper" / "data.csv").read_text() == "1,2"
+    assert (out / "zz-a-pass" / "mine.png").read_bytes() == b"mine" and (out / "empty-of-mine").is_dir()
+    err = capsys.readouterr().err
+    assert "untouched" in err and "notes.txt" in err and "my-folder" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]  # no temporary or aside folder left
+    # a third run: the carried files are still the user's (not in the manifest), the second run's are removed
+    assert _validate(tmp_path, "zz-a-pass")[0] == 0
+    assert (out / "notes.txt").exists() and not (out / "zz-h-after").exists()
 
 
 def test_ctrl_c_inside_a_scene_writes_partial_report(fakes, tmp_path, capsys):
     code, out = _validate(tmp_path, "zz-a-pass", "zz-f-interrupt", "zz-h-after")
     assert code == 130
-    data = json.loads((out / "results.json").read_text())
+    partial = tmp_path / "report-partial"  # beside the report folder, named so
+    data = json.loads((partial / "results.json").read_text())
     assert [s["name"] for s in data["scenes"]] == ["zz-a-pass"]
     assert data["complete"] is False and data["not_run"] == ["zz-f-interrupt", "zz-h-after"]
     assert "interrupted" in capsys.readouterr().err.splitlines()[-1]
-    assert "Partial report" in (out / "report.md").read_text()
+    assert "Partial report" in (partial / "report.md").read_text()
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["report-partial"]
+
+
+def test_an_interrupted_run_leaves_the_earlier_complete_report_intact(fakes, tmp_path, capsys):
+    # the run used to empty the report folder first: Ctrl-C left only a partial report where the complete one was
+    code, out = _validate(tmp_path, "zz-a-pass", "zz-h-after")
+    assert code == 0
+    before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    for scene in ("zz-f-interrupt", "zz-g-sigint"):  # Ctrl-C inside a scene; between two scenes
+        capsys.readouterr()
+        assert _validate(tmp_path, "zz-a-pass", scene, "zz-h-after")[0] == 130
+        assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+        assert "untouched" in capsys.readouterr().err.splitlines()[-1]
+        data = json.loads((tmp_path / "report-partial" / "results.json").read_text())
+        assert data["complete"] is False and data["not_run"][-1] == "zz-h-after"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report", "report-partial"]
+    # the next complete run replaces the report; the partial one beside it is left as it is
+    assert _validate(tmp_path, "zz-h-after")[0] == 0
+    assert not (out / "zz-a-pass").exists() and (tmp_path / "report-partial" / "report.md").exists()
 
 
 def test_first_ctrl_c_stops_after_the_current_scene(fakes, tmp_path, capsys):
     code, out = _validate(tmp_path, "zz-a-pass", "zz-g-sigint", "zz-h-after")
     assert code == 130
-    data = json.loads((out / "results.json").read_text())
+    data = json.loads((tmp_path / "report-partial" / "results.json").read_text())
     assert [s["name"] for s in data["scenes"]] == ["zz-a-pass", "zz-g-sigint"]
     assert data["not_run"] == ["zz-h-after"]
     err = capsys.readouterr().err
     assert "stopping after the current scene" in err and "Traceback" not in err
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+_DRIVER = """
+import hashlib, sys
+from ballbench.validation import cli, scene as scene_module
+from ballbench.validation.scene import Scene
+
+
+def quick(run):
+    run.check(model="m", family="analytical", quantity="q", unit="1", value=1.0, reference=1.0, source="s",
+              tolerance=1e-9, time_s=1e-3)
+
+
+def long(run):
+    print("zz-long: inside", file=sys.stderr, flush=True)
+    # one C call that releases the GIL and never looks for signals, as a sparse solve does: minutes
+    hashlib.pbkdf2_hmac("sha256", b"p", b"s", 2 ** 31 - 1)
+
+
+scene_module.registry()
+for name, function in (("zz-quick", quick), ("zz-long", long)):
+    scene_module.REGISTRY[name] = Scene(name, "fake", function, default=False, kind="low-order", cost_s=0.1)
+sys.exit(cli.main(["validate", *sys.argv[2:], "--out", sys.argv[1], "--no-progress"]))
+"""
+
+
+def test_a_second_ctrl_c_ends_the_run_at_once_leaving_the_earlier_report(tmp_path):
+    # the second Ctrl-C used to raise KeyboardInterrupt only when the solver call returned (minutes), into a
+    # report folder the run had emptied first
+    driver = tmp_path / "driver.py"
+    driver.write_text(_DRIVER)
+    out = tmp_path / "report"
+    command = [sys.executable, str(driver), str(out)]
+    done = subprocess.run([*command, "zz-quick"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    process = subprocess.Popen([*command, "zz-quick", "zz-long"], stderr=subprocess.PIPE, text=True)
+    try:
+        lines = []
+        while not lines or lines[-1] != "zz-long: inside\n":
+            lines.append(process.stderr.readline())
+            assert lines[-1], "".join(lines)
+        time.sleep(0.3)
+        process.send_signal(signal.SIGINT)
+        time.sleep(0.3)
+        assert process.poll() is None  # the first Ctrl-C waits for the scene
+        start = time.monotonic()
+        process.send_signal(signal.SIGINT)
+        code = process.wait(timeout=10)
+        elapsed = time.monotonic() - start
+        err = process.stderr.read()
+    finally:
+        process.kill()
+        process.wait()
+    assert code == 130 and elapsed < 2.0, (code, elapsed, err)
+    assert "stopped at once" in err and "untouched" in err
+    assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+    partial = tmp_path / "report-partial"
+    assert (partial / ".ballbench-report").is_file() and not (partial / "report.md").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["driver.py", "report", "report-partial"]
 
 
 def test_broken_pipe_is_quiet():
@@ -475,6 +572,31 @@ def test_report_folder_of_an_older_version_is_reused(fakes, tmp_path):
     assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
     assert (out / ".ballbench-report").exists() and (out / "zz-a-pass").is_dir()
     assert json.loads((out / "results.json").read_text())["scenes"][0]["name"] == "zz-a-pass"
+
+
+def test_pictures_added_to_a_report_of_an_older_version_keep_its_files_its_own(fakes, tmp_path, capsys):
+    # a report without a manifest: 'show' listing only its pictures made the next run keep the old report.md
+    from ballbench.validation import report_folder
+
+    out = tmp_path / "report"
+    assert cli.main(["validate", "zz-a-pass", "--out", str(out)]) == 0
+    (out / ".ballbench-report").unlink()  # as an earlier version wrote it: report.md and results.json
+    (out / "zz-a-pass" / "picture.png").write_bytes(b"png")
+    report_folder.add_to_manifest(out, [out / "zz-a-pass" / "picture.png"])
+    assert {"report.md", "results.json", "zz-a-pass/picture.png", "zz-a-pass/line.png"} <= report_folder.owned(out)
+    capsys.readouterr()
+    assert cli.main(["validate", "zz-h-after", "--out", str(out)]) == 0
+    assert "untouched" not in capsys.readouterr().err and not (out / "zz-a-pass").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
+
+
+def test_a_link_to_a_report_folder_stays_a_link(fakes, tmp_path):
+    target = tmp_path / "reports" / "mine"
+    assert cli.main(["validate", "zz-a-pass", "--out", str(target)]) == 0
+    link = tmp_path / "link"
+    link.symlink_to(target)
+    assert cli.main(["validate", "zz-h-after", "--out", str(link)]) == 0
+    assert link.is_symlink() and (target / "zz-h-after").is_dir() and not (target / "zz-a-pass").exists()
 
 
 def test_fig9_known_gap_passes_the_run_and_fails_strict(tmp_path, capsys):

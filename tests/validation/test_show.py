@@ -61,7 +61,7 @@ def test_show_reads_saved_fields_and_writes_into_the_scene_folder(saved, monkeyp
     assert captured.err == "" and "vtk" not in captured.out.lower()
 
 
-def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
+def test_show_solves_only_when_asked_and_fields_are_missing(saved, tmp_path, monkeypatch):
     calls = []
 
     def fake_compute(case, scene_name, fidelity, directory, show_progress=False):
@@ -71,9 +71,32 @@ def test_show_solves_only_when_fields_are_missing(saved, tmp_path, monkeypatch):
 
     monkeypatch.setattr(fe_contact, "compute_fields", fake_compute)
     monkeypatch.setattr(render3d, "render", lambda directory: [])  # the 3D screenshots: tests/test_render3d.py
-    show.show(SCENE, tmp_path, fidelity="quick")
-    show.show(SCENE, tmp_path, fidelity="quick")
+    with pytest.raises(FileNotFoundError, match="no saved fields"):  # never solved unasked
+        show.show(SCENE, tmp_path, fidelity="quick")
+    assert calls == []
+    show.show(SCENE, tmp_path, fidelity="quick", solve=True)
+    show.show(SCENE, tmp_path, fidelity="quick", solve=True)
     assert calls == [(SCENE, "quick")]
+
+
+def test_cli_show_solve_lists_what_it_wrote_in_the_manifest(saved, tmp_path, monkeypatch, capsys):
+    # the fields --solve writes into a report are the report's: the next validate removes them, not a user's file
+    from ballbench.validation import report_folder
+
+    def fake_compute(case, scene_name, fidelity, directory, show_progress=False):
+        shutil.copytree(saved / SCENE, directory, dirs_exist_ok=True)
+
+    monkeypatch.setattr(fe_contact, "compute_fields", fake_compute)
+    monkeypatch.setattr(render3d, "render", lambda directory: [])
+    out = tmp_path / "r"
+    assert cli.main(["show", SCENE, "--out", str(out)]) == 2  # no report there: nothing solved unasked
+    assert not out.exists()
+    (out / SCENE).mkdir(parents=True)
+    (out / SCENE / "mine.txt").write_text("mine")
+    assert cli.main(["show", SCENE, "--out", str(out), "--quick", "--solve"]) == 0
+    owned = report_folder.owned(out)
+    assert {f"{SCENE}/fields.vtu", f"{SCENE}/fields.json", f"{SCENE}/pressure.png", f"{SCENE}/stress.png"} <= owned
+    assert f"{SCENE}/mine.txt" not in owned
 
 
 def test_cli_show(saved, monkeypatch, capsys):
@@ -103,7 +126,7 @@ def test_damaged_fields_end_in_one_line(tmp_path, capsys):
 @pytest.mark.slow
 def test_show_fourpoint_module_writes_pngs(tmp_path):
     # FE four-point module at the quick level (111k DOFs) plus one solve for the displacement field
-    paths = show.show("fe-b2b-linear-a", tmp_path, fidelity="quick")
+    paths = show.show("fe-b2b-linear-a", tmp_path, fidelity="quick", solve=True)
     assert [p.name for p in paths] == ["pressure.png", "stress.png", "3d_assembly.png", "3d_pressure_overview.png",
                                        "3d_pressure_contacts.png", "3d_stress.png"]
     for path in paths:
@@ -126,7 +149,7 @@ def test_show_after_a_quick_run_says_why_it_solves(tmp_path, monkeypatch, capsys
     monkeypatch.setattr(fe_contact, "compute_fields", stop)
     (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": []}))
     with pytest.raises(Stop):
-        show.show("fe-hertz-groove-056", tmp_path, "default")
+        show.show("fe-hertz-groove-056", tmp_path, "default", solve=True)
     # the user ran 'validate --quick' then 'show' and saw the default level solved without a reason
     assert "a --quick run, which saves no fields" in capsys.readouterr().err
 

@@ -21,6 +21,7 @@ the last one is checked); the TOML schema is :mod:`.case_file`, the published re
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -115,16 +116,26 @@ class ModuleFe:
     ``fine_ellipse``: the fine zone of each contact as an elliptic slab of semi-axes ``(k1 a, k2 b)`` and
     half-thickness ``k3 b`` about its Hertz ellipse (None: a ball of the level's ``fine_radius``);
     ``body_depth``: screw core and nut outside at ``R_P -+ body_depth R_B`` (screw modules; None: the
-    builder's default).
+    builder's default); ``min_cap_angle`` [rad]: the ball's contact caps (the mortar zones) at least this
+    half-angle, up to the builder's limit (None: the builder's default, 30 deg; a heavy contact's ellipse
+    needs more, docs/truncation.md); ``land_depth``: the grooves' lands ``land_depth R_B`` from the ball centre
+    (None: the builders' 0.25, the shoulder convention of docs/truncation.md; less where a heavy contact's
+    ellipse needs a longer flank than that).
     """
 
     levels: MeshLevels
     gap_limit: float
     fine_ellipse: tuple | None = None
     body_depth: float | None = None
+    min_cap_angle: float | None = None
+    land_depth: float | None = None
 
     def __post_init__(self):
         checks.positive("gap_limit", self.gap_limit, "m")
+        if self.min_cap_angle is not None:
+            checks.bounded("min_cap_angle", self.min_cap_angle, 0.0, math.pi / 2, "rad")
+        if self.land_depth is not None:
+            checks.bounded("land_depth", self.land_depth, 0.0, 1.0, lower_closed=True)
 
 
 # --------------------------------------------------------------------------

@@ -22,7 +22,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from ballbench.lowmodel import bearing, checks
+from ballbench.lowmodel import bearing, checks, model_inputs
 from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
 from ballbench.validation.cases import units
 from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
@@ -196,6 +196,15 @@ SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k
 OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant"}, "ball-screw": {"fe", "lubricant"},
                    "contact": {"fe", "screw"}}
 
+# what lin2019's models need of a key beyond its field's range: their own checks (lowmodel.model_inputs), at load
+# time; kind -> (table, key) -> (check, the other keys of the table it takes after the key's value)
+MODEL_CHECKS = {"linear-guide": {("guide", "friction_coefficient"): (model_inputs.guide_friction_coefficient,),
+                                 ("guide", "groove_velocity"): (model_inputs.groove_velocity,)},
+                "ball-screw": {("screw", "friction_coefficient"): (model_inputs.screw_friction_coefficient,),
+                               ("screw", "nut_speed"): (model_inputs.nut_speed,),
+                               ("screw", "pitch_radius"): (model_inputs.screw_pitch_radius, "ball_radius",
+                                                           "conformity")}}
+
 _HEADERS = {
     "linear-guide": "A linear guide: balls between a rail (bottom groove) and a carriage (top groove), lin2019 Sec 2.",
     "ball-screw": "A ball screw: two balls of one turn between screw and nut grooves, lin2019 Sec 3.",
@@ -236,6 +245,13 @@ class _Reader:
     def error(self, table: str, key: str, message: str) -> CaseFileError:
         line = self.lines.get((table, key)) or self.lines.get((table, ""))
         return CaseFileError(f"{self.path}" + (f", line {line}" if line else "") + f": {message}")
+
+    def check(self, table: str, key: str, function, *args):
+        """``function(*args)`` (a model's check of ``table.key``), its ValueError a CaseFileError at that key."""
+        try:
+            return function(*args)
+        except ValueError as error:
+            raise self.error(table, key, str(error)) from None
 
     def value(self, table: str, key: Key, raw):
         where = f"{table}.{key.name}" if table else key.name
@@ -380,11 +396,10 @@ def _level(where: str, entry: dict, level_type: str):
     if not set(entry) <= allowed or not {"h_contact", "growth"} <= set(entry):
         raise ValueError(f"{where} must be {{ h_contact = \"30 um\", growth = 1.4 }} (optionally fine_radius, h_max), "
                          f"got keys {sorted(entry)}")
-    h = units.quantity(entry["h_contact"], "length", f"{where}.h_contact")
-    checks.positive(f"{where}.h_contact", h, "m")
+    h = checks.positive(f"{where}.h_contact", units.quantity(entry["h_contact"], "length", f"{where}.h_contact"), "m")
     growth = float(checks.bounded(f"{where}.growth", entry["growth"], 1.0, 3.0, upper_closed=True))
-    fine = units.quantity(entry["fine_radius"], "length", f"{where}.fine_radius") if "fine_radius" in entry else None
-    h_max = units.quantity(entry["h_max"], "length", f"{where}.h_max") if "h_max" in entry else None
+    fine, h_max = (checks.positive(f"{where}.{k}", units.quantity(entry[k], "length", f"{where}.{k}"), "m")
+                   if k in entry else None for k in ("fine_radius", "h_max"))  # None: the mesh builder's
     return ModuleLevel(h, growth, fine, h_max)
 
 
@@ -411,6 +426,9 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                        + (f" (did you mean {close[0]!r}?)" if close else ""))
     top = _table(reader, data, kind, "", required=True)
     tables = {t: _table(reader, data, kind, t, required=t not in OPTIONAL_TABLES[kind]) for t in SCHEMA[kind] if t}
+    for (table, key), (check, *others) in MODEL_CHECKS.get(kind, {}).items():
+        values = tables[table]
+        reader.check(table, key, check, values[key], *(values[k] for k in others), f"{table}.{key}")
     material = _material(tables["material"])
     fe_raw = data.get("fe", {})
     name = top["name"]
@@ -419,22 +437,19 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
             g, load, dev = tables["guide"], tables["load"], tables["deviations"]
             guide = LinearGuide(g["ball_radius"], g["conformity"], g["nominal_angle"], material,
                                 g["friction_coefficient"], g["groove_velocity"], _lubricant(tables))
-            fe = None
-            levels = _levels(reader, fe_raw, "module")
-            if levels is not None:
-                f = tables["fe"]
-                fe = ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
-            return LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"],
+            f, levels = tables["fe"], _levels(reader, fe_raw, "module")
+            fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
+            case = LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"],
                                    (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
                                    load.get("n_balls", 2), name=name, fe=fe)
+            reader.check("load", "side_force_ratio", model_inputs.four_point_contact, case.side_forces,
+                         case.vertical_force, case.contact_angles, "load.side_force_ratio")  # every ball's
+            return case
         if kind == "ball-screw":
             screw = _screw(tables["screw"], material, _lubricant(tables))
             load = tables["load"]
-            fe = None
-            levels = _levels(reader, fe_raw, "module")
-            if levels is not None:
-                f = tables["fe"]
-                fe = ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
+            f, levels = tables["fe"], _levels(reader, fe_raw, "module")
+            fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
             return BallScrewCase(screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
                                  name=name, fe=fe)
         c = tables["contact"]
@@ -504,7 +519,10 @@ def kind_of(path: str | Path) -> str | None:
 # --------------------------------------------------------------------------
 # writing
 # --------------------------------------------------------------------------
-def _range_text(key: Key) -> str:
+def _range_text(key: Key, kind: str = "", table: str = "") -> str:
+    model = MODEL_CHECKS.get(kind, {}).get((table, key.name), (None,))[0]
+    if model is not None and model.__name__ in model_inputs.RANGES:  # else the field's range (below)
+        return model_inputs.RANGES[model.__name__]
     if key.described:
         unit = bearing.FIELDS[key.described][1]
         shown = "um" if key.described == "oversize" else {"m": "mm", "Pa": "GPa", "rad": "deg"}.get(unit, unit)
@@ -517,7 +535,8 @@ def describe(kind: str) -> list[tuple[str, str, str, str]]:
     rows = []
     for table, keys in SCHEMA[kind].items():
         for key in keys or ():
-            rows.append((f"{table}.{key.name}" if table else key.name, key.dimension, key.help, _range_text(key)))
+            rows.append((f"{table}.{key.name}" if table else key.name, key.dimension, key.help,
+                         _range_text(key, kind, table)))
     return rows
 
 
@@ -539,7 +558,7 @@ def template(kind: str) -> str:
         for key in shown:
             line = f"{key.name} = {key.example}"
             notes = [key.help]
-            rng = _range_text(key)
+            rng = _range_text(key, kind, table)
             if rng:
                 notes.append(rng)
             alternatives = [k for k in keys if k.alternative_of == key.name]

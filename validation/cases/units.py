@@ -18,7 +18,8 @@ from __future__ import annotations
 import difflib
 import math
 import re
-from decimal import Decimal, InvalidOperation
+import sys
+from decimal import Decimal, DecimalException, InvalidOperation
 
 __all__ = ["UNITS", "DIMENSIONS", "DIMENSIONLESS", "SI_UNIT", "UnitError", "quantity", "factor", "si_factor",
            "units_of", "dimension_of", "split", "format_quantity"]
@@ -64,7 +65,10 @@ UNITS: dict[str, tuple[str, str | float]] = {
 _ALIASES = {"µm": "um", "μm": "um", "micron": "um", "degree": "deg", "degrees": "deg", "°": "deg",
             "inch": "in", "N*m": "N m", "N·m": "N m", "Nm": "N m", "N*mm": "N mm", "Nmm": "N mm", "Pa*s": "Pa s",
             "Pa·s": "Pa s", "mPa*s": "mPa s", "mPa·s": "mPa s", "kg/m3": "kg/m^3", "g/cm3": "g/cm^3",
-            "N/mm2": "N/mm^2", "r/min": "rpm", "1/s": "rad/s"}
+            "N/mm2": "N/mm^2", "r/min": "rpm"}
+# a rate that does not say what turns: refused, with the units an angular speed takes (radians or revolutions?)
+_PER_TIME = {"1/s": "rad/s or rev/s", "/s": "rad/s or rev/s", "s^-1": "rad/s or rev/s", "1/min": "rpm",
+             "/min": "rpm", "min^-1": "rpm"}
 DIMENSIONS = tuple(dict.fromkeys(d for d, _ in UNITS.values()))
 DIMENSIONLESS = ("", "1")
 # the SI unit of each dimension (what a bare number means where a bare number is allowed)
@@ -88,6 +92,9 @@ def _normalise(unit: str) -> str:
 
 def _lookup(where: str, unit: str, dimension: str | None) -> tuple[str, str | float]:
     name = _normalise(unit)
+    if name in _PER_TIME and dimension in (None, "angular speed"):
+        raise UnitError(f"{where}: {unit!r} does not say what turns (radians or revolutions); write "
+                        f"{_PER_TIME[name]}; an angular speed takes {', '.join(units_of('angular speed'))}")
     if name not in UNITS:
         pool = units_of(dimension) if dimension else [u for u in UNITS if u]
         close = difflib.get_close_matches(name, pool, n=2, cutoff=0.5)
@@ -131,19 +138,38 @@ def si_factor(where: str, unit: str) -> float:
 def _number_text(where: str, value) -> str:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise UnitError(f"{where}: the value must be a number, got {value!r}")
+    if isinstance(value, int) and not -_FLOAT_MAX <= value <= _FLOAT_MAX:  # no float holds it
+        raise UnitError(f"{where}: an integer of {_digits(value)} digits is beyond the float range "
+                        f"(|value| up to {sys.float_info.max:.4g})")
     if not math.isfinite(value):
         raise UnitError(f"{where} must be finite, got {value!r}")
     return repr(value)  # the shortest text that reads back as the same float: "3.175", not its binary expansion
 
 
+def _digits(value: int) -> str:
+    """The number of decimal digits of the integer ``value``, from its bit length (``str`` of an integer of
+    more than 4300 digits raises ValueError)."""
+    bits = abs(value).bit_length()
+    return str(len(str(abs(value)))) if bits < 10000 else f"about {int(bits * math.log10(2)) + 1}"
+
+
+_FLOAT_MAX = int(sys.float_info.max)
+
+
 def _scaled(where: str, text: str, unit_factor: str | float) -> float:
+    beyond = (f"{where}: {text} is beyond the float range (|value| up to {sys.float_info.max:.4g} in SI "
+              "units)")
     if isinstance(unit_factor, str):
         try:
             result = float(Decimal(text) * Decimal(unit_factor))
         except InvalidOperation:
             raise UnitError(f"{where}: {text!r} is not a number") from None
+        except DecimalException:  # decimal.Overflow of an exponent beyond the decimal context's
+            raise UnitError(beyond) from None
     else:
         result = float(text) * unit_factor
+    if math.isinf(result):
+        raise UnitError(beyond)
     if not math.isfinite(result):
         raise UnitError(f"{where} must be finite, got {text}")
     return result

@@ -79,11 +79,12 @@ def render(scene_dir) -> list[Path]:
     return paths
 
 
-def show_saved(scene_dir, fidelity: str) -> list[Path]:
+def show_saved(scene_dir, fidelity: str, solve: bool = False) -> list[Path]:
     """The ``show`` hook of a scene whose pictures are only the 3D screenshots of fields it saved during
     ``ballbench validate`` (the BEM / EHL surfaces, the stick/slip areas): :func:`render`, or FileNotFoundError
-    saying to validate first.  ``fidelity`` is not used: the saved fields are those of the run that wrote them."""
-    del fidelity  # the hook signature; the saved fields fix the level
+    saying to validate first.  ``fidelity`` and ``solve`` are not used: the saved fields are those of the run that
+    wrote them, and this hook has nothing to solve."""
+    del fidelity, solve  # the hook signature; the saved fields fix the level
     scene_dir = Path(scene_dir)
     if not has_fields(scene_dir):
         raise FileNotFoundError(f"no saved surface or stick/slip fields in {scene_dir}: run 'ballbench validate "

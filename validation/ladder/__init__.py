@@ -15,22 +15,23 @@ case (they are not registered; the CLI runs them beside or instead of the regist
 * ``<stem>-contact``: each distinct contact geometry at its largest load (ladder.rungs.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
   contact) up the ladder: exact Hertz, the BEM on
-  the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the Richardson
-  extrapolation of the FE study with its uncertainty as the reference, every model's error against it and its run
-  time; its fields (fields.vtu) and 3D screenshots;
+  the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the finest FE level
+  with its uncertainty (references.uncertainty, Eca and Hoekstra) as the reference, every model's error against it
+  and its run time; its fields (fields.vtu) and 3D screenshots;
 * ``<stem>-ehl`` (ball screw or linear guide with a ``[lubricant]``; rung ``EHL``): each distinct contact lubricated
   at its load and the entrainment speed of the case's kinematics: the EHL solve's central and minimum film, U, G, W,
   k, the pressure against Hertz, its grid convergence, Hamrock-Dowson judged against the solve (studies.case_ehl);
 * ``<stem>-stick-slip`` (linear guide, ball screw; rung ``stick-slip``): the balls with stick/slip contacts against
   full slip on the same cells (studies.case_stick_slip); the touching balls' stick/slip fields (NPZ, VTU) and picture;
 * ``<stem>-b2b-fe`` (linear guide, ball screw; rung ``FE-informed``): the FE modules of the two balls on meshes from
-  their ellipses, the FE-informed B2B force per level and its extrapolation, the reference of the analytical and
-  low-order B2B forces; the modules' fields and screenshots.
+  their ellipses, the FE-informed B2B force per level, the finest with its uncertainty the reference of the
+  analytical and low-order B2B forces; the modules' fields and screenshots.
 
 Every model judged against a higher rung is a *finding* check (``run.check(finding=True)``): a miss says the model is
 outside its declared accuracy on this geometry (status ``outside accuracy``; docs/your_own_bearing.md, "Reading the
-verdict"), not that the software failed; the solvers' own checks (power balance, statics, load balance) and the
-uncertainty of the extrapolated reference stay pass/fail.
+verdict"), not that the software failed; the solvers' own checks (power balance, statics, load balance) stay
+pass/fail.  A reference too uncertain to judge at the run's fidelity ends the scene ``inconclusive`` (run.inconclusive,
+the models not judged; docs/verification.md).
 
 A scene whose model has no state on the case raises NotApplicable (status ``not applicable``, with the reason): the
 FE screw module where lin2019's state leaves a contact unloaded (b2b_fe); every ball-screw scene where lin2019's
@@ -133,7 +134,7 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             budget_s={"quick": 60.0, "default": 120.0, "fine": 900.0}, case=case))
     if "FE-informed" in rungs and kind != "contact":
         scenes.append(Scene(f"{stem}-b2b-fe", f"{case.name}: FE modules of the two balls and the FE-informed B2B "
-                            "force per mesh level, extrapolated: the reference of the analytical and low-order models",
+                            "force per mesh level, the finest the reference of the analytical and low-order models",
                             functools.partial(b2b_fe_scene, case=case, deadline=deadline), tags=("case",), kind="FE",
                             cost_s=300.0, budget_s=BUDGET_S, case=case, show=functools.partial(show_module, case)))
     if "stick-slip" in rungs and kind != "contact":
@@ -154,16 +155,22 @@ def limits(case, stem: str, top: str = "stick-slip") -> list[str]:
     return limits_lines(case, scene_names(case, stem, top))
 
 
-def show_case(case, stem: str, out_dir: Path, fidelity: str = "default", *, on_skip=None) -> list[Path]:
+def show_case(case, stem: str, out_dir: Path, fidelity: str = "default", *, solve: bool = False, on_skip=None,
+              on_missing=None) -> list[Path]:
     """``ballbench show my_case.toml``: the pictures of every generated scene that has them, drawn from the fields
-    ``validate`` saved in ``out_dir/<scene>/`` (solved first only where none are saved).  A scene that does not
-    apply to the case (NotApplicable) is skipped: ``on_skip(scene_name, reason)`` is told."""
+    ``validate`` saved in ``out_dir/<scene>/``.  A scene that does not apply to the case (NotApplicable) is skipped:
+    ``on_skip(scene_name, reason)`` is told; one that saved nothing is skipped too, ``on_missing(scene_name,
+    error)`` told, or with ``solve`` solved at ``fidelity`` first (``ballbench show --solve``)."""
     paths = []
     for scene in case_scenes(case, stem):
         if scene.show is not None:
             try:
-                paths += scene.show(Path(out_dir) / scene.name, fidelity)
+                paths += scene.show(Path(out_dir) / scene.name, fidelity, solve)
             except NotApplicable as skipped:
                 if on_skip is not None:
                     on_skip(scene.name, skipped.reason)
+            except FileNotFoundError as missing:
+                if solve or on_missing is None:
+                    raise
+                on_missing(scene.name, missing)
     return paths

@@ -12,7 +12,8 @@ from ballbench.lowmodel.geometry.fourpoint import contact_normals
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
-from ballbench.validation.ladder.common import B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check
+from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, contact_table, fmt, power_check,
+                                                truncation_check)
 
 __all__ = ["balls_scene"]
 
@@ -32,6 +33,7 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
     touching, time_touching = run.time(b2b.solve, contacts, np.zeros(case.n_balls - 1))
     free, time_free = run.time(b2b.solve, contacts, np.full(case.n_balls - 1, 1e-3))
     result = bearing_results.guide_result(case, touching, free, contacts)
+    truncation_check(run, case, result, time_s=time_touching)
     power_check(run, model, touching, time_touching, "balls touching")
     power_check(run, model, free, time_free, "balls apart")
     statics = _eq36_residual(case, contacts)
@@ -90,6 +92,7 @@ def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
     (free, touching), time_s = run.time(bearing_results.screw_states, case, contacts)
     time_s += time_contacts  # the model's run: its contacts and both states
     result = bearing_results.screw_result(case, touching, free, contacts)
+    truncation_check(run, case, result, time_s=time_s)
     power_check(run, model, touching, time_s, "balls touching")
     power_check(run, model, free, time_s, "balls apart")
     shares = bearing_results.axial_shares(contacts, touching)

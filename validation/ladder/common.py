@@ -8,17 +8,23 @@ import contextlib
 import dataclasses
 import functools
 import math
+import time
 
-from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
+from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
+from ballbench.lowmodel.screw.contacts import flank_angles
 from ballbench.lowmodel.screw.preload import nominal_preload_loss
-from ballbench.validation.cases.case import BallScrewCase
+from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.scene import NotApplicable
 
-REFERENCE_UNCERTAINTY = 0.01  # the extrapolated FE reference must be known to 1 % to judge models against it
+# the FE reference must be known to 1 % (its uncertainty by references.uncertainty) to judge models against it;
+# above that the scene is inconclusive (validation.scene, "Inconclusive")
+REFERENCE_UNCERTAINTY = 0.01
 B2B_TOLERANCE = {"linear-guide": 0.07, "ball-screw": 0.10}  # lin2019's own claims, docs/fe_b2b.md
 POWER_TOLERANCE = 1e-6  # docs/fe_b2b.md: energy conservation incl. the B2B loss
 # a B2B force below this share of the friction scale mu N (N: the ball load) is "near zero" and judged on that
@@ -29,11 +35,12 @@ NEAR_ZERO_B2B = 0.05
 HAMROCK_DOWSON_TOLERANCE = 0.15
 EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as those scenes check it
 
-__all__ = ["B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
+__all__ = ["settle_words",
+           "B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
            "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
-           "LIN2019_SCENES"]
+           "LIN2019_SCENES", "truncations", "truncation_check", "not_truncated"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
 # stick/slip balls, the EHL loads): where that model has no state they do not apply, but for the contact rung, which
@@ -46,6 +53,15 @@ FRICTIONLESS_WORDS = ("the loads of the frictionless statics of the balls at the
                       "lin2019's friction model, which has no state "
                       "at this load; the contact rung judges contact mechanics (Hertz, BEM, FE at a given load), "
                       "not friction")
+
+
+def settle_words(fidelity: str, finer: str) -> str:
+    """What settles an inconclusive reference (docs/verification.md, "Bounds and INCONCLUSIVE"): the next fidelity
+    of the run at ``fidelity``, and ``finer``, the finer levels in words (e.g. "FE levels n = b/h 5.5, 6.6, 7.92,
+    9.5, 11.4"), for a case file's own ``[fe]`` table."""
+    step = {"quick": "run at the default fidelity (without --quick) or --fine",
+            "default": "run --fine"}.get(fidelity, "give the case file an [fe] table with finer levels")
+    return f"What settles it: a finer study: {step}; or {finer}."
 
 
 def fmt(value: float, digits: int = 4) -> str:
@@ -220,3 +236,64 @@ def limits_lines(case, names) -> list[str]:
     if contact:
         lines.append(f"Where lin2019's model finds no state at this load, {contact[0]} runs on {FRICTIONLESS_WORDS}.")
     return lines
+
+
+# --------------------------------------------------------------------------
+# contact ellipse truncation by the groove's shoulder (lowmodel.truncation, docs/truncation.md)
+# --------------------------------------------------------------------------
+def truncations(case, result=None) -> tuple:
+    """The :class:`lowmodel.truncation.Truncation` of every loaded contact of a guide's or screw's low-order touching
+    state (``result``: its lowmodel.bearing_results result, computed when None; none without a state): the flank's
+    shoulder from the
+    contact angle with the ball centred (a guide's ``beta_0 + deviation``; a screw's flank angles of its deviation
+    reading, lowmodel.screw.contacts.flank_angles), the ellipse's end from the loaded angle and ``a``."""
+    if result is None:
+        try:
+            result = (bearing_results.guide_result(case) if isinstance(case, LinearGuideCase)
+                      else bearing_results.screw_result(case) if isinstance(case, BallScrewCase) else None)
+        except ConvergenceError:  # no low-order state: no ellipse to check (the rungs say why, LIN2019_SCENES)
+            return ()
+    if isinstance(case, LinearGuideCase):
+        radius, conformity = case.guide.ball_radius, case.guide.conformity
+        rigid = {(j, name): float(angle) for j in range(1, case.n_balls + 1)
+                 for name, angle in zip(GUIDE_CONTACTS, case.contact_angles)}
+    elif isinstance(case, BallScrewCase):
+        radius, conformity = case.screw.ball_radius, case.screw.conformity
+        angles = flank_angles(case.screw.nominal_angle, list(case.deviations), case.reading)
+        rigid = {(j + 1, name): float(angle) for j, row in enumerate(angles)
+                 for name, angle in zip(SCREW_CONTACTS, row)}
+    else:
+        return ()
+    return tuple(truncation.truncation(f"ball {c.ball} {c.contact}", radius, conformity, rigid[(c.ball, c.contact)],
+                                       c.contact_angle, c.a)
+                 for c in result.contacts if c.normal_force > 0)
+
+
+def truncation_check(run, case, result=None, *, time_s: float = 0.0) -> tuple:
+    """The truncation finding of a rung (docs/truncation.md): the end of the worst contact ellipse's major axis
+    against its groove's shoulder, a finding when it reaches it (every model of the rung then works outside its
+    assumptions; the verdict names the contact and the angles).  Returns the truncations."""
+    start = time.perf_counter()
+    found = truncations(case, result)
+    if result is None:  # the state solved here: its time is the check's
+        time_s += time.perf_counter() - start
+    if not found:
+        return found
+    worst = min(found, key=lambda t: t.margin)
+    run.check(model="contact ellipse of the low-order touching state (Hertz semi-axis a)", family="analytical",
+              quantity=f"end of the major semi-axis, beta + asin(a/R_B), {worst.contact}", unit="rad",
+              value=worst.end_angle, reference=worst.shoulder_angle, relation="le", tolerance=0.0, time_s=time_s,
+              source=f"the groove's shoulder, the land {truncation.SHOULDER_DEPTH:g} R_B from the ball centre "
+                     "(lowmodel.truncation; Harris & Kotzalas, contact ellipse truncation; docs/truncation.md)",
+              note=truncation.words(found) or f"worst margin {math.degrees(worst.margin):.1f} deg: "
+                                              f"{worst.text()}", finding=True)
+    return found
+
+
+def not_truncated(case, result=None) -> None:
+    """NotApplicable when a contact ellipse of ``case`` reaches its groove's shoulder (docs/truncation.md): an
+    edge contact, which the FE modules (their mortar zones on the flank, fem.fourpoint) do not resolve."""
+    words = truncation.words(truncations(case, result))
+    if words:
+        raise NotApplicable(f"{words}. The FE module (fem.fourpoint, fem.screw_module) needs every contact ellipse "
+                            "on its flank.")

@@ -1,7 +1,9 @@
 """``<stem>-contact``: the most loaded contact of a case (or the case's own contact) up the ladder: exact Hertz,
-the BEM on the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the
-Richardson extrapolation of the FE study with its uncertainty as the reference, every model's error against it and
-its run time; its fields (fields.vtu) and 3D screenshots.  A ball screw past its preload loss, where lin2019's model
+the BEM on the exact gap on two or three grids, the FE on three or more meshes sized from its ellipse, the finest FE
+level with its uncertainty by Eca and Hoekstra's least squares (references.uncertainty) as the reference, every
+model's error against it and its run time; its fields (fields.vtu) and 3D screenshots.  A reference too uncertain
+to judge at the run's fidelity ends the scene inconclusive (:func:`_inconclusive`); a rung outside its own validity
+is no referee (:data:`HALF_SPACE_RATIO`).  A ball screw past its preload loss, where lin2019's model
 has no state, runs on the loads of the frictionless two-point statics (lowmodel.screw.preload; :func:`_distinct`)."""
 from __future__ import annotations
 
@@ -12,14 +14,24 @@ from pathlib import Path
 from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
-from ballbench.validation.cases.case import ContactCase
+from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
-                                               past_preload_loss)
+                                               past_preload_loss, settle_words)
+from ballbench.validation.ladder.common import truncation_check
 from ballbench.validation.references.richardson import extrapolate
+from ballbench.validation.references.uncertainty import eca_hoekstra
 from ballbench.validation.runner import GB
 
-__all__ = ["contact_scene", "show_contact"]
+__all__ = ["contact_scene", "show_contact", "HALF_SPACE_RATIO"]
+
+# The half-space rungs (Hertz, the BEM on the exact gap) model each body as an elastic half-space: the contact must be
+# small against the radii of both surfaces (docs/hertz.md and docs/halfspace.md, "Validity").  The limit is Hertz's
+# flag, a / R <= 0.3 (lowmodel.contact.hertz.VALIDITY_RATIO) with R the smallest principal radius of either surface
+# (the ball's: a groove's radius f D is larger, so a / r_groove < a / R_B and one ratio bounds both).  A half-space
+# rung beyond it is no referee of another model: there the FE study can put the BEM further from the FE than Hertz
+# (docs/verification.md, "No reference at this level", the measured case).
+HALF_SPACE_RATIO = hertz.VALIDITY_RATIO
 
 
 def contact_scene(run, *, case, rungs, deadline) -> None:
@@ -29,9 +41,13 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     level starts.  The fields and pictures are those of the most loaded contact.  Past a ball screw's preload loss,
     where lin2019's model has no state, the loads are those of the frictionless statics (:func:`_distinct`), and the
     scene says so."""
-    distinct, reason = _distinct(case)
+    start = time.perf_counter()
+    distinct, reason, result = _distinct(case)
+    time_s = time.perf_counter() - start  # lin2019's state (once: the contacts' loads come from it)
     if reason:
         _frictionless_table(run, case, reason)
+    elif result is not None:  # the ellipses of lin2019's state against the grooves' shoulders (docs/truncation.md)
+        truncation_check(run, case, result, time_s=time_s)
     # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
     # the default and fine levels run it on every contact
     fe_on = [index == 0 or run.fidelity != "quick" for index in range(len(distinct))]
@@ -51,18 +67,24 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
 
 
 def _distinct(case):
-    """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or ""): a ball
-    screw where lin2019's model finds no state (past its preload loss, or below it where friction unloads a contact
-    first; common.past_preload_loss) runs on the loads of the frictionless statics
-    (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung needs a contact geometry
-    and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
+    """(ladder.rungs.distinct_contacts of ``case``, the reason its loads are the frictionless statics' or "", the
+    low-order state they come from or None): a ball screw where lin2019's model finds no state (past its preload
+    loss, or below it where friction unloads a contact first; common.past_preload_loss) runs on the loads of the
+    frictionless statics (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung
+    needs a contact geometry and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
     try:
-        return ladder_rungs.distinct_contacts(case), ""
+        if isinstance(case, LinearGuideCase):
+            result = bearing_results.guide_result(case)
+        elif isinstance(case, BallScrewCase):
+            result = bearing_results.screw_result(case)
+        else:
+            result = None
+        return ladder_rungs.distinct_contacts(case, result), "", result
     except ConvergenceError as error:
         reason = past_preload_loss(case, error)
         if not reason:
             raise
-    return ladder_rungs.distinct_contacts(case, frictionless=True), reason
+    return ladder_rungs.distinct_contacts(case, frictionless=True), reason, None
 
 
 def _frictionless_table(run, case, reason: str) -> None:
@@ -110,11 +132,21 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
             models.append(("lowmodel.contact.halfspace (exact gap)", "BEM", f"{n} x {n}", values, wall))
     fe_rows, fe_results, fe_levels = (_fe_study(run, contact, ref_hertz["b"], deadline, tag, models) if "FE" in rungs
                                       else ([], [], []))
-    reference, source, uncertainty = _contact_reference(run, models, fe_rows, extrapolate, tag)
+    reference, source, uncertainty = _contact_reference(run, models, fe_rows, tag, radius)
     suffix = f" ({tag})" if tag else ""
-    if reference is None:
-        run.table("Contact by each rung" + suffix, ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]",
-                                                    "one evaluation [s]"), _model_rows(models))
+    worst = max(uncertainty.values()) if uncertainty else None
+    conclusive = reference is not None and (worst is None or worst <= REFERENCE_UNCERTAINTY)
+    if reference is not None and not conclusive:
+        _inconclusive(run, uncertainty, fe_rows, tag)
+    if not conclusive:
+        run.table("Contact by each rung, side by side (" + ("no conclusive reference at this fidelity"
+                                                            if reference is not None else
+                                                            "no reference at this level") + ": nothing judged)"
+                  + suffix,
+                  ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]", "one evaluation [s]"),
+                  _model_rows(models))
+        if fe_results:
+            _fe_self_checks(run, contact, fe_rows, fe_results, fe_levels, models, uncertainty, tag, fields)
         return
     for model, family, level, values, wall in models:
         if values is reference:
@@ -128,27 +160,52 @@ def _one_contact(run, contact: ContactCase, rungs, deadline, tag: str, *, fields
                       tolerance=tolerances[quantity], time_s=wall,
                       note=_tolerance_note(family, run.fidelity), finding=True)
     if fe_results:
-        finest = fe_results[-1]
-        run.check(model="fem.contact", family="FE", level=_tagged(models[-1][2], tag), quantity="force_sum",
-                  unit="N", value=finest.force_sum, reference=contact.force, tolerance=1e-9, time_s=models[-1][4],
-                  source="load equilibrium (sum of contact forces)")
-        if uncertainty is not None:
-            worst = max(uncertainty.values())
-            run.check(model="Richardson extrapolation of the FE study", family="FE", level=_tagged("h -> 0", tag),
-                      quantity="relative uncertainty of the reference, worst of a, b, p0, delta", unit="1",
-                      value=worst, reference=REFERENCE_UNCERTAINTY, relation="le", tolerance=0.0,
-                      time_s=sum(m[4] for m in models if m[1] == "FE"),
-                      source="grid convergence index (references.richardson; Roache 1994)",
-                      note="the reference must be known better than the tolerances it judges; a larger value asks "
-                           "for finer levels (--fine)")
-        run.write_csv("levels.csv" if not tag else f"levels-{tag.replace(' ', '-')}.csv", fe_rows)
-        if fields:
-            _fields(run, contact, finest, fe_levels[-1])
+        _fe_self_checks(run, contact, fe_rows, fe_results, fe_levels, models, uncertainty, tag, fields)
     run.table("Contact by each rung" + suffix + " (reference: " + source + ")",
               ("model", "level", "a [mm]", "b [mm]", "p0 [MPa]", "delta [um]", "one evaluation [s]"),
-              _model_rows(models) + [("reference", "h -> 0" if uncertainty else "", fmt(reference["a"] * 1e3),
-                                      fmt(reference["b"] * 1e3), fmt(reference["p0"] / 1e6),
-                                      fmt(reference["delta"] * 1e6), "")])
+              _model_rows(models) + [("reference", "finest FE level +- U" if uncertainty else "",
+                                      fmt(reference["a"] * 1e3), fmt(reference["b"] * 1e3),
+                                      fmt(reference["p0"] / 1e6), fmt(reference["delta"] * 1e6), "")])
+
+
+def _fe_self_checks(run, contact, fe_rows, fe_results, fe_levels, models, uncertainty, tag: str,
+                    fields: bool) -> None:
+    """The FE study's own checks (load equilibrium of the finest level; the reference's uncertainty within its
+    bound when it is conclusive), its levels.csv and the fields of the finest level."""
+    finest = fe_results[-1]
+    fe_models = [m for m in models if m[1] == "FE"]
+    run.check(model="fem.contact", family="FE", level=_tagged(fe_models[-1][2], tag), quantity="force_sum",
+              unit="N", value=finest.force_sum, reference=contact.force, tolerance=1e-9, time_s=fe_models[-1][4],
+              source="load equilibrium (sum of contact forces)")
+    if uncertainty is not None and max(uncertainty.values()) <= REFERENCE_UNCERTAINTY:
+        run.check(model="uncertainty of the FE study", family="FE", level=_tagged("finest level", tag),
+                  quantity="relative uncertainty of the reference, worst of a, b, p0, delta", unit="1",
+                  value=max(uncertainty.values()), reference=REFERENCE_UNCERTAINTY, relation="le", tolerance=0.0,
+                  time_s=sum(m[4] for m in fe_models), source=_UNCERTAINTY_SOURCE,
+                  note="the reference must be known better than the tolerances it judges; above the bound the "
+                       "scene is inconclusive")
+    run.write_csv("levels.csv" if not tag else f"levels-{tag.replace(' ', '-')}.csv", fe_rows)
+    if fields:
+        _fields(run, contact, finest, fe_levels[-1])
+
+
+_UNCERTAINTY_SOURCE = ("Eca & Hoekstra 2014, J. Comput. Phys. 262, 104, eqs 19-21 (references.uncertainty; two "
+                       "levels: Richardson with F_s 3, references.richardson)")
+
+
+def _inconclusive(run, uncertainty: dict, fe_rows, tag: str) -> None:
+    """End the scene inconclusive: the FE reference's uncertainty above :data:`REFERENCE_UNCERTAINTY`, with the
+    quantity, the levels and what settles it."""
+    quantity, worst = max(uncertainty.items(), key=lambda item: item[1])
+    levels = ", ".join(f"{r['n']:g}" for r in fe_rows)
+    ratio = fe_rows[-1]["n"] / fe_rows[-2]["n"]
+    finer = ", ".join(f"{fe_rows[-1]['n'] * ratio ** k:.3g}" for k in (1, 2))
+    run.inconclusive(_head(tag) + f"no conclusive reference: the uncertainty of the FE reference is "
+                     f"{100 * worst:.3g} % in {quantity} (worst of a, b, p0, delta; Eca-Hoekstra on {len(fe_rows)} "
+                     f"levels n = b/h {levels}) against the {100 * REFERENCE_UNCERTAINTY:g} % it needs to judge the "
+                     f"models, so Hertz, the BEM and the coarser FE levels are not judged here. "
+                     + settle_words(run.fidelity, f"FE levels n = b/h {levels}, {finer} (the ratio {ratio:.3g} "
+                                                  "continued)"))
 
 
 def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: list):
@@ -229,11 +286,24 @@ def _tolerance_note(family: str, fidelity: str) -> str:
            "outside Hertz's assumptions"
 
 
-def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
-    """(reference values, source text, relative uncertainties or None): the extrapolated FE study (>= 2 levels),
-    the one FE level, or the finest BEM grid; None when only Hertz ran."""
+def _contact_reference(run, models, fe_rows, tag: str = "", radius: float = math.inf):
+    """(reference values, source text, relative uncertainties or None): the finest FE level with its uncertainty by
+    Eca and Hoekstra (>= 3 levels), the Richardson extrapolation of two levels (formal order 2, F_s 3), the one FE
+    level, or the finest BEM grid where the BEM is inside its validity (a / R <= :data:`HALF_SPACE_RATIO`, ``radius``
+    the contact's R); None when no rung above Hertz can judge."""
     fe = [m for m in models if m[1] == "FE"]
-    if len(fe) >= 2:
+    if len(fe) >= 3:
+        sizes = [r["h_contact"] for r in fe_rows]
+        uncertainty, notes = {}, []
+        for quantity, _ in ladder_rungs.QUANTITIES:
+            u = eca_hoekstra(sizes, [r[quantity] for r in fe_rows])
+            uncertainty[quantity] = u.relative_uncertainty
+            notes.append(f"{quantity}: {u.note}, U = {100 * u.relative_uncertainty:.2g} % (phi_0 of the fit "
+                         f"{100 * (u.extrapolated / u.value - 1.0):+.2g} % from the finest)")
+        run.note(_head(tag) + "Reference: the finest FE level, its uncertainty by Eca and Hoekstra's least squares "
+                 "over the levels (" + "; ".join(notes) + ").")
+        return fe[-1][3], f"FE {fe[-1][2]} (finest of {len(fe)} levels, references.uncertainty)", uncertainty
+    if len(fe) == 2:
         sizes = [r["h_contact"] for r in fe_rows]
         reference, uncertainty, notes = {}, {}, []
         for quantity, _ in ladder_rungs.QUANTITIES:
@@ -241,15 +311,23 @@ def _contact_reference(run, models, fe_rows, extrapolate, tag: str = ""):
             reference[quantity] = e.value
             uncertainty[quantity] = e.relative_uncertainty
             notes.append(f"{quantity}: {e.note}, U = {100 * e.relative_uncertainty:.2g} %")
-        run.note(_head(tag) + "Reference: Richardson extrapolation of the FE levels (" + "; ".join(notes) + ").")
-        return reference, f"FE extrapolated to h -> 0 from {len(fe)} levels (references.richardson)", uncertainty
+        run.note(_head(tag) + "Reference: Richardson extrapolation of the two FE levels (" + "; ".join(notes) + ").")
+        return reference, "FE extrapolated to h -> 0 from 2 levels (references.richardson)", uncertainty
     if len(fe) == 1:
         run.note(_head(tag) + "Reference: the one FE level that ran (no extrapolation, its uncertainty unknown).")
         return fe[0][3], f"FE, {fe[0][2]} (one level)", None
     bem = [m for m in models if m[1] == "BEM"]
     if bem:
-        run.note(_head(tag) + "Reference: the finest BEM grid (no FE rung in this run).")
-        return bem[-1][3], f"BEM {bem[-1][2]} (finest grid)", None
+        ratio = bem[-1][3]["a"] / radius
+        if ratio <= HALF_SPACE_RATIO:
+            run.note(_head(tag) + f"Reference: the finest BEM grid (no FE rung in this run; a/R = {ratio:.3g} within "
+                     f"the half-space rungs' validity {HALF_SPACE_RATIO:g}).")
+            return bem[-1][3], f"BEM {bem[-1][2]} (finest grid)", None
+        run.note(_head(tag) + f"No reference at this level: the BEM (the highest rung run) gives a/R = {ratio:.3g}, "
+                 f"beyond the half-space rungs' validity a/R <= {HALF_SPACE_RATIO:g} (docs/hertz.md, docs/halfspace.md,"
+                 " 'Validity'), so it judges no model here; the table shows the rungs side by side. The FE rung "
+                 "(--levels FE or the default) is the referee of such a contact.")
+        return None, "", None
     run.note(_head(tag) + "Hertz only (--levels analytical): no reference to judge it against.")
     return None, "", None
 
@@ -268,10 +346,10 @@ def _fields(run, contact: ContactCase, result, level) -> None:
         run.add_artifact(path)
 
 
-def show_contact(case, scene_dir, fidelity: str) -> list[Path]:
-    """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (solved at
-    ``fidelity`` if none)."""
+def show_contact(case, scene_dir, fidelity: str, solve: bool = False) -> list[Path]:
+    """The ``show`` hook of ``<stem>-contact``: pictures of the saved fields of its most loaded contact (none saved:
+    FileNotFoundError, or with ``solve`` solved at ``fidelity`` first)."""
     from ballbench.validation.studies import fe_contact
 
     governing = _distinct(case)[0][0].contact
-    return fe_contact.show_fields(ladder_rungs.contact_fe(governing), scene_dir, fidelity, cost_s=60.0)
+    return fe_contact.show_fields(ladder_rungs.contact_fe(governing), scene_dir, fidelity, solve, cost_s=60.0)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ballbench.validation.ladder.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt
+from ballbench.validation.ladder.common import EHL_LOAD_TOLERANCE, HAMROCK_DOWSON_TOLERANCE, fmt, truncation_check
 from ballbench.validation.cases.case import LinearGuideCase
 
 # where to go when the level's grid is not converged: the next level and its grid (studies.case_ehl.GRID_N)
@@ -30,6 +30,7 @@ def ehl_scene(run, *, case) -> None:
     """The scene function of ``<stem>-ehl`` (``case`` a BallScrewCase with a lubricant)."""
     from ballbench.validation.studies import case_ehl
 
+    truncation_check(run, case)  # the EHL solve's gap is the groove's without its shoulder (docs/truncation.md)
     points = case_ehl.contacts(case, run.fidelity, progress=run.progress)
     lo, hi = case_ehl.ELLIPTICITY_RANGE
     for c in points:

@@ -14,11 +14,11 @@ Rungs, bottom to top (:data:`RUNGS`):
   BEM's half-space) at the entrainment speed of the case's kinematics, the reference of the Hamrock-Dowson film
   (studies.case_ehl);
 * ``FE``: the contact of the most loaded contact in FE (studies.fe_contact) on three or more meshes whose sizes
-  follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), and the Richardson extrapolation of the study
-  (references.richardson): the reference every model of the contact is judged against, with its uncertainty;
+  follow its Hertz ellipse (``h = b / n``, :func:`contact_fe`), the finest level with its uncertainty over the
+  levels (references.uncertainty): the reference every model of the contact is judged against;
 * ``FE-informed``: the FE modules of the two balls (fem.fourpoint, fem.screw_module) on meshes sized from the
   smallest ellipse of the module (:func:`module_fe`), their contact pressures fed to the B2B model
-  (studies.fe_b2b_linear, studies.fe_b2b_screw); the extrapolated FE-informed B2B force is the reference of the
+  (studies.fe_b2b_linear, studies.fe_b2b_screw); the finest FE-informed B2B force is the reference of the
   analytical and low-order B2B forces;
 * ``stick-slip``: the case's balls with stick/slip ball-to-groove contacts (lowmodel.contact.rolling_friction on
   two half-spaces) against lin2019's full slip on the same cells (studies.case_stick_slip): whether full slip holds
@@ -35,14 +35,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ballbench.lowmodel import bearing_results
+from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove
+from ballbench.validation.ladder.common import truncations
 from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase, MeshLevels,
                                              ModuleFe, ModuleLevel, PairLevel, named)
 
 __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
-            "module_fe", "hertz_values", "bem_values",
+            "module_fe", "module_cap_angle", "module_land_depth", "CAP_MARGIN", "hertz_values", "bem_values",
            "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time",
            "predicted_memory", "available_memory", "BYTES_PER_DOF", "QUICK_DOF_CAP", "SCREW_QUICK_RATIOS",
            "SCREW_QUICK_GROWTH", "screw_quick_levels"]
@@ -63,15 +64,23 @@ CONTACT_LEVELS = {"quick": ((5.5, 6.6, 7.92), 1.4), "default": ((5.5, 6.875, 8.5
 SCREW_QUICK_GROWTH = 1.6
 SCREW_QUICK_RATIOS = (1.2, 1.15, 1.1)
 QUICK_DOF_CAP = 334_000
+# the candidate zone of a case file's FE contact (ContactFe.gap_limit, in units of the Hertz approach delta at the
+# case's force): it reaches CANDIDATE_REACH a along the major axis at the largest load of the study's sweep
+# (fem.hertz_case.LOAD_FACTORS), by Hertz's separation A x^2 + B y^2, and never less than the papers' 1.05 delta
+# (docs/your_own_bearing.md, "Heavy contacts")
+CANDIDATE_REACH = 1.3
 # peak resident memory of an FE contact level per P2 DOF [bytes]: the largest measured ratio of peak RSS to the
 # finest level's DOFs (docs/your_own_bearing.md, "Memory and time of the FE rung")
 BYTES_PER_DOF = 22.2e3
 # module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
 # for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
 # 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
+# the module's ball caps hold the contact ellipse out to CAP_MARGIN a (the pressure's edge and about two cells
+# beyond it at the module levels' growth): module_cap_angle
+CAP_MARGIN = 1.25
 MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
                  "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
-# What each model of the contact must reach against the extrapolated FE reference, with the source of the number:
+# What each model of the contact must reach against the FE reference, with the source of the number:
 # the FE levels the accuracy docs/fem.md states for its levels (validation/scenes/fe_hertz.py checks the same
 # numbers against Hertz), Hertz and the BEM the agreement docs/fem.md and docs/halfspace.md show for the papers'
 # contacts at the default level.  A contact where Hertz misses is a contact outside Hertz's assumptions: the ladder
@@ -207,6 +216,7 @@ def contact_fe(case: ContactCase) -> ContactCase:
     from ballbench.validation.studies import fe_contact
 
     geometry = fe_contact.hertz_geometry(case)
+    gap_limit = candidate_gap_limit(geometry, case.force)
     levels = MeshLevels(**{f: tuple(PairLevel(n, growth) for n in ns) for f, (ns, growth) in CONTACT_LEVELS.items()})
     if case.pair == "groove" and geometry.axis_ratio < 0.5:
         fe = ContactFe(levels, "ellipse", (1.2, 1.3, 0.8))
@@ -216,7 +226,24 @@ def contact_fe(case: ContactCase) -> ContactCase:
         fe = replace(fe, levels=replace(levels, quick=screw_quick_levels(replace(case, fe=fe))))
     else:
         fe = ContactFe(levels, "capsule", (1.3, 0.0 if geometry.axis_ratio > 0.8 else 1.1))
-    return replace(case, fe=fe)
+    return replace(case, fe=replace(fe, gap_limit=gap_limit))
+
+
+def candidate_gap_limit(geometry: hertz.HertzGeometry, force: float) -> float:
+    """The candidate zone of an FE contact study of ``geometry`` at ``force`` [N], as ContactFe.gap_limit (a
+    multiple of the Hertz approach delta at ``force``): the initial gap ``min(A, B) (CANDIDATE_REACH a_top)^2``
+    at the end of the major semi-axis grown by :data:`CANDIDATE_REACH`, ``a_top`` Hertz's at the largest load of
+    the sweep (fem.hertz_case.LOAD_FACTORS: the zone must hold the contact there), and at least the 1.05 of the
+    papers' pairs.  A slender ellipse ends where Hertz's separation is close to delta (``A a^2 / delta =
+    (K(e) - E(e)) / (e^2 K(e))`` tends to 1, Johnson 1985 eqs 3.64-3.68), so the fixed 1.05 delta reaches barely
+    past it at 1.5 times the force, and the FE contact, a few per cent longer than Hertz's, reached the zone's edge
+    (docs/your_own_bearing.md, "Heavy contacts")."""
+    from ballbench.fem.hertz_case import LOAD_FACTORS
+
+    top = max(LOAD_FACTORS) * force
+    reach = CANDIDATE_REACH * float(hertz.solve_load(geometry, top).a)
+    delta = float(hertz.solve_load(geometry, force).delta)
+    return max(ContactFe.gap_limit, min(geometry.A, geometry.B) * reach * reach / delta)
 
 
 def screw_quick_levels(case: ContactCase) -> tuple:
@@ -240,7 +267,9 @@ def module_fe(case, result=None):
     """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
     ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
     (``result``), the candidate zone to twice the largest approach (plus the oversize), for a guide the elliptic
-    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max."""
+    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max; the ball caps
+    and the grooves' lands from the largest ellipse where the builders' defaults are too small for it
+    (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
     if case.fe is not None:
         return case
 
@@ -251,13 +280,41 @@ def module_fe(case, result=None):
     loaded = [c for c in result.contacts if c.normal_force > 0]
     b_max = max(c.b for c in loaded)
     approach = max(c.approach for c in loaded)
+    bearing = case.guide if isinstance(case, LinearGuideCase) else case.screw
+    cap = module_cap_angle(max(c.a for c in loaded), bearing.ball_radius)
+    land = module_land_depth(truncations(case, result), bearing.ball_radius, bearing.conformity)
     if isinstance(case, LinearGuideCase):
         levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
                                for f, (ns, growth) in MODULE_LEVELS.items()})
-        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5)))
+        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5), min_cap_angle=cap,
+                                         land_depth=land))
     levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, 2.2 * b_max) for n in ns)
                            for f, (ns, growth) in MODULE_LEVELS.items()})
-    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize))
+    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize, min_cap_angle=cap,
+                                     land_depth=land))
+
+
+def module_cap_angle(a: float, ball_radius: float) -> float | None:
+    """The ball caps (the mortar zones) a module needs for the largest Hertz semi-major axis ``a`` [m] of its
+    contacts: the ellipse's half-angle seen from the ball centre, ``asin(a / R_B)``, with the zone ``CAP_MARGIN a``
+    (docs/truncation.md); None where the builders' default cap of 30 deg holds it already (every scene whose
+    ellipse fits keeps its mesh)."""
+    need = math.asin(min(1.0, CAP_MARGIN * a / ball_radius))
+    return need if need > math.radians(30.0) else None
+
+
+def module_land_depth(found, ball_radius: float, conformity: float) -> float | None:
+    """The land depth (units of ``R_B``) a module's grooves need so that every flank runs past its contact's zone,
+    the ellipse out to ``CAP_MARGIN a`` (:func:`lowmodel.truncation.land_depth` at ``beta + asin(CAP_MARGIN a /
+    R_B)``), for the contacts' truncation checks ``found`` (ladder.common.truncations); None where the shoulder
+    convention's 0.25 leaves that room already (every scene whose ellipses fit keeps its mesh).  A flank past
+    the convention's shoulder changes no contact whose ellipse ends before that shoulder (a truncated one does
+    not reach the FE: ladder.common.not_truncated); docs/truncation.md."""
+    need = min((truncation.land_depth(ball_radius, conformity, t.rigid_angle,
+                                      min(math.pi / 2, t.contact_angle + math.asin(min(1.0, CAP_MARGIN * t.a
+                                                                                     / ball_radius))))
+                for t in found), default=truncation.SHOULDER_DEPTH)
+    return max(0.0, need) if need < truncation.SHOULDER_DEPTH else None
 
 
 # --------------------------------------------------------------------------

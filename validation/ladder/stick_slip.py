@@ -7,7 +7,7 @@ share of mu F; the B2B force and the balls' friction by both laws, judged at ful
 docs/render3d.md)."""
 from __future__ import annotations
 
-from ballbench.validation.ladder.common import NEAR_ZERO_B2B, fmt
+from ballbench.validation.ladder.common import NEAR_ZERO_B2B, fmt, truncation_check
 from ballbench.validation.cases.case import LinearGuideCase
 
 __all__ = ["stick_slip_scene"]
@@ -21,6 +21,7 @@ def stick_slip_scene(run, *, case) -> None:
 
     guide = isinstance(case, LinearGuideCase)
     mu = case.guide.friction_coefficient if guide else case.screw.friction_coefficient
+    truncation_check(run, case)  # full slip and stick/slip on half-spaces: Hertz's ellipses (docs/truncation.md)
     result, wall = run.time(study.module, case, run.fidelity)
     cells = study.CELLS[run.fidelity]
     level = f"{cells[0]} x {cells[1]} cells"

@@ -10,8 +10,8 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
 
     {"fidelity": str, "passed": bool, "strict": bool, "strict_time": bool,
      "complete": bool, "not_run": [str],
-     "counts": {"pass", "known gap", "findings", "not applicable", "fail", "error"},
-     "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable",
+     "counts": {"pass", "known gap", "findings", "not applicable", "inconclusive", "fail", "error"},
+     "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable", "inconclusive",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
                  "scene_peak_memory_gb", "declared_memory_gb", "over_memory",
                  "artifacts": [str], "notes": [str],
@@ -28,7 +28,8 @@ left loaded included), both 0 where not measured (a measured scene's own peak ma
 process did not hold already); ``declared_memory_gb`` what the scene declares at the run's
 fidelity, ``over_memory`` whether its own peak is above that.
 ``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
-scene that applies).
+scene that applies).  ``inconclusive`` is why its reference is too uncertain to judge at the run's fidelity, with
+what settles it (status ``inconclusive``; ``""`` when the reference is conclusive).
 A scene's ``status`` is one of ``counts``' keys; an output's is ``pass``, ``fail``, ``outside accuracy`` (a
 finding: a model outside its declared accuracy on a case's own geometry, docs/validation.md), ``known gap``,
 ``unexpected pass``, ``within budget`` or ``over budget``.

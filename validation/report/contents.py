@@ -14,7 +14,8 @@ from ballbench.validation.report.document import (Block, Bullets, Document, File
                                                   Span, Table, Text, Verdict)
 from ballbench.validation.report.points import family_order
 from ballbench.validation.report.records import Tally
-from ballbench.validation.report.rows import (FINDINGS_MEANING, NOT_APPLICABLE_MEANING, check_line, count,
+from ballbench.validation.report.rows import (FINDINGS_MEANING, INCONCLUSIVE_MEANING, NOT_APPLICABLE_MEANING,
+                                              check_line, count,
                                               failure_lines, family_of, fmt_time, ratio_text, row, scene_budget_text,
                                               status_word, worst_ratio_text)
 from ballbench.validation.scene import Output, SceneResult
@@ -92,7 +93,7 @@ def _verdict(r: SceneResult, status: str, counted: Tally) -> Verdict:
     return Verdict(r.name, r.kind, status, r.wall_time_s, scene_budget_text(r), r.error,
                    tuple(failure_lines(r, limit=50, **options)),
                    tuple(f"{o.quantity}: {o.known_gap.reason}" for o in r.outputs_with("known gap")),
-                   tuple(f"{check_line(o)}: {o.status}" for o in r.outputs), r.not_applicable)
+                   tuple(f"{check_line(o)}: {o.status}" for o in r.outputs), r.not_applicable, r.inconclusive)
 
 
 def _head(results, fidelity, counted: Tally) -> list[Block]:
@@ -101,10 +102,13 @@ def _head(results, fidelity, counted: Tally) -> list[Block]:
     ok = c["fail"] == 0 and c["error"] == 0 and not counted.not_run
     findings = f"{c['findings']} passed with findings, " if c["findings"] else ""
     unfit = f"{c['not applicable']} do not apply to this case, " if c["not applicable"] else ""
+    unsure = f"{c['inconclusive']} inconclusive (no conclusive reference at this fidelity), " if c["inconclusive"] \
+        else ""
     blocks = [Paragraph(("Fidelity ", Span(fidelity, "code"), f", mode {mode or 'default'}. "
                          f"{count(len(results), 'scene')}: {c['pass']} passed, {c['known gap']} passed with known "
-                         f"gaps, {findings}{unfit}{c['fail']} failed, {c['error']} raised."),
-                        tone=("warn" if c["findings"] or c["not applicable"] else "ok") if ok else "bad")]
+                         f"gaps, {findings}{unfit}{unsure}{c['fail']} failed, {c['error']} raised."),
+                        tone=("warn" if c["findings"] or c["not applicable"] or c["inconclusive"] else "ok")
+                        if ok else "bad")]
     if counted.not_run:
         blocks.append(Paragraph((Span(f"Partial report: the run was interrupted; "
                                       f"{count(len(counted.not_run), 'scene')} did not run:", "strong"),
@@ -157,6 +161,21 @@ def _not_applicable(results, counted: Tally) -> list[Section]:
         Table(("scene", "status", "reason"),
               tuple((Span(r.name, link=f"#{r.name}"), Span(status_word(s), status=s), r.not_applicable)
                     for r, s in zip(results, counted.statuses) if r in unfit))))]
+
+
+def _inconclusive(results, counted: Tally) -> list[Section]:
+    """The scenes without a conclusive reference at this fidelity, each with its reason and what settles it."""
+    unsure = [r for r in results if r.inconclusive and not r.error and not r.not_applicable]
+    if not unsure:
+        return []
+    consequence = ("; this ", Span("--strict", "code"), " run counts them as failures") if counted.strict else (
+        "; they do not fail the run (", Span("--strict", "code"), " makes them fail)")
+    return [Section("Scenes without a conclusive reference at this fidelity", "inconclusive", (
+        Paragraph(("Each scene below ended ", Span("inconclusive", status="inconclusive"), ": ", INCONCLUSIVE_MEANING,
+                   consequence, " (docs/verification.md, 'Bounds and INCONCLUSIVE').")),
+        Table(("scene", "status", "reason and what settles it"),
+              tuple((Span(r.name, link=f"#{r.name}"), Span(status_word(s), status=s), r.inconclusive)
+                    for r, s in zip(results, counted.statuses) if r in unsure))))]
 
 
 def _summary(results, counted: Tally) -> Section:
@@ -248,6 +267,9 @@ def _scene(r: SceneResult, status: str, out_dir: Path | None) -> Section:
     elif r.not_applicable:
         blocks.append(Paragraph((Span("Does not apply:", "strong", status="not applicable"), " ", r.not_applicable),
                                 tone="muted"))
+    elif r.inconclusive:
+        blocks.append(Paragraph((Span("Inconclusive:", "strong", status="inconclusive"), " ", r.inconclusive),
+                                tone="muted"))
     for title, header, rows in r.tables:  # results for the reader (loads, friction), before the checks
         blocks.append(Paragraph(Span(title, "strong")))
         blocks.append(Table(header, rows, numeric=tuple(range(1, len(header)))))
@@ -285,6 +307,7 @@ def build_document(results: Sequence[SceneResult], fidelity: str, counted: Tally
     sections = [Section("", "", tuple(_head(results, fidelity, counted)))]
     sections += _unexpected(results)
     sections += _not_applicable(results, counted)
+    sections += _inconclusive(results, counted)
     sections += _findings(results, counted)
     sections += [_summary(results, counted), _known_gaps(results, counted), _budgets(results)]
     sections += _error_budget(points, figure)

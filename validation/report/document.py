@@ -96,6 +96,7 @@ class Verdict:
     gaps: tuple[str, ...]       # "quantity: reason" of each known gap
     checks: tuple[str, ...]     # every check as a line with its status
     reason: str = ""            # why the scene does not apply to its case (status "not applicable")
+    inconclusive: str = ""      # why its reference is too uncertain at this fidelity (status "inconclusive")
 
 
 @dataclass(frozen=True)

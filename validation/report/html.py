@@ -19,7 +19,8 @@ th,td{border:1px solid #ccc;padding:3px 6px;vertical-align:top;text-align:left}
 th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .pass{color:#0072B2}.fail,.error,.unexpected{color:#D55E00;font-weight:bold}.gap{color:#9a6b00;font-weight:bold}
 .finding{color:#7b3294;font-weight:bold}.na{color:#555;font-weight:bold;font-style:italic}
-.na::before{content:"\\2298\\00a0"}
+.na::before{content:"\\2298\\00a0"}.inconclusive{color:#555;font-weight:bold}
+.inconclusive::before{content:"?\\00a0"}
 .banner{padding:.6em 1em;border-radius:4px;margin:.5em 0}.banner.ok{background:#e6f0fa}
 .banner.bad{background:#fde3d6}.banner.warn{background:#fff1d0}
 .banner.muted{background:#eeeeee;border-left:4px solid #888}
@@ -30,7 +31,8 @@ h2{border-bottom:1px solid #ddd;padding-bottom:.2em;margin-top:1.6em}nav a{margi
 """
 STATUS_CLASS = {"pass": "pass", "within budget": "pass", "known gap": "gap", "fail": "fail", "error": "error",
                 "unexpected pass": "unexpected", "over budget": "gap", "outside accuracy": "finding",
-                "findings": "finding", "not applicable": "na"}
+                "findings": "finding", "not applicable": "na",
+                "inconclusive": "inconclusive"}
 _TAGS = {"strong": "b", "code": "code", "em": "i"}
 
 

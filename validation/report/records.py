@@ -16,7 +16,7 @@ from ballbench.validation.scene import PASSING, KnownGap, Output, SceneResult
 CSV_FIELDS = ("scene", "model", "quantity", "unit", "value", "reference", "source", "rel_error", "tolerance",
               "passed", "status", "time_s", "relation", "kind", "scale", "note", "why", "known_gap_reason",
               "known_gap_evidence", "family", "level")
-SCENE_STATUSES = ("pass", "known gap", "findings", "not applicable", "fail", "error")
+SCENE_STATUSES = ("pass", "known gap", "findings", "not applicable", "inconclusive", "fail", "error")
 _NUMBERS = ("value", "reference", "rel_error", "tolerance", "time_s", "scale")
 
 
@@ -38,7 +38,8 @@ class Tally:
 
 def tally(results: Sequence[SceneResult], *, strict: bool = False, strict_time: bool = False,
           not_run: Sequence[str] = ()) -> Tally:
-    """The :class:`Tally` of ``results`` (``strict``: findings, known gaps and scenes that do not apply fail;
+    """The :class:`Tally` of ``results`` (``strict``: findings, known gaps, inconclusive scenes and scenes that do
+    not apply fail;
     ``strict_time``: budget overruns fail)."""
     statuses = tuple(r.status(strict=strict, strict_time=strict_time) for r in results)
     return Tally(statuses, {k: statuses.count(k) for k in SCENE_STATUSES}, strict, strict_time, tuple(not_run))
@@ -75,6 +76,7 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "passed": status in PASSING,
                 "error": r.error,
                 "not_applicable": r.not_applicable,
+                "inconclusive": r.inconclusive,
                 "wall_time_s": r.wall_time_s,
                 "budget_s": json_number(r.budget_s),
                 "over_budget": r.over_budget,
@@ -110,7 +112,7 @@ def results_from_json(data: dict) -> list[SceneResult]:
     """Scene results back from ``results.json`` data (to re-render a report without running the scenes).
 
     Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``, ``not_applicable``,
-    ``scene_peak_memory_gb``, ``declared_memory_gb``) take their defaults (0: not measured); a
+    ``inconclusive``, ``scene_peak_memory_gb``, ``declared_memory_gb``) take their defaults (0: not measured); a
     finding check that missed is known by its status (``outside accuracy``)."""
     fields = set(Output.__dataclass_fields__) - {"known_gap", "finding"}
     results = []
@@ -126,5 +128,6 @@ def results_from_json(data: dict) -> list[SceneResult]:
                                    tuple((t["title"], tuple(t["header"]), tuple(tuple(x) for x in t["rows"]))
                                          for t in s.get("tables", ())),
                                    s.get("peak_memory_gb", 0.0), s.get("not_applicable", ""),
-                                   s.get("scene_peak_memory_gb", 0.0), s.get("declared_memory_gb", 0.0)))
+                                   s.get("inconclusive", ""), s.get("scene_peak_memory_gb", 0.0),
+                                   s.get("declared_memory_gb", 0.0)))
     return results

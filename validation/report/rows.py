@@ -25,7 +25,8 @@ DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
 STATUS_WORDS = {"pass": "PASS", "known gap": "PASS (known gap)",
                 "findings": "PASS, FINDINGS (models outside their accuracy here)",
-                "not applicable": "DOES NOT APPLY (the model has no state on this case)", "fail": "FAIL",
+                "not applicable": "DOES NOT APPLY (outside the model's limits on this case)",
+                "inconclusive": "INCONCLUSIVE (no conclusive reference at this fidelity)", "fail": "FAIL",
                 "error": "ERROR"}
 
 
@@ -202,15 +203,24 @@ def check_line(o: Output, *, level: bool = False) -> str:
 
 
 # what a scene that does not apply means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
-NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case (a limit of the model, named with the case's "
-                          "number against it): not a failure of the software, and no validation of that rung here")
+NOT_APPLICABLE_MEANING = ("the scene's model has no state on this case, or the case lies outside what the rung can "
+                          "model (a contact ellipse reaching its groove's shoulder): a limit named with the case's "
+                          "number against it, not a failure of the software, and no validation of that rung here")
+
+
+# what an inconclusive scene means for the reader (report, CLI; docs/your_own_bearing.md, "Reading the verdict")
+INCONCLUSIVE_MEANING = ("the reference (an FE mesh study) is too uncertain at this fidelity to judge the models "
+                        "against it: no conclusive reference, so those models are not judged (no finding, no "
+                        "failure); the reason names the fidelity or [fe] levels that settle it")
 
 
 def passing_lines(result: SceneResult, status: str) -> list[str]:
-    """What a passing scene with findings, known gaps or a model that does not apply adds under its status line on
-    the terminal."""
+    """What a passing scene with findings, known gaps, no conclusive reference or a model that does not apply adds
+    under its status line on the terminal."""
     if status == "not applicable":
         return [f"  does not apply: {result.not_applicable}"]
+    if status == "inconclusive":
+        return [f"  inconclusive: {result.inconclusive}"]
     if status == "findings":
         return [f"  findings: {FINDINGS_MEANING}"] + [f"{check_line(o, level=True)}: outside accuracy"
                                                       for o in result.outputs_with("outside accuracy")]
@@ -228,6 +238,8 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
     lines = []
     if strict and result.not_applicable and not result.error:
         lines.append(f"  does not apply (--strict): {result.not_applicable}")
+    if strict and result.inconclusive and not result.error and not result.not_applicable:
+        lines.append(f"  inconclusive (--strict): {result.inconclusive}")
     for o in bad[:limit]:
         what = {"unexpected pass": "known gap now PASSES (remove its declaration)",
                 "known gap": "known gap (--strict)", "outside accuracy": "outside accuracy (--strict)",
@@ -247,3 +259,11 @@ def memory_line(result: SceneResult) -> str:
     """The line that says a scene's own peak memory is above its declaration (docs/validation.md, "Memory")."""
     return (f"  scene peak memory {result.scene_peak_memory_gb:.1f} GB over its declared "
             f"{result.declared_memory_gb:.1f} GB")
+
+
+def memory_lines(result: SceneResult, *, strict_time: bool = False) -> list[str]:
+    """The line of a scene above its declared memory while that is only reported (with ``strict_time``
+    :func:`failure_lines` says it)."""
+    if not result.over_memory or strict_time:
+        return []
+    return [memory_line(result) + " (reported; --strict-time fails it)"]

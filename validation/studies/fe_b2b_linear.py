@@ -61,7 +61,9 @@ def _module_mesh(case: LinearGuideCase, level):
     guide = case.guide
     return fourpoint_module(guide.ball_radius, guide.conformity, guide.nominal_angle, case.deviations, 1,
                             h_contact=level.h_contact, growth=level.growth, fine_radius=level.fine_radius,
-                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None)
+                            h_max=level.h_max, fine_ellipses=fine_ellipses(case) if case.fe.fine_ellipse else None,
+                            min_cap_angle=case.fe.min_cap_angle,
+                            land_height=None if case.fe.land_depth is None else -case.fe.land_depth * guide.ball_radius)
 
 
 def level_dofs(case: LinearGuideCase, level) -> int:
@@ -145,9 +147,10 @@ def sensitivity(case: LinearGuideCase, model, results, low, contacts) -> list[tu
     return rows
 
 
-def show_module(case: LinearGuideCase, scene_dir, fidelity: str) -> list:
+def show_module(case: LinearGuideCase, scene_dir, fidelity: str, solve: bool = False) -> list:
     """The ``show`` hook of an FE-informed linear-guide scene, at the case's checked level for ``fidelity``
-    (quick or default; the module is solved again): ``pressure.png`` (the four contact patches of both balls with
+    (quick or default): the 3D screenshots of the saved module fields; none saved: FileNotFoundError, or with
+    ``solve`` the module solved again and ``pressure.png`` (the four contact patches of both balls with
     the Hertz ellipses of the low-order model and the FE moment ellipses) and ``stress.png`` (von Mises stress of
     ball 1's module on the cross-section z = 0, which holds all four contacts: BL-TR and BR-TL are the two pairs
     of opposite contacts)."""
@@ -155,6 +158,8 @@ def show_module(case: LinearGuideCase, scene_dir, fidelity: str) -> list:
         raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
     if render3d.has_fields(scene_dir):  # the fields saved by validate: the 3D screenshots, no solve
         return render3d.render(scene_dir)
+    if not solve:
+        raise FileNotFoundError(f"no saved module fields in {scene_dir} (fields.json)")
     level = case.fe.levels.checked(fidelity)
     model, results, _ = solve_fe_level(case, level)
     target = Path(scene_dir)

@@ -70,9 +70,13 @@ def _module_mesh(case: BallScrewCase, level, theta: float):
     depth = {} if fe.body_depth is None else {
         "screw_back_radius": screw.pitch_radius - fe.body_depth * screw.ball_radius,
         "nut_back_radius": screw.pitch_radius + fe.body_depth * screw.ball_radius}
+    if fe.land_depth is not None:
+        depth.update(screw_land_radius=screw.pitch_radius - fe.land_depth * screw.ball_radius,
+                     nut_land_radius=screw.pitch_radius + fe.land_depth * screw.ball_radius)
     return ball_screw_module(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
                              screw.nominal_angle, (theta, theta, 0.0, 0.0), 1, h_contact=level.h_contact,
-                             growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max, **depth)
+                             growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max,
+                             min_cap_angle=fe.min_cap_angle, **depth)
 
 
 def level_dofs(case: BallScrewCase, level) -> int:
@@ -164,9 +168,10 @@ def patch_axes(contacts, results) -> list:
             for ball, result in enumerate(results)]
 
 
-def show_module(case: BallScrewCase, scene_dir, fidelity: str) -> list:
+def show_module(case: BallScrewCase, scene_dir, fidelity: str, solve: bool = False) -> list:
     """The ``show`` hook of an FE-informed ball-screw scene, at the case's checked level for ``fidelity`` (quick
-    or default; the modules are solved again): ``pressure.png`` (the four contact patches of both balls with the
+    or default): the 3D screenshots of the saved module fields; none saved: FileNotFoundError, or with ``solve``
+    the modules solved again and ``pressure.png`` (the four contact patches of both balls with the
     low-order model's Hertz ellipses at the FE forces and the FE moment ellipses) and ``stress.png`` (von Mises
     stress of ball 2's module on the plane through the ball centre normal to the helix, x3-z3, which holds all
     four contacts: SL-NR and SR-NL are the two pairs of opposite contacts)."""
@@ -174,6 +179,8 @@ def show_module(case: BallScrewCase, scene_dir, fidelity: str) -> list:
         raise ValueError(f"fidelity must be 'quick' or 'default', got {fidelity!r}")
     if render3d.has_fields(scene_dir):  # the fields saved by validate: the 3D screenshots, no solve
         return render3d.render(scene_dir)
+    if not solve:
+        raise FileNotFoundError(f"no saved module fields in {scene_dir} (fields.json)")
     contacts, _, state = low_order(case)
     level = case.fe.levels.checked(fidelity)
     models, results, _ = solve_fe_level(case, level, axial_shares(contacts, state))

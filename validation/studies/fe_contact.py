@@ -29,8 +29,14 @@ from ballbench.validation.cases.case import ContactCase
 from ballbench.validation.figures import render3d
 from ballbench.validation.figures.style import save
 
-__all__ = ["PairModel", "pair_model", "hertz_geometry", "solve_level", "level_dofs", "mesh_dofs", "write_fields",
+__all__ = ["PairModel", "pair_model", "hertz_geometry", "block_half_width", "BLOCK_MARGIN", "DEFAULT_BLOCK",
+           "solve_level", "level_dofs", "mesh_dofs", "write_fields",
            "compute_fields", "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
+
+# the counter block of a groove pair holds the candidate zone with this margin (block_half_width); the builders'
+# default half-width is DEFAULT_BLOCK R_B (meshes.assemblies.contact_pairs.ball_in_groove_pair, screw_pair)
+BLOCK_MARGIN = 1.15
+DEFAULT_BLOCK = 0.6
 
 FIELD_NAMES = {
     "displacement": "displacement_m",          # the P2 solution at all 10 nodes of each quadratic tetrahedron [m]
@@ -99,6 +105,9 @@ def pair_model(case: ContactCase) -> PairModel:
         zone = {"fine_radius": fe.zone[0] * ref.b}
         if fe.zone[1]:
             zone["fine_half_length"] = fe.zone[1] * ref.a
+    width = block_half_width(case, geometry, ref)
+    if width is not None:
+        zone["block_half_width"] = width
     if case.pair == "flat":
         def build(h, growth):
             return contact_pairs.ball_on_flat_pair(radius, h, growth, **zone)
@@ -114,12 +123,27 @@ def pair_model(case: ContactCase) -> PairModel:
     return PairModel(case, build, geometry, source)
 
 
+def block_half_width(case: ContactCase, geometry: hertz.HertzGeometry, ref) -> float | None:
+    """The counter block's half-width across a groove [m] (the major axis a of a ball in a groove, straight or
+    helical) that holds the candidate zone of ``case``: :data:`BLOCK_MARGIN` times the zone's reach along the major
+    axis, ``sqrt(gap_limit delta / min(A, B))`` (Hertz's separation; ``ref`` the Hertz solution at the case's
+    force), when that passes the builders' default ``0.6 R_B`` (meshes.assemblies.contact_pairs, screw_pair); None
+    (the default block, the mesh cache's key unchanged) otherwise, and for a flat or a ball counter body.  A block
+    the groove cannot hold (a straight groove's ``0.9 r_g``, a helical flank's 90 % of the arc to its bottom) raises
+    the builder's ValueError naming the width: the ellipse is then near the groove's shoulder (docs/truncation.md)."""
+    if case.pair not in ("groove", "screw", "nut"):
+        return None
+    reach = math.sqrt(_fe(case).gap_limit * float(ref.delta) / min(geometry.A, geometry.B))
+    width = BLOCK_MARGIN * reach
+    return width if width > DEFAULT_BLOCK * case.ball_radius else None
+
+
 def mesh_dofs(path) -> int:
     """The P2 DOFs of the tetrahedral mesh at ``path`` (``.msh``): 3 per vertex and per edge of its tetrahedra,
     the DOFs fem.hertz_case solves (before the support's Dirichlet DOFs are removed)."""
     import meshio
 
-    mesh = meshio.read(path)
+    mesh = meshio.read(path, file_format="gmsh")  # by name: meshio tries other readers and prints their errors
     tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"]).astype(np.int64)
     edges = np.sort(np.concatenate([tets[:, [i, j]] for i, j in ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))]),
                     axis=1)
@@ -284,10 +308,10 @@ def load_fields(directory) -> tuple[dict, dict]:
     return data, meta
 
 
-def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 0.0) -> list[Path]:
+def show_fields(case: ContactCase, scene_dir, fidelity: str, solve: bool = False, *, cost_s: float = 0.0) -> list[Path]:
     """The ``show`` hook of an FE contact scene: ``pressure.png`` and ``stress.png`` (figures.fe_contact) drawn
-    from the fields saved in ``scene_dir`` (named after the scene); only when none are saved does it solve the
-    checked level at ``fidelity`` first (about ``cost_s`` [s]), saying so on stderr."""
+    from the fields saved in ``scene_dir`` (named after the scene).  None saved: FileNotFoundError, or with
+    ``solve`` the checked level at ``fidelity`` solved first (about ``cost_s`` [s]), saying so on stderr."""
     from ballbench.validation.figures import fe_contact as figures
     levels = _fe(case).levels
     if fidelity not in levels:
@@ -297,6 +321,8 @@ def show_fields(case: ContactCase, scene_dir, fidelity: str, *, cost_s: float = 
     try:
         data, meta = load_fields(directory)
     except FileNotFoundError:
+        if not solve:
+            raise
         hint = ""
         results = directory.parent / "results.json"
         if fidelity != "quick" and results.is_file():

@@ -183,6 +183,39 @@ def test_bad_inputs_name_the_parameter():
         rolling.solve(pressure, operator, MU, np.full_like(w, np.nan))
 
 
+@pytest.mark.parametrize("cells, name", [((8, 1), r"cells\[1\] \(n_lateral\)"), ((1, 8), r"cells\[0\] \(n_rolling\)"),
+                                         (1, r"cells\[0\] \(n_rolling\)")])
+def test_too_few_cells_are_refused_by_the_documented_check(cells, name):
+    # (n, 1) passed the check of cells and failed inside the grid on "ny ... got 3"
+    with pytest.raises(ValueError, match=name + r" must be an integer in \[2, 4096\]"):
+        rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 1e-4, 0.0, 0.0, cells)
+    assert rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 1e-4, 0.0, 0.0, (8, 2)).stick_fraction > 0
+
+
+@pytest.mark.parametrize("value, words", [([1.0, 2.0, 3.0], r"rigid_shift must have shape \(2,\) or \(10, 10, 2\)"),
+                                          ([math.nan, 0.0], "rigid_shift must be finite"),
+                                          ("x", "rigid_shift must be a real number")])
+def test_a_bad_rigid_shift_names_the_parameter(value, words):
+    # the shape and finiteness checks named the internal "rigid (the rigid slip)"
+    grid = rolling.hertz_grid(0.5e-3, 0.5e-3, (8, 8))
+    pressure = rolling.hertz_pressure(grid, 0.5e-3, 0.5e-3, 100.0)
+    with pytest.raises(ValueError, match=words):
+        rolling.shift(pressure, grid, G, NU, MU, value)
+
+
+@pytest.mark.parametrize("creepages", [(5e-324, 0.0, 0.0), (0.0, 5e-324, 0.0), (0.0, 0.0, 5e-324),
+                                       (-5e-324, 5e-324, 5e-324), (1e-310, 0.0, 0.0)])
+def test_a_subnormal_creepage_rolls_in_full_stick_without_warnings(creepages):
+    # a creepage of 5e-324 overflowed in the marching start's bound / |trial| (a RuntimeWarning; the module's
+    # warnings are errors); in full stick the forces are linear in the creepages: at most Kalker's C11 G ab xi
+    a, b, force = 0.5e-3, 1e-3, 100.0
+    for solve in (rolling.steady_rolling, fs.fastsim):
+        result = solve(a, b, force, G, NU, MU, *creepages)
+        assert float(np.asarray(result.stick_fraction)) == 1.0
+        for value in (result.force_rolling, result.force_lateral):
+            assert abs(float(np.asarray(value))) <= 10.0 * G * a * b * max(map(abs, creepages)) + 1e-300
+
+
 def test_non_convergence_raises_with_the_residual():
     with pytest.raises(ConvergenceError) as info:
         rolling.steady_rolling(0.5e-3, 1e-3, 100.0, G, NU, MU, 3e-4, 0.0, 0.0, 16, max_iterations=1)
