@@ -190,7 +190,7 @@ def _check_file_target(path: Path, option: str) -> None:
 
 def _cmd_validate(args) -> int:
     from ballbench.validation.report import count, failure_lines, status_word, write_report
-    from ballbench.validation.report.rows import passing_lines
+    from ballbench.validation.report.rows import memory_lines, passing_lines
     fidelity = "quick" if args.quick else "fine" if args.fine else "default"
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be at least 1, got {args.workers}")
@@ -223,7 +223,7 @@ def _cmd_validate(args) -> int:
         traceback = [a for a in result.artifacts if a.endswith("error.txt")]
         if traceback:
             print(f"  traceback: {out_dir / traceback[0]}", file=sys.stderr)
-        for line in passing_lines(result, status):
+        for line in passing_lines(result, status) + memory_lines(result, strict_time=args.strict_time):
             print(line, file=sys.stderr)
 
     print(f"ballbench: {count(len(scenes), 'scene')} at fidelity {fidelity} into {out_dir}", file=sys.stderr,
@@ -457,8 +457,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "scenes that do not apply and inconclusive scenes (no conclusive reference at the fidelity) "
                         "fail the run too")
     p.add_argument("--strict-time", action="store_true",
-                   help="a scene over its wall-time budget fails (by default budgets are only reported, "
-                        "since run time depends on the machine's load)")
+                   help="a scene over its wall-time budget or over its declared memory fails (by default "
+                        "budgets are only reported, since run time depends on the machine's load)")
     p.add_argument("--junit", metavar="FILE", help="also write JUnit XML (one test case per scene) for CI systems")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bars (they are shown only when stderr is a terminal)")

@@ -1,9 +1,13 @@
 """Run scenes: time, check, collect; never let one scene's crash hide the others."""
 from __future__ import annotations
 
+import ctypes
+import gc
 import sys
+import threading
 import time
 import traceback
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable
 
@@ -13,7 +17,8 @@ GB = 1e9  # bytes
 
 
 def reset_peak_memory() -> bool:
-    """Reset this process's peak resident memory (Linux: ``/proc/self/clear_refs``); False where it cannot."""
+    """Reset this process's peak resident memory to its current resident memory (Linux:
+    ``/proc/self/clear_refs``); False where it cannot."""
     try:
         with open("/proc/self/clear_refs", "w") as handle:
             handle.write("5")
@@ -22,25 +27,97 @@ def reset_peak_memory() -> bool:
     return True
 
 
-def peak_memory_gb() -> float:
-    """This process's peak resident memory since the last :func:`reset_peak_memory` [GB] (Linux ``VmHWM``);
-    0.0 where the system does not say."""
+def _status_gb(key: str) -> float:
+    """The line ``key`` (e.g. ``VmHWM``) of ``/proc/self/status`` [GB]; 0.0 where the system does not say."""
     try:
         with open("/proc/self/status") as handle:
             for line in handle:
-                if line.startswith("VmHWM:"):
+                if line.startswith(key + ":"):
                     return int(line.split()[1]) * 1024 / GB
     except (OSError, ValueError, IndexError):
         pass
     return 0.0
 
 
+def peak_memory_gb() -> float:
+    """This process's peak resident memory since the last :func:`reset_peak_memory` [GB] (Linux ``VmHWM``);
+    0.0 where the system does not say."""
+    return _status_gb("VmHWM")
+
+
+def resident_memory_gb() -> float:
+    """This process's resident memory now [GB] (Linux ``VmRSS``); 0.0 where the system does not say."""
+    return _status_gb("VmRSS")
+
+
+def _c_library():
+    try:
+        return ctypes.CDLL(None)
+    except OSError:
+        return None
+
+
+_LIBC = _c_library()
+
+
+def release_free_memory() -> None:
+    """Collect Python's garbage and hand the C heap's free pages back to the system (glibc ``malloc_trim``;
+    a no-op elsewhere), so that the resident memory is what live objects hold."""
+    gc.collect()
+    trim = getattr(_LIBC, "malloc_trim", None)
+    if trim is not None:
+        trim(0)
+
+
+@dataclass(frozen=True)
+class MemoryUse:
+    """A scene's memory [GB] (docs/validation.md, "Memory"): ``scene_peak_gb``, the peak resident memory while the
+    scene ran above the resident memory at its start (after :func:`release_free_memory`), what the scene itself
+    needed; ``process_peak_gb``, the process's peak while the scene ran (what earlier scenes left loaded
+    included).  Both 0.0 where not measured (no ``/proc``, or another scene ran in the same process meanwhile)."""
+
+    scene_peak_gb: float = 0.0
+    process_peak_gb: float = 0.0
+
+
+# scenes running now in this process (a dask worker with several threads runs several), each with whether another
+# scene ran beside it: the peak resident memory is the process's, so such a scene's own peak is not measured
+_RUNNING: dict[int, bool] = {}
+_RUNNING_LOCK = threading.Lock()
+
+
+class SceneMemory:
+    """Measures one scene's memory: :meth:`start` before the scene, :meth:`stop` after it (:class:`MemoryUse`)."""
+
+    def start(self) -> None:
+        release_free_memory()
+        with _RUNNING_LOCK:
+            self.key = id(self)
+            shared = bool(_RUNNING)
+            for other in _RUNNING:
+                _RUNNING[other] = True
+            _RUNNING[self.key] = shared
+            self.measured = not shared and reset_peak_memory()
+        self.start_gb = resident_memory_gb()
+
+    def stop(self) -> MemoryUse:
+        process_peak = peak_memory_gb()
+        with _RUNNING_LOCK:
+            shared = _RUNNING.pop(self.key)
+        if shared or not self.measured or process_peak <= 0.0 or self.start_gb <= 0.0:
+            return MemoryUse()
+        return MemoryUse(max(process_peak - self.start_gb, 0.0), process_peak)
+
+
 def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool = False,
               progress_lines: bool = False, should_stop: Callable[[], bool] | None = None) -> SceneResult:
     """Run one scene; an exception becomes a failed result carrying its message.
 
-    The result carries the process's peak resident memory while the scene ran (``peak_memory_gb``; the
-    interpreter and what earlier scenes left loaded included, so it bounds what the scene needs).
+    The result carries the scene's own peak resident memory (``scene_peak_memory_gb``: the peak while it ran
+    above the resident memory at its start, after the garbage of earlier scenes is collected and the C heap's free
+    pages are handed back; :class:`SceneMemory`), the process's peak while it ran (``peak_memory_gb``: the
+    interpreter and what earlier scenes left loaded included) and the memory the scene declares
+    (``declared_memory_gb``, :meth:`Scene.memory_for`).
 
     The traceback of a failing scene goes to ``<out>/<scene>/error.txt`` (an
     artifact of the report), not to the terminal.  Ctrl-C inside the scene, or a stop request
@@ -52,7 +129,8 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
     """
     run = Run(scene, fidelity, out_dir, show_progress=show_progress, progress_lines=progress_lines,
               should_stop=should_stop)
-    measured = reset_peak_memory()
+    memory = SceneMemory()
+    memory.start()
     start = time.perf_counter()
     error = ""
     not_applicable = ""
@@ -76,9 +154,10 @@ def run_scene(scene: Scene, fidelity: str, out_dir: Path, *, show_progress: bool
         except OSError:
             pass
     wall = time.perf_counter() - start
+    used = memory.stop()
     if not error and not not_applicable and not run.outputs and not run.inconclusive_reasons:
         error = "scene recorded no checked output"
-    return run.result(wall, error, interrupted, peak_memory_gb() if measured else 0.0, not_applicable)
+    return run.result(wall, error, interrupted, used.process_peak_gb, not_applicable, used.scene_peak_gb)
 
 
 def run_scenes(scenes: Iterable[Scene], fidelity: str, out_dir: Path, *, show_progress: bool = False,

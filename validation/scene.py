@@ -87,9 +87,8 @@ FAMILIES = ("analytical", "low-order numerical", "BEM", "EHL", "FE", "FE-informe
 PASSING = ("pass", "known gap", "findings", "not applicable", "inconclusive")
 # wall-time budget of a scene at the default fidelity when the scene does not state one [s]
 DEFAULT_BUDGET_S = {"analytical": 10.0, "low-order": 60.0, "FE": 120.0}
-# the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): the FE figure
-# covers the largest peak measured at the default fidelity, the others the peaks of the worker processes that ran
-# them (what an earlier scene left loaded included)
+# the resident memory a scene declares when it declares none [GB] (docs/validation.md, "Memory"): each covers the
+# largest own peak of its kind's scenes measured at the default fidelity (runner.SceneMemory)
 DEFAULT_MEMORY_GB = {"analytical": 3.5, "low-order": 3.5, "FE": 12.0}
 
 
@@ -198,13 +197,22 @@ class SceneResult:
     peak_memory_gb: float = 0.0  # the process's peak resident memory while the scene ran [GB]; 0 = not measured
     not_applicable: str = ""  # why the scene's model has no state on the case (NotApplicable); "" = it applies
     inconclusive: str = ""  # why the scene's reference is too uncertain to judge at this fidelity (Run.inconclusive)
+    # the scene's own peak resident memory: the peak while it ran above the resident memory at its start [GB]
+    # (runner.SceneMemory; docs/validation.md, "Memory"); 0 = not measured
+    scene_peak_memory_gb: float = 0.0
+    declared_memory_gb: float = 0.0  # the memory the scene declares at its fidelity (Scene.memory_for) [GB]
+
+    @property
+    def over_memory(self) -> bool:
+        """The scene's own measured peak memory is above the memory it declares."""
+        return self.declared_memory_gb > 0.0 and self.scene_peak_memory_gb > self.declared_memory_gb
 
     def outputs_with(self, status: str) -> list[Output]:
         return [o for o in self.outputs if o.status == status]
 
     @property
     def over_budget(self) -> bool:
-        """The scene's wall time or one of its budget rows is over its budget."""
+        """The scene's wall time or one of its budget rows is over its budget (memory: :attr:`over_memory`)."""
         return self.wall_time_s > self.budget_s or bool(self.outputs_with("over budget"))
 
     def status(self, *, strict: bool = False, strict_time: bool = False) -> str:
@@ -214,8 +222,8 @@ class SceneResult:
         with declared gaps) or ``pass``.
 
         ``strict``: not applicable, inconclusive, findings and known gaps fail; ``strict_time``: a budget overrun
-        fails.  An unexpected pass of a known gap always fails (remove the declaration); so does a failed self-check
-        of an inconclusive scene.
+        fails, of wall time or of memory (:attr:`over_memory`).  An unexpected pass of a known gap always fails
+        (remove the declaration); so does a failed self-check of an inconclusive scene.
         """
         if self.error:
             return "error"
@@ -225,7 +233,7 @@ class SceneResult:
             return "error"
         if self.outputs_with("fail") or self.outputs_with("unexpected pass"):
             return "fail"
-        if strict_time and self.over_budget:
+        if strict_time and (self.over_budget or self.over_memory):
             return "fail"
         if self.inconclusive:
             return "fail" if strict else "inconclusive"
@@ -554,11 +562,13 @@ class Run:
         return tuple(self._outputs)
 
     def result(self, wall_time_s: float, error: str = "", interrupted: bool = False,
-               peak_memory_gb: float = 0.0, not_applicable: str = "") -> SceneResult:
+               peak_memory_gb: float = 0.0, not_applicable: str = "",
+               scene_peak_memory_gb: float = 0.0) -> SceneResult:
         return SceneResult(self.scene.name, self.scene.description, self.fidelity,
                            tuple(self._outputs), tuple(self._artifacts), tuple(self._notes),
                            wall_time_s, error, self.scene.budget_for(self.fidelity), self.scene.kind, interrupted,
-                           tuple(self._tables), peak_memory_gb, not_applicable, " ".join(self._inconclusive))
+                           tuple(self._tables), peak_memory_gb, not_applicable, " ".join(self._inconclusive),
+                           scene_peak_memory_gb, self.scene.memory_for(self.fidelity))
 
 
 def registry() -> dict[str, Scene]:

@@ -13,6 +13,7 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
      "counts": {"pass", "known gap", "findings", "not applicable", "inconclusive", "fail", "error"},
      "scenes": [{"name", "description", "kind", "status", "passed", "error", "not_applicable", "inconclusive",
                  "wall_time_s", "budget_s", "over_budget", "interrupted", "peak_memory_gb",
+                 "scene_peak_memory_gb", "declared_memory_gb", "over_memory",
                  "artifacts": [str], "notes": [str],
                  "outputs": [{"model", "quantity", "unit", "value", "reference",
                               "source", "rel_error", "tolerance", "passed",
@@ -21,7 +22,11 @@ document's dataclasses), ``contents`` (what the report says), ``markdown``,
                               "known_gap_evidence", "family", "level"}],
                  "tables": [{"title", "header": [str], "rows": [[str]]}]}]}   # tables: only when a scene has some
 
-``peak_memory_gb`` is the process's peak resident memory while the scene ran (0 where not measured).
+``scene_peak_memory_gb`` is the scene's own peak resident memory (the peak while it ran above the resident memory
+at its start, docs/validation.md, "Memory"), ``peak_memory_gb`` the process's peak while it ran (what earlier scenes
+left loaded included), both 0 where not measured (a measured scene's own peak may be 0: it needed nothing the
+process did not hold already); ``declared_memory_gb`` what the scene declares at the run's
+fidelity, ``over_memory`` whether its own peak is above that.
 ``not_applicable`` is why a case file's scene does not apply to its case (status ``not applicable``; ``""`` for a
 scene that applies).  ``inconclusive`` is why its reference is too uncertain to judge at the run's fidelity, with
 what settles it (status ``inconclusive``; ``""`` when the reference is conclusive).

@@ -185,13 +185,22 @@ def _summary(results, counted: Tally) -> Section:
         rows.append((Span(r.name, link=f"#{r.name}"), r.kind, ", ".join(families) or "-",
                      Span(status_word(s) + (" (interrupted)" if r.interrupted else ""), status=s),
                      str(len([o for o in r.outputs if o.kind == "accuracy"])), worst_ratio_text(r.outputs),
-                     fmt_time(r.wall_time_s), scene_budget_text(r),
-                     f"{r.peak_memory_gb:.1f} GB" if r.peak_memory_gb > 0 else "-"))
+                     fmt_time(r.wall_time_s), scene_budget_text(r), scene_memory_text(r)))
     return Section("Summary", "summary", (
         Paragraph(ERROR_NOTE, small=True),
         Table(("scene", "kind", "model families", "status", "checks", "worst error / tol", "wall time", "budget",
-               "peak memory"),
+               "scene peak memory / declared"),
               tuple(rows), numeric=(4, 5, 6, 8))))
+
+
+def scene_memory_text(r) -> str:
+    """The summary's memory cell: the scene's own peak over the memory it declares, the process's peak beside them
+    (docs/validation.md, "Memory"); "-" where not measured."""
+    if r.scene_peak_memory_gb <= 0 and r.peak_memory_gb <= 0:
+        return "-"
+    declared = f" / {r.declared_memory_gb:.1f}" if r.declared_memory_gb > 0 else ""
+    process = f" (process {r.peak_memory_gb:.1f})" if r.peak_memory_gb > 0 else ""
+    return f"{r.scene_peak_memory_gb:.2f}{declared} GB{process}" + (" over" if r.over_memory else "")
 
 
 def _known_gaps(results, counted: Tally) -> Section:
@@ -210,13 +219,16 @@ def _known_gaps(results, counted: Tally) -> Section:
 def _budgets(results) -> Section:
     rows = [(r.name, "scene wall time", fmt_time(r.wall_time_s), fmt_time(r.budget_s), _status("over budget"))
             for r in results if r.wall_time_s > r.budget_s]
+    rows += [(r.name, "scene peak memory", f"{r.scene_peak_memory_gb:.2f} GB", f"{r.declared_memory_gb:.1f} GB",
+              _status("over budget")) for r in results if r.over_memory]
     for r in results:
         for o in r.outputs_with("within budget") + r.outputs_with("over budget"):
             shown = row(o)
             rows.append((r.name, o.quantity, shown.value_with_unit, shown.reference_with_unit, _status(o.status)))
     intro = Paragraph(("Reported; they decide pass/fail only with ", Span("--strict-time", "code"), ". Every "
-                       "scene's wall time and budget stand in the summary; here the model budgets and the scenes "
-                       "over their budget."), small=True)
+                       "scene's wall time and budget, and its own peak memory and the memory it declares, stand in "
+                       "the summary; here the model budgets and the scenes over their budget of time or memory."),
+                      small=True)
     table = (Table(("scene", "what", "measured", "budget", "result"), tuple(rows), numeric=(2, 3)) if rows
              else Paragraph(NO_BUDGET_ROWS))
     return Section("Budgets", "budgets", (intro, table))

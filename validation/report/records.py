@@ -82,6 +82,9 @@ def to_json(results: Sequence[SceneResult], fidelity: str, *, strict: bool = Fal
                 "over_budget": r.over_budget,
                 "interrupted": r.interrupted,
                 "peak_memory_gb": r.peak_memory_gb,
+                "scene_peak_memory_gb": r.scene_peak_memory_gb,
+                "declared_memory_gb": r.declared_memory_gb,
+                "over_memory": r.over_memory,
                 "artifacts": list(r.artifacts),
                 "notes": list(r.notes),
                 "outputs": [{k: json_number(v) for k, v in o.as_dict().items()} for o in r.outputs],
@@ -109,8 +112,7 @@ def results_from_json(data: dict) -> list[SceneResult]:
     """Scene results back from ``results.json`` data (to re-render a report without running the scenes).
 
     Keys an older version did not write (``family``, ``level``, ``peak_memory_gb``, ``not_applicable``,
-    ``inconclusive``) take their
-    defaults; a
+    ``inconclusive``, ``scene_peak_memory_gb``, ``declared_memory_gb``) take their defaults (0: not measured); a
     finding check that missed is known by its status (``outside accuracy``)."""
     fields = set(Output.__dataclass_fields__) - {"known_gap", "finding"}
     results = []
@@ -126,5 +128,6 @@ def results_from_json(data: dict) -> list[SceneResult]:
                                    tuple((t["title"], tuple(t["header"]), tuple(tuple(x) for x in t["rows"]))
                                          for t in s.get("tables", ())),
                                    s.get("peak_memory_gb", 0.0), s.get("not_applicable", ""),
-                                   s.get("inconclusive", "")))
+                                   s.get("inconclusive", ""), s.get("scene_peak_memory_gb", 0.0),
+                                   s.get("declared_memory_gb", 0.0)))
     return results

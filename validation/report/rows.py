@@ -248,6 +248,22 @@ def failure_lines(result: SceneResult, *, strict: bool = False, strict_time: boo
     if strict_time and result.wall_time_s > result.budget_s:
         lines.append(f"  scene wall time {fmt_time(result.wall_time_s)} over its budget {fmt_time(result.budget_s)} "
                      "(--strict-time)")
+    if strict_time and result.over_memory:
+        lines.append(memory_line(result) + " (--strict-time)")
     if len(bad) > limit:
         lines.append(f"  ... and {len(bad) - limit} more failed checks (report.md)")
     return lines
+
+
+def memory_line(result: SceneResult) -> str:
+    """The line that says a scene's own peak memory is above its declaration (docs/validation.md, "Memory")."""
+    return (f"  scene peak memory {result.scene_peak_memory_gb:.1f} GB over its declared "
+            f"{result.declared_memory_gb:.1f} GB")
+
+
+def memory_lines(result: SceneResult, *, strict_time: bool = False) -> list[str]:
+    """The line of a scene above its declared memory while that is only reported (with ``strict_time``
+    :func:`failure_lines` says it)."""
+    if not result.over_memory or strict_time:
+        return []
+    return [memory_line(result) + " (reported; --strict-time fails it)"]

@@ -172,6 +172,9 @@ def linear_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_
                       float(full.b2b_force[0]), 100.0 * friction_increase(full, free_full),
                       fe_s + time.perf_counter() - start, power_balance=float(full.power_balance)))
     samples = [pressure_samples(model, r) for r in results]
+    # past its pressure samples the FE module is not needed: freed before the compliance's condensation, which
+    # would otherwise hold both (docs/validation.md, "Memory")
+    del model, results
     start = time.perf_counter()
     balls = [linear_rolling.sampled_contacts(s, guide=guide, cells=cells) for s in samples]
     result = linear_rolling.module_b2b(balls, guide)
@@ -224,6 +227,7 @@ def screw_ladder(case: str, level: str, *, progress=lambda x, desc="": x, with_f
                       float(full.b2b_force[0]), float(full.friction_increase), fe_s + time.perf_counter() - start,
                       power_balance=float(full.power_balance), h_contact=fe_level.h_contact))
     samples = [pressure_samples(m, r) for m, r in zip(models, results)]
+    del models, results  # freed before the condensation, as in linear_ladder
     start = time.perf_counter()
     balls = [screw_rolling.sampled_contacts(s, module, cells=cells) for s in samples]
     result = screw_rolling.module_b2b(balls, module)
