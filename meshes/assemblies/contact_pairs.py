@@ -42,7 +42,7 @@ from ballbench.lowmodel.geometry.groove import groove_radius
 from ballbench.meshes import gmsh_tools
 from ballbench.meshes.refinement import check_fine_ellipse, check_fine_zone, check_refinement, refine_contact
 
-__all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "SYMMETRIES"]
+__all__ = ["ball_on_flat_pair", "ball_on_ball_pair", "ball_in_groove_pair", "groove_block_limit", "SYMMETRIES"]
 
 MESH_FORMAT_VERSION = "contact-pairs-1"
 SYMMETRIES = ("quarter", "half", "full")
@@ -189,6 +189,12 @@ def ball_on_ball_pair(ball_radius: float, h_contact: float, growth: float = 1.3,
                        element_order=element_order, cache=cache, fine_ellipse=fine_ellipse)
 
 
+def groove_block_limit(ball_radius: float, conformity: float) -> float:
+    """The largest half-width [m] across a straight groove of a counter block of :func:`ball_in_groove_pair`: 90 % of
+    the groove radius ``r_g = 2 f R_B``, so the block stays on the groove's face."""
+    return 0.9 * groove_radius(ball_radius, conformity)
+
+
 def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float, growth: float = 1.3, *,
                         h_max: float | None = None, fine_radius: float = 0.0, fine_half_length: float = 0.0,
                         symmetry: str = "quarter", block_half_width: float | None = None,
@@ -205,8 +211,9 @@ def ball_in_groove_pair(ball_radius: float, conformity: float, h_contact: float,
     conformity = checks.conformity("conformity", conformity)
     r_g = groove_radius(radius, conformity)
     half_w = 0.6 * radius if block_half_width is None else checks.positive("block_half_width", block_half_width, "m")
-    if half_w > 0.9 * r_g:
-        raise ValueError(f"block_half_width must lie in (0, 0.9 r_g] = (0, {0.9 * r_g!r}] m, got {half_w!r}")
+    if half_w > groove_block_limit(radius, conformity):
+        raise ValueError(f"block_half_width must lie in (0, 0.9 r_g] = (0, {groove_block_limit(radius, conformity)!r}] "
+                         f"m, got {half_w!r}")
     half_l = 0.6 * radius if block_half_length is None else checks.positive("block_half_length", block_half_length, "m")
     depth = 0.6 * radius if block_depth is None else checks.positive("block_depth", block_depth, "m")
 

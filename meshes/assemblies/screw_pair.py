@@ -20,9 +20,18 @@ from ballbench.meshes.parts.groove_block import add_groove_block
 from ballbench.meshes.refinement import check_fine_ellipse, check_fine_zone, check_refinement, refine_contact
 from ballbench.meshes.snapping import snap_to_groove
 
-__all__ = ["ball_in_screw_groove_pair"]
+__all__ = ["ball_in_screw_groove_pair", "screw_block_limit"]
 
 MESH_FORMAT_VERSION = "helical-1"
+
+
+def screw_block_limit(ball_radius: float, conformity: float, pitch_radius: float, lead: float, contact_angle: float,
+                      body: str = "screw", flank: str = "left", profile_plane: str = "normal") -> float:
+    """The largest arc half-width [m] of the helical counter block of :func:`ball_in_screw_groove_pair` (same
+    arguments): 90 % of the flank's arc from the contact point to the groove bottom, so the other flank is never
+    meshed."""
+    groove = helical_groove(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
+    return 0.9 * abs(groove.bottom_theta - groove.contact_theta) * groove.groove_radius
 
 
 def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radius: float, lead: float,
@@ -73,14 +82,14 @@ def ball_in_screw_groove_pair(ball_radius: float, conformity: float, pitch_radiu
     radius = groove.ball_radius
     h_contact, growth, h_max, fine_radius = check_refinement(radius, h_contact, growth, h_max, fine_radius)
     r_g = groove.groove_radius
-    to_bottom = abs(groove.bottom_theta - groove.contact_theta)
+    limit = screw_block_limit(ball_radius, conformity, pitch_radius, lead, contact_angle, body, flank, profile_plane)
     half_width = 0.6 * radius if block_half_width is None else \
         checks.positive("block_half_width", block_half_width, "m")
-    if half_width / r_g > 0.9 * to_bottom:
-        half_width = 0.9 * to_bottom * r_g if block_half_width is None else half_width
+    if half_width > limit:
+        half_width = limit if block_half_width is None else half_width
         if block_half_width is not None:
-            raise ValueError(f"block_half_width must lie in (0, {0.9 * to_bottom * r_g!r}] m (90 % of the arc "
-                             f"to the groove bottom), got {block_half_width!r}")
+            raise ValueError(f"block_half_width must lie in (0, {limit!r}] m (90 % of the arc to the groove bottom), "
+                             f"got {block_half_width!r}")
     half_length = 0.6 * radius if block_half_length is None else \
         checks.positive("block_half_length", block_half_length, "m")
     depth = 0.6 * radius if block_depth is None else checks.positive("block_depth", block_depth, "m")

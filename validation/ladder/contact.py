@@ -215,6 +215,10 @@ def _fe_study(run, contact: ContactCase, b: float, deadline, tag: str, models: l
     from ballbench.validation.studies import fe_contact
 
     fe_rows, fe_results, fe_levels = [], [], []
+    room = fe_contact.block_room(contact)
+    if room:  # an ellipse the FE pair cannot hold: said, and the rungs below shown (docs/truncation.md)
+        run.note(_head(tag) + "FE study not run: " + room + ".")
+        return fe_rows, fe_results, fe_levels
     pair = fe_contact.pair_model(contact)
     levels = contact.fe.levels[run.fidelity]
     sizes, times = [], []
@@ -326,7 +330,7 @@ def _contact_reference(run, models, fe_rows, tag: str = "", radius: float = math
         run.note(_head(tag) + f"No reference at this level: the BEM (the highest rung run) gives a/R = {ratio:.3g}, "
                  f"beyond the half-space rungs' validity a/R <= {HALF_SPACE_RATIO:g} (docs/hertz.md, docs/halfspace.md,"
                  " 'Validity'), so it judges no model here; the table shows the rungs side by side. The FE rung "
-                 "(--levels FE or the default) is the referee of such a contact.")
+                 "(--levels FE or the default) is the referee of such a contact where its pair holds the ellipse.")
         return None, "", None
     run.note(_head(tag) + "Hertz only (--levels analytical): no reference to judge it against.")
     return None, "", None

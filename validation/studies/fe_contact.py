@@ -29,7 +29,8 @@ from ballbench.validation.cases.case import ContactCase
 from ballbench.validation.figures import render3d
 from ballbench.validation.figures.style import save
 
-__all__ = ["PairModel", "pair_model", "hertz_geometry", "block_half_width", "BLOCK_MARGIN", "DEFAULT_BLOCK",
+__all__ = ["PairModel", "pair_model", "hertz_geometry", "block_half_width", "block_room", "BLOCK_MARGIN",
+           "DEFAULT_BLOCK",
            "solve_level", "level_dofs", "mesh_dofs", "write_fields",
            "compute_fields", "load_sweep", "load_fields", "show_fields", "FIELD_NAMES"]
 
@@ -136,6 +137,28 @@ def block_half_width(case: ContactCase, geometry: hertz.HertzGeometry, ref) -> f
     reach = math.sqrt(_fe(case).gap_limit * float(ref.delta) / min(geometry.A, geometry.B))
     width = BLOCK_MARGIN * reach
     return width if width > DEFAULT_BLOCK * case.ball_radius else None
+
+
+def block_room(case: ContactCase) -> str:
+    """"" when the counter block of ``case``'s FE pair (:func:`block_half_width`) fits its groove, else why not: the
+    candidate zone reaches further across the groove than the block the groove holds (meshes.assemblies
+    .contact_pairs.groove_block_limit, screw_pair.screw_block_limit): the contact ellipse runs towards the groove's
+    bottom or shoulder, where no FE pair of the ladder resolves it (docs/truncation.md)."""
+    from ballbench.meshes.assemblies import contact_pairs, screw_pair
+
+    if case.pair not in ("groove", "screw", "nut"):
+        return ""
+    geometry = hertz.pair_geometry(case)
+    width = block_half_width(case, geometry, hertz.solve_load(geometry, case.force))
+    if width is None:
+        return ""
+    limit = (contact_pairs.groove_block_limit(case.ball_radius, case.conformity) if case.pair == "groove" else
+             screw_pair.screw_block_limit(*hertz.helical_pair(case)))
+    if width <= limit:
+        return ""
+    return (f"the FE pair's counter block would need {width * 1e3:.4g} mm across the groove to hold the contact's "
+            f"candidate zone ({BLOCK_MARGIN:g} times its reach at 1.5 times the force), and the groove holds "
+            f"{limit * 1e3:.4g} mm: the contact ellipse is too large for the FE pair (docs/truncation.md)")
 
 
 def mesh_dofs(path) -> int:

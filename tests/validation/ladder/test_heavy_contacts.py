@@ -64,3 +64,23 @@ def test_the_counter_block_holds_the_candidate_zone_of_a_heavy_contact():
     width = fe_contact.block_half_width(contact, geometry, hertz.solve_load(geometry, contact.force))
     assert reach > 0.6 * contact.ball_radius / 1.15
     assert width == pytest.approx(1.15 * reach, rel=1e-12)
+
+
+def test_an_ellipse_the_fe_pair_cannot_hold_runs_no_fe_study_and_says_why(tmp_path):
+    # the guide at its static limit (a/R 0.59): the counter block would have to pass 0.9 r_g across the groove;
+    # the contact rung says so, runs no FE level and ends with its findings (before: ERROR, the builder's
+    # ValueError "block_half_width must lie in (0, 0.9 r_g]")
+    from ballbench.meshes.assemblies.contact_pairs import groove_block_limit
+    from ballbench.validation import ladder
+    from ballbench.validation.runner import run_scene
+
+    case = case_file.load(CATALOGUE / "guide_15_static_limit.toml")
+    contact = _contact("guide_15_static_limit")
+    geometry = fe_contact.hertz_geometry(contact)
+    width = fe_contact.block_half_width(contact, geometry, hertz.solve_load(geometry, contact.force))
+    assert width > groove_block_limit(contact.ball_radius, contact.conformity)
+    (scene,) = [s for s in ladder.case_scenes(case, "g", top="FE") if s.name == "g-contact"]
+    result = run_scene(scene, "quick", tmp_path)
+    assert not result.error and result.status() == "findings"
+    assert any(note.startswith("FE study not run: the FE pair's counter block") for note in result.notes)
+    assert not any(o.family == "FE" for o in result.outputs)
