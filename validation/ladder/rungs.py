@@ -78,6 +78,11 @@ BYTES_PER_DOF = 22.2e3
 # the module's ball caps hold the contact ellipse out to CAP_MARGIN a (the pressure's edge and about two cells
 # beyond it at the module levels' growth): module_cap_angle
 CAP_MARGIN = 1.25
+# the candidate zone of a case file's FE module (ModuleFe.gap_limit): this many times the largest approach of the
+# low-order state (a screw's plus its oversize).  Two held the guides of the catalogue; the slender ellipse of a
+# screw of conformity 0.515 (examples/catalogue/screw_16x5.toml, b/a 0.1) reached the edge of that zone and runs in
+# four (docs/your_own_bearing.md, "Heavy contacts"); a larger zone adds candidates, not a different answer
+MODULE_ZONE = {"guide": 2.0, "screw": 4.0}
 MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
                  "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
 # What each model of the contact must reach against the FE reference, with the source of the number:
@@ -266,9 +271,10 @@ def screw_quick_levels(case: ContactCase) -> tuple:
 def module_fe(case, result=None):
     """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
     ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
-    (``result``), the candidate zone to twice the largest approach (plus the oversize), for a guide the elliptic
-    slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of 2.2 b_max; the ball caps
-    and the grooves' lands from the largest ellipse where the builders' defaults are too small for it
+    (``result``), the candidate zone to :data:`MODULE_ZONE` times the largest approach (plus the oversize), for a
+    guide the elliptic slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of
+    2.2 b_max; the ball caps and the grooves' lands from the largest ellipse where the builders' defaults are too
+    small for it
     (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
     if case.fe is not None:
         return case
@@ -286,11 +292,11 @@ def module_fe(case, result=None):
     if isinstance(case, LinearGuideCase):
         levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
                                for f, (ns, growth) in MODULE_LEVELS.items()})
-        return replace(case, fe=ModuleFe(levels, 2.0 * approach, (0.6, 1.3, 0.5), min_cap_angle=cap,
+        return replace(case, fe=ModuleFe(levels, MODULE_ZONE["guide"] * approach, (0.6, 1.3, 0.5), min_cap_angle=cap,
                                          land_depth=land))
     levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, 2.2 * b_max) for n in ns)
                            for f, (ns, growth) in MODULE_LEVELS.items()})
-    return replace(case, fe=ModuleFe(levels, 2.0 * approach + case.screw.oversize, min_cap_angle=cap,
+    return replace(case, fe=ModuleFe(levels, MODULE_ZONE["screw"] * approach + case.screw.oversize, min_cap_angle=cap,
                                      land_depth=land))
 
 
