@@ -268,7 +268,11 @@ def why_nothing_saved(out_dir: Path, name: str, error: Exception, command: str) 
         registered = not name.endswith(("-contact", "-b2b-fe"))
         quick = (" (a --quick run of an FE contact scene saves none)" if data.get("fidelity") == "quick" and registered
                  else "")
-    # a hook with nothing to solve (render3d.show_saved: BEM / EHL surfaces, stick/slip areas) says to validate
+    # a hook with nothing to solve (render3d.show_saved: BEM / EHL surfaces, stick/slip areas) says to validate; a
+    # contact rung that ran no FE study, and said why in its notes (an ellipse the FE pair cannot hold), has none
+    unsolvable = [note for note in record.get("notes", []) if "FE study not run:" in note]
+    if unsolvable:
+        return f"the scene ({status}) ran no FE study: " + unsolvable[0].split("FE study not run: ", 1)[1]
     hint = "" if "ballbench validate" in str(error) else f" ({solve})"
     return f"the scene ({status}) saved no fields here{quick}: {error}{hint}"
 

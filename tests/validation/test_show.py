@@ -179,3 +179,19 @@ def test_show_imports_only_the_scene_module():
             "print(sorted(m for m in sys.modules if m.startswith('ballbench.validation.scenes.')))")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "['ballbench.validation.scenes.fe_b2b']"
+
+
+def test_a_contact_rung_that_ran_no_fe_study_is_not_offered_a_solve(tmp_path):
+    # an ellipse the FE pair cannot hold (ladder.contact: "FE study not run: ..."): show says so instead of
+    # offering '--solve', which would try the same FE study
+    from ballbench.validation.report_folder import why_nothing_saved
+
+    note = "FE study not run: the FE pair's counter block would need 1.615 mm across the groove."
+    record = {"name": "g-contact", "status": "findings", "kind": "FE", "notes": ["Contact: ...", note]}
+    (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": [record]}))
+    words = why_nothing_saved(tmp_path, "g-contact", FileNotFoundError("no saved fields"), "ballbench show g.toml")
+    assert "ran no FE study: the FE pair's counter block" in words and "--solve" not in words
+    record["notes"] = ["Contact: ..."]  # a contact scene that ran its FE study offers the solve, as before
+    (tmp_path / "results.json").write_text(json.dumps({"fidelity": "quick", "scenes": [record]}))
+    assert "--solve" in why_nothing_saved(tmp_path, "g-contact", FileNotFoundError("no saved fields"),
+                                          "ballbench show g.toml")
