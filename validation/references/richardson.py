@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Extrapolation", "extrapolate"]
+__all__ = ["Extrapolation", "extrapolate", "study_levels"]
 
 SAFETY_OBSERVED = 1.25  # Roache's factor of safety with three meshes and the observed order
 SAFETY_FORMAL = 3.0     # with two meshes, or when the observed order is not trusted
@@ -61,17 +61,25 @@ def _observed_order(r21: float, r32: float, e21: float, e32: float) -> float | N
     return p if math.isfinite(p) else None
 
 
-def extrapolate(sizes, values, formal_order: float = 2.0) -> Extrapolation:
-    """Extrapolate ``values`` on meshes of element ``sizes`` (coarse to fine, >= 2) to h -> 0 (module
-    docstring).  ValueError for fewer than two meshes or sizes that do not decrease."""
+def study_levels(sizes, values, minimum: int, name: str, hint: str = "") -> tuple[list[float], list[float]]:
+    """``sizes`` and ``values`` of a mesh study as floats, checked: at least ``minimum`` meshes with one value
+    each, sizes decreasing from coarse to fine and > 0, finite values; ValueError naming ``name`` (the function
+    that asks) otherwise, with ``hint`` after a count that is too small."""
     sizes, values = [float(h) for h in sizes], [float(v) for v in values]
-    if len(sizes) != len(values) or len(sizes) < 2:
-        raise ValueError(f"extrapolate needs >= 2 meshes with one value each, got {len(sizes)} sizes and "
-                         f"{len(values)} values")
+    if len(sizes) != len(values) or len(sizes) < minimum:
+        raise ValueError(f"{name} needs >= {minimum} meshes with one value each, got {len(sizes)} sizes and "
+                         f"{len(values)} values{hint}")
     if any(not (a > b > 0) for a, b in zip(sizes, sizes[1:])):
         raise ValueError(f"sizes must decrease from coarse to fine and stay > 0, got {sizes}")
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"values must be finite, got {values}")
+    return sizes, values
+
+
+def extrapolate(sizes, values, formal_order: float = 2.0) -> Extrapolation:
+    """Extrapolate ``values`` on meshes of element ``sizes`` (coarse to fine, >= 2) to h -> 0 (module
+    docstring).  ValueError for fewer than two meshes or sizes that do not decrease."""
+    sizes, values = study_levels(sizes, values, 2, "extrapolate")
     if len(sizes) == 2:
         (h2, h3), (f2, f3) = sizes, values
         r = h2 / h3

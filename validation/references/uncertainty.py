@@ -53,6 +53,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ballbench.validation.references.richardson import study_levels
+
 __all__ = ["Uncertainty", "eca_hoekstra", "SAFETY_TRUSTED", "SAFETY_UNTRUSTED"]
 
 SAFETY_TRUSTED = 1.25   # eq 20 with a trusted observed order (Appendix A, step 3)
@@ -169,14 +171,8 @@ def eca_hoekstra(sizes, values, formal_order: float = 2.0) -> Uncertainty:
     """The uncertainty of ``values`` on the finest of meshes of element ``sizes`` (coarse to fine, >= 3) by Eca and
     Hoekstra's procedure (module docstring); ``formal_order``: the discretisation's formal order of the quantity.
     ValueError for fewer than three meshes, sizes that do not decrease or values that are not finite."""
-    sizes, values = [float(h) for h in sizes], [float(v) for v in values]
-    if len(sizes) != len(values) or len(sizes) < 3:
-        raise ValueError(f"eca_hoekstra needs >= 3 meshes with one value each, got {len(sizes)} sizes and "
-                         f"{len(values)} values (two meshes: references.richardson.extrapolate)")
-    if any(not (a > b > 0) for a, b in zip(sizes, sizes[1:])):
-        raise ValueError(f"sizes must decrease from coarse to fine and stay > 0, got {sizes}")
-    if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"values must be finite, got {values}")
+    sizes, values = study_levels(sizes, values, 3, "eca_hoekstra",
+                                 " (two meshes: references.richardson.extrapolate)")
     if not (math.isfinite(formal_order) and formal_order > 0.5):
         raise ValueError(f"formal_order must be a finite order > 0.5, got {formal_order!r}")
     n = len(values)
