@@ -160,7 +160,8 @@ def test_show_screw_module_writes_pngs(tmp_path):
     from ballbench.validation import show
 
     paths = show.show("fe-b2b-screw-a", tmp_path, fidelity="quick", solve=True)
-    assert [p.name for p in paths] == ["pressure.png", "stress.png"]
+    assert [p.name for p in paths] == ["pressure.png", "stress.png", "3d_assembly.png", "3d_pressure_overview.png",
+                                       "3d_pressure_contacts.png", "3d_stress.png", "3d_helix.png"]
     for path in paths:
         assert path.exists() and path.stat().st_size > 10_000
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
