@@ -160,7 +160,9 @@ def test_scattered_module_levels_leave_the_b2b_models_unjudged(tmp_path):
     result = run_scene(_b2b_scene((0.633, 1.104, 0.971)), "quick", tmp_path)
     assert not result.error and result.status() == "inconclusive" and result.passed
     assert not [o for o in result.outputs if o.model == "lowmodel.screw.b2b"]
-    assert "the 5 % it needs" in result.inconclusive and "What settles it" in result.inconclusive
+    # finer module levels are not shown to settle it on small B2B forces: the words say "may" and why
+    assert "the 5 % it needs" in result.inconclusive and "What may settle it" in result.inconclusive
+    assert "finer module levels still scattered" in result.inconclusive
     assert "run at the default fidelity (without --quick) or --fine" in result.inconclusive
     assert "h_contact = 80, 64, 51, 41, 33 um" in result.inconclusive  # the levels continued at their ratio
     (table,) = [t for t in result.tables if "nothing judged" in t[0]]

@@ -19,7 +19,8 @@ from ballbench.lowmodel.state import friction_increase
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
-                                                fmt, oversize_for, preload_loss, preload_loss_words, settle_words)
+                                                fmt, oversize_for, preload_loss, preload_loss_words, settle_words,
+                                                B2B_SETTLE_CAVEAT)
 from ballbench.validation.ladder.common import not_truncated, truncations
 from ballbench.validation.scene import NotApplicable
 from ballbench.validation.ladder.rungs import module_fe
@@ -176,7 +177,7 @@ def _inconclusive(run, relative: float, rows, low, reference: float) -> None:
                      f"(Eca-Hoekstra on {len(rows)} module levels h_contact = {levels} um) against the "
                      f"{100 * B2B_UNCERTAINTY:g} % it needs to judge the B2B models, so they are not judged here. "
                      + settle_words(run.fidelity, f"[fe] module levels h_contact = {levels}, {finer} um (the ratio "
-                                                  f"{ratio:.3g} continued)"))
+                                                  f"{ratio:.3g} continued)", B2B_SETTLE_CAVEAT))
     run.table("B2B force by model, side by side (no conclusive reference: nothing judged)",
               ("model", "family", "F_B2B [N]"),
               [(model, family, fmt(value)) for model, family, value, _ in low]

@@ -35,7 +35,7 @@ NEAR_ZERO_B2B = 0.05
 HAMROCK_DOWSON_TOLERANCE = 0.15
 EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as those scenes check it
 
-__all__ = ["settle_words",
+__all__ = ["settle_words", "B2B_SETTLE_CAVEAT",
            "B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
@@ -55,13 +55,22 @@ FRICTIONLESS_WORDS = ("the loads of the frictionless statics of the balls at the
                       "not friction")
 
 
-def settle_words(fidelity: str, finer: str) -> str:
+def settle_words(fidelity: str, finer: str, caveat: str = "") -> str:
     """What settles an inconclusive reference (docs/verification.md, "Bounds and INCONCLUSIVE"): the next fidelity
     of the run at ``fidelity``, and ``finer``, the finer levels in words (e.g. "FE levels n = b/h 5.5, 6.6, 7.92,
-    9.5, 11.4"), for a case file's own ``[fe]`` table."""
+    9.5, 11.4"), for a case file's own ``[fe]`` table; ``caveat``: where finer levels are not shown to settle it,
+    what the measurements say (the words then read "What may settle it")."""
     step = {"quick": "run at the default fidelity (without --quick) or --fine",
             "default": "run --fine"}.get(fidelity, "give the case file an [fe] table with finer levels")
+    if caveat:
+        return f"What may settle it: a finer study: {step}; or {finer} ({caveat})."
     return f"What settles it: a finer study: {step}; or {finer}."
+
+
+# where finer module levels are not shown to settle the FE-informed B2B reference (the measured levels of
+# docs/your_own_bearing.md, "How the FE-informed B2B force converges with h")
+B2B_SETTLE_CAVEAT = ("on the catalogue's small B2B forces finer module levels still scattered, at the default "
+                     "fidelity too: docs/your_own_bearing.md, 'How the FE-informed B2B force converges with h'")
 
 
 def fmt(value: float, digits: int = 4) -> str:
