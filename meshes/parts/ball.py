@@ -13,7 +13,9 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 
-__all__ = ["cap_limit", "check_cap_angle", "add_split_ball"]
+__all__ = ["cap_limit", "check_cap_angle", "add_split_ball", "DEFAULT_CAP_ANGLE"]
+
+DEFAULT_CAP_ANGLE = math.radians(30.0)  # a ball cap's default half-angle [rad] (check_cap_angle)
 
 
 def _pole_axis(directions: list[np.ndarray]) -> np.ndarray:
@@ -43,7 +45,7 @@ def check_cap_angle(cap_angle, directions: list[np.ndarray], min_cap_angle: floa
     contact's ellipse needs a larger cap than 30 deg; docs/truncation.md)."""
     limit = cap_limit(directions)
     if cap_angle is None:
-        default = min(math.radians(30.0), limit)
+        default = min(DEFAULT_CAP_ANGLE, limit)
         if min_cap_angle is None:
             return default
         return max(default, min(checks.positive("min_cap_angle", min_cap_angle, "rad"), limit))

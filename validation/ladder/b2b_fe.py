@@ -21,7 +21,7 @@ from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (B2B_TOLERANCE, NEAR_ZERO_B2B, POWER_TOLERANCE, REFERENCE_UNCERTAINTY,
                                                 fmt, oversize_for, preload_loss, preload_loss_words, settle_words,
                                                 B2B_SETTLE_CAVEAT)
-from ballbench.validation.ladder.common import not_truncated, truncations
+from ballbench.validation.ladder.common import not_truncated, touching_state, truncations
 from ballbench.validation.scene import NotApplicable
 from ballbench.validation.ladder.rungs import module_fe
 from ballbench.validation.references.richardson import extrapolate
@@ -36,15 +36,17 @@ def b2b_fe_scene(run, *, case, deadline) -> None:
     apply where a contact ellipse reaches its groove's shoulder (common.not_truncated, docs/truncation.md)."""
     from ballbench.fem.fourpoint import ShoulderContact, ZoneEdgeContact
 
-    not_truncated(case)
-    sized = module_fe(case)
+    result = touching_state(case)  # solved once: the truncation check and the module's sizes (None: no state)
+    if result is not None:
+        not_truncated(case, result)
+    sized = module_fe(case, result)  # without a state it solves again and raises lin2019's limit (limited)
     try:
         if isinstance(case, LinearGuideCase):
             _guide_b2b_fe(run, sized, deadline)
         else:
             _screw_b2b_fe(run, sized, deadline)
     except ShoulderContact as error:  # the FE pressure reaches the flank's end where Hertz's ellipse stops short
-        worst = min(truncations(case), key=lambda t: t.margin)
+        worst = min(truncations(case, result), key=lambda t: t.margin)
         raise NotApplicable(f"{error}, though the low-order ellipses stop short of it (closest: {worst.text()}, "
                             f"{math.degrees(worst.margin):.1f} deg short): the FE module's contact is an edge "
                             "contact its flank does not resolve") from error
@@ -52,7 +54,7 @@ def b2b_fe_scene(run, *, case, deadline) -> None:
         if case.fe is not None or sized.fe.min_cap_angle is None:
             raise
         radius = (case.guide if isinstance(case, LinearGuideCase) else case.screw).ball_radius
-        a_max = max(t.a for t in truncations(case))
+        a_max = max(t.a for t in truncations(case, result))
         asked, half = math.degrees(sized.fe.min_cap_angle), math.degrees(math.asin(min(1.0, a_max / radius)))
         raise NotApplicable(f"{error}: the FE contact fills the ball cap the module meshes for it (asked for "
                             f"{asked:.1f} deg, the ellipse to {ladder_rungs.CAP_MARGIN:g} a; "

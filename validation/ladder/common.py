@@ -40,7 +40,7 @@ __all__ = ["settle_words", "B2B_SETTLE_CAVEAT",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
            "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
-           "LIN2019_SCENES", "truncations", "truncation_check", "not_truncated"]
+           "LIN2019_SCENES", "touching_state", "truncations", "truncation_check", "not_truncated"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
 # stick/slip balls, the EHL loads): where that model has no state they do not apply, but for the contact rung, which
@@ -250,18 +250,26 @@ def limits_lines(case, names) -> list[str]:
 # --------------------------------------------------------------------------
 # contact ellipse truncation by the groove's shoulder (lowmodel.truncation, docs/truncation.md)
 # --------------------------------------------------------------------------
+def touching_state(case):
+    """The low-order touching state of a guide or screw ``case`` (lowmodel.bearing_results.guide_result or
+    screw_result), or None when the model has no state there (ConvergenceError) or ``case`` is neither."""
+    if not isinstance(case, (LinearGuideCase, BallScrewCase)):
+        return None
+    try:
+        return bearing_results.friction(case)
+    except ConvergenceError:
+        return None
+
+
 def truncations(case, result=None) -> tuple:
     """The :class:`lowmodel.truncation.Truncation` of every loaded contact of a guide's or screw's low-order touching
     state (``result``: its lowmodel.bearing_results result, computed when None; none without a state): the flank's
     shoulder from the
     contact angle with the ball centred (a guide's ``beta_0 + deviation``; a screw's flank angles of its deviation
     reading, lowmodel.screw.contacts.flank_angles), the ellipse's end from the loaded angle and ``a``."""
-    if result is None:
-        try:
-            result = (bearing_results.guide_result(case) if isinstance(case, LinearGuideCase)
-                      else bearing_results.screw_result(case) if isinstance(case, BallScrewCase) else None)
-        except ConvergenceError:  # no low-order state: no ellipse to check (the rungs say why, LIN2019_SCENES)
-            return ()
+    result = result or touching_state(case)
+    if result is None:  # no low-order state: no ellipse to check (the rungs say why, LIN2019_SCENES)
+        return ()
     if isinstance(case, LinearGuideCase):
         radius, conformity = case.guide.ball_radius, case.guide.conformity
         rigid = {(j, name): float(angle) for j in range(1, case.n_balls + 1)

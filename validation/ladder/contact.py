@@ -73,12 +73,7 @@ def _distinct(case):
     frictionless statics (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung
     needs a contact geometry and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
     try:
-        if isinstance(case, LinearGuideCase):
-            result = bearing_results.guide_result(case)
-        elif isinstance(case, BallScrewCase):
-            result = bearing_results.screw_result(case)
-        else:
-            result = None
+        result = bearing_results.friction(case) if isinstance(case, (LinearGuideCase, BallScrewCase)) else None
         return ladder_rungs.distinct_contacts(case, result), "", result
     except ConvergenceError as error:
         reason = past_preload_loss(case, error)

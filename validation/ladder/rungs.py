@@ -36,6 +36,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ballbench.lowmodel import bearing_results, truncation
+from ballbench.meshes.parts.ball import DEFAULT_CAP_ANGLE
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.geometry import groove
 from ballbench.validation.ladder.common import truncations
@@ -279,10 +280,7 @@ def module_fe(case, result=None):
     if case.fe is not None:
         return case
 
-    if isinstance(case, LinearGuideCase):
-        result = result or bearing_results.guide_result(case)
-    else:
-        result = result or bearing_results.screw_result(case)
+    result = result or bearing_results.friction(case)
     loaded = [c for c in result.contacts if c.normal_force > 0]
     b_max = max(c.b for c in loaded)
     approach = max(c.approach for c in loaded)
@@ -306,7 +304,7 @@ def module_cap_angle(a: float, ball_radius: float) -> float | None:
     (docs/truncation.md); None where the builders' default cap of 30 deg holds it already (every scene whose
     ellipse fits keeps its mesh)."""
     need = math.asin(min(1.0, CAP_MARGIN * a / ball_radius))
-    return need if need > math.radians(30.0) else None
+    return need if need > DEFAULT_CAP_ANGLE else None
 
 
 def module_land_depth(found, ball_radius: float, conformity: float) -> float | None:
