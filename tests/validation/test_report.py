@@ -379,3 +379,11 @@ def test_result_tables_reach_markdown_and_json_and_read_back():
     assert "Friction of the balls" in text and "1.269" in text
     data = json.loads(json.dumps(to_json([result], "default")))
     assert results_from_json(data)[0].tables == (table,)
+
+
+def test_angles_are_shown_in_degrees():
+    # a check in rad (SI inside) reads in degrees in the report, as the truncation verdict's own words do
+    from ballbench.validation.report.rows import engineering
+
+    factor, unit = engineering("rad", 1.3361)
+    assert unit == "deg" and 1.3361 * factor == pytest.approx(76.553, abs=1e-3)

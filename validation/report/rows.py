@@ -20,6 +20,7 @@ _ENGINEERING = {
     "m/s": ((1.0, 1.0, "m/s"), (0.0, 1e3, "mm/s")),
     "N/m": ((0.0, 1e-6, "N/um"),),
     "s": ((1.0, 1.0, "s"), (1e-3, 1e3, "ms"), (0.0, 1e6, "us")),
+    "rad": ((0.0, 180.0 / math.pi, "deg"),),  # angles as an engineer reads them (contact angles, truncation)
 }
 DIMENSIONLESS = ("1", "-", "")  # shown without a unit after the number and as "-" in a unit column
 UNDECLARED = "undeclared"  # the family of a check that declares none (results.json of an older version)
