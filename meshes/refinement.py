@@ -41,7 +41,8 @@ import numpy as np
 
 from ballbench.lowmodel import checks
 
-__all__ = ["check_refinement", "check_fine_zone", "check_fine_ellipse", "size_threshold", "point_distance",
+__all__ = ["check_refinement", "check_fine_zone", "check_fine_ellipse", "four_slabs", "four_factors", "size_threshold",
+           "point_distance",
            "segment_distance", "box_distance", "ellipse_distance", "contact_refinement", "refine_at_points",
            "refine_contact", "uniform_size", "size_at_points"]
 
@@ -83,6 +84,29 @@ def check_refinement(ball_radius: float, h_contact, growth, h_max=None, fine_rad
     if fine_radius > fine_radius_max:
         raise ValueError(f"fine_radius must lie in [0, {fine_radius_max!r}] m, got {fine_radius!r}")
     return h_contact, growth, h_max, fine_radius
+
+
+def four_slabs(value, labels: str) -> list[tuple[float, float, float]]:
+    """Validated fine slabs of a module's four contacts (``labels``, e.g. "(BL, BR, TR, TL)"): one ``(l_1, l_2,
+    l_3)`` [m] for all four or four of them, each by :func:`check_fine_ellipse`."""
+    try:
+        items = list(value)
+        nested = len(items) == 4 and all(hasattr(item, "__len__") for item in items)
+    except TypeError:
+        raise ValueError(f"fine_ellipses must be (l_1, l_2, l_3) or four of them {labels} [m], got "
+                         f"{value!r}") from None
+    return [check_fine_ellipse(item) for item in (items if nested else [items] * 4)]
+
+
+def four_factors(value, labels: str) -> list[float]:
+    """Validated size factors of a module's four contacts (``labels``): four numbers in (0, 1]."""
+    try:
+        factors = [float(v) for v in value]
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"size_factors must be four factors {labels} in (0, 1], got {value!r}") from None
+    if len(factors) != 4 or not all(0.0 < f <= 1.0 for f in factors):
+        raise ValueError(f"size_factors must be four factors {labels} in (0, 1], got {value!r}")
+    return factors
 
 
 def check_fine_zone(fine_half_length=0.0, fine_patch=None, *,
@@ -234,11 +258,12 @@ def contact_refinement(gmsh, h_contact: float, growth: float, h_max: float, *,
     return size_threshold(gmsh, point_distance(gmsh, point), h_contact, growth, h_max, fine_radius=fine_radius)
 
 
-def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, fine_radius: float, *,
+def refine_at_points(gmsh, points, h_contact, growth: float, h_max: float, fine_radius: float, *,
                      ellipses=None) -> int:
     """Background size ``min_k h_k`` with ``h_k`` the growth law about the point ``X_k``
     (``points`` shape (n, 3) [m]: the contacts of a module); returns the field tag.
 
+    ``h_contact`` [m]: one size for every point, or one per point (each contact's fine zone at its own size).
     ``ellipses``: per point ``None`` or ``(fine_ellipse, frame)``: the law about the elliptic slab
     ``fine_ellipse = (l_1, l_2, l_3)`` [m] in the contact frame ``frame`` (rows e1, e2, e3; e3 the
     normal) centred on ``X_k`` (:func:`ellipse_distance`; ``fine_radius`` unused there)."""
@@ -246,13 +271,17 @@ def refine_at_points(gmsh, points, h_contact: float, growth: float, h_max: float
     ellipses = [None] * len(points) if ellipses is None else list(ellipses)
     if len(ellipses) != len(points):
         raise ValueError(f"ellipses must give one entry per point ({len(points)}), got {len(ellipses)}")
+    sizes = np.atleast_1d(np.asarray(h_contact, dtype=float))
+    if sizes.shape not in ((1,), (len(points),)):
+        raise ValueError(f"h_contact must be one size or one per point ({len(points)}), got {len(sizes)}")
+    sizes = np.broadcast_to(sizes, (len(points),))
     fields = []
-    for point, ellipse in zip(points, ellipses):
+    for point, ellipse, size in zip(points, ellipses, sizes):
         if ellipse is None:
-            fields.append(contact_refinement(gmsh, h_contact, growth, h_max, point=point, fine_radius=fine_radius))
+            fields.append(contact_refinement(gmsh, float(size), growth, h_max, point=point, fine_radius=fine_radius))
         else:
             semi, frame = ellipse
-            fields.append(size_threshold(gmsh, ellipse_distance(gmsh, semi, centre=point, frame=frame), h_contact,
+            fields.append(size_threshold(gmsh, ellipse_distance(gmsh, semi, centre=point, frame=frame), float(size),
                                          growth, h_max))
     minimum = gmsh.model.mesh.field.add("Min")
     gmsh.model.mesh.field.setNumbers(minimum, "FieldsList", fields)

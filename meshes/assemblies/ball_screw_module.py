@@ -24,7 +24,7 @@ from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts import groove_segment
 from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
 from ballbench.meshes.parts.groove_segment import add_groove_segment, segment_dimensions, segment_grooves, snap_segment
-from ballbench.meshes.refinement import check_refinement, size_at_points
+from ballbench.meshes.refinement import check_refinement, four_factors, four_slabs, size_at_points
 
 __all__ = ["CONTACTS", "ball_screw_module"]
 
@@ -39,7 +39,8 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                       nut_back_radius: float | None = None, half_angle: float | None = None,
                       h_contact: float | None = None, growth: float = 1.3, h_max: float | None = None,
                       fine_radius: float | None = None, cap_angle: float | None = None,
-                      min_cap_angle: float | None = None, cache: bool = True) -> Path:
+                      min_cap_angle: float | None = None, fine_ellipses=None, size_factors=None,
+                      cache: bool = True) -> Path:
     """The ball-screw module as a cached gmsh 4.1 ``.msh`` [m] (screw frame).
 
     ``deviations`` [rad]: contact angle deviations ``(SL, SR, NR, NL)``;
@@ -49,7 +50,13 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
     ``R_P + 5.25 R_B``: ``groove_segment.BODY_DEPTH``, the depth of the validated FE module, docs/fe_b2b.md;
     ``half_angle`` default ``dphi/2 + 2 R_B / R_P``).  With
     ``h_contact`` [m] the mesh is refined at every contact point (four per ball and
-    the B2B point).
+    the B2B point).  ``fine_ellipses`` (with ``h_contact``): the fine zone of each contact shaped as its ellipse
+    instead of a ball of ``fine_radius``: one ``(l_1, l_2, l_3)`` [m] for all four contacts or four of them (SL, SR,
+    NR, NL), the elliptic slab of semi-axes ``l_1`` across the groove (in the plane normal to the helix, the Hertz
+    major axis), ``l_2`` along the helix and half-thickness ``l_3`` along the contact normal
+    (:func:`meshes.refinement.ellipse_distance`); ``size_factors`` (with ``h_contact``): four factors in (0, 1]
+    (SL, SR, NR, NL), the fine zone of contact ``i`` meshed at ``size_factors[i] h_contact``; the B2B point keeps
+    ``h_contact`` (as :func:`meshes.assemblies.fourpoint_module.fourpoint_module`).
 
     Physical groups: volumes ``screw``, ``nut``, ``ball1`` (``ball2``); surfaces
     ``SL``, ``SR`` (screw flanks), ``NR``, ``NL`` (nut flanks), ``screw_land``,
@@ -97,6 +104,10 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
         ball_directions.append(directions)
     cap_angle = check_cap_angle(cap_angle, list(ball_directions[0].values()), min_cap_angle)
     refine = h_contact is not None
+    if (fine_ellipses is not None or size_factors is not None) and not refine:
+        raise ValueError("fine_ellipses and size_factors need h_contact (the size they shape)")
+    fine_ellipses = None if fine_ellipses is None else four_slabs(fine_ellipses, "(SL, SR, NR, NL)")
+    size_factors = None if size_factors is None else four_factors(size_factors, "(SL, SR, NR, NL)")
     h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                              growth, h_max, fine_radius)
     params = dict(builder="ball_screw_module", radius=radius, conformity=screw[0].conformity, pitch_radius=r_p,
@@ -104,6 +115,10 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                   spacing=spacing, screw=[s_land, s_back], nut=[n_land, n_back], half_angle=half_angle,
                   widths=[s_width, n_width], refine=refine, h_contact=h_contact, growth=growth, h_max=h_max,
                   fine_radius=fine_radius, cap_angle=cap_angle)
+    if fine_ellipses is not None:  # only then: the cache names of the other meshes stay as they were
+        params["fine_ellipses"] = [list(item) for item in fine_ellipses]
+    if size_factors is not None:
+        params["size_factors"] = list(size_factors)
     path, build = cached_msh("ballscrew-module", params, MESH_FORMAT_VERSION, cache=cache)
     if not build:
         return path
@@ -134,9 +149,30 @@ def ball_screw_module(ball_radius: float, conformity: float, pitch_radius: float
                 physical(gmsh, 2, tags, f"ball{k}_{name}")
         if n_balls == 2:
             contact_points.append((centres[0] + centres[1]) / 2)  # the B2B contact
-        size_at_points(gmsh, contact_points if refine else None, h_contact, growth, h_max, fine_radius)
+        ellipses = None
+        if fine_ellipses is not None:
+            ellipses = [(fine_ellipses[i], _contact_frame(directions[name], screw[0], phi))
+                        for phi, directions in zip(phis, ball_directions) for i, name in enumerate(CONTACTS)]
+            ellipses += [None] * (len(contact_points) - len(ellipses))  # the B2B point keeps the ball zone
+        extra = len(contact_points) - 4 * len(centres)  # the B2B point keeps h_contact
+        sizes = h_contact if size_factors is None else \
+            [h_contact * f for _ in centres for f in size_factors] + [h_contact] * extra
+        size_at_points(gmsh, contact_points if refine else None, sizes, growth, h_max, fine_radius,
+                       ellipses=ellipses)
         gmsh.model.mesh.generate(3)
         snap_segment(gmsh, screw, screw_roles)
         snap_segment(gmsh, nut, nut_roles)
         write_msh(gmsh, path)
     return path
+
+
+def _contact_frame(normal, groove, phi: float) -> np.ndarray:
+    """Rows ``(e1, e2, e3)`` of a contact's fine slab: ``e3`` the contact normal (ball centre to contact), ``e2``
+    the helix tangent at the ball's azimuth ``phi`` made normal to it, ``e1 = e2 x e3`` (across the groove, in the
+    plane normal to the helix: the Hertz major axis of the groove's conformal profile)."""
+    n = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    tangent = np.array([-groove.pitch_radius * np.sin(phi), groove.pitch_radius * np.cos(phi),
+                        groove.lead / (2.0 * np.pi)])
+    e2 = tangent - (tangent @ n) * n
+    e2 /= np.linalg.norm(e2)
+    return np.array([np.cross(e2, n), e2, n])

@@ -30,7 +30,7 @@ from ballbench.lowmodel.geometry.groove import gothic_arch
 from ballbench.meshes.gmsh_tools import cached_msh, physical, session, write_msh
 from ballbench.meshes.parts.ball import add_split_ball, check_cap_angle
 from ballbench.meshes.parts.rail import add_bottom_rail, classify_rail_faces
-from ballbench.meshes.refinement import check_fine_ellipse, check_refinement, size_at_points
+from ballbench.meshes.refinement import check_refinement, four_slabs, size_at_points
 
 __all__ = ["CONTACTS", "fourpoint_module"]
 
@@ -96,13 +96,7 @@ def fourpoint_module(ball_radius: float, conformity: float, contact_angle: float
     if fine_ellipses is not None:
         if not refine:
             raise ValueError("fine_ellipses needs h_contact (the size inside the ellipses)")
-        try:
-            items = list(fine_ellipses)
-            nested = len(items) == 4 and all(hasattr(item, "__len__") for item in items)
-        except TypeError:
-            raise ValueError(f"fine_ellipses must be (l_1, l_2, l_3) or four of them [m], got "
-                             f"{fine_ellipses!r}") from None
-        fine_ellipses = [check_fine_ellipse(item) for item in (items if nested else [items] * 4)]
+        fine_ellipses = four_slabs(fine_ellipses, "(BL, BR, TR, TL)")
     h_contact, growth, h_max, fine_radius = check_refinement(radius, radius / 4 if h_contact is None else h_contact,
                                                              growth, h_max, fine_radius)
     angles = [bottom.contact_angle_left, bottom.contact_angle_right, top.contact_angle_left,

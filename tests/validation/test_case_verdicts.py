@@ -236,7 +236,7 @@ def test_the_module_fe_does_not_start_a_level_beyond_the_memory(tmp_path, monkey
     monkeypatch.setattr(fe_b2b_linear, "level_dofs", lambda case, level: 400_000)
     monkeypatch.setattr(fe_b2b_linear, "solve_fe_level", no_solve)
     monkeypatch.setattr(rungs, "available_memory", lambda: 4e9)
-    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 9e9 if ndofs == 400_000 else 0.0)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs, *_: 9e9 if ndofs == 400_000 else 0.0)
     case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
     (scene,) = [s for s in ladder.case_scenes(case, "g", top="FE-informed") if s.name == "g-b2b-fe"]
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)

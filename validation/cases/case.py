@@ -120,7 +120,9 @@ class ModuleFe:
     half-angle, up to the builder's limit (None: the builder's default, 30 deg; a heavy contact's ellipse
     needs more, docs/truncation.md); ``land_depth``: the grooves' lands ``land_depth R_B`` from the ball centre
     (None: the builders' 0.25, the shoulder convention of docs/truncation.md; less where a heavy contact's
-    ellipse needs a longer flank than that).
+    ellipse needs a longer flank than that); ``per_contact``: the fine zone of each contact meshed at the level's
+    ``h_contact`` times its ellipse's ``b`` over the largest ``b`` of the module (every contact ``b / h`` the same;
+    False: every contact at ``h_contact``).
     """
 
     levels: MeshLevels
@@ -129,6 +131,7 @@ class ModuleFe:
     body_depth: float | None = None
     min_cap_angle: float | None = None
     land_depth: float | None = None
+    per_contact: bool = False
 
     def __post_init__(self):
         checks.positive("gap_limit", self.gap_limit, "m")

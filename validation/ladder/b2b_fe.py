@@ -63,10 +63,11 @@ def b2b_fe_scene(run, *, case, deadline) -> None:
                             "outside what the module resolves (docs/truncation.md)") from error
 
 
-def _levels(run, case, deadline, solve, dofs):
+def _levels(run, case, deadline, solve, dofs, bytes_per_dof: float = ladder_rungs.BYTES_PER_DOF):
     """Run ``solve(level) -> dict`` over the case's module levels, stopping where the budget would be passed or
     where a level's predicted memory exceeds the memory available (:func:`_memory_guard`, ``dofs(level)`` its P2
-    DOFs); returns the rows.  A study whose first level does not fit raises MemoryError (nothing to judge)."""
+    DOFs, ``bytes_per_dof`` the study's measured peak memory per DOF); returns the rows.  A study whose first level
+    does not fit raises MemoryError (nothing to judge)."""
     rows, sizes, times = [], [], []
     for level in run.progress(case.fe.levels[run.fidelity], desc=f"{run.scene.name} FE module levels"):
         if deadline is not None and times:
@@ -75,7 +76,7 @@ def _levels(run, case, deadline, solve, dofs):
                 run.note(f"--budget: module levels from h {level.h_contact * 1e6:.0f} um on not run (predicted "
                          f"{predicted:.0f} s beyond the budget)")
                 break
-        words = _memory_guard(run, level, dofs(level))
+        words = _memory_guard(run, level, dofs(level), bytes_per_dof)
         if words:
             if not rows:
                 raise MemoryError(f"the FE module study: {words}")
@@ -90,17 +91,17 @@ def _levels(run, case, deadline, solve, dofs):
     return rows
 
 
-def _memory_guard(run, level, ndofs: int) -> str:
+def _memory_guard(run, level, ndofs: int, bytes_per_dof: float) -> str:
     """"" when the module level ``level`` of ``ndofs`` P2 DOFs may run, else why not: its peak memory predicted
     from its DOFs (ladder.rungs.predicted_memory, the measured bytes per DOF of docs/your_own_bearing.md) above
     the memory the machine has available now (ladder.rungs.available_memory) or above the memory the scene
     declares (:meth:`Scene.memory_for`), as the contact scene's guard decides."""
-    need = ladder_rungs.predicted_memory(ndofs)
+    need = ladder_rungs.predicted_memory(ndofs, bytes_per_dof)
     available, declared = ladder_rungs.available_memory(), run.scene.memory_for(run.fidelity) * GB
     if need <= min(available, declared):
         return ""
     return (f"{ndofs} P2 DOFs (h {level.h_contact * 1e6:.0f} um) need about {need / GB:.1f} GB "
-            f"({ladder_rungs.BYTES_PER_DOF / 1e3:g} kB per DOF, docs/your_own_bearing.md), {available / GB:.1f} GB "
+            f"({bytes_per_dof / 1e3:g} kB per DOF, docs/your_own_bearing.md), {available / GB:.1f} GB "
             f"available, {declared / GB:g} GB declared by the scene")
 
 
@@ -270,7 +271,8 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
                     friction_increase=float(informed.friction_increase) / 100.0,
                     power_balance=float(informed.power_balance), **{k: float(x) for k, x in timings.items()})
 
-    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_screw.level_dofs, case))
+    rows = _levels(run, case, deadline, solve, functools.partial(fe_b2b_screw.level_dofs, case),
+                   ladder_rungs.SCREW_MODULE_BYTES_PER_DOF)
     reference = judge_b2b(run, "ball-screw", rows, low, case.screw.friction_coefficient * max(case.axial_load, 1.0))
     _informed_power_check(run, rows[-1], "energy conservation incl. B2B loss (docs/fe_b2b.md: 1e-6)")
     _module_table(run, rows, "friction_torque_Nm", "friction torque [N m]", state, speed, reference)

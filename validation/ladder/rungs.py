@@ -44,9 +44,10 @@ from ballbench.validation.cases.case import (BallScrewCase, ContactCase, Contact
                                              ModuleFe, ModuleLevel, PairLevel, named)
 
 __all__ = ["RUNGS", "rungs_up_to", "governing_contact", "distinct_contacts", "DistinctContact", "contact_fe",
-            "module_fe", "module_cap_angle", "module_land_depth", "CAP_MARGIN", "hertz_values", "bem_values",
-           "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES", "predicted_time",
-           "predicted_memory", "available_memory", "BYTES_PER_DOF", "QUICK_DOF_CAP", "SCREW_QUICK_RATIOS",
+            "module_fe", "module_cap_angle", "module_land_depth", "CAP_MARGIN", "MODULE_SLAB", "hertz_values",
+           "bem_values", "BEM_GRIDS", "FE_TOLERANCES", "BEM_TOLERANCE", "HERTZ_TOLERANCES", "QUANTITIES",
+           "predicted_time", "predicted_memory", "available_memory", "BYTES_PER_DOF", "SCREW_MODULE_BYTES_PER_DOF",
+           "QUICK_DOF_CAP", "SCREW_QUICK_RATIOS",
            "SCREW_QUICK_GROWTH", "screw_quick_levels"]
 
 RUNGS = ("analytical", "low-order", "BEM", "EHL", "FE", "FE-informed", "stick-slip")
@@ -73,6 +74,9 @@ CANDIDATE_REACH = 1.3
 # peak resident memory of an FE contact level per P2 DOF [bytes]: the largest measured ratio of peak RSS to the
 # finest level's DOFs (docs/your_own_bearing.md, "Memory and time of the FE rung")
 BYTES_PER_DOF = 22.2e3
+# the same for the modules of a ball screw's FE-informed B2B study (both balls' modules held at once; per DOF of
+# their sum): the largest measured ratio on the catalogue (docs/your_own_bearing.md, "Memory and time of the FE rung")
+SCREW_MODULE_BYTES_PER_DOF = 14.5e3
 # module mesh levels h = b_max / n over the contacts of the module; the papers' modules run at h_contact 25-50 um
 # for b = 40-70 um, n = 1-2.5 (validation/cases/files/lin2019-table*.toml); n = 1 was far from converged on
 # 1/8-inch balls (docs/your_own_bearing.md, "Measured"), so the studies start at n = 1.25
@@ -84,6 +88,12 @@ CAP_MARGIN = 1.25
 # screw of conformity 0.515 (examples/catalogue/screw_16x5.toml, b/a 0.1) reached the edge of that zone and runs in
 # four (docs/your_own_bearing.md, "Heavy contacts"); a larger zone adds candidates, not a different answer
 MODULE_ZONE = {"guide": 2.0, "screw": 4.0}
+# the fine zone of each contact of a case file's screw module (one module per ball): the elliptic slab (1.3 a, 1.3 b,
+# 0.5 b) about its Hertz ellipse, each contact at its own b / h (ModuleFe.per_contact).  A screw's ellipses are
+# slender (a / b up to 10): a ball-shaped zone about the contact point left the ends of the major axis, where the
+# contact's position on its flank is decided, in the growth zone (docs/your_own_bearing.md, "How the FE-informed B2B
+# force converges with h").  A guide's module keeps the slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md
+MODULE_SLAB = (1.3, 1.3, 0.5)
 MODULE_LEVELS = {"quick": ((1.25, 1.5625, 1.953125), 1.45), "default": ((1.5625, 1.953125, 2.44140625), 1.4),
                  "fine": ((1.5625, 1.953125, 2.44140625, 3.0517578125), 1.35)}
 # What each model of the contact must reach against the FE reference, with the source of the number:
@@ -111,10 +121,11 @@ def predicted_time(times: list[float], sizes: list[float], next_size: float) -> 
     return times[-1] * (sizes[-1] / next_size) ** 3
 
 
-def predicted_memory(ndofs: int) -> float:
-    """Peak resident memory [bytes] of an FE contact level of ``ndofs`` P2 DOFs: ``BYTES_PER_DOF * ndofs`` (the
-    measured ratio, docs/your_own_bearing.md)."""
-    return BYTES_PER_DOF * float(ndofs)
+def predicted_memory(ndofs: int, bytes_per_dof: float = BYTES_PER_DOF) -> float:
+    """Peak resident memory [bytes] of an FE level of ``ndofs`` P2 DOFs: ``bytes_per_dof * ndofs`` (the measured
+    ratio, docs/your_own_bearing.md: :data:`BYTES_PER_DOF` for a contact level and a guide's module,
+    :data:`SCREW_MODULE_BYTES_PER_DOF` for a screw's modules)."""
+    return bytes_per_dof * float(ndofs)
 
 
 def available_memory() -> float:
@@ -273,10 +284,9 @@ def module_fe(case, result=None):
     """``case`` (LinearGuideCase or BallScrewCase) with module FE settings: its own ``fe`` when given, else levels
     ``h = b_max / n`` (:data:`MODULE_LEVELS`) over the Hertz ellipses of the low-order touching state
     (``result``), the candidate zone to :data:`MODULE_ZONE` times the largest approach (plus the oversize), for a
-    guide the elliptic slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw a ball-shaped fine zone of
-    2.2 b_max; the ball caps and the grooves' lands from the largest ellipse where the builders' defaults are too
-    small for it
-    (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
+    guide the elliptic slabs (0.6 a, 1.3 b, 0.5 b) of docs/fe_b2b.md, for a screw the slabs :data:`MODULE_SLAB` with
+    each contact at its own ``b / h``; the ball caps and the grooves' lands from the largest ellipse where the builders'
+    defaults are too small for it (:func:`module_cap_angle`, :func:`module_land_depth`, docs/truncation.md)."""
     if case.fe is not None:
         return case
 
@@ -287,15 +297,13 @@ def module_fe(case, result=None):
     bearing = case.guide if isinstance(case, LinearGuideCase) else case.screw
     cap = module_cap_angle(max(c.a for c in loaded), bearing.ball_radius)
     land = module_land_depth(truncations(case, result), bearing.ball_radius, bearing.conformity)
+    levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
+                           for f, (ns, growth) in MODULE_LEVELS.items()})
     if isinstance(case, LinearGuideCase):
-        levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, None) for n in ns)
-                               for f, (ns, growth) in MODULE_LEVELS.items()})
         return replace(case, fe=ModuleFe(levels, MODULE_ZONE["guide"] * approach, (0.6, 1.3, 0.5), min_cap_angle=cap,
                                          land_depth=land))
-    levels = MeshLevels(**{f: tuple(ModuleLevel(b_max / n, growth, 2.2 * b_max) for n in ns)
-                           for f, (ns, growth) in MODULE_LEVELS.items()})
-    return replace(case, fe=ModuleFe(levels, MODULE_ZONE["screw"] * approach + case.screw.oversize, min_cap_angle=cap,
-                                     land_depth=land))
+    return replace(case, fe=ModuleFe(levels, MODULE_ZONE["screw"] * approach + case.screw.oversize, MODULE_SLAB,
+                                     min_cap_angle=cap, land_depth=land, per_contact=True))
 
 
 def module_cap_angle(a: float, ball_radius: float) -> float | None:

@@ -42,7 +42,7 @@ ANSYS_GAP = KnownGap(
     evidence="levels.csv of `ballbench validate fe-b2b-screw-b --quick` and of the default level (F_B2B per mesh "
              "level); docs/fe_b2b.md (screw half, depth table and results).")
 
-__all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "hertz_ellipse", "solve_fe_level",
+__all__ = ["ANSYS_GAP", "ANSYS_GAP_LEVELS", "low_order", "hertz_ellipse", "module_axes", "solve_fe_level",
            "level_dofs", "fe_informed", "sensitivity", "patch_axes", "show_module"]
 
 
@@ -62,11 +62,34 @@ def hertz_ellipse(contacts, ball: int, forces) -> np.ndarray:
     return np.column_stack([a, b, 1.5 * forces / (math.pi * a * b)])
 
 
-def _module_mesh(case: BallScrewCase, level, theta: float):
-    """The cached gmsh mesh of the module of a ball with deviation ``theta`` [rad] at the ModuleLevel ``level``."""
+def module_axes(case: BallScrewCase) -> np.ndarray:
+    """(n_balls, 4, 2) Hertz semi-axes (a, b) [m] of the low-order touching state's contacts (SL, SR, NR, NL) of each
+    ball (:func:`hertz_ellipse` at its normal forces): what a module's fine slabs are sized from."""
+    contacts, _, state = low_order(case)
+    forces = np.asarray(state.normal_force, dtype=float)
+    return np.stack([hertz_ellipse(contacts, ball, forces[ball])[:, :2] for ball in range(len(forces))])
+
+
+def _fine_zones(case: BallScrewCase, axes, ball: int) -> dict:
+    """The ``fine_ellipses`` and ``size_factors`` of ball ``ball``'s module mesh (``axes`` of :func:`module_axes`):
+    the case's ``fine_ellipse`` factors times each contact's (a, b, b), and with ``fe.per_contact`` each contact at
+    its ``b`` over the largest ``b`` of the module's balls; none without ``fine_ellipse`` (the level's ball zone)."""
+    if case.fe.fine_ellipse is None:
+        return {}
+    k1, k2, k3 = case.fe.fine_ellipse
+    zones = {"fine_ellipses": [(k1 * a, k2 * b, k3 * b) for a, b in axes[ball]]}
+    if case.fe.per_contact:
+        zones["size_factors"] = [float(b / axes[:, :, 1].max()) for b in axes[ball, :, 1]]
+    return zones
+
+
+def _module_mesh(case: BallScrewCase, level, ball: int, axes):
+    """The cached gmsh mesh of the module of ball ``ball`` (its deviation theta) at the ModuleLevel ``level``
+    (``axes``: :func:`module_axes`, used where the case has fine slabs)."""
     from ballbench.meshes.assemblies.ball_screw_module import ball_screw_module
 
     screw, fe = case.screw, case.fe
+    theta = case.deviations[ball]
     depth = {} if fe.body_depth is None else {
         "screw_back_radius": screw.pitch_radius - fe.body_depth * screw.ball_radius,
         "nut_back_radius": screw.pitch_radius + fe.body_depth * screw.ball_radius}
@@ -76,13 +99,14 @@ def _module_mesh(case: BallScrewCase, level, theta: float):
     return ball_screw_module(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
                              screw.nominal_angle, (theta, theta, 0.0, 0.0), 1, h_contact=level.h_contact,
                              growth=level.growth, fine_radius=level.fine_radius, h_max=level.h_max,
-                             min_cap_angle=fe.min_cap_angle, **depth)
+                             min_cap_angle=fe.min_cap_angle, **depth, **_fine_zones(case, axes, ball))
 
 
 def level_dofs(case: BallScrewCase, level) -> int:
     """The P2 DOFs of the modules of all balls of ``case`` at ``level`` (:func:`solve_fe_level` keeps them all),
     from their meshes alone (meshed or cached; no assembly): what the level's memory is predicted from."""
-    return sum(mesh_dofs(_module_mesh(case, level, theta)) for theta in case.deviations)
+    axes = module_axes(case) if case.fe.fine_ellipse is not None else None
+    return sum(mesh_dofs(_module_mesh(case, level, ball, axes)) for ball in range(len(case.deviations)))
 
 
 def solve_fe_level(case: BallScrewCase, level, shares, oversize: float | None = None):
@@ -94,9 +118,10 @@ def solve_fe_level(case: BallScrewCase, level, shares, oversize: float | None = 
     oversize = screw.oversize if oversize is None else oversize
     timings = {"mesh_s": 0.0, "assembly_s": 0.0, "condense_s": 0.0, "contact_solve_s": 0.0}
     models, results = [], []
+    axes = module_axes(case) if fe.fine_ellipse is not None else None
     for ball, theta in enumerate(case.deviations):
         start = time.perf_counter()
-        path = _module_mesh(case, level, theta)
+        path = _module_mesh(case, level, ball, axes)
         timings["mesh_s"] += time.perf_counter() - start
         geometry = sm.screw_module_geometry(screw.ball_radius, screw.conformity, screw.pitch_radius, screw.lead,
                                             sm.flank_angles_tilted(screw.nominal_angle, theta), oversize)

@@ -126,3 +126,43 @@ def test_screw_module_bad_input_names_the_parameter(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         ball_screw_module.ball_screw_module(**args, cache=False)
+
+
+def test_ball_screw_module_with_elliptic_fine_zones_and_size_factors():
+    """fine_ellipses and size_factors in the screw module: each contact's slab lies across the groove (e1, in the
+    plane normal to the helix, normal to the contact normal), fine to 0.8 l_1 along it and coarser at 0.8 l_1 along
+    the helix (catches the slab in the wrong frame: e1 and e2 swapped); a contact with the factor 0.5 is meshed
+    about twice as fine as one with 1."""
+    h, l1, l2, l3 = 6e-5, 6e-4, 1.5e-4, 5e-5
+    factors = (1.0, 0.5, 1.0, 1.0)  # SR at half the size
+    path = ball_screw_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA, h_contact=h, growth=1.4,
+                                               fine_ellipses=(l1, l2, l3), size_factors=factors, cache=False)
+    mesh = meshio.read(path)
+    tets = np.vstack([block.data for block in mesh.cells if block.type == "tetra"])
+    corners = mesh.points[tets]
+    centre = corners.mean(axis=1)
+    edge = np.linalg.norm(corners[:, 0] - corners[:, 1], axis=1)
+
+    def size_near(point, reach=1.5 * h):
+        near = np.linalg.norm(centre - point, axis=1) < reach
+        assert near.any()
+        return float(np.median(edge[near]))
+
+    ball_centre = np.array([R_P, 0.0, 0.0])  # one ball at phi = 0
+    tangent = np.array([0.0, R_P, LEAD / (2 * math.pi)])
+    sizes = {}
+    for name, factor in zip(ball_screw_module.CONTACTS, factors):
+        cap = mesh.points[np.unique(group_nodes(mesh, f"ball1_{name}"))] - ball_centre
+        n = cap.mean(axis=0)
+        n /= np.linalg.norm(n)  # the cap is centred on the contact
+        e2 = tangent - (tangent @ n) * n
+        e2 /= np.linalg.norm(e2)
+        e1 = np.cross(e2, n)
+        contact = ball_centre + R_B * n
+        assert size_near(contact + 0.8 * l1 * e1 - 0.3 * h * n) < 1.6 * factor * h  # across the groove: fine
+        assert size_near(contact + 0.8 * l1 * e2 - 0.3 * h * n) > 1.5 * h  # along the helix past l_2: coarser
+        sizes[name] = size_near(contact - 0.3 * factor * h * n, reach=2.0 * factor * h)
+    assert sizes["SR"] < 0.7 * min(sizes[name] for name in ("SL", "NR", "NL"))
+    with pytest.raises(ValueError, match="size_factors must be four factors"):
+        ball_screw_module.ball_screw_module(R_B, CONF, R_P, LEAD, BETA, h_contact=h, size_factors=(1.0, 0.0, 1, 1),
+                                            cache=False)

@@ -145,7 +145,7 @@ def test_an_fe_level_predicted_beyond_the_available_memory_does_not_run(tmp_path
         raise AssertionError("an FE level ran although its predicted memory exceeds the available memory")
 
     monkeypatch.setattr(rungs, "available_memory", lambda: 1e9)
-    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 2e9 if ndofs > 0 else 0.0)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs, *_: 2e9 if ndofs > 0 else 0.0)
     monkeypatch.setattr(fe_contact, "solve_level", no_solve)
     case = case_file.load(paths.ROOT / "validation" / "cases" / "files" / "lin2019-contact-flat.toml")
     (scene,) = [s for s in ladder.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
@@ -169,7 +169,7 @@ def test_an_fe_level_beyond_the_scene_s_declared_memory_does_not_run(tmp_path, m
     (scene,) = [s for s in ladder.case_scenes(case, "f", top="FE") if s.name == "f-contact"]
     declared = scene.memory_for("quick") * GB
     monkeypatch.setattr(rungs, "available_memory", lambda: 100 * declared)
-    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs: 2 * declared)
+    monkeypatch.setattr(rungs, "predicted_memory", lambda ndofs, *_: 2 * declared)
     monkeypatch.setattr(fe_contact, "solve_level", no_solve)
     (result,), _ = run_scenes([scene], "quick", tmp_path, show_progress=False)
     assert not result.error, result.error
@@ -181,6 +181,26 @@ def test_the_memory_of_a_level_is_predicted_from_its_dofs():
     assert rungs.predicted_memory(100_000) == rungs.BYTES_PER_DOF * 100_000
     assert rungs.predicted_memory(200_000) == 2 * rungs.predicted_memory(100_000)
     assert 0 < rungs.available_memory()
+
+
+def test_a_screw_module_meshes_each_contact_in_a_slab_at_its_own_b_over_h():
+    """The screw module of a case file: the elliptic slabs rungs.MODULE_SLAB about each contact's ellipse and each
+    contact at its own b / h (its b over the largest b of the module's balls); a guide keeps the slabs of
+    docs/fe_b2b.md on one size.  The axes of the contacts on one groove scale as Hertz's b ~ F^(1/3) (Johnson 1985
+    eq 4.22; the contact angles of a side differ by the deviations only)."""
+    from ballbench.validation.studies import fe_b2b_screw
+
+    case = rungs.module_fe(case_file.load(paths.ROOT / "examples" / "catalogue" / "screw_40x20.toml"))
+    assert case.fe.fine_ellipse == rungs.MODULE_SLAB and case.fe.per_contact
+    assert all(level.fine_radius is None for level in case.fe.levels.quick)
+    forces = np.asarray(fe_b2b_screw.low_order(case)[2].normal_force)
+    b = fe_b2b_screw.module_axes(case)[:, :, 1]
+    for pair in ((0, 1), (2, 3)):  # (SL, SR) on the screw, (NR, NL) on the nut
+        np.testing.assert_allclose(b[:, pair[0]] / b[:, pair[1]],
+                                   np.cbrt(forces[:, pair[0]] / forces[:, pair[1]]), rtol=1e-2)
+    assert np.ptp(b / b.max()) > 0.2  # the module's contacts differ: the sizes do too
+    guide = rungs.module_fe(case_file.load(paths.ROOT / "examples" / "catalogue" / "guide_15_light.toml"))
+    assert guide.fe.fine_ellipse == (0.6, 1.3, 0.5) and not guide.fe.per_contact
 
 
 def test_the_quick_study_of_a_screw_contact_keeps_its_finest_level_within_the_cap(monkeypatch):
