@@ -90,8 +90,8 @@ def _net_load(load, pair_direction, forces, behind, ahead):
 
 def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float = 0.0,  # noqa: C901 - one time integration: its Moreau step, active set and the stop tests
           mass=SOLID_SPHERE, settle_tolerance: float = 1e-10, stall_speed: float = 1e-7, stick_fraction: float = 0.1,
-          window: int = 100, max_time: float = 1e4, max_steps: int = 5000, initial_step: float = 0.02,
-          max_change: float = 0.05, contact_names=None) -> Relaxation:
+          window: int = 100, stall_windows: int = 3, max_time: float = 1e4, max_steps: int = 5000,
+          initial_step: float = 0.02, max_change: float = 0.01, contact_names=None) -> Relaxation:
     """Relax ``n`` balls from the velocities ``x0`` (n, 3) [|v|] until they settle or clearly do not.
 
     Parameters
@@ -136,6 +136,7 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
     residual = math.inf
     window_slip, window_residual, window_start = None, math.inf, 0.0  # largest slip speeds of the current window
     window_heading, window_reversed = None, None  # slip directions at its start; reversed since
+    stall = None  # (contacts quiet in every window of the stall, windows, start time, largest slip speeds, scales)
     path = 0.0  # velocity path length travelled [|v|]
     steps = 0
     while steps < max_steps and time < max_time:
@@ -148,6 +149,9 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         worst = np.unravel_index(int(np.argmin(speeds)), speeds.shape)
         min_slip = min(min_slip, float(speeds[worst]))
         direction = pair_loads(x)
+        d_direction = None
+        if isinstance(direction, tuple):  # the pair loads' derivative in x: implicit in the step below
+            direction, d_direction = direction
         net = _net_load(load, direction, forces * touching, behind, ahead)
         rate = x[ahead, 0] - x[behind, 0]
         residual = float(np.max(np.abs(net)))
@@ -165,6 +169,12 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         system = np.diag(mass / dt)
         for j in range(n):
             system[3 * j:3 * j + 3, 3 * j:3 * j + 3] -= jacobian[j]
+        if d_direction is not None:  # the friction of a touching pair turns with its slip: d (F direction) / d x
+            for k in np.flatnonzero(touching & (forces > 0.0)):
+                for side, ball in enumerate((behind[k], ahead[k])):
+                    for other, partner in enumerate((behind[k], ahead[k])):
+                        system[3 * ball:3 * ball + 3, 3 * partner:3 * partner + 3] -= (
+                            forces[k] * d_direction[k, side, :, other, :])
         columns = np.zeros((size, p))  # the load of a unit force of each pair
         for k in range(p):
             columns[3 * behind[k]:3 * behind[k] + 3, k] += direction[k, 0]
@@ -228,11 +238,19 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
             scale = window_slip.max(axis=1, keepdims=True)
             quiet = (window_slip < stick_fraction * scale) & window_reversed
             if quiet.any() and residual > 0.5 * window_residual and residual > 1e3 * settle_tolerance:
+                if stall is None or not (stall[0] & quiet).any():  # a stall starts (or another contact's)
+                    stall = (quiet, 0, window_start, window_slip, scale)
+                stall = (stall[0] & quiet, stall[1] + 1, stall[2], np.maximum(stall[3], window_slip),
+                         np.maximum(stall[4], scale))
+            else:
+                stall = None
+            if stall is not None and stall[1] >= stall_windows:
+                quiet, _, since, span_slip, scale = stall
                 where = ", ".join(f"ball {j} contact {names[c] if names else c}" for j, c in np.argwhere(quiet))
-                worst = np.unravel_index(int(np.argmin(np.where(quiet, window_slip / scale, np.inf))), quiet.shape)
-                return Relaxation(False, f"{STALL_REASON}: {where} slip at most {window_slip[worst]:.2g} |v| "
+                worst = np.unravel_index(int(np.argmin(np.where(quiet, span_slip / scale, np.inf))), quiet.shape)
+                return Relaxation(False, f"{STALL_REASON}: {where} slip at most {span_slip[worst]:.2g} |v| "
                                   f"(the ball's fastest contact {float(scale[worst[0], 0]):.2g} |v|) from t = "
-                                  f"{window_start:.4g} to {time:.4g} tau while the net load stays {residual:.2g} "
+                                  f"{since:.4g} to {time:.4g} tau while the net load stays {residual:.2g} "
                                   "mu F_ref", x, forces * touching, time, steps, residual, min_slip,
                                   (int(worst[0]), int(worst[1])))
             window_slip, window_residual, window_start, window_heading = None, residual, time, None

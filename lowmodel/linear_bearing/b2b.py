@@ -329,7 +329,21 @@ def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_
 
 
 RELAXATION_FAILED = "the relaxation settled, but Newton from its state did not converge"
+RELAXATION_PROBES = (0.95, 1.05, 1.1)  # mu / target where solve() relaxes beside a target whose relaxation stalls
 STEEL_DENSITY = 7850.0  # kg/m^3: the ball mass of the relaxation's time scale (lin2019 Table 1: steel)
+
+
+def _free_start(contacts: BallContacts):
+    """The relaxation's second start: every ball solved on its own (lin2019 eq 4), ``v_B`` their mean (touching
+    balls move together); None where a ball alone has no state."""
+    try:
+        free = single.solve(contacts)
+    except ConvergenceError:
+        return None
+    speed = contacts.groove_velocity
+    start = np.column_stack([free.ball_velocity / speed, free.omega * contacts.ball_radius / speed])
+    start[:, 0] = start[:, 0].mean()
+    return start
 
 
 def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | None = None, start=None,
@@ -338,10 +352,14 @@ def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | Non
     :mod:`lowmodel.b2b_relaxation`): lin2019 eq 4 with the friction map's loads at the current slip directions,
     the B2B loads of eqs 5-8 on touching pairs, their complementarity (eqs 9-10) at every time step.
 
-    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0`` (default: rolling at
-    v/2, the start of :func:`solve`); ``gaps`` as :func:`solve` (an open gap closing ends the run: a third
-    contact); ``density`` [kg/m^3] of the balls gives the time unit ``tau = m |v| / (mu F_ref)``.  ``options``
-    go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units ``mu F_ref`` (``F_ref`` the largest normal force).
+    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0``; default: rolling at
+    v/2 (the start of :func:`solve`) and, where that does not settle, every ball's own state (lin2019 eq 4 alone,
+    ``v_B`` their mean): the first that settles, else the account of the first with the second's appended (a
+    verdict is about the transients from these starts: a full-sliding state with a contact slipping far slower
+    than the transient's chatter may still exist, docs/b2b_bearing.md); ``gaps`` as :func:`solve` (an open gap
+    closing ends the run: a third contact); ``density`` [kg/m^3] of the balls gives the time unit
+    ``tau = m |v| / (mu F_ref)``.  ``options`` go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units
+    ``mu F_ref`` (``F_ref`` the largest normal force).
     """
     n = contacts.n_balls
     touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
@@ -364,20 +382,34 @@ def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | Non
 
     def pair_loads(x):
         u, squared = _slip_squared(x)
-        unit = u / np.sqrt(squared + _REGULARISATION ** 2)[:, None]
+        norm = np.sqrt(squared + _REGULARISATION ** 2)
+        unit = u / norm[:, None]
         direction = np.zeros((n - 1, 2, 3))
         direction[:, 0, 0], direction[:, 1, 0] = -1.0, 1.0  # eq 8: the force on the ball behind, ahead
         direction[:, :, 1:] = (-mu * unit)[:, None, :]  # its friction moment, the same on both (eq 8)
-        return direction
+        # its derivative: d (-mu unit) / d u = -mu (I - unit unit^T) / |dv|, u the sum over both balls (eq 5)
+        turn = -mu * (_IDENTITY_2 - unit[:, :, None] * unit[:, None, :]) / norm[:, None, None]
+        derivative = np.zeros((n - 1, 2, 3, 2, 3))
+        derivative[:, :, 1:, :, 1:] = turn[:, None, :, None, :]
+        return direction, derivative
 
-    if start is None:
-        start = initial_guess(contacts)[:, :3]
     mass = density * 4.0 / 3.0 * math.pi * contacts.ball_radius ** 3
     speed = abs(contacts.groove_velocity)
     tau = mass * speed / (mu * reference_force)
     open_gaps = None if gaps is None else _check_gaps(gaps, n, contacts.ball_radius)
     options.setdefault("contact_names", CONTACT_NAMES)
-    return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    if start is not None:
+        return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    first = relax(ball_loads, pair_loads, initial_guess(contacts)[:, :3], touching=live, gaps=open_gaps,
+                  gap_scale=speed * tau, **options)
+    free = None if first.settled else _free_start(contacts)
+    if free is None:
+        return first
+    second = relax(ball_loads, pair_loads, free, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    if second.settled:
+        return second
+    return dataclasses.replace(first, reason=f"{first.reason} (from rolling at v/2; from every ball's own state: "
+                                             f"{second.reason})")
 
 
 def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, failure: ConvergenceError,
@@ -388,10 +420,19 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
     the relaxation's (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
     relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
     base = str(failure).split(" (residual")[0]
-    if relaxation.settled:
+
+    def relaxed_start(relaxed, contacts_r):
         balls = np.zeros((layout.n_balls, N_UNKNOWNS))
-        balls[:, :3] = relaxation.velocities
-        start = layout.pack(with_slip_angles(balls, contacts), relaxation.forces)
+        balls[:, :3] = relaxed.velocities
+        return layout.pack(with_slip_angles(balls, contacts_r), relaxed.forces)
+
+    if not relaxation.settled:  # other starts (every ball on its own), then beside the target with a walk in mu
+        rescued, stops = _relaxed_elsewhere(contacts, layout, gaps, gap_tolerance, solve_at, relaxed_start, what)
+        if rescued is not None:
+            return rescued
+        failure = _with_gap(failure, stops)
+    if relaxation.settled:
+        start = relaxed_start(relaxation, contacts)
         try:
             z, residual, iterations = solve_at(contacts, start, f"{what}, from the relaxed state")
         except ConvergenceError as error:
@@ -413,6 +454,65 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
     stopped.relaxation = relaxation
     stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
     raise stopped from None
+
+
+def _relaxed_elsewhere(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, solve_at, relaxed_start,
+                       what: str):
+    """Where the relaxation at the target does not settle: relax at :data:`RELAXATION_PROBES` times the target
+    ``mu`` and walk in ``mu`` from a state found there to the target (:func:`lowmodel.linear_bearing.branch_end.walk`).
+    Returns ``(((z, residual, iterations), ContinuationPath) or None, stops)``, ``stops`` the walks that stopped:
+    (mu of the relaxed state, mu reached, smallest contact slip speed there [|v|], its ball, its contact)."""
+    target = contacts.friction_coefficient
+    stops = []
+
+    def at(mu_p):
+        return dataclasses.replace(contacts, friction_coefficient=mu_p)
+
+    for factor in RELAXATION_PROBES:
+        beside = at(target * factor)
+        relaxed = relax_state(beside, gaps, gap_tolerance=gap_tolerance)
+        if not relaxed.settled:
+            continue
+        try:
+            result = solve_at(beside, relaxed_start(relaxed, beside), f"{what}, from a relaxed state beside")
+        except ConvergenceError:
+            continue
+        reached, result, failed_at = branch_end.walk(lambda mu_p, z: solve_at(at(mu_p), z), target * factor,
+                                                     result[0], target)
+        if failed_at is None:
+            return (result, ContinuationPath((), "relaxation beside, mu", factor,
+                                             (ContinuationStep(1.0, int(result[2])),))), stops
+        slips = slip_speeds(layout.unpack(result[0])[0], at(reached))  # the evidence where the walk stops
+        ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
+        stops.append((target * factor, reached, float(slips[ball, contact]), int(ball), CONTACT_NAMES[contact]))
+    return None, stops
+
+
+def _with_gap(failure: ConvergenceError, stops) -> ConvergenceError:
+    """``failure`` (the account of :func:`_judged`) with the walks from relaxed states beside the target
+    (``stops``: (mu of the relaxed state, mu where the walk stopped, smallest slip speed there [|v|], ball,
+    contact)) as evidence; where the account was the end of the branch below the target and a walk from above
+    stops at a contact whose slip falls below :data:`lowmodel.linear_bearing.branch_end.STICK_SLIP`, the reason
+    is the gap between the two (full-sliding states again beyond)."""
+    if not stops:
+        return failure
+    evidence = "; ".join(f"a walk from the relaxed state at mu = {start:.6g} stops at mu = {mu:.6g}, contact "
+                         f"{name} of ball {ball} slipping at {slip:.3g} |v|" for start, mu, slip, ball, name in stops)
+    reason = failure.reason
+    below = [mu for side, mu, slip in getattr(failure, "stops", ()) if side == "below" and slip < branch_end.STICK_SLIP]
+    above = [(mu, slip, ball, name) for start, mu, slip, ball, name in stops if slip < branch_end.STICK_SLIP
+             and start > mu]
+    if below and above and "no full-sliding state found beyond" in reason:
+        low, (high, slip, ball, name) = max(below), min(above)
+        reason = (f"{STICK_REASON}: no full-sliding state between mu = {low:.6g} and {high:.6g} (a contact sticks; "
+                  f"full-sliding states again beyond: contact {name} of ball {ball} slips again from mu = "
+                  f"{high:.6g}, {slip:.3g} |v| there)")
+    message = str(failure).split(" (residual")[0]
+    error = ConvergenceError(f"{message}; {evidence}" + (f"; so: {reason}" if reason != failure.reason else ""),
+                             residual=failure.residual, iterations=failure.iterations, tolerance=failure.tolerance,
+                             reason=reason, last_converged=failure.last_converged)
+    error.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+    return error
 
 
 def solve_cases(contacts: BallContacts, balls_per_case: int, gaps=None, *, tolerance: float = 1e-12,

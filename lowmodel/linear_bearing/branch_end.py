@@ -109,4 +109,5 @@ def judge(failure: ConvergenceError, target: float, solve_from, probe, slip_at, 
                              residual=failure.residual, iterations=failure.iterations, tolerance=failure.tolerance,
                              reason=reason, last_converged=failure.last_converged)
     error.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+    error.stops = tuple(stops)  # (side, mu where a walk stopped, slip speed there): for a caller's further evidence
     raise error from None
