@@ -87,3 +87,19 @@ def test_a_branch_beyond_the_end_is_found_and_the_gap_named():
 
 def _slip(state, contacts):
     return np.hypot(state.slide, state.spin * contacts.semi_major) / abs(contacts.groove_velocity)
+
+
+def test_the_relaxation_agrees_with_the_gaps_and_the_states_beside_them():
+    # the independent oracle (lowmodel.b2b_relaxation) on the same balls: it settles on the state of b2b.solve
+    # where that converges (main: a "stall" at 0.265, 0.28, 0.31 -- a contact slipping at 1e-4..3e-4 |v| chattered
+    # at the step limit of 0.05 |v|), and does not settle inside the gaps (0.26, 0.30), where a contact stalls
+    for mu in (0.25, 0.265, 0.28, 0.31):
+        contacts = _case(mu)
+        state = b2b.solve(contacts, [0.0])
+        relaxed = b2b.relax_state(contacts, [0.0])
+        assert relaxed.settled, (mu, relaxed.reason)
+        reference = mu * float(contacts.normal_forces.max())
+        np.testing.assert_allclose(relaxed.forces * reference, state.b2b_force, atol=1e-7 * reference)
+    for mu in (0.26, 0.30):
+        relaxed = b2b.relax_state(_case(mu), [0.0])
+        assert not relaxed.settled and relaxed.reason.startswith("a contact stops sliding"), (mu, relaxed.reason)
