@@ -29,7 +29,15 @@ near a steady state the steps are Newton steps of the quasi-static equations wit
 The model enters through two functions (:func:`relax`), so the linear-bearing and the ball-screw B2B models
 share this module: ``ball_loads(x) -> (load (n, 3), jacobian (n, 3, 3), slip (n, c))`` the net friction load
 of every ball alone with its derivative and the slip speeds of its ``c`` contacts, and ``pair_loads(x) ->
-(p, 2, 3)`` the load on (the ball behind, the ball ahead) per unit normal force of each pair.
+(p, 2, 3)`` the load on (the ball behind, the ball ahead) per unit normal force of each pair, or that and its
+derivative in ``x`` ``(p, 2, 3, 2, 3)`` (the pair's friction turns with its slip: taken implicitly, as the balls'
+friction; explicit, the steps that grow near a steady state pass its rate and the balls never settle).
+
+A stall is called only when it persists (``stall_windows`` windows in a row, the same contact quiet in all) and
+a step changes the velocities by at most ``max_change`` = 0.01 |v|: a contact of a stable full-sliding state may
+slip at 1e-4 |v| while its ball's fastest contact slips at 0.5 |v| (light loads, near the end of a branch); with
+steps of 0.05 |v| the transient chattered about such a contact and read as a stall (docs/b2b_bearing.md,
+'Reasons that say what happened').
 """
 from __future__ import annotations
 
@@ -100,7 +108,8 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         every ball alone [mu F_ref] (the model's residual rows of the ball's equilibrium, friction from the slip
         directions of ``x``), its derivative in ``x`` and the contacts' slip vectors (slide, spin) [|v|]
     pair_loads : ``x -> (p, 2, 3)``: load on the ball behind and on the ball ahead per unit normal force of each
-        pair (the normal force and its friction, lin2019 eqs 5-8 / 56-59)
+        pair (the normal force and its friction, lin2019 eqs 5-8 / 56-59); or ``(that, derivative)`` with
+        ``derivative[k, side, row, other, col]`` = d load[k, side, row] / d x[ball ``other`` of pair k, col]
     touching : bool (p,), the pairs in contact at the start (pairs ``(j, j+1)``, and ``(n-1, 0)`` when ``p = n``:
         a ring)
     gaps : (p,) gaps of the open pairs [m] (default: open pairs never close), ``gap_scale`` [m per |v| tau]
@@ -110,7 +119,8 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
     stall_speed : a contact slip speed [|v|] below which the contact has stopped sliding
     stick_fraction, window : a contact whose slip speed stays below ``stick_fraction`` times the largest of its
         ball over ``window`` steps, whose slip direction reverses in them, while the net load does not halve, has
-        stopped sliding too (it chatters about zero slip: it sticks);  contact_names : names of a ball's contacts
+        stopped sliding too (it chatters about zero slip: it sticks), once this holds for ``stall_windows``
+        windows in a row with the same contact quiet in each;  contact_names : names of a ball's contacts
         for the messages (default indices)
     max_time, max_steps : limits of the run [tau], [steps]; initial_step [tau]; max_change : largest velocity
         change of a step [|v|] (the transient is followed, not skipped, while it moves)
