@@ -415,9 +415,11 @@ def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | Non
 def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, failure: ConvergenceError,
                      solve_at, what: str):
     """After the continuation and the walks of :func:`_judged` failed with ``failure``: relax in time
-    (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; otherwise
-    ConvergenceError with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else
-    the relaxation's (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
+    (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; else (not at a
+    spin-capacity ratio < 1, which holds for any mu) relaxed states beside the target and walks in mu from them
+    (:func:`_relaxed_elsewhere`, their stops the evidence of a gap: :func:`_with_gap`); otherwise ConvergenceError
+    with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else the relaxation's
+    (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
     relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
     base = str(failure).split(" (residual")[0]
 
@@ -426,11 +428,12 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
         balls[:, :3] = relaxed.velocities
         return layout.pack(with_slip_angles(balls, contacts_r), relaxed.forces)
 
-    if not relaxation.settled:  # other starts (every ball on its own), then beside the target with a walk in mu
+    if not relaxation.settled and not failure.reason.startswith(SPIN_CAPACITY_REASON):  # the bound holds for any mu
         rescued, stops = _relaxed_elsewhere(contacts, layout, gaps, gap_tolerance, solve_at, relaxed_start, what)
         if rescued is not None:
             return rescued
         failure = _with_gap(failure, stops)
+        base = str(failure).split(" (residual")[0]
     if relaxation.settled:
         start = relaxed_start(relaxation, contacts)
         try:
