@@ -322,8 +322,10 @@ def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_
         except ConvergenceError:
             return solve_at(at(mu_p), pack(solve_free(at(mu_p), reference_force, tolerance, max_iterations)[0]))
 
-    def slip_at(z, mu_p):
-        return float(np.min(slip_speeds(balls_of(z), at(mu_p))))
+    def slip_at(z, mu_p):  # the smallest contact slip speed and its contact, the evidence of a walk's stop
+        slips = slip_speeds(balls_of(z), at(mu_p))
+        ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
+        return float(slips[ball, contact]), f"{CONTACT_NAMES[contact]} of ball {ball}"
 
     return branch_end.judge(failure, target, solve_from, probe, slip_at, stick_reason=STICK_REASON)
 
@@ -428,7 +430,10 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
         balls[:, :3] = relaxed.velocities
         return layout.pack(with_slip_angles(balls, contacts_r), relaxed.forces)
 
-    if not relaxation.settled and not failure.reason.startswith(SPIN_CAPACITY_REASON):  # the bound holds for any mu
+    searched = (failure.reason.startswith(SPIN_CAPACITY_REASON)  # the bound holds for any mu
+                or "full-sliding states again beyond" in failure.reason  # a gap, its ends established by the walks
+                or "full-sliding states exist beyond" in failure.reason)
+    if not relaxation.settled and not searched:
         rescued, stops = _relaxed_elsewhere(contacts, layout, gaps, gap_tolerance, solve_at, relaxed_start, what)
         if rescued is not None:
             return rescued

@@ -54,14 +54,22 @@ def walk(solve_from, start: float, state, target: float, steps: int = WALK_STEPS
     return reached, result, aim
 
 
+def _slip(value):
+    """``slip_at``'s answer as (slip speed, where): a float, or (float, the contact's name)."""
+    if isinstance(value, tuple):
+        return float(value[0]), f" (contact {value[1]})"
+    return float(value), ""
+
+
 def judge(failure: ConvergenceError, target: float, solve_from, probe, slip_at, *, stick_reason: str):
     """Rescue or classify ``failure`` (a ConvergenceError of the solve at friction coefficient ``target``).
 
     ``solve_from(mu, z0)``: Newton at ``mu`` from ``z0``; ``probe(mu)``: a solve at ``mu`` from the cheap starts;
     both return ``(z, residual, iterations)`` or raise ConvergenceError.  ``slip_at(z, mu)``: the smallest contact
-    slip speed [|v|] of state ``z`` at ``mu``.  ``failure.last_state`` / ``failure.last_contacts`` (from
-    :func:`lowmodel.linear_bearing.ball.solve_with_continuation`) give the walk's start when the furthest
-    path was the ``mu`` path (``failure.last_mu``, else None).  Returns ``((z, residual, iterations), start_mu)``
+    slip speed [|v|] of state ``z`` at ``mu``, or (that, the name of its contact) for the evidence.
+    ``failure.last_state`` / ``failure.last_contacts`` (from
+    :func:`lowmodel.linear_bearing.ball.solve_with_continuation`) give the walk's start when the furthest path was
+    the ``mu`` path (``failure.last_mu``, else None).  Returns ``((z, residual, iterations), start_mu)``
     when the target is reached; raises ConvergenceError with the reason established otherwise.
     """
     message = str(failure).split(" (residual")[0]
@@ -72,7 +80,7 @@ def judge(failure: ConvergenceError, target: float, solve_from, probe, slip_at, 
         reached, result, failed_at = walk(solve_from, start_mu, failure.last_state, target)
         if failed_at is None:
             return result, start_mu
-        stops.append(("below" if start_mu < target else "above", reached, slip_at(result[0], reached)))
+        stops.append(("below" if start_mu < target else "above", reached, *_slip(slip_at(result[0], reached))))
     found = []
     for factor in PROBES:
         try:
@@ -83,9 +91,10 @@ def judge(failure: ConvergenceError, target: float, solve_from, probe, slip_at, 
         reached, result, failed_at = walk(solve_from, mu_p, z_p, target)
         if failed_at is None:
             return result, mu_p
-        stops.append(("below" if mu_p < target else "above", reached, slip_at(result[0], reached)))
-    evidence += [f"a walk from {side} stops at mu = {mu:.6g} with a slip speed of {slip:.3g} |v|"
-                 for side, mu, slip in stops]
+        stops.append(("below" if mu_p < target else "above", reached, *_slip(slip_at(result[0], reached))))
+    evidence += [f"a walk from {side} stops at mu = {mu:.6g} with a slip speed of {slip:.3g} |v|{where}"
+                 for side, mu, slip, where in stops]
+    stops = [stop[:3] for stop in stops]
     if found:
         evidence.append("direct solves converge at mu = " + ", ".join(f"{mu:.6g}" for mu, _ in found))
     sticking = [(side, mu) for side, mu, slip in stops if slip < STICK_SLIP]

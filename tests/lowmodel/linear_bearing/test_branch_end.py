@@ -35,6 +35,9 @@ def test_a_gap_between_full_sliding_branches_is_named_as_a_gap():
     assert reason.startswith(STICK_REASON) and "full-sliding states again beyond" in reason
     low, high = (float(v) for v in reason.split("between mu = ")[1].split(" (")[0].split(" and "))
     assert 0.25 < low < 0.26 < high < 0.265
+    # the evidence names the contact whose slip falls to 0 where each walk stops, and its slip speed
+    assert "stops at mu = %.6g with a slip speed of" % low in str(caught.value)
+    assert "(contact BL of ball 0)" in str(caught.value)
     # the evidence, checked apart from the solver's verdict: just outside the gap the solves converge, and the
     # slip speed of a contact falls towards 0 as mu approaches either end of the gap
     slips = {}
