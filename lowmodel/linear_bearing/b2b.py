@@ -478,7 +478,7 @@ def _relaxed_elsewhere(contacts: BallContacts, layout: ChainLayout, gaps, gap_to
 
     for factor in RELAXATION_PROBES:
         beside = at(target * factor)
-        relaxed = relax_state(beside, gaps, gap_tolerance=gap_tolerance)
+        relaxed = relax_state(beside, gaps, gap_tolerance=gap_tolerance, start=initial_guess(beside)[:, :3])
         if not relaxed.settled:
             continue
         try:
