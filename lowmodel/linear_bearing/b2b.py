@@ -33,6 +33,12 @@ of :mod:`lowmodel.b2b_chain` (shared with the ball screw and the FE-informed
 models), with the B2B loads of :func:`b2b_terms`.  Ball-to-groove normal forces
 are not changed by the B2B forces (lin2019 Sec 2.2, "decoupled").
 
+One concept in one file (about 630 lines): the lin2019 B2B model of the linear bearing, its solve and the
+fallbacks that establish why a solve fails (the continuation, the walks of
+:mod:`lowmodel.linear_bearing.branch_end`, the relaxation in time of :func:`relax_state`, which shares the model's
+friction terms, and the Newton closures of :func:`solve`); split, they would cross private names or import each
+other.
+
 Time evolution (:func:`simulate_gaps`, lin2019 Fig 10): between events the
 quasi-static velocities are constant, so gaps move linearly; events are a
 gap closing (exact time) or a pair separating (read from the complementarity
@@ -331,7 +337,6 @@ def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_
 
 
 RELAXATION_FAILED = "the relaxation settled, but Newton from its state did not converge"
-RELAXATION_PROBES = (0.95, 1.05, 1.1)  # mu / target where solve() relaxes beside a target whose relaxation stalls
 STEEL_DENSITY = 7850.0  # kg/m^3: the ball mass of the relaxation's time scale (lin2019 Table 1: steel)
 
 
@@ -382,18 +387,11 @@ def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | Non
         jacobian = np.matmul(terms.jacobian[:, :3, 3:], d_phi)  # d load / d phi . d phi / d x
         return terms.residual[:, :3], jacobian, np.stack([terms.slide, terms.spin_velocity], axis=-1)
 
-    def pair_loads(x):
-        u, squared = _slip_squared(x)
-        norm = np.sqrt(squared + _REGULARISATION ** 2)
-        unit = u / norm[:, None]
-        direction = np.zeros((n - 1, 2, 3))
-        direction[:, 0, 0], direction[:, 1, 0] = -1.0, 1.0  # eq 8: the force on the ball behind, ahead
-        direction[:, :, 1:] = (-mu * unit)[:, None, :]  # its friction moment, the same on both (eq 8)
-        # its derivative: d (-mu unit) / d u = -mu (I - unit unit^T) / |dv|, u the sum over both balls (eq 5)
-        turn = -mu * (_IDENTITY_2 - unit[:, :, None] * unit[:, None, :]) / norm[:, None, None]
+    def pair_loads(x):  # eqs 5-8 per unit force (b2b_terms): the loads on the balls behind and ahead, and their
+        _, turn, d_force, _ = b2b_terms(x, np.ones(n - 1), mu)  # turning with the B2B slip, the same on both balls
         derivative = np.zeros((n - 1, 2, 3, 2, 3))
         derivative[:, :, 1:, :, 1:] = turn[:, None, :, None, :]
-        return direction, derivative
+        return d_force.transpose(0, 2, 1), derivative
 
     mass = density * 4.0 / 3.0 * math.pi * contacts.ball_radius ** 3
     speed = abs(contacts.groove_velocity)
@@ -419,7 +417,8 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
     """After the continuation and the walks of :func:`_judged` failed with ``failure``: relax in time
     (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; else (not at a
     spin-capacity ratio < 1, which holds for any mu) relaxed states beside the target and walks in mu from them
-    (:func:`_relaxed_elsewhere`, their stops the evidence of a gap: :func:`_with_gap`); otherwise ConvergenceError
+    (:func:`lowmodel.linear_bearing.branch_end.relaxed_beside`, their stops the evidence of a gap:
+    :func:`lowmodel.linear_bearing.branch_end.with_gap`); otherwise ConvergenceError
     with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else the relaxation's
     (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
     relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
@@ -434,10 +433,24 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
                 or "full-sliding states again beyond" in failure.reason  # a gap, its ends established by the walks
                 or "full-sliding states exist beyond" in failure.reason)
     if not relaxation.settled and not searched:
-        rescued, stops = _relaxed_elsewhere(contacts, layout, gaps, gap_tolerance, solve_at, relaxed_start, what)
-        if rescued is not None:
-            return rescued
-        failure = _with_gap(failure, stops)
+        def at(mu_p):
+            return dataclasses.replace(contacts, friction_coefficient=mu_p)
+
+        def relax_from(mu_p):  # a relaxed state's Newton start at mu_p (from rolling at v/2), None if unsettled
+            relaxed = relax_state(at(mu_p), gaps, gap_tolerance=gap_tolerance, start=initial_guess(at(mu_p))[:, :3])
+            return relaxed_start(relaxed, at(mu_p)) if relaxed.settled else None
+
+        def slip_at(z, mu_p):
+            slips = slip_speeds(layout.unpack(z)[0], at(mu_p))
+            ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
+            return float(slips[ball, contact]), f"{CONTACT_NAMES[contact]} of ball {ball}"
+
+        result, factor, stops = branch_end.relaxed_beside(
+            contacts.friction_coefficient, relax_from, lambda mu_p, z: solve_at(at(mu_p), z), slip_at)
+        if result is not None:
+            return result, ContinuationPath((), "relaxation beside, mu", factor, (ContinuationStep(1.0,
+                                                                                                    int(result[2])),))
+        failure = branch_end.with_gap(failure, stops, stick_reason=STICK_REASON)
         base = str(failure).split(" (residual")[0]
     if relaxation.settled:
         start = relaxed_start(relaxation, contacts)
@@ -462,65 +475,6 @@ def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tole
     stopped.relaxation = relaxation
     stopped.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
     raise stopped from None
-
-
-def _relaxed_elsewhere(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, solve_at, relaxed_start,
-                       what: str):
-    """Where the relaxation at the target does not settle: relax at :data:`RELAXATION_PROBES` times the target
-    ``mu`` and walk in ``mu`` from a state found there to the target (:func:`lowmodel.linear_bearing.branch_end.walk`).
-    Returns ``(((z, residual, iterations), ContinuationPath) or None, stops)``, ``stops`` the walks that stopped:
-    (mu of the relaxed state, mu reached, smallest contact slip speed there [|v|], its ball, its contact)."""
-    target = contacts.friction_coefficient
-    stops = []
-
-    def at(mu_p):
-        return dataclasses.replace(contacts, friction_coefficient=mu_p)
-
-    for factor in RELAXATION_PROBES:
-        beside = at(target * factor)
-        relaxed = relax_state(beside, gaps, gap_tolerance=gap_tolerance, start=initial_guess(beside)[:, :3])
-        if not relaxed.settled:
-            continue
-        try:
-            result = solve_at(beside, relaxed_start(relaxed, beside), f"{what}, from a relaxed state beside")
-        except ConvergenceError:
-            continue
-        reached, result, failed_at = branch_end.walk(lambda mu_p, z: solve_at(at(mu_p), z), target * factor,
-                                                     result[0], target)
-        if failed_at is None:
-            return (result, ContinuationPath((), "relaxation beside, mu", factor,
-                                             (ContinuationStep(1.0, int(result[2])),))), stops
-        slips = slip_speeds(layout.unpack(result[0])[0], at(reached))  # the evidence where the walk stops
-        ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
-        stops.append((target * factor, reached, float(slips[ball, contact]), int(ball), CONTACT_NAMES[contact]))
-    return None, stops
-
-
-def _with_gap(failure: ConvergenceError, stops) -> ConvergenceError:
-    """``failure`` (the account of :func:`_judged`) with the walks from relaxed states beside the target
-    (``stops``: (mu of the relaxed state, mu where the walk stopped, smallest slip speed there [|v|], ball,
-    contact)) as evidence; where the account was the end of the branch below the target and a walk from above
-    stops at a contact whose slip falls below :data:`lowmodel.linear_bearing.branch_end.STICK_SLIP`, the reason
-    is the gap between the two (full-sliding states again beyond)."""
-    if not stops:
-        return failure
-    evidence = "; ".join(f"a walk from the relaxed state at mu = {start:.6g} stops at mu = {mu:.6g}, contact "
-                         f"{name} of ball {ball} slipping at {slip:.3g} |v|" for start, mu, slip, ball, name in stops)
-    reason = failure.reason
-    below = [mu for side, mu, slip in getattr(failure, "stops", ()) if side == "below" and slip < branch_end.STICK_SLIP]
-    above = [(mu, slip, ball, name) for start, mu, slip, ball, name in stops if slip < branch_end.STICK_SLIP
-             and start > mu]
-    if below and above and "no full-sliding state found beyond" in reason:
-        low, (high, slip, ball, name) = max(below), min(above)
-        reason = (f"{STICK_REASON}: no full-sliding state between mu = {low:.6g} and {high:.6g} (a contact sticks; "
-                  f"full-sliding states again beyond: contact {name} of ball {ball} slips again from mu = "
-                  f"{high:.6g}, {slip:.3g} |v| there)")
-    message = str(failure).split(" (residual")[0]
-    error = ConvergenceError(f"{message}; {evidence}" + (f"; so: {reason}" if reason != failure.reason else ""),
-                             residual=failure.residual, iterations=failure.iterations, tolerance=failure.tolerance,
-                             reason=reason, last_converged=failure.last_converged)
-    error.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
-    return error
 
 
 def solve_cases(contacts: BallContacts, balls_per_case: int, gaps=None, *, tolerance: float = 1e-12,

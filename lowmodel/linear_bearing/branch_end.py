@@ -25,12 +25,14 @@ import math
 
 from ballbench.lowmodel.errors import ConvergenceError
 
-__all__ = ["PROBES", "STICK_SLIP", "WALK_STEPS", "NOT_REACHED_REASON", "walk", "judge"]
+__all__ = ["PROBES", "STICK_SLIP", "WALK_STEPS", "NOT_REACHED_REASON", "RELAXATION_PROBES", "walk", "judge",
+           "relaxed_beside", "with_gap"]
 
 PROBES = (0.98, 0.99, 1.01, 1.02, 1.05, 1.1)  # mu / target of the probe solves
 STICK_SLIP = 1e-3  # |v|: a slip speed below this where a walk stops is a contact that stops sliding
 WALK_STEPS = 20  # step halvings of a walk: its stop is resolved to ~2^-20 of the distance walked
 NOT_REACHED_REASON = "not reached: full-sliding states exist beside the target"
+RELAXATION_PROBES = (0.95, 1.05, 1.1)  # mu / target of the relaxations beside a target whose relaxation stalls
 
 
 def walk(solve_from, start: float, state, target: float, steps: int = WALK_STEPS):
@@ -120,3 +122,52 @@ def judge(failure: ConvergenceError, target: float, solve_from, probe, slip_at, 
     error.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
     error.stops = tuple(stops)  # (side, mu where a walk stopped, slip speed there): for a caller's further evidence
     raise error from None
+
+
+def relaxed_beside(target: float, relax_from, solve_from, slip_at):
+    """4. where the relaxation in time does not settle at the target either: relax at :data:`RELAXATION_PROBES`
+    times the target and walk (:func:`walk`) from a state found there to the target.
+
+    ``relax_from(mu)``: the Newton start of a relaxed state at ``mu``, None where the relaxation does not settle;
+    ``solve_from`` and ``slip_at`` as :func:`judge` (``slip_at`` with the contact's name).  Returns ``((z, residual,
+    iterations), factor, stops)`` when a walk reaches the target, else ``(None, None, stops)``; ``stops``: (mu of
+    the relaxed state, mu where its walk stopped, the smallest contact slip speed there [|v|], its contact).
+    """
+    stops = []
+    for factor in RELAXATION_PROBES:
+        start = relax_from(target * factor)
+        if start is None:
+            continue
+        try:
+            z0 = solve_from(target * factor, start)[0]
+        except ConvergenceError:
+            continue
+        reached, result, failed_at = walk(solve_from, target * factor, z0, target)
+        if failed_at is None:
+            return result, factor, stops
+        stops.append((target * factor, reached, *_slip(slip_at(result[0], reached))))
+    return None, None, stops
+
+
+def with_gap(failure: ConvergenceError, stops, *, stick_reason: str) -> ConvergenceError:
+    """``failure`` (the account of :func:`judge`) with the walks of :func:`relaxed_beside` (``stops``) as evidence;
+    where the account was the end of the branch below the target and a walk from above stops at a contact whose slip
+    falls below :data:`STICK_SLIP`, the reason is the gap between the two (full-sliding states again beyond), naming
+    that contact."""
+    if not stops:
+        return failure
+    evidence = "; ".join(f"a walk from the relaxed state at mu = {start:.6g} stops at mu = {mu:.6g} with a slip "
+                         f"speed of {slip:.3g} |v|{where}" for start, mu, slip, where in stops)
+    reason = failure.reason
+    below = [mu for side, mu, slip in getattr(failure, "stops", ()) if side == "below" and slip < STICK_SLIP]
+    above = [(mu, slip, where) for start, mu, slip, where in stops if slip < STICK_SLIP and start > mu]
+    if below and above and "no full-sliding state found beyond" in reason:
+        low, (high, slip, where) = max(below), min(above)
+        reason = (f"{stick_reason}: no full-sliding state between mu = {low:.6g} and {high:.6g} (a contact sticks; "
+                  f"full-sliding states again beyond: from mu = {high:.6g}, slip speed {slip:.3g} |v|{where} there)")
+    message = str(failure).split(" (residual")[0]
+    error = ConvergenceError(f"{message}; {evidence}" + (f"; so: {reason}" if reason != failure.reason else ""),
+                             residual=failure.residual, iterations=failure.iterations, tolerance=failure.tolerance,
+                             reason=reason, last_converged=failure.last_converged)
+    error.min_slip_speed = getattr(failure, "min_slip_speed", math.nan)
+    return error

@@ -10,6 +10,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.linear_bearing.ball import N_UNKNOWNS, with_slip_angles
+from ballbench.lowmodel.linear_bearing.contacts import spin_capacity_ratio
 from ballbench.lowmodel.solvers import newton
 
 
@@ -109,8 +110,6 @@ def test_an_open_gap_that_closes_is_a_third_contact():
 def _hard_cases(count=40, seed=36):
     """Two touching balls of lin2019 Table 1 near the four-point limit: theta 1-3 deg, rho -0.95..-0.5, N_y 128 N,
     mu 0.05-0.604, kept where the spin-capacity ratio lies in (1, 2) (seeded)."""
-    from ballbench.lowmodel.linear_bearing.contacts import spin_capacity_ratio
-
     rng = np.random.default_rng(seed)
     cases = []
     while len(cases) < count:
