@@ -17,7 +17,11 @@ these apart (two touching balls with a gap between mu = 0.2522 and 0.2625 were r
 3. the reason: a contact stopping on the way and no state beyond: ``STICK_REASON`` (the branch ends); stopping
    on both sides: ``STICK_REASON`` with the gap's ends (full-sliding states again beyond); no slip near 0 but
    states found beside the target: :data:`NOT_REACHED_REASON` (a solver failure, not an end of the model);
-   else the continuation's own reason marked unconfirmed.
+   else the continuation's own reason marked unconfirmed;
+4. where the relaxation in time does not settle at the target either (:func:`relaxed_beside`, called by the model's
+   solve): relaxed states at :data:`RELAXATION_PROBES` times the target and walks from them; a walk from above that
+   stops at a contact whose slip falls below :data:`STICK_SLIP` makes an end of the branch below a gap
+   (:func:`with_gap`).  Every walk's stop names its slowest contact and its slip speed.
 """
 from __future__ import annotations
 
