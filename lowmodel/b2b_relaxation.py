@@ -29,7 +29,15 @@ near a steady state the steps are Newton steps of the quasi-static equations wit
 The model enters through two functions (:func:`relax`), so the linear-bearing and the ball-screw B2B models
 share this module: ``ball_loads(x) -> (load (n, 3), jacobian (n, 3, 3), slip (n, c))`` the net friction load
 of every ball alone with its derivative and the slip speeds of its ``c`` contacts, and ``pair_loads(x) ->
-(p, 2, 3)`` the load on (the ball behind, the ball ahead) per unit normal force of each pair.
+(p, 2, 3)`` the load on (the ball behind, the ball ahead) per unit normal force of each pair, or that and its
+derivative in ``x`` ``(p, 2, 3, 2, 3)`` (the pair's friction turns with its slip: taken implicitly, as the balls'
+friction; explicit, the steps that grow near a steady state pass its rate and the balls never settle).
+
+A stall is called only when it persists (``stall_windows`` windows in a row, the same contact quiet in all) and
+a step changes the velocities by at most ``max_change`` = 0.01 |v|: a contact of a stable full-sliding state may
+slip at 1e-4 |v| while its ball's fastest contact slips at 0.5 |v| (light loads, near the end of a branch); with
+steps of 0.05 |v| the transient chattered about such a contact and read as a stall (docs/b2b_bearing.md,
+'Reasons that say what happened').
 """
 from __future__ import annotations
 
@@ -90,8 +98,8 @@ def _net_load(load, pair_direction, forces, behind, ahead):
 
 def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float = 0.0,  # noqa: C901 - one time integration: its Moreau step, active set and the stop tests
           mass=SOLID_SPHERE, settle_tolerance: float = 1e-10, stall_speed: float = 1e-7, stick_fraction: float = 0.1,
-          window: int = 100, max_time: float = 1e4, max_steps: int = 5000, initial_step: float = 0.02,
-          max_change: float = 0.05, contact_names=None) -> Relaxation:
+          window: int = 100, stall_windows: int = 3, max_time: float = 1e4, max_steps: int = 5000,
+          initial_step: float = 0.02, max_change: float = 0.01, contact_names=None) -> Relaxation:
     """Relax ``n`` balls from the velocities ``x0`` (n, 3) [|v|] until they settle or clearly do not.
 
     Parameters
@@ -100,7 +108,8 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         every ball alone [mu F_ref] (the model's residual rows of the ball's equilibrium, friction from the slip
         directions of ``x``), its derivative in ``x`` and the contacts' slip vectors (slide, spin) [|v|]
     pair_loads : ``x -> (p, 2, 3)``: load on the ball behind and on the ball ahead per unit normal force of each
-        pair (the normal force and its friction, lin2019 eqs 5-8 / 56-59)
+        pair (the normal force and its friction, lin2019 eqs 5-8 / 56-59); or ``(that, derivative)`` with
+        ``derivative[k, side, row, other, col]`` = d load[k, side, row] / d x[ball ``other`` of pair k, col]
     touching : bool (p,), the pairs in contact at the start (pairs ``(j, j+1)``, and ``(n-1, 0)`` when ``p = n``:
         a ring)
     gaps : (p,) gaps of the open pairs [m] (default: open pairs never close), ``gap_scale`` [m per |v| tau]
@@ -110,7 +119,8 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
     stall_speed : a contact slip speed [|v|] below which the contact has stopped sliding
     stick_fraction, window : a contact whose slip speed stays below ``stick_fraction`` times the largest of its
         ball over ``window`` steps, whose slip direction reverses in them, while the net load does not halve, has
-        stopped sliding too (it chatters about zero slip: it sticks);  contact_names : names of a ball's contacts
+        stopped sliding too (it chatters about zero slip: it sticks), once this holds for ``stall_windows``
+        windows in a row with the same contact quiet in each;  contact_names : names of a ball's contacts
         for the messages (default indices)
     max_time, max_steps : limits of the run [tau], [steps]; initial_step [tau]; max_change : largest velocity
         change of a step [|v|] (the transient is followed, not skipped, while it moves)
@@ -136,6 +146,7 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
     residual = math.inf
     window_slip, window_residual, window_start = None, math.inf, 0.0  # largest slip speeds of the current window
     window_heading, window_reversed = None, None  # slip directions at its start; reversed since
+    stall = None  # (contacts quiet in every window of the stall, windows, start time, largest slip speeds, scales)
     path = 0.0  # velocity path length travelled [|v|]
     steps = 0
     while steps < max_steps and time < max_time:
@@ -148,6 +159,9 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         worst = np.unravel_index(int(np.argmin(speeds)), speeds.shape)
         min_slip = min(min_slip, float(speeds[worst]))
         direction = pair_loads(x)
+        d_direction = None
+        if isinstance(direction, tuple):  # the pair loads' derivative in x: implicit in the step below
+            direction, d_direction = direction
         net = _net_load(load, direction, forces * touching, behind, ahead)
         rate = x[ahead, 0] - x[behind, 0]
         residual = float(np.max(np.abs(net)))
@@ -165,6 +179,12 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
         system = np.diag(mass / dt)
         for j in range(n):
             system[3 * j:3 * j + 3, 3 * j:3 * j + 3] -= jacobian[j]
+        if d_direction is not None:  # the friction of a touching pair turns with its slip: d (F direction) / d x
+            for k in np.flatnonzero(touching & (forces > 0.0)):
+                for side, ball in enumerate((behind[k], ahead[k])):
+                    for other, partner in enumerate((behind[k], ahead[k])):
+                        system[3 * ball:3 * ball + 3, 3 * partner:3 * partner + 3] -= (
+                            forces[k] * d_direction[k, side, :, other, :])
         columns = np.zeros((size, p))  # the load of a unit force of each pair
         for k in range(p):
             columns[3 * behind[k]:3 * behind[k] + 3, k] += direction[k, 0]
@@ -228,11 +248,19 @@ def relax(ball_loads, pair_loads, x0, *, touching, gaps=None, gap_scale: float =
             scale = window_slip.max(axis=1, keepdims=True)
             quiet = (window_slip < stick_fraction * scale) & window_reversed
             if quiet.any() and residual > 0.5 * window_residual and residual > 1e3 * settle_tolerance:
+                if stall is None or not (stall[0] & quiet).any():  # a stall starts (or another contact's)
+                    stall = (quiet, 0, window_start, window_slip, scale)
+                stall = (stall[0] & quiet, stall[1] + 1, stall[2], np.maximum(stall[3], window_slip),
+                         np.maximum(stall[4], scale))
+            else:
+                stall = None
+            if stall is not None and stall[1] >= stall_windows:
+                quiet, _, since, span_slip, scale = stall
                 where = ", ".join(f"ball {j} contact {names[c] if names else c}" for j, c in np.argwhere(quiet))
-                worst = np.unravel_index(int(np.argmin(np.where(quiet, window_slip / scale, np.inf))), quiet.shape)
-                return Relaxation(False, f"{STALL_REASON}: {where} slip at most {window_slip[worst]:.2g} |v| "
+                worst = np.unravel_index(int(np.argmin(np.where(quiet, span_slip / scale, np.inf))), quiet.shape)
+                return Relaxation(False, f"{STALL_REASON}: {where} slip at most {span_slip[worst]:.2g} |v| "
                                   f"(the ball's fastest contact {float(scale[worst[0], 0]):.2g} |v|) from t = "
-                                  f"{window_start:.4g} to {time:.4g} tau while the net load stays {residual:.2g} "
+                                  f"{since:.4g} to {time:.4g} tau while the net load stays {residual:.2g} "
                                   "mu F_ref", x, forces * touching, time, steps, residual, min_slip,
                                   (int(worst[0]), int(worst[1])))
             window_slip, window_residual, window_start, window_heading = None, residual, time, None

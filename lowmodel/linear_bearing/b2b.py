@@ -33,6 +33,12 @@ of :mod:`lowmodel.b2b_chain` (shared with the ball screw and the FE-informed
 models), with the B2B loads of :func:`b2b_terms`.  Ball-to-groove normal forces
 are not changed by the B2B forces (lin2019 Sec 2.2, "decoupled").
 
+One concept in one file (about 630 lines): the lin2019 B2B model of the linear bearing, its solve and the
+fallbacks that establish why a solve fails (the continuation, the walks of
+:mod:`lowmodel.linear_bearing.branch_end`, the relaxation in time of :func:`relax_state`, which shares the model's
+friction terms, and the Newton closures of :func:`solve`); split, they would cross private names or import each
+other.
+
 Time evolution (:func:`simulate_gaps`, lin2019 Fig 10): between events the
 quasi-static velocities are constant, so gaps move linearly; events are a
 gap closing (exact time) or a pair separating (read from the complementarity
@@ -322,8 +328,10 @@ def _judged(failure, contacts, solve_at, start_guess, pack, balls_of, reference_
         except ConvergenceError:
             return solve_at(at(mu_p), pack(solve_free(at(mu_p), reference_force, tolerance, max_iterations)[0]))
 
-    def slip_at(z, mu_p):
-        return float(np.min(slip_speeds(balls_of(z), at(mu_p))))
+    def slip_at(z, mu_p):  # the smallest contact slip speed and its contact, the evidence of a walk's stop
+        slips = slip_speeds(balls_of(z), at(mu_p))
+        ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
+        return float(slips[ball, contact]), f"{CONTACT_NAMES[contact]} of ball {ball}"
 
     return branch_end.judge(failure, target, solve_from, probe, slip_at, stick_reason=STICK_REASON)
 
@@ -332,16 +340,33 @@ RELAXATION_FAILED = "the relaxation settled, but Newton from its state did not c
 STEEL_DENSITY = 7850.0  # kg/m^3: the ball mass of the relaxation's time scale (lin2019 Table 1: steel)
 
 
+def _free_start(contacts: BallContacts):
+    """The relaxation's second start: every ball solved on its own (lin2019 eq 4), ``v_B`` their mean (touching
+    balls move together); None where a ball alone has no state."""
+    try:
+        free = single.solve(contacts)
+    except ConvergenceError:
+        return None
+    speed = contacts.groove_velocity
+    start = np.column_stack([free.ball_velocity / speed, free.omega * contacts.ball_radius / speed])
+    start[:, 0] = start[:, 0].mean()
+    return start
+
+
 def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | None = None, start=None,
                 density: float = STEEL_DENSITY, **options) -> Relaxation:
     """Relax the balls of ``contacts`` in time under the friction laws of :func:`solve` (the existence oracle,
     :mod:`lowmodel.b2b_relaxation`): lin2019 eq 4 with the friction map's loads at the current slip directions,
     the B2B loads of eqs 5-8 on touching pairs, their complementarity (eqs 9-10) at every time step.
 
-    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0`` (default: rolling at
-    v/2, the start of :func:`solve`); ``gaps`` as :func:`solve` (an open gap closing ends the run: a third
-    contact); ``density`` [kg/m^3] of the balls gives the time unit ``tau = m |v| / (mu F_ref)``.  ``options``
-    go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units ``mu F_ref`` (``F_ref`` the largest normal force).
+    ``start`` (n, 3): the velocities ``(v_B, omega_x R_B, omega_y R_B) / |v|`` at ``t = 0``; default: rolling at
+    v/2 (the start of :func:`solve`) and, where that does not settle, every ball's own state (lin2019 eq 4 alone,
+    ``v_B`` their mean): the first that settles, else the account of the first with the second's appended (a
+    verdict is about the transients from these starts: a full-sliding state with a contact slipping far slower
+    than the transient's chatter may still exist, docs/b2b_bearing.md); ``gaps`` as :func:`solve` (an open gap
+    closing ends the run: a third contact); ``density`` [kg/m^3] of the balls gives the time unit
+    ``tau = m |v| / (mu F_ref)``.  ``options`` go to :func:`lowmodel.b2b_relaxation.relax`.  Loads in units
+    ``mu F_ref`` (``F_ref`` the largest normal force).
     """
     n = contacts.n_balls
     touching = touching_pairs(gaps, n, contacts.ball_radius, gap_tolerance)
@@ -362,36 +387,73 @@ def relax_state(contacts: BallContacts, gaps=None, *, gap_tolerance: float | Non
         jacobian = np.matmul(terms.jacobian[:, :3, 3:], d_phi)  # d load / d phi . d phi / d x
         return terms.residual[:, :3], jacobian, np.stack([terms.slide, terms.spin_velocity], axis=-1)
 
-    def pair_loads(x):
-        u, squared = _slip_squared(x)
-        unit = u / np.sqrt(squared + _REGULARISATION ** 2)[:, None]
-        direction = np.zeros((n - 1, 2, 3))
-        direction[:, 0, 0], direction[:, 1, 0] = -1.0, 1.0  # eq 8: the force on the ball behind, ahead
-        direction[:, :, 1:] = (-mu * unit)[:, None, :]  # its friction moment, the same on both (eq 8)
-        return direction
+    def pair_loads(x):  # eqs 5-8 per unit force (b2b_terms): the loads on the balls behind and ahead, and their
+        _, turn, d_force, _ = b2b_terms(x, np.ones(n - 1), mu)  # turning with the B2B slip, the same on both balls
+        derivative = np.zeros((n - 1, 2, 3, 2, 3))
+        derivative[:, :, 1:, :, 1:] = turn[:, None, :, None, :]
+        return d_force.transpose(0, 2, 1), derivative
 
-    if start is None:
-        start = initial_guess(contacts)[:, :3]
     mass = density * 4.0 / 3.0 * math.pi * contacts.ball_radius ** 3
     speed = abs(contacts.groove_velocity)
     tau = mass * speed / (mu * reference_force)
     open_gaps = None if gaps is None else _check_gaps(gaps, n, contacts.ball_radius)
     options.setdefault("contact_names", CONTACT_NAMES)
-    return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    if start is not None:
+        return relax(ball_loads, pair_loads, start, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    first = relax(ball_loads, pair_loads, initial_guess(contacts)[:, :3], touching=live, gaps=open_gaps,
+                  gap_scale=speed * tau, **options)
+    free = None if first.settled else _free_start(contacts)
+    if free is None:
+        return first
+    second = relax(ball_loads, pair_loads, free, touching=live, gaps=open_gaps, gap_scale=speed * tau, **options)
+    if second.settled:
+        return second
+    return dataclasses.replace(first, reason=f"{first.reason} (from rolling at v/2; from every ball's own state: "
+                                             f"{second.reason})")
 
 
 def _from_relaxation(contacts: BallContacts, layout: ChainLayout, gaps, gap_tolerance, failure: ConvergenceError,
                      solve_at, what: str):
     """After the continuation and the walks of :func:`_judged` failed with ``failure``: relax in time
-    (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; otherwise
-    ConvergenceError with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else
-    the relaxation's (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
+    (:func:`relax_state`); a settled state is the Newton start (``solve_at``), which must converge; else (not at a
+    spin-capacity ratio < 1, which holds for any mu) relaxed states beside the target and walks in mu from them
+    (:func:`lowmodel.linear_bearing.branch_end.relaxed_beside`, their stops the evidence of a gap:
+    :func:`lowmodel.linear_bearing.branch_end.with_gap`); otherwise ConvergenceError
+    with the reason the walks established (a branch's end or a gap, :data:`STICK_REASON`) or else the relaxation's
+    (attribute ``relaxation``: the :class:`lowmodel.b2b_relaxation.Relaxation`)."""
     relaxation = relax_state(contacts, gaps, gap_tolerance=gap_tolerance)
     base = str(failure).split(" (residual")[0]
-    if relaxation.settled:
+
+    def relaxed_start(relaxed, contacts_r):
         balls = np.zeros((layout.n_balls, N_UNKNOWNS))
-        balls[:, :3] = relaxation.velocities
-        start = layout.pack(with_slip_angles(balls, contacts), relaxation.forces)
+        balls[:, :3] = relaxed.velocities
+        return layout.pack(with_slip_angles(balls, contacts_r), relaxed.forces)
+
+    searched = (failure.reason.startswith(SPIN_CAPACITY_REASON)  # the bound holds for any mu
+                or "full-sliding states again beyond" in failure.reason  # a gap, its ends established by the walks
+                or "full-sliding states exist beyond" in failure.reason)
+    if not relaxation.settled and not searched:
+        def at(mu_p):
+            return dataclasses.replace(contacts, friction_coefficient=mu_p)
+
+        def relax_from(mu_p):  # a relaxed state's Newton start at mu_p (from rolling at v/2), None if unsettled
+            relaxed = relax_state(at(mu_p), gaps, gap_tolerance=gap_tolerance, start=initial_guess(at(mu_p))[:, :3])
+            return relaxed_start(relaxed, at(mu_p)) if relaxed.settled else None
+
+        def slip_at(z, mu_p):
+            slips = slip_speeds(layout.unpack(z)[0], at(mu_p))
+            ball, contact = np.unravel_index(int(np.argmin(slips)), slips.shape)
+            return float(slips[ball, contact]), f"{CONTACT_NAMES[contact]} of ball {ball}"
+
+        result, factor, stops = branch_end.relaxed_beside(
+            contacts.friction_coefficient, relax_from, lambda mu_p, z: solve_at(at(mu_p), z), slip_at)
+        if result is not None:
+            return result, ContinuationPath((), "relaxation beside, mu", factor, (ContinuationStep(1.0,
+                                                                                                    int(result[2])),))
+        failure = branch_end.with_gap(failure, stops, stick_reason=STICK_REASON)
+        base = str(failure).split(" (residual")[0]
+    if relaxation.settled:
+        start = relaxed_start(relaxation, contacts)
         try:
             z, residual, iterations = solve_at(contacts, start, f"{what}, from the relaxed state")
         except ConvergenceError as error:
