@@ -83,7 +83,17 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     assert b2b.tolerance == FULL_SLIP_TOLERANCE and b2b.finding and b2b.value > 0 and b2b.reference > 0
     assert b2b.value != b2b.reference  # two laws, not one model against itself
     assert checks["power balance |P_in - P_loss| / P_in, worst of the four solves"].status == "pass"
-    (title, header, rows), _ = result.tables
+    # the comparison's own grid error: the rung's cells against finer ones, inside the tolerance it is judged by
+    from ballbench.lowmodel import full_slip_validity as fsv
+    from ballbench.validation.studies import case_stick_slip
+
+    b2b_grid = checks["grid error of F_B2B (full slip - stick/slip) / stick/slip"]
+    friction_grid = checks["grid error of the friction force full slip / stick/slip - 1"]
+    assert (b2b_grid.tolerance, friction_grid.tolerance) == (FULL_SLIP_TOLERANCE, fsv.TOLERANCE)
+    assert b2b.level == b2b_grid.level == "16 x 64 cells" and case_stick_slip.GRID_CELLS["quick"] == (24, 96)
+    assert 0.0 < b2b_grid.value < 0.5 * FULL_SLIP_TOLERANCE and b2b_grid.status == friction_grid.status == "pass"
+    (title, header, rows), _, (grid_title, _, grid_rows) = result.tables
+    assert grid_title.startswith("Grid error") and [r[0] for r in grid_rows] == ["16 x 64", "24 x 96"]
     assert title.startswith("Per contact") and len(rows) == 4 * case.n_balls
     lam = header.index("Lambda")
     assert all(float(r[lam]) > 1.0 for r in rows)
