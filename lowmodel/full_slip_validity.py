@@ -72,8 +72,8 @@ class ValidityPoint:
         friction force on the top groove, or the friction torque on the nut: input power over speed)
     friction_increase, friction_increase_full_slip : % (lin2019's friction increase by B2B contact)
     cells : (along, across) the cells of the values above;  grid_cells : the other cells of the grid error
-    grid_error : the change of ``b2b_difference`` and of ``friction_difference`` (the larger) between ``cells``
-        and ``grid_cells`` (nan without a state on both)
+    b2b_grid_error, friction_grid_error : the change of ``b2b_difference`` and of ``friction_difference``
+        between ``cells`` and ``grid_cells`` (nan without a state on both); ``grid_error`` the larger
     time_s : wall time of every solve;  error : "" or the reason why no state was found (ConvergenceError of
         either law)
     """
@@ -91,7 +91,8 @@ class ValidityPoint:
     friction_increase_full_slip: float = math.nan
     cells: tuple = ()
     grid_cells: tuple = ()
-    grid_error: float = math.nan
+    b2b_grid_error: float = math.nan
+    friction_grid_error: float = math.nan
     time_s: float = 0.0
     error: str = ""
 
@@ -99,6 +100,24 @@ class ValidityPoint:
     def worst(self) -> float:
         """The larger of ``|b2b_difference|`` and ``friction_difference`` (nan without a state)."""
         return max(abs(self.b2b_difference), self.friction_difference)
+
+    @property
+    def grid_error(self) -> float:
+        """The larger of ``b2b_grid_error`` and ``friction_grid_error`` (nan where either is)."""
+        return float(np.fmax(self.b2b_grid_error, self.friction_grid_error)) if not math.isnan(
+            self.b2b_grid_error + self.friction_grid_error) else math.nan
+
+    def verdict(self, tolerance: float) -> bool | None:
+        """Full slip within ``tolerance`` (True), not within it (False), or None where a grid error could flip
+        the answer: False as soon as one difference exceeds ``tolerance`` by more than its grid error, True where
+        both stay below it by more than theirs."""
+        pairs = ((abs(self.b2b_difference), self.b2b_grid_error),
+                 (self.friction_difference, self.friction_grid_error))
+        if any(value - error > tolerance for value, error in pairs):
+            return False
+        if all(value + error < tolerance for value, error in pairs):
+            return True
+        return None
 
 
 def _drag(state, speed: float) -> np.ndarray:
@@ -143,10 +162,11 @@ def _with_grid_error(solve, cells, tolerance: float, start: float) -> ValidityPo
                     return dataclasses.replace(solved[c], time_s=time.perf_counter() - start)
         # default levels: the finer of the pair is reported; given cells: those cells
         point, comparison = (solved[other], solved[reported]) if cells is None else (solved[reported], solved[other])
-        error = max(abs(point.b2b_difference - comparison.b2b_difference),
-                    abs(point.friction_difference - comparison.friction_difference))
-        point = dataclasses.replace(point, grid_cells=comparison.cells, grid_error=error)
-        if abs(point.worst - tolerance) > error or k == len(pairs) - 1:
+        point = dataclasses.replace(
+            point, grid_cells=comparison.cells,
+            b2b_grid_error=abs(point.b2b_difference - comparison.b2b_difference),
+            friction_grid_error=abs(point.friction_difference - comparison.friction_difference))
+        if point.verdict(tolerance) is not None or k == len(pairs) - 1:
             return dataclasses.replace(point, time_s=time.perf_counter() - start)
     raise AssertionError("unreachable")  # pragma: no cover
 
@@ -222,18 +242,21 @@ def required_rung(point: ValidityPoint, tolerance: float = TOLERANCE) -> str:
     rung's own difference to full slip at the worst point of the models' domain (scene ``full-slip-validity``,
     docs/b2b_rolling.md), so within that domain it is never the rung that decides.  ValueError for a point
     without a state (``point.error``: neither law has a quasi-static state there), and for a point whose grid
-    error could flip the verdict (``|point.worst - tolerance| <= point.grid_error``, or no grid error): the
-    comparison then judges the cells, not the law (refine them: ``cells`` of :func:`linear_point`)."""
+    error could flip the verdict (:meth:`ValidityPoint.verdict` None, or no grid error): the comparison then
+    judges the cells, not the law (refine them: ``cells`` of :func:`linear_point`)."""
     tolerance = checks.positive("tolerance", tolerance)
     if point.error:
         raise ValueError(f"point: no state ({point.error}); the models do not apply there")
-    if not abs(point.worst - tolerance) > point.grid_error:
+    verdict = point.verdict(tolerance)
+    if verdict is None:
         cells = "x".join(str(c) for c in point.cells) or "?"
         other = "x".join(str(c) for c in point.grid_cells) or "?"
-        raise ValueError(f"point: the grid error {100 * point.grid_error:.2f} % ({cells} against {other} cells) "
-                         f"could flip the verdict: |full slip / stick-slip - 1| = {100 * point.worst:.2f} % against "
-                         f"the tolerance {100 * tolerance:g} %; no verdict on these cells (refine them)")
-    return RUNGS[0] if point.worst <= tolerance else RUNGS[1]
+        raise ValueError(f"point: the grid error ({cells} against {other} cells: B2B force "
+                         f"{100 * point.b2b_grid_error:.2f} %, friction {100 * point.friction_grid_error:.2f} %) "
+                         f"could flip the verdict: full slip / stick-slip - 1 = {100 * point.b2b_difference:+.2f} % "
+                         f"(B2B force), {100 * point.friction_difference:.2f} % (friction) against the tolerance "
+                         f"{100 * tolerance:g} %; no verdict on these cells (refine them)")
+    return RUNGS[0] if verdict else RUNGS[1]
 
 
 def validity_map(product: str, friction_coefficients, conformities, thetas, loads, *, progress=None,

@@ -69,7 +69,12 @@ def test_finer_cells_and_a_verdict_without_a_grid_error(table1_point):
     with pytest.raises(ValueError, match="cells"):
         fsv.finer_cells((1, 32))
     with pytest.raises(ValueError, match="grid error"):
-        fsv.required_rung(dataclasses.replace(table1_point, grid_error=math.nan))
+        fsv.required_rung(dataclasses.replace(table1_point, b2b_grid_error=math.nan))
+    # one difference beyond the tolerance by more than its grid error decides, whatever the other's grid error
+    rough = dataclasses.replace(table1_point, friction_difference=0.02, friction_grid_error=0.001, b2b_difference=0.01,
+                                b2b_grid_error=0.05)
+    assert rough.verdict(0.01) is False and fsv.required_rung(rough) == "stick/slip on a half-space"
+    assert dataclasses.replace(rough, friction_difference=0.005).verdict(0.01) is None
 
 
 # lin2019's module at theta 3 deg, mu 0.5, 10 N per ball (the validity map's grid): the low-order model has a state
