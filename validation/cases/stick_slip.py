@@ -44,7 +44,7 @@ class StickSlipLevels:
         checks.bounded("outside", self.outside, 0.0, 0.05, lower_closed=True)
 
 
-_HERTZ = MeshLevels(quick=((12, 48),), default=((20, 80),), fine=((30, 120),))
+_HERTZ = MeshLevels(quick=((16, 64),), default=((20, 80),), fine=((30, 120),))
 # The FE pressure reaches about one element beyond Hertz's ellipse (40 um at the quick level: 1.4 b for the linear
 # module's b = 102 um, 1.6 b for the screw's b = 65-70 um): the compliance grid covers it.  The quick level keeps
 # the default element size (h 0.8 cell) on fewer cells; the fine level condenses two grids (mesh convergence).
