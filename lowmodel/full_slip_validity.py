@@ -154,7 +154,7 @@ def _with_grid_error(solve, cells, tolerance: float, start: float) -> ValidityPo
     else:
         pairs = list(zip(GRID_LEVELS, GRID_LEVELS[1:]))
     solved = {}
-    for k, (reported, other) in enumerate(pairs):
+    for reported, other in pairs:
         for c in (reported, other):
             if c not in solved:
                 solved[c] = solve(c)
@@ -166,9 +166,9 @@ def _with_grid_error(solve, cells, tolerance: float, start: float) -> ValidityPo
             point, grid_cells=comparison.cells,
             b2b_grid_error=abs(point.b2b_difference - comparison.b2b_difference),
             friction_grid_error=abs(point.friction_difference - comparison.friction_difference))
-        if point.verdict(tolerance) is not None or k == len(pairs) - 1:
-            return dataclasses.replace(point, time_s=time.perf_counter() - start)
-    raise AssertionError("unreachable")  # pragma: no cover
+        if point.verdict(tolerance) is not None:
+            break
+    return dataclasses.replace(point, time_s=time.perf_counter() - start)
 
 
 def linear_point(theta: float, side_force_ratio: float = -0.6, *, friction_coefficient: float = 0.1,
