@@ -267,8 +267,8 @@ def module_b2b(balls, guide=None, *, ball_radius: float | None = None, friction_
             try:
                 limit = b2b_traction.solve(patches, start=start, **limit_options)
             except ConvergenceError as again:
-                raise ConvergenceError(f"{rf.FULL_SLIP_NAME}: no state from the free balls ({error}) nor from the "
-                                       "low-order state", residual=again.residual, iterations=again.iterations,
+                raise ConvergenceError(f"{rf.FULL_SLIP_NAME}: converged neither from the free balls ({error}) nor "
+                                       "from the low-order state", residual=again.residual, iterations=again.iterations,
                                        tolerance=again.tolerance, reason=again.reason or error.reason) from again
         states[key] = solve(balls, gaps=gaps, full_slip=limit, **common)
         states["full-slip " + key] = solve(balls, gaps=gaps, law="full-slip", full_slip=limit, **common)

@@ -96,6 +96,14 @@ def test_a_failure_names_the_model_that_failed():
     with pytest.raises(ConvergenceError, match="full slip on the stick/slip cells") as failure:
         b2b_rolling.module_b2b(balls, ball_radius=5e-3, friction_coefficient=0.5, groove_velocity=0.01)
     assert "FE-informed" not in str(failure.value) and rolling_friction.FULL_SLIP_NAME in str(failure.value)
+    # in the f = 0.53 groove the second start (the low-order state, which exists there) does not help either:
+    # the message says both were tried
+    contacts = b2b.module_contacts(ROUGH_LIGHT["theta"], -0.6, vertical_force=10.0, conformity=0.53,
+                                   friction_coefficient=0.5)
+    balls = [b2b_rolling.hertz_contacts(contacts, j, cells=(6, 24), conformity=0.53) for j in range(2)]
+    with pytest.raises(ConvergenceError, match="converged neither from the free balls .* nor from the low-order"):
+        b2b_rolling.module_b2b(balls, ball_radius=5e-3, friction_coefficient=0.5, groove_velocity=0.01,
+                               low_order=lambda gaps: b2b.solve(contacts, gaps))
 
 
 def test_a_case_where_the_low_order_model_has_a_state_has_a_point():
