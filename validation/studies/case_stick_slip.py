@@ -68,7 +68,7 @@ def _differences(result, near_zero: float) -> tuple[float, float, float]:
 @dataclass(frozen=True)
 class GridError:
     """The grid error of the stick/slip rung's comparison: the module on ``cells`` and on the finer ``finer``
-    (``result``, ``finer_result``; ``finer_s`` its wall time [s]); ``differences`` and ``finer_differences``:
+    (``finer_result``, ``finer_s`` its wall time [s]); ``differences`` and ``finer_differences``:
     ``(F_B2B, friction apart, friction touching)`` of full slip against stick/slip as the rung judges them;
     ``b2b`` and ``friction``: the change of the B2B difference and the larger change of a friction difference."""
 

@@ -111,6 +111,27 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     assert len(mesh.cells[0].data) == cells and set(stickslip3d.VTU_ARRAYS) <= set(mesh.cell_data)
 
 
+def test_the_stick_slip_rung_without_a_state_on_the_finer_cells_says_so(tmp_path, monkeypatch):
+    # the grid error needs the module on finer cells; where it has no state there the rung says so and keeps its
+    # checks on its own cells (no ERROR of the scene)
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation import ladder
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import case_stick_slip
+
+    def no_state(*_args, **_kwargs):
+        raise ConvergenceError("stick/slip 2-ball B2B contact: Newton did not converge", residual=1.0,
+                               iterations=40, tolerance=1e-9)
+
+    monkeypatch.setattr(case_stick_slip, "grid_error", no_state)
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    scenes = [s for s in ladder.case_scenes(case, "g", top="stick-slip") if s.name == "g-stick-slip"]
+    (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    assert not [o for o in result.outputs if o.quantity.startswith("grid error")]
+    assert any("No grid error of the comparison" in n and "24 x 96 cells" in n for n in result.notes)
+
+
 def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
     # --budget already passed: the FE rung of the screw side starts no level and says so; at quick the nut side has
     # no FE rung at all (one FE study per scene at quick, every contact at the default level)
