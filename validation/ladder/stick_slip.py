@@ -24,8 +24,10 @@ def stick_slip_scene(run, *, case) -> None:
     guide = isinstance(case, LinearGuideCase)
     mu = case.guide.friction_coefficient if guide else case.screw.friction_coefficient
     truncation_check(run, case)  # full slip and stick/slip on half-spaces: Hertz's ellipses (docs/truncation.md)
-    result, wall = run.time(study.module, case, run.fidelity)
-    cells = study.CELLS[run.fidelity]
+    solved, wall = run.time(study.module, case, run.fidelity)
+    result, cells = solved.result, solved.cells
+    if solved.note:
+        run.note(solved.note)
     level = f"{cells[0]} x {cells[1]} cells"
     model = "full slip (lin2019 eqs A4-A7) on the same cells"
     source = "stick/slip on two half-spaces (lowmodel.contact.rolling_friction), the same case and cells"
@@ -69,7 +71,7 @@ def stick_slip_scene(run, *, case) -> None:
                 fmt(result.touching.input_power / speed), fmt(result.friction_increase)),
                ("full slip", fmt(full), fmt(result.full_slip_free.input_power / speed),
                 fmt(result.full_slip.input_power / speed), fmt(result.full_slip_increase))])
-    _grid_error(run, case, result, near_zero, what, unit, level)
+    _grid_error(run, case, solved, near_zero, what, unit, level)
     from ballbench.validation.figures import stickslip3d
 
     contacts = [(f"ball {ball + 1} {c.name}", c.solution) for ball, row in enumerate(result.touching.contacts)
@@ -83,7 +85,7 @@ def stick_slip_scene(run, *, case) -> None:
              "slip'.")
 
 
-def _grid_error(run, case, result, near_zero: float, what: str, unit: str, level: str) -> None:
+def _grid_error(run, case, solved, near_zero: float, what: str, unit: str, level: str) -> None:
     """The grid error of the comparison of the laws (studies.case_stick_slip.grid_error): the change of full slip's
     difference to stick/slip from the rung's cells to finer ones, judged against the tolerance the difference is
     judged by (docs/b2b_rolling.md, 'Grid error of the comparison')."""
@@ -91,8 +93,9 @@ def _grid_error(run, case, result, near_zero: float, what: str, unit: str, level
     from ballbench.validation.studies import case_stick_slip as study
     from ballbench.validation.studies.rolling_b2b import FULL_SLIP_TOLERANCE
 
+    result = solved.result
     try:
-        error = study.grid_error(case, run.fidelity, result, near_zero)
+        error = study.grid_error(case, run.fidelity, solved, near_zero)
     except ConvergenceError as failure:
         cells = study.GRID_CELLS[run.fidelity]
         run.note(f"No grid error of the comparison: the module on {cells[0]} x {cells[1]} cells has no converged "

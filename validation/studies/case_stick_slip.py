@@ -17,8 +17,10 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from ballbench.lowmodel.bearing_results import screw_states
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import b2b_rolling as screw_b2b_rolling
@@ -27,14 +29,17 @@ from ballbench.validation.cases import stick_slip
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.studies import rolling_b2b
 
-__all__ = ["CELLS", "GRID_CELLS", "COMPLIANCE", "module", "drive_speed", "GridError", "grid_error",
-           "ComplianceRung", "compliance_rungs"]
+__all__ = ["CELLS", "GRID_CELLS", "FALLBACK_CELLS", "COMPLIANCE", "module", "ModuleRun", "drive_speed", "GridError",
+           "grid_error", "ComplianceRung", "compliance_rungs"]
 
 # the cells per contact of each fidelity, and the finer cells their grid error is measured against
 # (docs/b2b_rolling.md, 'Grid error of the comparison': 16 x 64 is the coarsest set whose grid error stays inside
 # the tolerances the rung judges by)
 CELLS = {"quick": (16, 64), "default": (24, 96), "fine": (32, 128)}
 GRID_CELLS = {"quick": (24, 96), "default": (32, 128), "fine": (48, 192)}
+# where a law finds no state on CELLS (Newton can stall on one set of cells and not on the next: the full-slip chain
+# of examples/catalogue/screw_12x2.toml on 16 x 64 cells), the rung runs on these, between CELLS and GRID_CELLS
+FALLBACK_CELLS = {"quick": (20, 80), "default": (28, 112), "fine": (40, 160)}
 # the FE compliance levels of a case's stick/slip rung per fidelity (cases.stick_slip.ComplianceLevel): none at the
 # quick level (a condensation of the case's groove costs 1.5-3 min and 3-5 GB), the paper ladders' levels above
 COMPLIANCE = {"quick": (), "default": stick_slip.LINEAR.compliance.default, "fine": stick_slip.LINEAR.compliance.fine}
@@ -46,12 +51,28 @@ def drive_speed(case) -> float:
     return abs(case.guide.groove_velocity) if isinstance(case, LinearGuideCase) else abs(case.screw.nut_speed)
 
 
-def module(case, fidelity: str):
+class ModuleRun(NamedTuple):
+    """:func:`module`'s answer: the ``cells`` solved on, the ``result`` and a ``note`` ("" or why not on
+    ``CELLS``)."""
+
+    cells: tuple
+    result: object
+    note: str
+
+
+def module(case, fidelity: str) -> ModuleRun:
     """Both laws on the case's balls: a RollingModuleB2B (guide) or ScrewRollingModule (screw) with ``touching``,
     ``free`` (stick/slip) and ``full_slip``, ``full_slip_free`` on the same cells (``CELLS[fidelity]`` per contact,
-    two half-spaces)."""
+    two half-spaces; ``FALLBACK_CELLS[fidelity]`` where a law finds no state on those, ConvergenceError where it
+    finds none on either)."""
     *_, balls_on, solve = _hertz_balls(case)
-    return solve(balls_on(CELLS[fidelity], None))
+    try:
+        return ModuleRun(CELLS[fidelity], solve(balls_on(CELLS[fidelity], None)), "")
+    except ConvergenceError as error:
+        cells, fallback = CELLS[fidelity], FALLBACK_CELLS[fidelity]
+        note = (f"On {cells[0]} x {cells[1]} cells a law found no state ({error}); the rung runs on "
+                f"{fallback[0]} x {fallback[1]} cells.")
+        return ModuleRun(fallback, solve(balls_on(fallback, None)), note)
 
 
 def _differences(result, near_zero: float) -> tuple[float, float, float]:
@@ -88,14 +109,15 @@ class GridError:
         return max(abs(a - b) for a, b in zip(self.differences[1:], self.finer_differences[1:]))
 
 
-def grid_error(case, fidelity: str, result, near_zero: float) -> GridError:
-    """The grid error of ``result`` (:func:`module` at ``fidelity``): the same module on ``GRID_CELLS[fidelity]``;
+def grid_error(case, fidelity: str, run: ModuleRun, near_zero: float) -> GridError:
+    """The grid error of ``run`` (:func:`module` at ``fidelity``): the same module on ``GRID_CELLS[fidelity]``;
     ``near_zero`` [N]: the B2B force below which its difference is judged against it."""
     *_, balls_on, solve = _hertz_balls(case)
     start = time.perf_counter()
     finer = solve(balls_on(GRID_CELLS[fidelity], None))
     seconds = time.perf_counter() - start
-    return GridError(CELLS[fidelity], GRID_CELLS[fidelity], _differences(result, near_zero),
+    result = run.result
+    return GridError(run.cells, GRID_CELLS[fidelity], _differences(result, near_zero),
                      _differences(finer, near_zero), finer, seconds)
 
 

@@ -132,6 +132,25 @@ def test_the_stick_slip_rung_without_a_state_on_the_finer_cells_says_so(tmp_path
     assert any("No grid error of the comparison" in n and "24 x 96 cells" in n for n in result.notes)
 
 
+@pytest.mark.slow
+def test_the_stick_slip_rung_runs_on_its_fallback_cells_where_a_law_finds_no_state(tmp_path):
+    # the catalogue's 12 x 2 screw: the full-slip chain stalls on 16 x 64 cells (not on 12 x 48, 20 x 80, 24 x 96):
+    # the rung runs on FALLBACK_CELLS and says why, instead of an ERROR
+    from ballbench.validation import ladder
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import case_stick_slip
+
+    case = case_file.load(paths.ROOT / "examples" / "catalogue" / "screw_12x2.toml")
+    scenes = [s for s in ladder.case_scenes(case, "s", top="stick-slip") if s.name == "s-stick-slip"]
+    (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    fallback = case_stick_slip.FALLBACK_CELLS["quick"]
+    checks = {o.quantity: o for o in result.outputs}
+    assert checks["F_B2B"].level == f"{fallback[0]} x {fallback[1]} cells"
+    assert checks["grid error of F_B2B (full slip - stick/slip) / stick/slip"].status == "pass"
+    assert any(n.startswith("On 16 x 64 cells a law found no state") for n in result.notes)
+
+
 def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):
     # --budget already passed: the FE rung of the screw side starts no level and says so; at quick the nut side has
     # no FE rung at all (one FE study per scene at quick, every contact at the default level)
