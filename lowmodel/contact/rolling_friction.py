@@ -59,9 +59,11 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.solvers import newton
 
 __all__ = ["GridContact", "grid_contact", "hertz_contact", "sampled_contact", "sampled_pressure", "StickSlipFriction",
-           "ContactSummary", "contact_frame", "solve_balls", "LAWS", "FD_STEP", "SOLVE_TOLERANCE"]
+           "ContactSummary", "contact_frame", "solve_balls", "LAWS", "FD_STEP", "SOLVE_TOLERANCE", "FULL_SLIP_NAME"]
 
 LAWS = ("stick-slip", "full-slip")
+# the full-slip limit on a stick/slip solve's cells (pointwise Coulomb, the b2b_traction solves) in its messages
+FULL_SLIP_NAME = "full slip on the stick/slip cells (pointwise Coulomb)"
 FD_STEP = 1e-6  # forward-difference step of the Jacobian, in the units of the ball's unknowns (O(1))
 SOLVE_TOLERANCE = 1e-12  # of each rolling solve (max|F| / max mu p_n); its Newton converges quadratically to it
 

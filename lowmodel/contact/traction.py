@@ -199,10 +199,13 @@ def free_ball_starts(evaluate, guess: np.ndarray, *, tolerance: float, max_itera
 
 
 def solve_chain(samples: SampledCoulomb, guess: np.ndarray, touching: np.ndarray, pair_function_of, *,
-                complementarity: str, tolerance: float, max_iterations: int, what_ball: str, what_chain: str):
+                complementarity: str, tolerance: float, max_iterations: int, what_ball: str, what_chain: str,
+                start=None):
     """The balls of ``samples`` with B2B contact of the ``touching`` pairs: every ball alone first
     (:func:`free_ball_starts` from ``guess`` (n, k)), then the chain of :mod:`lowmodel.b2b_chain` (rate: unknown 0,
-    ``gamma`` = COMPLEMENTARITY_SCALE) with the pair loads ``pair_function_of(layout)`` (the model's B2B law).
+    ``gamma`` = COMPLEMENTARITY_SCALE) with the pair loads ``pair_function_of(layout)`` (the model's B2B law);
+    ``start`` = ``(states (n, k), forces (n-1,) in force-slot units)``: the chain starts there instead of at the
+    free balls (which are then not solved).
 
     Returns ``(states (n, k), forces (n-1,) in force-slot units (0 on open pairs), iterations, max residual)``;
     ConvergenceError (:func:`lowmodel.solvers.newton`, :func:`lowmodel.b2b_chain.chain_forces`) naming
@@ -212,16 +215,20 @@ def solve_chain(samples: SampledCoulomb, guess: np.ndarray, touching: np.ndarray
         residual, jac, _, _ = samples.evaluate(states)
         return BallBlocks(residual, jac)
 
-    free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance, max_iterations=max_iterations,
-                                        what=what_ball)
     n = len(guess)
+    if start is not None and touching.size:
+        free, iterations = np.asarray(start[0], dtype=float), 0
+    else:
+        free, iterations = free_ball_starts(samples.evaluate, guess, tolerance=tolerance,
+                                            max_iterations=max_iterations, what=what_ball)
     if touching.size == 0:
         return free, np.zeros(n - 1), iterations, float(np.max(np.abs(ball_function(free).residual)))
     layout = ChainLayout(n, guess.shape[1], touching)
     function = chain_system(ball_function, pair_function_of(layout), layout, rate_index=0,
                             rate_scale=COMPLEMENTARITY_SCALE, complementarity=complementarity)
-    z, residual, its = newton(function, layout.pack(free), tolerance=tolerance, max_iterations=max_iterations,
-                              what=what_chain)
+    forces = None if start is None else np.asarray(start[1], dtype=float)
+    z, residual, its = newton(function, layout.pack(free, forces), tolerance=tolerance,
+                              max_iterations=max_iterations, what=what_chain)
     iterations += its
     states, forces, _ = chain_forces(z, layout, rate_index=0, rate_scale=COMPLEMENTARITY_SCALE, tolerance=tolerance,
                                      iterations=iterations, what=what_chain)

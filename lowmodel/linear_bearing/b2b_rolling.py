@@ -55,7 +55,7 @@ from ballbench.lowmodel.state import friction_increase
 __all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "sampled_contacts", "solve", "module_b2b",
            "b2b_contact_check", "POWER_BALANCE_TOLERANCE", "AXIS"]
 
-POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (issue: power balance to 1e-6)
+POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_rolling.md: power balance to 1e-6)
 AXIS = np.array([0.0, 0.0, 1.0])  # the grooves' direction (lin2019 Fig 2: z along the rails)
 # the default material: lin2019 Table 1's steel (lowmodel.contact.hertz's)
 TABLE1_STEEL = {"youngs_modulus": hertz.STEEL_YOUNGS_MODULUS, "poisson_ratio": hertz.STEEL_POISSON_RATIO}
@@ -178,7 +178,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     patches = [[c.patch() for c in contacts] for contacts in balls]
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
-                                       gaps=gaps, tolerance=min(tolerance, 1e-11), max_iterations=100)
+                                       gaps=gaps, tolerance=min(tolerance, 1e-11), max_iterations=100,
+                                       name=rf.FULL_SLIP_NAME)
     reference_force = max(p.normal_force for contacts in patches for p in contacts)  # b2b_traction's F_ref
     speed = abs(velocity)
     start = np.column_stack([full_slip.ball_velocity / speed, full_slip.omega * radius / speed])
@@ -236,10 +237,12 @@ class RollingModuleB2B:
 
 
 def module_b2b(balls, guide=None, *, ball_radius: float | None = None, friction_coefficient: float | None = None,
-               groove_velocity: float | None = None, **options) -> RollingModuleB2B:
+               groove_velocity: float | None = None, low_order=None, **options) -> RollingModuleB2B:
     """Touching and free (gaps of ``R_B``) states of ``balls`` with both laws (:func:`solve`) in ``guide`` (a
     :class:`lowmodel.bearing.LinearGuide`: its ball radius, friction and speed; or those given one by one);
-    ``options`` go to :func:`solve` (tolerance, max_iterations)."""
+    ``options`` go to :func:`solve` (tolerance, max_iterations).  ``low_order(gaps)``: the low-order state of the
+    same balls (:func:`lowmodel.linear_bearing.b2b.solve`), the second start of the full-slip chain where it does
+    not converge from the free balls (high ``mu``, light loads: the touching state is far from the free one)."""
     ball_radius, friction_coefficient, groove_velocity = guide_values(guide, dict(
         ball_radius=ball_radius, friction_coefficient=friction_coefficient, groove_velocity=groove_velocity)).values()
     common = dict(ball_radius=ball_radius, friction_coefficient=friction_coefficient,
@@ -249,8 +252,24 @@ def module_b2b(balls, guide=None, *, ball_radius: float | None = None, friction_
     states = {}
     for gaps, key in ((None, "touching"), (apart, "free")):
         patches = [[c.patch() for c in contacts] for contacts in balls]
-        limit = b2b_traction.solve(patches, ball_radius=ball_radius, friction_coefficient=friction_coefficient,
-                                   groove_velocity=groove_velocity, gaps=gaps, tolerance=1e-11, max_iterations=100)
+        limit_options = dict(ball_radius=ball_radius, friction_coefficient=friction_coefficient,
+                             groove_velocity=groove_velocity, gaps=gaps, tolerance=1e-11, max_iterations=100,
+                             name=rf.FULL_SLIP_NAME)
+        try:
+            limit = b2b_traction.solve(patches, **limit_options)
+        except ConvergenceError as error:
+            if low_order is None or gaps is not None:
+                raise
+            try:
+                start = low_order(gaps)
+            except ConvergenceError:  # no second start: the first failure is the answer
+                raise error from None
+            try:
+                limit = b2b_traction.solve(patches, start=start, **limit_options)
+            except ConvergenceError as again:
+                raise ConvergenceError(f"{rf.FULL_SLIP_NAME}: converged neither from the free balls ({error}) nor "
+                                       "from the low-order state", residual=again.residual, iterations=again.iterations,
+                                       tolerance=again.tolerance, reason=again.reason or error.reason) from again
         states[key] = solve(balls, gaps=gaps, full_slip=limit, **common)
         states["full-slip " + key] = solve(balls, gaps=gaps, law="full-slip", full_slip=limit, **common)
 

@@ -165,7 +165,7 @@ def hertz_patches(contacts: BallContacts, ball: int = 0, *, n_radial: int = 24, 
 
 def solve(balls, guide=None, *, ball_radius: float | None = None, friction_coefficient: float | None = None,
           groove_velocity: float | None = None, gaps=None, tolerance: float = 1e-11, max_iterations: int = 100,
-          regularisation: float = 1e-12) -> TractionState:
+          regularisation: float = 1e-12, start=None, name: str = "FE-informed") -> TractionState:
     """Quasi-static motion of ``n >= 1`` balls with sampled contact tractions and B2B contact.
 
     Parameters
@@ -178,6 +178,11 @@ def solve(balls, guide=None, *, ball_radius: float | None = None, friction_coeff
     gaps : (n-1,) m, ``d_{j,j+1} - 2 R_B`` (default all touching)
     tolerance : max residual of eq 4 in units of ``mu F_ref`` (F_ref the largest patch force) and of eqs 9-10
     regularisation : eps, slip floor in units of ``|v|`` in ``s / sqrt(|s|^2 + eps^2)``
+    start : a state of the same balls and gaps (``ball_velocity`` (n,) m/s, ``omega`` (n, 2) rad/s, ``b2b_force``
+        (n-1,) N; e.g. :func:`lowmodel.linear_bearing.b2b.solve`'s) the chain starts from (default: from every
+        ball solved on its own, without B2B force)
+    name : the model in the messages of ConvergenceError ("FE-informed"; "full slip on the stick/slip cells" where
+        the patches are the cells of :mod:`lowmodel.linear_bearing.b2b_rolling`)
 
     Raises ValueError for bad input, ConvergenceError (with its residual) if Newton fails or if the power
     balance misses POWER_BALANCE_TOLERANCE.
@@ -207,12 +212,19 @@ def solve(balls, guide=None, *, ball_radius: float | None = None, friction_coeff
     samples = _Samples(balls, radius, reference_force, sign, eps)
     guess = _initial_guess(balls, sign)
 
+    chain_start = None
+    if start is not None and touching.size:
+        speed = abs(velocity)
+        chain_start = (np.column_stack([np.asarray(start.ball_velocity, dtype=float) / speed,
+                                        np.asarray(start.omega, dtype=float) * radius / speed]),
+                       np.asarray(start.b2b_force, dtype=float) / (mu * reference_force))
     states, forces, iterations, residual_norm = solve_chain(
         samples, guess, touching, lambda layout: pair_function(layout, mu), complementarity="min",
-        tolerance=tolerance, max_iterations=max_iterations, what_ball="FE-informed ball",
-        what_chain=f"FE-informed {n}-ball B2B contact")
+        tolerance=tolerance, max_iterations=max_iterations, what_ball=f"{name} ball",
+        what_chain=f"{name} {n}-ball B2B contact" + ("" if chain_start is None else " from the given start"),
+        start=chain_start)
     return _state(samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
-                  residual_norm)
+                  residual_norm, name)
 
 
 def _initial_guess(balls, sign: float) -> np.ndarray:
@@ -225,7 +237,7 @@ def _initial_guess(balls, sign: float) -> np.ndarray:
 
 
 def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, reference_force, iterations,
-           residual_norm) -> TractionState:
+           residual_norm, name: str = "FE-informed") -> TractionState:
     speed = abs(velocity)
     n, p = samples.n_balls, samples.n_patches
     _, _, slip, force = samples.evaluate(states, jacobian=False)
@@ -244,7 +256,7 @@ def _state(samples: _Samples, states, forces, balls, radius, mu, velocity, refer
     losses = float(loss.sum() + b2b_loss.sum())
     balance = abs(input_power - losses) / max(abs(input_power), 1e-300)
     if not balance <= POWER_BALANCE_TOLERANCE:
-        raise ConvergenceError("FE-informed B2B: power balance missed", residual=balance, iterations=iterations,
+        raise ConvergenceError(f"{name} B2B: power balance missed", residual=balance, iterations=iterations,
                                tolerance=POWER_BALANCE_TOLERANCE, reason="power balance missed")
     ball_velocity = states[:, 0] * speed
     return TractionState(ball_velocity, states[:, 1:3] * speed / radius, 2.0 * ball_velocity / velocity - 1.0,

@@ -163,7 +163,8 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     patches = [[c.patch() for c in contacts] for contacts in balls]
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, module, gaps=gaps, with_b2b=with_b2b,
-                                       tolerance=min(tolerance, 1e-11), max_iterations=100)
+                                       tolerance=min(tolerance, 1e-11), max_iterations=100,
+                                       name=rf.FULL_SLIP_NAME)
     mu = module.friction_coefficient
     reference_force = max(p.normal_force for contacts in patches for p in contacts)
     speed, spin = _units(module)
@@ -231,7 +232,8 @@ def module_b2b(balls, module: screw_contacts.ScrewModule, **options) -> ScrewRol
     states = {}
     for with_b2b, key in ((True, "touching"), (False, "free")):
         patches = [[c.patch() for c in contacts] for contacts in balls]
-        limit = b2b_traction.solve(patches, module, with_b2b=with_b2b, tolerance=1e-11, max_iterations=100)
+        limit = b2b_traction.solve(patches, module, with_b2b=with_b2b, tolerance=1e-11, max_iterations=100,
+                                   name=rf.FULL_SLIP_NAME)
         states[key] = solve(balls, module, with_b2b=with_b2b, full_slip=limit, **options)
         states["full-slip " + key] = solve(balls, module, with_b2b=with_b2b, law="full-slip", full_slip=limit,
                                            **options)

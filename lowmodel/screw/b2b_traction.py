@@ -209,7 +209,7 @@ def _b2b_rows(module: screw_contacts.ScrewModule) -> np.ndarray:
 
 
 def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: bool = True, tolerance: float = 1e-11,
-          max_iterations: int = 100, regularisation: float = 1e-12) -> ScrewTractionState:
+          max_iterations: int = 100, regularisation: float = 1e-12, name: str = "FE-informed") -> ScrewTractionState:
     """Quasi-static motion of ``n >= 1`` balls of a ball screw with sampled contact tractions and B2B contact.
 
     Parameters
@@ -222,6 +222,8 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     gaps : (n-1,) rad, azimuth gaps beyond touching (default all touching); ``with_b2b=False``: no B2B contact
     tolerance : max residual (units ``mu F_ref``, F_ref the largest patch force; moments / R_B) and of eqs 60-61
     regularisation : eps, slip floor in units of ``|omega_N| L / 2 pi``
+    name : the model in the messages of ConvergenceError ("FE-informed"; the stick/slip solve's full-slip limit
+        on its cells names itself, :mod:`lowmodel.screw.b2b_rolling`)
 
     Raises ValueError for bad input (naming it), ConvergenceError (with its residual) if Newton fails or the
     power balance misses POWER_BALANCE_TOLERANCE.
@@ -248,7 +250,7 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     states, lam, iterations, residual_norm = solve_chain(
         samples, guess, touching, lambda layout: pair_function(module, layout, reference_force),
         complementarity="fischer-burmeister", tolerance=tolerance, max_iterations=max_iterations,
-        what_ball="FE-informed screw ball", what_chain=f"FE-informed {n}-ball screw B2B contact")
+        what_ball=f"{name} screw ball", what_chain=f"{name} {n}-ball screw B2B contact")
     forces = lam * module.friction_coefficient * reference_force
     return _state(samples, states, forces, balls, module, reference_force, iterations, residual_norm)
 

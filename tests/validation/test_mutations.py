@@ -243,7 +243,7 @@ CASE_MUTANTS = {
                                            "BEM", "contact", [("nut side", "b"), ("nut side", "p0")]),
     "stick/slip half-space shear modulus x 0.1": (_soft_half_space, "examples/compact_linear_guide.toml",
                                                   "stick-slip", "stick-slip",
-                                                  [("8 x 32 cells", "friction force, balls apart")]),
+                                                  [("16 x 64 cells", "friction force, balls apart")]),
     "EHL gap of the screw groove on the nut side": (_screw_gap_on_nut_side, "examples/ball_screw_32x10_oil.toml",
                                                     "EHL", "ehl", [("nut side, 128 x 32 cells", "central film h_c")]),
     "FE compliance of the case's groove with E x 0.1": (

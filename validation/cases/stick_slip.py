@@ -44,7 +44,7 @@ class StickSlipLevels:
         checks.bounded("outside", self.outside, 0.0, 0.05, lower_closed=True)
 
 
-_HERTZ = MeshLevels(quick=((12, 48),), default=((20, 80),), fine=((30, 120),))
+_HERTZ = MeshLevels(quick=((16, 64),), default=((20, 80),), fine=((30, 120),))
 # The FE pressure reaches about one element beyond Hertz's ellipse (40 um at the quick level: 1.4 b for the linear
 # module's b = 102 um, 1.6 b for the screw's b = 65-70 um): the compliance grid covers it.  The quick level keeps
 # the default element size (h 0.8 cell) on fewer cells; the fine level condenses two grids (mesh convergence).
@@ -59,14 +59,15 @@ LEVELS = {"linear": LINEAR, "screw": SCREW}
 class ValidityGrid:
     """The map of full slip's validity over lin2019's two-ball modules (lowmodel.full_slip_validity.validity_map):
     friction coefficients, conformities, deviations theta [deg], loads (linear: N_y [N] per ball; screw: the axial
-    load [N]) and the cells of every contact's grid."""
+    load [N]) and the cells of every contact's grid (None: lowmodel.full_slip_validity.GRID_LEVELS, refined while
+    the grid error could flip a verdict)."""
 
     mu: tuple
     conformity: tuple
     theta_deg: tuple
     linear_load: tuple
     screw_load: tuple
-    cells: tuple = (8, 32)
+    cells: tuple | None = None
 
 
 MAP = {"quick": ValidityGrid(mu=(0.1, 0.5), conformity=(0.52, 0.6), theta_deg=(3.0,), linear_load=(100.0,),
@@ -92,7 +93,7 @@ class WorstCase:
 
 
 WORST = WorstCase(product="linear", mu=0.5, conformity=0.6, theta_deg=1.0, load=1000.0,
-                  cells={"quick": ((8, 32),), "default": ((8, 32), (16, 64)),
-                         "fine": ((8, 32), (16, 64), (24, 96))},
+                  cells={"quick": ((16, 64),), "default": ((16, 64), (24, 96)),
+                         "fine": ((16, 64), (24, 96), (32, 128))},
                   compliance={"quick": (), "default": (ComplianceLevel(8, 32, 0.8),),
                               "fine": (ComplianceLevel(8, 32, 0.8),)})

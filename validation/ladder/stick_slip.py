@@ -2,11 +2,13 @@
 stick/slip contacts against lin2019's full slip on the same cells (studies.case_stick_slip): per contact Lambda, the
 stick fraction, the force along rolling and the spin moment by both laws and the lateral force full slip lacks as a
 share of mu F; the B2B force and the balls' friction by both laws, judged at full slip's declared accuracy
-(docs/b2b_rolling.md, 'Validity of full slip'); the touching balls' stick/slip fields as ``stickslip_touching.npz``,
-``.json`` and one ``stickslip_touching_<k>.vtu`` per contact, and their picture (validation.figures.stickslip3d,
-docs/render3d.md)."""
+(docs/b2b_rolling.md, 'Validity of full slip'), with the grid error of that comparison against finer cells
+(docs/b2b_rolling.md, 'Grid error of the comparison'); the touching balls' stick/slip fields as
+``stickslip_touching.npz``, ``.json`` and one ``stickslip_touching_<k>.vtu`` per contact, and their picture
+(validation.figures.stickslip3d, docs/render3d.md)."""
 from __future__ import annotations
 
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.ladder.common import NEAR_ZERO_B2B, fmt, truncation_check
 from ballbench.validation.cases.case import LinearGuideCase
 
@@ -22,8 +24,10 @@ def stick_slip_scene(run, *, case) -> None:
     guide = isinstance(case, LinearGuideCase)
     mu = case.guide.friction_coefficient if guide else case.screw.friction_coefficient
     truncation_check(run, case)  # full slip and stick/slip on half-spaces: Hertz's ellipses (docs/truncation.md)
-    result, wall = run.time(study.module, case, run.fidelity)
-    cells = study.CELLS[run.fidelity]
+    solved, wall = run.time(study.module, case, run.fidelity)
+    result, cells = solved.result, solved.cells
+    if solved.note:
+        run.note(solved.note)
     level = f"{cells[0]} x {cells[1]} cells"
     model = "full slip (lin2019 eqs A4-A7) on the same cells"
     source = "stick/slip on two half-spaces (lowmodel.contact.rolling_friction), the same case and cells"
@@ -67,6 +71,7 @@ def stick_slip_scene(run, *, case) -> None:
                 fmt(result.touching.input_power / speed), fmt(result.friction_increase)),
                ("full slip", fmt(full), fmt(result.full_slip_free.input_power / speed),
                 fmt(result.full_slip.input_power / speed), fmt(result.full_slip_increase))])
+    _grid_error(run, case, solved, near_zero, what, unit, level)
     from ballbench.validation.figures import stickslip3d
 
     contacts = [(f"ball {ball + 1} {c.name}", c.solution) for ball, row in enumerate(result.touching.contacts)
@@ -78,6 +83,51 @@ def stick_slip_scene(run, *, case) -> None:
              "what lin2019's full-slip maps (eqs A4-A7) leave out; the full-slip law on the same cells is pointwise "
              "Coulomb on the slip field, whose lateral force is shown beside; docs/b2b_rolling.md, 'Validity of full "
              "slip'.")
+
+
+def _grid_error(run, case, solved, near_zero: float, what: str, unit: str, level: str) -> None:
+    """The grid error of the comparison of the laws (studies.case_stick_slip.grid_error): the change of full slip's
+    difference to stick/slip from the rung's cells to finer ones, judged against the tolerance the difference is
+    judged by (docs/b2b_rolling.md, 'Grid error of the comparison')."""
+    from ballbench.lowmodel import full_slip_validity as fsv
+    from ballbench.validation.studies import case_stick_slip as study
+    from ballbench.validation.studies.rolling_b2b import FULL_SLIP_TOLERANCE
+
+    result = solved.result
+    try:
+        error = study.grid_error(case, run.fidelity, solved, near_zero)
+    except ConvergenceError as failure:
+        cells = study.GRID_CELLS[run.fidelity]
+        run.note(f"No grid error of the comparison: the module on {cells[0]} x {cells[1]} cells has no converged "
+                 f"state ({failure}); the checks above stand on {level} alone.")
+        return
+    finer = f"{error.finer[0]} x {error.finer[1]} cells"
+    source = f"the same comparison on {finer} (both laws)"
+    why = ("an estimate of the discretisation error of a judged relative difference (zero judged on the scale 1): "
+           "the change to finer cells, within the tolerance the difference is judged by")
+    run.check(model="stick/slip against full slip, the comparison's grid", family="low-order numerical", level=level,
+              quantity="grid error of F_B2B (full slip - stick/slip) / stick/slip", unit="1", value=error.b2b,
+              reference=0.0, scale=1.0, relation="le", tolerance=FULL_SLIP_TOLERANCE, time_s=error.finer_s,
+              source=source, why=why,
+              note=f"{level}: {100 * error.differences[0]:+.3f} %; {finer}: {100 * error.finer_differences[0]:+.3f} %"
+                   + ("" if abs(float(result.touching.b2b_force[0])) >= near_zero else
+                      " (a B2B force near zero: against 5 % of mu times the load)"))
+    run.check(model="stick/slip against full slip, the comparison's grid", family="low-order numerical", level=level,
+              quantity=f"grid error of the {what} full slip / stick/slip - 1", unit="1", value=error.friction,
+              reference=0.0, scale=1.0, relation="le", tolerance=fsv.TOLERANCE, time_s=error.finer_s,
+              source=source, why=why,
+              note=f"apart, touching: {level}: {100 * error.differences[1]:+.3f} %, "
+                   f"{100 * error.differences[2]:+.3f} %; {finer}: {100 * error.finer_differences[1]:+.3f} %, "
+                   f"{100 * error.finer_differences[2]:+.3f} %")
+    speed = study.drive_speed(case)
+    rows = [(f"{cells[0]} x {cells[1]}", fmt(float(r.touching.b2b_force[0])), fmt(float(r.full_slip.b2b_force[0])),
+             f"{100 * d[0]:+.3f}", f"{100 * d[1]:+.3f}", f"{100 * d[2]:+.3f}", fmt(r.touching.input_power / speed))
+            for cells, r, d in ((error.cells, result, error.differences),
+                                (error.finer, error.finer_result, error.finer_differences))]
+    run.table("Grid error of the comparison: the rung's cells against finer ones",
+              ("cells per contact", "F_B2B, stick/slip [N]", "F_B2B, full slip [N]", "F_B2B difference [%]",
+               f"{what} apart, difference [%]", f"{what} touching, difference [%]",
+               f"{what} touching, stick/slip [{unit}]"), rows)
 
 
 def _compliance_rungs(run, case, mu: float, load: float, speed: float, what: str, unit: str) -> None:

@@ -4,8 +4,10 @@ of :mod:`lowmodel.contact.rolling_friction` on two half-spaces) and with lin2019
 cells, touching and apart (:func:`lowmodel.linear_bearing.b2b_rolling.module_b2b`,
 :func:`lowmodel.screw.b2b_rolling.module_b2b`; each solve checks its power balance to 1e-6).
 
-Hertz pressure on ``CELLS[fidelity]`` cells per contact (along x across the ellipse); the map of full slip's
-validity ran on 8 x 32 (docs/b2b_rolling.md), the rolling-b2b scenes on 12 x 48.
+Hertz pressure on ``CELLS[fidelity]`` cells per contact (along x across the ellipse), and the same module on
+``GRID_CELLS[fidelity]`` for the grid error of the comparison (:func:`grid_error`): on coarser cells the difference
+of the laws is the grid's (docs/b2b_rolling.md, 'Grid error of the comparison', its table and the rule the cells
+follow).
 
 :func:`compliance_rungs` adds the FE compliance of the case's own groove (a ball of the case's radius in a straight
 groove of its conformity and material, P2, condensed onto one grid over every contact:
@@ -15,8 +17,10 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from ballbench.lowmodel.bearing_results import screw_states
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import b2b_rolling as screw_b2b_rolling
@@ -25,9 +29,17 @@ from ballbench.validation.cases import stick_slip
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.studies import rolling_b2b
 
-__all__ = ["CELLS", "COMPLIANCE", "module", "drive_speed", "ComplianceRung", "compliance_rungs"]
+__all__ = ["CELLS", "GRID_CELLS", "FALLBACK_CELLS", "COMPLIANCE", "module", "ModuleRun", "drive_speed", "GridError",
+           "grid_error", "ComplianceRung", "compliance_rungs"]
 
-CELLS = {"quick": (8, 32), "default": (12, 48), "fine": (16, 64)}
+# the cells per contact of each fidelity, and the finer cells their grid error is measured against
+# (docs/b2b_rolling.md, 'Grid error of the comparison': 16 x 64 is the coarsest set whose grid error stays inside
+# the tolerances the rung judges by)
+CELLS = {"quick": (16, 64), "default": (24, 96), "fine": (32, 128)}
+GRID_CELLS = {"quick": (24, 96), "default": (32, 128), "fine": (48, 192)}
+# where a law finds no state on CELLS (Newton can stall on one set of cells and not on the next: the full-slip chain
+# of examples/catalogue/screw_12x2.toml on 16 x 64 cells), the rung runs on these, between CELLS and GRID_CELLS
+FALLBACK_CELLS = {"quick": (20, 80), "default": (28, 112), "fine": (40, 160)}
 # the FE compliance levels of a case's stick/slip rung per fidelity (cases.stick_slip.ComplianceLevel): none at the
 # quick level (a condensation of the case's groove costs 1.5-3 min and 3-5 GB), the paper ladders' levels above
 COMPLIANCE = {"quick": (), "default": stick_slip.LINEAR.compliance.default, "fine": stick_slip.LINEAR.compliance.fine}
@@ -39,12 +51,74 @@ def drive_speed(case) -> float:
     return abs(case.guide.groove_velocity) if isinstance(case, LinearGuideCase) else abs(case.screw.nut_speed)
 
 
-def module(case, fidelity: str):
+class ModuleRun(NamedTuple):
+    """:func:`module`'s answer: the ``cells`` solved on, the ``result`` and a ``note`` ("" or why not on
+    ``CELLS``)."""
+
+    cells: tuple
+    result: object
+    note: str
+
+
+def module(case, fidelity: str) -> ModuleRun:
     """Both laws on the case's balls: a RollingModuleB2B (guide) or ScrewRollingModule (screw) with ``touching``,
     ``free`` (stick/slip) and ``full_slip``, ``full_slip_free`` on the same cells (``CELLS[fidelity]`` per contact,
-    two half-spaces)."""
+    two half-spaces; ``FALLBACK_CELLS[fidelity]`` where a law finds no state on those, ConvergenceError where it
+    finds none on either)."""
     *_, balls_on, solve = _hertz_balls(case)
-    return solve(balls_on(CELLS[fidelity], None))
+    try:
+        return ModuleRun(CELLS[fidelity], solve(balls_on(CELLS[fidelity], None)), "")
+    except ConvergenceError as error:
+        cells, fallback = CELLS[fidelity], FALLBACK_CELLS[fidelity]
+        note = (f"On {cells[0]} x {cells[1]} cells a law found no state ({error}); the rung runs on "
+                f"{fallback[0]} x {fallback[1]} cells.")
+        return ModuleRun(fallback, solve(balls_on(fallback, None)), note)
+
+
+def _differences(result, near_zero: float) -> tuple[float, float, float]:
+    """``(F_B2B, friction apart, friction touching)``: full slip against stick/slip as the rung judges them,
+    ``(full - stick) / |stick|`` (the B2B force against ``near_zero`` where it is smaller; the friction as the
+    ratio of the input powers, read at one speed)."""
+    stick, full = float(result.touching.b2b_force[0]), float(result.full_slip.b2b_force[0])
+    b2b_scale = near_zero if abs(stick) < near_zero else abs(stick)
+    return ((full - stick) / b2b_scale,
+            *(f.input_power / s.input_power - 1.0 for s, f in ((result.free, result.full_slip_free),
+                                                               (result.touching, result.full_slip))))
+
+
+@dataclass(frozen=True)
+class GridError:
+    """The grid error of the stick/slip rung's comparison: the module on ``cells`` and on the finer ``finer``
+    (``finer_result``, ``finer_s`` its wall time [s]); ``differences`` and ``finer_differences``:
+    ``(F_B2B, friction apart, friction touching)`` of full slip against stick/slip as the rung judges them;
+    ``b2b`` and ``friction``: the change of the B2B difference and the larger change of a friction difference."""
+
+    cells: tuple
+    finer: tuple
+    differences: tuple
+    finer_differences: tuple
+    finer_result: object
+    finer_s: float
+
+    @property
+    def b2b(self) -> float:
+        return abs(self.differences[0] - self.finer_differences[0])
+
+    @property
+    def friction(self) -> float:
+        return max(abs(a - b) for a, b in zip(self.differences[1:], self.finer_differences[1:]))
+
+
+def grid_error(case, fidelity: str, run: ModuleRun, near_zero: float) -> GridError:
+    """The grid error of ``run`` (:func:`module` at ``fidelity``): the same module on ``GRID_CELLS[fidelity]``;
+    ``near_zero`` [N]: the B2B force below which its difference is judged against it."""
+    *_, balls_on, solve = _hertz_balls(case)
+    start = time.perf_counter()
+    finer = solve(balls_on(GRID_CELLS[fidelity], None))
+    seconds = time.perf_counter() - start
+    result = run.result
+    return GridError(run.cells, GRID_CELLS[fidelity], _differences(result, near_zero),
+                     _differences(finer, near_zero), finer, seconds)
 
 
 @dataclass(frozen=True)

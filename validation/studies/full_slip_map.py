@@ -47,14 +47,16 @@ def write_points(path, points) -> None:
         writer.writerow(["product", "mu", "conformity", "theta_deg", "load_N", "Lambda_min", "creepage_parameter_min",
                          "stick_fraction_max", "F_B2B_stick_slip_N", "F_B2B_full_slip_N", "b2b_difference_pct",
                          "friction_difference_pct", "friction_increase_pct", "friction_increase_full_slip_pct",
-                         "time_s", "error"])
+                         "cells", "grid_cells", "grid_error_pct", "time_s", "error"])
         for p in points:
             q = p.parameters
             writer.writerow([p.product, q["mu"], q["conformity"], f"{math.degrees(q['theta']):g}", q["load"],
                              f"{p.spin_parameter:.3f}", f"{p.creepage_parameter:.3f}", f"{p.stick_fraction:.4f}",
                              f"{p.b2b_force:.5f}", f"{p.b2b_force_full_slip:.5f}", f"{100 * p.b2b_difference:+.4f}",
                              f"{100 * p.friction_difference:.4f}", f"{p.friction_increase:.3f}",
-                             f"{p.friction_increase_full_slip:.3f}", f"{p.time_s:.2f}", p.error[:200]])
+                             f"{p.friction_increase_full_slip:.3f}", "x".join(map(str, p.cells)),
+                             "x".join(map(str, p.grid_cells)), f"{100 * p.grid_error:.4f}", f"{p.time_s:.2f}",
+                             p.error[:200]])
 
 
 def record_map(run) -> list:
@@ -75,16 +77,19 @@ def record_map(run) -> list:
         run.check(model="lowmodel.full_slip_validity", quantity=f"{product}: largest |full slip / stick-slip - 1| "
                   "(B2B force or a free ball's friction)", unit="1", value=worst.worst, reference=0.0, scale=1.0,
                   relation="le", tolerance=WORST_TOLERANCE, time_s=wall, family="BEM",
-                  level=level_name(stick_slip.MAP[level].cells),
+                  level=level_name(worst.cells),
                   source="the 5 % contour (docs/b2b_rolling.md): where full slip is off by more, the low-order "
                          "model's docs say so",
                   why="an upper bound on a relative difference (zero judged on the scale 1)",
                   note=f"at mu {q['mu']:g}, conformity {q['conformity']:g}, theta {math.degrees(q['theta']):g} deg, "
                        f"load {q['load']:g} N: B2B {100 * worst.b2b_difference:+.2f} %, friction "
-                       f"{100 * worst.friction_difference:.2f} %, Lambda {worst.spin_parameter:.1f}; {len(rows)} "
+                       f"{100 * worst.friction_difference:.2f} %, Lambda {worst.spin_parameter:.1f}, grid error "
+                       f"{100 * worst.grid_error:.2f} % (against {level_name(worst.grid_cells)}); {len(rows)} "
                        f"cases solved")
-    run.note(f"{len(points)} cases, {failed} without a quasi-static state of either law (map.csv, column error: "
-             "light loads and high mu, where lin2019's full-sliding model has no state either).")
+    run.note(f"{len(points)} cases, {failed} without a state of either law (map.csv, column error: the model that "
+             "found none and why). Every case compares the laws on two sets of cells; the grid error (column "
+             "grid_error_pct) is the change of the differences between them (docs/b2b_rolling.md, 'Grid error of "
+             "the comparison').")
     return points
 
 
@@ -150,7 +155,8 @@ def record_worst(run) -> None:
         rows.append((cells, point))
         note = (f"{name}: B2B force {100 * point.b2b_difference:+.3f} % (F_B2B {point.b2b_force:.3f} N stick/slip, "
                 f"{point.b2b_force_full_slip:.3f} N full slip), free ball's friction "
-                f"{100 * point.friction_difference:.3f} %, friction increase {point.friction_increase:.1f} / "
+                f"{100 * point.friction_difference:.3f} %, grid error {100 * point.grid_error:.3f} % (against "
+                f"{level_name(point.grid_cells)}), friction increase {point.friction_increase:.1f} / "
                 f"{point.friction_increase_full_slip:.1f} %, "
                 f"Lambda {point.spin_parameter:.1f}, creepage parameter {point.creepage_parameter:.2f}, stick "
                 f"fraction up to {point.stick_fraction:.3f}")

@@ -83,7 +83,17 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     assert b2b.tolerance == FULL_SLIP_TOLERANCE and b2b.finding and b2b.value > 0 and b2b.reference > 0
     assert b2b.value != b2b.reference  # two laws, not one model against itself
     assert checks["power balance |P_in - P_loss| / P_in, worst of the four solves"].status == "pass"
-    (title, header, rows), _ = result.tables
+    # the comparison's own grid error: the rung's cells against finer ones, inside the tolerance it is judged by
+    from ballbench.lowmodel import full_slip_validity as fsv
+    from ballbench.validation.studies import case_stick_slip
+
+    b2b_grid = checks["grid error of F_B2B (full slip - stick/slip) / stick/slip"]
+    friction_grid = checks["grid error of the friction force full slip / stick/slip - 1"]
+    assert (b2b_grid.tolerance, friction_grid.tolerance) == (FULL_SLIP_TOLERANCE, fsv.TOLERANCE)
+    assert b2b.level == b2b_grid.level == "16 x 64 cells" and case_stick_slip.GRID_CELLS["quick"] == (24, 96)
+    assert 0.0 < b2b_grid.value < 0.5 * FULL_SLIP_TOLERANCE and b2b_grid.status == friction_grid.status == "pass"
+    (title, header, rows), _, (grid_title, _, grid_rows) = result.tables
+    assert grid_title.startswith("Grid error") and [r[0] for r in grid_rows] == ["16 x 64", "24 x 96"]
     assert title.startswith("Per contact") and len(rows) == 4 * case.n_balls
     lam = header.index("Lambda")
     assert all(float(r[lam]) > 1.0 for r in rows)
@@ -99,6 +109,46 @@ def test_the_stick_slip_rung_of_a_guide_judges_full_slip_at_its_declared_accurac
     with np.load(tmp_path / "g-stick-slip" / "stickslip_touching.npz") as arrays:  # the solver's grid of contact 0
         cells = arrays["x_0"].size * arrays["y_0"].size
     assert len(mesh.cells[0].data) == cells and set(stickslip3d.VTU_ARRAYS) <= set(mesh.cell_data)
+
+
+def test_the_stick_slip_rung_without_a_state_on_the_finer_cells_says_so(tmp_path, monkeypatch):
+    # the grid error needs the module on finer cells; where it has no state there the rung says so and keeps its
+    # checks on its own cells (no ERROR of the scene)
+    from ballbench.lowmodel.errors import ConvergenceError
+    from ballbench.validation import ladder
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import case_stick_slip
+
+    def no_state(*_args, **_kwargs):
+        raise ConvergenceError("stick/slip 2-ball B2B contact: Newton did not converge", residual=1.0,
+                               iterations=40, tolerance=1e-9)
+
+    monkeypatch.setattr(case_stick_slip, "grid_error", no_state)
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    scenes = [s for s in ladder.case_scenes(case, "g", top="stick-slip") if s.name == "g-stick-slip"]
+    (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    assert not [o for o in result.outputs if o.quantity.startswith("grid error")]
+    assert any("No grid error of the comparison" in n and "24 x 96 cells" in n for n in result.notes)
+
+
+@pytest.mark.slow
+def test_the_stick_slip_rung_runs_on_its_fallback_cells_where_a_law_finds_no_state(tmp_path):
+    # the catalogue's 12 x 2 screw: the full-slip chain stalls on 16 x 64 cells (not on 12 x 48, 20 x 80, 24 x 96):
+    # the rung runs on FALLBACK_CELLS and says why, instead of an ERROR
+    from ballbench.validation import ladder
+    from ballbench.validation.runner import run_scenes
+    from ballbench.validation.studies import case_stick_slip
+
+    case = case_file.load(paths.ROOT / "examples" / "catalogue" / "screw_12x2.toml")
+    scenes = [s for s in ladder.case_scenes(case, "s", top="stick-slip") if s.name == "s-stick-slip"]
+    (result,), _ = run_scenes(scenes, "quick", tmp_path, show_progress=False)
+    assert not result.error and result.passed, result
+    fallback = case_stick_slip.FALLBACK_CELLS["quick"]
+    checks = {o.quantity: o for o in result.outputs}
+    assert checks["F_B2B"].level == f"{fallback[0]} x {fallback[1]} cells"
+    assert checks["grid error of F_B2B (full slip - stick/slip) / stick/slip"].status == "pass"
+    assert any(n.startswith("On 16 x 64 cells a law found no state") for n in result.notes)
 
 
 def test_the_quick_level_runs_the_fe_on_the_most_loaded_contact_only(tmp_path):

@@ -15,7 +15,7 @@ def test_linear_ladder_without_fe_holds_the_analytical_low_order_and_stick_slip_
     rungs = rolling_b2b.linear_ladder("a", "quick", with_fe=False)
     assert [r.family for r in rungs] == ["analytical", "low-order numerical", "BEM"]
     stick_slip_rung = rungs[-1]
-    assert stick_slip_rung.level == "12 x 48 cells"
+    assert stick_slip_rung.level == "16 x 64 cells"
     assert stick_slip_rung.b2b_force == pytest.approx(rungs[1].b2b_force, rel=0.02)
     assert stick_slip_rung.power_balance < 1e-6 and not math.isnan(stick_slip_rung.full_slip_force)
 
