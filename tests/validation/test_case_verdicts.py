@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
+from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation import cli, ladder
@@ -92,6 +93,36 @@ def test_past_the_preload_loss_lin2019_s_scenes_do_not_apply_and_the_run_passes(
     code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--strict",
                      "--out", str(out), "--junit", str(tmp_path / "junit.xml")])
     assert code == 1 and "does not apply (--strict)" in capsys.readouterr().err
+
+
+def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_rung(tmp_path, capsys):
+    """A screw of 3/16-inch balls (R_B 2.381 mm, R_P 12.5 mm, lead 5 mm, f 0.54, 1.5 um, mu 0.05) at 300 N axial
+    load: lin2019's load ramp starts at 100 N per ball, already past this screw's preload loss (111 N), and stops
+    at its first step ("load ramp stopped (a contact slides fully)").  That is the model's limit, not a fault:
+    -balls does not apply and names the loss, -contact runs on the frictionless statics (it ended in ERROR)."""
+    text = case_file.template("ball-screw")
+    for old, new in (('ball_radius = "3.175 mm"', 'ball_radius = "2.381 mm"'),
+                     ('pitch_radius = "16.6 mm"', 'pitch_radius = "12.5 mm"'), ('lead = "10 mm"', 'lead = "5 mm"'),
+                     ("conformity = 0.55 ", "conformity = 0.54 "),
+                     ("friction_coefficient = 0.1 ", "friction_coefficient = 0.05 "),
+                     ('axial_load = "100 N"', 'axial_load = "300 N"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    path = tmp_path / "small.toml"
+    path.write_text(text)
+    with pytest.raises(ConvergenceError, match="load ramp stopped") as caught:
+        bearing_results.friction(case_file.load(path))
+    assert caught.value.reason == "load ramp stopped (a contact slides fully)"
+    assert common.no_state_reason(caught.value.reason) and not common.no_state_reason("load ramp stopped (other)")
+    out = tmp_path / "report"
+    code = cli.main(["validate", str(path), "--quick", "--levels", "analytical", "--no-progress", "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    scenes = {scene["name"]: scene for scene in json.loads((out / "results.json").read_text())["scenes"]}
+    assert scenes["small-balls"]["status"] == "not applicable"
+    assert "300 N is past the preload loss at 111 N" in scenes["small-balls"]["not_applicable"]
+    contact = scenes["small-contact"]
+    assert contact["passed"] and not contact["error"] and contact["status"] != "not applicable"
+    assert "frictionless statics" in " ".join(contact["notes"])
 
 
 def test_junit_skips_a_scene_that_does_not_apply(tmp_path):

@@ -39,7 +39,8 @@ __all__ = ["settle_words", "B2B_SETTLE_CAVEAT",
            "B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
            "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
-           "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
+           "NO_STATE_REASONS", "no_state_reason", "FRICTIONLESS_WORDS", "within_model_limits", "limited",
+           "limits_lines",
            "LIN2019_SCENES", "touching_state", "truncations", "truncation_check", "not_truncated"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
@@ -129,6 +130,16 @@ def preload_loss_words(case) -> str:
 # fully or without a named cause (lowmodel.screw.convergence.stall_reason); any other reason is a solver fault
 NO_STATE_REASONS = (FULL_SLIDING_LIMIT, "a contact slides fully", "continuation stalled",
                     "preload continuation stalled")
+
+
+def no_state_reason(reason: str) -> bool:
+    """Whether a ConvergenceError's ``reason`` is one of :data:`NO_STATE_REASONS`, also where the load ramp of
+    lowmodel.screw.b2b stopped at its first step with one of them ("load ramp stopped (<reason>)": the ramp starts
+    at a fixed load per ball, already past the preload loss of a small screw)."""
+    ramp = "load ramp stopped ("
+    if reason.startswith(ramp) and reason.endswith(")"):
+        reason = reason[len(ramp):-1]
+    return reason in NO_STATE_REASONS
 STATE_SEARCH_STEPS = 8  # bisection steps of :func:`largest_state_load` (the load known to 2^-8 of the case's)
 
 
@@ -162,7 +173,7 @@ def past_preload_loss(case, error) -> str:
     'Preload loss') and the model finds states at lower loads (below the loss with no state even under the preload
     alone, the error stands: a fault, not a limit).  The reason names the stop, the preload loss and the largest
     axial load at which the model finds a state (:func:`largest_state_load`)."""
-    if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") not in NO_STATE_REASONS:
+    if not isinstance(case, BallScrewCase) or not no_state_reason(getattr(error, "reason", "") or ""):
         return ""
     try:
         loss = preload_loss(case)
