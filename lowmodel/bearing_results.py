@@ -36,7 +36,8 @@ from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
 
-__all__ = ["ContactLoad", "GuideResult", "ScrewResult", "friction", "contact", "most_loaded", "guide_result",
+__all__ = ["ContactLoad", "ContactLoads", "GuideResult", "ScrewResult", "friction", "contact", "most_loaded",
+           "guide_contacts", "guide_result",
            "screw_states", "screw_result", "axial_shares", "screw_frictionless_contacts"]
 
 
@@ -133,6 +134,34 @@ class ScrewResult:
             "b2b_forces_N": list(self.b2b_forces)})
 
 
+@dataclass(frozen=True)
+class ContactLoads:
+    """The loaded contacts of a case without a friction state: what a contact check needs (``contacts``, as in
+    :class:`GuideResult`)."""
+
+    contacts: tuple
+
+
+def guide_contacts(case, contacts=None) -> ContactLoads:
+    """The contact loads, angles and Hertz ellipses of a guide's balls (lin2017 eq 36 forces at the rigid angles,
+    ``b2b.contacts``): lin2019's normal loads do not depend on friction, so they stand where its full-sliding model
+    has no state."""
+    if contacts is None:
+        contacts = b2b.contacts(case)
+    constant = hertz.hertz_constant(hertz.groove_geometry(case.guide))
+    rows = []
+    forces, angles = contacts.normal_forces, contacts.contact_angles
+    a = contacts.semi_major
+    b = a * contacts.b_over_a
+    for ball in range(contacts.normal_forces.shape[0]):
+        for i, name in enumerate(GUIDE_CONTACTS):
+            f = float(forces[ball, i])
+            rows.append(ContactLoad(ball + 1, name, f, float(angles[ball, i]), float(a[ball, i]), float(b[ball, i]),
+                                    1.5 * f / (math.pi * float(a[ball, i]) * float(b[ball, i])),
+                                    constant * f ** (2.0 / 3.0)))
+    return ContactLoads(tuple(rows))
+
+
 def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
     """:class:`GuideResult` of a :class:`lowmodel.bearing.GuideLoadCase` by the low-order numerical model (solved
     here unless the states are given: ``contacts`` of ``b2b.contacts``, ``touching`` and ``free`` of
@@ -145,17 +174,7 @@ def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
         touching = b2b.solve(contacts, gaps_touching)
     if free is None:
         free = b2b.solve(contacts, np.full(case.n_balls - 1, 1e-3))
-    constant = hertz.hertz_constant(hertz.groove_geometry(guide))
-    rows = []
-    forces, angles = contacts.normal_forces, contacts.contact_angles
-    a = contacts.semi_major
-    b = a * contacts.b_over_a
-    for ball in range(contacts.normal_forces.shape[0]):
-        for i, name in enumerate(GUIDE_CONTACTS):
-            f = float(forces[ball, i])
-            rows.append(ContactLoad(ball + 1, name, f, float(angles[ball, i]), float(a[ball, i]), float(b[ball, i]),
-                                    1.5 * f / (math.pi * float(a[ball, i]) * float(b[ball, i])),
-                                    constant * f ** (2.0 / 3.0)))
+    rows = guide_contacts(case, contacts).contacts
     speed = abs(guide.groove_velocity)
     return GuideResult(_name(case), "lowmodel.linear_bearing.b2b", tuple(rows),
                        tuple(float(x) for x in touching.b2b_force), free.input_power / speed,

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
+from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation import cli, ladder
@@ -15,6 +16,7 @@ from ballbench.validation.ladder import common
 from ballbench.validation.cases import case_file
 from ballbench.validation.runner import run_scene, run_scenes
 from ballbench.validation.scene import NotApplicable, Scene
+from tests import paths
 
 # the new user's walk-through: the ball-screw template with three values edited (docs/your_own_bearing.md)
 PRELOAD_LOSS_N = 127.6  # lowmodel.screw.preload of the walk-through screw (frictionless, lin2019 eq 53)
@@ -92,6 +94,79 @@ def test_past_the_preload_loss_lin2019_s_scenes_do_not_apply_and_the_run_passes(
     code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--strict",
                      "--out", str(out), "--junit", str(tmp_path / "junit.xml")])
     assert code == 1 and "does not apply (--strict)" in capsys.readouterr().err
+
+
+def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_rung(tmp_path, capsys):
+    """A screw of 3/16-inch balls (R_B 2.381 mm, R_P 12.5 mm, lead 5 mm, f 0.54, 1.5 um, mu 0.05) at 300 N axial
+    load: lin2019's load ramp starts at 100 N per ball, already past this screw's preload loss (111 N), and stops
+    at its first step ("load ramp stopped (a contact slides fully)").  That is the model's limit, not a fault:
+    -balls does not apply and names the loss, -contact runs on the frictionless statics (it ended in ERROR)."""
+    text = case_file.template("ball-screw")
+    for old, new in (('ball_radius = "3.175 mm"', 'ball_radius = "2.381 mm"'),
+                     ('pitch_radius = "16.6 mm"', 'pitch_radius = "12.5 mm"'), ('lead = "10 mm"', 'lead = "5 mm"'),
+                     ("conformity = 0.55 ", "conformity = 0.54 "),
+                     ("friction_coefficient = 0.1 ", "friction_coefficient = 0.05 "),
+                     ('axial_load = "100 N"', 'axial_load = "300 N"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    path = tmp_path / "small.toml"
+    path.write_text(text)
+    with pytest.raises(ConvergenceError, match="load ramp stopped") as caught:
+        bearing_results.friction(case_file.load(path))
+    assert caught.value.reason == "load ramp stopped (a contact slides fully)"
+    assert common.no_state_reason(caught.value.reason) and not common.no_state_reason("load ramp stopped (other)")
+    out = tmp_path / "report"
+    code = cli.main(["validate", str(path), "--quick", "--levels", "analytical", "--no-progress", "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    scenes = {scene["name"]: scene for scene in json.loads((out / "results.json").read_text())["scenes"]}
+    assert scenes["small-balls"]["status"] == "not applicable"
+    assert "300 N is past the preload loss at 111 N" in scenes["small-balls"]["not_applicable"]
+    contact = scenes["small-contact"]
+    assert contact["passed"] and not contact["error"] and contact["status"] != "not applicable"
+    assert "frictionless statics" in " ".join(contact["notes"])
+
+
+@pytest.mark.parametrize("theta, rho, vertical, mu, words", [
+    ("1.5 deg", -0.9, "300 N", 0.2, "spin-capacity ratio < 1"),
+    ("2.87 deg", -0.83, "128 N", 0.604, "a contact stops sliding (full-sliding branch ends")])
+def test_a_guide_without_a_full_sliding_state_runs_its_contact_rung_and_says_why_the_balls_do_not_apply(
+        tmp_path, theta, rho, vertical, mu, words):
+    """lin2019 Table 1's guide near the four-point limit, where the full-sliding model has no state (a free ball's
+    spin-capacity ratio 0.738 < 1; the hard case whose branch ends at mu 0.145): -balls and -b2b-fe do not apply
+    and say why; -contact runs on the lin2017 eq 36 loads, which friction does not change (the balls' and the
+    contact scene ended in ERROR).  The eq 36 loads are those of lin2019's state wherever it has one."""
+    from ballbench.validation.ladder import rungs
+
+    text = (paths.ROOT / "validation" / "cases" / "files" / "lin2019-table3-a.toml").read_text()
+    text = text[:text.index("[fe]")]
+    for old, new in (('vertical_force = "100 N"', f'vertical_force = "{vertical}"'),
+                     ("side_force_ratio = -0.6", f"side_force_ratio = {rho}"),
+                     ("friction_coefficient = 0.1 ", f"friction_coefficient = {mu} "),
+                     ('bottom_left = "-2 deg"', f'bottom_left = "-{theta}"'),
+                     ('bottom_right = "2 deg"', f'bottom_right = "{theta}"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    case = case_file.load(_write(tmp_path / "g.toml", text))
+    with pytest.raises(ConvergenceError):
+        bearing_results.friction(case)
+    for name in ("balls", "b2b-fe"):
+        result = run_scene(_scene(case, name), "quick", tmp_path / name)
+        assert result.status() == "not applicable" and not result.error, (name, result.error)
+        assert words in result.not_applicable and "lin2017 eq 36" in result.not_applicable
+    contact = run_scene(_scene(case, "contact", top="BEM"), "quick", tmp_path / "contact")
+    assert contact.passed and not contact.error and contact.status() != "not applicable"
+    assert any("lin2017 eq 36" in note for note in contact.notes)
+    # where the model has a state, the eq 36 loads are its loads
+    state = bearing_results.guide_result(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"))
+    loads = bearing_results.guide_contacts(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"))
+    assert loads.contacts == state.contacts
+    assert rungs.distinct_contacts(case, frictionless=True)[0].contact.force == max(
+        c.normal_force for c in bearing_results.guide_contacts(case).contacts)
+
+
+def _write(path, text):
+    path.write_text(text)
+    return path
 
 
 def test_junit_skips_a_scene_that_does_not_apply(tmp_path):

@@ -143,7 +143,7 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             functools.partial(stick_slip_scene, case=case), tags=("case",), kind="low-order",
                             cost_s=150.0, budget_s={"quick": 300.0, "default": 900.0, "fine": 3600.0}, case=case,
                             memory_gb=STICK_SLIP_MEMORY_GB))
-    if kind == "ball-screw":  # lin2019's model has no state past the preload loss: those scenes do not apply
+    if kind != "contact":  # lin2019's model has no state past a screw's preload loss or a guide's full sliding
         scenes = [replace(s, function=limited(s.function, case),
                           show=None if s.show is None else limited(s.show, case)) for s in scenes]
     return scenes

@@ -13,6 +13,7 @@ import time
 from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
+from ballbench.lowmodel.linear_bearing.ball import SPIN_CAPACITY_REASON, STICK_REASON
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
@@ -38,8 +39,9 @@ EHL_LOAD_TOLERANCE = 1e-4  # load balance of the EHL solve (sun2021 eq 19), as t
 __all__ = ["settle_words", "B2B_SETTLE_CAVEAT",
            "B2B_TOLERANCE", "EHL_LOAD_TOLERANCE", "HAMROCK_DOWSON_TOLERANCE", "NEAR_ZERO_B2B", "POWER_TOLERANCE",
            "REFERENCE_UNCERTAINTY", "contact_table", "fmt", "power_check", "preload_loss",
-           "preload_loss_words", "oversize_for", "past_preload_loss", "largest_state_load",
-           "NO_STATE_REASONS", "FRICTIONLESS_WORDS", "within_model_limits", "limited", "limits_lines",
+           "preload_loss_words", "oversize_for", "past_preload_loss", "beyond_full_sliding", "largest_state_load",
+           "NO_STATE_REASONS", "no_state_reason", "FRICTIONLESS_WORDS", "within_model_limits", "limited",
+           "limits_lines",
            "LIN2019_SCENES", "touching_state", "truncations", "truncation_check", "not_truncated"]
 
 # the scenes of a ball-screw case built on the state of lin2019's model (balls, contact loads, FE module shares, the
@@ -129,6 +131,16 @@ def preload_loss_words(case) -> str:
 # fully or without a named cause (lowmodel.screw.convergence.stall_reason); any other reason is a solver fault
 NO_STATE_REASONS = (FULL_SLIDING_LIMIT, "a contact slides fully", "continuation stalled",
                     "preload continuation stalled")
+
+
+def no_state_reason(reason: str) -> bool:
+    """Whether a ConvergenceError's ``reason`` is one of :data:`NO_STATE_REASONS`, also where the load ramp of
+    lowmodel.screw.b2b stopped at its first step with one of them ("load ramp stopped (<reason>)": the ramp starts
+    at a fixed load per ball, already past the preload loss of a small screw)."""
+    ramp = "load ramp stopped ("
+    if reason.startswith(ramp) and reason.endswith(")"):
+        reason = reason[len(ramp):-1]
+    return reason in NO_STATE_REASONS
 STATE_SEARCH_STEPS = 8  # bisection steps of :func:`largest_state_load` (the load known to 2^-8 of the case's)
 
 
@@ -162,7 +174,7 @@ def past_preload_loss(case, error) -> str:
     'Preload loss') and the model finds states at lower loads (below the loss with no state even under the preload
     alone, the error stands: a fault, not a limit).  The reason names the stop, the preload loss and the largest
     axial load at which the model finds a state (:func:`largest_state_load`)."""
-    if not isinstance(case, BallScrewCase) or getattr(error, "reason", "") not in NO_STATE_REASONS:
+    if not isinstance(case, BallScrewCase) or not no_state_reason(getattr(error, "reason", "") or ""):
         return ""
     try:
         loss = preload_loss(case)
@@ -187,15 +199,32 @@ def past_preload_loss(case, error) -> str:
             "its contacts slide close to their limit mu F: judge its friction with care.")
 
 
+def beyond_full_sliding(case, error) -> str:
+    """The reason a ConvergenceError of lin2019's linear-guide model is the limit of that model on ``case``, or ""
+    when it is not (a solver fault, which then stands): a free ball's spin-capacity ratio below 1 (no full-sliding
+    state can exist, docs/b2b_bearing.md) or the full-sliding branch ending where a contact's slip falls to zero
+    (lowmodel.linear_bearing.ball.STICK_REASON, with the evidence of its walks).  Near the four-point limit a contact
+    sticks (rolls without spin) and its traction is no longer mu p; the contact loads of lin2017 eq 36 do not depend
+    on friction and stand (lowmodel.bearing_results.guide_contacts)."""
+    reason = getattr(error, "reason", "") or ""
+    if not isinstance(case, LinearGuideCase) or not (reason == SPIN_CAPACITY_REASON or reason.startswith(STICK_REASON)):
+        return ""
+    return (f"lin2019's full-sliding model has no state for these balls ({reason}): near the four-point limit a "
+            "contact sticks (rolls without spin), its traction is no longer mu p, and a model that lets contacts "
+            "stick is not yet the model of record (docs/your_own_bearing.md, 'Not yet'). The contact loads of "
+            "lin2017 eq 36 do not depend on friction: the contact rung runs on them.")
+
+
 @contextlib.contextmanager
 def within_model_limits(case):
-    """Run a ball-screw scene's work; a ConvergenceError that is lin2019's limit on ``case`` (the full-
-    sliding model has no state past the preload loss, :func:`past_preload_loss`) becomes NotApplicable with the
-    reason; any other ConvergenceError stays as it is (the scene ends in error)."""
+    """Run a ball-screw or linear-guide scene's work; a ConvergenceError that is lin2019's limit on ``case`` (the
+    full-sliding model has no state past a screw's preload loss, :func:`past_preload_loss`, or near a guide's
+    four-point limit, :func:`beyond_full_sliding`) becomes NotApplicable with the reason; any other
+    ConvergenceError stays as it is (the scene ends in error)."""
     try:
         yield
     except ConvergenceError as error:
-        reason = past_preload_loss(case, error)
+        reason = past_preload_loss(case, error) or beyond_full_sliding(case, error)
         if not reason:
             raise
         raise NotApplicable(reason) from error

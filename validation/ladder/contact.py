@@ -17,7 +17,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
-                                               past_preload_loss, settle_words)
+                                               beyond_full_sliding, past_preload_loss, settle_words)
 from ballbench.validation.ladder.common import truncation_check
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.references.uncertainty import eca_hoekstra
@@ -46,7 +46,7 @@ def contact_scene(run, *, case, rungs, deadline) -> None:
     time_s = time.perf_counter() - start  # lin2019's state (once: the contacts' loads come from it)
     if reason:
         _frictionless_table(run, case, reason)
-    elif result is not None:  # the ellipses of lin2019's state against the grooves' shoulders (docs/truncation.md)
+    if result is not None:  # the ellipses of lin2019's state against the grooves' shoulders (docs/truncation.md)
         truncation_check(run, case, result, time_s=time_s)
     # the quick level keeps the cost of one FE study (docs/your_own_bearing.md, "Memory and time of the FE rung");
     # the default and fine levels run it on every contact
@@ -76,14 +76,23 @@ def _distinct(case):
         result = bearing_results.friction(case) if isinstance(case, (LinearGuideCase, BallScrewCase)) else None
         return ladder_rungs.distinct_contacts(case, result), "", result
     except ConvergenceError as error:
-        reason = past_preload_loss(case, error)
+        reason = past_preload_loss(case, error) or beyond_full_sliding(case, error)
         if not reason:
             raise
+    if isinstance(case, LinearGuideCase):  # eq 36's loads and ellipses: the truncation check runs on them
+        loads = bearing_results.guide_contacts(case)
+        return ladder_rungs.distinct_contacts(case, loads), reason, loads
     return ladder_rungs.distinct_contacts(case, frictionless=True), reason, None
 
 
 def _frictionless_table(run, case, reason: str) -> None:
-    """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on."""
+    """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on (a guide's: the
+    lin2017 eq 36 loads, the rows of its -balls scene's contact table)."""
+    if isinstance(case, LinearGuideCase):
+        run.note("Loads: the contact loads of lin2017 eq 36 at the rigid contact angles (lowmodel.bearing_results."
+                 "guide_contacts), which lin2019's friction does not change.")
+        run.note("Why: " + reason)
+        return
     run.note("Loads: " + FRICTIONLESS_WORDS + ".")
     run.note("Why: " + reason)
     rows = bearing_results.screw_frictionless_contacts(case)
