@@ -12,6 +12,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from ballbench.lowmodel import kernels
 from ballbench.lowmodel.linear_bearing import fourpoint
 from ballbench.lowmodel.contact import ehl, ellipse_friction, hertz, mixed
 from ballbench.lowmodel.linear_bearing import b2b, b2b_analytical
@@ -51,12 +52,20 @@ def _k_f_exact(monkeypatch):  # eq 14 slope of the friction integrals 1 % off
     monkeypatch.setattr(ellipse_friction, "k_f_exact", _scaled_value(ellipse_friction.k_f_exact, 1.01))
 
 
+def _numpy_path(monkeypatch):
+    """The B2B mutants patch the numpy code of eqs 5-10 (b2b.b2b_terms); the compiled kernels mirror it and would
+    run unmutated (lowmodel.kernels: BALLBENCH_KERNELS=numpy turns them off)."""
+    monkeypatch.setenv(kernels.ENVIRONMENT_VARIABLE, "numpy")
+
+
 def _no_b2b_friction(monkeypatch):  # eqs 6, 8 without the B2B friction (normal force kept)
+    _numpy_path(monkeypatch)
     original = b2b.b2b_terms
     monkeypatch.setattr(b2b, "b2b_terms", lambda scaled, forces, mu: original(scaled, forces, 0.0 * mu))
 
 
 def _b2b_moment_sign(monkeypatch):  # B2B friction moment on the ball in front with the wrong sign
+    _numpy_path(monkeypatch)
     original = b2b.b2b_terms
 
     def mutant(scaled, forces, mu):
