@@ -56,8 +56,8 @@ from ballbench.lowmodel.screw.convergence import row_tolerances, row_weights, sl
 from ballbench.lowmodel.solvers import check_solver_options, newton
 
 __all__ = ["contacts", "PairGeometry", "pair_geometry", "b2b_angle_eq56", "b2b_loads", "b2b_slip", "solve",
-           "LOAD_RAMP_START", "FULL_SLIDING_LIMIT", "saturation", "check_gaps", "warm_up_kernel", "warm_up_ring_kernel",
-           "RING_KERNELS"]
+           "LOAD_RAMP_START", "FULL_SLIDING_LIMIT", "RAMP_STOP", "ramp_stop_cause", "saturation", "check_gaps",
+           "warm_up_kernel", "warm_up_ring_kernel", "RING_KERNELS"]
 
 _REGULARISATION = 1e-14  # |s| floor in units of R_B * spin scale
 
@@ -287,6 +287,14 @@ LOAD_RAMP_START = 100.0  # N per ball: above it a failed solve is retried by a l
 # ConvergenceError.reason when the load ramp stops past a converged state whose contacts slide near their limit
 # mu F: the declared limit of lin2019's full-sliding model under heavy load (docs/ball_screw.md, "Preload loss")
 FULL_SLIDING_LIMIT = "load ramp stopped: contacts near full sliding"
+RAMP_STOP = "load ramp stopped ({})"  # a ramp without a converged step: the reason of the step that failed
+
+
+def ramp_stop_cause(reason: str) -> str:
+    """The reason of the failed step inside a :data:`RAMP_STOP` reason (the ramp found no state even at its first
+    load), else ``reason`` itself."""
+    head, tail = RAMP_STOP.split("{}")
+    return reason[len(head):-len(tail)] if reason.startswith(head) and reason.endswith(tail) else reason
 
 
 def contacts(case, *, oversize: float | None = None, reading: str | None = None,
@@ -343,8 +351,7 @@ def solve(contacts: screw_contacts.BallContacts, axial_load, gaps=None, *, ring:
                 raise ConvergenceError(f"no converged state: load ramp stopped at {100 * factor:.1f} % of the "
                                        f"load{reason}", residual=ramp_error.residual,
                                        iterations=ramp_error.iterations, tolerance=tolerance,
-                                       reason=FULL_SLIDING_LIMIT if reason else
-                                       f"load ramp stopped ({ramp_error.reason})",
+                                       reason=FULL_SLIDING_LIMIT if reason else RAMP_STOP.format(ramp_error.reason),
                                        last_converged=("load fraction", float(reached)) if state is not None
                                        else None) from error
         return state

@@ -135,12 +135,11 @@ NO_STATE_REASONS = (FULL_SLIDING_LIMIT, "a contact slides fully", "continuation 
 
 def no_state_reason(reason: str) -> bool:
     """Whether a ConvergenceError's ``reason`` is one of :data:`NO_STATE_REASONS`, also where the load ramp of
-    lowmodel.screw.b2b stopped at its first step with one of them ("load ramp stopped (<reason>)": the ramp starts
-    at a fixed load per ball, already past the preload loss of a small screw)."""
-    ramp = "load ramp stopped ("
-    if reason.startswith(ramp) and reason.endswith(")"):
-        reason = reason[len(ramp):-1]
-    return reason in NO_STATE_REASONS
+    lowmodel.screw.b2b stopped at its first step with one of them (lowmodel.screw.b2b.ramp_stop_cause: the ramp
+    starts at a fixed load per ball, already past the preload loss of a small screw)."""
+    return screw_b2b.ramp_stop_cause(reason) in NO_STATE_REASONS
+
+
 STATE_SEARCH_STEPS = 8  # bisection steps of :func:`largest_state_load` (the load known to 2^-8 of the case's)
 
 

@@ -168,25 +168,24 @@ class DistinctContact:
 
 def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple[DistinctContact, ...]:
     """The distinct contact geometries of ``case``, each at the largest normal force among its contacts, the most
-    loaded first.  ``frictionless``: for a ball screw the loads of the frictionless statics of its balls at its axial
-    load (lowmodel.bearing_results.screw_frictionless_contacts; two-point contact past the preload loss), for a guide
-    the lin2017 eq 36 loads (lowmodel.bearing_results.guide_contacts, which lin2019's friction does not change),
-    instead of lin2019's friction model's state (``result``), for the contact rung where that model has no state
-    (docs/ball_screw.md, "Preload loss").
+    loaded first.  ``frictionless`` (a ball screw): the loads of the frictionless statics of its balls at its axial
+    load (lowmodel.bearing_results.screw_frictionless_contacts; two-point contact past the preload loss) instead of
+    lin2019's friction model's state (``result``), for the contact rung where that model has no state
+    (docs/ball_screw.md, "Preload loss").  A guide's ``result`` may be its lin2017 eq 36 loads alone
+    (lowmodel.bearing_results.guide_contacts), which lin2019's friction does not change.
 
     A contact's geometry is the ball radius, the groove's conformity and, for a helical groove, the side: a linear
     guide has one conformity for the rail (BL, BR) and the carriage (TL, TR) grooves (docs/fourpoint.md; the case's
     ``conformity``), so its four contacts are one geometry; in a ball screw the screw-side contacts (S*) touch a
     groove cut in the shaft and the nut-side ones (N*) a groove cut in the bore: their curvatures along the helix
     differ (docs/ball_screw.md, helical groove curvatures), two geometries.  A ContactCase is its own one."""
-    if frictionless and not isinstance(case, (BallScrewCase, LinearGuideCase)):
-        raise ValueError(f"frictionless loads are those of a ball screw's or a guide's balls, got a "
+    if frictionless and not isinstance(case, BallScrewCase):
+        raise ValueError(f"frictionless loads are those of a ball screw's balls (lowmodel.screw.preload), got a "
                          f"{type(case).__name__}")
     if isinstance(case, ContactCase):
         return (DistinctContact("contact", case, (case.name,), "the case file's own contact"),)
     if isinstance(case, LinearGuideCase):
-        result = result or (bearing_results.guide_contacts(case) if frictionless else
-                            bearing_results.guide_result(case))
+        result = result or bearing_results.guide_result(case)
         guide = case.guide
         contact = governing_contact(case, result)
         members = tuple(f"ball {c.ball} {c.contact}" for c in result.contacts)

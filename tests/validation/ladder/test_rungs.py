@@ -49,10 +49,10 @@ def test_the_frictionless_loads_of_a_screw_are_the_largest_of_its_frictionless_s
     assert all("frictionless" in d.contact.name and "lowmodel.screw.preload" in d.why for d in distinct)
     assert distinct[0].contact.force >= distinct[1].contact.force
     guide = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
-    with pytest.raises(ValueError, match="frictionless"):  # a contact case has no balls
-        rungs.distinct_contacts(rungs.governing_contact(guide), frictionless=True)
-    # a guide's: the lin2017 eq 36 loads, which are those of lin2019's state
-    assert rungs.distinct_contacts(guide, frictionless=True) == rungs.distinct_contacts(guide)
+    with pytest.raises(ValueError, match="frictionless"):
+        rungs.distinct_contacts(guide, frictionless=True)
+    # a guide's eq 36 loads alone give the contacts of lin2019's state
+    assert rungs.distinct_contacts(guide, bearing_results.guide_contacts(guide)) == rungs.distinct_contacts(guide)
 
 
 def test_the_contact_scene_of_a_screw_runs_both_sides(tmp_path, capsys):
