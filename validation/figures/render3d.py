@@ -140,7 +140,9 @@ def _level_text(meta: dict) -> str:
     if "n" in level:
         words = f"n = b/h {level['n']:g}, growth {level['growth']:g}"
     elif "h_contact_m" in level:
-        words = f"h {level['h_contact_m'] * 1e6:.0f} um at the contacts, growth {level['growth']:g}"
+        where = ("the most loaded contact, each contact at its own b / h" if level.get("per_contact") else
+                 "the contacts")
+        words = f"h {level['h_contact_m'] * 1e6:.0f} um at {where}, growth {level['growth']:g}"
     else:
         words = ", ".join(f"{k} {value}" for k, value in level.items())
     return f"{meta.get('fidelity', '?')} level ({words})"

@@ -279,7 +279,8 @@ def _screw_b2b_fe(run, case: BallScrewCase, deadline) -> None:
     run.write_csv("levels.csv", rows)
     render3d.module_artifacts(run, kept["models"], kept["results"], materials=case.screw.material.pair,
                               case=case.name, level={"h_contact_m": kept["level"].h_contact,
-                                                     "growth": kept["level"].growth})
+                                                     "growth": kept["level"].growth,
+                                                     "per_contact": case.fe.per_contact})
 
 
 def _unloaded_reason(case: BallScrewCase, lost: list[str]) -> str:

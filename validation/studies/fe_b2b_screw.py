@@ -225,5 +225,6 @@ def show_module(case: BallScrewCase, scene_dir, fidelity: str, solve: bool = Fal
     from ballbench.fem.fields import write_module_fields
 
     write_module_fields(target, models, results, materials=case.screw.material.pair, scene=name, fidelity=fidelity,
-                        level={"h_contact_m": level.h_contact, "growth": level.growth})
+                        level={"h_contact_m": level.h_contact, "growth": level.growth,
+                               "per_contact": case.fe.per_contact})
     return [pressure, save(cut, target / "stress.png")] + render3d.render(target)
