@@ -25,11 +25,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from types import SimpleNamespace
 
 import numpy as np
 
 from ballbench.lowmodel.bearing import ContactLoadCase, GuideLoadCase, ScrewLoadCase
 from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
 from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.screw import b2b as screw_b2b
@@ -37,8 +39,10 @@ from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
 
 __all__ = ["ContactLoad", "ContactLoads", "GuideResult", "ScrewResult", "friction", "contact", "most_loaded",
-           "guide_contacts", "guide_result",
-           "screw_states", "screw_result", "axial_shares", "screw_frictionless_contacts"]
+           "guide_contacts", "guide_result", "GuideStates", "guide_states", "FULL_SLIDING", "STICK_SLIP",
+           "STICK_SLIP_CELLS",
+           "screw_states", "ScrewStates", "screw_law_states", "screw_result", "stick_slip_forces", "axial_shares",
+           "screw_frictionless_contacts"]
 
 
 @dataclass(frozen=True)
@@ -74,9 +78,18 @@ def _dataset(contacts, names, attrs: dict):
     return xr.Dataset(data, coords={"ball": balls, "contact": list(names)}, attrs=attrs)
 
 
+FULL_SLIDING = "full sliding"  # lin2019's law: mu p opposite to the rigid slip at every point (eqs 4-10)
+STICK_SLIP = "stick/slip on a half-space"  # the steady rolling law of every contact (docs/b2b_rolling.md)
+# the stick/slip law's cells (along, across each Hertz ellipse) where full sliding has no state: within 0.1 % of
+# 24 x 96 on the friction force at the four-point limit (docs/b2b_rolling.md, "Where full sliding has no state")
+STICK_SLIP_CELLS = (16, 64)
+
+
 @dataclass(frozen=True)
 class GuideResult:
-    """A linear guide's balls touching and free (see the module docstring); SI units."""
+    """A linear guide's balls touching and free (see the module docstring); SI units.  ``law``: the contact law
+    that gave the friction (:data:`FULL_SLIDING`, or :data:`STICK_SLIP` where full sliding has no state,
+    ``law_reason`` then says why)."""
 
     case: str
     model: str
@@ -87,6 +100,8 @@ class GuideResult:
     power_free: float                         # [W]
     power: float                              # [W]
     velocity_deviation_free: tuple[float, ...]  # epsilon = 2 v_B / v - 1 of each free ball (lin2019 eq 21)
+    law: str = FULL_SLIDING
+    law_reason: str = ""
 
     @property
     def friction_increase(self) -> float:
@@ -107,7 +122,9 @@ class GuideResult:
 
 @dataclass(frozen=True)
 class ScrewResult:
-    """A ball screw's balls touching and free (see the module docstring); SI units."""
+    """A ball screw's balls touching and free (see the module docstring); SI units.  ``law`` and ``law_reason`` as
+    :class:`GuideResult`'s (the stick/slip law on the loads of the frictionless statics where lin2019's model has no
+    state, e.g. past the preload loss)."""
 
     case: str
     model: str
@@ -118,6 +135,8 @@ class ScrewResult:
     power_free: float                         # [W]
     power: float                              # [W]
     axial_shares: tuple[float, ...]           # [N] axial load carried by each ball (touching)
+    law: str = FULL_SLIDING
+    law_reason: str = ""
 
     @property
     def friction_increase(self) -> float:
@@ -162,24 +181,67 @@ def guide_contacts(case, contacts=None) -> ContactLoads:
     return ContactLoads(tuple(rows))
 
 
-def guide_result(case, touching=None, free=None, contacts=None) -> GuideResult:
+@dataclass(frozen=True)
+class GuideStates:
+    """The touching and free states of a guide's balls and the law that gave them: :data:`FULL_SLIDING`
+    (``lowmodel.linear_bearing.b2b.solve``'s ``BallState``) or :data:`STICK_SLIP` (``b2b_rolling.solve``'s
+    ``RollingB2BState`` on ``cells``); ``reason`` the full-sliding model's own words where it has no state."""
+
+    touching: object
+    free: object
+    law: str
+    reason: str = ""
+    cells: tuple = ()
+
+    @property
+    def model(self) -> str:
+        return "lowmodel.linear_bearing.b2b" if self.law == FULL_SLIDING else "lowmodel.linear_bearing.b2b_rolling"
+
+
+def guide_states(case, contacts=None, *, cells=STICK_SLIP_CELLS) -> GuideStates:
+    """The balls of a :class:`lowmodel.bearing.GuideLoadCase` touching (every pair in contact) and free (gaps
+    of 1 mm): lin2019's full-sliding model (``b2b.solve``) where it has a state for both, else both by the
+    stick/slip law on a half-space (``b2b_rolling.solve`` on Hertz contacts of ``cells``, from full slip on the
+    cells or from rolling: ``start="auto"``, docs/b2b_rolling.md, "Where full sliding has no state"), with the same
+    lin2017 eq 36 loads.  The stick/slip law holds in any state from full stick to full slip (full sliding is its
+    limit), so it answers wherever the full-sliding solve finds no state, named (:func:`lowmodel.linear_bearing.b2b.
+    no_full_sliding_state`) or not; ``reason`` keeps what the full-sliding solve said."""
+    if contacts is None:
+        contacts = b2b.contacts(case)
+    touching_gaps, free_gaps = np.zeros(case.n_balls - 1), np.full(case.n_balls - 1, 1e-3)
+    try:
+        return GuideStates(b2b.solve(contacts, touching_gaps), b2b.solve(contacts, free_gaps), FULL_SLIDING)
+    except ConvergenceError as error:  # no full-sliding state found: the stick/slip law, which holds in any state
+        reason = _words(error)
+    from ballbench.lowmodel.linear_bearing import b2b_rolling
+
+    guide = case.guide
+    balls = [b2b_rolling.hertz_contacts(contacts, j, cells=tuple(cells), guide=guide) for j in range(case.n_balls)]
+    options = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
+                   groove_velocity=guide.groove_velocity, start="auto")
+    return GuideStates(b2b_rolling.solve(balls, gaps=touching_gaps, **options),
+                       b2b_rolling.solve(balls, gaps=free_gaps, **options), STICK_SLIP, reason, tuple(cells))
+
+
+def guide_result(case, touching=None, free=None, contacts=None, *, states: GuideStates | None = None) -> GuideResult:
     """:class:`GuideResult` of a :class:`lowmodel.bearing.GuideLoadCase` by the low-order numerical model (solved
-    here unless the states are given: ``contacts`` of ``b2b.contacts``, ``touching`` and ``free`` of
-    ``b2b.solve``)."""
+    here, :func:`guide_states`, unless the states are given: ``contacts`` of ``b2b.contacts``, ``touching`` and
+    ``free`` of ``b2b.solve``, or ``states`` of :func:`guide_states`)."""
     guide = case.guide
     if contacts is None:
         contacts = b2b.contacts(case)
-    gaps_touching = np.zeros(case.n_balls - 1)
-    if touching is None:
-        touching = b2b.solve(contacts, gaps_touching)
-    if free is None:
-        free = b2b.solve(contacts, np.full(case.n_balls - 1, 1e-3))
+    if states is None:
+        if touching is None or free is None:
+            states = guide_states(case, contacts)
+        else:
+            states = GuideStates(touching, free, FULL_SLIDING)
+    touching, free = states.touching, states.free
     rows = guide_contacts(case, contacts).contacts
     speed = abs(guide.groove_velocity)
-    return GuideResult(_name(case), "lowmodel.linear_bearing.b2b", tuple(rows),
+    return GuideResult(_name(case), states.model, tuple(rows),
                        tuple(float(x) for x in touching.b2b_force), free.input_power / speed,
                        touching.input_power / speed, float(free.input_power), float(touching.input_power),
-                       tuple(float(x) for x in free.velocity_deviation))
+                       tuple(float(x) for x in free.velocity_deviation), states.law, states.reason)
 
 
 def screw_states(case, contacts=None):
@@ -192,13 +254,61 @@ def screw_states(case, contacts=None):
     return free, touching
 
 
-def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
-    """:class:`ScrewResult` of a :class:`lowmodel.bearing.ScrewLoadCase` by the low-order numerical model (solved
-    here unless the states are given, as :func:`screw_states` returns them)."""
+@dataclass(frozen=True)
+class ScrewStates:
+    """The touching and free states of a screw's balls and the law that gave them: :data:`FULL_SLIDING` (lin2019's
+    model, ``screw.b2b.solve``) or :data:`STICK_SLIP` (``screw.b2b_rolling.solve`` on ``cells`` at the loads of the
+    frictionless statics ``loads``, :class:`lowmodel.screw.preload.FrictionlessState`); ``reason`` lin2019's model's
+    own words where it has no state."""
+
+    touching: object
+    free: object
+    law: str
+    reason: str = ""
+    cells: tuple = ()
+    loads: object = None
+
+    @property
+    def model(self) -> str:
+        return "lowmodel.screw.b2b" if self.law == FULL_SLIDING else "lowmodel.screw.b2b_rolling"
+
+
+def screw_law_states(case, contacts=None, *, cells=STICK_SLIP_CELLS) -> ScrewStates:
+    """The balls of a :class:`lowmodel.bearing.ScrewLoadCase` touching and free: lin2019's four-point full-sliding
+    model (:func:`screw_states`) where it has a state, else both by the stick/slip law on a half-space at the loads
+    of the frictionless statics (``lowmodel.screw.preload.frictionless_statics``: contacts unload past the preload
+    loss, two- or three-point contact) on Hertz contacts of ``cells`` (``screw.b2b_rolling.solve(...,
+    start="auto")``; docs/b2b_rolling.md, "Where full sliding has no state").  Normal loads and friction are then
+    decoupled, as in every stick/slip rung: the friction's axial force is not fed back into the loads."""
     if contacts is None:
         contacts = screw_b2b.contacts(case)
-    if touching is None or free is None:
+    try:
         free, touching = screw_states(case, contacts)
+        return ScrewStates(touching, free, FULL_SLIDING)
+    except ConvergenceError as error:  # no state of lin2019's model: the stick/slip law, which holds in any state
+        reason = _words(error)
+    from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+
+    loads = preload.frictionless_statics(contacts, case.axial_load)
+    balls = [screw_rolling.hertz_contacts(loads, contacts, j, cells=tuple(cells)) for j in range(contacts.n_balls)]
+    module = contacts.module
+    return ScrewStates(screw_rolling.solve(balls, module, start="auto"),
+                       screw_rolling.solve(balls, module, with_b2b=False, start="auto"), STICK_SLIP, reason,
+                       tuple(cells), loads)
+
+
+def screw_result(case, touching=None, free=None, contacts=None, *, states: ScrewStates | None = None) -> ScrewResult:
+    """:class:`ScrewResult` of a :class:`lowmodel.bearing.ScrewLoadCase` by the low-order numerical model (solved
+    here, :func:`screw_law_states`, unless the states are given: as :func:`screw_states` returns them, or
+    ``states``)."""
+    if contacts is None:
+        contacts = screw_b2b.contacts(case)
+    if states is None:
+        states = (ScrewStates(touching, free, FULL_SLIDING) if touching is not None and free is not None
+                  else screw_law_states(case, contacts))
+    if states.law != FULL_SLIDING:
+        return _stick_slip_screw_result(case, contacts, states)
+    touching, free = states.touching, states.free
     a = touching.semi_major
     rows = _screw_rows(touching.normal_force, touching.contact_angle, a, a * contacts.b_over_a, touching.approach)
     speed = abs(case.screw.nut_speed)
@@ -206,6 +316,31 @@ def screw_result(case, touching=None, free=None, contacts=None) -> ScrewResult:
     return ScrewResult(_name(case), "lowmodel.screw.b2b", tuple(rows), tuple(float(x) for x in touching.b2b_force),
                        free.input_power / speed, touching.input_power / speed, float(free.input_power),
                        float(touching.input_power), tuple(float(x) for x in shares))
+
+
+def _stick_slip_screw_result(case, contacts, states: ScrewStates) -> ScrewResult:
+    loads = states.loads
+    a = contacts.semi_major_unit * np.cbrt(loads.normal_force)
+    rows = _screw_rows(loads.normal_force, loads.contact_angle, a, a * contacts.b_over_a, loads.approach)
+    speed = abs(case.screw.nut_speed)
+    touching, free = states.touching, states.free
+    shares = axial_shares(contacts, stick_slip_forces(loads, touching))
+    return ScrewResult(_name(case), states.model, tuple(rows), tuple(float(x) for x in touching.b2b_force),
+                       free.input_power / speed, touching.input_power / speed, float(free.input_power),
+                       float(touching.input_power), tuple(float(x) for x in shares), states.law, states.reason)
+
+
+def stick_slip_forces(loads, state, friction: bool = True):
+    """The contact forces of a stick/slip screw ``state`` on the frictionless ``loads`` in the form
+    :func:`axial_shares` reads: normal forces and loaded contact angles (n, 4), friction forces (n, 4, 3) on the
+    ball in CS3 (zero with ``friction=False``: the normal loads alone)."""
+    friction_force = np.zeros(loads.normal_force.shape + (3,))
+    if friction:
+        for ball, row in enumerate(state.contacts):
+            for summary in row:
+                friction_force[ball, SCREW_CONTACTS.index(summary.name)] = summary.force
+    return SimpleNamespace(normal_force=loads.normal_force, contact_angle=loads.contact_angle,
+                           friction_force=friction_force)
 
 
 def axial_shares(contacts, state) -> np.ndarray:
@@ -232,6 +367,14 @@ def screw_frictionless_contacts(case) -> tuple[ContactLoad, ...]:
     state = preload.frictionless_statics(contacts, case.axial_load)
     a = contacts.semi_major_unit * np.cbrt(state.normal_force)
     return tuple(_screw_rows(state.normal_force, state.contact_angle, a, a * contacts.b_over_a, state.approach))
+
+
+def _words(error: ConvergenceError) -> str:
+    """What a failed full-sliding solve said: its message without the numbers, and its reason where the message
+    does not hold it."""
+    message = str(error).split(" (residual")[0]
+    reason = getattr(error, "reason", "") or ""
+    return message if not reason or reason in message else f"{message}: {reason}"
 
 
 def _name(case) -> str:

@@ -54,6 +54,8 @@ LIGHT = {
     ("lowmodel/contact/ellipse_friction.py", "scipy.interpolate"): SCENES,
     ("lowmodel/contact/halfspace.py", "ducc0.fft"): SCENES,
     ("lowmodel/contact/rolling_operators.py", "ducc0.fft"): SCENES,
+    ("lowmodel/bearing_results.py", "ballbench.lowmodel.linear_bearing.b2b_rolling"): STARTUP,
+    ("lowmodel/bearing_results.py", "ballbench.lowmodel.screw.b2b_rolling"): STARTUP,
     ("lowmodel/linear_bearing/ball_fast.py", "ballbench.lowmodel.contact.ellipse_friction"): STARTUP,
     ("lowmodel/linear_bearing/contacts.py", "ballbench.lowmodel.contact.ellipse_friction"): STARTUP,
     ("lowmodel/linear_bearing/contacts.py", "ballbench.lowmodel.linear_bearing.fourpoint"): STARTUP,

@@ -59,7 +59,8 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.solvers import newton
 
 __all__ = ["GridContact", "grid_contact", "hertz_contact", "sampled_contact", "sampled_pressure", "StickSlipFriction",
-           "ContactSummary", "contact_frame", "solve_balls", "LAWS", "FD_STEP", "SOLVE_TOLERANCE", "FULL_SLIP_NAME"]
+           "ContactSummary", "contact_frame", "solve_balls", "check_start", "solve_from_either_start", "STARTS",
+           "ROLLING_ITERATIONS", "LAWS", "FD_STEP", "SOLVE_TOLERANCE", "FULL_SLIP_NAME"]
 
 LAWS = ("stick-slip", "full-slip")
 # the full-slip limit on a stick/slip solve's cells (pointwise Coulomb, the b2b_traction solves) in its messages
@@ -394,6 +395,26 @@ class StickSlipFriction:
             return residual[0], None if jac is None else jac[0], None, None
         return residual, jac, None, None
 
+    def rolling_start(self) -> np.ndarray:
+        """(n, k) the state of each ball nearest to rolling without slip: the least-squares minimum of
+        ``sum_cells p dA |s_t|^2`` (``s_t`` the rigid slip's components along ``axis`` and ``lateral``), the
+        kinematics where the most loaded contacts roll and spin least.  The start of a stick/slip solve where the
+        full-slip law has no state to start from (docs/b2b_rolling.md, "Where full sliding has no state"): near
+        the four-point limit the heavy contacts stick, and their rolling is close to the state."""
+        starts = np.zeros((self.n_balls, self.n_unknowns))
+        for b, items in enumerate(self.items):
+            rows, rhs = [], []
+            for item in items:
+                contact = item.contact
+                weight = np.sqrt(contact.pressure.reshape(-1)[item.cells] * item.area)[:, None]
+                tangent = np.stack([contact.axis, contact.lateral])  # (2, 3)
+                rows.append((weight[:, :, None] * np.einsum("ti,mik->mtk", tangent, item.D)).reshape(-1,
+                                                                                                     self.n_unknowns))
+                rhs.append((weight * (item.g @ tangent.T)).reshape(-1))
+            matrix, vector = np.vstack(rows), np.concatenate(rhs)
+            starts[b] = np.linalg.lstsq(matrix, vector, rcond=None)[0]
+        return starts
+
     # -- the solved state --------------------------------------------------------------------------------------
     def summaries(self, balls: np.ndarray) -> list[list[ContactSummary]]:
         """Per ball and contact the :class:`ContactSummary` at the state ``balls`` (n, k)."""
@@ -493,6 +514,34 @@ def sampled_contact(name: str, top: bool, points, pressure, areas, axis, *, cell
     cell_pressure = sampled_pressure(grid, X, Y, p, w, outside=outside)
     return grid_contact(name, top, grid, cell_pressure, centre, n, t, lateral_curvature=lateral_curvature,
                         shear_modulus=shear_modulus, poisson_ratio=poisson_ratio, operator=operator)
+
+
+STARTS = ("full-slip", "rolling", "auto")  # the stick/slip solves' starts (docs/b2b_rolling.md)
+ROLLING_ITERATIONS = 4  # start="auto" from rolling: Newton's step budget times this (docs/b2b_rolling.md)
+
+
+def check_start(start: str, law: str, full_slip) -> str:
+    """``start`` of a stick/slip solve, checked: "rolling" and "auto" are the stick/slip law's own starts."""
+    start = checks.choice("start", start, STARTS)
+    if start != "full-slip" and (law != "stick-slip" or full_slip is not None):
+        raise ValueError(f"start={start!r} is the stick/slip law's own start: law must be 'stick-slip' and "
+                         "full_slip None")
+    return start
+
+
+def solve_from_either_start(solve, max_iterations: int, what: str):
+    """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells, else from rolling with
+    :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton converges linearly from there);
+    ConvergenceError naming ``what`` and both failures when neither converges."""
+    try:
+        return solve("full-slip", max_iterations)
+    except ConvergenceError as error:
+        try:
+            return solve("rolling", ROLLING_ITERATIONS * max_iterations)
+        except ConvergenceError as again:
+            raise ConvergenceError(f"{what}: converged neither from full slip on the cells ({error}) nor from "
+                                   f"rolling ({again})", residual=again.residual, iterations=again.iterations,
+                                   tolerance=again.tolerance, reason=again.reason) from again
 
 
 def solve_balls(friction: StickSlipFriction, start: np.ndarray, touching, pair_function_of, *, forces=None,

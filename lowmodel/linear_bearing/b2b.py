@@ -81,7 +81,8 @@ from ballbench.lowmodel.linear_bearing.ball import (
 )
 from ballbench.lowmodel.solvers import ContinuationStep, check_solver_options
 
-__all__ = ["solve", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps", "GapHistory", "contacts",
+__all__ = ["solve", "no_full_sliding_state", "solve_cases", "relax_state", "RELAXATION_FAILED", "simulate_gaps",
+           "GapHistory", "contacts",
            "module_contacts",
            "b2b_terms", "coupled_system", "pair_function", "touching_pairs", "MU_PATH_START"]
 
@@ -195,6 +196,15 @@ def b2b_terms(scaled: np.ndarray, forces: np.ndarray, mu: float):
     d_force[:, 0] = (-1.0, 1.0)
     d_force[:, 1:] = (-mu * unit)[:, :, None]
     return load, block, d_force, np.sqrt(squared)
+
+
+def no_full_sliding_state(error: ConvergenceError) -> bool:
+    """Whether a ConvergenceError of :func:`solve` says lin2019's full-sliding model has no state (a free ball's
+    spin-capacity ratio below 1, or the full-sliding branch ending where a contact stops sliding; docs/b2b_bearing.md)
+    rather than a solver fault: there the stick/slip law is the model of record (docs/b2b_rolling.md, "Where full
+    sliding has no state")."""
+    reason = getattr(error, "reason", "") or ""
+    return reason == SPIN_CAPACITY_REASON or reason.startswith(STICK_REASON)
 
 
 def solve(contacts: BallContacts, gaps=None, *, tolerance: float = 1e-12, max_iterations: int = 100,  # noqa: C901 - one solve: direct, free balls, continuation, the walks, the relaxation

@@ -151,7 +151,7 @@ def _friction(balls, radius: float, mu: float, velocity: float, law: str, refere
 
 def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float, gaps=None,
           law: str = "stick-slip", tolerance: float = 1e-9, max_iterations: int = 40,
-          full_slip: b2b_traction.TractionState | None = None) -> RollingB2BState:
+          full_slip: b2b_traction.TractionState | None = None, start: str = "full-slip") -> RollingB2BState:
     """Quasi-static motion of ``n >= 1`` balls whose ball-to-groove contacts are :class:`GridContact` s, with B2B
     contact (lin2019 eqs 4-10; module docstring).
 
@@ -161,6 +161,11 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     law : "stick-slip" (the rolling solve) or "full-slip" (pointwise Coulomb on the same cells)
     tolerance : max residual of eq 4 in units of ``mu F_ref`` (F_ref the largest contact force) and of eqs 9-10
     full_slip : the full-slip state of the same balls and gaps (the start; solved here when None)
+    start : "full-slip" (from ``full_slip``), "rolling" (stick/slip only: from each ball's kinematics nearest to
+        rolling, :meth:`~lowmodel.contact.rolling_friction.StickSlipFriction.rolling_start`, the B2B forces from
+        zero) or "auto" (stick/slip only: from full slip on the cells where that has a state and the stick/slip
+        solve converges from it, else from rolling with ``rolling_friction.ROLLING_ITERATIONS`` times the steps;
+        docs/b2b_rolling.md, "Where full sliding has no state")
 
     ValueError for bad input; ConvergenceError (with its residual) when Newton fails or the power balance misses
     :data:`POWER_BALANCE_TOLERANCE`.
@@ -176,6 +181,19 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         raise ValueError("balls must hold n >= 1 balls with the same number of contacts each")
     touching = b2b.touching_pairs(gaps, n, radius)
     patches = [[c.patch() for c in contacts] for contacts in balls]
+    if rf.check_start(start, law, full_slip) == "auto":
+        return rf.solve_from_either_start(
+            lambda first, steps: solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
+                                       gaps=gaps, tolerance=tolerance, max_iterations=steps, start=first),
+            max_iterations, f"stick/slip {n}-ball B2B contact")
+    if start == "rolling":
+        reference_force = max(p.normal_force for contacts in patches for p in contacts)
+        friction = _friction(balls, radius, mu, velocity, law, reference_force)
+        states, slots, iterations, residual = rf.solve_balls(
+            friction, friction.rolling_start(), touching, lambda layout: b2b.pair_function(layout, mu),
+            forces=np.zeros(n - 1), complementarity="min", tolerance=tolerance, max_iterations=max_iterations,
+            what=f"stick/slip {n}-ball B2B contact from rolling")
+        return _state(friction, states, slots, mu, velocity, radius, reference_force, iterations, residual, law)
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=min(tolerance, 1e-11), max_iterations=100,

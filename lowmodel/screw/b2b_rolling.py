@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -96,7 +97,8 @@ def hertz_contacts(state: sb.ScrewBallState, contacts: screw_contacts.BallContac
     ``b_i`` along ``y3`` and ``a_i`` across, the state's force; CS3 of the ball.  ``cells = (n_along,
     n_across)`` (or one fixed ``SurfaceGrid``); ``heathcote=False``: planar contact surfaces;
     ``operator_for(grid)``: the operator (default the half-space of the module's material).  Unloaded contacts are
-    left out."""
+    left out.  ``state`` may also be the frictionless statics (:class:`lowmodel.screw.preload.FrictionlessState`,
+    past the preload loss): its semi-axes are Hertz's of its forces, ``contacts.semi_major_unit F^(1/3)``."""
     index = checks.count("ball", ball, 0, contacts.n_balls - 1)
     module = contacts.module
     shear, nu = _material(module)
@@ -108,7 +110,8 @@ def hertz_contacts(state: sb.ScrewBallState, contacts: screw_contacts.BallContac
             continue
         beta = float(state.contact_angle[index, i])
         e = np.array([_SIGN_U[i] * math.cos(beta), 0.0, _SIGN_W[i] * math.sin(beta)])
-        a = float(state.semi_major[index, i])
+        a = (float(state.semi_major[index, i]) if hasattr(state, "semi_major") else
+             float(contacts.semi_major_unit[index, i]) * force ** (1.0 / 3.0))
         b = a * float(contacts.b_over_a[index, i])
         out.append(rf.hertz_contact(name, i >= 2, module.ball_radius * e, e, AXIS, b, a, force, cells,
                                     lateral_curvature=curvature, shear_modulus=shear, poisson_ratio=nu,
@@ -139,7 +142,7 @@ def _units(module: screw_contacts.ScrewModule) -> tuple[float, float]:
 
 def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: bool = True, law: str = "stick-slip",
           tolerance: float = 1e-9, max_iterations: int = 40,
-          full_slip: b2b_traction.ScrewTractionState | None = None) -> ScrewRollingState:
+          full_slip: b2b_traction.ScrewTractionState | None = None, start: str = "full-slip") -> ScrewRollingState:
     """Quasi-static motion of ``n >= 1`` balls of a ball screw whose contacts are :class:`GridContact` s (each in its
     ball's CS3), with B2B contact (lin2019 eqs 54-61; module docstring).
 
@@ -147,6 +150,8 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
         material; the normal loads come with the contacts);  gaps (n-1,) rad beyond touching (default touching);
     with_b2b : False solves the balls apart;  law : "stick-slip" or "full-slip" (pointwise Coulomb on the cells)
     tolerance : max residual (units ``mu F_ref``) and of eqs 60-61;  full_slip : the full-slip state (the start)
+    start : "full-slip" (from ``full_slip``, solved here when None), "rolling" or "auto" (stick/slip only), as
+        :func:`lowmodel.linear_bearing.b2b_rolling.solve`'s (docs/b2b_rolling.md, "Where full sliding has no state")
 
     ValueError for bad input; ConvergenceError (with its residual) when Newton fails or the power balance misses.
     """
@@ -161,6 +166,13 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     gaps = b2b.check_gaps(gaps, n - 1)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     patches = [[c.patch() for c in contacts] for contacts in balls]
+    if rf.check_start(start, law, full_slip) == "auto":
+        return rf.solve_from_either_start(
+            lambda first, steps: solve(balls, module, gaps=gaps, with_b2b=with_b2b, tolerance=tolerance,
+                                       max_iterations=steps, start=first),
+            max_iterations, f"stick/slip {n}-ball screw B2B contact")
+    if start == "rolling":
+        full_slip = _rolling_full_slip(balls, module, patches)
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, module, gaps=gaps, with_b2b=with_b2b,
                                        tolerance=min(tolerance, 1e-11), max_iterations=100,
@@ -184,6 +196,21 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
             forces=slots, complementarity="fischer-burmeister", tolerance=tolerance, max_iterations=max_iterations,
             what=f"stick/slip {n}-ball screw B2B contact")
     return _state(friction, states, slots, module, reference_force, iterations, residual, law)
+
+
+def _rolling_full_slip(balls, module: screw_contacts.ScrewModule, patches):
+    """The rolling start (:meth:`~lowmodel.contact.rolling_friction.StickSlipFriction.rolling_start`) in the shape
+    of a full-slip state: orbit speed, spins, B2B forces zero."""
+    speed, spin = _units(module)
+    reference_force = max(p.normal_force for contacts in patches for p in contacts)
+
+    def field(points, moving):
+        return b2b_traction.slip_field(points, module, moving)
+
+    start = rf.StickSlipFriction(balls, field, module.friction_coefficient, reference_force,
+                                 math.copysign(1.0, module.nut_speed), speed).rolling_start()
+    return SimpleNamespace(orbit_speed=start[:, 0] * abs(module.nut_speed), omega=start[:, 1:] * spin,
+                           b2b_force=np.zeros(max(len(balls) - 1, 0)), iterations=0, residual=math.inf)
 
 
 def _state(friction, states, slots, module, reference_force, iterations, residual, law) -> ScrewRollingState:

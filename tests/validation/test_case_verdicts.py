@@ -10,6 +10,7 @@ import pytest
 
 from ballbench.lowmodel import bearing_results
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.validation import cli, ladder
 from ballbench.validation.ladder import common
@@ -60,25 +61,28 @@ def test_the_fe_module_does_not_apply_where_lin2019_leaves_a_contact_unloaded(tm
         _scene(case, "b2b-fe").show(tmp_path / "out" / "s-b2b-fe", "quick")
 
 
-def test_past_the_preload_loss_lin2019_s_scenes_do_not_apply_and_the_run_passes(tmp_path, capsys):
+def test_past_the_preload_loss_the_balls_run_on_the_stick_slip_law_and_the_run_passes(tmp_path, capsys):
     path = _screw_file(tmp_path, "450 N")
     out = tmp_path / "report"
     code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--out", str(out)])
     err = capsys.readouterr().err
     assert code == 0, err
     # before any work, the header says where the axial load stands against the preload loss
-    head = err[:err.index("DOES NOT APPLY")]
+    head = err[:err.index("PASS s-balls")]
     assert f"preload loss at {PRELOAD_LOSS_N:g} N" in head and "450 N is past it" in head
-    assert "s-balls (built on its state) do not apply" in head
+    assert "s-balls gives the friction by the stick/slip law" in head
     assert "s-contact runs on the loads of the frictionless statics" in head
     assert "two-point contact past the preload loss" in head
     data = json.loads((out / "results.json").read_text())
-    assert data["passed"] and data["counts"]["not applicable"] == 1 and data["counts"]["error"] == 0
+    assert data["passed"] and data["counts"]["not applicable"] == 0 and data["counts"]["error"] == 0
     scenes = {scene["name"]: scene for scene in data["scenes"]}
     balls = scenes["s-balls"]
-    assert balls["status"] == "not applicable" and balls["passed"] and not balls["error"]
-    assert "450 N is past the preload loss at 127.6 N" in balls["not_applicable"]
-    assert "no state" in balls["not_applicable"] and "lin2019 eq 53" in balls["not_applicable"]
+    assert balls["status"] == "pass" and not balls["error"]
+    notes = " ".join(balls["notes"])
+    assert "stick/slip on a half-space" in notes and "load ramp stopped" in notes and "frictionless statics" in notes
+    titles = [table["title"] for table in balls["tables"]]
+    assert any(t.startswith("Friction torque on the nut (contact law: stick/slip") for t in titles), titles
+    assert any(t.startswith("Contact law per ball and contact") for t in titles), titles
     # the contact rung runs on the frictionless two-point statics, and says so and why
     contact = scenes["s-contact"]
     assert contact["status"] != "not applicable" and contact["passed"] and not contact["error"]
@@ -86,21 +90,14 @@ def test_past_the_preload_loss_lin2019_s_scenes_do_not_apply_and_the_run_passes(
     assert "frictionless statics" in notes and "not those of lin2019's friction model" in notes
     assert "450 N is past the preload loss at 127.6 N" in notes
     assert contact["tables"][0]["title"].startswith("Per ball and contact (frictionless two-point statics")
-    report = (out / "report.md").read_text()
-    assert "## Rungs that do not apply to this case" in report and "DOES NOT APPLY" in report
-    page = (out / "report.html").read_text()
-    assert 'class="na"' in page and 'class="banner muted"' in page
-    # --strict fails it, and says why
-    code = cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--strict",
-                     "--out", str(out), "--junit", str(tmp_path / "junit.xml")])
-    assert code == 1 and "does not apply (--strict)" in capsys.readouterr().err
 
 
 def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_rung(tmp_path, capsys):
     """A screw of 3/16-inch balls (R_B 2.381 mm, R_P 12.5 mm, lead 5 mm, f 0.54, 1.5 um, mu 0.05) at 300 N axial
     load: lin2019's load ramp starts at 100 N per ball, already past this screw's preload loss (111 N), and stops
     at its first step ("load ramp stopped (a contact slides fully)").  That is the model's limit, not a fault:
-    -balls does not apply and names the loss, -contact runs on the frictionless statics (it ended in ERROR)."""
+    -balls gives the friction by the stick/slip law on the frictionless loads (it did not apply; before that it ended
+    in ERROR), -contact runs on the frictionless statics (it ended in ERROR)."""
     text = case_file.template("ball-screw")
     for old, new in (('ball_radius = "3.175 mm"', 'ball_radius = "2.381 mm"'),
                      ('pitch_radius = "16.6 mm"', 'pitch_radius = "12.5 mm"'), ('lead = "10 mm"', 'lead = "5 mm"'),
@@ -112,7 +109,7 @@ def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_
     path = tmp_path / "small.toml"
     path.write_text(text)
     with pytest.raises(ConvergenceError, match="load ramp stopped") as caught:
-        bearing_results.friction(case_file.load(path))
+        bearing_results.screw_states(case_file.load(path))
     assert caught.value.reason == screw_b2b.RAMP_STOP.format("a contact slides fully")
     assert common.no_state_reason(caught.value.reason)
     assert not common.no_state_reason(screw_b2b.RAMP_STOP.format("Newton diverged"))
@@ -120,8 +117,10 @@ def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_
     code = cli.main(["validate", str(path), "--quick", "--levels", "analytical", "--no-progress", "--out", str(out)])
     assert code == 0, capsys.readouterr().err
     scenes = {scene["name"]: scene for scene in json.loads((out / "results.json").read_text())["scenes"]}
-    assert scenes["small-balls"]["status"] == "not applicable"
-    assert "300 N is past the preload loss at 111 N" in scenes["small-balls"]["not_applicable"]
+    assert scenes["small-balls"]["status"] == "pass"  # the stick/slip law on the frictionless loads
+    result = bearing_results.friction(case_file.load(path))
+    assert result.law == bearing_results.STICK_SLIP and "load ramp stopped" in result.law_reason
+    assert result.friction_torque > result.friction_torque_free > 0.0
     contact = scenes["small-contact"]
     assert contact["passed"] and not contact["error"] and contact["status"] != "not applicable"
     assert "frictionless statics" in " ".join(contact["notes"])
@@ -130,12 +129,13 @@ def test_a_small_screw_whose_load_ramp_stops_at_its_first_step_runs_the_contact_
 @pytest.mark.parametrize("theta, rho, vertical, mu, words", [
     ("1.5 deg", -0.9, "300 N", 0.2, "spin-capacity ratio < 1"),
     ("2.87 deg", -0.83, "128 N", 0.604, "a contact stops sliding (full-sliding branch ends")])
-def test_a_guide_without_a_full_sliding_state_runs_its_contact_rung_and_says_why_the_balls_do_not_apply(
+def test_a_guide_without_a_full_sliding_state_gets_its_friction_from_the_stick_slip_law(
         tmp_path, theta, rho, vertical, mu, words):
     """lin2019 Table 1's guide near the four-point limit, where the full-sliding model has no state (a free ball's
-    spin-capacity ratio 0.738 < 1; the hard case whose branch ends at mu 0.145): -balls and -b2b-fe do not apply
-    and say why; -contact runs on the lin2017 eq 36 loads, which friction does not change (the balls' and the
-    contact scene ended in ERROR).  The eq 36 loads are those of lin2019's state wherever it has one."""
+    spin-capacity ratio 0.738 < 1; the hard case whose branch ends at mu 0.145): -balls gives the friction by the
+    stick/slip law and says why (it did not apply, and before that ended in ERROR); -b2b-fe, built on full sliding,
+    does not apply and says where the friction is; -contact runs on the lin2017 eq 36 loads, which friction does not
+    change.  The eq 36 loads are those of lin2019's state wherever it has one."""
     from ballbench.validation.ladder import rungs
 
     text = (paths.ROOT / "validation" / "cases" / "files" / "lin2019-table3-a.toml").read_text()
@@ -149,18 +149,23 @@ def test_a_guide_without_a_full_sliding_state_runs_its_contact_rung_and_says_why
         text = text.replace(old, new)
     case = case_file.load(_write(tmp_path / "g.toml", text))
     with pytest.raises(ConvergenceError):
-        bearing_results.friction(case)
-    for name in ("balls", "b2b-fe"):
-        result = run_scene(_scene(case, name), "quick", tmp_path / name)
-        assert result.status() == "not applicable" and not result.error, (name, result.error)
-        assert words in result.not_applicable and "lin2017 eq 36" in result.not_applicable
+        b2b.solve(b2b.contacts(case), [0.0])
+    balls = run_scene(_scene(case, "balls"), "quick", tmp_path / "balls")
+    assert balls.passed and not balls.error and balls.status() != "not applicable", balls.error
+    notes = " ".join(balls.notes)
+    assert bearing_results.STICK_SLIP in notes and words in notes
+    judged = {c.quantity for c in balls.outputs}
+    assert {"friction force, balls touching (grid error of the stick/slip solve)",
+            "power balance (input - losses)/input, balls touching"} <= judged
+    fe = run_scene(_scene(case, "b2b-fe"), "quick", tmp_path / "b2b-fe")
+    assert fe.status() == "not applicable" and not fe.error, fe.error
+    assert words in fe.not_applicable and "-balls" in fe.not_applicable and "lin2017 eq 36" in fe.not_applicable
     contact = run_scene(_scene(case, "contact", top="BEM"), "quick", tmp_path / "contact")
     assert contact.passed and not contact.error and contact.status() != "not applicable"
-    assert any("lin2017 eq 36" in note for note in contact.notes)
     # where the model has a state, the eq 36 loads are its loads
     state = bearing_results.guide_result(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"))
     loads = bearing_results.guide_contacts(case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml"))
-    assert loads.contacts == state.contacts
+    assert loads.contacts == state.contacts and state.law == bearing_results.FULL_SLIDING
     assert rungs.distinct_contacts(case, bearing_results.guide_contacts(case))[0].contact.force == max(
         c.normal_force for c in bearing_results.guide_contacts(case).contacts)
 
@@ -171,15 +176,19 @@ def _write(path, text):
 
 
 def test_junit_skips_a_scene_that_does_not_apply(tmp_path):
-    path = _screw_file(tmp_path, "450 N")
-    out = tmp_path / "report"
-    assert cli.main(["validate", str(path), "--quick", "--levels", "low-order", "--no-progress", "--out", str(out),
-                     "--junit", str(tmp_path / "junit.xml")]) == 0
-    suite = ET.parse(tmp_path / "junit.xml").getroot()
+    """Past the preload loss (450 N) the FE module does not apply (lin2019's state leaves contacts unloaded): JUnit
+    skips it with the reason, and the balls' scene (the stick/slip law) passes."""
+    from ballbench.validation.report import to_junit
+
+    case = case_file.load(_screw_file(tmp_path, "450 N"))
+    results = [run_scene(_scene(case, name), "quick", tmp_path / name) for name in ("balls", "b2b-fe")]
+    path = tmp_path / "junit.xml"
+    path.write_bytes(to_junit(results))
+    suite = ET.parse(path).getroot()
     assert suite.get("skipped") == "1" and suite.get("errors") == "0" and suite.get("failures") == "0"
     skipped = {case.get("name"): case.find("skipped") for case in suite.iter("testcase")}
-    assert skipped["s-balls"].get("message").startswith("does not apply: axial load 450 N")
-    assert skipped["s-contact"] is None  # runs on the frictionless statics
+    assert skipped["s-b2b-fe"].get("message").startswith("does not apply: axial load 450 N")
+    assert skipped["s-balls"] is None
 
 
 def _contact_loads(case, tmp_path, monkeypatch, top="analytical"):
@@ -262,22 +271,27 @@ def _raise(reason):
     return solve
 
 
-def test_another_convergence_error_of_a_case_scene_stays_an_error(tmp_path, monkeypatch):
-    # past the preload loss, but the solver stopped for another reason: not the declared limit
+@pytest.mark.parametrize("load, reason", [("450 N", "no descent step"), ("100 N", screw_b2b.FULL_SLIDING_LIMIT)])
+def test_where_lin2019_finds_no_state_the_balls_answer_by_the_stick_slip_law_and_keep_its_words(
+        tmp_path, monkeypatch, load, reason):
+    # lin2019's solve stopped (past the preload loss for a reason of its solver; below it at its declared limit):
+    # the stick/slip law on the frictionless loads answers, the scene says what lin2019's solve said
+    case = case_file.load(_screw_file(tmp_path, load))
+    monkeypatch.setattr(screw_b2b, "solve", _raise(reason))
+    result = run_scene(_scene(case, "balls", top="low-order"), "quick", tmp_path / "out")
+    assert result.status() == "pass" and not result.error, result.error
+    notes = " ".join(result.notes)
+    assert "stick/slip on a half-space" in notes and "no converged state" in notes and reason in notes
+
+
+def test_a_failure_of_the_stick_slip_law_too_stays_an_error(tmp_path, monkeypatch):
+    from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
+
     case = case_file.load(_screw_file(tmp_path, "450 N"))
-    monkeypatch.setattr(screw_b2b, "solve", _raise("no descent step"))
+    monkeypatch.setattr(screw_b2b, "solve", _raise(screw_b2b.FULL_SLIDING_LIMIT))
+    monkeypatch.setattr(screw_rolling, "solve", _raise("no descent step"))
     result = run_scene(_scene(case, "balls", top="low-order"), "quick", tmp_path / "out")
     assert result.status() == "error" and "ConvergenceError" in result.error and not result.not_applicable
-
-
-def test_the_declared_limit_below_the_preload_loss_stays_an_error(tmp_path, monkeypatch):
-    # the full-sliding limit at a load below the preload loss, where the model finds no state even under the
-    # preload alone, is not the model's limit (four-point contact) but a fault: it stands (tests/validation/
-    # test_catalogue.py: below the loss with states at lower loads, the scene does not apply)
-    case = case_file.load(_screw_file(tmp_path, "100 N"))
-    monkeypatch.setattr(screw_b2b, "solve", _raise(screw_b2b.FULL_SLIDING_LIMIT))
-    result = run_scene(_scene(case, "balls", top="low-order"), "quick", tmp_path / "out")
-    assert result.status() == "error" and "ConvergenceError" in result.error
 
 
 def test_a_paper_scene_still_errors_on_the_declared_limit(tmp_path, monkeypatch):

@@ -13,7 +13,7 @@ import time
 from ballbench.lowmodel import bearing_results, truncation
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES as GUIDE_CONTACTS
-from ballbench.lowmodel.linear_bearing.ball import SPIN_CAPACITY_REASON, STICK_REASON
+from ballbench.lowmodel.linear_bearing import b2b
 from ballbench.lowmodel.screw import b2b as screw_b2b
 from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.b2b import FULL_SLIDING_LIMIT
@@ -202,16 +202,16 @@ def beyond_full_sliding(case, error) -> str:
     """The reason a ConvergenceError of lin2019's linear-guide model is the limit of that model on ``case``, or ""
     when it is not (a solver fault, which then stands): a free ball's spin-capacity ratio below 1 (no full-sliding
     state can exist, docs/b2b_bearing.md) or the full-sliding branch ending where a contact's slip falls to zero
-    (lowmodel.linear_bearing.ball.STICK_REASON, with the evidence of its walks).  Near the four-point limit a contact
-    sticks (rolls without spin) and its traction is no longer mu p; the contact loads of lin2017 eq 36 do not depend
-    on friction and stand (lowmodel.bearing_results.guide_contacts)."""
-    reason = getattr(error, "reason", "") or ""
-    if not isinstance(case, LinearGuideCase) or not (reason == SPIN_CAPACITY_REASON or reason.startswith(STICK_REASON)):
+    (lowmodel.linear_bearing.b2b.no_full_sliding_state).  Near the four-point limit a contact sticks (rolls without
+    spin) and its traction is no longer mu p: the ``-balls`` scene gives the friction by the stick/slip law
+    (lowmodel.bearing_results.guide_states); a scene built on full sliding does not apply."""
+    if not isinstance(case, LinearGuideCase) or not b2b.no_full_sliding_state(error):
         return ""
-    return (f"lin2019's full-sliding model has no state for these balls ({reason}): near the four-point limit a "
-            "contact sticks (rolls without spin), its traction is no longer mu p, and a model that lets contacts "
-            "stick is not yet the model of record (docs/your_own_bearing.md, 'Not yet'). The contact loads of "
-            "lin2017 eq 36 do not depend on friction: the contact rung runs on them.")
+    return (f"lin2019's full-sliding model has no state for these balls ({error.reason}): near the four-point limit a "
+            "contact sticks (rolls without spin) and its traction is no longer mu p. This scene is built on full "
+            "sliding; the -balls scene gives the friction by the stick/slip law on a half-space (docs/b2b_rolling.md, "
+            "'Where full sliding has no state'), and the contact rung runs on the loads of lin2017 eq 36, which do "
+            "not depend on friction.")
 
 
 @contextlib.contextmanager
@@ -265,11 +265,16 @@ def limits_lines(case, names) -> list[str]:
         lines.append(f"{fe[0]} does not apply where lin2019's state leaves a contact unloaded (its FE module needs "
                      "four loaded contacts, lin2017 eq 37).")
     contact = [n for n in built if n.endswith("-contact")]
-    built = [n for n in built if not n.endswith("-contact")]
+    balls = [n for n in built if n.endswith("-balls")]
+    built = [n for n in built if not n.endswith(("-contact", "-balls"))]
+    if balls:
+        lines.append(f"Where lin2019's model finds no state at this load, {balls[0]} gives the friction by the "
+                     "stick/slip law on a half-space at the loads of the frictionless statics (docs/b2b_rolling.md, "
+                     "'Where full sliding has no state'); where it finds one, its contacts slide near their limit "
+                     "mu F: judge its friction with care.")
     if built:
         lines.append(f"Where lin2019's model finds no state at this load, {', '.join(built)} (built on its state) do "
-                     "not apply; where it finds one, its contacts slide near their limit mu F: judge its friction "
-                     "with care.")
+                     "not apply.")
     if contact:
         lines.append(f"Where lin2019's model finds no state at this load, {contact[0]} runs on {FRICTIONLESS_WORDS}.")
     return lines
@@ -279,12 +284,16 @@ def limits_lines(case, names) -> list[str]:
 # contact ellipse truncation by the groove's shoulder (lowmodel.truncation, docs/truncation.md)
 # --------------------------------------------------------------------------
 def touching_state(case):
-    """The low-order touching state of a guide or screw ``case`` (lowmodel.bearing_results.guide_result or
-    screw_result), or None when the model has no state there (ConvergenceError) or ``case`` is neither."""
-    if not isinstance(case, (LinearGuideCase, BallScrewCase)):
+    """The contact loads of the low-order touching state of a guide or screw ``case``: a guide's lin2017 eq 36 loads
+    (lowmodel.bearing_results.guide_contacts, the same under either contact law), a screw's screw_result, or None
+    when the screw model has no state there (ConvergenceError) or ``case`` is neither."""
+    if isinstance(case, LinearGuideCase):  # lin2017 eq 36's loads and ellipses: the same under either law
+        return bearing_results.guide_contacts(case)
+    if not isinstance(case, BallScrewCase):
         return None
-    try:
-        return bearing_results.friction(case)
+    try:  # lin2019's state (full sliding): the module FE is built on it
+        free, touching = bearing_results.screw_states(case)
+        return bearing_results.screw_result(case, touching, free)
     except ConvergenceError:
         return None
 

@@ -17,7 +17,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.cases.case import BallScrewCase, ContactCase, LinearGuideCase
 from ballbench.validation.ladder import rungs as ladder_rungs
 from ballbench.validation.ladder.common import (FRICTIONLESS_WORDS, REFERENCE_UNCERTAINTY, fmt,
-                                               beyond_full_sliding, past_preload_loss, settle_words)
+                                               past_preload_loss, settle_words)
 from ballbench.validation.ladder.common import truncation_check
 from ballbench.validation.references.richardson import extrapolate
 from ballbench.validation.references.uncertainty import eca_hoekstra
@@ -71,28 +71,26 @@ def _distinct(case):
     low-order state they come from or None): a ball screw where lin2019's model finds no state (past its preload
     loss, or below it where friction unloads a contact first; common.past_preload_loss) runs on the loads of the
     frictionless statics (lowmodel.screw.preload.frictionless_statics) instead of not applying: the contact rung
-    needs a contact geometry and a load, not lin2019's friction.  Any other ConvergenceError stays as it is."""
-    try:
-        result = bearing_results.friction(case) if isinstance(case, (LinearGuideCase, BallScrewCase)) else None
+    needs a contact geometry and a load, not lin2019's friction.  Any other ConvergenceError stays as it is.  A
+    guide's loads are lin2017 eq 36's (lowmodel.bearing_results.guide_contacts) under either contact law."""
+    if isinstance(case, LinearGuideCase):  # eq 36's loads and ellipses, the same under either contact law
+        loads = bearing_results.guide_contacts(case)
+        return ladder_rungs.distinct_contacts(case, loads), "", loads
+    try:  # lin2019's state where it has one (its loaded contact angles), without the stick/slip law's solves
+        result = None
+        if isinstance(case, BallScrewCase):
+            free, touching = bearing_results.screw_states(case)
+            result = bearing_results.screw_result(case, touching, free)
         return ladder_rungs.distinct_contacts(case, result), "", result
     except ConvergenceError as error:
-        reason = past_preload_loss(case, error) or beyond_full_sliding(case, error)
+        reason = past_preload_loss(case, error)
         if not reason:
             raise
-    if isinstance(case, LinearGuideCase):  # eq 36's loads and ellipses: the truncation check runs on them
-        loads = bearing_results.guide_contacts(case)
-        return ladder_rungs.distinct_contacts(case, loads), reason, loads
     return ladder_rungs.distinct_contacts(case, frictionless=True), reason, None
 
 
 def _frictionless_table(run, case, reason: str) -> None:
-    """The notes and the per-ball, per-contact table of the frictionless statics the scene runs on (a guide's: the
-    lin2017 eq 36 loads, the rows of its -balls scene's contact table)."""
-    if isinstance(case, LinearGuideCase):
-        run.note("Loads: the contact loads of lin2017 eq 36 at the rigid contact angles (lowmodel.bearing_results."
-                 "guide_contacts), which lin2019's friction does not change.")
-        run.note("Why: " + reason)
-        return
+    """The notes and the per-ball, per-contact table of the frictionless statics a ball screw's scene runs on."""
     run.note("Loads: " + FRICTIONLESS_WORDS + ".")
     run.note("Why: " + reason)
     rows = bearing_results.screw_frictionless_contacts(case)

@@ -185,7 +185,7 @@ def distinct_contacts(case, result=None, *, frictionless: bool = False) -> tuple
     if isinstance(case, ContactCase):
         return (DistinctContact("contact", case, (case.name,), "the case file's own contact"),)
     if isinstance(case, LinearGuideCase):
-        result = result or bearing_results.guide_result(case)
+        result = result or bearing_results.guide_contacts(case)  # eq 36's loads: the same under either law
         guide = case.guide
         contact = governing_contact(case, result)
         members = tuple(f"ball {c.ball} {c.contact}" for c in result.contacts)
@@ -291,7 +291,9 @@ def module_fe(case, result=None):
     if case.fe is not None:
         return case
 
-    result = result or bearing_results.friction(case)
+    if result is None:  # a guide's eq 36 loads are the same under either law
+        result = (bearing_results.guide_contacts(case) if isinstance(case, LinearGuideCase)
+                  else bearing_results.friction(case))
     loaded = [c for c in result.contacts if c.normal_force > 0]
     b_max = max(c.b for c in loaded)
     approach = max(c.approach for c in loaded)

@@ -228,3 +228,30 @@ def test_grid_contacts_reproduce_the_rolling_contacts_of_a_ball_state():
         assert mine.lateral == pytest.approx(theirs.lateral_force, abs=1e-9 * scale)
         assert mine.spin_moment == pytest.approx(theirs.spin_moment, abs=1e-9 * scale * 1e-3)
         assert mine.spin_parameter == pytest.approx(theirs.spin_parameter, rel=0.02)  # moment axes vs Hertz's
+
+
+def test_the_rolling_start_of_a_symmetric_ball_is_rolling_at_half_the_groove_speed():
+    """The rolling start (StickSlipFriction.rolling_start) of a ball whose four contacts are alike (theta 0, rho 0):
+    by symmetry the centre moves at v/2 (the bottom groove at rest, the top at v) and the ball does not yaw
+    (omega_y = 0); the least-squares slip is then orthogonal to every column (its normal equations)."""
+    contacts, balls = linear_balls(theta=0.0, rho=0.0)
+    state = b2b_rolling.solve(balls[:1], start="rolling", **COMMON)
+    start = rf.StickSlipFriction([balls[0]], lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, 1.0, 1.0,
+                                 V).rolling_start()[0]
+    assert start[0] == pytest.approx(0.5, abs=1e-12) and abs(start[2]) < 1e-12
+    assert state.ball_velocity[0] == pytest.approx(0.5 * V, rel=1e-9)  # the solved ball: v/2 by the same symmetry
+
+
+def test_the_stick_slip_state_from_rolling_is_the_state_from_full_slip(case_a):
+    """Where full slip has a state, the stick/slip solve reaches the same state from the rolling start as from full
+    slip (touching and free balls): the start does not choose the answer."""
+    contacts, balls, result = case_a
+    for gaps, reference in ((None, result.touching), ([R_B], result.free)):
+        state = b2b_rolling.solve(balls, gaps=gaps, start="rolling", **COMMON)
+        assert state.b2b_force == pytest.approx(reference.b2b_force, rel=1e-7, abs=1e-9)
+        assert state.ball_velocity == pytest.approx(reference.ball_velocity, rel=1e-9)
+        assert state.omega == pytest.approx(reference.omega, rel=1e-6, abs=1e-9 * V / R_B)
+    auto = b2b_rolling.solve(balls, start="auto", **COMMON)
+    assert auto.b2b_force == pytest.approx(result.touching.b2b_force, rel=1e-7)
+    with pytest.raises(ValueError, match="start"):
+        b2b_rolling.solve(balls, start="rolling", law="full-slip", **COMMON)
