@@ -118,22 +118,41 @@ def gap_histories(histories: dict, ball_radius: float, analytical_times):
     return fig
 
 
-def b2b_maps(rho_grid, theta_grid, force, ratio):
+def b2b_maps(rho_grid, theta_grid, force, ratio, stick=None):
     """Fig 9 analogue: F_B2B [N] and total / baseline friction loss over (rho, theta [deg]) grid points, the points
-    without a converged full-sliding state (NaN) crossed in red."""
-    fig = figure(figsize=(10, 4))
+    without a state (NaN) crossed in red, those whose state is the stick/slip law's (``stick``, bool) circled."""
+    fig = figure(figsize=(10, 4.6), layout="constrained")
     axes = fig.subplots(1, 2)
     for ax, values, title, label in ((axes[0], force, "(a) F_B2B, low-order numerical", "F_B2B [N]"),
                                      (axes[1], ratio, "(c) total / baseline friction loss", "ratio [-]")):
         mesh = ax.scatter(rho_grid.ravel(), theta_grid.ravel(), c=values.ravel(), s=18, cmap="viridis", marker="s")
         bad = np.isnan(values.ravel())
         ax.scatter(rho_grid.ravel()[bad], theta_grid.ravel()[bad], s=10, marker="x", c="red",
-                   label="no converged full-sliding state")
-        ax.legend(loc="lower center", fontsize=7)
+                   label="no state computed (no full-sliding state)")
+        if stick is not None and np.any(stick):
+            marked = np.asarray(stick).ravel()
+            ax.scatter(rho_grid.ravel()[marked], theta_grid.ravel()[marked], s=40, facecolors="none",
+                       edgecolors="k", linewidths=0.8, label="stick/slip on a half-space (no full-sliding state)")
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7)
         fig.colorbar(mesh, ax=ax, label=label)
         ax.set_xlabel("rho = N_x / N_y")
         ax.set_title(title)
     axes[0].set_ylabel("theta [deg]")
+    return fig
+
+
+def law_row(rho, full, stick_slip, theta_deg: float):
+    """One Fig 9 row by both contact laws: F_B2B [N] and total / baseline friction loss against rho, lin2019's full
+    sliding (``full`` = (force, ratio), NaN where it has no state) and the stick/slip law (``stick_slip``, likewise)."""
+    fig = figure(figsize=(10, 3.8), layout="constrained")
+    axes = fig.subplots(1, 2)
+    for ax, index, label in ((axes[0], 0, "F_B2B [N]"), (axes[1], 1, "total / baseline friction loss [-]")):
+        ax.plot(rho, full[index], "s-", ms=4, label="full sliding (lin2019 eqs 4-10)")
+        ax.plot(rho, stick_slip[index], "o--", ms=5, mfc="none", label="stick/slip on a half-space")
+        ax.set_xlabel("rho = N_x / N_y")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"lin2019 Table 1, theta = {theta_deg:.2f} deg: both laws towards the four-point limit")
     return fig
 
 
