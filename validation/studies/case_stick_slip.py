@@ -29,7 +29,8 @@ from ballbench.validation.cases import stick_slip
 from ballbench.validation.cases.case import BallScrewCase, LinearGuideCase
 from ballbench.validation.studies import rolling_b2b
 
-__all__ = ["CELLS", "GRID_CELLS", "FALLBACK_CELLS", "COMPLIANCE", "module", "ModuleRun", "drive_speed", "GridError",
+__all__ = ["CELLS", "GRID_CELLS", "FALLBACK_CELLS", "COMPLIANCE", "module", "ModuleRun", "stick_slip_alone",
+           "StickSlipAlone", "drive_speed", "GridError",
            "grid_error", "ComplianceRung", "compliance_rungs"]
 
 # the cells per contact of each fidelity, and the finer cells their grid error is measured against
@@ -73,6 +74,32 @@ def module(case, fidelity: str) -> ModuleRun:
         note = (f"On {cells[0]} x {cells[1]} cells a law found no state ({error}); the rung runs on "
                 f"{fallback[0]} x {fallback[1]} cells.")
         return ModuleRun(fallback, solve(balls_on(fallback, None)), note)
+
+
+@dataclass(frozen=True)
+class StickSlipAlone:
+    """A guide's two-ball module by the stick/slip law alone (:func:`stick_slip_alone`): ``touching`` and ``free``
+    RollingB2BStates on ``cells``."""
+
+    cells: tuple
+    touching: object
+    free: object
+
+
+def stick_slip_alone(case, fidelity: str) -> StickSlipAlone:
+    """Where full slip on the cells has no state (a guide near its four-point limit, docs/b2b_rolling.md, 'Where
+    full sliding has no state'): the stick/slip law alone on ``CELLS[fidelity]``, touching and apart (gaps of 1 mm),
+    from full slip or rolling (``b2b_rolling.solve(..., start="auto")``)."""
+    if not isinstance(case, LinearGuideCase):
+        raise TypeError(f"the stick/slip law alone runs on a LinearGuideCase here, got {type(case).__name__}")
+    *_, balls_on, _ = _hertz_balls(case)
+    cells = CELLS[fidelity]
+    balls = balls_on(cells, None)
+    guide = case.guide
+    options = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
+                   groove_velocity=guide.groove_velocity, start="auto")
+    return StickSlipAlone(cells, b2b_rolling.solve(balls, **options),
+                          b2b_rolling.solve(balls, gaps=[1e-3] * (len(balls) - 1), **options))
 
 
 def _differences(result, near_zero: float) -> tuple[float, float, float]:
