@@ -1,0 +1,26 @@
+"""Speed of the rigid carriage's load distribution (lowmodel.linear_bearing.carriage; docs/carriage.md): a four-row
+carriage of 100 balls under a combined load, preloaded, with end relief.  Target (the whole-bearing issue): <= 5 ms.
+
+Run: python -m pytest benchmarks/test_bench_carriage.py -s
+"""
+import math
+
+import pytest
+
+from ballbench.lowmodel.bearing import LinearGuide, Material
+from ballbench.lowmodel.linear_bearing import carriage
+
+
+@pytest.mark.parametrize("oversize", [0.0, 2e-6])
+def test_four_row_carriage_of_100_balls(benchmark, oversize):
+    guide = LinearGuide(ball_radius=2.381e-3, conformity=0.52, nominal_angle=math.pi / 4,
+                        material=Material(210e9, 0.3), friction_coefficient=0.1, groove_velocity=0.1)
+    rows = carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=math.radians(45))
+    body = carriage.Carriage(guide, rows, balls_per_row=25, pitch=5e-3, oversize=oversize, relief_length=10e-3,
+                             relief_depth=5e-6)
+    load = carriage.Load(lateral=1e3, vertical=2e3, pitch=30.0, yaw=10.0, roll=20.0)
+    state = benchmark.pedantic(carriage.solve, args=(body, load), rounds=20, iterations=1)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_s=median, iterations=state.iterations)
+    print(f"\nfour-row carriage, 100 balls, oversize {oversize * 1e6:g} um: {median * 1e3:.2f} ms median, "
+          f"{state.iterations} Newton steps, balance {state.balance:.1e}")

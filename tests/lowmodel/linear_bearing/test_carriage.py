@@ -1,0 +1,156 @@
+"""The rigid carriage's load distribution and stiffness (lowmodel.linear_bearing.carriage; docs/carriage.md)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from ballbench.lowmodel.bearing import LinearGuide, Material
+from ballbench.lowmodel.contact import hertz
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import carriage
+
+# a compact guide: 4.762 mm balls in grooves of conformity 0.52 (a catalogue size 20 carriage's proportions)
+GUIDE = LinearGuide(ball_radius=2.381e-3, conformity=0.52, nominal_angle=math.pi / 4, material=Material(210e9, 0.3),
+                    friction_coefficient=0.1, groove_velocity=0.1)
+ALPHA = math.radians(45.0)
+ROWS = carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=ALPHA)
+N = 13
+PITCH = 5e-3
+
+
+def _body(**options):
+    return carriage.Carriage(GUIDE, options.pop("rows", ROWS), balls_per_row=options.pop("balls", N), pitch=PITCH,
+                             **options)
+
+
+def _vertical_reference(force: float, balls: int, oversize: float = 0.0) -> tuple[float, float]:
+    """Two upper rows of ``balls`` each, no preload, pure vertical load (the lower rows stay open): the carriage
+    sinks by ``u`` with every upper ball alike, ``A = A0 n + (0, -u)``; the exact curvature-centre geometry and
+    Hertz's law give the vertical balance ``2 balls Q |e_y| = F``, solved here by brentq (the model's Newton and its
+    arrays not involved).  Returns (u [m], Q [N])."""
+    constant = hertz.hertz_constant(hertz.groove_geometry(GUIDE))
+    a0 = (2 * GUIDE.conformity - 1) * 2 * GUIDE.ball_radius
+    n = np.array([-math.cos(ALPHA), -math.sin(ALPHA)])
+
+    def ball(u):
+        vector = a0 * n + np.array([0.0, -u])
+        length = float(np.hypot(*vector))
+        q = (max(length - a0 + oversize, 0.0) / (2 * constant)) ** 1.5
+        return q, abs(vector[1]) / length
+
+    def excess(u):
+        q, ey = ball(u)
+        return 2 * balls * q * ey - force
+
+    u = brentq(excess, 0.0, 1e-3, xtol=1e-22, rtol=1e-15)
+    return u, ball(u)[0]
+
+
+def test_a_vertical_load_on_the_upper_rows_matches_the_closed_geometry():
+    state = carriage.solve(_body(), carriage.Load(vertical=3e3))
+    u, q = _vertical_reference(3e3, N)
+    assert state.displacement[1] == pytest.approx(-u, rel=1e-9)
+    assert state.normal_force[:2] == pytest.approx(np.full((2, N), q), rel=1e-9)
+    assert np.all(state.normal_force[2:] == 0.0) and np.all(state.approach[2:] < 0.0)
+    assert np.max(np.abs(state.displacement[[0, 2, 3, 4]])) < 1e-15  # symmetric: no lateral, pitch, yaw or roll
+    # the balance from the state's own outputs: vertical components of the upper balls' loads on their loaded lines
+    vertical = np.sum(state.normal_force * np.sin(state.contact_angle))
+    assert vertical == pytest.approx(3e3, rel=carriage.BALANCE_TOLERANCE)
+    assert state.balance < carriage.BALANCE_TOLERANCE
+
+
+@pytest.mark.parametrize("load", [carriage.Load(lateral=800.0, vertical=2e3, pitch=40.0, yaw=-25.0, roll=15.0),
+                                  carriage.Load(vertical=-1.5e3, roll=-10.0), carriage.Load(pitch=60.0)])
+def test_every_load_balances_and_the_stiffness_is_the_derivative_of_the_load(load):
+    """The balls' forces and moments on the carriage, summed from the state's outputs (loads, loaded lines, the
+    grooves' curvature centres at the balls), balance the external load to 1e-10; the tangent stiffness equals the
+    central difference of the generalised force of the balls in each displacement (1e-6)."""
+    body = _body(oversize=1.5e-6, relief_length=10e-3, relief_depth=4e-6)
+    state = carriage.solve(body, load)
+    assert state.balance < 1e-10
+    force = np.zeros(5)
+    centre_offset = (GUIDE.conformity * 2 - 1) * GUIDE.ball_radius
+    for r, row in enumerate(ROWS):
+        n = np.array(row.normal)
+        sx, sy = np.sign(n)  # the loaded line keeps the row's quadrant
+        for k, z in enumerate(state.z):
+            e = np.array([sx * math.cos(state.contact_angle[r, k]), sy * math.sin(state.contact_angle[r, k])])
+            f = -state.normal_force[r, k] * e  # the ball pushes the carriage away from the rail
+            cx, cy = np.array([row.x, row.y]) + centre_offset * n  # small displacements: moments about rest
+            force += np.array([f[0], f[1], -z * f[1], z * f[0], cx * f[1] - cy * f[0]])
+    scale = np.array([1, 1, 1 / body.half_length, 1 / body.half_length, 1 / body.half_length])
+    assert np.max(np.abs((force + load.vector) * scale)) < 1e-9 * np.max(state.normal_force)
+    # the stiffness against central differences of the balls' generalised force (tangent: 1e-6)
+    steps = np.array([1e-9, 1e-9, 1e-7, 1e-7, 1e-7])
+    difference = np.zeros((5, 5))
+    for j in range(5):
+        shifted = []
+        for sign in (1.0, -1.0):
+            push = np.zeros(5)
+            push[j] = sign * steps[j]
+            shifted.append(_balls_force(body, state.displacement + push))
+        difference[:, j] = -(shifted[0] - shifted[1]) / (2 * steps[j])
+    assert state.stiffness == pytest.approx(difference, rel=1e-6, abs=1e-6 * np.max(np.abs(state.stiffness)))
+
+
+def _balls_force(body, q):
+    """The generalised force of the balls on the carriage at displacement ``q`` from the exact curvature-centre
+    geometry and Hertz's law, written out here (the model's arrays and solve not involved)."""
+    constant = hertz.hertz_constant(hertz.groove_geometry(GUIDE))
+    a0 = (2 * GUIDE.conformity - 1) * 2 * GUIDE.ball_radius
+    z = carriage.ball_positions(body)
+    total = np.zeros(5)
+    for row in body.rows:
+        n = np.array(row.normal)
+        cx, cy = np.array([row.x, row.y]) + (GUIDE.conformity * 2 * GUIDE.ball_radius - GUIDE.ball_radius) * n
+        for zk, relief in zip(z, carriage.relief(body, z)):
+            d = np.array([q[0] + q[3] * zk - q[4] * cy, q[1] + q[4] * cx - q[2] * zk])
+            vector = a0 * n + d
+            length = float(np.hypot(*vector))
+            load = (max(length - a0 + body.oversize - relief, 0.0) / (2 * constant)) ** 1.5
+            f = -load * vector / length
+            total += np.array([f[0], f[1], -zk * f[1], zk * f[0], cx * f[1] - cy * f[0]])
+    return total
+
+
+def test_preloaded_opposed_rows_unload_at_two_to_the_three_halves_the_preload():
+    """Upper and lower rows alike (45 deg, the same count), preloaded by a small oversize: a vertical load takes the
+    lower rows' load off at 2^(3/2) times the vertical preload of the upper rows (Hertz's law of two opposed
+    preloaded sets; Harris & Kotzalas, preload).  The exact geometry turns the lines by about delta / A0 (1e-3 here),
+    the tolerance."""
+    body = _body(oversize=0.05e-6)
+    rest = carriage.solve(body, carriage.Load())
+    preload = float(np.sum(rest.normal_force[:2] * np.sin(rest.contact_angle[:2])))
+
+    def lower(force):
+        return float(np.max(carriage.solve(body, carriage.Load(vertical=force)).normal_force[2:]))
+
+    lift = brentq(lambda f: lower(f) - 1e-9 * preload, 0.5 * preload, 5 * preload, xtol=1e-9 * preload)
+    assert lift / preload == pytest.approx(2 ** 1.5, rel=1e-3)
+
+
+def test_the_end_relief_unloads_the_end_balls_and_travel_moves_the_balls():
+    body = _body(oversize=1e-6, relief_length=12e-3, relief_depth=3e-6)
+    state = carriage.solve(body, carriage.Load(vertical=1e3))
+    upper = state.normal_force[0]
+    assert upper[0] < upper[N // 2] and upper[-1] < upper[N // 2]
+    assert upper == pytest.approx(upper[::-1], rel=1e-9)  # centred: symmetric along the rail
+    moved = carriage.solve(body, carriage.Load(vertical=1e3), travel=0.3 * PITCH)
+    assert moved.z == pytest.approx(state.z + 0.3 * PITCH)
+    assert moved.balance < 1e-10 and not np.allclose(moved.normal_force, state.normal_force)
+
+
+def test_a_load_no_row_can_carry_is_a_convergence_error_and_bad_input_names_its_parameter():
+    upper_only = _body(rows=ROWS[:2])
+    with pytest.raises(ConvergenceError, match="load balance|no step"):
+        carriage.solve(upper_only, carriage.Load(vertical=-1e3))
+    with pytest.raises(ValueError, match="pitch"):
+        carriage.Carriage(GUIDE, ROWS, balls_per_row=5, pitch=1e-3)
+    with pytest.raises(ValueError, match="normal"):
+        carriage.Row(0.0, 0.0, (1.0, 1.0))
+    with pytest.raises(ValueError, match="vertical"):
+        carriage.Load(vertical=math.nan)
+    assert carriage.solve(_body(), carriage.Load()).normal_force.max() == 0.0  # no preload, no load: at rest
