@@ -1,29 +1,30 @@
 """The rigid carriage of a linear ball guide: the load of every ball of its rows, and its stiffness (docs/carriage.md).
 
-A carriage rides on its rail on rows of balls in two-point contact (the four-row 45 deg carriages of the catalogues):
-each ball touches a rail groove and a carriage groove on one load line through its centre.  Per row the load line
-makes the contact angle ``alpha`` with the lateral axis; ``n`` is its unit vector from the ball centre towards the
-rail contact.  The two grooves' curvature centres lie on that line, ``A0 = (f_rail + f_carriage - 1) D = (2 f - 1) D``
-apart (one conformity ``f`` for rail and carriage, as :class:`lowmodel.bearing.LinearGuide`); the carriage's lies
-``(f D - R_B) n`` from the ball centre, on the rail side.  Under load the rigid carriage moves by
-``q = (u_x, u_y, phi_x, phi_y, phi_z)`` (lateral and vertical translation; rotations about the lateral, vertical and
-rail axes), its groove's curvature centre ``c`` by ``d = u + phi x c`` (the part in the cross-section: the groove is
-straight along the rail), and (Harris & Kotzalas, *Rolling Bearing Analysis*, the load distribution of a rigid ring
-by the distance of the curvature centres; Jones 1960)
+A carriage rides on its rail on rows of balls (:class:`Row`): two-point rows (the four-row 45 deg carriages of the
+catalogues, :func:`four_rows`) or gothic-arch rows with lin2019's four-point balls (:func:`gothic_rows`).  Each
+contact ``i`` of a ball has its outward normal ``n_i`` (ball centre to contact, in the cross-section) and its groove's
+curvature centre ``g_i = b0 - (r_g - R_B) n_i`` (``r_g = f D``, one conformity ``f`` for rail and carriage, as
+:class:`lowmodel.bearing.LinearGuide`); the carriage's grooves move with the rigid carriage,
+``q = (u_x, u_y, phi_x, phi_y, phi_z)``, by ``d_i = u + phi x g_i`` (the part in the cross-section: the grooves are
+straight along the rail), the rail's stay, and each ball's centre moves by ``v`` in the cross-section.  Per contact
+(Harris & Kotzalas, *Rolling Bearing Analysis*, load distribution by the distance of the curvature centres; Jones
+1960; lin2019 eq 53)
 
-    A = A0 n + d,   delta = |A| - A0 + s - c_relief(z),   Q = (max(delta, 0) / (2 C))^(3/2)
+    w_i = v + (r_g - R_B) n_i - d_i,   delta_i = |w_i| - (r_g - R_B) + s/2 - c_relief(z) [carriage contacts],
+    Q_i = (max(delta_i, 0) / C)^(3/2),   e_i = w_i / |w_i|
 
-with ``s`` the ball oversize (preload), ``c_relief(z)`` the end relief (crowning) of the carriage's grooves, ``C``
-Hertz's constant of one ball-groove contact (``delta_contact = C Q^(2/3)``, lin2019 eq 53; both contacts alike, so
-the ball's approach is twice a contact's) and ``e = A / |A|`` the loaded line.  The ball pushes the carriage with
-``-Q e`` at ``c``; the carriage is in equilibrium when its balls balance the external load
-``(F_x, F_y, M_x, M_y, M_z)`` at the origin: ``sum_k J_k^T (-Q_k e_k) + F = 0`` (``J_k = d d_k / d q``).  Newton on
-``q`` with the exact tangent stiffness
+with ``s`` the ball oversize (preload), ``c_relief(z)`` the end relief (crowning) of the carriage's grooves and ``C``
+Hertz's constant of one ball-groove contact (``delta = C Q^(2/3)``).  Each ball is in equilibrium,
+``sum_i Q_i e_i = 0``, and the carriage balances the external load ``(F_x, F_y, M_x, M_y, M_z)`` at the origin:
+``sum_{carriage contacts} J_i^T (Q_i e_i) + F = 0`` (``J_i = d d_i / d q``).  Newton on ``(q, v)`` with the exact
+tangent (per contact ``dQ/d delta e e^T + Q / |w| (I - e e^T)``), the balls condensed out (2 x 2 blocks), so that
 
-    K = sum_k J_k^T (dQ/d delta e e^T + Q / |A| (I - e e^T)) J_k      (5 x 5, the carriage's stiffness)
+    K = -(A - sum_balls B D^-1 C)      (5 x 5: the carriage's stiffness with its balls in equilibrium)
 
-and a backtracking line search; the answer is checked before it is returned (the load balance within
-:data:`BALANCE_TOLERANCE` of the largest force), else ConvergenceError naming the check.
+and a backtracking line search.  A ball whose every pair of opposite contacts is slack is loose: it carries nothing
+and is held at the middle of its pairs (Newton would only creep towards ``delta = 0`` on ``Q ~ delta^(3/2)``).  The
+answer is checked before it is returned (the carriage's and every ball's balance within :data:`BALANCE_TOLERANCE` of
+the largest force), else ConvergenceError naming the check.
 
 Frame: lin2019 Fig 2, ``z`` along the rail (the travel), ``y`` vertical from the rail to the carriage, ``x`` lateral;
 the origin is the carriage's reference point (the loads act there).
@@ -46,8 +47,10 @@ import numpy as np
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.contact import hertz
 from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.geometry.fourpoint import contact_normals
 
-__all__ = ["Row", "Carriage", "Load", "CarriageState", "four_rows", "solve", "ball_positions", "relief",
+__all__ = ["Row", "Carriage", "Load", "CarriageState", "two_point_row", "four_rows", "gothic_rows", "solve",
+           "ball_positions", "relief",
            "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
 
 BALANCE_TOLERANCE = 1e-10  # the load balance of a solved carriage, relative to its largest force (and moment / L)
@@ -57,38 +60,66 @@ DISPLACEMENT_NAMES = ("u_x", "u_y", "phi_x", "phi_y", "phi_z")  # [m, m, rad, ra
 
 @dataclass(frozen=True)
 class Row:
-    """A row of balls in two-point contact: ``x``, ``y`` [m] the balls' centres in the cross-section (unloaded),
-    ``normal`` the load line's unit vector from the ball centre towards the rail contact (2,), in the cross-section.
-    """
+    """A row of balls: ``x``, ``y`` [m] the balls' centres in the cross-section (unloaded) and per contact the
+    outward unit normal from the ball centre to the contact (``normals``, (c, 2), in the cross-section) and whether
+    the contact is on the carriage (``carriage``, (c,) bool; else on the rail).  Two contacts on one line: a
+    two-point row; four (two on the rail, two on the carriage): a gothic-arch row, lin2019's four-point ball."""
 
     x: float
     y: float
-    normal: tuple
+    normals: tuple
+    carriage: tuple
 
     def __post_init__(self):
         checks.finite("x", self.x, "m")
         checks.finite("y", self.y, "m")
-        n = np.asarray(self.normal, dtype=float)
-        if n.shape != (2,) or not np.all(np.isfinite(n)) or abs(float(np.hypot(*n)) - 1.0) > 1e-12:
-            raise ValueError(f"normal must be a unit vector (n_x, n_y) in the cross-section, got {self.normal!r}")
-        object.__setattr__(self, "normal", (float(n[0]), float(n[1])))
+        n = np.asarray(self.normals, dtype=float)
+        if n.ndim != 2 or n.shape[1] != 2 or not 2 <= len(n) <= 4 or not np.all(np.isfinite(n)) \
+                or np.max(np.abs(np.hypot(n[:, 0], n[:, 1]) - 1.0)) > 1e-12:
+            raise ValueError(f"normals must be 2 to 4 unit vectors (n_x, n_y) in the cross-section, got "
+                             f"{self.normals!r}")
+        side = tuple(bool(c) for c in self.carriage)
+        if len(side) != len(n) or all(side) or not any(side):
+            raise ValueError(f"carriage must say for each contact whether it is on the carriage (some on the rail, "
+                             f"some on the carriage), got {self.carriage!r}")
+        object.__setattr__(self, "normals", tuple((float(a), float(b)) for a, b in n))
+        object.__setattr__(self, "carriage", side)
 
-    @property
-    def contact_angle(self) -> float:
-        """[rad] of the unloaded load line against the lateral axis (0 to pi/2)."""
-        return math.atan2(abs(self.normal[1]), abs(self.normal[0]))
+
+def two_point_row(x: float, y: float, normal) -> Row:
+    """A row in two-point contact: the rail contact at ``normal`` (unit vector from the ball centre towards the rail)
+    and the carriage contact opposite it."""
+    n = np.asarray(normal, dtype=float)
+    return Row(x, y, (tuple(n), tuple(-n)), (False, True))
 
 
 def four_rows(*, half_width: float, upper: float, lower: float, contact_angle: float) -> tuple[Row, ...]:
-    """The four rows of a four-row carriage in the 45 deg arrangement of the catalogues: two upper rows at height
-    ``upper`` [m] carrying the carriage's downward load (the rail below and inside each ball) and two lower rows at
-    ``lower`` [m] holding it against lift-off (the rail above and inside), at ``x = +-half_width`` [m], every load line
-    at ``contact_angle`` [rad] to the lateral axis.  Order: upper right, upper left, lower right, lower left."""
+    """The four two-point rows of a four-row carriage in the 45 deg arrangement of the catalogues: two upper rows at
+    height ``upper`` [m] carrying the carriage's downward load (the rail below and inside each ball) and two lower
+    rows at ``lower`` [m] holding it against lift-off (the rail above and inside), at ``x = +-half_width`` [m], every
+    load line at ``contact_angle`` [rad] to the lateral axis.  Order: upper right, upper left, lower right, lower
+    left."""
     checks.positive("half_width", half_width, "m")
     alpha = checks.bounded("contact_angle", contact_angle, 0.0, math.pi / 2, lower_closed=False, upper_closed=False)
     c, s = math.cos(alpha), math.sin(alpha)
-    return (Row(half_width, upper, (-c, -s)), Row(-half_width, upper, (c, -s)),
-            Row(half_width, lower, (-c, s)), Row(-half_width, lower, (c, s)))
+    return (two_point_row(half_width, upper, (-c, -s)), two_point_row(-half_width, upper, (c, -s)),
+            two_point_row(half_width, lower, (-c, s)), two_point_row(-half_width, lower, (c, s)))
+
+
+def gothic_rows(*, half_width: float, height: float, contact_angles) -> tuple[Row, ...]:
+    """The two gothic-arch rows of a two-row carriage: at ``x = +-half_width``, ``y = height`` [m], each ball with
+    lin2019's four contacts (lowmodel.geometry.fourpoint.contact_normals of ``contact_angles`` (BL, BR, TR, TL)
+    [rad], from lin2019's vertical) turned so that its bottom (the rail's grooves) faces the rail: by -90 deg on the
+    right row (the rail on its left), by +90 deg on the left row.  Order: right, left."""
+    checks.positive("half_width", half_width, "m")
+    angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
+    checks.contact_angle("contact_angles", angles)
+    normals = contact_normals(angles)  # (4, 2), lin2019's frame: bottom = -y
+    right = np.column_stack([normals[:, 1], -normals[:, 0]])  # -90 deg: -y -> -x
+    left = np.column_stack([-normals[:, 1], normals[:, 0]])  # +90 deg: -y -> +x
+    side = (False, False, True, True)
+    return Row(half_width, height, tuple(map(tuple, right)), side), Row(-half_width, height, tuple(map(tuple, left)),
+                                                                       side)
 
 
 @dataclass(frozen=True)
@@ -167,21 +198,25 @@ class Load:
 
 @dataclass(frozen=True)
 class CarriageState:
-    """The carriage in equilibrium under a load (:func:`solve`); arrays of shape (rows, balls_per_row).
+    """The carriage in equilibrium under a load (:func:`solve`); arrays of shape (rows, balls_per_row, contacts)
+    unless said (a row with fewer contacts than the most: its last entries zero).
 
     displacement : (5,) ``(u_x, u_y, phi_x, phi_y, phi_z)`` [m, m, rad, rad, rad];  z : (balls,) m
-    normal_force : N, each ball's load (both its contacts);  contact_angle : rad, the loaded line against the
-        lateral axis;  approach : m, the ball's total approach (both contacts; not positive: unloaded)
+    ball_shift : (rows, balls, 2) m, each ball centre's move in the cross-section
+    normal_force : N, each contact's load;  line : (..., 2) the loaded contact's unit normal (ball to groove)
+    approach : m, each contact's approach (not positive: unloaded)
     a, b : m, Hertz's semi-axes of each contact (``a`` across the groove);  p0 : Pa
-    stiffness : (5, 5) ``-dR/dq`` [N/m, N/rad, N m/m, N m/rad]: the carriage's tangent stiffness at the state
-    balance : the load balance's residual over the largest force (moments over the half-length)
-    iterations : Newton steps
+    stiffness : (5, 5) ``-dR/dq`` with the balls in equilibrium [N/m, N/rad, N m/m, N m/rad]: the carriage's
+        tangent stiffness at the state
+    balance : the load balance's residual (carriage: over the largest force, moments over the half-length; balls:
+        over the largest contact force);  iterations : Newton steps
     """
 
     displacement: np.ndarray
     z: np.ndarray
+    ball_shift: np.ndarray
     normal_force: np.ndarray
-    contact_angle: np.ndarray
+    line: np.ndarray
     approach: np.ndarray
     a: np.ndarray
     b: np.ndarray
@@ -191,59 +226,113 @@ class CarriageState:
     iterations: int
 
     def __post_init__(self):
-        checks.freeze_arrays(self, "displacement", "z", "normal_force", "contact_angle", "approach", "a", "b", "p0",
-                             "stiffness")
+        checks.freeze_arrays(self, "displacement", "z", "ball_shift", "normal_force", "line", "approach", "a", "b",
+                             "p0", "stiffness")
+
+    @property
+    def contact_angle(self) -> np.ndarray:
+        """rad, the loaded contact's normal against the lateral axis (0 to pi/2; a two-point row's load line)."""
+        return np.arctan2(np.abs(self.line[..., 1]), np.abs(self.line[..., 0]))
 
 
 class _Geometry:
-    """The static arrays of a carriage at one travel: per ball its row's line, curvature centre and Jacobian."""
+    """The static arrays of a carriage at one travel (rows r, balls k, contacts c)."""
 
     def __init__(self, body: Carriage, travel: float):
         guide = body.guide
         radius, conformity = guide.ball_radius, guide.conformity
         self.hertz = hertz.groove_geometry(guide)
         self.constant = hertz.hertz_constant(self.hertz)  # m N^(-2/3), one contact
-        self.a0 = (2.0 * conformity - 1.0) * 2.0 * radius
+        self.gap = (2.0 * conformity - 1.0) * radius  # r_g - R_B: ball centre to groove curvature centre at rest
         z = ball_positions(body, travel)
-        rows = body.rows
-        normal = np.array([r.normal for r in rows])  # (r, 2)
-        centre = np.array([[r.x, r.y] for r in rows]) + (conformity * 2.0 * radius - radius) * normal  # groove centre
         self.z = z
-        self.normal = np.repeat(normal[:, None, :], len(z), axis=1)  # (r, n, 2)
-        zz = np.broadcast_to(z, (len(rows), len(z)))
-        cx = np.broadcast_to(centre[:, :1], zz.shape)
-        cy = np.broadcast_to(centre[:, 1:], zz.shape)
-        one, zero = np.ones_like(zz), np.zeros_like(zz)
-        # J[r, k, i, j] = d d_i / d q_j at the ball's carriage-groove curvature centre (i: x, y)
+        rows = body.rows
+        width = max(len(r.normals) for r in rows)
+        self.normal = np.zeros((len(rows), width, 2))
+        self.top = np.zeros((len(rows), width))
+        self.mask = np.zeros((len(rows), width))
+        for i, r in enumerate(rows):
+            m = len(r.normals)
+            self.normal[i, :m] = r.normals
+            self.top[i, :m] = r.carriage
+            self.mask[i, :m] = 1.0
+            self.normal[i, m:] = r.normals[0]  # padding: masked out
+        self.ball = np.array([[r.x, r.y] for r in rows])  # (r, 2)
+        centre = self.ball[:, None, :] - self.gap * self.normal  # (r, c, 2) groove curvature centres at rest
+        shape = (len(rows), len(z), width)
+        zz = np.broadcast_to(z[None, :, None], shape)
+        cx = np.broadcast_to(centre[:, None, :, 0], shape)
+        cy = np.broadcast_to(centre[:, None, :, 1], shape)
+        one, zero = np.ones(shape), np.zeros(shape)
+        # J[r, k, c, i, j] = d d_i / d q_j of the carriage at the contact's groove curvature centre (i: x, y)
         self.jac = np.stack([np.stack([one, zero, zero, zz, -cy], axis=-1),
                              np.stack([zero, one, -zz, zero, cx], axis=-1)], axis=-2)
-        self.offset = body.oversize - relief(body, zz)  # (r, n) m
+        self.jac *= (self.top * self.mask)[:, None, :, None, None]  # the rail's grooves do not move
+        # each rail contact's partner: the carriage contact most nearly opposite it (a two-point ball's other
+        # contact; lin2017's diagonal pairs BL-TR, BR-TL of a gothic-arch ball)
+        self.pairs = []
+        for r in rows:
+            rail = [c for c, top in enumerate(r.carriage) if not top]
+            top = [c for c, t in enumerate(r.carriage) if t]
+            self.pairs.append([(c, min(top, key=lambda t: float(np.dot(r.normals[c], r.normals[t])))) for c in rail])
+        relief_z = relief(body, z)  # (k,)
+        self.offset = (0.5 * body.oversize - self.top[:, None, :] * relief_z[None, :, None]) * np.ones(shape)
         self.scale = max(body.half_length, radius)  # m: moments over it compare with forces
 
-    def forces(self, q: np.ndarray, tangent: bool = True):
-        d = np.einsum("rkij,j->rki", self.jac, q)
-        vector = self.a0 * self.normal + d
-        length = np.linalg.norm(vector, axis=-1)
-        e = vector / length[..., None]
-        approach = length - self.a0 + self.offset
+    def loose(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(loose (r, k) bool, centred (r, k, 2) m)``: the balls whose every pair of opposite contacts is slack at
+        the carriage's displacement ``d`` (the distance of the pair's curvature centres short of the ball's): loose
+        between their grooves, carrying nothing, held at the mean of their pairs' mid-points ``centred`` (Newton on
+        ``Q ~ delta^(3/2)`` would only creep to ``delta = 0``)."""
+        slack = np.ones(d.shape[:2], dtype=bool)
+        centred = np.zeros(d.shape[:2] + (2,))
+        for i, pairs in enumerate(self.pairs):
+            for rail, top in pairs:
+                centres = (self.gap * (self.normal[i, rail] - self.normal[i, top]))[None, :] + d[i, :, top] \
+                    - d[i, :, rail]  # the carriage groove's curvature centre - the rail groove's
+                approach = np.linalg.norm(centres, axis=-1) - 2.0 * self.gap + self.offset[i, :, rail] \
+                    + self.offset[i, :, top]
+                slack[i] &= approach <= 0.0
+                centred[i] += 0.5 * (d[i, :, top] + d[i, :, rail]
+                                     - self.gap * (self.normal[i, rail] + self.normal[i, top])) / len(pairs)
+        return slack, centred
+
+    def contacts(self, q: np.ndarray, v: np.ndarray, slope_floor: float = 0.0):
+        """Per contact: load Q, line e, approach, length |w| and the local stiffness k (2x2) at (q, v)."""
+        d = np.einsum("rkcij,j->rkci", self.jac, q)
+        w = v[:, :, None, :] + self.gap * self.normal[:, None, :, :] - d  # ball centre - groove centre
+        length = np.linalg.norm(w, axis=-1)
+        e = w / length[..., None]
+        approach = length - self.gap + self.offset
         positive = np.clip(approach, 0.0, None)
-        load = (positive / (2.0 * self.constant)) ** 1.5
-        generalised = -np.einsum("rkij,rki->j", self.jac, load[..., None] * e)
-        if not tangent:
-            return generalised, load, e, approach, None
-        slope = 1.5 * np.sqrt(positive) / (2.0 * self.constant) ** 1.5  # dQ / d delta
+        loose, centred = self.loose(d)
+        if slope_floor > 0.0:  # the linear start: every contact a spring
+            loose[:] = False
+        active = self.mask[:, None, :] * ~loose[..., None]
+        load = (positive / self.constant) ** 1.5 * active
+        slope = np.maximum(1.5 * np.sqrt(positive) / self.constant ** 1.5, slope_floor) * active
         outer = e[..., :, None] * e[..., None, :]
         local = slope[..., None, None] * outer + (load / length)[..., None, None] * (np.eye(2) - outer)
-        stiffness = np.einsum("rkaj,rkab,rkbl->jl", self.jac, local, self.jac)
-        return generalised, load, e, approach, stiffness
+        return load, e, approach, local, (loose, centred)
 
+    def system(self, q: np.ndarray, v: np.ndarray, external: np.ndarray, slope_floor: float = 0.0):
+        """The residuals (carriage (5,), balls (r, k, 2)), the condensed step's blocks and the stiffness."""
+        load, e, approach, local, held = self.contacts(q, v, slope_floor)
+        force = load[..., None] * e  # on the groove, from the ball (r, k, c, 2)
+        carriage = np.einsum("rkcij,rkci->j", self.jac, force) + external
+        balls = -force.sum(axis=2)  # on the ball
+        d_block = -local.sum(axis=2)  # d balls / d v  (r, k, 2, 2)
+        b_block = np.einsum("rkcaj,rkcab->rkjb", self.jac, local)  # d carriage / d v  (r, k, 5, 2)
+        c_block = np.einsum("rkcab,rkcbj->rkaj", local, self.jac)  # d balls / d q  (r, k, 2, 5)
+        a_block = -np.einsum("rkcaj,rkcab,rkcbl->jl", self.jac, local, self.jac)  # d carriage / d q
+        return carriage, balls, (a_block, b_block, c_block, d_block, *held), load, e, approach
 
 def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float = BALANCE_TOLERANCE,
           max_iterations: int = 60) -> CarriageState:
     """The rigid ``body`` (:class:`Carriage`) in equilibrium under ``load`` (:class:`Load`) with its balls at
     ``travel`` [m] (module docstring).  ValueError for bad input; ConvergenceError naming the check (the load balance
-    within ``tolerance`` of the largest force) when Newton stops short, e.g. a load no row can carry (lift-off
-    without rows against it)."""
+    of the carriage and of every ball within ``tolerance`` of the largest force) when Newton stops short, e.g. a load
+    no row can carry (lift-off without rows against it)."""
     if not isinstance(body, Carriage):
         raise ValueError(f"body must be a carriage.Carriage, got {type(body).__name__}")
     if not isinstance(load, Load):
@@ -255,33 +344,34 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
     external = load.vector
     weights = np.array([1.0, 1.0, 1.0 / geometry.scale, 1.0 / geometry.scale, 1.0 / geometry.scale])
 
-    def measure(residual, loads):
+    def measure(carriage_residual, ball_residual, loads):
         reference = max(float(np.max(np.abs(external * weights))), float(np.max(loads, initial=0.0)), 1e-300)
-        return float(np.max(np.abs(residual * weights))) / reference
+        return max(float(np.max(np.abs(carriage_residual * weights))),
+                   float(np.max(np.abs(ball_residual), initial=0.0))) / reference
 
-    q = np.zeros(5)
+    q, v = np.zeros(5), np.zeros((len(body.rows), len(geometry.z), 2))
     if not np.any(external) and body.oversize == 0.0:  # nothing pushes the balls: the carriage sits unloaded
-        return _state(geometry, q, external, 0, measure)
-    if body.oversize == 0.0:
-        q = _linear_start(geometry, external)
+        return _state(geometry, q, v, external, 0, measure)
+    if body.oversize == 0.0:  # at rest the tangent stiffness is zero: start from linear springs on every contact
+        q, v = _linear_start(geometry, external)
     iterations = 0
-    generalised, loads, _, _, stiffness = geometry.forces(q)
-    residual = generalised + external
-    norm = measure(residual, loads)
+    carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
+    norm = measure(carriage, balls, loads)
     while norm > tolerance:
         if iterations >= max_iterations:
-            raise ConvergenceError("carriage.solve: the load balance missed (sum of the balls' forces and moments "
-                                   "plus the external load, over the largest force)", residual=norm,
-                                   iterations=iterations, tolerance=tolerance, reason="load balance missed")
-        step = _step(stiffness, residual, geometry)
+            raise ConvergenceError("carriage.solve: the load balance missed (the balls' forces and moments plus the "
+                                   "external load on the carriage, and each ball's contact forces, over the largest "
+                                   "force)", residual=norm, iterations=iterations, tolerance=tolerance,
+                                   reason="load balance missed")
+        dq, dv, loose, centred = _step(blocks, carriage, balls, geometry)
+        v = np.where(loose[..., None], centred, v)  # loose balls held at their pairs' mid-points
         factor, accepted = 1.0, False
         for _ in range(40):
-            trial = q + factor * step
-            g_t, l_t, _, _, k_t = geometry.forces(trial)
-            r_t = g_t + external
-            n_t = measure(r_t, l_t)
+            trial_q, trial_v = q + factor * dq, v + factor * dv
+            c_t, b_t, k_t, l_t, _, _ = geometry.system(trial_q, trial_v, external)
+            n_t = measure(c_t, b_t, l_t)
             if n_t < norm or n_t <= tolerance:
-                q, residual, loads, stiffness, norm, accepted = trial, r_t, l_t, k_t, n_t, True
+                q, v, carriage, balls, blocks, loads, norm, accepted = trial_q, trial_v, c_t, b_t, k_t, l_t, n_t, True
                 break
             factor *= 0.5
         iterations += 1
@@ -289,40 +379,63 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
             raise ConvergenceError("carriage.solve: no step reduces the load balance's residual (a load the rows "
                                    "cannot carry, e.g. lift-off without rows against it)", residual=norm,
                                    iterations=iterations, tolerance=tolerance, reason="no descent step")
-    return _state(geometry, q, external, iterations, measure)
+    return _state(geometry, q, v, external, iterations, measure)
 
 
-def _step(stiffness: np.ndarray, residual: np.ndarray, geometry: _Geometry) -> np.ndarray:
-    """Newton's step ``K^-1 R`` in scaled displacements (rotations times the half-length), least squares where
-    ``K`` is singular (rows without load)."""
+def _condensed(blocks, geometry: _Geometry):
+    """The balls eliminated (each ball's 2 x 2 block): ``(S, B D^-1)`` with ``S = A - sum B D^-1 C`` the carriage's
+    Jacobian with its balls in equilibrium (``-S`` its stiffness), rotations scaled by the half-length."""
+    a_block, b_block, c_block, d_block = blocks[:4]
     scale = np.array([1.0, 1.0, geometry.scale, geometry.scale, geometry.scale])
-    scaled = stiffness / np.outer(scale, scale)
-    rhs = residual / scale
+    largest = float(np.max(np.abs(d_block)))
+    floor = 1e-12 * largest if largest > 0.0 else 1.0  # N/m: no ball loaded at all, any floor keeps them still
+    regular = d_block - floor * np.eye(2)  # a ball without load: its position is left as it is
+    inverse = np.linalg.inv(regular)  # (r, k, 2, 2)
+    bd = np.einsum("rkja,rkab->rkjb", b_block, inverse)
+    schur = a_block - np.einsum("rkja,rkal->jl", bd, c_block)
+    return schur, bd, inverse, scale
+
+
+def _step(blocks, carriage, balls, geometry: _Geometry):
+    """Newton's step of the whole system with the balls condensed (least squares where the carriage's condensed
+    Jacobian is singular: rows without load)."""
+    schur, bd, inverse, scale = _condensed(blocks, geometry)
+    c_block, loose, centred = blocks[2], blocks[4], blocks[5]
+    rhs = -carriage + np.einsum("rkja,rka->j", bd, balls)
+    scaled = schur / np.outer(scale, scale)
+    if not (np.all(np.isfinite(scaled)) and np.all(np.isfinite(rhs))):
+        raise ConvergenceError("carriage.solve: the Newton system is not finite", residual=math.inf, iterations=0,
+                               tolerance=0.0, reason="no descent step")
     try:
-        solution = np.linalg.solve(scaled, rhs)
-        if not np.all(np.isfinite(solution)):
+        dq = np.linalg.solve(scaled, rhs / scale)
+        if not np.all(np.isfinite(dq)):
             raise np.linalg.LinAlgError
     except np.linalg.LinAlgError:
-        solution = np.linalg.lstsq(scaled, rhs, rcond=1e-12)[0]
-    return solution / scale
+        dq = np.linalg.lstsq(scaled, rhs / scale, rcond=1e-12)[0]
+    dq = dq / scale
+    dv = -np.einsum("rkab,rkb->rka", inverse, balls + np.einsum("rkaj,j->rka", c_block, dq))
+    return dq, dv, loose, centred
 
 
-def _linear_start(geometry: _Geometry, external: np.ndarray) -> np.ndarray:
-    """A start for a carriage without preload (its tangent stiffness is zero at rest): every ball a linear spring of
-    the Hertz stiffness at the mean load the external force puts on a ball, along its unloaded line."""
-    n_balls = geometry.normal.shape[0] * geometry.normal.shape[1]
+def _linear_start(geometry: _Geometry, external: np.ndarray):
+    """A start for a carriage without preload (its tangent stiffness is zero at rest): every contact a linear spring
+    of the Hertz stiffness at the mean load the external force puts on a ball, along its unloaded normal."""
+    n_balls = geometry.normal.shape[0] * len(geometry.z)
     mean = max(float(np.max(np.abs(external[:2]))), float(np.max(np.abs(external[2:]))) / geometry.scale) / n_balls
-    delta = 2.0 * geometry.constant * max(mean, 1e-12) ** (2.0 / 3.0)
-    spring = 1.5 * math.sqrt(delta) / (2.0 * geometry.constant) ** 1.5
-    line = np.einsum("rkij,rki->rkj", geometry.jac, geometry.normal)  # J^T n per ball
-    stiffness = spring * np.einsum("rki,rkj->ij", line, line)
-    return _step(stiffness, external, geometry)
+    delta = geometry.constant * max(mean, 1e-12) ** (2.0 / 3.0)
+    spring = 1.5 * math.sqrt(delta) / geometry.constant ** 1.5
+    q, v = np.zeros(5), np.zeros((geometry.normal.shape[0], len(geometry.z), 2))
+    _, _, blocks, _, _, _ = geometry.system(q, v, external, slope_floor=spring)
+    carriage = external.copy()
+    balls = np.zeros_like(v)
+    return _step(blocks, carriage, balls, geometry)[:2]
 
 
-def _state(geometry: _Geometry, q: np.ndarray, external: np.ndarray, iterations: int, measure) -> CarriageState:
-    generalised, load, e, approach, stiffness = geometry.forces(q)
-    balance = measure(generalised + external, load)
-    angle = np.arctan2(np.abs(e[..., 1]), np.abs(e[..., 0]))
+def _state(geometry: _Geometry, q, v, external, iterations: int, measure) -> CarriageState:
+    carriage, balls, blocks, load, e, approach = geometry.system(q, v, external)
+    balance = measure(carriage, balls, load)
+    schur, *_ = _condensed(blocks, geometry)
     contact = hertz.solve_load(geometry.hertz, load)
-    return CarriageState(q.copy(), geometry.z.copy(), load, angle, approach, contact.a, contact.b, contact.p0,
-                         stiffness, balance, iterations)
+    mask = geometry.mask[:, None, :]
+    return CarriageState(q.copy(), geometry.z.copy(), v.copy(), load, e * mask[..., None], approach * mask,
+                         contact.a * mask, contact.b * mask, contact.p0 * mask, -schur, balance, iterations)

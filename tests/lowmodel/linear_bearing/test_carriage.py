@@ -53,11 +53,11 @@ def test_a_vertical_load_on_the_upper_rows_matches_the_closed_geometry():
     state = carriage.solve(_body(), carriage.Load(vertical=3e3))
     u, q = _vertical_reference(3e3, N)
     assert state.displacement[1] == pytest.approx(-u, rel=1e-9)
-    assert state.normal_force[:2] == pytest.approx(np.full((2, N), q), rel=1e-9)
+    assert state.normal_force[:2] == pytest.approx(np.full((2, N, 2), q), rel=1e-9)  # both contacts of a ball
     assert np.all(state.normal_force[2:] == 0.0) and np.all(state.approach[2:] < 0.0)
     assert np.max(np.abs(state.displacement[[0, 2, 3, 4]])) < 1e-15  # symmetric: no lateral, pitch, yaw or roll
     # the balance from the state's own outputs: vertical components of the upper balls' loads on their loaded lines
-    vertical = np.sum(state.normal_force * np.sin(state.contact_angle))
+    vertical = np.sum(state.normal_force[..., 1] * np.sin(state.contact_angle[..., 1]))  # carriage contacts
     assert vertical == pytest.approx(3e3, rel=carriage.BALANCE_TOLERANCE)
     assert state.balance < carriage.BALANCE_TOLERANCE
 
@@ -74,15 +74,16 @@ def test_every_load_balances_and_the_stiffness_is_the_derivative_of_the_load(loa
     force = np.zeros(5)
     centre_offset = (GUIDE.conformity * 2 - 1) * GUIDE.ball_radius
     for r, row in enumerate(ROWS):
-        n = np.array(row.normal)
+        n = np.array(row.normals[1])  # the carriage contact's outward normal
         sx, sy = np.sign(n)  # the loaded line keeps the row's quadrant
         for k, z in enumerate(state.z):
-            e = np.array([sx * math.cos(state.contact_angle[r, k]), sy * math.sin(state.contact_angle[r, k])])
-            f = -state.normal_force[r, k] * e  # the ball pushes the carriage away from the rail
-            cx, cy = np.array([row.x, row.y]) + centre_offset * n  # small displacements: moments about rest
+            angle = state.contact_angle[r, k, 1]
+            f = state.normal_force[r, k, 1] * np.array([sx * math.cos(angle), sy * math.sin(angle)])  # on the groove
+            cx, cy = np.array([row.x, row.y]) - centre_offset * n  # small displacements: moments about rest
             force += np.array([f[0], f[1], -z * f[1], z * f[0], cx * f[1] - cy * f[0]])
     scale = np.array([1, 1, 1 / body.half_length, 1 / body.half_length, 1 / body.half_length])
-    assert np.max(np.abs((force + load.vector) * scale)) < 1e-9 * np.max(state.normal_force)
+    # the lines through the moved ball centres: small displacements against A0 (1e-6 of the largest ball load)
+    assert np.max(np.abs((force + load.vector) * scale)) < 1e-6 * np.max(state.normal_force)
     # the stiffness against central differences of the balls' generalised force (tangent: 1e-6)
     steps = np.array([1e-9, 1e-9, 1e-7, 1e-7, 1e-7])
     difference = np.zeros((5, 5))
@@ -97,14 +98,15 @@ def test_every_load_balances_and_the_stiffness_is_the_derivative_of_the_load(loa
 
 
 def _balls_force(body, q):
-    """The generalised force of the balls on the carriage at displacement ``q`` from the exact curvature-centre
-    geometry and Hertz's law, written out here (the model's arrays and solve not involved)."""
+    """The generalised force of the two-point balls on the carriage at displacement ``q`` from the exact
+    curvature-centre geometry and Hertz's law, written out here (the model's arrays and solve not involved): each
+    ball on the line of its two grooves' curvature centres."""
     constant = hertz.hertz_constant(hertz.groove_geometry(GUIDE))
     a0 = (2 * GUIDE.conformity - 1) * 2 * GUIDE.ball_radius
     z = carriage.ball_positions(body)
     total = np.zeros(5)
     for row in body.rows:
-        n = np.array(row.normal)
+        n = np.array(row.normals[0])  # towards the rail
         cx, cy = np.array([row.x, row.y]) + (GUIDE.conformity * 2 * GUIDE.ball_radius - GUIDE.ball_radius) * n
         for zk, relief in zip(z, carriage.relief(body, z)):
             d = np.array([q[0] + q[3] * zk - q[4] * cy, q[1] + q[4] * cx - q[2] * zk])
@@ -123,7 +125,7 @@ def test_preloaded_opposed_rows_unload_at_two_to_the_three_halves_the_preload():
     the tolerance."""
     body = _body(oversize=0.05e-6)
     rest = carriage.solve(body, carriage.Load())
-    preload = float(np.sum(rest.normal_force[:2] * np.sin(rest.contact_angle[:2])))
+    preload = float(np.sum(rest.normal_force[:2, :, 1] * np.sin(rest.contact_angle[:2, :, 1])))
 
     def lower(force):
         return float(np.max(carriage.solve(body, carriage.Load(vertical=force)).normal_force[2:]))
@@ -135,7 +137,7 @@ def test_preloaded_opposed_rows_unload_at_two_to_the_three_halves_the_preload():
 def test_the_end_relief_unloads_the_end_balls_and_travel_moves_the_balls():
     body = _body(oversize=1e-6, relief_length=12e-3, relief_depth=3e-6)
     state = carriage.solve(body, carriage.Load(vertical=1e3))
-    upper = state.normal_force[0]
+    upper = state.normal_force[0, :, 1]
     assert upper[0] < upper[N // 2] and upper[-1] < upper[N // 2]
     assert upper == pytest.approx(upper[::-1], rel=1e-9)  # centred: symmetric along the rail
     moved = carriage.solve(body, carriage.Load(vertical=1e3), travel=0.3 * PITCH)
@@ -149,8 +151,48 @@ def test_a_load_no_row_can_carry_is_a_convergence_error_and_bad_input_names_its_
         carriage.solve(upper_only, carriage.Load(vertical=-1e3))
     with pytest.raises(ValueError, match="pitch"):
         carriage.Carriage(GUIDE, ROWS, balls_per_row=5, pitch=1e-3)
-    with pytest.raises(ValueError, match="normal"):
-        carriage.Row(0.0, 0.0, (1.0, 1.0))
+    with pytest.raises(ValueError, match="normals"):
+        carriage.Row(0.0, 0.0, ((1.0, 1.0), (0.0, 1.0)), (False, True))
+    with pytest.raises(ValueError, match="carriage"):
+        carriage.Row(0.0, 0.0, ((1.0, 0.0), (-1.0, 0.0)), (True, True))
     with pytest.raises(ValueError, match="vertical"):
         carriage.Load(vertical=math.nan)
     assert carriage.solve(_body(), carriage.Load()).normal_force.max() == 0.0  # no preload, no load: at rest
+
+
+@pytest.mark.parametrize("rows", ["gothic", "four-row"])
+def test_the_stiffness_is_the_change_of_the_displacement_under_a_small_change_of_the_load(rows):
+    """A two-row gothic-arch carriage (lin2019's four-point balls turned to face the rail; each ball's centre free
+    in the cross-section) and the four-row one, preloaded: solving again under the load plus a small change of each
+    component moves the carriage by ``K^-1`` of it (the condensed stiffness with the balls in equilibrium; central
+    differences of whole solves, 1e-4)."""
+    shape = (carriage.gothic_rows(half_width=8e-3, height=5e-3, contact_angles=np.full(4, ALPHA))
+             if rows == "gothic" else ROWS)
+    body = _body(rows=shape, oversize=2e-6)
+    base = carriage.Load(lateral=300.0, vertical=1.5e3, pitch=10.0, yaw=-5.0, roll=8.0)
+    state = carriage.solve(body, base)
+    assert state.balance < 1e-10
+    fields = ("lateral", "vertical", "pitch", "yaw", "roll")
+    steps = (1.0, 1.0, 0.01, 0.01, 0.01)
+    for name, step in zip(fields, steps):
+        moved = []
+        for sign in (1.0, -1.0):
+            values = {f: getattr(base, f) for f in fields}
+            values[name] += sign * step
+            moved.append(carriage.solve(body, carriage.Load(**values)).displacement)
+        change = np.zeros(5)
+        change[fields.index(name)] = 2 * step * (-1.0 if name == "vertical" else 1.0)  # vertical presses along -y
+        expected = np.linalg.solve(state.stiffness, change)
+        assert moved[0] - moved[1] == pytest.approx(expected, rel=1e-4, abs=1e-4 * np.max(np.abs(expected)))
+
+
+def test_a_gothic_arch_row_balances_each_ball_and_mirrors_under_a_vertical_load():
+    shape = carriage.gothic_rows(half_width=8e-3, height=5e-3, contact_angles=np.full(4, ALPHA))
+    state = carriage.solve(_body(rows=shape, oversize=1e-6), carriage.Load(vertical=800.0))
+    assert state.balance < 1e-10
+    right, left = state.normal_force
+    assert right == pytest.approx(left[:, [1, 0, 3, 2]], rel=1e-9)  # mirror about the rail's mid-plane: BL <-> BR
+    assert np.max(np.abs(state.displacement[[0, 2, 3, 4]])) < 1e-14
+    # each ball's four contact forces balance (the ball's statics), from the state's outputs
+    resultant = np.einsum("rkc,rkci->rki", state.normal_force, state.line)
+    assert np.max(np.abs(resultant)) < 1e-9 * np.max(state.normal_force)
