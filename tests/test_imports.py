@@ -40,8 +40,10 @@ FRONT = "import ballbench loads no layer and nothing a bare interpreter does not
 STARTUP = "the CLI's startup imports this file; the module is not loaded there"
 SCENES = "ballbench scenes imports this file; the module is not loaded there"
 READ = "ballbench.load_case imports this file and loads no model (numpy and the description types only)"
+CARRIAGE = "ballbench.load_case imports this file; the carriage model loads only for a file with a [carriage] table"
 LIGHT = {
     ("lowmodel/bearing.py", "ballbench.lowmodel.contact.hertz"): READ,
+    ("validation/cases/case_file.py", "ballbench.lowmodel.linear_bearing.carriage"): CARRIAGE,
     ("validation/cases/case_file.py", "ballbench.lowmodel.screw"): READ,
     ("src/ballbench/__init__.py", "importlib"): FRONT,
     ("src/ballbench/__init__.py", "pathlib"): FRONT,
@@ -84,6 +86,7 @@ LIGHT = {
     ("validation/ladder/stick_slip.py", "ballbench.lowmodel.contact.rolling_friction"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.lowmodel.full_slip_validity"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.figures.stickslip3d"): STARTUP,
+    ("validation/ladder/whole.py", "ballbench.validation.figures.carriage"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.case_stick_slip"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.rolling_b2b"): STARTUP,
     ("validation/studies/calibration/fe_laws.py", "ballbench.validation.studies.fe_contact"): STARTUP,

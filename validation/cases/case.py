@@ -147,10 +147,14 @@ class ModuleFe:
 @dataclass(frozen=True, kw_only=True)
 class LinearGuideCase(GuideLoadCase):
     """Balls of a linear guide under load (:class:`lowmodel.bearing.GuideLoadCase`) with a name and the FE settings
-    of its four-point modules."""
+    of its four-point modules; optionally the whole carriage (``carriage``: a
+    :class:`lowmodel.linear_bearing.carriage.Carriage`) under its external load (``carriage_load``: a
+    :class:`lowmodel.linear_bearing.carriage.Load`), the scene ``<stem>-whole`` (docs/carriage.md)."""
 
     name: str
     fe: ModuleFe | None = None
+    carriage: object = None
+    carriage_load: object = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -6,8 +6,8 @@ one, a unit of the wrong dimension or a missing unit, a value outside its physic
 negative load) or outside the plausible range of real bearings (a radius of metres, an elastic modulus of Pa:
 lowmodel.checks.PLAUSIBLE); a :class:`CaseFileError` names the file, the line, the key and the range.
 
-The keys of each kind are declared once (:data:`SCHEMA`); :func:`template` writes the commented file of
-``ballbench init`` from the same declarations, and :func:`load` reads it back.  docs/cases.md lists the keys.
+The keys of each kind are declared once (:data:`SCHEMA`, :mod:`.case_schema`); :func:`template` writes the commented
+file of ``ballbench init`` from the same declarations, and :func:`load` reads it back.  docs/cases.md lists the keys.
 
     >>> from ballbench.validation.cases import case_file
     >>> case = case_file.loads(case_file.template("linear-guide"), "g.toml")
@@ -19,191 +19,22 @@ from __future__ import annotations
 import difflib
 import re
 import tomllib
-from dataclasses import dataclass
 from pathlib import Path
 
 from ballbench.lowmodel import bearing, checks, model_inputs
-from ballbench.lowmodel.bearing import PAIRS, READINGS, BallScrew, Fit, LinearGuide, Lubricant, Material
+from ballbench.lowmodel.bearing import BallScrew, Fit, LinearGuide, Lubricant, Material
 from ballbench.validation.cases import units
-from ballbench.validation.cases.case import (FINE_ZONES, BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
+from ballbench.validation.cases.case_schema import KINDS, MODEL_CHECKS, OPTIONAL_TABLES, SCHEMA, Key
+from ballbench.validation.cases.case import (BallScrewCase, ContactCase, ContactFe, LinearGuideCase,
                                              MeshLevels, ModuleFe, ModuleLevel, PairLevel)
 
 __all__ = ["KINDS", "SCHEMA", "CaseFileError", "Key", "load", "loads", "template", "describe"]
-
-KINDS = ("linear-guide", "ball-screw", "contact")
 
 
 class CaseFileError(ValueError):
     """A mistake in a case file: the message names the file, the line (where it can be found), the key and what
     the key takes."""
 
-
-@dataclass(frozen=True)
-class Key:
-    """One key of a case file: its dimension (validation.cases.units), what it is, whether it is required, the check of
-    its value, its example value in the template, and alternatives (another key that gives the same value, e.g. a
-    diameter for a radius).
-
-    The check of a key that gives a field of the bearing's description is that field's own
-    (``lowmodel.bearing.check_field``: physical and plausible range, defined once there): ``field`` names it, by
-    default the key's name when it is a field (:data:`lowmodel.bearing.FIELDS`).  The other keys (names, choices,
-    FE settings) carry their own ``check`` (``"positive"``, ``"choice"``, ``"text"``)."""
-
-    name: str
-    dimension: str
-    help: str
-    required: bool = True
-    check: str = ""
-    field: str = ""
-    example: str = ""
-    choices: tuple = ()
-    alternative_of: str = ""  # this key gives ``alternative_of`` (times ``scale``)
-    scale: float = 1.0
-    in_template: bool = True
-
-    @property
-    def described(self) -> str:
-        """The field of lowmodel.bearing whose check applies to this key ("" for none)."""
-        return self.field or (self.name if self.name in bearing.FIELDS else "")
-
-
-def _material_keys():
-    return (Key("youngs_modulus", "pressure", "E, elastic modulus of ball and raceways", example='"210 GPa"'),
-            Key("poisson_ratio", "dimensionless", "nu, Poisson's ratio", example="0.3"))
-
-
-# table -> keys, per kind; "" is the top level
-SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
-    "linear-guide": {
-        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"linear-guide"'),
-             Key("name", "text", "a name for the report", check="text", example='"my linear guide"')),
-        "guide": (
-            Key("ball_radius", "length", "R_B, ball radius (1.5875 mm: a 1/8-inch ball)", example='"1.5875 mm"'),
-            Key("ball_diameter", "length", "or the ball diameter (1/8-inch ball: \"0.125 in\")", required=False,
-                check="positive", alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter",
-                example="0.52"),
-            Key("nominal_angle", "angle", "beta_0, nominal contact angle of the four contacts", example='"45 deg"'),
-            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact", example="0.1"),
-            Key("groove_velocity", "speed", "v, speed of the carriage (top groove) against the rail",
-                example='"100 mm/s"')),
-        "material": _material_keys(),
-        "load": (
-            Key("vertical_force", "force", "N_y, vertical load on every ball", example='"50 N"'),
-            Key("side_force_ratio", "dimensionless", "rho = N_x / N_y of ball 1 (ball 2: -rho, alternating)",
-                example="-0.6"),
-            Key("n_balls", "count", "balls in a row (2: the two-ball module of lin2019 Sec 2.4)", required=False,
-                example="2")),
-        "deviations": (
-            Key("bottom_left", "angle", "BL, contact angle deviation from beta_0 (every ball)", field="deviation",
-                example='"-2 deg"'),
-            Key("bottom_right", "angle", "BR", field="deviation", example='"2 deg"'),
-            Key("top_right", "angle", "TR", field="deviation", example='"0 deg"'),
-            Key("top_left", "angle", "TL", field="deviation", example='"0 deg"')),
-        "fe": (
-            Key("gap_limit", "length", "candidate zone: initial gaps up to this", required=False, check="positive",
-                in_template=False),
-            Key("fine_ellipse", "list", "fine slab of each contact: (k1 a, k2 b, k3 b)", required=False,
-                in_template=False),
-            Key("quick", "levels", "module mesh levels: [{ h_contact, growth, fine_radius, h_max }, ...]",
-                required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
-    },
-    "ball-screw": {
-        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"ball-screw"'),
-             Key("name", "text", "a name for the report", check="text", example='"my ball screw"')),
-        "screw": (
-            Key("ball_radius", "length", "R_B, ball radius (a 6.35 mm ball)", example='"3.175 mm"'),
-            Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
-                alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("pitch_radius", "length", "R_P, radius of the ball-centre helix", example='"16.6 mm"'),
-            Key("pitch_diameter", "length", "or the pitch (ball-centre) diameter", required=False, check="positive",
-                alternative_of="pitch_radius", scale=0.5, in_template=False),
-            Key("lead", "length", "L, axial advance per turn",
-                example='"10 mm"'),
-            Key("nominal_angle", "angle", "beta_0, nominal contact angle",
-                example='"45 deg"'),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter (screw and nut)", example="0.55"),
-            Key("friction_coefficient", "dimensionless", "mu, Coulomb friction of every contact", example="0.1"),
-            Key("nut_speed", "angular speed", "omega_N, nut speed (the nut drives, the screw is at rest)",
-                example='"1 rev/s"'),
-            Key("oversize", "length", "ball oversize: preload by interference (every contact approaches by it)",
-                required=False, example='"1.5 um"'),
-            Key("oversize_fit", "fit", "how the oversize was fitted: { target = \"...\", method = \"...\" }",
-                required=False, in_template=False),
-            Key("ball_count", "count", "loaded balls of the nut", required=False,
-                in_template=False),
-            Key("ball_mass", "mass", "mass of one ball", required=False, in_template=False),
-            Key("preload", "force", "axial preload of a double nut", required=False,
-                in_template=False),
-            Key("screw_speed", "angular speed", "omega, screw speed (screw driven)", required=False,
-                in_template=False)),
-        "material": _material_keys(),
-        "load": (
-            Key("axial_load", "force", "axial load on the screw, shared by the balls",
-                example='"100 N"'),
-            Key("deviations", "angle list", "theta of each ball: screw-side contact angle deviation",
-                field="deviation", example='["0 deg", "2 deg"]'),
-            Key("reading", "text", "how theta deviates the flanks (docs/ball_screw.md)", required=False,
-                check="choice", choices=READINGS, example='"tilted"')),
-        "lubricant": None,  # the oil's keys, shared with the linear guide (filled below)
-        "fe": (
-            Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
-            Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
-                required=False, check="positive", in_template=False),
-            Key("quick", "levels", "", required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
-    },
-    "contact": {
-        "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"contact"'),
-             Key("name", "text", "a name for the report", check="text", example='"my ball in a groove"')),
-        "contact": (
-            Key("pair", "text", "the counter body: flat, ball (same radius), groove (straight), screw or nut "
-                "(the helical groove of [screw])", check="choice", choices=PAIRS, example='"groove"'),
-            Key("ball_radius", "length", "R_B, ball radius",
-                example='"3.175 mm"'),
-            Key("ball_diameter", "length", "or the ball diameter", required=False, check="positive",
-                alternative_of="ball_radius", scale=0.5, in_template=False),
-            Key("conformity", "dimensionless", "f = groove radius / ball diameter (groove pair only)",
-                required=False, example="0.54"),
-            Key("force", "force", "normal force", example='"200 N"')),
-        "material": _material_keys(),
-        "screw": None,  # the ball-screw table, for screw and nut pairs (filled below)
-        "fe": (
-            Key("fine_zone", "text", "capsule or ellipse", required=False, check="choice", choices=FINE_ZONES,
-                in_template=False),
-            Key("zone", "list", "fine-zone factors", required=False, in_template=False),
-            Key("gap_limit", "dimensionless", "candidate zone: initial gaps up to this times the Hertz approach",
-                required=False, check="positive", in_template=False),
-            Key("fine_targets", "targets", "tolerances of the finest level: { a = 0.002, ... }", required=False,
-                in_template=False),
-            Key("quick", "levels", "pair mesh levels: [{ n, growth }, ...]", required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
-    },
-}
-LUBRICANT_KEYS = (
-    Key("viscosity", "viscosity", "eta_0 at ambient pressure", example='"0.1 Pa s"'),
-    Key("density", "density", "rho_0", example='"870 kg/m^3"'),
-    Key("roughness", "length", "sigma = sqrt(Rq_1^2 + Rq_2^2), composite RMS roughness (Lambda = h_min / sigma)",
-        required=False, example='"0.14 um"'))
-SCHEMA["ball-screw"]["lubricant"] = LUBRICANT_KEYS
-SCHEMA["linear-guide"]["lubricant"] = LUBRICANT_KEYS
-SCHEMA["contact"]["screw"] = tuple(k for k in SCHEMA["ball-screw"]["screw"] if k.name != "ball_radius"
-                                   and k.name != "ball_diameter")
-OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant"}, "ball-screw": {"fe", "lubricant"},
-                   "contact": {"fe", "screw"}}
-
-# what lin2019's models need of a key beyond its field's range: their own checks (lowmodel.model_inputs), at load
-# time; kind -> (table, key) -> (check, the other keys of the table it takes after the key's value)
-MODEL_CHECKS = {"linear-guide": {("guide", "friction_coefficient"): (model_inputs.guide_friction_coefficient,),
-                                 ("guide", "groove_velocity"): (model_inputs.groove_velocity,)},
-                "ball-screw": {("screw", "friction_coefficient"): (model_inputs.screw_friction_coefficient,),
-                               ("screw", "nut_speed"): (model_inputs.nut_speed,),
-                               ("screw", "pitch_radius"): (model_inputs.screw_pitch_radius, "ball_radius",
-                                                           "conformity")}}
 
 _HEADERS = {
     "linear-guide": "A linear guide: balls between a rail (bottom groove) and a carriage (top groove), lin2019 Sec 2.",
@@ -313,6 +144,8 @@ def _check(where: str, key: Key, value: float) -> None:
         checks.positive(where, value, unit)
     elif key.check == "finite":
         checks.finite(where, value, unit)
+    elif key.check == "non-negative":
+        checks.non_negative(where, value, unit)
 
 
 def _table(reader: _Reader, data: dict, kind: str, table: str, *, required: bool) -> dict:
@@ -439,9 +272,11 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
                                 g["friction_coefficient"], g["groove_velocity"], _lubricant(tables))
             f, levels = tables["fe"], _levels(reader, fe_raw, "module")
             fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 6e-6), f.get("fine_ellipse"))
-            case = LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"],
-                                   (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"]),
-                                   load.get("n_balls", 2), name=name, fe=fe)
+            deviations = (dev["bottom_left"], dev["bottom_right"], dev["top_right"], dev["top_left"])
+            body, carriage_load = _carriage(reader, tables.get("carriage"), guide, deviations)
+            case = LinearGuideCase(guide, load["vertical_force"], load["side_force_ratio"], deviations,
+                                   load.get("n_balls", 2), name=name, fe=fe, carriage=body,
+                                   carriage_load=carriage_load)
             reader.check("load", "side_force_ratio", model_inputs.four_point_contact, case.side_forces,
                          case.vertical_force, case.contact_angles, "load.side_force_ratio")  # every ball's
             return case
@@ -481,6 +316,30 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
         raise
     except ValueError as error:  # a check across keys (e.g. a pitch radius inside the groove)
         raise reader.error("", "", str(error)) from None
+
+
+def _carriage(reader: _Reader, table: dict | None, guide: LinearGuide, deviations: tuple):
+    """The whole carriage of a ``[carriage]`` table (lowmodel.linear_bearing.carriage): gothic rows of the guide's
+    four-point balls at ``nominal_angle + deviations``, or four two-point rows at ``nominal_angle``; and its load."""
+    if not table:
+        return None, None
+    from ballbench.lowmodel.linear_bearing import carriage  # the carriage model: only for a file with one
+
+    if table["rows"] == "gothic":
+        if "height" not in table:
+            raise reader.error("carriage", "height", 'rows = "gothic" needs carriage.height (y of the rows)')
+        rows = carriage.gothic_rows(half_width=table["half_width"], height=table["height"],
+                                    contact_angles=[guide.nominal_angle + d for d in deviations])
+    else:
+        if "upper" not in table or "lower" not in table:
+            raise reader.error("carriage", "upper", 'rows = "four-row" needs carriage.upper and carriage.lower')
+        rows = carriage.four_rows(half_width=table["half_width"], upper=table["upper"], lower=table["lower"],
+                                  contact_angle=guide.nominal_angle)
+    body = carriage.Carriage(guide, rows, table["balls_per_row"], table["pitch"], table.get("oversize", 0.0),
+                             table.get("relief_length", 0.0), table.get("relief_depth", 0.0))
+    load = carriage.Load(table.get("lateral_force", 0.0), table.get("vertical_force", 0.0),
+                         table.get("pitch_moment", 0.0), table.get("yaw_moment", 0.0), table.get("roll_moment", 0.0))
+    return body, load
 
 
 def loads(text: str, path: str = "<case>"):
@@ -572,6 +431,13 @@ def template(kind: str) -> str:
         for key in SCHEMA[kind]["lubricant"]:
             line = f"# {key.name} = {key.example}"
             out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
+    if "carriage" in SCHEMA[kind]:  # optional, so commented out: the two-ball module alone without it
+        out += ["", "# [carriage] (optional): the whole carriage; it adds the scene <stem>-whole (ball loads, "
+                    "stiffness; docs/carriage.md)"]
+        for key in SCHEMA[kind]["carriage"]:
+            if key.in_template:
+                line = f"# {key.name} = {key.example}"
+                out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
     if kind == "contact":
         out += ["",
                 "# pair = \"screw\" or \"nut\": add a [screw] table (pitch_radius, lead, nominal_angle, conformity,",

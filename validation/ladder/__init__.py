@@ -12,6 +12,9 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   loads, angles, ellipses and pressures per ball and contact, the friction force [N] or torque [N m] with and
   without B2B contact, the friction increase, the B2B forces (lowmodel.bearing_results); power balance and statics
   checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
+* ``<stem>-whole`` (linear guide with a ``[carriage]``; rung ``low-order``): the rigid carriage under its
+  external load (lowmodel.linear_bearing.carriage): ball loads per row, displacement, 5 x 5 stiffness,
+  load-deflection curves, the static limit (ladder.whole);
 * ``<stem>-contact``: each distinct contact geometry at its largest load (ladder.rungs.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
   contact) up the ladder: exact Hertz, the BEM on
@@ -62,6 +65,7 @@ from ballbench.validation.ladder.contact import contact_scene, show_contact
 from ballbench.validation.ladder.ehl import ehl_scene
 from ballbench.validation.ladder.rungs import rungs_up_to
 from ballbench.validation.ladder.stick_slip import stick_slip_scene
+from ballbench.validation.ladder.whole import whole_scene
 from ballbench.validation.scene import NotApplicable, Scene
 
 __all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
@@ -94,6 +98,8 @@ def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
     rungs = rungs_up_to(top)
     names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
+    if "low-order" in rungs and getattr(case, "carriage", None) is not None:
+        names.append(f"{stem}-whole")
     names.append(f"{stem}-contact")
     if "EHL" in rungs and _lubricated(case):
         names.append(f"{stem}-ehl")
@@ -117,6 +123,11 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
                             functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
+    if "low-order" in rungs and getattr(case, "carriage", None) is not None:
+        scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage, rigid, under its external load (ball "
+                            "loads per row, displacement, stiffness, load-deflection)",
+                            functools.partial(whole_scene, case=case), tags=("case",), kind="low-order", cost_s=2.0,
+                            budget_s=LOW_BUDGET_S, case=case))
     # ladder.rungs.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
     n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("

@@ -1,0 +1,43 @@
+"""Figures of the whole carriage (lowmodel.linear_bearing.carriage; docs/carriage.md): the ball loads along the rows
+and the load-deflection curves."""
+from __future__ import annotations
+
+import numpy as np
+
+from ballbench.validation.figures.style import figure
+
+__all__ = ["ball_loads", "load_deflection"]
+
+
+def ball_loads(z, normal_force, labels, contacts):
+    """The load [N] of each contact of every ball along the rail (``z`` [m], ``normal_force`` (rows, balls,
+    contacts)), one panel per row (``labels``), one line per contact (``contacts``: names of the first row's)."""
+    rows = normal_force.shape[0]
+    fig = figure(figsize=(9, 2.2 * rows), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(rows, 1, sharex=True))
+    for r, ax in enumerate(axes):
+        for c in range(normal_force.shape[2]):
+            if np.any(normal_force[r, :, c] > 0):
+                ax.plot(np.asarray(z) * 1e3, normal_force[r, :, c], "o-", ms=3, color=f"C{c}", label=contacts[c])
+        ax.set_ylabel("Q [N]")
+        ax.set_title(labels[r], fontsize=9)
+        ax.legend(fontsize=7, loc="upper right")
+    axes[-1].set_xlabel("z along the rail [mm]")
+    return fig
+
+
+def load_deflection(factors, displacements, load_words: str):
+    """The carriage's displacements (``displacements`` (n, 5): u_x, u_y [m], phi_x, phi_y, phi_z [rad]) against the
+    load factor (``factors`` (n,)) times the case's load (``load_words``)."""
+    fig = figure(figsize=(9, 3.4), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    for i, name in enumerate(("u_x", "u_y")):
+        left.plot(factors, np.asarray(displacements)[:, i] * 1e6, "o-", ms=3, label=name)
+    for i, name in enumerate(("phi_x", "phi_y", "phi_z")):
+        right.plot(factors, np.asarray(displacements)[:, 2 + i] * 1e3, "o-", ms=3, label=name)
+    left.set_ylabel("translation [um]")
+    right.set_ylabel("rotation [mrad]")
+    for ax in (left, right):
+        ax.set_xlabel(f"load factor ({load_words})")
+        ax.legend(fontsize=7)
+    return fig
