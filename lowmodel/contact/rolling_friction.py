@@ -260,7 +260,9 @@ class ContactSummary:
     rest; the input power of the power balance is their sum);
     stick_fraction; spin_parameter Lambda ``= |phi| b G / (mu p0)``; creepage [-] ``|w|`` at the centre over
     ``mu p0 / G`` (the creepage parameter); rolling_speed V [m/s]; solution the
-    :class:`~lowmodel.contact.rolling.RollingContact` (Kalker's frame), None for the full-slip law.
+    :class:`~lowmodel.contact.rolling.RollingContact` (Kalker's frame), None for the full-slip law;
+    spin_to_roll [-] ``|phi| R``: the spin about the contact normal over the rolling angular speed (the spin per unit
+    rolling distance times the distance of the contact from the ball centre; Harris's spin-to-roll ratio)
     """
 
     name: str
@@ -278,6 +280,7 @@ class ContactSummary:
     creepage: float
     rolling_speed: float
     solution: object = None
+    spin_to_roll: float = math.nan
 
 
 class _Item:
@@ -438,10 +441,11 @@ class StickSlipFriction:
         drive = float(np.einsum("mi,mi->", force_cells, item.g)) * self.speed_unit
         w, _, _ = self._motion(item, x)
         lam, creep = self.indicators(item, w)
+        spin = lam * self.mu * contact.central_pressure() / (contact.semi_axes()[1] * contact.shear_modulus)  # |phi|
         return ContactSummary(contact.name, contact.normal_force, force, moment, float(force @ contact.axis),
                               float(force @ contact.lateral), spin_moment, float(solution.rigid_power),
                               float(solution.frictional_power), drive, float(solution.stick_fraction), lam, creep,
-                              speed * self.speed_unit, solution)
+                              speed * self.speed_unit, solution, spin * float(np.linalg.norm(contact.centre)))
 
     def indicators(self, item: _Item, w: np.ndarray) -> tuple[float, float]:
         """Spin parameter ``Lambda = |phi| b G / (mu p0)`` and creepage parameter ``|w_c| G / (mu p0)`` of a

@@ -94,14 +94,25 @@ def _stick_slip_law(run, case, contacts, states, solve_states) -> None:
     for ball, (touching_row, free_row) in enumerate(zip(states.touching.contacts, states.free.contacts)):
         for c_t, c_f in zip(touching_row, free_row):
             rows.append((ball + 1, c_t.name, fmt(c_t.normal_force), fmt(100 * c_t.stick_fraction, 3),
-                         fmt(100 * c_f.stick_fraction, 3), fmt(c_t.spin_parameter, 3),
+                         fmt(100 * c_f.stick_fraction, 3), fmt(c_t.spin_parameter, 3), fmt(c_t.spin_to_roll, 3),
                          fmt(abs(c_t.along_groove) / (mu * c_t.normal_force), 3)))
-    run.table("Contact law per ball and contact (stick/slip on a half-space): stick area, spin parameter and "
-              "traction along the groove", ("ball", "contact", "F [N]", "stick touching [%]", "stick apart [%]",
-                                            "spin parameter Lambda", "F_along / (mu F), touching"), rows)
+    run.table("Contact law per ball and contact (stick/slip on a half-space): stick area, spin and traction along "
+              "the groove", ("ball", "contact", "F [N]", "stick touching [%]", "stick apart [%]",
+                             "spin parameter Lambda", "spin / roll, touching", "F_along / (mu F), touching"), rows)
     run.write_csv("contact_law.csv", [dict(ball=r[0], contact=r[1], normal_force_N=r[2], stick_touching_pct=r[3],
-                                           stick_apart_pct=r[4], spin_parameter=r[5], traction_ratio=r[6])
-                                      for r in rows])
+                                           stick_apart_pct=r[4], spin_parameter=r[5], spin_to_roll=r[6],
+                                           traction_ratio=r[7]) for r in rows])
+    least = []
+    for ball, row in enumerate(states.touching.contacts):
+        loaded = [c for c in row if c.normal_force > 0]
+        quiet = min(loaded, key=lambda c: c.spin_to_roll)
+        spinning = sorted(c.spin_to_roll for c in loaded)
+        least.append(f"ball {ball + 1}: {quiet.name} (spin / roll {fmt(quiet.spin_to_roll, 3)}, stick "
+                     f"{fmt(100 * quiet.stick_fraction, 3)} %; next {fmt(spinning[1], 3)})")
+    run.note("Race control as a result (Jones; Harris & Kotzalas: one contact rolls without spin, the others carry "
+             "it): the contact of least spin per touching ball, " + "; ".join(least) + ". A contact rolls without "
+             "spin where its spin / roll is small against the others' (docs/b2b_rolling.md, 'Where full sliding has "
+             "no state').")
 
 
 def _eq36_residual(case: LinearGuideCase, contacts) -> float:

@@ -255,3 +255,17 @@ def test_the_stick_slip_state_from_rolling_is_the_state_from_full_slip(case_a):
     assert auto.b2b_force == pytest.approx(result.touching.b2b_force, rel=1e-7)
     with pytest.raises(ValueError, match="start"):
         b2b_rolling.solve(balls, start="rolling", law="full-slip", **COMMON)
+
+
+def test_the_spin_to_roll_ratio_is_the_ball_s_rotation_against_the_contact_normal():
+    """A ball whose four contacts are alike (theta 0, rho 0) rolls about the lateral axis: at every 45 deg contact its
+    rotation has equal parts about the contact normal (spin) and in the tangent plane (roll), a spin-to-roll ratio
+    of tan 45 deg = 1 from the ball's own omega (the curved contact surface's rolling radius moves it by 1e-3)."""
+    contacts, balls = linear_balls(theta=0.0, rho=0.0, cells=(12, 48))
+    state = b2b_rolling.solve(balls[:1], **COMMON)
+    omega = np.array([*state.omega[0], 0.0])
+    for contact, summary in zip(balls[0], state.contacts[0]):
+        spin = float(omega @ contact.normal)
+        roll = float(np.linalg.norm(omega - spin * contact.normal))
+        assert abs(spin) / roll == pytest.approx(1.0, rel=1e-12)
+        assert summary.spin_to_roll == pytest.approx(abs(spin) / roll, rel=1e-3)
