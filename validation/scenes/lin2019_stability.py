@@ -204,7 +204,10 @@ def stability(run):
         if not record[2] and is_coupled:
             verdicts[verdict] = verdicts.get(verdict, 0) + 1
     run.note("Relaxation in time of every failed solve with touching balls (lowmodel.b2b_relaxation): "
-             + (", ".join(f"{count} x {kind}" for kind, count in verdicts.items()) or "no such failure") + ".")
+             + (", ".join(f"{count} x {kind}" for kind, count in verdicts.items()) or "no such failure") + ". "
+             "These are the full-sliding model's limits, not the bearing's: where it has no state the friction of "
+             "record is the stick/slip law (lowmodel.bearing_results.guide_states; docs/b2b_rolling.md, 'Where full "
+             "sliding has no state').")
     run.note(f"{len(tally.records)} solves in {elapsed:.1f} s. {summary}. Failures by reason: {failures or 'none'} "
              f"(all at spin-capacity ratio < {RATIO_FLOOR}: "
              f"{bool(np.all(ratio[~converged] < RATIO_FLOOR)) if np.any(~converged) else 'no failures'}). "
