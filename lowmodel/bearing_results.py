@@ -9,6 +9,11 @@ dataclasses in SI units (``to_dataset()`` gives an xarray Dataset), computed by 
 * ball screw: ``lowmodel.screw.b2b`` (lin2019 eqs 34-61); the nut drives, the screw is at rest, and the friction
   torque is ``T = P_in / |omega_N|``.
 
+Where lin2019's full-sliding model finds no state (a guide near its four-point limit, a screw past its preload loss)
+the numbers come from the stick/slip law on a half-space (:func:`guide_states`, :func:`screw_law_states`; a screw's on
+the frictionless statics' loads), and the result says so (``law``, ``law_reason``; docs/b2b_rolling.md, "Where full
+sliding has no state"): seconds instead of milliseconds.
+
 "Free" is the state with the balls apart (no B2B contact), "touching" the state with every neighbouring pair in
 contact; the friction increase is ``P_touching / P_free - 1`` (lin2019 Fig 9c, Table 5).  The numbers are those of
 the balls of the case (the two-ball module of lin2019), not of a whole carriage or nut: a carriage of N balls
@@ -403,7 +408,8 @@ def friction(case) -> GuideResult | ScrewResult:
     :class:`lowmodel.bearing.ScrewLoadCase`, or a case file's case, which is one): per ball and contact the loads,
     angles, Hertz ellipses and pressures; the carriage friction force [N] (:class:`GuideResult`) or the friction
     torque on the nut [N m] (:class:`ScrewResult`) with and without ball-to-ball contact, the friction increase and
-    the B2B forces, by the low-order numerical models (``.to_dataset()`` gives xarray)."""
+    the B2B forces, by the low-order numerical models (``.to_dataset()`` gives xarray): lin2019's full sliding, or the
+    stick/slip law where that has no state (``.law``)."""
     if isinstance(case, GuideLoadCase):
         return guide_result(case)
     if isinstance(case, ScrewLoadCase):
