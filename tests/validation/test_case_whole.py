@@ -51,5 +51,7 @@ def test_the_example_runs_its_whole_carriage(tmp_path):
     judged = {c.quantity: c for c in result.outputs}
     assert judged["load balance of the carriage and of every ball"].value < carriage.BALANCE_TOLERANCE
     assert judged["largest contact pressure p0"].value < 4200e6
+    assert any(title.startswith("Friction of the rows") for title, _, _ in result.tables)
+    assert any("Friction force of the carriage" in note for note in result.notes)
     assert "g-whole" in ladder.scene_names(case, "g") and "g-whole" not in ladder.scene_names(
         case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml"), "g")

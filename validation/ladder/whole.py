@@ -66,6 +66,7 @@ def whole_scene(run, *, case) -> None:
                                 for r in range(len(body.rows)) for k in range(body.balls_per_row)
                                 for c in range(len(names[r]))])
     run.save_figure(figures.ball_loads(state.z, state.normal_force, labels, names[0]), "ball_loads.png")
+    _friction_table(run, body, state)
     curve = []
     for factor in LOAD_FACTORS:
         scaled = carriage.Load(*(factor * getattr(load, f) for f in ("lateral", "vertical", "pitch", "yaw", "roll")))
@@ -78,11 +79,29 @@ def whole_scene(run, *, case) -> None:
              f"{body.balls_per_row} balls each, every ball's contacts by the curvature-centre distance and Hertz's "
              "law, "
              f"under F_x {fmt(load.lateral)} N, F_y {fmt(load.vertical)} N, M_x {fmt(load.pitch)} N m, M_y "
-             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.  The carriage's "
-             "friction over its rows and the FE rung of an elastic carriage are not yet in this scene.")
+             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.  The friction's ripple "
+             "over travel and the FE rung of an elastic carriage are not yet in this scene.")
 
 
 def _contact_names(body) -> list[list[str]]:
     """Per row its contacts' names: lin2019's BL, BR, TR, TL for a gothic-arch row, rail / carriage for two-point."""
     return [list(CONTACT_NAMES) if len(row.normals) == 4 else ["rail", "carriage"][:len(row.normals)]
             for row in body.rows]
+
+
+def _friction_table(run, body, state) -> None:
+    """The friction of the carriage's rows at the state (lowmodel.linear_bearing.carriage.friction): per row the
+    drive force over its balls touching in chains, the laws that gave it and the balls without a model."""
+    result, time_s = run.time(carriage.friction, body, state)
+    rows = []
+    for r, row in enumerate(result.rows):
+        counts = {law: row.law.count(law) for law in dict.fromkeys(row.law)}
+        laws = ", ".join(f"{n} {law or 'no model'}" for law, n in counts.items())
+        rows.append((r + 1, fmt(row.force), laws, fmt(float(np.max(row.b2b_forces, initial=0.0))), row.reason or "-"))
+    run.table(f"Friction of the rows at the load: each row's balls touching in chains (lin2019 eqs 4-10 on the "
+              f"carriage's contact loads; {time_s:.2f} s)", ("row", "friction force [N]", "balls by law",
+                                                             "largest F_B2B [N]", "what the row says"), rows)
+    total = "" if result.complete else " (a lower bound: balls without a model carry none here)"
+    run.note(f"Friction force of the carriage at this load: {fmt(result.force)} N{total}, the drive force over every "
+             "row's balls (lowmodel.linear_bearing.carriage.friction; a loose ball carries neither load nor friction, "
+             "a ball with one to three open contacts has no model yet; docs/carriage.md).")
