@@ -44,9 +44,9 @@ from ballbench.lowmodel.screw import preload
 from ballbench.lowmodel.screw.contacts import CONTACT_NAMES as SCREW_CONTACTS
 
 __all__ = ["ContactLoad", "ContactLoads", "GuideResult", "ScrewResult", "friction", "contact", "most_loaded",
-           "guide_contacts", "guide_result", "GuideStates", "guide_states", "FULL_SLIDING", "STICK_SLIP",
-           "STICK_SLIP_CELLS",
-           "screw_states", "ScrewStates", "screw_law_states", "screw_result", "stick_slip_forces", "axial_shares",
+           "guide_contacts", "guide_result", "GuideStates", "guide_states", "guide_stick_slip_states",
+           "FULL_SLIDING", "STICK_SLIP", "STICK_SLIP_CELLS", "screw_states", "ScrewStates", "screw_law_states",
+           "screw_stick_slip_states", "screw_result", "stick_slip_forces", "axial_shares",
            "screw_frictionless_contacts"]
 
 
@@ -217,15 +217,24 @@ def guide_states(case, contacts=None, *, cells=STICK_SLIP_CELLS) -> GuideStates:
     try:
         return GuideStates(b2b.solve(contacts, touching_gaps), b2b.solve(contacts, free_gaps), FULL_SLIDING)
     except ConvergenceError as error:  # no full-sliding state found: the stick/slip law, which holds in any state
-        reason = _words(error)
+        return guide_stick_slip_states(case, contacts, cells=cells, reason=_words(error))
+
+
+def guide_stick_slip_states(case, contacts=None, *, cells=STICK_SLIP_CELLS, reason: str = "") -> GuideStates:
+    """:func:`guide_states` by the stick/slip law alone (``b2b_rolling.solve(start="auto")`` on Hertz contacts of
+    ``cells``, touching and with gaps of 1 mm), without trying full sliding first; ``reason``: why (kept on the
+    result)."""
     from ballbench.lowmodel.linear_bearing import b2b_rolling
 
+    if contacts is None:
+        contacts = b2b.contacts(case)
     guide = case.guide
     balls = [b2b_rolling.hertz_contacts(contacts, j, cells=tuple(cells), guide=guide) for j in range(case.n_balls)]
     options = dict(ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
                    groove_velocity=guide.groove_velocity, start="auto")
-    return GuideStates(b2b_rolling.solve(balls, gaps=touching_gaps, **options),
-                       b2b_rolling.solve(balls, gaps=free_gaps, **options), STICK_SLIP, reason, tuple(cells))
+    return GuideStates(b2b_rolling.solve(balls, gaps=np.zeros(case.n_balls - 1), **options),
+                       b2b_rolling.solve(balls, gaps=np.full(case.n_balls - 1, 1e-3), **options), STICK_SLIP, reason,
+                       tuple(cells))
 
 
 def guide_result(case, touching=None, free=None, contacts=None, *, states: GuideStates | None = None) -> GuideResult:
@@ -291,9 +300,16 @@ def screw_law_states(case, contacts=None, *, cells=STICK_SLIP_CELLS) -> ScrewSta
         free, touching = screw_states(case, contacts)
         return ScrewStates(touching, free, FULL_SLIDING)
     except ConvergenceError as error:  # no state of lin2019's model: the stick/slip law, which holds in any state
-        reason = _words(error)
+        return screw_stick_slip_states(case, contacts, cells=cells, reason=_words(error))
+
+
+def screw_stick_slip_states(case, contacts=None, *, cells=STICK_SLIP_CELLS, reason: str = "") -> ScrewStates:
+    """:func:`screw_law_states` by the stick/slip law alone at the frictionless statics' loads, without trying
+    lin2019's model first; ``reason``: why (kept on the result)."""
     from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
 
+    if contacts is None:
+        contacts = screw_b2b.contacts(case)
     loads = preload.frictionless_statics(contacts, case.axial_load)
     balls = [screw_rolling.hertz_contacts(loads, contacts, j, cells=tuple(cells)) for j in range(contacts.n_balls)]
     module = contacts.module

@@ -260,8 +260,8 @@ class _Geometry:
             self.top[i, :m] = r.carriage
             self.mask[i, :m] = 1.0
             self.normal[i, m:] = r.normals[0]  # padding: masked out
-        self.ball = np.array([[r.x, r.y] for r in rows])  # (r, 2)
-        centre = self.ball[:, None, :] - self.gap * self.normal  # (r, c, 2) groove curvature centres at rest
+        ball = np.array([[r.x, r.y] for r in rows])  # (r, 2)
+        centre = ball[:, None, :] - self.gap * self.normal  # (r, c, 2) groove curvature centres at rest
         shape = (len(rows), len(z), width)
         zz = np.broadcast_to(z[None, :, None], shape)
         cx = np.broadcast_to(centre[:, None, :, 0], shape)
@@ -329,6 +329,7 @@ class _Geometry:
         c_block = np.einsum("rkcab,rkcbj->rkaj", local, self.jac)  # d balls / d q  (r, k, 2, 5)
         a_block = -np.einsum("rkcaj,rkcab,rkcbl->jl", self.jac, local, self.jac)  # d carriage / d q
         return carriage, balls, (a_block, b_block, c_block, d_block, *held), load, e, approach
+
 
 def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float = BALANCE_TOLERANCE,
           max_iterations: int = 60) -> CarriageState:

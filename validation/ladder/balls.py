@@ -47,7 +47,7 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
               source="vertical and lateral balance of each ball with the contact forces along the contact normals "
                      "(lin2017 Fig 2, eq 36)", why="the value is itself a relative force residual")
     if states.law == bearing_results.STICK_SLIP:
-        _stick_slip_law(run, case, contacts, states, bearing_results.guide_states)
+        _stick_slip_law(run, case, contacts, states, bearing_results.guide_stick_slip_states)
     elif "analytical" in rungs and case.n_balls == 2 and case.deviations[0] == -case.deviations[1]:
         _guide_analytical(run, case, result)
     contact_table(run, result, "balls touching")
@@ -67,7 +67,7 @@ def _guide_balls(run, case: LinearGuideCase, rungs, bearing_results) -> None:
 def _stick_slip_law(run, case, contacts, states, solve_states) -> None:
     """Where lin2019's full sliding has no state: say why, which law gave the numbers per ball and contact, and the
     stick/slip solve's grid error (the friction on :data:`GRID_CHECK_CELLS` against the result's cells; the states
-    again by ``solve_states(case, contacts, cells=...)``)."""
+    again by the stick/slip law alone, ``solve_states(case, contacts, cells=...)``)."""
     cells = states.cells
     guide = isinstance(case, LinearGuideCase)
     loads = ("lin2017 eq 36's, as under full sliding" if guide else
@@ -166,7 +166,7 @@ def _screw_balls(run, case: BallScrewCase, bearing_results) -> None:
               scale=0.0 if case.axial_load > 0 else 1.0, tolerance=1e-9, time_s=time_s, source=source,
               why="" if case.axial_load > 0 else "zero axial load judged on 1 N")
     if states.law != bearing_results.FULL_SLIDING:
-        _stick_slip_law(run, case, contacts, states, bearing_results.screw_law_states)
+        _stick_slip_law(run, case, contacts, states, bearing_results.screw_stick_slip_states)
         friction_share = float(np.sum(result.axial_shares) - np.sum(shares))
         run.note(f"Normal loads and friction are decoupled on this law: the friction's axial force on the balls, "
                  f"{fmt(friction_share)} N ({fmt(100 * friction_share / max(case.axial_load, 1.0), 3)} % of the "

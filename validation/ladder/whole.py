@@ -69,6 +69,9 @@ def whole_scene(run, *, case) -> None:
     _friction_table(run, body, state)
     curve = []
     for factor in LOAD_FACTORS:
+        if factor == 1.0:  # the state above
+            curve.append(state.displacement)
+            continue
         scaled = carriage.Load(*(factor * getattr(load, f) for f in ("lateral", "vertical", "pitch", "yaw", "roll")))
         curve.append(carriage.solve(body, scaled).displacement)
     run.save_figure(figures.load_deflection(LOAD_FACTORS, np.array(curve), "the case's carriage load"),
