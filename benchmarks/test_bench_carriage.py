@@ -24,3 +24,21 @@ def test_four_row_carriage_of_100_balls(benchmark, oversize):
     benchmark.extra_info.update(median_s=median, iterations=state.iterations)
     print(f"\nfour-row carriage, 100 balls, oversize {oversize * 1e6:g} um: {median * 1e3:.2f} ms median, "
           f"{state.iterations} Newton steps, balance {state.balance:.1e}")
+
+
+def test_friction_over_one_pitch_of_a_gothic_carriage(benchmark):
+    """The rows' friction over one ball pitch (20 steps; carriage_friction.friction_over_travel with B2B contact
+    only): a two-row gothic carriage of 13 balls per row, 2 um oversize, 600 N vertical, every ball by full sliding.
+    Target (the whole-bearing issue): <= 0.5 s."""
+    from ballbench.lowmodel.linear_bearing import carriage_friction
+
+    guide = LinearGuide(ball_radius=2.381e-3, conformity=0.52, nominal_angle=math.pi / 4,
+                        material=Material(210e9, 0.3), friction_coefficient=0.1, groove_velocity=0.1)
+    rows = carriage.gothic_rows(half_width=8e-3, height=5e-3, contact_angles=[math.pi / 4] * 4)
+    body = carriage.Carriage(guide, rows, balls_per_row=13, pitch=5e-3, oversize=2e-6)
+    result = benchmark.pedantic(carriage_friction.friction_over_travel, args=(body, carriage.Load(vertical=600.0)),
+                                kwargs=dict(steps=20, alone=False), rounds=3, iterations=1)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(median_s=median)
+    print(f"\ngothic carriage, 2 x 13 balls, friction over one pitch in 20 steps: {median:.3f} s median, mean force "
+          f"{result.mean:.4g} N, ripple {result.ripple:.3g} N, every step complete: {bool(result.complete.all())}")

@@ -50,8 +50,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
 
 __all__ = ["Row", "Carriage", "Load", "CarriageState", "two_point_row", "four_rows", "gothic_rows", "solve",
-           "ball_positions", "relief", "RowFriction", "CarriageFriction", "row_contacts", "friction",
-           "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
+           "ball_positions", "relief", "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
 
 BALANCE_TOLERANCE = 1e-10  # the load balance of a solved carriage, relative to its largest force (and moment / L)
 LOAD_NAMES = ("F_x", "F_y", "M_x", "M_y", "M_z")  # [N, N, N m, N m, N m] on the carriage at the origin
@@ -112,7 +111,7 @@ def gothic_rows(*, half_width: float, height: float, contact_angles) -> tuple[Ro
     lin2019's four contacts (lowmodel.geometry.fourpoint.contact_normals of ``contact_angles`` (BL, BR, TR, TL)
     [rad], from lin2019's vertical) turned so that its bottom (the rail's grooves) faces the rail: by -90 deg on the
     right row (the rail on its left), by +90 deg on the left row.  Order: right, left.  The rows keep
-    ``contact_angles``: their friction is lin2019's (:func:`friction`)."""
+    ``contact_angles``: their friction is lin2019's (:mod:`lowmodel.linear_bearing.carriage_friction`)."""
     checks.positive("half_width", half_width, "m")
     angles = checks.trailing_axis("contact_angles", contact_angles, 4, "(BL, BR, TR, TL)", "rad")
     checks.contact_angle("contact_angles", angles)
@@ -163,7 +162,8 @@ class Carriage:
 
 def relief(body: Carriage, z) -> np.ndarray:
     """The end relief [m] of the grooves at ``z`` [m]: ``relief_depth ((|z| - (L - l)) / l)^2`` within the relief
-    length ``l`` of the ends ``+-L`` of the loaded zone, 0 inside it."""
+    length ``l`` of the end balls' positions at rest ``+-L`` (and on by the same parabola to the groove's ends, half
+    a pitch further, :func:`ball_positions`), 0 inside it."""
     z = np.abs(np.asarray(z, dtype=float))
     if body.relief_length == 0.0 or body.relief_depth == 0.0:
         return np.zeros_like(z)
@@ -172,9 +172,15 @@ def relief(body: Carriage, z) -> np.ndarray:
 
 
 def ball_positions(body: Carriage, travel: float = 0.0) -> np.ndarray:
-    """(balls_per_row,) z [m] of the balls of every row, centred on the origin and shifted by ``travel`` [m]."""
+    """(balls_per_row,) z [m] of the balls of every row, ascending: centred on the origin, shifted by ``travel`` [m]
+    (the balls' advance against the carriage) and wrapped into the carriage's groove ``[-G, G)``, ``G = n p / 2``
+    half a pitch beyond the end balls at rest: a ball leaving the loaded zone at ``+G`` enters it again at ``-G``
+    (the recirculation), so that the same ``n`` balls are loaded at every travel and a travel of one pitch gives
+    the positions at rest again."""
     k = np.arange(body.balls_per_row, dtype=float)
-    return (k - 0.5 * (body.balls_per_row - 1)) * body.pitch + float(travel)
+    groove = 0.5 * body.balls_per_row * body.pitch
+    z = (k - 0.5 * (body.balls_per_row - 1)) * body.pitch + float(travel)
+    return np.sort((z + groove) % (2.0 * groove) - groove)
 
 
 @dataclass(frozen=True)
@@ -443,113 +449,3 @@ def _state(geometry: _Geometry, q, v, external, iterations: int, measure) -> Car
     mask = geometry.mask[:, None, :]
     return CarriageState(q.copy(), geometry.z.copy(), v.copy(), load, e * mask[..., None], approach * mask,
                          contact.a * mask, contact.b * mask, contact.p0 * mask, -schur, balance, iterations)
-
-
-# --------------------------------------------------------------------------
-# friction over the rows
-# --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class RowFriction:
-    """The friction of one row's balls at the carriage's loads (:func:`friction`): ``force`` [N] the carriage's drive
-    force over the row (``P_in / |v|``), per ball ``law`` (``"full sliding"``, ``"stick/slip on a half-space"``,
-    ``"loose"``: every contact open, no load and no friction; ``""``: no model, a ball with one to three open
-    contacts), ``b2b_forces`` [N] (balls j, j+1; 0 across a ball without a model), ``reason`` (what a law's
-    fallback or a missing model says; "" when every ball has one)."""
-
-    force: float
-    law: tuple
-    b2b_forces: np.ndarray
-    reason: str = ""
-
-
-@dataclass(frozen=True)
-class CarriageFriction:
-    """The friction of the carriage's rows (:func:`friction`): ``force`` [N] their sum, ``rows`` one
-    :class:`RowFriction` each; ``complete`` whether every ball of every row has a model."""
-
-    force: float
-    rows: tuple
-
-    @property
-    def complete(self) -> bool:
-        return all(all(law for law in row.law) for row in self.rows)
-
-
-def row_contacts(body: Carriage, state: CarriageState, row: int, balls=None):
-    """Balls ``balls`` (default all; ascending, ball 0 behind along +z) of gothic-arch row ``row`` as lin2019's
-    :class:`~lowmodel.linear_bearing.contacts.BallContacts`: its rigid contact angles, the carriage state's contact
-    forces and Hertz ellipses, the guide's ball radius, friction and speed.  ValueError for a two-point row or a
-    ball with an open contact (lin2019's four-point model needs four loaded contacts)."""
-    from ballbench.lowmodel.linear_bearing.contacts import contacts_from_forces  # lin2019's model: only when asked
-
-    shape = body.rows[checks.count("row", row, 0, len(body.rows) - 1)]
-    if shape.contact_angles is None:
-        raise ValueError(f"row {row}: not a gothic-arch row of lin2019's four-point balls (carriage.gothic_rows): "
-                         "lin2019's friction model does not describe its balls")
-    index = np.arange(body.balls_per_row) if balls is None else np.asarray(balls, dtype=int)
-    forces = state.normal_force[row][index]
-    if np.any(forces <= 0.0):
-        raise ValueError(f"row {row}: balls {sorted({int(index[k]) + 1 for k in np.argwhere(forces <= 0)[:, 0]})} "
-                         "have an open contact: lin2019's four-point friction model needs all four loaded")
-    guide = body.guide
-    return contacts_from_forces(np.tile(shape.contact_angles, (len(index), 1)), forces, state.a[row][index],
-                                state.b[row][index] / state.a[row][index], ball_radius=guide.ball_radius,
-                                friction_coefficient=guide.friction_coefficient,
-                                groove_velocity=guide.groove_velocity)
-
-
-def friction(body: Carriage, state: CarriageState, *, cells=(12, 48)) -> CarriageFriction:
-    """The carriage's friction force at ``state`` (:func:`solve`): in each gothic-arch row every run of neighbouring
-    balls with four loaded contacts touching in a chain (lin2019 eqs 4-10, ``b2b.solve``) on the state's contact
-    loads; where full sliding has no state, the stick/slip law on a half-space on ``cells``
-    (``b2b_rolling.solve(start="auto")``; docs/b2b_rolling.md).  A loose ball (every contact open) carries neither
-    load nor friction and parts the chain; a ball with one to three open contacts has no model yet: it parts the
-    chain, carries no friction here and the row says so (``CarriageFriction.complete`` False).  Two-point rows:
-    no model (lin2019's is four-point)."""
-    from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling  # the friction models: only when asked
-
-    guide = body.guide
-    speed = abs(guide.groove_velocity)
-    n = body.balls_per_row
-    rows = []
-    for r, shape in enumerate(body.rows):
-        b2b_forces = np.zeros(max(n - 1, 0))
-        if shape.contact_angles is None:
-            rows.append(RowFriction(0.0, ("",) * n, b2b_forces, f"row {r}: two-point balls: lin2019's friction model "
-                                                                 "is four-point; no model yet"))
-            continue
-        loaded = state.normal_force[r] > 0.0
-        laws = ["loose" if not np.any(loaded[k]) else "" for k in range(n)]
-        runs, current = [], []
-        for k in range(n):
-            if np.all(loaded[k]):
-                current.append(k)
-            elif current:
-                runs.append(current)
-                current = []
-        if current:
-            runs.append(current)
-        force, reasons = 0.0, []
-        for run in runs:
-            contacts = row_contacts(body, state, r, run)
-            gaps = np.zeros(len(run) - 1)
-            try:
-                chain, law = b2b.solve(contacts, gaps), "full sliding"
-            except ConvergenceError as error:
-                balls = [b2b_rolling.hertz_contacts(contacts, j, cells=tuple(cells), guide=guide)
-                         for j in range(len(run))]
-                chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius,
-                                          friction_coefficient=guide.friction_coefficient,
-                                          groove_velocity=guide.groove_velocity, gaps=gaps, start="auto")
-                law = "stick/slip on a half-space"
-                reasons.append(f"balls {run[0] + 1}-{run[-1] + 1}: full sliding found no state "
-                               f"({str(error).split(' (residual')[0]})")
-            force += chain.input_power / speed
-            b2b_forces[run[0]:run[-1]] = chain.b2b_force
-            for k in run:
-                laws[k] = law
-        partial = [k + 1 for k in range(n) if laws[k] == ""]
-        if partial:
-            reasons.append(f"balls {partial}: one to three open contacts, no model yet (no friction counted)")
-        rows.append(RowFriction(force, tuple(laws), b2b_forces, "; ".join(reasons)))
-    return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows))

@@ -9,6 +9,7 @@ import pytest
 from ballbench.lowmodel.linear_bearing import carriage
 from ballbench.validation import ladder
 from ballbench.validation.cases import case_file
+from ballbench.validation.ladder import whole
 from ballbench.validation.runner import run_scene
 from tests import paths
 
@@ -43,7 +44,8 @@ def test_a_mistake_in_the_carriage_table_names_its_key(old, new, words):
         case_file.loads(text.replace(old, new))
 
 
-def test_the_example_runs_its_whole_carriage(tmp_path):
+def test_the_example_runs_its_whole_carriage(tmp_path, monkeypatch):
+    monkeypatch.setitem(whole.TRAVEL_STEPS, "quick", 1)  # the travel at rest only: the steps' cost is the model's
     case = case_file.load(EXAMPLE)
     (scene,) = [s for s in ladder.case_scenes(case, "g", top="low-order") if s.name == "g-whole"]
     result = run_scene(scene, "quick", tmp_path)
@@ -53,5 +55,7 @@ def test_the_example_runs_its_whole_carriage(tmp_path):
     assert judged["largest contact pressure p0"].value < 4200e6
     assert any(title.startswith("Friction of the rows") for title, _, _ in result.tables)
     assert any("Friction force of the carriage" in note for note in result.notes)
+    assert any(title.startswith("Friction over one ball pitch") for title, _, _ in result.tables)
+    assert (tmp_path / "friction_over_travel.png").exists() or any(tmp_path.rglob("friction_over_travel.png"))
     assert "g-whole" in ladder.scene_names(case, "g") and "g-whole" not in ladder.scene_names(
         case_file.load(paths.ROOT / "examples" / "ball_screw_32x10.toml"), "g")

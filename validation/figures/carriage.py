@@ -1,12 +1,12 @@
 """Figures of the whole carriage (lowmodel.linear_bearing.carriage; docs/carriage.md): the ball loads along the rows
-and the load-deflection curves."""
+the load-deflection curves and the friction over travel."""
 from __future__ import annotations
 
 import numpy as np
 
 from ballbench.validation.figures.style import figure
 
-__all__ = ["ball_loads", "load_deflection"]
+__all__ = ["ball_loads", "load_deflection", "friction_over_travel"]
 
 
 def ball_loads(z, normal_force, labels, contacts):
@@ -40,4 +40,27 @@ def load_deflection(factors, displacements, load_words: str):
     for ax in (left, right):
         ax.set_xlabel(f"load factor ({load_words})")
         ax.legend(fontsize=7)
+    return fig
+
+
+def friction_over_travel(travel, force, force_alone, complete, sinking):
+    """The carriage's drive force [N] over the balls' travel [m] (``force`` with B2B contact, ``force_alone`` every
+    ball alone or None; ``complete`` (steps,) bool: hollow markers where balls without a model carry none) and the
+    carriage's vertical displacement ``sinking`` [m] (the ball passage's ripple)."""
+    fig = figure(figsize=(9, 3.4), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    t = np.asarray(travel) * 1e3
+    complete = np.asarray(complete, dtype=bool)
+    left.plot(t, force, "-", color="C0", label="with B2B contact")
+    left.plot(t[complete], np.asarray(force)[complete], "o", ms=4, color="C0")
+    left.plot(t[~complete], np.asarray(force)[~complete], "o", ms=4, mfc="none", color="C0",
+              label="lower bound (balls without a model)")
+    if force_alone is not None:
+        left.plot(t, force_alone, "s--", ms=3, color="C1", label="every ball alone (no B2B)")
+    left.set_ylabel("drive force [N]")
+    right.plot(t, np.asarray(sinking) * 1e6, "o-", ms=3, color="C2")
+    right.set_ylabel("u_y of the carriage [um]")
+    for ax in (left, right):
+        ax.set_xlabel("travel of the balls [mm]")
+    left.legend(fontsize=7)
     return fig

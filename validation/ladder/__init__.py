@@ -14,7 +14,8 @@ case (they are not registered; the CLI runs them beside or instead of the regist
   checks; for a guide the analytical B2B model (lin2019 eq 30) against the numerical one;
 * ``<stem>-whole`` (linear guide with a ``[carriage]``; rung ``low-order``): the rigid carriage under its
   external load (lowmodel.linear_bearing.carriage): ball loads per row, displacement, 5 x 5 stiffness,
-  load-deflection curves, the static limit (ladder.whole);
+  load-deflection curves, the static limit, the rows' friction at the load and over a ball pitch of travel
+  (ladder.whole);
 * ``<stem>-contact``: each distinct contact geometry at its largest load (ladder.rungs.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
   contact) up the ladder: exact Hertz, the BEM on
@@ -72,6 +73,9 @@ __all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
 
 BUDGET_S = {"quick": 900.0, "default": 1800.0, "fine": 7200.0}  # wall-time budget of a generated FE scene [s]
 LOW_BUDGET_S = {"quick": 60.0, "default": 60.0, "fine": 60.0}   # of a generated scene without FE [s]
+# <stem>-whole: the friction over travel (ladder.whole.TRAVEL_STEPS steps) solves stick/slip chains, and a chain
+# without a state is parted and solved again (docs/carriage.md, "Cost")
+WHOLE_BUDGET_S = {"quick": 240.0, "default": 600.0, "fine": 1200.0}
 # the stick/slip rung's resident memory at the default fidelity [GB]: the FE compliance condensation of the case's
 # groove (8 x 32 cells, P2; docs/your_own_bearing.md)
 STICK_SLIP_MEMORY_GB = 6.0
@@ -125,9 +129,9 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
     if "low-order" in rungs and getattr(case, "carriage", None) is not None:
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage, rigid, under its external load (ball "
-                            "loads per row, displacement, stiffness, load-deflection)",
-                            functools.partial(whole_scene, case=case), tags=("case",), kind="low-order", cost_s=2.0,
-                            budget_s=LOW_BUDGET_S, case=case))
+                            "loads per row, displacement, stiffness, load-deflection, friction over travel)",
+                            functools.partial(whole_scene, case=case), tags=("case",), kind="low-order", cost_s=60.0,
+                            budget_s=WHOLE_BUDGET_S, case=case))
     # ladder.rungs.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
     n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("

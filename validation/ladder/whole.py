@@ -1,22 +1,23 @@
 """``<stem>-whole`` of a linear-guide case with a ``[carriage]`` table: the rigid carriage under the case's external
 load (lowmodel.linear_bearing.carriage; docs/carriage.md): per row the ball loads, contact angles and pressures, the
 carriage's displacement and 5 x 5 stiffness, the load-deflection curves; the balance of the carriage and of every
-ball, and the contact pressure against the static limit of ISO 14728-2 (4200 MPa) as a finding.  The carriage's
-friction over its rows is not yet in it."""
+ball, and the contact pressure against the static limit of ISO 14728-2 (4200 MPa) as a finding; the friction of its
+rows at the load and over a ball pitch of travel (lowmodel.linear_bearing.carriage_friction)."""
 from __future__ import annotations
 
 import numpy as np
 
 from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
-from ballbench.lowmodel.linear_bearing import carriage
+from ballbench.lowmodel.linear_bearing import carriage, carriage_friction
 from ballbench.validation.ladder.common import fmt
 
-__all__ = ["whole_scene", "STATIC_PRESSURE", "LOAD_FACTORS"]
+__all__ = ["whole_scene", "STATIC_PRESSURE", "LOAD_FACTORS", "TRAVEL_STEPS"]
 
 # ISO 14728-2 (rolling bearings, linear motion, static load ratings): the static load rating of a ball guide is the
 # load giving 4200 MPa at the centre of the most heavily loaded contact
 STATIC_PRESSURE = 4200e6  # Pa
 LOAD_FACTORS = np.linspace(0.0, 1.5, 7)  # the load-deflection curves: the case's load times these
+TRAVEL_STEPS = {"quick": 8, "default": 20, "fine": 40}  # the friction over one ball pitch of travel: steps per fidelity
 
 
 def whole_scene(run, *, case) -> None:
@@ -67,6 +68,7 @@ def whole_scene(run, *, case) -> None:
                                 for c in range(len(names[r]))])
     run.save_figure(figures.ball_loads(state.z, state.normal_force, labels, names[0]), "ball_loads.png")
     _friction_table(run, body, state)
+    _friction_over_travel(run, body, load, figures)
     curve = []
     for factor in LOAD_FACTORS:
         if factor == 1.0:  # the state above
@@ -82,8 +84,8 @@ def whole_scene(run, *, case) -> None:
              f"{body.balls_per_row} balls each, every ball's contacts by the curvature-centre distance and Hertz's "
              "law, "
              f"under F_x {fmt(load.lateral)} N, F_y {fmt(load.vertical)} N, M_x {fmt(load.pitch)} N m, M_y "
-             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.  The friction's ripple "
-             "over travel and the FE rung of an elastic carriage are not yet in this scene.")
+             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.  The FE rung of "
+             "an elastic carriage is not yet in this scene.")
 
 
 def _contact_names(body) -> list[list[str]]:
@@ -93,9 +95,9 @@ def _contact_names(body) -> list[list[str]]:
 
 
 def _friction_table(run, body, state) -> None:
-    """The friction of the carriage's rows at the state (lowmodel.linear_bearing.carriage.friction): per row the
-    drive force over its balls touching in chains, the laws that gave it and the balls without a model."""
-    result, time_s = run.time(carriage.friction, body, state)
+    """The friction of the carriage's rows at the state (lowmodel.linear_bearing.carriage_friction.friction): per row
+    the drive force over its balls touching in chains, the laws that gave it and the balls without a model."""
+    result, time_s = run.time(carriage_friction.friction, body, state)
     rows = []
     for r, row in enumerate(result.rows):
         counts = {law: row.law.count(law) for law in dict.fromkeys(row.law)}
@@ -106,5 +108,33 @@ def _friction_table(run, body, state) -> None:
                                                              "largest F_B2B [N]", "what the row says"), rows)
     total = "" if result.complete else " (a lower bound: balls without a model carry none here)"
     run.note(f"Friction force of the carriage at this load: {fmt(result.force)} N{total}, the drive force over every "
-             "row's balls (lowmodel.linear_bearing.carriage.friction; a loose ball carries neither load nor friction, "
+             "row's balls (lowmodel.linear_bearing.carriage_friction; a loose ball carries neither load nor friction, "
              "a ball with one to three open contacts has no model yet; docs/carriage.md).")
+
+
+def _friction_over_travel(run, body, load, figures) -> None:
+    """The drive force over one ball pitch of travel, with B2B contact and every ball alone, and the carriage's
+    sinking over it (carriage_friction.friction_over_travel): a table of the steps, ``friction_over_travel.csv`` and
+    ``.png``."""
+    steps = TRAVEL_STEPS.get(run.fidelity, TRAVEL_STEPS["default"])
+    result, time_s = run.time(carriage_friction.friction_over_travel, body, load, steps=steps,
+                              loop=lambda travels: run.progress(travels, desc=f"{run.scene.name} travel"))
+    rows = [(fmt(t * 1e3), fmt(f), fmt(a), "yes" if c else "no (lower bound)", fmt(d[1] * 1e6))
+            for t, f, a, c, d in zip(result.travel, result.force, result.force_alone, result.complete,
+                                     result.displacement)]
+    run.table(f"Friction over one ball pitch of travel ({steps} steps, {time_s:.1f} s): the balls advance, leave "
+              "the groove at one end and enter at the other", ("travel [mm]", "drive force with B2B [N]",
+                                                             "every ball alone [N]", "every ball modelled",
+                                                             "u_y [um]"), rows)
+    run.write_csv("friction_over_travel.csv", [dict(travel_m=float(t), force_N=float(f), force_alone_N=float(a),
+                                                    complete=bool(c), u_y_m=float(d[1]))
+                                               for t, f, a, c, d in zip(result.travel, result.force,
+                                                                        result.force_alone, result.complete,
+                                                                        result.displacement)])
+    run.save_figure(figures.friction_over_travel(result.travel, result.force, result.force_alone, result.complete,
+                                                 result.displacement[:, 1]), "friction_over_travel.png")
+    bound = "" if all(result.complete) else " (steps with balls without a model: lower bounds)"
+    run.note(f"Over one pitch of travel the drive force is {fmt(result.mean)} N on average with B2B contact, ripple "
+             f"{fmt(result.ripple)} N peak to peak{bound}; every ball alone {fmt(float(np.mean(result.force_alone)))}"
+             f" N, ripple {fmt(float(np.ptp(result.force_alone)))} N; the carriage's u_y ripples by "
+             f"{fmt(float(np.ptp(result.displacement[:, 1])) * 1e9)} nm (docs/carriage.md).")

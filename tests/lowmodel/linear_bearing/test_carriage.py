@@ -142,6 +142,12 @@ def test_the_end_relief_unloads_the_end_balls_and_travel_moves_the_balls():
     assert upper == pytest.approx(upper[::-1], rel=1e-9)  # centred: symmetric along the rail
     moved = carriage.solve(body, carriage.Load(vertical=1e3), travel=0.3 * PITCH)
     assert moved.z == pytest.approx(state.z + 0.3 * PITCH)
+    # past half a pitch the leading ball leaves the groove at +G = N PITCH / 2 and enters it at -G; a pitch on, the
+    # balls sit as at the start
+    wrapped = carriage.ball_positions(body, 0.7 * PITCH)
+    assert wrapped[0] == pytest.approx(-0.5 * N * PITCH + 0.2 * PITCH, rel=1e-12)
+    assert wrapped[1:] == pytest.approx(state.z[:-1] + 0.7 * PITCH, rel=1e-12)
+    assert carriage.ball_positions(body, PITCH) == pytest.approx(state.z, abs=1e-15)
     assert moved.balance < 1e-10 and not np.allclose(moved.normal_force, state.normal_force)
 
 
@@ -196,31 +202,3 @@ def test_a_gothic_arch_row_balances_each_ball_and_mirrors_under_a_vertical_load(
     # each ball's four contact forces balance (the ball's statics), from the state's outputs
     resultant = np.einsum("rkc,rkci->rki", state.normal_force, state.line)
     assert np.max(np.abs(resultant)) < 1e-9 * np.max(state.normal_force)
-
-
-def test_the_friction_of_gothic_rows_mirrors_and_says_which_balls_it_leaves_out():
-    """The rows' friction (carriage.friction: each row's balls touching in a chain, lin2019 eqs 4-10, on the state's
-    contact loads).  Gothic rows at the nominal angle under a vertical load mirror each other: the same friction
-    and B2B forces (1e-9), every ball by full sliding.  With an end relief deeper than the preload the end balls
-    open a contact: they part the chain, the row says which balls have no model, and the carriage's friction is
-    marked incomplete; a two-point row has no model."""
-    shape = carriage.gothic_rows(half_width=8e-3, height=5e-3, contact_angles=np.full(4, ALPHA))
-    body = _body(rows=shape, oversize=2e-6)
-    state = carriage.solve(body, carriage.Load(vertical=600.0))
-    result = carriage.friction(body, state)
-    right, left = result.rows
-    assert result.complete and set(right.law) == {"full sliding"}
-    assert right.force == pytest.approx(left.force, rel=1e-9) and right.force > 0.0
-    assert right.b2b_forces == pytest.approx(left.b2b_forces, rel=1e-9, abs=1e-12)
-    assert result.force == pytest.approx(right.force + left.force, rel=1e-15)
-    relieved = _body(rows=shape, oversize=3e-6, relief_length=10e-3, relief_depth=5e-6)
-    loose = carriage.friction(relieved, carriage.solve(relieved, carriage.Load(vertical=600.0)))
-    assert loose.complete  # the end balls open every contact: loose, no load, no friction, and the chain parts there
-    assert all(row.law[0] == row.law[-1] == "loose" and row.law[N // 2] == "full sliding" for row in loose.rows)
-    assert all(row.b2b_forces[0] == row.b2b_forces[-1] == 0.0 for row in loose.rows)
-    partial = carriage.friction(relieved, carriage.solve(relieved, carriage.Load(vertical=600.0, pitch=5.0)))
-    assert not partial.complete  # pitched: balls at one end keep one to three contacts, which have no model yet
-    assert any(law == "" for law in partial.rows[0].law) and "no model yet" in partial.rows[0].reason
-    four_row = _body(oversize=1e-6)
-    two_point = carriage.friction(four_row, carriage.solve(four_row, carriage.Load(vertical=1e3)))
-    assert two_point.force == 0.0 and all("two-point" in row.reason for row in two_point.rows)

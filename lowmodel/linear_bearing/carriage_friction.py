@@ -1,0 +1,242 @@
+"""The friction of a whole carriage's rows, at one travel and over a travel of a ball pitch (docs/carriage.md).
+
+At a solved state of the rigid carriage (:func:`lowmodel.linear_bearing.carriage.solve`) each gothic-arch row's
+balls are lin2019's four-point balls at the state's contact loads and Hertz ellipses (:func:`row_contacts`),
+touching in a chain (lin2019 eqs 4-10, ``b2b.solve``); where full sliding has no state, the stick/slip law on a
+half-space (``b2b_rolling.solve(start="auto")``, docs/b2b_rolling.md).  The carriage's friction force is the drive
+power over every row's balls over the speed, ``F = P_in / |v|`` (lin2019's power balance).
+
+A chain that has a state by neither law (a ball near the opening of a contact: its spin-capacity ratio far below 1,
+the coupled stick/slip Newton stalls) is parted at its weakest ball (the least ratio of its smallest to its largest
+contact load): that ball is solved alone (no B2B force on it) and both sides again as chains; such balls' laws end
+in ``", alone"`` and the result is then not the coupled chain's (``CarriageFriction.complete`` False).
+
+Over travel (:func:`friction_over_travel`): the balls advance against the carriage
+(:func:`lowmodel.linear_bearing.carriage.ball_positions`: a ball leaving the groove at one end enters it at the
+other), the carriage is solved again at each step and its rows' friction follows: the drive force's ripple over one
+ball pitch, with B2B contact and with every ball alone (the friction without ball-to-ball contact).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.errors import ConvergenceError
+from ballbench.lowmodel.linear_bearing import carriage
+
+__all__ = ["RowFriction", "CarriageFriction", "TravelFriction", "row_contacts", "friction", "friction_over_travel",
+           "LAWS"]
+
+LAWS = ("full sliding", "stick/slip on a half-space")  # the friction laws of a ball, tried in this order
+
+
+@dataclass(frozen=True)
+class RowFriction:
+    """The friction of one row's balls at the carriage's loads (:func:`friction`): ``force`` [N] the carriage's drive
+    force over the row (``P_in / |v|``), per ball ``law`` (one of :data:`LAWS`, with ``", alone"`` when the ball was
+    solved without B2B contact because its chain had no state; ``"loose"``: every contact open, no load and no
+    friction; ``""``: no model, a ball with one to three open contacts or without a state by either law),
+    ``b2b_forces`` [N] (balls j, j+1; 0 across a ball solved alone or without a model), ``reason`` (what a law's
+    fallback or a missing model says; "" when every ball has one)."""
+
+    force: float
+    law: tuple
+    b2b_forces: np.ndarray
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class CarriageFriction:
+    """The friction of the carriage's rows (:func:`friction`): ``force`` [N] their sum, ``rows`` one
+    :class:`RowFriction` each; ``complete`` whether every ball of every row has a model and every chain was solved
+    as one (with ``b2b=False``: every ball has a model)."""
+
+    force: float
+    rows: tuple
+    b2b: bool = True
+
+    @property
+    def complete(self) -> bool:
+        return all(law and (not self.b2b or not law.endswith(", alone")) for row in self.rows for law in row.law)
+
+
+@dataclass(frozen=True)
+class TravelFriction:
+    """The carriage's friction over travel (:func:`friction_over_travel`), shapes (steps,) unless said:
+    ``travel`` [m] of the balls against the carriage; ``force`` [N] with B2B contact; ``force_alone`` [N] every ball
+    alone (no B2B contact; None when not asked); ``complete`` (with B2B) per step; ``displacement`` (steps, 5) the
+    carriage's (:data:`carriage.DISPLACEMENT_NAMES`); ``largest_load`` [N] the most loaded contact; ``frictions``
+    the :class:`CarriageFriction` of each step (with B2B)."""
+
+    travel: np.ndarray
+    force: np.ndarray
+    force_alone: np.ndarray | None
+    complete: np.ndarray
+    displacement: np.ndarray
+    largest_load: np.ndarray
+    frictions: tuple
+
+    def __post_init__(self):
+        checks.freeze_arrays(self, "travel", "force", "complete", "displacement", "largest_load")
+        if self.force_alone is not None:
+            checks.freeze_arrays(self, "force_alone")
+
+    @property
+    def mean(self) -> float:
+        """N, the mean drive force over the travel (with B2B)."""
+        return float(np.mean(self.force))
+
+    @property
+    def ripple(self) -> float:
+        """N, the drive force's peak-to-peak over the travel (with B2B)."""
+        return float(np.ptp(self.force))
+
+
+def row_contacts(body: carriage.Carriage, state: carriage.CarriageState, row: int, balls=None):
+    """Balls ``balls`` (default all; ascending, ball 0 behind along +z) of gothic-arch row ``row`` as lin2019's
+    :class:`~lowmodel.linear_bearing.contacts.BallContacts`: its rigid contact angles, the carriage state's contact
+    forces and Hertz ellipses, the guide's ball radius, friction and speed.  ValueError for a two-point row or a
+    ball with an open contact (lin2019's four-point model needs four loaded contacts)."""
+    from ballbench.lowmodel.linear_bearing.contacts import contacts_from_forces  # lin2019's model: only when asked
+
+    shape = body.rows[checks.count("row", row, 0, len(body.rows) - 1)]
+    if shape.contact_angles is None:
+        raise ValueError(f"row {row}: not a gothic-arch row of lin2019's four-point balls (carriage.gothic_rows): "
+                         "lin2019's friction model does not describe its balls")
+    index = np.arange(body.balls_per_row) if balls is None else np.asarray(balls, dtype=int)
+    forces = state.normal_force[row][index]
+    if np.any(forces <= 0.0):
+        raise ValueError(f"row {row}: balls {sorted({int(index[k]) + 1 for k in np.argwhere(forces <= 0)[:, 0]})} "
+                         "have an open contact: lin2019's four-point friction model needs all four loaded")
+    guide = body.guide
+    return contacts_from_forces(np.tile(shape.contact_angles, (len(index), 1)), forces, state.a[row][index],
+                                state.b[row][index] / state.a[row][index], ball_radius=guide.ball_radius,
+                                friction_coefficient=guide.friction_coefficient,
+                                groove_velocity=guide.groove_velocity)
+
+
+def _solve(body, state, row: int, run: list, cells) -> tuple:
+    """``(state, law)`` of the balls ``run`` of ``row`` touching in a chain (one ball: alone) by the first law of
+    :data:`LAWS` that has a state; ConvergenceError from the last law when none has (its message says both)."""
+    from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling  # the friction models: only when asked
+
+    guide = body.guide
+    contacts = row_contacts(body, state, row, run)
+    gaps = np.zeros(len(run) - 1)
+    try:
+        return b2b.solve(contacts, gaps), LAWS[0]
+    except ConvergenceError as sliding:
+        balls = [b2b_rolling.hertz_contacts(contacts, j, cells=tuple(cells), guide=guide) for j in range(len(run))]
+        try:
+            chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius,
+                                      friction_coefficient=guide.friction_coefficient,
+                                      groove_velocity=guide.groove_velocity, gaps=gaps, start="auto")
+        except ConvergenceError as error:
+            raise ConvergenceError(f"full sliding: {str(sliding).split(' (residual')[0]}; stick/slip: {error}",
+                                   residual=error.residual, iterations=error.iterations, tolerance=error.tolerance,
+                                   reason="no state by either law") from None
+        return chain, LAWS[1]
+
+
+def _weakest(state, row: int, run: list) -> int:
+    """The position in ``run`` of its ball with the least ratio of smallest to largest contact load."""
+    forces = state.normal_force[row][run]
+    return int(np.argmin(forces.min(axis=1) / forces.max(axis=1)))
+
+
+def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict) -> float:
+    """The drive force [N] of the balls ``run`` of ``row``: touching in one chain (``coupled``) or each alone; a chain
+    without a state is parted at its weakest ball (module docstring).  Writes each ball's law, the B2B forces and
+    the reasons into ``out``."""
+    speed = abs(body.guide.groove_velocity)
+    if not coupled and len(run) > 1:
+        return sum(_chain(body, state, row, [k], cells, True, out) for k in run)
+    try:
+        chain, law = _solve(body, state, row, run, cells)
+    except ConvergenceError as error:
+        if len(run) == 1:
+            out["laws"][run[0]] = ""
+            out["reasons"].append(f"ball {run[0] + 1}: no state by either law ({str(error).split(' (residual')[0]})")
+            return 0.0
+        weak = _weakest(state, row, run)
+        out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: no state by either law as one chain; ball "
+                              f"{run[weak] + 1} (its least contact load the smallest share) solved alone")
+        force = _chain(body, state, row, [run[weak]], cells, True, out)
+        if out["laws"][run[weak]]:
+            out["laws"][run[weak]] += ", alone"
+        parts = [run[:weak], run[weak + 1:]]
+        return force + sum(_chain(body, state, row, part, cells, True, out) for part in parts if part)
+    if law != LAWS[0] and len(run) > 1:
+        out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: full sliding found no state, {law}")
+    elif law != LAWS[0]:
+        out["reasons"].append(f"ball {run[0] + 1}: full sliding found no state, {law}")
+    out["b2b"][run[0]:run[-1]] = chain.b2b_force
+    for k in run:
+        out["laws"][k] = law
+    return chain.input_power / speed
+
+
+def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(12, 48),
+             b2b: bool = True) -> CarriageFriction:
+    """The carriage's friction force at ``state`` (:func:`lowmodel.linear_bearing.carriage.solve`): in each
+    gothic-arch row every run of neighbouring balls with four loaded contacts touching in a chain (``b2b``; else
+    every ball alone, the friction without ball-to-ball contact) by the laws of :data:`LAWS` (stick/slip on
+    ``cells`` = (along, across) cells per contact), a chain without a state parted at its weakest ball (module
+    docstring).  A loose ball (every contact open) carries neither load nor friction and parts the chain; a ball with
+    one to three open contacts has no model yet: it parts the chain, carries no friction here and the row says so
+    (``CarriageFriction.complete`` False).  Two-point rows: no model (lin2019's is four-point)."""
+    if not isinstance(body, carriage.Carriage) or not isinstance(state, carriage.CarriageState):
+        raise ValueError("friction needs a carriage.Carriage and its carriage.CarriageState (carriage.solve)")
+    n = body.balls_per_row
+    rows = []
+    for r, shape in enumerate(body.rows):
+        if shape.contact_angles is None:
+            rows.append(RowFriction(0.0, ("",) * n, np.zeros(max(n - 1, 0)), f"row {r}: two-point balls: lin2019's "
+                                                                               "friction model is four-point; no "
+                                                                               "model yet"))
+            continue
+        loaded = state.normal_force[r] > 0.0
+        out = dict(laws=["loose" if not np.any(loaded[k]) else "" for k in range(n)], b2b=np.zeros(max(n - 1, 0)),
+                   reasons=[])
+        runs, current = [], []
+        for k in range(n):
+            if np.all(loaded[k]):
+                current.append(k)
+            elif current:
+                runs.append(current)
+                current = []
+        if current:
+            runs.append(current)
+        force = sum(_chain(body, state, r, run, cells, b2b, out) for run in runs)
+        partial = [k + 1 for k in range(n) if out["laws"][k] == "" and not np.all(loaded[k])]
+        if partial:
+            out["reasons"].append(f"balls {partial}: one to three open contacts, no model yet (no friction counted)")
+        rows.append(RowFriction(float(force), tuple(out["laws"]), out["b2b"], "; ".join(out["reasons"])))
+    return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows), bool(b2b))
+
+
+def friction_over_travel(body: carriage.Carriage, load: carriage.Load, *, steps: int = 20, span: float | None = None,
+                         cells=(12, 48), alone: bool = True, loop=None) -> TravelFriction:
+    """The carriage's friction force over a travel ``span`` [m] (default one ball ``pitch``) of its balls in ``steps``
+    equal steps (the end left out: at one pitch the balls sit as at the start): at each the carriage solved under
+    ``load`` (:func:`lowmodel.linear_bearing.carriage.solve`) and its rows' :func:`friction` with B2B contact and,
+    with ``alone``, with every ball alone.  ``loop(travels)`` wraps the loop over the steps' travels (a progress
+    bar; default none)."""
+    checks.count("steps", steps, 1, 10_000)
+    span = body.pitch if span is None else checks.positive("span", span, "m")
+    travel = np.arange(steps) * (span / steps)
+    force, force_alone, complete, displacement, largest, frictions = [], [], [], [], [], []
+    for t in (travel if loop is None else loop(travel)):
+        state = carriage.solve(body, load, travel=float(t))
+        result = friction(body, state, cells=cells)
+        frictions.append(result)
+        force.append(result.force)
+        complete.append(result.complete)
+        displacement.append(state.displacement)
+        largest.append(float(state.normal_force.max()))
+        if alone:
+            force_alone.append(friction(body, state, cells=cells, b2b=False).force)
+    return TravelFriction(travel, np.array(force), np.array(force_alone) if alone else None, np.array(complete),
+                          np.array(displacement), np.array(largest), tuple(frictions))

@@ -1,0 +1,103 @@
+"""The friction of a whole carriage's rows, at one travel and over a ball pitch of travel
+(lowmodel.linear_bearing.carriage_friction; docs/carriage.md)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from ballbench.lowmodel.bearing import LinearGuide, Material
+from ballbench.lowmodel.linear_bearing import carriage, carriage_friction
+
+GUIDE = LinearGuide(ball_radius=2.381e-3, conformity=0.52, nominal_angle=math.pi / 4, material=Material(210e9, 0.3),
+                    friction_coefficient=0.1, groove_velocity=0.1)
+ALPHA = math.radians(45.0)
+N = 13
+PITCH = 5e-3
+SHAPE = carriage.gothic_rows(half_width=8e-3, height=5e-3, contact_angles=np.full(4, ALPHA))
+
+
+def _body(**options):
+    return carriage.Carriage(GUIDE, options.pop("rows", SHAPE), balls_per_row=options.pop("balls", N), pitch=PITCH,
+                             **options)
+
+
+def test_the_friction_of_gothic_rows_mirrors_and_says_which_balls_it_leaves_out():
+    """The rows' friction (carriage_friction.friction: each row's balls touching in a chain, lin2019 eqs 4-10, on the
+    state's contact loads).  Gothic rows at the nominal angle under a vertical load mirror each other: the same friction
+    and B2B forces (1e-9), every ball by full sliding.  With an end relief deeper than the preload the end balls
+    open a contact: they part the chain, the row says which balls have no model, and the carriage's friction is
+    marked incomplete; a two-point row has no model."""
+    shape = SHAPE
+    body = _body(oversize=2e-6)
+    state = carriage.solve(body, carriage.Load(vertical=600.0))
+    result = carriage_friction.friction(body, state)
+    right, left = result.rows
+    assert result.complete and set(right.law) == {"full sliding"}
+    assert right.force == pytest.approx(left.force, rel=1e-9) and right.force > 0.0
+    assert right.b2b_forces == pytest.approx(left.b2b_forces, rel=1e-9, abs=1e-12)
+    assert result.force == pytest.approx(right.force + left.force, rel=1e-15)
+    relieved = _body(rows=shape, oversize=3e-6, relief_length=10e-3, relief_depth=5e-6)
+    loose = carriage_friction.friction(relieved, carriage.solve(relieved, carriage.Load(vertical=600.0)))
+    assert loose.complete  # the end balls open every contact: loose, no load, no friction, and the chain parts there
+    assert all(row.law[0] == row.law[-1] == "loose" and row.law[N // 2] == "full sliding" for row in loose.rows)
+    assert all(row.b2b_forces[0] == row.b2b_forces[-1] == 0.0 for row in loose.rows)
+    partial = carriage_friction.friction(relieved, carriage.solve(relieved, carriage.Load(vertical=600.0, pitch=5.0)))
+    assert not partial.complete  # pitched: balls at one end keep one to three contacts, which have no model yet
+    assert any(law == "" for law in partial.rows[0].law) and "no model yet" in partial.rows[0].reason
+    four_row = _body(rows=carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=ALPHA),
+                     oversize=1e-6)
+    two_point = carriage_friction.friction(four_row, carriage.solve(four_row, carriage.Load(vertical=1e3)))
+    assert two_point.force == 0.0 and all("two-point" in row.reason for row in two_point.rows)
+
+
+def test_the_friction_over_a_pitch_of_travel_repeats_and_mirrors_without_ball_to_ball_contact():
+    """Over travel the balls advance, leave the groove at one end and enter it at the other: a pitch on, the carriage
+    and its friction are as at the start (1e-12).  Under a vertical load with the end relief symmetric along the rail
+    the ball positions at travel ``t`` mirror those at ``p - t`` (z -> -z): the carriage's sinking and, every ball
+    alone (no B2B contact, each ball's friction its own loads'), the drive force repeat mirrored (1e-9).  With B2B
+    contact the chain runs along +z (the groove's velocity) and need not mirror; each step's friction is its own
+    carriage state's (a step solved again gives the same force)."""
+    body = _body(oversize=3e-6, relief_length=12e-3, relief_depth=1e-6)  # the end balls stay loaded
+    load = carriage.Load(vertical=400.0)
+    steps = 6
+    ripple = carriage_friction.friction_over_travel(body, load, steps=steps)
+    assert ripple.travel == pytest.approx(np.arange(steps) * PITCH / steps, rel=1e-15)
+    assert ripple.complete[0] and ripple.force.min() > 0.0  # later steps: end balls in the relief partly open
+    again = carriage_friction.friction(body, carriage.solve(body, load, travel=PITCH))
+    assert again.force == pytest.approx(ripple.force[0], rel=1e-12)
+    # t and p - t: steps k and steps - k
+    mirrored = np.r_[ripple.force_alone[0], ripple.force_alone[:0:-1]]
+    assert ripple.force_alone == pytest.approx(mirrored, rel=1e-9)
+    sinking = ripple.displacement[:, 1]
+    assert sinking == pytest.approx(np.r_[sinking[0], sinking[:0:-1]], rel=1e-9)
+    assert np.ptp(sinking) > 1e-3 * abs(sinking.mean())  # the balls' passage moves the carriage: a ripple to see
+    assert ripple.ripple == pytest.approx(np.ptp(ripple.force), rel=1e-15) and ripple.mean > 0.0
+    step = carriage_friction.friction(body, carriage.solve(body, load, travel=float(ripple.travel[2])))
+    assert step.force == pytest.approx(ripple.force[2], rel=1e-12)
+
+
+@pytest.mark.slow
+def test_a_chain_without_a_state_is_parted_at_its_weakest_ball_and_says_so():
+    """The example carriage (examples/compact_linear_guide.toml) three eighths of a pitch on: in its left row a ball
+    entering the relief keeps a contact at a thousandth of its load and the seven balls' chain has a state by neither
+    law (about 20 s).  The chain is parted at its weakest ball, which is solved alone: its law says ", alone", no B2B
+    force acts across it, the row gives the reason and the result is not complete."""
+    from ballbench.validation.cases import case_file
+    from tests import paths
+
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    body = case.carriage
+    state = carriage.solve(body, case.carriage_load, travel=0.375 * body.pitch)
+    result = carriage_friction.friction(body, state)
+    row = result.rows[1]
+    alone = [k for k, law in enumerate(row.law) if law.endswith(", alone")]
+    assert alone and not result.complete and "no state by either law as one chain" in row.reason
+    forces = state.normal_force[1]
+    chained = [k for k, law in enumerate(row.law) if law in carriage_friction.LAWS]
+    for k in alone:  # the weakest: its least contact load the smallest share among its chain's balls
+        ratio = forces[k].min() / forces[k].max()
+        assert all(ratio <= forces[j].min() / forces[j].max() for j in chained if abs(j - k) == 1)
+        assert all(row.b2b_forces[j] == 0.0 for j in (k - 1, k) if 0 <= j < len(row.b2b_forces))
+    assert result.force > 0.0
