@@ -40,7 +40,8 @@ FRONT = "import ballbench loads no layer and nothing a bare interpreter does not
 STARTUP = "the CLI's startup imports this file; the module is not loaded there"
 SCENES = "ballbench scenes imports this file; the module is not loaded there"
 READ = "ballbench.load_case imports this file and loads no model (numpy and the description types only)"
-CARRIAGE = "ballbench.load_case imports this file; the carriage model loads only for a file with a [carriage] table"
+CARRIAGE = ("ballbench.load_case imports this file; the carriage and nut models load only for a file with a [carriage] "
+            "or [nut] table")
 LIGHT = {
     ("lowmodel/bearing.py", "ballbench.lowmodel.contact.hertz"): READ,
     ("validation/cases/case_file.py", "ballbench.lowmodel.linear_bearing.carriage"): CARRIAGE,
@@ -90,6 +91,8 @@ LIGHT = {
     ("validation/ladder/stick_slip.py", "ballbench.lowmodel.full_slip_validity"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.figures.stickslip3d"): STARTUP,
     ("validation/ladder/whole.py", "ballbench.validation.figures.carriage"): STARTUP,
+    ("validation/ladder/whole_nut.py", "ballbench.validation.figures"): STARTUP,
+    ("validation/ladder/whole_nut.py", "ballbench.lowmodel.screw"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.case_stick_slip"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.rolling_b2b"): STARTUP,
     ("validation/studies/calibration/fe_laws.py", "ballbench.validation.studies.fe_contact"): STARTUP,
@@ -239,9 +242,12 @@ KEPT_OFF = {
 
 
 @pytest.mark.parametrize("path", list(KEPT_OFF))
-def test_the_light_paths_stay_light(path):
+def test_the_light_paths_stay_light(path, tmp_path):
+    """The example screw without its [nut] table (the nut model loads only for a file with one, as the carriage's)."""
     code, kept_off = KEPT_OFF[path]
-    case = paths.ROOT / "examples" / "ball_screw_32x10.toml"
+    text = (paths.ROOT / "examples" / "ball_screw_32x10.toml").read_text()
+    case = tmp_path / "screw.toml"
+    case.write_text(text[:text.index("[nut]")])
     out = subprocess.run([sys.executable, "-c", f"import sys\n{code}\nprint('\\n'.join(sys.modules))", str(case)],
                          capture_output=True, text=True, check=True)
     loaded = [name for name in kept_off if any(within(module, name) for module in out.stdout.split())]

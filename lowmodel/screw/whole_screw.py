@@ -11,7 +11,7 @@ their azimuth difference is the helix chord ``2 R_B``
 Each time step:
 
 1. the screw-side deviation of every ball from its screw azimuth,
-   ``theta_j = amplitude sin(cycles phi_j / 2)`` for ``cycles`` over the two turns
+   ``theta_j = amplitude sin(cycles phi_j / turns)`` for ``cycles`` over the ``turns`` (lin2019: two)
    (lin2019 Fig 19 is missing; docs/ball_screw.md);
 2. the axial load of every ball from :mod:`lowmodel.screw.load_distribution`;
 3. the quasi-static state of all balls with B2B contact of the touching pairs
@@ -99,10 +99,10 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
              reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
              lead_error: float = 0.0, progress=None, deviation=None,
-             contact_law: screw_contacts.GrooveContactLaws | None = None) -> ScrewHistory:
+             contact_law: screw_contacts.GrooveContactLaws | None = None, turns: int = TRACK_TURNS) -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
-    ``amplitude`` [rad] and ``cycles`` (over the two loaded turns) of the screw-side deviation,
+    ``amplitude`` [rad] and ``cycles`` (over the loaded turns) of the screw-side deviation,
     ``reading`` as :func:`ball.flank_angles`; ``sections``/``stiffness`` of the load
     distribution (defaults: :func:`load_distribution.bar_sections`, :func:`load_distribution.axial_stiffness`
     up to 3x the mean ball load); ``lead_error`` [m per turn] of the nut against the screw
@@ -110,7 +110,8 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
     ``deviation``: a function of the screw azimuth phi [rad] (array) giving theta [rad] in place of the
     sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep.functions);
     ``contact_law``: calibrated contact laws of the grooves (:class:`ball.GrooveContactLaws`) for the
-    balls and the default ``stiffness``; None: Hertz.
+    balls and the default ``stiffness``; None: Hertz.  ``turns``: the loaded turns of the track (lin2019: 2; a whole
+    nut's, lowmodel.screw.nut), the return tube again of zero length.
     """
     n = checks.count("n_balls", n_balls, 2)
     total = checks.non_negative("axial_load", axial_load, "N")
@@ -119,14 +120,15 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
     amplitude = checks.bounded("amplitude", amplitude, 0.0, math.radians(10.0), "rad", lower_closed=True,
                                upper_closed=True, note="i.e. [0, 10] deg")
     cycles = checks.count("cycles", cycles, 0)
+    turns = checks.count("turns", turns, 1, 1000)
     if deviation is not None and not callable(deviation):
         raise ValueError(f"deviation must be a function of the screw azimuth phi [rad] giving theta [rad] (or None),"
                          f" got {deviation!r}")
     pair = b2b.pair_geometry(module)
-    track = 2.0 * math.pi * TRACK_TURNS
+    track = 2.0 * math.pi * turns
     slack = track - n * pair.azimuth_step
     if slack < 0.0:
-        raise ValueError(f"n_balls = {n} do not fit in {TRACK_TURNS} turns (at most "
+        raise ValueError(f"n_balls = {n} do not fit in {turns} turns (at most "
                          f"{int(track / pair.azimuth_step)} balls)")
     sections = ld.bar_sections(module) if sections is None else sections
     if stiffness is None:
@@ -146,7 +148,7 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
         positions = first + np.concatenate([[0.0], np.cumsum(gaps[:-1] + pair.azimuth_step)])
         screw_azimuth = positions + omega_n * time
         if deviation is None:
-            theta = amplitude * np.sin(0.5 * cycles * screw_azimuth)   # `cycles` periods over 4 pi
+            theta = amplitude * np.sin(cycles / turns * screw_azimuth)   # `cycles` periods over the turns
         else:
             theta = _deviation_of(deviation, screw_azimuth)
         contacts = screw_contacts.ball_contacts(module, theta, reading=reading, contact_law=contact_law)

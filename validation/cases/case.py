@@ -160,10 +160,15 @@ class LinearGuideCase(GuideLoadCase):
 @dataclass(frozen=True, kw_only=True)
 class BallScrewCase(ScrewLoadCase):
     """Balls of a ball screw under an axial load (:class:`lowmodel.bearing.ScrewLoadCase`) with a name and the FE
-    settings of its screw modules."""
+    settings of its screw modules; optionally the whole nut (``nut``: a :class:`lowmodel.screw.nut.Nut`) under its
+    axial load ``nut_load`` [N] with screw-side deviations ``nut_deviation`` (amplitude [rad], cycles over the
+    turns), the scene ``<stem>-whole`` (docs/nut.md)."""
 
     name: str
     fe: ModuleFe | None = None
+    nut: object = None
+    nut_load: float = 0.0
+    nut_deviation: tuple = (0.0, 4)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -285,8 +285,9 @@ def _build(reader: _Reader, data: dict):  # noqa: C901 - one dispatch over the t
             load = tables["load"]
             f, levels = tables["fe"], _levels(reader, fe_raw, "module")
             fe = None if levels is None else ModuleFe(levels, f.get("gap_limit", 5e-6), None, f.get("body_depth"))
+            nut, nut_load, deviation = _nut(reader, tables.get("nut"), screw)
             return BallScrewCase(screw, load["axial_load"], load["deviations"], load.get("reading", "tilted"),
-                                 name=name, fe=fe)
+                                 name=name, fe=fe, nut=nut, nut_load=nut_load, nut_deviation=deviation)
         c = tables["contact"]
         pair = c["pair"]
         if (pair == "groove") != ("conformity" in c):
@@ -340,6 +341,25 @@ def _carriage(reader: _Reader, table: dict | None, guide: LinearGuide, deviation
     load = carriage.Load(table.get("lateral_force", 0.0), table.get("vertical_force", 0.0),
                          table.get("pitch_moment", 0.0), table.get("yaw_moment", 0.0), table.get("roll_moment", 0.0))
     return body, load
+
+
+def _nut(reader: _Reader, table: dict | None, screw):
+    """The whole nut of a ``[nut]`` table (lowmodel.screw.nut), its axial load and the screw-side deviation."""
+    if not table:
+        return None, 0.0, (0.0, 4)
+    from ballbench.lowmodel.screw import contacts, nut  # the nut model: only for a file with one
+
+    double = table["arrangement"] == "double"
+    if double != ("preload" in table):
+        raise reader.error("nut", "preload", "nut.preload (the spacer's force) is given for, and only for, "
+                                             'arrangement = "double" (a single nut is preloaded by screw.oversize)')
+    module = contacts.module(screw)
+    if table.get("balls", 0) > nut.capacity(module, table["turns"]):
+        raise reader.error("nut", "balls", f"nut.balls {table['balls']} do not fit in {table['turns']} turns (at "
+                                           f"most {nut.capacity(module, table['turns'])})")
+    body = nut.Nut(module if not double else contacts.module(screw, 0.0), table["turns"], table.get("balls", 0),
+                   table["arrangement"], table.get("preload", 0.0), table.get("nut_outer_radius"))
+    return body, table["axial_load"], (table.get("deviation_amplitude", 0.0), table.get("deviation_cycles", 4))
 
 
 def loads(text: str, path: str = "<case>"):
@@ -424,17 +444,9 @@ def template(kind: str) -> str:
             for alt in alternatives:
                 notes.append(f"or {alt.name}")
             out.append(f"{line:<32} # {'; '.join(notes)}")
-    if "lubricant" in SCHEMA[kind]:  # optional, so commented out: the file loads as it is, without the EHL rung
-        speed = "groove_velocity" if kind == "linear-guide" else "nut_speed"
-        out += ["", f"# [lubricant] (optional): an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md) at "
-                    f"{speed}"]
-        for key in SCHEMA[kind]["lubricant"]:
-            line = f"# {key.name} = {key.example}"
-            out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
-    if "carriage" in SCHEMA[kind]:  # optional, so commented out: the two-ball module alone without it
-        out += ["", "# [carriage] (optional): the whole carriage; it adds the scene <stem>-whole (ball loads, "
-                    "stiffness; docs/carriage.md)"]
-        for key in SCHEMA[kind]["carriage"]:
+    for table, intro in _optional_intros(kind).items():  # optional, so commented out: the file loads without them
+        out += ["", f"# [{table}] (optional): {intro}"]
+        for key in SCHEMA[kind][table]:
             if key.in_template:
                 line = f"# {key.name} = {key.example}"
                 out.append(f"{line:<32} # {key.help}" + ("" if key.required else " (optional)"))
@@ -447,6 +459,17 @@ def template(kind: str) -> str:
         at = next(i for i, line in enumerate(out) if line.startswith("axial_load ="))
         out[at + 1:at + 1] = _preload_loss_comment("\n".join(out) + "\n")
     return "\n".join(out) + "\n"
+
+
+def _optional_intros(kind: str) -> dict[str, str]:
+    """The optional tables the template shows commented out, each with its one-line introduction."""
+    speed = "groove_velocity" if kind == "linear-guide" else "nut_speed"
+    intros = {"lubricant": f"an oil; it adds the EHL rung (scene <stem>-ehl, docs/ehl.md) at {speed}",
+              "carriage": "the whole carriage; it adds the scene <stem>-whole (ball loads, stiffness, friction over "
+                          "travel; docs/carriage.md)",
+              "nut": "the whole nut; it adds the scene <stem>-whole (ball loads along the nut, friction torque over "
+                     "rotation, stiffness; docs/nut.md)"}
+    return {table: intro for table, intro in intros.items() if table in SCHEMA[kind]}
 
 
 def _preload_loss_comment(text: str) -> list[str]:

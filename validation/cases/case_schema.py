@@ -9,7 +9,8 @@ from ballbench.lowmodel import bearing, model_inputs
 from ballbench.lowmodel.bearing import PAIRS, READINGS
 from ballbench.validation.cases.case import FINE_ZONES
 
-__all__ = ["KINDS", "SCHEMA", "Key", "LUBRICANT_KEYS", "CARRIAGE_ROWS", "OPTIONAL_TABLES", "MODEL_CHECKS"]
+__all__ = ["KINDS", "SCHEMA", "Key", "LUBRICANT_KEYS", "CARRIAGE_ROWS", "NUT_ARRANGEMENTS", "OPTIONAL_TABLES",
+           "MODEL_CHECKS"]
 
 KINDS = ("linear-guide", "ball-screw", "contact")
 
@@ -194,7 +195,21 @@ SCHEMA["linear-guide"]["carriage"] = (
     Key("pitch_moment", "torque", "M_x, about the lateral axis", required=False, check="finite", example='"0 N m"'),
     Key("yaw_moment", "torque", "M_y, about the vertical", required=False, check="finite", example='"0 N m"'),
     Key("roll_moment", "torque", "M_z, about the rail", required=False, check="finite", example='"2 N m"'))
-OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant", "carriage"}, "ball-screw": {"fe", "lubricant"},
+NUT_ARRANGEMENTS = ("single", "double")  # lowmodel.screw.nut.ARRANGEMENTS
+SCHEMA["ball-screw"]["nut"] = (
+    Key("arrangement", "text", "single: one nut preloaded by the ball oversize; double: two halves and a spacer's "
+        "preload force", check="choice", choices=NUT_ARRANGEMENTS, example='"single"'),
+    Key("turns", "count", "loaded turns (of each half of a double nut)", example="3"),
+    Key("balls", "count", "balls in the loaded turns (default: as many as fit less one)", required=False,
+        in_template=False),
+    Key("preload", "force", "a double nut's preload force", required=False, check="positive", in_template=False),
+    Key("axial_load", "force", "F_a on the whole nut", check="positive", example='"1500 N"'),
+    Key("nut_outer_radius", "length", "the nut as a tube from R_P + R_B to this (default 1.7 R_P)", required=False,
+        check="positive", in_template=False),
+    Key("deviation_amplitude", "angle", "screw-side contact angle deviation over the turns (lin2019 Sec 3.4)",
+        required=False, check="non-negative", example='"1 deg"'),
+    Key("deviation_cycles", "count", "its periods over the loaded turns", required=False, example="4"))
+OPTIONAL_TABLES = {"linear-guide": {"fe", "lubricant", "carriage"}, "ball-screw": {"fe", "lubricant", "nut"},
                    "contact": {"fe", "screw"}}
 
 # what lin2019's models need of a key beyond its field's range: their own checks (lowmodel.model_inputs), at load

@@ -15,7 +15,7 @@ case (they are not registered; the CLI runs them beside or instead of the regist
 * ``<stem>-whole`` (linear guide with a ``[carriage]``; rung ``low-order``): the rigid carriage under its
   external load (lowmodel.linear_bearing.carriage): ball loads per row, displacement, 5 x 5 stiffness,
   load-deflection curves, the static limit, the rows' friction at the load and over a ball pitch of travel
-  (ladder.whole);
+  (ladder.whole); of a ball screw with a ``[nut]``: the whole nut (ladder.whole_nut);
 * ``<stem>-contact``: each distinct contact geometry at its largest load (ladder.rungs.distinct_contacts: one for
   a guide, whose rail and carriage grooves share a conformity, the screw and the nut side of a screw; the case's own
   contact) up the ladder: exact Hertz, the BEM on
@@ -67,6 +67,7 @@ from ballbench.validation.ladder.ehl import ehl_scene
 from ballbench.validation.ladder.rungs import rungs_up_to
 from ballbench.validation.ladder.stick_slip import stick_slip_scene
 from ballbench.validation.ladder.whole import whole_scene
+from ballbench.validation.ladder.whole_nut import nut_scene
 from ballbench.validation.scene import NotApplicable, Scene
 
 __all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
@@ -98,11 +99,16 @@ def _lubricated(case) -> bool:
     return case_ehl.applies(case)
 
 
+def _whole(case) -> bool:
+    """Whether the case describes a whole bearing: a carriage or a nut."""
+    return getattr(case, "carriage", None) is not None or getattr(case, "nut", None) is not None
+
+
 def scene_names(case, stem: str, top: str = "stick-slip") -> list[str]:
     """The names of the scenes :func:`case_scenes` builds."""
     rungs = rungs_up_to(top)
     names = [] if isinstance(case, ContactCase) else [f"{stem}-balls"]
-    if "low-order" in rungs and getattr(case, "carriage", None) is not None:
+    if "low-order" in rungs and _whole(case):
         names.append(f"{stem}-whole")
     names.append(f"{stem}-contact")
     if "EHL" in rungs and _lubricated(case):
@@ -127,6 +133,11 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             "(loads, angles, ellipses, pressures, friction with and without B2B contact)",
                             functools.partial(balls_scene, case=case, rungs=rungs), tags=("case",), kind="low-order",
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
+    if "low-order" in rungs and getattr(case, "nut", None) is not None:
+        scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole nut (ball loads along it, stiffness, friction "
+                            "torque over rotation; a double nut's preload and lift-off)",
+                            functools.partial(nut_scene, case=case), tags=("case",), kind="low-order", cost_s=30.0,
+                            budget_s=WHOLE_BUDGET_S, case=case))
     if "low-order" in rungs and getattr(case, "carriage", None) is not None:
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage, rigid, under its external load (ball "
                             "loads per row, displacement, stiffness, load-deflection, friction over travel)",
