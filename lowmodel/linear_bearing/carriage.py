@@ -50,7 +50,7 @@ from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.geometry.fourpoint import contact_normals
 
 __all__ = ["Row", "Carriage", "Load", "CarriageState", "two_point_row", "four_rows", "gothic_rows", "solve",
-           "ball_positions", "relief", "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
+           "ball_positions", "relief", "groove_points", "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
 
 BALANCE_TOLERANCE = 1e-10  # the load balance of a solved carriage, relative to its largest force (and moment / L)
 LOAD_NAMES = ("F_x", "F_y", "M_x", "M_y", "M_z")  # [N, N, N m, N m, N m] on the carriage at the origin
@@ -306,9 +306,12 @@ class _Geometry:
                                      - self.gap * (self.normal[i, rail] + self.normal[i, top])) / len(pairs)
         return slack, centred
 
-    def contacts(self, q: np.ndarray, v: np.ndarray, slope_floor: float = 0.0):
-        """Per contact: load Q, line e, approach, length |w| and the local stiffness k (2x2) at (q, v)."""
+    def contacts(self, q: np.ndarray, v: np.ndarray, slope_floor: float = 0.0, elastic=None):
+        """Per contact: load Q, line e, approach, length |w| and the local stiffness k (2x2) at (q, v); ``elastic``
+        (r, k, c, 2) m the carriage grooves' own displacement beyond the rigid carriage's (else none)."""
         d = np.einsum("rkcij,j->rkci", self.jac, q)
+        if elastic is not None:
+            d = d + elastic
         w = v[:, :, None, :] + self.gap * self.normal[:, None, :, :] - d  # ball centre - groove centre
         length = np.linalg.norm(w, axis=-1)
         e = w / length[..., None]
@@ -324,9 +327,9 @@ class _Geometry:
         local = slope[..., None, None] * outer + (load / length)[..., None, None] * (np.eye(2) - outer)
         return load, e, approach, local, (loose, centred)
 
-    def system(self, q: np.ndarray, v: np.ndarray, external: np.ndarray, slope_floor: float = 0.0):
+    def system(self, q: np.ndarray, v: np.ndarray, external: np.ndarray, slope_floor: float = 0.0, elastic=None):
         """The residuals (carriage (5,), balls (r, k, 2)), the condensed step's blocks and the stiffness."""
-        load, e, approach, local, held = self.contacts(q, v, slope_floor)
+        load, e, approach, local, held = self.contacts(q, v, slope_floor, elastic)
         force = load[..., None] * e  # on the groove, from the ball (r, k, c, 2)
         carriage = np.einsum("rkcij,rkci->j", self.jac, force) + external
         balls = -force.sum(axis=2)  # on the ball
@@ -334,15 +337,41 @@ class _Geometry:
         b_block = np.einsum("rkcaj,rkcab->rkjb", self.jac, local)  # d carriage / d v  (r, k, 5, 2)
         c_block = np.einsum("rkcab,rkcbj->rkaj", local, self.jac)  # d balls / d q  (r, k, 2, 5)
         a_block = -np.einsum("rkcaj,rkcab,rkcbl->jl", self.jac, local, self.jac)  # d carriage / d q
-        return carriage, balls, (a_block, b_block, c_block, d_block, *held), load, e, approach
+        return carriage, balls, (a_block, b_block, c_block, d_block, *held, local), load, e, approach
+
+    @property
+    def grooves(self) -> np.ndarray:
+        """(M, 3) int: the (row, ball, contact) of every carriage contact, in the order of a groove compliance."""
+        top = (self.top * self.mask).astype(bool)  # (r, c)
+        return np.array([(r, k, c) for r in range(top.shape[0]) for k in range(len(self.z))
+                         for c in range(top.shape[1]) if top[r, c]], dtype=int).reshape(-1, 3)
+
+
+def groove_points(body: Carriage, travel: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The carriage's contacts at rest, in the order of a groove compliance (:func:`solve`'s ``groove_compliance``):
+    ``(points (M, 3), centres (M, 3), normals (M, 2))`` [m]: each contact point ``b0 + R_B n`` and its groove's
+    curvature centre ``b0 - (r_g - R_B) n`` at the ball's ``z``, and the contact's outward normal ``n``."""
+    geometry = _Geometry(body, travel)
+    index = geometry.grooves
+    ball = np.array([[row.x, row.y] for row in body.rows])[index[:, 0]]
+    normal = geometry.normal[index[:, 0], index[:, 2]]
+    z = geometry.z[index[:, 1]][:, None]
+    radius = body.guide.ball_radius
+    return (np.hstack([ball + radius * normal, z]), np.hstack([ball - geometry.gap * normal, z]), normal)
 
 
 def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float = BALANCE_TOLERANCE,
-          max_iterations: int = 60) -> CarriageState:
+          max_iterations: int = 60, groove_compliance=None) -> CarriageState:
     """The rigid ``body`` (:class:`Carriage`) in equilibrium under ``load`` (:class:`Load`) with its balls at
     ``travel`` [m] (module docstring).  ValueError for bad input; ConvergenceError naming the check (the load balance
     of the carriage and of every ball within ``tolerance`` of the largest force) when Newton stops short, e.g. a load
-    no row can carry (lift-off without rows against it)."""
+    no row can carry (lift-off without rows against it).
+
+    ``groove_compliance`` (2M, 2M) [m/N]: an elastic carriage, its grooves' curvature centres moving by
+    ``w = G f`` beyond the rigid carriage's, ``f`` the balls' forces on the carriage's contacts (x, y of each of
+    the M contacts of :func:`groove_points`, the carriage's mounting face held by the rigid ``q``;
+    fem.carriage_fe computes it): solved from the rigid state by Newton on ``(q, v, w)`` with the dense Jacobian
+    (docs/carriage.md, "Elastic carriage")."""
     if not isinstance(body, Carriage):
         raise ValueError(f"body must be a carriage.Carriage, got {type(body).__name__}")
     if not isinstance(load, Load):
@@ -367,6 +396,9 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
     iterations = 0
     carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
     norm = measure(carriage, balls, loads)
+    if groove_compliance is not None:
+        rigid = solve(body, load, travel=travel, tolerance=tolerance, max_iterations=max_iterations)
+        return _solve_elastic(geometry, rigid, external, groove_compliance, tolerance, max_iterations, measure)
     while norm > tolerance:
         if iterations >= max_iterations:
             raise ConvergenceError("carriage.solve: the load balance missed (the balls' forces and moments plus the "
@@ -441,11 +473,99 @@ def _linear_start(geometry: _Geometry, external: np.ndarray):
     return _step(blocks, carriage, balls, geometry)[:2]
 
 
-def _state(geometry: _Geometry, q, v, external, iterations: int, measure) -> CarriageState:
-    carriage, balls, blocks, load, e, approach = geometry.system(q, v, external)
+def _state(geometry: _Geometry, q, v, external, iterations: int, measure, elastic=None,
+           schur=None) -> CarriageState:
+    carriage, balls, blocks, load, e, approach = geometry.system(q, v, external, elastic=elastic)
     balance = measure(carriage, balls, load)
-    schur, *_ = _condensed(blocks, geometry)
+    if schur is None:
+        schur, *_ = _condensed(blocks, geometry)
     contact = hertz.solve_load(geometry.hertz, load)
     mask = geometry.mask[:, None, :]
     return CarriageState(q.copy(), geometry.z.copy(), v.copy(), load, e * mask[..., None], approach * mask,
                          contact.a * mask, contact.b * mask, contact.p0 * mask, -schur, balance, iterations)
+
+
+def _solve_elastic(geometry: _Geometry, rigid: CarriageState, external, compliance, tolerance: float,
+                   max_iterations: int, measure) -> CarriageState:
+    """Newton on ``(q, v, w)`` of an elastic carriage (:func:`solve`'s ``groove_compliance``) from the rigid state:
+    residuals the carriage's and balls' balance and ``w - G f``; the dense Jacobian from the contacts' local
+    stiffness; the stiffness its Schur complement onto ``q``."""
+    index = geometry.grooves
+    m = len(index)
+    compliance = np.asarray(compliance, dtype=float)
+    if compliance.shape != (2 * m, 2 * m) or not np.all(np.isfinite(compliance)):
+        raise ValueError(f"groove_compliance must be a finite ({2 * m}, {2 * m}) matrix [m/N] over the carriage's "
+                         f"{m} contacts (groove_points), got shape {compliance.shape}")
+    rows, balls_n = geometry.normal.shape[0], len(geometry.z)
+    nv = 2 * rows * balls_n
+    r_, k_, c_ = index.T
+
+    def unpack(x):
+        elastic = np.zeros(geometry.normal.shape[:1] + (balls_n,) + geometry.normal.shape[1:2] + (2,))
+        elastic[r_, k_, c_] = x[5 + nv:].reshape(m, 2)
+        return x[:5], x[5:5 + nv].reshape(rows, balls_n, 2), elastic
+
+    def evaluate(x):
+        q, v, elastic = unpack(x)
+        carriage, balls, blocks, loads, e, _ = geometry.system(q, v, external, elastic=elastic)
+        forces = (loads[..., None] * e)[r_, k_, c_].reshape(-1)
+        residual = np.concatenate([carriage, balls.reshape(-1), x[5 + nv:] - compliance @ forces])
+        return residual, blocks, loads, max(measure(carriage, balls, loads),
+                                            float(np.max(np.abs(residual[5 + nv:]), initial=0.0))
+                                            / max(float(np.max(np.abs(compliance))) * max(float(loads.max()), 1e-300),
+                                                  1e-300))
+
+    def jacobian(blocks):
+        a_block, b_block, c_block, d_block, loose, _, local = blocks
+        n = 5 + nv + 2 * m
+        jac = np.zeros((n, n))
+        jac[:5, :5] = a_block
+        ball = np.arange(rows * balls_n)
+        floor = 1e-12 * max(float(np.max(np.abs(d_block))), 1e-300)
+        for b, (r, k) in enumerate(np.ndindex(rows, balls_n)):
+            jac[:5, 5 + 2 * b:7 + 2 * b] = b_block[r, k]
+            jac[5 + 2 * b:7 + 2 * b, :5] = c_block[r, k]
+            jac[5 + 2 * b:7 + 2 * b, 5 + 2 * b:7 + 2 * b] = d_block[r, k] - floor * np.eye(2)
+        top_local = local[r_, k_, c_]  # (m, 2, 2) d f / d (ball centre - groove centre)
+        top_jac = geometry.jac[r_, k_, c_]  # (m, 2, 5)
+        balls_of = ball.reshape(rows, balls_n)[r_, k_]
+        df_dq = -np.einsum("mab,mbj->maj", top_local, top_jac).reshape(2 * m, 5)
+        df_dv = np.zeros((2 * m, nv))
+        df_dw = np.zeros((2 * m, 2 * m))
+        for i in range(m):
+            df_dv[2 * i:2 * i + 2, 2 * balls_of[i]:2 * balls_of[i] + 2] = top_local[i]
+            df_dw[2 * i:2 * i + 2, 2 * i:2 * i + 2] = -top_local[i]
+            jac[:5, 5 + nv + 2 * i:7 + nv + 2 * i] = -top_jac[i].T @ top_local[i]
+            b = 5 + 2 * balls_of[i]
+            jac[b:b + 2, 5 + nv + 2 * i:7 + nv + 2 * i] = top_local[i]
+        jac[5 + nv:, :5] = -compliance @ df_dq
+        jac[5 + nv:, 5:5 + nv] = -compliance @ df_dv
+        jac[5 + nv:, 5 + nv:] = np.eye(2 * m) - compliance @ df_dw
+        return jac
+
+    x = np.concatenate([rigid.displacement, rigid.ball_shift.reshape(-1), np.zeros(2 * m)])
+    residual, blocks, _, norm = evaluate(x)
+    iterations = 0
+    while norm > tolerance:
+        if iterations >= max_iterations:
+            raise ConvergenceError("carriage.solve (elastic grooves): the load balance and the grooves' compliance "
+                                   "missed", residual=norm, iterations=iterations, tolerance=tolerance,
+                                   reason="load balance missed")
+        step = np.linalg.solve(jacobian(blocks), -residual)
+        factor, accepted = 1.0, False
+        for _ in range(40):
+            trial = x + factor * step
+            r_t, b_t, _, n_t = evaluate(trial)
+            if n_t < norm or n_t <= tolerance:
+                x, residual, blocks, norm, accepted = trial, r_t, b_t, n_t, True
+                break
+            factor *= 0.5
+        iterations += 1
+        if not accepted:
+            raise ConvergenceError("carriage.solve (elastic grooves): no step reduces the residual", residual=norm,
+                                   iterations=iterations, tolerance=tolerance, reason="no descent step")
+    jac = jacobian(blocks)
+    inner = jac[5:, 5:]
+    schur = jac[:5, :5] - jac[:5, 5:] @ np.linalg.solve(inner, jac[5:, :5])
+    q, v, elastic = unpack(x)
+    return _state(geometry, q, v, external, rigid.iterations + iterations, measure, elastic, schur)

@@ -6,7 +6,7 @@ import numpy as np
 
 from ballbench.validation.figures.style import figure
 
-__all__ = ["ball_loads", "load_deflection", "friction_over_travel"]
+__all__ = ["ball_loads", "load_deflection", "friction_over_travel", "rigid_elastic"]
 
 
 def ball_loads(z, normal_force, labels, contacts):
@@ -63,4 +63,20 @@ def friction_over_travel(travel, force, force_alone, complete, sinking):
     for ax in (left, right):
         ax.set_xlabel("travel of the balls [mm]")
     left.legend(fontsize=7)
+    return fig
+
+
+def rigid_elastic(z, rigid, elastic, labels):
+    """Each ball's largest contact load [N] along the rail (``z`` [m]; ``rigid``, ``elastic`` (rows, balls)): the
+    rigid carriage against the elastic one, one panel per row (``labels``)."""
+    rows = np.asarray(rigid).shape[0]
+    fig = figure(figsize=(9, 2.2 * rows), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(rows, 1, sharex=True))
+    for r, ax in enumerate(axes):
+        ax.plot(np.asarray(z) * 1e3, np.asarray(rigid)[r], "o-", ms=3, label="rigid carriage")
+        ax.plot(np.asarray(z) * 1e3, np.asarray(elastic)[r], "s--", ms=3, label="elastic carriage (FE)")
+        ax.set_ylabel("Q max [N]")
+        ax.set_title(labels[r], fontsize=9)
+        ax.legend(fontsize=7, loc="upper left")
+    axes[-1].set_xlabel("z along the rail [mm]")
     return fig

@@ -139,10 +139,12 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             functools.partial(nut_scene, case=case), tags=("case",), kind="low-order", cost_s=30.0,
                             budget_s=WHOLE_BUDGET_S, case=case))
     if "low-order" in rungs and getattr(case, "carriage", None) is not None:
-        scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage, rigid, under its external load (ball "
-                            "loads per row, displacement, stiffness, load-deflection, friction over travel)",
-                            functools.partial(whole_scene, case=case), tags=("case",), kind="low-order", cost_s=60.0,
-                            budget_s=WHOLE_BUDGET_S, case=case))
+        scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage under its external load (ball loads "
+                            "per row, displacement, stiffness, load-deflection, friction over travel; the FE rung of "
+                            "an elastic carriage)",
+                            functools.partial(whole_scene, case=case, rungs=rungs), tags=("case",),
+                            kind="FE" if fe else "low-order", cost_s=90.0 if fe else 60.0, budget_s=WHOLE_BUDGET_S,
+                            case=case))
     # ladder.rungs.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
     n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("

@@ -11,17 +11,24 @@ from ballbench.lowmodel.geometry.fourpoint import CONTACT_NAMES
 from ballbench.lowmodel.linear_bearing import carriage, carriage_friction
 from ballbench.validation.ladder.common import fmt
 
-__all__ = ["whole_scene", "STATIC_PRESSURE", "LOAD_FACTORS", "TRAVEL_STEPS"]
+__all__ = ["whole_scene", "STATIC_PRESSURE", "LOAD_FACTORS", "TRAVEL_STEPS", "FE_WALL_LEVELS", "FE_LOAD_TOLERANCE",
+           "FE_STIFFNESS_TOLERANCE"]
 
 # ISO 14728-2 (rolling bearings, linear motion, static load ratings): the static load rating of a ball guide is the
 # load giving 4200 MPa at the centre of the most heavily loaded contact
 STATIC_PRESSURE = 4200e6  # Pa
 LOAD_FACTORS = np.linspace(0.0, 1.5, 7)  # the load-deflection curves: the case's load times these
 TRAVEL_STEPS = {"quick": 8, "default": 20, "fine": 40}  # the friction over one ball pitch of travel: steps per fidelity
+# the FE rung of an elastic carriage (fem.carriage_fe): the slot walls' mesh size over the patch radius, two levels
+# per fidelity (the coarser one's difference from the finer one the FE's own uncertainty; docs/carriage.md)
+FE_WALL_LEVELS = {"quick": (1.5, 2.0), "default": (2.0, 3.0), "fine": (3.0, 4.0)}
+FE_LOAD_TOLERANCE = 0.05  # the rigid carriage's ball loads against the elastic body's, over the largest ball load
+FE_STIFFNESS_TOLERANCE = 0.10  # and its stiffness's diagonal, relative
 
 
-def whole_scene(run, *, case) -> None:
-    """The scene function of ``<stem>-whole`` (``case`` a LinearGuideCase with ``carriage`` and ``carriage_load``)."""
+def whole_scene(run, *, case, rungs=("low-order",)) -> None:
+    """The scene function of ``<stem>-whole`` (``case`` a LinearGuideCase with ``carriage`` and ``carriage_load``;
+    with ``"FE"`` in ``rungs`` the FE rung of an elastic carriage)."""
     from ballbench.validation.figures import carriage as figures
 
     body, load = case.carriage, case.carriage_load
@@ -69,6 +76,8 @@ def whole_scene(run, *, case) -> None:
     run.save_figure(figures.ball_loads(state.z, state.normal_force, labels, names[0]), "ball_loads.png")
     _friction_table(run, body, state)
     _friction_over_travel(run, body, load, figures)
+    if "FE" in rungs:
+        _fe_rung(run, body, load, figures)
     curve = []
     for factor in LOAD_FACTORS:
         if factor == 1.0:  # the state above
@@ -84,8 +93,7 @@ def whole_scene(run, *, case) -> None:
              f"{body.balls_per_row} balls each, every ball's contacts by the curvature-centre distance and Hertz's "
              "law, "
              f"under F_x {fmt(load.lateral)} N, F_y {fmt(load.vertical)} N, M_x {fmt(load.pitch)} N m, M_y "
-             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.  The FE rung of "
-             "an elastic carriage is not yet in this scene.")
+             f"{fmt(load.yaw)} N m, M_z {fmt(load.roll)} N m; {state.iterations} Newton steps.")
 
 
 def _contact_names(body) -> list[list[str]]:
@@ -138,3 +146,68 @@ def _friction_over_travel(run, body, load, figures) -> None:
              f"{fmt(result.ripple)} N peak to peak{bound}; every ball alone {fmt(float(np.mean(result.force_alone)))}"
              f" N, ripple {fmt(float(np.ptp(result.force_alone)))} N; the carriage's u_y ripples by "
              f"{fmt(float(np.ptp(result.displacement[:, 1])) * 1e9)} nm (docs/carriage.md).")
+
+
+def _fe_rung(run, body, load, figures) -> None:
+    """The elastic carriage body (fem.carriage_fe) against the rigid carriage at the case's load: per ball the
+    largest contact load both ways, the worst ball, the stiffness's diagonal; two mesh levels, their difference the
+    FE's own uncertainty."""
+    from ballbench.fem import carriage_fe  # scikit-fem and gmsh: only on the FE rung
+
+    radius = carriage_fe.default_patch_radius(body)
+    shape = carriage_fe.body_shape(body)
+    h_max = max(shape.half_width - shape.slot_half_width, shape.top - shape.slot_top) / 2.0
+    levels, results = FE_WALL_LEVELS.get(run.fidelity, FE_WALL_LEVELS["default"]), []
+    for ratio in run.progress(levels, desc=f"{run.scene.name} FE levels"):
+        comparison, time_s = run.time(carriage_fe.compare, body, load, h_max=h_max, h_wall=radius / ratio)
+        results.append((comparison, time_s))
+    (coarse, _), (fine, time_s) = results
+    model = "lowmodel.linear_bearing.carriage (rigid)"
+    scale = float(fine.elastic_load.max())
+    level_change = float(np.max(np.abs(coarse.elastic_load - fine.elastic_load))) / scale
+    run.check(model="fem.carriage_fe", family="FE", quantity="load balance of the elastic carriage and its balls",
+              unit="1", value=fine.elastic.balance, reference=0.0, scale=1.0, tolerance=carriage.BALANCE_TOLERANCE,
+              time_s=time_s, source="the elastic carriage's solve (carriage.solve with the FE grooves' compliance)",
+              why="the value is itself a relative force residual: zero judged on the scale 1")
+    r, k = fine.worst
+    run.check(model=model, family="low-order numerical", quantity="ball load of the worst ball against the elastic "
+              "carriage", unit="N", value=float(fine.rigid_load[r, k]), reference=float(fine.elastic_load[r, k]),
+              scale=scale, tolerance=FE_LOAD_TOLERANCE, time_s=time_s, finding=True,
+              why="a ball's load is judged against the largest ball load of the carriage (a lightly loaded ball's "
+                  "own load would magnify a small shift of load)",
+              source=f"fem.carriage_fe: the carriage body elastic (P2, {fine.compliance.dofs} DOFs), the balls "
+                     "Hertz's springs, the rail rigid",
+              note=f"row {r + 1}, ball {k + 1}; error over the largest ball load {fmt(scale)} N; the FE levels "
+                   f"differ by {fmt(level_change * 100)} % of it")
+    names5 = carriage.DISPLACEMENT_NAMES
+    vertical = 1
+    run.check(model=model, family="low-order numerical", quantity="vertical stiffness against the elastic carriage",
+              unit="N/m", value=float(fine.rigid.stiffness[vertical, vertical]),
+              reference=float(fine.elastic.stiffness[vertical, vertical]), tolerance=FE_STIFFNESS_TOLERANCE,
+              time_s=time_s, finding=True, source="fem.carriage_fe (as above)",
+              note="the rigid carriage leaves out the body's own deflection")
+    labels = [f"row {i + 1}" for i in range(len(body.rows))]
+    run.table(f"Rigid against elastic carriage: the largest contact load of each ball [N] (FE {fine.compliance.dofs} "
+              f"DOFs, {time_s:.1f} s; the coarser level {coarse.compliance.dofs} DOFs)",
+              ("row", "ball", "z [mm]", "rigid", "elastic", "error [% of the largest]", "FE levels differ [N]"),
+              [(labels[i], j + 1, fmt(float(fine.rigid.z[j]) * 1e3), fmt(float(fine.rigid_load[i, j])),
+                fmt(float(fine.elastic_load[i, j])), fmt(float(fine.error[i, j]) * 100),
+                fmt(float(coarse.elastic_load[i, j] - fine.elastic_load[i, j])))
+               for i in range(len(body.rows)) for j in range(body.balls_per_row)])
+    run.table("Stiffness's diagonal, rigid against elastic carriage [N/m, N m/rad]",
+              ("", "rigid", "elastic", "rigid over elastic - 1 [%]"),
+              [(names5[i], f"{fine.rigid.stiffness[i, i]:.4g}", f"{fine.elastic.stiffness[i, i]:.4g}",
+                fmt(float(fine.stiffness_change[i]) * 100)) for i in range(5)])
+    run.write_csv("rigid_elastic.csv", [dict(row=i + 1, ball=j + 1, z_m=float(fine.rigid.z[j]),
+                                             rigid_N=float(fine.rigid_load[i, j]),
+                                             elastic_N=float(fine.elastic_load[i, j]),
+                                             elastic_coarse_N=float(coarse.elastic_load[i, j]))
+                                        for i in range(len(body.rows)) for j in range(body.balls_per_row)])
+    run.save_figure(figures.rigid_elastic(fine.rigid.z, fine.rigid_load, fine.elastic_load, labels),
+                    "rigid_elastic.png")
+    run.note(f"FE rung (fem.carriage_fe, docs/carriage.md): the carriage body elastic, {fine.compliance.dofs} DOFs "
+             f"(patch radius {fmt(radius * 1e3)} mm on the slot's walls, Hertz's local part "
+             f"{fmt(fine.compliance.local * 1e9)} nm/N removed), {time_s:.1f} s.  The rigid carriage is off by "
+             f"{fmt(float(np.max(np.abs(fine.error))) * 100)} % of the largest ball load at its worst ball and "
+             f"overestimates the vertical stiffness by {fmt(float(fine.stiffness_change[vertical]) * 100)} %; the two "
+             f"FE levels differ by {fmt(level_change * 100)} % of the largest ball load.")

@@ -26,11 +26,13 @@ def _body(**options):
                              **options)
 
 
-def _vertical_reference(force: float, balls: int, oversize: float = 0.0) -> tuple[float, float]:
+def _vertical_reference(force: float, balls: int, oversize: float = 0.0,
+                        series: float = 0.0) -> tuple[float, float]:
     """Two upper rows of ``balls`` each, no preload, pure vertical load (the lower rows stay open): the carriage
     sinks by ``u`` with every upper ball alike, ``A = A0 n + (0, -u)``; the exact curvature-centre geometry and
     Hertz's law give the vertical balance ``2 balls Q |e_y| = F``, solved here by brentq (the model's Newton and its
-    arrays not involved).  Returns (u [m], Q [N])."""
+    arrays not involved); ``series`` [m/N] an isotropic compliance of each carriage groove's curvature centre, which
+    moves it along the line by ``series Q`` (``2 C Q^(2/3) + series Q`` the approach).  Returns (u [m], Q [N])."""
     constant = hertz.hertz_constant(hertz.groove_geometry(GUIDE))
     a0 = (2 * GUIDE.conformity - 1) * 2 * GUIDE.ball_radius
     n = np.array([-math.cos(ALPHA), -math.sin(ALPHA)])
@@ -38,7 +40,10 @@ def _vertical_reference(force: float, balls: int, oversize: float = 0.0) -> tupl
     def ball(u):
         vector = a0 * n + np.array([0.0, -u])
         length = float(np.hypot(*vector))
-        q = (max(length - a0 + oversize, 0.0) / (2 * constant)) ** 1.5
+        approach = max(length - a0 + oversize, 0.0)
+        q = (approach / (2 * constant)) ** 1.5
+        if series > 0.0 and approach > 0.0:
+            q = brentq(lambda f: 2 * constant * f ** (2 / 3) + series * f - approach, 0.0, q, xtol=1e-30, rtol=1e-15)
         return q, abs(vector[1]) / length
 
     def excess(u):
@@ -60,6 +65,39 @@ def test_a_vertical_load_on_the_upper_rows_matches_the_closed_geometry():
     vertical = np.sum(state.normal_force[..., 1] * np.sin(state.contact_angle[..., 1]))  # carriage contacts
     assert vertical == pytest.approx(3e3, rel=carriage.BALANCE_TOLERANCE)
     assert state.balance < carriage.BALANCE_TOLERANCE
+
+
+def test_elastic_grooves_in_series_match_the_closed_geometry_and_vanish_in_the_rigid_limit():
+    """An elastic carriage (solve's groove_compliance): with each carriage groove's curvature centre on an isotropic
+    spring of 2 nm/N (its own 2 x 2 block; the mounting face rigid) every upper ball's approach is Hertz's plus the
+    spring's, written out by brentq (1e-9); with a compliance of 1e-22 m/N the rigid carriage's state (1e-9).  The
+    elastic state's stiffness is the change of the displacement under a small change of the load (1e-4)."""
+    body = _body()
+    m = len(carriage.groove_points(body)[0])
+    state = carriage.solve(body, carriage.Load(vertical=3e3), groove_compliance=2e-9 * np.eye(2 * m))
+    u, q = _vertical_reference(3e3, N, series=2e-9)
+    assert state.displacement[1] == pytest.approx(-u, rel=1e-9)
+    assert state.normal_force[:2] == pytest.approx(np.full((2, N, 2), q), rel=1e-9)
+    assert state.balance < carriage.BALANCE_TOLERANCE
+    preloaded = _body(oversize=2e-6)
+    load = carriage.Load(lateral=300.0, vertical=1e3, roll=10.0)
+    rigid = carriage.solve(preloaded, load)
+    stiff = carriage.solve(preloaded, load, groove_compliance=1e-22 * np.eye(2 * m))
+    assert stiff.normal_force == pytest.approx(rigid.normal_force, rel=1e-9, abs=1e-9)
+    assert stiff.stiffness == pytest.approx(rigid.stiffness, rel=1e-9, abs=1e-9 * np.abs(rigid.stiffness).max())
+    rng = np.random.default_rng(3)
+    coupling = rng.normal(size=(2 * m, 2 * m)) * 2e-10
+    compliance = 1e-9 * np.eye(2 * m) + coupling @ coupling.T  # symmetric positive: an elastic body's
+    elastic = carriage.solve(preloaded, load, groove_compliance=compliance)
+    assert elastic.balance < carriage.BALANCE_TOLERANCE and not np.allclose(elastic.normal_force, rigid.normal_force)
+    h = 1.0
+    plus = carriage.solve(preloaded, carriage.Load(lateral=300.0 + h, vertical=1e3, roll=10.0),
+                          groove_compliance=compliance)
+    minus = carriage.solve(preloaded, carriage.Load(lateral=300.0 - h, vertical=1e3, roll=10.0),
+                           groove_compliance=compliance)
+    change = (plus.displacement - minus.displacement) / (2 * h)
+    assert change == pytest.approx(np.linalg.solve(elastic.stiffness, np.eye(5)[0]), rel=1e-4,
+                                   abs=1e-4 * np.abs(change).max())
 
 
 @pytest.mark.parametrize("load", [carriage.Load(lateral=800.0, vertical=2e3, pitch=40.0, yaw=-25.0, roll=15.0),

@@ -1,0 +1,211 @@
+"""The FE rung of the whole carriage: an elastic carriage body (scikit-fem, P2 tetrahedra on a gmsh mesh) on its
+balls as Hertz's springs, against the rigid carriage (docs/carriage.md, "Elastic carriage").
+
+The body (meshes.parts.carriage_body: a block with the rail's slot, its mounting face bolted to the rigid table
+that carries the external load) is linear-elastic, so it enters the carriage's equilibrium through one matrix: the
+compliance ``G`` (2M x 2M) [m/N] of its M grooves (lowmodel.linear_bearing.carriage.groove_points), the move of each
+groove's curvature centre beyond the rigid carriage's under the balls' forces on the grooves, the mounting face held.
+Each contact's force enters the slot's wall over a patch (the wall's vertices within ``patch_radius`` of the
+contact point projected on it), and the groove's move is read from the same patch: the rigid motion
+``a + omega x r`` fitting its vertices' displacements by least squares, carried to the curvature centre (exact for a
+rigid motion of the body); the load is its transpose (the patch's resultant and moment at the centre shared by the
+same fit), so that ``G`` is symmetric:
+
+    G = P K^-1 P^T  -  local,
+
+``P`` the patches' operator (2M x dofs), ``K`` the body's stiffness with the mounting face clamped.  ``local``
+removes what Hertz's law already holds, the patch's own flattening: Boussinesq's mean displacement of a uniform load
+on a disk of radius ``rho`` on a half-space, ``16 (1 - nu^2) / (3 pi^2 rho E)`` per newton normal to the wall
+(Johnson, Contact Mechanics, Sec 3.4), taken alike along the wall (convention: a rigid circular punch's tangential
+compliance is ``(2 - nu) / (2 (1 - nu))``, 1.21 times its normal one, Johnson Sec 3.7; more than the FE's stiffest
+mode would leave ``G`` indefinite), and capped by the smallest eigenvalue of ``P K^-1 P^T`` (the stiffest mode of
+the patches, their flattening alone; on the example carriage it equals Boussinesq's within 0.5 %, docs/carriage.md).
+The carriage is then solved with ``G`` (lowmodel.linear_bearing.carriage.solve's ``groove_compliance``).
+
+``compare`` solves the case's load both ways: the balls' loads of the elastic body against the rigid carriage's,
+per ball, the worst ball and the stiffness.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ballbench.fem.elasticity import load_pair, stiffness_fast
+from ballbench.fem.linsolve import factorize
+from ballbench.fem.mortar import edge_index, surface_dofs
+from ballbench.lowmodel import checks
+from ballbench.lowmodel.linear_bearing import carriage
+from ballbench.meshes.parts.carriage_body import carriage_body
+
+__all__ = ["BodyShape", "body_shape", "default_patch_radius", "patch_operator", "GrooveCompliance",
+           "groove_compliance", "Comparison", "compare", "MIN_PATCH_NODES"]
+
+MIN_PATCH_NODES = 4  # vertices a contact's patch needs on the slot's wall (else the mesh is too coarse for it)
+
+
+@dataclass(frozen=True)
+class BodyShape:
+    """The carriage body's block (meshes.parts.carriage_body) [m]."""
+
+    half_width: float
+    slot_half_width: float
+    bottom: float
+    slot_top: float
+    top: float
+    length: float
+
+
+def body_shape(body: carriage.Carriage, *, wall: float | None = None, plate: float | None = None) -> BodyShape:
+    """The block of ``body``: the slot's walls through the outermost carriage contact points, ``wall`` [m] the
+    flanges' thickness beyond them and ``plate`` [m] the top plate above the slot (both default two ball
+    diameters), the slot's top a ball radius above the highest contact point, the flanges' bottom a ball diameter
+    below the lowest, the length the grooves' (``balls_per_row pitch``)."""
+    points, _, _ = carriage.groove_points(body)
+    diameter = 2.0 * body.guide.ball_radius
+    wall = 2.0 * diameter if wall is None else checks.positive("wall", wall, "m")
+    plate = 2.0 * diameter if plate is None else checks.positive("plate", plate, "m")
+    slot = float(np.max(np.abs(points[:, 0])))
+    slot_top = float(points[:, 1].max()) + 0.5 * diameter
+    return BodyShape(slot + wall, slot, float(points[:, 1].min()) - diameter, slot_top, slot_top + plate,
+                     body.balls_per_row * body.pitch)
+
+
+@dataclass(frozen=True)
+class GrooveCompliance:
+    """The grooves' compliance of an elastic carriage body (:func:`groove_compliance`): ``matrix`` (2M, 2M) [m/N];
+    ``local`` [m/N] the Hertz part removed from every contact and direction, ``boussinesq`` [m/N] its estimate
+    (module docstring); ``patch_nodes`` (M,) vertices per patch; ``dofs`` of the body; ``h_max`` [m]; ``mesh`` the
+    ``.msh`` path; ``time_s``."""
+
+    matrix: np.ndarray
+    local: float
+    boussinesq: float
+    patch_nodes: np.ndarray
+    dofs: int
+    h_max: float
+    mesh: str
+    time_s: float
+
+
+def _skew(r) -> np.ndarray:
+    """The matrix of ``r x``: ``_skew(r) @ w = r x w``."""
+    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+
+
+def patch_operator(pair, basis, points, centres, shape: BodyShape, radius: float):
+    """The patches' operator P (2M x dofs, sparse; ``pair``, ``basis`` the body's mesh and P2 basis, ``points``,
+    ``centres`` (M, 3) the contact points and curvature centres, ``shape`` the body, ``radius`` [m] the patch's)
+    and the vertices per patch (module docstring)."""
+    wall = pair.nodes("slot")
+    xyz = pair.points[wall]
+    rows, cols, vals, counts = [], [], [], []
+    for i, (point, centre) in enumerate(zip(points, centres)):
+        side = math.copysign(1.0, point[0])
+        near = (np.abs(xyz[:, 0] - side * shape.slot_half_width) < 1e-9 * shape.length) & (
+            np.hypot(xyz[:, 1] - point[1], xyz[:, 2] - point[2]) <= radius)
+        nodes = wall[near]
+        counts.append(nodes.size)
+        if nodes.size < MIN_PATCH_NODES:
+            raise ValueError(f"h_max: contact {i}'s patch of radius {radius!r} m holds {nodes.size} vertices of the "
+                             f"slot's wall (at least {MIN_PATCH_NODES}): refine the mesh")
+        at = pair.points[nodes]
+        mean = at.mean(axis=0)
+        fit = np.zeros((3 * nodes.size, 6))  # u_n = a + omega x r_n: [I, -skew(r_n)] per vertex (x, y, z rows)
+        for j, r in enumerate(at - mean):
+            fit[3 * j:3 * j + 3, :3] = np.eye(3)
+            fit[3 * j:3 * j + 3, 3:] = -_skew(r)
+        read = np.hstack([np.eye(3), -_skew(centre - mean)])[:2] @ np.linalg.pinv(fit)  # (2, 3n): x, y at g
+        dofs = np.stack([basis.nodal_dofs[c][nodes] for c in range(3)], axis=1).reshape(-1)  # vertex-major
+        for row in range(2):
+            rows.append(np.full(dofs.size, 2 * i + row))
+            cols.append(dofs)
+            vals.append(read[row])
+    operator = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                             shape=(2 * len(points), basis.N))
+    return operator, np.array(counts)
+
+
+def default_patch_radius(body: carriage.Carriage) -> float:
+    """m, the patches' radius: the ball radius, at most half the pitch and half the distance of a ball's closest
+    carriage contacts (the patches do not overlap)."""
+    points, _, _ = carriage.groove_points(body)
+    spacing = [np.linalg.norm(points[i, :2] - points[j, :2]) for i in range(len(points)) for j in range(len(points))
+               if i != j and points[i, 2] == points[j, 2]]
+    return float(min(body.guide.ball_radius, 0.5 * body.pitch, 0.5 * min(spacing, default=math.inf)))
+
+
+def groove_compliance(body: carriage.Carriage, *, h_max: float, h_wall: float | None = None,
+                      patch_radius: float | None = None,
+                      shape: BodyShape | None = None, youngs_modulus: float | None = None,
+                      poisson_ratio: float | None = None, cache: bool = True) -> GrooveCompliance:
+    """The compliance of the carriage body's grooves (module docstring) on a mesh of size ``h_max`` [m], ``h_wall``
+    on the slot's walls (default a third of the patch radius); the patch ``patch_radius`` [m] (default
+    :func:`default_patch_radius`); the body ``shape``
+    (default :func:`body_shape`); its material (default the guide's)."""
+    start = time.perf_counter()
+    points, centres, _ = carriage.groove_points(body)
+    shape = body_shape(body) if shape is None else shape
+    material = body.guide.material
+    youngs_modulus = material.youngs_modulus if youngs_modulus is None else youngs_modulus
+    poisson_ratio = material.poisson_ratio if poisson_ratio is None else poisson_ratio
+    radius = default_patch_radius(body) if patch_radius is None else checks.positive("patch_radius", patch_radius, "m")
+    path = carriage_body(half_width=shape.half_width, slot_half_width=shape.slot_half_width, bottom=shape.bottom,
+                         slot_top=shape.slot_top, top=shape.top, length=shape.length,
+                         h_max=checks.positive("h_max", h_max, "m"),
+                         h_wall=radius / 3.0 if h_wall is None else h_wall, cache=cache)
+    pair = load_pair(path, {"carriage": 0})
+    stiffness, basis = stiffness_fast(pair, (youngs_modulus, poisson_ratio), order=2)
+    edges = edge_index(basis.mesh)
+    fixed = np.unique(np.concatenate([surface_dofs(basis, pair, "mount", c, 2, edges) for c in range(3)]))
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    operator, counts = patch_operator(pair, basis, points, centres, shape, radius)
+    solve = factorize(stiffness[free][:, free])
+    response = solve(operator[:, free].T.toarray())
+    if getattr(solve, "free", None):
+        solve.free()
+    matrix = operator[:, free] @ response
+    matrix = 0.5 * (matrix + matrix.T)
+    boussinesq = 16.0 * (1.0 - poisson_ratio ** 2) / (3.0 * math.pi ** 2 * radius * youngs_modulus)
+    stiffest = float(np.linalg.eigvalsh(matrix).min())  # the patches' own flattening (their stiffest mode)
+    if stiffest <= 0.0:
+        raise ValueError(f"h_max {h_max!r} m: the grooves' FE compliance is not positive (smallest eigenvalue "
+                         f"{stiffest!r} m/N): refine the mesh")
+    local = min(boussinesq, stiffest)
+    matrix = matrix - local * np.eye(len(matrix))
+    return GrooveCompliance(matrix, local, boussinesq, counts, int(basis.N), float(h_max), str(path),
+                            time.perf_counter() - start)
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """The elastic carriage against the rigid one at a load (:func:`compare`): the two ``CarriageState`` s, the
+    largest ball load of each ball ``rigid_load`` / ``elastic_load`` (rows, balls) [N], ``error`` (rows, balls) the
+    rigid's against the elastic's over the largest elastic ball load, the ``worst`` (row, ball) and the relative
+    change of the stiffness's diagonal ``stiffness_change`` (5,) (rigid over elastic less 1), the
+    ``compliance``."""
+
+    rigid: carriage.CarriageState
+    elastic: carriage.CarriageState
+    rigid_load: np.ndarray
+    elastic_load: np.ndarray
+    error: np.ndarray
+    worst: tuple
+    stiffness_change: np.ndarray
+    compliance: GrooveCompliance
+
+
+def compare(body: carriage.Carriage, load: carriage.Load, *, h_max: float, **options) -> Comparison:
+    """The case's carriage under ``load`` rigid and elastic (:func:`groove_compliance` on ``h_max``, ``options``)."""
+    compliance = groove_compliance(body, h_max=h_max, **options)
+    rigid = carriage.solve(body, load)
+    elastic = carriage.solve(body, load, groove_compliance=compliance.matrix)
+    rigid_load = rigid.normal_force.max(axis=2)
+    elastic_load = elastic.normal_force.max(axis=2)
+    error = (rigid_load - elastic_load) / float(elastic_load.max())
+    worst = tuple(int(i) for i in np.unravel_index(int(np.argmax(np.abs(error))), error.shape))
+    change = np.diag(rigid.stiffness) / np.diag(elastic.stiffness) - 1.0
+    return Comparison(rigid, elastic, rigid_load, elastic_load, error, worst, change, compliance)
