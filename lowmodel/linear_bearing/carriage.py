@@ -40,7 +40,7 @@ state.normal_force, state.contact_angle, state.stiffness, state.balance
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -53,6 +53,9 @@ __all__ = ["Row", "Carriage", "Load", "CarriageState", "two_point_row", "four_ro
            "ball_positions", "relief", "groove_points", "BALANCE_TOLERANCE", "LOAD_NAMES", "DISPLACEMENT_NAMES"]
 
 BALANCE_TOLERANCE = 1e-10  # the load balance of a solved carriage, relative to its largest force (and moment / L)
+# a carriage without preload where Newton from the linear start stalls: solved with these oversizes (times a
+# contact's approach under the mean ball load) in turn, each from the last, then without
+PRELOAD_STEPS = np.array([2.0, 0.5, 0.125, 0.03125, 0.0078125])
 LOAD_NAMES = ("F_x", "F_y", "M_x", "M_y", "M_z")  # [N, N, N m, N m, N m] on the carriage at the origin
 DISPLACEMENT_NAMES = ("u_x", "u_y", "phi_x", "phi_y", "phi_z")  # [m, m, rad, rad, rad] of the carriage
 
@@ -287,6 +290,7 @@ class _Geometry:
         relief_z = relief(body, z)  # (k,)
         self.offset = (0.5 * body.oversize - self.top[:, None, :] * relief_z[None, :, None]) * np.ones(shape)
         self.scale = max(body.half_length, radius)  # m: moments over it compare with forces
+        self.hold_loose = True  # loose balls held at their pairs' mid-points (solve lets go where it stalls)
 
     def loose(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(loose (r, k) bool, centred (r, k, 2) m)``: the balls whose every pair of opposite contacts is slack at
@@ -318,7 +322,7 @@ class _Geometry:
         approach = length - self.gap + self.offset
         positive = np.clip(approach, 0.0, None)
         loose, centred = self.loose(d)
-        if slope_floor > 0.0:  # the linear start: every contact a spring
+        if slope_floor > 0.0 or not self.hold_loose:  # the linear start: every contact a spring; or no holding
             loose[:] = False
         active = self.mask[:, None, :] * ~loose[..., None]
         load = (positive / self.constant) ** 1.5 * active
@@ -391,14 +395,39 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
     q, v = np.zeros(5), np.zeros((len(body.rows), len(geometry.z), 2))
     if not np.any(external) and body.oversize == 0.0:  # nothing pushes the balls: the carriage sits unloaded
         return _state(geometry, q, v, external, 0, measure)
-    if body.oversize == 0.0:  # at rest the tangent stiffness is zero: start from linear springs on every contact
-        q, v = _linear_start(geometry, external)
-    iterations = 0
-    carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
-    norm = measure(carriage, balls, loads)
     if groove_compliance is not None:
         rigid = solve(body, load, travel=travel, tolerance=tolerance, max_iterations=max_iterations)
         return _solve_elastic(geometry, rigid, external, groove_compliance, tolerance, max_iterations, measure)
+    if body.oversize > 0.0:
+        q, v, iterations = _newton(geometry, q, v, external, tolerance, max_iterations, measure)
+        return _state(geometry, q, v, external, iterations, measure)
+    try:  # at rest the tangent stiffness is zero: start from linear springs on every contact
+        q, v = _linear_start(geometry, external)
+        q, v, iterations = _newton(geometry, q, v, external, tolerance, max_iterations, measure)
+    except ConvergenceError:  # contacts closing and opening on the way: a preload let go in steps
+        iterations = 0
+        for oversize in PRELOAD_STEPS * _approach(geometry, external):
+            stage = _Geometry(replace(body, oversize=float(oversize)), travel)
+            q, v, steps = _newton(stage, q if iterations else np.zeros(5), v, external, tolerance, max_iterations,
+                                  measure)
+            iterations += steps
+        q, v, steps = _newton(geometry, q, v, external, tolerance, max_iterations, measure)
+        iterations += steps
+    return _state(geometry, q, v, external, iterations, measure)
+
+
+def _approach(geometry: _Geometry, external: np.ndarray) -> float:
+    """m, a contact's approach under the mean load the external force puts on a ball (Hertz)."""
+    n_balls = geometry.normal.shape[0] * len(geometry.z)
+    mean = max(float(np.max(np.abs(external[:2]))), float(np.max(np.abs(external[2:]))) / geometry.scale) / n_balls
+    return geometry.constant * max(mean, 1e-12) ** (2.0 / 3.0)
+
+
+def _newton(geometry: _Geometry, q, v, external, tolerance: float, max_iterations: int, measure):
+    """Newton from ``(q, v)`` with the balls condensed and a backtracking line search; ``(q, v, iterations)``."""
+    iterations = 0
+    carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
+    norm = measure(carriage, balls, loads)
     while norm > tolerance:
         if iterations >= max_iterations:
             raise ConvergenceError("carriage.solve: the load balance missed (the balls' forces and moments plus the "
@@ -417,11 +446,16 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
                 break
             factor *= 0.5
         iterations += 1
+        if not accepted and geometry.hold_loose:  # a ball at the edge of loose flips: let go of the holding
+            geometry.hold_loose = False
+            carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
+            norm = measure(carriage, balls, loads)
+            continue
         if not accepted:
             raise ConvergenceError("carriage.solve: no step reduces the load balance's residual (a load the rows "
                                    "cannot carry, e.g. lift-off without rows against it)", residual=norm,
                                    iterations=iterations, tolerance=tolerance, reason="no descent step")
-    return _state(geometry, q, v, external, iterations, measure)
+    return q, v, iterations
 
 
 def _condensed(blocks, geometry: _Geometry):
@@ -462,9 +496,7 @@ def _step(blocks, carriage, balls, geometry: _Geometry):
 def _linear_start(geometry: _Geometry, external: np.ndarray):
     """A start for a carriage without preload (its tangent stiffness is zero at rest): every contact a linear spring
     of the Hertz stiffness at the mean load the external force puts on a ball, along its unloaded normal."""
-    n_balls = geometry.normal.shape[0] * len(geometry.z)
-    mean = max(float(np.max(np.abs(external[:2]))), float(np.max(np.abs(external[2:]))) / geometry.scale) / n_balls
-    delta = geometry.constant * max(mean, 1e-12) ** (2.0 / 3.0)
+    delta = _approach(geometry, external)
     spring = 1.5 * math.sqrt(delta) / geometry.constant ** 1.5
     q, v = np.zeros(5), np.zeros((geometry.normal.shape[0], len(geometry.z), 2))
     _, _, blocks, _, _, _ = geometry.system(q, v, external, slope_floor=spring)
@@ -510,10 +542,8 @@ def _solve_elastic(geometry: _Geometry, rigid: CarriageState, external, complian
         carriage, balls, blocks, loads, e, _ = geometry.system(q, v, external, elastic=elastic)
         forces = (loads[..., None] * e)[r_, k_, c_].reshape(-1)
         residual = np.concatenate([carriage, balls.reshape(-1), x[5 + nv:] - compliance @ forces])
-        return residual, blocks, loads, max(measure(carriage, balls, loads),
-                                            float(np.max(np.abs(residual[5 + nv:]), initial=0.0))
-                                            / max(float(np.max(np.abs(compliance))) * max(float(loads.max()), 1e-300),
-                                                  1e-300))
+        scale = max(float(np.max(np.abs(compliance))) * float(loads.max()), 1e-300)  # m: the grooves' largest move
+        return residual, blocks, loads, max(measure(carriage, balls, loads), np.max(np.abs(residual[5 + nv:])) / scale)
 
     def jacobian(blocks):
         a_block, b_block, c_block, d_block, loose, _, local = blocks
@@ -544,8 +574,7 @@ def _solve_elastic(geometry: _Geometry, rigid: CarriageState, external, complian
         return jac
 
     x = np.concatenate([rigid.displacement, rigid.ball_shift.reshape(-1), np.zeros(2 * m)])
-    residual, blocks, _, norm = evaluate(x)
-    iterations = 0
+    (residual, blocks, _, norm), iterations = evaluate(x), 0
     while norm > tolerance:
         if iterations >= max_iterations:
             raise ConvergenceError("carriage.solve (elastic grooves): the load balance and the grooves' compliance "

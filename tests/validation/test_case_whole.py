@@ -62,5 +62,13 @@ def test_the_example_runs_its_whole_carriage(tmp_path, monkeypatch):
     worst = judged["ball load of the worst ball against the elastic carriage"]
     assert worst.passed and abs(worst.value - worst.reference) > 0.01 * worst.reference  # elastic: not the rigid
     assert any(title.startswith("Rigid against elastic carriage") for title, _, _ in result.tables)
+    # ballbench show draws the pictures again from the saved tables
+    folder = next(tmp_path.rglob("rigid_elastic.png")).parent
+    (folder / "rigid_elastic.png").unlink()
+    drawn = scene.show(folder, "quick", False)
+    assert {p.name for p in drawn} == {"ball_loads.png", "load_deflection.png", "friction_over_travel.png",
+                                       "rigid_elastic.png"} and (folder / "rigid_elastic.png").exists()
+    with pytest.raises(FileNotFoundError):
+        scene.show(tmp_path / "nothing", "quick", False)
     assert "g-whole" in ladder.scene_names(case, "g")
     assert "g-whole" not in ladder.scene_names(case_file.loads(case_file.template("linear-guide")), "g")

@@ -61,3 +61,5 @@ def test_a_double_nut_runs_its_preload_and_lift_off(tmp_path):
     judged = {c.quantity: c for c in result.outputs}
     assert judged["lift-off load of the double nut, Hertz's law"].value == pytest.approx(2 ** 1.5 * 400.0, rel=1e-9)
     assert any("Lift-off of half B" in note and "no model yet" in note for note in result.notes)
+    folder = next(tmp_path.rglob("halves.csv")).parent
+    assert {p.name for p in scene.show(folder, "quick", False)} == {"preload.png"}

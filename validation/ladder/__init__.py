@@ -68,6 +68,7 @@ from ballbench.validation.ladder.rungs import rungs_up_to
 from ballbench.validation.ladder.stick_slip import stick_slip_scene
 from ballbench.validation.ladder.whole import whole_scene
 from ballbench.validation.ladder.whole_nut import nut_scene
+from ballbench.validation.ladder.whole_show import show_whole
 from ballbench.validation.scene import NotApplicable, Scene
 
 __all__ = ["case_scenes", "scene_names", "show_case", "slug", "limits"]
@@ -137,14 +138,14 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole nut (ball loads along it, stiffness, friction "
                             "torque over rotation; a double nut's preload and lift-off)",
                             functools.partial(nut_scene, case=case), tags=("case",), kind="low-order", cost_s=30.0,
-                            budget_s=WHOLE_BUDGET_S, case=case))
+                            budget_s=WHOLE_BUDGET_S, case=case, show=functools.partial(show_whole, case)))
     if "low-order" in rungs and getattr(case, "carriage", None) is not None:
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage under its external load (ball loads "
                             "per row, displacement, stiffness, load-deflection, friction over travel; the FE rung of "
                             "an elastic carriage)",
                             functools.partial(whole_scene, case=case, rungs=rungs), tags=("case",),
                             kind="FE" if fe else "low-order", cost_s=90.0 if fe else 60.0, budget_s=WHOLE_BUDGET_S,
-                            case=case))
+                            case=case, show=functools.partial(show_whole, case)))
     # ladder.rungs.distinct_contacts: the screw and the nut side; the FE on both except at the quick level
     n_contacts = 2 if kind == "ball-screw" else 1
     scenes.append(Scene(f"{stem}-contact", f"{case.name}: each distinct contact at its largest load up the ladder ("

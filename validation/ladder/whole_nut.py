@@ -104,7 +104,8 @@ def _double(run, case, nuts, figures) -> None:
                 fmt(s.stiffness / 1e6), "yes" if s.lifted else "no") for s in states])
     run.write_csv("halves.csv", [dict(axial_load_N=float(s.axial_load), half_a_N=float(s.half_loads[0]),
                                       half_b_N=float(s.half_loads[1]), shift_m=float(s.shift),
-                                      stiffness_N_per_m=float(s.stiffness)) for s in states])
+                                      stiffness_N_per_m=float(s.stiffness), lift_off_N=float(lift))
+                                 for s in states])
     run.save_figure(figures.preload_diagram(loads, [s.half_loads for s in states], lift), "preload.png")
     run.note(f"Lift-off of half B at {fmt(lift)} N with the exact two-point balls, "
              f"{fmt((lift / (2 ** 1.5 * body.preload) - 1) * 100)} % from Hertz's 2^(3/2) F_pr = "

@@ -240,3 +240,33 @@ def test_a_gothic_arch_row_balances_each_ball_and_mirrors_under_a_vertical_load(
     # each ball's four contact forces balance (the ball's statics), from the state's outputs
     resultant = np.einsum("rkc,rkci->rki", state.normal_force, state.line)
     assert np.max(np.abs(resultant)) < 1e-9 * np.max(state.normal_force)
+
+
+def test_a_catalogue_of_carriages_solves_at_any_travel():
+    """Random carriages over the space of real guides (1/8- to 1/4-inch balls, conformity 0.515-0.58, 40-50 deg,
+    gothic or four-row, 6-25 balls per row, no preload or 0.5-6 um, end relief up to 8 um deep, all five load
+    components up to about 2 kN and its moments) at random travels: every one balances (1e-10).  Before the holding
+    of loose balls was let go where it stalls and a preload let go in steps where a carriage without one stalls,
+    30 of 1200 such solves stopped (balls at the edge of loose; contacts closing and opening from the linear
+    start)."""
+    rng = np.random.default_rng(1)
+    for _ in range(60):
+        radius = float(rng.choice([1.5875e-3, 2.381e-3, 3.175e-3]))
+        guide = LinearGuide(ball_radius=radius, conformity=rng.uniform(0.515, 0.58),
+                            nominal_angle=math.radians(rng.uniform(40, 50)), material=Material(210e9, 0.3),
+                            friction_coefficient=0.1, groove_velocity=0.1)
+        if rng.random() < 0.5:
+            rows = carriage.gothic_rows(half_width=3 * radius, height=2 * radius,
+                                        contact_angles=guide.nominal_angle + np.radians(rng.uniform(-2, 2, 4)))
+        else:
+            rows = carriage.four_rows(half_width=4 * radius, upper=4 * radius, lower=radius,
+                                      contact_angle=guide.nominal_angle)
+        balls, pitch = int(rng.integers(6, 26)), 2 * radius * rng.uniform(1.02, 1.2)
+        body = carriage.Carriage(guide, rows, balls, pitch, oversize=float(rng.choice([0.0, rng.uniform(5e-7, 6e-6)])),
+                                 relief_length=rng.uniform(0, 0.3) * balls * pitch / 2,
+                                 relief_depth=rng.uniform(0, 8e-6))
+        scale = 2e3 * (radius / 2.381e-3) ** 2
+        load = carriage.Load(*(rng.normal(size=5) * rng.uniform(0.05, 1) * np.array(
+            [scale, scale, scale * balls * pitch / 4, scale * balls * pitch / 4, scale * radius])))
+        for travel in rng.uniform(0, pitch, 2):
+            assert carriage.solve(body, load, travel=float(travel)).balance < carriage.BALANCE_TOLERANCE
