@@ -89,6 +89,11 @@ class TravelFriction:
         return float(np.mean(self.force))
 
     @property
+    def parted(self) -> np.ndarray:
+        """(steps,) bool: a chain without a state parted at the step (a ball solved alone, module docstring)."""
+        return np.array([any(law.endswith(", alone") for row in f.rows for law in row.law) for f in self.frictions])
+
+    @property
     def ripple(self) -> float:
         """N, the drive force's peak-to-peak over the travel (with B2B)."""
         return float(np.ptp(self.force))

@@ -127,21 +127,25 @@ def _friction_over_travel(run, body, load, figures) -> None:
     steps = TRAVEL_STEPS.get(run.fidelity, TRAVEL_STEPS["default"])
     result, time_s = run.time(carriage_friction.friction_over_travel, body, load, steps=steps,
                               loop=lambda travels: run.progress(travels, desc=f"{run.scene.name} travel"))
-    rows = [(fmt(t * 1e3), fmt(f), fmt(a), "yes" if c else "no (lower bound)", fmt(d[1] * 1e6))
-            for t, f, a, c, d in zip(result.travel, result.force, result.force_alone, result.complete,
-                                     result.displacement)]
+    rows = [(fmt(t * 1e3), fmt(f), fmt(a), "yes" if c else "no (lower bound)", "yes" if p else "no", fmt(d[1] * 1e6))
+            for t, f, a, c, p, d in zip(result.travel, result.force, result.force_alone, result.complete,
+                                        result.parted, result.displacement)]
     run.table(f"Friction over one ball pitch of travel ({steps} steps, {time_s:.1f} s): the balls advance, leave "
               "the groove at one end and enter at the other", ("travel [mm]", "drive force with B2B [N]",
                                                              "every ball alone [N]", "every ball modelled",
-                                                             "u_y [um]"), rows)
+                                                             "a chain parted", "u_y [um]"), rows)
     run.write_csv("friction_over_travel.csv", [dict(travel_m=float(t), force_N=float(f), force_alone_N=float(a),
-                                                    complete=bool(c), u_y_m=float(d[1]))
-                                               for t, f, a, c, d in zip(result.travel, result.force,
-                                                                        result.force_alone, result.complete,
-                                                                        result.displacement)])
+                                                    complete=bool(c), parted=bool(p), u_y_m=float(d[1]))
+                                               for t, f, a, c, p, d in zip(result.travel, result.force,
+                                                                           result.force_alone, result.complete,
+                                                                           result.parted, result.displacement)])
     run.save_figure(figures.friction_over_travel(result.travel, result.force, result.force_alone, result.complete,
-                                                 result.displacement[:, 1]), "friction_over_travel.png")
+                                                 result.displacement[:, 1], result.parted),
+                    "friction_over_travel.png")
     bound = "" if all(result.complete) else " (steps with balls without a model: lower bounds)"
+    if any(result.parted):
+        bound += (f"; at {int(np.sum(result.parted))} of {steps} steps a chain without a state was parted at its "
+                  "weakest ball")
     run.note(f"Over one pitch of travel the drive force is {fmt(result.mean)} N on average with B2B contact, ripple "
              f"{fmt(result.ripple)} N peak to peak{bound}; every ball alone {fmt(float(np.mean(result.force_alone)))}"
              f" N, ripple {fmt(float(np.ptp(result.force_alone)))} N; the carriage's u_y ripples by "

@@ -44,7 +44,8 @@ def _carriage(folder: Path, figures) -> list:
     if (folder / "friction_over_travel.csv").exists():
         table = _read(folder / "friction_over_travel.csv")
         drawn.append((figures.friction_over_travel(table["travel_m"], table["force_N"], table["force_alone_N"],
-                                                   table["complete"].astype(bool), table["u_y_m"]),
+                                                   table["complete"].astype(bool), table["u_y_m"],
+                                                   table["parted"].astype(bool) if "parted" in table else None),
                       "friction_over_travel.png"))
     if (folder / "rigid_elastic.csv").exists():
         table = _read(folder / "rigid_elastic.csv")

@@ -101,3 +101,29 @@ def test_a_chain_without_a_state_is_parted_at_its_weakest_ball_and_says_so():
         assert all(ratio <= forces[j].min() / forces[j].max() for j in chained if abs(j - k) == 1)
         assert all(row.b2b_forces[j] == 0.0 for j in (k - 1, k) if 0 <= j < len(row.b2b_forces))
     assert result.force > 0.0
+
+
+def test_one_row_of_two_balls_at_the_modules_loads_gives_the_two_ball_modules_friction():
+    """The limit of the whole carriage: one gothic row of the example case's two balls, its state holding the
+    module's contact loads and Hertz ellipses (lin2017 eq 36 at the case's N_y, N_x and angles: b2b.contacts), gives
+    the two-ball module's friction (b2b.solve of the module's contacts) and B2B force (1e-9): the row's contacts are
+    lin2019's, contact for contact."""
+    from ballbench.lowmodel.linear_bearing import b2b
+    from ballbench.validation.cases import case_file
+    from tests import paths
+
+    case = case_file.load(paths.ROOT / "examples" / "compact_linear_guide.toml")
+    module = b2b.contacts(case)
+    module_state = b2b.solve(module)
+    right = carriage.gothic_rows(half_width=5.5e-3, height=3e-3, contact_angles=case.contact_angles)[0]
+    body = carriage.Carriage(case.guide, (right,), balls_per_row=2, pitch=3.3e-3)
+    zero = np.zeros((1, 2, 4))
+    a = module.semi_major[None]
+    state = carriage.CarriageState(np.zeros(5), carriage.ball_positions(body), np.zeros((1, 2, 2)),
+                                   module.normal_forces[None], np.zeros((1, 2, 4, 2)), zero, a,
+                                   a * module.b_over_a[None], zero, np.zeros((5, 5)), 0.0, 0)
+    result = carriage_friction.friction(body, state)
+    speed = abs(case.guide.groove_velocity)
+    assert result.complete and result.rows[0].law == ("full sliding",) * 2
+    assert result.force == pytest.approx(module_state.input_power / speed, rel=1e-9)
+    assert result.rows[0].b2b_forces == pytest.approx(module_state.b2b_force, rel=1e-9)
