@@ -44,6 +44,8 @@ SUBSET = (
     "benchmarks/test_bench_screw.py::test_two_ball_b2b_solve",
     "benchmarks/test_bench_screw.py::test_whole_screw_simulation",
     "benchmarks/test_bench_screw.py::test_ring_pieces",
+    "benchmarks/test_bench_carriage.py::test_four_row_carriage_of_100_balls",
+    "benchmarks/test_bench_carriage.py::test_friction_over_one_pitch_of_a_gothic_carriage",
     "benchmarks/test_bench_rolling.py::test_bench_exact_half_space",
     "benchmarks/test_bench_rolling.py::test_bench_fastsim_throughput",
     "benchmarks/test_bench_hertz.py::test_hertz_contacts_per_second",

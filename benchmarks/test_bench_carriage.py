@@ -1,5 +1,6 @@
 """Speed of the rigid carriage's load distribution (lowmodel.linear_bearing.carriage; docs/carriage.md): a four-row
-carriage of 100 balls under a combined load, preloaded, with end relief.  Target (the whole-bearing issue): <= 5 ms.
+carriage of 100 balls under a combined load, preloaded, with end relief (target <= 5 ms), and the rows' friction over
+one ball pitch (target <= 0.5 s); figures for the speed table (benchmarks/speed_table.py).
 
 Run: python -m pytest benchmarks/test_bench_carriage.py -s
 """
@@ -9,10 +10,11 @@ import pytest
 
 from ballbench.lowmodel.bearing import LinearGuide, Material
 from ballbench.lowmodel.linear_bearing import carriage
+from speed_table import figure
 
 
 @pytest.mark.parametrize("oversize", [0.0, 2e-6])
-def test_four_row_carriage_of_100_balls(benchmark, oversize):
+def test_four_row_carriage_of_100_balls(benchmark, oversize, record_property):
     guide = LinearGuide(ball_radius=2.381e-3, conformity=0.52, nominal_angle=math.pi / 4,
                         material=Material(210e9, 0.3), friction_coefficient=0.1, groove_velocity=0.1)
     rows = carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=math.radians(45))
@@ -24,9 +26,12 @@ def test_four_row_carriage_of_100_balls(benchmark, oversize):
     benchmark.extra_info.update(median_s=median, iterations=state.iterations)
     print(f"\nfour-row carriage, 100 balls, oversize {oversize * 1e6:g} um: {median * 1e3:.2f} ms median, "
           f"{state.iterations} Newton steps, balance {state.balance:.1e}")
+    figure(record_property, f"carriage.rigid.{'preloaded' if oversize else 'bare'}",
+           f"rigid carriage, 4 rows of 25 balls, combined load, {'2 um oversize' if oversize else 'no preload'} "
+           f"({state.iterations} Newton steps), median", median * 1e3, "ms", target="<= 5", clock="wall")
 
 
-def test_friction_over_one_pitch_of_a_gothic_carriage(benchmark):
+def test_friction_over_one_pitch_of_a_gothic_carriage(benchmark, record_property):
     """The rows' friction over one ball pitch (20 steps; carriage_friction.friction_over_travel with B2B contact
     only): a two-row gothic carriage of 13 balls per row, 2 um oversize, 600 N vertical, every ball by full sliding.
     Target (the whole-bearing issue): <= 0.5 s."""
@@ -42,3 +47,5 @@ def test_friction_over_one_pitch_of_a_gothic_carriage(benchmark):
     benchmark.extra_info.update(median_s=median)
     print(f"\ngothic carriage, 2 x 13 balls, friction over one pitch in 20 steps: {median:.3f} s median, mean force "
           f"{result.mean:.4g} N, ripple {result.ripple:.3g} N, every step complete: {bool(result.complete.all())}")
+    figure(record_property, "carriage.travel", "carriage friction over one pitch, 2 gothic rows of 13 balls, 20 "
+           "steps, full sliding, median", median, "s", target="<= 0.5", clock="wall")
