@@ -6,11 +6,13 @@ evenly over the turns (:func:`positions`; as lin2019 Sec 3.4's track).  Two arra
 
 * ``"single"``: one nut preloaded by the ball oversize of the module (lin2019 eq 53; four-point balls).  The axial
   load spreads over the balls by :func:`lowmodel.screw.load_distribution.distribute` (each ball's shift ``U(q)``
-  from the single-ball model with friction, screw and nut as bars); the nut's shift at its loaded end
+  from the frictionless statics of a nominal ball, below and past the preload loss, or lin2019's single-ball model
+  with friction, :func:`ball_table`; screw and nut as bars); the nut's shift at its loaded end
   ``|u_0|``, ``u_0 = U(q_1) + F_a z_1 / (E A_s)`` (the first ball at ``z_1``, the screw carrying ``F_a`` up to it;
   the table's sign).  The
   friction torque over rotation is lin2019 Sec 3.4's whole-screw simulation over the nut's turns
-  (:func:`lowmodel.screw.whole_screw.simulate`).
+  (:func:`lowmodel.screw.whole_screw.simulate`: its own distribution by lin2019's ball with friction; below the
+  preload loss).
 * ``"double"``: two halves of ``balls`` balls each, pressed apart by a spacer with the preload force ``F_pr``
   (``preload``); every ball is a two-point ball without oversize (half A on the diagonal SL-NR, half B on SR-NL),
   its axial law ``q = Q(u)`` the frictionless statics of one nominal ball (:func:`lowmodel.screw.preload.
@@ -41,12 +43,17 @@ from ballbench.lowmodel.screw import contacts as screw_contacts
 from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import preload, whole_screw
 
-__all__ = ["Nut", "NutLoads", "DoubleNutState", "ARRANGEMENTS", "LAWS", "capacity", "positions", "distribution",
-           "ball_law", "double_nut", "lift_off", "friction_over_rotation", "BALANCE_TOLERANCE"]
+__all__ = ["Nut", "NutLoads", "DoubleNutState", "ARRANGEMENTS", "LAWS", "DISTRIBUTION_LAWS", "capacity", "positions",
+           "ball_table", "distribution", "ball_law", "double_nut", "lift_off", "friction_over_rotation",
+           "BALANCE_TOLERANCE", "BALANCE_TOLERANCE_SINGLE"]
 
 ARRANGEMENTS = ("single", "double")
 LAWS = ("exact", "hertz")  # a double nut's two-point ball: the exact frictionless statics, or Hertz on the diagonal
 BALANCE_TOLERANCE = 1e-10  # the axial balance of a double nut's halves, relative to the load
+# a single nut's balls against its load, relative: load_distribution.distribute iterates its loads to 1e-10 of the
+# load and finds the nut's shift to Brent's tolerance, which leaves the sum within a few 1e-10 of it
+BALANCE_TOLERANCE_SINGLE = 1e-8
+DISTRIBUTION_LAWS = ("frictionless", "lin2019")  # a single nut's ball law in the load distribution
 
 
 def capacity(module: screw_contacts.ScrewModule, turns: int) -> int:
@@ -102,39 +109,58 @@ def positions(nut: Nut) -> np.ndarray:
 class NutLoads:
     """A single nut under an axial load (:func:`distribution`): ``axial_load`` [N]; ``positions`` (n,) rad;
     ``z`` (n,) m along the nut; ``ball_loads`` (n,) N; ``shift`` [m] the nut's axial shift against the screw at its
-    loaded end (magnitude, from the preloaded state)."""
+    loaded end (magnitude, from the preloaded state); ``balance`` the loads' sum against the axial load, relative."""
 
     axial_load: float
     positions: np.ndarray
     z: np.ndarray
     ball_loads: np.ndarray
     shift: float
+    balance: float = 0.0
 
     def __post_init__(self):
         checks.freeze_arrays(self, "positions", "z", "ball_loads")
 
 
-def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | None = None) -> NutLoads:
+def ball_table(module: screw_contacts.ScrewModule, max_load: float, law: str = "frictionless",
+               points: int = 25) -> ld.AxialStiffness:
+    """The shift ``U(q)`` of one nominal ball of ``module`` (its oversize) against its axial load, tabulated up to
+    ``max_load`` [N]: ``law`` one of :data:`DISTRIBUTION_LAWS`: ``"frictionless"`` the frictionless statics
+    (lowmodel.screw.preload.frictionless_statics: exact flank arcs, below and past the preload loss, ``points``
+    loads spaced as ``q ~ u^(3/2)``), ``"lin2019"`` the single-ball model with friction (as the whole screw,
+    lowmodel.screw.load_distribution.axial_stiffness; below the preload loss only)."""
+    checks.choice("law", law, DISTRIBUTION_LAWS)
+    max_load = checks.positive("max_load", max_load, "N")
+    if law == "lin2019":
+        return ld.axial_stiffness(module, max_load)
+    loads = max_load * np.linspace(0.0, 1.0, checks.count("points", points, 4)) ** 1.5
+    contacts = screw_contacts.ball_contacts(module, 0.0)
+    return ld.AxialStiffness(loads, np.array([preload.frictionless_statics(contacts, float(q)).nut_shift
+                                              for q in loads]))
+
+
+def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | None = None, *,
+                 law: str = "frictionless") -> NutLoads:
     """The axial load of each ball of a single nut under ``axial_load`` [N] on the screw (module docstring);
-    ``stiffness`` the ball's ``U(q)`` table (default lowmodel.screw.load_distribution.axial_stiffness up to three
-    times the mean ball load, as the whole-screw simulation).  The loads sum to the axial load (checked, 1e-10)."""
+    ``stiffness`` the ball's ``U(q)`` table (default :func:`ball_table` of ``law`` up to three times the mean ball
+    load).  The loads sum to the axial load (checked, :data:`BALANCE_TOLERANCE_SINGLE`)."""
     if nut.arrangement != "single":
         raise ValueError("distribution: a single nut's (arrangement 'single'); a double nut: double_nut")
     total = checks.non_negative("axial_load", axial_load, "N")
     module, psi = nut.module, positions(nut)
     if stiffness is None:
-        stiffness = ld.axial_stiffness(module, 3.0 * max(total, 1.0) / nut.balls)
+        stiffness = ball_table(module, 3.0 * max(total, 1.0) / nut.balls, law)
     loads = ld.distribute(psi, total, stiffness, nut.sections, module.lead, module.youngs_modulus)
-    if total > 0.0 and not abs(loads.sum() - total) <= 1e-10 * total:
-        raise ConvergenceError("nut.distribution: the balls' loads do not sum to the axial load",
-                               residual=abs(loads.sum() - total) / total, iterations=1, tolerance=1e-10,
-                               reason="axial load balance")
+    balance = abs(float(loads.sum()) - total) / total if total > 0.0 else 0.0
+    if not balance <= BALANCE_TOLERANCE_SINGLE:
+        raise ConvergenceError("nut.distribution: the balls' loads do not sum to the axial load", residual=balance,
+                               iterations=1, tolerance=BALANCE_TOLERANCE_SINGLE, reason="axial load balance")
     z = module.lead * psi / (2.0 * math.pi)
     first = int(np.argmin(z))
     sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0  # the table's direction (distribute's)
     shift = float(stiffness.shift(float(loads[first]))) + sign * total * z[first] / (module.youngs_modulus
                                                                                      * nut.sections.screw_area)
-    return NutLoads(total, psi, z, loads, abs(shift))
+    return NutLoads(total, psi, z, loads, abs(shift), balance)
 
 
 @dataclass(frozen=True)

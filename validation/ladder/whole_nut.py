@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.validation.ladder.common import fmt
 
 __all__ = ["nut_scene", "LOAD_FACTORS", "ROTATION_STEPS", "POWER_TOLERANCE"]
@@ -31,7 +32,7 @@ def _single(run, case, nuts, figures) -> None:
     model = "lowmodel.screw.nut"
     state, time_s = run.time(nuts.distribution, body, load)
     run.check(model=model, family="low-order numerical", quantity="axial balance of the nut's balls", unit="1",
-              value=abs(float(state.ball_loads.sum()) - load) / load, reference=0.0, scale=1.0, tolerance=1e-10,
+              value=state.balance, reference=0.0, scale=1.0, tolerance=nuts.BALANCE_TOLERANCE_SINGLE,
               time_s=time_s, source="the balls' axial loads against the nut's axial load (docs/nut.md)",
               why="the value is itself a relative force residual: zero judged on the scale 1")
     q = state.ball_loads
@@ -54,8 +55,17 @@ def _single(run, case, nuts, figures) -> None:
     run.save_figure(figures.load_shift(loads, shifts, "single nut, preloaded by the ball oversize"), "stiffness.png")
     amplitude, cycles = case.nut_deviation
     steps = ROTATION_STEPS.get(run.fidelity, ROTATION_STEPS["default"])
-    history, time_s = run.time(nuts.friction_over_rotation, body, load, steps=steps, amplitude=amplitude,
-                               cycles=cycles, progress=lambda it: run.progress(it, desc=f"{run.scene.name} rotation"))
+    try:
+        history, time_s = run.time(nuts.friction_over_rotation, body, load, steps=steps, amplitude=amplitude,
+                                   cycles=cycles,
+                                   progress=lambda it: run.progress(it, desc=f"{run.scene.name} rotation"))
+    except (ConvergenceError, ValueError) as error:  # lin2019's four-point balls: no state past the preload loss
+        run.note(f"The whole single nut (lowmodel.screw.nut, docs/nut.md): {body.balls} balls in {body.turns} turns, "
+                 f"{fmt(load)} N; the loaded end's ball carries {fmt(float(q[0] / q.mean()))} times the mean.  No "
+                 f"friction torque over rotation: lin2019's whole screw has no state at this load ({error}); its "
+                 "balls past their preload loss run in two-point contact, whose friction the module's stick/slip "
+                 "law gives (<stem>-balls, docs/b2b_rolling.md), not yet a whole nut's.")
+        return
     run.check(model="lowmodel.screw.whole_screw", family="low-order numerical",
               quantity="power balance of every step of the rotation", unit="1",
               value=float(history.power_error.max()), reference=0.0, scale=1.0, tolerance=POWER_TOLERANCE,
