@@ -52,8 +52,8 @@ from ballbench.lowmodel.solvers import check_solver_options
 from ballbench.lowmodel.state import BallStateBase
 from ballbench.lowmodel.state import friction_increase
 
-__all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "sampled_contacts", "solve", "module_b2b",
-           "b2b_contact_check", "POWER_BALANCE_TOLERANCE", "AXIS"]
+__all__ = ["RollingB2BState", "RollingModuleB2B", "hertz_contacts", "loaded_contacts", "sampled_contacts", "solve",
+           "module_b2b", "b2b_contact_check", "POWER_BALANCE_TOLERANCE", "AXIS"]
 
 POWER_BALANCE_TOLERANCE = 1e-6  # relative: every solve checks it (docs/b2b_rolling.md: power balance to 1e-6)
 AXIS = np.array([0.0, 0.0, 1.0])  # the grooves' direction (lin2019 Fig 2: z along the rails)
@@ -104,19 +104,36 @@ def hertz_contacts(contacts: BallContacts, ball: int = 0, *, cells=(20, 80), gui
     Table 1's 0.56 and steel), or all three from ``guide`` (a :class:`lowmodel.bearing.LinearGuide`);
     ``operator_for(grid)`` the operator (default the half-space)."""
     index = checks.count("ball", ball, 0, contacts.n_balls - 1)
+    return loaded_contacts(contacts.contact_angles[index], contacts.normal_forces[index],
+                           contacts.semi_major[index], contacts.b_over_a[index], ball_radius=contacts.ball_radius,
+                           cells=cells, guide=guide, conformity=conformity, youngs_modulus=youngs_modulus,
+                           poisson_ratio=poisson_ratio, heathcote=heathcote, operator_for=operator_for)
+
+
+def loaded_contacts(contact_angles, normal_forces, semi_major, b_over_a, *, ball_radius: float, cells=(20, 80),
+                    guide=None, conformity: float | None = None, youngs_modulus: float | None = None,
+                    poisson_ratio: float | None = None, heathcote: bool = True, operator_for=None) -> tuple:
+    """The loaded contacts of one ball as :class:`GridContact` with Hertz's pressure (as :func:`hertz_contacts`):
+    ``contact_angles`` (4,) rad (BL, BR, TR, TL; rigid, lin2019 Fig 2), ``normal_forces`` (4,) N, ``semi_major``
+    (4,) m and ``b_over_a`` (4,) of each; a contact without load (force <= 0) is left out: a ball in two- or
+    three-point contact (a carriage's ball in its end relief or under a moment, lowmodel.linear_bearing.
+    carriage_friction)."""
     conformity, youngs_modulus, poisson_ratio = guide_values(guide, dict(
         conformity=conformity, youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio), TABLE1).values()
     shear, nu = _material(youngs_modulus, poisson_ratio)
-    radius = contacts.ball_radius
+    radius = checks.positive("ball_radius", ball_radius, "m")
     curvature = 1.0 / deformed_radius(radius, conformity) if heathcote else 0.0
-    normals = contact_normals(contacts.contact_angles[index])
+    normals = contact_normals(np.asarray(contact_angles, dtype=float))
     out = []
     for i, name in enumerate(CONTACT_NAMES):
+        force = float(normal_forces[i])
+        if force <= 0.0:
+            continue
         n = np.array([normals[i, 0], normals[i, 1], 0.0])
-        a = float(contacts.semi_major[index, i])
-        out.append(rf.hertz_contact(name, i >= 2, radius * n, n, AXIS, a * float(contacts.b_over_a[index, i]), a,
-                                    float(contacts.normal_forces[index, i]), cells, lateral_curvature=curvature,
-                                    shear_modulus=shear, poisson_ratio=nu, operator_for=operator_for))
+        a = float(semi_major[i])
+        out.append(rf.hertz_contact(name, i >= 2, radius * n, n, AXIS, a * float(b_over_a[i]), a, force, cells,
+                                    lateral_curvature=curvature, shear_modulus=shear, poisson_ratio=nu,
+                                    operator_for=operator_for))
     return tuple(out)
 
 

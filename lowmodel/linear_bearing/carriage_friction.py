@@ -6,6 +6,11 @@ touching in a chain (lin2019 eqs 4-10, ``b2b.solve``); where full sliding has no
 half-space (``b2b_rolling.solve(start="auto")``, docs/b2b_rolling.md).  The carriage's friction force is the drive
 power over every row's balls over the speed, ``F = P_in / |v|`` (lin2019's power balance).
 
+A ball with one to three open contacts (in the end relief, or under a load past its preload: two- or three-point)
+takes the stick/slip law on its loaded contacts alone (lowmodel.linear_bearing.b2b_rolling.loaded_contacts), in a
+chain with its neighbours of as many loaded contacts: the law's balls share their number of contacts, so the row's
+chain parts where it changes (the B2B force across is not counted; ``RowFriction.parted``).
+
 A chain that has a state by neither law (a ball near the opening of a contact: its spin-capacity ratio far below 1,
 the coupled stick/slip Newton stalls) is parted at its weakest ball (the least ratio of its smallest to its largest
 contact load): that ball is solved alone (no B2B force on it) and both sides again as chains; such balls' laws end
@@ -37,21 +42,23 @@ class RowFriction:
     """The friction of one row's balls at the carriage's loads (:func:`friction`): ``force`` [N] the carriage's drive
     force over the row (``P_in / |v|``), per ball ``law`` (one of :data:`LAWS`, with ``", alone"`` when the ball was
     solved without B2B contact because its chain had no state; ``"loose"``: every contact open, no load and no
-    friction; ``""``: no model, a ball with one to three open contacts or without a state by either law),
-    ``b2b_forces`` [N] (balls j, j+1; 0 across a ball solved alone or without a model), ``reason`` (what a law's
-    fallback or a missing model says; "" when every ball has one)."""
+    friction; ``""``: no model, a ball without a state by either law), ``b2b_forces`` [N] (balls j, j+1; 0 across a
+    ball solved alone or without a model and where the chain parts), ``reason`` (what a law's fallback or a missing
+    model says; "" when every ball has one), ``parted`` whether touching loaded balls were solved in separate chains
+    (a chain without a state parted, or the number of loaded contacts changing along the row)."""
 
     force: float
     law: tuple
     b2b_forces: np.ndarray
     reason: str = ""
+    parted: bool = False
 
 
 @dataclass(frozen=True)
 class CarriageFriction:
     """The friction of the carriage's rows (:func:`friction`): ``force`` [N] their sum, ``rows`` one
-    :class:`RowFriction` each; ``complete`` whether every ball of every row has a model and every chain was solved
-    as one (with ``b2b=False``: every ball has a model)."""
+    :class:`RowFriction` each; ``complete`` whether every ball of every row has a model and every row's touching
+    balls were solved as one chain (with ``b2b=False``: every ball has a model)."""
 
     force: float
     rows: tuple
@@ -59,7 +66,8 @@ class CarriageFriction:
 
     @property
     def complete(self) -> bool:
-        return all(law and (not self.b2b or not law.endswith(", alone")) for row in self.rows for law in row.law)
+        return all(law for row in self.rows for law in row.law) and (
+            not self.b2b or not any(row.parted for row in self.rows))
 
 
 @dataclass(frozen=True)
@@ -91,7 +99,7 @@ class TravelFriction:
     @property
     def parted(self) -> np.ndarray:
         """(steps,) bool: a chain without a state parted at the step (a ball solved alone, module docstring)."""
-        return np.array([any(law.endswith(", alone") for row in f.rows for law in row.law) for f in self.frictions])
+        return np.array([any(row.parted for row in f.rows) for f in self.frictions])
 
     @property
     def ripple(self) -> float:
@@ -124,25 +132,33 @@ def row_contacts(body: carriage.Carriage, state: carriage.CarriageState, row: in
 
 def _solve(body, state, row: int, run: list, cells) -> tuple:
     """``(state, law)`` of the balls ``run`` of ``row`` touching in a chain (one ball: alone) by the first law of
-    :data:`LAWS` that has a state; ConvergenceError from the last law when none has (its message says both)."""
+    :data:`LAWS` that has a state (balls with an open contact: the stick/slip law on their loaded contacts alone);
+    ConvergenceError from the last law when none has (its message says both)."""
     from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling  # the friction models: only when asked
 
     guide = body.guide
-    contacts = row_contacts(body, state, row, run)
     gaps = np.zeros(len(run) - 1)
-    try:
-        return b2b.solve(contacts, gaps), LAWS[0]
-    except ConvergenceError as sliding:
-        balls = [b2b_rolling.hertz_contacts(contacts, j, cells=tuple(cells), guide=guide) for j in range(len(run))]
+    four_point = bool(np.all(state.normal_force[row][run] > 0.0))
+    sliding = "lin2019's full sliding is four-point"
+    if four_point:
+        contacts = row_contacts(body, state, row, run)
         try:
-            chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius,
-                                      friction_coefficient=guide.friction_coefficient,
-                                      groove_velocity=guide.groove_velocity, gaps=gaps, start="auto")
+            return b2b.solve(contacts, gaps), LAWS[0]
         except ConvergenceError as error:
-            raise ConvergenceError(f"full sliding: {str(sliding).split(' (residual')[0]}; stick/slip: {error}",
-                                   residual=error.residual, iterations=error.iterations, tolerance=error.tolerance,
-                                   reason="no state by either law") from None
-        return chain, LAWS[1]
+            sliding = str(error).split(" (residual")[0]
+    angles = body.rows[row].contact_angles
+    balls = [b2b_rolling.loaded_contacts(angles, state.normal_force[row, k], state.a[row, k],
+                                         state.b[row, k] / np.where(state.a[row, k] > 0.0, state.a[row, k], 1.0),
+                                         ball_radius=guide.ball_radius, cells=tuple(cells), guide=guide)
+             for k in run]
+    try:
+        chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
+                                  groove_velocity=guide.groove_velocity, gaps=gaps, start="auto")
+    except ConvergenceError as error:
+        raise ConvergenceError(f"full sliding: {sliding}; stick/slip: {error}", residual=error.residual,
+                               iterations=error.iterations, tolerance=error.tolerance,
+                               reason="no state by either law") from None
+    return chain, LAWS[1]
 
 
 def _weakest(state, row: int, run: list) -> int:
@@ -166,6 +182,7 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict) ->
             out["reasons"].append(f"ball {run[0] + 1}: no state by either law ({str(error).split(' (residual')[0]})")
             return 0.0
         weak = _weakest(state, row, run)
+        out["parted"] = True
         out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: no state by either law as one chain; ball "
                               f"{run[weak] + 1} (its least contact load the smallest share) solved alone")
         force = _chain(body, state, row, [run[weak]], cells, True, out)
@@ -173,10 +190,10 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict) ->
             out["laws"][run[weak]] += ", alone"
         parts = [run[:weak], run[weak + 1:]]
         return force + sum(_chain(body, state, row, part, cells, True, out) for part in parts if part)
-    if law != LAWS[0] and len(run) > 1:
-        out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: full sliding found no state, {law}")
-    elif law != LAWS[0]:
-        out["reasons"].append(f"ball {run[0] + 1}: full sliding found no state, {law}")
+    four_point = bool(np.all(state.normal_force[row][run] > 0.0))  # else full sliding was not tried
+    if law != LAWS[0] and four_point:
+        out["reasons"].append(f"{'balls' if len(run) > 1 else 'ball'} {run[0] + 1}"
+                              f"{f'-{run[-1] + 1}' if len(run) > 1 else ''}: full sliding found no state, {law}")
     out["b2b"][run[0]:run[-1]] = chain.b2b_force
     for k in run:
         out["laws"][k] = law
@@ -190,8 +207,9 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
     every ball alone, the friction without ball-to-ball contact) by the laws of :data:`LAWS` (stick/slip on
     ``cells`` = (along, across) cells per contact), a chain without a state parted at its weakest ball (module
     docstring).  A loose ball (every contact open) carries neither load nor friction and parts the chain; a ball with
-    one to three open contacts has no model yet: it parts the chain, carries no friction here and the row says so
-    (``CarriageFriction.complete`` False).  Two-point rows: no model (lin2019's is four-point)."""
+    one to three open contacts (two- or three-point) takes the stick/slip law on its loaded contacts, in a chain
+    with its neighbours of as many loaded contacts (the law's balls share a number of contacts: the chain parts
+    where it changes, ``RowFriction.parted``).  Two-point rows: no model (lin2019's is four-point)."""
     if not isinstance(body, carriage.Carriage) or not isinstance(state, carriage.CarriageState):
         raise ValueError("friction needs a carriage.Carriage and its carriage.CarriageState (carriage.solve)")
     n = body.balls_per_row
@@ -202,40 +220,44 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
                                                                                "friction model is four-point; no "
                                                                                "model yet"))
             continue
-        loaded = state.normal_force[r] > 0.0
-        out = dict(laws=["loose" if not np.any(loaded[k]) else "" for k in range(n)], b2b=np.zeros(max(n - 1, 0)),
-                   reasons=[])
-        runs, current = [], []
+        count = np.sum(state.normal_force[r] > 0.0, axis=1)  # loaded contacts of each ball
+        out = dict(laws=["loose" if count[k] == 0 else "" for k in range(n)], b2b=np.zeros(max(n - 1, 0)), reasons=[],
+                   parted=False)
+        runs = []
         for k in range(n):
-            if np.all(loaded[k]):
-                current.append(k)
-            elif current:
-                runs.append(current)
-                current = []
-        if current:
-            runs.append(current)
+            if count[k] == 0:
+                continue
+            if runs and runs[-1][-1] == k - 1 and count[runs[-1][-1]] == count[k]:
+                runs[-1].append(k)
+            else:
+                runs.append([k])
         force = sum(_chain(body, state, r, run, cells, b2b, out) for run in runs)
-        partial = [k + 1 for k in range(n) if out["laws"][k] == "" and not np.all(loaded[k])]
+        partial = [k + 1 for k in range(n) if 0 < count[k] < 4]
         if partial:
-            out["reasons"].append(f"balls {partial}: one to three open contacts, no model yet (no friction counted)")
-        rows.append(RowFriction(float(force), tuple(out["laws"]), out["b2b"], "; ".join(out["reasons"])))
+            out["reasons"].append(f"balls {partial}: one to three open contacts, by the stick/slip law on their loaded "
+                                  "contacts; the chain parts where the number of loaded contacts changes")
+        out["parted"] |= any(b[0] == a[-1] + 1 for a, b in zip(runs, runs[1:]))
+        rows.append(RowFriction(float(force), tuple(out["laws"]), out["b2b"], "; ".join(out["reasons"]),
+                                out["parted"]))
     return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows), bool(b2b))
 
 
 def friction_over_travel(body: carriage.Carriage, load: carriage.Load, *, steps: int = 20, span: float | None = None,
-                         cells=(12, 48), alone: bool = True, loop=None) -> TravelFriction:
+                         cells=(12, 48), alone: bool = True, loop=None,
+                         at_rest: CarriageFriction | None = None) -> TravelFriction:
     """The carriage's friction force over a travel ``span`` [m] (default one ball ``pitch``) of its balls in ``steps``
     equal steps (the end left out: at one pitch the balls sit as at the start): at each the carriage solved under
     ``load`` (:func:`lowmodel.linear_bearing.carriage.solve`) and its rows' :func:`friction` with B2B contact and,
     with ``alone``, with every ball alone.  ``loop(travels)`` wraps the loop over the steps' travels (a progress
-    bar; default none)."""
+    bar; default none); ``at_rest`` the :func:`friction` (with B2B contact, on ``cells``) of the carriage under
+    ``load`` at travel 0, where the caller has it already."""
     checks.count("steps", steps, 1, 10_000)
     span = body.pitch if span is None else checks.positive("span", span, "m")
     travel = np.arange(steps) * (span / steps)
     force, force_alone, complete, displacement, largest, frictions = [], [], [], [], [], []
     for t in (travel if loop is None else loop(travel)):
         state = carriage.solve(body, load, travel=float(t))
-        result = friction(body, state, cells=cells)
+        result = at_rest if at_rest is not None and t == 0.0 else friction(body, state, cells=cells)
         frictions.append(result)
         force.append(result.force)
         complete.append(result.complete)

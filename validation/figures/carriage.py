@@ -45,8 +45,8 @@ def load_deflection(factors, displacements, load_words: str):
 
 def friction_over_travel(travel, force, force_alone, complete, sinking, parted=None):
     """The carriage's drive force [N] over the balls' travel [m] (``force`` with B2B contact, ``force_alone`` every
-    ball alone or None; ``complete`` (steps,) bool: hollow markers where balls without a model carry none; ``parted``
-    (steps,) bool: crosses where a chain without a state was parted) and the carriage's vertical displacement
+    ball alone or None; ``complete`` (steps,) bool: hollow markers where the step is approximate; ``parted`` (steps,)
+    bool: crosses where touching balls were solved in separate chains) and the carriage's vertical displacement
     ``sinking`` [m] (the ball passage's ripple)."""
     fig = figure(figsize=(9, 3.4), layout="constrained")
     left, right = fig.subplots(1, 2)
@@ -55,10 +55,11 @@ def friction_over_travel(travel, force, force_alone, complete, sinking, parted=N
     left.plot(t, force, "-", color="C0", label="with B2B contact")
     left.plot(t[complete], np.asarray(force)[complete], "o", ms=4, color="C0")
     left.plot(t[~complete], np.asarray(force)[~complete], "o", ms=4, mfc="none", color="C0",
-              label="lower bound (balls without a model)")
+              label="approximate (see the crosses, or a ball without a state)")
     if parted is not None and np.any(parted):
         parted = np.asarray(parted, dtype=bool)
-        left.plot(t[parted], np.asarray(force)[parted], "x", ms=8, color="C3", label="a chain parted (no state)")
+        left.plot(t[parted], np.asarray(force)[parted], "x", ms=8, color="C3",
+                  label="touching balls in separate chains")
     if force_alone is not None:
         left.plot(t, force_alone, "s--", ms=3, color="C1", label="every ball alone (no B2B)")
     left.set_ylabel("drive force [N]")

@@ -18,7 +18,7 @@ __all__ = ["whole_scene", "STATIC_PRESSURE", "LOAD_FACTORS", "TRAVEL_STEPS", "FE
 # load giving 4200 MPa at the centre of the most heavily loaded contact
 STATIC_PRESSURE = 4200e6  # Pa
 LOAD_FACTORS = np.linspace(0.0, 1.5, 7)  # the load-deflection curves: the case's load times these
-TRAVEL_STEPS = {"quick": 8, "default": 20, "fine": 40}  # the friction over one ball pitch of travel: steps per fidelity
+TRAVEL_STEPS = {"quick": 4, "default": 10, "fine": 20}  # the friction over one ball pitch of travel: steps per fidelity
 # the FE rung of an elastic carriage (fem.carriage_fe): the slot walls' mesh size over the patch radius, two levels
 # per fidelity (the coarser one's difference from the finer one the FE's own uncertainty; docs/carriage.md)
 FE_WALL_LEVELS = {"quick": (1.5, 2.0), "default": (2.0, 3.0), "fine": (3.0, 4.0)}
@@ -74,8 +74,8 @@ def whole_scene(run, *, case, rungs=("low-order",)) -> None:
                                 for r in range(len(body.rows)) for k in range(body.balls_per_row)
                                 for c in range(len(names[r]))])
     run.save_figure(figures.ball_loads(state.z, state.normal_force, labels, names[0]), "ball_loads.png")
-    _friction_table(run, body, state)
-    _friction_over_travel(run, body, load, figures)
+    at_rest = _friction_table(run, body, state)
+    _friction_over_travel(run, body, load, figures, at_rest)
     if "FE" in rungs:
         _fe_rung(run, body, load, figures)
     curve = []
@@ -102,9 +102,10 @@ def _contact_names(body) -> list[list[str]]:
             for row in body.rows]
 
 
-def _friction_table(run, body, state) -> None:
+def _friction_table(run, body, state):
     """The friction of the carriage's rows at the state (lowmodel.linear_bearing.carriage_friction.friction): per row
-    the drive force over its balls touching in chains, the laws that gave it and the balls without a model."""
+    the drive force over its balls touching in chains, the laws that gave it and the balls without a model; returns
+    the CarriageFriction."""
     result, time_s = run.time(carriage_friction.friction, body, state)
     rows = []
     for r, row in enumerate(result.rows):
@@ -114,25 +115,27 @@ def _friction_table(run, body, state) -> None:
     run.table(f"Friction of the rows at the load: each row's balls touching in chains (lin2019 eqs 4-10 on the "
               f"carriage's contact loads; {time_s:.2f} s)", ("row", "friction force [N]", "balls by law",
                                                              "largest F_B2B [N]", "what the row says"), rows)
-    total = "" if result.complete else " (a lower bound: balls without a model carry none here)"
+    total = "" if result.complete else (" (approximate: touching balls solved in separate chains, or a ball without a "
+                                        "state; the rows say which)")
     run.note(f"Friction force of the carriage at this load: {fmt(result.force)} N{total}, the drive force over every "
              "row's balls (lowmodel.linear_bearing.carriage_friction; a loose ball carries neither load nor friction, "
-             "a ball with one to three open contacts has no model yet; docs/carriage.md).")
+             "a ball with one to three open contacts takes the stick/slip law on its loaded ones; docs/carriage.md).")
+    return result
 
 
-def _friction_over_travel(run, body, load, figures) -> None:
+def _friction_over_travel(run, body, load, figures, at_rest) -> None:
     """The drive force over one ball pitch of travel, with B2B contact and every ball alone, and the carriage's
     sinking over it (carriage_friction.friction_over_travel): a table of the steps, ``friction_over_travel.csv`` and
     ``.png``."""
     steps = TRAVEL_STEPS.get(run.fidelity, TRAVEL_STEPS["default"])
-    result, time_s = run.time(carriage_friction.friction_over_travel, body, load, steps=steps,
+    result, time_s = run.time(carriage_friction.friction_over_travel, body, load, steps=steps, at_rest=at_rest,
                               loop=lambda travels: run.progress(travels, desc=f"{run.scene.name} travel"))
-    rows = [(fmt(t * 1e3), fmt(f), fmt(a), "yes" if c else "no (lower bound)", "yes" if p else "no", fmt(d[1] * 1e6))
+    rows = [(fmt(t * 1e3), fmt(f), fmt(a), "yes" if c else "no", "yes" if p else "no", fmt(d[1] * 1e6))
             for t, f, a, c, p, d in zip(result.travel, result.force, result.force_alone, result.complete,
                                         result.parted, result.displacement)]
     run.table(f"Friction over one ball pitch of travel ({steps} steps, {time_s:.1f} s): the balls advance, leave "
               "the groove at one end and enter at the other", ("travel [mm]", "drive force with B2B [N]",
-                                                             "every ball alone [N]", "every ball modelled",
+                                                             "every ball alone [N]", "complete",
                                                              "a chain parted", "u_y [um]"), rows)
     run.write_csv("friction_over_travel.csv", [dict(travel_m=float(t), force_N=float(f), force_alone_N=float(a),
                                                     complete=bool(c), parted=bool(p), u_y_m=float(d[1]))
@@ -142,10 +145,8 @@ def _friction_over_travel(run, body, load, figures) -> None:
     run.save_figure(figures.friction_over_travel(result.travel, result.force, result.force_alone, result.complete,
                                                  result.displacement[:, 1], result.parted),
                     "friction_over_travel.png")
-    bound = "" if all(result.complete) else " (steps with balls without a model: lower bounds)"
-    if any(result.parted):
-        bound += (f"; at {int(np.sum(result.parted))} of {steps} steps a chain without a state was parted at its "
-                  "weakest ball")
+    bound = "" if all(result.complete) else (f" ({int(np.sum(~result.complete))} of {steps} steps approximate: "
+                                             "touching balls in separate chains, or a ball without a state)")
     run.note(f"Over one pitch of travel the drive force is {fmt(result.mean)} N on average with B2B contact, ripple "
              f"{fmt(result.ripple)} N peak to peak{bound}; every ball alone {fmt(float(np.mean(result.force_alone)))}"
              f" N, ripple {fmt(float(np.ptp(result.force_alone)))} N; the carriage's u_y ripples by "
