@@ -49,7 +49,7 @@ def test_example_case_up_to_the_bem(name, tmp_path, capsys):
 def test_example_case_whole_ladder(name, tmp_path, capsys):
     code, scenes, err = _validate(name, tmp_path, capsys)
     stem = name.replace("_", "-")
-    whole = {f"{stem}-whole"} if "guide" in name else set()  # the guide example has a [carriage] table
+    whole = {f"{stem}-whole"}  # the guide example has a [carriage] table, the screw a [nut]
     assert set(scenes) == {f"{stem}-balls", f"{stem}-contact", f"{stem}-b2b-fe", f"{stem}-stick-slip"} | whole
     assert all(s["error"] == "" for s in scenes.values()), err
     families = {o["family"] for o in scenes[f"{stem}-contact"]["outputs"]}
