@@ -13,8 +13,10 @@ chain parts where it changes (the B2B force across is not counted; ``RowFriction
 
 A chain that has a state by neither law (a ball near the opening of a contact: its spin-capacity ratio far below 1,
 the coupled stick/slip Newton stalls) is parted at its weakest ball (the least ratio of its smallest to its largest
-contact load): that ball is solved alone (no B2B force on it) and both sides again as chains; such balls' laws end
-in ``", alone"`` and the result is then not the coupled chain's (``CarriageFriction.complete`` False).
+contact load): that ball is solved alone (no B2B force on it) and both sides again as chains; a side without a state
+either goes ball by ball (a failed chain costs tens of seconds: at most three of them a run).  Such
+balls' laws end in ``", alone"`` and the result is then not the coupled chain's (``CarriageFriction.complete``
+False).
 
 Over travel (:func:`friction_over_travel`): the balls advance against the carriage
 (:func:`lowmodel.linear_bearing.carriage.ball_positions`: a ball leaving the groove at one end enters it at the
@@ -167,10 +169,10 @@ def _weakest(state, row: int, run: list) -> int:
     return int(np.argmin(forces.min(axis=1) / forces.max(axis=1)))
 
 
-def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict) -> float:
+def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict, parted: bool = False) -> float:
     """The drive force [N] of the balls ``run`` of ``row``: touching in one chain (``coupled``) or each alone; a chain
-    without a state is parted at its weakest ball (module docstring).  Writes each ball's law, the B2B forces and
-    the reasons into ``out``."""
+    without a state is parted at its weakest ball, and a part of it (``parted``) that has none either goes ball by
+    ball (module docstring).  Writes each ball's law, the B2B forces and the reasons into ``out``."""
     speed = abs(body.guide.groove_velocity)
     if not coupled and len(run) > 1:
         return sum(_chain(body, state, row, [k], cells, True, out) for k in run)
@@ -181,15 +183,21 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict) ->
             out["laws"][run[0]] = ""
             out["reasons"].append(f"ball {run[0] + 1}: no state by either law ({str(error).split(' (residual')[0]})")
             return 0.0
-        weak = _weakest(state, row, run)
         out["parted"] = True
-        out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: no state by either law as one chain; ball "
-                              f"{run[weak] + 1} (its least contact load the smallest share) solved alone")
-        force = _chain(body, state, row, [run[weak]], cells, True, out)
-        if out["laws"][run[weak]]:
-            out["laws"][run[weak]] += ", alone"
+        alone = list(run) if parted else [run[_weakest(state, row, run)]]
+        out["reasons"].append(f"balls {run[0] + 1}-{run[-1] + 1}: no state by either law as one chain; "
+                              + ("each ball solved alone (a part of a parted chain)" if parted else
+                                 f"ball {alone[0] + 1} (its least contact load the smallest share) solved alone"))
+        force = 0.0
+        for k in alone:
+            force += _chain(body, state, row, [k], cells, True, out)
+            if out["laws"][k]:
+                out["laws"][k] += ", alone"
+        if parted:
+            return force
+        weak = run.index(alone[0])
         parts = [run[:weak], run[weak + 1:]]
-        return force + sum(_chain(body, state, row, part, cells, True, out) for part in parts if part)
+        return force + sum(_chain(body, state, row, part, cells, True, out, True) for part in parts if part)
     four_point = bool(np.all(state.normal_force[row][run] > 0.0))  # else full sliding was not tried
     if law != LAWS[0] and four_point:
         out["reasons"].append(f"{'balls' if len(run) > 1 else 'ball'} {run[0] + 1}"
@@ -233,10 +241,12 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
                 runs.append([k])
         force = sum(_chain(body, state, r, run, cells, b2b, out) for run in runs)
         partial = [k + 1 for k in range(n) if 0 < count[k] < 4]
+        by_count = any(b[0] == a[-1] + 1 for a, b in zip(runs, runs[1:]))
         if partial:
             out["reasons"].append(f"balls {partial}: one to three open contacts, by the stick/slip law on their loaded "
-                                  "contacts; the chain parts where the number of loaded contacts changes")
-        out["parted"] |= any(b[0] == a[-1] + 1 for a, b in zip(runs, runs[1:]))
+                                  "contacts" + ("; the chain parts where the number of loaded contacts changes"
+                                                if by_count else ""))
+        out["parted"] |= by_count
         rows.append(RowFriction(float(force), tuple(out["laws"]), out["b2b"], "; ".join(out["reasons"]),
                                 out["parted"]))
     return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows), bool(b2b))
