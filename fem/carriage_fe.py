@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
@@ -42,7 +43,7 @@ from ballbench.lowmodel.linear_bearing import carriage
 from ballbench.meshes.parts.carriage_body import carriage_body
 
 __all__ = ["BodyShape", "body_shape", "default_patch_radius", "patch_operator", "GrooveCompliance",
-           "groove_compliance", "Comparison", "compare", "MIN_PATCH_NODES"]
+           "groove_compliance", "groove_forces", "Comparison", "compare", "write_vtu", "MIN_PATCH_NODES"]
 
 MIN_PATCH_NODES = 4  # vertices a contact's patch needs on the slot's wall (else the mesh is too coarse for it)
 
@@ -79,7 +80,8 @@ class GrooveCompliance:
     """The grooves' compliance of an elastic carriage body (:func:`groove_compliance`): ``matrix`` (2M, 2M) [m/N];
     ``local`` [m/N] the Hertz part removed from every contact and direction, ``boussinesq`` [m/N] its estimate
     (module docstring); ``patch_nodes`` (M,) vertices per patch; ``dofs`` of the body; ``h_max`` [m]; ``mesh`` the
-    ``.msh`` path; ``time_s``."""
+    ``.msh`` path; ``time_s``; ``points``, ``tets`` the body's mesh and ``response`` the vertices' displacement
+    under a unit force on each groove (:meth:`displacement`)."""
 
     matrix: np.ndarray
     local: float
@@ -89,6 +91,14 @@ class GrooveCompliance:
     h_max: float
     mesh: str
     time_s: float
+    points: np.ndarray | None = None  # (n, 3) m, the body's vertices
+    tets: np.ndarray | None = None  # (t, 4) their tetrahedra
+    response: object = None  # (n, 3, 2M): each vertex's displacement under a unit force on each groove
+
+    def displacement(self, forces) -> np.ndarray:
+        """(n, 3) m, the body's vertex displacements under the grooves' ``forces`` (2M,) [N] (:func:`groove_forces`),
+        the mounting face held: the field of the elastic carriage beyond its rigid motion."""
+        return np.einsum("nij,j->ni", self.response, np.asarray(forces, dtype=float))
 
 
 def _skew(r) -> np.ndarray:
@@ -168,6 +178,9 @@ def groove_compliance(body: carriage.Carriage, *, h_max: float, h_wall: float | 
     if getattr(solve, "free", None):
         solve.free()
     matrix = operator[:, free] @ response
+    full = np.zeros((basis.N, response.shape[1]))
+    full[free] = response
+    vertex = np.stack([full[basis.nodal_dofs[c]] for c in range(3)], axis=1)  # (n, 3, 2M)
     matrix = 0.5 * (matrix + matrix.T)
     boussinesq = 16.0 * (1.0 - poisson_ratio ** 2) / (3.0 * math.pi ** 2 * radius * youngs_modulus)
     stiffest = float(np.linalg.eigvalsh(matrix).min())  # the patches' own flattening (their stiffest mode)
@@ -177,7 +190,28 @@ def groove_compliance(body: carriage.Carriage, *, h_max: float, h_wall: float | 
     local = min(boussinesq, stiffest)
     matrix = matrix - local * np.eye(len(matrix))
     return GrooveCompliance(matrix, local, boussinesq, counts, int(basis.N), float(h_max), str(path),
-                            time.perf_counter() - start)
+                            time.perf_counter() - start, pair.points, pair.tets, vertex)
+
+
+def groove_forces(body: carriage.Carriage, state: carriage.CarriageState) -> np.ndarray:
+    """(2M,) N, the balls' forces on the carriage's grooves at ``state`` (x, y of each contact of
+    lowmodel.linear_bearing.carriage.groove_points, in its order: rows, balls, contacts on the carriage)."""
+    forces = [state.normal_force[r, k, c] * state.line[r, k, c] for r, row in enumerate(body.rows)
+              for k in range(body.balls_per_row) for c, top in enumerate(row.carriage) if top]
+    return np.asarray(forces, dtype=float).reshape(-1)
+
+
+def write_vtu(path, comparison) -> Path:
+    """The elastic carriage body of ``comparison`` (:func:`compare`) as a VTU (meshio; ParaView): its tetrahedra,
+    the point data ``displacement_m`` (beyond the rigid motion, the mounting face held) and its magnitude."""
+    import meshio
+
+    compliance = comparison.compliance
+    field = compliance.displacement(comparison.groove_forces)
+    meshio.Mesh(compliance.points, [("tetra", compliance.tets)],
+                point_data={"displacement_m": field,
+                            "displacement_magnitude_m": np.linalg.norm(field, axis=1)}).write(str(path))
+    return Path(path)
 
 
 @dataclass(frozen=True)
@@ -186,7 +220,7 @@ class Comparison:
     largest ball load of each ball ``rigid_load`` / ``elastic_load`` (rows, balls) [N], ``error`` (rows, balls) the
     rigid's against the elastic's over the largest elastic ball load, the ``worst`` (row, ball) and the relative
     change of the stiffness's diagonal ``stiffness_change`` (5,) (rigid over elastic less 1), the
-    ``compliance``."""
+    ``compliance`` and the elastic state's ``groove_forces`` (:func:`groove_forces`)."""
 
     rigid: carriage.CarriageState
     elastic: carriage.CarriageState
@@ -196,6 +230,7 @@ class Comparison:
     worst: tuple
     stiffness_change: np.ndarray
     compliance: GrooveCompliance
+    groove_forces: np.ndarray | None = None
 
 
 def compare(body: carriage.Carriage, load: carriage.Load, *, h_max: float, **options) -> Comparison:
@@ -208,4 +243,5 @@ def compare(body: carriage.Carriage, load: carriage.Load, *, h_max: float, **opt
     error = (rigid_load - elastic_load) / float(elastic_load.max())
     worst = tuple(int(i) for i in np.unravel_index(int(np.argmax(np.abs(error))), error.shape))
     change = np.diag(rigid.stiffness) / np.diag(elastic.stiffness) - 1.0
-    return Comparison(rigid, elastic, rigid_load, elastic_load, error, worst, change, compliance)
+    return Comparison(rigid, elastic, rigid_load, elastic_load, error, worst, change, compliance,
+                      groove_forces(body, elastic))

@@ -59,3 +59,17 @@ def test_a_very_stiff_body_gives_the_rigid_carriage_and_an_elastic_one_is_softer
     assert np.all(steel.stiffness_change > 0.0)
     unloaded = carriage_fe.compare(BODY, carriage.Load(), h_max=H_MAX, h_wall=H_WALL)
     assert unloaded.elastic_load.max() < unloaded.rigid_load.max()  # the flanges open: the preload relaxes
+    # the body's field under the elastic state's groove forces: zero on the mounting face (held by the table)
+    field = steel.compliance.displacement(steel.groove_forces)
+    mount = np.abs(steel.compliance.points[:, 1] - carriage_fe.body_shape(BODY).top) < 1e-12
+    assert mount.sum() > 10 and np.max(np.abs(field[mount])) == 0.0 and np.max(np.abs(field)) > 1e-8
+
+
+def test_the_elastic_carriage_writes_its_field_for_paraview(tmp_path):
+    import meshio
+
+    comparison = carriage_fe.compare(BODY, LOAD, h_max=H_MAX, h_wall=H_WALL)
+    path = carriage_fe.write_vtu(tmp_path / "carriage.vtu", comparison)
+    mesh = meshio.read(path)
+    assert mesh.points.shape == comparison.compliance.points.shape and "displacement_m" in mesh.point_data
+    assert np.max(mesh.point_data["displacement_magnitude_m"]) > 0.0

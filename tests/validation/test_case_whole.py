@@ -58,6 +58,7 @@ def test_the_example_runs_its_whole_carriage(tmp_path, monkeypatch):
     assert any("Friction force of the carriage" in note for note in result.notes)
     assert any(title.startswith("Friction over one ball pitch") for title, _, _ in result.tables)
     assert any(tmp_path.rglob("friction_over_travel.png")) and any(tmp_path.rglob("rigid_elastic.png"))
+    assert any(tmp_path.rglob("elastic_carriage.vtu"))
     assert judged["load balance of the elastic carriage and its balls"].value < carriage.BALANCE_TOLERANCE
     worst = judged["ball load of the worst ball against the elastic carriage"]
     assert worst.passed and abs(worst.value - worst.reference) > 0.01 * worst.reference  # elastic: not the rigid

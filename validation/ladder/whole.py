@@ -210,9 +210,11 @@ def _fe_rung(run, body, load, figures) -> None:
                                         for i in range(len(body.rows)) for j in range(body.balls_per_row)])
     run.save_figure(figures.rigid_elastic(fine.rigid.z, fine.rigid_load, fine.elastic_load, labels),
                     "rigid_elastic.png")
+    run.add_artifact(carriage_fe.write_vtu(run.path("elastic_carriage.vtu"), fine))
     run.note(f"FE rung (fem.carriage_fe, docs/carriage.md): the carriage body elastic, {fine.compliance.dofs} DOFs "
              f"(patch radius {fmt(radius * 1e3)} mm on the slot's walls, Hertz's local part "
-             f"{fmt(fine.compliance.local * 1e9)} nm/N removed), {time_s:.1f} s.  The rigid carriage is off by "
+             f"{fmt(fine.compliance.local * 1e9)} nm/N removed), {time_s:.1f} s; its displacement field in "
+             "elastic_carriage.vtu (ParaView).  The rigid carriage is off by "
              f"{fmt(float(np.max(np.abs(fine.error))) * 100)} % of the largest ball load at its worst ball and "
              f"overestimates the vertical stiffness by {fmt(float(fine.stiffness_change[vertical]) * 100)} %; the two "
              f"FE levels differ by {fmt(level_change * 100)} % of the largest ball load.")
