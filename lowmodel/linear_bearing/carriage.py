@@ -404,12 +404,11 @@ def solve(body: Carriage, load: Load, *, travel: float = 0.0, tolerance: float =
     try:  # at rest the tangent stiffness is zero: start from linear springs on every contact
         q, v = _linear_start(geometry, external)
         q, v, iterations = _newton(geometry, q, v, external, tolerance, max_iterations, measure)
-    except ConvergenceError:  # contacts closing and opening on the way: a preload let go in steps
-        iterations = 0
+    except ConvergenceError:  # contacts closing and opening on the way: a preload let go in steps, from rest
+        q, v, iterations = np.zeros(5), np.zeros_like(v), 0
         for oversize in PRELOAD_STEPS * _approach(geometry, external):
             stage = _Geometry(replace(body, oversize=float(oversize)), travel)
-            q, v, steps = _newton(stage, q if iterations else np.zeros(5), v, external, tolerance, max_iterations,
-                                  measure)
+            q, v, steps = _newton(stage, q, v, external, tolerance, max_iterations, measure)
             iterations += steps
         q, v, steps = _newton(geometry, q, v, external, tolerance, max_iterations, measure)
         iterations += steps

@@ -82,8 +82,8 @@ class Nut:
         if not isinstance(self.module, screw_contacts.ScrewModule):
             raise ValueError(f"module must be a lowmodel.screw.contacts.ScrewModule, got {type(self.module).__name__}")
         most = capacity(self.module, self.turns)
-        balls = most - 1 if self.balls == 0 else checks.count("balls", self.balls, 2, most)
-        object.__setattr__(self, "balls", max(balls, 2))
+        object.__setattr__(self, "balls", checks.count("balls", most - 1 if self.balls == 0 else self.balls, 2,
+                                                       most))
         checks.choice("arrangement", self.arrangement, ARRANGEMENTS)
         checks.non_negative("preload", self.preload, "N")
         if self.arrangement == "double" and self.preload == 0.0:
@@ -180,9 +180,9 @@ def ball_law(module: screw_contacts.ScrewModule, law: str = "exact", max_load: f
     lowmodel.screw.load_distribution.AxialStiffness (monotone cubic)."""
     checks.choice("law", law, LAWS)
     bare = replace(module, oversize=0.0)
-    contacts = screw_contacts.ball_contacts(bare, 0.0)
     factor = math.sin(module.nominal_angle) * math.cos(module.lead_angle)
     if law == "hertz":
+        contacts = screw_contacts.ball_contacts(bare, 0.0)
         constant = float(contacts.hertz_constant[0, 0] + contacts.hertz_constant[0, 2])  # SL + NR: the diagonal
 
         def shift(q):
@@ -192,10 +192,8 @@ def ball_law(module: screw_contacts.ScrewModule, law: str = "exact", max_load: f
             return factor * (np.maximum(np.asarray(u, dtype=float), 0.0) * factor / constant) ** 1.5
 
         return BallLaw(shift, load, "Hertz on the nominal diagonal")
-    max_load = checks.positive("max_load", max_load, "N")
-    loads = max_load * np.linspace(0.0, 1.0, checks.count("points", points, 4)) ** 1.5
-    shifts = np.array([abs(preload.frictionless_statics(contacts, float(q)).nut_shift) for q in loads])
-    table = ld.AxialStiffness(loads, shifts)
+    frictionless = ball_table(bare, max_load, "frictionless", points)
+    table = ld.AxialStiffness(frictionless.loads, np.abs(frictionless.shifts))  # the shift as the approach
 
     def exact_load(u):
         u = np.asarray(u, dtype=float)

@@ -49,6 +49,12 @@ def _material_keys():
             Key("poisson_ratio", "dimensionless", "nu, Poisson's ratio", example="0.3"))
 
 
+def _level_keys(help_text: str):
+    """The ``[fe]`` table's mesh levels per fidelity (``quick`` carries the help)."""
+    return tuple(Key(name, "levels", help_text if name == "quick" else "", required=False, in_template=False)
+                 for name in ("quick", "default", "fine"))
+
+
 # table -> keys, per kind; "" is the top level
 SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
     "linear-guide": {
@@ -82,10 +88,7 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
                 in_template=False),
             Key("fine_ellipse", "list", "fine slab of each contact: (k1 a, k2 b, k3 b)", required=False,
                 in_template=False),
-            Key("quick", "levels", "module mesh levels: [{ h_contact, growth, fine_radius, h_max }, ...]",
-                required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
+            *_level_keys("module mesh levels: [{ h_contact, growth, fine_radius, h_max }, ...]")),
     },
     "ball-screw": {
         "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"ball-screw"'),
@@ -129,9 +132,7 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
             Key("gap_limit", "length", "", required=False, check="positive", in_template=False),
             Key("body_depth", "dimensionless", "screw core and nut outside at R_P -+ body_depth R_B",
                 required=False, check="positive", in_template=False),
-            Key("quick", "levels", "", required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
+            *_level_keys("")),
     },
     "contact": {
         "": (Key("kind", "text", "what the file describes", check="choice", choices=KINDS, example='"contact"'),
@@ -156,9 +157,7 @@ SCHEMA: dict[str, dict[str, tuple[Key, ...]]] = {
                 required=False, check="positive", in_template=False),
             Key("fine_targets", "targets", "tolerances of the finest level: { a = 0.002, ... }", required=False,
                 in_template=False),
-            Key("quick", "levels", "pair mesh levels: [{ n, growth }, ...]", required=False, in_template=False),
-            Key("default", "levels", "", required=False, in_template=False),
-            Key("fine", "levels", "", required=False, in_template=False)),
+            *_level_keys("pair mesh levels: [{ n, growth }, ...]")),
     },
 }
 LUBRICANT_KEYS = (

@@ -36,6 +36,9 @@ def _single(run, case, nuts, figures) -> None:
               time_s=time_s, source="the balls' axial loads against the nut's axial load (docs/nut.md)",
               why="the value is itself a relative force residual: zero judged on the scale 1")
     q = state.ball_loads
+    head = (f"The whole single nut (lowmodel.screw.nut, docs/nut.md): {body.balls} balls in {body.turns} turns, "
+            f"{fmt(load)} N; the loaded end's ball carries {fmt(float(q[0] / q.mean()))} times the mean (screw and "
+            "nut as bars).")
     run.table(f"Axial ball loads along the nut ({body.balls} balls in {body.turns} turns, {fmt(load)} N; "
               f"{time_s:.2f} s)", ("", "ball 1 (loaded end)", "ball n", "largest", "smallest", "mean"),
               [("q [N]", fmt(float(q[0])), fmt(float(q[-1])), fmt(float(q.max())), fmt(float(q.min())),
@@ -60,11 +63,9 @@ def _single(run, case, nuts, figures) -> None:
                                    cycles=cycles,
                                    progress=lambda it: run.progress(it, desc=f"{run.scene.name} rotation"))
     except (ConvergenceError, ValueError) as error:  # lin2019's four-point balls: no state past the preload loss
-        run.note(f"The whole single nut (lowmodel.screw.nut, docs/nut.md): {body.balls} balls in {body.turns} turns, "
-                 f"{fmt(load)} N; the loaded end's ball carries {fmt(float(q[0] / q.mean()))} times the mean.  No "
-                 f"friction torque over rotation: lin2019's whole screw has no state at this load ({error}); its "
-                 "balls past their preload loss run in two-point contact, whose friction the module's stick/slip "
-                 "law gives (<stem>-balls, docs/b2b_rolling.md), not yet a whole nut's.")
+        run.note(f"{head}  No friction torque over rotation: lin2019's whole screw has no state at this load "
+                 f"({error}); its balls past their preload loss run in two-point contact, whose friction the "
+                 "module's stick/slip law gives (<stem>-balls, docs/b2b_rolling.md), not yet a whole nut's.")
         return
     run.check(model="lowmodel.screw.whole_screw", family="low-order numerical",
               quantity="power balance of every step of the rotation", unit="1",
@@ -82,9 +83,7 @@ def _single(run, case, nuts, figures) -> None:
                                  for a, g, b in zip(history.nut_angle, history.groove_torque, history.b2b_torque)])
     run.save_figure(figures.torque_over_rotation(history.nut_angle, history.groove_torque, history.b2b_torque),
                     "torque.png")
-    run.note(f"The whole single nut (lowmodel.screw.nut, docs/nut.md): {body.balls} balls in {body.turns} turns, "
-             f"{fmt(load)} N; the loaded end's ball carries {fmt(float(q[0] / q.mean()))} times the mean (screw and "
-             f"nut as bars).  Friction torque {fmt(float(np.mean(total)))} N m on average, "
+    run.note(f"{head}  Friction torque {fmt(float(np.mean(total)))} N m on average, "
              f"{fmt(float(np.mean(history.b2b_torque) / np.mean(total) * 100))} % of it ball-to-ball.  The FE rung "
              "of an elastic nut is not yet in this scene.")
 
