@@ -129,11 +129,12 @@ def mismatch(u0, address):
 
 
 @_jit
-def offsets(loads, order, segment, geometric, total, compliance_s, compliance_n, sign, data):
+def offsets(loads, order, segment, geometric, total, compliance_s, compliance_n, flange, sign, data):
     """The elastic and geometric offsets of one fixed-point step of
     :func:`lowmodel.screw.load_distribution.distribute`, signed, into ``data``'s slots (:func:`pack`); returns the
     bracket ``(start, end)`` of ``u_0`` and the mismatch at both ends.  The numpy code's operations in its order:
-    ``S`` by a running sum over the balls in ``order`` (``np.cumsum``), ``int_0^z (eps_s + eps_n)`` likewise."""
+    ``S`` by a running sum over the balls in ``order`` (``np.cumsum``), ``int_0^z (eps_s + eps_n)`` likewise
+    (``flange`` 1 or 0: the nut's flange at the loaded end or the far end)."""
     n = loads.size
     cumulative = 0.0
     integral = 0.0
@@ -145,7 +146,7 @@ def offsets(loads, order, segment, geometric, total, compliance_s, compliance_n,
         j = order[i]
         cumulative = loads[j] if i == 0 else cumulative + loads[j]
         before = 0.0 if i == 0 else cumulative - loads[j]
-        strain = (total - before) * compliance_s + before * compliance_n
+        strain = (total - before) * compliance_s + (flange * total - before) * compliance_n
         term = strain * segment[i]
         integral = term if i == 0 else integral + term
         offset = integral + geometric[j]
@@ -196,7 +197,7 @@ def warm_up() -> None:
     pieces = CubicPieces(np.array([0.0, 1.0, 2.0]), np.array([1.0]), np.zeros(2), np.zeros(2), np.ones(2),
                          np.array([0.0, 1.0]))
     data = pack(3, 0.0, 2.0, 3.0, pieces)
-    start, end, _, _ = offsets(np.ones(3), np.arange(3), np.zeros(3), np.zeros(3), 3.0, 1.0, 1.0, 1.0, data)
+    start, end, _, _ = offsets(np.ones(3), np.arange(3), np.zeros(3), np.zeros(3), 3.0, 1.0, 1.0, 1.0, 1.0, data)
     root, status, _ = nut_shift(data, start, end, 1e-12, 4 * np.finfo(float).eps, 100)
     loads = np.empty(3)
     if status != CONVERGED or abs(root - 1.0) > 1e-9 or abs(loads_at(root, data, loads) - 3.0) > 1e-9:

@@ -7,9 +7,10 @@ evenly over the turns (:func:`positions`; as lin2019 Sec 3.4's track).  Two arra
 * ``"single"``: one nut preloaded by the ball oversize of the module (lin2019 eq 53; four-point balls).  The axial
   load spreads over the balls by :func:`lowmodel.screw.load_distribution.distribute` (each ball's shift ``U(q)``
   from the frictionless statics of a nominal ball, below and past the preload loss, or lin2019's single-ball model
-  with friction, :func:`ball_table`; screw and nut as bars); the nut's shift at its loaded end
-  ``|u_0|``, ``u_0 = U(q_1) + F_a z_1 / (E A_s)`` (the first ball at ``z_1``, the screw carrying ``F_a`` up to it;
-  the table's sign).  The
+  with friction, :func:`ball_table`; screw and nut as bars, the nut held at its flange at the loaded end; or the
+  nut as an elastic body, fem.nut_fe); the nut's shift at its flange ``|u_0|``,
+  ``u_0 = U(q_1) + F_a z_1 (1 / (E A_s) + 1 / (E A_n))`` (the first ball at ``z_1``, screw and nut carrying ``F_a``
+  up to it; the table's sign).  The
   friction torque over rotation is lin2019 Sec 3.4's whole-screw simulation over the nut's turns
   (:func:`lowmodel.screw.whole_screw.simulate`: its own distribution by lin2019's ball with friction; below the
   preload loss).
@@ -140,17 +141,19 @@ def ball_table(module: screw_contacts.ScrewModule, max_load: float, law: str = "
 
 
 def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | None = None, *,
-                 law: str = "frictionless") -> NutLoads:
+                 law: str = "frictionless", nut_compliance=None) -> NutLoads:
     """The axial load of each ball of a single nut under ``axial_load`` [N] on the screw (module docstring);
     ``stiffness`` the ball's ``U(q)`` table (default :func:`ball_table` of ``law`` up to three times the mean ball
-    load).  The loads sum to the axial load (checked, :data:`BALANCE_TOLERANCE_SINGLE`)."""
+    load); ``nut_compliance`` (n, n) [m/N] an elastic nut's in place of the nut bar (fem.nut_fe, flange at
+    ``z = 0``).  The loads sum to the axial load (checked, :data:`BALANCE_TOLERANCE_SINGLE`)."""
     if nut.arrangement != "single":
         raise ValueError("distribution: a single nut's (arrangement 'single'); a double nut: double_nut")
     total = checks.non_negative("axial_load", axial_load, "N")
     module, psi = nut.module, positions(nut)
     if stiffness is None:
         stiffness = ball_table(module, 3.0 * max(total, 1.0) / nut.balls, law)
-    loads = ld.distribute(psi, total, stiffness, nut.sections, module.lead, module.youngs_modulus)
+    loads = ld.distribute(psi, total, stiffness, nut.sections, module.lead, module.youngs_modulus,
+                          nut_compliance=nut_compliance)
     balance = abs(float(loads.sum()) - total) / total if total > 0.0 else 0.0
     if not balance <= BALANCE_TOLERANCE_SINGLE:
         raise ConvergenceError("nut.distribution: the balls' loads do not sum to the axial load", residual=balance,
@@ -158,8 +161,13 @@ def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | Non
     z = module.lead * psi / (2.0 * math.pi)
     first = int(np.argmin(z))
     sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0  # the table's direction (distribute's)
-    shift = float(stiffness.shift(float(loads[first]))) + sign * total * z[first] / (module.youngs_modulus
-                                                                                     * nut.sections.screw_area)
+    if nut_compliance is None:   # the bars from the flange (z = 0) to the first ball: screw and nut carry F_a
+        bars = total * z[first] * (1.0 / nut.sections.screw_area + 1.0 / nut.sections.nut_area)
+        bars = bars / module.youngs_modulus
+    else:
+        bars = total * z[first] / (module.youngs_modulus * nut.sections.screw_area) + float(
+            np.asarray(nut_compliance)[first] @ loads)
+    shift = float(stiffness.shift(float(loads[first]))) + sign * bars
     return NutLoads(total, psi, z, loads, abs(shift), balance)
 
 

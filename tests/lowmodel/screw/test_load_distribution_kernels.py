@@ -91,12 +91,12 @@ def test_distribute_is_the_numpy_paths_bit_for_bit(compiled, module, stiffness):
     sections = ld.bar_sections(module)
     rng = np.random.default_rng(9)
     for n in (1, 2, 5, 8, 12, 37, 100, 128, 129, 150):   # 129 and 150: beyond MAX_BALLS, the numpy path on both
-        for lead_error in (0.0, 2e-7, -2e-7):
+        for lead_error, flange in ((0.0, "loaded end"), (2e-7, "loaded end"), (-2e-7, "far end"), (0.0, "far end")):
             psi = rng.uniform(0.0, 4 * math.pi, n)
             total = rng.uniform(0.1, 0.9) * n * 60.0
             reference, fast = both(ld.distribute, psi, total, stiffness, sections, module.lead,
-                                   module.youngs_modulus, lead_error=lead_error)
-            assert np.array_equal(reference, fast), (n, lead_error)
+                                   module.youngs_modulus, lead_error=lead_error, flange=flange)
+            assert np.array_equal(reference, fast), (n, lead_error, flange)
             assert fast.sum() == pytest.approx(total, rel=1e-10)
 
 

@@ -37,13 +37,14 @@ def test_distribution_compatibility_and_balance(module, stiffness):
     loads = ld.distribute(psi, 400.0, stiffness, sections, module.lead, module.youngs_modulus)
     assert loads.sum() == pytest.approx(400.0, rel=1e-10)
     assert np.all(np.diff(loads) < 0.0)          # the balls nearest the loaded end carry most
-    # compatibility, recomputed by a plain loop: shift difference = bar shortening between the balls
+    # compatibility, recomputed by a plain loop: shift difference = bar shortening between the balls (the nut held
+    # at the loaded end: screw and nut both carry what the balls beyond have not yet handed over)
     z = module.lead * psi / (2 * math.pi)
     e = module.youngs_modulus
     handed = 0.0
     for j in range(1, len(psi)):
         handed += loads[j - 1]
-        strain = (400.0 - handed) / (e * sections.screw_area) + handed / (e * sections.nut_area)
+        strain = (400.0 - handed) / (e * sections.screw_area) + (400.0 - handed) / (e * sections.nut_area)
         expected = stiffness.shift(loads[j]) - stiffness.shift(loads[j - 1])
         assert expected == pytest.approx(strain * (z[j] - z[j - 1]), rel=1e-6)
     stiff_bars = ld.BarSections(1e6, 1e6)
@@ -64,10 +65,55 @@ def test_lead_error_shifts_the_load_to_the_loaded_end(module, stiffness):
     handed = 0.0
     for j in range(1, len(psi)):
         handed += error[j - 1]
-        strain = (300.0 - handed) / (e * sections.screw_area) + handed / (e * sections.nut_area)
+        strain = (300.0 - handed) / (e * sections.screw_area) + (300.0 - handed) / (e * sections.nut_area)
         expected = strain * (z[j] - z[j - 1]) + 2e-7 * (psi[j] - psi[j - 1]) / (2 * math.pi)
         got = stiffness.shift(error[j]) - stiffness.shift(error[j - 1])
         assert got == pytest.approx(expected, rel=1e-6)
+
+
+def linear_table(stiffness_n_per_m):
+    """A ball of linear axial law q = k u (the table's pchip through collinear points is that line)."""
+    loads = np.linspace(0.0, 400.0, 5)
+    return ld.AxialStiffness(loads, loads / stiffness_n_per_m)
+
+
+@pytest.mark.parametrize("flange", ld.FLANGES)
+def test_two_balls_on_linear_springs_against_the_hand_solution(flange):
+    """Two balls of stiffness k, L apart, the load F on the screw before the nut.  By hand (statics of the bars):
+    the screw between the balls carries F - q1; the nut carries F - q1 towards a flange at the loaded end, q1 away
+    from the loaded end to a far flange, so q1 - q2 = k L ((F - q1) c_s + (F - q1) c_n) or k L ((F - q1) c_s - q1
+    c_n), with q1 + q2 = F.  The former sign error (the nut's q1 c_n added) fails both."""
+    k, e, force = 1e8, 2e11, 100.0
+    sections = ld.BarSections(1e-4, 2e-4)
+    c_s, c_n = 1.0 / (e * sections.screw_area), 1.0 / (e * sections.nut_area)
+    lead, psi = 0.1, np.array([1.0, 4.0])
+    length = lead * 3.0 / (2 * math.pi)
+    if flange == "loaded end":
+        q1 = force * (1 + k * length * (c_s + c_n)) / (2 + k * length * (c_s + c_n))
+    else:
+        q1 = force * (1 + k * length * c_s) / (2 + k * length * (c_s + c_n))
+    loads = ld.distribute(psi, force, linear_table(k), sections, lead, e, flange=flange)
+    np.testing.assert_allclose(loads, [q1, force - q1], rtol=1e-9)
+    assert abs(k * length * (c_s + c_n)) > 0.1   # the bars matter here (the test can tell the signs apart)
+
+
+@pytest.mark.parametrize("flange", ld.FLANGES)
+def test_the_nut_bar_as_a_compliance_matrix_gives_the_bar(module, stiffness, flange):
+    """distribute with the nut bar's compliance matrix (its groove's moves, nut_bar_compliance) = with the bar."""
+    sections = ld.bar_sections(module)
+    psi = np.sort(np.random.default_rng(3).uniform(0.0, 4 * math.pi, 15))
+    z = module.lead * psi / (2 * math.pi)
+    bar = ld.distribute(psi, 500.0, stiffness, sections, module.lead, module.youngs_modulus, flange=flange)
+    matrix = ld.nut_bar_compliance(z, sections.nut_area, module.youngs_modulus, flange, length=z.max() + 0.01)
+    with_matrix = ld.distribute(psi, 500.0, stiffness, sections, module.lead, module.youngs_modulus, flange=flange,
+                                nut_compliance=matrix)
+    np.testing.assert_allclose(with_matrix, bar, rtol=1e-9)
+    if flange == "loaded end":
+        assert np.all(np.diff(bar) < 0.0)   # the balls nearest the loaded end carry most
+    with pytest.raises(ValueError, match="nut_compliance"):
+        ld.distribute(psi, 500.0, stiffness, sections, module.lead, module.youngs_modulus, nut_compliance=np.eye(3))
+    with pytest.raises(ValueError, match="flange"):
+        ld.distribute(psi, 500.0, stiffness, sections, module.lead, module.youngs_modulus, flange="middle")
 
 
 def test_short_simulation(module, stiffness):
