@@ -33,11 +33,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import scipy.sparse as sp
 
+from ballbench.fem import patches as rigid_patches
 from ballbench.fem.elasticity import load_pair, stiffness_fast
-from ballbench.fem.linsolve import factorize
-from ballbench.fem.mortar import edge_index, surface_dofs
+from ballbench.fem.patches import MIN_PATCH_NODES
 from ballbench.lowmodel import checks
 from ballbench.lowmodel.linear_bearing import carriage
 from ballbench.meshes.parts.carriage_body import carriage_body
@@ -45,7 +44,6 @@ from ballbench.meshes.parts.carriage_body import carriage_body
 __all__ = ["BodyShape", "body_shape", "default_patch_radius", "patch_operator", "GrooveCompliance",
            "groove_compliance", "groove_forces", "Comparison", "compare", "write_vtu", "MIN_PATCH_NODES"]
 
-MIN_PATCH_NODES = 4  # vertices a contact's patch needs on the slot's wall (else the mesh is too coarse for it)
 
 
 @dataclass(frozen=True)
@@ -75,68 +73,26 @@ def body_shape(body: carriage.Carriage, *, wall: float | None = None, plate: flo
                      body.balls_per_row * body.pitch)
 
 
-@dataclass(frozen=True)
-class GrooveCompliance:
-    """The grooves' compliance of an elastic carriage body (:func:`groove_compliance`): ``matrix`` (2M, 2M) [m/N];
-    ``local`` [m/N] the Hertz part removed from every contact and direction, ``boussinesq`` [m/N] its estimate
-    (module docstring); ``patch_nodes`` (M,) vertices per patch; ``dofs`` of the body; ``h_max`` [m]; ``mesh`` the
-    ``.msh`` path; ``time_s``; ``points``, ``tets`` the body's mesh and ``response`` the vertices' displacement
-    under a unit force on each groove (:meth:`displacement`)."""
-
-    matrix: np.ndarray
-    local: float
-    boussinesq: float
-    patch_nodes: np.ndarray
-    dofs: int
-    h_max: float
-    mesh: str
-    time_s: float
-    points: np.ndarray | None = None  # (n, 3) m, the body's vertices
-    tets: np.ndarray | None = None  # (t, 4) their tetrahedra
-    response: object = None  # (n, 3, 2M): each vertex's displacement under a unit force on each groove
-
-    def displacement(self, forces) -> np.ndarray:
-        """(n, 3) m, the body's vertex displacements under the grooves' ``forces`` (2M,) [N] (:func:`groove_forces`),
-        the mounting face held: the field of the elastic carriage beyond its rigid motion."""
-        return np.einsum("nij,j->ni", self.response, np.asarray(forces, dtype=float))
-
-
-def _skew(r) -> np.ndarray:
-    """The matrix of ``r x``: ``_skew(r) @ w = r x w``."""
-    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+GrooveCompliance = rigid_patches.PatchCompliance  # the grooves' compliance (2M, 2M): x, y of each groove
 
 
 def patch_operator(pair, basis, points, centres, shape: BodyShape, radius: float):
     """The patches' operator P (2M x dofs, sparse; ``pair``, ``basis`` the body's mesh and P2 basis, ``points``,
     ``centres`` (M, 3) the contact points and curvature centres, ``shape`` the body, ``radius`` [m] the patch's)
-    and the vertices per patch (module docstring)."""
+    and the vertices per patch (module docstring; fem.patches)."""
     wall = pair.nodes("slot")
     xyz = pair.points[wall]
-    rows, cols, vals, counts = [], [], [], []
-    for i, (point, centre) in enumerate(zip(points, centres)):
+    patches = []
+    for i, point in enumerate(points):
         side = math.copysign(1.0, point[0])
         near = (np.abs(xyz[:, 0] - side * shape.slot_half_width) < 1e-9 * shape.length) & (
             np.hypot(xyz[:, 1] - point[1], xyz[:, 2] - point[2]) <= radius)
-        nodes = wall[near]
-        counts.append(nodes.size)
-        if nodes.size < MIN_PATCH_NODES:
-            raise ValueError(f"h_max: contact {i}'s patch of radius {radius!r} m holds {nodes.size} vertices of the "
-                             f"slot's wall (at least {MIN_PATCH_NODES}): refine the mesh")
-        at = pair.points[nodes]
-        mean = at.mean(axis=0)
-        fit = np.zeros((3 * nodes.size, 6))  # u_n = a + omega x r_n: [I, -skew(r_n)] per vertex (x, y, z rows)
-        for j, r in enumerate(at - mean):
-            fit[3 * j:3 * j + 3, :3] = np.eye(3)
-            fit[3 * j:3 * j + 3, 3:] = -_skew(r)
-        read = np.hstack([np.eye(3), -_skew(centre - mean)])[:2] @ np.linalg.pinv(fit)  # (2, 3n): x, y at g
-        dofs = np.stack([basis.nodal_dofs[c][nodes] for c in range(3)], axis=1).reshape(-1)  # vertex-major
-        for row in range(2):
-            rows.append(np.full(dofs.size, 2 * i + row))
-            cols.append(dofs)
-            vals.append(read[row])
-    operator = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                             shape=(2 * len(points), basis.N))
-    return operator, np.array(counts)
+        patches.append(wall[near])
+        if patches[-1].size < MIN_PATCH_NODES:
+            raise ValueError(f"h_max: contact {i}'s patch of radius {radius!r} m holds {patches[-1].size} vertices "
+                             f"of the slot's wall (at least {MIN_PATCH_NODES}): refine the mesh")
+    operator = rigid_patches.patch_operator(basis, pair.points, patches, centres, [np.eye(3)[:2]] * len(points))
+    return operator, np.array([p.size for p in patches])
 
 
 def default_patch_radius(body: carriage.Carriage) -> float:
@@ -169,26 +125,10 @@ def groove_compliance(body: carriage.Carriage, *, h_max: float, h_wall: float | 
                          h_wall=radius / 3.0 if h_wall is None else h_wall, cache=cache)
     pair = load_pair(path, {"carriage": 0})
     stiffness, basis = stiffness_fast(pair, (youngs_modulus, poisson_ratio), order=2)
-    edges = edge_index(basis.mesh)
-    fixed = np.unique(np.concatenate([surface_dofs(basis, pair, "mount", c, 2, edges) for c in range(3)]))
-    free = np.setdiff1d(np.arange(basis.N), fixed)
     operator, counts = patch_operator(pair, basis, points, centres, shape, radius)
-    solve = factorize(stiffness[free][:, free])
-    response = solve(operator[:, free].T.toarray())
-    if getattr(solve, "free", None):
-        solve.free()
-    matrix = operator[:, free] @ response
-    full = np.zeros((basis.N, response.shape[1]))
-    full[free] = response
-    vertex = np.stack([full[basis.nodal_dofs[c]] for c in range(3)], axis=1)  # (n, 3, 2M)
-    matrix = 0.5 * (matrix + matrix.T)
-    boussinesq = 16.0 * (1.0 - poisson_ratio ** 2) / (3.0 * math.pi ** 2 * radius * youngs_modulus)
-    stiffest = float(np.linalg.eigvalsh(matrix).min())  # the patches' own flattening (their stiffest mode)
-    if stiffest <= 0.0:
-        raise ValueError(f"h_max {h_max!r} m: the grooves' FE compliance is not positive (smallest eigenvalue "
-                         f"{stiffest!r} m/N): refine the mesh")
-    local = min(boussinesq, stiffest)
-    matrix = matrix - local * np.eye(len(matrix))
+    matrix, vertex = rigid_patches.condense(pair, stiffness, basis, "mount", operator)  # vertex (n, 3, 2M)
+    boussinesq = rigid_patches.boussinesq_disk(radius, youngs_modulus, poisson_ratio)
+    matrix, local = rigid_patches.without_local(matrix, boussinesq, f"h_max {h_max!r} m")
     return GrooveCompliance(matrix, local, boussinesq, counts, int(basis.N), float(h_max), str(path),
                             time.perf_counter() - start, pair.points, pair.tets, vertex)
 

@@ -25,7 +25,7 @@ import numpy as np
 
 from ballbench.lowmodel.cache import cache_dir, parameter_hash
 
-__all__ = ["session", "cached_msh", "write_msh", "physical", "face_point", "msh_to_vtu"]
+__all__ = ["session", "cached_msh", "write_msh", "physical", "name_solid", "face_point", "msh_to_vtu"]
 
 
 @contextlib.contextmanager
@@ -78,6 +78,14 @@ def physical(gmsh, dim: int, tags: Sequence[int], name: str) -> int:
     if not tags:
         raise RuntimeError(f"physical group {name!r} would be empty (geometry not identified)")
     return gmsh.model.addPhysicalGroup(dim, tags, name=name)
+
+
+def name_solid(gmsh, volume: int, name: str, roles: dict) -> None:
+    """The physical groups of a one-volume part: the volume ``name`` and a surface group per ``roles`` entry
+    (name -> face tags)."""
+    physical(gmsh, 3, [volume], name)
+    for role, faces in roles.items():
+        physical(gmsh, 2, faces, role)
 
 
 def face_point(gmsh, tag: int) -> np.ndarray:

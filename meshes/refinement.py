@@ -26,6 +26,7 @@ ignores the field near small curves.
   the smallest of the laws about several points (the contacts of a module), or about
   an elliptic slab at each of them (``ellipses``);
   :func:`refine_contact` - the law about the fine zone of a contact pair.
+* :func:`refine_at_surfaces` - the law about surfaces (a body's loaded faces: the FE rungs' carriage and nut);
 * :func:`uniform_size` - the fallback without refinement: sizes in ``[h_max / 2, h_max]``;
   :func:`size_at_points` - the contacts' refinement or that fallback.
 
@@ -44,7 +45,7 @@ from ballbench.lowmodel import checks
 __all__ = ["check_refinement", "check_fine_zone", "check_fine_ellipse", "four_slabs", "four_factors", "size_threshold",
            "point_distance",
            "segment_distance", "box_distance", "ellipse_distance", "contact_refinement", "refine_at_points",
-           "refine_contact", "uniform_size", "size_at_points"]
+           "refine_contact", "uniform_size", "size_at_points", "refine_at_surfaces"]
 
 GROWTH_RANGE = (1.0, 3.0)  # size ratio of neighbouring elements away from the fine zone
 
@@ -323,3 +324,11 @@ def size_at_points(gmsh, points, h_contact: float, growth: float, h_max: float, 
         uniform_size(gmsh, h_max)
     else:
         refine_at_points(gmsh, points, h_contact, growth, h_max, fine_radius, ellipses=ellipses)
+
+
+def refine_at_surfaces(gmsh, surfaces, h_fine: float, growth: float, h_max: float) -> int:
+    """The growth law about the ``surfaces`` (gmsh tags): ``min(h_fine, h_max)`` on them (a Distance field,
+    :func:`size_threshold`); returns the field's tag."""
+    distance = gmsh.model.mesh.field.add("Distance")
+    gmsh.model.mesh.field.setNumbers(distance, "SurfacesList", [int(t) for t in surfaces])
+    return size_threshold(gmsh, distance, min(h_fine, h_max), growth, h_max)

@@ -15,8 +15,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ballbench.lowmodel import checks
-from ballbench.meshes.gmsh_tools import cached_msh, face_point, physical, session, write_msh
-from ballbench.meshes.refinement import size_threshold
+from ballbench.meshes.gmsh_tools import cached_msh, face_point, name_solid, session, write_msh
+from ballbench.meshes.refinement import refine_at_surfaces
 
 __all__ = ["carriage_body", "MESH_FORMAT_VERSION"]
 
@@ -60,12 +60,8 @@ def carriage_body(*, half_width: float, slot_half_width: float, bottom: float, s
                 roles["slot"].append(face)
             else:
                 roles["free"].append(face)
-        physical(gmsh, 3, [volume[1]], "carriage")
-        for name, faces in roles.items():
-            physical(gmsh, 2, faces, name)
-        distance = gmsh.model.mesh.field.add("Distance")
-        gmsh.model.mesh.field.setNumbers(distance, "SurfacesList", roles["slot"])
-        size_threshold(gmsh, distance, min(h_wall, h_max), growth, h_max)
+        name_solid(gmsh, volume[1], "carriage", roles)
+        refine_at_surfaces(gmsh, roles["slot"], h_wall, growth, h_max)
         gmsh.model.mesh.generate(3)
         write_msh(gmsh, path)
     return path
