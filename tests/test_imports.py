@@ -95,6 +95,7 @@ LIGHT = {
     ("validation/ladder/whole.py", "ballbench.fem"): STARTUP,
     ("validation/ladder/whole_show.py", "ballbench.validation.figures"): STARTUP,
     ("validation/ladder/whole_nut.py", "ballbench.lowmodel.screw"): STARTUP,
+    ("validation/ladder/whole_nut.py", "ballbench.fem"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.case_stick_slip"): STARTUP,
     ("validation/ladder/stick_slip.py", "ballbench.validation.studies.rolling_b2b"): STARTUP,
     ("validation/studies/calibration/fe_laws.py", "ballbench.validation.studies.fe_contact"): STARTUP,

@@ -53,6 +53,27 @@ def test_the_example_runs_its_whole_nut(tmp_path):
     assert any(t.startswith("Axial stiffness curve") for t in titles)
 
 
+def test_the_example_runs_the_elastic_nut_at_the_fe_rung(tmp_path):
+    """Up the ladder the scene adds the FE rung of an elastic nut (fem.nut_fe): its balance, the worst ball and the
+    stiffness judged as findings, the table per ball, the csv, the picture and the VTU."""
+    case = case_file.load(EXAMPLE)
+    (scene,) = [s for s in ladder.case_scenes(case, "s", top="stick-slip") if s.name == "s-whole"]
+    result = run_scene(scene, "quick", tmp_path)
+    assert result.status() in ("pass", "findings"), result.error
+    judged = {c.quantity: c for c in result.outputs}
+    assert judged["axial balance of the elastic nut's balls"].status == "pass"
+    worst = judged["axial load of the worst ball against the elastic nut"]
+    assert worst.finding and 0.0 < abs(worst.value - worst.reference) / worst.reference < 0.2
+    assert judged["axial stiffness against the elastic nut"].finding
+    folder = tmp_path / "s-whole"
+    for name in ("bar_elastic.csv", "bar_elastic.png", "elastic_nut.vtu"):
+        assert (folder / name).exists(), name
+    assert any(t.startswith("Nut as a bar against the elastic nut") for t, _, _ in result.tables)
+    (folder / "bar_elastic.png").unlink()   # ballbench show draws it again from the saved table
+    drawn = scene.show(folder, "quick", False)
+    assert "bar_elastic.png" in {p.name for p in drawn} and (folder / "bar_elastic.png").exists()
+
+
 def test_a_double_nut_runs_its_preload_and_lift_off(tmp_path):
     case = case_file.loads(_without_nut() + DOUBLE)
     (scene,) = [s for s in ladder.case_scenes(case, "d", top="low-order") if s.name == "d-whole"]

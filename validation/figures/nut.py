@@ -6,13 +6,29 @@ import numpy as np
 
 from ballbench.validation.figures.style import figure
 
-__all__ = ["ball_loads", "load_shift", "preload_diagram", "torque_over_rotation"]
+__all__ = ["ball_loads", "load_shift", "preload_diagram", "torque_over_rotation", "bar_elastic"]
 
 
 def ball_loads(z, loads, title: str):
     """Each ball's axial load [N] along the nut (``z`` [m] from its loaded end)."""
     return _line(np.asarray(z) * 1e3, loads, "z from the loaded end of the nut [mm]", "axial ball load q [N]", title,
                  (8, 3.2))
+
+
+def bar_elastic(z, bar, elastic, coarse=None):
+    """Each ball's axial load [N] along the nut (``z`` [m]): the nut as a bar against the elastic nut (FE; and its
+    coarser mesh level ``coarse``)."""
+    fig = figure(figsize=(8, 3.2), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(np.asarray(z) * 1e3, bar, "o-", ms=3, label="nut as a bar")
+    ax.plot(np.asarray(z) * 1e3, elastic, "s--", ms=3, label="elastic nut (FE)")
+    if coarse is not None:
+        ax.plot(np.asarray(z) * 1e3, coarse, ":", lw=1, color="grey", label="elastic nut, coarser mesh")
+    ax.set_xlabel("z from the loaded end of the nut [mm]")
+    ax.set_ylabel("axial ball load q [N]")
+    ax.legend(fontsize=7)
+    ax.set_title("the nut as a bar against the elastic nut (FE rung)", fontsize=9)
+    return fig
 
 
 def load_shift(loads, shifts, title: str):

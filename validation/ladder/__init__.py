@@ -136,9 +136,10 @@ def case_scenes(case, stem: str, *, top: str = "stick-slip", deadline: float | N
                             cost_s=5.0, budget_s=LOW_BUDGET_S, case=case))
     if "low-order" in rungs and getattr(case, "nut", None) is not None:
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole nut (ball loads along it, stiffness, friction "
-                            "torque over rotation; a double nut's preload and lift-off)",
-                            functools.partial(nut_scene, case=case), tags=("case",), kind="low-order", cost_s=30.0,
-                            budget_s=WHOLE_BUDGET_S, case=case, show=functools.partial(show_whole, case)))
+                            "torque over rotation; a double nut's preload and lift-off; the FE rung of an elastic "
+                            "nut)", functools.partial(nut_scene, case=case, rungs=rungs), tags=("case",),
+                            kind="FE" if fe else "low-order", cost_s=60.0 if fe else 30.0, budget_s=WHOLE_BUDGET_S,
+                            case=case, show=functools.partial(show_whole, case)))
     if "low-order" in rungs and getattr(case, "carriage", None) is not None:
         scenes.append(Scene(f"{stem}-whole", f"{case.name}: the whole carriage under its external load (ball loads "
                             "per row, displacement, stiffness, load-deflection, friction over travel; the FE rung of "

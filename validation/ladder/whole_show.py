@@ -1,6 +1,7 @@
 """``ballbench show CASE.toml`` for ``<stem>-whole``: the whole carriage's or nut's pictures drawn again from the
 tables its validate run saved in ``<out>/<stem>-whole/`` (balls.csv, load_deflection.csv, friction_over_travel.csv,
-rigid_elastic.csv; ball_loads.csv, stiffness.csv, torque.csv, halves.csv), into ``*.png`` beside them."""
+rigid_elastic.csv; ball_loads.csv, bar_elastic.csv, stiffness.csv, torque.csv, halves.csv), into ``*.png`` beside
+them."""
 from __future__ import annotations
 
 import csv
@@ -61,6 +62,10 @@ def _nut(folder: Path, figures, name: str) -> list:
     if (folder / "ball_loads.csv").exists():
         table = _read(folder / "ball_loads.csv")
         drawn.append((figures.ball_loads(table["z_m"], table["axial_load_N"], name), "ball_loads.png"))
+    if (folder / "bar_elastic.csv").exists():
+        table = _read(folder / "bar_elastic.csv")
+        drawn.append((figures.bar_elastic(table["z_m"], table["bar_N"], table["elastic_N"],
+                                          table["elastic_coarse_N"]), "bar_elastic.png"))
     if (folder / "stiffness.csv").exists():
         table = _read(folder / "stiffness.csv")
         drawn.append((figures.load_shift(table["axial_load_N"], table["shift_m"], "single nut"), "stiffness.png"))
