@@ -533,13 +533,19 @@ def check_start(start: str, law: str, full_slip) -> str:
     return start
 
 
-def solve_from_either_start(solve, max_iterations: int, what: str):
-    """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells, else from rolling with
-    :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton converges linearly from there);
-    ConvergenceError naming ``what`` and both failures when neither converges."""
+def solve_from_either_start(solve, max_iterations: int, what: str, warm=None):
+    """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells, else (``warm()``, a solve from
+    a nearby state, where given, else) from rolling with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip
+    switches Newton converges linearly from there); ConvergenceError naming ``what`` and both failures when neither
+    converges."""
     try:
         return solve("full-slip", max_iterations)
     except ConvergenceError as error:
+        if warm is not None:
+            try:
+                return warm()
+            except ConvergenceError:
+                pass
         try:
             return solve("rolling", ROLLING_ITERATIONS * max_iterations)
         except ConvergenceError as again:

@@ -168,7 +168,8 @@ def _friction(balls, radius: float, mu: float, velocity: float, law: str, refere
 
 def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float, gaps=None,
           law: str = "stick-slip", tolerance: float = 1e-9, max_iterations: int = 40,
-          full_slip: b2b_traction.TractionState | None = None, start: str = "full-slip") -> RollingB2BState:
+          full_slip: b2b_traction.TractionState | None = None, start: str = "full-slip",
+          warm: RollingB2BState | None = None) -> RollingB2BState:
     """Quasi-static motion of ``n >= 1`` balls whose ball-to-groove contacts are :class:`GridContact` s, with B2B
     contact (lin2019 eqs 4-10; module docstring).
 
@@ -183,6 +184,10 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         zero) or "auto" (stick/slip only: from full slip on the cells where that has a state and the stick/slip
         solve converges from it, else from rolling with ``rolling_friction.ROLLING_ITERATIONS`` times the steps;
         docs/b2b_rolling.md, "Where full sliding has no state")
+    warm : a stick/slip state of as many balls near this one (e.g. the step before on a travel): a start from its
+        balls' motion and B2B forces, tried before ``start``; with "auto" and a chain (n > 1) after full slip and
+        before rolling (full slip's is the nearer start of a chain where it has a state: the result then the same as
+        without ``warm``; docs/carriage.md, "Over travel")
 
     ValueError for bad input; ConvergenceError (with its residual) when Newton fails or the power balance misses
     :data:`POWER_BALANCE_TOLERANCE`.
@@ -198,11 +203,32 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         raise ValueError("balls must hold n >= 1 balls with the same number of contacts each")
     touching = b2b.touching_pairs(gaps, n, radius)
     patches = [[c.patch() for c in contacts] for contacts in balls]
-    if rf.check_start(start, law, full_slip) == "auto":
+    if warm is not None and (law != "stick-slip" or len(warm.ball_velocity) != n):
+        raise ValueError(f"warm: a stick/slip state of {n} balls for the stick/slip law, got {warm.law!r} of "
+                         f"{len(warm.ball_velocity)}")
+
+    def from_warm():
+        reference_force = max(p.normal_force for contacts in patches for p in contacts)
+        friction = _friction(balls, radius, mu, velocity, law, reference_force)
+        guess = np.column_stack([warm.ball_velocity / abs(velocity), warm.omega * radius / abs(velocity)])
+        states, slots, iterations, residual = rf.solve_balls(
+            friction, guess, touching, lambda layout: b2b.pair_function(layout, mu),
+            forces=warm.b2b_force / (mu * reference_force), complementarity="min", tolerance=tolerance,
+            max_iterations=max_iterations, what=f"stick/slip {n}-ball B2B contact from a warm start")
+        return _state(friction, states, slots, mu, velocity, radius, reference_force, iterations, residual, law)
+
+    if rf.check_start(start, law, full_slip) == "auto" and (warm is None or n > 1):
         return rf.solve_from_either_start(
             lambda first, steps: solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=tolerance, max_iterations=steps, start=first),
-            max_iterations, f"stick/slip {n}-ball B2B contact")
+            max_iterations, f"stick/slip {n}-ball B2B contact", warm=None if warm is None else from_warm)
+    if warm is not None:
+        try:
+            return from_warm()
+        except ConvergenceError:   # too far from the warm state: the cold start below
+            if start == "auto":
+                return solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity, gaps=gaps,
+                             tolerance=tolerance, max_iterations=max_iterations, start="auto")
     if start == "rolling":
         reference_force = max(p.normal_force for contacts in patches for p in contacts)
         friction = _friction(balls, radius, mu, velocity, law, reference_force)

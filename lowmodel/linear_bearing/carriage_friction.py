@@ -21,11 +21,13 @@ False).
 Over travel (:func:`friction_over_travel`): the balls advance against the carriage
 (:func:`lowmodel.linear_bearing.carriage.ball_positions`: a ball leaving the groove at one end enters it at the
 other), the carriage is solved again at each step and its rows' friction follows: the drive force's ripple over one
-ball pitch, with B2B contact and with every ball alone (the friction without ball-to-ball contact).
+ball pitch, with B2B contact and with every ball alone (the friction without ball-to-ball contact).  Each step's
+stick/slip solves start from the step before's states of the same balls (``friction(warm=...)``,
+b2b_rolling.solve's ``warm``: a ball alone from there first, a chain after its full-slip start).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -60,11 +62,13 @@ class RowFriction:
 class CarriageFriction:
     """The friction of the carriage's rows (:func:`friction`): ``force`` [N] their sum, ``rows`` one
     :class:`RowFriction` each; ``complete`` whether every ball of every row has a model and every row's touching
-    balls were solved as one chain (with ``b2b=False``: every ball has a model)."""
+    balls were solved as one chain (with ``b2b=False``: every ball has a model); ``states`` the stick/slip states of its
+    chains (the warm start of the next step over travel)."""
 
     force: float
     rows: tuple
     b2b: bool = True
+    states: dict = field(default_factory=dict, compare=False, repr=False)  # (row, balls) -> stick/slip chain state
 
     @property
     def complete(self) -> bool:
@@ -132,10 +136,11 @@ def row_contacts(body: carriage.Carriage, state: carriage.CarriageState, row: in
                                 groove_velocity=guide.groove_velocity)
 
 
-def _solve(body, state, row: int, run: list, cells) -> tuple:
+def _solve(body, state, row: int, run: list, cells, warm=None) -> tuple:
     """``(state, law)`` of the balls ``run`` of ``row`` touching in a chain (one ball: alone) by the first law of
     :data:`LAWS` that has a state (balls with an open contact: the stick/slip law on their loaded contacts alone);
-    ConvergenceError from the last law when none has (its message says both)."""
+    ConvergenceError from the last law when none has (its message says both); ``warm`` a stick/slip state of the
+    same balls (lowmodel.linear_bearing.b2b_rolling.solve's)."""
     from ballbench.lowmodel.linear_bearing import b2b, b2b_rolling  # the friction models: only when asked
 
     guide = body.guide
@@ -155,7 +160,7 @@ def _solve(body, state, row: int, run: list, cells) -> tuple:
              for k in run]
     try:
         chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
-                                  groove_velocity=guide.groove_velocity, gaps=gaps, start="auto")
+                                  groove_velocity=guide.groove_velocity, gaps=gaps, start="auto", warm=warm)
     except ConvergenceError as error:
         raise ConvergenceError(f"full sliding: {sliding}; stick/slip: {error}", residual=error.residual,
                                iterations=error.iterations, tolerance=error.tolerance,
@@ -176,8 +181,9 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict, pa
     speed = abs(body.guide.groove_velocity)
     if not coupled and len(run) > 1:
         return sum(_chain(body, state, row, [k], cells, True, out) for k in run)
+    key = (row, tuple(run))
     try:
-        chain, law = _solve(body, state, row, run, cells)
+        chain, law = _solve(body, state, row, run, cells, out["warm"].get(key))
     except ConvergenceError as error:
         if len(run) == 1:
             out["laws"][run[0]] = ""
@@ -203,13 +209,15 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict, pa
         out["reasons"].append(f"{'balls' if len(run) > 1 else 'ball'} {run[0] + 1}"
                               f"{f'-{run[-1] + 1}' if len(run) > 1 else ''}: full sliding found no state, {law}")
     out["b2b"][run[0]:run[-1]] = chain.b2b_force
+    if law == LAWS[1]:
+        out["states"][key] = chain
     for k in run:
         out["laws"][k] = law
     return chain.input_power / speed
 
 
 def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(12, 48),
-             b2b: bool = True) -> CarriageFriction:
+             b2b: bool = True, warm: CarriageFriction | None = None) -> CarriageFriction:
     """The carriage's friction force at ``state`` (:func:`lowmodel.linear_bearing.carriage.solve`): in each
     gothic-arch row every run of neighbouring balls with four loaded contacts touching in a chain (``b2b``; else
     every ball alone, the friction without ball-to-ball contact) by the laws of :data:`LAWS` (stick/slip on
@@ -217,11 +225,14 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
     docstring).  A loose ball (every contact open) carries neither load nor friction and parts the chain; a ball with
     one to three open contacts (two- or three-point) takes the stick/slip law on its loaded contacts, in a chain
     with its neighbours of as many loaded contacts (the law's balls share a number of contacts: the chain parts
-    where it changes, ``RowFriction.parted``).  Two-point rows: no model (lin2019's is four-point)."""
+    where it changes, ``RowFriction.parted``).  Two-point rows: no model (lin2019's is four-point).  ``warm`` the
+    friction of a nearby state (the step before over travel, with as many ``cells``): its chains' stick/slip states
+    start the same chains' solves."""
     if not isinstance(body, carriage.Carriage) or not isinstance(state, carriage.CarriageState):
         raise ValueError("friction needs a carriage.Carriage and its carriage.CarriageState (carriage.solve)")
     n = body.balls_per_row
-    rows = []
+    rows, states = [], {}
+    previous = {} if warm is None or warm.b2b != b2b else warm.states
     for r, shape in enumerate(body.rows):
         if shape.contact_angles is None:
             rows.append(RowFriction(0.0, ("",) * n, np.zeros(max(n - 1, 0)), f"row {r}: two-point balls: lin2019's "
@@ -230,7 +241,7 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
             continue
         count = np.sum(state.normal_force[r] > 0.0, axis=1)  # loaded contacts of each ball
         out = dict(laws=["loose" if count[k] == 0 else "" for k in range(n)], b2b=np.zeros(max(n - 1, 0)), reasons=[],
-                   parted=False)
+                   parted=False, warm=previous, states=states)
         runs = []
         for k in range(n):
             if count[k] == 0:
@@ -249,7 +260,7 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
         out["parted"] |= by_count
         rows.append(RowFriction(float(force), tuple(out["laws"]), out["b2b"], "; ".join(out["reasons"]),
                                 out["parted"]))
-    return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows), bool(b2b))
+    return CarriageFriction(float(sum(r.force for r in rows)), tuple(rows), bool(b2b), states)
 
 
 def friction_over_travel(body: carriage.Carriage, load: carriage.Load, *, steps: int = 20, span: float | None = None,
@@ -265,15 +276,17 @@ def friction_over_travel(body: carriage.Carriage, load: carriage.Load, *, steps:
     span = body.pitch if span is None else checks.positive("span", span, "m")
     travel = np.arange(steps) * (span / steps)
     force, force_alone, complete, displacement, largest, frictions = [], [], [], [], [], []
+    result = alone_result = None
     for t in (travel if loop is None else loop(travel)):
         state = carriage.solve(body, load, travel=float(t))
-        result = at_rest if at_rest is not None and t == 0.0 else friction(body, state, cells=cells)
+        result = at_rest if at_rest is not None and t == 0.0 else friction(body, state, cells=cells, warm=result)
         frictions.append(result)
         force.append(result.force)
         complete.append(result.complete)
         displacement.append(state.displacement)
         largest.append(float(state.normal_force.max()))
         if alone:
-            force_alone.append(friction(body, state, cells=cells, b2b=False).force)
+            alone_result = friction(body, state, cells=cells, b2b=False, warm=alone_result)
+            force_alone.append(alone_result.force)
     return TravelFriction(travel, np.array(force), np.array(force_alone) if alone else None, np.array(complete),
                           np.array(displacement), np.array(largest), tuple(frictions))

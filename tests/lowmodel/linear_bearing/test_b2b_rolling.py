@@ -257,6 +257,28 @@ def test_the_stick_slip_state_from_rolling_is_the_state_from_full_slip(case_a):
         b2b_rolling.solve(balls, start="rolling", law="full-slip", **COMMON)
 
 
+def test_a_warm_start_reaches_the_same_state(case_a):
+    """A state of the balls at a nearby deviation (2.1 deg) starts the solve at 2 deg: the same state as from full
+    slip (B2B force 1e-7, velocities 1e-9); with ``start="auto"`` full slip, which has a state here, goes first and
+    the result is bit for bit the one without ``warm``; a warm state far off (the balls spinning, a huge B2B force)
+    falls back to the cold start; a warm state of another number of balls is refused."""
+    contacts, balls, result = case_a
+    _, near = linear_balls(theta=math.radians(2.1))
+    warm = b2b_rolling.solve(near, **COMMON)
+    state = b2b_rolling.solve(balls, warm=warm, **COMMON)
+    assert state.b2b_force == pytest.approx(result.touching.b2b_force, rel=1e-7, abs=1e-9)
+    assert state.ball_velocity == pytest.approx(result.touching.ball_velocity, rel=1e-9)
+    assert state.omega == pytest.approx(result.touching.omega, rel=1e-6, abs=1e-9 * V / R_B)
+    auto = b2b_rolling.solve(balls, start="auto", warm=warm, **COMMON)
+    cold = b2b_rolling.solve(balls, start="auto", **COMMON)
+    assert np.array_equal(auto.b2b_force, cold.b2b_force) and np.array_equal(auto.omega, cold.omega)
+    far = dataclasses.replace(warm, ball_velocity=np.zeros(2), omega=np.full((2, 2), 1e3), b2b_force=np.array([1e6]))
+    fallback = b2b_rolling.solve(balls, warm=far, **COMMON)
+    assert fallback.b2b_force == pytest.approx(result.touching.b2b_force, rel=1e-7, abs=1e-9)
+    with pytest.raises(ValueError, match="warm"):
+        b2b_rolling.solve(balls[:1], warm=warm, **COMMON)
+
+
 def test_the_spin_to_roll_ratio_is_the_ball_s_rotation_against_the_contact_normal():
     """A ball whose four contacts are alike (theta 0, rho 0) rolls about the lateral axis: at every 45 deg contact its
     rotation has equal parts about the contact normal (spin) and in the tangent plane (roll), a spin-to-roll ratio
