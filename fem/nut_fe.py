@@ -2,10 +2,11 @@
 the nut as a bar (docs/nut.md, "Elastic nut").
 
 The body (meshes.parts.nut_body: a tube from the bar's bore ``R_P + R_B`` to the nut's outer radius, its end face at
-the loaded end held by the table, as lowmodel.screw.load_distribution's flange "loaded end") is linear-elastic, so it
+the nut's ``flange`` held by the table: at the loaded end or the far end, lowmodel.screw.load_distribution.FLANGES)
+is linear-elastic, so it
 enters the load distribution through one matrix: the compliance ``G`` (n x n) [m/N] of its balls, the move of each
-ball's nut groove towards the flange under a unit axial ball load, as an axial shift.  Each ball pushes the nut
-along its loaded contact's normal ``e`` (the nut flank towards the flange at the nominal contact angle ``beta_0``,
+ball's nut groove along its push under a unit axial ball load, as an axial shift.  Each ball pushes the nut along
+its loaded contact's normal ``e`` (the nut flank towards the loaded end at the nominal contact angle ``beta_0``,
 in the ball's frame of lowmodel.geometry.helix.cs3_frame: ``e = cos beta_0 x3 - sin beta_0 z3``); the force
 ``q e / |e_z|`` carries the axial load ``q``, and the groove's move is read along the same ``e / |e_z|`` (an approach
 along the normal of ``delta`` is an axial shift ``delta / |e_z|`` of a two-point ball), so ``G`` is symmetric.  The
@@ -69,7 +70,7 @@ def nut_shape(nut: screw_nut.Nut) -> NutShape:
 
 def contact_points(nut: screw_nut.Nut) -> tuple[np.ndarray, np.ndarray]:
     """``(points, normals)`` (n, 3): each ball's loaded nut contact point [m] and its unit normal ``e`` from the
-    ball into the nut, towards the flange (module docstring)."""
+    ball into the nut, towards the loaded end (module docstring)."""
     module = nut.module
     psi = screw_nut.positions(nut)
     frame = helix.cs3_frame(psi, module.lead_angle)  # (n, 3, 3), columns x3, y3, z3
@@ -107,7 +108,8 @@ def nut_compliance(nut: screw_nut.Nut, *, h_max: float, h_bore: float | None = N
     radius = default_patch_radius(nut) if patch_radius is None else checks.positive("patch_radius", patch_radius, "m")
     path = nut_body(inner_radius=shape.inner_radius, outer_radius=shape.outer_radius, start=shape.start,
                     end=shape.end, h_max=checks.positive("h_max", h_max, "m"),
-                    h_bore=radius / 3.0 if h_bore is None else h_bore, cache=cache)
+                    h_bore=radius / 3.0 if h_bore is None else h_bore,
+                    held="start" if nut.flange == "loaded end" else "end", cache=cache)
     pair = load_pair(path, {"nut": 0})
     stiffness, basis = stiffness_fast(pair, (youngs_modulus, poisson_ratio), order=2)
     points, normals = contact_points(nut)
@@ -156,10 +158,11 @@ def compare(nut: screw_nut.Nut, axial_load: float, *, h_max: float, law: str = "
     elastic = screw_nut.distribution(nut, axial_load, table, nut_compliance=compliance.matrix)
     error = (bar.ball_loads - elastic.ball_loads) / float(elastic.ball_loads.max())
     worst = int(np.argmax(np.abs(error)))
-    # from the flange at z0 < 0: the bar's shift gains the bars over -z0, the elastic's G holds its nut part already
-    module, z0 = nut.module, compliance.shape.start
-    screw_part = axial_load * -z0 / (module.youngs_modulus * nut.sections.screw_area)
-    nut_part = axial_load * -z0 / (module.youngs_modulus * nut.sections.nut_area)
+    # from the FE tube's ends: the screw from z0 < 0, the bar nut to the tube's flange (the elastic's G holds it)
+    module, shape = nut.module, compliance.shape
+    screw_part = axial_load * -shape.start / (module.youngs_modulus * nut.sections.screw_area)
+    beyond = -shape.start if nut.flange == "loaded end" else shape.end - float(bar.z.max())
+    nut_part = axial_load * beyond / (module.youngs_modulus * nut.sections.nut_area)
     shift_bar = bar.shift + screw_part + nut_part
     shift_elastic = elastic.shift + screw_part
     stiffness_bar, stiffness_elastic = axial_load / shift_bar, axial_load / shift_elastic

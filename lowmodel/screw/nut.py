@@ -9,8 +9,10 @@ evenly over the turns (:func:`positions`; as lin2019 Sec 3.4's track).  Two arra
   from the frictionless statics of a nominal ball, below and past the preload loss, or lin2019's single-ball model
   with friction, :func:`ball_table`; screw and nut as bars, the nut held at its flange at the loaded end; or the
   nut as an elastic body, fem.nut_fe); the nut's shift at its flange ``|u_0|``,
-  ``u_0 = U(q_1) + F_a z_1 (1 / (E A_s) + 1 / (E A_n))`` (the first ball at ``z_1``, screw and nut carrying ``F_a``
-  up to it; the table's sign).  The
+  ``u_0 = U(q_1) + F_a z_1 / (E A_s) + (G q)_1`` (the first ball at ``z_1``, the screw carrying ``F_a`` up to it;
+  ``G`` the nut's compliance, lowmodel.screw.load_distribution.nut_bar_compliance: held at the loaded end
+  ``(G q)_1 = F_a z_1 / (E A_n)``, at the far end the nut's stretch from the first ball to its flange; the table's
+  sign).  The
   friction torque over rotation is lin2019 Sec 3.4's whole-screw simulation over the nut's turns
   (:func:`lowmodel.screw.whole_screw.simulate`: its own distribution by lin2019's ball with friction; below the
   preload loss).
@@ -70,7 +72,9 @@ class Nut:
     turns (of each half for a double nut), ``balls`` in them (default: :func:`capacity` less one, a gap in the
     track), ``arrangement`` one of :data:`ARRANGEMENTS`, ``preload`` [N] the spacer force of a double nut (0 for a
     single nut: its preload is the module's oversize), ``nut_outer_radius`` [m] of the nut as a bar (default
-    lowmodel.screw.load_distribution.bar_sections')."""
+    lowmodel.screw.load_distribution.bar_sections'), ``flange`` where the nut is held (one of
+    lowmodel.screw.load_distribution.FLANGES: at the loaded end, the screw in tension and the nut in compression, or
+    at the far end, both in tension)."""
 
     module: screw_contacts.ScrewModule
     turns: int = 2
@@ -78,6 +82,7 @@ class Nut:
     arrangement: str = "single"
     preload: float = 0.0
     nut_outer_radius: float | None = None
+    flange: str = "loaded end"
 
     def __post_init__(self):
         if not isinstance(self.module, screw_contacts.ScrewModule):
@@ -86,6 +91,7 @@ class Nut:
         object.__setattr__(self, "balls", checks.count("balls", most - 1 if self.balls == 0 else self.balls, 2,
                                                        most))
         checks.choice("arrangement", self.arrangement, ARRANGEMENTS)
+        checks.choice("flange", self.flange, ld.FLANGES)
         checks.non_negative("preload", self.preload, "N")
         if self.arrangement == "double" and self.preload == 0.0:
             raise ValueError("preload: a double nut needs its preload force > 0 N (the spacer's)")
@@ -144,8 +150,8 @@ def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | Non
                  law: str = "frictionless", nut_compliance=None) -> NutLoads:
     """The axial load of each ball of a single nut under ``axial_load`` [N] on the screw (module docstring);
     ``stiffness`` the ball's ``U(q)`` table (default :func:`ball_table` of ``law`` up to three times the mean ball
-    load); ``nut_compliance`` (n, n) [m/N] an elastic nut's in place of the nut bar (fem.nut_fe, flange at
-    ``z = 0``).  The loads sum to the axial load (checked, :data:`BALANCE_TOLERANCE_SINGLE`)."""
+    load); ``nut_compliance`` (n, n) [m/N] an elastic nut's in place of the nut bar (fem.nut_fe, held at its
+    ``flange``).  The loads sum to the axial load (checked, :data:`BALANCE_TOLERANCE_SINGLE`)."""
     if nut.arrangement != "single":
         raise ValueError("distribution: a single nut's (arrangement 'single'); a double nut: double_nut")
     total = checks.non_negative("axial_load", axial_load, "N")
@@ -153,7 +159,7 @@ def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | Non
     if stiffness is None:
         stiffness = ball_table(module, 3.0 * max(total, 1.0) / nut.balls, law)
     loads = ld.distribute(psi, total, stiffness, nut.sections, module.lead, module.youngs_modulus,
-                          nut_compliance=nut_compliance)
+                          flange=nut.flange, nut_compliance=nut_compliance)
     balance = abs(float(loads.sum()) - total) / total if total > 0.0 else 0.0
     if not balance <= BALANCE_TOLERANCE_SINGLE:
         raise ConvergenceError("nut.distribution: the balls' loads do not sum to the axial load", residual=balance,
@@ -161,12 +167,11 @@ def distribution(nut: Nut, axial_load: float, stiffness: ld.AxialStiffness | Non
     z = module.lead * psi / (2.0 * math.pi)
     first = int(np.argmin(z))
     sign = 1.0 if stiffness.shifts[-1] > stiffness.shifts[0] else -1.0  # the table's direction (distribute's)
-    if nut_compliance is None:   # the bars from the flange (z = 0) to the first ball: screw and nut carry F_a
-        bars = total * z[first] * (1.0 / nut.sections.screw_area + 1.0 / nut.sections.nut_area)
-        bars = bars / module.youngs_modulus
-    else:
-        bars = total * z[first] / (module.youngs_modulus * nut.sections.screw_area) + float(
-            np.asarray(nut_compliance)[first] @ loads)
+    if nut_compliance is None:   # the nut bar: its groove's moves towards the flange
+        nut_compliance = ld.nut_bar_compliance(z, nut.sections.nut_area, module.youngs_modulus, nut.flange)
+    # the screw from its loaded section (z = 0) to the first ball, the nut from that ball's groove to its flange
+    bars = total * z[first] / (module.youngs_modulus * nut.sections.screw_area) + float(
+        np.asarray(nut_compliance)[first] @ loads)
     shift = float(stiffness.shift(float(loads[first]))) + sign * bars
     return NutLoads(total, psi, z, loads, abs(shift), balance)
 
@@ -282,4 +287,4 @@ def friction_over_rotation(nut: Nut, axial_load: float, *, steps: int = 200, dur
     duration = 2.0 * math.pi / abs(module.nut_speed) if duration is None else duration
     return whole_screw.simulate(module, n_balls=nut.balls, axial_load=axial_load, duration=duration, steps=steps,
                                 amplitude=amplitude, cycles=cycles, sections=nut.sections, turns=nut.turns,
-                                progress=progress)
+                                progress=progress, flange=nut.flange)

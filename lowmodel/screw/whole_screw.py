@@ -99,7 +99,8 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
              reading: str = "tilted",
              sections: ld.BarSections | None = None, stiffness: ld.AxialStiffness | None = None,
              lead_error: float = 0.0, progress=None, deviation=None,
-             contact_law: screw_contacts.GrooveContactLaws | None = None, turns: int = TRACK_TURNS) -> ScrewHistory:
+             contact_law: screw_contacts.GrooveContactLaws | None = None, turns: int = TRACK_TURNS,
+             flange: str = "loaded end") -> ScrewHistory:
     """Simulate the whole screw (lin2019 Sec 3.4; defaults: 37 balls, 1500 N, 200 steps over 2 s).
 
     ``amplitude`` [rad] and ``cycles`` (over the loaded turns) of the screw-side deviation,
@@ -111,7 +112,8 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
     sine of ``amplitude`` and ``cycles`` (e.g. a random Fourier series, validation.sweep.functions);
     ``contact_law``: calibrated contact laws of the grooves (:class:`ball.GrooveContactLaws`) for the
     balls and the default ``stiffness``; None: Hertz.  ``turns``: the loaded turns of the track (lin2019: 2; a whole
-    nut's, lowmodel.screw.nut), the return tube again of zero length.
+    nut's, lowmodel.screw.nut), the return tube again of zero length; ``flange`` where the nut is held
+    (:data:`load_distribution.FLANGES`).
     """
     n = checks.count("n_balls", n_balls, 2)
     total = checks.non_negative("axial_load", axial_load, "N")
@@ -153,7 +155,7 @@ def simulate(module: screw_contacts.ScrewModule, *, n_balls: int = 37, axial_loa
             theta = _deviation_of(deviation, screw_azimuth)
         contacts = screw_contacts.ball_contacts(module, theta, reading=reading, contact_law=contact_law)
         loads = ld.distribute(np.mod(positions, track), total, stiffness, sections, module.lead,
-                              module.youngs_modulus, lead_error=lead_error)
+                              module.youngs_modulus, lead_error=lead_error, flange=flange)
         touching_gaps = np.where(gaps <= 1e-12, 0.0, gaps)
         state = b2b.solve(contacts, loads, touching_gaps, ring=True, initial=state)
         records["time"].append(time)

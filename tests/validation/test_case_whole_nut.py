@@ -33,7 +33,8 @@ def test_the_template_shows_the_nut_table_and_the_example_has_one():
     ('[nut]\narrangement = "single"\nturns = 2\npreload = "100 N"\naxial_load = "1 kN"\n', "nut.preload"),
     ('[nut]\narrangement = "double"\nturns = 2\naxial_load = "1 kN"\n', "nut.preload"),
     ('[nut]\narrangement = "single"\nturns = 2\nballs = 500\naxial_load = "1 kN"\n', "nut.balls"),
-    ('[nut]\narrangement = "dual"\nturns = 2\naxial_load = "1 kN"\n', "arrangement")])
+    ('[nut]\narrangement = "dual"\nturns = 2\naxial_load = "1 kN"\n', "arrangement"),
+    ('[nut]\narrangement = "single"\nturns = 2\naxial_load = "1 kN"\nflange = "middle"\n', "flange")])
 def test_a_mistake_in_the_nut_table_names_its_key(table, words):
     with pytest.raises(case_file.CaseFileError, match=re.escape(words)):
         case_file.loads(_without_nut() + table)

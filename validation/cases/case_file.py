@@ -358,7 +358,8 @@ def _nut(reader: _Reader, table: dict | None, screw):
         raise reader.error("nut", "balls", f"nut.balls {table['balls']} do not fit in {table['turns']} turns (at "
                                            f"most {nut.capacity(module, table['turns'])})")
     body = nut.Nut(module if not double else contacts.module(screw, 0.0), table["turns"], table.get("balls", 0),
-                   table["arrangement"], table.get("preload", 0.0), table.get("nut_outer_radius"))
+                   table["arrangement"], table.get("preload", 0.0), table.get("nut_outer_radius"),
+                   table.get("flange", "loaded end"))
     return body, table["axial_load"], (table.get("deviation_amplitude", 0.0), table.get("deviation_cycles", 4))
 
 

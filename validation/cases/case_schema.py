@@ -195,6 +195,7 @@ SCHEMA["linear-guide"]["carriage"] = (
     Key("yaw_moment", "torque", "M_y, about the vertical", required=False, check="finite", example='"0 N m"'),
     Key("roll_moment", "torque", "M_z, about the rail", required=False, check="finite", example='"2 N m"'))
 NUT_ARRANGEMENTS = ("single", "double")  # lowmodel.screw.nut.ARRANGEMENTS
+NUT_FLANGES = ("loaded end", "far end")  # lowmodel.screw.load_distribution.FLANGES
 SCHEMA["ball-screw"]["nut"] = (
     Key("arrangement", "text", "single: one nut preloaded by the ball oversize; double: two halves and a spacer's "
         "preload force", check="choice", choices=NUT_ARRANGEMENTS, example='"single"'),
@@ -205,6 +206,9 @@ SCHEMA["ball-screw"]["nut"] = (
     Key("axial_load", "force", "F_a on the whole nut", check="positive", example='"1500 N"'),
     Key("nut_outer_radius", "length", "the nut as a tube from R_P + R_B to this (default 1.7 R_P)", required=False,
         check="positive", in_template=False),
+    Key("flange", "text", "where the nut is held: at the loaded end (screw in tension, nut in compression; default) "
+        "or at the far end (both in tension)", required=False, check="choice", choices=NUT_FLANGES,
+        in_template=False),
     Key("deviation_amplitude", "angle", "screw-side contact angle deviation over the turns (lin2019 Sec 3.4)",
         required=False, check="non-negative", example='"1 deg"'),
     Key("deviation_cycles", "count", "its periods over the loaded turns", required=False, example="4"))

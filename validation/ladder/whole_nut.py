@@ -125,7 +125,7 @@ def _fe_rung(run, body, load, nuts, figures) -> None:
               tolerance=FE_LOAD_TOLERANCE, time_s=time_s, finding=True,
               why="a ball's load is judged against the largest ball load of the nut",
               source=f"fem.nut_fe: the nut a tube, elastic (P2, {fine.compliance.dofs} DOFs), held at its flange at "
-                     "the loaded end; the balls their axial law, the screw a bar",
+                     f"the {body.flange}; the balls their axial law, the screw a bar",
               note=f"ball {k + 1}; error over the largest ball load {fmt(scale)} N; the FE levels differ by "
                    f"{fmt(level_change * 100)} % of it")
     run.check(model=model, family="low-order numerical", quantity="axial stiffness against the elastic nut",

@@ -77,6 +77,32 @@ def test_a_single_nut_spreads_its_load_from_the_loaded_end_and_balances_it():
     assert state.z == pytest.approx(MODULE.lead * state.positions / (2 * math.pi), rel=1e-15)
 
 
+def test_the_shift_at_the_flange_is_ball_screw_and_nut_in_series_for_both_flanges():
+    """The nut's shift at its flange, written out by a plain loop: the first ball's own shift, the screw's stretch
+    from its loaded section to it (F_a z_1 / (E A_s)) and the nut's between that ball's groove and the flange (held at
+    the loaded end F_a z_1 / (E A_n); at the far end, the last ball's z, the integral of S(z) / (E A_n) from z_1 on).
+    Held at the far end the load is the more even (both bars stretch the same way)."""
+    spreads = []
+    for flange in ("loaded end", "far end"):
+        nut = nuts.Nut(MODULE, turns=3, flange=flange)
+        table = nuts.ball_table(MODULE, 3.0 * 1500.0 / nut.balls)
+        state = nuts.distribution(nut, 1500.0, table)
+        e, sections, q, z = MODULE.youngs_modulus, nut.sections, state.ball_loads, state.z
+        nut_part = 1500.0 * z[0] / (e * sections.nut_area)
+        if flange == "far end":
+            nut_part, handed = 0.0, 0.0
+            for j in range(1, len(z)):
+                handed += q[j - 1]
+                nut_part += handed * (z[j] - z[j - 1]) / (e * sections.nut_area)
+        expected = abs(float(table.shift(q[0]))) + 1500.0 * z[0] / (e * sections.screw_area) + nut_part
+        assert state.shift == pytest.approx(expected, rel=1e-9), flange
+        assert state.ball_loads.sum() == pytest.approx(1500.0, rel=1e-10)
+        spreads.append(np.ptp(q))
+    assert spreads[1] < spreads[0]
+    with pytest.raises(ValueError, match="flange"):
+        nuts.Nut(MODULE, flange="middle")
+
+
 def test_the_nut_path_is_lin2019s_whole_screw():
     """A nut of lin2019's 37 balls in two turns gives the whole-screw simulation's histories (1e-12 relative)."""
     nut = nuts.Nut(MODULE, turns=2, balls=37)
