@@ -27,6 +27,7 @@ b2b_rolling.solve's ``warm``: a ball alone from there first, a chain after its f
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -35,8 +36,8 @@ from ballbench.lowmodel import checks
 from ballbench.lowmodel.errors import ConvergenceError
 from ballbench.lowmodel.linear_bearing import carriage
 
-__all__ = ["RowFriction", "CarriageFriction", "TravelFriction", "row_contacts", "friction", "friction_over_travel",
-           "LAWS"]
+__all__ = ["RowFriction", "CarriageFriction", "TravelFriction", "row_contacts", "ball_frame", "friction",
+           "friction_over_travel", "LAWS"]
 
 LAWS = ("full sliding", "stick/slip on a half-space")  # the friction laws of a ball, tried in this order
 
@@ -145,7 +146,7 @@ def _solve(body, state, row: int, run: list, cells, warm=None) -> tuple:
 
     guide = body.guide
     gaps = np.zeros(len(run) - 1)
-    four_point = bool(np.all(state.normal_force[row][run] > 0.0))
+    four_point = _gothic(body, row) and bool(np.all(state.normal_force[row][run] > 0.0))
     sliding = "lin2019's full sliding is four-point"
     if four_point:
         contacts = row_contacts(body, state, row, run)
@@ -153,11 +154,8 @@ def _solve(body, state, row: int, run: list, cells, warm=None) -> tuple:
             return b2b.solve(contacts, gaps), LAWS[0]
         except ConvergenceError as error:
             sliding = str(error).split(" (residual")[0]
-    angles = body.rows[row].contact_angles
-    balls = [b2b_rolling.loaded_contacts(angles, state.normal_force[row, k], state.a[row, k],
-                                         state.b[row, k] / np.where(state.a[row, k] > 0.0, state.a[row, k], 1.0),
-                                         ball_radius=guide.ball_radius, cells=tuple(cells), guide=guide)
-             for k in run]
+    balls = [b2b_rolling.loaded_contacts(*ball_frame(body, state, row, k), ball_radius=guide.ball_radius,
+                                         cells=tuple(cells), guide=guide) for k in run]
     try:
         chain = b2b_rolling.solve(balls, ball_radius=guide.ball_radius, friction_coefficient=guide.friction_coefficient,
                                   groove_velocity=guide.groove_velocity, gaps=gaps, start="auto", warm=warm)
@@ -166,6 +164,31 @@ def _solve(body, state, row: int, run: list, cells, warm=None) -> tuple:
                                iterations=error.iterations, tolerance=error.tolerance,
                                reason="no state by either law") from None
     return chain, LAWS[1]
+
+
+def _gothic(body: carriage.Carriage, row: int) -> bool:
+    return body.rows[row].contact_angles is not None
+
+
+def ball_frame(body: carriage.Carriage, state: carriage.CarriageState, row: int, ball: int) -> tuple:
+    """Ball ``ball`` of ``row`` in lin2019's frame (lowmodel.geometry.fourpoint: contacts (BL, BR, TR, TL), the
+    bottom groove at rest, the top one moving): ``(contact_angles, normal_forces, semi_major, b_over_a)``, each (4,),
+    a contact that is not there or open with zero force.  A gothic-arch row as it is; a two-point row's rail contact
+    at the bottom, its carriage contact on the opposite diagonal, the angle of its load line from the vertical; a
+    row whose rail lies above its balls (a four-row carriage's lower rows) mirrored top to bottom (friction and power
+    do not change under a mirror; the carriage's groove is then the top one, as in lin2019)."""
+    shape = body.rows[row]
+    force, a, b = state.normal_force[row, ball], state.a[row, ball], state.b[row, ball]
+    ratio = b / np.where(a > 0.0, a, 1.0)
+    if shape.contact_angles is not None:
+        return shape.contact_angles, force, a, ratio
+    rail, top = shape.carriage.index(False), shape.carriage.index(True)
+    n_x, n_y = shape.normals[rail]
+    bottom = 0 if n_x < 0.0 else 1  # BL or BR; the carriage's contact across the ball: TR or TL
+    out = [np.zeros(4) for _ in range(3)]
+    for values, source in zip(out, (force, a, ratio)):
+        values[bottom], values[2 + bottom] = source[rail], source[top]
+    return (math.atan2(abs(n_x), abs(n_y)),) * 4, *out
 
 
 def _weakest(state, row: int, run: list) -> int:
@@ -204,7 +227,7 @@ def _chain(body, state, row: int, run: list, cells, coupled: bool, out: dict, pa
         weak = run.index(alone[0])
         parts = [run[:weak], run[weak + 1:]]
         return force + sum(_chain(body, state, row, part, cells, True, out, True) for part in parts if part)
-    four_point = bool(np.all(state.normal_force[row][run] > 0.0))  # else full sliding was not tried
+    four_point = _gothic(body, row) and bool(np.all(state.normal_force[row][run] > 0.0))  # else full sliding not tried
     if law != LAWS[0] and four_point:
         out["reasons"].append(f"{'balls' if len(run) > 1 else 'ball'} {run[0] + 1}"
                               f"{f'-{run[-1] + 1}' if len(run) > 1 else ''}: full sliding found no state, {law}")
@@ -225,7 +248,8 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
     docstring).  A loose ball (every contact open) carries neither load nor friction and parts the chain; a ball with
     one to three open contacts (two- or three-point) takes the stick/slip law on its loaded contacts, in a chain
     with its neighbours of as many loaded contacts (the law's balls share a number of contacts: the chain parts
-    where it changes, ``RowFriction.parted``).  Two-point rows: no model (lin2019's is four-point).  ``warm`` the
+    where it changes, ``RowFriction.parted``).  A two-point row's balls (a four-row carriage's) take the stick/slip
+    law on their two contacts, in lin2019's frame by :func:`ball_frame`.  ``warm`` the
     friction of a nearby state (the step before over travel, with as many ``cells``): its chains' stick/slip states
     start the same chains' solves."""
     if not isinstance(body, carriage.Carriage) or not isinstance(state, carriage.CarriageState):
@@ -234,11 +258,6 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
     rows, states = [], {}
     previous = {} if warm is None or warm.b2b != b2b else warm.states
     for r, shape in enumerate(body.rows):
-        if shape.contact_angles is None:
-            rows.append(RowFriction(0.0, ("",) * n, np.zeros(max(n - 1, 0)), f"row {r}: two-point balls: lin2019's "
-                                                                               "friction model is four-point; no "
-                                                                               "model yet"))
-            continue
         count = np.sum(state.normal_force[r] > 0.0, axis=1)  # loaded contacts of each ball
         out = dict(laws=["loose" if count[k] == 0 else "" for k in range(n)], b2b=np.zeros(max(n - 1, 0)), reasons=[],
                    parted=False, warm=previous, states=states)
@@ -251,7 +270,7 @@ def friction(body: carriage.Carriage, state: carriage.CarriageState, *, cells=(1
             else:
                 runs.append([k])
         force = sum(_chain(body, state, r, run, cells, b2b, out) for run in runs)
-        partial = [k + 1 for k in range(n) if 0 < count[k] < 4]
+        partial = [k + 1 for k in range(n) if 0 < count[k] < len(shape.normals)]
         by_count = any(b[0] == a[-1] + 1 for a, b in zip(runs, runs[1:]))
         if partial:
             out["reasons"].append(f"balls {partial}: one to three open contacts, by the stick/slip law on their loaded "

@@ -28,7 +28,7 @@ def test_the_friction_of_gothic_rows_mirrors_and_says_which_balls_it_leaves_out(
     state's contact loads).  Gothic rows at the nominal angle under a vertical load mirror each other: the same friction
     and B2B forces (1e-9), every ball by full sliding.  With an end relief deeper than the preload the end balls
     open every contact: loose, they part the chain; pitched, balls keep one to three contacts and take the stick/slip
-    law on them, the chain parted where their number changes (marked); a two-point row has no model."""
+    law on them, the chain parted where their number changes (marked)."""
     shape = SHAPE
     body = _body(oversize=2e-6)
     state = carriage.solve(body, carriage.Load(vertical=600.0))
@@ -48,10 +48,32 @@ def test_the_friction_of_gothic_rows_mirrors_and_says_which_balls_it_leaves_out(
     # number of loaded contacts changes
     row = partial.rows[0]
     assert all(row.law) and row.parted and not partial.complete and "one to three open contacts" in row.reason
-    four_row = _body(rows=carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=ALPHA),
-                     oversize=1e-6)
-    two_point = carriage_friction.friction(four_row, carriage.solve(four_row, carriage.Load(vertical=1e3)))
-    assert two_point.force == 0.0 and all("two-point" in row.reason for row in two_point.rows)
+
+
+def test_two_point_rows_roll_without_spin_and_mirror_top_to_bottom():
+    """A four-row carriage's two-point balls (carriage_friction.ball_frame: lin2019's frame, the rail's contact at
+    the bottom, a row with the rail above mirrored): pressed down, the upper rows carry the load and their balls roll
+    on their load line without spin, a drive force of a fraction of a percent of mu F per ball (Heathcote's
+    micro-slip, as a gothic ball on one diagonal); left and right rows mirror each other (1e-6: the stick/slip
+    solve's tolerance); lifted by the same force, the lower rows (the rail above, at the mirrored height) carry it and
+    give the upper rows' friction (1e-6): the mirror of the frame changes no power."""
+    rows = carriage.four_rows(half_width=10e-3, upper=8e-3, lower=2e-3, contact_angle=ALPHA)
+    body = _body(rows=rows, balls=3, oversize=1e-6)
+    down = carriage.solve(body, carriage.Load(vertical=500.0))
+    up = carriage.solve(body, carriage.Load(vertical=-500.0))
+    pressed, lifted = carriage_friction.friction(body, down, cells=(12, 48)), \
+        carriage_friction.friction(body, up, cells=(12, 48))
+    assert pressed.complete and lifted.complete
+    upper_right, upper_left, lower_right, lower_left = pressed.rows
+    assert set(upper_right.law) == {"stick/slip on a half-space"} and set(lower_left.law) == {"loose"}
+    assert upper_right.force == pytest.approx(upper_left.force, rel=1e-6)
+    per_ball = upper_right.force / 3 / (GUIDE.friction_coefficient * float(down.normal_force[0].max()))
+    assert 0.0 < per_ball < 0.01
+    assert np.all(upper_right.b2b_forces == 0.0) or np.max(upper_right.b2b_forces) < 1e-3 * float(
+        down.normal_force[0].max())
+    assert lifted.rows[2].force == pytest.approx(upper_right.force, rel=1e-6)
+    assert lifted.rows[3].force == pytest.approx(upper_left.force, rel=1e-6)
+    assert lifted.force == pytest.approx(pressed.force, rel=1e-6)
 
 
 def test_the_friction_over_a_pitch_of_travel_repeats_and_mirrors_without_ball_to_ball_contact():
