@@ -42,8 +42,8 @@ from ballbench.lowmodel.screw import load_distribution as ld
 from ballbench.lowmodel.screw import nut as screw_nut
 from ballbench.meshes.parts.nut_body import nut_body
 
-__all__ = ["NutShape", "nut_shape", "contact_points", "default_patch_radius", "NutCompliance", "nut_compliance",
-           "Comparison", "compare", "write_vtu", "MIN_PATCH_NODES"]
+__all__ = ["NutShape", "nut_shape", "contact_points", "default_patch_radius", "patch_operator", "NutCompliance",
+           "nut_compliance", "Comparison", "compare", "write_vtu", "MIN_PATCH_NODES"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +89,21 @@ def default_patch_radius(nut: screw_nut.Nut) -> float:
     return float(min(nut.module.ball_radius, 0.5 * gaps.min()))
 
 
+def patch_operator(nut: screw_nut.Nut, pair, basis, shape: NutShape, radius: float):
+    """``(P, vertices per patch, normals)``: the balls' patches operator (n x dofs; ``pair``, ``basis`` the nut's
+    mesh and P2 basis, ``radius`` [m] the patch's): each ball's contact point projected radially on the bore, the
+    bore's vertices within ``radius`` of it, read at the contact point along ``e / |e_z|`` (module docstring)."""
+    points, normals = contact_points(nut)
+    bore = pair.nodes("bore")
+    patches = []
+    for point in points:
+        on_bore = np.array([*(shape.inner_radius * point[:2] / np.hypot(*point[:2])), point[2]])
+        patches.append(bore[np.linalg.norm(pair.points[bore] - on_bore, axis=1) <= radius])
+    directions = [(e / abs(e[2]))[None, :] for e in normals]
+    operator = rigid_patches.patch_operator(basis, pair.points, patches, points, directions)
+    return operator, np.array([p.size for p in patches]), normals
+
+
 NutCompliance = rigid_patches.PatchCompliance  # the balls' compliance (n, n), ``shape`` the NutShape
 
 
@@ -112,20 +127,13 @@ def nut_compliance(nut: screw_nut.Nut, *, h_max: float, h_bore: float | None = N
                     held="start" if nut.flange == "loaded end" else "end", cache=cache)
     pair = load_pair(path, {"nut": 0})
     stiffness, basis = stiffness_fast(pair, (youngs_modulus, poisson_ratio), order=2)
-    points, normals = contact_points(nut)
-    bore = pair.nodes("bore")
-    patches = []
-    for point in points:
-        on_bore = np.array([*(shape.inner_radius * point[:2] / np.hypot(*point[:2])), point[2]])
-        patches.append(bore[np.linalg.norm(pair.points[bore] - on_bore, axis=1) <= radius])
-    directions = [(e / abs(e[2]))[None, :] for e in normals]
-    operator = rigid_patches.patch_operator(basis, pair.points, patches, points, directions)
+    operator, counts, normals = patch_operator(nut, pair, basis, shape, radius)
     matrix, vertex = rigid_patches.condense(pair, stiffness, basis, "flange", operator)  # vertex (v, 3, n)
     # Boussinesq's disk along e / |e_z| (alike normal to the bore and along it, as fem.carriage_fe)
     boussinesq = rigid_patches.boussinesq_disk(radius, youngs_modulus, poisson_ratio) / float(
         np.min(np.abs(normals[:, 2]))) ** 2
     matrix, local = rigid_patches.without_local(matrix, boussinesq, f"h_max {h_max!r} m")
-    return NutCompliance(matrix, local, boussinesq, np.array([p.size for p in patches]), int(basis.N),
+    return NutCompliance(matrix, local, boussinesq, counts, int(basis.N),
                          float(h_max), str(path), time.perf_counter() - start, pair.points, pair.tets, vertex, shape)
 
 
@@ -142,8 +150,12 @@ class Comparison:
     worst: int
     stiffness_bar: float
     stiffness_elastic: float
-    stiffness_change: float
     compliance: NutCompliance
+
+    @property
+    def stiffness_change(self) -> float:
+        """The bar's axial stiffness over the elastic nut's, less 1."""
+        return self.stiffness_bar / self.stiffness_elastic - 1.0
 
 
 def compare(nut: screw_nut.Nut, axial_load: float, *, h_max: float, law: str = "frictionless",
@@ -166,8 +178,7 @@ def compare(nut: screw_nut.Nut, axial_load: float, *, h_max: float, law: str = "
     shift_bar = bar.shift + screw_part + nut_part
     shift_elastic = elastic.shift + screw_part
     stiffness_bar, stiffness_elastic = axial_load / shift_bar, axial_load / shift_elastic
-    return Comparison(bar, elastic, error, worst, stiffness_bar, stiffness_elastic,
-                      stiffness_bar / stiffness_elastic - 1.0, compliance)
+    return Comparison(bar, elastic, error, worst, stiffness_bar, stiffness_elastic, compliance)
 
 
 def write_vtu(path, comparison: Comparison) -> Path:

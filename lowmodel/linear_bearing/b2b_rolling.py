@@ -206,54 +206,50 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     if warm is not None and (law != "stick-slip" or len(warm.ball_velocity) != n):
         raise ValueError(f"warm: a stick/slip state of {n} balls for the stick/slip law, got {warm.law!r} of "
                          f"{len(warm.ball_velocity)}")
+    reference_force = max(p.normal_force for contacts in patches for p in contacts)  # b2b_traction's F_ref
+    speed = abs(velocity)
 
-    def from_warm():
-        reference_force = max(p.normal_force for contacts in patches for p in contacts)
-        friction = _friction(balls, radius, mu, velocity, law, reference_force)
-        guess = np.column_stack([warm.ball_velocity / abs(velocity), warm.omega * radius / abs(velocity)])
+    def chain_state(friction, start_states, forces, what):   # the stick/slip chain from a start, and its checks
         states, slots, iterations, residual = rf.solve_balls(
-            friction, guess, touching, lambda layout: b2b.pair_function(layout, mu),
-            forces=warm.b2b_force / (mu * reference_force), complementarity="min", tolerance=tolerance,
-            max_iterations=max_iterations, what=f"stick/slip {n}-ball B2B contact from a warm start")
+            friction, start_states, touching, lambda layout: b2b.pair_function(layout, mu), forces=forces,
+            complementarity="min", tolerance=tolerance, max_iterations=max_iterations, what=what)
         return _state(friction, states, slots, mu, velocity, radius, reference_force, iterations, residual, law)
 
-    if rf.check_start(start, law, full_slip) == "auto" and (warm is None or n > 1):
+    def from_warm():
+        return chain_state(_friction(balls, radius, mu, velocity, law, reference_force),
+                           np.column_stack([warm.ball_velocity / speed, warm.omega * radius / speed]),
+                           warm.b2b_force / (mu * reference_force),
+                           f"stick/slip {n}-ball B2B contact from a warm start")
+
+    if rf.check_start(start, law, full_slip) == "auto":
+        if warm is not None and n == 1:   # a ball alone: its warm state is the nearer start
+            try:
+                return from_warm()
+            except ConvergenceError:
+                pass
         return rf.solve_from_either_start(
             lambda first, steps: solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=tolerance, max_iterations=steps, start=first),
-            max_iterations, f"stick/slip {n}-ball B2B contact", warm=None if warm is None else from_warm)
+            max_iterations, f"stick/slip {n}-ball B2B contact", warm=from_warm if warm is not None and n > 1 else None)
     if warm is not None:
         try:
             return from_warm()
         except ConvergenceError:   # too far from the warm state: the cold start below
-            if start == "auto":
-                return solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity, gaps=gaps,
-                             tolerance=tolerance, max_iterations=max_iterations, start="auto")
+            pass
+    friction = _friction(balls, radius, mu, velocity, law, reference_force)
     if start == "rolling":
-        reference_force = max(p.normal_force for contacts in patches for p in contacts)
-        friction = _friction(balls, radius, mu, velocity, law, reference_force)
-        states, slots, iterations, residual = rf.solve_balls(
-            friction, friction.rolling_start(), touching, lambda layout: b2b.pair_function(layout, mu),
-            forces=np.zeros(n - 1), complementarity="min", tolerance=tolerance, max_iterations=max_iterations,
-            what=f"stick/slip {n}-ball B2B contact from rolling")
-        return _state(friction, states, slots, mu, velocity, radius, reference_force, iterations, residual, law)
+        return chain_state(friction, friction.rolling_start(), np.zeros(n - 1),
+                           f"stick/slip {n}-ball B2B contact from rolling")
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=min(tolerance, 1e-11), max_iterations=100,
                                        name=rf.FULL_SLIP_NAME)
-    reference_force = max(p.normal_force for contacts in patches for p in contacts)  # b2b_traction's F_ref
-    speed = abs(velocity)
     start = np.column_stack([full_slip.ball_velocity / speed, full_slip.omega * radius / speed])
-    friction = _friction(balls, radius, mu, velocity, law, reference_force)
+    forces = full_slip.b2b_force / (mu * reference_force)
     if law == "full-slip":
-        states, slots, iterations, residual = start, full_slip.b2b_force / (mu * reference_force), \
-            full_slip.iterations, full_slip.residual
-    else:
-        states, slots, iterations, residual = rf.solve_balls(
-            friction, start, touching, lambda layout: b2b.pair_function(layout, mu),
-            forces=full_slip.b2b_force / (mu * reference_force), complementarity="min", tolerance=tolerance,
-            max_iterations=max_iterations, what=f"stick/slip {n}-ball B2B contact")
-    return _state(friction, states, slots, mu, velocity, radius, reference_force, iterations, residual, law)
+        return _state(friction, start, forces, mu, velocity, radius, reference_force, full_slip.iterations,
+                      full_slip.residual, law)
+    return chain_state(friction, start, forces, f"stick/slip {n}-ball B2B contact")
 
 
 def _state(friction: rf.StickSlipFriction, states, slots, mu, velocity, radius, reference_force, iterations, residual,

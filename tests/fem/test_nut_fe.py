@@ -35,12 +35,9 @@ def test_the_patches_read_a_rigid_motion_along_the_balls_normals():
                     end=shape.end, h_max=H_MAX, h_bore=radius / 3.0)
     pair = load_pair(path, {"nut": 0})
     basis = vector_basis(pair, 2)
-    points, normals = nut_fe.contact_points(NUT)
-    bore = pair.nodes("bore")
-    patches = [bore[np.linalg.norm(pair.points[bore] - np.array([*(shape.inner_radius * p[:2] / np.hypot(*p[:2])),
-                                                                   p[2]]), axis=1) <= radius] for p in points]
-    directions = [(e / abs(e[2]))[None, :] for e in normals]
-    operator = rigid_patches.patch_operator(basis, pair.points, patches, points, directions)
+    operator, counts, normals = nut_fe.patch_operator(NUT, pair, basis, shape, radius)
+    points, _ = nut_fe.contact_points(NUT)
+    assert counts.min() >= rigid_patches.MIN_PATCH_NODES
     u, phi = np.array([2e-6, -1e-6, 0.5e-6]), np.array([3e-5, -2e-5, 4e-5])
     field = np.zeros(basis.N)
     motion = u + np.cross(phi, pair.points)
