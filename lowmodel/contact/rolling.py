@@ -41,6 +41,7 @@ centre, ``eta`` likewise, ``phi = (omega_1 - omega_2)_z / V`` [rad/m].  With the
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -102,6 +103,8 @@ class RollingContact:
     stick_fraction : stick cells / contact cells
     normal_force : [N] ``sum p_n dA``
     iterations, krylov_iterations, residual : Newton steps, GMRES steps, final ``max|F| / max g``
+    traction_sensitivity : (nx, ny, 2, k) the traction's derivative along the ``k`` changes of the rigid slip given
+        to :func:`solve` as ``sensitivity_directions`` [Pa per unit of ``w``], None without them
     """
 
     grid: SurfaceGrid
@@ -123,9 +126,12 @@ class RollingContact:
     iterations: int
     krylov_iterations: int
     residual: float
+    traction_sensitivity: np.ndarray | None = None
 
     def __post_init__(self):
         checks.freeze_arrays(self, "pressure", "traction", "slip", "rigid_slip", "stick", "contact")
+        if self.traction_sensitivity is not None:
+            checks.freeze_arrays(self, "traction_sensitivity")
 
     @property
     def slip_area(self) -> np.ndarray:
@@ -175,7 +181,7 @@ def _check_rigid(rigid, grid: SurfaceGrid, name: str) -> np.ndarray:
 
 def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_speed: float = 1.0,
           tolerance: float = 1e-10, max_iterations: int = 60, dense: bool | None = None,
-          initial_traction: np.ndarray | None = None) -> RollingContact:
+          initial_traction: np.ndarray | None = None, sensitivity_directions=None) -> RollingContact:
     """Tangential tractions of a contact with stick and slip (module docstring).
 
     Parameters
@@ -189,6 +195,9 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
     tolerance : on ``max|F| / max(mu p_n)`` (traction units)
     dense : force dense (True) or FFT (False) products; default by :data:`DENSE_CELLS`
     initial_traction : (nx, ny, 2) start [Pa] (e.g. a nearby case)
+    sensitivity_directions : (nx, ny, 2, k) changes of ``rigid``; the result's ``traction_sensitivity`` is the
+        traction's derivative along each (the implicit function theorem at the solution,
+        :func:`~lowmodel.contact.rolling_newton.sensitivity`: one linear solve per direction, no new Newton solve)
 
     Raises ValueError for bad input, ConvergenceError when Newton does not converge or a defining
     condition fails its check.
@@ -206,9 +215,22 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
     start = None
     if initial_traction is not None:
         start = _check_rigid(initial_traction, grid, "initial_traction").reshape(-1, 2)[problem.cells]
+    directions = None
+    if sensitivity_directions is not None:
+        directions = np.asarray(checks.real("sensitivity_directions", sensitivity_directions), dtype=float)
+        if directions.ndim != 4 or directions.shape[:3] != (grid.nx, grid.ny, 2) or not np.all(np.isfinite(directions)):
+            raise ValueError(f"sensitivity_directions must be finite with shape {(grid.nx, grid.ny, 2)} + (k,), got "
+                             f"{directions.shape}")
     p, s, stick, iterations, krylov, residual = _newton(problem, tolerance, max_iterations, start)
-    return _result(problem, grid, grid.x, grid.y, pressure, float(pressure.sum()) * grid.cell_area, p, s, stick,
-                   rigid, mu, speed, iterations, krylov, residual)
+    result = _result(problem, grid, grid.x, grid.y, pressure, float(pressure.sum()) * grid.cell_area, p, s, stick,
+                     rigid, mu, speed, iterations, krylov, residual)
+    if directions is None:
+        return result
+    with one_blas_thread():
+        cells = rolling_newton.sensitivity(problem, p, directions.reshape(-1, 2, directions.shape[3])[problem.cells])
+    derivative = np.zeros(directions.shape)
+    derivative.reshape(-1, 2, directions.shape[3])[problem.cells] = cells
+    return dataclasses.replace(result, traction_sensitivity=derivative)
 
 
 def _newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start):

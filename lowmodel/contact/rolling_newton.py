@@ -27,7 +27,8 @@ from ballbench.lowmodel import kernels
 from ballbench.lowmodel.errors import ConvergenceError
 
 __all__ = ["TangentialProblem", "semismooth_newton", "check_solution", "low_rank_step", "woodbury_step",
-           "identity_step", "compiled_solve", "KERNELS", "DENSE_CELLS", "DIRECT_CELLS", "CHECK_TOLERANCE"]
+           "identity_step", "compiled_solve", "sensitivity", "SENSITIVITY_TOLERANCE", "KERNELS", "DENSE_CELLS",
+           "DIRECT_CELLS", "CHECK_TOLERANCE"]
 
 DENSE_CELLS = 400  # contact cells up to which the operator's products are dense (measured, benchmarks)
 DIRECT_CELLS = 150  # contact cells up to which each Newton system is solved by dense LU, not GMRES (benchmarks)
@@ -35,6 +36,7 @@ CHECK_TOLERANCE = 1e-7  # the defining conditions hold to this fraction of max(g
 KERNELS = "contact.rolling_kernels"  # the compiled twin of the prepared dense solve (lowmodel.kernels.load)
 _FORCING = 0.1  # GMRES relative tolerance per Newton step (inexact Newton; min(0.1, residual))
 _RESTART = 30
+SENSITIVITY_TOLERANCE = 1e-7  # GMRES relative tolerance of each sensitivity system
 
 
 def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iterations: int):
@@ -379,51 +381,58 @@ def woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np
     return (x0 - inverse[:, rows] @ y).reshape(-1, 2)
 
 
+def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sliding: np.ndarray,
+                 scale: np.ndarray):
+    """``solve(F, forcing) -> (dp, krylov steps)``: the solution of ``J dp = -F`` with the generalised Jacobian
+    ``J = (I - D) + c D C`` at the state ``z`` (module docstring); ``forcing`` the relative tolerance of GMRES
+    where the system is iterative (the prepared dense and direct systems are solved exactly)."""
+    D = _derivative(z, norm, sliding, scale)
+    E = -D
+    E[:, 0, 0] += 1.0
+    E[:, 1, 1] += 1.0
+    c = problem.c
+    cD = c * D
+    inverse = problem.stick_inverse()
+    if inverse is not None:  # prepared dense problems: a low-rank form of J (low_rank_step)
+        return lambda F, _forcing: (low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale), 0)
+    if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
+        n = problem.n
+        rows = problem.matrix.reshape(n, 2, 2 * n)
+        jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
+        jacobian += cD[:, :, 1, None] * rows[:, None, 1, :]
+        jacobian.reshape(n, 2, n, 2)[np.arange(n), :, np.arange(n), :] += E
+        jacobian = jacobian.reshape(2 * n, 2 * n)
+        if n <= DIRECT_CELLS:
+            return lambda F, _forcing: (np.linalg.solve(jacobian, -F.reshape(-1)).reshape(-1, 2), 0)
+        matvec = jacobian.__matmul__
+    else:
+        def matvec(v):
+            v = v.reshape(-1, 2)
+            Cv = problem.apply(v)
+            out = E[:, :, 0] * v[:, 0, None]
+            out += E[:, :, 1] * v[:, 1, None]
+            out += cD[:, :, 0] * Cv[:, 0, None]
+            out += cD[:, :, 1] * Cv[:, 1, None]
+            return out.reshape(-1)
+    precondition = problem.preconditioner(D, sliding)
+
+    def solve(F, forcing):
+        step, used = _gmres(matvec, precondition, -F.reshape(-1), forcing, 200)
+        return step.reshape(-1, 2), used
+
+    return solve
+
+
 def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iterations: int, start: np.ndarray | None):
     p = problem.marching_start() if start is None else start.copy()
     F, z, norm, sliding, scale = problem.residual(p)
     residual = float(np.max(np.abs(F))) / problem.gmax
     krylov = 0
-    c = problem.c
     for iteration in range(1, max_iterations + 1):
         if residual <= tolerance:
             return p, iteration - 1, krylov, residual
-        D = _derivative(z, norm, sliding, scale)
-        E = -D
-        E[:, 0, 0] += 1.0
-        E[:, 1, 1] += 1.0
-        cD = c * D
-
-        inverse = problem.stick_inverse()
-        woodbury = inverse is not None  # prepared dense problems: a low-rank form of J (low_rank_step)
-        if woodbury:
-            pass
-        elif problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
-            n = problem.n
-            rows = problem.matrix.reshape(n, 2, 2 * n)
-            jacobian = cD[:, :, 0, None] * rows[:, None, 0, :]
-            jacobian += cD[:, :, 1, None] * rows[:, None, 1, :]
-            jacobian.reshape(n, 2, n, 2)[np.arange(n), :, np.arange(n), :] += E
-            matvec = jacobian.reshape(2 * n, 2 * n).__matmul__
-        else:
-            def matvec(v, cD=cD, E=E):
-                v = v.reshape(-1, 2)
-                Cv = problem.apply(v)
-                out = E[:, :, 0] * v[:, 0, None]
-                out += E[:, :, 1] * v[:, 1, None]
-                out += cD[:, :, 0] * Cv[:, 0, None]
-                out += cD[:, :, 1] * Cv[:, 1, None]
-                return out.reshape(-1)
-
-        if woodbury:
-            step = low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale)
-        elif problem.matrix is not None and problem.n <= DIRECT_CELLS:
-            step = np.linalg.solve(jacobian.reshape(2 * n, 2 * n), -F.reshape(-1)).reshape(-1, 2)
-        else:
-            precondition = problem.preconditioner(D, sliding)
-            step, used = _gmres(matvec, precondition, -F.reshape(-1), min(_FORCING, residual), 200)
-            krylov += used
-            step = step.reshape(-1, 2)
+        step, used = _step_solver(problem, z, norm, sliding, scale)(F, min(_FORCING, residual))
+        krylov += used
         norm_F = float(np.sum(F * F))
         t = 1.0
         for _ in range(8):  # backtracking on |F|^2: the first step that decreases it
@@ -439,6 +448,26 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
         return p, max_iterations, krylov, residual
     raise ConvergenceError("rolling contact (semismooth Newton) did not converge: max|p - Proj(p - c s)| / max(g)",
                            residual=residual, iterations=max_iterations, tolerance=tolerance, reason="iteration limit")
+
+
+def sensitivity(problem: TangentialProblem, p: np.ndarray, directions: np.ndarray,
+                tolerance: float = SENSITIVITY_TOLERANCE) -> np.ndarray:
+    """``dp/dw`` along ``directions``: (n, 2, k) changes of the rigid slip ``w`` on the contact cells -> (n, 2, k)
+    changes of the traction at the solution ``p`` (the implicit function theorem on ``F(p, w) = 0``:
+    ``J dp = -c D dw``, ``D = Proj_g'(z)`` and ``J`` the generalised Jacobian of the last Newton step; docs/
+    rolling_contact.md, 'Sensitivity').  A cell on the stick/slip boundary takes the derivative of the side its
+    ``z`` lies on (the semismooth Newton's choice).  Iterative systems are solved to the relative ``tolerance``."""
+    directions = np.asarray(directions, dtype=float)
+    if directions.ndim != 3 or directions.shape[:2] != (problem.n, 2):
+        raise ValueError(f"directions must have shape ({problem.n}, 2, k), got {directions.shape}")
+    _, z, norm, sliding, scale = problem.residual(p)
+    D = _derivative(z, norm, sliding, scale)
+    solve = _step_solver(problem, z, norm, sliding, scale)
+    out = np.empty_like(directions)
+    with_c = problem.c * np.einsum("nab,nbk->nak", D, directions)  # c D dw: J dp = -F with F = c D dw
+    for j in range(directions.shape[2]):
+        out[:, :, j] = solve(with_c[:, :, j], tolerance)[0]
+    return out
 
 
 def check_solution(problem: TangentialProblem, p: np.ndarray, tolerance: float):
