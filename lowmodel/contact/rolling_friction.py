@@ -350,12 +350,13 @@ def _full_slip(pressure: np.ndarray, mu: float, w: np.ndarray, speed: float, gri
     return _FullSlip(traction, power, power)
 
 
-STARTS = ("full-slip", "rolling", "auto")  # the stick/slip solves' starts (docs/b2b_rolling.md)
+STARTS = ("full-slip", "rolling", "alone", "auto")  # the stick/slip solves' starts (docs/b2b_rolling.md)
 ROLLING_ITERATIONS = 4  # start="auto" from rolling: Newton's step budget times this (docs/b2b_rolling.md)
 
 
 def check_start(start: str, law: str, full_slip) -> str:
-    """``start`` of a stick/slip solve, checked: "rolling" and "auto" are the stick/slip law's own starts."""
+    """``start`` of a stick/slip solve, checked: "rolling", "alone" and "auto" are the stick/slip law's own
+    starts."""
     start = checks.choice("start", start, STARTS)
     if start != "full-slip" and (law != "stick-slip" or full_slip is not None):
         raise ValueError(f"start={start!r} is the stick/slip law's own start: law must be 'stick-slip' and "
@@ -363,19 +364,20 @@ def check_start(start: str, law: str, full_slip) -> str:
     return start
 
 
-def solve_from_either_start(solve, max_iterations: int, what: str, warm=None):
+def solve_from_either_start(solve, max_iterations: int, what: str, warm=None, alone=None):
     """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells, else (``warm()``, a solve from
-    a nearby state, where given, else) from rolling with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip
-    switches Newton converges linearly from there); ConvergenceError naming ``what`` and both failures when neither
-    converges."""
+    a nearby state, where given; then ``alone()``, a chain's solve from the states of its balls each solved alone,
+    where given, else) from rolling with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton
+    converges linearly from there); ConvergenceError naming ``what`` and both failures when none converges."""
     try:
         return solve("full-slip", max_iterations)
     except ConvergenceError as error:
-        if warm is not None:
-            try:
-                return warm()
-            except ConvergenceError:
-                pass
+        for nearer in (warm, alone):
+            if nearer is not None:
+                try:
+                    return nearer()
+                except ConvergenceError:
+                    pass
         try:
             return solve("rolling", ROLLING_ITERATIONS * max_iterations)
         except ConvergenceError as again:

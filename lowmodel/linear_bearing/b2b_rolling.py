@@ -181,9 +181,11 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     full_slip : the full-slip state of the same balls and gaps (the start; solved here when None)
     start : "full-slip" (from ``full_slip``), "rolling" (stick/slip only: from each ball's kinematics nearest to
         rolling, :meth:`~lowmodel.contact.rolling_friction.StickSlipFriction.rolling_start`, the B2B forces from
-        zero) or "auto" (stick/slip only: from full slip on the cells where that has a state and the stick/slip
-        solve converges from it, else from rolling with ``rolling_friction.ROLLING_ITERATIONS`` times the steps;
-        docs/b2b_rolling.md, "Where full sliding has no state")
+        zero), "alone" (stick/slip only, touching balls: from the states of its balls each solved alone by
+        "auto", the B2B forces from zero) or "auto" (stick/slip only: from full slip on the cells where that has a
+        state and the stick/slip solve converges from it, else (``warm``, then) "alone" for a chain, else from
+        rolling with ``rolling_friction.ROLLING_ITERATIONS`` times the steps; docs/b2b_rolling.md, "Where full
+        sliding has no state")
     warm : a stick/slip state of as many balls near this one (e.g. the step before on a travel): a start from its
         balls' motion and B2B forces, tried before ``start``; with "auto" and a chain (n > 1) after full slip and
         before rolling (full slip's is the nearer start of a chain where it has a state: the result then the same as
@@ -221,6 +223,16 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
                            warm.b2b_force / (mu * reference_force),
                            f"stick/slip {n}-ball B2B contact from a warm start")
 
+    def from_alone():   # a chain from the states of its balls each solved alone, the B2B forces from zero
+        if not touching.size:
+            raise ValueError('start="alone" is the start of touching balls: from the states of each ball alone')
+        singles = [solve([ball], ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
+                         tolerance=tolerance, max_iterations=max_iterations, start="auto") for ball in balls]
+        return chain_state(_friction(balls, radius, mu, velocity, law, reference_force),
+                           np.vstack([np.column_stack([s.ball_velocity / speed, s.omega * radius / speed])
+                                      for s in singles]), np.zeros(n - 1),
+                           f"stick/slip {n}-ball B2B contact from its balls alone")
+
     if rf.check_start(start, law, full_slip) == "auto":
         if warm is not None and n == 1:   # a ball alone: its warm state is the nearer start
             try:
@@ -230,16 +242,17 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
         return rf.solve_from_either_start(
             lambda first, steps: solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=tolerance, max_iterations=steps, start=first),
-            max_iterations, f"stick/slip {n}-ball B2B contact", warm=from_warm if warm is not None and n > 1 else None)
+            max_iterations, f"stick/slip {n}-ball B2B contact", warm=from_warm if warm is not None and n > 1 else None,
+            alone=from_alone if touching.size else None)
     if warm is not None:
         try:
             return from_warm()
         except ConvergenceError:   # too far from the warm state: the cold start below
             pass
     friction = _friction(balls, radius, mu, velocity, law, reference_force)
-    if start == "rolling":
-        return chain_state(friction, friction.rolling_start(), np.zeros(n - 1),
-                           f"stick/slip {n}-ball B2B contact from rolling")
+    if start in ("rolling", "alone"):
+        return from_alone() if start == "alone" else chain_state(friction, friction.rolling_start(), np.zeros(n - 1),
+                                                                 f"stick/slip {n}-ball B2B contact from rolling")
     if full_slip is None:
         full_slip = b2b_traction.solve(patches, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=min(tolerance, 1e-11), max_iterations=100,

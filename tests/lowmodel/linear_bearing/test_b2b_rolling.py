@@ -291,3 +291,15 @@ def test_the_spin_to_roll_ratio_is_the_ball_s_rotation_against_the_contact_norma
         roll = float(np.linalg.norm(omega - spin * contact.normal))
         assert abs(spin) / roll == pytest.approx(1.0, rel=1e-12)
         assert summary.spin_to_roll == pytest.approx(abs(spin) / roll, rel=1e-3)
+
+
+def test_a_chain_from_its_balls_alone_reaches_the_state_from_full_slip(case_a):
+    """``start="alone"``: each ball solved alone, then the touching balls from those states with the B2B force from
+    zero: the state from full slip (B2B force 1e-7, velocities 1e-9); refused for balls that do not touch."""
+    contacts, balls, result = case_a
+    state = b2b_rolling.solve(balls, start="alone", **COMMON)
+    assert state.b2b_force == pytest.approx(result.touching.b2b_force, rel=1e-7, abs=1e-9)
+    assert state.ball_velocity == pytest.approx(result.touching.ball_velocity, rel=1e-9)
+    assert state.omega == pytest.approx(result.touching.omega, rel=1e-6, abs=1e-9 * V / R_B)
+    with pytest.raises(ValueError, match="alone"):
+        b2b_rolling.solve(balls, start="alone", gaps=[1e-3], **COMMON)
