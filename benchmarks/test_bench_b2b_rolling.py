@@ -2,7 +2,7 @@
 lowmodel.screw.b2b_rolling; docs/b2b_rolling.md).
 
 Touching two-ball solve of lin2019 Table 3 case (a) and Table 5 case (a) (fitted preload) on Hertz contacts and two
-half-spaces: the full-slip start and the stick/slip Newton (forward-difference Jacobian, warm-started rolling solves);
+half-spaces: the full-slip start and the stick/slip Newton (the analytic Jacobian from the rolling solve's sensitivity);
 the number of rolling solves beside the time.  The FE rungs are timed by the rolling-b2b-* scenes (ladder.csv).
 
 Run: python -m pytest benchmarks/test_bench_b2b_rolling.py
@@ -18,7 +18,7 @@ from ballbench.lowmodel.screw import b2b_rolling as screw_rolling
 from ballbench.lowmodel.screw import contacts as screw_contacts
 
 
-@pytest.mark.parametrize("cells", [(12, 48), (20, 80)])
+@pytest.mark.parametrize("cells", [(12, 48), (16, 64), (20, 80)])  # 16 x 64: the quick cells of the case ladder
 def test_linear_two_ball_stick_slip_solve(benchmark, cells):
     contacts = b2b.module_contacts(math.radians(2.0), -0.6)
     balls = [b2b_rolling.hertz_contacts(contacts, j, cells=cells) for j in range(2)]

@@ -554,7 +554,12 @@ def test_fig9_worst_is_a_declared_known_gap():
     # the gap stands on both laws: full sliding has no state near the limit, the stick/slip law has one there
     assert "stick/slip" in gap.reason and "Neither law reaches" in gap.reason
     assert "docs/b2b_rolling.md" in gap.evidence
-    assert "known_gap=FIG9_GAP" in inspect.getsource(function)
+    # both Fig 9 scenes (the worst row, and every point: not in the default run) run one function that declares it
+    module = inspect.getsource(inspect.getmodule(function))
+    assert "known_gap=FIG9_GAP" in module and module.count("known_gap=") == 1 + module.count("known_gap=None")
+    assert "whole_grid=False" in inspect.getsource(function)
+    whole = scene_module.registry()["lin2019-fig9-stick-slip"]
+    assert not whole.default and "whole_grid=True" in inspect.getsource(whole.function)
 
 
 def test_results_json_round_trip(fakes, tmp_path):
