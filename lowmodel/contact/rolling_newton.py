@@ -382,11 +382,12 @@ def woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np
 
 
 def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sliding: np.ndarray,
-                 scale: np.ndarray):
+                 scale: np.ndarray, D: np.ndarray | None = None):
     """``solve(F, forcing) -> (dp, krylov steps)``: the solution of ``J dp = -F`` with the generalised Jacobian
-    ``J = (I - D) + c D C`` at the state ``z`` (module docstring); ``forcing`` the relative tolerance of GMRES
-    where the system is iterative (the prepared dense and direct systems are solved exactly)."""
-    D = _derivative(z, norm, sliding, scale)
+    ``J = (I - D) + c D C`` at the state ``z`` (module docstring; ``D`` its projection's derivative where the caller
+    has it); ``forcing`` the relative tolerance of GMRES where the system is iterative (the prepared dense and direct
+    systems are solved exactly)."""
+    D = _derivative(z, norm, sliding, scale) if D is None else D
     E = -D
     E[:, 0, 0] += 1.0
     E[:, 1, 1] += 1.0
@@ -462,7 +463,7 @@ def sensitivity(problem: TangentialProblem, p: np.ndarray, directions: np.ndarra
         raise ValueError(f"directions must have shape ({problem.n}, 2, k), got {directions.shape}")
     _, z, norm, sliding, scale = problem.residual(p)
     D = _derivative(z, norm, sliding, scale)
-    solve = _step_solver(problem, z, norm, sliding, scale)
+    solve = _step_solver(problem, z, norm, sliding, scale, D)
     out = np.empty_like(directions)
     with_c = problem.c * np.einsum("nab,nbk->nak", D, directions)  # c D dw: J dp = -F with F = c D dw
     for j in range(directions.shape[2]):

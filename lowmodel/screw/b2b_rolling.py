@@ -166,7 +166,10 @@ def solve(balls, module: screw_contacts.ScrewModule, *, gaps=None, with_b2b: boo
     gaps = b2b.check_gaps(gaps, n - 1)
     touching = np.flatnonzero(gaps <= 1e-12) if with_b2b else np.zeros(0, dtype=int)
     patches = [[c.patch() for c in contacts] for contacts in balls]
-    if rf.check_start(start, law, full_slip) == "auto":
+    if rf.check_start(start, law, full_slip) == "alone":
+        raise ValueError('start="alone" is the linear bearing\'s (lowmodel.linear_bearing.b2b_rolling.solve); a screw '
+                         'takes "full-slip", "rolling" or "auto"')
+    if start == "auto":
         return rf.solve_from_either_start(
             lambda first, steps: solve(balls, module, gaps=gaps, with_b2b=with_b2b, tolerance=tolerance,
                                        max_iterations=steps, start=first),

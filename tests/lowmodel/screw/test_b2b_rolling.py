@@ -72,3 +72,12 @@ def test_past_the_preload_loss_the_balls_run_on_the_stick_slip_law_at_the_fricti
     result = bearing_results.screw_result(case, contacts=contacts, states=states)
     assert result.law == bearing_results.STICK_SLIP
     assert result.friction_torque > result.friction_torque_free > 0.0 and result.b2b_forces[0] > 0.0
+
+
+def test_the_linear_bearing_s_start_from_the_balls_alone_is_refused():
+    module = screw_contacts.screw_module(oversize=1.6848e-6)
+    contacts = screw_contacts.ball_contacts(module, [0.0, math.radians(2.0)], reading="tilted")
+    low = screw_b2b.solve(contacts, 50.0)
+    balls = [screw_rolling.hertz_contacts(low, contacts, j, cells=CELLS) for j in range(2)]
+    with pytest.raises(ValueError, match="alone"):
+        screw_rolling.solve(balls, module, start="alone")
