@@ -181,7 +181,8 @@ def _check_rigid(rigid, grid: SurfaceGrid, name: str) -> np.ndarray:
 
 def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_speed: float = 1.0,
           tolerance: float = 1e-10, max_iterations: int = 60, dense: bool | None = None,
-          initial_traction: np.ndarray | None = None, sensitivity_directions=None) -> RollingContact:
+          initial_traction: np.ndarray | None = None, sensitivity_directions=None,
+          initial_sensitivity: np.ndarray | None = None, workspace: dict | None = None) -> RollingContact:
     """Tangential tractions of a contact with stick and slip (module docstring).
 
     Parameters
@@ -198,6 +199,11 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
     sensitivity_directions : (nx, ny, 2, k) changes of ``rigid``; the result's ``traction_sensitivity`` is the
         traction's derivative along each (the implicit function theorem at the solution,
         :func:`~lowmodel.contact.rolling_newton.sensitivity`: one linear solve per direction, no new Newton solve)
+    initial_sensitivity : (nx, ny, 2, k) a first guess of ``traction_sensitivity`` (e.g. a nearby solve's), for the
+        iterative linear solves (the same tolerance, fewer steps)
+    workspace : a dict the caller keeps for one contact across solves (e.g. the Newton steps of a ball's
+        equilibrium): the iterative solver's preconditioner carries over in it (fewer rebuilds; the result then
+        depends on the solves before to within ``tolerance``, not to the last bit)
 
     Raises ValueError for bad input, ConvergenceError when Newton does not converge or a defining
     condition fails its check.
@@ -212,6 +218,10 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
     coupled = operator.normal_slip(pressure)  # the pressure's slip through the normal-tangential coupling
     bound = mu * pressure
     problem = TangentialProblem(operator, bound, rigid if coupled is None else rigid + coupled, dense)
+    if workspace is not None:
+        if not isinstance(workspace, dict):
+            raise ValueError(f"workspace must be a dict (kept by the caller for one contact), got {type(workspace)}")
+        problem.workspace = workspace
     start = None
     if initial_traction is not None:
         start = _check_rigid(initial_traction, grid, "initial_traction").reshape(-1, 2)[problem.cells]
@@ -221,13 +231,21 @@ def solve(pressure, operator, friction_coefficient: float, rigid, *, rolling_spe
         if directions.ndim != 4 or directions.shape[:3] != (grid.nx, grid.ny, 2) or not np.all(np.isfinite(directions)):
             raise ValueError(f"sensitivity_directions must be finite with shape {(grid.nx, grid.ny, 2)} + (k,), got "
                              f"{directions.shape}")
+    guess = None
+    if initial_sensitivity is not None and directions is not None:
+        guess = np.asarray(initial_sensitivity, dtype=float)
+        if guess.shape != directions.shape or not np.all(np.isfinite(guess)):
+            raise ValueError(f"initial_sensitivity must be finite with the shape of sensitivity_directions, "
+                             f"{directions.shape}, got {guess.shape}")
+        guess = guess.reshape(-1, 2, guess.shape[3])[problem.cells]
     p, s, stick, iterations, krylov, residual = _newton(problem, tolerance, max_iterations, start)
     result = _result(problem, grid, grid.x, grid.y, pressure, float(pressure.sum()) * grid.cell_area, p, s, stick,
                      rigid, mu, speed, iterations, krylov, residual)
     if directions is None:
         return result
     with one_blas_thread():
-        cells = rolling_newton.sensitivity(problem, p, directions.reshape(-1, 2, directions.shape[3])[problem.cells])
+        cells = rolling_newton.sensitivity(problem, p, directions.reshape(-1, 2, directions.shape[3])[problem.cells],
+                                           start=guess)
     derivative = np.zeros(directions.shape)
     derivative.reshape(-1, 2, directions.shape[3])[problem.cells] = cells
     return dataclasses.replace(result, traction_sensitivity=derivative)

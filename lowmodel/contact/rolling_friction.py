@@ -117,7 +117,8 @@ class _Item:
         self.centre_D, self.centre_g = centre_D[0], centre_g[0]
         self.area = contact.grid.cell_area
         self.start = None  # the last traction (Kalker's frame) and its direction, for a warm start
-        self.last = None
+        self.last = None  # (x, what _solve returned) of the last kept solve: the same state is not solved twice
+        self.workspace = {}  # the rolling solves' preconditioner, carried from one solve of this contact to the next
 
 
 class StickSlipFriction:
@@ -187,6 +188,8 @@ class StickSlipFriction:
     def _solve(self, item: _Item, x: np.ndarray, *, keep: bool, derivative: bool = False):
         """The contact's tractions (nx, ny, 2) in the grid's frame, its Kalker solution, rigid slip and speed;
         with ``derivative`` also the tractions' derivative along the unknowns (nx, ny, 2, k) (grid frame)."""
+        if not derivative and item.last is not None and np.array_equal(item.last[0], x):
+            return item.last[1]  # this state was solved last (e.g. the converged state's summaries)
         contact = item.contact
         w, speed, forward = self._motion(item, x)
         directions = self._directions(item, w, speed, forward) if derivative else None
@@ -197,18 +200,22 @@ class StickSlipFriction:
         if self.law == "full-slip":
             solution = _full_slip(pressure, self.mu, w, speed * self.speed_unit, contact.grid)
         else:
-            start = None
+            start = rate = None
             if item.start is not None and item.start[1] == forward:
                 traction, _, at, rate = item.start
                 # a first-order prediction from the last solve's sensitivity, where it has one
                 start = traction if rate is None else traction + rate @ (x - at)
             solution = rolling.solve(pressure, contact.operator, self.mu, w, rolling_speed=speed * self.speed_unit,
                                      tolerance=self.tolerance, initial_traction=start,
-                                     sensitivity_directions=directions)
+                                     sensitivity_directions=directions,
+                                     initial_sensitivity=rate if directions is not None else None,
+                                     workspace=item.workspace)
         self.solves += 1
         if keep:
             item.start = (solution.traction, forward, x.copy(), solution.traction_sensitivity)
         traction = solution.traction if forward else -solution.traction[::-1, ::-1]
+        if keep:
+            item.last = (x.copy(), (traction, solution, speed, forward))
         if not derivative:
             return traction, solution, speed, forward
         rate = solution.traction_sensitivity

@@ -39,14 +39,18 @@ _RESTART = 30
 SENSITIVITY_TOLERANCE = 1e-7  # GMRES relative tolerance of each sensitivity system
 
 
-def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iterations: int):
-    """Right-preconditioned restarted GMRES (Saad 2003, Alg 9.5); returns ``(x, iterations)``."""
+def _gmres(matvec, precondition, rhs: np.ndarray, tolerance: float, max_iterations: int, start=None):
+    """Right-preconditioned restarted GMRES (Saad 2003, Alg 9.5) from ``start`` (default zero) to
+    ``|rhs - A x| <= tolerance |rhs|``; returns ``(x, iterations)``."""
     n = rhs.size
     x = np.zeros(n)
     norm_b = math.sqrt(float(rhs @ rhs))
     if norm_b == 0.0:
         return x, 0
     residual = rhs
+    if start is not None:
+        x = np.array(start, dtype=float).reshape(n)
+        residual = rhs - matvec(x)
     total = 0
     while True:
         beta = math.sqrt(float(residual @ residual))
@@ -118,6 +122,8 @@ class TangentialProblem:
         i, j = np.divmod(self.cells, grid.ny)
         self.lines, self.line_of = np.unique(j, return_inverse=True)
         self.position = i  # index along the line
+        self._column = j
+        self._padded = None  # the contact cells' index in the operator's padded FFT field, on first use
         self.flat = self.line_of * grid.nx + self.position
         self._inverse = None
         self._pattern = None
@@ -125,6 +131,7 @@ class TangentialProblem:
         self._flexibility = None
         self._bound_lines = None
         self._stick_inverse = None
+        self.workspace = None  # a dict kept by the caller across solves of one contact (preconditioner)
 
     def with_rigid(self, rigid_cells: np.ndarray) -> "TangentialProblem":
         """The same contact (cells, bound, operator and what is derived from them) with another rigid slip ``w``
@@ -168,6 +175,11 @@ class TangentialProblem:
         """``C v`` on the contact cells, ``v`` (n, 2) -> (n, 2)."""
         if self.matrix is not None:
             return (self.matrix @ v.reshape(-1)).reshape(-1, 2)
+        if hasattr(self.operator, "convolution"):  # the FFT product on the contact cells alone
+            convolution = self.operator.convolution()
+            if self._padded is None:
+                self._padded = convolution.padded_index(self.position, self._column)
+            return convolution.on_cells(self._padded, v)
         field = np.zeros(self.shape + (2,))
         field.reshape(-1, 2)[self.cells] = v
         return self.operator.apply(field).reshape(-1, 2)[self.cells]
@@ -232,12 +244,20 @@ class TangentialProblem:
         """The inverse of ``J`` restricted to each grid line along ``x`` (line blocks; others identity).
 
         A line's inverse is rebuilt only when the stick/slip pattern of its cells changed since it was
-        built (a stale slip direction only costs GMRES steps); single precision (a preconditioner).
+        built (a stale slip direction only costs GMRES steps); single precision (a preconditioner).  With a
+        :attr:`workspace` (a dict its caller keeps for one contact) the inverses outlive the solve: it keeps a copy of
+        the last ones per contact set, and the next solve on the same cells (the ball's next Newton step) starts
+        from them.
         """
         nx = self.shape[0]
         n_lines = self.lines.size
         pattern = np.zeros((n_lines, nx), dtype=bool)
         pattern.reshape(-1)[self.flat] = sliding
+        cache = self.workspace  # the caller's store of the last line inverses per contact set, or None
+        key = self.cells.tobytes()
+        kept = cache.get(key) if self._inverse is None and cache is not None else None
+        if kept is not None:  # a new solve on these cells starts from the last one's line inverses
+            self._pattern, self._inverse = kept[0], kept[1].copy()
         if self._inverse is None:
             self._inverse = np.empty((n_lines, 2 * nx, 2 * nx), dtype=np.float32)
             todo = np.arange(n_lines)
@@ -260,6 +280,10 @@ class TangentialProblem:
             diagonal[..., 1, 1] += 1.0
             J.reshape(todo.size, nx, 2, nx, 2)[:, np.arange(nx), :, np.arange(nx), :] = diagonal
             inverse[todo] = np.linalg.inv(J.reshape(todo.size, 2 * nx, 2 * nx).astype(np.float32))
+            if cache is not None:
+                cache[key] = (pattern, inverse.copy())  # a snapshot: this problem goes on updating its own
+                for old in list(cache)[:-4]:  # the last four contact sets
+                    cache.pop(old, None)
         flat = self.flat
         if self.matrix is not None:  # dense problems: the line inverses as one (2n, 2n) matrix, one product
             rows, cols, source = self._pair_index()
@@ -383,10 +407,10 @@ def woodbury_step(inverse: np.ndarray, F: np.ndarray, E: np.ndarray, sliding: np
 
 def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sliding: np.ndarray,
                  scale: np.ndarray, D: np.ndarray | None = None):
-    """``solve(F, forcing) -> (dp, krylov steps)``: the solution of ``J dp = -F`` with the generalised Jacobian
-    ``J = (I - D) + c D C`` at the state ``z`` (module docstring; ``D`` its projection's derivative where the caller
-    has it); ``forcing`` the relative tolerance of GMRES where the system is iterative (the prepared dense and direct
-    systems are solved exactly)."""
+    """``solve(F, forcing, start=None) -> (dp, krylov steps)``: the solution of ``J dp = -F`` with the generalised
+    Jacobian ``J = (I - D) + c D C`` at the state ``z`` (module docstring; ``D`` its projection's derivative where the
+    caller has it); ``forcing`` the relative tolerance of GMRES where the system is iterative, ``start`` (n, 2) its
+    first guess (the prepared dense and direct systems are solved exactly, without one)."""
     D = _derivative(z, norm, sliding, scale) if D is None else D
     E = -D
     E[:, 0, 0] += 1.0
@@ -395,7 +419,8 @@ def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sl
     cD = c * D
     inverse = problem.stick_inverse()
     if inverse is not None:  # prepared dense problems: a low-rank form of J (low_rank_step)
-        return lambda F, _forcing: (low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding, scale), 0)
+        return lambda F, _forcing, _start=None: (low_rank_step(problem.matrix, c, inverse, F, E, z, norm, sliding,
+                                                              scale), 0)
     if problem.matrix is not None:  # J = E + c D C as one dense matrix: one product per GMRES step
         n = problem.n
         rows = problem.matrix.reshape(n, 2, 2 * n)
@@ -404,7 +429,7 @@ def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sl
         jacobian.reshape(n, 2, n, 2)[np.arange(n), :, np.arange(n), :] += E
         jacobian = jacobian.reshape(2 * n, 2 * n)
         if n <= DIRECT_CELLS:
-            return lambda F, _forcing: (np.linalg.solve(jacobian, -F.reshape(-1)).reshape(-1, 2), 0)
+            return lambda F, _forcing, _start=None: (np.linalg.solve(jacobian, -F.reshape(-1)).reshape(-1, 2), 0)
         matvec = jacobian.__matmul__
     else:
         def matvec(v):
@@ -417,8 +442,8 @@ def _step_solver(problem: TangentialProblem, z: np.ndarray, norm: np.ndarray, sl
             return out.reshape(-1)
     precondition = problem.preconditioner(D, sliding)
 
-    def solve(F, forcing):
-        step, used = _gmres(matvec, precondition, -F.reshape(-1), forcing, 200)
+    def solve(F, forcing, start=None):
+        step, used = _gmres(matvec, precondition, -F.reshape(-1), forcing, 200, start)
         return step.reshape(-1, 2), used
 
     return solve
@@ -452,22 +477,25 @@ def semismooth_newton(problem: TangentialProblem, tolerance: float, max_iteratio
 
 
 def sensitivity(problem: TangentialProblem, p: np.ndarray, directions: np.ndarray,
-                tolerance: float = SENSITIVITY_TOLERANCE) -> np.ndarray:
+                tolerance: float = SENSITIVITY_TOLERANCE, start: np.ndarray | None = None) -> np.ndarray:
     """``dp/dw`` along ``directions``: (n, 2, k) changes of the rigid slip ``w`` on the contact cells -> (n, 2, k)
     changes of the traction at the solution ``p`` (the implicit function theorem on ``F(p, w) = 0``:
     ``J dp = -c D dw``, ``D = Proj_g'(z)`` and ``J`` the generalised Jacobian of the last Newton step; docs/
     rolling_contact.md, 'Sensitivity').  A cell on the stick/slip boundary takes the derivative of the side its
-    ``z`` lies on (the semismooth Newton's choice).  Iterative systems are solved to the relative ``tolerance``."""
+    ``z`` lies on (the semismooth Newton's choice).  Iterative systems are solved to the relative ``tolerance``,
+    from ``start`` (n, 2, k) where given (a nearby solution's sensitivity: fewer Krylov steps, the same tolerance)."""
     directions = np.asarray(directions, dtype=float)
     if directions.ndim != 3 or directions.shape[:2] != (problem.n, 2):
         raise ValueError(f"directions must have shape ({problem.n}, 2, k), got {directions.shape}")
+    if start is not None and np.shape(start) != directions.shape:
+        raise ValueError(f"start must have the shape of directions, {directions.shape}, got {np.shape(start)}")
     _, z, norm, sliding, scale = problem.residual(p)
     D = _derivative(z, norm, sliding, scale)
     solve = _step_solver(problem, z, norm, sliding, scale, D)
     out = np.empty_like(directions)
     with_c = problem.c * np.einsum("nab,nbk->nak", D, directions)  # c D dw: J dp = -F with F = c D dw
     for j in range(directions.shape[2]):
-        out[:, :, j] = solve(with_c[:, :, j], tolerance)[0]
+        out[:, :, j] = solve(with_c[:, :, j], tolerance, None if start is None else start[:, :, j])[0]
     return out
 
 

@@ -67,10 +67,27 @@ class _Convolution:
     def __call__(self, field: np.ndarray) -> np.ndarray:
         """``C * field`` for ``field`` (nx, ny, 2); returns (nx, ny, 2)."""
         nx, ny = self.nx, self.ny
-        fft = self._fft
         padded = np.zeros((2, 2 * nx, 2 * ny))
         padded[0, :nx, :ny] = field[..., 0]
         padded[1, :nx, :ny] = field[..., 1]
+        result = self._convolve(padded)
+        return np.stack([result[0, :nx, :ny], result[1, :nx, :ny]], axis=-1)
+
+    def padded_index(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """The flat index of the cells ``(i, j)`` in the zero-padded field of :meth:`on_cells`."""
+        return np.asarray(i) * (2 * self.ny) + np.asarray(j)
+
+    def on_cells(self, index: np.ndarray, values: np.ndarray) -> np.ndarray:
+        """``C * field`` at the cells of :meth:`padded_index` ``index`` for a field that is ``values`` (n, 2) there
+        and zero elsewhere: (n, 2), without the whole-grid fields of :meth:`__call__`."""
+        padded = np.zeros((2, 4 * self.nx * self.ny))
+        padded[:, index] = values.T
+        return self._convolve(padded.reshape(2, 2 * self.nx, 2 * self.ny)).reshape(2, -1)[:, index].T
+
+    def _convolve(self, padded: np.ndarray) -> np.ndarray:
+        # the cyclic convolution of the zero-padded (2, 2 nx, 2 ny) field with the kernels (exact on the grid)
+        ny = self.ny
+        fft = self._fft
         if fft is not None:
             spectrum = fft.r2c(padded, axes=(1, 2))
         else:  # pragma: no cover
@@ -81,10 +98,8 @@ class _Convolution:
         np.multiply(self.xy, spectrum[0], out=out[1])
         out[1] += self.yy * spectrum[1]
         if fft is not None:
-            result = fft.c2r(out, axes=(1, 2), lastsize=2 * ny, forward=False, inorm=2)
-        else:  # pragma: no cover
-            result = np.fft.irfft2(out, s=self.shape)
-        return np.stack([result[0, :nx, :ny], result[1, :nx, :ny]], axis=-1)
+            return fft.c2r(out, axes=(1, 2), lastsize=2 * ny, forward=False, inorm=2)
+        return np.fft.irfft2(out, s=self.shape)  # pragma: no cover
 
 
 class ConvolutionOperator:
@@ -150,9 +165,14 @@ class ConvolutionOperator:
 
     def apply(self, field: np.ndarray) -> np.ndarray:
         """``C * field`` on the whole grid, ``field`` (nx, ny, 2) -> (nx, ny, 2)."""
+        return self.convolution()(field)
+
+    def convolution(self) -> _Convolution:
+        """The FFT convolution with the kernels (built on first use, then kept): ``op.convolution()(field)``, or
+        ``.on_cells(i, j, values)`` for a field given on some cells only."""
         if self._convolution is None:
             self._convolution = _Convolution(self.kernels, self.grid.nx, self.grid.ny)
-        return self._convolution(field)
+        return self._convolution
 
     def normal_slip(self, pressure: np.ndarray) -> np.ndarray | None:
         """(nx, ny, 2) the slip (or shift) of the normal pressure through the coupling, None without coupling."""

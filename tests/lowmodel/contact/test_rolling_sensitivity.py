@@ -92,3 +92,43 @@ def test_bad_directions_name_the_parameter():
         rolling.solve(pressure, operator, MU, w, sensitivity_directions=np.zeros((grid.nx, grid.ny, 3)))
     with pytest.raises(ValueError, match="sensitivity_directions"):
         rolling.solve(pressure, operator, MU, w, sensitivity_directions=np.full((grid.nx, grid.ny, 2, 1), np.nan))
+
+
+@pytest.mark.parametrize("cells, dense", [((20, 20), True), ((30, 30), False)])  # dense and FFT GMRES
+def test_a_first_guess_or_a_kept_preconditioner_changes_nothing_beyond_the_tolerance(cells, dense):
+    # a caller's first guess of the sensitivity (initial_sensitivity) and its preconditioner kept from another solve
+    # on the same contact (workspace) only shorten the iterative solves: a bad guess, or line inverses built at a
+    # far other creepage (another stick/slip pattern), end at the answer of a fresh solve within GMRES's tolerance
+    grid, pressure, operator, w, directions = _contact(cells, dense)
+    fresh = rolling.solve(pressure, operator, MU, w, tolerance=1e-12, dense=dense, sensitivity_directions=directions)
+    workspace = {}
+    far = rolling.rigid_slip(grid, -3e-4, 1e-4, -0.3)
+    other = rolling.solve(pressure, operator, MU, far, tolerance=1e-12, dense=dense, sensitivity_directions=directions,
+                          workspace=workspace)
+    assert workspace and abs(other.stick_fraction - fresh.stick_fraction) > 0.1  # built on another pattern
+    wrong = 2.0 * fresh.traction_sensitivity + np.roll(fresh.traction_sensitivity, 3, axis=0)
+    again = rolling.solve(pressure, operator, MU, w, tolerance=1e-12, dense=dense, sensitivity_directions=directions,
+                          initial_sensitivity=wrong, workspace=workspace)
+    scale = MU * pressure.max()
+    assert np.max(np.abs(again.traction - fresh.traction)) < 1e-10 * scale
+    bound = 10.0 * rolling_newton.SENSITIVITY_TOLERANCE
+    assert np.max(np.abs(again.traction_sensitivity - fresh.traction_sensitivity)) < bound * scale
+
+
+def test_bad_first_guesses_and_workspaces_name_the_parameter():
+    grid, pressure, operator, w, directions = _contact((12, 12), True)
+    with pytest.raises(ValueError, match="initial_sensitivity"):
+        rolling.solve(pressure, operator, MU, w, sensitivity_directions=directions,
+                      initial_sensitivity=np.zeros((grid.nx, grid.ny, 2, 2)))
+    with pytest.raises(ValueError, match="workspace"):
+        rolling.solve(pressure, operator, MU, w, workspace=[])
+
+
+def test_the_product_on_the_contact_cells_equals_the_whole_grid_product():
+    grid, pressure, operator, _, _ = _contact((30, 30), False)
+    problem = rolling_newton.TangentialProblem(operator, MU * pressure, np.zeros((grid.nx, grid.ny, 2)), False)
+    v = np.random.default_rng(1).normal(size=(problem.n, 2))
+    field = np.zeros((grid.nx, grid.ny, 2))
+    field.reshape(-1, 2)[problem.cells] = v
+    whole = operator.apply(field).reshape(-1, 2)[problem.cells]
+    assert np.max(np.abs(problem.apply(v) - whole)) <= 1e-13 * np.abs(whole).max()
