@@ -56,6 +56,7 @@ BALANCE_TOLERANCE = 1e-10  # the load balance of a solved carriage, relative to 
 # a carriage without preload where Newton from the linear start stalls: solved with these oversizes (times a
 # contact's approach under the mean ball load) in turn, each from the last, then without
 PRELOAD_STEPS = np.array([2.0, 0.5, 0.125, 0.03125, 0.0078125])
+STEP_REACH = 2.0  # a Newton step may grow no contact's approach beyond this times the largest one (_first_factor)
 LOAD_NAMES = ("F_x", "F_y", "M_x", "M_y", "M_z")  # [N, N, N m, N m, N m] on the carriage at the origin
 DISPLACEMENT_NAMES = ("u_x", "u_y", "phi_x", "phi_y", "phi_z")  # [m, m, rad, rad, rad] of the carriage
 
@@ -280,6 +281,7 @@ class _Geometry:
         self.jac = np.stack([np.stack([one, zero, zero, zz, -cy], axis=-1),
                              np.stack([zero, one, -zz, zero, cx], axis=-1)], axis=-2)
         self.jac *= (self.top * self.mask)[:, None, :, None, None]  # the rail's grooves do not move
+        self.jac_t = np.ascontiguousarray(np.swapaxes(self.jac, -1, -2))
         # each rail contact's partner: the carriage contact most nearly opposite it (a two-point ball's other
         # contact; lin2017's diagonal pairs BL-TR, BR-TL of a gothic-arch ball)
         self.pairs = []
@@ -287,6 +289,11 @@ class _Geometry:
             rail = [c for c, top in enumerate(r.carriage) if not top]
             top = [c for c, t in enumerate(r.carriage) if t]
             self.pairs.append([(c, min(top, key=lambda t: float(np.dot(r.normals[c], r.normals[t])))) for c in rail])
+        most = max(len(p) for p in self.pairs)  # the pairs as arrays (r, P), padded with a row's first pair
+        padded = [p + p[:1] * (most - len(p)) for p in self.pairs]
+        self.pair_rail = np.array([[c for c, _ in p] for p in padded], dtype=int)
+        self.pair_top = np.array([[t for _, t in p] for p in padded], dtype=int)
+        self.pair_share = np.array([[1.0 / len(p) if i < len(p) else 0.0 for i in range(most)] for p in self.pairs])
         relief_z = relief(body, z)  # (k,)
         self.offset = (0.5 * body.oversize - self.top[:, None, :] * relief_z[None, :, None]) * np.ones(shape)
         self.scale = max(body.half_length, radius)  # m: moments over it compare with forces
@@ -297,27 +304,28 @@ class _Geometry:
         the carriage's displacement ``d`` (the distance of the pair's curvature centres short of the ball's): loose
         between their grooves, carrying nothing, held at the mean of their pairs' mid-points ``centred`` (Newton on
         ``Q ~ delta^(3/2)`` would only creep to ``delta = 0``)."""
-        slack = np.ones(d.shape[:2], dtype=bool)
-        centred = np.zeros(d.shape[:2] + (2,))
-        for i, pairs in enumerate(self.pairs):
-            for rail, top in pairs:
-                centres = (self.gap * (self.normal[i, rail] - self.normal[i, top]))[None, :] + d[i, :, top] \
-                    - d[i, :, rail]  # the carriage groove's curvature centre - the rail groove's
-                approach = np.linalg.norm(centres, axis=-1) - 2.0 * self.gap + self.offset[i, :, rail] \
-                    + self.offset[i, :, top]
-                slack[i] &= approach <= 0.0
-                centred[i] += 0.5 * (d[i, :, top] + d[i, :, rail]
-                                     - self.gap * (self.normal[i, rail] + self.normal[i, top])) / len(pairs)
+        row = np.arange(d.shape[0])[:, None]
+        rail, top = self.pair_rail, self.pair_top  # (r, P)
+        n_rail, n_top = self.normal[row, rail], self.normal[row, top]  # (r, P, 2)
+        d_rail, d_top = d[row, :, rail], d[row, :, top]  # (r, P, k, 2)
+        # the carriage groove's curvature centre - the rail groove's, per pair (a padded pair repeats a real one)
+        centres = (self.gap * (n_rail - n_top))[:, :, None, :] + d_top - d_rail
+        approach = np.sqrt(np.einsum("rpki,rpki->rpk", centres, centres)) - 2.0 * self.gap \
+            + self.offset[row, :, rail] + self.offset[row, :, top]
+        slack = np.all(approach <= 0.0, axis=1)  # (r, k)
+        middle = 0.5 * (d_top + d_rail - (self.gap * (n_rail + n_top))[:, :, None, :])  # (r, P, k, 2)
+        centred = np.einsum("rp,rpki->rki", self.pair_share, middle)
         return slack, centred
 
     def contacts(self, q: np.ndarray, v: np.ndarray, slope_floor: float = 0.0, elastic=None):
-        """Per contact: load Q, line e, approach, length |w| and the local stiffness k (2x2) at (q, v); ``elastic``
-        (r, k, c, 2) m the carriage grooves' own displacement beyond the rigid carriage's (else none)."""
-        d = np.einsum("rkcij,j->rkci", self.jac, q)
+        """Per contact: load Q, line e, approach, the local stiffness k (2x2) as a function (only a Newton step needs
+        it) and the loose balls at (q, v); ``elastic`` (r, k, c, 2) m the carriage grooves' own displacement beyond
+        the rigid carriage's (else none)."""
+        d = self.jac @ q
         if elastic is not None:
             d = d + elastic
         w = v[:, :, None, :] + self.gap * self.normal[:, None, :, :] - d  # ball centre - groove centre
-        length = np.linalg.norm(w, axis=-1)
+        length = np.sqrt(w[..., 0] * w[..., 0] + w[..., 1] * w[..., 1])
         e = w / length[..., None]
         approach = length - self.gap + self.offset
         positive = np.clip(approach, 0.0, None)
@@ -326,22 +334,34 @@ class _Geometry:
             loose[:] = False
         active = self.mask[:, None, :] * ~loose[..., None]
         load = (positive / self.constant) ** 1.5 * active
-        slope = np.maximum(1.5 * np.sqrt(positive) / self.constant ** 1.5, slope_floor) * active
-        outer = e[..., :, None] * e[..., None, :]
-        local = slope[..., None, None] * outer + (load / length)[..., None, None] * (np.eye(2) - outer)
+
+        def local():
+            slope = np.maximum(1.5 * np.sqrt(positive) / self.constant ** 1.5, slope_floor) * active
+            outer = e[..., :, None] * e[..., None, :]
+            return slope[..., None, None] * outer + (load / length)[..., None, None] * (np.eye(2) - outer)
+
         return load, e, approach, local, (loose, centred)
 
-    def system(self, q: np.ndarray, v: np.ndarray, external: np.ndarray, slope_floor: float = 0.0, elastic=None):
-        """The residuals (carriage (5,), balls (r, k, 2)), the condensed step's blocks and the stiffness."""
+    def system(self, q: np.ndarray, v: np.ndarray, external: np.ndarray, slope_floor: float = 0.0, elastic=None,
+               lazy: bool = False):
+        """The residuals (carriage (5,), balls (r, k, 2)), the condensed step's blocks and the stiffness; ``lazy``:
+        the blocks as a function that computes them (a line search's trial needs its residuals only)."""
         load, e, approach, local, held = self.contacts(q, v, slope_floor, elastic)
         force = load[..., None] * e  # on the groove, from the ball (r, k, c, 2)
-        carriage = np.einsum("rkcij,rkci->j", self.jac, force) + external
+        carriage = force.reshape(-1) @ self.jac.reshape(-1, 5) + external
         balls = -force.sum(axis=2)  # on the ball
+        blocks = (lambda: self._blocks(local, held)) if lazy else self._blocks(local, held)
+        return carriage, balls, blocks, load, e, approach
+
+    def _blocks(self, local, held):
+        jac = self.jac
+        local = local()
         d_block = -local.sum(axis=2)  # d balls / d v  (r, k, 2, 2)
-        b_block = np.einsum("rkcaj,rkcab->rkjb", self.jac, local)  # d carriage / d v  (r, k, 5, 2)
-        c_block = np.einsum("rkcab,rkcbj->rkaj", local, self.jac)  # d balls / d q  (r, k, 2, 5)
-        a_block = -np.einsum("rkcaj,rkcab,rkcbl->jl", self.jac, local, self.jac)  # d carriage / d q
-        return carriage, balls, (a_block, b_block, c_block, d_block, *held, local), load, e, approach
+        jac_local = self.jac_t @ local  # (r, k, c, 5, 2): J^T K per contact
+        b_block = jac_local.sum(axis=2)  # d carriage / d v  (r, k, 5, 2)
+        c_block = (local @ jac).sum(axis=2)  # d balls / d q  (r, k, 2, 5)
+        a_block = -np.swapaxes(jac_local, -1, -2).reshape(-1, 5).T @ jac.reshape(-1, 5)  # d carriage / d q
+        return a_block, b_block, c_block, d_block, *held, local
 
     @property
     def grooves(self) -> np.ndarray:
@@ -425,8 +445,9 @@ def _approach(geometry: _Geometry, external: np.ndarray) -> float:
 def _newton(geometry: _Geometry, q, v, external, tolerance: float, max_iterations: int, measure):
     """Newton from ``(q, v)`` with the balls condensed and a backtracking line search; ``(q, v, iterations)``."""
     iterations = 0
-    carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
+    carriage, balls, blocks, loads, line, approach = geometry.system(q, v, external)
     norm = measure(carriage, balls, loads)
+    reach = _approach(geometry, external)
     while norm > tolerance:
         if iterations >= max_iterations:
             raise ConvergenceError("carriage.solve: the load balance missed (the balls' forces and moments plus the "
@@ -435,19 +456,21 @@ def _newton(geometry: _Geometry, q, v, external, tolerance: float, max_iteration
                                    reason="load balance missed")
         dq, dv, loose, centred = _step(blocks, carriage, balls, geometry)
         v = np.where(loose[..., None], centred, v)  # loose balls held at their pairs' mid-points
-        factor, accepted = 1.0, False
+        factor, accepted = _first_factor(geometry, dq, dv, line, approach, reach), False
         for _ in range(40):
             trial_q, trial_v = q + factor * dq, v + factor * dv
-            c_t, b_t, k_t, l_t, _, _ = geometry.system(trial_q, trial_v, external)
+            c_t, b_t, k_t, l_t, e_t, a_t = geometry.system(trial_q, trial_v, external, lazy=True)
             n_t = measure(c_t, b_t, l_t)
             if n_t < norm or n_t <= tolerance:
-                q, v, carriage, balls, blocks, loads, norm, accepted = trial_q, trial_v, c_t, b_t, k_t, l_t, n_t, True
+                q, v, carriage, balls, loads, norm, accepted = trial_q, trial_v, c_t, b_t, l_t, n_t, True
+                blocks = k_t() if norm > tolerance else None
+                line, approach = e_t, a_t
                 break
             factor *= 0.5
         iterations += 1
         if not accepted and geometry.hold_loose:  # a ball at the edge of loose flips: let go of the holding
             geometry.hold_loose = False
-            carriage, balls, blocks, loads, _, _ = geometry.system(q, v, external)
+            carriage, balls, blocks, loads, line, approach = geometry.system(q, v, external)
             norm = measure(carriage, balls, loads)
             continue
         if not accepted:
@@ -455,6 +478,17 @@ def _newton(geometry: _Geometry, q, v, external, tolerance: float, max_iteration
                                    "cannot carry, e.g. lift-off without rows against it)", residual=norm,
                                    iterations=iterations, tolerance=tolerance, reason="no descent step")
     return q, v, iterations
+
+
+def _first_factor(geometry: _Geometry, dq, dv, line, approach, reach: float) -> float:
+    """The line search's first step factor: the whole Newton step unless it would push a contact's approach (to
+    first order, ``e . (dv - J dq)``) beyond :data:`STEP_REACH` times the largest approach now or the approach of
+    the mean ball load (``reach``): Hertz's ``Q ~ delta^(3/2)`` makes an overshoot's residual grow fast, and each
+    halving back costs a whole evaluation."""
+    change = np.einsum("rkci,rkci->rkc", line, dv[:, :, None, :] - geometry.jac @ dq) * geometry.mask[:, None, :]
+    largest = float(np.max(np.abs(change)))
+    limit = STEP_REACH * max(float(np.max(approach * geometry.mask[:, None, :])), reach)
+    return 1.0 if largest <= limit else limit / largest
 
 
 def _condensed(blocks, geometry: _Geometry):
@@ -466,8 +500,8 @@ def _condensed(blocks, geometry: _Geometry):
     floor = 1e-12 * largest if largest > 0.0 else 1.0  # N/m: no ball loaded at all, any floor keeps them still
     regular = d_block - floor * np.eye(2)  # a ball without load: its position is left as it is
     inverse = np.linalg.inv(regular)  # (r, k, 2, 2)
-    bd = np.einsum("rkja,rkab->rkjb", b_block, inverse)
-    schur = a_block - np.einsum("rkja,rkal->jl", bd, c_block)
+    bd = b_block @ inverse
+    schur = a_block - np.swapaxes(bd, -1, -2).reshape(-1, 5).T @ c_block.reshape(-1, 5)
     return schur, bd, inverse, scale
 
 
@@ -476,7 +510,7 @@ def _step(blocks, carriage, balls, geometry: _Geometry):
     Jacobian is singular: rows without load)."""
     schur, bd, inverse, scale = _condensed(blocks, geometry)
     c_block, loose, centred = blocks[2], blocks[4], blocks[5]
-    rhs = -carriage + np.einsum("rkja,rka->j", bd, balls)
+    rhs = -carriage + np.swapaxes(bd, -1, -2).reshape(-1, 5).T @ balls.reshape(-1)
     scaled = schur / np.outer(scale, scale)
     if not (np.all(np.isfinite(scaled)) and np.all(np.isfinite(rhs))):
         raise ConvergenceError("carriage.solve: the Newton system is not finite", residual=math.inf, iterations=0,
@@ -488,7 +522,7 @@ def _step(blocks, carriage, balls, geometry: _Geometry):
     except np.linalg.LinAlgError:
         dq = np.linalg.lstsq(scaled, rhs / scale, rcond=1e-12)[0]
     dq = dq / scale
-    dv = -np.einsum("rkab,rkb->rka", inverse, balls + np.einsum("rkaj,j->rka", c_block, dq))
+    dv = -(inverse @ (balls + c_block @ dq)[..., None])[..., 0]
     return dq, dv, loose, centred
 
 
