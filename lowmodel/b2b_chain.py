@@ -149,7 +149,8 @@ class ChainLayout:
 class BallBlocks:
     """What a ball function returns: every ball on its own (module docstring).
 
-    residual (n, k), jacobian (n, k, k) = d residual_j / d x_j; with global unknowns also
+    residual (n, k), jacobian (n, k, k) = d residual_j / d x_j (or a function of no arguments returning it, where it
+    costs more than the residual: :func:`chain_system` defers it); with global unknowns also
     coupling (n, k, g) = d residual_j / d extra, global_residual (g,), global_rows (g, n, k) = d global / d x_j,
     global_block (g, g) = d global / d extra.
     """
@@ -203,7 +204,9 @@ def chain_system(ball_function, pair_function, layout: ChainLayout, *, rate_inde
                  complementarity: str = "min"):
     """Residual and Jacobian ``function(z) -> (residual (size,), jacobian)`` of a B2B chain (module docstring).
 
-    ``ball_function(balls (n, k), extra (g,)) -> BallBlocks``; ``pair_function(balls, forces (p,)) -> PairBlocks``
+    ``ball_function(balls (n, k), extra (g,)) -> BallBlocks`` (its ``jacobian`` may be a function of no arguments: the
+    chain's Jacobian is then deferred too, :func:`lowmodel.solvers.newton`); ``pair_function(balls, forces (p,)) ->
+    PairBlocks``
     (forces in slot units, 0 on open pairs); the separation rate of pair (behind, ahead) in the units of the
     force slot is ``(x_ahead[rate_index] - x_behind[rate_index]) * rate_scale`` (``rate_scale`` includes
     ``gamma``); ``complementarity`` one of :data:`COMPLEMENTARITY_FUNCTIONS`.  The Jacobian is
@@ -249,10 +252,17 @@ def chain_system(ball_function, pair_function, layout: ChainLayout, *, rate_inde
             residual[:, k] = np.where(force_branch, np.where(placeholder, slots, lam), rate)
             d_lam = force_branch
             d_rate = np.where(force_branch, 0.0, rate_scale)  # d (rate) / d x_ahead[c] on the rate branch
+        if g:
+            residual = np.concatenate([residual.reshape(-1), ball.global_residual])
+        if callable(ball.jacobian):  # the balls' Jacobian deferred (lowmodel.solvers.newton calls it where needed)
+            return residual.reshape(-1), lambda: assemble(ball, ball.jacobian(), pair, d_lam, d_rate)
+        return residual.reshape(-1), assemble(ball, ball.jacobian, pair, d_lam, d_rate)
+
+    def assemble(ball, ball_jacobian, pair, d_lam, d_rate):
         diagonal = np.zeros((n, big_k, big_k))
         above = np.zeros((len(pairs), big_k, big_k))  # block (behind, ahead) of each pair
         below = np.zeros((len(pairs), big_k, big_k))  # block (ahead, behind)
-        diagonal[:, :k, :k] = ball.jacobian
+        diagonal[:, :k, :k] = ball_jacobian
         d_balls = pair.d_balls
         if chain:  # behind = 0..n-2, ahead = 1..n-1: slices (the ring below needs add.at)
             diagonal[:-1, :k, :k] += d_balls[:, 0, 0]
@@ -275,8 +285,7 @@ def chain_system(ball_function, pair_function, layout: ChainLayout, *, rate_inde
         extra_blocks = None
         if g:
             extra_blocks = (ball.coupling, ball.global_rows, ball.global_block)
-            residual = np.concatenate([residual.reshape(-1), ball.global_residual])
-        return residual.reshape(-1), jacobian_matrix(layout, diagonal, above, below, extra_blocks)
+        return jacobian_matrix(layout, diagonal, above, below, extra_blocks)
 
     return function
 

@@ -86,7 +86,9 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
     step"``) otherwise; a NaN residual never passes as converged.  ``row_weight`` (an array like ``r``, > 0):
     the Levenberg-Marquardt steps minimise ``|W r|^2`` (rows equilibrated: the normal equations square the
     condition of ``J``), the convergence test stays on ``r``; dense, scipy sparse and :class:`BlockTridiagonal`
-    Jacobians alike.
+    Jacobians alike.  ``jacobian`` may also be a function of no arguments that returns it: it is then called only
+    where a step needs it (not for a rejected trial point, nor at the converged one), for a model whose Jacobian
+    costs much more than its residual.
     """
     check_solver_options(tolerance, max_iterations)
     limits = tolerance if row_tolerance is None else np.asarray(row_tolerance, dtype=float)
@@ -97,6 +99,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
 
         def function(x):
             residual_, jacobian_ = plain(x)
+            if callable(jacobian_):
+                return residual_ * weight, lambda: _scaled_rows(jacobian_(), weight)
             return residual_ * weight, _scaled_rows(jacobian_, weight)
 
         limits = limits * weight
@@ -112,6 +116,8 @@ def newton(function, x0: np.ndarray, *, tolerance: float, max_iterations: int, w
             raise ConvergenceError(f"{what}: Newton did not converge", residual=norm, iterations=iterations,
                                    tolerance=tolerance, reason=reason)
         iterations += 1
+        if callable(jacobian):  # deferred by the model until a step needs it
+            jacobian = jacobian()
         blocks = isinstance(jacobian, BlockTridiagonal)
         sparse = blocks or x.size > SPARSE_SIZE or not isinstance(jacobian, np.ndarray)
         if blocks:  # ball chains: J^T J in band storage straight from the blocks (no sparse matrix at all)

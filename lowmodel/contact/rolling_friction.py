@@ -43,6 +43,7 @@ jacobian, ball)``, ``n_balls``), so :func:`lowmodel.contact.traction.solve_chain
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -211,8 +212,11 @@ class StickSlipFriction:
                                      initial_sensitivity=rate if directions is not None else None,
                                      workspace=item.workspace)
         self.solves += 1
-        if keep:
-            item.start = (solution.traction, forward, x.copy(), solution.traction_sensitivity)
+        if keep:  # a solve without the sensitivity keeps the last one for the next prediction
+            rate = solution.traction_sensitivity
+            if rate is None and item.start is not None and item.start[1] == forward:
+                rate = item.start[3]
+            item.start = (solution.traction, forward, x.copy(), rate)
         traction = solution.traction if forward else -solution.traction[::-1, ::-1]
         if keep:
             item.last = (x.copy(), (traction, solution, speed, forward))
@@ -244,11 +248,18 @@ class StickSlipFriction:
                 np.einsum("mik,mij->kj", item.D, force_rate))
 
     # -- the SampledCoulomb interface --------------------------------------------------------------------------
-    def evaluate(self, balls: np.ndarray, jacobian: bool = True, ball: int | None = None):
+    def evaluate(self, balls: np.ndarray, jacobian: bool = True, ball: int | None = None, lazy: bool = False):
         """Residual (n, k) (the generalised forces, units ``mu F_ref``) and Jacobian (n, k, k) (analytic or by
         forward differences, ``jacobian_method``) at ``balls`` (n, k); ``ball``: that ball only (residual (k,), Jacobian
-        (k, k)).  The third and fourth entries (slips and forces of :class:`SampledCoulomb`) are None."""
+        (k, k)).  The third and fourth entries (slips and forces of :class:`SampledCoulomb`) are None.  ``lazy``
+        (analytic Jacobian): the Jacobian as a function of no arguments, computed when called (its sensitivity
+        solves cost about as much as the residual's solves; :func:`lowmodel.solvers.newton` calls it only where a
+        step needs it)."""
         balls = np.asarray(balls, dtype=float)
+        if lazy and jacobian and self.jacobian_method == "analytic":
+            residual = self.evaluate(balls, jacobian=False, ball=ball)[0]
+            at = balls.copy()
+            return residual, lambda: self.evaluate(at, ball=ball)[1], None, None
         which = range(self.n_balls) if ball is None else [int(ball)]
         k = self.n_unknowns
         residual = np.zeros((len(which), k))
@@ -406,13 +417,13 @@ def solve_balls(friction: StickSlipFriction, start: np.ndarray, touching, pair_f
     n, k = start.shape
     touching = np.asarray(touching, dtype=int)
     if touching.size == 0:
-        states, iterations = free_ball_starts(friction.evaluate, start, tolerance=tolerance,
-                                              max_iterations=max_iterations, what=what)
+        states, iterations = free_ball_starts(functools.partial(friction.evaluate, lazy=True), start,
+                                              tolerance=tolerance, max_iterations=max_iterations, what=what)
         residual = float(np.max(np.abs(friction.evaluate(states, jacobian=False)[0])))
         return states, np.zeros(max(n - 1, 0)), iterations, residual
 
     def ball_function(states, _extra=None):
-        residual, jac = friction.evaluate(states)[:2]
+        residual, jac = friction.evaluate(states, lazy=True)[:2]
         return BallBlocks(residual, jac)
 
     layout = ChainLayout(n, k, touching)

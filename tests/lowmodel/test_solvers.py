@@ -299,3 +299,52 @@ def test_solve_with_restarts(c, attempts):
         assert math.isfinite(error.residual)
         return
     assert x[0] >= 0.0 and abs(x[0] ** 2 - c) <= 1e-12
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+def test_a_deferred_jacobian_is_called_once_per_step_and_gives_the_same_steps(weighted):
+    # the function returns its Jacobian as a function of no arguments: newton calls it only where it takes a step
+    # (not at rejected trials nor at the converged point), and the iterates equal those of the Jacobian given
+    def function(x):
+        return np.array([np.arctan(x[0]) - 0.3, x[1] ** 3 + x[0] - 1.0]), np.array([[1.0 / (1.0 + x[0] ** 2), 0.0],
+                                                                                       [1.0, 3.0 * x[1] ** 2]])
+    calls, points = [], []
+
+    def deferred(x):
+        residual, jacobian = function(x)
+        points.append(x.copy())
+        return residual, lambda: calls.append(1) or jacobian
+
+    options = dict(tolerance=1e-12, max_iterations=80, what="arctan", row_weight=np.array([1.0, 3.0]) if weighted
+                   else None)
+    x0 = np.array([10.0, 1.0])  # far: the first steps of Levenberg-Marquardt are rejected
+    plain = solvers.newton(function, x0, **options)
+    lazy = solvers.newton(deferred, x0, **options)
+    assert np.array_equal(plain[0], lazy[0]) and plain[2] == lazy[2]
+    assert len(calls) == lazy[2] and len(points) > lazy[2] + 1  # one per step; trials rejected on the way
+
+
+def test_a_deferred_ball_jacobian_defers_the_chains():
+    from ballbench.lowmodel.b2b_chain import BallBlocks, ChainLayout, PairBlocks, chain_system
+
+    layout = ChainLayout(2, 1, np.array([0]))
+
+    def balls(states, _extra=None):
+        return BallBlocks(states ** 3 - 1.0, 3.0 * states[:, :, None] ** 2)
+
+    def lazy(states, _extra=None):
+        blocks = balls(states)
+        return BallBlocks(blocks.residual, lambda: blocks.jacobian)
+
+    def pair(states, forces):
+        load = np.zeros((2, 1))
+        load[0, 0], load[1, 0] = forces[0], -forces[0]
+        d_balls = np.zeros((1, 2, 2, 1, 1))
+        d_force = np.array([[[1.0], [-1.0]]])
+        return PairBlocks(load, d_balls, d_force, np.zeros(1))
+
+    z = np.array([1.2, 0.1, 0.7, 0.0])
+    plain = chain_system(balls, pair, layout, rate_index=0, rate_scale=1.0)(z)
+    deferred = chain_system(lazy, pair, layout, rate_index=0, rate_scale=1.0)(z)
+    assert np.array_equal(plain[0], deferred[0]) and callable(deferred[1])
+    assert np.array_equal(plain[1], deferred[1]())

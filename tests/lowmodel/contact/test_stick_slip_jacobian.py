@@ -48,3 +48,25 @@ def test_the_analytic_jacobian_equals_forward_differences(velocity):
                          - friction.evaluate(x - shift, jacobian=False)[0][0]) / (2.0 * step)
     # 6e-9 of the largest entry measured (the rolling solves' tolerance 1e-12 over the step)
     assert np.max(np.abs(analytic - central)) < 1e-6 * np.max(np.abs(central))
+
+
+def test_the_deferred_jacobian_equals_the_jacobian_evaluated_with_the_residual():
+    # evaluate(lazy=True): the residual of the plain evaluation, the Jacobian when called (the same contacts solved
+    # again with their sensitivity, from the residual's tractions): both within the rolling solves' tolerance
+    guide = LinearGuide(ball_radius=R_B, conformity=0.56, nominal_angle=math.pi / 4, material=Material(210e9, 0.28),
+                        friction_coefficient=MU, groove_velocity=0.01)
+    case = GuideLoadCase(guide, vertical_force=300.0, side_force_ratio=-0.9,
+                         deviations=(-math.radians(1.5), math.radians(1.5), 0.0, 0.0))
+    balls = [b2b_rolling.hertz_contacts(b2b.contacts(case), 0, cells=(12, 48), guide=guide)]
+    state = b2b_rolling.solve(balls, ball_radius=R_B, friction_coefficient=MU, groove_velocity=0.01, start="auto")
+    x = np.column_stack([state.ball_velocity / 0.01, state.omega * R_B / 0.01]) + 1e-4 * np.array([[0.3, -0.2, 0.5]])
+    reference = max(c.normal_force for c in balls[0])
+
+    def law():
+        return rf.StickSlipFriction(balls, lambda p, m: b2b_traction.slip_field(p, R_B, m), MU, reference, 1.0, 0.01)
+
+    plain = law().evaluate(x)
+    residual, deferred = law().evaluate(x, lazy=True)[:2]
+    assert callable(deferred)
+    assert np.max(np.abs(residual - plain[0])) < 1e-9 * np.max(np.abs(plain[0]))
+    assert np.max(np.abs(deferred() - plain[1])) < 1e-6 * np.max(np.abs(plain[1]))
