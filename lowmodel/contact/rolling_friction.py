@@ -382,12 +382,16 @@ def check_start(start: str, law: str, full_slip) -> str:
     return start
 
 
-def solve_from_either_start(solve, max_iterations: int, what: str, warm=None, alone=None):
-    """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells, else (``warm()``, a solve from
-    a nearby state, where given; then ``alone()``, a chain's solve from the states of its balls each solved alone,
-    where given, else) from rolling with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton
-    converges linearly from there); ConvergenceError naming ``what`` and both failures when none converges."""
+def solve_from_either_start(solve, max_iterations: int, what: str, warm=None, alone=None, full_slip: bool = True):
+    """``start="auto"``: ``solve(start, max_iterations)`` from full slip on the cells (unless not ``full_slip``: balls
+    without a full-slip state on the cells), else (``warm()``, a solve from a nearby state, where given; then
+    ``alone()``, a chain's solve from the states of its balls each solved alone, where given, else) from rolling
+    with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton converges linearly from there);
+    ConvergenceError naming ``what`` and both failures when none converges."""
     try:
+        if not full_slip:
+            raise ConvergenceError(f"{what}: no full-slip start (balls with different numbers of contacts)",
+                                   residual=math.inf, iterations=0, tolerance=0.0, reason="no full-slip start")
         return solve("full-slip", max_iterations)
     except ConvergenceError as error:
         for nearer in (warm, alone):

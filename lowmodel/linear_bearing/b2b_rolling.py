@@ -66,7 +66,8 @@ AXIS.setflags(write=False)
 @dataclass(frozen=True)
 class RollingB2BState(BallStateBase):
     """Quasi-static state of ``n`` balls with stick/slip (or full-slip) contacts on grids; the power, B2B and loss
-    fields of :class:`lowmodel.state.BallStateBase` (``friction_loss`` (n, c): each contact's rigid power).
+    fields of :class:`lowmodel.state.BallStateBase` (``friction_loss`` (n, c): each contact's rigid power, zero
+    after the last contact of a ball with fewer).
 
     law : "stick-slip" or "full-slip";  ball_velocity (n,) m/s;  omega (n, 2) rad/s ``(omega_x, omega_y)``
     velocity_deviation : (n,) ``2 v_B / v - 1`` (lin2019 eq 21)
@@ -166,6 +167,19 @@ def _friction(balls, radius: float, mu: float, velocity: float, law: str, refere
     return rf.StickSlipFriction(balls, field, mu, reference_force, sign, abs(velocity), law=law)
 
 
+def _balls(balls, law: str, full_slip, start: str) -> tuple[list, bool]:
+    """``(balls as tuples, whether their numbers of contacts differ)``; ValueError where they do and a full-slip
+    state on the cells is asked for (``b2b_traction`` takes as many contacts per ball)."""
+    balls = [tuple(contacts) for contacts in balls]
+    if len(balls) < 1 or not all(balls):
+        raise ValueError("balls must hold n >= 1 balls with at least one contact each")
+    mixed = len({len(c) for c in balls}) != 1
+    if mixed and (law == "full-slip" or full_slip is not None or start == "full-slip"):
+        raise ValueError("balls with different numbers of contacts take the stick/slip law from start='auto', "
+                         "'rolling' or 'alone' (the full-slip law on the cells needs as many contacts per ball)")
+    return balls, mixed
+
+
 def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velocity: float, gaps=None,
           law: str = "stick-slip", tolerance: float = 1e-9, max_iterations: int = 40,
           full_slip: b2b_traction.TractionState | None = None, start: str = "full-slip",
@@ -173,7 +187,9 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     """Quasi-static motion of ``n >= 1`` balls whose ball-to-groove contacts are :class:`GridContact` s, with B2B
     contact (lin2019 eqs 4-10; module docstring).
 
-    balls : per ball its contacts (ball 0 behind, lin2019's "ball 1"; the same number per ball)
+    balls : per ball its contacts (ball 0 behind, lin2019's "ball 1"); the stick/slip law takes any number per ball
+        (a ball of a carriage's chain in two- or three-point contact beside four-point ones), the full-slip law and
+        its start the same number
     ball_radius [m];  friction_coefficient mu (ball-to-groove and ball-to-ball);  groove_velocity v [m/s] of
     the top groove;  gaps : (n-1,) m (default all touching)
     law : "stick-slip" (the rolling solve) or "full-slip" (pointwise Coulomb on the same cells)
@@ -199,10 +215,8 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
     radius = checks.positive("ball_radius", ball_radius, "m")
     mu = model_inputs.guide_friction_coefficient(friction_coefficient)
     velocity = model_inputs.groove_velocity(groove_velocity)
-    balls = [tuple(contacts) for contacts in balls]
+    balls, mixed = _balls(balls, law, full_slip, start)
     n = len(balls)
-    if n < 1 or len({len(c) for c in balls}) != 1:
-        raise ValueError("balls must hold n >= 1 balls with the same number of contacts each")
     touching = b2b.touching_pairs(gaps, n, radius)
     patches = [[c.patch() for c in contacts] for contacts in balls]
     if warm is not None and (law != "stick-slip" or len(warm.ball_velocity) != n):
@@ -243,7 +257,7 @@ def solve(balls, *, ball_radius: float, friction_coefficient: float, groove_velo
             lambda first, steps: solve(balls, ball_radius=radius, friction_coefficient=mu, groove_velocity=velocity,
                                        gaps=gaps, tolerance=tolerance, max_iterations=steps, start=first),
             max_iterations, f"stick/slip {n}-ball B2B contact", warm=from_warm if warm is not None and n > 1 else None,
-            alone=from_alone if touching.size else None)
+            alone=from_alone if touching.size else None, full_slip=not mixed)
     if warm is not None:
         try:
             return from_warm()
@@ -269,7 +283,8 @@ def _state(friction: rf.StickSlipFriction, states, slots, mu, velocity, radius, 
            law) -> RollingB2BState:
     speed = abs(velocity)
     summaries = friction.summaries(states)
-    loss = np.array([[c.rigid_power for c in row] for row in summaries])
+    width = max(len(row) for row in summaries)  # balls with fewer contacts: zeros after their own
+    loss = np.array([[c.rigid_power for c in row] + [0.0] * (width - len(row)) for row in summaries])
     input_power = float(sum(c.drive_power for row in summaries for c in row))
     b2b_slip = b2b.b2b_terms(states, slots, mu)[3] * speed
     b2b_force = slots * mu * reference_force

@@ -303,3 +303,41 @@ def test_a_chain_from_its_balls_alone_reaches_the_state_from_full_slip(case_a):
     assert state.omega == pytest.approx(result.touching.omega, rel=1e-6, abs=1e-9 * V / R_B)
     with pytest.raises(ValueError, match="alone"):
         b2b_rolling.solve(balls, start="alone", gaps=[1e-3], **COMMON)
+
+
+def test_a_chain_of_balls_with_different_numbers_of_contacts():
+    """Balls of one chain need not carry as many contacts (a carriage's ball in its end relief beside four-point
+    ones): three touching balls whose middle one carries a contact of 1e-6 of its load equal, within that share of
+    the friction, the chain whose middle ball has that contact left out (the law's loads are the given normal forces,
+    so a vanishing contact is a vanishing friction); the full-slip law and start, which take as many contacts per
+    ball, are refused by name."""
+    contacts = b2b.module_contacts(THETA, -0.6, friction_coefficient=MU)
+    rows = [contacts.contact_angles[0], contacts.normal_forces[0], contacts.semi_major[0], contacts.b_over_a[0]]
+    angles, forces, semi, ratio = (np.stack([row, row, row]) for row in rows)
+    forces = forces.copy()
+    semi = semi.copy()
+    forces[1, 3] = 1e-6 * forces[1].max()  # TL of the middle ball: nearly unloaded (Hertz: a ~ F^(1/3))
+    semi[1, 3] = semi[1, 2] * (forces[1, 3] / forces[1, 2]) ** (1.0 / 3.0)
+
+    def chain(drop: bool):
+        balls = []
+        for k in range(3):
+            f = forces[k].copy()
+            if drop and k == 1:
+                f[3] = 0.0  # left out by loaded_contacts
+            balls.append(b2b_rolling.loaded_contacts(angles[k], f, semi[k], ratio[k], ball_radius=R_B, cells=CELLS))
+        return balls
+
+    full, three = chain(False), chain(True)
+    assert [len(b) for b in three] == [4, 3, 4]
+    with_light = b2b_rolling.solve(full, start="auto", **COMMON)
+    without = b2b_rolling.solve(three, start="auto", **COMMON)
+    scale = MU * forces.max()
+    assert np.max(np.abs(without.b2b_force - with_light.b2b_force)) < 1e-5 * scale
+    assert without.ball_velocity == pytest.approx(with_light.ball_velocity, rel=1e-5)
+    assert without.friction_loss.shape == (3, 4) and without.friction_loss[1, 3] == 0.0
+    assert without.power_balance < 1e-8 and without.b2b_force.max() > 0.01 * scale  # a pair carries B2B force
+    with pytest.raises(ValueError, match="different numbers of contacts"):
+        b2b_rolling.solve(three, **COMMON)  # the default start: full slip on the cells
+    with pytest.raises(ValueError, match="different numbers of contacts"):
+        b2b_rolling.solve(three, law="full-slip", start="auto", **COMMON)
