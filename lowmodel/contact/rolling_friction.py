@@ -388,24 +388,24 @@ def solve_from_either_start(solve, max_iterations: int, what: str, warm=None, al
     ``alone()``, a chain's solve from the states of its balls each solved alone, where given, else) from rolling
     with :data:`ROLLING_ITERATIONS` times the steps (near stick/slip switches Newton converges linearly from there);
     ConvergenceError naming ``what`` and both failures when none converges."""
-    try:
-        if not full_slip:
-            raise ConvergenceError(f"{what}: no full-slip start (balls with different numbers of contacts)",
-                                   residual=math.inf, iterations=0, tolerance=0.0, reason="no full-slip start")
-        return solve("full-slip", max_iterations)
-    except ConvergenceError as error:
-        for nearer in (warm, alone):
-            if nearer is not None:
-                try:
-                    return nearer()
-                except ConvergenceError:
-                    pass
+    error = "not tried: balls with different numbers of contacts"
+    if full_slip:
         try:
-            return solve("rolling", ROLLING_ITERATIONS * max_iterations)
-        except ConvergenceError as again:
-            raise ConvergenceError(f"{what}: converged neither from full slip on the cells ({error}) nor from "
-                                   f"rolling ({again})", residual=again.residual, iterations=again.iterations,
-                                   tolerance=again.tolerance, reason=again.reason) from again
+            return solve("full-slip", max_iterations)
+        except ConvergenceError as failed:
+            error = failed
+    for nearer in (warm, alone):
+        if nearer is not None:
+            try:
+                return nearer()
+            except ConvergenceError:
+                pass
+    try:
+        return solve("rolling", ROLLING_ITERATIONS * max_iterations)
+    except ConvergenceError as again:
+        raise ConvergenceError(f"{what}: converged neither from full slip on the cells ({error}) nor from "
+                               f"rolling ({again})", residual=again.residual, iterations=again.iterations,
+                               tolerance=again.tolerance, reason=again.reason) from again
 
 
 def solve_balls(friction: StickSlipFriction, start: np.ndarray, touching, pair_function_of, *, forces=None,

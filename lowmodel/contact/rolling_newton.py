@@ -254,7 +254,7 @@ class TangentialProblem:
         pattern = np.zeros((n_lines, nx), dtype=bool)
         pattern.reshape(-1)[self.flat] = sliding
         cache = self.workspace  # the caller's store of the last line inverses per contact set, or None
-        key = self.cells.tobytes()
+        key = self.cells.tobytes() if cache is not None else None
         kept = cache.get(key) if self._inverse is None and cache is not None else None
         if kept is not None:  # a new solve on these cells starts from the last one's line inverses
             self._pattern, self._inverse = kept[0], kept[1].copy()

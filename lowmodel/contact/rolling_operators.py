@@ -169,7 +169,7 @@ class ConvolutionOperator:
 
     def convolution(self) -> _Convolution:
         """The FFT convolution with the kernels (built on first use, then kept): ``op.convolution()(field)``, or
-        ``.on_cells(i, j, values)`` for a field given on some cells only."""
+        ``.on_cells(index, values)`` for a field given on some cells only (``index`` of ``.padded_index(i, j)``)."""
         if self._convolution is None:
             self._convolution = _Convolution(self.kernels, self.grid.nx, self.grid.ny)
         return self._convolution

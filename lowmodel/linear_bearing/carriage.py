@@ -285,16 +285,16 @@ class _Geometry:
         self.jac_t = np.ascontiguousarray(np.swapaxes(self.jac, -1, -2))
         # each rail contact's partner: the carriage contact most nearly opposite it (a two-point ball's other
         # contact; lin2017's diagonal pairs BL-TR, BR-TL of a gothic-arch ball)
-        self.pairs = []
+        pairs = []
         for r in rows:
             rail = [c for c, top in enumerate(r.carriage) if not top]
             top = [c for c, t in enumerate(r.carriage) if t]
-            self.pairs.append([(c, min(top, key=lambda t: float(np.dot(r.normals[c], r.normals[t])))) for c in rail])
-        most = max(len(p) for p in self.pairs)  # the pairs as arrays (r, P), padded with a row's first pair
-        padded = [p + p[:1] * (most - len(p)) for p in self.pairs]
+            pairs.append([(c, min(top, key=lambda t: float(np.dot(r.normals[c], r.normals[t])))) for c in rail])
+        most = max(len(p) for p in pairs)  # the pairs as arrays (r, P), padded with a row's first pair
+        padded = [p + p[:1] * (most - len(p)) for p in pairs]
         self.pair_rail = np.array([[c for c, _ in p] for p in padded], dtype=int)
         self.pair_top = np.array([[t for _, t in p] for p in padded], dtype=int)
-        self.pair_share = np.array([[1.0 / len(p) if i < len(p) else 0.0 for i in range(most)] for p in self.pairs])
+        self.pair_share = np.array([[1.0 / len(p) if i < len(p) else 0.0 for i in range(most)] for p in pairs])
         relief_z = relief(body, z)  # (k,)
         self.offset = (0.5 * body.oversize - self.top[:, None, :] * relief_z[None, :, None]) * np.ones(shape)
         self.scale = max(body.half_length, radius)  # m: moments over it compare with forces
